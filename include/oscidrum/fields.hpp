@@ -1,0 +1,57 @@
+// oscidrum/fields.hpp: the one description of every Case parameter. The config reader, the CLI
+// overrides, the Python bindings, the docs and Model's validation all read this table, so a
+// parameter's key, unit, default and allowed range are written down exactly once.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "oscidrum/parameters.hpp"
+
+namespace oscidrum {
+
+enum class FieldType { real, integer, boolean, choice };
+
+/// One parameter of a Case. Values travel as double (booleans 0/1, choices as their index).
+struct Field {
+  const char* key;          ///< dotted key, e.g. "soil.G" (config section "soil", key "G")
+  FieldType type;
+  const char* unit;         ///< SI unit, "-" if dimensionless
+  const char* description;  ///< one line, for --help and the docs
+  double min;               ///< allowed range [min, max] (see the *_open flags)
+  double max;
+  bool min_open;            ///< true: value must be > min (not >=)
+  bool max_open;            ///< true: value must be < max (not <=)
+  const char* choices;      ///< FieldType::choice: names separated by '|', index = value
+  double (*get)(const Case&);
+  void (*set)(Case&, double);
+};
+
+/// Every field, in documentation order.
+std::span<const Field> fields();
+
+/// The field with this key, or nullptr.
+const Field* find_field(std::string_view key);
+
+/// Read a field of a case (throws oscidrum::Error for an unknown key).
+double get_field(const Case& c, std::string_view key);
+
+/// Check `value` against the field's rule and set it. Throws oscidrum::Error with a message of
+/// the form "soil.G must be > 0 [Pa]; got -5e+06" (or "unknown parameter 'soil.g'; did you mean
+/// 'soil.G'?").
+void set_field(Case& c, std::string_view key, double value);
+
+/// Set a field from text: numbers (SI), true/false for booleans, a choice's name.
+void set_field_text(Case& c, std::string_view key, std::string_view text);
+
+/// The rule of a field as text, e.g. "> 0" or "in [0, 0.5)".
+std::string field_rule(const Field& field);
+
+/// The value formatted for people (choice names, true/false, %.10g numbers).
+std::string format_field(const Case& c, const Field& field);
+
+/// Check one value against the field's rule; empty string if fine, else the error message.
+std::string check_field(const Field& field, double value);
+
+}  // namespace oscidrum

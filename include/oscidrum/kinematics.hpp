@@ -1,0 +1,45 @@
+// oscidrum/kinematics.hpp: the drum centre relative to the trough, (15)-(16), and its
+// derivatives f1 ... f6 (46)-(50), plus the shorthands (33) and (37).
+#pragma once
+
+namespace oscidrum {
+
+/// Geometry of the log-spiral trough (MODEL.md section 1): R(theta) = a exp(k theta),
+/// alpha = atan(1/k), theta0 = pi - alpha, R0 = a exp(k theta0). k = 0: alpha = pi/2, R0 = a.
+struct TroughGeometry {
+  double r = 0.6;                    ///< drum radius [m]
+  double k = 0.0;                    ///< [-]
+  double a = 0.606;                  ///< [m]
+  double alpha = 1.5707963267948966; ///< [rad]
+  double R0 = 0.606;                 ///< [m]
+};
+
+/// Build the derived geometry from r, k, a.
+TroughGeometry make_trough_geometry(double r, double k, double a);
+
+/// Everything that depends on delta alone.
+struct Kinematics {
+  double x_roll = 0.0;  ///< (15) [m]
+  double z_roll = 0.0;  ///< (16) [m]
+  double f1 = 0.0;      ///< (46) d x_roll / d delta [m]
+  double f2 = 0.0;      ///< (47) d f1 / d delta [m]
+  double f3 = 0.0;      ///< (48) d z_roll / d delta [m]
+  double f4 = 0.0;      ///< (49) d f3 / d delta [m]
+  double f5 = 0.0;      ///< (50) phi' = f5 delta' in stick [-]
+  double f6 = 0.0;      ///< (50) d f5 / d delta [-]
+  double sin_delta = 0.0;
+  double cos_delta = 1.0;
+  double f1_bar = 0.0;    ///< (33) f1 cos - f3 sin (identically r f5)
+  double f2_bar = 0.0;    ///< (33) f2 cos - f4 sin
+  double f3_tilde = 0.0;  ///< (37) f1 sin + f3 cos (identically 0)
+  double f4_tilde = 0.0;  ///< (37) f2 sin + f4 cos (identically -f1_bar)
+};
+
+/// Evaluate (15), (16), (46)-(50), (33), (37) at delta [rad].
+Kinematics kinematics(const TroughGeometry& geometry, double delta);
+
+/// Rolling condition (11): phi as a function of delta with no slip since t = 0 [rad]
+/// (k -> 0: (R0 - r) delta / r).
+double phi_rolling(const TroughGeometry& geometry, double delta);
+
+}  // namespace oscidrum

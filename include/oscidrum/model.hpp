@@ -1,0 +1,84 @@
+// oscidrum/model.hpp: a validated Case with its derived constants, and the equations of motion.
+#pragma once
+
+#include "oscidrum/kinematics.hpp"
+#include "oscidrum/parameters.hpp"
+#include "oscidrum/state.hpp"
+
+namespace oscidrum {
+
+/// An immutable, validated model: the Case plus the constants derived from it. Construction
+/// checks every field and throws oscidrum::Error naming the field, the rule and the value.
+class Model {
+ public:
+  explicit Model(const Case& c);
+
+  const Case& parameters() const { return case_; }
+  const TroughGeometry& geometry() const { return geometry_; }
+
+  double m() const { return case_.roller.m; }
+  double I() const { return case_.roller.I; }
+  double r() const { return case_.roller.r; }
+  double kd() const { return case_.roller.kd; }
+  double cd() const { return case_.roller.cd; }
+  double ksh() const { return ksh_; }  ///< [N/m]
+  double ksv() const { return ksv_; }  ///< [N/m]
+  double csh() const { return csh_; }  ///< [N s/m]
+  double csv() const { return csv_; }  ///< [N s/m]
+  double mu() const { return case_.contact.mu; }
+  bool pure_rolling() const { return case_.contact.pure_rolling; }
+  double W() const { return W_; }        ///< m g + Fz (= P0) [N]
+  double Fz() const { return Fz_; }      ///< P0 - m g (7) [N]
+  double nu() const { return nu_; }      ///< excitation circular frequency 2 pi f [rad/s]
+  double period() const { return 1.0 / case_.roller.f; }  ///< excitation period [s]
+  double z_ref() const { return z_ref_; }  ///< suspension reference of z_M (0 as in the paper) [m]
+
+  /// Total excitation MM(t) = M0 sin(nu t) + MMd (5, 6) [N m].
+  double torque(double t) const;
+
+  /// The initial state: at rest at the bottom of the trough, s_A = (W + kd z_ref)/(ksv + kd).
+  State initial_state() const;
+
+ private:
+  Case case_;
+  TroughGeometry geometry_;
+  double ksh_, ksv_, csh_, csv_;
+  double W_, Fz_, nu_, z_ref_;
+};
+
+/// Normal and tangential contact forces at C. The soil is massless, so both are functions of
+/// the state alone: N (26), T from (24)-(25).
+struct ContactForces {
+  double N = 0.0;  ///< [N]
+  double T = 0.0;  ///< [N]
+};
+ContactForces contact_forces(const Model& model, const State& q);
+
+/// Slip velocity (13): v_rel = r f5 delta' - r phi' [m/s].
+double slip_velocity(const Model& model, const State& q);
+
+/// Stick phase (30)-(32) solved for (delta'', x_A'', s_A''); phi'' = f5 delta'' + f6 delta'^2
+/// (12).
+Accelerations stick_accelerations(const Model& model, double t, const State& q);
+
+/// Slip phase (34), (38), (53), (36) solved for (delta'', x_A'', s_A'', phi''); s = +1 or -1 is
+/// sign(v_rel). `baumgarte` [1/s] adds rate * residual(39) to (53) so that drift decays.
+Accelerations slip_accelerations(const Model& model, double t, const State& q, int s,
+                                 double baumgarte = 0.0);
+
+/// Residual of the slip coupling (39): fmu1 (csh x_A' + ksh x_A) - fmu2 (csv s_A' + ksv s_A) [N].
+double slip_constraint_residual(const Model& model, const State& q, int s);
+
+/// Drum-centre displacement (14), velocity (17) and acceleration (18).
+struct DrumMotion {
+  double x_M = 0.0, z_M = 0.0;      ///< [m]
+  double dx_M = 0.0, dz_M = 0.0;    ///< [m/s]
+  double ddx_M = 0.0, ddz_M = 0.0;  ///< [m/s^2]
+};
+DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a);
+
+/// Accelerations of the given phase (stick, or slip with s = phase).
+Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,
+                            double baumgarte = 0.0);
+
+}  // namespace oscidrum

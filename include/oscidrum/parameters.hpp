@@ -1,0 +1,78 @@
+// oscidrum/parameters.hpp: plain input structs. Defaults are the paper's roller (HAMM HD+ 90 VO,
+// MODEL.md section 1, paper Table 1) on the Table 2 soil at G = 25 MN/m^2, circular trough
+// R = 0.606 m, Coulomb friction mu = 0.5, no driving torque. All units SI.
+#pragma once
+
+namespace oscidrum {
+
+/// The drum and its suspension (paper Table 1).
+struct Roller {
+  double r = 0.6;        ///< drum radius [m]
+  double b = 1.68;       ///< drum width [m] (b0 = b/2 in Appendix B)
+  double m = 1851.0;     ///< drum mass [kg]
+  double I = 411.78;     ///< mass moment of inertia about the drum centre M [kg m^2]
+  double P0 = 45224.0;   ///< static axle load [N]; Fz = P0 - m g (7)
+  double f = 39.0;       ///< excitation frequency [Hz]; nu = 2 pi f
+  double M0 = 54947.0;   ///< amplitude of the oscillation moment M_Mu^(0) (5) [N m]
+  double kd = 4.0e6;     ///< drum/frame suspension stiffness, horizontal and vertical [N/m]
+  double cd = 3.0e3;     ///< drum/frame suspension damping, horizontal and vertical [N s/m]
+  double g = 9.81;       ///< gravitational acceleration [m/s^2]
+};
+
+/// How the soil is given.
+enum class SoilInput {
+  coefficients,  ///< directly as the discrete Kelvin-Voigt coefficients ksh, ksv, csh, csv
+  modulus,       ///< as continuum (G, nu, rho), converted by Appendix B (42)-(45)
+};
+
+/// The soil below the drum: either continuum properties or discrete coefficients (see `input`).
+/// The default coefficients are paper Table 2 at G = 25 MN/m^2.
+struct Soil {
+  SoilInput input = SoilInput::coefficients;
+  double G = 25.0e6;    ///< shear modulus [Pa] (input == modulus)
+  double nu = 0.3;      ///< Poisson's ratio [-], 0 <= nu < 0.5 (input == modulus)
+  double rho = 1900.0;  ///< density [kg/m^3] (input == modulus)
+  double ksh = 41.4e6;  ///< horizontal spring [N/m] (input == coefficients)
+  double ksv = 66.3e6;  ///< vertical spring [N/m] (input == coefficients)
+  double csh = 141.0e3; ///< horizontal dashpot [N s/m] (input == coefficients)
+  double csv = 263.0e3; ///< vertical dashpot [N s/m] (input == coefficients)
+};
+
+/// The settlement trough: logarithmic spiral R(theta) = a exp(k theta) (8); k = 0 is a circle of
+/// radius a.
+struct Trough {
+  double k = 0.0;    ///< spiral parameter [-], k >= 0 (0: circle)
+  double a = 0.606;  ///< spiral parameter [m]; the circle's radius when k = 0
+};
+
+/// Drum/soil contact.
+struct Contact {
+  double mu = 0.5;            ///< Coulomb friction coefficient (static = kinetic) [-], >= 0
+  bool pure_rolling = false;  ///< ignore the friction limit (mu -> infinity): stick throughout
+};
+
+/// Numerical options of the hybrid integration and the steady-state search.
+struct Numerics {
+  double rtol = 1e-9;               ///< relative tolerance of the Dormand-Prince steps [-]
+  double atol = 1e-12;              ///< absolute tolerance (SI units of each state) [-]
+  int max_periods = 5000;           ///< give up after this many excitation periods [-]
+  double steady_tol = 1e-8;         ///< period-to-period change that counts as steady [-]
+  int max_multiplicity = 8;         ///< longest steady period searched, in excitation periods
+  int output_periods = 2;           ///< steady periods sampled (times the multiplicity) [-]
+  int samples_per_period = 1024;    ///< uniform samples per excitation period [-]
+  int max_switches_per_period = 200;  ///< more stick/slip switches in one period: chattering
+  double slip_constraint_rate = 0.0;  ///< Baumgarte rate on (39) during slip [1/s]; 0: 2 nu
+  bool suspension_from_static = false;  ///< measure kd from static equilibrium (not the paper)
+};
+
+/// One simulation case: everything the engine needs.
+struct Case {
+  Roller roller;
+  Soil soil;
+  Trough trough;
+  Contact contact;
+  double MMd = 0.0;  ///< constant driving torque (6) [N m]
+  Numerics numerics;
+};
+
+}  // namespace oscidrum

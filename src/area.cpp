@@ -1,0 +1,2 @@
+// placeholder: implemented by the metrics work
+#include "oscidrum/metrics.hpp"

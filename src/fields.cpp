@@ -1,0 +1,288 @@
+// The parameter table (see oscidrum/fields.hpp). Defaults are not repeated here: they are the
+// default member initialisers of the structs in parameters.hpp.
+#include "oscidrum/fields.hpp"
+
+#include <array>
+#include <cmath>
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "oscidrum/error.hpp"
+
+namespace oscidrum {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// Accessor pairs. Captureless lambdas convert to the plain function pointers of Field.
+#define OSCIDRUM_REAL(path) \
+  [](const Case& c) { return static_cast<double>(c.path); }, [](Case& c, double v) { c.path = v; }
+#define OSCIDRUM_INT(path)                                          \
+  [](const Case& c) { return static_cast<double>(c.path); },        \
+      [](Case& c, double v) { c.path = static_cast<int>(v); }
+#define OSCIDRUM_BOOL(path)                                         \
+  [](const Case& c) { return c.path ? 1.0 : 0.0; },                 \
+      [](Case& c, double v) { c.path = (v != 0.0); }
+
+const std::array kFields = {
+    // roller (paper Table 1)
+    Field{"roller.r", FieldType::real, "m", "drum radius", 0, inf, true, false, nullptr,
+          OSCIDRUM_REAL(roller.r)},
+    Field{"roller.b", FieldType::real, "m", "drum width (b0 = b/2 in Appendix B)", 0, inf, true,
+          false, nullptr, OSCIDRUM_REAL(roller.b)},
+    Field{"roller.m", FieldType::real, "kg", "drum mass", 0, inf, true, false, nullptr,
+          OSCIDRUM_REAL(roller.m)},
+    Field{"roller.I", FieldType::real, "kg m^2", "drum mass moment of inertia about its centre M",
+          0, inf, true, false, nullptr, OSCIDRUM_REAL(roller.I)},
+    Field{"roller.P0", FieldType::real, "N", "static axle load; Fz = P0 - m g must be >= 0 (7)", 0,
+          inf, true, false, nullptr, OSCIDRUM_REAL(roller.P0)},
+    Field{"roller.f", FieldType::real, "Hz", "excitation frequency (nu = 2 pi f)", 0, inf, true,
+          false, nullptr, OSCIDRUM_REAL(roller.f)},
+    Field{"roller.M0", FieldType::real, "N m", "amplitude of the oscillation moment (5)", 0, inf,
+          false, false, nullptr, OSCIDRUM_REAL(roller.M0)},
+    Field{"roller.kd", FieldType::real, "N/m", "drum/frame suspension stiffness", 0, inf, false,
+          false, nullptr, OSCIDRUM_REAL(roller.kd)},
+    Field{"roller.cd", FieldType::real, "N s/m", "drum/frame suspension damping", 0, inf, false,
+          false, nullptr, OSCIDRUM_REAL(roller.cd)},
+    Field{"roller.g", FieldType::real, "m/s^2", "gravitational acceleration", 0, inf, false, false,
+          nullptr, OSCIDRUM_REAL(roller.g)},
+    // soil
+    Field{"soil.input", FieldType::choice, "-",
+          "how the soil is given: coefficients (ksh, ksv, csh, csv) or modulus (G, nu, rho via "
+          "Appendix B)",
+          0, 1, false, false, "coefficients|modulus",
+          [](const Case& c) { return static_cast<double>(c.soil.input); },
+          [](Case& c, double v) { c.soil.input = static_cast<SoilInput>(static_cast<int>(v)); }},
+    Field{"soil.G", FieldType::real, "Pa", "shear modulus (soil.input = modulus)", 0, inf, true,
+          false, nullptr, OSCIDRUM_REAL(soil.G)},
+    Field{"soil.nu", FieldType::real, "-", "Poisson's ratio (soil.input = modulus)", 0, 0.5, false,
+          true, nullptr, OSCIDRUM_REAL(soil.nu)},
+    Field{"soil.rho", FieldType::real, "kg/m^3", "density (soil.input = modulus)", 0, inf, true,
+          false, nullptr, OSCIDRUM_REAL(soil.rho)},
+    Field{"soil.ksh", FieldType::real, "N/m", "horizontal soil spring (soil.input = coefficients)",
+          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksh)},
+    Field{"soil.ksv", FieldType::real, "N/m", "vertical soil spring (soil.input = coefficients)", 0,
+          inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksv)},
+    Field{"soil.csh", FieldType::real, "N s/m",
+          "horizontal soil dashpot (soil.input = coefficients)", 0, inf, true, false, nullptr,
+          OSCIDRUM_REAL(soil.csh)},
+    Field{"soil.csv", FieldType::real, "N s/m", "vertical soil dashpot (soil.input = coefficients)",
+          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.csv)},
+    // trough
+    Field{"trough.k", FieldType::real, "-", "log-spiral parameter k (0: circle of radius a)", 0,
+          inf, false, false, nullptr, OSCIDRUM_REAL(trough.k)},
+    Field{"trough.a", FieldType::real, "m",
+          "log-spiral parameter a; the trough radius R when k = 0 (must exceed roller.r)", 0, inf,
+          true, false, nullptr, OSCIDRUM_REAL(trough.a)},
+    // contact
+    Field{"contact.mu", FieldType::real, "-", "Coulomb friction coefficient drum/soil", 0, inf,
+          false, false, nullptr, OSCIDRUM_REAL(contact.mu)},
+    Field{"contact.pure_rolling", FieldType::boolean, "-",
+          "ignore the friction limit (mu -> infinity): stick throughout", 0, 1, false, false,
+          nullptr, OSCIDRUM_BOOL(contact.pure_rolling)},
+    // driving torque
+    Field{"MMd", FieldType::real, "N m", "constant driving torque (6); the paper uses 0 and 0.05 M0",
+          -inf, inf, false, false, nullptr, OSCIDRUM_REAL(MMd)},
+    // numerics
+    Field{"numerics.rtol", FieldType::real, "-", "relative tolerance of the Dormand-Prince steps",
+          0, 1e-2, true, false, nullptr, OSCIDRUM_REAL(numerics.rtol)},
+    Field{"numerics.atol", FieldType::real, "-", "absolute tolerance (SI units of each state)", 0,
+          1e-2, true, false, nullptr, OSCIDRUM_REAL(numerics.atol)},
+    Field{"numerics.max_periods", FieldType::integer, "-",
+          "give up the steady-state search after this many excitation periods", 1, 1e7, false,
+          false, nullptr, OSCIDRUM_INT(numerics.max_periods)},
+    Field{"numerics.steady_tol", FieldType::real, "-",
+          "period-to-period change of the state (scaled by its range) that counts as steady", 0,
+          1, true, false, nullptr, OSCIDRUM_REAL(numerics.steady_tol)},
+    Field{"numerics.max_multiplicity", FieldType::integer, "-",
+          "longest steady period searched, in excitation periods", 1, 64, false, false, nullptr,
+          OSCIDRUM_INT(numerics.max_multiplicity)},
+    Field{"numerics.output_periods", FieldType::integer, "-",
+          "steady periods sampled (times the multiplicity)", 1, 1000, false, false, nullptr,
+          OSCIDRUM_INT(numerics.output_periods)},
+    Field{"numerics.samples_per_period", FieldType::integer, "-",
+          "uniform samples per excitation period in the output", 16, 1e6, false, false, nullptr,
+          OSCIDRUM_INT(numerics.samples_per_period)},
+    Field{"numerics.max_switches_per_period", FieldType::integer, "-",
+          "more stick/slip switches than this in one period stop the run as chattering", 2, 1e7,
+          false, false, nullptr, OSCIDRUM_INT(numerics.max_switches_per_period)},
+    Field{"numerics.slip_constraint_rate", FieldType::real, "1/s",
+          "Baumgarte rate that pulls the slip coupling (39) back to zero; 0 means 2 nu", 0, inf,
+          false, false, nullptr, OSCIDRUM_REAL(numerics.slip_constraint_rate)},
+    Field{"numerics.suspension_from_static", FieldType::boolean, "-",
+          "measure the suspension from static equilibrium instead of t = 0 (not the paper)", 0, 1,
+          false, false, nullptr, OSCIDRUM_BOOL(numerics.suspension_from_static)},
+};
+
+#undef OSCIDRUM_REAL
+#undef OSCIDRUM_INT
+#undef OSCIDRUM_BOOL
+
+std::string format_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string choice_name(const char* choices, int index) {
+  std::string_view all(choices);
+  int i = 0;
+  std::size_t start = 0;
+  while (true) {
+    std::size_t bar = all.find('|', start);
+    if (i == index) return std::string(all.substr(start, bar - start));
+    if (bar == std::string_view::npos) return {};
+    start = bar + 1;
+    ++i;
+  }
+}
+
+int choice_index(const char* choices, std::string_view name) {
+  std::string_view all(choices);
+  int i = 0;
+  std::size_t start = 0;
+  while (true) {
+    std::size_t bar = all.find('|', start);
+    if (all.substr(start, bar - start) == name) return i;
+    if (bar == std::string_view::npos) return -1;
+    start = bar + 1;
+    ++i;
+  }
+}
+
+// Levenshtein distance, for "did you mean".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t up = row[j];
+      std::size_t cost = (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                          std::tolower(static_cast<unsigned char>(b[j - 1])))
+                             ? 0
+                             : 1;
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + cost});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+[[noreturn]] void throw_unknown(std::string_view key) {
+  std::string msg = "unknown parameter '" + std::string(key) + "'";
+  const Field* best = nullptr;
+  std::size_t best_d = 4;
+  for (const Field& f : kFields) {
+    std::size_t d = edit_distance(key, f.key);
+    if (d < best_d) {
+      best_d = d;
+      best = &f;
+    }
+  }
+  if (best) msg += std::string("; did you mean '") + best->key + "'?";
+  throw Error(msg);
+}
+
+}  // namespace
+
+std::span<const Field> fields() { return kFields; }
+
+const Field* find_field(std::string_view key) {
+  for (const Field& f : kFields)
+    if (key == f.key) return &f;
+  return nullptr;
+}
+
+double get_field(const Case& c, std::string_view key) {
+  const Field* f = find_field(key);
+  if (!f) throw_unknown(key);
+  return f->get(c);
+}
+
+std::string field_rule(const Field& f) {
+  switch (f.type) {
+    case FieldType::boolean:
+      return "true or false";
+    case FieldType::choice: {
+      std::string s = "one of ";
+      std::string_view all(f.choices);
+      for (char ch : all) s += (ch == '|') ? std::string(", ") : std::string(1, ch);
+      return s;
+    }
+    default:
+      break;
+  }
+  const bool lo = std::isfinite(f.min), hi = std::isfinite(f.max);
+  std::string kind = f.type == FieldType::integer ? "an integer " : "";
+  if (lo && !hi) return kind + (f.min_open ? "> " : ">= ") + format_number(f.min);
+  if (!lo && hi) return kind + (f.max_open ? "< " : "<= ") + format_number(f.max);
+  if (!lo && !hi) return kind.empty() ? "finite" : "an integer";
+  return kind + "in " + (f.min_open ? "(" : "[") + format_number(f.min) + ", " +
+         format_number(f.max) + (f.max_open ? ")" : "]");
+}
+
+std::string check_field(const Field& f, double v) {
+  bool good = std::isfinite(v);
+  if (good && f.type == FieldType::integer) good = (v == std::floor(v));
+  if (good && (f.type == FieldType::boolean)) good = (v == 0.0 || v == 1.0);
+  if (good && f.type == FieldType::choice) good = (v == std::floor(v)) && v >= f.min && v <= f.max;
+  if (good && (f.type == FieldType::real || f.type == FieldType::integer)) {
+    good = f.min_open ? v > f.min : v >= f.min;
+    if (good) good = f.max_open ? v < f.max : v <= f.max;
+  }
+  if (good) return {};
+  std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
+  return std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + format_number(v);
+}
+
+void set_field(Case& c, std::string_view key, double value) {
+  const Field* f = find_field(key);
+  if (!f) throw_unknown(key);
+  std::string problem = check_field(*f, value);
+  if (!problem.empty()) throw Error(problem);
+  f->set(c, value);
+}
+
+void set_field_text(Case& c, std::string_view key, std::string_view text) {
+  const Field* f = find_field(key);
+  if (!f) throw_unknown(key);
+  if (f->type == FieldType::boolean) {
+    if (text == "true" || text == "1" || text == "yes" || text == "on") return f->set(c, 1.0);
+    if (text == "false" || text == "0" || text == "no" || text == "off") return f->set(c, 0.0);
+    throw Error(std::string(f->key) + " must be true or false; got '" + std::string(text) + "'");
+  }
+  if (f->type == FieldType::choice) {
+    int i = choice_index(f->choices, text);
+    if (i < 0)
+      throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got '" +
+                  std::string(text) + "'");
+    return f->set(c, i);
+  }
+  std::string s(text);
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size())
+    throw Error(std::string(f->key) + " must be a number [" + f->unit + "]; got '" + s + "'");
+  set_field(c, key, v);
+}
+
+std::string format_field(const Case& c, const Field& f) {
+  double v = f.get(c);
+  switch (f.type) {
+    case FieldType::boolean:
+      return v != 0.0 ? "true" : "false";
+    case FieldType::choice:
+      return choice_name(f.choices, static_cast<int>(v));
+    default:
+      return format_number(v);
+  }
+}
+
+}  // namespace oscidrum

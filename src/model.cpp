@@ -1,0 +1,115 @@
+// Model: validation of a Case, derived constants, contact forces and drum motion.
+#include "oscidrum/model.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/soil.hpp"
+
+namespace oscidrum {
+namespace {
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+// Every field against its rule in the field table, then the rules that tie fields together.
+void validate(const Case& c) {
+  for (const Field& f : fields()) {
+    std::string problem = check_field(f, f.get(c));
+    if (!problem.empty()) throw Error(problem);
+  }
+  const Roller& R = c.roller;
+  const double Fz = R.P0 - R.m * R.g;
+  if (Fz < 0)
+    throw Error("roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
+                num(R.P0) + " < m g = " + num(R.m * R.g));
+  if (c.trough.k == 0.0 && !(c.trough.a > R.r))
+    throw Error("trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
+                "must exceed the drum radius [m]; got a = " +
+                num(c.trough.a) + " <= r = " + num(R.r));
+  if (c.trough.k > 0.0) {
+    TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
+    // Curvature radius of the spiral at the bottom, sqrt(1+k^2) R0, must exceed r (f5(0) > 0).
+    const double rho_c = std::sqrt(1.0 + c.trough.k * c.trough.k) * g.R0;
+    if (!(rho_c > R.r))
+      throw Error("trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the "
+                  "bottom [m]; got " +
+                  num(rho_c) + " <= " + num(R.r));
+    if (c.trough.k > 1.0)
+      throw Error("trough.k must be <= 1 (a settlement trough, not a tight spiral); got " +
+                  num(c.trough.k));
+  }
+  if (!c.contact.pure_rolling && c.soil.input == SoilInput::coefficients && c.soil.csh <= 0)
+    throw Error("soil.csh must be > 0 [N s/m] (the slip coupling (53) divides by it); got " +
+                num(c.soil.csh));
+}
+
+}  // namespace
+
+Model::Model(const Case& c) : case_(c) {
+  validate(c);
+  const Roller& R = c.roller;
+  geometry_ = make_trough_geometry(R.r, c.trough.k, c.trough.a);
+  SoilCoefficients s = soil_coefficients(c.soil, R);
+  ksh_ = s.ksh;
+  ksv_ = s.ksv;
+  csh_ = s.csh;
+  csv_ = s.csv;
+  Fz_ = R.P0 - R.m * R.g;  // (7)
+  W_ = R.m * R.g + Fz_;    // the vertical load on the drum, = P0
+  nu_ = 2.0 * M_PI * R.f;
+  // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
+  // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.
+  z_ref_ = c.numerics.suspension_from_static ? W_ / ksv_ : 0.0;
+}
+
+double Model::torque(double t) const {
+  return case_.roller.M0 * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
+}
+
+State Model::initial_state() const {
+  State q;
+  // At rest at the bottom (delta = 0, z_roll = 0): (ksv + kd) s_A = W + kd z_ref, from (31).
+  q.s_A = (W_ + kd() * z_ref_) / (ksv_ + kd());
+  return q;
+}
+
+ContactForces contact_forces(const Model& model, const State& q) {
+  // Soil subsystem (24), (25), solved for N (26) and T. The soil is massless, so these hold in
+  // every phase and equal (21), (22).
+  const double Fh = model.ksh() * q.x_A + model.csh() * q.dx_A;
+  const double Fv = model.ksv() * q.s_A + model.csv() * q.ds_A;
+  const double s = std::sin(q.delta), c = std::cos(q.delta);
+  return {Fh * s + Fv * c, Fv * s - Fh * c};
+}
+
+double slip_velocity(const Model& model, const State& q) {
+  const Kinematics k = kinematics(model.geometry(), q.delta);
+  return model.r() * k.f5 * q.ddelta - model.r() * q.dphi;  // (13)
+}
+
+DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a) {
+  const Kinematics k = kinematics(model.geometry(), q.delta);
+  DrumMotion d;
+  d.x_M = k.x_roll + q.x_A;  // (14)
+  d.z_M = k.z_roll + q.s_A;
+  d.dx_M = k.f1 * q.ddelta + q.dx_A;  // (17)
+  d.dz_M = k.f3 * q.ddelta + q.ds_A;
+  d.ddx_M = k.f1 * a.delta + k.f2 * q.ddelta * q.ddelta + a.x_A;  // (18)
+  d.ddz_M = k.f3 * a.delta + k.f4 * q.ddelta * q.ddelta + a.s_A;
+  return d;
+}
+
+Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,
+                            double baumgarte) {
+  if (phase == Phase::stick) return stick_accelerations(model, t, q);
+  return slip_accelerations(model, t, q, static_cast<int>(phase), baumgarte);
+}
+
+}  // namespace oscidrum

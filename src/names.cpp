@@ -1,0 +1,51 @@
+// Names of the enumerations, used in CSV, JSON and messages.
+#include "oscidrum/result.hpp"
+#include "oscidrum/state.hpp"
+
+namespace oscidrum {
+
+const char* to_string(Phase phase) {
+  switch (phase) {
+    case Phase::stick:
+      return "stick";
+    case Phase::slip_positive:
+      return "slip+";
+    case Phase::slip_negative:
+      return "slip-";
+  }
+  return "?";
+}
+
+const char* to_string(Status status) {
+  switch (status) {
+    case Status::steady_state:
+      return "steady_state";
+    case Status::max_periods_reached:
+      return "max_periods_reached";
+    case Status::contact_lost:
+      return "contact_lost";
+    case Status::chattering:
+      return "chattering";
+    case Status::non_finite:
+      return "non_finite";
+    case Status::invalid_geometry:
+      return "invalid_geometry";
+  }
+  return "?";
+}
+
+const char* to_string(EventKind kind) {
+  switch (kind) {
+    case EventKind::stick_to_slip:
+      return "stick_to_slip";
+    case EventKind::slip_to_stick:
+      return "slip_to_stick";
+    case EventKind::slip_reversal:
+      return "slip_reversal";
+    case EventKind::contact_lost:
+      return "contact_lost";
+  }
+  return "?";
+}
+
+}  // namespace oscidrum

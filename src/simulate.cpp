@@ -1,0 +1,2 @@
+// placeholder: the engine
+#include "oscidrum/simulate.hpp"

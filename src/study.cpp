@@ -1,0 +1,2 @@
+// placeholder: the study runner
+#include "oscidrum/study.hpp"
