@@ -2,10 +2,10 @@
 // default member initialisers of the structs in parameters.hpp.
 #include "oscidrum/fields.hpp"
 
-#include <array>
-#include <cmath>
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -22,12 +22,11 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 // Accessor pairs. Captureless lambdas convert to the plain function pointers of Field.
 #define OSCIDRUM_REAL(path) \
   [](const Case& c) { return static_cast<double>(c.path); }, [](Case& c, double v) { c.path = v; }
-#define OSCIDRUM_INT(path)                                          \
-  [](const Case& c) { return static_cast<double>(c.path); },        \
+#define OSCIDRUM_INT(path)                                   \
+  [](const Case& c) { return static_cast<double>(c.path); }, \
       [](Case& c, double v) { c.path = static_cast<int>(v); }
-#define OSCIDRUM_BOOL(path)                                         \
-  [](const Case& c) { return c.path ? 1.0 : 0.0; },                 \
-      [](Case& c, double v) { c.path = (v != 0.0); }
+#define OSCIDRUM_BOOL(path) \
+  [](const Case& c) { return c.path ? 1.0 : 0.0; }, [](Case& c, double v) { c.path = (v != 0.0); }
 
 const std::array kFields = {
     // roller (paper Table 1)
@@ -86,8 +85,9 @@ const std::array kFields = {
           "ignore the friction limit (mu -> infinity): stick throughout", 0, 1, false, false,
           nullptr, OSCIDRUM_BOOL(contact.pure_rolling)},
     // driving torque
-    Field{"MMd", FieldType::real, "N m", "constant driving torque (6); the paper uses 0 and 0.05 M0",
-          -inf, inf, false, false, nullptr, OSCIDRUM_REAL(MMd)},
+    Field{"MMd", FieldType::real, "N m",
+          "constant driving torque (6); the paper uses 0 and 0.05 M0", -inf, inf, false, false,
+          nullptr, OSCIDRUM_REAL(MMd)},
     // numerics
     Field{"numerics.rtol", FieldType::real, "-", "relative tolerance of the Dormand-Prince steps",
           0, 1e-2, true, false, nullptr, OSCIDRUM_REAL(numerics.rtol)},
@@ -97,8 +97,8 @@ const std::array kFields = {
           "give up the steady-state search after this many excitation periods", 1, 1e7, false,
           false, nullptr, OSCIDRUM_INT(numerics.max_periods)},
     Field{"numerics.steady_tol", FieldType::real, "-",
-          "period-to-period change of the state (scaled by its range) that counts as steady", 0,
-          1, true, false, nullptr, OSCIDRUM_REAL(numerics.steady_tol)},
+          "period-to-period change of the state (scaled by its range) that counts as steady", 0, 1,
+          true, false, nullptr, OSCIDRUM_REAL(numerics.steady_tol)},
     Field{"numerics.max_multiplicity", FieldType::integer, "-",
           "longest steady period searched, in excitation periods", 1, 64, false, false, nullptr,
           OSCIDRUM_INT(numerics.max_multiplicity)},

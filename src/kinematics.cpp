@@ -29,19 +29,19 @@ Kinematics kinematics(const TroughGeometry& g, double delta) {
 
   q.sin_delta = s;
   q.cos_delta = c;
-  q.x_roll = -RE * cad - r * s + g.R0 * ca;       // (15)
-  q.z_roll = RE * sad - r * c - (g.R0 * sa - r);  // (16)
-  q.f1 = RE * (k * cad + sad) - r * c;                          // (46)
-  q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;    // (47)
-  q.f3 = -RE * (k * sad - cad) + r * s;                         // (48)
-  q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;   // (49)
+  q.x_roll = -RE * cad - r * s + g.R0 * ca;                    // (15)
+  q.z_roll = RE * sad - r * c - (g.R0 * sa - r);               // (16)
+  q.f1 = RE * (k * cad + sad) - r * c;                         // (46)
+  q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;   // (47)
+  q.f3 = -RE * (k * sad - cad) + r * s;                        // (48)
+  q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;  // (49)
   const double root = std::sqrt(1.0 + k * k);
-  q.f5 = root * E * g.R0 / r - 1.0;   // (50)
-  q.f6 = -k * root * E * g.R0 / r;    // (50)
-  q.f1_bar = q.f1 * c - q.f3 * s;     // (33)
-  q.f2_bar = q.f2 * c - q.f4 * s;     // (33)
-  q.f3_tilde = q.f1 * s + q.f3 * c;   // (37)
-  q.f4_tilde = q.f2 * s + q.f4 * c;   // (37)
+  q.f5 = root * E * g.R0 / r - 1.0;  // (50)
+  q.f6 = -k * root * E * g.R0 / r;   // (50)
+  q.f1_bar = q.f1 * c - q.f3 * s;    // (33)
+  q.f2_bar = q.f2 * c - q.f4 * s;    // (33)
+  q.f3_tilde = q.f1 * s + q.f3 * c;  // (37)
+  q.f4_tilde = q.f2 * s + q.f4 * c;  // (37)
   return q;
 }
 

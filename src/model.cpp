@@ -27,20 +27,23 @@ void validate(const Case& c) {
   const Roller& R = c.roller;
   const double Fz = R.P0 - R.m * R.g;
   if (Fz < 0)
-    throw Error("roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
-                num(R.P0) + " < m g = " + num(R.m * R.g));
+    throw Error(
+        "roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
+        num(R.P0) + " < m g = " + num(R.m * R.g));
   if (c.trough.k == 0.0 && !(c.trough.a > R.r))
-    throw Error("trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
-                "must exceed the drum radius [m]; got a = " +
-                num(c.trough.a) + " <= r = " + num(R.r));
+    throw Error(
+        "trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
+        "must exceed the drum radius [m]; got a = " +
+        num(c.trough.a) + " <= r = " + num(R.r));
   if (c.trough.k > 0.0) {
     TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
     // Curvature radius of the spiral at the bottom, sqrt(1+k^2) R0, must exceed r (f5(0) > 0).
     const double rho_c = std::sqrt(1.0 + c.trough.k * c.trough.k) * g.R0;
     if (!(rho_c > R.r))
-      throw Error("trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the "
-                  "bottom [m]; got " +
-                  num(rho_c) + " <= " + num(R.r));
+      throw Error(
+          "trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the "
+          "bottom [m]; got " +
+          num(rho_c) + " <= " + num(R.r));
     if (c.trough.k > 1.0)
       throw Error("trough.k must be <= 1 (a settlement trough, not a tight spiral); got " +
                   num(c.trough.k));

@@ -24,8 +24,8 @@ Accelerations slip_accelerations(const Model& model, double t, const State& q, i
   const double dd = q.ddelta, dd2 = dd * dd;
   const double smu = s * model.mu();
   const double fmu1 = cs - smu * sn, fmu2 = sn + smu * cs;  // (35)
-  const double xs = k.x_roll + q.x_A;                        // x_M
-  const double zs = k.z_roll + q.s_A - model.z_ref();        // z_M from the suspension reference
+  const double xs = k.x_roll + q.x_A;                       // x_M
+  const double zs = k.z_roll + q.s_A - model.z_ref();       // z_M from the suspension reference
   const double z_roll_s = k.z_roll - model.z_ref();
 
   // (34): m (f1 fmu1 - f3 fmu2) delta'' + m fmu1 x_A'' - m fmu2 s_A'' + h1s = -fmu2 W
@@ -49,9 +49,9 @@ Accelerations slip_accelerations(const Model& model, double t, const State& q, i
   const double b1 = -fmu2 * W - h1s, b2 = W * cs - h3s, b3 = -h4;
   const double det = A11 * (A22 * A33 - A23 * A32) - A12 * (A21 * A33) + A13 * (A21 * A32);
   Accelerations a;
-  a.delta = (b1 * (A22 * A33 - A23 * A32) - A12 * (b2 * A33 - A23 * b3) +
-             A13 * (b2 * A32 - A22 * b3)) /
-            det;
+  a.delta =
+      (b1 * (A22 * A33 - A23 * A32) - A12 * (b2 * A33 - A23 * b3) + A13 * (b2 * A32 - A22 * b3)) /
+      det;
   a.x_A = (A11 * (b2 * A33 - A23 * b3) - b1 * (A21 * A33) + A13 * (A21 * b3)) / det;
   a.s_A = (A11 * (A22 * b3 - b2 * A32) - A12 * (A21 * b3) + b1 * (A21 * A32)) / det;
 

@@ -15,15 +15,15 @@ enum class FieldType { real, integer, boolean, choice };
 
 /// One parameter of a Case. Values travel as double (booleans 0/1, choices as their index).
 struct Field {
-  const char* key;          ///< dotted key, e.g. "soil.G" (config section "soil", key "G")
+  const char* key;  ///< dotted key, e.g. "soil.G" (config section "soil", key "G")
   FieldType type;
   const char* unit;         ///< SI unit, "-" if dimensionless
   const char* description;  ///< one line, for --help and the docs
   double min;               ///< allowed range [min, max] (see the *_open flags)
   double max;
-  bool min_open;            ///< true: value must be > min (not >=)
-  bool max_open;            ///< true: value must be < max (not <=)
-  const char* choices;      ///< FieldType::choice: names separated by '|', index = value
+  bool min_open;        ///< true: value must be > min (not >=)
+  bool max_open;        ///< true: value must be < max (not <=)
+  const char* choices;  ///< FieldType::choice: names separated by '|', index = value
   double (*get)(const Case&);
   void (*set)(Case&, double);
 };

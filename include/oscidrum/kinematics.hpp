@@ -7,11 +7,11 @@ namespace oscidrum {
 /// Geometry of the log-spiral trough (MODEL.md section 1): R(theta) = a exp(k theta),
 /// alpha = atan(1/k), theta0 = pi - alpha, R0 = a exp(k theta0). k = 0: alpha = pi/2, R0 = a.
 struct TroughGeometry {
-  double r = 0.6;                    ///< drum radius [m]
-  double k = 0.0;                    ///< [-]
-  double a = 0.606;                  ///< [m]
-  double alpha = 1.5707963267948966; ///< [rad]
-  double R0 = 0.606;                 ///< [m]
+  double r = 0.6;                     ///< drum radius [m]
+  double k = 0.0;                     ///< [-]
+  double a = 0.606;                   ///< [m]
+  double alpha = 1.5707963267948966;  ///< [rad]
+  double R0 = 0.606;                  ///< [m]
 };
 
 /// Build the derived geometry from r, k, a.

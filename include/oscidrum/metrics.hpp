@@ -46,8 +46,8 @@ struct Metrics {
   /// Lag between x_M'' and z_M'': psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]
   /// (MODEL.md section 8; psi > 0: the 2f component of z_M'' leads) [rad].
   double psi_xz = 0.0;
-  double area = 0.0;  ///< area enclosed by z_M'' over x_M'' (non-zero winding) [m^2/s^4]
-  double stick_fraction = 0.0;          ///< of the sampled time [-]
+  double area = 0.0;            ///< area enclosed by z_M'' over x_M'' (non-zero winding) [m^2/s^4]
+  double stick_fraction = 0.0;  ///< of the sampled time [-]
   double slip_positive_fraction = 0.0;  ///< [-]
   double slip_negative_fraction = 0.0;  ///< [-]
 };

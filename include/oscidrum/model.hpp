@@ -27,9 +27,9 @@ class Model {
   double csv() const { return csv_; }  ///< [N s/m]
   double mu() const { return case_.contact.mu; }
   bool pure_rolling() const { return case_.contact.pure_rolling; }
-  double W() const { return W_; }        ///< m g + Fz (= P0) [N]
-  double Fz() const { return Fz_; }      ///< P0 - m g (7) [N]
-  double nu() const { return nu_; }      ///< excitation circular frequency 2 pi f [rad/s]
+  double W() const { return W_; }    ///< m g + Fz (= P0) [N]
+  double Fz() const { return Fz_; }  ///< P0 - m g (7) [N]
+  double nu() const { return nu_; }  ///< excitation circular frequency 2 pi f [rad/s]
   double period() const { return 1.0 / case_.roller.f; }  ///< excitation period [s]
   double z_ref() const { return z_ref_; }  ///< suspension reference of z_M (0 as in the paper) [m]
 

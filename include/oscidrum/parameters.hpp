@@ -7,16 +7,16 @@ namespace oscidrum {
 
 /// The drum and its suspension (paper Table 1).
 struct Roller {
-  double r = 0.6;        ///< drum radius [m]
-  double b = 1.68;       ///< drum width [m] (b0 = b/2 in Appendix B)
-  double m = 1851.0;     ///< drum mass [kg]
-  double I = 411.78;     ///< mass moment of inertia about the drum centre M [kg m^2]
-  double P0 = 45224.0;   ///< static axle load [N]; Fz = P0 - m g (7)
-  double f = 39.0;       ///< excitation frequency [Hz]; nu = 2 pi f
-  double M0 = 54947.0;   ///< amplitude of the oscillation moment M_Mu^(0) (5) [N m]
-  double kd = 4.0e6;     ///< drum/frame suspension stiffness, horizontal and vertical [N/m]
-  double cd = 3.0e3;     ///< drum/frame suspension damping, horizontal and vertical [N s/m]
-  double g = 9.81;       ///< gravitational acceleration [m/s^2]
+  double r = 0.6;       ///< drum radius [m]
+  double b = 1.68;      ///< drum width [m] (b0 = b/2 in Appendix B)
+  double m = 1851.0;    ///< drum mass [kg]
+  double I = 411.78;    ///< mass moment of inertia about the drum centre M [kg m^2]
+  double P0 = 45224.0;  ///< static axle load [N]; Fz = P0 - m g (7)
+  double f = 39.0;      ///< excitation frequency [Hz]; nu = 2 pi f
+  double M0 = 54947.0;  ///< amplitude of the oscillation moment M_Mu^(0) (5) [N m]
+  double kd = 4.0e6;    ///< drum/frame suspension stiffness, horizontal and vertical [N/m]
+  double cd = 3.0e3;    ///< drum/frame suspension damping, horizontal and vertical [N s/m]
+  double g = 9.81;      ///< gravitational acceleration [m/s^2]
 };
 
 /// How the soil is given.
@@ -29,13 +29,13 @@ enum class SoilInput {
 /// The default coefficients are paper Table 2 at G = 25 MN/m^2.
 struct Soil {
   SoilInput input = SoilInput::coefficients;
-  double G = 25.0e6;    ///< shear modulus [Pa] (input == modulus)
-  double nu = 0.3;      ///< Poisson's ratio [-], 0 <= nu < 0.5 (input == modulus)
-  double rho = 1900.0;  ///< density [kg/m^3] (input == modulus)
-  double ksh = 41.4e6;  ///< horizontal spring [N/m] (input == coefficients)
-  double ksv = 66.3e6;  ///< vertical spring [N/m] (input == coefficients)
-  double csh = 141.0e3; ///< horizontal dashpot [N s/m] (input == coefficients)
-  double csv = 263.0e3; ///< vertical dashpot [N s/m] (input == coefficients)
+  double G = 25.0e6;     ///< shear modulus [Pa] (input == modulus)
+  double nu = 0.3;       ///< Poisson's ratio [-], 0 <= nu < 0.5 (input == modulus)
+  double rho = 1900.0;   ///< density [kg/m^3] (input == modulus)
+  double ksh = 41.4e6;   ///< horizontal spring [N/m] (input == coefficients)
+  double ksv = 66.3e6;   ///< vertical spring [N/m] (input == coefficients)
+  double csh = 141.0e3;  ///< horizontal dashpot [N s/m] (input == coefficients)
+  double csv = 263.0e3;  ///< vertical dashpot [N s/m] (input == coefficients)
 };
 
 /// The settlement trough: logarithmic spiral R(theta) = a exp(k theta) (8); k = 0 is a circle of
@@ -53,15 +53,15 @@ struct Contact {
 
 /// Numerical options of the hybrid integration and the steady-state search.
 struct Numerics {
-  double rtol = 1e-9;               ///< relative tolerance of the Dormand-Prince steps [-]
-  double atol = 1e-12;              ///< absolute tolerance (SI units of each state) [-]
-  int max_periods = 5000;           ///< give up after this many excitation periods [-]
-  double steady_tol = 1e-8;         ///< period-to-period change that counts as steady [-]
-  int max_multiplicity = 8;         ///< longest steady period searched, in excitation periods
-  int output_periods = 2;           ///< steady periods sampled (times the multiplicity) [-]
-  int samples_per_period = 1024;    ///< uniform samples per excitation period [-]
-  int max_switches_per_period = 200;  ///< more stick/slip switches in one period: chattering
-  double slip_constraint_rate = 0.0;  ///< Baumgarte rate on (39) during slip [1/s]; 0: 2 nu
+  double rtol = 1e-8;                   ///< relative tolerance of the Dormand-Prince steps [-]
+  double atol = 1e-11;                  ///< absolute tolerance (SI units of each state) [-]
+  int max_periods = 5000;               ///< give up after this many excitation periods [-]
+  double steady_tol = 1e-8;             ///< period-to-period change that counts as steady [-]
+  int max_multiplicity = 8;             ///< longest steady period searched, in excitation periods
+  int output_periods = 2;               ///< steady periods sampled (times the multiplicity) [-]
+  int samples_per_period = 1024;        ///< uniform samples per excitation period [-]
+  int max_switches_per_period = 200;    ///< more stick/slip switches in one period: chattering
+  double slip_constraint_rate = 0.0;    ///< Baumgarte rate on (39) during slip [1/s]; 0: 2 nu
   bool suspension_from_static = false;  ///< measure kd from static equilibrium (not the paper)
 };
 

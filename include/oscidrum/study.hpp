@@ -15,10 +15,10 @@ namespace oscidrum {
 
 /// What one case of a study produced.
 struct CaseOutcome {
-  bool valid = true;   ///< false: the case was rejected (invalid parameters); see `error`
-  std::string error;   ///< the oscidrum::Error message when !valid
-  Result result;       ///< samples dropped unless StudyOptions::keep_samples
-  Metrics metrics;     ///< computed whenever the result has samples
+  bool valid = true;  ///< false: the case was rejected (invalid parameters); see `error`
+  std::string error;  ///< the oscidrum::Error message when !valid
+  Result result;      ///< samples dropped unless StudyOptions::keep_samples
+  Metrics metrics;    ///< computed whenever the result has samples
 };
 
 struct StudyOptions {
