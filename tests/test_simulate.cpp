@@ -1,0 +1,316 @@
+// Physics tests of the hybrid integration (src/simulate.cpp): invariants, limits, symmetry,
+// energy balance and convergence. Each test states which physical fact it checks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "oscidrum/oscidrum.hpp"
+#include "tolerances.hpp"
+
+namespace oscidrum {
+namespace {
+
+Case stick_slip_case(double G_MN, double MMd_fraction = 0.0) {
+  Case c;
+  c.soil = table2_soil(G_MN * 1e6);
+  c.contact.mu = 0.5;
+  c.MMd = MMd_fraction * c.roller.M0;
+  return c;
+}
+
+Case pure_rolling_case(double G_MN, double MMd_fraction = 0.0) {
+  Case c = stick_slip_case(G_MN, MMd_fraction);
+  c.contact.pure_rolling = true;
+  return c;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// Mean over the sampled window (uniform samples over whole periods: the trapezoid rule).
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+TEST(Simulate, DefaultCaseReachesSteadyStateWithStickAndSlip) {
+  const Result r = simulate(Case{});
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_EQ(r.diagnostics.multiplicity, 1);
+  EXPECT_EQ(r.sample_periods, 2);
+  EXPECT_EQ(r.samples.size(), 2u * 1024u);
+  // mu = 0.5 at G = 25 MN/m^2 slips twice and sticks twice per period (MODEL.md section 8).
+  EXPECT_DOUBLE_EQ(r.diagnostics.switches_per_period, 4.0);
+  EXPECT_GT(r.stick_time, 0.0);
+  EXPECT_GT(r.slip_positive_time, 0.0);
+  EXPECT_GT(r.slip_negative_time, 0.0);
+  EXPECT_NEAR(r.stick_time + r.slip_positive_time + r.slip_negative_time, 2.0 / 39.0, 1e-12);
+  EXPECT_GT(r.diagnostics.min_N, 0.0);
+  // The sampled phase column agrees with the slip velocity's sign.
+  for (std::size_t j = 0; j < r.samples.size(); ++j) {
+    const double v = r.samples.v_rel[j];
+    if (r.samples.phase[j] == Phase::slip_positive) {
+      EXPECT_GE(v, -1e-9);
+    }
+    if (r.samples.phase[j] == Phase::slip_negative) {
+      EXPECT_LE(v, 1e-9);
+    }
+    if (r.samples.phase[j] == Phase::stick) {
+      EXPECT_NEAR(v, 0.0, 1e-7);
+      EXPECT_LE(std::abs(r.samples.T[j]), 0.5 * r.samples.N[j] * (1 + 1e-9));
+    }
+  }
+}
+
+// In slip the friction coupling (39) is an invariant: it holds at the slip start and (53) keeps
+// its derivative at zero. It must hold to integration accuracy throughout, and T = -s mu N.
+TEST(Simulate, SlipCouplingInvariantHolds) {
+  for (double MMd : {0.0, 0.05}) {
+    const Result r = simulate(stick_slip_case(25, MMd));
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    EXPECT_LT(r.diagnostics.max_slip_residual, 1e-7);  // relative to W, over the whole run
+    for (std::size_t j = 0; j < r.samples.size(); ++j) {
+      const int s = static_cast<int>(r.samples.phase[j]);
+      if (s != 0) {
+        EXPECT_NEAR(r.samples.T[j], -s * 0.5 * r.samples.N[j], 1e-6 * 45224.0);
+      }
+    }
+  }
+}
+
+// Energy balance over one steady period: the work of the excitation torque equals what the
+// dampers and the sliding friction dissipate (gravity, springs and kinetic energy return to
+// their values). dE/dt = MM phi' - cd (x_M'^2 + z_M'^2) - csh x_A'^2 - csv s_A'^2 + T v_rel,
+// where T v_rel = -mu N |v_rel| <= 0 in slip.
+void check_energy_balance(Case c) {
+  c.numerics.samples_per_period = 4096;
+  c.numerics.output_periods = 1;
+  const Model model(c);
+  const Result r = simulate(model);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const Samples& s = r.samples;
+  std::vector<double> input(s.size()), dissipated(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    const Kinematics k = kinematics(model.geometry(), s.delta[j]);
+    const double dx_M = k.f1 * s.ddelta[j] + s.dx_A[j];  // (17)
+    const double dz_M = k.f3 * s.ddelta[j] + s.ds_A[j];
+    input[j] = s.torque[j] * s.dphi[j];
+    dissipated[j] = model.cd() * (dx_M * dx_M + dz_M * dz_M) + model.csh() * s.dx_A[j] * s.dx_A[j] +
+                    model.csv() * s.ds_A[j] * s.ds_A[j] - s.T[j] * s.v_rel[j];
+  }
+  const double P_in = mean(input), P_out = mean(dissipated);
+  EXPECT_GT(P_in, 0.0);
+  // Trapezoid rule on a periodic integrand with kinks at the switches: O(1/M^2) ~ 1e-7 at M =
+  // 4096; steady_tol 1e-8. 1e-5 leaves margin but catches any wrong sign or missing term (a
+  // single dissipation term is >= 1 % of the total in these cases).
+  EXPECT_NEAR(P_out / P_in, 1.0, 1e-5) << "P_in = " << P_in << " W, P_out = " << P_out << " W";
+}
+
+TEST(Simulate, EnergyBalancePureRolling) { check_energy_balance(pure_rolling_case(25)); }
+TEST(Simulate, EnergyBalanceStickSlip) { check_energy_balance(stick_slip_case(25)); }
+TEST(Simulate, EnergyBalanceStickSlipWithDrivingTorque) {
+  check_energy_balance(stick_slip_case(10, 0.05));
+}
+
+// MMd = 0 and a circular trough: the equations are invariant under (delta, x_A, phi) -> -(...),
+// t -> t + T/2 (the torque changes sign), so the steady state satisfies x_M''(t + T/2) =
+// -x_M''(t) and z_M''(t + T/2) = z_M''(t): only odd harmonics in x_M'', only even in z_M''.
+void check_half_period_symmetry(const Case& c) {
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const Samples& s = r.samples;
+  const std::size_t half = static_cast<std::size_t>(r.samples_per_period / 2);
+  const double ax = max_abs(s.ddx_M), az = max_abs(s.ddz_M);
+  double ex = 0.0, ez = 0.0;
+  for (std::size_t j = 0; j + half < s.size(); ++j) {
+    ex = std::max(ex, std::abs(s.ddx_M[j + half] + s.ddx_M[j]));
+    ez = std::max(ez, std::abs(s.ddz_M[j + half] - s.ddz_M[j]));
+  }
+  // The steady state is converged to steady_tol = 1e-8 of each state's range and integrated to
+  // rtol 1e-8; a broken symmetry (wrong sign of a term) shows at the 1e-2 level.
+  EXPECT_LT(ex / ax, 1e-6);
+  EXPECT_LT(ez / az, 1e-6);
+
+  const auto hx = harmonics(s.ddx_M, r.sample_periods, r.frequency, s.t[0], 8);
+  const auto hz = harmonics(s.ddz_M, r.sample_periods, r.frequency, s.t[0], 8);
+  for (int n = 0; n <= 8; ++n) {
+    if (n % 2 == 0) {
+      EXPECT_LT(hx[n].amplitude, 1e-6 * ax) << "even harmonic " << n << " in x";
+    } else {
+      EXPECT_LT(hz[n].amplitude, 1e-6 * az) << "odd harmonic " << n << " in z";
+    }
+  }
+  EXPECT_GT(hx[1].amplitude, 0.5 * ax);
+}
+
+TEST(Simulate, HalfPeriodSymmetryPureRolling) { check_half_period_symmetry(pure_rolling_case(25)); }
+TEST(Simulate, HalfPeriodSymmetryStickSlip) { check_half_period_symmetry(stick_slip_case(5)); }
+
+// Without friction (mu = 0) T = 0: the drum spins freely, I phi'' = MM(t) (23), so from rest
+// phi'(t) = M0 (1 - cos nu t) / (I nu) + MMd t / I, and nothing moves the drum in the trough.
+TEST(Simulate, FrictionlessDrumSpinsFreely) {
+  Case c = stick_slip_case(25, 0.0);
+  c.contact.mu = 0.0;
+  const Model model(c);
+  const Result r = simulate(model);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_EQ(r.diagnostics.switches, 0);
+  const double amp = c.roller.M0 / (c.roller.I * model.nu());
+  for (std::size_t j = 0; j < r.samples.size(); j += 37) {
+    const double t = r.samples.t[j];
+    EXPECT_NEAR(r.samples.dphi[j], amp * (1.0 - std::cos(model.nu() * t)), 1e-7 * amp);
+    EXPECT_NEAR(r.samples.T[j], 0.0, 1e-9 * model.W());
+    EXPECT_NEAR(r.samples.delta[j], 0.0, 1e-12);
+  }
+}
+
+// Pure rolling is the limit mu -> infinity: with a friction coefficient far above any |T|/N the
+// stick-slip machinery never switches and reproduces the pure-rolling run.
+TEST(Simulate, LargeFrictionEqualsPureRolling) {
+  Case rolling = pure_rolling_case(40);
+  Case sticky = stick_slip_case(40);
+  sticky.contact.mu = 1e3;
+  const Result a = simulate(rolling), b = simulate(sticky);
+  ASSERT_EQ(a.status, Status::steady_state);
+  ASSERT_EQ(b.status, Status::steady_state);
+  EXPECT_EQ(b.diagnostics.switches, 0);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t j = 0; j < a.samples.size(); ++j)
+    EXPECT_DOUBLE_EQ(a.samples.ddx_M[j], b.samples.ddx_M[j]);
+}
+
+// k -> 0: the log spiral tends to the circle of radius a (MODEL.md section 1).
+TEST(Simulate, SpiralTendsToCircle) {
+  Case circle = pure_rolling_case(20), spiral = circle;
+  spiral.trough.k = 1e-8;
+  const Result a = simulate(circle), b = simulate(spiral);
+  ASSERT_EQ(a.status, Status::steady_state);
+  ASSERT_EQ(b.status, Status::steady_state);
+  const double scale = max_abs(a.samples.ddx_M);
+  for (std::size_t j = 0; j < a.samples.size(); j += 11)
+    EXPECT_NEAR(a.samples.ddx_M[j], b.samples.ddx_M[j], 1e-6 * scale);
+}
+
+// Stiff soil: as ksh, ksv -> infinity the trough stops moving and the drum becomes a disc rolling
+// in a fixed circular track on its suspension, a 1-DOF system in delta with
+// [m + I/r^2] (R-r)^2 delta'' = MM (R-r)/r - (R-r)[kd (x_M cos - z_M sin) - W sin ... ]
+// integrated here independently (classical RK4, fixed step). The oscidrum transient from rest
+// must approach it as the soil stiffens, the error falling like 1/k (0.11, 5e-3, 7e-4, 7e-5 for
+// k = 1e8 ... 1e11 N/m; a 1 % change of I in the reference moves it by 1e-2).
+double rolling_disc_delta(const Case& c, double t_end) {
+  const double R = c.trough.a, r = c.roller.r, L = R - r;
+  const double m = c.roller.m, I = c.roller.I, kd = c.roller.kd, cd = c.roller.cd;
+  const double W = c.roller.P0, nu = 2 * M_PI * c.roller.f;
+  auto acc = [&](double t, double d, double v) {
+    const double xM = L * std::sin(d), zM = -L * (1 - std::cos(d));
+    const double dxM = L * std::cos(d) * v, dzM = -L * std::sin(d) * v;
+    const double gen = (c.roller.M0 * std::sin(nu * t) + c.MMd) * L / r -
+                       (kd * xM + cd * dxM) * L * std::cos(d) +
+                       (kd * zM + cd * dzM - W) * L * std::sin(d);
+    return gen / ((m + I / (r * r)) * L * L);
+  };
+  const int n = static_cast<int>(std::round(t_end * c.roller.f * 4000));
+  const double h = t_end / n;
+  double d = 0, v = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = i * h;
+    const double k1d = v, k1v = acc(t, d, v);
+    const double k2d = v + h / 2 * k1v, k2v = acc(t + h / 2, d + h / 2 * k1d, v + h / 2 * k1v);
+    const double k3d = v + h / 2 * k2v, k3v = acc(t + h / 2, d + h / 2 * k2d, v + h / 2 * k2v);
+    const double k4d = v + h * k3v, k4v = acc(t + h, d + h * k3d, v + h * k3v);
+    d += h / 6 * (k1d + 2 * k2d + 2 * k3d + k4d);
+    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+  }
+  return d;
+}
+
+TEST(Simulate, StiffSoilTendsToRollingDiscInFixedTrack) {
+  Case c = pure_rolling_case(25);
+  c.numerics.max_periods = 3;  // a transient comparison: sample periods 3 and 4 from rest
+  c.numerics.output_periods = 1;
+  double previous_error = 1e300;
+  for (double k : {1e8, 1e9, 1e10, 1e11}) {
+    c.soil.ksh = c.soil.ksv = k;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+    const std::size_t j = r.samples.size() / 2;
+    const double reference = rolling_disc_delta(c, r.samples.t[j]);
+    const double error = std::abs(r.samples.delta[j] - reference) / max_abs(r.samples.delta);
+    EXPECT_LT(error, 0.5 * previous_error) << "k = " << k;
+    previous_error = error;
+  }
+  EXPECT_LT(previous_error, 1e-4);  // error ~ 1/k: 7e-5 at k = 1e11
+}
+
+// Convergence in tolerance: the metrics change less and less as rtol tightens, and at the
+// default rtol they are within 1e-6 of a run 100x tighter.
+TEST(Simulate, ConvergesAsToleranceTightens) {
+  Case c = stick_slip_case(25, 0.05);
+  std::vector<double> peaks;
+  for (double rtol : {1e-6, 1e-8, 1e-10}) {
+    c.numerics.rtol = rtol;
+    c.numerics.atol = rtol * 1e-3;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::steady_state);
+    peaks.push_back(*std::max_element(r.samples.ddz_M.begin(), r.samples.ddz_M.end()));
+  }
+  const double e1 = std::abs(peaks[0] - peaks[2]), e2 = std::abs(peaks[1] - peaks[2]);
+  EXPECT_LT(e2, e1);
+  EXPECT_LT(e2 / std::abs(peaks[2]), 1e-6);
+}
+
+TEST(Simulate, ChatteringGuardStopsTheRun) {
+  Case c = stick_slip_case(25);
+  c.numerics.max_switches_per_period = 2;  // the case switches 4 times per period
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::chattering);
+  EXPECT_NE(r.message.find("chattering"), std::string::npos);
+}
+
+TEST(Simulate, ContactLossIsReported) {
+  Case c = pure_rolling_case(5);
+  c.roller.P0 = c.roller.m * c.roller.g;  // no frame load
+  c.roller.M0 *= 20.0;                    // a drum thrown about by a huge moment
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::contact_lost) << r.message;
+  EXPECT_NE(r.message.find("contact lost"), std::string::npos);
+  ASSERT_FALSE(r.events.empty());
+  EXPECT_EQ(r.events.back().kind, EventKind::contact_lost);
+}
+
+TEST(Simulate, MaxPeriodsReachedStillSamples) {
+  Case c = pure_rolling_case(25);
+  c.numerics.max_periods = 10;
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::max_periods_reached);
+  EXPECT_EQ(r.diagnostics.periods_to_steady, -1);
+  EXPECT_EQ(r.samples.size(), 2u * 1024u);
+}
+
+TEST(Simulate, ProgressCanCancel) {
+  int calls = 0;
+  const Result r = simulate(pure_rolling_case(25), [&](int period, double change) {
+    EXPECT_EQ(period, calls + 1);
+    EXPECT_GE(change, 0.0);
+    return ++calls < 5;
+  });
+  EXPECT_EQ(calls, 5);
+  EXPECT_EQ(r.status, Status::max_periods_reached);
+  EXPECT_NE(r.message.find("cancelled"), std::string::npos);
+}
+
+TEST(Simulate, InvalidCaseThrowsBeforeIntegrating) {
+  Case c;
+  c.trough.a = 0.59;
+  EXPECT_THROW(simulate(c), Error);
+}
+
+}  // namespace
+}  // namespace oscidrum
