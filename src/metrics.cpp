@@ -1,13 +1,122 @@
-// placeholder: implemented by the metrics work
+// metrics.cpp: the quantities the paper reads off a steady state (MODEL.md section 8): peak
+// accelerations (Fig. 9), spectra (Figs. 14, 15, 19, 20), the lag between the excitation and phi
+// (Fig. 10), the lag between x_M'' and z_M'' (Fig. 12), the enclosed area (Figs. 16, 22) and the
+// time shares of the contact phases.
 #include "oscidrum/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "oscidrum/error.hpp"
+
 namespace oscidrum {
-std::vector<Harmonic> harmonics(std::span<const double>, int, double, double, int) {
-  throw Error("harmonics: not implemented yet");
+
+namespace {
+
+void require_size(const std::vector<double>& v, std::size_t n, const char* name) {
+  if (v.size() != n) {
+    throw Error(std::string("compute_metrics: samples.") + name + " has " +
+                std::to_string(v.size()) + " entries; expected " + std::to_string(n) +
+                " (as samples.t)");
+  }
 }
-double enclosed_area(std::span<const double>, std::span<const double>) {
-  throw Error("enclosed_area: not implemented yet");
+
+}  // namespace
+
+Metrics compute_metrics(const Result& result, int n_max) {
+  const Samples& s = result.samples;
+  const std::size_t n = s.size();
+  if (n == 0) throw Error("compute_metrics: the result holds no samples");
+  if (n_max < 0) {
+    throw Error("compute_metrics: n_max must be >= 0; got " + std::to_string(n_max));
+  }
+  if (result.sample_periods < 1 || result.samples_per_period < 1) {
+    throw Error("compute_metrics: sample_periods and samples_per_period must be >= 1; got " +
+                std::to_string(result.sample_periods) + " and " +
+                std::to_string(result.samples_per_period));
+  }
+  const std::size_t per_period = static_cast<std::size_t>(result.samples_per_period);
+  if (n != static_cast<std::size_t>(result.sample_periods) * per_period) {
+    throw Error("compute_metrics: samples.t has " + std::to_string(n) +
+                " entries; expected sample_periods * samples_per_period = " +
+                std::to_string(result.sample_periods) + " * " +
+                std::to_string(result.samples_per_period));
+  }
+  require_size(s.phi, n, "phi");
+  require_size(s.dphi, n, "dphi");
+  require_size(s.ddx_M, n, "ddx_M");
+  require_size(s.ddz_M, n, "ddz_M");
+
+  Metrics m;
+  const auto [x_min, x_max] = std::minmax_element(s.ddx_M.begin(), s.ddx_M.end());
+  const auto [z_min, z_max] = std::minmax_element(s.ddz_M.begin(), s.ddz_M.end());
+  m.ddx_min = *x_min;
+  m.ddx_max = *x_max;
+  m.ddz_min = *z_min;
+  m.ddz_max = *z_max;
+
+  // psi needs theta_1(x_M'') and theta_2(z_M''): compute at least up to n = 2.
+  const int cycles = result.sample_periods;
+  const double f = result.frequency;
+  const double t0 = s.t.front();  // the absolute time of the first sample, not assumed n / f
+  const int n_compute = std::max(n_max, 2);
+  std::vector<Harmonic> hx = harmonics(s.ddx_M, cycles, f, t0, n_compute);
+  std::vector<Harmonic> hz = harmonics(s.ddz_M, cycles, f, t0, n_compute);
+  // psi = theta_z - 2 theta_x (MODEL.md section 8): the lag of the 2f component of z_M'' against
+  // the square of the fundamental of x_M''; psi > 0 means the 2f component leads.
+  m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
+  hx.resize(static_cast<std::size_t>(n_max) + 1);
+  hz.resize(static_cast<std::size_t>(n_max) + 1);
+  m.ddx_harmonics = std::move(hx);
+  m.ddz_harmonics = std::move(hz);
+
+  // phi need not be periodic: a driving torque makes the drum slip on by a net angle per period
+  // (MODEL.md section 7). The mean of phi' over whole periods is that drift rate; removing the
+  // ramp leaves the periodic part, whose fundamental is compared with M0 sin(nu t) (phase 0).
+  double rate = 0.0;
+  for (double v : s.dphi) rate += v;
+  rate /= static_cast<double>(n);
+  std::vector<double> phi(n);
+  for (std::size_t j = 0; j < n; ++j) phi[j] = s.phi[j] - rate * (s.t[j] - t0);
+  const std::vector<Harmonic> hphi = harmonics(phi, cycles, f, t0, 1);
+  m.phi_amplitude = hphi[1].amplitude;
+  // Paper Fig. 10 plots the lag in (-2 pi, 0] (-0.84 pi at G = 5, -> -pi without soil).
+  double lag = wrap_pi(hphi[1].phase);
+  if (lag > 0.0) lag -= 2.0 * std::numbers::pi;
+  m.phi_lag = lag / std::numbers::pi;
+
+  // The area over one steady period: `multiplicity` excitation periods (one if none was found).
+  const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
+  const std::size_t n_area = std::min(n, static_cast<std::size_t>(p) * per_period);
+  m.area = enclosed_area(std::span<const double>(s.ddx_M).first(n_area),
+                         std::span<const double>(s.ddz_M).first(n_area));
+
+  const double total = result.stick_time + result.slip_positive_time + result.slip_negative_time;
+  if (total > 0.0) {
+    m.stick_fraction = result.stick_time / total;
+    m.slip_positive_fraction = result.slip_positive_time / total;
+    m.slip_negative_fraction = result.slip_negative_time / total;
+  } else {
+    // No phase times recorded: count the samples (uniform in time, so counts are time shares).
+    if (s.phase.size() != n) {
+      throw Error("compute_metrics: no phase times recorded and samples.phase has " +
+                  std::to_string(s.phase.size()) + " entries; expected " + std::to_string(n));
+    }
+    const auto count = [&s](Phase ph) {
+      return static_cast<double>(std::count(s.phase.begin(), s.phase.end(), ph));
+    };
+    const double n_d = static_cast<double>(n);
+    m.stick_fraction = count(Phase::stick) / n_d;
+    m.slip_positive_fraction = count(Phase::slip_positive) / n_d;
+    m.slip_negative_fraction = count(Phase::slip_negative) / n_d;
+  }
+  return m;
 }
-double wrap_pi(double a) { return a; }
-Metrics compute_metrics(const Result&, int) { throw Error("compute_metrics: not implemented yet"); }
+
 }  // namespace oscidrum

@@ -10,8 +10,8 @@
 namespace oscidrum {
 
 /// One harmonic n f of a signal written as  y(t) = sum_n A_n sin(n nu t + theta_n)  with t the
-/// absolute time (t = 0 at the start of the excitation M0 sin(nu t)). n = 0: A_0 is the mean and
-/// theta_0 = pi/2.
+/// absolute time (t = 0 at the start of the excitation M0 sin(nu t)). n = 0: A_0 = |mean| and
+/// theta_0 = +-pi/2, so that A_0 sin(theta_0) is the mean.
 struct Harmonic {
   double amplitude = 0.0;  ///< A_n >= 0 [unit of the signal]
   double phase = 0.0;      ///< theta_n in (-pi, pi] [rad]
