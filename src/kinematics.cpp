@@ -14,6 +14,9 @@ TroughGeometry make_trough_geometry(double r, double k, double a) {
   g.alpha = std::atan2(1.0, k);
   const double theta0 = M_PI - g.alpha;  // (8)
   g.R0 = a * std::exp(k * theta0);
+  g.sin_alpha = std::sin(g.alpha);
+  g.cos_alpha = (k == 0.0) ? 0.0 : std::cos(g.alpha);
+  g.root = std::sqrt(1.0 + k * k);
   return g;
 }
 
@@ -23,7 +26,7 @@ Kinematics kinematics(const TroughGeometry& g, double delta) {
   const double E = (k == 0.0) ? 1.0 : std::exp(-k * delta);
   const double s = std::sin(delta), c = std::cos(delta);
   // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
-  const double sa = std::sin(g.alpha), ca = std::cos(g.alpha);
+  const double sa = g.sin_alpha, ca = g.cos_alpha;
   const double sad = sa * c + ca * s, cad = ca * c - sa * s;
   const double RE = g.R0 * E;
 
@@ -35,7 +38,7 @@ Kinematics kinematics(const TroughGeometry& g, double delta) {
   q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;   // (47)
   q.f3 = -RE * (k * sad - cad) + r * s;                        // (48)
   q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;  // (49)
-  const double root = std::sqrt(1.0 + k * k);
+  const double root = g.root;
   q.f5 = root * E * g.R0 / r - 1.0;  // (50)
   q.f6 = -k * root * E * g.R0 / r;   // (50)
   q.f1_bar = q.f1 * c - q.f3 * s;    // (33)

@@ -18,6 +18,7 @@
 #include <limits>
 #include <string>
 
+#include "equations.hpp"
 #include "event_logic.hpp"
 #include "oscidrum/error.hpp"
 
@@ -35,7 +36,7 @@ constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
 
 // Event functions are sampled at this many points inside each step before root finding, so that
 // a function dipping below zero and back within one step is not missed.
-constexpr int kEventSubsamples = 4;
+constexpr int kEventSubsamples = 2;
 
 // A steady state repeating only every p > 1 excitation periods is accepted only while every
 // comparison over fewer periods differs by more than this (scaled) amount.
@@ -51,13 +52,17 @@ struct Rhs {
   void operator()(const Vec& x, Vec& dxdt, double t) const {
     ++*evaluations;
     const State q = State::from_array(x);
-    const Accelerations a = accelerations(*model, t, q, phase, baumgarte);
+    const Kinematics k = kinematics(model->geometry(), q.delta);
+    const Accelerations a =
+        phase == Phase::stick
+            ? detail::stick_accelerations(*model, t, q, k)
+            : detail::slip_accelerations(*model, t, q, static_cast<int>(phase), baumgarte, k);
     dxdt[0] = x[4];
     dxdt[1] = x[5];
     dxdt[2] = x[6];
     if (phase == Phase::stick) {
       // (12): phi' = f5 delta' exactly, so phi cannot drift away from the rolling condition.
-      dxdt[3] = kinematics(model->geometry(), x[0]).f5 * x[4];
+      dxdt[3] = k.f5 * x[4];
     } else {
       dxdt[3] = x[7];
     }

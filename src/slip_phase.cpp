@@ -2,6 +2,7 @@
 // friction coupling (39).
 #include <cmath>
 
+#include "equations.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum {
@@ -16,7 +17,12 @@ double slip_constraint_residual(const Model& model, const State& q, int s) {
 
 Accelerations slip_accelerations(const Model& model, double t, const State& q, int s,
                                  double baumgarte) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);
+  return detail::slip_accelerations(model, t, q, s, baumgarte,
+                                    kinematics(model.geometry(), q.delta));
+}
+
+Accelerations detail::slip_accelerations(const Model& model, double t, const State& q, int s,
+                                         double baumgarte, const Kinematics& k) {
   const double m = model.m(), I = model.I(), r = model.r();
   const double kd = model.kd(), cd = model.cd(), W = model.W();
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();

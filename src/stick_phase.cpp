@@ -1,12 +1,17 @@
 // Stick phase (pure rolling): equations of motion (30), (31), (32) in the state form (52).
 #include <cmath>
 
+#include "equations.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum {
 
 Accelerations stick_accelerations(const Model& model, double t, const State& q) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);
+  return detail::stick_accelerations(model, t, q, kinematics(model.geometry(), q.delta));
+}
+
+Accelerations detail::stick_accelerations(const Model& model, double t, const State& q,
+                                          const Kinematics& k) {
   const double m = model.m(), I = model.I(), r = model.r();
   const double kd = model.kd(), cd = model.cd(), W = model.W();
   const double s = k.sin_delta, c = k.cos_delta;

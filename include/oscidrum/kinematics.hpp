@@ -12,6 +12,9 @@ struct TroughGeometry {
   double a = 0.606;                   ///< [m]
   double alpha = 1.5707963267948966;  ///< [rad]
   double R0 = 0.606;                  ///< [m]
+  double sin_alpha = 1.0;             ///< sin(alpha), cached [-]
+  double cos_alpha = 0.0;             ///< cos(alpha), cached [-]
+  double root = 1.0;                  ///< sqrt(1 + k^2), cached [-]
 };
 
 /// Build the derived geometry from r, k, a.

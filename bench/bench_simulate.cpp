@@ -1,0 +1,53 @@
+// Benchmarks of one steady-state case from rest, as the issue asks: pure rolling and stick-slip
+// (G = 25 MN/m^2, mu = 0.5, MMd = 0.05 M0), each at the default tolerance and at rtol = 1e-7.
+// Counters: RHS evaluations, accepted steps and periods to the steady state per case. Every
+// iteration simulates from the same immutable Model (no state carried between iterations).
+#include <benchmark/benchmark.h>
+
+#include "oscidrum/oscidrum.hpp"
+
+namespace {
+
+oscidrum::Case bench_case(bool pure_rolling, double MMd_fraction, double rtol) {
+  oscidrum::Case c;
+  c.soil = oscidrum::table2_soil(25e6);
+  c.contact.pure_rolling = pure_rolling;
+  c.contact.mu = 0.5;
+  c.MMd = MMd_fraction * c.roller.M0;
+  if (rtol > 0) {
+    c.numerics.rtol = rtol;
+    c.numerics.atol = rtol * 1e-3;
+  }
+  return c;
+}
+
+void run(benchmark::State& state, const oscidrum::Case& c) {
+  const oscidrum::Model model(c);
+  oscidrum::Result r;
+  for (auto _ : state) {
+    r = oscidrum::simulate(model);
+    benchmark::DoNotOptimize(r.samples.ddx_M.data());
+  }
+  if (r.status != oscidrum::Status::steady_state) state.SkipWithError(r.message.c_str());
+  state.counters["rhs_evals"] = static_cast<double>(r.diagnostics.rhs_evaluations);
+  state.counters["steps"] = static_cast<double>(r.diagnostics.steps);
+  state.counters["periods"] = r.diagnostics.periods_to_steady;
+}
+
+void BM_StickSlip_G25_MMd005(benchmark::State& s) { run(s, bench_case(false, 0.05, 0)); }
+void BM_StickSlip_G25_MMd005_rtol1e7(benchmark::State& s) { run(s, bench_case(false, 0.05, 1e-7)); }
+void BM_PureRolling_G25_MMd005(benchmark::State& s) { run(s, bench_case(true, 0.05, 0)); }
+void BM_PureRolling_G25_MMd005_rtol1e7(benchmark::State& s) {
+  run(s, bench_case(true, 0.05, 1e-7));
+}
+void BM_PureRolling_G25_MMd0(benchmark::State& s) { run(s, bench_case(true, 0.0, 0)); }
+
+BENCHMARK(BM_StickSlip_G25_MMd005)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StickSlip_G25_MMd005_rtol1e7)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PureRolling_G25_MMd005)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PureRolling_G25_MMd005_rtol1e7)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PureRolling_G25_MMd0)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

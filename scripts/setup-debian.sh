@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Install what oscidrum needs from Debian 12 (bookworm) packages. Idempotent: installs only what
+# is missing. Needs root (or sudo). PyPI is not used: Python packages come from Debian too.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libboost-dev                  # Boost.Odeint (integration) and Boost.Math (TOMS 748 roots)
+  libtomlplusplus-dev           # config files
+  nlohmann-json3-dev            # JSON output
+  libcli11-dev                  # command-line parsing
+  libeigen3-dev                 # independent linear solves in the tests
+  libgtest-dev libgmock-dev     # unit tests
+  libbenchmark-dev              # benchmarks (separate target)
+  clang-format                  # formatting check in CI
+  python3 python3-dev python3-pybind11 pybind11-dev
+  python3-numpy python3-matplotlib python3-pytest
+  python3-pip python3-setuptools python3-wheel
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "setup: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
