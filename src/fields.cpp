@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "format.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {
@@ -239,7 +240,7 @@ std::string check_field(const Field& f, double v) {
   }
   if (good) return {};
   std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
-  return std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + format_number(v);
+  return std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + detail::shortest(v);
 }
 
 void set_field(Case& c, std::string_view key, double value) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "format.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
@@ -12,11 +13,7 @@
 namespace oscidrum {
 namespace {
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+std::string num(double v) { return detail::shortest(v); }
 
 // Every field against its rule in the field table, then the rules that tie fields together.
 void validate(const Case& c) {

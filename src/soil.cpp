@@ -5,16 +5,13 @@
 #include <cstdio>
 #include <string>
 
+#include "format.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {
 namespace {
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+std::string num(double v) { return detail::shortest(v); }
 
 void require(bool ok, const char* what, double value) {
   if (!ok) throw Error(std::string(what) + "; got " + num(value));

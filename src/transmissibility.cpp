@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "format.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {
@@ -12,10 +13,8 @@ namespace oscidrum {
 Transmissibility transmissibility(double kd, double cd, double m_f, double nu) {
   auto check = [](const char* name, double v, bool allow_zero) {
     if (!std::isfinite(v) || v < 0 || (!allow_zero && v == 0)) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.10g", v);
       throw Error(std::string(name) + (allow_zero ? " must be >= 0" : " must be > 0") + "; got " +
-                  buf);
+                  detail::shortest(v));
     }
   };
   check("kd", kd, false);

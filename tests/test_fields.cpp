@@ -1,1 +1,479 @@
+// Tests of the parameter table (oscidrum/fields.hpp) and of Model's validation (model.hpp):
+// defaults are the paper's roller (MODEL.md section 1, paper Table 1) on the Table 2 soil at
+// G = 25 MN/m^2; every field round-trips and touches only its own member; bad values are
+// rejected with a message naming the key, the rule and the value.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/parameters.hpp"
+#include "oscidrum/soil.hpp"
+
+namespace oscidrum {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The test's own map from key to the Case member, written independently of fields.cpp, so that
+// an accessor that reads or writes the wrong member is caught.
+using Member = std::function<double&(Case&)>;
+const std::map<std::string, Member>& members() {
+  static const std::map<std::string, Member> m = {
+      {"roller.r", [](Case& c) -> double& { return c.roller.r; }},
+      {"roller.b", [](Case& c) -> double& { return c.roller.b; }},
+      {"roller.m", [](Case& c) -> double& { return c.roller.m; }},
+      {"roller.I", [](Case& c) -> double& { return c.roller.I; }},
+      {"roller.P0", [](Case& c) -> double& { return c.roller.P0; }},
+      {"roller.f", [](Case& c) -> double& { return c.roller.f; }},
+      {"roller.M0", [](Case& c) -> double& { return c.roller.M0; }},
+      {"roller.kd", [](Case& c) -> double& { return c.roller.kd; }},
+      {"roller.cd", [](Case& c) -> double& { return c.roller.cd; }},
+      {"roller.g", [](Case& c) -> double& { return c.roller.g; }},
+      {"soil.G", [](Case& c) -> double& { return c.soil.G; }},
+      {"soil.nu", [](Case& c) -> double& { return c.soil.nu; }},
+      {"soil.rho", [](Case& c) -> double& { return c.soil.rho; }},
+      {"soil.ksh", [](Case& c) -> double& { return c.soil.ksh; }},
+      {"soil.ksv", [](Case& c) -> double& { return c.soil.ksv; }},
+      {"soil.csh", [](Case& c) -> double& { return c.soil.csh; }},
+      {"soil.csv", [](Case& c) -> double& { return c.soil.csv; }},
+      {"trough.k", [](Case& c) -> double& { return c.trough.k; }},
+      {"trough.a", [](Case& c) -> double& { return c.trough.a; }},
+      {"contact.mu", [](Case& c) -> double& { return c.contact.mu; }},
+      {"MMd", [](Case& c) -> double& { return c.MMd; }},
+      {"numerics.rtol", [](Case& c) -> double& { return c.numerics.rtol; }},
+      {"numerics.atol", [](Case& c) -> double& { return c.numerics.atol; }},
+      {"numerics.steady_tol", [](Case& c) -> double& { return c.numerics.steady_tol; }},
+      {"numerics.slip_constraint_rate",
+       [](Case& c) -> double& { return c.numerics.slip_constraint_rate; }},
+  };
+  return m;
+}
+
+// Non-double members (integers, booleans, the choice), read directly.
+double direct_value(const Case& c0, const std::string& key) {
+  Case c = c0;
+  if (auto it = members().find(key); it != members().end()) return it->second(c);
+  if (key == "soil.input") return static_cast<double>(static_cast<int>(c.soil.input));
+  if (key == "contact.pure_rolling") return c.contact.pure_rolling ? 1.0 : 0.0;
+  if (key == "numerics.suspension_from_static") return c.numerics.suspension_from_static;
+  if (key == "numerics.max_periods") return c.numerics.max_periods;
+  if (key == "numerics.max_multiplicity") return c.numerics.max_multiplicity;
+  if (key == "numerics.output_periods") return c.numerics.output_periods;
+  if (key == "numerics.samples_per_period") return c.numerics.samples_per_period;
+  if (key == "numerics.max_switches_per_period") return c.numerics.max_switches_per_period;
+  ADD_FAILURE() << "the test does not know the field '" << key << "': add it to members()";
+  return kNaN;
+}
+
+// A valid value of the field different from `current`.
+double other_valid_value(const Field& f, double current) {
+  switch (f.type) {
+    case FieldType::boolean:
+      return current == 0.0 ? 1.0 : 0.0;
+    case FieldType::choice:
+      return current == f.min ? f.max : f.min;
+    case FieldType::integer:
+      return current + 1.0 <= f.max ? current + 1.0 : current - 1.0;
+    case FieldType::real:
+      break;
+  }
+  for (double v : {current * 1.25, current * 0.75, current + 0.125, current - 0.125}) {
+    if (v != current && check_field(f, v).empty()) return v;
+  }
+  ADD_FAILURE() << "no valid other value for " << f.key;
+  return current;
+}
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// ---- the table ------------------------------------------------------------------------------
+
+TEST(Fields, EveryCaseMemberHasExactlyOneField) {
+  // 10 roller + 8 soil + 2 trough + 2 contact + MMd + 10 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 33u);
+  std::set<std::string> keys;
+  for (const Field& f : fields()) {
+    EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;
+    EXPECT_EQ(find_field(f.key), &f);
+    EXPECT_NE(std::string(f.unit), "") << f.key;
+    EXPECT_NE(std::string(f.description), "") << f.key;
+    EXPECT_EQ(f.type == FieldType::choice, f.choices != nullptr) << f.key;
+  }
+  EXPECT_EQ(find_field("no.such.key"), nullptr);
+}
+
+TEST(Fields, GetReadsTheRightMember) {
+  const Case c;
+  for (const Field& f : fields()) EXPECT_EQ(get_field(c, f.key), direct_value(c, f.key)) << f.key;
+}
+
+TEST(Fields, EverySetRoundTripsAndTouchesOnlyItsOwnMember) {
+  const Case defaults;
+  for (const Field& f : fields()) {
+    Case c;
+    const double v = other_valid_value(f, f.get(c));
+    ASSERT_NE(v, f.get(c)) << f.key;
+    ASSERT_NO_THROW(set_field(c, f.key, v)) << f.key;
+    EXPECT_EQ(get_field(c, f.key), v) << f.key;
+    EXPECT_EQ(direct_value(c, f.key), v) << f.key << " writes another member";
+    for (const Field& g : fields()) {
+      if (&g == &f) continue;
+      EXPECT_EQ(direct_value(c, g.key), direct_value(defaults, g.key))
+          << "setting " << f.key << " changed " << g.key;
+    }
+    // Back to the default value: the round trip is exact.
+    set_field(c, f.key, direct_value(defaults, f.key));
+    EXPECT_EQ(direct_value(c, f.key), direct_value(defaults, f.key)) << f.key;
+  }
+}
+
+// ---- defaults: the paper's roller (Table 1), Table 2 at G = 25, circle R = 0.606, mu = 0.5 ---
+
+TEST(Fields, DefaultsAreThePapersRoller) {
+  const Case c;
+  EXPECT_EQ(c.roller.r, 0.6);
+  EXPECT_EQ(c.roller.b, 1.68);
+  EXPECT_EQ(c.roller.m, 1851.0);
+  EXPECT_EQ(c.roller.I, 411.78);
+  EXPECT_EQ(c.roller.P0, 45224.0);
+  EXPECT_EQ(c.roller.f, 39.0);
+  EXPECT_EQ(c.roller.M0, 54947.0);
+  EXPECT_EQ(c.roller.kd, 4e6);
+  EXPECT_EQ(c.roller.cd, 3e3);
+  EXPECT_EQ(c.roller.g, 9.81);
+  // Fz = P0 - m g = 27 066 N (7), as MODEL.md section 1 prints it (to 1 N).
+  EXPECT_NEAR(c.roller.P0 - c.roller.m * c.roller.g, 27066.0, 0.5);
+  EXPECT_EQ(c.MMd, 0.0);
+}
+
+TEST(Fields, DefaultSoilIsTable2AtG25) {
+  const Case c;
+  const Table2Row* row = nullptr;
+  for (const Table2Row& r : table2())
+    if (r.G == 25e6) row = &r;
+  ASSERT_NE(row, nullptr);
+  EXPECT_EQ(c.soil.input, SoilInput::coefficients);
+  EXPECT_EQ(c.soil.ksh, row->ksh);
+  EXPECT_EQ(c.soil.ksv, row->ksv);
+  EXPECT_EQ(c.soil.csh, row->csh);
+  EXPECT_EQ(c.soil.csv, row->csv);
+  // The printed row itself (MODEL.md table): 41.4, 66.3 MN/m; 141, 263 kN s/m.
+  EXPECT_EQ(c.soil.ksh, 41.4e6);
+  EXPECT_EQ(c.soil.ksv, 66.3e6);
+  EXPECT_EQ(c.soil.csh, 141e3);
+  EXPECT_EQ(c.soil.csv, 263e3);
+  EXPECT_EQ(c.soil.G, 25e6);
+  EXPECT_EQ(c.soil.nu, 0.3);
+  EXPECT_EQ(c.soil.rho, 1900.0);
+}
+
+TEST(Fields, DefaultTroughContactAndNumerics) {
+  const Case c;
+  EXPECT_EQ(c.trough.a, 0.606);
+  EXPECT_EQ(c.trough.k, 0.0);
+  EXPECT_EQ(c.contact.mu, 0.5);
+  EXPECT_FALSE(c.contact.pure_rolling);
+  EXPECT_FALSE(c.numerics.suspension_from_static);  // the paper's convention by default
+  EXPECT_NO_THROW(Model{c});
+}
+
+// ---- set_field: rules and messages -------------------------------------------------------------
+
+TEST(Fields, ExactMessageForNegativeShearModulus) {
+  Case c;
+  const std::string msg = error_of([&] { set_field(c, "soil.G", -5e6); });
+  // The message documented in fields.hpp and error.hpp: key, rule, unit, value.
+  EXPECT_NE(msg.find("soil.G must be > 0 [Pa]; got -5e+06"), std::string::npos) << msg;
+  EXPECT_EQ(c.soil.G, 25e6) << "a rejected value must leave the case unchanged";
+}
+
+TEST(Fields, MessagesNameKeyRuleAndValue) {
+  Case c;
+  EXPECT_EQ(error_of([&] { set_field(c, "soil.nu", 0.5); }),
+            "soil.nu must be in [0, 0.5); got 0.5");
+  EXPECT_EQ(error_of([&] { set_field(c, "contact.mu", -0.1); }),
+            "contact.mu must be >= 0; got -0.1");
+  EXPECT_EQ(error_of([&] { set_field(c, "roller.m", 0.0); }), "roller.m must be > 0 [kg]; got 0");
+  EXPECT_EQ(error_of([&] { set_field(c, "roller.kd", -1.0); }),
+            "roller.kd must be >= 0 [N/m]; got -1");
+  const std::string nan_msg = error_of([&] { set_field(c, "roller.I", kNaN); });
+  EXPECT_NE(nan_msg.find("roller.I must be > 0 [kg m^2]; got "), std::string::npos) << nan_msg;
+  EXPECT_NE(nan_msg.find("nan"), std::string::npos) << nan_msg;
+  const std::string inf_msg = error_of([&] { set_field(c, "MMd", -kInf); });
+  EXPECT_NE(inf_msg.find("MMd must be finite [N m]; got -inf"), std::string::npos) << inf_msg;
+  const std::string int_msg = error_of([&] { set_field(c, "numerics.max_periods", 2.5); });
+  EXPECT_NE(int_msg.find("numerics.max_periods must be an integer"), std::string::npos) << int_msg;
+  EXPECT_NE(int_msg.find("got 2.5"), std::string::npos) << int_msg;
+}
+
+TEST(Fields, EveryFieldRejectsNonFiniteValuesAndLeavesTheCaseUnchanged) {
+  for (const Field& f : fields()) {
+    for (double bad : {kNaN, kInf, -kInf}) {
+      Case c;
+      const double before = f.get(c);
+      const std::string msg = error_of([&] { set_field(c, f.key, bad); });
+      EXPECT_EQ(msg.rfind(std::string(f.key) + " must be ", 0), 0u) << f.key << ": " << msg;
+      EXPECT_EQ(f.get(c), before) << f.key;
+    }
+  }
+}
+
+TEST(Fields, EveryFieldRejectsValuesOutsideItsRange) {
+  for (const Field& f : fields()) {
+    if (f.type == FieldType::boolean) {
+      Case c;
+      EXPECT_THROW(set_field(c, f.key, 0.5), Error) << f.key;
+      EXPECT_THROW(set_field(c, f.key, 2.0), Error) << f.key;
+      continue;
+    }
+    std::vector<double> bad;
+    if (std::isfinite(f.min)) {
+      bad.push_back(f.min_open ? f.min : f.min - 1.0);
+      const double inside = f.min_open ? std::nextafter(f.min, kInf) : f.min;
+      if (f.type == FieldType::real) {
+        EXPECT_EQ(check_field(f, inside), "") << f.key;
+      }
+    }
+    if (std::isfinite(f.max)) {
+      bad.push_back(f.max_open ? f.max : f.max + 1.0);
+      const double inside = f.max_open ? std::nextafter(f.max, -kInf) : f.max;
+      if (f.type == FieldType::real) {
+        EXPECT_EQ(check_field(f, inside), "") << f.key;
+      }
+    }
+    for (double v : bad) {
+      Case c;
+      const double before = f.get(c);
+      const std::string msg = error_of([&] { set_field(c, f.key, v); });
+      EXPECT_EQ(msg.rfind(std::string(f.key) + " must be " + field_rule(f), 0), 0u)
+          << f.key << " = " << v << ": " << msg;
+      EXPECT_NE(msg.find("; got "), std::string::npos) << msg;
+      EXPECT_EQ(f.get(c), before) << f.key;
+    }
+  }
+}
+
+TEST(Fields, RulesReadAsDocumented) {
+  EXPECT_EQ(field_rule(*find_field("soil.G")), "> 0");
+  EXPECT_EQ(field_rule(*find_field("soil.nu")), "in [0, 0.5)");
+  EXPECT_EQ(field_rule(*find_field("contact.mu")), ">= 0");
+  EXPECT_EQ(field_rule(*find_field("MMd")), "finite");
+  EXPECT_EQ(field_rule(*find_field("contact.pure_rolling")), "true or false");
+  EXPECT_EQ(field_rule(*find_field("soil.input")), "one of coefficients, modulus");
+}
+
+TEST(Fields, UnknownKeySuggestsTheNearestKey) {
+  Case c;
+  EXPECT_EQ(error_of([&] { set_field(c, "soil.g", 1.0); }),
+            "unknown parameter 'soil.g'; did you mean 'soil.G'?");
+  EXPECT_EQ(error_of([&] { (void)get_field(c, "roller.mas"); }),
+            "unknown parameter 'roller.mas'; did you mean 'roller.m'?");
+  EXPECT_EQ(error_of([&] { set_field_text(c, "contact.mue", "0.4"); }),
+            "unknown parameter 'contact.mue'; did you mean 'contact.mu'?");
+  // Nothing close: no suggestion.
+  EXPECT_EQ(error_of([&] { set_field(c, "completely.unrelated", 1.0); }),
+            "unknown parameter 'completely.unrelated'");
+}
+
+// ---- set_field_text ---------------------------------------------------------------------------
+
+TEST(Fields, TextParsesNumbersBooleansAndChoices) {
+  Case c;
+  set_field_text(c, "soil.G", "4.5e7");
+  EXPECT_EQ(c.soil.G, 4.5e7);
+  set_field_text(c, "MMd", "-2747.35");
+  EXPECT_EQ(c.MMd, -2747.35);
+  set_field_text(c, "numerics.max_periods", "300");
+  EXPECT_EQ(c.numerics.max_periods, 300);
+  set_field_text(c, "contact.pure_rolling", "true");
+  EXPECT_TRUE(c.contact.pure_rolling);
+  set_field_text(c, "contact.pure_rolling", "false");
+  EXPECT_FALSE(c.contact.pure_rolling);
+  set_field_text(c, "numerics.suspension_from_static", "1");
+  EXPECT_TRUE(c.numerics.suspension_from_static);
+  set_field_text(c, "soil.input", "modulus");
+  EXPECT_EQ(c.soil.input, SoilInput::modulus);
+  EXPECT_EQ(format_field(c, *find_field("soil.input")), "modulus");
+  set_field_text(c, "soil.input", "coefficients");
+  EXPECT_EQ(c.soil.input, SoilInput::coefficients);
+  EXPECT_EQ(format_field(c, *find_field("contact.pure_rolling")), "false");
+}
+
+TEST(Fields, TextRejectsGarbage) {
+  const Case defaults;
+  for (const char* text : {"", "abc", "12abc", "1e", "0.5.5", "--1"}) {
+    Case c;
+    const std::string msg = error_of([&] { set_field_text(c, "soil.G", text); });
+    EXPECT_EQ(msg.rfind("soil.G must be a number", 0), 0u) << "'" << text << "': " << msg;
+    EXPECT_NE(msg.find(std::string("'") + text + "'"), std::string::npos) << msg;
+    EXPECT_EQ(c.soil.G, defaults.soil.G);
+  }
+  Case c;
+  // Parsed numbers still go through the field's rule.
+  EXPECT_THROW(set_field_text(c, "soil.G", "-5e6"), Error);
+  EXPECT_THROW(set_field_text(c, "soil.G", "nan"), Error);
+  EXPECT_THROW(set_field_text(c, "soil.G", "inf"), Error);
+  EXPECT_THROW(set_field_text(c, "numerics.max_periods", "2.5"), Error);
+  EXPECT_THROW(set_field_text(c, "contact.pure_rolling", "maybe"), Error);
+  EXPECT_THROW(set_field_text(c, "contact.pure_rolling", "2"), Error);
+  const std::string msg = error_of([&] { set_field_text(c, "soil.input", "gravel"); });
+  EXPECT_EQ(msg, "soil.input must be one of coefficients, modulus; got 'gravel'");
+  EXPECT_EQ(c.soil.G, defaults.soil.G);
+  EXPECT_EQ(c.soil.input, defaults.soil.input);
+  EXPECT_EQ(c.contact.pure_rolling, defaults.contact.pure_rolling);
+}
+
+// ---- Model construction: every rule, with the field named in the message ----------------------
+
+// Model{c} must throw oscidrum::Error whose message contains every one of `parts`.
+void expect_model_rejects(const Case& c, std::initializer_list<std::string> parts) {
+  const std::string msg = error_of([&] { Model model(c); });
+  ASSERT_NE(msg, "(no error)");
+  for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << msg;
+}
+
+TEST(ModelValidation, RejectsNonPositiveMassRadiusInertia) {
+  for (double bad : {0.0, -1.0}) {
+    Case c;
+    c.roller.m = bad * 1851.0;
+    expect_model_rejects(c, {"roller.m", "> 0", "[kg]"});
+    c = Case{};
+    c.roller.r = bad * 0.6;
+    expect_model_rejects(c, {"roller.r", "> 0", "[m]"});
+    c = Case{};
+    c.roller.I = bad * 411.78;
+    expect_model_rejects(c, {"roller.I", "> 0"});
+    c = Case{};
+    c.roller.b = bad;
+    expect_model_rejects(c, {"roller.b", "> 0"});
+  }
+}
+
+TEST(ModelValidation, RejectsNonPositiveStiffness) {
+  Case c;
+  c.soil.ksh = 0.0;
+  expect_model_rejects(c, {"soil.ksh", "> 0", "got 0"});
+  c = Case{};
+  c.soil.ksv = -66.3e6;
+  expect_model_rejects(c, {"soil.ksv", "> 0"});
+  c = Case{};
+  c.soil.csh = 0.0;
+  expect_model_rejects(c, {"soil.csh", "> 0"});
+  c = Case{};
+  c.roller.kd = -4e6;
+  expect_model_rejects(c, {"roller.kd", ">= 0", "got -4"});
+  c = Case{};
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 0.0;
+  expect_model_rejects(c, {"soil.G", "> 0", "got 0"});
+}
+
+TEST(ModelValidation, RejectsCircularTroughNotLargerThanTheDrum) {
+  Case c;
+  c.trough.a = 0.6;  // R = r
+  expect_model_rejects(c, {"trough.a", "roller.r", "0.6"});
+  c.trough.a = 0.59;  // R < r
+  expect_model_rejects(c, {"trough.a", "roller.r", "0.59"});
+  c.trough.a = 0.603;  // the paper's smallest R: fine
+  EXPECT_NO_THROW(Model{c});
+}
+
+TEST(ModelValidation, RejectsNegativeFriction) {
+  Case c;
+  c.contact.mu = -0.5;
+  expect_model_rejects(c, {"contact.mu", ">= 0", "-0.5"});
+  c.contact.mu = 0.0;  // frictionless contact is a valid (degenerate) model
+  EXPECT_NO_THROW(Model{c});
+}
+
+TEST(ModelValidation, RejectsPoissonRatioOutsideItsRangeForModulusInput) {
+  for (double bad : {-0.1, 0.5, 0.7}) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.nu = bad;
+    expect_model_rejects(c, {"soil.nu", "[0, 0.5)"});
+  }
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.nu = 0.0;
+  EXPECT_NO_THROW(Model{c});
+  c.soil.nu = 0.49;
+  EXPECT_NO_THROW(Model{c});
+}
+
+TEST(ModelValidation, RejectsAxleLoadBelowDrumWeight) {
+  Case c;
+  c.roller.P0 = 18000.0;  // < m g = 18158.31 N, so Fz = P0 - m g < 0 (7)
+  expect_model_rejects(c, {"roller.P0", "18000"});
+  c.roller.P0 = c.roller.m * c.roller.g;  // Fz = 0: the drum alone, allowed
+  EXPECT_NO_THROW(Model{c});
+}
+
+TEST(ModelValidation, RejectsNaNInEveryRealField) {
+  for (const Field& f : fields()) {
+    if (f.type != FieldType::real) continue;
+    Case c;
+    auto it = members().find(f.key);
+    ASSERT_NE(it, members().end()) << f.key;
+    it->second(c) = kNaN;
+    expect_model_rejects(c, {std::string(f.key) + " must be ", "nan"});
+  }
+}
+
+TEST(ModelValidation, RejectsInfinityInEveryRealField) {
+  for (const Field& f : fields()) {
+    if (f.type != FieldType::real) continue;
+    Case c;
+    members().at(f.key)(c) = kInf;
+    expect_model_rejects(c, {std::string(f.key) + " must be ", "inf"});
+  }
+}
+
+TEST(ModelValidation, ModulusInputGoesThroughAppendixB) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 40e6;
+  const Model model(c);
+  const SoilCoefficients s = soil_coefficients(40e6, 0.3, 1900.0, c.roller);
+  EXPECT_EQ(model.ksh(), s.ksh);
+  EXPECT_EQ(model.ksv(), s.ksv);
+  EXPECT_EQ(model.csh(), s.csh);
+  EXPECT_EQ(model.csv(), s.csv);
+}
+
+TEST(ModelValidation, DerivedConstants) {
+  const Case c;
+  const Model model(c);
+  EXPECT_NEAR(model.W(), c.roller.P0, 1e-12 * c.roller.P0);  // W = m g + Fz = P0
+  EXPECT_NEAR(model.Fz(), 27066.0, 0.5);                     // (7)
+  EXPECT_DOUBLE_EQ(model.nu(), 2.0 * M_PI * 39.0);
+  EXPECT_DOUBLE_EQ(model.period(), 1.0 / 39.0);
+  EXPECT_EQ(model.z_ref(), 0.0);  // the paper: kd acts on z_M measured from t = 0
+  // (5), (6): MM(t) = M0 sin(nu t) + MMd.
+  Case d = c;
+  d.MMd = 0.05 * d.roller.M0;
+  const Model driven(d);
+  const double t = 0.3 / 39.0;
+  EXPECT_NEAR(driven.torque(t), 54947.0 * std::sin(2.0 * M_PI * 39.0 * t) + 0.05 * 54947.0,
+              1e-12 * 54947.0);
+}
+
+}  // namespace
+}  // namespace oscidrum

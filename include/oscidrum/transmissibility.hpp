@@ -11,7 +11,8 @@ struct Transmissibility {
 };
 
 /// Appendix A (40) for a frame of mass m_f [kg] on the suspension kd [N/m], cd [N s/m], base
-/// excitation at nu [rad/s]. Throws oscidrum::Error on non-positive input.
+/// excitation at nu [rad/s]. Throws oscidrum::Error if kd, m_f or nu is not > 0 or cd < 0
+/// (cd = 0, an undamped suspension, is allowed).
 Transmissibility transmissibility(double kd, double cd, double m_f, double nu);
 
 }  // namespace oscidrum
