@@ -7,6 +7,7 @@
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/parameters.hpp"
+#include "oscidrum/record.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"

@@ -1,0 +1,102 @@
+// Tests of analyze_record (src/record.cpp): metrics of measured records by least squares.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "oscidrum/oscidrum.hpp"
+#include "tolerances.hpp"
+
+namespace oscidrum {
+namespace {
+
+// For uniform samples over whole periods the harmonic basis is orthogonal, so the least-squares
+// fit equals the DFT of compute_metrics: a simulated steady state analysed as a "record" gives
+// the same harmonics.
+TEST(Record, SimulatedSteadyStateGivesTheSameHarmonicsAsTheDft) {
+  Case c;
+  c.MMd = 0.05 * c.roller.M0;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state);
+  const Metrics m = compute_metrics(r, 10);
+  const RecordMetrics rec = analyze_record(r.samples.t, r.samples.ddx_M, r.samples.ddz_M, 39.0);
+  for (int n = 0; n <= 10; ++n) {
+    EXPECT_NEAR(rec.ddx_harmonics[n].amplitude, m.ddx_harmonics[n].amplitude, 1e-9 * 15.0) << n;
+    EXPECT_NEAR(rec.ddz_harmonics[n].amplitude, m.ddz_harmonics[n].amplitude, 1e-9 * 3.0) << n;
+  }
+  EXPECT_NEAR(rec.psi_xz, m.psi_xz, 1e-9);
+  // The fitted signal keeps 10 harmonics of a kinked signal, so its extremes and area differ
+  // from the raw ones by the truncated harmonics (a few per cent at most here).
+  EXPECT_NEAR(rec.area / m.area, 1.0, 0.05);
+  EXPECT_NEAR(rec.cycles, 2.0, 1.0 / 1024.0 + 1e-12);
+  EXPECT_LT(rec.residual_x, 0.05);
+}
+
+// A "measured" record: 3.37 periods, jittered sampling times, noise. The fit recovers the
+// harmonics to the noise level and reports the noise as the residual.
+TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::vector<double> t, x, z;
+  const int n = 3000;
+  const double dt = 3.37 / f / n;
+  for (int i = 0; i < n; ++i) {
+    const double ti = 0.123 + (i + jitter(rng)) * dt;
+    t.push_back(ti);
+    x.push_back(40.0 * std::sin(nu * ti + 0.3) + 4.0 * std::sin(3 * nu * ti - 1.0) + noise(rng));
+    z.push_back(1.5 + 5.0 * std::sin(2 * nu * ti + 0.9) + 2.0 * std::sin(nu * ti) + noise(rng));
+  }
+  const RecordMetrics m = analyze_record(t, x, z, f, 6);
+  // Amplitude error of a least-squares fit ~ sigma sqrt(2/n) = 0.013; 5 sigma.
+  const double tol = 5 * 0.5 * std::sqrt(2.0 / n);
+  EXPECT_NEAR(m.ddx_harmonics[1].amplitude, 40.0, tol);
+  EXPECT_NEAR(m.ddx_harmonics[3].amplitude, 4.0, tol);
+  EXPECT_NEAR(m.ddx_harmonics[2].amplitude, 0.0, tol);
+  EXPECT_NEAR(m.ddz_harmonics[0].amplitude, 1.5, tol);
+  EXPECT_NEAR(m.ddz_harmonics[2].amplitude, 5.0, tol);
+  EXPECT_NEAR(m.ddx_harmonics[1].phase, 0.3, tol / 40.0 * 3);
+  EXPECT_NEAR(m.psi_xz, wrap_pi(0.9 - 0.6), 0.02);
+  EXPECT_NEAR(m.cycles, 3.37, 0.01);
+  // Residual = noise RMS / signal RMS (x RMS = sqrt((40^2 + 4^2)/2 + 0.25)).
+  EXPECT_NEAR(m.residual_x, 0.5 / std::sqrt((1600 + 16) / 2.0 + 0.25), 0.002);
+}
+
+TEST(Record, RejectsBadRecords) {
+  const std::vector<double> t = {0.0, 0.01, 0.02}, y = {0, 1, 2};
+  auto message = [](auto fn) {
+    try {
+      fn();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { analyze_record(t, y, y, 39.0); }).find("at least one excitation period"),
+            std::string::npos);
+  const std::vector<double> back = {0.0, 0.02, 0.01};
+  EXPECT_NE(message([&] { analyze_record(back, y, y, 1.0); }).find("t must increase strictly"),
+            std::string::npos);
+  const std::vector<double> short_y = {0, 1};
+  EXPECT_NE(message([&] { analyze_record(t, short_y, y, 39.0); }).find("same length"),
+            std::string::npos);
+  const std::vector<double> nan_y = {0, std::nan(""), 2};
+  EXPECT_NE(message([&] { analyze_record(t, nan_y, y, 1.0); }).find("non-finite value in row 2"),
+            std::string::npos);
+  std::vector<double> coarse_t, coarse_y;
+  for (int i = 0; i <= 40; ++i) {
+    coarse_t.push_back(i * 0.1);
+    coarse_y.push_back(0.0);
+  }
+  EXPECT_NE(message([&] {
+              analyze_record(coarse_t, coarse_y, coarse_y, 1.0, 10);
+            }).find("too few for n_max = 10"),
+            std::string::npos);
+  EXPECT_NE(message([&] { analyze_record(t, y, y, -1.0); }).find("f must be > 0"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace oscidrum
