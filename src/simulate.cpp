@@ -511,6 +511,7 @@ Result Engine::run() {
   for (const Event& e : result_.events)
     if (e.kind != EventKind::contact_lost) ++result_.diagnostics.switches;
   if (!std::isfinite(result_.diagnostics.min_N)) result_.diagnostics.min_N = 0.0;
+  result_.diagnostics.inconsistent_slip_ends = inconsistent_slip_ends_;
   return result_;
 }
 

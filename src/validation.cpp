@@ -195,6 +195,7 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
       if (!o.valid) throw Error("paper case " + s.id + " G = " + mn(s.G[j]) + ": " + o.error);
       r.status.push_back(o.result.status);
       r.metrics.push_back(o.metrics);
+      r.diagnostics.push_back(o.result.diagnostics);
       if (options.keep_samples) r.results.push_back(std::move(o.result));
     }
     results.push_back(std::move(r));
@@ -223,6 +224,22 @@ std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
         }
     add("all.steady", "Sect. 3.4", "every simulated case reaches a steady state", "steady state",
         std::to_string(total - failed) + "/" + std::to_string(total) + which, "all", failed == 0);
+  }
+
+  {
+    long odd = 0, switches = 0;
+    for (const SeriesResult& s : results)
+      for (const Diagnostics& d : s.diagnostics) {
+        odd += d.reversals + d.inconsistent_slip_ends;
+        switches += d.switches;
+      }
+    add("all.slip_ends", "Sect. 3.4",
+        "every slip phase ends in stick (no reversal, no slip end "
+        "without a consistent continuation; docs/model.md)",
+        "stick-slip alternation",
+        std::to_string(odd) + " irregular slip ends among " + std::to_string(switches) +
+            " switches",
+        "0", odd == 0);
   }
 
   const SeriesResult& r603 = find(results, "rolling_MMd0_R0.603");

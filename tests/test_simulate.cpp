@@ -76,6 +76,9 @@ TEST(Simulate, SlipCouplingInvariantHolds) {
     const Result r = simulate(stick_slip_case(25, MMd));
     ASSERT_EQ(r.status, Status::steady_state) << r.message;
     EXPECT_LT(r.diagnostics.max_slip_residual, 1e-7);  // relative to W, over the whole run
+    // Every slip end of the paper's case is a consistent stick (docs/model.md).
+    EXPECT_EQ(r.diagnostics.reversals, 0);
+    EXPECT_EQ(r.diagnostics.inconsistent_slip_ends, 0);
     for (std::size_t j = 0; j < r.samples.size(); ++j) {
       const int s = static_cast<int>(r.samples.phase[j]);
       if (s != 0) {

@@ -51,6 +51,8 @@ struct Diagnostics {
   long events = 0;             ///< located events
   long switches = 0;           ///< stick/slip phase changes
   long reversals = 0;          ///< slip -> slip reversals (rare, see MODEL.md section 6)
+  long inconsistent_slip_ends = 0;   ///< slip ends where neither stick nor a reversal is
+                                     ///< consistent (docs/model.md); stick is taken
   double switches_per_period = 0.0;  ///< in the sampled steady state
   double max_slip_residual = 0.0;    ///< max |(39)| / max(N) during slip [-]
   double min_N = 0.0;                ///< smallest normal force seen [N]

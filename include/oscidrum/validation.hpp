@@ -41,6 +41,7 @@ struct SeriesResult {
   PaperSeries series;
   std::vector<Status> status;
   std::vector<Metrics> metrics;
+  std::vector<Diagnostics> diagnostics;
   std::vector<Result> results;  ///< kept only when asked (samples for figures)
 };
 
