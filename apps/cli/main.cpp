@@ -1,1 +1,103 @@
-int main() { return 0; }
+// oscidrum: the command-line tool. Parses the command line with CLI11, runs the selected
+// command, and turns every error into a one-line message and an exit code (commands.hpp).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "commands.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/version.hpp"
+
+namespace {
+
+using namespace oscidrum::cli;
+
+// Every command, in the order of `oscidrum --help`. The lead adds add_paper_command and
+// add_validate_command here (see commands.hpp).
+constexpr AddCommand kCommands[] = {
+    add_run_command,    add_sweep_command, add_soil_command, add_transmissibility_command,
+    add_fields_command,
+};
+
+// Lists each command with the first sentence of its description only; `oscidrum CMD --help`
+// shows the whole of it.
+class Formatter : public CLI::Formatter {
+ public:
+  std::string make_subcommand(const CLI::App* sub) const override {
+    std::string text = sub->get_description();
+    const std::size_t end = text.find(". ");
+    if (end != std::string::npos) text = text.substr(0, end + 1);
+    std::ostringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(true), text, column_width_);
+    return out.str();
+  }
+};
+
+std::string one_line(std::string s) {
+  for (char& ch : s)
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+int error(const std::string& message, int code) {
+  std::cerr << "oscidrum: error: " << one_line(message) << "\n";
+  return code;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app(
+      "oscidrum simulates an oscillation roller drum on soil: the stick-slip model of Paulmichl, "
+      "Adam & Adam (2019), integrated from rest to its steady state.\nAll inputs and outputs "
+      "are in SI units unless a flag says otherwise.",
+      "oscidrum");
+  app.set_version_flag("--version", oscidrum::version);
+  app.formatter(std::make_shared<Formatter>());
+  app.footer(
+      "Examples:\n"
+      "  oscidrum run                          the paper's roller on Table 2 soil, G = 25 MN/m^2\n"
+      "  oscidrum run --G 40 --pure-rolling --csv steady.csv\n"
+      "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
+      "  oscidrum soil --table2                Appendix B against paper Table 2\n"
+      "  oscidrum fields                       every config key with unit, default and rule\n"
+      "Exit codes: 0 ok, 1 a case did not reach its steady state, 2 bad usage or input, "
+      "130 interrupted.\nDocs: docs/cli.md, docs/config.md, docs/outputs.md");
+  Action action;
+  std::string names;
+  for (AddCommand add : kCommands) add(app, action);
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string where = "oscidrum";
+    for (const CLI::App* sub : app.get_subcommands()) where += " " + sub->get_name();
+    return error(std::string(e.what()) + " (see '" + where + " --help')", kExitUsage);
+  }
+  if (!action)
+    return error("a command is required: " + names + " (see 'oscidrum --help')", kExitUsage);
+  return action();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const oscidrum::Error& e) {
+    return error(e.what(), kExitUsage);
+  } catch (const std::exception& e) {
+    return error(std::string("internal error: ") + e.what(), kExitInternal);
+  } catch (...) {
+    return error("internal error: unknown exception", kExitInternal);
+  }
+}

@@ -30,7 +30,9 @@ struct StudyOptions {
   std::function<void(std::size_t index, const CaseOutcome& outcome)> on_case_done;
   /// Called (serialised) after each case with (done, total).
   std::function<void(std::size_t done, std::size_t total)> progress;
-  /// Polled between cases; return true to stop starting new cases (interrupt).
+  /// Polled (serialised with the other callbacks) before each case and once per excitation
+  /// period inside a running case; return true to stop (interrupt): running cases end as
+  /// "cancelled" and are not passed to on_case_done.
   std::function<bool()> cancelled;
 };
 

@@ -1,0 +1,211 @@
+// Case flags: generated roller flags, the soil, contact, torque and trough flags, and --set.
+#include "case_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/soil.hpp"
+#include "output.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+bool given(const CLI::Option* o) { return o && o->count() > 0; }
+
+std::string origin(const std::string& flag, double v) { return flag + " " + fmt(v, 10); }
+
+bool is_table2_G(double G) {
+  for (const Table2Row& row : table2())
+    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
+  return false;
+}
+
+// Flags override the file: drop what the file said about the same quantity.
+void forget(io::CaseSpec& spec, const char* key) {
+  spec.origin.erase(std::string(key));
+  if (std::string_view(key) == "MMd_fraction") spec.MMd_fraction.reset();
+}
+
+}  // namespace
+
+void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only) {
+  for (const Field& f : fields()) {
+    const std::string key = f.key;
+    if (!key.starts_with("roller.") || key == "roller.g") continue;
+    if (!only.empty() && std::find(only.begin(), only.end(), key) == only.end()) continue;
+    double& slot = o.roller[key];
+    slot = f.get(Case{});
+    o.roller_flags[key] = app.add_option("--" + key.substr(7), slot,
+                                         std::string(f.description) + " [" + f.unit +
+                                             "] (default " + format_field(Case{}, f) + ")")
+                              ->group("Roller (paper Table 1)");
+  }
+}
+
+void add_soil_flags(CLI::App& app, CaseOptions& o) {
+  const char* group = "Soil";
+  o.G_flag = app.add_option("--G", o.G,
+                            "soil shear modulus in MN/m^2 (not Pa). A G of paper Table 2 (5, 10, "
+                            "..., 70) uses Table 2's coefficients; any other G, or --soil-formula, "
+                            "uses Appendix B (42)-(45)")
+                 ->group(group);
+  o.formula_flag =
+      app.add_flag("--soil-formula", o.soil_formula,
+                   "compute ksh, ksv, csh, csv from G, nu, rho by Appendix B (42)-(45) even for a "
+                   "Table 2 G")
+          ->group(group);
+  o.nu_flag = app.add_option("--nu", o.nu, "soil Poisson's ratio [-] (Appendix B; default 0.3)")
+                  ->group(group);
+  o.rho_flag = app.add_option("--rho", o.rho, "soil density [kg/m^3] (Appendix B; default 1900)")
+                   ->group(group);
+  o.ksh_flag = app.add_option("--ksh", o.ksh, "horizontal soil spring [N/m]")->group(group);
+  o.ksv_flag = app.add_option("--ksv", o.ksv, "vertical soil spring [N/m]")->group(group);
+  o.csh_flag = app.add_option("--csh", o.csh, "horizontal soil dashpot [N s/m]")->group(group);
+  o.csv_flag = app.add_option("--csv-soil", o.csv, "vertical soil dashpot [N s/m]")->group(group);
+}
+
+void add_model_flags(CLI::App& app, CaseOptions& o) {
+  const char* group = "Contact, torque and trough";
+  o.mu_flag =
+      app.add_option("--mu", o.mu, "Coulomb friction coefficient drum/soil [-] (default 0.5)")
+          ->group(group);
+  o.pure_flag = app.add_flag("--pure-rolling", o.pure_rolling,
+                             "ignore the friction limit (mu -> infinity): the drum never slips")
+                    ->group(group);
+  o.MMd_flag =
+      app.add_option("--MMd", o.MMd, "constant driving torque [N m] (default 0)")->group(group);
+  o.fraction_flag =
+      app.add_option("--MMd-fraction", o.MMd_fraction,
+                     "constant driving torque as a fraction of M0 [-]; the paper uses 0 and 0.05")
+          ->group(group);
+  o.R_flag = app.add_option("--R", o.R, "circular trough of radius R [m] (> r; default 0.606)")
+                 ->group(group);
+  o.k_flag = app.add_option("--k", o.k, "log-spiral trough R(theta) = a exp(k theta): k [-]")
+                 ->group(group);
+  o.a_flag = app.add_option("--a", o.a, "log-spiral trough: a [m]")->group(group);
+}
+
+void add_set_flag(CLI::App& app, CaseOptions& o) {
+  app.add_option("--set", o.sets,
+                 "set any parameter: --set KEY=VALUE, SI units, repeatable; keys as in the config "
+                 "file (see 'oscidrum fields'), e.g. --set numerics.max_periods=2000")
+      ->allow_extra_args(false)
+      ->type_name("KEY=VALUE")
+      ->group("Any parameter");
+}
+
+namespace {
+void apply_flags(const CaseOptions& o, io::CaseSpec& spec);
+}  // namespace
+
+void apply(const CaseOptions& o, io::CaseSpec& spec) {
+  // --set, in order, after the named flags; errors name the setting.
+  apply_flags(o, spec);
+  for (const std::string& s : o.sets) {
+    const std::size_t eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw Error("--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + s + "'");
+    const std::string key = s.substr(0, eq);
+    if (key == "MMd") forget(spec, "MMd_fraction");
+    if (key == "MMd_fraction") forget(spec, "MMd");
+    if (key == "soil.table2_G") io::clear_soil(spec);
+    try {
+      io::assign_text(spec, key, s.substr(eq + 1), "--set " + s);
+    } catch (const Error& e) {
+      throw Error("--set " + s + ": " + e.what());
+    }
+  }
+}
+
+namespace {
+
+// io::assign, with the flag named in the error ("--mu -1: contact.mu must be >= 0; got -1").
+void put(io::CaseSpec& spec, const std::string& key, const io::Value& value,
+         const std::string& from) {
+  try {
+    io::assign(spec, key, value, from);
+  } catch (const Error& e) {
+    throw Error(from + ": " + e.what());
+  }
+}
+
+void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
+  for (const auto& [key, flag] : o.roller_flags)
+    if (given(flag)) put(spec, key, o.roller.at(key), origin(flag->get_name(), o.roller.at(key)));
+
+  // Soil.
+  const bool coefficient_flags =
+      given(o.ksh_flag) || given(o.ksv_flag) || given(o.csh_flag) || given(o.csv_flag);
+  if (given(o.G_flag)) {
+    if (coefficient_flags)
+      throw Error("give the soil either by --G or by --ksh, --ksv, --csh, --csv-soil, not both");
+    if (!std::isfinite(o.G) || o.G <= 0)
+      throw Error("--G must be > 0 [MN/m^2]; got " + fmt(o.G, 10));
+    const std::string from = origin("--G", o.G);
+    io::clear_soil(spec);
+    if (is_table2_G(o.G * 1e6) && !o.soil_formula) {
+      if (given(o.nu_flag) || given(o.rho_flag))
+        throw Error("--G " + fmt(o.G) +
+                    " uses paper Table 2, which holds nu = 0.3 and rho = 1900 "
+                    "only; add --soil-formula to compute the soil for --nu/--rho by Appendix B");
+      put(spec, "soil.table2_G", o.G * 1e6, from);
+    } else {
+      put(spec, "soil.input", std::string("modulus"), from);
+      put(spec, "soil.G", o.G * 1e6, from);
+    }
+  } else if (o.soil_formula) {
+    spec.table2 = false;
+    forget(spec, "soil.table2_G");
+    put(spec, "soil.input", std::string("modulus"), "--soil-formula");
+  }
+  if (given(o.nu_flag)) put(spec, "soil.nu", o.nu, origin("--nu", o.nu));
+  if (given(o.rho_flag)) put(spec, "soil.rho", o.rho, origin("--rho", o.rho));
+  if (coefficient_flags) {
+    io::materialize_soil(spec);
+    const std::pair<CLI::Option*, double> coefficient[] = {
+        {o.ksh_flag, o.ksh}, {o.ksv_flag, o.ksv}, {o.csh_flag, o.csh}, {o.csv_flag, o.csv}};
+    const char* keys[] = {"soil.ksh", "soil.ksv", "soil.csh", "soil.csv"};
+    for (int i = 0; i < 4; ++i)
+      if (given(coefficient[i].first))
+        put(spec, keys[i], coefficient[i].second,
+            origin(coefficient[i].first->get_name(), coefficient[i].second));
+  }
+
+  // Contact.
+  if (given(o.pure_flag) && given(o.mu_flag))
+    throw Error("--pure-rolling ignores friction; give either --mu or --pure-rolling");
+  if (given(o.pure_flag)) put(spec, "contact.pure_rolling", true, "--pure-rolling");
+  if (given(o.mu_flag)) {
+    put(spec, "contact.mu", o.mu, origin("--mu", o.mu));
+    put(spec, "contact.pure_rolling", false, origin("--mu", o.mu));
+  }
+
+  // Driving torque.
+  if (given(o.MMd_flag) && given(o.fraction_flag))
+    throw Error("give the driving torque either by --MMd [N m] or by --MMd-fraction [-], not both");
+  if (given(o.MMd_flag)) {
+    forget(spec, "MMd_fraction");
+    put(spec, "MMd", o.MMd, origin("--MMd", o.MMd));
+  }
+  if (given(o.fraction_flag)) {
+    forget(spec, "MMd");
+    put(spec, "MMd_fraction", o.MMd_fraction, origin("--MMd-fraction", o.MMd_fraction));
+  }
+
+  // Trough.
+  if (given(o.R_flag) && (given(o.k_flag) || given(o.a_flag)))
+    throw Error("give the trough either as a circle (--R) or as a log spiral (--k, --a), not both");
+  if (given(o.R_flag)) {
+    put(spec, "trough.k", 0.0, origin("--R", o.R));
+    put(spec, "trough.a", o.R, origin("--R", o.R));
+  }
+  if (given(o.k_flag)) put(spec, "trough.k", o.k, origin("--k", o.k));
+  if (given(o.a_flag)) put(spec, "trough.a", o.a, origin("--a", o.a));
+}
+
+}  // namespace
+
+}  // namespace oscidrum::cli

@@ -1,0 +1,53 @@
+// case_options.hpp: the flags that describe a case, shared by run, sweep, soil and
+// transmissibility. Config file first, then the named flags, then --set in the order given:
+// later settings override earlier ones.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "oscidrum_io/case_spec.hpp"
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
+namespace oscidrum::cli {
+
+struct CaseOptions {
+  // Roller flags, generated from the field table (roller.*): key -> value, and the option.
+  std::map<std::string, double> roller;
+  std::map<std::string, CLI::Option*> roller_flags;
+
+  double G = 0, nu = 0, rho = 0;  // --G [MN/m^2], --nu, --rho
+  double ksh = 0, ksv = 0, csh = 0, csv = 0;
+  double mu = 0, MMd = 0, MMd_fraction = 0, R = 0, k = 0, a = 0;
+  bool pure_rolling = false, soil_formula = false;
+  CLI::Option *G_flag = nullptr, *nu_flag = nullptr, *rho_flag = nullptr;
+  CLI::Option *ksh_flag = nullptr, *ksv_flag = nullptr, *csh_flag = nullptr, *csv_flag = nullptr;
+  CLI::Option *mu_flag = nullptr, *pure_flag = nullptr, *formula_flag = nullptr;
+  CLI::Option *MMd_flag = nullptr, *fraction_flag = nullptr;
+  CLI::Option *R_flag = nullptr, *k_flag = nullptr, *a_flag = nullptr;
+  std::vector<std::string> sets;  // --set key=value
+};
+
+/// --r, --b, --m, --I, --P0, --f, --M0, --kd, --cd: one per roller field of fields() (except g,
+/// which --set roller.g reaches: `--g` next to `--G` would invite a costly typo). `only` limits
+/// the flags to these keys (empty: all).
+void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only = {});
+
+/// --G, --soil-formula, --nu, --rho, --ksh, --ksv, --csh, --csv.
+void add_soil_flags(CLI::App& app, CaseOptions& o);
+
+/// --mu, --pure-rolling, --MMd, --MMd-fraction, --R, --k, --a.
+void add_model_flags(CLI::App& app, CaseOptions& o);
+
+/// --set key=value (repeatable), for any key of `oscidrum fields`.
+void add_set_flag(CLI::App& app, CaseOptions& o);
+
+/// Apply the flags that were given to `spec`. Throws oscidrum::Error (exit code 2).
+void apply(const CaseOptions& o, io::CaseSpec& spec);
+
+}  // namespace oscidrum::cli

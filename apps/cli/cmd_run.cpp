@@ -1,0 +1,173 @@
+// oscidrum run: one case from rest to its steady state.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "case_options.hpp"
+#include "commands.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/metrics.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/simulate.hpp"
+#include "oscidrum_io/config.hpp"
+#include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/json.hpp"
+#include "output.hpp"
+#include "plot.hpp"
+#include "run_summary.hpp"
+#include "terminal.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+struct RunOptions {
+  std::string config;
+  CaseOptions c;
+  std::string csv, json, events, plot_dir, format = "table";
+  int harmonics = 10;
+  bool quiet = false, print_config = false;
+};
+
+std::string steady_csv_text(const Result& r) {
+  std::ostringstream out;
+  io::write_steady_state_csv(out, r);
+  return out.str();
+}
+
+int run(const RunOptions& o) {
+  io::CaseSpec spec;
+  if (!o.config.empty()) io::read_case_file(o.config, spec);
+  apply(o.c, spec);
+  std::vector<std::string> warnings;
+  const Case c = io::finalize(spec, &warnings);
+  for (const std::string& w : warnings) warn(w);
+  io::validate(c, spec);
+  if (o.print_config) {
+    std::cout << io::case_to_toml(c, spec.table2);
+    return kExitOk;
+  }
+  if (o.harmonics >= c.numerics.samples_per_period / 2)
+    throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
+                std::to_string(c.numerics.samples_per_period / 2) + "; got " +
+                std::to_string(o.harmonics));
+
+  install_interrupt_handlers();
+  ProgressLine line(stderr_is_terminal() && !o.quiet);
+  const Model model(c);
+  const Result result = simulate(model, [&](int period, double change) {
+    line.update("oscidrum run: period " + std::to_string(period) + " of at most " +
+                std::to_string(c.numerics.max_periods) + ", change " + fmt(change, 3) +
+                " (steady below " + fmt(c.numerics.steady_tol, 3) + ")");
+    return !interrupted();
+  });
+  line.clear();
+  if (interrupted()) {
+    std::cerr << "oscidrum: interrupted after " << result.diagnostics.periods_simulated
+              << " periods; nothing written\n";
+    return kExitInterrupted;
+  }
+
+  std::unique_ptr<Metrics> metrics;
+  if (result.samples.size() > 0) {
+    try {
+      metrics = std::make_unique<Metrics>(compute_metrics(result, o.harmonics));
+    } catch (const Error& e) {
+      warn(std::string("no metrics: ") + e.what());
+    }
+  }
+  std::string csv_path = o.csv, json_path = o.json;
+  if (!o.plot_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.plot_dir, ec);
+    if (ec) throw Error("cannot create --plot directory " + o.plot_dir + ": " + ec.message());
+    if (csv_path.empty() || csv_path == "-") csv_path = o.plot_dir + "/steady_state.csv";
+    if (json_path.empty() || json_path == "-") json_path = o.plot_dir + "/summary.json";
+  }
+  const std::string json_text = io::case_json(spec, c, result, metrics.get(), o.config);
+  if (!csv_path.empty()) write_output(csv_path, steady_csv_text(result));
+  if (!json_path.empty()) write_output(json_path, json_text);
+  if (!o.events.empty()) {
+    std::ostringstream ev;
+    io::write_events_csv(ev, result);
+    write_output(o.events, ev.str());
+  }
+  if (o.format == "table")
+    std::cout << run_summary(spec, c, result, metrics.get(), o.config);
+  else if (o.format == "json")
+    std::cout << json_text;
+  else
+    std::cout << steady_csv_text(result);
+  std::cout.flush();
+
+  if (!ok(result.status) && !o.quiet)
+    std::cerr << "oscidrum: case ended with status " << to_string(result.status) << ": "
+              << result.message << "\n";
+  if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir)) return kExitCaseFailed;
+  return ok(result.status) ? kExitOk : kExitCaseFailed;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "run",
+      "Simulate one case to its steady state and print its metrics. It integrates from rest at the "
+      "bottom of the trough until the response repeats from "
+      "one excitation period to the next, then samples the steady state and computes its metrics: "
+      "peaks of the drum-centre accelerations x_M'', z_M'' [m/s^2], their harmonics n f, the lag "
+      "between torque and drum rotation [pi rad], the x_M''-z_M'' lag psi [rad], the area of the "
+      "z_M''(x_M'') figure [m^2/s^4] and the stick/slip fractions. Defaults: the paper's roller "
+      "(HAMM HD+ 90 VO) on Table 2 soil at G = 25 MN/m^2, circular trough R = 0.606 m, mu = 0.5, "
+      "no driving torque.");
+  sub->footer(
+      "Examples:\n"
+      "  oscidrum run\n"
+      "  oscidrum run --G 40 --pure-rolling --MMd-fraction 0.05\n"
+      "  oscidrum run examples/case.toml --mu 0.4 --csv steady.csv --json summary.json\n"
+      "  oscidrum run --G 27 --soil-formula --set numerics.samples_per_period=512\n"
+      "Settings apply in this order: the case file, the flags, then each --set.\n"
+      "Exit codes: 0 steady state, 1 another status (see the output), 2 bad input, 130 "
+      "interrupted.");
+  sub->add_option("case", o->config, "case file (TOML, see docs/config.md); default: none")
+      ->type_name("CASE.toml");
+  add_roller_flags(*sub, o->c);
+  add_soil_flags(*sub, o->c);
+  add_model_flags(*sub, o->c);
+  add_set_flag(*sub, o->c);
+  const char* out = "Output";
+  sub->add_option("--csv", o->csv,
+                  "write the sampled steady state to FILE ('-': stdout), columns of "
+                  "docs/csv-columns.md")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--json", o->json, "write a JSON summary to FILE (docs/outputs.md)")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--events", o->events, "write the event list (t[s],kind,from,to) to FILE")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--format", o->format,
+                  "what to print on stdout: table (a summary), csv (the "
+                  "steady state) or json (the summary)")
+      ->check(CLI::IsMember({"table", "csv", "json"}))
+      ->group(out);
+  sub->add_option("--harmonics", o->harmonics, "harmonics n = 0 ... N in the metrics (default 10)")
+      ->check(CLI::Range(0, 100000))
+      ->group(out);
+  sub->add_option("--plot", o->plot_dir,
+                  "plot into DIR with the Python package (python3 -m oscidrum.plot); writes the "
+                  "CSV and JSON there unless --csv/--json name files")
+      ->type_name("DIR")
+      ->group(out);
+  sub->add_flag("--print-config", o->print_config,
+                "print the resolved case as a TOML case file (every key) and exit")
+      ->group(out);
+  sub->add_flag("--quiet,-q", o->quiet, "no progress line and no status note on stderr")
+      ->group(out);
+  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+}
+
+}  // namespace oscidrum::cli

@@ -1,0 +1,265 @@
+// oscidrum sweep: a study file expanded into cases, run on all cores, one result row per case.
+// Finished rows go to a journal as they come, so --resume after Ctrl-C or a kill runs only the
+// missing cases; the final files are written atomically.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "case_options.hpp"
+#include "commands.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/study.hpp"
+#include "oscidrum_io/config.hpp"
+#include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/files.hpp"
+#include "oscidrum_io/json.hpp"
+#include "oscidrum_io/sweep.hpp"
+#include "output.hpp"
+#include "terminal.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+struct SweepOptions {
+  std::string study;
+  CaseOptions c;  // --set only: changes the base case
+  std::string out, cases_dir, format;
+  int threads = 0, harmonics = 10;
+  bool resume = false, restart = false, quiet = false, list = false;
+};
+
+std::string case_file_name(std::size_t index, std::size_t total) {
+  std::string digits = std::to_string(total > 0 ? total - 1 : 0);
+  std::string n = std::to_string(index);
+  const std::size_t width = std::max<std::size_t>(4, digits.size());
+  return "case_" + std::string(width - std::min(width, n.size()), '0') + n + ".csv";
+}
+
+std::string duration(double seconds) {
+  if (seconds < 60) return fmt(seconds, 2) + " s";
+  if (seconds < 3600) return fmt(seconds / 60, 2) + " min";
+  return fmt(seconds / 3600, 2) + " h";
+}
+
+// The table for people: the swept values, status and a few metrics.
+std::string rows_table(const std::string& header, const std::vector<std::string>& rows,
+                       std::size_t n_keys) {
+  const std::vector<std::string> columns = io::csv_split(header);
+  std::vector<std::size_t> pick;
+  for (std::size_t i = 0; i <= n_keys + 1; ++i) pick.push_back(i);  // case, keys, status
+  for (const char* name : {"periods_to_steady[-]", "ddx_max[m/s^2]", "ddz_max[m/s^2]",
+                           "psi_xz[rad]", "area[m^2/s^4]", "stick_fraction[-]"})
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      if (columns[i] == name) pick.push_back(i);
+  TextTable t;
+  for (std::size_t i : pick) {
+    t.header.push_back(columns[i]);
+    t.right.push_back(i != n_keys + 1);
+  }
+  for (const std::string& row : rows) {
+    const std::vector<std::string> cells = io::csv_split(row);
+    std::vector<std::string> out;
+    for (std::size_t i : pick) {
+      std::string cell = i < cells.size() ? cells[i] : std::string();
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (i > n_keys + 1 && !cell.empty() && end == cell.c_str() + cell.size()) cell = fmt(v, 5);
+      out.push_back(cell);
+    }
+    t.rows.push_back(out);
+  }
+  return t.text();
+}
+
+int run(const SweepOptions& o) {
+  io::StudySpec spec = io::read_study_file(o.study);
+  apply(o.c, spec.base);
+  const io::Study study = io::expand(spec);
+  const std::size_t total = study.cases.size();
+  const io::StudyColumns columns{study.keys, o.harmonics};
+  const std::string header = io::study_csv_header(columns);
+
+  if (o.list) {
+    TextTable t;
+    t.header = {"case"};
+    for (const std::string& k : study.keys) t.header.push_back(k);
+    t.right.assign(t.header.size(), true);
+    for (std::size_t i = 0; i < total; ++i) {
+      std::vector<std::string> row = {std::to_string(i)};
+      for (const io::Value& v : study.varied[i]) row.push_back(io::format_value(v));
+      t.rows.push_back(row);
+    }
+    std::cout << t.text() << total << " cases\n";
+    return kExitOk;
+  }
+  if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
+  if ((o.resume || o.restart) && o.out.empty())
+    throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
+  for (const Case& c : study.cases)
+    if (o.harmonics >= c.numerics.samples_per_period / 2)
+      throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
+                  std::to_string(c.numerics.samples_per_period / 2) + "; got " +
+                  std::to_string(o.harmonics));
+  if (!o.cases_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.cases_dir, ec);
+    if (ec) throw Error("cannot create --cases-dir " + o.cases_dir + ": " + ec.message());
+  }
+
+  std::unique_ptr<io::Journal> journal;
+  std::vector<std::string> rows(total);
+  std::vector<bool> have(total, false);
+  if (!o.out.empty()) {
+    const std::string path = o.out + ".journal";
+    if (o.restart) io::remove_file(path);
+    journal = std::make_unique<io::Journal>(path, io::fingerprint(study, header), total, o.resume);
+    for (const auto& [index, row] : journal->done()) {
+      const std::string file = o.cases_dir + "/" + case_file_name(index, total);
+      if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
+      rows[index] = row;
+      have[index] = true;
+    }
+  }
+  std::vector<std::size_t> pending;
+  std::vector<Case> cases;
+  for (std::size_t i = 0; i < total; ++i)
+    if (!have[i]) pending.push_back(i), cases.push_back(study.cases[i]);
+  const std::size_t already = total - pending.size();
+  if (already > 0 && !o.quiet)
+    std::cerr << "oscidrum: resuming: " << already << " of " << total << " cases already done\n";
+
+  install_interrupt_handlers();
+  ProgressLine line(stderr_is_terminal() && !o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  StudyOptions options;
+  options.threads = o.threads;
+  options.n_harmonics = o.harmonics;
+  options.cancelled = [] { return interrupted(); };
+  options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
+    const std::size_t g = pending[i];
+    const std::string row = io::study_csv_row(columns, g, study.varied[g], outcome);
+    if (!o.cases_dir.empty() && outcome.result.samples.size() > 0) {
+      std::ostringstream csv;
+      io::write_steady_state_csv(csv, outcome.result);
+      io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, total), csv.str());
+    }
+    if (journal) journal->append(g, row);
+    rows[g] = row;
+    have[g] = true;
+  };
+  options.progress = [&](std::size_t done, std::size_t n) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
+    const double eta = rate > 0 ? static_cast<double>(n - done) / rate : 0.0;
+    line.update(
+        "oscidrum sweep: " + std::to_string(already + done) + "/" + std::to_string(total) +
+            " cases (" +
+            fmt(100.0 * static_cast<double>(already + done) / static_cast<double>(total), 3) +
+            " %), " + fmt(rate, 3) + " cases/s, ETA " + duration(eta),
+        done == n);
+  };
+  run_study(cases, options);
+  line.clear();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::size_t finished = 0;
+  for (bool h : have) finished += h;
+  if (finished < total) {  // interrupted (a signal after the last case changes nothing)
+    std::cerr << "oscidrum: interrupted: " << finished << " of " << total << " cases done";
+    if (journal)
+      std::cerr << " (kept in " << journal->path() << "); run 'oscidrum sweep " << o.study
+                << " --out " << o.out << " --resume' to finish\n";
+    else
+      std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
+    return kExitInterrupted;
+  }
+
+  std::string text = header + "\n";
+  for (const std::string& row : rows) text += row + "\n";
+  if (!o.out.empty()) {
+    io::write_file_atomic(o.out, text);
+    journal->remove();
+  }
+  std::string format = o.format;
+  if (format.empty()) format = o.out.empty() ? "csv" : "none";
+  if (format == "csv") std::cout << text;
+  if (format == "json") std::cout << io::study_json(header, rows);
+  if (format == "table") std::cout << rows_table(header, rows, study.keys.size());
+  std::cout.flush();
+
+  // Status counts, from the rows (resumed rows included).
+  std::map<std::string, std::size_t> counts;
+  for (const std::string& row : rows) {
+    const std::vector<std::string> cells = io::csv_split(row);
+    counts[cells.size() > study.keys.size() + 1 ? cells[study.keys.size() + 1] : "?"]++;
+  }
+  if (!o.quiet) {
+    std::string summary;
+    for (const auto& [status, n] : counts)
+      summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+    std::cerr << "oscidrum: " << total << " cases (" << summary << ") in " << duration(elapsed)
+              << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
+  }
+  const bool all_ok = counts.size() == 1 && counts.begin()->first == "steady_state";
+  return all_ok ? kExitOk : kExitCaseFailed;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "sweep",
+      "Run a study of many cases on all cores, one CSV row per case. A study is a base case and "
+      "parameters to vary (lists, ranges {start, stop, step|num}, "
+      "the G values of paper Table 2), combined as a cartesian product or zipped, on all cores. "
+      "Writes one CSV row per case: the swept values, status, diagnostics and metrics (peaks of "
+      "x_M'', z_M'' [m/s^2], harmonic amplitudes A1..AN [m/s^2], lags, area [m^2/s^4], stick/slip "
+      "fractions; columns in docs/outputs.md). The result is identical to a serial run, in case "
+      "order. Progress (cases done, rate, ETA) goes to stderr when it is a terminal.");
+  sub->footer(
+      "Examples:\n"
+      "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
+      "  oscidrum sweep examples/table2_sweep.toml --out results.csv --resume   (after Ctrl-C)\n"
+      "  oscidrum sweep study.toml --list                 show the cases, run nothing\n"
+      "  oscidrum sweep study.toml --format table --set numerics.max_periods=500\n"
+      "Study file syntax: docs/config.md (\"Sweeps\"). Exit codes: 0 all cases steady, 1 some "
+      "case ended otherwise (see its status), 2 bad input, 130 interrupted (resume with "
+      "--resume).");
+  sub->add_option("study", o->study, "study file (TOML): base case + [sweep]")
+      ->required()
+      ->type_name("STUDY.toml");
+  add_set_flag(*sub, o->c);
+  sub->add_option("--out,-o", o->out,
+                  "write the results CSV to FILE (atomically, at the end; finished rows are kept "
+                  "in FILE.journal meanwhile). Without it the CSV goes to stdout")
+      ->type_name("FILE");
+  sub->add_option("--cases-dir", o->cases_dir,
+                  "also write each case's steady state to DIR/case_NNNN.csv (docs/csv-columns.md)")
+      ->type_name("DIR");
+  sub->add_option("--threads,-j", o->threads, "worker threads (default 0: all cores)")
+      ->check(CLI::Range(0, 4096));
+  sub->add_flag("--resume", o->resume,
+                "finish an interrupted sweep: run only the cases missing from FILE.journal");
+  sub->add_flag("--restart", o->restart, "discard the journal of an interrupted sweep");
+  sub->add_option("--format", o->format,
+                  "what to print on stdout: csv, json, table or none (default: csv without --out, "
+                  "none with it)")
+      ->check(CLI::IsMember({"csv", "json", "table", "none"}));
+  sub->add_option("--harmonics", o->harmonics,
+                  "harmonic amplitude columns A1 ... AN of x_M'' and z_M'' (default 10)")
+      ->check(CLI::Range(0, 100000));
+  sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
+  sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
+  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+}
+
+}  // namespace oscidrum::cli

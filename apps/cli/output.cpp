@@ -1,0 +1,119 @@
+// Text tables, summaries and output files.
+#include "output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/files.hpp"
+
+namespace oscidrum::cli {
+
+std::string fmt(double v, int digits) {
+  if (std::isnan(v)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+std::string TextTable::text() const {
+  std::vector<std::size_t> width(header.size(), 0);
+  for (std::size_t i = 0; i < header.size(); ++i) width[i] = header[i].size();
+  for (const auto& row : rows)
+    for (std::size_t i = 0; i < row.size() && i < width.size(); ++i)
+      width[i] = std::max(width[i], row[i].size());
+  auto emit = [&](const std::vector<std::string>& cells, std::string& out) {
+    std::string line;
+    for (std::size_t i = 0; i < width.size(); ++i) {
+      const std::string cell = i < cells.size() ? cells[i] : std::string();
+      const std::string pad(width[i] - cell.size(), ' ');
+      const bool r = i < right.size() && right[i];
+      line += (i ? "  " : "") + (r ? pad + cell : cell + (i + 1 < width.size() ? pad : ""));
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  };
+  std::string out;
+  emit(header, out);
+  std::vector<std::string> rule;
+  for (std::size_t w : width) rule.emplace_back(w, '-');
+  emit(rule, out);
+  for (const auto& row : rows) emit(row, out);
+  return out;
+}
+
+std::string TextTable::csv() const {
+  auto emit = [](const std::vector<std::string>& cells) {
+    std::string line;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (i) line += ',';
+      line += io::csv_quote(cells[i]);
+    }
+    return line + "\n";
+  };
+  std::string out = emit(header);
+  for (const auto& row : rows) out += emit(row);
+  return out;
+}
+
+std::string TextTable::markdown() const {
+  auto cell = [](std::string s) {
+    std::string out;
+    for (char ch : s) {
+      if (ch == '|') out += '\\';
+      out += ch;
+    }
+    return out;
+  };
+  auto emit = [&](const std::vector<std::string>& cells) {
+    std::string line = "|";
+    for (const std::string& c : cells) {
+      line += ' ';  // (appends: GCC 12 warns falsely on "literal" + std::string&&)
+      line += cell(c);
+      line += " |";
+    }
+    return line + "\n";
+  };
+  std::string out = emit(header);
+  out += "|";
+  for (std::size_t i = 0; i < header.size(); ++i)
+    out += (i < right.size() && right[i]) ? "---:|" : "---|";
+  out += "\n";
+  for (const auto& row : rows) out += emit(row);
+  return out;
+}
+
+void Summary::section(const std::string& title) { lines_.push_back({true, title, ""}); }
+
+void Summary::line(const std::string& label, const std::string& value) {
+  lines_.push_back({false, label, value});
+}
+
+std::string Summary::text() const {
+  std::size_t width = 0;
+  for (const Line& l : lines_)
+    if (!l.is_section) width = std::max(width, l.label.size());
+  std::string out;
+  for (const Line& l : lines_) {
+    if (l.is_section) {
+      out += (out.empty() ? "" : "\n") + l.label + "\n";
+    } else {
+      out += "  " + l.label + std::string(width - l.label.size() + 2, ' ') + l.value + "\n";
+    }
+  }
+  return out;
+}
+
+void write_output(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text << std::flush;
+  } else {
+    io::write_file_atomic(path, text);
+  }
+}
+
+void warn(const std::string& message) { std::cerr << "oscidrum: warning: " << message << "\n"; }
+
+}  // namespace oscidrum::cli

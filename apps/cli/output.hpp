@@ -1,0 +1,46 @@
+// output.hpp: formats of what the commands print. Stdout carries results; stderr carries
+// progress, warnings and errors.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace oscidrum::cli {
+
+/// %.6g (people) or %.17g (machines) formatting of a number.
+std::string fmt(double v, int digits = 6);
+
+/// A table of text cells with a header row, printable for people (aligned columns), as CSV or as
+/// a Markdown table.
+struct TextTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> right;  ///< per column: right-align (numbers); default left
+
+  std::string text() const;
+  std::string csv() const;
+  std::string markdown() const;
+};
+
+/// A summary for people: sections of (label, value) lines, values aligned.
+class Summary {
+ public:
+  void section(const std::string& title);
+  void line(const std::string& label, const std::string& value);
+  std::string text() const;
+
+ private:
+  struct Line {
+    bool is_section;
+    std::string label, value;
+  };
+  std::vector<Line> lines_;
+};
+
+/// Write `text` to `path` atomically (io::write_file_atomic), or to stdout if path is "-".
+void write_output(const std::string& path, const std::string& text);
+
+/// "oscidrum: warning: ..." on stderr.
+void warn(const std::string& message);
+
+}  // namespace oscidrum::cli

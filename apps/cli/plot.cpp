@@ -1,0 +1,77 @@
+// --plot: spawn the Python plotting module (posix_spawn, no shell).
+#include "plot.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace oscidrum::cli {
+
+bool run_plot(const std::string& csv, const std::string& json, const std::string& dir) {
+  const std::string python = "/usr/bin/python3";
+  std::vector<std::string> args = {python,   "-m", "oscidrum.plot", "case", "--csv", csv,
+                                   "--json", json, "--out",         dir};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  // Environment: ours, with the source tree's python/ first on PYTHONPATH if it exists.
+  std::vector<std::string> env;
+  std::string pythonpath;
+#ifdef OSCIDRUM_PYTHON_DIR
+  if (std::filesystem::is_directory(OSCIDRUM_PYTHON_DIR "/oscidrum"))
+    pythonpath = OSCIDRUM_PYTHON_DIR;
+#endif
+  for (char** e = environ; *e; ++e) {
+    std::string entry = *e;
+    if (entry.starts_with("PYTHONPATH=")) {
+      const std::string old = entry.substr(11);
+      if (!old.empty()) pythonpath += (pythonpath.empty() ? "" : ":") + old;
+      continue;
+    }
+    env.push_back(std::move(entry));
+  }
+  if (!pythonpath.empty()) env.push_back("PYTHONPATH=" + pythonpath);
+  std::vector<char*> envp;
+  for (std::string& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    std::cerr << "oscidrum: error: --plot needs " << python << " with the oscidrum Python package ("
+              << std::strerror(rc) << "); the data are in " << csv << " and " << json << "\n";
+    return false;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      std::cerr << "oscidrum: error: --plot: waitpid failed: " << std::strerror(errno) << "\n";
+      return false;
+    }
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return true;
+  std::cerr << "oscidrum: error: plotting failed: '" << python << " -m oscidrum.plot case' "
+            << (WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
+                                  : std::string("was killed by a signal"))
+            << " (is the oscidrum Python package installed, with matplotlib? see "
+               "python/README.md); the data are in "
+            << csv << " and " << json << "\n";
+  return false;
+}
+
+}  // namespace oscidrum::cli

@@ -1,0 +1,388 @@
+// CaseSpec: typed assignment of config values, the conveniences soil.table2_G and MMd_fraction,
+// and the consistency rules between keys (see docs/config.md).
+#include "oscidrum_io/case_spec.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/soil.hpp"
+#include "oscidrum_io/csv.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+constexpr std::array kExtraKeys = {
+    ExtraKey{"soil.table2_G", "Pa", "one of 5e6, 10e6, ..., 70e6",
+             "shorthand: soil.G = this value with the soil coefficients of paper Table 2 (the "
+             "paper's simulations)"},
+    ExtraKey{"MMd_fraction", "-", "finite",
+             "shorthand: MMd = MMd_fraction * roller.M0 (the paper uses 0 and 0.05)"},
+};
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+// Levenshtein distance, case-insensitive.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0u : 1u)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::vector<std::string_view> all_keys() {
+  std::vector<std::string_view> keys;
+  for (const Field& f : fields()) keys.emplace_back(f.key);
+  for (const ExtraKey& e : kExtraKeys) keys.emplace_back(e.key);
+  return keys;
+}
+
+std::string_view last_part(std::string_view key) {
+  const std::size_t dot = key.rfind('.');
+  return dot == std::string_view::npos ? key : key.substr(dot + 1);
+}
+
+[[noreturn]] void type_error(const Field& f, const char* expected, const Value& v) {
+  const std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
+  std::string msg =
+      std::string(f.key) + " must be " + expected + unit + "; got " + describe_value(v);
+  if (std::holds_alternative<std::string>(v) && f.type != FieldType::choice)
+    msg += " (write numbers and booleans without quotes)";
+  throw Error(msg);
+}
+
+double number_of(const Value& v, bool* ok) {
+  *ok = true;
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  *ok = false;
+  return 0.0;
+}
+
+int choice_index(const char* choices, std::string_view name) {
+  std::string_view all(choices);
+  int i = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t bar = all.find('|', start);
+    if (all.substr(start, bar - start) == name) return i;
+    if (bar == std::string_view::npos) return -1;
+    start = bar + 1;
+    ++i;
+  }
+}
+
+bool is_table2_G(double G) {
+  for (const Table2Row& row : table2())
+    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
+  return false;
+}
+
+constexpr std::array kModulusKeys = {"soil.G", "soil.nu", "soil.rho"};
+constexpr std::array kCoefficientKeys = {"soil.ksh", "soil.ksv", "soil.csh", "soil.csv"};
+
+}  // namespace
+
+std::string format_value(const Value& value) {
+  if (const auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+  if (const auto* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
+  if (const auto* d = std::get_if<double>(&value)) return format_double_short(*d);
+  return std::get<std::string>(value);
+}
+
+std::string describe_value(const Value& value) {
+  if (std::holds_alternative<bool>(value)) return "a boolean (" + format_value(value) + ")";
+  if (std::holds_alternative<std::int64_t>(value))
+    return "an integer (" + format_value(value) + ")";
+  if (const auto* d = std::get_if<double>(&value)) return "a number (" + num(*d) + ")";
+  std::string s = std::get<std::string>(value);
+  if (s.size() > 40) s = s.substr(0, 40) + "...";
+  return "a string (\"" + s + "\")";
+}
+
+std::span<const ExtraKey> extra_keys() { return kExtraKeys; }
+
+const ExtraKey* find_extra_key(std::string_view key) {
+  for (const ExtraKey& e : kExtraKeys)
+    if (key == e.key) return &e;
+  return nullptr;
+}
+
+std::string key_unit(std::string_view key) {
+  if (const Field* f = find_field(key)) return f->unit;
+  if (const ExtraKey* e = find_extra_key(key)) return e->unit;
+  return {};
+}
+
+std::string suggest_key(std::string_view key) {
+  const std::vector<std::string_view> keys = all_keys();
+  // 1. The same name in another (or no) section, any case: "G" -> "soil.G", "soil.g" -> "soil.G".
+  for (std::string_view k : keys)
+    if (lower(k) == lower(key)) return "; did you mean '" + std::string(k) + "'?";
+  for (std::string_view k : keys)
+    if (last_part(k) == last_part(key)) return "; did you mean '" + std::string(k) + "'?";
+  for (std::string_view k : keys)
+    if (lower(last_part(k)) == lower(last_part(key)))
+      return "; did you mean '" + std::string(k) + "'?";
+  // 2. A near miss (a typo): at most one edit per four characters, at most three.
+  std::string_view best;
+  std::size_t best_d = std::clamp<std::size_t>(key.size() / 4, 1, 3) + 1;
+  for (std::string_view k : keys) {
+    const std::size_t d = edit_distance(key, k);
+    if (d < best_d) best_d = d, best = k;
+  }
+  if (!best.empty()) return "; did you mean '" + std::string(best) + "'?";
+  // 3. A known section: list its keys.
+  const std::size_t dot = key.find('.');
+  if (dot != std::string_view::npos) {
+    const std::string_view section = key.substr(0, dot);
+    std::string list;
+    for (std::string_view k : keys)
+      if (k.starts_with(section) && k.size() > section.size() && k[section.size()] == '.')
+        list += (list.empty() ? "" : ", ") + std::string(last_part(k));
+    if (!list.empty()) return "; [" + std::string(section) + "] has " + list;
+  }
+  return "; see 'oscidrum fields' for every key";
+}
+
+std::string suggest_section(std::string_view section) {
+  std::vector<std::string> sections;
+  for (std::string_view k : all_keys()) {
+    const std::size_t dot = k.find('.');
+    if (dot == std::string_view::npos) continue;
+    const std::string s(k.substr(0, dot));
+    if (std::find(sections.begin(), sections.end(), s) == sections.end()) sections.push_back(s);
+  }
+  std::string best;
+  std::size_t best_d = std::clamp<std::size_t>(section.size() / 3, 1, 3) + 1;
+  for (const std::string& s : sections) {
+    const std::size_t d = edit_distance(section, s);
+    if (d < best_d) best_d = d, best = s;
+  }
+  if (!best.empty()) return "; did you mean [" + best + "]?";
+  std::string list;
+  for (const std::string& s : sections) list += (list.empty() ? "" : ", ") + ("[" + s + "]");
+  return "; the sections are " + list;
+}
+
+bool is_known_section(std::string_view section) {
+  for (std::string_view k : all_keys()) {
+    const std::size_t dot = k.find('.');
+    if (dot != std::string_view::npos && k.substr(0, dot) == section) return true;
+  }
+  return false;
+}
+
+std::string CaseSpec::where(std::string_view key) const {
+  auto it = origin.find(key);
+  return it == origin.end() ? std::string() : it->second + ": ";
+}
+
+void assign(CaseSpec& spec, std::string_view key, const Value& value, const std::string& origin) {
+  if (const ExtraKey* e = find_extra_key(key)) {
+    bool is_number = false;
+    const double v = number_of(value, &is_number);
+    if (!is_number)
+      throw Error(std::string(e->key) + " must be a number [" + e->unit + "]; got " +
+                  describe_value(value));
+    if (!std::isfinite(v)) throw Error(std::string(e->key) + " must be finite; got " + num(v));
+    if (key == "soil.table2_G") {
+      if (!is_table2_G(v))
+        throw Error(
+            "soil.table2_G must be a G of paper Table 2: 5e6, 10e6, ..., 70e6 [Pa] "
+            "(5 ... 70 MN/m^2 in steps of 5); got " +
+            num(v) + " (for other G use soil.input = \"modulus\" and soil.G)");
+      spec.values.soil.G = v;
+      spec.table2 = true;
+      spec.origin["soil.G"] = origin;
+    } else {
+      spec.MMd_fraction = v;
+    }
+    spec.origin[std::string(key)] = origin;
+    return;
+  }
+  const Field* f = find_field(key);
+  if (!f) throw Error("unknown parameter '" + std::string(key) + "'" + suggest_key(key));
+  double v = 0.0;
+  switch (f->type) {
+    case FieldType::real:
+    case FieldType::integer: {
+      bool is_number = false;
+      v = number_of(value, &is_number);
+      if (!is_number)
+        type_error(*f, f->type == FieldType::integer ? "an integer" : "a number", value);
+      break;
+    }
+    case FieldType::boolean:
+      if (!std::holds_alternative<bool>(value)) type_error(*f, "true or false", value);
+      v = std::get<bool>(value) ? 1.0 : 0.0;
+      break;
+    case FieldType::choice: {
+      if (!std::holds_alternative<std::string>(value))
+        type_error(*f, field_rule(*f).c_str(), value);
+      const int i = choice_index(f->choices, std::get<std::string>(value));
+      if (i < 0) type_error(*f, field_rule(*f).c_str(), value);
+      v = i;
+      break;
+    }
+  }
+  const std::string problem = check_field(*f, v);
+  if (!problem.empty()) throw Error(problem);
+  f->set(spec.values, v);
+  spec.origin[std::string(key)] = origin;
+}
+
+void assign_text(CaseSpec& spec, std::string_view key, std::string_view text,
+                 const std::string& origin) {
+  const Field* f = find_field(key);
+  if (!f && !find_extra_key(key))
+    throw Error("unknown parameter '" + std::string(key) + "'" + suggest_key(key));
+  const std::string s(text);
+  if (f && f->type == FieldType::boolean) {
+    const std::string t = lower(s);
+    if (t == "true" || t == "1" || t == "yes" || t == "on") return assign(spec, key, true, origin);
+    if (t == "false" || t == "0" || t == "no" || t == "off")
+      return assign(spec, key, false, origin);
+    throw Error(std::string(key) + " must be true or false; got '" + s + "'");
+  }
+  if (f && f->type == FieldType::choice) return assign(spec, key, s, origin);
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size())
+    throw Error(std::string(key) + " must be a number [" + key_unit(key) + "]; got '" + s + "'");
+  assign(spec, key, v, origin);
+}
+
+void clear_soil(CaseSpec& spec) {
+  for (auto it = spec.origin.begin(); it != spec.origin.end();)
+    it = it->first.starts_with("soil.") ? spec.origin.erase(it) : std::next(it);
+  spec.table2 = false;
+}
+
+void materialize_soil(CaseSpec& spec) {
+  Soil& soil = spec.values.soil;
+  if (spec.table2) {
+    const double G = soil.G;
+    soil = table2_soil(G);
+  } else if (soil.input == SoilInput::modulus) {
+    const SoilCoefficients k = soil_coefficients(soil, spec.values.roller);
+    soil.ksh = k.ksh, soil.ksv = k.ksv, soil.csh = k.csh, soil.csv = k.csv;
+  }
+  soil.input = SoilInput::coefficients;
+  std::map<std::string, std::string, std::less<>> kept;
+  for (const auto& [key, where] : spec.origin)
+    if (!key.starts_with("soil.") ||
+        std::find(kCoefficientKeys.begin(), kCoefficientKeys.end(), key) != kCoefficientKeys.end())
+      kept.emplace(key, where);
+  spec.origin = std::move(kept);
+  spec.table2 = false;
+}
+
+Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
+  Case c = spec.values;
+  if (spec.table2) {
+    const std::string from = spec.given("soil.table2_G")
+                                 ? "soil.table2_G (" + spec.origin.at("soil.table2_G") + ")"
+                                 : "soil.table2_G";
+    if (spec.given("soil.input"))
+      throw Error(spec.where("soil.input") + "soil.input cannot be set together with " + from +
+                  ", which takes the soil coefficients from paper Table 2; remove one of them");
+    for (const char* key : {"soil.nu", "soil.rho", "soil.ksh", "soil.ksv", "soil.csh", "soil.csv"})
+      if (spec.given(key))
+        throw Error(spec.where(key) + key + " has no effect with " + from +
+                    " (Table 2 gives ksh, ksv, csh, csv for nu = 0.3, rho = 1900 kg/m^3); remove "
+                    "it, or give the soil by soil.input = \"modulus\" and soil.G, nu, rho");
+    try {
+      c.soil = table2_soil(c.soil.G);
+    } catch (const Error& e) {
+      throw Error(spec.where("soil.G") + e.what() + " (soil.G is used with Table 2 because of " +
+                  from + ")");
+    }
+  } else if (c.soil.input == SoilInput::coefficients) {
+    for (const char* key : kModulusKeys)
+      if (spec.given(key))
+        throw Error(spec.where(key) + key +
+                    " has no effect while soil.input = \"coefficients\" (the default: the soil is "
+                    "ksh, ksv, csh, csv); set soil.input = \"modulus\" to compute the coefficients "
+                    "by Appendix B, or use soil.table2_G for paper Table 2");
+  } else {
+    for (const char* key : kCoefficientKeys)
+      if (spec.given(key))
+        throw Error(spec.where(key) + key +
+                    " has no effect while soil.input = \"modulus\" (the coefficients come from "
+                    "G, nu, rho by Appendix B); remove it or set soil.input = \"coefficients\"");
+    if (warnings && c.soil.G < 1e4)
+      warnings->push_back(spec.where("soil.G") + "soil.G = " + num(c.soil.G) +
+                          " Pa is tiny; config values are SI: 25 MN/m^2 is 25e6");
+  }
+  if (spec.MMd_fraction) {
+    if (spec.given("MMd"))
+      throw Error(spec.where("MMd") + "MMd cannot be given together with MMd_fraction (" +
+                  spec.origin.at("MMd_fraction") + "); remove one of them");
+    c.MMd = *spec.MMd_fraction * c.roller.M0;
+  }
+  return c;
+}
+
+void validate(const Case& c, const CaseSpec& spec) {
+  try {
+    const Model model(c);
+    (void)model;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    const std::string key = msg.substr(0, msg.find(' '));
+    throw Error(spec.where(key) + msg);
+  }
+}
+
+namespace {
+// No soil key given at all: the default soil, which is Table 2 at G = 25 MN/m^2.
+bool default_soil(const CaseSpec& spec) {
+  for (const auto& entry : spec.origin)
+    if (entry.first.starts_with("soil.")) return false;
+  return !spec.table2 && spec.values.soil.input == SoilInput::coefficients;
+}
+}  // namespace
+
+std::string soil_source(const CaseSpec& spec) {
+  const Soil& soil = spec.values.soil;
+  if (default_soil(spec)) return "paper Table 2 at G = 25 MN/m^2 (the default soil)";
+  if (spec.table2) return "paper Table 2 at G = " + num(soil.G / 1e6) + " MN/m^2";
+  if (soil.input == SoilInput::modulus)
+    return "Appendix B (42)-(45) from G = " + num(soil.G / 1e6) + " MN/m^2, nu = " + num(soil.nu) +
+           ", rho = " + num(soil.rho) + " kg/m^3";
+  return "coefficients given directly";
+}
+
+std::string soil_source_id(const CaseSpec& spec) {
+  if (spec.table2 || default_soil(spec)) return "table2";
+  return spec.values.soil.input == SoilInput::modulus ? "appendix_b" : "coefficients";
+}
+
+}  // namespace oscidrum::io

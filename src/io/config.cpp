@@ -1,0 +1,428 @@
+// Case and study files in TOML (toml++). Locations come from toml++'s source regions.
+#include "oscidrum_io/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/soil.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+constexpr std::size_t kMaxConfigBytes = 16u << 20;
+
+std::string loc(const std::string& name, const toml::source_region& r) {
+  return name + ":" + std::to_string(r.begin.line) + ":" + std::to_string(r.begin.column);
+}
+
+const char* node_kind(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "a value";
+  }
+}
+
+// A scalar node as a Value; false if it is an array, table or date.
+bool to_value(const toml::node& n, Value* out) {
+  if (auto b = n.value_exact<bool>()) return *out = *b, true;
+  if (auto i = n.value_exact<std::int64_t>()) return *out = *i, true;
+  if (auto d = n.value_exact<double>()) return *out = *d, true;
+  if (auto s = n.value_exact<std::string>()) return *out = *s, true;
+  return false;
+}
+
+// The same, or an error naming the key and the kind received.
+Value scalar(const toml::node& n, const std::string& key, const std::string& where) {
+  Value v;
+  if (to_value(n, &v)) return v;
+  if (!find_field(key) && !find_extra_key(key))
+    throw Error(where + ": unknown parameter '" + key + "'" + suggest_key(key));
+  throw Error(where + ": " + key + " must be a single value [" + key_unit(key) + "]; got " +
+              node_kind(n));
+}
+
+toml::table parse(std::string_view text, const std::string& name) {
+  if (text.find('\0') != std::string_view::npos)
+    throw Error(name + ": not a TOML text file (it contains NUL bytes)");
+  try {
+    return toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw Error(loc(name, e.source()) + ": invalid TOML: " + std::string(e.description()));
+  }
+}
+
+void require_not_empty(const toml::table& t, const std::string& name, const char* what) {
+  if (t.empty())
+    throw Error(name + ": the file holds no settings (it is empty or only comments); " + what);
+}
+
+// Keys of a case, at the top level of `t` (sections, dotted keys and top-level fields).
+// `skip` names top-level keys the caller handles (study files: "base", "sweep").
+void read_case_keys(const toml::table& t, const std::string& name, CaseSpec& spec,
+                    std::initializer_list<std::string_view> skip) {
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    if (std::find(skip.begin(), skip.end(), key) != skip.end()) continue;
+    const std::string where = loc(name, k.source());
+    if (key == "sweep" || key == "base")
+      throw Error(where + ": '" + key +
+                  "' belongs in a study file (oscidrum sweep), not in a "
+                  "case file");
+    if (const toml::table* section = node.as_table()) {
+      if (!is_known_section(key))
+        throw Error(where + ": unknown section [" + key + "]" + suggest_section(key));
+      for (auto&& [sk, sn] : *section) {
+        const std::string full = key + "." + std::string(sk.str());
+        const std::string swhere = loc(name, sk.source());
+        if (sn.is_table() && !find_field(full) && !find_extra_key(full))
+          throw Error(swhere + ": unknown parameter '" + full + "' (a table; parameters are " +
+                      "numbers, booleans or strings)" + suggest_key(full));
+        try {
+          assign(spec, full, scalar(sn, full, swhere), swhere);
+        } catch (const Error& e) {
+          if (std::string_view(e.what()).starts_with(name + ":")) throw;
+          throw Error(swhere + ": " + e.what());
+        }
+      }
+      continue;
+    }
+    try {
+      assign(spec, key, scalar(node, key, where), where);
+    } catch (const Error& e) {
+      if (std::string_view(e.what()).starts_with(name + ":")) throw;
+      throw Error(where + ": " + e.what());
+    }
+  }
+}
+
+// ---- sweeps ---------------------------------------------------------------------------------
+
+struct Placed {
+  toml::source_position pos;
+  SweepFactor factor;
+};
+
+bool before(const toml::source_position& a, const toml::source_position& b) {
+  return a.line != b.line ? a.line < b.line : a.column < b.column;
+}
+
+bool is_range(const toml::table& t) {
+  if (t.empty()) return false;
+  for (auto&& [k, n] : t) {
+    (void)n;
+    if (k != "start" && k != "stop" && k != "step" && k != "num") return false;
+  }
+  return true;
+}
+
+std::vector<Value> range_values(const toml::table& t, const std::string& key,
+                                const std::string& where) {
+  auto number = [&](const char* part, bool* is_int) -> std::optional<double> {
+    const toml::node* n = t.get(part);
+    if (!n) return std::nullopt;
+    if (auto i = n->value_exact<std::int64_t>()) return *is_int = *is_int && true, double(*i);
+    if (auto d = n->value_exact<double>()) return *is_int = false, *d;
+    throw Error(where + ": " + key + " range: " + part + " must be a number; got " + node_kind(*n));
+  };
+  bool all_int = true;
+  const auto start = number("start", &all_int), stop = number("stop", &all_int);
+  const auto step = number("step", &all_int), num = number("num", &all_int);
+  if (!start || !stop || (step.has_value() == num.has_value()))
+    throw Error(where + ": " + key + " range must be {start, stop, step} or {start, stop, num}");
+  if (!std::isfinite(*start) || !std::isfinite(*stop))
+    throw Error(where + ": " + key + " range: start and stop must be finite");
+  std::vector<Value> out;
+  auto push = [&](double v) {
+    if (out.size() >= kMaxStudyCases)
+      throw Error(where + ": " + key + " range has more than " + std::to_string(kMaxStudyCases) +
+                  " values");
+    if (all_int)
+      out.emplace_back(static_cast<std::int64_t>(std::llround(v)));
+    else
+      out.emplace_back(v);
+  };
+  if (step) {
+    const double s = *step, span = *stop - *start;
+    if (!std::isfinite(s) || s == 0.0 || (span != 0.0 && (span > 0) != (s > 0)))
+      throw Error(where + ": " + key +
+                  " range: step must be non-zero and go from start towards "
+                  "stop; got step = " +
+                  format_value(s));
+    const double count = std::floor(span / s + 1e-9);
+    if (count >= static_cast<double>(kMaxStudyCases))
+      throw Error(where + ": " + key + " range has more than " + std::to_string(kMaxStudyCases) +
+                  " values");
+    for (long i = 0; i <= static_cast<long>(count); ++i) {
+      const double v = *start + static_cast<double>(i) * s;
+      push(std::abs(v - *stop) <= 1e-9 * std::abs(s) ? *stop : v);  // the end point exactly
+    }
+  } else {
+    const double n = *num;
+    if (!(n >= 1) || n != std::floor(n) || n > static_cast<double>(kMaxStudyCases))
+      throw Error(where + ": " + key + " range: num must be an integer >= 1; got " +
+                  format_value(n));
+    if (n == 1) {
+      all_int = all_int && true;
+      push(*start);
+    } else {
+      all_int = false;
+      const long count = static_cast<long>(n);
+      for (long i = 0; i < count; ++i)
+        push(i + 1 == count ? *stop
+                            : *start + (*stop - *start) * static_cast<double>(i) /
+                                           static_cast<double>(count - 1));
+    }
+  }
+  return out;
+}
+
+// One swept key: a list, a range table, or "all" for soil.table2_G. Nested tables are dotted
+// keys ([sweep.soil] G = [...] is "soil.G").
+void collect_axes(const toml::node& node, const std::string& key, const toml::source_region& at,
+                  const std::string& name, std::vector<Placed>& out, bool grouped) {
+  const std::string where = loc(name, at);
+  if (const toml::table* t = node.as_table(); t && !is_range(*t)) {
+    for (auto&& [k, n] : *t)
+      collect_axes(n, key + "." + std::string(k.str()), k.source(), name, out, grouped);
+    return;
+  }
+  if (!find_field(key) && !find_extra_key(key))
+    throw Error(where + ": unknown parameter '" + key + "'" + suggest_key(key));
+  SweepAxis axis{key, {}, where};
+  if (const toml::table* t = node.as_table()) {
+    axis.values = range_values(*t, key, where);
+  } else if (const toml::array* a = node.as_array()) {
+    for (const toml::node& e : *a) {
+      Value v;
+      if (!to_value(e, &v))
+        throw Error(loc(name, e.source()) + ": sweep values of " + key +
+                    " must be numbers, booleans or strings; got " + node_kind(e));
+      axis.values.push_back(std::move(v));
+    }
+    if (axis.values.empty())
+      throw Error(where + ": sweep list " + key + " is empty; give at least one value");
+  } else if (auto s = node.value_exact<std::string>();
+             s && key == "soil.table2_G" && (*s == "all" || *s == "table2")) {
+    for (const Table2Row& row : table2()) axis.values.emplace_back(row.G);
+  } else {
+    throw Error(where + ": sweep entry " + key +
+                " must be a list [a, b, ...], a range "
+                "{start, stop, step} or {start, stop, num}" +
+                (key == "soil.table2_G" ? std::string(", or \"all\"") : std::string()) + "; got " +
+                (node.is_string() ? "the string \"" + *node.value_exact<std::string>() + "\""
+                                  : std::string("one value")) +
+                " (a fixed value belongs in the base case)");
+  }
+  // Check each value's type and rule now, where the line is known.
+  for (const Value& v : axis.values) {
+    CaseSpec probe;
+    try {
+      assign(probe, key, v, where);
+    } catch (const Error& e) {
+      throw Error(where + ": sweep value of " + e.what());
+    }
+  }
+  if (grouped) {
+    out.back().factor.axes.push_back(std::move(axis));
+  } else {
+    out.push_back(Placed{at.begin, SweepFactor{{std::move(axis)}}});
+  }
+}
+
+void read_sweep(const toml::node& node, const std::string& name, const std::string& where,
+                StudySpec& study) {
+  const toml::table* sweep = node.as_table();
+  if (!sweep) throw Error(where + ": sweep must be a table ([sweep]); got " + node_kind(node));
+  std::vector<Placed> placed;
+  for (auto&& [k, n] : *sweep) {
+    const std::string key(k.str());
+    const std::string at = loc(name, k.source());
+    if (key == "mode") {
+      auto mode = n.value_exact<std::string>();
+      if (mode && *mode == "product")
+        study.mode = SweepMode::product;
+      else if (mode && *mode == "zip")
+        study.mode = SweepMode::zip;
+      else
+        throw Error(at + ": sweep.mode must be \"product\" or \"zip\"");
+    } else if (key == "group") {
+      const toml::array* groups = n.as_array();
+      if (!groups || !groups->is_array_of_tables())
+        throw Error(at + ": sweep.group must be an array of tables ([[sweep.group]])");
+      for (const toml::node& g : *groups) {
+        placed.push_back(Placed{g.source().begin, {}});
+        std::vector<Placed> axes;
+        for (auto&& [gk, gn] : *g.as_table()) {
+          axes.push_back(Placed{gk.source().begin, {}});
+          collect_axes(gn, std::string(gk.str()), gk.source(), name, axes, true);
+        }
+        std::stable_sort(axes.begin(), axes.end(),
+                         [](const Placed& a, const Placed& b) { return before(a.pos, b.pos); });
+        for (Placed& a : axes)
+          for (SweepAxis& axis : a.factor.axes) placed.back().factor.axes.push_back(axis);
+        if (placed.back().factor.axes.empty())
+          throw Error(loc(name, g.source()) + ": an empty [[sweep.group]]");
+      }
+    } else {
+      collect_axes(n, key, k.source(), name, placed, false);
+    }
+  }
+  std::stable_sort(placed.begin(), placed.end(),
+                   [](const Placed& a, const Placed& b) { return before(a.pos, b.pos); });
+  for (Placed& p : placed) study.factors.push_back(std::move(p.factor));
+}
+
+std::string toml_number(double v) {
+  for (int precision = 15; precision <= 17; ++precision) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v || precision == 17) {
+      std::string s = buf;
+      if (s.find_first_of(".en") == std::string::npos) s += ".0";
+      return s;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string read_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error("cannot read " + path + ": it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read " + path + ": " + std::strerror(errno));
+  std::string text;
+  char buf[65536];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxConfigBytes)
+      throw Error("cannot read " + path + ": larger than 16 MiB; is it a config file?");
+  }
+  if (in.bad()) throw Error("cannot read " + path + ": read error");
+  return text;
+}
+
+void read_case_text(std::string_view text, const std::string& name, CaseSpec& spec) {
+  const toml::table t = parse(text, name);
+  require_not_empty(t, name,
+                    "a case file sets parameters, e.g. [roller] r = 0.6 (see docs/config.md); to "
+                    "run the paper's defaults, give no file");
+  read_case_keys(t, name, spec, {});
+}
+
+void read_case_file(const std::string& path, CaseSpec& spec) {
+  read_case_text(read_file(path), path, spec);
+}
+
+StudySpec read_study_text(std::string_view text, const std::string& name, const std::string& dir) {
+  const toml::table t = parse(text, name);
+  require_not_empty(t, name, "a study file needs a [sweep] table (see docs/config.md)");
+  StudySpec study;
+  study.source = name;
+  if (const toml::node* base = t.get("base")) {
+    const std::string where = loc(name, base->source());
+    auto path = base->value_exact<std::string>();
+    if (!path) throw Error(where + ": base must be the path of a case file (a string)");
+    std::filesystem::path p(*path);
+    if (p.is_relative() && !dir.empty()) p = std::filesystem::path(dir) / p;
+    try {
+      read_case_file(p.string(), study.base);
+    } catch (const Error& e) {
+      throw Error(where + ": in base case: " + e.what());
+    }
+  }
+  read_case_keys(t, name, study.base, {"base", "sweep"});
+  const toml::node* sweep = t.get("sweep");
+  if (!sweep)
+    throw Error(name +
+                ": a study file needs a [sweep] table naming the parameters to vary, "
+                "e.g. [sweep] \"soil.table2_G\" = \"all\" (see docs/config.md)");
+  read_sweep(*sweep, name, loc(name, sweep->source()), study);
+  return study;
+}
+
+StudySpec read_study_file(const std::string& path) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  return read_study_text(read_file(path), path, dir);
+}
+
+std::string case_to_toml(const Case& c, bool table2) {
+  std::ostringstream out;
+  out << "# oscidrum case file: every parameter (SI units; see docs/config.md)\n";
+  std::string section;
+  auto value_text = [&](const Field& f) {
+    switch (f.type) {
+      case FieldType::boolean:
+        return std::string(f.get(c) != 0.0 ? "true" : "false");
+      case FieldType::choice: {
+        std::string quoted(1, '"');  // (not "\"" + s: GCC 12 -Wrestrict false positive)
+        quoted += format_field(c, f);
+        quoted += '"';
+        return quoted;
+      }
+      case FieldType::integer:
+        return std::to_string(static_cast<long long>(f.get(c)));
+      case FieldType::real:
+        break;
+    }
+    return toml_number(f.get(c));
+  };
+  // Soil keys that would have no effect are written as comments (reading them would be an error).
+  const bool modulus = c.soil.input == SoilInput::modulus;
+  auto unused = [&](const std::string& key) -> const char* {
+    if (table2 && key.starts_with("soil.")) return "set by table2_G";
+    if (key == "soil.G" || key == "soil.nu" || key == "soil.rho")
+      return modulus ? nullptr : "unused with input = coefficients";
+    if (key == "soil.ksh" || key == "soil.ksv" || key == "soil.csh" || key == "soil.csv")
+      return modulus ? "unused with input = modulus" : nullptr;
+    return nullptr;
+  };
+  auto line = [&](const Field& f, const std::string& name) {
+    const char* why = unused(f.key);
+    out << (why ? "# " : "") << name << " = " << value_text(f) << "  # [" << f.unit << "] "
+        << (why ? std::string("(") + why + ") " : std::string()) << f.description << "\n";
+  };
+  // Top-level keys first (TOML puts everything after a [section] header into it).
+  for (const Field& f : fields()) {
+    const std::string key = f.key;
+    if (key.find('.') == std::string::npos) line(f, key);
+  }
+  for (const Field& f : fields()) {
+    const std::string key = f.key;
+    const std::size_t dot = key.find('.');
+    if (dot == std::string::npos) continue;
+    if (key.substr(0, dot) != section) {
+      section = key.substr(0, dot);
+      out << "\n[" << section << "]\n";
+      if (section == "soil" && table2)
+        out << "table2_G = " << toml_number(c.soil.G)
+            << "  # [Pa] soil.G with the coefficients of paper Table 2\n";
+    }
+    line(f, key.substr(dot + 1));
+  }
+  return out.str();
+}
+
+}  // namespace oscidrum::io

@@ -1,0 +1,175 @@
+// CSV writers: steady state (docs/csv-columns.md), events, sweep results (docs/outputs.md).
+#include "oscidrum_io/csv.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "oscidrum/fields.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+std::string join(const std::vector<std::string>& cells) {
+  std::string s;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) s += ',';
+    s += cells[i];
+  }
+  return s;
+}
+
+std::string label(const std::string& name, const std::string& unit) {
+  return name + "[" + unit + "]";
+}
+
+}  // namespace
+
+std::string format_double(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string format_double_short(double v) {
+  if (!std::isfinite(v)) return format_double(v);
+  char buf[64];
+  if (v == std::trunc(v) && std::abs(v) < 1e15) {  // whole numbers as such: 5000000, not 5e+06
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return std::string(buf) == "-0" ? "0" : buf;
+  }
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::string csv_quote(std::string_view field) {
+  if (field.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(field);
+  std::string s = "\"";
+  for (char ch : field) {
+    if (ch == '"') s += '"';
+    s += ch;
+  }
+  return s + "\"";
+}
+
+std::vector<std::string> csv_split(std::string_view line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted) {
+      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (ch == '"') {
+        quoted = false;
+      } else {
+        out.back() += ch;
+      }
+    } else if (ch == '"') {
+      quoted = true;
+    } else if (ch == ',') {
+      out.emplace_back();
+    } else {
+      out.back() += ch;
+    }
+  }
+  return out;
+}
+
+void write_steady_state_csv(std::ostream& out, const Result& result) {
+  out << "t[s],delta[rad],phi[rad],x_A[m],s_A[m],ddelta[rad/s],dphi[rad/s],dx_A[m/s],ds_A[m/s],"
+         "x_M[m],z_M[m],ddx_M[m/s^2],ddz_M[m/s^2],N[N],T[N],v_rel[m/s],torque[N m],phase[-]\n";
+  const Samples& s = result.samples;
+  std::string row;
+  for (std::size_t j = 0; j < s.size(); ++j) {
+    row.clear();
+    for (const std::vector<double>* column :
+         {&s.t, &s.delta, &s.phi, &s.x_A, &s.s_A, &s.ddelta, &s.dphi, &s.dx_A, &s.ds_A, &s.x_M,
+          &s.z_M, &s.ddx_M, &s.ddz_M, &s.N, &s.T, &s.v_rel, &s.torque}) {
+      row += j < column->size() ? format_double((*column)[j]) : std::string("nan");
+      row += ',';
+    }
+    row += j < s.phase.size() ? std::to_string(static_cast<int>(s.phase[j])) : std::string("0");
+    out << row << '\n';
+  }
+}
+
+void write_events_csv(std::ostream& out, const Result& result) {
+  out << "t[s],kind,from,to\n";
+  for (const Event& e : result.events)
+    out << format_double(e.t) << ',' << to_string(e.kind) << ',' << to_string(e.from) << ','
+        << to_string(e.to) << '\n';
+}
+
+std::string study_csv_header(const StudyColumns& columns) {
+  std::vector<std::string> h = {"case[-]"};
+  for (const std::string& key : columns.keys) {
+    const std::string unit = key_unit(key);
+    h.push_back(csv_quote(label(key, unit.empty() ? "-" : unit)));
+  }
+  for (const char* name :
+       {"status[-]", "message[-]", "periods_to_steady[-]", "multiplicity[-]", "final_change[-]",
+        "periods_simulated[-]", "steps[-]", "rhs_evaluations[-]", "events[-]", "switches[-]",
+        "reversals[-]", "switches_per_period[-]", "max_slip_residual[-]", "min_N[N]",
+        "ddx_max[m/s^2]", "ddx_min[m/s^2]", "ddz_max[m/s^2]", "ddz_min[m/s^2]"})
+    h.emplace_back(name);
+  for (const char* signal : {"ddx", "ddz"})
+    for (int n = 1; n <= columns.n_harmonics; ++n)
+      h.push_back(std::string(signal) + "_A" + std::to_string(n) + "[m/s^2]");
+  for (const char* name :
+       {"phi_lag[pi rad]", "phi_amplitude[rad]", "psi_xz[rad]", "area[m^2/s^4]",
+        "stick_fraction[-]", "slip_positive_fraction[-]", "slip_negative_fraction[-]"})
+    h.emplace_back(name);
+  return join(h);
+}
+
+std::string study_csv_row(const StudyColumns& columns, std::size_t index,
+                          const std::vector<Value>& varied, const CaseOutcome& outcome) {
+  std::vector<std::string> r = {std::to_string(index)};
+  for (std::size_t i = 0; i < columns.keys.size(); ++i)
+    r.push_back(i < varied.size() ? csv_quote(format_value(varied[i])) : std::string());
+  const Result& res = outcome.result;
+  const Diagnostics& d = res.diagnostics;
+  const std::size_t metric_cells = 4 + 2 * static_cast<std::size_t>(columns.n_harmonics) + 7;
+  if (!outcome.valid) {
+    r.emplace_back("invalid");
+    r.push_back(csv_quote(outcome.error));
+    r.resize(r.size() + 12 + metric_cells);
+    return join(r);
+  }
+  r.emplace_back(to_string(res.status));
+  r.push_back(csv_quote(res.message));
+  r.push_back(std::to_string(d.periods_to_steady));
+  r.push_back(std::to_string(d.multiplicity));
+  r.push_back(format_double_short(d.final_change));
+  r.push_back(std::to_string(d.periods_simulated));
+  r.push_back(std::to_string(d.steps));
+  r.push_back(std::to_string(d.rhs_evaluations));
+  r.push_back(std::to_string(d.events));
+  r.push_back(std::to_string(d.switches));
+  r.push_back(std::to_string(d.reversals));
+  r.push_back(format_double_short(d.switches_per_period));
+  r.push_back(format_double_short(d.max_slip_residual));
+  r.push_back(format_double_short(d.min_N));
+  if (res.samples.size() == 0) {
+    r.resize(r.size() + metric_cells);
+    return join(r);
+  }
+  const Metrics& m = outcome.metrics;
+  for (double v : {m.ddx_max, m.ddx_min, m.ddz_max, m.ddz_min}) r.push_back(format_double_short(v));
+  for (const std::vector<Harmonic>* h : {&m.ddx_harmonics, &m.ddz_harmonics})
+    for (std::size_t n = 1; n <= static_cast<std::size_t>(columns.n_harmonics); ++n)
+      r.push_back(n < h->size() ? format_double_short((*h)[n].amplitude) : std::string());
+  for (double v : {m.phi_lag, m.phi_amplitude, m.psi_xz, m.area, m.stick_fraction,
+                   m.slip_positive_fraction, m.slip_negative_fraction})
+    r.push_back(format_double_short(v));
+  return join(r);
+}
+
+}  // namespace oscidrum::io

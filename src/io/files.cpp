@@ -1,0 +1,122 @@
+// Atomic output files and the sweep journal (POSIX: open, write, fsync, rename).
+#include "oscidrum_io/files.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum_io/config.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+void write_all(int fd, std::string_view text, const std::string& path) {
+  while (!text.empty()) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+    text.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+std::string journal_header(std::uint64_t fingerprint, std::size_t n_cases) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "# oscidrum sweep journal v1 fingerprint %016" PRIx64 " cases %zu",
+                fingerprint, n_cases);
+  return buf;
+}
+
+}  // namespace
+
+void write_file_atomic(const std::string& path, std::string_view text) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+  try {
+    write_all(fd, text, path);
+    if (::fsync(fd) != 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  if (::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw Error("cannot write " + path + ": " + reason);
+  }
+}
+
+void remove_file(const std::string& path) { ::unlink(path.c_str()); }
+
+Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_cases, bool resume)
+    : path_(std::move(path)) {
+  const std::string header = journal_header(fingerprint, n_cases);
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(path_, ec);
+  std::size_t good_bytes = 0;
+  if (exists) {
+    const std::string text = read_file(path_);
+    std::size_t count = 0;
+    std::size_t pos = text.find('\n');
+    const bool same = pos != std::string::npos && text.compare(0, pos, header) == 0;
+    if (!resume || !same) {
+      for (char ch : text) count += (ch == '\n');
+      if (!resume)
+        throw Error("an unfinished sweep left the journal " + path_ + " (" +
+                    std::to_string(count ? count - 1 : 0) +
+                    " cases done); run again with --resume to finish it, or with --restart to "
+                    "discard it");
+      throw Error("the journal " + path_ +
+                  " belongs to a different study (its cases or output "
+                  "columns changed); run with --restart to discard it and start over");
+    }
+    good_bytes = pos + 1;
+    while (true) {
+      const std::size_t end = text.find('\n', good_bytes);
+      if (end == std::string::npos) break;  // a torn last line (killed while writing): dropped
+      const std::string line = text.substr(good_bytes, end - good_bytes);
+      char* stop = nullptr;
+      const unsigned long long index = std::strtoull(line.c_str(), &stop, 10);
+      if (stop == line.c_str() || *stop != ',' || index >= n_cases)
+        throw Error("the journal " + path_ + " is damaged (line: " + line.substr(0, 60) +
+                    "); run with --restart to discard it");
+      done_.emplace(static_cast<std::size_t>(index), line);
+      good_bytes = end + 1;
+    }
+  }
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error("cannot write " + path_ + ": " + std::strerror(errno));
+  if (::ftruncate(fd_, static_cast<off_t>(good_bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd_);
+    throw Error("cannot write " + path_ + ": " + reason);
+  }
+  if (good_bytes == 0) {
+    write_all(fd_, header + "\n", path_);
+    ::fsync(fd_);
+  }
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void Journal::append(std::size_t index, const std::string& row) {
+  (void)index;
+  write_all(fd_, row + "\n", path_);  // one write(2): a kill cannot interleave two rows
+}
+
+void Journal::remove() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  ::unlink(path_.c_str());
+}
+
+}  // namespace oscidrum::io

@@ -1,0 +1,170 @@
+// JSON summaries of a case and of a sweep (docs/outputs.md).
+#include "oscidrum_io/json.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
+#include "oscidrum/fields.hpp"
+#include "oscidrum/kinematics.hpp"
+#include "oscidrum/soil.hpp"
+#include "oscidrum/version.hpp"
+#include "oscidrum_io/csv.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+using json = nlohmann::ordered_json;  // keys in the documented order
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json field_value(const Case& c, const Field& f) {
+  switch (f.type) {
+    case FieldType::boolean:
+      return f.get(c) != 0.0;
+    case FieldType::choice:
+      return format_field(c, f);
+    case FieldType::integer:
+      return static_cast<long long>(f.get(c));
+    case FieldType::real:
+      break;
+  }
+  return number(f.get(c));
+}
+
+json harmonics_json(const std::vector<Harmonic>& h) {
+  json a = json::array();
+  for (std::size_t n = 0; n < h.size(); ++n)
+    a.push_back({{"n", n}, {"amplitude", number(h[n].amplitude)}, {"phase", number(h[n].phase)}});
+  return a;
+}
+
+json soil_json(const CaseSpec& spec, const Case& c) {
+  json s;
+  s["source"] = soil_source_id(spec);
+  s["description"] = soil_source(spec);
+  json a0 = nullptr;
+  SoilCoefficients k = soil_coefficients(c.soil, c.roller);
+  if (c.soil.input == SoilInput::modulus) {
+    a0 = number(k.a0);
+  } else if (soil_source_id(spec) == "table2") {
+    for (const Table2Row& row : table2())
+      if (std::abs(row.G - c.soil.G) <= 1e-9 * row.G) a0 = number(row.a0);
+  }
+  const bool has_modulus = c.soil.input == SoilInput::modulus || soil_source_id(spec) == "table2";
+  s["G"] = has_modulus ? number(c.soil.G) : json(nullptr);
+  s["nu"] = has_modulus ? number(c.soil.nu) : json(nullptr);
+  s["rho"] = has_modulus ? number(c.soil.rho) : json(nullptr);
+  s["a0"] = a0;
+  s["ksh"] = number(k.ksh);
+  s["ksv"] = number(k.ksv);
+  s["csh"] = number(k.csh);
+  s["csv"] = number(k.csv);
+  return s;
+}
+
+}  // namespace
+
+std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
+                      const Metrics* metrics, const std::string& config) {
+  json j;
+  j["schema"] = "oscidrum-case/1";
+  j["oscidrum_version"] = version;
+  j["config"] = config.empty() ? json(nullptr) : json(config);
+  j["status"] = to_string(result.status);
+  j["ok"] = ok(result.status);
+  j["message"] = result.message;
+
+  json params = json::object();
+  for (const Field& f : fields()) params[f.key] = field_value(c, f);
+  j["parameters"] = params;
+  json origins = json::object();
+  for (const auto& [key, where] : spec.origin) origins[key] = where;
+  j["origins"] = origins;
+  j["soil"] = soil_json(spec, c);
+
+  const Roller& R = c.roller;
+  const TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
+  j["derived"] = {{"Fz", number(R.P0 - R.m * R.g)},
+                  {"W", number(R.P0)},
+                  {"nu", number(2.0 * M_PI * R.f)},
+                  {"period", number(1.0 / R.f)},
+                  {"MMd_fraction", number(R.M0 != 0.0 ? c.MMd / R.M0 : NAN)},
+                  {"R0", number(g.R0)},
+                  {"alpha", number(g.alpha)}};
+
+  const Diagnostics& d = result.diagnostics;
+  j["diagnostics"] = {{"periods_simulated", d.periods_simulated},
+                      {"periods_to_steady", d.periods_to_steady},
+                      {"multiplicity", d.multiplicity},
+                      {"final_change", number(d.final_change)},
+                      {"steps", d.steps},
+                      {"rejected_steps", d.rejected_steps},
+                      {"rhs_evaluations", d.rhs_evaluations},
+                      {"events", d.events},
+                      {"switches", d.switches},
+                      {"reversals", d.reversals},
+                      {"switches_per_period", number(d.switches_per_period)},
+                      {"max_slip_residual", number(d.max_slip_residual)},
+                      {"min_N", number(d.min_N)}};
+  j["sampling"] = {{"frequency", number(result.frequency)},
+                   {"sample_periods", result.sample_periods},
+                   {"samples_per_period", result.samples_per_period},
+                   {"samples", result.samples.size()},
+                   {"t0", result.samples.size() ? number(result.samples.t.front()) : json()}};
+  j["phase_times"] = {{"stick", number(result.stick_time)},
+                      {"slip_positive", number(result.slip_positive_time)},
+                      {"slip_negative", number(result.slip_negative_time)}};
+  if (metrics) {
+    const Metrics& m = *metrics;
+    j["metrics"] = {{"ddx_max", number(m.ddx_max)},
+                    {"ddx_min", number(m.ddx_min)},
+                    {"ddz_max", number(m.ddz_max)},
+                    {"ddz_min", number(m.ddz_min)},
+                    {"phi_lag", number(m.phi_lag)},
+                    {"phi_amplitude", number(m.phi_amplitude)},
+                    {"psi_xz", number(m.psi_xz)},
+                    {"area", number(m.area)},
+                    {"stick_fraction", number(m.stick_fraction)},
+                    {"slip_positive_fraction", number(m.slip_positive_fraction)},
+                    {"slip_negative_fraction", number(m.slip_negative_fraction)},
+                    {"ddx_harmonics", harmonics_json(m.ddx_harmonics)},
+                    {"ddz_harmonics", harmonics_json(m.ddz_harmonics)}};
+  } else {
+    j["metrics"] = nullptr;
+  }
+  return j.dump(2) + "\n";
+}
+
+std::string study_json(const std::string& header, const std::vector<std::string>& rows) {
+  const std::vector<std::string> columns = csv_split(header);
+  json j;
+  j["schema"] = "oscidrum-sweep/1";
+  j["oscidrum_version"] = version;
+  j["columns"] = columns;
+  json out = json::array();
+  for (const std::string& line : rows) {
+    const std::vector<std::string> cells = csv_split(line);
+    json row = json::object();
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      const std::string cell = i < cells.size() ? cells[i] : std::string();
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (cell.empty())
+        row[columns[i]] = nullptr;
+      else if (cell == "true" || cell == "false")
+        row[columns[i]] = (cell == "true");
+      else if (end == cell.c_str() + cell.size() && columns[i] != "message[-]")
+        row[columns[i]] = cell.find_first_not_of("-0123456789") == std::string::npos
+                              ? json(std::strtoll(cell.c_str(), nullptr, 10))
+                              : number(v);
+      else
+        row[columns[i]] = cell;
+    }
+    out.push_back(row);
+  }
+  j["rows"] = out;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace oscidrum::io

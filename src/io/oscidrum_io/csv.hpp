@@ -1,0 +1,52 @@
+// oscidrum_io/csv.hpp: CSV writers. The steady-state columns are the contract of
+// docs/csv-columns.md (numbers with %.17g); the sweep columns are documented in docs/outputs.md
+// (numbers in the shortest form that reads back exactly). Either way equal doubles give equal
+// text and the text gives the double back.
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oscidrum/result.hpp"
+#include "oscidrum/study.hpp"
+#include "oscidrum_io/case_spec.hpp"
+
+namespace oscidrum::io {
+
+/// %.17g; "nan", "inf", "-inf" for non-finite values.
+std::string format_double(double v);
+
+/// The shortest text that reads back as exactly `v`: "0.05" (not "0.050000000000000003"),
+/// whole numbers below 1e15 without exponent ("5000000").
+std::string format_double_short(double v);
+
+/// The field itself, or quoted ("...", inner quotes doubled) if it holds , " or a line break.
+std::string csv_quote(std::string_view field);
+
+/// Split one CSV line (no line break) into fields, undoing csv_quote.
+std::vector<std::string> csv_split(std::string_view line);
+
+/// The sampled steady state, one row per sample (docs/csv-columns.md).
+void write_steady_state_csv(std::ostream& out, const Result& result);
+
+/// The event list: t[s],kind,from,to (phase names stick, slip+, slip-).
+void write_events_csv(std::ostream& out, const Result& result);
+
+/// Columns of a sweep's result CSV.
+struct StudyColumns {
+  std::vector<std::string> keys;  ///< swept keys (column "key[unit]")
+  int n_harmonics = 10;           ///< amplitudes A_1 ... A_n of x_M'' and z_M''
+};
+
+/// The header line (no line break).
+std::string study_csv_header(const StudyColumns& columns);
+
+/// One row (no line break): the case index, its swept values, status, message, diagnostics and
+/// metrics. Cells a case has no value for (no samples) are empty.
+std::string study_csv_row(const StudyColumns& columns, std::size_t index,
+                          const std::vector<Value>& varied, const CaseOutcome& outcome);
+
+}  // namespace oscidrum::io

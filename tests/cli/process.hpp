@@ -1,0 +1,46 @@
+// tests/cli/process.hpp: run the oscidrum binary as a child process (posix_spawn, no shell).
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace oscidrum::test {
+
+/// How a child process ended, and what it printed.
+struct Outcome {
+  int code = -1;    ///< exit status; -1 if killed by a signal
+  int signal = 0;   ///< the signal that ended it, or 0
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Start `oscidrum args...` with stdout and stderr going to files (stdin: /dev/null).
+pid_t start(const std::vector<std::string>& args, const std::string& out_file,
+            const std::string& err_file);
+
+/// Wait for a started child and collect its output files.
+Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file);
+
+/// Run `oscidrum args...` to completion.
+Outcome run(const std::vector<std::string>& args);
+
+/// A file's bytes ("" if it cannot be read).
+std::string slurp(const std::string& path);
+
+/// A fresh directory for one test, removed with it.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string operator/(const std::string& name) const { return path_ + "/" + name; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace oscidrum::test

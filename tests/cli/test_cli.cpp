@@ -1,0 +1,307 @@
+// End-to-end tests of `oscidrum run`, `soil`, `transmissibility`, `fields` and of bad input:
+// every malformed config or flag gives exit code 2 and one clear line, never a crash.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "oscidrum/fields.hpp"
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+const std::string kSource = OSCIDRUM_SOURCE_DIR;
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    out.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+// Exit code 2, nothing on stdout, exactly one line on stderr: "oscidrum: error: ...".
+void expect_usage_error(const Outcome& o, const std::string& must_contain) {
+  EXPECT_EQ(o.signal, 0) << "crashed: " << o.err;
+  EXPECT_EQ(o.code, 2) << o.err;
+  EXPECT_EQ(o.out, "");
+  EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << o.err;
+  EXPECT_EQ(lines(o.err).size(), 1u) << o.err;
+  EXPECT_NE(o.err.find(must_contain), std::string::npos)
+      << "expected '" << must_contain << "' in: " << o.err;
+}
+
+// The corpus: one malformed file per problem, its first line "# expect: <part of the message>".
+void check_corpus(const std::string& command, const std::string& dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 10u);
+  for (const auto& file : files) {
+    SCOPED_TRACE(file.filename().string());
+    const std::string first = lines(slurp(file.string())).at(0);
+    ASSERT_EQ(first.rfind("# expect: ", 0), 0u) << "corpus file without '# expect: '";
+    const Outcome o = run({command, file.string()});
+    expect_usage_error(o, first.substr(10));
+    EXPECT_NE(o.err.find(file.string()), std::string::npos) << "the message names the file";
+  }
+}
+
+TEST(CliCorpus, MalformedCaseFiles) { check_corpus("run", kSource + "/tests/cli/corpus/run"); }
+
+TEST(CliCorpus, MalformedStudyFiles) { check_corpus("sweep", kSource + "/tests/cli/corpus/sweep"); }
+
+TEST(CliCorpus, UnreadableAndGarbageFiles) {
+  TempDir dir;
+  std::ofstream(dir / "empty.toml").close();
+  expect_usage_error(run({"run", dir / "empty.toml"}), "empty.toml: the file holds no settings");
+  expect_usage_error(run({"sweep", dir / "empty.toml"}), "the file holds no settings");
+  std::mt19937 rng(20190101);  // seeded: the same garbage every run
+  for (int i = 0; i < 20; ++i) {
+    std::string bytes(64 + 97 * i, '\0');
+    for (char& ch : bytes) ch = static_cast<char>(rng() & 0xff);
+    const std::string path = dir / ("garbage" + std::to_string(i) + ".toml");
+    std::ofstream(path, std::ios::binary) << bytes;
+    SCOPED_TRACE(path);
+    expect_usage_error(run({"run", path}), path);
+    expect_usage_error(run({"sweep", path}), path);
+  }
+  std::ofstream(dir / "utf8.toml", std::ios::binary) << "[roller]\nr = \"\xc3\x28\"\n";
+  expect_usage_error(run({"run", dir / "utf8.toml"}), "invalid TOML");
+  expect_usage_error(run({"run", dir / "missing.toml"}),
+                     "cannot read " + (dir / "missing.toml") + ": No such file or directory");
+  expect_usage_error(run({"sweep", dir / "missing.toml"}), "cannot read");
+  expect_usage_error(run({"run", dir.path()}), "it is a directory");
+  {
+    std::ofstream big(dir / "big.toml");
+    big << "# " << std::string(17u << 20, 'x') << "\n";
+  }
+  expect_usage_error(run({"run", dir / "big.toml"}), "larger than 16 MiB");
+}
+
+TEST(CliErrors, BadFlagsAndValues) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{}, "a command is required"},
+      {{"frobnicate"}, "frobnicate"},
+      {{"run", "--bogus"}, "--bogus"},
+      {{"run", "--G"}, "--G"},
+      {{"run", "--G", "abc"}, "abc"},
+      {{"run", "--G", "0"}, "--G must be > 0 [MN/m^2]; got 0"},
+      {{"run", "--G", "nan"}, "--G must be > 0"},
+      {{"run", "--G", "25", "--nu", "0.35"}, "add --soil-formula"},
+      {{"run", "--G", "25", "--ksh", "1e7"}, "give the soil either by --G or by --ksh"},
+      {{"run", "--mu", "-1"}, "--mu -1: contact.mu must be >= 0; got -1"},
+      {{"run", "--mu", "0.3", "--pure-rolling"}, "either --mu or --pure-rolling"},
+      {{"run", "--MMd", "1", "--MMd-fraction", "0.1"}, "either by --MMd"},
+      {{"run", "--R", "0.5"}, "trough.a must be > roller.r"},
+      {{"run", "--R", "0.7", "--k", "0.1"}, "either as a circle (--R) or as a log spiral"},
+      {{"run", "--m", "-3"}, "roller.m must be > 0 [kg]; got -3"},
+      {{"run", "--f", "inf"}, "roller.f must be > 0 [Hz]; got inf"},
+      {{"run", "--set", "x"}, "--set expects KEY=VALUE"},
+      {{"run", "--set", "soil.g=5"}, "did you mean 'soil.G'?"},
+      {{"run", "--set", "numerics.max_periods=1.5"}, "must be an integer"},
+      {{"run", "--set", "soil.G=30e6"}, "soil.G has no effect"},
+      {{"run", "--format", "xml"}, "xml"},
+      {{"run", "--harmonics", "600"}, "--harmonics must be <"},
+      {{"run", "a.toml", "b.toml"}, "b.toml"},
+      {{"run", "--csv", "/nonexistent/dir/x.csv"}, "cannot write /nonexistent/dir/x.csv"},
+      {{"sweep"}, "study"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--resume"}, "need --out FILE"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--threads", "-1"}, "-1"},
+      {{"soil", "--G", "-5"}, "--G must be > 0"},
+      {{"soil", "--nu", "0.7"}, "soil.nu must be in [0, 0.5); got 0.7"},
+      {{"transmissibility", "--mf", "0"}, "m_f must be > 0"},
+      {{"fields", "--format", "yaml"}, "yaml"},
+  };
+  for (const auto& [args, message] : cases) {
+    std::string joined;
+    for (const std::string& a : args) joined += a + " ";
+    SCOPED_TRACE(joined);
+    expect_usage_error(run(args), message);
+  }
+}
+
+TEST(CliRun, DefaultCaseReachesSteadyState) {
+  const Outcome o = run({"run"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("steady_state"), std::string::npos);
+  EXPECT_NE(o.out.find("paper Table 2 at G = 25 MN/m^2"), std::string::npos);
+  EXPECT_NE(o.out.find("m^2/s^4"), std::string::npos);
+  EXPECT_EQ(o.err, "");  // no progress line: stderr is not a terminal
+}
+
+// The column names of docs/csv-columns.md, in order.
+std::string documented_header() {
+  std::string header;
+  for (const std::string& line : lines(slurp(kSource + "/docs/csv-columns.md")))
+    if (line.rfind("| `", 0) == 0) {
+      const std::size_t end = line.find('`', 3);
+      if (!header.empty()) header += ',';
+      header += line.substr(3, end - 3);
+    }
+  return header;
+}
+
+TEST(CliRun, FilesFollowTheContracts) {
+  TempDir dir;
+  const Outcome o = run({"run", kSource + "/examples/case.toml", "--csv", dir / "s.csv", "--json",
+                         dir / "s.json", "--events", dir / "e.csv", "-q"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> csv = lines(slurp(dir / "s.csv"));
+  ASSERT_GT(csv.size(), 1u);
+  EXPECT_EQ(csv[0], documented_header());
+  EXPECT_EQ(csv.size(), 1u + 2u * 1024u);  // two steady periods (multiplicity 1) x 1024
+
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(j["schema"], "oscidrum-case/1");
+  EXPECT_EQ(j["status"], "steady_state");
+  EXPECT_TRUE(j["ok"].get<bool>());
+  for (const Field& f : fields()) EXPECT_TRUE(j["parameters"].contains(f.key)) << f.key;
+  EXPECT_DOUBLE_EQ(j["parameters"]["MMd"].get<double>(), 0.05 * 54947.0);
+  EXPECT_EQ(j["soil"]["source"], "table2");
+  EXPECT_DOUBLE_EQ(j["soil"]["ksh"].get<double>(), 41.4e6);
+  EXPECT_EQ(j["origins"]["soil.table2_G"], kSource + "/examples/case.toml:14:1");
+  EXPECT_EQ(j["metrics"]["ddx_harmonics"].size(), 11u);
+  EXPECT_GT(j["metrics"]["ddx_max"].get<double>(), 0.0);
+  for (const char* key : {"diagnostics", "sampling", "phase_times", "derived"})
+    EXPECT_TRUE(j.contains(key)) << key;
+
+  const std::vector<std::string> events = lines(slurp(dir / "e.csv"));
+  EXPECT_EQ(events.at(0), "t[s],kind,from,to");
+  EXPECT_GT(events.size(), 10u);  // stick-slip: switches every period
+
+  // stdout formats equal the files.
+  EXPECT_EQ(run({"run", kSource + "/examples/case.toml", "--format", "csv"}).out,
+            slurp(dir / "s.csv"));
+  EXPECT_EQ(run({"run", kSource + "/examples/case.toml", "--format", "json"}).out,
+            slurp(dir / "s.json"));
+}
+
+TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
+  TempDir dir;
+  Outcome o = run({"run", kSource + "/examples/case.toml", "--G", "40", "--pure-rolling", "--MMd",
+                   "0", "--print-config"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("table2_G = 40000000.0"), std::string::npos);
+  EXPECT_NE(o.out.find("pure_rolling = true"), std::string::npos);
+  std::ofstream(dir / "resolved.toml") << o.out;
+  const Outcome a = run({"run", dir / "resolved.toml", "--format", "json"});
+  const Outcome b = run({"run", kSource + "/examples/case.toml", "--G", "40", "--pure-rolling",
+                         "--MMd", "0", "--format", "json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(nlohmann::json::parse(a.out)["metrics"], nlohmann::json::parse(b.out)["metrics"]);
+  EXPECT_EQ(nlohmann::json::parse(a.out)["parameters"], nlohmann::json::parse(b.out)["parameters"]);
+
+  o = run({"run", "--G", "27", "-q"});
+  EXPECT_NE(o.out.find("Appendix B (42)-(45) from G = 27 MN/m^2"), std::string::npos);
+  o = run({"run", "--G", "25", "--soil-formula", "--format", "json"});
+  EXPECT_EQ(nlohmann::json::parse(o.out)["soil"]["source"], "appendix_b");
+  o = run({"run", "--set", "soil.table2_G=10e6", "--format", "json"});
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(o.out)["soil"]["ksh"].get<double>(), 19.7e6);
+}
+
+TEST(CliRun, ExitCodeOneWhenNotSteady) {
+  const Outcome o = run({"run", "--set", "numerics.max_periods=3"});
+  EXPECT_EQ(o.code, 1) << o.err;
+  EXPECT_NE(o.out.find("max_periods_reached"), std::string::npos);
+  EXPECT_NE(o.err.find("status max_periods_reached"), std::string::npos);
+}
+
+TEST(CliRun, InterruptExits130) {
+  TempDir dir;
+  const pid_t pid = start({"run", "--set", "numerics.steady_tol=1e-300", "--set",
+                           "numerics.max_periods=10000000", "--csv", dir / "s.csv"},
+                          dir / "out", dir / "err");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  const Outcome o = finish(pid, dir / "out", dir / "err");
+  EXPECT_EQ(o.code, 130) << o.err;
+  EXPECT_NE(o.err.find("interrupted"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.csv"));
+}
+
+TEST(CliRun, PlotFailsCleanly) {
+  TempDir dir;
+  const Outcome o = run({"run", "-q", "--plot", dir / "plots"});
+  EXPECT_EQ(o.signal, 0);
+  if (o.code != 0) {  // no Python package or no matplotlib here: a message and exit code 1
+    EXPECT_EQ(o.code, 1) << o.err;
+    EXPECT_NE(o.err.find("plot"), std::string::npos);
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots/steady_state.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots/summary.json"));
+}
+
+TEST(CliSoil, CalculatorAndTable2) {
+  Outcome o = run({"soil", "--G", "25"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("Known discrepancy"), std::string::npos);
+  o = run({"soil", "--table2", "--format", "csv"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> rows = lines(o.out);
+  ASSERT_EQ(rows.size(), 15u);
+  EXPECT_EQ(rows[0].rfind("G[Pa],nu[-],rho[kg/m^3],a0[m],table2_a0[m],a0_rel_diff[-]", 0), 0u);
+  o = run({"soil", "--G", "27", "--format", "json"});
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_TRUE(j["rows"][0]["table2"].is_null());  // 27 is no Table 2 G
+  // (44)-(45): the dashpots do not depend on G.
+  EXPECT_NEAR(j["rows"][0]["formula"]["csh"].get<double>(), 140577.4, 0.1);
+}
+
+TEST(CliTransmissibility, AppendixA) {
+  Outcome o = run({"transmissibility", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_NEAR(j["omega"].get<double>(), 38.1, 0.05);
+  EXPECT_NEAR(j["zeta"].get<double>(), 0.014, 0.0005);
+  EXPECT_NEAR(j["ratio"].get<double>(), 6.4, 0.05);
+  EXPECT_NEAR(j["Tp"].get<double>(), 0.025, 0.0005);
+  o = run({"transmissibility", "--format", "csv", "--mf", "3000"});
+  EXPECT_EQ(lines(o.out).at(0), "quantity,value,unit,meaning");
+}
+
+TEST(CliFields, DocsConfigTableIsTheGeneratedOne) {
+  const Outcome o = run({"fields", "--format", "markdown"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string doc = slurp(kSource + "/docs/config.md");
+  const std::string begin = "<!-- BEGIN oscidrum fields --format markdown -->\n";
+  const std::string end = "<!-- END oscidrum fields -->";
+  const std::size_t b = doc.find(begin), e = doc.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), o.out)
+      << "docs/config.md is out of date: paste the output of 'oscidrum fields --format "
+         "markdown' between its markers";
+  const nlohmann::json j = nlohmann::json::parse(run({"fields", "--format", "json"}).out);
+  EXPECT_EQ(j.size(), fields().size() + 2);
+  EXPECT_EQ(run({"params"}).code, 0);
+}
+
+TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
+  for (const char* command : {"run", "sweep", "soil", "transmissibility", "fields"}) {
+    SCOPED_TRACE(command);
+    const Outcome o = run({command, "--help"});
+    EXPECT_EQ(o.code, 0);
+    EXPECT_NE(o.out.find("Examples:"), std::string::npos);
+    EXPECT_NE(o.out.find(std::string("oscidrum ") + command), std::string::npos);
+  }
+  const Outcome o = run({"--help"});
+  EXPECT_EQ(o.code, 0);
+  EXPECT_NE(o.out.find("Exit codes"), std::string::npos);
+  EXPECT_EQ(run({"--version"}).code, 0);
+}
+
+}  // namespace
+}  // namespace oscidrum::test

@@ -1,0 +1,163 @@
+// End-to-end tests of `oscidrum sweep`: the examples run, parallel output equals serial output,
+// each case's steady state, and kill-and-resume losing nothing.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+const std::string kSource = OSCIDRUM_SOURCE_DIR;
+
+std::size_t count_lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(CliSweep, Table2StudyIsTheSameOnAnyNumberOfThreads) {
+  TempDir dir;
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  const Outcome parallel = run({"sweep", study, "--out", dir / "r.csv", "--threads", "2", "-q"});
+  ASSERT_EQ(parallel.code, 0) << parallel.err;
+  EXPECT_EQ(parallel.out, "");  // with --out nothing goes to stdout unless --format says so
+  const std::string csv = slurp(dir / "r.csv");
+  EXPECT_EQ(count_lines(csv), 1u + 56u);  // header + 14 x 2 x 2
+  EXPECT_EQ(csv.rfind("case[-],soil.table2_G[Pa],contact.pure_rolling[-],MMd_fraction[-],status[-],"
+                      "message[-],",
+                      0),
+            0u);
+  EXPECT_NE(csv.find("\n55,70000000,false,0.05,steady_state,"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.csv.journal"));  // removed when complete
+  const Outcome serial = run({"sweep", study, "--threads", "1", "-q"});
+  ASSERT_EQ(serial.code, 0) << serial.err;
+  EXPECT_EQ(serial.out, csv);  // byte for byte
+}
+
+TEST(CliSweep, EveryExampleRuns) {
+  for (const auto& entry : std::filesystem::directory_iterator(kSource + "/examples")) {
+    const std::string path = entry.path().string();
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(path);
+    const bool study = slurp(path).find("[sweep]") != std::string::npos;
+    const Outcome o = study ? run({"sweep", path, "--format", "json", "-q"})
+                            : run({"run", path, "--format", "json", "-q"});
+    EXPECT_EQ(o.code, 0) << o.err;
+    const nlohmann::json j = nlohmann::json::parse(o.out);
+    if (study) {
+      EXPECT_EQ(j["schema"], "oscidrum-sweep/1");
+      for (const auto& row : j["rows"]) EXPECT_EQ(row["status[-]"], "steady_state");
+    } else {
+      EXPECT_EQ(j["status"], "steady_state");
+    }
+  }
+}
+
+TEST(CliSweep, CasesDirHoldsEachSteadyState) {
+  TempDir dir;
+  const Outcome o = run({"sweep", kSource + "/examples/trough_shape_sweep.toml", "--cases-dir",
+                         dir / "cases", "--format", "table", "-q"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("trough.k[-]"), std::string::npos);
+  for (const char* name : {"case_0000.csv", "case_0001.csv"}) {
+    const std::string csv = slurp(dir / ("cases/" + std::string(name)));
+    EXPECT_EQ(csv.rfind("t[s],delta[rad],", 0), 0u) << name;
+    EXPECT_GT(count_lines(csv), 1000u);
+  }
+  const Outcome list = run({"sweep", kSource + "/examples/radius_sweep.toml", "--list"});
+  EXPECT_EQ(list.code, 0);
+  EXPECT_NE(list.out.find("56 cases"), std::string::npos);
+}
+
+TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
+  TempDir dir;
+  std::ofstream(dir / "s.toml") << "[sweep]\n\"numerics.max_periods\" = [3, 2000]\n";
+  const Outcome o = run({"sweep", dir / "s.toml", "-q"});
+  EXPECT_EQ(o.code, 1) << o.err;
+  EXPECT_NE(o.out.find("\n0,3,max_periods_reached,"), std::string::npos);
+  EXPECT_NE(o.out.find("\n1,2000,steady_state,"), std::string::npos);
+}
+
+// 60 pure-rolling cases on Appendix B soils: long enough (a second or two on one thread) to be
+// stopped in the middle.
+std::string write_slow_study(const TempDir& dir) {
+  std::ofstream(dir / "slow.toml")
+      << "[soil]\ninput = \"modulus\"\n[contact]\npure_rolling = true\n"
+         "[sweep]\n\"soil.G\" = { start = 5e6, stop = 70e6, num = 60 }\n";
+  return dir / "slow.toml";
+}
+
+// Start the sweep, wait until the journal holds `rows` finished cases, then send `sig`.
+Outcome interrupt_after(const std::vector<std::string>& args, const TempDir& dir,
+                        const std::string& journal, std::size_t rows, int sig) {
+  const pid_t pid = start(args, dir / "out", dir / "err");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (count_lines(slurp(journal)) < rows + 1 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, sig);
+  return finish(pid, dir / "out", dir / "err");
+}
+
+TEST(CliSweep, KillAndResumeLosesNothing) {
+  TempDir dir;
+  const std::string study = write_slow_study(dir);
+  const std::string out = dir / "r.csv", journal = out + ".journal";
+  const Outcome reference = run({"sweep", study, "-q"});
+  ASSERT_EQ(reference.code, 0) << reference.err;
+
+  // SIGKILL: no chance to clean up; the journal keeps every finished case.
+  Outcome o =
+      interrupt_after({"sweep", study, "--out", out, "--threads", "1"}, dir, journal, 3, SIGKILL);
+  ASSERT_EQ(o.signal, SIGKILL) << "the sweep ended before it could be killed: " << o.err;
+  EXPECT_FALSE(std::filesystem::exists(out));  // never a half-written result
+  const std::size_t kept = count_lines(slurp(journal)) - 1;
+  EXPECT_GE(kept, 3u);
+
+  // Starting again without --resume refuses to throw the journal away.
+  o = run({"sweep", study, "--out", out});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--resume"), std::string::npos);
+
+  // SIGINT while resuming: stops cleanly with 130 and keeps what it finished.
+  o = interrupt_after({"sweep", study, "--out", out, "--threads", "2", "--resume"}, dir, journal,
+                      kept + 3, SIGINT);
+  EXPECT_EQ(o.code, 130) << o.err;
+  EXPECT_NE(o.err.find("resuming: " + std::to_string(kept) + " of 60"), std::string::npos);
+  EXPECT_NE(o.err.find("--resume' to finish"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const std::size_t kept2 = count_lines(slurp(journal)) - 1;
+  EXPECT_GE(kept2, kept + 3);
+
+  // Resume to the end: the result equals the uninterrupted run, byte for byte.
+  o = run({"sweep", study, "--out", out, "--resume"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("resuming: " + std::to_string(kept2) + " of 60"), std::string::npos);
+  EXPECT_EQ(slurp(out), reference.out);
+  EXPECT_FALSE(std::filesystem::exists(journal));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+}
+
+TEST(CliSweep, ResumeRefusesAJournalOfAnotherStudy) {
+  TempDir dir;
+  const std::string study = write_slow_study(dir);
+  const std::string out = dir / "r.csv";
+  const Outcome o = interrupt_after({"sweep", study, "--out", out, "--threads", "1"}, dir,
+                                    out + ".journal", 1, SIGINT);
+  ASSERT_EQ(o.code, 130) << o.err;
+  Outcome changed = run({"sweep", study, "--out", out, "--resume", "--set", "roller.m=1900"});
+  EXPECT_EQ(changed.code, 2);
+  EXPECT_NE(changed.err.find("belongs to a different study"), std::string::npos);
+  changed = run({"sweep", study, "--out", out, "--restart", "--set", "roller.m=1900", "--set",
+                 "numerics.max_periods=5", "-q"});
+  EXPECT_EQ(changed.code, 1) << changed.err;  // max_periods_reached everywhere
+  EXPECT_EQ(count_lines(slurp(out)), 61u);
+}
+
+}  // namespace
+}  // namespace oscidrum::test

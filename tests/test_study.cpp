@@ -1,0 +1,174 @@
+// Tests of the study runner: any number of threads gives the serial result bit for bit, in input
+// order; cancellation stops cleanly; invalid cases and throwing callbacks are handled.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+#include "oscidrum/soil.hpp"
+#include "oscidrum/study.hpp"
+
+namespace oscidrum {
+namespace {
+
+// A few quick cases: stick-slip and pure rolling on Table 2 soils, with a driving torque.
+std::vector<Case> some_cases() {
+  std::vector<Case> cases;
+  for (double G : {5e6, 25e6, 70e6})
+    for (bool pure : {false, true}) {
+      Case c;
+      c.soil = table2_soil(G);
+      c.contact.pure_rolling = pure;
+      c.MMd = 0.05 * c.roller.M0;
+      c.numerics.samples_per_period = 256;
+      cases.push_back(c);
+    }
+  return cases;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_identical(const CaseOutcome& a, const CaseOutcome& b) {
+  ASSERT_EQ(a.valid, b.valid);
+  EXPECT_EQ(a.error, b.error);
+  EXPECT_EQ(a.result.status, b.result.status);
+  EXPECT_EQ(a.result.diagnostics.steps, b.result.diagnostics.steps);
+  EXPECT_EQ(a.result.diagnostics.rhs_evaluations, b.result.diagnostics.rhs_evaluations);
+  EXPECT_EQ(a.result.events.size(), b.result.events.size());
+  const Samples &x = a.result.samples, &y = b.result.samples;
+  for (auto member : {&Samples::t, &Samples::delta, &Samples::phi, &Samples::x_A, &Samples::s_A,
+                      &Samples::ddx_M, &Samples::ddz_M, &Samples::N, &Samples::T})
+    EXPECT_TRUE(same_bits(x.*member, y.*member));
+  EXPECT_TRUE(same_bits(a.metrics.ddx_max, b.metrics.ddx_max));
+  EXPECT_TRUE(same_bits(a.metrics.area, b.metrics.area));
+  EXPECT_TRUE(same_bits(a.metrics.psi_xz, b.metrics.psi_xz));
+  ASSERT_EQ(a.metrics.ddz_harmonics.size(), b.metrics.ddz_harmonics.size());
+  for (std::size_t n = 0; n < a.metrics.ddz_harmonics.size(); ++n)
+    EXPECT_TRUE(
+        same_bits(a.metrics.ddz_harmonics[n].amplitude, b.metrics.ddz_harmonics[n].amplitude));
+}
+
+TEST(Study, ParallelEqualsSerialBitForBitInInputOrder) {
+  const std::vector<Case> cases = some_cases();
+  StudyOptions serial;
+  serial.threads = 1;
+  serial.keep_samples = true;
+  StudyOptions parallel = serial;
+  parallel.threads = 4;  // more threads than cores and than cases: still the same
+  const std::vector<CaseOutcome> a = run_study(cases, serial);
+  const std::vector<CaseOutcome> b = run_study(cases, parallel);
+  ASSERT_EQ(a.size(), cases.size());
+  ASSERT_EQ(b.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_TRUE(a[i].valid) << a[i].error;
+    EXPECT_EQ(a[i].result.status, Status::steady_state);
+    expect_identical(a[i], b[i]);
+    // ... and equal to the case run on its own.
+    expect_identical(a[i], run_case(cases[i], true, serial.n_harmonics));
+  }
+  // Input order: the pure-rolling cases (odd indices) never slip.
+  EXPECT_EQ(a[1].metrics.stick_fraction, 1.0);
+  EXPECT_LT(a[0].metrics.stick_fraction, 1.0);
+}
+
+TEST(Study, CallbacksAreSerialisedAndCoverEveryCase) {
+  const std::vector<Case> cases = some_cases();
+  StudyOptions options;
+  options.threads = 3;
+  std::vector<int> seen(cases.size(), 0);
+  std::size_t last_done = 0;
+  bool in_callback = false, overlapped = false;
+  options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
+    overlapped = overlapped || in_callback;
+    in_callback = true;
+    ++seen.at(i);
+    EXPECT_GT(outcome.result.samples.size(), 0u);  // samples reach the callback ...
+    in_callback = false;
+  };
+  options.progress = [&](std::size_t done, std::size_t total) {
+    EXPECT_EQ(done, last_done + 1);
+    EXPECT_EQ(total, cases.size());
+    last_done = done;
+  };
+  const std::vector<CaseOutcome> out = run_study(cases, options);
+  EXPECT_FALSE(overlapped);
+  EXPECT_EQ(last_done, cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(seen[i], 1);
+    EXPECT_EQ(out[i].result.samples.size(), 0u);  // ... but are dropped without keep_samples
+    EXPECT_GT(out[i].metrics.ddx_max, 0.0);
+  }
+}
+
+TEST(Study, CancellationBetweenCasesLeavesTheRestCancelled) {
+  const std::vector<Case> cases = some_cases();
+  StudyOptions options;
+  options.threads = 1;
+  std::size_t done = 0;
+  options.on_case_done = [&](std::size_t, const CaseOutcome&) { ++done; };
+  options.cancelled = [&] { return done >= 2; };
+  const std::vector<CaseOutcome> out = run_study(cases, options);
+  EXPECT_EQ(done, 2u);
+  EXPECT_TRUE(out[0].valid);
+  EXPECT_TRUE(out[1].valid);
+  for (std::size_t i = 2; i < out.size(); ++i) {
+    EXPECT_FALSE(out[i].valid);
+    EXPECT_EQ(out[i].error, "cancelled");
+  }
+}
+
+TEST(Study, CancellationStopsARunningCase) {
+  Case endless;
+  endless.numerics.steady_tol = 1e-300;  // never steady
+  endless.numerics.max_periods = 10000000;
+  const std::vector<Case> cases(2, endless);
+  std::atomic<bool> stop{false};
+  StudyOptions options;
+  options.threads = 2;
+  options.cancelled = [&] { return stop.load(); };
+  std::size_t reported = 0;
+  options.on_case_done = [&](std::size_t, const CaseOutcome&) { ++reported; };
+  std::thread timer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    stop = true;
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<CaseOutcome> out = run_study(cases, options);
+  timer.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  EXPECT_EQ(reported, 0u);  // an interrupted case is not a result
+  for (const CaseOutcome& o : out) EXPECT_EQ(o.error, "cancelled");
+}
+
+TEST(Study, InvalidCaseIsReportedNotThrown) {
+  std::vector<Case> cases = some_cases();
+  cases[1].trough.a = 0.5;  // R < r
+  const std::vector<CaseOutcome> out = run_study(cases, {});
+  EXPECT_TRUE(out[0].valid);
+  EXPECT_FALSE(out[1].valid);
+  EXPECT_NE(out[1].error.find("trough.a"), std::string::npos);
+  EXPECT_TRUE(out[2].valid);
+  EXPECT_FALSE(run_case(cases[1]).valid);
+}
+
+TEST(Study, CallbackExceptionStopsTheStudyAndPropagates) {
+  const std::vector<Case> cases = some_cases();
+  StudyOptions options;
+  options.threads = 2;
+  options.on_case_done = [](std::size_t, const CaseOutcome&) {
+    throw std::runtime_error("disk full");
+  };
+  EXPECT_THROW(run_study(cases, options), std::runtime_error);
+  EXPECT_TRUE(run_study({}, options).empty());
+}
+
+}  // namespace
+}  // namespace oscidrum
