@@ -1,0 +1,59 @@
+"""Shared fixtures of the Python tests.
+
+Run from a CMake build tree (ctest sets PYTHONPATH=<build>/python and OSCIDRUM_CLI), or against
+an installed package: ``/usr/bin/python3 -m pytest tests/python``.
+"""
+
+import glob
+import os
+from pathlib import Path
+
+import pytest
+
+import oscidrum
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def find_cli():
+    """The oscidrum CLI: $OSCIDRUM_CLI, else the newest build*/apps/cli/oscidrum."""
+    path = os.environ.get("OSCIDRUM_CLI")
+    if path and os.access(path, os.X_OK):
+        return path
+    found = [p for p in glob.glob(str(ROOT / "build*" / "apps" / "cli" / "oscidrum"))
+             if os.access(p, os.X_OK)]
+    return max(found, key=os.path.getmtime) if found else None
+
+
+@pytest.fixture(scope="session")
+def root():
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def cli():
+    path = find_cli()
+    if path is None:
+        pytest.skip("the oscidrum CLI is not built (set OSCIDRUM_CLI or build apps/cli)")
+    return path
+
+
+@pytest.fixture(scope="session")
+def slip_case():
+    """A stick-slip case of the paper (Table 2, G = 25 MN/m^2, mu = 0.5, MMd = 0.05 M0)."""
+    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6))
+    case.MMd = 0.05 * case.roller.M0
+    return case
+
+
+@pytest.fixture(scope="session")
+def slip_result(slip_case):
+    return oscidrum.simulate(slip_case)
+
+
+@pytest.fixture(scope="session")
+def rolling_result():
+    """Pure rolling at G = 5 MN/m^2, MMd = 0."""
+    case = oscidrum.Case(soil=oscidrum.table2_soil(5e6))
+    case.contact.pure_rolling = True
+    return oscidrum.simulate(case)

@@ -1,0 +1,108 @@
+"""Python and the C++ CLI give identical numbers for the same case (both call the same
+library; the CSV writers must agree byte for byte)."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import oscidrum
+from oscidrum import data
+
+
+INERT = {"coefficients": ("soil.G", "soil.nu", "soil.rho"),
+         "modulus": ("soil.ksh", "soil.ksv", "soil.csh", "soil.csv")}
+
+
+def effective(case):
+    """The case's fields that matter (the CLI rejects soil keys its soil.input ignores)."""
+    values = case.to_dict()
+    return {k: v for k, v in values.items() if k not in INERT[values["soil.input"]]}
+
+
+def set_args(case):
+    """--set KEY=VALUE for every effective field of the case (%.17g numbers: exact)."""
+    args = []
+    for key, value in effective(case).items():
+        if isinstance(value, bool):
+            text = "true" if value else "false"
+        elif isinstance(value, float):
+            text = "%.17g" % value
+        else:
+            text = str(value)
+        args += ["--set", f"{key}={text}"]
+    return args
+
+
+CASES = {
+    "stick_slip_G25_MMd": lambda: oscidrum.Case(soil=oscidrum.table2_soil(25e6),
+                                                MMd=0.05 * 54947.0),
+    "pure_rolling_G5_spiral": lambda: oscidrum.Case(
+        soil=oscidrum.table2_soil(5e6), trough={"k": 0.002, "a": 0.601},
+        **{"contact.pure_rolling": True, "numerics.samples_per_period": 256}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_python_equals_cli(cli, tmp_path, name):
+    case = CASES[name]()
+    csv, summary = tmp_path / "cli.csv", tmp_path / "cli.json"
+    p = subprocess.run([cli, "run", *set_args(case), "--csv", str(csv), "--json", str(summary)],
+                       capture_output=True, text=True, timeout=120)
+    if p.returncode != 0 and "steady" not in p.stdout + p.stderr:
+        pytest.fail(f"oscidrum run failed ({p.returncode}): {p.stderr}")
+    result = oscidrum.simulate(case)
+    mine = tmp_path / "python.csv"
+    data.write_case_csv(result, mine)
+    assert mine.read_bytes() == csv.read_bytes()  # identical numbers, identical text
+    state = data.read_case(csv, summary)
+    for column, _ in data.COLUMNS:
+        assert np.array_equal(getattr(state.samples, column), getattr(result.samples, column))
+    info = json.loads(summary.read_text())
+    assert info["status"] == result.status.name
+    assert {k: info["parameters"][k] for k in effective(case)} == effective(case)
+    metrics = oscidrum.compute_metrics(result)
+    for key, value in metrics.to_dict().items():
+        assert info["metrics"][key] == value, key
+
+
+def test_cli_plot_calls_the_python_plots(cli, tmp_path):
+    out = tmp_path / "plots"
+    p = subprocess.run([cli, "run", "--G", "25", "--csv", str(tmp_path / "c.csv"), "--json",
+                        str(tmp_path / "c.json"), "--plot", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
+    pngs = sorted(f.name for f in out.glob("*.png"))
+    assert "accelerations.png" in pngs and "figure_eight.png" in pngs
+
+
+def test_cli_sweep_equals_run_study_and_plots(cli, root, tmp_path):
+    results = tmp_path / "results.csv"
+    p = subprocess.run([cli, "sweep", str(root / "examples" / "table2_sweep.toml"), "--out",
+                        str(results)], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stdout + p.stderr
+    table, units = data.read_csv_columns(results)
+    G = table[data.resolve_column(table, "soil.G")]
+    cases = []
+    for g, pure, fraction in zip(G, table["contact.pure_rolling"], table["MMd_fraction"]):
+        case = oscidrum.Case(soil=oscidrum.table2_soil(float(g)))
+        case.contact.pure_rolling = bool(pure)
+        case.MMd = float(fraction) * case.roller.M0
+        cases.append(case)
+    outcomes = oscidrum.run_study(cases)
+    for name in ("area", "ddx_max", "ddz_max", "psi_xz", "phi_lag"):
+        assert np.array_equal(table[name], [getattr(o.metrics, name) for o in outcomes]), name
+    out = tmp_path / "plots"
+    p = subprocess.run([sys.executable, "-m", "oscidrum.plot", "sweep", "--csv", str(results),
+                        "--x", "soil.G", "--y", "area", "--group", "MMd_fraction", "--where",
+                        "contact.pure_rolling=false", "--out", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert (out / "area_vs_soil.G.png").read_bytes().startswith(b"\x89PNG")
+    from oscidrum import plot
+
+    fig = plot.plot_table(table, "soil.G", "area", group=["contact.pure_rolling", "MMd_fraction"],
+                          units=units)
+    assert len(fig.axes[0].lines) == 4

@@ -1,0 +1,167 @@
+"""Parameter classes: construction, defaults, repr, dotted keys, errors, pickling."""
+
+import copy
+import math
+import pickle
+import re
+
+import pytest
+
+import oscidrum
+
+
+def test_defaults_are_the_papers_roller():
+    c = oscidrum.Case()
+    assert c.roller.r == 0.6 and c.roller.m == 1851.0 and c.roller.I == 411.78
+    assert c.roller.P0 == 45224.0 and c.roller.f == 39.0 and c.roller.M0 == 54947.0
+    assert c.roller.kd == 4e6 and c.roller.cd == 3e3
+    assert c.soil.input == "coefficients" and c.soil.ksh == 41.4e6 and c.soil.csv == 263e3
+    assert c.trough.k == 0.0 and c.trough.a == 0.606
+    assert c.contact.mu == 0.5 and c.contact.pure_rolling is False
+    assert c.MMd == 0.0
+
+
+def test_every_field_is_a_property_with_its_default():
+    c = oscidrum.Case()
+    keys = oscidrum.Case.keys()
+    assert len(keys) == len(oscidrum.fields())
+    for f in oscidrum.fields():
+        assert c.get(f.key) == f.default
+        group, _, name = f.key.rpartition(".")
+        owner = getattr(c, group) if group else c
+        assert getattr(owner, name) == f.default
+        doc = getattr(type(owner), name).__doc__
+        assert f.unit in doc or f.unit == "-"
+
+
+def test_keyword_construction():
+    r = oscidrum.Roller(m=2000.0, f=30)
+    assert r.m == 2000.0 and r.f == 30.0 and r.r == 0.6
+    s = oscidrum.Soil(input="modulus", G=5e6)
+    assert s.input == "modulus" and s.G == 5e6
+    c = oscidrum.Case(roller=r, soil={"ksh": 11.4e6}, MMd=100.0, **{"contact.pure_rolling": True})
+    assert c.roller.m == 2000.0 and c.soil.ksh == 11.4e6 and c.MMd == 100.0
+    assert c.contact.pure_rolling is True
+    n = oscidrum.Numerics(samples_per_period=256)
+    assert isinstance(n.samples_per_period, int) and n.samples_per_period == 256
+
+
+def test_types_of_values():
+    c = oscidrum.Case()
+    assert isinstance(c.get("numerics.max_periods"), int)
+    assert isinstance(c.get("contact.pure_rolling"), bool)
+    assert isinstance(c.get("soil.input"), str)
+    c.soil.input = oscidrum.SoilInput.modulus
+    assert c.soil.input == "modulus"
+    c.set("contact.pure_rolling", "true")
+    assert c.contact.pure_rolling is True
+
+
+def test_repr_has_units():
+    text = repr(oscidrum.Roller())
+    assert text.startswith("Roller(") and "r=0.6 m" in text and "I=411.78 kg m^2" in text
+    assert "f=39 Hz" in text
+    case = repr(oscidrum.Case())
+    for part in ("roller=Roller(", "soil=Soil(", "trough=Trough(", "contact=Contact(",
+                 "MMd=0 N m", "numerics=Numerics("):
+        assert part in case
+
+
+def test_set_get_and_nested_mutation():
+    c = oscidrum.Case()
+    c.set("soil.G", 5e6)
+    assert c.get("soil.G") == 5e6 == c.soil.G
+    c.soil.ksh = 1.0e7  # nested objects are references into the case
+    assert c.get("soil.ksh") == 1.0e7
+
+
+def test_from_dict_to_dict_roundtrip():
+    c = oscidrum.Case.from_dict({"soil.G": 6e6, "MMd": 2747.35, "contact": {"mu": 0.4}})
+    assert c.soil.G == 6e6 and c.MMd == 2747.35 and c.contact.mu == 0.4
+    d = c.to_dict()
+    assert list(d) == oscidrum.Case.keys()
+    assert oscidrum.Case.from_dict(d) == c
+    assert c.replace(MMd=0.0).MMd == 0.0 and c.MMd == 2747.35
+
+
+def test_copy_and_pickle():
+    c = oscidrum.Case(MMd=10.0)
+    for other in (copy.copy(c), copy.deepcopy(c), c.copy(), pickle.loads(pickle.dumps(c))):
+        assert other == c
+        other.MMd = 20.0
+        assert c.MMd == 10.0
+    r = oscidrum.Roller(m=1000.0)
+    assert pickle.loads(pickle.dumps(r)) == r
+
+
+def test_errors_carry_the_librarys_message():
+    c = oscidrum.Case()
+    with pytest.raises(oscidrum.Error) as info:
+        c.set("soil.G", -5e6)
+    message = str(info.value)
+    assert message == oscidrum.find_field("soil.G").check(-5e6)
+    assert re.fullmatch(r"soil\.G must be > 0 \[Pa\]; got -5(e\+06|000000)", message)
+    assert isinstance(info.value, ValueError)
+    with pytest.raises(oscidrum.Error, match=r"unknown parameter 'soil.g'; did you mean 'soil.G'"):
+        c.set("soil.g", 1.0)
+    with pytest.raises(oscidrum.Error, match="roller.foo"):
+        oscidrum.Roller(foo=1.0)
+    with pytest.raises(oscidrum.Error, match=r"soil\.nu must be in \[0, 0\.5\)"):
+        oscidrum.Soil(nu=0.5)
+    with pytest.raises(oscidrum.Error, match="numerics.max_periods must be an integer"):
+        c.numerics.max_periods = 2.5
+    with pytest.raises(oscidrum.Error, match="soil.input must be one of coefficients, modulus"):
+        c.soil.input = "table"
+    with pytest.raises(oscidrum.Error, match="must be a number"):
+        c.set("soil.G", None)
+    assert c.soil.G == 25e6  # unchanged by the failed assignments
+
+
+def test_validate_checks_rules_between_fields():
+    c = oscidrum.Case()
+    c.trough.a = 0.59
+    with pytest.raises(oscidrum.Error, match="trough.a must be > roller.r"):
+        c.validate()
+    with pytest.raises(oscidrum.Error, match="trough.a must be > roller.r"):
+        oscidrum.simulate(c)
+
+
+def test_fields_table():
+    fields = oscidrum.fields()
+    keys = [f.key for f in fields]
+    assert "soil.G" in keys and "MMd" in keys and len(set(keys)) == len(keys)
+    g = oscidrum.find_field("soil.G")
+    assert g.unit == "Pa" and g.rule == "> 0" and g.type == "real" and g.min_open
+    assert g.check(1.0) is None
+    assert oscidrum.find_field("soil.input").choices == ["coefficients", "modulus"]
+    with pytest.raises(oscidrum.Error, match="did you mean"):
+        oscidrum.find_field("soil.GG")
+
+
+def test_soil_table2_and_transmissibility():
+    rows = oscidrum.table2()
+    assert len(rows) == 14 and rows[0].G == 5e6 and rows[-1].G == 70e6
+    soil = oscidrum.table2_soil(5e6)
+    assert soil.ksh == rows[0].ksh == 11.4e6 and soil.input == "coefficients"
+    with pytest.raises(oscidrum.Error):
+        oscidrum.table2_soil(7e6)
+    k = oscidrum.soil_coefficients(25e6)
+    assert k.csh == pytest.approx(141e3, rel=0.01) and 0.09 < k.a0 < 0.1
+    k2 = oscidrum.soil_coefficients(oscidrum.Soil(input="modulus", G=25e6))
+    assert k2.ksh == k.ksh
+    t = oscidrum.transmissibility()
+    assert t.Tp == pytest.approx(0.025, abs=5e-4) and t.ratio == pytest.approx(6.4, abs=0.05)
+    with pytest.raises(oscidrum.Error):
+        oscidrum.transmissibility(kd=-1.0)
+
+
+def test_model_and_kinematics():
+    m = oscidrum.Model(oscidrum.Case())
+    assert m.W == 45224.0 and m.nu == pytest.approx(2 * math.pi * 39)
+    q = m.initial_state()
+    assert q.s_A == pytest.approx(m.W / (m.ksv + 4e6))
+    forces = oscidrum.contact_forces(m, q)
+    assert forces.N > 0
+    kin = oscidrum.kinematics(m.geometry, 0.1)
+    assert kin.f3_tilde == pytest.approx(0.0, abs=1e-12)
+    assert kin.f1_bar == pytest.approx(0.6 * kin.f5, rel=1e-12)

@@ -1,0 +1,173 @@
+"""simulate, metrics and studies through the bindings."""
+
+import threading
+
+import numpy as np
+import pytest
+
+import oscidrum
+from oscidrum.data import COLUMNS
+
+
+def test_result_arrays(slip_result):
+    r = slip_result
+    assert r.ok and r.status == oscidrum.Status.steady_state and r.status.name == "steady_state"
+    assert r.frequency == 39.0 and r.period == pytest.approx(1 / 39.0)
+    n = r.sample_periods * r.samples_per_period
+    assert len(r.samples) == n > 0
+    for name, _ in COLUMNS:
+        a = getattr(r.samples, name)
+        assert isinstance(a, np.ndarray) and a.shape == (n,)
+    assert r.samples.ddx_M.dtype == np.float64 and not r.samples.ddx_M.flags.writeable
+    assert r.samples.phase.dtype == np.int8
+    assert set(np.unique(r.samples.phase)) <= {-1, 0, 1}
+    assert (r.samples.phase != 0).any()  # stick-slip
+    dt = np.diff(r.samples.t)
+    assert np.allclose(dt, 1 / (r.frequency * r.samples_per_period), rtol=1e-9)
+    assert r.samples.columns == [name for name, _ in COLUMNS]
+    assert r.samples.headers[0] == "t[s]" and r.samples.headers[-1] == "phase[-]"
+
+
+def test_views_keep_the_result_alive():
+    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6))
+    ddx = oscidrum.simulate(case).samples.ddx_M  # the Result is a temporary
+    import gc
+
+    gc.collect()
+    assert np.isfinite(ddx).all() and np.abs(ddx).max() > 1.0
+
+
+def test_events_and_diagnostics(slip_result):
+    r = slip_result
+    assert r.events and all(isinstance(e, oscidrum.Event) for e in r.events)
+    kinds = {e.kind for e in r.events}
+    assert oscidrum.EventKind.stick_to_slip in kinds
+    times = [e.t for e in r.events]
+    assert times == sorted(times)
+    d = r.diagnostics
+    assert d.periods_to_steady > 0 and d.multiplicity >= 1 and d.steps > 0
+    assert d.to_dict()["steps"] == d.steps
+    assert r.stick_time + r.slip_positive_time + r.slip_negative_time == pytest.approx(
+        r.sample_periods / r.frequency, rel=1e-6)
+
+
+def test_metrics(slip_result, rolling_result):
+    m = oscidrum.compute_metrics(slip_result, n_max=10)
+    assert m.ddx_amplitude.shape == (11,) and m.ddz_phase.shape == (11,)
+    assert m.ddx_amplitude[1] == pytest.approx(m.ddx_harmonics[1].amplitude)
+    assert m.ddx_max == pytest.approx(slip_result.samples.ddx_M.max())
+    assert m.area > 0 and set(m.to_dict()) == set(oscidrum.Metrics.scalar_names)
+    assert m.stick_fraction + m.slip_positive_fraction + m.slip_negative_fraction == \
+        pytest.approx(1.0)
+    # pure rolling at G = 5 (MODEL.md section 8: psi about 0.104 rad)
+    mr = oscidrum.compute_metrics(rolling_result)
+    assert mr.psi_xz == pytest.approx(0.104, abs=0.01)
+    # the signal-level functions agree with the metrics
+    s = rolling_result.samples
+    amp, phase = oscidrum.harmonics(s.ddx_M, rolling_result.sample_periods,
+                                    rolling_result.frequency, s.t[0], 10)
+    assert np.allclose(amp, mr.ddx_amplitude) and np.allclose(phase, mr.ddx_phase)
+    n = rolling_result.samples_per_period  # the area of one steady period
+    assert oscidrum.enclosed_area(s.ddx_M[:n], s.ddz_M[:n]) == pytest.approx(mr.area, rel=1e-6)
+
+
+def test_progress_callback_and_cancel():
+    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6))
+    seen = []
+    oscidrum.simulate(case, progress=lambda period, change: seen.append((period, change)))
+    assert len(seen) > 10 and all(isinstance(p, int) for p, _ in seen)
+    r = oscidrum.simulate(case, progress=lambda period, change: period < 5)
+    assert r.status == oscidrum.Status.max_periods_reached
+
+
+def test_exception_in_progress_propagates():
+    def boom(period, change):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        oscidrum.simulate(oscidrum.Case(), progress=boom)
+
+
+def test_simulate_releases_the_gil():
+    """Another Python thread runs while simulate integrates."""
+    ticks = []
+    done = threading.Event()
+
+    def ticker():
+        while not done.is_set():
+            ticks.append(1)
+            done.wait(0.001)
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6), **{"contact.pure_rolling": True})
+    for _ in range(3):
+        oscidrum.simulate(case)
+    done.set()
+    thread.join()
+    assert len(ticks) > 3
+
+
+def _cases():
+    cases = []
+    for G in (5e6, 25e6, 45e6, 70e6):
+        for pure in (True, False):
+            c = oscidrum.Case(soil=oscidrum.table2_soil(G), MMd=0.05 * 54947.0)
+            c.contact.pure_rolling = pure
+            cases.append(c)
+    return cases
+
+
+def test_parallel_study_equals_serial():
+    cases = _cases()
+    parallel = oscidrum.run_study(cases, threads=4, keep_samples=True)
+    serial = oscidrum.run_study(cases, threads=1, keep_samples=True)
+    one_by_one = [oscidrum.simulate(c) for c in cases]
+    assert len(parallel) == len(serial) == len(cases)
+    for p, s, r in zip(parallel, serial, one_by_one):
+        assert p.ok and s.ok
+        for name, _ in COLUMNS:
+            a, b, c = (getattr(x.samples, name) for x in (p.result, s.result, r))
+            assert np.array_equal(a, b) and np.array_equal(a, c), name
+        assert p.metrics.to_dict() == s.metrics.to_dict()
+        assert p.metrics.to_dict() == oscidrum.compute_metrics(r).to_dict()
+
+
+def test_study_options_and_invalid_cases():
+    cases = [oscidrum.Case(), {"soil.ksh": 11.4e6, "contact.pure_rolling": True},
+             oscidrum.Case(trough={"a": 0.5})]
+    progress, done = [], []
+    out = oscidrum.run_study(cases, threads=2, progress=lambda d, t: progress.append((d, t)),
+                             on_case_done=lambda i, o: done.append(i))
+    assert [o.valid for o in out] == [True, True, False]
+    assert "trough.a must be > roller.r" in out[2].error and not out[2].ok
+    assert len(out[0].result.samples) == 0  # keep_samples=False
+    assert out[0].metrics.area > 0  # metrics are computed anyway
+    assert sorted(progress) == [(1, 3), (2, 3), (3, 3)]
+    assert sorted(done) == [0, 1, 2]
+    single = oscidrum.run_case(oscidrum.Case())
+    assert single.ok and len(single.result.samples) > 0
+    assert single.metrics.to_dict() == out[0].metrics.to_dict()
+
+
+def test_exception_in_study_callback_propagates():
+    def boom(done, total):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        oscidrum.run_study([oscidrum.Case()] * 3, threads=2, progress=boom)
+
+
+def test_ctrl_c_interrupts_a_study():
+    import os
+    import signal
+    import time
+
+    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6), **{"contact.pure_rolling": True})
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        oscidrum.run_study([case] * 400, threads=1)
+    timer.join()
+    assert time.perf_counter() - start < 5.0
