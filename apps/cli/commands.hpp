@@ -31,5 +31,8 @@ void add_sweep_command(CLI::App& app, Action& action);
 void add_soil_command(CLI::App& app, Action& action);
 void add_transmissibility_command(CLI::App& app, Action& action);
 void add_fields_command(CLI::App& app, Action& action);
+void add_validate_command(CLI::App& app, Action& action);
+void add_paper_command(CLI::App& app, Action& action);
+void add_analyze_command(CLI::App& app, Action& action);
 
 }  // namespace oscidrum::cli

@@ -1,4 +1,4 @@
-// --plot: spawn the Python plotting module (posix_spawn, no shell).
+// --plot and `oscidrum paper`: spawn a module of the Python package (posix_spawn, no shell).
 #include "plot.hpp"
 
 #include <spawn.h>
@@ -18,9 +18,15 @@ extern char** environ;
 namespace oscidrum::cli {
 
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir) {
+  return run_python({"oscidrum.plot", "case", "--csv", csv, "--json", json, "--out", dir},
+                    "the data are in " + csv + " and " + json);
+}
+
+bool run_python(const std::vector<std::string>& module_args, const std::string& data_note) {
   const std::string python = "/usr/bin/python3";
-  std::vector<std::string> args = {python,   "-m", "oscidrum.plot", "case", "--csv", csv,
-                                   "--json", json, "--out",         dir};
+  std::vector<std::string> args = {python, "-m"};
+  args.insert(args.end(), module_args.begin(), module_args.end());
+  const std::string what = "'" + python + " -m " + module_args.front() + "'";
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -53,24 +59,24 @@ bool run_plot(const std::string& csv, const std::string& json, const std::string
   const int rc = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
-    std::cerr << "oscidrum: error: --plot needs " << python << " with the oscidrum Python package ("
-              << std::strerror(rc) << "); the data are in " << csv << " and " << json << "\n";
+    std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc) << "); "
+              << data_note << "\n";
     return false;
   }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) {
-      std::cerr << "oscidrum: error: --plot: waitpid failed: " << std::strerror(errno) << "\n";
+      std::cerr << "oscidrum: error: " << what << ": waitpid failed: " << std::strerror(errno)
+                << "\n";
       return false;
     }
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return true;
-  std::cerr << "oscidrum: error: plotting failed: '" << python << " -m oscidrum.plot case' "
+  std::cerr << "oscidrum: error: " << what << " "
             << (WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
                                   : std::string("was killed by a signal"))
-            << " (is the oscidrum Python package installed, with matplotlib? see "
-               "python/README.md); the data are in "
-            << csv << " and " << json << "\n";
+            << " (is the oscidrum Python package installed, with matplotlib? see docs/python.md); "
+            << data_note << "\n";
   return false;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace oscidrum::cli {
 
@@ -10,5 +11,10 @@ namespace oscidrum::cli {
 /// put first on PYTHONPATH when the tool runs from a build tree. Returns true on success; on
 /// failure prints why on stderr and returns false.
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir);
+
+/// Run `/usr/bin/python3 -m <module_args...>` with the package found first in the build tree,
+/// its output on our stdout. On failure print one error line ending with `data_note` and return
+/// false.
+bool run_python(const std::vector<std::string>& module_args, const std::string& data_note);
 
 }  // namespace oscidrum::cli

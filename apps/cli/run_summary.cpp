@@ -56,9 +56,10 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.line("integrator", std::to_string(d.steps) + " steps, " + std::to_string(d.rhs_evaluations) +
                            " RHS evaluations");
   s.line("events", std::to_string(d.events) + " (" + std::to_string(d.switches) + " switches, " +
-                       std::to_string(d.reversals) + " reversals)");
+                       std::to_string(d.reversals) + " reversals, " +
+                       std::to_string(d.inconsistent_slip_ends) + " inconsistent slip ends)");
   s.line("switches per period", fmt(d.switches_per_period, 4));
-  s.line("max slip residual (39)", fmt(d.max_slip_residual, 3));
+  s.line("max slip residual (39)", fmt(d.max_slip_residual, 3) + " (relative to W)");
   s.line("min N", fmt(d.min_N / 1e3, 5) + " kN");
 
   if (metrics) {

@@ -54,7 +54,7 @@ struct Diagnostics {
   long inconsistent_slip_ends = 0;   ///< slip ends where neither stick nor a reversal is
                                      ///< consistent (docs/model.md); stick is taken
   double switches_per_period = 0.0;  ///< in the sampled steady state
-  double max_slip_residual = 0.0;    ///< max |(39)| / max(N) during slip [-]
+  double max_slip_residual = 0.0;    ///< max |(39)| / W during slip, W = m g + Fz [-]
   double min_N = 0.0;                ///< smallest normal force seen [N]
 };
 

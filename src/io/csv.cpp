@@ -1,10 +1,13 @@
 // CSV writers: steady state (docs/csv-columns.md), events, sweep results (docs/outputs.md).
 #include "oscidrum_io/csv.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 
+#include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 
 namespace oscidrum::io {
@@ -116,8 +119,9 @@ std::string study_csv_header(const StudyColumns& columns) {
   for (const char* name :
        {"status[-]", "message[-]", "periods_to_steady[-]", "multiplicity[-]", "final_change[-]",
         "periods_simulated[-]", "steps[-]", "rhs_evaluations[-]", "events[-]", "switches[-]",
-        "reversals[-]", "switches_per_period[-]", "max_slip_residual[-]", "min_N[N]",
-        "ddx_max[m/s^2]", "ddx_min[m/s^2]", "ddz_max[m/s^2]", "ddz_min[m/s^2]"})
+        "reversals[-]", "inconsistent_slip_ends[-]", "switches_per_period[-]",
+        "max_slip_residual[-]", "min_N[N]", "ddx_max[m/s^2]", "ddx_min[m/s^2]", "ddz_max[m/s^2]",
+        "ddz_min[m/s^2]"})
     h.emplace_back(name);
   for (const char* signal : {"ddx", "ddz"})
     for (int n = 1; n <= columns.n_harmonics; ++n)
@@ -140,7 +144,7 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   if (!outcome.valid) {
     r.emplace_back("invalid");
     r.push_back(csv_quote(outcome.error));
-    r.resize(r.size() + 12 + metric_cells);
+    r.resize(r.size() + 13 + metric_cells);  // the 13 diagnostics cells above, empty
     return join(r);
   }
   r.emplace_back(to_string(res.status));
@@ -154,6 +158,7 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   r.push_back(std::to_string(d.events));
   r.push_back(std::to_string(d.switches));
   r.push_back(std::to_string(d.reversals));
+  r.push_back(std::to_string(d.inconsistent_slip_ends));
   r.push_back(format_double_short(d.switches_per_period));
   r.push_back(format_double_short(d.max_slip_residual));
   r.push_back(format_double_short(d.min_N));
@@ -170,6 +175,54 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
                    m.slip_positive_fraction, m.slip_negative_fraction})
     r.push_back(format_double_short(v));
   return join(r);
+}
+
+int NumericTable::find(std::string_view name) const {
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    const std::string& h = header[c];
+    if (h == name ||
+        (h.size() > name.size() && h.compare(0, name.size(), name) == 0 && h[name.size()] == '['))
+      return static_cast<int>(c);
+  }
+  return -1;
+}
+
+NumericTable read_numeric_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the file");
+  NumericTable table;
+  std::string line;
+  std::size_t line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells = csv_split(line);
+    for (std::string& cell : cells) {
+      const std::size_t a = cell.find_first_not_of(" \t"), b = cell.find_last_not_of(" \t");
+      cell = a == std::string::npos ? std::string() : cell.substr(a, b - a + 1);
+    }
+    if (table.header.empty()) {
+      table.header = cells;
+      table.columns.resize(cells.size());
+      continue;
+    }
+    if (cells.size() != table.header.size())
+      throw Error(path + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                  " cells, but the header has " + std::to_string(table.header.size()));
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      double v = 0.0;
+      const char* begin = cells[c].data();
+      const char* end = begin + cells[c].size();
+      const auto r = std::from_chars(begin, end, v);
+      if (cells[c].empty() || r.ec != std::errc() || r.ptr != end)
+        throw Error(path + ":" + std::to_string(line_no) + ": column '" + table.header[c] +
+                    "' must be a number; got '" + cells[c] + "'");
+      table.columns[c].push_back(v);
+    }
+  }
+  if (table.header.empty()) throw Error(path + ": no header line (the file is empty)");
+  return table;
 }
 
 }  // namespace oscidrum::io

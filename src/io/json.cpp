@@ -104,6 +104,7 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                       {"events", d.events},
                       {"switches", d.switches},
                       {"reversals", d.reversals},
+                      {"inconsistent_slip_ends", d.inconsistent_slip_ends},
                       {"switches_per_period", number(d.switches_per_period)},
                       {"max_slip_residual", number(d.max_slip_residual)},
                       {"min_N", number(d.min_N)}};

@@ -290,7 +290,8 @@ TEST(CliFields, DocsConfigTableIsTheGeneratedOne) {
 }
 
 TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
-  for (const char* command : {"run", "sweep", "soil", "transmissibility", "fields"}) {
+  for (const char* command :
+       {"run", "sweep", "analyze", "validate", "paper", "soil", "transmissibility", "fields"}) {
     SCOPED_TRACE(command);
     const Outcome o = run({command, "--help"});
     EXPECT_EQ(o.code, 0);

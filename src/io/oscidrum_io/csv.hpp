@@ -49,4 +49,19 @@ std::string study_csv_header(const StudyColumns& columns);
 std::string study_csv_row(const StudyColumns& columns, std::size_t index,
                           const std::vector<Value>& varied, const CaseOutcome& outcome);
 
+/// A CSV file of numbers with one header line (e.g. a measured acceleration record).
+struct NumericTable {
+  std::vector<std::string> header;           ///< column names as written
+  std::vector<std::vector<double>> columns;  ///< columns[c][row]
+
+  /// Index of the column whose name is `name` or starts with `name[` (a unit in brackets), or
+  /// -1. Case-sensitive.
+  int find(std::string_view name) const;
+};
+
+/// Read `path` (',' separated; blank lines and lines starting with '#' skipped). Throws
+/// oscidrum::Error naming the file, line and column for unreadable files, ragged rows and cells
+/// that are not numbers.
+NumericTable read_numeric_csv(const std::string& path);
+
 }  // namespace oscidrum::io

@@ -1,0 +1,67 @@
+// oscidrum paper: reproduce the paper. The studies, the data behind Figs. 7-22, the figures and
+// the report come from the Python package (python3 -m oscidrum.paper, one plotting
+// implementation), which includes the validation table of src/validation.cpp. Without Python,
+// the validation table alone is written.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "oscidrum/validation.hpp"
+#include "oscidrum_io/files.hpp"
+#include "plot.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+struct PaperOptions {
+  std::string out = "out/paper";
+  std::string format = "png";
+  int threads = 0;
+  bool quiet = false;
+};
+
+int run(const PaperOptions& o) {
+  std::filesystem::create_directories(o.out);
+  std::vector<std::string> args = {
+      "oscidrum.paper",         "--out", o.out, "--format", o.format, "--threads",
+      std::to_string(o.threads)};
+  if (o.quiet) args.emplace_back("--quiet");
+  if (run_python(args, "writing the validation table alone")) {
+    if (!o.quiet) std::cerr << "oscidrum paper: figures, data and report.md in " << o.out << "\n";
+    return kExitOk;
+  }
+  PaperRunOptions po;
+  po.threads = o.threads;
+  const std::vector<ValidationRow> rows = validate(run_paper_studies(po));
+  io::write_file_atomic(o.out + "/validation.md",
+                        "# Validation against the paper\n\n" + validation_markdown(rows));
+  std::cerr << "oscidrum paper: wrote " << o.out
+            << "/validation.md only (the figures need the Python package)\n";
+  return kExitCaseFailed;
+}
+
+}  // namespace
+
+void add_paper_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<PaperOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "paper",
+      "Reproduce the paper: every study with its data, figures and a report. "
+      "Runs the paper's ~100 cases on all cores and writes into --out: for each of Figs. 7-22 a "
+      "CSV and a "
+      "figure, report.md (each figure beside the paper's stated result) and the validation "
+      "table validation.md. Needs the oscidrum Python package (matplotlib) for the figures.");
+  sub->footer("Examples:\n  oscidrum paper --out out/paper --format svg");
+  sub->add_option("--out", o->out, "output folder (default out/paper)");
+  sub->add_option("--format", o->format, "figure format: png or svg")
+      ->check(CLI::IsMember({"png", "svg"}));
+  sub->add_option("--threads", o->threads, "worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024));
+  sub->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
+  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+}
+
+}  // namespace oscidrum::cli

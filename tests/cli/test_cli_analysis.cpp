@@ -1,0 +1,101 @@
+// End-to-end tests of `oscidrum validate`, `oscidrum analyze` and `oscidrum paper`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+TEST(CliValidate, EveryClaimAgreesAndTheMarkdownIsWritten) {
+  TempDir dir;
+  const Outcome o = run({"validate", "--quiet", "--format", "json", "--markdown", dir / "v.md",
+                         "--csv", dir / "v.csv"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["schema"], "oscidrum-validation/1");
+  EXPECT_EQ(j["disagreements"], 0);
+  EXPECT_GE(j["rows"].size(), 40u);
+  const std::string md = slurp(dir / "v.md");
+  EXPECT_EQ(md.rfind("# Validation against the paper", 0), 0u);
+  EXPECT_NE(md.find("| fig12.psi_max |"), std::string::npos);
+  EXPECT_EQ(slurp(dir / "v.csv").rfind("id,figure,claim,paper,oscidrum,rule,agrees", 0), 0u);
+}
+
+// A simulated steady state written by `run --csv` is a perfect "record": analyze must give the
+// harmonics that `run` reports (uniform samples over whole periods: least squares = DFT).
+TEST(CliAnalyze, RecordOfASimulationGivesItsHarmonics) {
+  TempDir dir;
+  const Outcome r = run({"run", "--quiet", "--MMd-fraction", "0.05", "--csv", dir / "s.csv",
+                         "--json", dir / "s.json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Outcome a = run({"analyze", dir / "s.csv", "--format", "json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  const nlohmann::json rec = nlohmann::json::parse(a.out);
+  const nlohmann::json sim = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(rec["schema"], "oscidrum-record/1");
+  const auto& hx = rec["ddx_harmonics"];
+  ASSERT_EQ(hx.size(), 11u);
+  const double a1 = hx[1]["amplitude"].get<double>();
+  EXPECT_GT(a1, 1.0);
+  // The run's JSON holds the same harmonic (docs/outputs.md: metrics.ddx_harmonics).
+  const double sim_a1 = sim["metrics"]["ddx_harmonics"][1]["amplitude"].get<double>();
+  EXPECT_NEAR(a1, sim_a1, 1e-9 * sim_a1);
+  EXPECT_NEAR(rec["psi_xz"].get<double>(), sim["metrics"]["psi_xz"].get<double>(), 1e-9);
+}
+
+TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
+  TempDir dir;
+  {
+    std::ofstream(dir / "cols.csv") << "time,ax,az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "text.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.1,x,2\n";
+    std::ofstream(dir / "short.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.001,1,2\n";
+    std::ofstream(dir / "ragged.csv") << "t,ddx_M,ddz_M\n0,1\n";
+  }
+  struct Case {
+    std::string file, message;
+  };
+  for (const Case& c :
+       {Case{"cols.csv", "no column '"}, Case{"text.csv", "must be a number"},
+        Case{"short.csv", "at least one excitation period"},
+        Case{"ragged.csv", "2 cells, but the header has 3"}, Case{"missing.csv", "cannot open"}}) {
+    SCOPED_TRACE(c.file);
+    const Outcome o = run({"analyze", dir / c.file});
+    EXPECT_EQ(o.code, 2) << o.err;
+    EXPECT_EQ(o.signal, 0);
+    EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << o.err;
+    EXPECT_NE(o.err.find(c.message), std::string::npos) << o.err;
+  }
+  // Columns chosen by flag.
+  const Outcome o =
+      run({"analyze", dir / "cols.csv", "--t-col", "time", "--x-col", "ax", "--z-col", "az"});
+  EXPECT_EQ(o.code, 2);  // 2 samples over 3.9 periods: too few per period for 10 harmonics
+  EXPECT_NE(o.err.find("too few"), std::string::npos) << o.err;
+}
+
+// With the Python package: figures, data and the report; without it (a build without Python):
+// the validation table alone and exit code 1 with a clear message.
+TEST(CliPaper, WritesTheReproductionOrTheValidationAlone) {
+  TempDir dir;
+  const Outcome o = run({"paper", "--quiet", "--out", dir.path()});
+  EXPECT_EQ(o.signal, 0) << o.err;
+  if (o.code == 0) {
+    EXPECT_TRUE(std::filesystem::exists(dir / "report.md"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "validation.md"));
+    int figures = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+      figures += e.path().extension() == ".png";
+    EXPECT_GE(figures, 10);
+  } else {
+    EXPECT_EQ(o.code, 1);
+    EXPECT_TRUE(std::filesystem::exists(dir / "validation.md"));
+    EXPECT_NE(o.err.find("validation.md only"), std::string::npos) << o.err;
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum::test
