@@ -275,15 +275,18 @@ TEST(CliTransmissibility, AppendixA) {
 TEST(CliFields, DocsConfigTableIsTheGeneratedOne) {
   const Outcome o = run({"fields", "--format", "markdown"});
   ASSERT_EQ(o.code, 0) << o.err;
-  const std::string doc = slurp(kSource + "/docs/config.md");
-  const std::string begin = "<!-- BEGIN oscidrum fields --format markdown -->\n";
-  const std::string end = "<!-- END oscidrum fields -->";
-  const std::size_t b = doc.find(begin), e = doc.find(end);
-  ASSERT_NE(b, std::string::npos);
-  ASSERT_NE(e, std::string::npos);
-  EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), o.out)
-      << "docs/config.md is out of date: paste the output of 'oscidrum fields --format "
-         "markdown' between its markers";
+  for (const char* file : {"/docs/config.md", "/README.md"}) {
+    SCOPED_TRACE(file);
+    const std::string doc = slurp(kSource + file);
+    const std::string begin = "<!-- BEGIN oscidrum fields --format markdown -->\n";
+    const std::string end = "<!-- END oscidrum fields -->";
+    const std::size_t b = doc.find(begin), e = doc.find(end);
+    ASSERT_NE(b, std::string::npos);
+    ASSERT_NE(e, std::string::npos);
+    EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), o.out)
+        << file << " is out of date: paste the output of 'oscidrum fields --format markdown' "
+        << "between its markers";
+  }
   const nlohmann::json j = nlohmann::json::parse(run({"fields", "--format", "json"}).out);
   EXPECT_EQ(j.size(), fields().size() + 2);
   EXPECT_EQ(run({"params"}).code, 0);
