@@ -51,6 +51,9 @@ const std::array kFields = {
           false, nullptr, OSCIDRUM_REAL(roller.cd)},
     Field{"roller.g", FieldType::real, "m/s^2", "gravitational acceleration", 0, inf, false, false,
           nullptr, OSCIDRUM_REAL(roller.g)},
+    Field{"roller.m_f", FieldType::real, "kg",
+          "effective frame mass on the drum's axle (Appendix A transmissibility only)", 0, inf,
+          true, false, nullptr, OSCIDRUM_REAL(roller.m_f)},
     // soil
     Field{"soil.input", FieldType::choice, "-",
           "how the soil is given: coefficients (ksh, ksv, csh, csv) or modulus (G, nu, rho via "

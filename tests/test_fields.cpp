@@ -39,6 +39,7 @@ const std::map<std::string, Member>& members() {
       {"roller.kd", [](Case& c) -> double& { return c.roller.kd; }},
       {"roller.cd", [](Case& c) -> double& { return c.roller.cd; }},
       {"roller.g", [](Case& c) -> double& { return c.roller.g; }},
+      {"roller.m_f", [](Case& c) -> double& { return c.roller.m_f; }},
       {"soil.G", [](Case& c) -> double& { return c.soil.G; }},
       {"soil.nu", [](Case& c) -> double& { return c.soil.nu; }},
       {"soil.rho", [](Case& c) -> double& { return c.soil.rho; }},
@@ -106,8 +107,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 10 roller + 8 soil + 2 trough + 2 contact + MMd + 10 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 33u);
+  // 11 roller + 8 soil + 2 trough + 2 contact + MMd + 10 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 34u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;

@@ -38,7 +38,9 @@ void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::stri
     if (!only.empty() && std::find(only.begin(), only.end(), key) == only.end()) continue;
     double& slot = o.roller[key];
     slot = f.get(Case{});
-    o.roller_flags[key] = app.add_option("--" + key.substr(7), slot,
+    // roller.m_f is --mf (Appendix A's symbol); the others are the key's last part.
+    const std::string flag = key == "roller.m_f" ? "--mf" : "--" + key.substr(7);
+    o.roller_flags[key] = app.add_option(flag, slot,
                                          std::string(f.description) + " [" + f.unit +
                                              "] (default " + format_field(Case{}, f) + ")")
                               ->group("Roller (paper Table 1)");

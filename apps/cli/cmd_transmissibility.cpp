@@ -16,7 +16,6 @@ namespace {
 
 struct TransmissibilityOptions {
   CaseOptions c;
-  double mf = 2760.0;
   std::string format = "table";
 };
 
@@ -25,10 +24,11 @@ int run(const TransmissibilityOptions& o) {
   apply(o.c, spec);
   const Roller r = io::finalize(spec).roller;
   const double nu = 2.0 * M_PI * r.f;
-  const Transmissibility t = transmissibility(r.kd, r.cd, o.mf, nu);
+  const double mf = r.m_f;
+  const Transmissibility t = transmissibility(r.kd, r.cd, mf, nu);
   // The paper's Appendix A values, shown when the inputs are the paper's.
   const Roller paper;
-  const bool is_paper = r.kd == paper.kd && r.cd == paper.cd && r.f == paper.f && o.mf == 2760.0;
+  const bool is_paper = r.kd == paper.kd && r.cd == paper.cd && r.f == paper.f && mf == paper.m_f;
   struct Row {
     const char* name;
     const char* unit;
@@ -46,7 +46,7 @@ int run(const TransmissibilityOptions& o) {
   if (o.format == "json") {
     nlohmann::ordered_json j = {
         {"schema", "oscidrum-transmissibility/1"},
-        {"inputs", {{"kd", r.kd}, {"cd", r.cd}, {"m_f", o.mf}, {"f", r.f}, {"nu", nu}}},
+        {"inputs", {{"kd", r.kd}, {"cd", r.cd}, {"m_f", mf}, {"f", r.f}, {"nu", nu}}},
         {"omega", t.omega},
         {"f_n", t.omega / (2.0 * M_PI)},
         {"zeta", t.zeta},
@@ -69,7 +69,7 @@ int run(const TransmissibilityOptions& o) {
   if (o.format == "csv") {
     std::cout << table.csv();
   } else {
-    std::cout << "Appendix A: frame of mass m_f = " << fmt(o.mf)
+    std::cout << "Appendix A: frame of mass m_f = " << fmt(mf)
               << " kg on the suspension kd = " << fmt(r.kd) << " N/m, cd = " << fmt(r.cd)
               << " N s/m, base excitation at f = " << fmt(r.f) << " Hz (nu = " << fmt(nu, 5)
               << " rad/s)\n\n"
@@ -94,8 +94,7 @@ void add_transmissibility_command(CLI::App& app, Action& action) {
       "Examples:\n"
       "  oscidrum transmissibility                 the paper's values (Tp = 0.025)\n"
       "  oscidrum transmissibility --mf 3000 --kd 5e6 --format json");
-  sub->add_option("--mf", o->mf, "frame mass m_f [kg] (default 2760, the paper's)");
-  add_roller_flags(*sub, o->c, {"roller.kd", "roller.cd", "roller.f"});
+  add_roller_flags(*sub, o->c, {"roller.m_f", "roller.kd", "roller.cd", "roller.f"});
   add_set_flag(*sub, o->c);
   sub->add_option("--format", o->format, "table, csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));

@@ -2,8 +2,10 @@
 #include "run_summary.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "oscidrum/soil.hpp"
+#include "oscidrum/transmissibility.hpp"
 #include "oscidrum/version.hpp"
 #include "output.hpp"
 
@@ -42,6 +44,10 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.line("driving torque MMd",
          fmt(c.MMd) + " N m" +
              (c.roller.M0 != 0.0 ? " (" + fmt(c.MMd / c.roller.M0, 4) + " M0)" : std::string()));
+  const Transmissibility tr =
+      transmissibility(c.roller.kd, c.roller.cd, c.roller.m_f, 2.0 * M_PI * c.roller.f);
+  s.line("frame transmissibility",
+         "Tp = " + fmt(tr.Tp, 3) + " (Appendix A, m_f = " + fmt(c.roller.m_f) + " kg)");
 
   s.section("result");
   const Diagnostics& d = result.diagnostics;

@@ -17,6 +17,7 @@ struct Roller {
   double kd = 4.0e6;    ///< drum/frame suspension stiffness, horizontal and vertical [N/m]
   double cd = 3.0e3;    ///< drum/frame suspension damping, horizontal and vertical [N s/m]
   double g = 9.81;      ///< gravitational acceleration [m/s^2]
+  double m_f = 2760.0;  ///< effective frame mass on the drum's axle, Appendix A only [kg]
 };
 
 /// How the soil is given.

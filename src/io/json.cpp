@@ -8,6 +8,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/soil.hpp"
+#include "oscidrum/transmissibility.hpp"
 #include "oscidrum/version.hpp"
 #include "oscidrum_io/csv.hpp"
 
@@ -92,6 +93,13 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                   {"MMd_fraction", number(R.M0 != 0.0 ? c.MMd / R.M0 : NAN)},
                   {"R0", number(g.R0)},
                   {"alpha", number(g.alpha)}};
+  // Appendix A: how much of the drum's oscillation reaches the frame (40).
+  const Transmissibility tr = transmissibility(R.kd, R.cd, R.m_f, 2.0 * M_PI * R.f);
+  j["derived"]["transmissibility"] = {{"m_f", number(R.m_f)},
+                                      {"omega", number(tr.omega)},
+                                      {"zeta", number(tr.zeta)},
+                                      {"ratio", number(tr.ratio)},
+                                      {"Tp", number(tr.Tp)}};
 
   const Diagnostics& d = result.diagnostics;
   j["diagnostics"] = {{"periods_simulated", d.periods_simulated},
