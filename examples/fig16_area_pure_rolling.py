@@ -16,17 +16,13 @@ from oscidrum.data import write_table
 from oscidrum.plot import plot_sweep, save
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")
-G_values = [row.G for row in oscidrum.table2()]  # 5 ... 70 MN/m^2 [Pa]
-
-# One case per (G, MMd): Table 2 soil, circular trough R = 0.606 m, no friction limit.
+# The paper's two pure-rolling series on the circular trough R = 0.606 m (MMd = 0 and 0.05 M0),
+# as the library defines them (oscidrum.paper_series(), the cases of `oscidrum validate`).
+series = {s.MMd_fraction: s for s in oscidrum.paper_series()
+          if s.id in ("rolling_MMd0_R0.606", "rolling_MMd0.05_R0.606")}
 fractions = (0.0, 0.05)
-cases = []
-for fraction in fractions:
-    for G in G_values:
-        case = oscidrum.Case(soil=oscidrum.table2_soil(G))
-        case.contact.pure_rolling = True
-        case.MMd = fraction * case.roller.M0  # [N m]
-        cases.append(case)
+G_values = list(series[0.0].G)  # Table 2: 5 ... 70 MN/m^2 [Pa]
+cases = [oscidrum.paper_case(series[f], G) for f in fractions for G in G_values]
 
 # All cases on all cores (C++ threads); one outcome per case, in order.
 outcomes = oscidrum.run_study(cases)

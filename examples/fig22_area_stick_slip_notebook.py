@@ -25,16 +25,17 @@ out.mkdir(parents=True, exist_ok=True)
 
 # %% [markdown]
 # ## The cases
-# Defaults are the paper's roller and a circular trough R = 0.606 m with mu = 0.5; only the soil
-# (Table 2 row) and the driving torque change. Cases can also be given as dotted-key dicts.
+# The library defines every series of the paper (`oscidrum.paper_series()`, the same cases that
+# `oscidrum validate` checks): here the two stick-slip series on the circular trough
+# R = 0.606 m, mu = 0.5, with MMd = 0 and 0.05 M0. `paper_case(series, G)` gives the Case of one
+# Table 2 soil.
 
 # %%
-G_values = np.array([row.G for row in oscidrum.table2()])  # [Pa]
-M0 = oscidrum.Roller().M0  # [N m]
-cases = {
-    fraction: [oscidrum.Case(soil=oscidrum.table2_soil(G), MMd=fraction * M0) for G in G_values]
-    for fraction in (0.0, 0.05)
-}
+series = {s.MMd_fraction: s for s in oscidrum.paper_series()
+          if s.id in ("stickslip_MMd0_R0.606", "stickslip_MMd0.05_R0.606")}
+print(series[0.05])
+G_values = np.array(series[0.0].G)  # [Pa]
+cases = {f: [oscidrum.paper_case(s, G) for G in s.G] for f, s in series.items()}
 print(cases[0.05][0])
 
 # %% [markdown]
@@ -51,6 +52,9 @@ area = {f: np.array([o.metrics.area for o in outs]) for f, outs in outcomes.item
 
 # %% [markdown]
 # ## The figure and the paper's statements
+# The library checks these statements, with every other one the paper makes, in
+# `oscidrum.validate(oscidrum.run_paper_studies())` (rows `fig22.*`; `python3 -m oscidrum.paper`
+# puts them beside the figure). Here we look at the numbers ourselves.
 
 # %%
 fig = plot.plot_sweep(G_values, {"MMd = 0": area[0.0], "MMd = 0.05 M0": area[0.05]}, "soil.G",

@@ -26,6 +26,7 @@ void bind_study(py::module_& m);
 void bind_soil(py::module_& m);
 void bind_transmissibility(py::module_& m);
 void bind_record(py::module_& m);
+void bind_validation(py::module_& m);
 
 /// The value of a field as a Python object: float (real), int (integer), bool (boolean) or str
 /// (choice name).

@@ -25,4 +25,5 @@ PYBIND11_MODULE(_core, m) {
   op::bind_record(m);
   op::bind_simulate(m);
   op::bind_study(m);
+  op::bind_validation(m);
 }

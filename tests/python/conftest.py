@@ -6,6 +6,7 @@ an installed package: ``/usr/bin/python3 -m pytest tests/python``.
 
 import glob
 import os
+import threading
 from pathlib import Path
 
 import pytest
@@ -57,3 +58,31 @@ def rolling_result():
     case = oscidrum.Case(soil=oscidrum.table2_soil(5e6))
     case.contact.pure_rolling = True
     return oscidrum.simulate(case)
+
+
+@pytest.fixture(scope="session")
+def paper_studies():
+    """oscidrum.run_paper_studies() once (~3 s), with a progress callback and a Python thread
+    ticking beside it: (results, [(done, total) per progress call], ticks)."""
+    calls, ticks = [], []
+    done = threading.Event()
+
+    def ticker():
+        while not done.is_set():
+            ticks.append(1)
+            done.wait(0.001)
+
+    thread = threading.Thread(target=ticker)
+    thread.start()
+    try:
+        results = oscidrum.run_paper_studies(progress=lambda d, t: calls.append((d, t)))
+    finally:
+        done.set()
+        thread.join()
+    return results, calls, ticks
+
+
+@pytest.fixture(scope="session")
+def paper_rows(paper_studies):
+    """oscidrum.validate of paper_studies."""
+    return oscidrum.validate(paper_studies[0])

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import oscidrum
-from oscidrum import data
+from oscidrum import data, paper
 
 
 INERT = {"coefficients": ("soil.G", "soil.nu", "soil.rho"),
@@ -106,3 +106,16 @@ def test_cli_sweep_equals_run_study_and_plots(cli, root, tmp_path):
     fig = plot.plot_table(table, "soil.G", "area", group=["contact.pure_rolling", "MMd_fraction"],
                           units=units)
     assert len(fig.axes[0].lines) == 4
+
+
+def test_cli_validate_equals_bound_validate(cli, paper_rows, tmp_path):
+    """`oscidrum validate` and oscidrum.validate give the same table; oscidrum.paper's
+    validation.csv is byte-identical to `oscidrum validate --csv`."""
+    if subprocess.run([cli, "validate", "--help"], capture_output=True).returncode != 0:
+        pytest.skip("this CLI has no `validate` command")
+    p = subprocess.run([cli, "validate", "--csv", str(tmp_path / "cli.csv"), "--format",
+                        "markdown", "--quiet"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.endswith(oscidrum.validation_markdown(paper_rows))
+    paper.write_validation(tmp_path, paper_rows)
+    assert (tmp_path / "cli.csv").read_bytes() == (tmp_path / "validation.csv").read_bytes()
