@@ -183,6 +183,7 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
   so.keep_samples = options.keep_samples;
   so.n_harmonics = options.n_harmonics;
   so.progress = options.progress;
+  so.cancelled = options.cancelled;
   std::vector<CaseOutcome> outcomes = run_study(cases, so);
 
   std::vector<SeriesResult> results;
@@ -192,6 +193,7 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
     r.series = s;
     for (std::size_t j = 0; j < s.G.size(); ++j, ++i) {
       CaseOutcome& o = outcomes[i];
+      if (!o.valid && o.error == "cancelled") throw Error("cancelled");
       if (!o.valid) throw Error("paper case " + s.id + " G = " + mn(s.G[j]) + ": " + o.error);
       r.status.push_back(o.result.status);
       r.metrics.push_back(o.metrics);
@@ -204,6 +206,13 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
 }
 
 std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
+  // The checks read harmonics up to 2f (psi, A(2f)/A(f)) of every case with samples.
+  for (const SeriesResult& s : results)
+    for (std::size_t i = 0; i < s.metrics.size(); ++i)
+      if (s.status[i] == Status::steady_state &&
+          (s.metrics[i].ddx_harmonics.size() < 3 || s.metrics[i].ddz_harmonics.size() < 3))
+        throw Error("validate: series " + s.series.id +
+                    " has fewer than 3 harmonics; run the studies with n_harmonics >= 2");
   std::vector<ValidationRow> rows;
   auto add = [&](std::string id, std::string figure, std::string claim, std::string paper,
                  std::string ours, std::string rule, bool agrees, std::string note = {}) {

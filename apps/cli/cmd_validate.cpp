@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "oscidrum/error.hpp"
 #include "oscidrum/validation.hpp"
 #include "oscidrum_io/files.hpp"
 #include "output.hpp"
@@ -48,11 +49,21 @@ int run(const ValidateOptions& o) {
   ProgressLine progress(!o.quiet && stderr_is_terminal());
   PaperRunOptions po;
   po.threads = o.threads;
+  po.cancelled = [] { return interrupted(); };
   po.progress = [&](std::size_t done, std::size_t total) {
     progress.update("validate: " + std::to_string(done) + "/" + std::to_string(total) +
                     " paper cases");
   };
-  const std::vector<ValidationRow> rows = validate(run_paper_studies(po));
+  std::vector<SeriesResult> results;
+  try {
+    results = run_paper_studies(po);
+  } catch (const Error&) {
+    if (!interrupted()) throw;
+    progress.clear();
+    std::cerr << "oscidrum: interrupted\n";
+    return kExitInterrupted;
+  }
+  const std::vector<ValidationRow> rows = validate(results);
   progress.clear();
 
   if (!o.markdown.empty()) io::write_file_atomic(o.markdown, markdown_document(rows));

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -19,10 +20,11 @@ namespace oscidrum::cli {
 
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir) {
   return run_python({"oscidrum.plot", "case", "--csv", csv, "--json", json, "--out", dir},
-                    "the data are in " + csv + " and " + json);
+                    "the data are in " + csv + " and " + json) == 0;
 }
 
-bool run_python(const std::vector<std::string>& module_args, const std::string& data_note) {
+int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
+               const std::vector<int>& quiet_status) {
   const std::string python = "/usr/bin/python3";
   std::vector<std::string> args = {python, "-m"};
   args.insert(args.end(), module_args.begin(), module_args.end());
@@ -61,23 +63,26 @@ bool run_python(const std::vector<std::string>& module_args, const std::string& 
   if (rc != 0) {
     std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc) << "); "
               << data_note << "\n";
-    return false;
+    return -1;
   }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) {
       std::cerr << "oscidrum: error: " << what << ": waitpid failed: " << std::strerror(errno)
                 << "\n";
-      return false;
+      return -1;
     }
   }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return true;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
+  if (WIFEXITED(status) && std::find(quiet_status.begin(), quiet_status.end(),
+                                     WEXITSTATUS(status)) != quiet_status.end())
+    return WEXITSTATUS(status);
   std::cerr << "oscidrum: error: " << what << " "
             << (WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
                                   : std::string("was killed by a signal"))
             << " (is the oscidrum Python package installed, with matplotlib? see docs/python.md); "
             << data_note << "\n";
-  return false;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 }  // namespace oscidrum::cli

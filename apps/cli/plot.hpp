@@ -13,8 +13,10 @@ namespace oscidrum::cli {
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir);
 
 /// Run `/usr/bin/python3 -m <module_args...>` with the package found first in the build tree,
-/// its output on our stdout. On failure print one error line ending with `data_note` and return
-/// false.
-bool run_python(const std::vector<std::string>& module_args, const std::string& data_note);
+/// its output on our stdout. Returns its exit status, or -1 if it could not start or was killed
+/// (then one error line ending with `data_note` is printed; for other non-zero statuses too unless
+/// `quiet_status` lists them).
+int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
+               const std::vector<int>& quiet_status = {});
 
 }  // namespace oscidrum::cli

@@ -50,6 +50,9 @@ struct PaperRunOptions {
   bool keep_samples = false;  ///< keep each case's steady state (for figures)
   int n_harmonics = 10;
   std::function<void(std::size_t done, std::size_t total)> progress;
+  /// Polled as StudyOptions::cancelled; when it returns true the run stops and
+  /// run_paper_studies throws oscidrum::Error("cancelled").
+  std::function<bool()> cancelled;
 };
 
 /// Run every series of paper_series() (about 100 cases).

@@ -1,10 +1,13 @@
 // End-to-end tests of `oscidrum validate`, `oscidrum analyze` and `oscidrum paper`.
 #include <gtest/gtest.h>
+#include <signal.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "process.hpp"
 
@@ -24,6 +27,18 @@ TEST(CliValidate, EveryClaimAgreesAndTheMarkdownIsWritten) {
   EXPECT_EQ(md.rfind("# Validation against the paper", 0), 0u);
   EXPECT_NE(md.find("| fig12.psi_max |"), std::string::npos);
   EXPECT_EQ(slurp(dir / "v.csv").rfind("id,figure,claim,paper,oscidrum,rule,agrees", 0), 0u);
+}
+
+TEST(CliValidate, InterruptExits130WithoutWritingTheTable) {
+  TempDir dir;
+  const pid_t pid =
+      start({"validate", "--threads", "1", "--markdown", dir / "v.md"}, dir / "out", dir / "err");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  const Outcome o = finish(pid, dir / "out", dir / "err");
+  EXPECT_EQ(o.code, 130) << o.err;
+  EXPECT_NE(o.err.find("interrupted"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "v.md"));
 }
 
 // A simulated steady state written by `run --csv` is a perfect "record": analyze must give the
