@@ -258,7 +258,7 @@ void bind_parameters(py::module_& m) {
       py::arg("key"), py::arg("value"),
       "Set a dotted key, e.g. case.set('soil.G', 5e6). Numbers are SI; booleans and choice "
       "names are accepted. Raises oscidrum.Error with the library's message, e.g. "
-      "\"soil.G must be > 0 [Pa]; got -5000000\".");
+      "\"soil.G must be > 0 [Pa]; got -5e+06\".");
   cls.def(
       "to_dict", &case_dict,
       "Every field as {dotted key: value} in documentation order (SI units, choices as names).");

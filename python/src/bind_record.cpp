@@ -13,13 +13,6 @@
 namespace oscidrum::python {
 namespace {
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::span<const double> span_of(const Array& a, const char* name) {
-  if (a.ndim() != 1) throw Error(std::string(name) + " must be a 1-D array");
-  return {a.data(), static_cast<std::size_t>(a.size())};
-}
-
 py::array_t<double> column(const std::vector<Harmonic>& h, double Harmonic::*member) {
   py::array_t<double> a(static_cast<py::ssize_t>(h.size()));
   auto out = a.mutable_unchecked<1>();

@@ -2,8 +2,10 @@
 // function per public header of the library (see STYLE.md, "one binding file per core header").
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <span>
 #include <string_view>
 
 #include "oscidrum/fields.hpp"
@@ -27,6 +29,12 @@ void bind_soil(py::module_& m);
 void bind_transmissibility(py::module_& m);
 void bind_record(py::module_& m);
 void bind_validation(py::module_& m);
+
+/// A float64 NumPy array argument (converted if needed, C-contiguous).
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// The data of a 1-D array as a span; oscidrum::Error naming the argument if it is not 1-D.
+std::span<const double> span_of(const Array& a, const char* name);
 
 /// The value of a field as a Python object: float (real), int (integer), bool (boolean) or str
 /// (choice name).
