@@ -272,17 +272,14 @@ TEST(StickPhase, DrumMotionIsTheCentreKinematics) {
   }
 }
 
-// Independent solve of the stick phase: unknowns (delta'', x_A'', s_A'', phi'', N, T) from
-// (19), (20), (23), (24), (25) and the rolling condition (12), by full-pivot LU.
-Accelerations solve_stick(const Model& model, double t, const State& q, ForcePair* forces) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);
+// Rows 0-2 of the independent solves: the drum's balance equations (19), (20), (23) in the
+// unknowns (delta'', x_A'', s_A'', phi'', N, T), the same in stick and slip.
+void drum_rows(const Model& model, double t, const State& q, const Kinematics& k,
+               Eigen::Matrix<double, 6, 6>& A, Eigen::Matrix<double, 6, 1>& b) {
   const double sn = std::sin(q.delta), cs = std::cos(q.delta), d2 = q.ddelta * q.ddelta;
   const double m = model.m(), cd = model.cd(), kd = model.kd();
   const double xM = k.x_roll + q.x_A, zM = k.z_roll + q.s_A - model.z_ref();
   const double dxM = k.f1 * q.ddelta + q.dx_A, dzM = k.f3 * q.ddelta + q.ds_A;
-  const SoilForces F = soil_forces(model, q);
-  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> b;
   // (19): T cos - N sin - m (f1 delta'' + x_A'') = cd xM' + kd xM + m f2 delta'^2
   A(0, 0) = -m * k.f1;
   A(0, 1) = -m;
@@ -299,6 +296,17 @@ Accelerations solve_stick(const Model& model, double t, const State& q, ForcePai
   A(2, 3) = model.I();
   A(2, 5) = model.r();
   b(2) = model.torque(t);
+}
+
+// Independent solve of the stick phase: unknowns (delta'', x_A'', s_A'', phi'', N, T) from
+// (19), (20), (23), (24), (25) and the rolling condition (12), by full-pivot LU.
+Accelerations solve_stick(const Model& model, double t, const State& q, ForcePair* forces) {
+  const Kinematics k = kinematics(model.geometry(), q.delta);
+  const double sn = std::sin(q.delta), cs = std::cos(q.delta), d2 = q.ddelta * q.ddelta;
+  const SoilForces F = soil_forces(model, q);
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b;
+  drum_rows(model, t, q, k, A, b);
   // (24), (25): the massless soil
   A(3, 4) = sn;
   A(3, 5) = -cs;
@@ -429,28 +437,12 @@ TEST(SlipPhase, CouplingRateVanishesOrDecaysAtTheBaumgarteRate) {
 // coupling d(39)/dt = -beta (39), by full-pivot LU.
 Accelerations solve_slip(const Model& model, double t, const State& q, int s, double beta) {
   const Kinematics k = kinematics(model.geometry(), q.delta);
-  const double sn = std::sin(q.delta), cs = std::cos(q.delta), d2 = q.ddelta * q.ddelta;
-  const double m = model.m(), cd = model.cd(), kd = model.kd();
-  const double xM = k.x_roll + q.x_A, zM = k.z_roll + q.s_A - model.z_ref();
-  const double dxM = k.f1 * q.ddelta + q.dx_A, dzM = k.f3 * q.ddelta + q.ds_A;
+  const double sn = std::sin(q.delta), cs = std::cos(q.delta);
   const SoilForces F = soil_forces(model, q);
   const FrictionFactors f = friction_factors(model, q.delta, s);
   Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> b;
-  // (19), (20), (23) as in the stick phase
-  A(0, 0) = -m * k.f1;
-  A(0, 1) = -m;
-  A(0, 4) = -sn;
-  A(0, 5) = cs;
-  b(0) = cd * dxM + kd * xM + m * k.f2 * d2;
-  A(1, 0) = -m * k.f3;
-  A(1, 2) = -m;
-  A(1, 4) = -cs;
-  A(1, 5) = -sn;
-  b(1) = -model.W() + cd * dzM + kd * zM + m * k.f4 * d2;
-  A(2, 3) = model.I();
-  A(2, 5) = model.r();
-  b(2) = model.torque(t);
+  drum_rows(model, t, q, k, A, b);  // (19), (20), (23) as in the stick phase
   // (26): N = Fh sin + Fv cos, the soil's normal force
   A(3, 4) = 1.0;
   b(3) = F.Fh * sn + F.Fv * cs;

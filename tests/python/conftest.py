@@ -4,6 +4,7 @@ Run from a CMake build tree (ctest sets PYTHONPATH=<build>/python and OSCIDRUM_C
 an installed package: ``/usr/bin/python3 -m pytest tests/python``.
 """
 
+import contextlib
 import glob
 import os
 import threading
@@ -60,11 +61,11 @@ def rolling_result():
     return oscidrum.simulate(case)
 
 
-@pytest.fixture(scope="session")
-def paper_studies():
-    """oscidrum.run_paper_studies() once (~3 s), with a progress callback and a Python thread
-    ticking beside it: (results, [(done, total) per progress call], ticks)."""
-    calls, ticks = [], []
+@contextlib.contextmanager
+def _ticking():
+    """Run a Python thread beside the block that appends to the yielded list every millisecond:
+    it only advances while the block's C++ code has released the GIL."""
+    ticks = []
     done = threading.Event()
 
     def ticker():
@@ -75,10 +76,25 @@ def paper_studies():
     thread = threading.Thread(target=ticker)
     thread.start()
     try:
-        results = oscidrum.run_paper_studies(progress=lambda d, t: calls.append((d, t)))
+        yield ticks
     finally:
         done.set()
         thread.join()
+
+
+@pytest.fixture
+def ticking():
+    """The _ticking context manager, for tests that check the GIL is released."""
+    return _ticking
+
+
+@pytest.fixture(scope="session")
+def paper_studies():
+    """oscidrum.run_paper_studies() once (~3 s), with a progress callback and a Python thread
+    ticking beside it: (results, [(done, total) per progress call], ticks)."""
+    calls = []
+    with _ticking() as ticks:
+        results = oscidrum.run_paper_studies(progress=lambda d, t: calls.append((d, t)))
     return results, calls, ticks
 
 

@@ -88,23 +88,12 @@ def test_exception_in_progress_propagates():
         oscidrum.simulate(oscidrum.Case(), progress=boom)
 
 
-def test_simulate_releases_the_gil():
+def test_simulate_releases_the_gil(ticking):
     """Another Python thread runs while simulate integrates."""
-    ticks = []
-    done = threading.Event()
-
-    def ticker():
-        while not done.is_set():
-            ticks.append(1)
-            done.wait(0.001)
-
-    thread = threading.Thread(target=ticker)
-    thread.start()
     case = oscidrum.Case(soil=oscidrum.table2_soil(70e6), **{"contact.pure_rolling": True})
-    for _ in range(3):
-        oscidrum.simulate(case)
-    done.set()
-    thread.join()
+    with ticking() as ticks:
+        for _ in range(3):
+            oscidrum.simulate(case)
     assert len(ticks) > 3
 
 
