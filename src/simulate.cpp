@@ -512,6 +512,12 @@ Result Engine::run() {
     if (e.kind != EventKind::contact_lost) ++result_.diagnostics.switches;
   if (!std::isfinite(result_.diagnostics.min_N)) result_.diagnostics.min_N = 0.0;
   result_.diagnostics.inconsistent_slip_ends = inconsistent_slip_ends_;
+  // Odeint retries rejected steps internally. Dormand-Prince with FSAL costs one evaluation per
+  // (re)start and six per attempted step, and nothing else calls the right-hand side, so the
+  // attempts follow from the count.
+  const long starts = 1 + result_.diagnostics.events;
+  const long attempts = (result_.diagnostics.rhs_evaluations - starts) / 6;
+  result_.diagnostics.rejected_steps = std::max(0L, attempts - result_.diagnostics.steps);
   return result_;
 }
 

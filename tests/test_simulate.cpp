@@ -53,6 +53,11 @@ TEST(Simulate, DefaultCaseReachesSteadyStateWithStickAndSlip) {
   EXPECT_GT(r.slip_negative_time, 0.0);
   EXPECT_NEAR(r.stick_time + r.slip_positive_time + r.slip_negative_time, 2.0 / 39.0, 1e-12);
   EXPECT_GT(r.diagnostics.min_N, 0.0);
+  // Dormand-Prince with FSAL: one RHS evaluation per (re)start, six per attempted step.
+  const Diagnostics& d = r.diagnostics;
+  EXPECT_EQ((d.rhs_evaluations - 1 - d.events) % 6, 0);
+  EXPECT_EQ((d.rhs_evaluations - 1 - d.events) / 6, d.steps + d.rejected_steps);
+  EXPECT_GT(d.rejected_steps, 0);
   // The sampled phase column agrees with the slip velocity's sign.
   for (std::size_t j = 0; j < r.samples.size(); ++j) {
     const double v = r.samples.v_rel[j];

@@ -46,7 +46,7 @@ struct Diagnostics {
   int multiplicity = 0;        ///< steady period in excitation periods (0: none found)
   double final_change = 0.0;   ///< last period-to-period change (scaled, see docs) [-]
   long steps = 0;              ///< accepted integrator steps
-  long rejected_steps = 0;     ///< rejected trial steps (approximate; odeint hides retries)
+  long rejected_steps = 0;     ///< rejected trial steps (from the RHS count: 6 per attempt)
   long rhs_evaluations = 0;    ///< right-hand-side evaluations
   long events = 0;             ///< located events
   long switches = 0;           ///< stick/slip phase changes
