@@ -52,6 +52,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
   require_size(s.dphi, n, "dphi");
   require_size(s.ddx_M, n, "ddx_M");
   require_size(s.ddz_M, n, "ddz_M");
+  require_size(s.delta, n, "delta");
 
   Metrics m;
   const auto [x_min, x_max] = std::minmax_element(s.ddx_M.begin(), s.ddx_M.end());
@@ -60,6 +61,9 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.ddx_max = *x_max;
   m.ddz_min = *z_min;
   m.ddz_max = *z_max;
+  const auto [d_min, d_max] = std::minmax_element(s.delta.begin(), s.delta.end());
+  m.delta_min = *d_min;
+  m.delta_max = *d_max;
 
   // psi needs theta_1(x_M'') and theta_2(z_M''): compute at least up to n = 2.
   const int cycles = result.sample_periods;

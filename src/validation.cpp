@@ -434,9 +434,20 @@ std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
         "slightly larger", fmt("%+.2f %%", 100 * (zs / zc - 1)), "larger by 0-10 %",
         zs > zc && zs < 1.10 * zc);
     add("fig7.x_spiral", "Fig. 7a", "spiral trough: x_M'' virtually unchanged",
-        "virtually "
-        "unchanged",
-        fmt("%+.2f %%", 100 * (xs / xc - 1)), "within 2 %", within(xs, xc, 0.02));
+        "virtually unchanged", fmt("%+.2f %%", 100 * (xs / xc - 1)), "within 2 %",
+        within(xs, xc, 0.02));
+    // Fig. 8a: the spiral's delta is larger in the positive domain than in the negative one,
+    // while the circle's is symmetric.
+    const Metrics& mc = circle.metrics[0];
+    const Metrics& ms = spiral.metrics[0];
+    const double asym_c = mc.delta_max / -mc.delta_min, asym_s = ms.delta_max / -ms.delta_min;
+    add("fig8.delta_spiral", "Fig. 8a",
+        "spiral trough: delta larger in the positive domain than in the negative one (circle: "
+        "symmetric)",
+        "slightly asymmetric",
+        fmt("max/|min| = %.4f (spiral), ", asym_s) + fmt("%.4f (circle)", asym_c),
+        "spiral in (1, 1.2], circle 1 within 1e-6",
+        asym_s > 1.0 && asym_s <= 1.2 && std::abs(asym_c - 1.0) < 1e-6);
   }
 
   // --- Figs. 17-22: stick-slip ----------------------------------------------------------------

@@ -35,10 +35,11 @@ double wrap_pi(double angle);
 
 /// Metrics of a simulated steady state (MODEL.md section 8).
 struct Metrics {
-  double ddx_max = 0.0, ddx_min = 0.0;  ///< extremes of x_M'' [m/s^2]
-  double ddz_max = 0.0, ddz_min = 0.0;  ///< extremes of z_M'' [m/s^2]
-  std::vector<Harmonic> ddx_harmonics;  ///< harmonics n = 0 ... n_max of x_M'' [m/s^2]
-  std::vector<Harmonic> ddz_harmonics;  ///< harmonics n = 0 ... n_max of z_M'' [m/s^2]
+  double ddx_max = 0.0, ddx_min = 0.0;      ///< extremes of x_M'' [m/s^2]
+  double ddz_max = 0.0, ddz_min = 0.0;      ///< extremes of z_M'' [m/s^2]
+  double delta_max = 0.0, delta_min = 0.0;  ///< extremes of the position angle delta [rad]
+  std::vector<Harmonic> ddx_harmonics;      ///< harmonics n = 0 ... n_max of x_M'' [m/s^2]
+  std::vector<Harmonic> ddz_harmonics;      ///< harmonics n = 0 ... n_max of z_M'' [m/s^2]
   /// Phase lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (linear drift
   /// removed), wrapped to (-2, 0] and given in units of pi, as in paper Fig. 10 [pi rad].
   double phi_lag = 0.0;

@@ -43,6 +43,8 @@ const Scalar kScalars[] = {
     {"ddx_min", "m/s^2", &Metrics::ddx_min, "smallest x_M''"},
     {"ddz_max", "m/s^2", &Metrics::ddz_max, "largest z_M'' (down positive)"},
     {"ddz_min", "m/s^2", &Metrics::ddz_min, "smallest z_M''"},
+    {"delta_max", "rad", &Metrics::delta_max, "largest position angle delta"},
+    {"delta_min", "rad", &Metrics::delta_min, "smallest position angle delta"},
     {"phi_lag", "pi rad", &Metrics::phi_lag,
      "lag between M0 sin(nu t) and phi: theta_1 of phi (drift removed), wrapped to (-2, 0], in "
      "units of pi (paper Fig. 10)"},
