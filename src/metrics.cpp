@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string>
@@ -52,7 +53,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
   require_size(s.dphi, n, "dphi");
   require_size(s.ddx_M, n, "ddx_M");
   require_size(s.ddz_M, n, "ddz_M");
-  require_size(s.delta, n, "delta");
+  if (!s.delta.empty()) require_size(s.delta, n, "delta");
 
   Metrics m;
   const auto [x_min, x_max] = std::minmax_element(s.ddx_M.begin(), s.ddx_M.end());
@@ -61,9 +62,13 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.ddx_max = *x_max;
   m.ddz_min = *z_min;
   m.ddz_max = *z_max;
-  const auto [d_min, d_max] = std::minmax_element(s.delta.begin(), s.delta.end());
-  m.delta_min = *d_min;
-  m.delta_max = *d_max;
+  // delta is optional (a record of accelerations alone has none): NaN when absent.
+  m.delta_min = m.delta_max = std::numeric_limits<double>::quiet_NaN();
+  if (!s.delta.empty()) {
+    const auto [d_min, d_max] = std::minmax_element(s.delta.begin(), s.delta.end());
+    m.delta_min = *d_min;
+    m.delta_max = *d_max;
+  }
 
   // psi needs theta_1(x_M'') and theta_2(z_M''): compute at least up to n = 2.
   const int cycles = result.sample_periods;

@@ -673,3 +673,36 @@ TEST(ComputeMetrics, RejectsBadInput) {
 
 }  // namespace
 }  // namespace oscidrum
+
+namespace oscidrum {
+namespace {
+
+// delta's extremes come from the samples when they hold delta, and are NaN (no data) otherwise.
+TEST(ComputeMetrics, DeltaExtremesAreOptional) {
+  Result r;
+  r.frequency = 39.0;
+  r.sample_periods = 1;
+  r.samples_per_period = 64;
+  Samples& s = r.samples;
+  for (int j = 0; j < 64; ++j) {
+    const double t = j / (39.0 * 64);
+    s.t.push_back(t);
+    s.phi.push_back(0.0);
+    s.dphi.push_back(0.0);
+    s.ddx_M.push_back(std::sin(2 * M_PI * 39.0 * t));
+    s.ddz_M.push_back(std::sin(4 * M_PI * 39.0 * t));
+    s.phase.push_back(Phase::stick);
+  }
+  Metrics m = compute_metrics(r, 4);
+  EXPECT_TRUE(std::isnan(m.delta_max));
+  EXPECT_TRUE(std::isnan(m.delta_min));
+  for (int j = 0; j < 64; ++j) s.delta.push_back(0.3 * std::sin(2 * M_PI * j / 64.0) + 0.01);
+  m = compute_metrics(r, 4);
+  EXPECT_NEAR(m.delta_max, 0.31, 1e-12);
+  EXPECT_NEAR(m.delta_min, -0.29, 1e-12);
+  s.delta.pop_back();
+  EXPECT_THROW(compute_metrics(r, 4), Error);
+}
+
+}  // namespace
+}  // namespace oscidrum

@@ -37,7 +37,7 @@ double wrap_pi(double angle);
 struct Metrics {
   double ddx_max = 0.0, ddx_min = 0.0;      ///< extremes of x_M'' [m/s^2]
   double ddz_max = 0.0, ddz_min = 0.0;      ///< extremes of z_M'' [m/s^2]
-  double delta_max = 0.0, delta_min = 0.0;  ///< extremes of the position angle delta [rad]
+  double delta_max = 0.0, delta_min = 0.0;  ///< extremes of delta [rad] (NaN without samples)
   std::vector<Harmonic> ddx_harmonics;      ///< harmonics n = 0 ... n_max of x_M'' [m/s^2]
   std::vector<Harmonic> ddz_harmonics;      ///< harmonics n = 0 ... n_max of z_M'' [m/s^2]
   /// Phase lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (linear drift
