@@ -45,6 +45,15 @@ void validate(const Case& c) {
       throw Error("trough.k must be <= 1 (a settlement trough, not a tight spiral); got " +
                   num(c.trough.k));
   }
+  // The sampled steady state is kept in memory: 21 columns of doubles per sample.
+  const double samples = static_cast<double>(c.numerics.samples_per_period) *
+                         c.numerics.output_periods * c.numerics.max_multiplicity;
+  if (samples > 1e7)
+    throw Error(
+        "numerics.samples_per_period * numerics.output_periods * "
+        "numerics.max_multiplicity must be <= 1e7 (the most samples a run may keep, "
+        "about 1.7 GB); got " +
+        num(samples));
   if (!c.contact.pure_rolling && c.soil.input == SoilInput::coefficients && c.soil.csh <= 0)
     throw Error("soil.csh must be > 0 [N s/m] (the slip coupling (53) divides by it); got " +
                 num(c.soil.csh));

@@ -326,6 +326,20 @@ TEST(Simulate, ProgressCanCancel) {
   EXPECT_NE(r.message.find("cancelled"), std::string::npos);
 }
 
+TEST(Simulate, TooManySamplesAreRefusedBeforeIntegrating) {
+  Case c;
+  c.numerics.samples_per_period = 1000000;
+  c.numerics.output_periods = 100;
+  try {
+    simulate(c);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("numerics.samples_per_period * numerics.output_periods"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Simulate, InvalidCaseThrowsBeforeIntegrating) {
   Case c;
   c.trough.a = 0.59;
