@@ -106,7 +106,7 @@ class Engine {
 
   // --- periods, steady state and sampling ----------------------------------------------------
   void on_boundary(int n, const Vec& x);
-  void sample(int j, double t, const Vec& x);
+  void sample(double t, const Vec& x);
   void account_phase_time(double ta, double tb);
   void track_step_end(const Vec& x);
   bool finish(Status s, const std::string& message);
@@ -139,7 +139,6 @@ class Engine {
   double window_start_ = 0.0, window_end_ = 0.0;
   int window_periods_ = 0;
   long next_sample_ = 0, total_samples_ = 0;
-  double max_N_ = 0.0;
   long inconsistent_slip_ends_ = 0;
   std::array<int, 65> below_{};  // consecutive boundaries with change_p < steady_tol, per p
 };
@@ -271,7 +270,6 @@ void Engine::apply_event(const Crossing& c) {
     x = q.to_array();
   }
   result_.events.push_back(ev);
-  ++result_.diagnostics.switches;
   ++switches_this_period_;
 
   // Chattering: many switches in a vanishing time, or too many in one period.
@@ -301,7 +299,6 @@ void Engine::track_step_end(const Vec& x) {
   const State q = State::from_array(x);
   const ContactForces f = contact_forces(model_, q);
   result_.diagnostics.min_N = std::min(result_.diagnostics.min_N, f.N);
-  max_N_ = std::max(max_N_, f.N);
   if (phase_ != Phase::stick && model_.mu() > 0.0) {
     const double residual =
         std::abs(slip_constraint_residual(model_, q, static_cast<int>(phase_))) / model_.W();
@@ -384,8 +381,7 @@ void Engine::on_boundary(int n, const Vec& x) {
   result_.samples_per_period = num_.samples_per_period;
 }
 
-void Engine::sample(int j, double t, const Vec& x) {
-  (void)j;
+void Engine::sample(double t, const Vec& x) {
   const State q = State::from_array(x);
   const Accelerations a = accelerations(model_, t, q, phase_, baumgarte_);
   const DrumMotion d = drum_motion(model_, q, a);
@@ -480,7 +476,7 @@ Result Engine::run() {
       Vec xn;
       stepper_.calc_state(tn, xn);
       if (ts <= tb) {
-        sample(static_cast<int>(next_sample_), ts, xn);
+        sample(ts, xn);
         ++next_sample_;
       } else {
         on_boundary(next_boundary_, xn);
