@@ -43,8 +43,10 @@ const std::array kFields = {
           inf, true, false, nullptr, OSCIDRUM_REAL(roller.P0)},
     Field{"roller.f", FieldType::real, "Hz", "excitation frequency (nu = 2 pi f)", 0, inf, true,
           false, nullptr, OSCIDRUM_REAL(roller.f)},
-    Field{"roller.M0", FieldType::real, "N m", "amplitude of the oscillation moment (5)", 0, inf,
-          false, false, nullptr, OSCIDRUM_REAL(roller.M0)},
+    Field{"roller.M0", FieldType::real, "N m",
+          "amplitude of the oscillation moment (5), M0 = 4 m_u e_u e_w nu^2: it grows with f^2, so "
+          "set it with roller.f",
+          0, inf, false, false, nullptr, OSCIDRUM_REAL(roller.M0)},
     Field{"roller.kd", FieldType::real, "N/m", "drum/frame suspension stiffness", 0, inf, false,
           false, nullptr, OSCIDRUM_REAL(roller.kd)},
     Field{"roller.cd", FieldType::real, "N s/m", "drum/frame suspension damping", 0, inf, false,
