@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
-#include "oscidrum/validation.hpp"
+#include "oscidrum_paper/validation.hpp"
 #include "oscidrum_io/files.hpp"
 #include "plot.hpp"
 #include "terminal.hpp"

@@ -8,7 +8,7 @@
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
-#include "oscidrum/validation.hpp"
+#include "oscidrum_paper/validation.hpp"
 #include "oscidrum_io/files.hpp"
 #include "output.hpp"
 #include "terminal.hpp"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "oscidrum/oscidrum.hpp"
+#include "oscidrum_paper/validation.hpp"
 
 int main() {
   // The paper's two pure-rolling series on the circle R = 0.606 m, as the library defines them

@@ -14,5 +14,4 @@
 #include "oscidrum/state.hpp"
 #include "oscidrum/study.hpp"
 #include "oscidrum/transmissibility.hpp"
-#include "oscidrum/validation.hpp"
 #include "oscidrum/version.hpp"

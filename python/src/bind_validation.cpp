@@ -13,7 +13,7 @@
 
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
-#include "oscidrum/validation.hpp"
+#include "oscidrum_paper/validation.hpp"
 
 namespace oscidrum::python {
 namespace {

@@ -18,8 +18,8 @@
 #include <limits>
 #include <string>
 
-#include "equations.hpp"
-#include "event_logic.hpp"
+#include "equations/equations.hpp"
+#include "equations/event_logic.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "format.hpp"
+#include "util/format.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {

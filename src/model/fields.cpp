@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "format.hpp"
+#include "util/format.hpp"
 #include "oscidrum/error.hpp"
 
 namespace oscidrum {

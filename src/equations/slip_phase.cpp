@@ -2,7 +2,7 @@
 // friction coupling (39).
 #include <cmath>
 
-#include "equations.hpp"
+#include "equations/equations.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum {

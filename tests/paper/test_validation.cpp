@@ -6,6 +6,7 @@
 #include <set>
 
 #include "oscidrum/oscidrum.hpp"
+#include "oscidrum_paper/validation.hpp"
 
 namespace oscidrum {
 namespace {

@@ -1,5 +1,5 @@
 // Decisions at stick/slip events (MODEL.md section 6).
-#include "event_logic.hpp"
+#include "equations/event_logic.hpp"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 // Stick phase (pure rolling): equations of motion (30), (31), (32) in the state form (52).
 #include <cmath>
 
-#include "equations.hpp"
+#include "equations/equations.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum {

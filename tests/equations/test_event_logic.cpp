@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "event_logic.hpp"
+#include "equations/event_logic.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {

@@ -1,5 +1,5 @@
 // The paper's studies and the check of its stated results (MODEL.md section 8).
-#include "oscidrum/validation.hpp"
+#include "oscidrum_paper/validation.hpp"
 
 #include <algorithm>
 #include <cmath>
