@@ -10,8 +10,8 @@
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
-#include "oscidrum_paper/validation.hpp"
 #include "oscidrum_io/files.hpp"
+#include "oscidrum_paper/validation.hpp"
 #include "plot.hpp"
 #include "terminal.hpp"
 

@@ -8,8 +8,8 @@
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
-#include "oscidrum_paper/validation.hpp"
 #include "oscidrum_io/files.hpp"
+#include "oscidrum_paper/validation.hpp"
 #include "output.hpp"
 #include "terminal.hpp"
 

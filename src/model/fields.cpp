@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "util/format.hpp"
 #include "oscidrum/error.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 namespace {

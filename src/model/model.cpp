@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <string>
 
-#include "util/format.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 namespace {

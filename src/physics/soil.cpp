@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "util/format.hpp"
 #include "oscidrum/error.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 namespace {
