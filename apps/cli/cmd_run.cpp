@@ -56,12 +56,15 @@ int run(const RunOptions& o) {
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
   const Model model(c);
-  const Result result = simulate(model, [&](int period, double change) {
-    line.update("oscidrum run: period " + std::to_string(period) + " of at most " +
-                std::to_string(c.numerics.max_periods) + ", change " + fmt(change, 3) +
-                " (steady below " + fmt(c.numerics.steady_tol, 3) + ")");
-    return !interrupted();
-  });
+  const Result result = simulate(
+      model,
+      [&](int period, double change) {
+        line.update("oscidrum run: period " + std::to_string(period) + " of at most " +
+                    std::to_string(c.numerics.max_periods) + ", change " + fmt(change, 3) +
+                    " (steady below " + fmt(c.numerics.steady_tol, 3) + ")");
+        return !interrupted();
+      },
+      [] { return interrupted(); });
   line.clear();
   if (interrupted()) {
     std::cerr << "oscidrum: interrupted after " << result.diagnostics.periods_simulated
@@ -70,7 +73,7 @@ int run(const RunOptions& o) {
   }
 
   std::unique_ptr<Metrics> metrics;
-  if (result.samples.size() > 0) {
+  if (ok(result.status) && result.samples.size() > 0) {  // only a steady state has metrics
     try {
       metrics = std::make_unique<Metrics>(compute_metrics(result, o.harmonics));
     } catch (const Error& e) {

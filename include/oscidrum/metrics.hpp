@@ -54,7 +54,7 @@ struct Metrics {
 };
 
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if
-/// the result holds no samples.
+/// the result holds no samples or its status is not Status::steady_state.
 Metrics compute_metrics(const Result& result, int n_max = 10);
 
 }  // namespace oscidrum

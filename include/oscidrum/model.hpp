@@ -1,6 +1,7 @@
 // oscidrum/model.hpp: a validated Case with its derived constants, and the equations of motion.
 #pragma once
 
+#include "oscidrum/friction.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/parameters.hpp"
 #include "oscidrum/state.hpp"
@@ -25,7 +26,11 @@ class Model {
   double ksv() const { return ksv_; }  ///< [N/m]
   double csh() const { return csh_; }  ///< [N s/m]
   double csv() const { return csv_; }  ///< [N s/m]
+  const FrictionLaw& friction() const { return friction_; }
+  /// Coefficient of the slip phase (kinetic), T = -s mu N (27), (29) [-].
   double mu() const { return case_.contact.mu; }
+  /// Coefficient of the friction cone (static), stick while |T| <= mu_static N (28) [-].
+  double mu_static() const { return mu_static_; }
   bool pure_rolling() const { return case_.contact.pure_rolling; }
   double W() const { return W_; }    ///< m g + Fz (= P0) [N]
   double Fz() const { return Fz_; }  ///< P0 - m g (7) [N]
@@ -42,6 +47,8 @@ class Model {
  private:
   Case case_;
   TroughGeometry geometry_;
+  FrictionLaw friction_;
+  double mu_static_;
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
 };

@@ -16,6 +16,9 @@ enum class Status {
   chattering,           ///< too many stick/slip switches in a vanishing time
   non_finite,           ///< a NaN or infinity appeared in the state
   invalid_geometry,     ///< trough curvature radius fell to the drum radius (f5 <= 0)
+  gross_slip,           ///< the drum spins: the driving torque exceeds what friction can hold
+  budget_exceeded,      ///< more steps in one period than Numerics::max_steps_per_period
+  cancelled,            ///< stopped by the caller (progress callback, cancellation, Ctrl-C)
 };
 
 /// "steady_state", "max_periods_reached", ...

@@ -74,7 +74,12 @@ void bind_result(py::module_& m) {
       .value("chattering", Status::chattering, "too many stick/slip switches in a vanishing time")
       .value("non_finite", Status::non_finite, "a NaN or infinity appeared in the state")
       .value("invalid_geometry", Status::invalid_geometry,
-             "trough curvature radius fell to the drum radius (f5 <= 0)");
+             "trough curvature radius fell to the drum radius (f5 <= 0)")
+      .value("gross_slip", Status::gross_slip,
+             "the drum spins: the driving torque exceeds what friction can hold")
+      .value("budget_exceeded", Status::budget_exceeded,
+             "more steps in one period than numerics.max_steps_per_period")
+      .value("cancelled", Status::cancelled, "stopped by the caller");
 
   py::enum_<EventKind>(m, "EventKind", "Kind of a located event.")
       .value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -42,20 +43,22 @@ struct Pool {
 };
 
 // One case; `interrupted` is set if the cancellation callback stopped it midway.
+// `cancelled` (the caller's callback, serialised) is polled once per period, `stop_now` (cheap)
+// at every integration step.
 CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
-                    const std::function<bool()>& cancelled, bool* interrupted) {
+                    const std::function<bool()>& cancelled, const std::function<bool()>& stop_now,
+                    bool* interrupted) {
   CaseOutcome out;
   try {
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
-    out.result = simulate(model, progress);
-    // A cancelled simulation ends as max_periods_reached; any other end is a real result.
-    if (out.result.status == Status::max_periods_reached && cancelled && cancelled()) {
+    out.result = simulate(model, progress, stop_now);
+    if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
     }
-    if (out.result.samples.size() > 0) out.metrics = compute_metrics(out.result, n_harmonics);
+    if (ok(out.result.status)) out.metrics = compute_metrics(out.result, n_harmonics);
   } catch (const Error& e) {
     out.valid = false;
     out.error = e.what();
@@ -69,8 +72,19 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
 
 void work(Pool& pool) {
   const StudyOptions& opt = pool.options;
-  std::function<bool()> cancelled;
-  if (opt.cancelled) cancelled = [&pool] { return pool.cancelled(); };
+  std::function<bool()> cancelled, stop_now;
+  if (opt.cancelled) {
+    cancelled = [&pool] { return pool.cancelled(); };
+    // Inside a period, poll the caller's callback (which may be slow, e.g. take Python's GIL)
+    // at most every 50 ms, so that even a period that takes long stops promptly.
+    stop_now = [&pool, last = std::chrono::steady_clock::now()]() mutable {
+      if (pool.stop.load(std::memory_order_relaxed)) return true;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(50)) return false;
+      last = now;
+      return pool.cancelled();
+    };
+  }
   while (!pool.stop.load()) {
     const std::size_t i = pool.next.fetch_add(1);
     if (i >= pool.cases.size()) break;
@@ -78,7 +92,7 @@ void work(Pool& pool) {
     bool interrupted = false;
     CaseOutcome outcome =
         run_one(pool.cases[i], opt.keep_samples || static_cast<bool>(opt.on_case_done),
-                opt.n_harmonics, cancelled, &interrupted);
+                opt.n_harmonics, cancelled, stop_now, &interrupted);
     if (interrupted) break;  // stays "cancelled"; never reported as done
     std::lock_guard lock(pool.mutex);
     try {
@@ -98,7 +112,7 @@ void work(Pool& pool) {
 
 CaseOutcome run_case(const Case& c, bool keep_samples, int n_harmonics) {
   bool interrupted = false;
-  return run_one(c, keep_samples, n_harmonics, {}, &interrupted);
+  return run_one(c, keep_samples, n_harmonics, {}, {}, &interrupted);
 }
 
 std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptions& options) {

@@ -162,7 +162,7 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   r.push_back(format_double_short(d.switches_per_period));
   r.push_back(format_double_short(d.max_slip_residual));
   r.push_back(format_double_short(d.min_N));
-  if (res.samples.size() == 0) {
+  if (res.samples.size() == 0 || !ok(res.status)) {  // only a steady state has metrics
     r.resize(r.size() + metric_cells);
     return join(r);
   }

@@ -34,6 +34,12 @@ Metrics compute_metrics(const Result& result, int n_max) {
   const Samples& s = result.samples;
   const std::size_t n = s.size();
   if (n == 0) throw Error("compute_metrics: the result holds no samples");
+  // Only a steady state has steady-state metrics: the samples of another status (the last
+  // periods of a run that did not settle) are for inspection, and numbers read off them would
+  // look like a steady state's.
+  if (!ok(result.status))
+    throw Error(std::string("compute_metrics: the result has status ") + to_string(result.status) +
+                ", not a steady state: no metrics");
   if (n_max < 0) {
     throw Error("compute_metrics: n_max must be >= 0; got " + std::to_string(n_max));
   }

@@ -85,8 +85,13 @@ const std::array kFields = {
           "log-spiral parameter a; the trough radius R when k = 0 (must exceed roller.r)", 0, inf,
           true, false, nullptr, OSCIDRUM_REAL(trough.a)},
     // contact
-    Field{"contact.mu", FieldType::real, "-", "Coulomb friction coefficient drum/soil", 0, inf,
-          false, false, nullptr, OSCIDRUM_REAL(contact.mu)},
+    Field{"contact.mu", FieldType::real, "-",
+          "Coulomb friction coefficient drum/soil (the kinetic one when contact.mu_static is set)",
+          0, inf, false, false, nullptr, OSCIDRUM_REAL(contact.mu)},
+    Field{"contact.mu_static", FieldType::real, "-",
+          "static friction coefficient of the friction cone (stick while |T| <= mu_static N); -1: "
+          "equal to contact.mu; else >= contact.mu",
+          -1, inf, false, false, nullptr, OSCIDRUM_REAL(contact.mu_static)},
     Field{"contact.pure_rolling", FieldType::boolean, "-",
           "ignore the friction limit (mu -> infinity): stick throughout", 0, 1, false, false,
           nullptr, OSCIDRUM_BOOL(contact.pure_rolling)},
@@ -117,6 +122,10 @@ const std::array kFields = {
     Field{"numerics.max_switches_per_period", FieldType::integer, "-",
           "more stick/slip switches than this in one period stop the run as chattering", 2, 1e7,
           false, false, nullptr, OSCIDRUM_INT(numerics.max_switches_per_period)},
+    Field{"numerics.max_steps_per_period", FieldType::integer, "-",
+          "more integration steps than this in one period stop the run (status budget_exceeded): "
+          "a bound on the work of every run",
+          100, 1e9, false, false, nullptr, OSCIDRUM_INT(numerics.max_steps_per_period)},
     Field{"numerics.slip_constraint_rate", FieldType::real, "1/s",
           "Baumgarte rate that pulls the slip coupling (39) back to zero; 0 means 2 nu", 0, inf,
           false, false, nullptr, OSCIDRUM_REAL(numerics.slip_constraint_rate)},

@@ -45,6 +45,11 @@ void validate(const Case& c) {
       throw Error("trough.k must be <= 1 (a settlement trough, not a tight spiral); got " +
                   num(c.trough.k));
   }
+  if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
+    throw Error(
+        "contact.mu_static must be >= contact.mu (static friction is at least the kinetic), or "
+        "-1 (equal to contact.mu); got mu_static = " +
+        num(c.contact.mu_static) + ", mu = " + num(c.contact.mu));
   // The sampled steady state is kept in memory: 21 columns of doubles per sample.
   const double samples = static_cast<double>(c.numerics.samples_per_period) *
                          c.numerics.output_periods * c.numerics.max_multiplicity;
@@ -65,6 +70,8 @@ Model::Model(const Case& c) : case_(c) {
   validate(c);
   const Roller& R = c.roller;
   geometry_ = make_trough_geometry(R.r, c.trough.k, c.trough.a);
+  friction_ = friction_law(c.contact);
+  mu_static_ = c.contact.pure_rolling ? c.contact.mu : cone_coefficient(friction_);
   SoilCoefficients s = soil_coefficients(c.soil, R);
   ksh_ = s.ksh;
   ksv_ = s.ksv;

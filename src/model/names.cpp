@@ -30,6 +30,12 @@ const char* to_string(Status status) {
       return "non_finite";
     case Status::invalid_geometry:
       return "invalid_geometry";
+    case Status::gross_slip:
+      return "gross_slip";
+    case Status::budget_exceeded:
+      return "budget_exceeded";
+    case Status::cancelled:
+      return "cancelled";
   }
   return "?";
 }

@@ -1,0 +1,128 @@
+// oscidrum/flow.hpp: the hybrid flow. Integrates the drum-soil system from a state over an
+// interval through its events (stick -> slip, slip -> stick or reversal, contact loss), with the
+// chattering guard and a work budget. Every driver is built on it: the transient steady-state
+// search and the sampling of the steady state (oscidrum/simulate.hpp), and whatever else needs
+// the trajectory (shooting, a step-by-step animation, exact metrics).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "oscidrum/model.hpp"
+#include "oscidrum/result.hpp"
+#include "oscidrum/state.hpp"
+
+namespace oscidrum {
+
+/// Numerical settings of the flow. `from(model)` takes them from the model's Numerics.
+struct FlowOptions {
+  double rtol = 1e-8;                  ///< relative tolerance of the Dormand-Prince steps [-]
+  double atol = 1e-11;                 ///< absolute tolerance (SI units of each state) [-]
+  double baumgarte = 0.0;              ///< rate pulling the slip coupling (39) back to zero [1/s]
+  double max_step = 0.0;               ///< largest step [s] (events are scanned inside steps)
+  long max_switches_per_period = 200;  ///< more stick/slip switches in one excitation period
+                                       ///< (t in [nT, (n+1)T)) stop the flow as chattering [-]
+  long max_steps_per_period = 0;       ///< more accepted steps in one excitation period stop the
+                                       ///< flow as budget_exceeded (0: no limit) [-]
+  /// Polled once per accepted step; returning true stops the flow (FlowStop::cancelled).
+  std::function<bool()> cancelled;
+
+  /// rtol, atol, Baumgarte rate (slip_constraint_rate, 0 meaning 2 nu), max_step = T/16, the
+  /// switch and step budgets of `model.parameters().numerics`.
+  static FlowOptions from(const Model& model);
+};
+
+/// Why Flow::advance returned.
+enum class FlowStop {
+  reached,           ///< the requested time was reached
+  observer,          ///< an observer returned false
+  contact_lost,      ///< N reached 0 (lift-off is outside the model)
+  chattering,        ///< too many switches in a period, or 20 within a vanishing time
+  non_finite,        ///< the state became NaN or infinite
+  invalid_geometry,  ///< the trough's curvature radius fell to the drum radius (f5 <= 0)
+  budget_exceeded,   ///< more steps in one excitation period than FlowOptions allows
+  cancelled,         ///< FlowOptions::cancelled returned true
+};
+const char* to_string(FlowStop stop);
+
+/// The part of an accepted integration step that lies in one phase and one advance() interval:
+/// the dense output (Dormand-Prince's continuous extension, 4th order) between t0() and t1().
+/// Valid only inside the observer call that receives it.
+class StepView {
+ public:
+  virtual ~StepView() = default;
+  virtual double t0() const = 0;  ///< [s]
+  virtual double t1() const = 0;  ///< [s]
+  virtual Phase phase() const = 0;
+  /// The state at t in [t0(), t1()].
+  virtual State state(double t) const = 0;
+  /// True when t1() is the end of the integrator's step (not an event or the end of an interval).
+  virtual bool ends_step() const = 0;
+};
+
+/// Receives the trajectory as Flow::advance produces it, in time order.
+class FlowObserver {
+ public:
+  virtual ~FlowObserver() = default;
+  /// A piece of the trajectory; return false to stop the flow (FlowStop::observer).
+  virtual bool on_step(const StepView& /*step*/) { return true; }
+  /// An event at event.t: the state just before it and the state the flow continues from (the
+  /// same but for a velocity reset at a slip end). Return false to stop the flow.
+  virtual bool on_event(const Event& /*event*/, const State& /*before*/, const State& /*after*/) {
+    return true;
+  }
+};
+
+/// Counters of a flow since its construction.
+struct FlowCounters {
+  long steps = 0;                   ///< accepted integrator steps
+  long rhs_evaluations = 0;         ///< right-hand-side evaluations
+  long events = 0;                  ///< located events (switches and contact loss)
+  long switches = 0;                ///< phase changes (stick <-> slip, reversals)
+  long reversals = 0;               ///< slip -> slip reversals
+  long inconsistent_slip_ends = 0;  ///< slip ends where neither stick nor a reversal is
+                                    ///< consistent (docs/model.md); stick is taken
+  long restarts = 0;                ///< integrator (re)starts: reset() and one per event
+  double min_N = 0.0;               ///< smallest normal force at step ends [N]
+  double max_slip_residual = 0.0;   ///< max |(39)| / W at step ends in slip [-]
+};
+
+/// The hybrid flow of one model. Holds the integrator between calls, so that consecutive
+/// advance() calls continue one trajectory exactly as a single call would (a step that straddles
+/// the end of an interval is not cut; its dense output serves both sides).
+class Flow {
+ public:
+  Flow(const Model& model, const FlowOptions& options);
+  explicit Flow(const Model& model) : Flow(model, FlowOptions::from(model)) {}
+  ~Flow();
+  Flow(const Flow&) = delete;
+  Flow& operator=(const Flow&) = delete;
+
+  /// Start (or restart) at time t from state q in the given phase.
+  void reset(double t, const State& q, Phase phase);
+
+  /// Integrate to t_end (>= t()), passing every piece and event to `observer` (may be null).
+  /// Events at t <= t_end are applied. On FlowStop::reached, t() == t_end and state() is the
+  /// state there; on any other stop, t() and state() are where the flow stopped and message()
+  /// explains it. Never throws for numerical trouble.
+  FlowStop advance(double t_end, FlowObserver* observer = nullptr);
+
+  double t() const;     ///< [s]
+  State state() const;  ///< the state at t()
+  Phase phase() const;  ///< the phase at t()
+  const Model& model() const;
+  const FlowOptions& options() const;
+  const FlowCounters& counters() const;
+  const std::string& message() const;  ///< why the last advance() stopped early ("" if reached)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The phase a trajectory starts in from rest: stick, except without friction (mu = 0 and not
+/// pure rolling), where the drum slips from the start (the sign does not matter then).
+Phase initial_phase(const Model& model);
+
+}  // namespace oscidrum

@@ -1,0 +1,261 @@
+// The transient steady-state search (src/drivers/steady_state.hpp): the paper's method, which
+// integrates from rest until the response repeats from one excitation period to the next.
+#include "drivers/steady_state.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <limits>
+
+namespace oscidrum::detail {
+namespace {
+
+using Vec = std::array<double, 8>;
+
+// Components compared between excitation periods: everything but phi, which may drift by the
+// net slip per period; phi' is compared instead.
+constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
+
+// A steady state repeating only every p > 1 excitation periods is accepted only while every
+// comparison over fewer periods differs by more than this (scaled) amount.
+constexpr double kSubharmonicGap = 1e-4;
+
+// Gross slip: this many consecutive periods in one slip phase without a switch, with phi'
+// growing at every boundary by more than kSpinUp (relative to the excitation's r nu scale).
+constexpr int kGrossSlipPeriods = 3;
+constexpr double kSpinUp = 1e-6;
+
+// Noise floor: the smallest period-to-period change of the last kStagnationPeriods periods is
+// not below kStagnationRatio times the smallest of the kStagnationPeriods before (a transient,
+// even one decaying by 1 % per period, gains a factor 0.6 over 50 periods), and the change is
+// below the level the integration resolves (noise_floor): the state is as periodic as the
+// integration can tell.
+constexpr int kStagnationPeriods = 50;
+constexpr double kStagnationRatio = 0.9;
+
+// Events kept for a run that ends early, to show what led to the end.
+constexpr std::size_t kRecentEvents = 64;
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+class Search : public FlowObserver {
+ public:
+  Search(Flow& flow, const ProgressCallback& progress)
+      : flow_(flow),
+        model_(flow.model()),
+        num_(flow.model().parameters().numerics),
+        period_(flow.model().period()),
+        progress_(progress) {}
+
+  SearchOutcome run();
+
+  bool on_step(const StepView& step) override {
+    if (step.ends_step()) {
+      const Vec x = step.state(step.t1()).to_array();
+      for (int i : kPeriodic) {
+        range_lo_[i] = std::min(range_lo_[i], x[i]);
+        range_hi_[i] = std::max(range_hi_[i], x[i]);
+      }
+    }
+    return true;
+  }
+
+  bool on_event(const Event& event, const State&, const State&) override {
+    recent_.push_back(event);
+    if (recent_.size() > kRecentEvents) recent_.pop_front();
+    if (event.kind != EventKind::contact_lost) ++switches_this_period_;
+    return true;
+  }
+
+ private:
+  // Returns true when the search ends at boundary n.
+  bool on_boundary(int n, const Vec& x);
+  bool gross_slip(int n, const Vec& x);
+  double noise_floor() const;
+
+  Flow& flow_;
+  const Model& model_;
+  const Numerics& num_;
+  const double period_;
+  const ProgressCallback& progress_;
+  SearchOutcome out_;
+
+  std::deque<std::pair<Vec, Phase>> history_;  // states at the last boundaries, newest first
+  Vec range_lo_{}, range_hi_{}, last_range_{};
+  std::array<int, 65> below_{};  // consecutive boundaries with change_p < steady_tol, per p
+  std::deque<Event> recent_;
+  long switches_this_period_ = 0;
+  int slipping_periods_ = 0;
+  std::deque<double> changes_;  // the last 2 kStagnationPeriods period-to-period changes
+};
+
+// What the integration can resolve of the scaled period-to-period change: local errors of about
+// rtol per step, and the rounding of the excitation's phase nu t, which grows with the simulated
+// time t (eps nu t), both amplified by the sensitivity of the period map (the factors 10 and
+// 1e3 are generous bounds for this model, measured on pure-rolling cases at 10-40 Hz).
+double Search::noise_floor() const {
+  const double t = flow_.t();
+  return 10.0 * num_.rtol + 1e3 * std::numeric_limits<double>::epsilon() * model_.nu() * t;
+}
+
+bool Search::gross_slip(int n, const Vec& x) {
+  // The drum spins when it slips in one direction through whole periods while phi' grows.
+  const Phase p = flow_.phase();
+  const Vec& prev = history_.size() > 1 ? history_[1].first : x;
+  const double growth = static_cast<int>(p) * (x[7] - prev[7]);
+  if (p != Phase::stick && switches_this_period_ == 0 && history_.size() > 1 &&
+      history_[1].second == p && growth > kSpinUp * model_.nu())
+    ++slipping_periods_;
+  else
+    slipping_periods_ = 0;
+  if (slipping_periods_ < kGrossSlipPeriods) return false;
+  const double hold = model_.mu() * model_.W() * model_.r();
+  out_.status = Status::gross_slip;
+  out_.message = fmt(
+      "gross slip: the drum spins (phi' grows by %.3g rad/s per excitation period, slipping "
+      "without stick for %.0f periods): the driving torque MMd = %.6g N m exceeds what friction "
+      "can hold, about mu W r",
+      growth, kGrossSlipPeriods, model_.parameters().MMd);
+  out_.message += fmt(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
+  return true;
+}
+
+bool Search::on_boundary(int n, const Vec& x) {
+  out_.periods = n;
+  // The scale of each compared component: its range over the last period, floored at a level
+  // the integration tolerances can resolve (a component that hardly moves, like s_A around its
+  // static value, must not demand more than the integrator delivers).
+  for (int i : kPeriodic) {
+    const double range = range_hi_[i] - range_lo_[i];
+    const double floor =
+        100.0 * (num_.atol + num_.rtol * std::max(std::abs(range_hi_[i]), std::abs(range_lo_[i])));
+    last_range_[i] = std::max(range, floor);
+    range_lo_[i] = range_hi_[i] = x[i];
+  }
+
+  history_.emplace_front(x, flow_.phase());
+  if (static_cast<int>(history_.size()) > num_.max_multiplicity + 1) history_.pop_back();
+
+  // A p-periodic steady state must repeat at p consecutive boundaries (a whole cycle of the
+  // subharmonic), and for p > 1 every shorter comparison must stay macroscopic (above
+  // kSubharmonicGap): the slow, lightly damped pendulum mode of the drum in its trough can alias
+  // to almost a whole number of cycles over p periods, making the p-period change of a decaying
+  // transient smaller than the 1-period change although the motion tends to period 1.
+  int found = 0;
+  double change1 = std::numeric_limits<double>::infinity();
+  double shorter_min = std::numeric_limits<double>::infinity();
+  for (int p = 1; p < static_cast<int>(history_.size()); ++p) {
+    const auto& [xp, phase_p] = history_[p];
+    double change = 0.0;
+    for (int i : kPeriodic) change = std::max(change, std::abs(x[i] - xp[i]) / last_range_[i]);
+    if (phase_p != history_.front().second) change = std::max(change, 1.0);
+    if (p == 1) change1 = change;
+    below_[p] = change < num_.steady_tol ? below_[p] + 1 : 0;
+    if (found == 0 && below_[p] >= p && (p == 1 || shorter_min > kSubharmonicGap)) found = p;
+    shorter_min = std::min(shorter_min, change);
+  }
+  out_.final_change = change1;
+  const bool spinning = gross_slip(n, x);
+  switches_this_period_ = 0;
+  if (spinning) return true;
+  if (progress_ && !progress_(n, change1)) {
+    out_.status = Status::cancelled;
+    out_.message = fmt("cancelled after %.0f periods", n);
+    return true;
+  }
+
+  // The noise floor: the change no longer decreases and is within what the integration
+  // resolves. Accept period 1 there, and say so.
+  bool at_floor = false;
+  changes_.push_back(change1);
+  if (changes_.size() > 2 * kStagnationPeriods) changes_.pop_front();
+  if (found == 0 && changes_.size() == 2 * kStagnationPeriods && change1 < noise_floor()) {
+    const auto mid = changes_.begin() + kStagnationPeriods;
+    const double before = *std::min_element(changes_.begin(), mid);
+    const double recent = *std::min_element(mid, changes_.end());
+    if (recent > kStagnationRatio * before) {
+      at_floor = true;
+      found = 1;
+    }
+  }
+
+  if (found > 0) {
+    out_.status = Status::steady_state;
+    out_.multiplicity = found;
+    if (at_floor)
+      out_.message =
+          fmt("steady state after %.0f periods, at the noise floor of the integration: the "
+              "period-to-period change stopped decreasing at %.3g, above numerics.steady_tol but "
+              "within what numerics.rtol = %.3g resolves (tighten rtol for a smaller change)",
+              n, change1, num_.rtol);
+    else
+      out_.message = fmt(found == 1 ? "steady state after %.0f periods"
+                                    : "steady state after %.0f periods, repeating every %.0f "
+                                      "excitation periods",
+                         n, found);
+    return true;
+  }
+  if (n >= num_.max_periods) {
+    out_.status = Status::max_periods_reached;
+    out_.message =
+        fmt("no steady state within %.0f periods (last period-to-period change %.3g); the last "
+            "periods are sampled for inspection, with no metrics",
+            n, change1);
+    return true;
+  }
+  return false;
+}
+
+SearchOutcome Search::run() {
+  const Vec x0 = flow_.state().to_array();
+  range_lo_ = range_hi_ = x0;
+  history_.emplace_front(x0, flow_.phase());
+  for (int n = 1;; ++n) {
+    const FlowStop stop = flow_.advance(n * period_, this);
+    if (stop != FlowStop::reached) {
+      switch (stop) {
+        case FlowStop::contact_lost:
+          out_.status = Status::contact_lost;
+          break;
+        case FlowStop::chattering:
+          out_.status = Status::chattering;
+          break;
+        case FlowStop::non_finite:
+          out_.status = Status::non_finite;
+          break;
+        case FlowStop::invalid_geometry:
+          out_.status = Status::invalid_geometry;
+          break;
+        case FlowStop::budget_exceeded:
+          out_.status = Status::budget_exceeded;
+          break;
+        default:
+          out_.status = Status::cancelled;
+          break;
+      }
+      out_.message = flow_.message();
+      out_.recent_events.assign(recent_.begin(), recent_.end());
+      return out_;
+    }
+    if (on_boundary(n, flow_.state().to_array())) {
+      if (out_.status != Status::steady_state && out_.status != Status::max_periods_reached)
+        out_.recent_events.assign(recent_.begin(), recent_.end());
+      return out_;
+    }
+  }
+}
+
+}  // namespace
+
+SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress) {
+  Search search(flow, progress);
+  return search.run();
+}
+
+}  // namespace oscidrum::detail

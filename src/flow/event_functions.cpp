@@ -1,0 +1,22 @@
+// The event functions of the hybrid flow (src/flow/event_functions.hpp).
+#include "flow/event_functions.hpp"
+
+namespace oscidrum {
+
+EventValues event_values(const Model& model, Phase phase, const State& q) {
+  const ContactForces f = contact_forces(model, q);
+  const double W = model.W();
+  EventValues e{1.0, 1.0, f.N / W};
+  if (phase == Phase::stick) {
+    if (!model.pure_rolling()) {
+      e[kEventConeNegative] = (model.mu_static() * f.N - f.T) / W;
+      e[kEventConePositive] = (model.mu_static() * f.N + f.T) / W;
+    }
+  } else if (model.mu() > 0.0) {
+    const double v_scale = model.r() * model.nu() * 1e-3;  // 1 mrad amplitude at nu
+    e[kEventSlipVelocity] = static_cast<int>(phase) * slip_velocity(model, q) / v_scale;
+  }
+  return e;
+}
+
+}  // namespace oscidrum

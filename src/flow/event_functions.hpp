@@ -1,0 +1,24 @@
+// Internal: the event functions of the hybrid flow. Each is scaled to O(1) and an event happens
+// when one of them falls through zero (docs/model.md, switching).
+#pragma once
+
+#include <array>
+
+#include "oscidrum/model.hpp"
+
+namespace oscidrum {
+
+/// In stick: 0 is mu N - T and 1 is mu N + T (the friction cone (28) on each side, over W); in
+/// slip: 0 is s v_rel (the slip velocity (13) returning to zero, over a 1 mrad amplitude at nu)
+/// and 1 is unused (1). Always: 2 is N / W (contact).
+inline constexpr int kEventCount = 3;
+inline constexpr int kEventConeNegative = 0;  ///< stick: mu N - T reaches 0 (T > 0: slip-)
+inline constexpr int kEventConePositive = 1;  ///< stick: mu N + T reaches 0 (T < 0: slip+)
+inline constexpr int kEventSlipVelocity = 0;  ///< slip: s v_rel reaches 0
+inline constexpr int kEventContact = 2;       ///< N reaches 0
+using EventValues = std::array<double, kEventCount>;
+
+/// The event functions at state q in the given phase.
+EventValues event_values(const Model& model, Phase phase, const State& q);
+
+}  // namespace oscidrum
