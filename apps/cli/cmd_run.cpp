@@ -13,6 +13,7 @@
 #include "oscidrum/simulate.hpp"
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/files.hpp"
 #include "oscidrum_io/json.hpp"
 #include "output.hpp"
 #include "plot.hpp"
@@ -30,10 +31,14 @@ struct RunOptions {
   bool quiet = false, print_config = false;
 };
 
-std::string steady_csv_text(const Result& r) {
-  std::ostringstream out;
-  io::write_steady_state_csv(out, r);
-  return out.str();
+// The steady state goes to its file or stdout as it is formatted, never whole in memory.
+void write_steady_csv(const std::string& path, const Result& r) {
+  if (path == "-") {
+    io::write_steady_state_csv(std::cout, r);
+    std::cout.flush();
+  } else {
+    io::write_file_atomic(path, [&r](std::ostream& out) { io::write_steady_state_csv(out, r); });
+  }
 }
 
 int run(const RunOptions& o) {
@@ -89,7 +94,7 @@ int run(const RunOptions& o) {
     if (json_path.empty() || json_path == "-") json_path = o.plot_dir + "/summary.json";
   }
   const std::string json_text = io::case_json(spec, c, result, metrics.get(), o.config);
-  if (!csv_path.empty()) write_output(csv_path, steady_csv_text(result));
+  if (!csv_path.empty()) write_steady_csv(csv_path, result);
   if (!json_path.empty()) write_output(json_path, json_text);
   if (!o.events.empty()) {
     std::ostringstream ev;
@@ -101,7 +106,7 @@ int run(const RunOptions& o) {
   else if (o.format == "json")
     std::cout << json_text;
   else
-    std::cout << steady_csv_text(result);
+    write_steady_csv("-", result);
   std::cout.flush();
 
   if (!ok(result.status) && !o.quiet)

@@ -51,6 +51,9 @@ struct Metrics {
   double stick_fraction = 0.0;  ///< of the sampled time [-]
   double slip_positive_fraction = 0.0;  ///< [-]
   double slip_negative_fraction = 0.0;  ///< [-]
+
+  /// Every number NaN and no harmonics: what a result that is not a steady state has.
+  static Metrics unavailable();
 };
 
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if

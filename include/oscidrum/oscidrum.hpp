@@ -3,6 +3,8 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/flow.hpp"
+#include "oscidrum/friction.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"

@@ -22,10 +22,8 @@ constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
 // comparison over fewer periods differs by more than this (scaled) amount.
 constexpr double kSubharmonicGap = 1e-4;
 
-// Gross slip: this many consecutive periods in one slip phase without a switch, with phi'
-// growing at every boundary by more than kSpinUp (relative to the excitation's r nu scale).
+// Gross slip: this many consecutive periods in one slip phase without a switch (see gross_slip).
 constexpr int kGrossSlipPeriods = 3;
-constexpr double kSpinUp = 1e-6;
 
 // Noise floor: the smallest period-to-period change of the last kStagnationPeriods periods is
 // not below kStagnationRatio times the smallest of the kStagnationPeriods before (a transient,
@@ -105,23 +103,31 @@ double Search::noise_floor() const {
 }
 
 bool Search::gross_slip(int n, const Vec& x) {
-  // The drum spins when it slips in one direction through whole periods while phi' grows.
+  // Slip of one sign s through whole periods cannot be periodic: phi' is periodic only if the
+  // mean of (23), I phi'' = MM + s mu N r, vanishes, i.e. MMd = -s mu mean(N) r, while the
+  // torque of a drum sliding the other way would make it stick. So once the drum has slipped
+  // without a switch for kGrossSlipPeriods periods, in the direction its driving torque pushes
+  // (-s MMd > 0), with MMd beyond mu W r (mean N is W) and phi' grown over those periods, it
+  // spins: the friction cannot hold the driving torque.
   const Phase p = flow_.phase();
-  const Vec& prev = history_.size() > 1 ? history_[1].first : x;
-  const double growth = static_cast<int>(p) * (x[7] - prev[7]);
-  if (p != Phase::stick && switches_this_period_ == 0 && history_.size() > 1 &&
-      history_[1].second == p && growth > kSpinUp * model_.nu())
+  const int s = static_cast<int>(p);
+  const double MMd = model_.parameters().MMd;
+  const double hold = model_.mu() * model_.W() * model_.r();
+  if (p != Phase::stick && switches_this_period_ == 0 && -s * MMd > hold)
     ++slipping_periods_;
   else
     slipping_periods_ = 0;
-  if (slipping_periods_ < kGrossSlipPeriods) return false;
-  const double hold = model_.mu() * model_.W() * model_.r();
+  if (slipping_periods_ < kGrossSlipPeriods ||
+      static_cast<int>(history_.size()) <= kGrossSlipPeriods)
+    return false;
+  const double growth = -s * (x[7] - history_[kGrossSlipPeriods].first[7]) / kGrossSlipPeriods;
+  if (!(growth > 0.0)) return false;
   out_.status = Status::gross_slip;
   out_.message = fmt(
       "gross slip: the drum spins (phi' grows by %.3g rad/s per excitation period, slipping "
       "without stick for %.0f periods): the driving torque MMd = %.6g N m exceeds what friction "
       "can hold, about mu W r",
-      growth, kGrossSlipPeriods, model_.parameters().MMd);
+      growth, kGrossSlipPeriods, MMd);
   out_.message += fmt(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
   return true;
 }

@@ -58,7 +58,8 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
       *interrupted = true;
       return out;
     }
-    if (ok(out.result.status)) out.metrics = compute_metrics(out.result, n_harmonics);
+    out.metrics =
+        ok(out.result.status) ? compute_metrics(out.result, n_harmonics) : Metrics::unavailable();
   } catch (const Error& e) {
     out.valid = false;
     out.error = e.what();

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum_io/config.hpp"
@@ -47,6 +48,33 @@ void write_file_atomic(const std::string& path, std::string_view text) {
     throw;
   }
   if (::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw Error("cannot write " + path + ": " + reason);
+  }
+}
+
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  try {
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw Error("cannot write " + path + ": " + std::strerror(errno));
+      write(out);
+      out.flush();
+      if (!out) throw Error("cannot write " + path + ": " + std::strerror(errno));
+    }
+    const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0 || ::fsync(fd) != 0) {
+      if (fd >= 0) ::close(fd);
+      throw Error("cannot write " + path + ": " + std::strerror(errno));
+    }
+    ::close(fd);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
     ::unlink(tmp.c_str());
     throw Error("cannot write " + path + ": " + reason);

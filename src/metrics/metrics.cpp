@@ -30,6 +30,15 @@ void require_size(const std::vector<double>& v, std::size_t n, const char* name)
 
 }  // namespace
 
+Metrics Metrics::unavailable() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Metrics m;
+  m.ddx_max = m.ddx_min = m.ddz_max = m.ddz_min = m.delta_max = m.delta_min = nan;
+  m.phi_lag = m.phi_amplitude = m.psi_xz = m.area = nan;
+  m.stick_fraction = m.slip_positive_fraction = m.slip_negative_fraction = nan;
+  return m;
+}
+
 Metrics compute_metrics(const Result& result, int n_max) {
   const Samples& s = result.samples;
   const std::size_t n = s.size();

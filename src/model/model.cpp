@@ -79,6 +79,18 @@ Model::Model(const Case& c) : case_(c) {
   csv_ = s.csv;
   Fz_ = R.P0 - R.m * R.g;  // (7)
   W_ = R.m * R.g + Fz_;    // the vertical load on the drum, = P0
+  // The trough must be measurably larger than the drum: with a clearance (curvature radius at
+  // the bottom minus r) far below the static soil deflection, the rolling relation (11)
+  // degenerates (f5 = sqrt(1+k^2) R0/r - 1 -> 0 divides the stick equation) and no integrator
+  // can follow the drum. 1 % of the deflection W / (ksv + kd) is far below any trough a drum
+  // digs (the paper's smallest clearance, 3 mm, is over 10 times the deflection).
+  const double clearance = geometry_.root * geometry_.R0 - R.r;
+  const double deflection = W_ / (s.ksv + R.kd);
+  if (clearance < 0.01 * deflection)
+    throw Error("trough: the clearance between trough and drum, sqrt(1+k^2) R0 - roller.r = " +
+                num(clearance) + " m, must be at least 1 % of the static soil deflection W / " +
+                "(ksv + kd) = " + num(deflection) +
+                " m: a trough of the drum's own size makes the rolling relation (11) degenerate");
   nu_ = 2.0 * M_PI * R.f;
   // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
   // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.

@@ -1,4 +1,4 @@
-// Physics tests of the hybrid integration (src/simulate.cpp): invariants, limits, symmetry,
+// Physics tests of the hybrid integration (src/drivers/simulate.cpp): invariants, limits, symmetry,
 // energy balance and convergence. Each test states which physical fact it checks.
 #include <gtest/gtest.h>
 
@@ -322,8 +322,94 @@ TEST(Simulate, ProgressCanCancel) {
     return ++calls < 5;
   });
   EXPECT_EQ(calls, 5);
-  EXPECT_EQ(r.status, Status::max_periods_reached);
+  EXPECT_EQ(r.status, Status::cancelled);
   EXPECT_NE(r.message.find("cancelled"), std::string::npos);
+  EXPECT_THROW(compute_metrics(r), Error);
+}
+
+// Issue 14.1: the switch counter of the chattering guard counts per excitation period, also
+// while the steady state is sampled (it once added up over the sampled window).
+TEST(Simulate, ManyOutputPeriodsAreNotChattering) {
+  Case c = stick_slip_case(25, 0.05);
+  c.numerics.output_periods = 60;
+  c.numerics.samples_per_period = 64;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_EQ(r.sample_periods, 60);
+  EXPECT_DOUBLE_EQ(r.diagnostics.switches_per_period, 4.0);
+  c.numerics.max_switches_per_period = 5;  // 4 switches per period must still pass
+  c.numerics.output_periods = 2;
+  EXPECT_EQ(simulate(c).status, Status::steady_state);
+}
+
+// Issue 8.2: a driving torque beyond what friction holds spins the drum: its own status, early,
+// with a message that says why, and no metrics.
+TEST(Simulate, GrossSlipIsDetectedEarly) {
+  const Result r = simulate(stick_slip_case(25, 0.5));
+  ASSERT_EQ(r.status, Status::gross_slip) << r.message;
+  EXPECT_LT(r.diagnostics.periods_simulated, 20);
+  EXPECT_NE(r.message.find("MMd"), std::string::npos);
+  EXPECT_NE(r.message.find("mu W r"), std::string::npos);
+  EXPECT_EQ(r.samples.size(), 0u);
+  EXPECT_THROW(compute_metrics(r), Error);
+  // The frictionless drum without driving torque slips throughout but does not spin up.
+  Case free = stick_slip_case(25);
+  free.contact.mu = 0.0;
+  EXPECT_EQ(simulate(free).status, Status::steady_state);
+}
+
+// A status other than the steady state never carries metrics (issue 8.2): the samples of a run
+// that gave up are there for inspection only.
+TEST(Simulate, OnlyASteadyStateHasMetrics) {
+  Case c = pure_rolling_case(25);
+  c.numerics.max_periods = 10;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::max_periods_reached);
+  EXPECT_GT(r.samples.size(), 0u);
+  EXPECT_THROW(compute_metrics(r), Error);
+  const CaseOutcome o = run_case(c);
+  EXPECT_TRUE(std::isnan(o.metrics.area));
+  EXPECT_TRUE(std::isnan(o.metrics.ddx_max));
+  EXPECT_TRUE(o.metrics.ddx_harmonics.empty());
+}
+
+// Issue 14.3: a pure-rolling case whose period-to-period change settles just above steady_tol
+// at the integration's noise floor is accepted as steady, and the message says so.
+TEST(Simulate, SteadyStateAtTheNoiseFloorIsAccepted) {
+  Case c;
+  c.contact.pure_rolling = true;
+  c.roller.f = 10.29763;
+  c.roller.M0 = 3830.80177;
+  c.roller.m = 2082.26699;
+  c.roller.I = 532.40974;
+  c.roller.kd = 2734084.22076;
+  c.roller.cd = 12757.36059;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 58.999597e6;
+  c.soil.nu = 0.42439;
+  c.soil.rho = 1905.37313;
+  c.MMd = -258.08125;
+  c.trough.a = 0.65787;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_LT(r.diagnostics.final_change, 1e-7);
+}
+
+// Issue 14.2: the work of a run is bounded; a step budget stops it with its own status.
+TEST(Simulate, StepBudgetStopsTheRun) {
+  Case c = stick_slip_case(25);
+  c.numerics.max_steps_per_period = 100;  // the default case needs more than that per period
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::budget_exceeded) << r.message;
+  EXPECT_NE(r.message.find("numerics.max_steps_per_period"), std::string::npos);
+}
+
+// Cancellation is polled at every step: a run stops within a step of being asked to.
+TEST(Simulate, CancellationStopsWithinAStep) {
+  long polls = 0;
+  const Result r = simulate(pure_rolling_case(25), {}, [&] { return ++polls > 50; });
+  EXPECT_EQ(r.status, Status::cancelled);
+  EXPECT_LE(r.diagnostics.steps, 51);
 }
 
 TEST(Simulate, TooManySamplesAreRefusedBeforeIntegrating) {

@@ -50,6 +50,7 @@ const std::map<std::string, Member>& members() {
       {"trough.k", [](Case& c) -> double& { return c.trough.k; }},
       {"trough.a", [](Case& c) -> double& { return c.trough.a; }},
       {"contact.mu", [](Case& c) -> double& { return c.contact.mu; }},
+      {"contact.mu_static", [](Case& c) -> double& { return c.contact.mu_static; }},
       {"MMd", [](Case& c) -> double& { return c.MMd; }},
       {"numerics.rtol", [](Case& c) -> double& { return c.numerics.rtol; }},
       {"numerics.atol", [](Case& c) -> double& { return c.numerics.atol; }},
@@ -72,6 +73,7 @@ double direct_value(const Case& c0, const std::string& key) {
   if (key == "numerics.output_periods") return c.numerics.output_periods;
   if (key == "numerics.samples_per_period") return c.numerics.samples_per_period;
   if (key == "numerics.max_switches_per_period") return c.numerics.max_switches_per_period;
+  if (key == "numerics.max_steps_per_period") return c.numerics.max_steps_per_period;
   ADD_FAILURE() << "the test does not know the field '" << key << "': add it to members()";
   return kNaN;
 }
@@ -107,8 +109,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 11 roller + 8 soil + 2 trough + 2 contact + MMd + 10 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 34u);
+  // 11 roller + 8 soil + 2 trough + 3 contact + MMd + 11 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 36u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;

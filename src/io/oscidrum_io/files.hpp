@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <iosfwd>
 #include <map>
 #include <string>
 #include <string_view>
@@ -14,6 +16,10 @@ namespace oscidrum::io {
 /// to disk and renamed over `path`: readers see the old file or the new one, never a part.
 /// Throws oscidrum::Error "cannot write PATH: reason".
 void write_file_atomic(const std::string& path, std::string_view text);
+
+/// The same, streaming: `write` fills the temporary file, so a large output (a steady state of
+/// a million samples per period) is never held in memory whole.
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 /// An append-only record of the finished cases of one sweep, kept beside its output
 /// (results.csv.journal). Line 1 identifies the study (a fingerprint of every case and of the

@@ -1,0 +1,145 @@
+// The hybrid flow (src/flow/flow.cpp): a trajectory does not depend on how it is cut into
+// intervals, observers see it whole and in order, events are reported with both one-sided
+// states, and the stops (budget, cancellation, observer) end it where they say.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "oscidrum/oscidrum.hpp"
+#include "tolerances.hpp"
+
+namespace oscidrum {
+namespace {
+
+Case stick_slip(double G_MN, double MMd_fraction) {
+  Case c;
+  c.soil = table2_soil(G_MN * 1e6);
+  c.MMd = MMd_fraction * c.roller.M0;
+  return c;
+}
+
+// Records the pieces and events it is shown.
+struct Recorder : FlowObserver {
+  struct Piece {
+    double t0, t1;
+    Phase phase;
+    bool ends_step;
+    State start, end;
+  };
+  std::vector<Piece> pieces;
+  std::vector<Event> events;
+  std::vector<std::pair<State, State>> jumps;
+  bool on_step(const StepView& s) override {
+    pieces.push_back({s.t0(), s.t1(), s.phase(), s.ends_step(), s.state(s.t0()), s.state(s.t1())});
+    return true;
+  }
+  bool on_event(const Event& e, const State& before, const State& after) override {
+    events.push_back(e);
+    jumps.emplace_back(before, after);
+    return true;
+  }
+};
+
+TEST(Flow, TrajectoryDoesNotDependOnHowItIsCut) {
+  const Model model(stick_slip(25, 0.05));
+  const double T = model.period();
+  Flow whole(model), cut(model);
+  whole.reset(0.0, model.initial_state(), initial_phase(model));
+  cut.reset(0.0, model.initial_state(), initial_phase(model));
+  ASSERT_EQ(whole.advance(10 * T), FlowStop::reached);
+  for (int k = 1; k <= 370; ++k) ASSERT_EQ(cut.advance(k * T / 37.0), FlowStop::reached);
+  // The same steps, the same events: the end states agree to the last bit of the dense output.
+  EXPECT_EQ(whole.counters().steps, cut.counters().steps);
+  EXPECT_EQ(whole.counters().events, cut.counters().events);
+  const auto a = whole.state().to_array(), b = cut.state().to_array();
+  for (int i = 0; i < 8; ++i) EXPECT_NEAR(a[i], b[i], 1e-12 * (1.0 + std::abs(a[i]))) << i;
+  EXPECT_EQ(whole.phase(), cut.phase());
+}
+
+TEST(Flow, ObserverSeesTheWholeTrajectoryInOrder) {
+  const Model model(stick_slip(25, 0.05));
+  const double T = model.period();
+  Flow flow(model);
+  flow.reset(0.0, model.initial_state(), initial_phase(model));
+  Recorder rec;
+  ASSERT_EQ(flow.advance(3 * T, &rec), FlowStop::reached);
+  ASSERT_FALSE(rec.pieces.empty());
+  EXPECT_EQ(rec.pieces.front().t0, 0.0);
+  EXPECT_EQ(rec.pieces.back().t1, 3 * T);
+  for (std::size_t i = 1; i < rec.pieces.size(); ++i) {
+    EXPECT_EQ(rec.pieces[i].t0, rec.pieces[i - 1].t1) << i;  // contiguous
+    EXPECT_GT(rec.pieces[i].t1, rec.pieces[i].t0) << i;
+  }
+  // Stick-slip at G = 25 with a driving torque switches 4 times per period once settled.
+  EXPECT_GE(rec.events.size(), 8u);
+  std::size_t e = 0;
+  for (std::size_t i = 0; i + 1 < rec.pieces.size() && e < rec.events.size(); ++i) {
+    if (rec.pieces[i].t1 != rec.events[e].t) continue;
+    // An event ends a piece; the next piece starts in the new phase from the state after it.
+    EXPECT_FALSE(rec.pieces[i].ends_step);
+    EXPECT_EQ(rec.pieces[i].phase, rec.events[e].from);
+    EXPECT_EQ(rec.pieces[i + 1].phase, rec.events[e].to);
+    const auto after = rec.jumps[e].second.to_array(), next = rec.pieces[i + 1].start.to_array();
+    for (int k = 0; k < 8; ++k) EXPECT_NEAR(after[k], next[k], 1e-12 * (1 + std::abs(after[k])));
+    ++e;
+  }
+  EXPECT_EQ(e, rec.events.size()) << "every event ends a piece";
+}
+
+TEST(Flow, AtAStickToSlipSwitchTheFrictionLimitIsReached) {
+  const Model model(stick_slip(25, 0.0));
+  Flow flow(model);
+  flow.reset(0.0, model.initial_state(), initial_phase(model));
+  Recorder rec;
+  ASSERT_EQ(flow.advance(5 * model.period(), &rec), FlowStop::reached);
+  int checked = 0;
+  for (std::size_t i = 0; i < rec.events.size(); ++i) {
+    if (rec.events[i].kind != EventKind::stick_to_slip) continue;
+    const ContactForces f = contact_forces(model, rec.jumps[i].first);
+    EXPECT_NEAR(std::abs(f.T), model.mu() * f.N, 1e-9 * model.W());
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+}
+
+TEST(Flow, StopsWhereItSays) {
+  const Model model(stick_slip(25, 0.05));
+  const double T = model.period();
+  {  // an observer that stops at once
+    struct Stop : FlowObserver {
+      bool on_step(const StepView&) override { return false; }
+    } stop;
+    Flow flow(model);
+    flow.reset(0.0, model.initial_state(), initial_phase(model));
+    EXPECT_EQ(flow.advance(T, &stop), FlowStop::observer);
+    EXPECT_LT(flow.t(), T);
+  }
+  {  // cancellation
+    FlowOptions o = FlowOptions::from(model);
+    int polls = 0;
+    o.cancelled = [&] { return ++polls > 3; };
+    Flow flow(model, o);
+    flow.reset(0.0, model.initial_state(), initial_phase(model));
+    EXPECT_EQ(flow.advance(100 * T), FlowStop::cancelled);
+    EXPECT_EQ(flow.counters().steps, 3);
+    EXPECT_NE(flow.message().find("cancelled"), std::string::npos);
+  }
+  {  // the step budget
+    FlowOptions o = FlowOptions::from(model);
+    o.max_steps_per_period = 10;
+    Flow flow(model, o);
+    flow.reset(0.0, model.initial_state(), initial_phase(model));
+    EXPECT_EQ(flow.advance(100 * T), FlowStop::budget_exceeded);
+    EXPECT_LT(flow.t(), T);
+  }
+  {  // t_end at or before t(): nothing happens
+    Flow flow(model);
+    flow.reset(0.25, model.initial_state(), initial_phase(model));
+    EXPECT_EQ(flow.advance(0.25), FlowStop::reached);
+    EXPECT_EQ(flow.counters().steps, 0);
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum
