@@ -39,7 +39,11 @@ for s in "${sources[@]}"; do
     stale+=("$s")
   fi
 done
-# Two compilers at a time (the machine is shared); xargs fails if any compile fails.
+# Two compilers at a time (the machine is shared); xargs fails if any compile fails. Only the
+# sources that throw or catch get exception support (-fexceptions): Emscripten 3.1.6 implements
+# C++ exceptions in JavaScript, which routes calls out of such functions through JavaScript; the
+# integrator (src/drivers/simulate.cpp, src/equations/) neither throws nor catches and stays free
+# of that. The bindings catch every oscidrum::Error and hand it to the page as a message.
 if [ ${#stale[@]} -gt 0 ]; then
   printf '%s\n' "${stale[@]}" | xargs -P 2 -I{} sh -c \
     'd=$1; shift; x=; grep -Eq "throw|catch" "$0" && x=-fexceptions

@@ -15,6 +15,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/metrics.hpp"
+#include "oscidrum/model.hpp"
 #include "oscidrum/parameters.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
@@ -216,7 +217,10 @@ val error_object(const std::string& message) {
 val simulate(const val& values, int n_max) {
   try {
     const oscidrum::Case c = case_from(values);
-    const oscidrum::Result r = oscidrum::simulate(c);
+    // The Model validates the case (throws oscidrum::Error) here, in code built with exception
+    // support; the integrator itself is built without it (scripts/build-web.sh) and never throws.
+    const oscidrum::Model model(c);
+    const oscidrum::Result r = oscidrum::simulate(model);
     val out = val::object();
     out.set("ok", true);
     out.set("status", std::string(oscidrum::to_string(r.status)));
