@@ -156,16 +156,45 @@ async function main() {
     const after = await page.evaluate(() => window.explorer.last().result);
     assert.equal(after.metrics.area, before.metrics.area);
 
-    // Pure rolling on the modulus soil (Appendix B): still a steady state, no errors.
+    // Pure rolling on the modulus soil (Appendix B): the exported TOML (soil.input = "modulus",
+    // pure_rolling = true) is the case the native tool runs from the same flags.
     await page.selectOption('#soil_mode', 'modulus');
     await page.check('#rolling');
     shown = await settled();
     assert.equal(shown.status, 'steady_state');
+    fs.writeFileSync(tomlFile, await page.evaluate(() => window.explorer.caseToml()));
+    const modulusNative = native(['--set', 'soil.input=modulus', '--set', 'soil.G=40e6', '--pure-rolling']);
+    assert.equal(native([tomlFile]).metrics.area, modulusNative.metrics.area);
+    console.log(`ok   modulus soil, pure rolling: ${shown.status}, area ${shown.area}; TOML runs natively to the same case`);
+
+    // The log-spiral trough at G = 5 (Table 2).
     await page.selectOption('#soil_mode', 'table2');
     await page.uncheck('#rolling');
+    await page.selectOption('#trough_mode', 'spiral');
+    await setInput('k', '0.002');
+    await setInput('a', '0.601');
+    await setInput('G', '5');
+    shown = await settled();
+    const spiral = native(['--k', '0.002', '--a', '0.601', '--G', '5', '--mu', '0.3']);
+    assert.equal(shown.status, spiral.status);
+    assert.ok(Math.abs(shown.area - spiral.metrics.area) <= AREA_RTOL * spiral.metrics.area, `spiral: area ${shown.area} vs native ${spiral.metrics.area}`);
+    console.log(`ok   spiral trough k 0.002, a 0.601, G 5, mu 0.3: area ${shown.area} (native ${spiral.metrics.area})`);
+
+    // M0 follows f^2 (5) when asked: M0 = M0(39 Hz) (f / 39)^2.
+    await page.check('#M0_scale');
+    await setInput('f', '30');
+    await settled();
+    const M0 = await page.evaluate(() => window.explorer.last().result.case['roller.M0']);
+    assert.equal(M0, 54947 * (30 / 39) ** 2);
+    await page.uncheck('#M0_scale');
+    await setInput('f', '39');
+
+    // Back to the default case (for the screenshot).
+    await page.selectOption('#trough_mode', 'circle');
     await setInput('G', '25');
     await setInput('mu', '0.5');
     shown = await settled();
+    console.log(`ok   ${await page.textContent('#timing')}`);
     assert.ok(Math.abs(shown.area - def.metrics.area) <= AREA_RTOL * def.metrics.area);
 
     if (screenshot) {
