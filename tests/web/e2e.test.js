@@ -80,9 +80,9 @@ async function main() {
       }));
     };
     const setInput = async (name, text) => {
-      await page.fill(`#in-${name}`, text);
+      await page.fill(`[id="in-${name}"]`, text);
     };
-    const errorOf = (name) => page.textContent(`#err-${name}`);
+    const errorOf = (name) => page.textContent(`[id="err-${name}"]`);
 
     await page.goto(url);
     let shown = await settled();
@@ -137,8 +137,12 @@ async function main() {
       ['kd', '1e999', /finite/],
       ['G', '12', /Table 2 has G = 5, 10/],
       ['R', '0.5', /trough/],
+      // a field of the table without its own input ('more parameters')
+      ['x:roller.r', '-1', /roller\.r must be > 0/],
+      ['x:numerics.samples_per_period', '8', /numerics\.samples_per_period must be/],
     ]) {
-      const good = await page.inputValue(`#in-${name}`);
+      if (name.startsWith('x:')) await page.click('summary');
+      const good = await page.inputValue(`[id="in-${name}"]`);
       await setInput(name, text);
       await page.waitForFunction((n) => document.getElementById(`err-${n}`).textContent !== '', name, { timeout: 10000 });
       const msg = await errorOf(name);
@@ -150,6 +154,7 @@ async function main() {
       assert.ok(Date.now() - t0 < 1000, 'the page froze');
       console.log(`ok   ${name} = '${text}': "${msg}"`);
       await setInput(name, good);
+      if (name.startsWith('x:')) await page.click('summary');
       await page.waitForFunction((n) => document.getElementById(`err-${n}`).textContent === '', name);
       await settled();
     }

@@ -29,6 +29,12 @@ const INPUTS = {
 };
 
 let fields = [];            // the engine's field table
+let extras = [];            // the fields without an input above ('more parameters'), by key
+// The keys the inputs above set (the rest of the field table is under 'more parameters').
+const COVERED = new Set(['soil.input', 'soil.G', 'soil.nu', 'soil.rho', 'soil.ksh', 'soil.ksv', 'soil.csh',
+  'soil.csv', 'contact.mu', 'contact.pure_rolling', 'roller.f', 'roller.M0', 'MMd', 'trough.k', 'trough.a',
+  'roller.kd', 'roller.cd']);
+const extraName = (key) => `x:${key}`;
 let fieldByKey = {};
 let table2 = [];            // paper Table 2 rows (SI)
 let worker = null;
@@ -59,6 +65,39 @@ function buildInputs() {
       `<span class="error" id="err-${name}" role="alert"></span>`;
     $(`in-${name}`).value = defaultText(name);
   }
+  // every other field of the table, with its default, unit and rule
+  extras = fields.filter((f) => !COVERED.has(f.key));
+  const box = $('more-fields');
+  for (const f of extras) {
+    const name = extraName(f.key);
+    const div = document.createElement('div');
+    div.className = 'field';
+    div.dataset.input = name;
+    let control;
+    if (f.type === 'boolean') control = `<input type="checkbox" id="in-${name}" name="${f.key}">`;
+    else if (f.type === 'choice') control = `<select id="in-${name}" name="${f.key}">${f.choices.map((c, i) => `<option value="${i}">${c}</option>`).join('')}</select>`;
+    else control = `<input type="text" inputmode="decimal" id="in-${name}" name="${f.key}">`;
+    div.innerHTML = `<label><span class="name wide">${f.key}</span>${control}<span class="unit">${f.unit}</span></label>` +
+      `<span class="hint">${f.description} (rule: ${f.rule})</span><span class="error" id="err-${name}" role="alert"></span>`;
+    box.appendChild(div);
+    setExtra(f, f.default);
+  }
+}
+
+function setExtra(f, value) {
+  const el = $(`in-${extraName(f.key)}`);
+  if (f.type === 'boolean') el.checked = Boolean(value);
+  else el.value = String(value);
+}
+
+// The text of an extra field's control ('true'/'false' for booleans).
+function extraText(f) {
+  const el = $(`in-${extraName(f.key)}`);
+  return f.type === 'boolean' ? String(el.checked) : el.value.trim();
+}
+
+function extraDefaultText(f) {
+  return f.type === 'boolean' ? String(Boolean(f.default)) : String(f.default);
 }
 
 function defaultText(name) {
@@ -80,6 +119,7 @@ function visibleInputs() {
   if (modulus) names.push('nu', 'rho');
   names.push(...(spiral ? ['k', 'a'] : ['R']));
   if ($('rolling').checked) names.splice(names.indexOf('mu'), 1);
+  for (const f of extras) names.push(extraName(f.key));
   return names;
 }
 
@@ -101,6 +141,11 @@ function readInputs() {
   const values = {};
   const errors = {};
   for (const name of visibleInputs()) {
+    const f = name.startsWith('x:') ? fieldByKey[name.slice(2)] : null;
+    if (f && f.type === 'boolean') {
+      values[name] = $(`in-${name}`).checked ? 1 : 0;
+      continue;
+    }
     const text = $(`in-${name}`).value.trim();
     if (text === '') {
       errors[name] = 'enter a value';
@@ -143,24 +188,31 @@ function caseValues(v) {
   }
   c['roller.kd'] = v.kd;
   c['roller.cd'] = v.cd;
+  for (const f of extras) c[f.key] = v[extraName(f.key)];
   return c;
 }
 
 // The input that shows an engine message about field `key` (or a message naming it).
 function inputForKey(key) {
   if (key === 'MMd') return 'MMd';
+  if (extras.some((f) => f.key === key)) return extraName(key);
   if (key === 'trough.a') return $('trough_mode').value === 'spiral' ? 'a' : 'R';
   for (const [name, spec] of Object.entries(INPUTS)) if (spec.key === key && name !== 'R' && name !== 'a') return name;
   return null;
 }
 
 function inputForMessage(message) {
-  const keys = fields.map((f) => f.key).sort((a, b) => b.length - a.length);
-  for (const k of keys) if (message.includes(k)) {
-    const name = inputForKey(k);
-    if (name && visibleInputs().includes(name)) return name;
+  // the field the message is about: the key it names first ("trough.a must be > roller.r ...")
+  let best = null, at = Infinity;
+  for (const f of fields) {
+    const i = message.indexOf(f.key);
+    const name = i >= 0 ? inputForKey(f.key) : null;
+    if (name && visibleInputs().includes(name) && (i < at || (i === at && f.key.length > best.length))) {
+      best = f.key;
+      at = i;
+    }
   }
-  return null;
+  return best ? inputForKey(best) : null;
 }
 
 // ---------------------------------------------------------------- URL state
@@ -173,7 +225,9 @@ function saveUrl() {
   p.set('trough', $('trough_mode').value);
   if ($('rolling').checked) p.set('rolling', '1');
   if ($('M0_scale').checked) p.set('M0f2', '1');
-  for (const name of visibleInputs()) p.set(name, $(`in-${name}`).value.trim());
+  for (const name of visibleInputs()) if (!name.startsWith('x:')) p.set(name, $(`in-${name}`).value.trim());
+  // the other fields only when they differ from their defaults, by their keys
+  for (const f of extras) if (extraText(f) !== extraDefaultText(f)) p.set(f.key, extraText(f));
   history.replaceState(null, '', `${location.pathname}?${p}`);
 }
 
@@ -184,6 +238,7 @@ function loadUrl() {
   $('rolling').checked = p.get('rolling') === '1';
   $('M0_scale').checked = p.get('M0f2') === '1';
   for (const name of URL_INPUTS) if (p.has(name)) $(`in-${name}`).value = p.get(name);
+  for (const f of extras) if (p.has(f.key)) setExtra(f, f.type === 'boolean' ? p.get(f.key) === 'true' : p.get(f.key));
 }
 
 // ---------------------------------------------------------------- the worker
@@ -267,7 +322,7 @@ function showStatus(text, ok, value = '') {
 function onChange() {
   updateVisibility();
   const { values, errors } = readInputs();
-  for (const name of Object.keys(INPUTS)) setError(name, errors[name] || '');
+  for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
   if (Object.keys(errors).length) {
     seq += 1;  // a result still on its way is outdated
     showStatus('invalid input: see the messages next to the inputs', false);
@@ -482,7 +537,7 @@ function drawDrum(canvas, an, i) {
   const R = (th) => an.a * Math.exp(an.k * th);  // (8)
   // soil and trough
   ctx.fillStyle = '#d9c9a8';
-  const edge = 0.95;  // the trough drawn for |theta| <= edge, then the flat soil surface
+  const edge = 1.2;  // the trough drawn for |theta| <= edge, then the flat soil surface
   const yEdge = cy + R(edge) * Math.cos(edge) * scale;
   ctx.beginPath();
   ctx.moveTo(0, h);
@@ -697,6 +752,7 @@ function init() {
     $('soil_mode').value = 'table2'; $('trough_mode').value = 'circle';
     $('rolling').checked = false; $('M0_scale').checked = false;
     for (const name of Object.keys(INPUTS)) $(`in-${name}`).value = defaultText(name);
+    for (const f of extras) setExtra(f, f.default);
     onChange();
   });
   $('export-toml').addEventListener('click', () => download('case.toml', new Blob([caseToml()], { type: 'application/toml' })));
