@@ -533,21 +533,8 @@ function drawDrum(canvas, an, i) {
   const scale = (0.36 * h) / an.r;  // px per m
   // trough centre C: moves with the soil point A (x_A, s_A down), exaggerated
   const cx = w / 2 + DISPLACEMENT_FACTOR * s.x_A[i] * scale;
-  const cy = 0.42 * h + DISPLACEMENT_FACTOR * s.s_A[i] * scale;
+  const cy = 0.47 * h + DISPLACEMENT_FACTOR * s.s_A[i] * scale;
   const R = (th) => an.a * Math.exp(an.k * th);  // (8)
-  // soil and trough
-  ctx.fillStyle = '#d9c9a8';
-  const edge = 1.2;  // the trough drawn for |theta| <= edge, then the flat soil surface
-  const yEdge = cy + R(edge) * Math.cos(edge) * scale;
-  ctx.beginPath();
-  ctx.moveTo(0, h);
-  ctx.lineTo(0, yEdge);
-  for (let th = -edge; th <= edge + 1e-9; th += 0.02) ctx.lineTo(cx + R(th) * Math.sin(th) * scale, cy + R(th) * Math.cos(th) * scale);
-  ctx.lineTo(w, yEdge);
-  ctx.lineTo(w, h);
-  ctx.closePath();
-  ctx.fill();
-  ctx.strokeStyle = '#8a6d3b'; ctx.lineWidth = 2; ctx.stroke();
   // the drum: centre at distance R(delta) - r from C along the direction delta (exact for a circle)
   const d = s.delta[i];
   const mx = cx + (R(d) - an.r) * Math.sin(d) * scale;
@@ -565,6 +552,19 @@ function drawDrum(canvas, an, i) {
   }
   ctx.fillStyle = '#b00'; ctx.beginPath();
   ctx.arc(mx + 0.85 * an.r * scale * Math.sin(phi), my - 0.85 * an.r * scale * Math.cos(phi), 5, 0, 2 * Math.PI); ctx.fill();
+  // soil and trough, drawn over the drum: the drum shows only inside the trough
+  ctx.fillStyle = '#d9c9a8';
+  const edge = 1.2;  // the trough drawn for |theta| <= edge, then the flat soil surface
+  const yEdge = cy + R(edge) * Math.cos(edge) * scale;
+  ctx.beginPath();
+  ctx.moveTo(0, h);
+  ctx.lineTo(0, yEdge);
+  for (let th = -edge; th <= edge + 1e-9; th += 0.02) ctx.lineTo(cx + R(th) * Math.sin(th) * scale, cy + R(th) * Math.cos(th) * scale);
+  ctx.lineTo(w, yEdge);
+  ctx.lineTo(w, h);
+  ctx.closePath();
+  ctx.fill();
+  ctx.strokeStyle = '#8a6d3b'; ctx.lineWidth = 2; ctx.stroke();
   // contact point P and the forces on the drum: N along the normal (towards M), T along the tangent
   const px = mx + an.r * Math.sin(d) * scale, py = my + an.r * Math.cos(d) * scale;
   const len = (0.32 * h) / (an.maxN || 1);
