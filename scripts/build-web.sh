@@ -50,9 +50,16 @@ if [ ${#stale[@]} -gt 0 ]; then
      echo "em++ $x $0" >&2; em++ "$@" $x -c "$0" -o "$d/$(echo "$0" | tr / _).o"' {} "$obj" "${flags[@]}"
 fi
 
-em++ -O2 -fexceptions --bind "${objects[@]}" -o "$out/oscidrum.js" \
-  -sMODULARIZE=1 -sEXPORT_NAME=createOscidrum -sALLOW_MEMORY_GROWTH=1 \
-  -sENVIRONMENT=web,worker,node -sDISABLE_EXCEPTION_CATCHING=0
+relink=0
+[ -f "$out/oscidrum.wasm" ] || relink=1
+for o in "${objects[@]}"; do [ "$o" -nt "$out/oscidrum.wasm" ] && relink=1; done
+[ "$0" -nt "$out/oscidrum.wasm" ] && relink=1
+if [ $relink = 1 ]; then
+  echo "em++ (link) $out/oscidrum.js, $out/oscidrum.wasm" >&2
+  em++ -O2 -fexceptions --bind "${objects[@]}" -o "$out/oscidrum.js" \
+    -sMODULARIZE=1 -sEXPORT_NAME=createOscidrum -sALLOW_MEMORY_GROWTH=1 \
+    -sENVIRONMENT=web,worker,node -sDISABLE_EXCEPTION_CATCHING=0
+fi
 
 # The page and its plotting library.
 if [ ! -f web/node_modules/uplot/dist/uPlot.esm.js ] || \
