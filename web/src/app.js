@@ -277,6 +277,7 @@ function send(msg) {
 
 function onMessage(msg) {
   if (msg.type === 'ready') {
+    if (fields.length) return;  // a restarted worker (see request): the page is set up
     fields = msg.fields;
     fieldByKey = Object.fromEntries(fields.map((f) => [f.key, f]));
     table2 = msg.table2;
