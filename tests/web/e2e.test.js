@@ -113,7 +113,17 @@ async function main() {
     assert.equal(csv.trim().split('\n').length - 1, changed.sampling ? changed.sampling.samples : 2048);
     const svg = await page.evaluate(() => window.explorer.plotsSvg());
     assert.match(svg, /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"/);
-    console.log('ok   exports: TOML runs natively to the same area, CSV columns, SVG');
+    // The buttons download these files.
+    for (const [button, name, start] of [['#export-toml', 'case.toml', '# oscidrum case'],
+      ['#export-csv', 'steady_state.csv', 't[s],'], ['#export-svg', 'oscidrum-plots.svg', '<svg'],
+      ['#export-png', 'oscidrum-plots.png', '\x89PNG']]) {
+      const [download] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+      assert.equal(download.suggestedFilename(), name);
+      const file = path.join(profile, name);
+      await download.saveAs(file);
+      assert.equal(fs.readFileSync(file, 'latin1').slice(0, start.length), start, name);
+    }
+    console.log('ok   exports: TOML runs natively to the same area, CSV columns, SVG; the buttons download TOML, CSV, SVG, PNG');
 
     // A shared link restores the case.
     const link = page.url();
