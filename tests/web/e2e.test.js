@@ -6,6 +6,7 @@
 // occurred, and save a screenshot.
 //
 // Usage: node e2e.test.js <path to the native oscidrum> <web/dist> <screenshot.png>
+// (OSCIDRUM_KEEP_EXPORTS=DIR keeps the downloaded exports in DIR.)
 'use strict';
 const assert = require('node:assert/strict');
 const { execFileSync, spawn } = require('node:child_process');
@@ -122,6 +123,7 @@ async function main() {
       const file = path.join(profile, name);
       await download.saveAs(file);
       assert.equal(fs.readFileSync(file, 'latin1').slice(0, start.length), start, name);
+      if (process.env.OSCIDRUM_KEEP_EXPORTS) fs.copyFileSync(file, path.join(process.env.OSCIDRUM_KEEP_EXPORTS, name));
     }
     console.log('ok   exports: TOML runs natively to the same area, CSV columns, SVG; the buttons download TOML, CSV, SVG, PNG');
 

@@ -651,14 +651,14 @@ function caseToml() {
   // only the soil keys that take effect (oscidrum run refuses the others)
   const modulus = c['soil.input'] === 1;
   const skip = modulus ? ['soil.ksh', 'soil.ksv', 'soil.csh', 'soil.csv'] : ['soil.G', 'soil.nu', 'soil.rho'];
-  if (!modulus && last.inputs && $('soil_mode').value === 'table2') {
-    (sections.soil ||= []).push(`# paper Table 2 at G = ${fmt(c['soil.G'] / 1e6, 6)} MN/m^2`);
-  }
   for (const f of fields) {
     if (skip.includes(f.key)) continue;
     const dot = f.key.indexOf('.');
     if (dot < 0) lines.push(`${f.key} = ${tomlNumber(f, c[f.key])}  # [${f.unit}] ${f.description}`);
     else (sections[f.key.slice(0, dot)] ||= []).push(`${f.key.slice(dot + 1)} = ${tomlNumber(f, c[f.key])}  # [${f.unit}]`);
+  }
+  if (!modulus && $('soil_mode').value === 'table2' && sections.soil) {
+    sections.soil.unshift(`# paper Table 2 at G = ${fmt(c['soil.G'] / 1e6, 6)} MN/m^2`);
   }
   for (const [name, body] of Object.entries(sections)) lines.push('', `[${name}]`, ...body);
   return lines.join('\n') + '\n';
