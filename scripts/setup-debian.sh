@@ -16,7 +16,12 @@ packages=(
   python3 python3-dev python3-pybind11 pybind11-dev
   python3-numpy python3-matplotlib python3-pytest
   python3-pip python3-setuptools python3-wheel
+  emscripten                    # the browser explorer: the engine compiled to WebAssembly
+  chromium                      # the explorer's end-to-end test (headless)
 )
+# node and npm for the explorer (web/): Debian's, unless a node is already installed
+if ! command -v node >/dev/null; then packages+=(nodejs); fi
+if ! command -v npm >/dev/null; then packages+=(npm); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,256 @@
+// End-to-end test of the explorer in headless Chromium (Debian's chromium, driven by
+// playwright-core): load the page from a local static server on 127.0.0.1, wait for the default
+// case, change G and mu, check that the displayed area and status are those of the native engine,
+// that bad input (empty, NaN, out of range) shows a message next to the input without freezing
+// the page, that the exported TOML runs natively to the same area, that no console error
+// occurred, and save a screenshot.
+//
+// Usage: node e2e.test.js <path to the native oscidrum> <web/dist> <screenshot.png>
+// (OSCIDRUM_KEEP_EXPORTS=DIR keeps the downloaded exports in DIR.)
+'use strict';
+const assert = require('node:assert/strict');
+const { execFileSync, spawn } = require('node:child_process');
+const fs = require('node:fs');
+const os = require('node:os');
+const path = require('node:path');
+
+const [cli, dist, screenshot] = process.argv.slice(2);
+const CHROMIUM = process.env.OSCIDRUM_CHROMIUM || '/usr/bin/chromium';
+const webDir = path.resolve(__dirname, '../../web');
+
+function skip(why) {
+  console.error(why);
+  process.exit(process.env.OSCIDRUM_WEB_REQUIRED ? 1 : 77);  // 77: ctest's SKIP_RETURN_CODE
+}
+if (!fs.existsSync(path.join(dist || '', 'oscidrum.wasm'))) skip(`${dist}/oscidrum.wasm not found: build it with scripts/build-web.sh`);
+if (!fs.existsSync(CHROMIUM)) skip(`${CHROMIUM} not found (apt-get install chromium)`);
+let chromium;
+try {
+  ({ chromium } = require(path.join(webDir, 'node_modules', 'playwright-core')));
+} catch {
+  skip('playwright-core not installed: run scripts/build-web.sh (npm ci in web/)');
+}
+
+// The area the displayed value must match: the page shows the WebAssembly engine's full double,
+// which agrees with the native build within the native build's own rounding band (see
+// engine.test.js: at most about 1e-10 relative for these stick-slip cases).
+const AREA_RTOL = 1e-9;
+
+function native(args) {
+  return JSON.parse(execFileSync(cli, ['run', '--format', 'json', ...args], { encoding: 'utf8' }));
+}
+
+function startServer() {
+  return new Promise((resolve, reject) => {
+    const server = spawn(process.execPath, [path.join(webDir, 'serve.js'), '--port', '0', '--dir', dist], { stdio: ['ignore', 'pipe', 'inherit'] });
+    server.stdout.on('data', (d) => {
+      const m = /http:\/\/127\.0\.0\.1:\d+\//.exec(String(d));
+      if (m) resolve({ server, url: m[0] });
+    });
+    server.on('exit', (code) => reject(new Error(`server exited with ${code}`)));
+  });
+}
+
+async function main() {
+  const { server, url } = await startServer();
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'oscidrum-chromium-'));
+  let browser = null;
+  const consoleErrors = [];
+  try {
+    // a fresh profile (--user-data-dir) for every run
+    browser = await chromium.launchPersistentContext(profile, {
+      executablePath: CHROMIUM,
+      headless: true,
+      viewport: { width: 1400, height: 1150 },
+      args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+        '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+    });
+    const page = browser.pages()[0] || await browser.newPage();
+    page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+    page.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+    // Only the local server: any other request would mean the page is not self-contained.
+    const foreign = [];
+    page.on('request', (req) => { if (!req.url().startsWith(url) && !req.url().startsWith('blob:') && !req.url().startsWith('data:')) foreign.push(req.url()); });
+
+    const settled = async () => {
+      await page.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 30000 });
+      return page.evaluate(() => ({
+        status: document.getElementById('status').dataset.value,
+        statusText: document.getElementById('status').textContent,
+        area: Number(document.getElementById('area-caption').dataset.value),
+      }));
+    };
+    const setInput = async (name, text) => {
+      await page.fill(`[id="in-${name}"]`, text);
+    };
+    const errorOf = (name) => page.textContent(`[id="err-${name}"]`);
+
+    await page.goto(url);
+    let shown = await settled();
+    const def = native([]);
+    assert.equal(shown.status, def.status);
+    assert.ok(Math.abs(shown.area - def.metrics.area) <= AREA_RTOL * def.metrics.area, `default area ${shown.area} vs native ${def.metrics.area}`);
+    console.log(`ok   default case: ${shown.status}, area ${shown.area}`);
+
+    // Change G (Table 2) and mu: the page must show what the native engine gives.
+    await setInput('G', '40');
+    await setInput('mu', '0.3');
+    await page.waitForFunction(() => location.search.includes('mu=0.3') && location.search.includes('G=40'));
+    shown = await settled();
+    const changed = native(['--G', '40', '--mu', '0.3']);
+    assert.equal(shown.status, changed.status);
+    assert.ok(Math.abs(shown.area - changed.metrics.area) <= AREA_RTOL * changed.metrics.area, `G 40 mu 0.3: area ${shown.area} vs native ${changed.metrics.area}`);
+    assert.ok(Math.abs(shown.area - def.metrics.area) > 1e-3 * def.metrics.area, 'the area did not change');
+    console.log(`ok   G 40, mu 0.3: ${shown.status}, area ${shown.area} (native ${changed.metrics.area})`);
+
+    // The exported TOML is a case file the native tool runs to the same result.
+    const toml = await page.evaluate(() => window.explorer.caseToml());
+    const tomlFile = path.join(profile, 'case.toml');
+    fs.writeFileSync(tomlFile, toml);
+    const fromToml = native([tomlFile]);
+    assert.ok(Math.abs(fromToml.metrics.area - changed.metrics.area) <= 1e-14 * changed.metrics.area, 'TOML export runs to another area');
+    const csv = await page.evaluate(() => window.explorer.steadyCsv());
+    assert.match(csv.split('\n')[0], /^t\[s\],delta\[rad\],.*,phase\[-\]$/);
+    assert.equal(csv.trim().split('\n').length - 1, changed.sampling ? changed.sampling.samples : 2048);
+    const svg = await page.evaluate(() => window.explorer.plotsSvg());
+    assert.match(svg, /^<svg [^>]*xmlns="http:\/\/www.w3.org\/2000\/svg"/);
+    // The buttons download these files.
+    for (const [button, name, start] of [['#export-toml', 'case.toml', '# oscidrum case'],
+      ['#export-csv', 'steady_state.csv', 't[s],'], ['#export-svg', 'oscidrum-plots.svg', '<svg'],
+      ['#export-png', 'oscidrum-plots.png', '\x89PNG']]) {
+      const [download] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+      assert.equal(download.suggestedFilename(), name);
+      const file = path.join(profile, name);
+      await download.saveAs(file);
+      assert.equal(fs.readFileSync(file, 'latin1').slice(0, start.length), start, name);
+      if (process.env.OSCIDRUM_KEEP_EXPORTS) fs.copyFileSync(file, path.join(process.env.OSCIDRUM_KEEP_EXPORTS, name));
+    }
+    console.log('ok   exports: TOML runs natively to the same area, CSV columns, SVG; the buttons download TOML, CSV, SVG, PNG');
+
+    // A shared link restores the case.
+    const link = page.url();
+    const page2 = await browser.newPage();
+    page2.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+    await page2.goto(link);
+    await page2.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 30000 });
+    assert.equal(await page2.inputValue('#in-G'), '40');
+    assert.equal(await page2.inputValue('#in-mu'), '0.3');
+    assert.equal(Number(await page2.getAttribute('#area-caption', 'data-value')), shown.area);
+    await page2.close();
+    console.log('ok   the URL restores the case');
+
+    // Bad input: a message next to the input, the page stays responsive, nothing is computed.
+    const before = await page.evaluate(() => window.explorer.last().result);
+    for (const [name, text, pattern] of [
+      ['G', '', /enter a value/],
+      ['mu', 'abc', /not a number/],
+      ['mu', 'NaN', /not a number/],
+      ['mu', '-0.2', /contact\.mu must be >= 0/],
+      ['kd', '1e999', /finite/],
+      ['G', '12', /Table 2 has G = 5, 10/],
+      ['R', '0.5', /trough/],
+      // a field of the table without its own input ('more parameters')
+      ['x:roller.r', '-1', /roller\.r must be > 0/],
+      ['x:numerics.samples_per_period', '8', /numerics\.samples_per_period must be/],
+    ]) {
+      if (name.startsWith('x:')) await page.click('summary');
+      const good = await page.inputValue(`[id="in-${name}"]`);
+      await setInput(name, text);
+      await page.waitForFunction((n) => document.getElementById(`err-${n}`).textContent !== '', name, { timeout: 10000 });
+      const msg = await errorOf(name);
+      assert.match(msg, pattern, `input ${name} = '${text}'`);
+      assert.equal(await page.evaluate(() => document.getElementById('status').className), 'bad');
+      // responsive: a round trip through the page's event loop is immediate
+      const t0 = Date.now();
+      await page.evaluate(() => new Promise((r) => setTimeout(r, 0)));
+      assert.ok(Date.now() - t0 < 1000, 'the page froze');
+      console.log(`ok   ${name} = '${text}': "${msg}"`);
+      await setInput(name, good);
+      if (name.startsWith('x:')) await page.click('summary');
+      await page.waitForFunction((n) => document.getElementById(`err-${n}`).textContent === '', name);
+      await settled();
+    }
+    const after = await page.evaluate(() => window.explorer.last().result);
+    assert.equal(after.metrics.area, before.metrics.area);
+
+    // Pure rolling on the modulus soil (Appendix B): the exported TOML (soil.input = "modulus",
+    // pure_rolling = true) is the case the native tool runs from the same flags.
+    await page.selectOption('#soil_mode', 'modulus');
+    await page.check('#rolling');
+    shown = await settled();
+    assert.equal(shown.status, 'steady_state');
+    fs.writeFileSync(tomlFile, await page.evaluate(() => window.explorer.caseToml()));
+    const modulusNative = native(['--set', 'soil.input=modulus', '--set', 'soil.G=40e6', '--pure-rolling']);
+    assert.equal(native([tomlFile]).metrics.area, modulusNative.metrics.area);
+    console.log(`ok   modulus soil, pure rolling: ${shown.status}, area ${shown.area}; TOML runs natively to the same case`);
+
+    // The log-spiral trough at G = 5 (Table 2).
+    await page.selectOption('#soil_mode', 'table2');
+    await page.uncheck('#rolling');
+    await page.selectOption('#trough_mode', 'spiral');
+    await setInput('k', '0.002');
+    await setInput('a', '0.601');
+    await setInput('G', '5');
+    shown = await settled();
+    const spiral = native(['--k', '0.002', '--a', '0.601', '--G', '5', '--mu', '0.3']);
+    assert.equal(shown.status, spiral.status);
+    assert.ok(Math.abs(shown.area - spiral.metrics.area) <= AREA_RTOL * spiral.metrics.area, `spiral: area ${shown.area} vs native ${spiral.metrics.area}`);
+    console.log(`ok   spiral trough k 0.002, a 0.601, G 5, mu 0.3: area ${shown.area} (native ${spiral.metrics.area})`);
+
+    // M0 follows f^2 (5) when asked: M0 = M0(39 Hz) (f / 39)^2.
+    await page.check('#M0_scale');
+    await setInput('f', '30');
+    await settled();
+    const M0 = await page.evaluate(() => window.explorer.last().result.case['roller.M0']);
+    assert.equal(M0, 54947 * (30 / 39) ** 2);
+    await page.uncheck('#M0_scale');
+    await setInput('f', '39');
+
+    // A slow case (Dormand-Prince at rtol 1e-14: about 2 s here) keeps the engine busy: the page
+    // stays responsive meanwhile, and a change after a second abandons it (the worker is
+    // restarted) and shows the new case.
+    await page.click('summary');
+    await setInput('x:numerics.atol', '1e-17');
+    await setInput('x:numerics.rtol', '1e-14');
+    let sawBusy = false;
+    for (let k = 0; k < 10; k++) {
+      const t1 = Date.now();
+      sawBusy = (await page.evaluate(() => window.explorer.busy())) || sawBusy;
+      assert.ok(Date.now() - t1 < 500, 'the page froze during a long case');
+      await page.waitForTimeout(110);
+    }
+    await setInput('x:numerics.rtol', '1e-8');
+    await setInput('x:numerics.atol', '1e-11');
+    shown = await settled();
+    assert.equal(shown.status, spiral.status);
+    assert.ok(Math.abs(shown.area - spiral.metrics.area) <= AREA_RTOL * spiral.metrics.area);
+    await page.click('summary');
+    console.log(`ok   the page stayed responsive ${sawBusy ? 'while the engine was busy with a slow case' : '(the slow case finished within a second)'}; the next change shows the new case`);
+
+    // Back to the default case (for the screenshot).
+    await page.selectOption('#trough_mode', 'circle');
+    await setInput('G', '25');
+    await setInput('mu', '0.5');
+    shown = await settled();
+    console.log(`ok   ${await page.textContent('#timing')}`);
+    assert.ok(Math.abs(shown.area - def.metrics.area) <= AREA_RTOL * def.metrics.area);
+
+    if (screenshot) {
+      await page.waitForTimeout(700);  // a frame of the animation
+      await page.screenshot({ path: screenshot, fullPage: true });
+      console.log(`ok   screenshot ${screenshot}`);
+    }
+    assert.deepEqual(foreign, [], 'requests to other hosts');
+    assert.deepEqual(consoleErrors, [], 'console errors');
+    console.log('ok   no console error');
+  } finally {
+    if (browser) await browser.close();
+    server.kill();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});

@@ -1,0 +1,175 @@
+// The WebAssembly engine (web/dist/oscidrum.js) against the native build: the same C++ sources
+// must give the same metrics. For each case the native CLI runs it (`oscidrum run --format json`)
+// and the WebAssembly engine runs the very parameters the CLI reports, under node.
+//
+// Usage: node engine.test.js <path to the native oscidrum> <web/dist>
+'use strict';
+const assert = require('node:assert/strict');
+const { execFileSync } = require('node:child_process');
+const fs = require('node:fs');
+const path = require('node:path');
+
+const [cli, dist] = process.argv.slice(2);
+if (!cli || !dist) {
+  console.error('usage: node engine.test.js OSCIDRUM_CLI WEB_DIST');
+  process.exit(2);
+}
+if (!fs.existsSync(path.join(dist, 'oscidrum.wasm'))) {
+  console.error(`${dist}/oscidrum.wasm not found: build it with scripts/build-web.sh`);
+  process.exit(process.env.OSCIDRUM_WEB_REQUIRED ? 1 : 77);  // 77: ctest's SKIP_RETURN_CODE
+}
+
+// Relative agreement asked of every metric. Both builds run the same sources in IEEE double
+// precision; what differs is the C library (glibc natively, musl's libm in Emscripten), whose
+// sin, cos, exp may round differently in the last bit. The metrics of a case are themselves not
+// defined to better than their sensitivity to such last-bit differences: a change of one unit in
+// the last place of roller.M0, roller.m or roller.I moves the native metrics by about 6e-12
+// (default case) up to 4e-8 relative (pure rolling at G 40, where the steady state is then
+// detected a period earlier or later; measured by this test and printed). So each case is checked against
+// max(RTOL, BAND_FACTOR * its measured rounding band): the two builds must agree as closely as the
+// native build agrees with itself.
+const RTOL = 1e-12;
+const BAND_FACTOR = 4;
+let tolerance = RTOL;
+
+// The cases: the paper's default, stick-slip with the driving torque, pure rolling on stiff soil,
+// and the log-spiral trough.
+const cases = [
+  { name: 'default (G 25, mu 0.5)', args: [] },
+  { name: 'stick-slip, MMd = 0.05 M0', args: ['--MMd-fraction', '0.05'] },
+  { name: 'pure rolling, G 40', args: ['--G', '40', '--pure-rolling'] },
+  { name: 'spiral trough k 0.002, a 0.601, G 5', args: ['--k', '0.002', '--a', '0.601', '--G', '5'] },
+];
+
+// |a - b| <= RTOL * scale, scale = max(|a|, |b|, floor): the floor is the size of the quantity
+// the value belongs to (e.g. the largest harmonic of a signal), so numerical noise in a harmonic
+// that is zero by symmetry is compared on the scale of the signal, not on its own.
+function close(what, a, b, floor = 0) {
+  const scale = Math.max(Math.abs(a), Math.abs(b), floor);
+  const diff = Math.abs(a - b);
+  const rel = scale > 0 ? diff / scale : 0;
+  if (!(diff <= tolerance * scale)) {
+    throw new assert.AssertionError({
+      message: `${what}: WebAssembly ${a} vs native ${b} (relative ${rel.toExponential(2)} > ${tolerance.toExponential(2)})`,
+    });
+  }
+  return rel;
+}
+
+// |A exp(i theta) - B exp(i phi)|
+function complexDiff(A, theta, B, phi) {
+  return Math.hypot(A * Math.cos(theta) - B * Math.cos(phi), A * Math.sin(theta) - B * Math.sin(phi));
+}
+
+const METRICS = ['ddx_max', 'ddx_min', 'ddz_max', 'ddz_min', 'delta_max', 'delta_min', 'phi_lag',
+                 'phi_amplitude', 'psi_xz', 'area', 'stick_fraction', 'slip_positive_fraction',
+                 'slip_negative_fraction'];
+
+// The next double above x (one unit in the last place).
+function nextUp(x) {
+  const b = new DataView(new ArrayBuffer(8));
+  b.setFloat64(0, x);
+  b.setBigUint64(0, b.getBigUint64(0) + 1n);
+  return b.getFloat64(0);
+}
+
+function runNative(args) {
+  return JSON.parse(execFileSync(cli, ['run', '--format', 'json', ...args], { encoding: 'utf8' }));
+}
+
+// The largest relative change of a scalar metric of the native build when roller.M0, roller.m
+// or roller.I change by one unit in the last place.
+function roundingBand(native, args) {
+  let band = 0;
+  for (const key of ['roller.M0', 'roller.m', 'roller.I']) {
+    const value = nextUp(native.parameters[key]);
+    const p = runNative([...args, '--set', `${key}=${value.toPrecision(17)}`]);
+    assert.equal(p.parameters[key], value);
+    for (const m of METRICS) {
+      const scale = m.endsWith('_fraction') ? 1 : Math.abs(native.metrics[m]);
+      if (scale > 0) band = Math.max(band, Math.abs(p.metrics[m] - native.metrics[m]) / scale);
+    }
+    for (const signal of ['ddx_harmonics', 'ddz_harmonics']) {
+      const h0 = native.metrics[signal], h1 = p.metrics[signal];
+      const largest = Math.max(...h0.map((h) => h.amplitude));
+      h0.forEach((h, i) => {
+        band = Math.max(band, complexDiff(h1[i].amplitude, h1[i].phase, h.amplitude, h.phase) / largest);
+      });
+    }
+  }
+  return band;
+}
+
+async function main() {
+  const createOscidrum = require(path.resolve(dist, 'oscidrum.js'));
+  const engine = await createOscidrum({ wasmBinary: fs.readFileSync(path.join(dist, 'oscidrum.wasm')) });
+  let failures = 0;
+  for (const c of cases) {
+    const native = runNative(c.args);
+    const band = roundingBand(native, c.args);
+    tolerance = Math.max(RTOL, BAND_FACTOR * band);
+    const web = engine.simulate(native.parameters, native.metrics.ddx_harmonics.length - 1);
+    let worst = 0;
+    try {
+      assert.equal(web.ok, true, web.error);
+      assert.equal(web.status, native.status);
+      assert.equal(web.diagnostics.multiplicity, native.diagnostics.multiplicity);
+      const n = native.metrics, w = web.metrics;
+      for (const key of METRICS) {
+        // phase fractions are shares of the sampled time: scale 1
+        const floor = key.endsWith('_fraction') ? 1 : 0;
+        worst = Math.max(worst, close(key, w[key], n[key], floor));
+      }
+      for (const signal of ['ddx_harmonics', 'ddz_harmonics']) {
+        const nat = n[signal];
+        const largest = Math.max(...nat.map((h) => h.amplitude));
+        assert.equal(w[signal].amplitude.length, nat.length);
+        nat.forEach((h, i) => {
+          // Each harmonic as the complex coefficient A_n exp(i theta_n), on the scale of the
+          // largest harmonic (a harmonic that is zero by symmetry carries only noise, and its
+          // phase alone means nothing).
+          const d = complexDiff(w[signal].amplitude[i], w[signal].phase[i], h.amplitude, h.phase);
+          worst = Math.max(worst, close(`${signal}[${i}]`, d, 0, largest));
+        });
+      }
+      console.log(`ok   ${c.name}: area ${w.area} m^2/s^4, worst relative difference ${worst.toExponential(2)} ` +
+                  `(native rounding band ${band.toExponential(2)}, tolerance ${tolerance.toExponential(2)})`);
+    } catch (e) {
+      failures += 1;
+      console.log(`FAIL ${c.name}: ${e.message} (native rounding band ${band.toExponential(2)})`);
+    }
+  }
+  // Bad input is an error object with the library's message, never an abort.
+  const bad = engine.simulate({ 'soil.G': -5e6, 'soil.input': 'modulus' }, 10);
+  assert.equal(bad.ok, false);
+  assert.match(bad.error, /soil\.G must be > 0/);
+  const typo = engine.simulate({ 'soil.g': 1 }, 10);
+  assert.match(typo.error, /did you mean 'soil\.G'/);
+  // ... and the module still works afterwards.
+  assert.equal(engine.simulate({}, 10).status, 'steady_state');
+  // The field table is the library's: every key of the native parameters is there.
+  const keys = engine.fields().map((f) => f.key);
+  assert.deepEqual(keys, Object.keys(JSON.parse(execFileSync(cli, ['run', '--format', 'json'], { encoding: 'utf8' })).parameters));
+  // Table 2 and Appendix B agree with the native `oscidrum soil`.
+  tolerance = RTOL;
+  for (const G of [5, 25, 70]) {
+    const soil = JSON.parse(execFileSync(cli, ['soil', '--G', String(G), '--format', 'json'], { encoding: 'utf8' }));
+    const row = soil.rows[0];
+    const web = engine.soilCoefficients(row.G, row.nu, row.rho, {});
+    assert.equal(web.ok, true, web.error);
+    for (const k of ['a0', 'ksh', 'ksv', 'csh', 'csv']) close(`Appendix B ${k} at G ${G}`, web[k], row.formula[k]);
+    const t2 = engine.table2().find((r) => r.G === row.G);
+    for (const k of ['a0', 'ksh', 'ksv', 'csh', 'csv']) assert.equal(t2[k], row.table2[k], `Table 2 ${k} at G ${G}`);
+    assert.equal(engine.table2Soil(row.G)['soil.ksh'], row.table2.ksh);
+  }
+  assert.equal(engine.table2().length, 14);
+  assert.equal(engine.table2Soil(12e6).ok, false);
+  assert.equal(engine.soilCoefficients(25e6, 0.6, 1900, {}).ok, false);
+  console.log('ok   Table 2, Appendix B, field table, bad input');
+  if (failures) process.exit(1);
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});

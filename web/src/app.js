@@ -1,0 +1,771 @@
+// The oscidrum explorer page: inputs (keys, units, defaults and rules from the engine's field
+// table), a Web Worker that runs the engine, plots, the drum animation, metrics, URL state and
+// exports. Plain ES module; the plots of time series and spectra use uPlot.
+import uPlot from './vendor/uPlot.esm.js';
+
+const $ = (id) => document.getElementById(id);
+const COLORS = { x: '#1f5fa8', z: '#c23b22', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1' };
+const ARROW = { stick: '#1d7a1d', slip: '#d46a00' };
+const ROTATION_FACTOR = 100;     // the drum's rotation phi is drawn this many times larger
+const DISPLACEMENT_FACTOR = 50;  // the soil displacements x_A, s_A are drawn this many times larger
+const N_MAX = 10;                // harmonics n = 0 ... N_MAX
+const F_REF = 39;                // [Hz] the frequency of the paper's M0 (Table 1)
+
+// The inputs of the page. `key`: the field of the engine (default, unit, rule come from there);
+// `scale`: displayed value = SI value / scale.
+const INPUTS = {
+  G: { key: 'soil.G', label: 'G', unit: 'MN/m²', scale: 1e6, hint: 'shear modulus' },
+  nu: { key: 'soil.nu', label: 'ν', unit: '-', scale: 1 },
+  rho: { key: 'soil.rho', label: 'ρ', unit: 'kg/m³', scale: 1 },
+  mu: { key: 'contact.mu', label: 'μ', unit: '-', scale: 1 },
+  f: { key: 'roller.f', label: 'f', unit: 'Hz', scale: 1 },
+  M0: { key: 'roller.M0', label: 'M0', unit: 'N m', scale: 1 },
+  MMd: { key: null, label: 'MMd', unit: '× M0', scale: 1, hint: 'driving torque (6), a fraction of M0; the paper uses 0 and 0.05' },
+  R: { key: 'trough.a', label: 'R', unit: 'm', scale: 1, hint: 'trough radius (must exceed the drum radius r)' },
+  k: { key: 'trough.k', label: 'k', unit: '-', scale: 1 },
+  a: { key: 'trough.a', label: 'a', unit: 'm', scale: 1 },
+  kd: { key: 'roller.kd', label: 'kd', unit: 'N/m', scale: 1 },
+  cd: { key: 'roller.cd', label: 'cd', unit: 'N s/m', scale: 1 },
+};
+
+let fields = [];            // the engine's field table
+let extras = [];            // the fields without an input above ('more parameters'), by key
+// The keys the inputs above set (the rest of the field table is under 'more parameters').
+const COVERED = new Set(['soil.input', 'soil.G', 'soil.nu', 'soil.rho', 'soil.ksh', 'soil.ksv', 'soil.csh',
+  'soil.csv', 'contact.mu', 'contact.pure_rolling', 'roller.f', 'roller.M0', 'MMd', 'trough.k', 'trough.a',
+  'roller.kd', 'roller.cd']);
+const extraName = (key) => `x:${key}`;
+let fieldByKey = {};
+let table2 = [];            // paper Table 2 rows (SI)
+let worker = null;
+let seq = 0;                // number of the latest request
+let busySince = 0;          // time the running request was sent (0: idle)
+let pending = null;         // the latest request not yet sent
+let last = null;            // the latest good result {result, values, ms}
+const plots = {};
+
+// ---------------------------------------------------------------- inputs
+
+function fmt(x, digits = 6) {
+  if (!Number.isFinite(x)) return String(x);
+  return Number(x.toPrecision(digits)).toString();
+}
+
+function buildInputs() {
+  for (const div of document.querySelectorAll('.field[data-input]')) {
+    const name = div.dataset.input;
+    const spec = INPUTS[name];
+    const field = spec.key ? fieldByKey[spec.key] : null;
+    const desc = spec.hint || (field ? field.description : '');
+    const rule = field ? `rule: ${field.rule}${field.unit !== '-' ? ' ' + field.unit : ''}` : 'any finite number';
+    div.innerHTML = `<label><span class="name">${spec.label}</span>` +
+      `<input type="text" inputmode="decimal" id="in-${name}" name="${name}" aria-describedby="err-${name}">` +
+      `<span class="unit">${spec.unit}</span></label>` +
+      `<span class="hint">${desc}${field ? ' (' + field.key + '; ' + rule + ')' : ''}</span>` +
+      `<span class="error" id="err-${name}" role="alert"></span>`;
+    $(`in-${name}`).value = defaultText(name);
+  }
+  // every other field of the table, with its default, unit and rule
+  extras = fields.filter((f) => !COVERED.has(f.key));
+  const box = $('more-fields');
+  for (const f of extras) {
+    const name = extraName(f.key);
+    const div = document.createElement('div');
+    div.className = 'field';
+    div.dataset.input = name;
+    let control;
+    if (f.type === 'boolean') control = `<input type="checkbox" id="in-${name}" name="${f.key}">`;
+    else if (f.type === 'choice') control = `<select id="in-${name}" name="${f.key}">${f.choices.map((c, i) => `<option value="${i}">${c}</option>`).join('')}</select>`;
+    else control = `<input type="text" inputmode="decimal" id="in-${name}" name="${f.key}">`;
+    div.innerHTML = `<label><span class="name wide">${f.key}</span>${control}<span class="unit">${f.unit}</span></label>` +
+      `<span class="hint">${f.description} (rule: ${f.rule})</span><span class="error" id="err-${name}" role="alert"></span>`;
+    box.appendChild(div);
+    setExtra(f, f.default);
+  }
+}
+
+function setExtra(f, value) {
+  const el = $(`in-${extraName(f.key)}`);
+  if (f.type === 'boolean') el.checked = Boolean(value);
+  else el.value = String(value);
+}
+
+// The text of an extra field's control ('true'/'false' for booleans).
+function extraText(f) {
+  const el = $(`in-${extraName(f.key)}`);
+  return f.type === 'boolean' ? String(el.checked) : el.value.trim();
+}
+
+function extraDefaultText(f) {
+  return f.type === 'boolean' ? String(Boolean(f.default)) : String(f.default);
+}
+
+function defaultText(name) {
+  if (name === 'MMd') return '0';
+  const spec = INPUTS[name];
+  return fmt(fieldByKey[spec.key].default / spec.scale, 10);
+}
+
+function setError(name, message) {
+  const div = document.querySelector(`.field[data-input="${name}"]`);
+  div.classList.toggle('invalid', Boolean(message));
+  $(`err-${name}`).textContent = message || '';
+}
+
+function visibleInputs() {
+  const modulus = $('soil_mode').value === 'modulus';
+  const spiral = $('trough_mode').value === 'spiral';
+  const names = ['G', 'mu', 'f', 'M0', 'MMd', 'kd', 'cd'];
+  if (modulus) names.push('nu', 'rho');
+  names.push(...(spiral ? ['k', 'a'] : ['R']));
+  if ($('rolling').checked) names.splice(names.indexOf('mu'), 1);
+  for (const f of extras) names.push(extraName(f.key));
+  return names;
+}
+
+function updateVisibility() {
+  const modulus = $('soil_mode').value === 'modulus';
+  const spiral = $('trough_mode').value === 'spiral';
+  for (const el of document.querySelectorAll('.modulus-only')) el.hidden = !modulus;
+  for (const el of document.querySelectorAll('.spiral-only')) el.hidden = !spiral;
+  for (const el of document.querySelectorAll('.circle-only')) el.hidden = spiral;
+  $('in-mu').disabled = $('rolling').checked;
+  const scaled = $('M0_scale').checked;
+  document.querySelector('.field[data-input="M0"] .name').textContent = scaled ? 'M0(39 Hz)' : 'M0';
+}
+
+// Parse the visible inputs. Returns {values, errors}: values (display units) by input name,
+// errors (messages) by input name for empty, non-numeric or non-finite text and for a G that is
+// not in Table 2.
+function readInputs() {
+  const values = {};
+  const errors = {};
+  for (const name of visibleInputs()) {
+    const f = name.startsWith('x:') ? fieldByKey[name.slice(2)] : null;
+    if (f && f.type === 'boolean') {
+      values[name] = $(`in-${name}`).checked ? 1 : 0;
+      continue;
+    }
+    const text = $(`in-${name}`).value.trim();
+    if (text === '') {
+      errors[name] = 'enter a value';
+      continue;
+    }
+    const v = Number(text);
+    if (Number.isNaN(v)) errors[name] = `not a number: '${text}'`;
+    else if (!Number.isFinite(v)) errors[name] = 'must be finite';
+    else values[name] = v;
+  }
+  if ($('soil_mode').value === 'table2' && 'G' in values &&
+      !table2.some((row) => row.G === values.G * 1e6)) {
+    errors.G = `Table 2 has G = 5, 10, ..., 70 MN/m²; got ${values.G} (choose "modulus" for any G)`;
+  }
+  return { values, errors };
+}
+
+// The engine's case (field key -> SI number) from the parsed inputs.
+function caseValues(v) {
+  const c = {};
+  if ($('soil_mode').value === 'table2') {
+    const row = table2.find((r) => r.G === v.G * 1e6);
+    Object.assign(c, { 'soil.input': 0, 'soil.G': row.G, 'soil.ksh': row.ksh, 'soil.ksv': row.ksv,
+      'soil.csh': row.csh, 'soil.csv': row.csv });
+  } else {
+    Object.assign(c, { 'soil.input': 1, 'soil.G': v.G * 1e6, 'soil.nu': v.nu, 'soil.rho': v.rho });
+  }
+  if ($('rolling').checked) c['contact.pure_rolling'] = 1;
+  else c['contact.mu'] = v.mu;
+  c['roller.f'] = v.f;
+  // M0 = 4 m_u e_u e_w nu^2 grows with f^2 (5)
+  c['roller.M0'] = $('M0_scale').checked ? v.M0 * (v.f / F_REF) ** 2 : v.M0;
+  c.MMd = v.MMd * c['roller.M0'];
+  if ($('trough_mode').value === 'spiral') {
+    c['trough.k'] = v.k;
+    c['trough.a'] = v.a;
+  } else {
+    c['trough.k'] = 0;
+    c['trough.a'] = v.R;
+  }
+  c['roller.kd'] = v.kd;
+  c['roller.cd'] = v.cd;
+  for (const f of extras) c[f.key] = v[extraName(f.key)];
+  return c;
+}
+
+// The input that shows an engine message about field `key` (or a message naming it).
+function inputForKey(key) {
+  if (key === 'MMd') return 'MMd';
+  if (extras.some((f) => f.key === key)) return extraName(key);
+  if (key === 'trough.a') return $('trough_mode').value === 'spiral' ? 'a' : 'R';
+  for (const [name, spec] of Object.entries(INPUTS)) if (spec.key === key && name !== 'R' && name !== 'a') return name;
+  return null;
+}
+
+function inputForMessage(message) {
+  // the field the message is about: the key it names first ("trough.a must be > roller.r ...")
+  let best = null, at = Infinity;
+  for (const f of fields) {
+    const i = message.indexOf(f.key);
+    const name = i >= 0 ? inputForKey(f.key) : null;
+    if (name && visibleInputs().includes(name) && (i < at || (i === at && f.key.length > best.length))) {
+      best = f.key;
+      at = i;
+    }
+  }
+  return best ? inputForKey(best) : null;
+}
+
+// ---------------------------------------------------------------- URL state
+
+const URL_INPUTS = Object.keys(INPUTS);
+
+function saveUrl() {
+  const p = new URLSearchParams();
+  p.set('soil', $('soil_mode').value);
+  p.set('trough', $('trough_mode').value);
+  if ($('rolling').checked) p.set('rolling', '1');
+  if ($('M0_scale').checked) p.set('M0f2', '1');
+  for (const name of visibleInputs()) if (!name.startsWith('x:')) p.set(name, $(`in-${name}`).value.trim());
+  // the other fields only when they differ from their defaults, by their keys
+  for (const f of extras) if (extraText(f) !== extraDefaultText(f)) p.set(f.key, extraText(f));
+  history.replaceState(null, '', `${location.pathname}?${p}`);
+}
+
+function loadUrl() {
+  const p = new URLSearchParams(location.search);
+  if (p.get('soil') === 'modulus') $('soil_mode').value = 'modulus';
+  if (p.get('trough') === 'spiral') $('trough_mode').value = 'spiral';
+  $('rolling').checked = p.get('rolling') === '1';
+  $('M0_scale').checked = p.get('M0f2') === '1';
+  for (const name of URL_INPUTS) if (p.has(name)) $(`in-${name}`).value = p.get(name);
+  for (const f of extras) if (p.has(f.key)) setExtra(f, f.type === 'boolean' ? p.get(f.key) === 'true' : p.get(f.key));
+}
+
+// ---------------------------------------------------------------- the worker
+
+function startWorker() {
+  worker = new Worker('worker.js');
+  worker.onmessage = (ev) => onMessage(ev.data);
+  worker.onerror = (ev) => {
+    showStatus(`engine error: ${ev.message}`, false);
+    busySince = 0;
+  };
+}
+
+function request(values) {
+  seq += 1;
+  const msg = { type: 'run', seq, values, n_max: N_MAX };
+  if (busySince === 0) {
+    send(msg);
+  } else if (performance.now() - busySince > 1000) {
+    // a long case (e.g. one that never becomes steady) is still running: drop it
+    worker.terminate();
+    startWorker();
+    send(msg);
+  } else {
+    pending = msg;
+  }
+}
+
+function send(msg) {
+  busySince = performance.now();
+  pending = null;
+  worker.postMessage(msg);
+  $('results').classList.add('busy');
+  for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.add('stale');
+}
+
+function onMessage(msg) {
+  if (msg.type === 'ready') {
+    if (fields.length) return;  // a restarted worker (see request): the page is set up
+    fields = msg.fields;
+    fieldByKey = Object.fromEntries(fields.map((f) => [f.key, f]));
+    table2 = msg.table2;
+    $('engine-version').textContent = `Engine: oscidrum ${msg.version} (WebAssembly).`;
+    init();
+    return;
+  }
+  if (msg.type !== 'result') return;
+  busySince = 0;
+  if (pending) {
+    send(pending);
+  }
+  if (msg.seq !== seq) return;  // an answer to an outdated request
+  for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.remove('stale');
+  const { values } = readInputs();
+  for (const name of visibleInputs()) setError(name, '');
+  if (Object.keys(msg.errors).length) {
+    for (const [key, message] of Object.entries(msg.errors)) {
+      const name = inputForKey(key);
+      if (name) setError(name, message);
+    }
+    showStatus('invalid input: see the messages next to the inputs', false);
+    return;
+  }
+  const r = msg.result;
+  if (!r.ok) {
+    const name = inputForMessage(r.error);
+    if (name) setError(name, r.error);
+    showStatus(`invalid input: ${r.error}`, false);
+    return;
+  }
+  last = { result: r, soil: msg.soil, ms: msg.ms, inputs: values };
+  render();
+}
+
+function showStatus(text, ok, value = '') {
+  const s = $('status');
+  s.textContent = text;
+  s.className = ok ? 'ok' : 'bad';
+  s.dataset.value = value;
+}
+
+function onChange() {
+  updateVisibility();
+  const { values, errors } = readInputs();
+  for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
+  if (Object.keys(errors).length) {
+    seq += 1;  // a result still on its way is outdated
+    showStatus('invalid input: see the messages next to the inputs', false);
+    return;
+  }
+  saveUrl();
+  request(caseValues(values));
+}
+
+// ---------------------------------------------------------------- rendering
+
+function render() {
+  const { result: r, ms } = last;
+  const ok = r.status === 'steady_state';
+  const m = r.metrics;
+  showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
+  $('timing').textContent = `computed in ${ms.toFixed(0)} ms: ${r.diagnostics.periods_simulated} periods, ` +
+    `${r.diagnostics.steps} steps, ${r.diagnostics.switches} stick/slip switches`;
+  if (!m) return;
+  $('area-caption').textContent = `${fmt(m.area, 5)} m²/s⁴`;
+  $('area-caption').dataset.value = String(m.area);
+  drawTimePlot(r);
+  drawFigure($('plot-figure'), r, m);
+  drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x);
+  drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z);
+  fillMetrics(r, m);
+  startAnimation(r);
+}
+
+function periodSlice(r) {
+  // the first two excitation periods of the sampled steady state (all of them if fewer)
+  const n = Math.min(r.samples.t.length, 2 * r.samples_per_period);
+  return n;
+}
+
+function phaseRuns(phase, n) {
+  // contiguous runs of one phase: [{from, to, phase}]
+  const runs = [];
+  let start = 0;
+  for (let i = 1; i <= n; i++) {
+    if (i === n || phase[i] !== phase[start]) {
+      runs.push({ from: start, to: i, phase: phase[start] });
+      start = i;
+    }
+  }
+  return runs;
+}
+
+const phaseColor = (p) => (p === 0 ? COLORS.stick : p > 0 ? COLORS.slipp : COLORS.slipn);
+
+function drawTimePlot(r) {
+  const s = r.samples;
+  const n = periodSlice(r);
+  const t0 = s.t[0];
+  const t = Array.from(s.t.subarray(0, n), (x) => (x - t0) * 1e3);
+  const data = [t, Array.from(s.ddx_M.subarray(0, n)), Array.from(s.ddz_M.subarray(0, n))];
+  const runs = phaseRuns(s.phase, n);
+  const el = $('plot-time');
+  const width = Math.max(400, el.clientWidth || 700);
+  if (plots.time) plots.time.destroy();
+  plots.time = new uPlot({
+    width, height: 240,
+    scales: { x: { time: false } },
+    axes: [{ label: 't - t0 [ms]' }, { label: 'm/s²' }],
+    series: [{ label: 't [ms]' }, { label: "x_M''", stroke: COLORS.x, width: 1.5 }, { label: "z_M'' (down)", stroke: COLORS.z, width: 1.5 }],
+    hooks: {
+      drawClear: [(u) => {
+        const ctx = u.ctx;
+        ctx.save();
+        for (const run of runs) {
+          const x0 = u.valToPos(t[run.from], 'x', true);
+          const x1 = u.valToPos(t[Math.min(run.to, n - 1)], 'x', true);
+          ctx.fillStyle = phaseColor(run.phase);
+          ctx.fillRect(x0, u.bbox.top, Math.max(1, x1 - x0), u.bbox.height);
+        }
+        ctx.restore();
+      }],
+    },
+  }, data, el);
+}
+
+function drawSpectrum(id, amplitudes, color) {
+  const a = Array.from(amplitudes);
+  const top = Math.max(...a) || 1;
+  const x = a.map((_, i) => i);
+  const y = a.map((v) => v / top);
+  const el = $(id);
+  if (plots[id]) plots[id].destroy();
+  plots[id] = new uPlot({
+    width: 420, height: 200,
+    scales: { x: { time: false, range: [-0.5, a.length - 0.5] }, y: { range: [0, 1.05] } },
+    axes: [{ label: 'n (harmonic n f)', splits: () => x }, { label: 'A_n / max' }],
+    series: [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }],
+    legend: { show: false },
+  }, [x, y], el);
+}
+
+// ---- plain canvas plots (the z-x figure, the drum)
+
+function niceTicks(lo, hi, count = 5) {
+  const span = hi - lo || 1;
+  const step0 = span / count;
+  const mag = 10 ** Math.floor(Math.log10(step0));
+  const step = [1, 2, 5, 10].map((k) => k * mag).find((s) => span / s <= count) || 10 * mag;
+  const ticks = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) ticks.push(Math.abs(v) < 1e-12 * span ? 0 : v);
+  return ticks;
+}
+
+// Axes box for canvas plots: returns mapping functions.
+function frame(ctx, w, h, xr, yr, xlabel, ylabel) {
+  const box = { l: 52, r: w - 10, t: 10, b: h - 36 };
+  const X = (v) => box.l + ((v - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
+  const Y = (v) => box.b - ((v - yr[0]) / (yr[1] - yr[0])) * (box.b - box.t);
+  ctx.fillStyle = '#fff';
+  ctx.fillRect(0, 0, w, h);
+  ctx.strokeStyle = '#ddd';
+  ctx.fillStyle = '#333';
+  ctx.font = '11px system-ui, sans-serif';
+  ctx.lineWidth = 1;
+  ctx.textAlign = 'center';
+  for (const v of niceTicks(xr[0], xr[1])) {
+    ctx.beginPath(); ctx.moveTo(X(v), box.t); ctx.lineTo(X(v), box.b); ctx.stroke();
+    ctx.fillText(fmt(v, 4), X(v), box.b + 14);
+  }
+  ctx.textAlign = 'right';
+  for (const v of niceTicks(yr[0], yr[1])) {
+    ctx.beginPath(); ctx.moveTo(box.l, Y(v)); ctx.lineTo(box.r, Y(v)); ctx.stroke();
+    ctx.fillText(fmt(v, 4), box.l - 4, Y(v) + 4);
+  }
+  ctx.strokeStyle = '#888';
+  ctx.strokeRect(box.l, box.t, box.r - box.l, box.b - box.t);
+  ctx.textAlign = 'center';
+  ctx.fillText(xlabel, (box.l + box.r) / 2, h - 6);
+  ctx.save(); ctx.translate(12, (box.t + box.b) / 2); ctx.rotate(-Math.PI / 2); ctx.fillText(ylabel, 0, 0); ctx.restore();
+  return { X, Y, box };
+}
+
+function range(arr, pad = 0.05) {
+  let lo = Infinity, hi = -Infinity;
+  for (const v of arr) { if (v < lo) lo = v; if (v > hi) hi = v; }
+  const d = (hi - lo) * pad || 1;
+  return [lo - d, hi + d];
+}
+
+function drawFigure(canvas, r, m) {
+  const s = r.samples;
+  const n = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
+  const x = s.ddx_M.subarray(0, n), z = s.ddz_M.subarray(0, n);
+  const ctx = canvas.getContext('2d');
+  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(x), range(z), "x_M'' [m/s²]", "z_M'' (down) [m/s²]");
+  // the figure coloured by the contact phase
+  ctx.lineWidth = 1.8;
+  for (let i = 0; i < n; i++) {
+    const j = (i + 1) % n;
+    ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : ARROW.slip;
+    ctx.beginPath(); ctx.moveTo(X(x[i]), Y(z[i])); ctx.lineTo(X(x[j]), Y(z[j])); ctx.stroke();
+  }
+  ctx.fillStyle = '#222';
+  ctx.textAlign = 'left';
+  ctx.fillText(`area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`, 60, 24);
+  ctx.fillStyle = ARROW.stick;
+  ctx.fillText('stick', 60, 38);
+  ctx.fillStyle = ARROW.slip;
+  ctx.fillText('slip', 92, 38);
+}
+
+// ---- the drum in its trough (animated from the sampled steady state)
+
+let animation = null;
+
+function startAnimation(r) {
+  if (animation) cancelAnimationFrame(animation.frame);
+  const s = r.samples;
+  const n = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
+  let maxN = 0;
+  for (let i = 0; i < n; i++) maxN = Math.max(maxN, Math.abs(s.N[i]), Math.abs(s.T[i]));
+  const c = r.case;
+  animation = { s, n, maxN, r: c['roller.r'], k: c['trough.k'], a: c['trough.a'], frame: 0, start: performance.now() };
+  const tick = (now) => {
+    // one excitation period takes 2 s on screen
+    const i = Math.floor((Math.max(0, now - animation.start) / 2000) * r.samples_per_period) % n;
+    drawDrum($('drum'), animation, i);
+    animation.frame = requestAnimationFrame(tick);
+  };
+  drawDrum($('drum'), animation, 0);
+  animation.frame = requestAnimationFrame(tick);
+}
+
+function arrow(ctx, x0, y0, dx, dy, color) {
+  const len = Math.hypot(dx, dy);
+  if (len < 1) return;
+  ctx.strokeStyle = color; ctx.fillStyle = color; ctx.lineWidth = 3;
+  ctx.beginPath(); ctx.moveTo(x0, y0); ctx.lineTo(x0 + dx, y0 + dy); ctx.stroke();
+  const ux = dx / len, uy = dy / len;
+  ctx.beginPath();
+  ctx.moveTo(x0 + dx, y0 + dy);
+  ctx.lineTo(x0 + dx - 10 * ux + 5 * uy, y0 + dy - 10 * uy - 5 * ux);
+  ctx.lineTo(x0 + dx - 10 * ux - 5 * uy, y0 + dy - 10 * uy + 5 * ux);
+  ctx.fill();
+}
+
+function drawDrum(canvas, an, i) {
+  const ctx = canvas.getContext('2d');
+  const w = canvas.width, h = canvas.height;
+  const { s } = an;
+  ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
+  const scale = (0.36 * h) / an.r;  // px per m
+  // trough centre C: moves with the soil point A (x_A, s_A down), exaggerated
+  const cx = w / 2 + DISPLACEMENT_FACTOR * s.x_A[i] * scale;
+  const cy = 0.47 * h + DISPLACEMENT_FACTOR * s.s_A[i] * scale;
+  const R = (th) => an.a * Math.exp(an.k * th);  // (8)
+  // the drum: centre at distance R(delta) - r from C along the direction delta (exact for a circle)
+  const d = s.delta[i];
+  const mx = cx + (R(d) - an.r) * Math.sin(d) * scale;
+  const my = cy + (R(d) - an.r) * Math.cos(d) * scale;
+  ctx.fillStyle = '#c8ccd2'; ctx.strokeStyle = '#444'; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.arc(mx, my, an.r * scale, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+  // spokes show the rotation phi (exaggerated)
+  const phi = ROTATION_FACTOR * s.phi[i];
+  ctx.strokeStyle = '#555'; ctx.lineWidth = 2;
+  for (let k = 0; k < 4; k++) {
+    const ang = phi + (k * Math.PI) / 2;
+    ctx.beginPath(); ctx.moveTo(mx, my);
+    ctx.lineTo(mx + 0.85 * an.r * scale * Math.sin(ang), my - 0.85 * an.r * scale * Math.cos(ang));
+    ctx.stroke();
+  }
+  ctx.fillStyle = '#b00'; ctx.beginPath();
+  ctx.arc(mx + 0.85 * an.r * scale * Math.sin(phi), my - 0.85 * an.r * scale * Math.cos(phi), 5, 0, 2 * Math.PI); ctx.fill();
+  // soil and trough, drawn over the drum: the drum shows only inside the trough
+  ctx.fillStyle = '#d9c9a8';
+  const edge = 1.2;  // the trough drawn for |theta| <= edge, then the flat soil surface
+  const yEdge = cy + R(edge) * Math.cos(edge) * scale;
+  ctx.beginPath();
+  ctx.moveTo(0, h);
+  ctx.lineTo(0, yEdge);
+  for (let th = -edge; th <= edge + 1e-9; th += 0.02) ctx.lineTo(cx + R(th) * Math.sin(th) * scale, cy + R(th) * Math.cos(th) * scale);
+  ctx.lineTo(w, yEdge);
+  ctx.lineTo(w, h);
+  ctx.closePath();
+  ctx.fill();
+  ctx.strokeStyle = '#8a6d3b'; ctx.lineWidth = 2; ctx.stroke();
+  // contact point P and the forces on the drum: N along the normal (towards M), T along the tangent
+  const px = mx + an.r * Math.sin(d) * scale, py = my + an.r * Math.cos(d) * scale;
+  const len = (0.32 * h) / (an.maxN || 1);
+  const stick = s.phase[i] === 0;
+  const color = stick ? ARROW.stick : ARROW.slip;
+  const nx = -Math.sin(d), ny = -Math.cos(d);  // unit normal towards the drum centre (screen)
+  const tx = Math.cos(d), ty = -Math.sin(d);   // unit tangent (x to the right at the bottom)
+  arrow(ctx, px, py, nx * s.N[i] * len, ny * s.N[i] * len, color);
+  arrow(ctx, px, py, tx * s.T[i] * len, ty * s.T[i] * len, color);
+  ctx.fillStyle = '#222'; ctx.font = '12px system-ui, sans-serif'; ctx.textAlign = 'left';
+  ctx.fillText(`t - t0 = ${((s.t[i] - s.t[0]) * 1e3).toFixed(2)} ms   ${stick ? 'stick' : s.phase[i] > 0 ? 'slip +' : 'slip −'}`, 8, 16);
+  ctx.fillText(`N = ${(s.N[i] / 1e3).toFixed(1)} kN   T = ${(s.T[i] / 1e3).toFixed(1)} kN   δ = ${s.delta[i].toFixed(4)} rad`, 8, 32);
+}
+
+// ---- metrics panel
+
+function fillMetrics(r, m) {
+  const s = r.samples;
+  let required = 0;
+  for (let i = 0; i < s.N.length; i++) if (s.N[i] > 0) required = Math.max(required, Math.abs(s.T[i]) / s.N[i]);
+  const hx = m.ddx_harmonics.amplitude, hz = m.ddz_harmonics.amplitude;
+  const rows = [
+    ['status', r.status, 'steady period ' + r.diagnostics.multiplicity + ' × 1/f, found after ' + r.diagnostics.periods_to_steady + ' periods'],
+    ["x_M'' max / min", `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`, 'm/s²'],
+    ["z_M'' max / min", `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`, 'm/s², z down'],
+    ["x_M'' A1, A3, A5", [1, 3, 5].map((k) => fmt(hx[k], 4)).join(', '), 'm/s² (A_n of n f)'],
+    ["z_M'' A2, A4, A6", [2, 4, 6].map((k) => fmt(hz[k], 4)).join(', '), 'm/s²'],
+    ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
+    ["lag x_M''→z_M'' ψ", fmt(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x))'],
+    ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
+    ['stick / slip+ / slip−', [m.stick_fraction, m.slip_positive_fraction, m.slip_negative_fraction].map((v) => fmt(100 * v, 3) + ' %').join(' / '), 'of the time'],
+    ['required μ', fmt(required, 4), 'max |T| / N (pure rolling needs this friction)'],
+    ['δ max / min', `${fmt(m.delta_max, 4)} / ${fmt(m.delta_min, 4)}`, 'rad'],
+  ];
+  if (last.soil && last.soil.ok) {
+    const c = last.soil;
+    rows.push(['soil (Appendix B)', `a0 ${fmt(c.a0, 4)} m; ksh ${fmt(c.ksh / 1e6, 4)}, ksv ${fmt(c.ksv / 1e6, 4)} MN/m; csh ${fmt(c.csh / 1e3, 4)}, csv ${fmt(c.csv / 1e3, 4)} kN s/m`, '(42)-(45)']);
+  } else {
+    const c = r.case;
+    rows.push(['soil (Table 2)', `ksh ${fmt(c['soil.ksh'] / 1e6, 4)}, ksv ${fmt(c['soil.ksv'] / 1e6, 4)} MN/m; csh ${fmt(c['soil.csh'] / 1e3, 4)}, csv ${fmt(c['soil.csv'] / 1e3, 4)} kN s/m`, '']);
+  }
+  rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
+  const body = $('metrics').tBodies[0];
+  body.innerHTML = '';
+  for (const [name, value, unit] of rows) {
+    const tr = body.insertRow();
+    const th = document.createElement('th');
+    th.textContent = name;
+    tr.appendChild(th);
+    tr.insertCell().textContent = value;
+    const u = tr.insertCell();
+    u.textContent = unit;
+    u.style.textAlign = 'left';
+    tr.dataset.metric = name;
+  }
+}
+
+// ---------------------------------------------------------------- exports
+
+function download(name, blob) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}
+
+function tomlNumber(field, v) {
+  if (field.type === 'integer') return String(Math.round(v));
+  if (field.type === 'boolean') return v ? 'true' : 'false';
+  if (field.type === 'choice') return `"${field.choices[v]}"`;
+  const text = String(v);  // the shortest text that reads back exactly
+  return /[.eEn]/.test(text) ? text : `${text}.0`;
+}
+
+// The case as a TOML file for `oscidrum run` (every key of the field table).
+function caseToml() {
+  if (!last) return '';
+  const c = last.result.case;
+  const lines = ['# oscidrum case exported by the explorer; run it with: oscidrum run case.toml', ''];
+  const sections = {};
+  // only the soil keys that take effect (oscidrum run refuses the others)
+  const modulus = c['soil.input'] === 1;
+  const skip = modulus ? ['soil.ksh', 'soil.ksv', 'soil.csh', 'soil.csv'] : ['soil.G', 'soil.nu', 'soil.rho'];
+  for (const f of fields) {
+    if (skip.includes(f.key)) continue;
+    const dot = f.key.indexOf('.');
+    if (dot < 0) lines.push(`${f.key} = ${tomlNumber(f, c[f.key])}  # [${f.unit}] ${f.description}`);
+    else (sections[f.key.slice(0, dot)] ||= []).push(`${f.key.slice(dot + 1)} = ${tomlNumber(f, c[f.key])}  # [${f.unit}]`);
+  }
+  if (!modulus && $('soil_mode').value === 'table2' && sections.soil) {
+    sections.soil.unshift(`# paper Table 2 at G = ${fmt(c['soil.G'] / 1e6, 6)} MN/m^2`);
+  }
+  for (const [name, body] of Object.entries(sections)) lines.push('', `[${name}]`, ...body);
+  return lines.join('\n') + '\n';
+}
+
+const CSV_COLUMNS = [['t', 's'], ['delta', 'rad'], ['phi', 'rad'], ['x_A', 'm'], ['s_A', 'm'], ['ddelta', 'rad/s'],
+  ['dphi', 'rad/s'], ['dx_A', 'm/s'], ['ds_A', 'm/s'], ['x_M', 'm'], ['z_M', 'm'], ['ddx_M', 'm/s^2'],
+  ['ddz_M', 'm/s^2'], ['N', 'N'], ['T', 'N'], ['v_rel', 'm/s'], ['torque', 'N m'], ['phase', '-']];
+
+// The sampled steady state with the columns of `oscidrum run --csv`.
+function steadyCsv() {
+  if (!last) return '';
+  const s = last.result.samples;
+  const out = [CSV_COLUMNS.map(([n, u]) => `${n}[${u}]`).join(',')];
+  for (let i = 0; i < s.t.length; i++) out.push(CSV_COLUMNS.map(([n]) => String(s[n][i])).join(','));
+  return out.join('\n') + '\n';
+}
+
+function plotCanvases() {
+  return [plots.time && plots.time.ctx.canvas, $('plot-figure'), $('drum'),
+    plots['plot-spec-x'] && plots['plot-spec-x'].ctx.canvas, plots['plot-spec-z'] && plots['plot-spec-z'].ctx.canvas].filter(Boolean);
+}
+
+function exportPng() {
+  const cs = plotCanvases();
+  const ratio = window.devicePixelRatio || 1;
+  const width = Math.max(...cs.map((c) => c.width));
+  const out = document.createElement('canvas');
+  out.width = width;
+  out.height = cs.reduce((h, c) => h + c.height + 8 * ratio, 0);
+  const ctx = out.getContext('2d');
+  ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, out.width, out.height);
+  let y = 0;
+  for (const c of cs) { ctx.drawImage(c, 0, y); y += c.height + 8 * ratio; }
+  out.toBlob((b) => download('oscidrum-plots.png', b), 'image/png');
+}
+
+// Vector versions of the plots, drawn from the data.
+function svgPlot(x0, y0, w, h, title, xlabel, ylabel, series, shading) {
+  const box = { l: x0 + 56, r: x0 + w - 10, t: y0 + 22, b: y0 + h - 36 };
+  const xs = series.flatMap((s) => Array.from(s.x)), ys = series.flatMap((s) => Array.from(s.y));
+  const xr = series.xr || range(xs, 0), yr = range(ys);
+  const X = (v) => box.l + ((v - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
+  const Y = (v) => box.b - ((v - yr[0]) / (yr[1] - yr[0])) * (box.b - box.t);
+  const parts = [`<text x="${x0 + 4}" y="${y0 + 14}" font-size="13">${title}</text>`];
+  for (const sh of shading || []) parts.push(`<rect x="${X(sh.x0)}" y="${box.t}" width="${Math.max(0.5, X(sh.x1) - X(sh.x0))}" height="${box.b - box.t}" fill="${sh.color}"/>`);
+  for (const v of niceTicks(xr[0], xr[1])) parts.push(`<line x1="${X(v)}" x2="${X(v)}" y1="${box.t}" y2="${box.b}" stroke="#ddd"/><text x="${X(v)}" y="${box.b + 14}" font-size="11" text-anchor="middle">${fmt(v, 4)}</text>`);
+  for (const v of niceTicks(yr[0], yr[1])) parts.push(`<line x1="${box.l}" x2="${box.r}" y1="${Y(v)}" y2="${Y(v)}" stroke="#ddd"/><text x="${box.l - 4}" y="${Y(v) + 4}" font-size="11" text-anchor="end">${fmt(v, 4)}</text>`);
+  parts.push(`<rect x="${box.l}" y="${box.t}" width="${box.r - box.l}" height="${box.b - box.t}" fill="none" stroke="#888"/>`);
+  parts.push(`<text x="${(box.l + box.r) / 2}" y="${y0 + h - 6}" font-size="11" text-anchor="middle">${xlabel}</text>`);
+  parts.push(`<text transform="translate(${x0 + 12},${(box.t + box.b) / 2}) rotate(-90)" font-size="11" text-anchor="middle">${ylabel}</text>`);
+  for (const s of series) {
+    if (s.bars) {
+      for (let i = 0; i < s.x.length; i++) parts.push(`<rect x="${X(s.x[i]) - 6}" y="${Y(s.y[i])}" width="12" height="${Y(yr[0] < 0 ? 0 : yr[0]) - Y(s.y[i])}" fill="${s.color}"/>`);
+    } else {
+      const pts = Array.from(s.x, (v, i) => `${X(v).toFixed(2)},${Y(s.y[i]).toFixed(2)}`).join(' ');
+      parts.push(`<polyline points="${pts}" fill="none" stroke="${s.color}" stroke-width="1.5"/>`);
+    }
+  }
+  return parts.join('\n');
+}
+
+function plotsSvg() {
+  if (!last || !last.result.metrics) return '';
+  const r = last.result, s = r.samples, m = r.metrics;
+  const n = periodSlice(r);
+  const t = Array.from(s.t.subarray(0, n), (v) => (v - s.t[0]) * 1e3);
+  const shading = phaseRuns(s.phase, n).map((run) => ({ x0: t[run.from], x1: t[Math.min(run.to, n - 1)], color: phaseColor(run.phase) }));
+  const np = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
+  const closed = (a) => [...a.subarray(0, np), a[0]];
+  const spec = (h, color) => { const a = Array.from(h.amplitude); const top = Math.max(...a) || 1; return [{ x: a.map((_, i) => i), y: a.map((v) => v / top), color, bars: true }]; };
+  const body = [
+    svgPlot(0, 0, 900, 280, "x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)", 't - t0 [ms]', 'm/s²',
+      [{ x: t, y: s.ddx_M.subarray(0, n), color: COLORS.x }, { x: t, y: s.ddz_M.subarray(0, n), color: COLORS.z }], shading),
+    svgPlot(0, 290, 440, 320, `z_M'' over x_M'', area ${fmt(m.area, 5)} m²/s⁴`, "x_M'' [m/s²]", "z_M'' [m/s²]", [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }]),
+    svgPlot(460, 290, 440, 155, "spectrum of x_M''", 'n', 'A_n / max', spec(m.ddx_harmonics, COLORS.x)),
+    svgPlot(460, 455, 440, 155, "spectrum of z_M''", 'n', 'A_n / max', spec(m.ddz_harmonics, COLORS.z)),
+  ];
+  return `<svg xmlns="http://www.w3.org/2000/svg" width="900" height="620" font-family="sans-serif">\n<rect width="900" height="620" fill="#fff"/>\n${body.join('\n')}\n</svg>\n`;
+}
+
+// ---------------------------------------------------------------- start
+
+function init() {
+  buildInputs();
+  loadUrl();
+  $('rot-factor').textContent = String(ROTATION_FACTOR);
+  $('disp-factor').textContent = String(DISPLACEMENT_FACTOR);
+  $('case-form').addEventListener('input', onChange);
+  $('case-form').addEventListener('change', onChange);
+  $('reset').addEventListener('click', () => {
+    $('soil_mode').value = 'table2'; $('trough_mode').value = 'circle';
+    $('rolling').checked = false; $('M0_scale').checked = false;
+    for (const name of Object.keys(INPUTS)) $(`in-${name}`).value = defaultText(name);
+    for (const f of extras) setExtra(f, f.default);
+    onChange();
+  });
+  $('export-toml').addEventListener('click', () => download('case.toml', new Blob([caseToml()], { type: 'application/toml' })));
+  $('export-csv').addEventListener('click', () => download('steady_state.csv', new Blob([steadyCsv()], { type: 'text/csv' })));
+  $('export-png').addEventListener('click', exportPng);
+  $('export-svg').addEventListener('click', () => download('oscidrum-plots.svg', new Blob([plotsSvg()], { type: 'image/svg+xml' })));
+  $('copy-link').addEventListener('click', () => navigator.clipboard && navigator.clipboard.writeText(location.href));
+  $('soil-note').textContent = 'Table 2: the paper\'s coefficients at G = 5, 10, ..., 70 MN/m² (ν = 0.3, ρ = 1900 kg/m³). Modulus: the coefficients from G, ν, ρ by Appendix B (42)-(45).';
+  onChange();
+}
+
+// For tests and the console: the current case and exports.
+window.explorer = { caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null };
+
+startWorker();

@@ -1,0 +1,312 @@
+// web/src/bindings.cpp: Embind bindings of the oscidrum core for the browser explorer (web/).
+// Only the public API of include/oscidrum/ is used. A case travels as a plain JavaScript object
+// {"soil.G": 25e6, "contact.mu": 0.5, ...} whose keys are those of the field table
+// (oscidrum::fields(), the same keys as `oscidrum fields` and the TOML case files); every key,
+// unit, default and rule the page shows comes from that table.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <cmath>
+#include <exception>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/metrics.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/parameters.hpp"
+#include "oscidrum/result.hpp"
+#include "oscidrum/simulate.hpp"
+#include "oscidrum/soil.hpp"
+#include "oscidrum/version.hpp"
+
+namespace {
+
+using emscripten::val;
+
+const char* type_name(oscidrum::FieldType type) {
+  switch (type) {
+    case oscidrum::FieldType::real:
+      return "real";
+    case oscidrum::FieldType::integer:
+      return "integer";
+    case oscidrum::FieldType::boolean:
+      return "boolean";
+    case oscidrum::FieldType::choice:
+      return "choice";
+  }
+  return "real";
+}
+
+// The choice names of a field ("coefficients|modulus" -> ["coefficients", "modulus"]).
+val choice_names(const oscidrum::Field& field) {
+  val names = val::array();
+  if (field.choices == nullptr) return names;
+  const std::string all = field.choices;
+  std::size_t begin = 0;
+  while (begin <= all.size()) {
+    const std::size_t end = all.find('|', begin);
+    const std::size_t stop = end == std::string::npos ? all.size() : end;
+    names.call<void>("push", all.substr(begin, stop - begin));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return names;
+}
+
+// Every field of the table with its key, type, unit, description, rule and default value.
+val fields() {
+  const oscidrum::Case defaults;
+  val out = val::array();
+  for (const oscidrum::Field& field : oscidrum::fields()) {
+    val f = val::object();
+    f.set("key", std::string(field.key));
+    f.set("type", std::string(type_name(field.type)));
+    f.set("unit", std::string(field.unit));
+    f.set("description", std::string(field.description));
+    f.set("min", field.min);
+    f.set("max", field.max);
+    f.set("min_open", field.min_open);
+    f.set("max_open", field.max_open);
+    f.set("choices", choice_names(field));
+    f.set("rule", oscidrum::field_rule(field));
+    f.set("default", field.get(defaults));
+    out.call<void>("push", f);
+  }
+  return out;
+}
+
+// Empty if `value` satisfies the rule of field `key`, else the library's message.
+std::string check_field(const std::string& key, double value) {
+  const oscidrum::Field* field = oscidrum::find_field(key);
+  if (field == nullptr) {
+    try {
+      oscidrum::Case c;
+      oscidrum::set_field(c, key, value);  // throws the "did you mean" message
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "unknown parameter '" + key + "'";
+  }
+  return oscidrum::check_field(*field, value);
+}
+
+// A Case from the defaults and the keys set in `values` (numbers; unknown keys and values that
+// break a rule throw oscidrum::Error).
+oscidrum::Case case_from(const val& values) {
+  oscidrum::Case c;
+  if (values.isUndefined() || values.isNull()) return c;
+  const val keys = val::global("Object").call<val>("keys", values);
+  const auto n = keys["length"].as<unsigned>();
+  for (unsigned i = 0; i < n; ++i) {
+    const auto key = keys[i].as<std::string>();
+    const val v = values[key];
+    if (v.typeOf().as<std::string>() == "boolean") {
+      oscidrum::set_field(c, key, v.as<bool>() ? 1.0 : 0.0);
+    } else if (v.typeOf().as<std::string>() == "string") {
+      oscidrum::set_field_text(c, key, v.as<std::string>());
+    } else {
+      oscidrum::set_field(c, key, v.as<double>());
+    }
+  }
+  return c;
+}
+
+// The value of every field of a case, keyed as in the field table.
+val case_values(const oscidrum::Case& c) {
+  val out = val::object();
+  for (const oscidrum::Field& field : oscidrum::fields()) out.set(field.key, field.get(c));
+  return out;
+}
+
+// A copy of a vector as a Float64Array (not a view into the WebAssembly memory, which may move).
+val float64_array(const std::vector<double>& v) {
+  const val view(emscripten::typed_memory_view(v.size(), v.data()));
+  return val::global("Float64Array").new_(view);
+}
+
+val harmonics_of(const std::vector<oscidrum::Harmonic>& h) {
+  std::vector<double> amplitude, phase;
+  for (const auto& x : h) {
+    amplitude.push_back(x.amplitude);
+    phase.push_back(x.phase);
+  }
+  val out = val::object();
+  out.set("amplitude", float64_array(amplitude));  // A_n [unit of the signal]
+  out.set("phase", float64_array(phase));          // theta_n [rad]
+  return out;
+}
+
+val metrics_of(const oscidrum::Metrics& m) {
+  val out = val::object();
+  out.set("ddx_max", m.ddx_max);  // [m/s^2]
+  out.set("ddx_min", m.ddx_min);
+  out.set("ddz_max", m.ddz_max);
+  out.set("ddz_min", m.ddz_min);
+  out.set("delta_max", m.delta_max);  // [rad]
+  out.set("delta_min", m.delta_min);
+  out.set("ddx_harmonics", harmonics_of(m.ddx_harmonics));
+  out.set("ddz_harmonics", harmonics_of(m.ddz_harmonics));
+  out.set("phi_lag", m.phi_lag);  // [pi rad]
+  out.set("phi_amplitude", m.phi_amplitude);
+  out.set("psi_xz", m.psi_xz);  // [rad]
+  out.set("area", m.area);      // [m^2/s^4]
+  out.set("stick_fraction", m.stick_fraction);
+  out.set("slip_positive_fraction", m.slip_positive_fraction);
+  out.set("slip_negative_fraction", m.slip_negative_fraction);
+  return out;
+}
+
+val diagnostics_of(const oscidrum::Diagnostics& d) {
+  val out = val::object();
+  out.set("periods_simulated", d.periods_simulated);
+  out.set("periods_to_steady", d.periods_to_steady);
+  out.set("multiplicity", d.multiplicity);
+  out.set("final_change", d.final_change);
+  out.set("steps", static_cast<double>(d.steps));
+  out.set("rejected_steps", static_cast<double>(d.rejected_steps));
+  out.set("rhs_evaluations", static_cast<double>(d.rhs_evaluations));
+  out.set("events", static_cast<double>(d.events));
+  out.set("switches", static_cast<double>(d.switches));
+  out.set("reversals", static_cast<double>(d.reversals));
+  out.set("inconsistent_slip_ends", static_cast<double>(d.inconsistent_slip_ends));
+  out.set("switches_per_period", d.switches_per_period);
+  out.set("max_slip_residual", d.max_slip_residual);
+  out.set("min_N", d.min_N);
+  return out;
+}
+
+val samples_of(const oscidrum::Samples& s) {
+  val out = val::object();
+  out.set("t", float64_array(s.t));
+  out.set("delta", float64_array(s.delta));
+  out.set("phi", float64_array(s.phi));
+  out.set("x_A", float64_array(s.x_A));
+  out.set("s_A", float64_array(s.s_A));
+  out.set("ddelta", float64_array(s.ddelta));
+  out.set("dphi", float64_array(s.dphi));
+  out.set("dx_A", float64_array(s.dx_A));
+  out.set("ds_A", float64_array(s.ds_A));
+  out.set("x_M", float64_array(s.x_M));
+  out.set("z_M", float64_array(s.z_M));
+  out.set("ddx_M", float64_array(s.ddx_M));
+  out.set("ddz_M", float64_array(s.ddz_M));
+  out.set("N", float64_array(s.N));
+  out.set("T", float64_array(s.T));
+  out.set("v_rel", float64_array(s.v_rel));
+  out.set("torque", float64_array(s.torque));
+  std::vector<double> phase;
+  phase.reserve(s.phase.size());
+  for (const oscidrum::Phase p : s.phase) phase.push_back(static_cast<double>(static_cast<int>(p)));
+  out.set("phase", float64_array(phase));  // 0 stick, 1 slip+, -1 slip-
+  return out;
+}
+
+val error_object(const std::string& message) {
+  val out = val::object();
+  out.set("ok", false);
+  out.set("error", message);
+  return out;
+}
+
+// Simulate the case `values` from rest to its steady state (oscidrum::simulate) and compute its
+// metrics (oscidrum::compute_metrics, harmonics n = 0 ... n_max). Returns {ok: false, error} for
+// bad input, else {ok: true, status, message, diagnostics, case, samples, metrics, ...}.
+val simulate(const val& values, int n_max) {
+  try {
+    const oscidrum::Case c = case_from(values);
+    // The Model validates the case (throws oscidrum::Error) here, in code built with exception
+    // support; the integrator itself is built without it (scripts/build-web.sh) and never throws.
+    const oscidrum::Model model(c);
+    const oscidrum::Result r = oscidrum::simulate(model);
+    val out = val::object();
+    out.set("ok", true);
+    out.set("status", std::string(oscidrum::to_string(r.status)));
+    out.set("message", r.message);
+    out.set("case", case_values(c));
+    out.set("diagnostics", diagnostics_of(r.diagnostics));
+    out.set("frequency", r.frequency);
+    out.set("sample_periods", r.sample_periods);
+    out.set("samples_per_period", r.samples_per_period);
+    out.set("stick_time", r.stick_time);
+    out.set("slip_positive_time", r.slip_positive_time);
+    out.set("slip_negative_time", r.slip_negative_time);
+    out.set("samples", samples_of(r.samples));
+    if (r.samples.size() > 0) {
+      out.set("metrics", metrics_of(oscidrum::compute_metrics(r, n_max)));
+    } else {
+      out.set("metrics", val::null());
+    }
+    return out;
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
+val coefficients_of(const oscidrum::SoilCoefficients& s) {
+  val out = val::object();
+  out.set("a0", s.a0);    // [m]
+  out.set("ksh", s.ksh);  // [N/m]
+  out.set("ksv", s.ksv);
+  out.set("csh", s.csh);  // [N s/m]
+  out.set("csv", s.csv);
+  return out;
+}
+
+// Appendix B (42)-(45): the soil coefficients from G [Pa], nu [-], rho [kg/m^3] and the roller of
+// the case `values` (r, b, P0). Returns {ok: false, error} on non-physical input.
+val soil_coefficients(double G, double nu, double rho, const val& values) {
+  try {
+    const oscidrum::Case c = case_from(values);
+    val out = coefficients_of(oscidrum::soil_coefficients(G, nu, rho, c.roller));
+    out.set("ok", true);
+    return out;
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
+// Paper Table 2 (SI units), one object per row.
+val table2() {
+  val out = val::array();
+  for (const oscidrum::Table2Row& row : oscidrum::table2()) {
+    val r = val::object();
+    r.set("G", row.G);
+    r.set("a0", row.a0);
+    r.set("ksh", row.ksh);
+    r.set("ksv", row.ksv);
+    r.set("csh", row.csh);
+    r.set("csv", row.csv);
+    out.call<void>("push", r);
+  }
+  return out;
+}
+
+// The Table 2 soil at G [Pa] as field values ({"soil.input": 0, "soil.ksh": ...}).
+val table2_soil(double G) {
+  try {
+    oscidrum::Case c;
+    c.soil = oscidrum::table2_soil(G);
+    val out = case_values(c);
+    out.set("ok", true);
+    return out;
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
+std::string version() { return oscidrum::version; }
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(oscidrum) {
+  emscripten::function("fields", &fields);
+  emscripten::function("checkField", &check_field);
+  emscripten::function("simulate", &simulate);
+  emscripten::function("soilCoefficients", &soil_coefficients);
+  emscripten::function("table2", &table2);
+  emscripten::function("table2Soil", &table2_soil);
+  emscripten::function("version", &version);
+}
