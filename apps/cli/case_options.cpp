@@ -17,12 +17,6 @@ bool given(const CLI::Option* o) { return o && o->count() > 0; }
 
 std::string origin(const std::string& flag, double v) { return flag + " " + fmt(v, 10); }
 
-bool is_table2_G(double G) {
-  for (const Table2Row& row : table2())
-    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
-  return false;
-}
-
 // Flags override the file: drop what the file said about the same quantity.
 void forget(io::CaseSpec& spec, const char* key) {
   spec.origin.erase(std::string(key));

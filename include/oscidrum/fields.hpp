@@ -54,7 +54,7 @@ std::string format_field(const Case& c, const Field& field);
 /// Check one value against the field's rule; empty string if fine, else the error message.
 std::string check_field(const Field& field, double value);
 
-/// Levenshtein distance ignoring ASCII case, for "did you mean" suggestions.
-std::size_t edit_distance(std::string_view a, std::string_view b);
+/// The index of `name` among a choice field's names (FieldType::choice), or -1.
+int choice_index(const Field& field, std::string_view name);
 
 }  // namespace oscidrum

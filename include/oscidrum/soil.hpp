@@ -36,6 +36,9 @@ struct Table2Row {
 /// Paper Table 2, G = 5 ... 70 MN/m^2 in steps of 5 (nu = 0.3, rho = 1900 kg/m^3).
 const std::array<Table2Row, 14>& table2();
 
+/// True when G [Pa] is one of Table 2's shear moduli (to 1e-9 relative).
+bool is_table2_G(double G);
+
 /// The Table 2 soil (input == coefficients) at G [Pa]; G must be one of the table's values
 /// (5e6, 10e6, ..., 70e6), else oscidrum::Error.
 Soil table2_soil(double G);

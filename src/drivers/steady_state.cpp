@@ -9,6 +9,8 @@
 #include <deque>
 #include <limits>
 
+#include "util/format.hpp"
+
 namespace oscidrum::detail {
 namespace {
 
@@ -35,12 +37,6 @@ constexpr double kStagnationRatio = 0.9;
 
 // Events kept for a run that ends early, to show what led to the end.
 constexpr std::size_t kRecentEvents = 64;
-
-std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, a, b, c);
-  return buf;
-}
 
 class Search : public FlowObserver {
  public:
@@ -123,12 +119,13 @@ bool Search::gross_slip(int n, const Vec& x) {
   const double growth = -s * (x[7] - history_[kGrossSlipPeriods].first[7]) / kGrossSlipPeriods;
   if (!(growth > 0.0)) return false;
   out_.status = Status::gross_slip;
-  out_.message = fmt(
+  out_.message = detail::format(
       "gross slip: the drum spins (phi' grows by %.3g rad/s per excitation period, slipping "
       "without stick for %.0f periods): the driving torque MMd = %.6g N m exceeds what friction "
       "can hold, about mu W r",
       growth, kGrossSlipPeriods, MMd);
-  out_.message += fmt(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
+  out_.message +=
+      detail::format(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
   return true;
 }
 
@@ -172,7 +169,7 @@ bool Search::on_boundary(int n, const Vec& x) {
   if (spinning) return true;
   if (progress_ && !progress_(n, change1)) {
     out_.status = Status::cancelled;
-    out_.message = fmt("cancelled after %.0f periods", n);
+    out_.message = detail::format("cancelled after %.0f periods", n);
     return true;
   }
 
@@ -195,13 +192,14 @@ bool Search::on_boundary(int n, const Vec& x) {
     out_.status = Status::steady_state;
     out_.multiplicity = found;
     if (at_floor)
-      out_.message =
-          fmt("steady state after %.0f periods, at the noise floor of the integration: the "
-              "period-to-period change stopped decreasing at %.3g, above numerics.steady_tol but "
-              "within what numerics.rtol = %.3g resolves (tighten rtol for a smaller change)",
-              n, change1, num_.rtol);
+      out_.message = detail::format(
+          "steady state after %.0f periods, at the noise floor of the integration: the "
+          "period-to-period change stopped decreasing at %.3g, above numerics.steady_tol but "
+          "within what numerics.rtol = %.3g resolves (tighten rtol for a smaller change)",
+          n, change1, num_.rtol);
     else
-      out_.message = fmt(found == 1 ? "steady state after %.0f periods"
+      out_.message =
+          detail::format(found == 1 ? "steady state after %.0f periods"
                                     : "steady state after %.0f periods, repeating every %.0f "
                                       "excitation periods",
                          n, found);
@@ -209,10 +207,10 @@ bool Search::on_boundary(int n, const Vec& x) {
   }
   if (n >= num_.max_periods) {
     out_.status = Status::max_periods_reached;
-    out_.message =
-        fmt("no steady state within %.0f periods (last period-to-period change %.3g); the last "
-            "periods are sampled for inspection, with no metrics",
-            n, change1);
+    out_.message = detail::format(
+        "no steady state within %.0f periods (last period-to-period change %.3g); the last "
+        "periods are sampled for inspection, with no metrics",
+        n, change1);
     return true;
   }
   return false;

@@ -22,6 +22,7 @@
 #include "equations/equations.hpp"
 #include "equations/event_logic.hpp"
 #include "flow/event_functions.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 namespace {
@@ -65,12 +66,6 @@ struct Rhs {
     dxdt[7] = a.phi;
   }
 };
-
-std::string fmt(const char* format, double a, double b = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, a, b);
-  return buf;
-}
 
 }  // namespace
 
@@ -259,10 +254,11 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
     ev.kind = EventKind::contact_lost;
     ev.to = phase_;
     if (observer) observer->on_event(ev, before, before);
-    return stop(FlowStop::contact_lost, c.t, x,
-                fmt("contact lost at t = %.9g s (N reached 0): the model assumes permanent "
-                    "contact and does not cover lift-off",
-                    c.t));
+    return stop(
+        FlowStop::contact_lost, c.t, x,
+        detail::format("contact lost at t = %.9g s (N reached 0): the model assumes permanent "
+                       "contact and does not cover lift-off",
+                       c.t));
   }
 
   State q = before;
@@ -308,9 +304,10 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
   if (recent_switches.size() > kChatterSwitches) recent_switches.pop_front();
   if (recent_switches.size() == kChatterSwitches &&
       recent_switches.back() - recent_switches.front() < kChatterWindow * period) {
-    return stop(FlowStop::chattering, c.t, x,
-                fmt("chattering: 20 stick/slip switches within %.3g s ending at t = %.9g s",
-                    recent_switches.back() - recent_switches.front(), c.t));
+    return stop(
+        FlowStop::chattering, c.t, x,
+        detail::format("chattering: 20 stick/slip switches within %.3g s ending at t = %.9g s",
+                       recent_switches.back() - recent_switches.front(), c.t));
   }
   const long n = static_cast<long>(std::floor(c.t / period));
   if (n != switch_period) {
@@ -320,9 +317,10 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
   if (++switches_in_period > options.max_switches_per_period) {
     return stop(
         FlowStop::chattering, c.t, x,
-        fmt("chattering: more than %.0f stick/slip switches in the excitation period "
-            "starting at t = %.9g s",
-            static_cast<double>(options.max_switches_per_period), static_cast<double>(n) * period));
+        detail::format("chattering: more than %.0f stick/slip switches in the excitation period "
+                       "starting at t = %.9g s",
+                       static_cast<double>(options.max_switches_per_period),
+                       static_cast<double>(n) * period));
   }
   restart(c.t, x);
   if (!go_on) return stop(FlowStop::observer, c.t, x, "stopped by an observer");
@@ -376,19 +374,21 @@ FlowStop Flow::advance(double t_end, FlowObserver* observer) {
     if (!s.have_step) {
       if (s.options.cancelled && s.options.cancelled())
         return s.stop(FlowStop::cancelled, s.t_now, s.x_now,
-                      fmt("cancelled at t = %.9g s", s.t_now));
+                      detail::format("cancelled at t = %.9g s", s.t_now));
       Rhs rhs{&s.model, s.phase_, s.options.baumgarte, &s.counters.rhs_evaluations};
       const auto [a, b] = s.stepper.do_step(rhs);
       ++s.counters.steps;
       const Vec& x1 = s.stepper.current_state();
       if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); }))
-        return s.stop(FlowStop::non_finite, b, x1,
-                      fmt("non-finite state at t = %.9g s (the integration diverged)", b));
+        return s.stop(
+            FlowStop::non_finite, b, x1,
+            detail::format("non-finite state at t = %.9g s (the integration diverged)", b));
       if (kinematics(s.model.geometry(), x1[0]).f5 <= 0.0)
-        return s.stop(FlowStop::invalid_geometry, b, x1,
-                      fmt("at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
-                          "to the drum radius (f5 <= 0): rolling is undefined there",
-                          b, x1[0]));
+        return s.stop(
+            FlowStop::invalid_geometry, b, x1,
+            detail::format("at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
+                           "to the drum radius (f5 <= 0): rolling is undefined there",
+                           b, x1[0]));
       const long n = static_cast<long>(std::floor(a / s.period));
       if (n != s.step_period) {
         s.step_period = n;
@@ -398,7 +398,8 @@ FlowStop Flow::advance(double t_end, FlowObserver* observer) {
           ++s.steps_in_period > s.options.max_steps_per_period)
         return s.stop(
             FlowStop::budget_exceeded, a, s.x_now,
-            fmt("more than %.0f integration steps in the excitation period starting at t = "
+            detail::format(
+                "more than %.0f integration steps in the excitation period starting at t = "
                 "%.9g s: the problem is too stiff or too fast for the explicit Dormand-Prince "
                 "method at these parameters (see numerics.max_steps_per_period)",
                 static_cast<double>(s.options.max_steps_per_period),

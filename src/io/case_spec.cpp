@@ -14,6 +14,7 @@
 #include "oscidrum/model.hpp"
 #include "oscidrum/soil.hpp"
 #include "oscidrum_io/csv.hpp"
+#include "util/text.hpp"
 
 namespace oscidrum::io {
 namespace {
@@ -67,25 +68,6 @@ double number_of(const Value& v, bool* ok) {
   return 0.0;
 }
 
-int choice_index(const char* choices, std::string_view name) {
-  std::string_view all(choices);
-  int i = 0;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t bar = all.find('|', start);
-    if (all.substr(start, bar - start) == name) return i;
-    if (bar == std::string_view::npos) return -1;
-    start = bar + 1;
-    ++i;
-  }
-}
-
-bool is_table2_G(double G) {
-  for (const Table2Row& row : table2())
-    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
-  return false;
-}
-
 constexpr std::array kModulusKeys = {"soil.G", "soil.nu", "soil.rho"};
 constexpr std::array kCoefficientKeys = {"soil.ksh", "soil.ksv", "soil.csh", "soil.csv"};
 
@@ -136,7 +118,7 @@ std::string suggest_key(std::string_view key) {
   std::string_view best;
   std::size_t best_d = std::clamp<std::size_t>(key.size() / 4, 1, 3) + 1;
   for (std::string_view k : keys) {
-    const std::size_t d = edit_distance(key, k);
+    const std::size_t d = detail::edit_distance(key, k);
     if (d < best_d) best_d = d, best = k;
   }
   if (!best.empty()) return "; did you mean '" + std::string(best) + "'?";
@@ -164,7 +146,7 @@ std::string suggest_section(std::string_view section) {
   std::string best;
   std::size_t best_d = std::clamp<std::size_t>(section.size() / 3, 1, 3) + 1;
   for (const std::string& s : sections) {
-    const std::size_t d = edit_distance(section, s);
+    const std::size_t d = detail::edit_distance(section, s);
     if (d < best_d) best_d = d, best = s;
   }
   if (!best.empty()) return "; did you mean [" + best + "]?";
@@ -228,7 +210,7 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
     case FieldType::choice: {
       if (!std::holds_alternative<std::string>(value))
         type_error(*f, field_rule(*f).c_str(), value);
-      const int i = choice_index(f->choices, std::get<std::string>(value));
+      const int i = choice_index(*f, std::get<std::string>(value));
       if (i < 0) type_error(*f, field_rule(*f).c_str(), value);
       v = i;
       break;

@@ -13,7 +13,8 @@
 namespace oscidrum {
 namespace {
 
-std::string num(double v) { return detail::shortest(v); }
+using detail::shortest;
+std::string num(double v) { return shortest(v); }
 
 // Least-squares coefficients (a_0, a_1, b_1, ..., a_N, b_N) of y on the harmonic basis.
 Eigen::VectorXd fit(const Eigen::MatrixXd& basis, std::span<const double> y) {

@@ -14,6 +14,7 @@
 
 #include "oscidrum/error.hpp"
 #include "util/format.hpp"
+#include "util/text.hpp"
 
 namespace oscidrum {
 namespace {
@@ -157,25 +158,12 @@ std::string choice_name(const char* choices, int index) {
   }
 }
 
-int choice_index(const char* choices, std::string_view name) {
-  std::string_view all(choices);
-  int i = 0;
-  std::size_t start = 0;
-  while (true) {
-    std::size_t bar = all.find('|', start);
-    if (all.substr(start, bar - start) == name) return i;
-    if (bar == std::string_view::npos) return -1;
-    start = bar + 1;
-    ++i;
-  }
-}
-
 [[noreturn]] void throw_unknown(std::string_view key) {
   std::string msg = "unknown parameter '" + std::string(key) + "'";
   const Field* best = nullptr;
   std::size_t best_d = 4;
   for (const Field& f : kFields) {
-    std::size_t d = edit_distance(key, f.key);
+    std::size_t d = detail::edit_distance(key, f.key);
     if (d < best_d) {
       best_d = d;
       best = &f;
@@ -189,21 +177,18 @@ int choice_index(const char* choices, std::string_view name) {
 
 std::span<const Field> fields() { return kFields; }
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                        std::tolower(static_cast<unsigned char>(b[j - 1]));
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0u : 1u)});
-      diag = up;
-    }
+int choice_index(const Field& field, std::string_view name) {
+  if (!field.choices) return -1;
+  std::string_view all(field.choices);
+  int i = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t bar = all.find('|', start);
+    if (all.substr(start, bar - start) == name) return i;
+    if (bar == std::string_view::npos) return -1;
+    start = bar + 1;
+    ++i;
   }
-  return row[b.size()];
 }
 
 const Field* find_field(std::string_view key) {
@@ -271,7 +256,7 @@ void set_field_text(Case& c, std::string_view key, std::string_view text) {
     throw Error(std::string(f->key) + " must be true or false; got '" + std::string(text) + "'");
   }
   if (f->type == FieldType::choice) {
-    int i = choice_index(f->choices, text);
+    int i = choice_index(*f, text);
     if (i < 0)
       throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got '" +
                   std::string(text) + "'");

@@ -13,7 +13,8 @@
 namespace oscidrum {
 namespace {
 
-std::string num(double v) { return detail::shortest(v); }
+using detail::shortest;
+std::string num(double v) { return shortest(v); }
 
 // Every field against its rule in the field table, then the rules that tie fields together.
 void validate(const Case& c) {

@@ -109,9 +109,7 @@ bool within(double value, double target, double rel) {
 
 Case paper_case(const PaperSeries& series, double G) {
   Case c;
-  bool in_table = false;
-  for (const Table2Row& row : table2()) in_table = in_table || std::abs(row.G - G) < 1e-6 * G;
-  if (in_table) {
+  if (is_table2_G(G)) {
     c.soil = table2_soil(G);
   } else {  // outside Table 2 (the G -> 0 limit): Appendix B with the paper's nu and rho
     c.soil.input = SoilInput::modulus;

@@ -11,7 +11,8 @@
 namespace oscidrum {
 namespace {
 
-std::string num(double v) { return detail::shortest(v); }
+using detail::shortest;
+std::string num(double v) { return shortest(v); }
 
 void require(bool ok, const char* what, double value) {
   if (!ok) throw Error(std::string(what) + "; got " + num(value));
@@ -90,6 +91,12 @@ Soil table2_soil(double G) {
   }
   throw Error("Table 2 has no row for G = " + num(G) +
               " Pa; it has G = 5e6, 10e6, ..., 70e6 Pa (5 ... 70 MN/m^2 in steps of 5)");
+}
+
+bool is_table2_G(double G) {
+  for (const Table2Row& row : table2())
+    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
+  return false;
 }
 
 }  // namespace oscidrum

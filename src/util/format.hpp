@@ -1,7 +1,8 @@
-// Internal: numbers in error messages, formatted once for the whole library.
+// Internal: numbers in error and status messages, formatted once for the whole core library.
 #pragma once
 
 #include <charconv>
+#include <cstdio>
 #include <string>
 
 namespace oscidrum::detail {
@@ -11,6 +12,15 @@ inline std::string shortest(double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
+}
+
+/// printf-style formatting of numbers into a std::string, for status messages (at most 1023
+/// characters). Every argument is passed as a double, so the pattern uses %g, %f, %.0f ... only.
+template <class... Numbers>
+std::string format(const char* pattern, Numbers... numbers) {
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, pattern, static_cast<double>(numbers)...);
+  return buf;
 }
 
 }  // namespace oscidrum::detail
