@@ -21,7 +21,7 @@ ln -sfn /usr/include/boost build-web/sysinc/boost
 ln -sfn /usr/include/eigen3 build-web/sysinc/eigen3
 
 flags=(-std=c++20 -O2 -Wall -Wextra -Wpedantic -Wshadow -Werror
-       -Iinclude -Iweb/src/compat -Isrc -isystem build-web/sysinc -isystem build-web/sysinc/eigen3)
+       -Iinclude -Isrc -isystem build-web/sysinc -isystem build-web/sysinc/eigen3)
 
 # The core library: every source below src/ except the io and paper clients and the threaded
 # study runner (the page runs one case at a time, in a Web Worker).
@@ -29,7 +29,7 @@ mapfile -t sources < <(find src -name '*.cpp' -not -path 'src/io/*' -not -path '
                          -not -path 'src/drivers/study.cpp' | sort)
 sources+=(web/src/bindings.cpp)
 
-newest_header=$(find include src web/src/compat -name '*.hpp' -printf '%T@\n' | sort -n | tail -1)
+newest_header=$(find include src -name '*.hpp' -printf '%T@\n' | sort -n | tail -1)
 objects=()
 stale=()
 for s in "${sources[@]}"; do
