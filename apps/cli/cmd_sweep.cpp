@@ -18,6 +18,7 @@
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
+#include "oscidrum_io/hdf5.hpp"
 #include "oscidrum_io/json.hpp"
 #include "oscidrum_io/shard.hpp"
 #include "oscidrum_io/sweep.hpp"
@@ -30,8 +31,9 @@ namespace {
 struct SweepOptions {
   std::string study;
   CaseOptions c;  // --set only: changes the base case
-  std::string out, cases_dir, format, shard;
-  CLI::Option *out_flag = nullptr, *cases_dir_flag = nullptr, *shard_flag = nullptr;
+  std::string out, cases_dir, format, shard, hdf5;
+  CLI::Option *out_flag = nullptr, *cases_dir_flag = nullptr, *shard_flag = nullptr,
+              *hdf5_flag = nullptr;
   int threads = 0, harmonics = 10;
   bool resume = false, restart = false, quiet = false, list = false;
 };
@@ -82,6 +84,8 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
 int run(const SweepOptions& o) {
   // Output names first: a sweep must not fail at its end, after every case ran.
   if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out, false);
+  if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
+  if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
   if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
   const bool sharded = o.shard_flag && o.shard_flag->count() > 0;
@@ -139,10 +143,20 @@ int run(const SweepOptions& o) {
         sharded ? io::fingerprint(study, header + "\nshard " + shard.text()) : study_fingerprint;
     journal = std::make_unique<io::Journal>(o.out + ".journal", journal_fingerprint, total,
                                             o.resume, o.restart);
+  }
+  // The steady states go into FILE.hdf5.partial as they come (kept for --resume).
+  std::unique_ptr<io::StudyHdf5Writer> hdf5;
+  if (!o.hdf5.empty()) {
+    if (o.restart) io::StudyHdf5Writer::discard_partial(o.hdf5);
+    hdf5 = std::make_unique<io::StudyHdf5Writer>(
+        o.hdf5, io::Hdf5StudyInfo{study_fingerprint, total, sharded, shard}, o.resume);
+  }
+  if (journal) {
     for (const auto& [index, row] : journal->done()) {
       const std::string file = o.cases_dir + "/" + case_file_name(index, total);
       if (!mine[index]) continue;
       if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
+      if (hdf5 && !hdf5->has_case(index)) continue;  // run again for its steady state
       rows[index] = row;
       have[index] = true;
     }
@@ -170,6 +184,7 @@ int run(const SweepOptions& o) {
       io::write_steady_state_csv(csv, outcome.result);
       io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, total), csv.str());
     }
+    if (hdf5) hdf5->add_case(g, outcome);
     if (journal) journal->append(g, row);
     rows[g] = row;
     have[g] = true;
@@ -212,6 +227,12 @@ int run(const SweepOptions& o) {
   for (std::size_t i = 0; i < total; ++i)
     if (mine[i]) done_rows.push_back(rows[i]);
   for (const std::string& row : done_rows) text += row + "\n";
+  if (hdf5) {
+    std::vector<std::size_t> indices;
+    for (std::size_t i = 0; i < total; ++i)
+      if (mine[i]) indices.push_back(i);
+    hdf5->finish(study, indices, header, done_rows);
+  }
   if (!o.out.empty()) {
     io::write_file_atomic(o.out, text);
     journal->remove();
@@ -261,6 +282,7 @@ void add_sweep_command(CLI::App& app, Action& action) {
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv --resume   (after Ctrl-C)\n"
       "  oscidrum sweep study.toml --list                 show the cases, run nothing\n"
       "  oscidrum sweep study.toml --shard 2/4 --out shard_2.csv   one of 4 slices\n"
+      "  oscidrum sweep study.toml --out results.csv --hdf5 results.h5\n"
       "  oscidrum sweep study.toml --format table --set numerics.max_periods=500\n"
       "Study file syntax: docs/config.md (\"Sweeps\"). Exit codes: 0 all cases steady, 1 some "
       "case ended otherwise (see its status), 2 bad input, 130 interrupted (resume with "
@@ -292,6 +314,12 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("--harmonics", o->harmonics,
                   "harmonic amplitude columns A1 ... AN of x_M'' and z_M'' (default 10)")
       ->check(CLI::Range(0, 100000));
+  o->hdf5_flag =
+      sub->add_option("--hdf5", o->hdf5,
+                      "also write the study to one HDF5 file: every case's parameters, results "
+                      "and sampled steady state, with units (layout in docs/outputs.md; h5py "
+                      "reads it). Written as FILE.partial while running, renamed at the end")
+          ->type_name("FILE");
   o->shard_flag =
       sub->add_option("--shard", o->shard,
                       "run only shard I of N (1 <= I <= N): the cases whose index i has i mod N = "
