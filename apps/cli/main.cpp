@@ -37,6 +37,7 @@ class Formatter : public CLI::Formatter {
 };
 
 std::string one_line(std::string s) {
+  if (s.size() > 2000) s = s.substr(0, 2000) + "... (cut)";  // never a megabyte of echo
   for (char& ch : s)
     if (ch == '\n' || ch == '\r') ch = ' ';
   while (!s.empty() && s.back() == ' ') s.pop_back();

@@ -217,7 +217,7 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
 
 TEST(CaseSpec, AssignTextParsesEachType) {
   CaseSpec spec;
-  assign_text(spec, "contact.pure_rolling", "yes", "--set");
+  assign_text(spec, "contact.pure_rolling", "true", "--set");
   assign_text(spec, "soil.input", "modulus", "--set");
   assign_text(spec, "numerics.max_periods", "300", "--set");
   assign_text(spec, "roller.f", "3.5e1", "--set");
@@ -228,9 +228,25 @@ TEST(CaseSpec, AssignTextParsesEachType) {
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "abc", "--set"); }),
             "roller.f must be a number [Hz]; got 'abc'");
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "nan", "--set"); }),
-            "roller.f must be > 0 [Hz]; got nan");
+            "roller.f must be in [0.1, 1000] [Hz]; got nan");
   EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", "maybe", "--set"); }),
             "contact.pure_rolling must be true or false; got 'maybe'");
+  // Issue 14 (4): the field table's rules, as in a config file: no yes/1 booleans, no 5.0 or
+  // 1e3 for an integer.
+  for (const char* text : {"yes", "1", "on", "True"})
+    EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", text, "--set"); }),
+              std::string("contact.pure_rolling must be true or false; got '") + text + "'");
+  for (const char* text : {"5.0", "1e3", "0x10", " 5", ""})
+    EXPECT_EQ(
+        error_of([&] { assign_text(spec, "numerics.max_periods", text, "--set"); }),
+        std::string("numerics.max_periods must be an integer (digits only); got '") + text + "'");
+  EXPECT_EQ(case_error("[numerics]\nmax_periods = 1e3\n"),
+            "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 1000.0 "
+            "(write an integer without a decimal point or exponent)");
+  // A range over an integer key still gives integers.
+  const StudySpec st = read_study_text(
+      "[sweep]\n\"numerics.max_periods\" = { start = 1000, stop = 3000, num = 3 }\n", "s", "");
+  EXPECT_EQ(expand(st).cases.at(2).numerics.max_periods, 3000);
 }
 
 // ---- studies ------------------------------------------------------------------------------
