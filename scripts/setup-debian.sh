@@ -8,6 +8,7 @@ packages=(
   libboost-dev                  # Boost.Odeint (integration) and Boost.Math (TOMS 748 roots)
   libtomlplusplus-dev           # config files
   nlohmann-json3-dev            # JSON output
+  libhdf5-dev                   # sweep --hdf5 (HDF5 C library)
   libcli11-dev                  # command-line parsing
   libeigen3-dev                 # independent linear solves in the tests
   libgtest-dev libgmock-dev     # unit tests
@@ -15,6 +16,7 @@ packages=(
   clang-format                  # formatting check in CI
   python3 python3-dev python3-pybind11 pybind11-dev
   python3-numpy python3-matplotlib python3-pytest
+  python3-h5py                  # reads sweep --hdf5 files (tests/python/test_hdf5.py)
   python3-pip python3-setuptools python3-wheel
   emscripten                    # the browser explorer: the engine compiled to WebAssembly
   chromium                      # the explorer's end-to-end test (headless)

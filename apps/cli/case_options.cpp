@@ -89,6 +89,15 @@ void add_set_flag(CLI::App& app, CaseOptions& o) {
                  "set any parameter: --set KEY=VALUE, SI units, repeatable; keys as in the config "
                  "file (see 'oscidrum fields'), e.g. --set numerics.max_periods=2000")
       ->allow_extra_args(false)
+      // Checked while parsing: `--set --csv out.csv` must not take --csv as its value and leave
+      // out.csv to be read as the case file.
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            if (s.find('=') == std::string::npos || s.front() == '=')
+              return "--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + io::clip(s) + "'";
+            return std::string();
+          },
+          "KEY=VALUE", "KEY=VALUE"))
       ->type_name("KEY=VALUE")
       ->group("Any parameter");
 }
@@ -103,15 +112,15 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
   for (const std::string& s : o.sets) {
     const std::size_t eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw Error("--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + s + "'");
+      throw Error("--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + io::clip(s) + "'");
     const std::string key = s.substr(0, eq);
     if (key == "MMd") forget(spec, "MMd_fraction");
     if (key == "MMd_fraction") forget(spec, "MMd");
     if (key == "soil.table2_G") io::clear_soil(spec);
     try {
-      io::assign_text(spec, key, s.substr(eq + 1), "--set " + s);
+      io::assign_text(spec, key, s.substr(eq + 1), "--set " + io::clip(s));
     } catch (const Error& e) {
-      throw Error("--set " + s + ": " + e.what());
+      throw Error("--set " + io::clip(s) + ": " + e.what());
     }
   }
 }

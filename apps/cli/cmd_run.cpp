@@ -27,6 +27,9 @@ struct RunOptions {
   std::string config;
   CaseOptions c;
   std::string csv, json, events, plot_dir, format = "table";
+  // Given-but-empty names are errors (an empty --csv '' was silently ignored).
+  CLI::Option *config_flag = nullptr, *csv_flag = nullptr, *json_flag = nullptr,
+              *events_flag = nullptr, *plot_flag = nullptr;
   int harmonics = 10;
   bool quiet = false, print_config = false;
 };
@@ -42,6 +45,14 @@ void write_steady_csv(const std::string& path, const Result& r) {
 }
 
 int run(const RunOptions& o) {
+  auto given = [](const CLI::Option* flag) { return flag && flag->count() > 0; };
+  if (given(o.config_flag) && o.config.empty())
+    throw Error("the case file name is empty; give a file, or none for the paper's defaults");
+  if (given(o.csv_flag)) check_output_file("--csv", o.csv);
+  if (given(o.json_flag)) check_output_file("--json", o.json);
+  if (given(o.events_flag)) check_output_file("--events", o.events);
+  if (given(o.plot_flag) && o.plot_dir.empty())
+    throw Error("--plot needs a directory name; got an empty one");
   io::CaseSpec spec;
   if (!o.config.empty()) io::read_case_file(o.config, spec);
   apply(o.c, spec);
@@ -139,24 +150,27 @@ void add_run_command(CLI::App& app, Action& action) {
       "Settings apply in this order: the case file, the flags, then each --set.\n"
       "Exit codes: 0 steady state, 1 another status (see the output), 2 bad input, 130 "
       "interrupted.");
-  sub->add_option("case", o->config, "case file (TOML, see docs/config.md); default: none")
-      ->type_name("CASE.toml");
+  o->config_flag =
+      sub->add_option("case", o->config, "case file (TOML, see docs/config.md); default: none")
+          ->type_name("CASE.toml");
   add_roller_flags(*sub, o->c);
   add_soil_flags(*sub, o->c);
   add_model_flags(*sub, o->c);
   add_set_flag(*sub, o->c);
   const char* out = "Output";
-  sub->add_option("--csv", o->csv,
-                  "write the sampled steady state to FILE ('-': stdout), columns of "
-                  "docs/csv-columns.md")
-      ->type_name("FILE")
-      ->group(out);
-  sub->add_option("--json", o->json, "write a JSON summary to FILE (docs/outputs.md)")
-      ->type_name("FILE")
-      ->group(out);
-  sub->add_option("--events", o->events, "write the event list (t[s],kind,from,to) to FILE")
-      ->type_name("FILE")
-      ->group(out);
+  o->csv_flag = sub->add_option("--csv", o->csv,
+                                "write the sampled steady state to FILE ('-': stdout), columns of "
+                                "docs/csv-columns.md")
+                    ->type_name("FILE")
+                    ->group(out);
+  o->json_flag =
+      sub->add_option("--json", o->json, "write a JSON summary to FILE (docs/outputs.md)")
+          ->type_name("FILE")
+          ->group(out);
+  o->events_flag =
+      sub->add_option("--events", o->events, "write the event list (t[s],kind,from,to) to FILE")
+          ->type_name("FILE")
+          ->group(out);
   sub->add_option("--format", o->format,
                   "what to print on stdout: table (a summary), csv (the "
                   "steady state) or json (the summary)")
@@ -165,11 +179,13 @@ void add_run_command(CLI::App& app, Action& action) {
   sub->add_option("--harmonics", o->harmonics, "harmonics n = 0 ... N in the metrics (default 10)")
       ->check(CLI::Range(0, 100000))
       ->group(out);
-  sub->add_option("--plot", o->plot_dir,
-                  "plot into DIR with the Python package (python3 -m oscidrum.plot); writes the "
-                  "CSV and JSON there unless --csv/--json name files")
-      ->type_name("DIR")
-      ->group(out);
+  o->plot_flag =
+      sub->add_option(
+             "--plot", o->plot_dir,
+             "plot into DIR with the Python package (python3 -m oscidrum.plot); writes the "
+             "CSV and JSON there unless --csv/--json name files")
+          ->type_name("DIR")
+          ->group(out);
   sub->add_flag("--print-config", o->print_config,
                 "print the resolved case as a TOML case file (every key) and exit")
       ->group(out);

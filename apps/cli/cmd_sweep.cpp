@@ -18,7 +18,9 @@
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
+#include "oscidrum_io/hdf5.hpp"
 #include "oscidrum_io/json.hpp"
+#include "oscidrum_io/shard.hpp"
 #include "oscidrum_io/sweep.hpp"
 #include "output.hpp"
 #include "terminal.hpp"
@@ -29,7 +31,9 @@ namespace {
 struct SweepOptions {
   std::string study;
   CaseOptions c;  // --set only: changes the base case
-  std::string out, cases_dir, format;
+  std::string out, cases_dir, format, shard, hdf5;
+  CLI::Option *out_flag = nullptr, *cases_dir_flag = nullptr, *shard_flag = nullptr,
+              *hdf5_flag = nullptr;
   int threads = 0, harmonics = 10;
   bool resume = false, restart = false, quiet = false, list = false;
 };
@@ -78,12 +82,27 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
 }
 
 int run(const SweepOptions& o) {
+  // Output names first: a sweep must not fail at its end, after every case ran.
+  if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out, false);
+  if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
+  if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
+  if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
+    throw Error("--cases-dir needs a directory name; got an empty one");
+  const bool sharded = o.shard_flag && o.shard_flag->count() > 0;
+  const io::Shard shard = sharded ? io::parse_shard(o.shard) : io::Shard{};
   io::StudySpec spec = io::read_study_file(o.study);
   apply(o.c, spec.base);
   const io::Study study = io::expand(spec);
   const std::size_t total = study.cases.size();
   const io::StudyColumns columns{study.keys, o.harmonics};
   const std::string header = io::study_csv_header(columns);
+  const std::uint64_t study_fingerprint = io::fingerprint(study, header);
+  std::vector<bool> mine(total, true);  // the cases this run is for (all, or its shard's)
+  std::size_t n_mine = total;
+  if (sharded) {
+    n_mine = 0;
+    for (std::size_t i = 0; i < total; ++i) n_mine += (mine[i] = shard.holds(i));
+  }
 
   if (o.list) {
     TextTable t;
@@ -91,11 +110,14 @@ int run(const SweepOptions& o) {
     for (const std::string& k : study.keys) t.header.push_back(k);
     t.right.assign(t.header.size(), true);
     for (std::size_t i = 0; i < total; ++i) {
+      if (!mine[i]) continue;
       std::vector<std::string> row = {std::to_string(i)};
       for (const io::Value& v : study.varied[i]) row.push_back(io::format_value(v));
       t.rows.push_back(row);
     }
-    std::cout << t.text() << total << " cases\n";
+    std::cout << t.text() << n_mine << " cases";
+    if (sharded) std::cout << " (shard " << shard.text() << " of a study of " << total << ")";
+    std::cout << "\n";
     return kExitOk;
   }
   if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
@@ -116,12 +138,25 @@ int run(const SweepOptions& o) {
   std::vector<std::string> rows(total);
   std::vector<bool> have(total, false);
   if (!o.out.empty()) {
-    const std::string path = o.out + ".journal";
-    if (o.restart) io::remove_file(path);
-    journal = std::make_unique<io::Journal>(path, io::fingerprint(study, header), total, o.resume);
+    // A shard's journal is its own: resuming shard 2 never picks up the rows of shard 3.
+    const std::uint64_t journal_fingerprint =
+        sharded ? io::fingerprint(study, header + "\nshard " + shard.text()) : study_fingerprint;
+    journal = std::make_unique<io::Journal>(o.out + ".journal", journal_fingerprint, total,
+                                            o.resume, o.restart);
+  }
+  // The steady states go into FILE.hdf5.partial as they come (kept for --resume).
+  std::unique_ptr<io::StudyHdf5Writer> hdf5;
+  if (!o.hdf5.empty()) {
+    if (o.restart) io::StudyHdf5Writer::discard_partial(o.hdf5);
+    hdf5 = std::make_unique<io::StudyHdf5Writer>(
+        o.hdf5, io::Hdf5StudyInfo{study_fingerprint, total, sharded, shard}, o.resume);
+  }
+  if (journal) {
     for (const auto& [index, row] : journal->done()) {
       const std::string file = o.cases_dir + "/" + case_file_name(index, total);
+      if (!mine[index]) continue;
       if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
+      if (hdf5 && !hdf5->has_case(index)) continue;  // run again for its steady state
       rows[index] = row;
       have[index] = true;
     }
@@ -129,10 +164,10 @@ int run(const SweepOptions& o) {
   std::vector<std::size_t> pending;
   std::vector<Case> cases;
   for (std::size_t i = 0; i < total; ++i)
-    if (!have[i]) pending.push_back(i), cases.push_back(study.cases[i]);
-  const std::size_t already = total - pending.size();
+    if (mine[i] && !have[i]) pending.push_back(i), cases.push_back(study.cases[i]);
+  const std::size_t already = n_mine - pending.size();
   if (already > 0 && !o.quiet)
-    std::cerr << "oscidrum: resuming: " << already << " of " << total << " cases already done\n";
+    std::cerr << "oscidrum: resuming: " << already << " of " << n_mine << " cases already done\n";
 
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
@@ -149,6 +184,7 @@ int run(const SweepOptions& o) {
       io::write_steady_state_csv(csv, outcome.result);
       io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, total), csv.str());
     }
+    if (hdf5) hdf5->add_case(g, outcome);
     if (journal) journal->append(g, row);
     rows[g] = row;
     have[g] = true;
@@ -159,9 +195,9 @@ int run(const SweepOptions& o) {
     const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
     const double eta = rate > 0 ? static_cast<double>(n - done) / rate : 0.0;
     line.update(
-        "oscidrum sweep: " + std::to_string(already + done) + "/" + std::to_string(total) +
+        "oscidrum sweep: " + std::to_string(already + done) + "/" + std::to_string(n_mine) +
             " cases (" +
-            fmt(100.0 * static_cast<double>(already + done) / static_cast<double>(total), 3) +
+            fmt(100.0 * static_cast<double>(already + done) / static_cast<double>(n_mine), 3) +
             " %), " + fmt(rate, 3) + " cases/s, ETA " + duration(eta),
         done == n);
   };
@@ -172,18 +208,31 @@ int run(const SweepOptions& o) {
 
   std::size_t finished = 0;
   for (bool h : have) finished += h;
-  if (finished < total) {  // interrupted (a signal after the last case changes nothing)
-    std::cerr << "oscidrum: interrupted: " << finished << " of " << total << " cases done";
+  if (finished < n_mine) {  // interrupted (a signal after the last case changes nothing)
+    std::cerr << "oscidrum: interrupted: " << finished << " of " << n_mine << " cases done";
     if (journal)
       std::cerr << " (kept in " << journal->path() << "); run 'oscidrum sweep " << o.study
-                << " --out " << o.out << " --resume' to finish\n";
+                << (sharded ? " --shard " + shard.text() : std::string()) << " --out " << o.out
+                << " --resume' to finish\n";
     else
       std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
     return kExitInterrupted;
   }
 
-  std::string text = header + "\n";
-  for (const std::string& row : rows) text += row + "\n";
+  // A shard's CSV starts with a line that names the study and the slice (for oscidrum merge).
+  std::string text = sharded
+                         ? io::shard_line({study_fingerprint, total, shard}) + "\n" + header + "\n"
+                         : header + "\n";
+  std::vector<std::string> done_rows;
+  for (std::size_t i = 0; i < total; ++i)
+    if (mine[i]) done_rows.push_back(rows[i]);
+  for (const std::string& row : done_rows) text += row + "\n";
+  if (hdf5) {
+    std::vector<std::size_t> indices;
+    for (std::size_t i = 0; i < total; ++i)
+      if (mine[i]) indices.push_back(i);
+    hdf5->finish(study, indices, header, done_rows);
+  }
   if (!o.out.empty()) {
     io::write_file_atomic(o.out, text);
     journal->remove();
@@ -191,13 +240,13 @@ int run(const SweepOptions& o) {
   std::string format = o.format;
   if (format.empty()) format = o.out.empty() ? "csv" : "none";
   if (format == "csv") std::cout << text;
-  if (format == "json") std::cout << io::study_json(header, rows);
-  if (format == "table") std::cout << rows_table(header, rows, study.keys.size());
+  if (format == "json") std::cout << io::study_json(header, done_rows);
+  if (format == "table") std::cout << rows_table(header, done_rows, study.keys.size());
   std::cout.flush();
 
   // Status counts, from the rows (resumed rows included).
   std::map<std::string, std::size_t> counts;
-  for (const std::string& row : rows) {
+  for (const std::string& row : done_rows) {
     const std::vector<std::string> cells = io::csv_split(row);
     counts[cells.size() > study.keys.size() + 1 ? cells[study.keys.size() + 1] : "?"]++;
   }
@@ -205,7 +254,9 @@ int run(const SweepOptions& o) {
     std::string summary;
     for (const auto& [status, n] : counts)
       summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + status;
-    std::cerr << "oscidrum: " << total << " cases (" << summary << ") in " << duration(elapsed)
+    std::cerr << "oscidrum: " << n_mine << " cases"
+              << (sharded ? " of shard " + shard.text() : std::string()) << " (" << summary
+              << ") in " << duration(elapsed)
               << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
   }
   const bool all_ok = counts.size() == 1 && counts.begin()->first == "steady_state";
@@ -230,6 +281,8 @@ void add_sweep_command(CLI::App& app, Action& action) {
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv --resume   (after Ctrl-C)\n"
       "  oscidrum sweep study.toml --list                 show the cases, run nothing\n"
+      "  oscidrum sweep study.toml --shard 2/4 --out shard_2.csv   one of 4 slices\n"
+      "  oscidrum sweep study.toml --out results.csv --hdf5 results.h5\n"
       "  oscidrum sweep study.toml --format table --set numerics.max_periods=500\n"
       "Study file syntax: docs/config.md (\"Sweeps\"). Exit codes: 0 all cases steady, 1 some "
       "case ended otherwise (see its status), 2 bad input, 130 interrupted (resume with "
@@ -238,13 +291,17 @@ void add_sweep_command(CLI::App& app, Action& action) {
       ->required()
       ->type_name("STUDY.toml");
   add_set_flag(*sub, o->c);
-  sub->add_option("--out,-o", o->out,
-                  "write the results CSV to FILE (atomically, at the end; finished rows are kept "
-                  "in FILE.journal meanwhile). Without it the CSV goes to stdout")
-      ->type_name("FILE");
-  sub->add_option("--cases-dir", o->cases_dir,
-                  "also write each case's steady state to DIR/case_NNNN.csv (docs/csv-columns.md)")
-      ->type_name("DIR");
+  o->out_flag =
+      sub->add_option(
+             "--out,-o", o->out,
+             "write the results CSV to FILE (atomically, at the end; finished rows are kept "
+             "in FILE.journal meanwhile). Without it the CSV goes to stdout")
+          ->type_name("FILE");
+  o->cases_dir_flag =
+      sub->add_option(
+             "--cases-dir", o->cases_dir,
+             "also write each case's steady state to DIR/case_NNNN.csv (docs/csv-columns.md)")
+          ->type_name("DIR");
   sub->add_option("--threads,-j", o->threads, "worker threads (default 0: all cores)")
       ->check(CLI::Range(0, 4096));
   sub->add_flag("--resume", o->resume,
@@ -257,6 +314,18 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("--harmonics", o->harmonics,
                   "harmonic amplitude columns A1 ... AN of x_M'' and z_M'' (default 10)")
       ->check(CLI::Range(0, 100000));
+  o->hdf5_flag =
+      sub->add_option("--hdf5", o->hdf5,
+                      "also write the study to one HDF5 file: every case's parameters, results "
+                      "and sampled steady state, with units (layout in docs/outputs.md; h5py "
+                      "reads it). Written as FILE.partial while running, renamed at the end")
+          ->type_name("FILE");
+  o->shard_flag =
+      sub->add_option("--shard", o->shard,
+                      "run only shard I of N (1 <= I <= N): the cases whose index i has i mod N = "
+                      "I - 1. The CSV starts with a line naming the study and the shard; join the "
+                      "shards with 'oscidrum merge' (examples/slurm/ for a cluster job array)")
+          ->type_name("I/N");
   sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });

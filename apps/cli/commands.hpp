@@ -28,6 +28,7 @@ using AddCommand = void (*)(CLI::App& app, Action& action);
 
 void add_run_command(CLI::App& app, Action& action);
 void add_sweep_command(CLI::App& app, Action& action);
+void add_merge_command(CLI::App& app, Action& action);
 void add_soil_command(CLI::App& app, Action& action);
 void add_transmissibility_command(CLI::App& app, Action& action);
 void add_fields_command(CLI::App& app, Action& action);

@@ -17,8 +17,9 @@ using namespace oscidrum::cli;
 
 // Every command, in the order of `oscidrum --help`.
 constexpr AddCommand kCommands[] = {
-    add_run_command,   add_sweep_command, add_analyze_command,          add_validate_command,
-    add_paper_command, add_soil_command,  add_transmissibility_command, add_fields_command,
+    add_run_command,      add_sweep_command, add_merge_command, add_analyze_command,
+    add_validate_command, add_paper_command, add_soil_command,  add_transmissibility_command,
+    add_fields_command,
 };
 
 // Lists each command with the first sentence of its description only; `oscidrum CMD --help`
@@ -36,6 +37,7 @@ class Formatter : public CLI::Formatter {
 };
 
 std::string one_line(std::string s) {
+  if (s.size() > 2000) s = s.substr(0, 2000) + "... (cut)";  // never a megabyte of echo
   for (char& ch : s)
     if (ch == '\n' || ch == '\r') ch = ' ';
   while (!s.empty() && s.back() == ' ') s.pop_back();
@@ -60,6 +62,8 @@ int run(int argc, char** argv) {
       "  oscidrum run                          the paper's roller on Table 2 soil, G = 25 MN/m^2\n"
       "  oscidrum run --G 40 --pure-rolling --csv steady.csv\n"
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
+      "  oscidrum sweep study.toml --shard 2/4 --out s2.csv   one slice; oscidrum merge joins "
+      "them\n"
       "  oscidrum analyze field.csv --f 39     metrics of a measured acceleration record\n"
       "  oscidrum validate                     check every result the paper states\n"
       "  oscidrum paper --out out/paper        the paper's figures, data and report\n"

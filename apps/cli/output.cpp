@@ -1,11 +1,17 @@
 // Text tables, summaries and output files.
 #include "output.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 
+#include "oscidrum/error.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
 
@@ -112,6 +118,24 @@ void write_output(const std::string& path, const std::string& text) {
   } else {
     io::write_file_atomic(path, text);
   }
+}
+
+void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout) {
+  if (path.empty())
+    throw Error(flag + " needs a file name; got an empty one" +
+                (allow_stdout ? std::string(" ('-' is stdout)") : std::string()));
+  if (path == "-" && allow_stdout) return;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw Error(flag + " " + path + " is a directory; give a file name (e.g. " +
+                (std::filesystem::path(path) / "results.csv").string() + ")");
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
+    throw Error(flag + " " + path + ": the directory " + parent.string() + " does not exist");
+  if (::access(parent.empty() ? "." : parent.c_str(), W_OK) != 0)
+    throw Error(flag + " " + path + ": cannot write into " +
+                (parent.empty() ? std::string("the current directory") : parent.string()) + ": " +
+                std::strerror(errno));
 }
 
 void warn(const std::string& message) { std::cerr << "oscidrum: warning: " << message << "\n"; }

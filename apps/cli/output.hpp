@@ -40,6 +40,11 @@ class Summary {
 /// Write `text` to `path` atomically (io::write_file_atomic), or to stdout if path is "-".
 void write_output(const std::string& path, const std::string& text);
 
+/// Check, before any work is done, that an output file named by `flag` can be written: not an
+/// empty name, not a directory, in a directory that exists. "-" (stdout) passes when
+/// `allow_stdout`. Throws oscidrum::Error naming the flag.
+void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout = true);
+
 /// "oscidrum: warning: ..." on stderr.
 void warn(const std::string& message);
 

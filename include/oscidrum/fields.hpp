@@ -42,7 +42,13 @@ double get_field(const Case& c, std::string_view key);
 /// 'soil.G'?").
 void set_field(Case& c, std::string_view key, double value);
 
-/// Set a field from text: numbers (SI), true/false for booleans, a choice's name.
+/// The value of a field written as text (a --set or a flag), by the same rules as a config file:
+/// a number for a real field ("2.5e7"), digits only for an integer field (not "5.0" or "1e3"),
+/// exactly true or false for a boolean, a choice's name. The value is not checked against the
+/// field's range (check_field does that). Throws oscidrum::Error naming the key and the text.
+double parse_field_text(const Field& field, std::string_view text);
+
+/// Set a field from text (parse_field_text, then the field's rule).
 void set_field_text(Case& c, std::string_view key, std::string_view text);
 
 /// The rule of a field as text, e.g. "> 0" or "in [0, 0.5)".

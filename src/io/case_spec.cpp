@@ -90,6 +90,11 @@ std::string describe_value(const Value& value) {
   return "a string (\"" + s + "\")";
 }
 
+std::string clip(std::string_view text) {
+  if (text.size() <= 80) return std::string(text);
+  return std::string(text.substr(0, 60)) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
 std::span<const ExtraKey> extra_keys() { return kExtraKeys; }
 
 const ExtraKey* find_extra_key(std::string_view key) {
@@ -105,6 +110,7 @@ std::string key_unit(std::string_view key) {
 }
 
 std::string suggest_key(std::string_view key) {
+  if (key.size() > 80) return "; see 'oscidrum fields' for every key";  // no edit distances
   const std::vector<std::string_view> keys = all_keys();
   // 1. The same name in another (or no) section, any case: "G" -> "soil.G", "soil.g" -> "soil.G".
   for (std::string_view k : keys)
@@ -136,6 +142,7 @@ std::string suggest_key(std::string_view key) {
 }
 
 std::string suggest_section(std::string_view section) {
+  if (section.size() > 80) section = section.substr(0, 0);
   std::vector<std::string> sections;
   for (std::string_view k : all_keys()) {
     const std::size_t dot = k.find('.');
@@ -192,15 +199,27 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
     return;
   }
   const Field* f = find_field(key);
-  if (!f) throw Error("unknown parameter '" + std::string(key) + "'" + suggest_key(key));
+  if (!f) throw Error("unknown parameter '" + clip(key) + "'" + suggest_key(key));
   double v = 0.0;
   switch (f->type) {
-    case FieldType::real:
-    case FieldType::integer: {
+    case FieldType::real: {
       bool is_number = false;
       v = number_of(value, &is_number);
-      if (!is_number)
-        type_error(*f, f->type == FieldType::integer ? "an integer" : "a number", value);
+      if (!is_number) type_error(*f, "a number", value);
+      break;
+    }
+    case FieldType::integer: {
+      // An integer, not a float that happens to be whole (5.0, 1e3): the rule of TOML and of
+      // --set alike.
+      const auto* i = std::get_if<std::int64_t>(&value);
+      if (const auto* d = std::get_if<double>(&value)) {
+        const bool whole = std::isfinite(*d) && *d == std::floor(*d) && std::abs(*d) < 1e15;
+        throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got " +
+                    (whole ? num(*d) + ".0 (write an integer without a decimal point or exponent)"
+                           : num(*d)));
+      }
+      if (!i) type_error(*f, "an integer", value);
+      v = static_cast<double>(*i);
       break;
     }
     case FieldType::boolean:
@@ -226,20 +245,30 @@ void assign_text(CaseSpec& spec, std::string_view key, std::string_view text,
                  const std::string& origin) {
   const Field* f = find_field(key);
   if (!f && !find_extra_key(key))
-    throw Error("unknown parameter '" + std::string(key) + "'" + suggest_key(key));
-  const std::string s(text);
-  if (f && f->type == FieldType::boolean) {
-    const std::string t = lower(s);
-    if (t == "true" || t == "1" || t == "yes" || t == "on") return assign(spec, key, true, origin);
-    if (t == "false" || t == "0" || t == "no" || t == "off")
-      return assign(spec, key, false, origin);
-    throw Error(std::string(key) + " must be true or false; got '" + s + "'");
+    throw Error("unknown parameter '" + clip(key) + "'" + suggest_key(key));
+  if (!f) {  // the shorthands are numbers
+    const std::string s(text);
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) || end != s.c_str() + s.size())
+      throw Error(std::string(key) + " must be a number [" + key_unit(key) + "]; got '" +
+                  (s.size() > 40 ? s.substr(0, 40) + "..." : s) + "'");
+    return assign(spec, key, v, origin);
   }
-  if (f && f->type == FieldType::choice) return assign(spec, key, s, origin);
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size())
-    throw Error(std::string(key) + " must be a number [" + key_unit(key) + "]; got '" + s + "'");
+  // One rule set, the field table's: the same text is accepted here and in Python.
+  const double v = parse_field_text(*f, text);
+  switch (f->type) {
+    case FieldType::boolean:
+      return assign(spec, key, v != 0.0, origin);
+    case FieldType::choice:
+      return assign(spec, key, std::string(text), origin);
+    case FieldType::integer:
+      if (std::abs(v) >= 9e18)
+        throw Error(std::string(key) + " must be " + field_rule(*f) + "; got " + std::string(text));
+      return assign(spec, key, static_cast<std::int64_t>(v), origin);
+    case FieldType::real:
+      break;
+  }
   assign(spec, key, v, origin);
 }
 

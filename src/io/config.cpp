@@ -56,14 +56,92 @@ Value scalar(const toml::node& n, const std::string& key, const std::string& whe
   Value v;
   if (to_value(n, &v)) return v;
   if (!find_field(key) && !find_extra_key(key))
-    throw Error(where + ": unknown parameter '" + key + "'" + suggest_key(key));
+    throw Error(where + ": unknown parameter '" + clip(key) + "'" + suggest_key(key));
   throw Error(where + ": " + key + " must be a single value [" + key_unit(key) + "]; got " +
               node_kind(n));
+}
+
+// toml++ recurses once per part of a dotted key or table header: [a.a.a. ... .a] 50 000 parts
+// deep overflows the stack. Count the parts before parsing (outside strings and comments; in
+// keys and headers only, not in values such as 1.5). Nested arrays and inline tables are limited
+// by toml++ itself.
+constexpr int kMaxKeyParts = 32;
+
+void check_key_depth(std::string_view text, const std::string& name) {
+  enum class In { normal, basic, literal, ml_basic, ml_literal, comment };
+  In in = In::normal;
+  std::vector<char> open;  // [ and { of values and inline tables
+  bool key = true;         // in a key or header: at a line start, after { or a , of a {
+  int parts = 1, line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    const std::string_view rest = text.substr(i);
+    switch (in) {
+      case In::comment:
+        if (ch == '\n') --i, in = In::normal;
+        continue;
+      case In::basic:
+        if (ch == '\\')
+          ++i;
+        else if (ch == '"' || ch == '\n')
+          in = In::normal;
+        continue;
+      case In::literal:
+        if (ch == '\'' || ch == '\n') in = In::normal;
+        continue;
+      case In::ml_basic:
+        if (ch == '\n') ++line;
+        if (ch == '\\')
+          ++i;
+        else if (rest.starts_with("\"\"\""))
+          i += 2, in = In::normal;
+        continue;
+      case In::ml_literal:
+        if (ch == '\n') ++line;
+        if (rest.starts_with("\'\'\'")) i += 2, in = In::normal;
+        continue;
+      case In::normal:
+        break;
+    }
+    if (ch == '\n') {
+      ++line;
+      if (open.empty()) key = true, parts = 1;
+    } else if (ch == '#') {
+      in = In::comment;
+    } else if (rest.starts_with("\"\"\"")) {
+      i += 2, in = In::ml_basic;
+    } else if (rest.starts_with("\'\'\'")) {
+      i += 2, in = In::ml_literal;
+    } else if (ch == '"') {
+      in = In::basic;
+    } else if (ch == '\'') {
+      in = In::literal;
+    } else if (key && ch == '.') {
+      if (++parts > kMaxKeyParts)
+        throw Error(name + ":" + std::to_string(line) + ": a key or table header with more than " +
+                    std::to_string(kMaxKeyParts) +
+                    " dotted parts; oscidrum keys have at most two (e.g. [soil] or soil.G)");
+    } else if (ch == '=') {
+      key = false, parts = 1;
+    } else if (ch == '[' && key && open.empty()) {
+      parts = 1;  // a table header: [a.b] or [[a.b]]
+    } else if (ch == '[' || ch == '{') {
+      open.push_back(ch);
+      key = ch == '{';
+      parts = 1;
+    } else if (ch == ']' || ch == '}') {
+      if (!open.empty()) open.pop_back();
+      key = false;
+    } else if (ch == ',' && !open.empty() && open.back() == '{') {
+      key = true, parts = 1;
+    }
+  }
 }
 
 toml::table parse(std::string_view text, const std::string& name) {
   if (text.find('\0') != std::string_view::npos)
     throw Error(name + ": not a TOML text file (it contains NUL bytes)");
+  check_key_depth(text, name);
   try {
     return toml::parse(text, name);
   } catch (const toml::parse_error& e) {
@@ -90,13 +168,14 @@ void read_case_keys(const toml::table& t, const std::string& name, CaseSpec& spe
                   "case file");
     if (const toml::table* section = node.as_table()) {
       if (!is_known_section(key))
-        throw Error(where + ": unknown section [" + key + "]" + suggest_section(key));
+        throw Error(where + ": unknown section [" + clip(key) + "]" + suggest_section(key));
       for (auto&& [sk, sn] : *section) {
         const std::string full = key + "." + std::string(sk.str());
         const std::string swhere = loc(name, sk.source());
         if (sn.is_table() && !find_field(full) && !find_extra_key(full))
-          throw Error(swhere + ": unknown parameter '" + full + "' (a table; parameters are " +
-                      "numbers, booleans or strings)" + suggest_key(full));
+          throw Error(swhere + ": unknown parameter '" + clip(full) +
+                      "' (a table; parameters are " + "numbers, booleans or strings)" +
+                      suggest_key(full));
         try {
           assign(spec, full, scalar(sn, full, swhere), swhere);
         } catch (const Error& e) {
@@ -201,16 +280,27 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
 void collect_axes(const toml::node& node, const std::string& key, const toml::source_region& at,
                   const std::string& name, std::vector<Placed>& out, bool grouped) {
   const std::string where = loc(name, at);
+  if (const toml::table* t = node.as_table(); t && t->empty())
+    throw Error(where + ": sweep entry " + clip(key) +
+                " is an empty table; give a list [a, b, ...] or a range {start, stop, step} or "
+                "{start, stop, num}");
   if (const toml::table* t = node.as_table(); t && !is_range(*t)) {
     for (auto&& [k, n] : *t)
       collect_axes(n, key + "." + std::string(k.str()), k.source(), name, out, grouped);
     return;
   }
   if (!find_field(key) && !find_extra_key(key))
-    throw Error(where + ": unknown parameter '" + key + "'" + suggest_key(key));
+    throw Error(where + ": unknown parameter '" + clip(key) + "'" + suggest_key(key));
   SweepAxis axis{key, {}, where};
   if (const toml::table* t = node.as_table()) {
     axis.values = range_values(*t, key, where);
+    // A range over an integer key gives integers when its values are whole (num = ... makes
+    // numbers): {start = 1000, stop = 5000, num = 3} is 1000, 3000, 5000.
+    if (const Field* f = find_field(key); f && f->type == FieldType::integer)
+      for (Value& v : axis.values)
+        if (const double* d = std::get_if<double>(&v);
+            d && *d == std::floor(*d) && std::abs(*d) < 9e18)
+          v = static_cast<std::int64_t>(*d);
   } else if (const toml::array* a = node.as_array()) {
     for (const toml::node& e : *a) {
       Value v;
@@ -229,7 +319,7 @@ void collect_axes(const toml::node& node, const std::string& key, const toml::so
                 " must be a list [a, b, ...], a range "
                 "{start, stop, step} or {start, stop, num}" +
                 (key == "soil.table2_G" ? std::string(", or \"all\"") : std::string()) + "; got " +
-                (node.is_string() ? "the string \"" + *node.value_exact<std::string>() + "\""
+                (node.is_string() ? "the string \"" + clip(*node.value_exact<std::string>()) + "\""
                                   : std::string("one value")) +
                 " (a fixed value belongs in the base case)");
   }

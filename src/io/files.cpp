@@ -2,6 +2,7 @@
 #include "oscidrum_io/files.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -83,16 +84,52 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
 
 void remove_file(const std::string& path) { ::unlink(path.c_str()); }
 
-Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_cases, bool resume)
+Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_cases, bool resume,
+                 bool restart)
     : path_(std::move(path)) {
   const std::string header = journal_header(fingerprint, n_cases);
-  std::error_code ec;
-  const bool exists = std::filesystem::exists(path_, ec);
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error("cannot write " + path_ + ": " + std::strerror(errno));
+  // One sweep per journal: a second process (two --resume at once) would run every remaining case
+  // again and append them twice. The lock goes with the descriptor (also when killed).
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    ::close(fd_);
+    fd_ = -1;
+    if (err == EWOULDBLOCK)
+      throw Error("another oscidrum sweep is running with the journal " + path_ +
+                  " (it holds its lock); wait for it to finish or stop it first");
+    throw Error("cannot lock " + path_ + ": " + std::strerror(err));
+  }
+  try {
+    open_locked(header, n_cases, resume, restart);
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void Journal::open_locked(const std::string& header, std::size_t n_cases, bool resume,
+                          bool restart) {
+  std::string text;
+  if (!restart) {
+    char buf[65536];
+    while (true) {
+      const ssize_t n = ::read(fd_, buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) throw Error("cannot read " + path_ + ": " + std::strerror(errno));
+      if (n == 0) break;
+      text.append(buf, static_cast<std::size_t>(n));
+    }
+  }
   std::size_t good_bytes = 0;
-  if (exists) {
-    const std::string text = read_file(path_);
+  // An empty journal, or one whose header line was cut short (killed while it was being
+  // written), holds no finished case: start it afresh.
+  const std::size_t pos = text.find('\n');
+  const bool no_cases = pos == std::string::npos && header.starts_with(text);
+  if (!text.empty() && !no_cases) {
     std::size_t count = 0;
-    std::size_t pos = text.find('\n');
     const bool same = pos != std::string::npos && text.compare(0, pos, header) == 0;
     if (!resume || !same) {
       for (char ch : text) count += (ch == '\n');
@@ -119,13 +156,8 @@ Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_case
       good_bytes = end + 1;
     }
   }
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw Error("cannot write " + path_ + ": " + std::strerror(errno));
-  if (::ftruncate(fd_, static_cast<off_t>(good_bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0) {
-    const std::string reason = std::strerror(errno);
-    ::close(fd_);
-    throw Error("cannot write " + path_ + ": " + reason);
-  }
+  if (::ftruncate(fd_, static_cast<off_t>(good_bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
+    throw Error("cannot write " + path_ + ": " + std::strerror(errno));
   if (good_bytes == 0) {
     write_all(fd_, header + "\n", path_);
     ::fsync(fd_);
@@ -142,9 +174,9 @@ void Journal::append(std::size_t index, const std::string& row) {
 }
 
 void Journal::remove() {
+  ::unlink(path_.c_str());  // still locked: no other sweep can open it in between
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  ::unlink(path_.c_str());
 }
 
 }  // namespace oscidrum::io

@@ -42,8 +42,11 @@ const std::array kFields = {
           0, inf, true, false, nullptr, OSCIDRUM_REAL(roller.I)},
     Field{"roller.P0", FieldType::real, "N", "static axle load; Fz = P0 - m g must be >= 0 (7)", 0,
           inf, true, false, nullptr, OSCIDRUM_REAL(roller.P0)},
-    Field{"roller.f", FieldType::real, "Hz", "excitation frequency (nu = 2 pi f)", 0, inf, true,
-          false, nullptr, OSCIDRUM_REAL(roller.f)},
+    // f is bounded: at 5e-324 Hz the integrator cannot find a step, at 1e308 Hz nu = 2 pi f
+    // overflows; rollers run at about 20-70 Hz.
+    Field{"roller.f", FieldType::real, "Hz",
+          "excitation frequency (nu = 2 pi f); oscillation rollers run at about 20-70 Hz", 0.1,
+          1000, false, false, nullptr, OSCIDRUM_REAL(roller.f)},
     Field{"roller.M0", FieldType::real, "N m",
           "amplitude of the oscillation moment (5), M0 = 4 m_u e_u e_w nu^2: it grows with f^2, so "
           "set it with roller.f",
@@ -80,8 +83,10 @@ const std::array kFields = {
     Field{"soil.csv", FieldType::real, "N s/m", "vertical soil dashpot (soil.input = coefficients)",
           0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.csv)},
     // trough
-    Field{"trough.k", FieldType::real, "-", "log-spiral parameter k (0: circle of radius a)", 0,
-          inf, false, false, nullptr, OSCIDRUM_REAL(trough.k)},
+    Field{"trough.k", FieldType::real, "-",
+          "log-spiral parameter k (0: circle of radius a); at most 1: a settlement trough, not a "
+          "tight spiral",
+          0, 1, false, false, nullptr, OSCIDRUM_REAL(trough.k)},
     Field{"trough.a", FieldType::real, "m",
           "log-spiral parameter a; the trough radius R when k = 0 (must exceed roller.r)", 0, inf,
           true, false, nullptr, OSCIDRUM_REAL(trough.a)},
@@ -159,7 +164,12 @@ std::string choice_name(const char* choices, int index) {
 }
 
 [[noreturn]] void throw_unknown(std::string_view key) {
-  std::string msg = "unknown parameter '" + std::string(key) + "'";
+  std::string msg = "unknown parameter '" +
+                    (key.size() > 80 ? std::string(key.substr(0, 60)) + "... (" +
+                                           std::to_string(key.size()) + " bytes)"
+                                     : std::string(key)) +
+                    "'";
+  if (key.size() > 80) throw Error(msg);
   const Field* best = nullptr;
   std::size_t best_d = 4;
   for (const Field& f : kFields) {
@@ -247,27 +257,47 @@ void set_field(Case& c, std::string_view key, double value) {
   f->set(c, value);
 }
 
+double parse_field_text(const Field& f, std::string_view text) {
+  const std::string s(text);
+  const std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
+  std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
+  switch (f.type) {
+    case FieldType::boolean:
+      if (text == "true") return 1.0;
+      if (text == "false") return 0.0;
+      throw Error(std::string(f.key) + " must be true or false; got '" + shown + "'");
+    case FieldType::choice: {
+      const int i = choice_index(f, text);
+      if (i < 0)
+        throw Error(std::string(f.key) + " must be " + field_rule(f) + "; got '" + shown + "'");
+      return i;
+    }
+    case FieldType::integer: {
+      // Digits only (an optional sign): 5.0 and 1e3 are numbers, not integers, as in TOML.
+      std::size_t i = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
+      bool digits = i < s.size() && s.size() <= 19;
+      for (; digits && i < s.size(); ++i) digits = std::isdigit(static_cast<unsigned char>(s[i]));
+      if (!digits)
+        throw Error(std::string(f.key) + " must be an integer" + unit + " (digits only); got '" +
+                    shown + "'");
+      return static_cast<double>(std::strtoll(s.c_str(), nullptr, 10));
+    }
+    case FieldType::real:
+      break;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) || end != s.c_str() + s.size())
+    throw Error(std::string(f.key) + " must be a number" + unit + "; got '" + shown + "'");
+  return v;
+}
+
 void set_field_text(Case& c, std::string_view key, std::string_view text) {
   const Field* f = find_field(key);
   if (!f) throw_unknown(key);
-  if (f->type == FieldType::boolean) {
-    if (text == "true" || text == "1" || text == "yes" || text == "on") return f->set(c, 1.0);
-    if (text == "false" || text == "0" || text == "no" || text == "off") return f->set(c, 0.0);
-    throw Error(std::string(f->key) + " must be true or false; got '" + std::string(text) + "'");
-  }
-  if (f->type == FieldType::choice) {
-    int i = choice_index(*f, text);
-    if (i < 0)
-      throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got '" +
-                  std::string(text) + "'");
-    return f->set(c, i);
-  }
-  std::string s(text);
-  char* end = nullptr;
-  double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size())
-    throw Error(std::string(f->key) + " must be a number [" + f->unit + "]; got '" + s + "'");
-  set_field(c, key, v);
+  if (f->type == FieldType::choice || f->type == FieldType::boolean)
+    return f->set(c, parse_field_text(*f, text));
+  set_field(c, key, parse_field_text(*f, text));
 }
 
 std::string format_field(const Case& c, const Field& f) {

@@ -42,9 +42,6 @@ void validate(const Case& c) {
           "trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the "
           "bottom [m]; got " +
           num(rho_c) + " <= " + num(R.r));
-    if (c.trough.k > 1.0)
-      throw Error("trough.k must be <= 1 (a settlement trough, not a tight spiral); got " +
-                  num(c.trough.k));
   }
   if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
     throw Error(

@@ -2,6 +2,7 @@
 // every malformed config or flag gives exit code 2 and one clear line, never a crash.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -108,7 +109,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"run", "--R", "0.5"}, "trough.a must be > roller.r"},
       {{"run", "--R", "0.7", "--k", "0.1"}, "either as a circle (--R) or as a log spiral"},
       {{"run", "--m", "-3"}, "roller.m must be > 0 [kg]; got -3"},
-      {{"run", "--f", "inf"}, "roller.f must be > 0 [Hz]; got inf"},
+      {{"run", "--f", "inf"}, "roller.f must be in [0.1, 1000] [Hz]; got inf"},
       {{"run", "--set", "x"}, "--set expects KEY=VALUE"},
       {{"run", "--set", "soil.g=5"}, "did you mean 'soil.G'?"},
       {{"run", "--set", "numerics.max_periods=1.5"}, "must be an integer"},
@@ -116,7 +117,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"run", "--format", "xml"}, "xml"},
       {{"run", "--harmonics", "600"}, "--harmonics must be <"},
       {{"run", "a.toml", "b.toml"}, "b.toml"},
-      {{"run", "--csv", "/nonexistent/dir/x.csv"}, "cannot write /nonexistent/dir/x.csv"},
+      {{"run", "--csv", "/nonexistent/dir/x.csv"}, "the directory /nonexistent/dir does not exist"},
       {{"sweep"}, "study"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--resume"}, "need --out FILE"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--threads", "-1"}, "-1"},
@@ -309,6 +310,94 @@ TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
   EXPECT_EQ(o.code, 0);
   EXPECT_NE(o.out.find("Exit codes"), std::string::npos);
   EXPECT_EQ(run({"--version"}).code, 0);
+}
+
+// Issue 14 (4): one rule set, the field table's, for --set as for config files: integer keys
+// take integers only, booleans only true or false; empty paths are errors, not ignored.
+TEST(CliIssue14, StrictValuesAndEmptyPaths) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"run", "--set", "numerics.max_periods=5.0"}, "numerics.max_periods must be an integer"},
+      {{"run", "--set", "numerics.max_periods=1e3"}, "numerics.max_periods must be an integer"},
+      {{"run", "--set", "numerics.output_periods= 2"}, "must be an integer"},
+      {{"run", "--set", "contact.pure_rolling=yes"}, "contact.pure_rolling must be true or false"},
+      {{"run", "--set", "contact.pure_rolling=1"}, "contact.pure_rolling must be true or false"},
+      {{"run", "--set", "contact.pure_rolling=TRUE"}, "must be true or false"},
+      {{"run", "--set", "numerics.max_periods=9223372036854775807"},
+       "numerics.max_periods must be an integer in [1, 10000000]; got 9223372036854775807"},
+      {{"run", ""}, "the case file name is empty"},
+      {{"run", "--csv", ""}, "--csv needs a file name"},
+      {{"run", "--events", ""}, "--events needs a file name"},
+      {{"run", "--json", ""}, "--json needs a file name"},
+      {{"run", "--plot", ""}, "--plot needs a directory name"},
+      {{"run", "--csv", "/"}, "--csv / is a directory"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--out", ""}, "--out needs a file name"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--hdf5", ""}, "--hdf5 needs a file"},
+      // Issue 14 (6): --set followed by another flag read the flag's value as the case file.
+      {{"run", "--set", "--csv", "out.csv"}, "--set expects KEY=VALUE"},
+  };
+  for (const auto& [args, message] : cases) {
+    std::string joined;
+    for (const std::string& a : args) joined += "'" + a + "' ";
+    SCOPED_TRACE(joined);
+    expect_usage_error(run(args), message);
+  }
+  EXPECT_EQ(run({"run", "--set", "contact.pure_rolling=true", "--print-config"}).code, 0);
+  EXPECT_EQ(run({"run", "--set", "numerics.max_periods=+300", "--print-config"}).code, 0);
+}
+
+// Issue 14 (5): crashes and internal errors.
+TEST(CliIssue14, DeepNestingBadFrequencyAndHugeKeys) {
+  TempDir dir;
+  {  // dotted headers and keys 50 000 deep (about 100 KB): a stack overflow in the parser
+    std::string parts;
+    for (int i = 0; i < 50000; ++i) parts += i ? ".a" : "a";
+    std::ofstream(dir / "header.toml") << "[" << parts << "]\nx = 1\n";
+    std::ofstream(dir / "key.toml") << parts << " = 1\n";
+    std::ofstream(dir / "inline.toml") << "x = {" << parts << " = 1}\n";
+  }
+  for (const char* file : {"header.toml", "key.toml", "inline.toml"})
+    for (const char* command : {"run", "sweep"}) {
+      SCOPED_TRACE(std::string(command) + " " + file);
+      expect_usage_error(run({command, dir / file}), "more than 32 dotted parts");
+    }
+  // A frequency the integrator cannot handle (5e-324: exit 3) or that overflows nu = 2 pi f
+  // (1e308: "nu must be > 0; got inf", no key): the field's range, named.
+  expect_usage_error(run({"run", "--f", "5e-324"}),
+                     "--f 4.940656458e-324: roller.f must be in [0.1, 1000] [Hz]");
+  expect_usage_error(run({"run", "--f", "1e308"}),
+                     "roller.f must be in [0.1, 1000] [Hz]; got 1e+308");
+  expect_usage_error(run({"run", "--set", "roller.f=5e-324"}), "roller.f must be in [0.1, 1000]");
+  // A 1 MB unknown key: the message quotes its start, not all of it.
+  const std::string huge(1u << 20, 'k');
+  std::ofstream(dir / "huge.toml") << "[roller]\n" << huge << " = 1\n";
+  const std::string long_key(100000, 'k');  // an argument may hold at most 128 KiB
+  for (const Outcome& o : {run({"run", dir / "huge.toml"}), run({"run", "--set", long_key + "=1"}),
+                           run({"sweep", dir / "huge.toml"})}) {
+    expect_usage_error(o, "unknown parameter");
+    EXPECT_LT(o.err.size(), 400u);
+    EXPECT_NE(o.err.find(" bytes)"), std::string::npos) << o.err.substr(0, 400);
+  }
+}
+
+// Issue 14 (8): trough.k <= 1 is enforced, so the rules `oscidrum fields` prints say it; and a
+// named pipe (FIFO) works as a case file: oscidrum waits for the writer (docs/config.md).
+TEST(CliIssue14, TroughRuleInFieldsAndAFifoCaseFile) {
+  const Outcome f = run({"fields", "--format", "csv"});
+  ASSERT_EQ(f.code, 0);
+  EXPECT_NE(f.out.find("trough.k,-,0,\"in [0, 1]\""), std::string::npos) << f.out.substr(0, 2000);
+  expect_usage_error(run({"run", "--set", "trough.k=1.5"}), "trough.k must be in [0, 1]; got 1.5");
+
+  TempDir dir;
+  const std::string fifo = dir / "case.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const pid_t pid = start({"run", fifo, "--print-config"}, dir / "out", dir / "err");
+  {
+    std::ofstream writer(fifo);  // blocks until oscidrum opens the pipe for reading
+    writer << "[roller]\nm = 1900\n";
+  }
+  const Outcome o = finish(pid, dir / "out", dir / "err");
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("m = 1900.0"), std::string::npos) << o.out;
 }
 
 }  // namespace

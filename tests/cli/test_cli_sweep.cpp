@@ -159,5 +159,78 @@ TEST(CliSweep, ResumeRefusesAJournalOfAnotherStudy) {
   EXPECT_EQ(count_lines(slurp(out)), 61u);
 }
 
+// Issue 11 (2): a study split into 4 shards that run as separate processes (at the same time),
+// merged, is byte for byte the unsharded result.
+TEST(CliSweep, FourShardsMergeToTheUnshardedResult) {
+  TempDir dir;
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  std::vector<pid_t> pids;
+  for (int i = 1; i <= 4; ++i) {
+    const std::string n = std::to_string(i);
+    pids.push_back(start({"sweep", study, "--shard", n + "/4", "--out", dir / ("s" + n + ".csv"),
+                          "--threads", "1", "-q"},
+                         dir / ("out" + n), dir / ("err" + n)));
+  }
+  const Outcome whole = run({"sweep", study, "--out", dir / "all.csv", "-q"});
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  for (int i = 1; i <= 4; ++i) {
+    const std::string n = std::to_string(i);
+    const Outcome o =
+        finish(pids[static_cast<std::size_t>(i - 1)], dir / ("out" + n), dir / ("err" + n));
+    ASSERT_EQ(o.code, 0) << o.err;
+  }
+  const std::string s2 = slurp(dir / "s2.csv");
+  EXPECT_EQ(s2.rfind("# oscidrum shard 2/4 of study ", 0), 0u);
+  EXPECT_EQ(count_lines(s2), 2u + 14u);  // cases 1, 5, ..., 53
+  const Outcome merged = run({"merge", dir / "s3.csv", dir / "s1.csv", dir / "s4.csv",
+                              dir / "s2.csv", "--out", dir / "merged.csv", "-q"});
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  EXPECT_EQ(slurp(dir / "merged.csv"), slurp(dir / "all.csv"));  // byte for byte
+  const Outcome to_stdout =
+      run({"merge", dir / "s1.csv", dir / "s2.csv", dir / "s3.csv", dir / "s4.csv"});
+  EXPECT_EQ(to_stdout.out, slurp(dir / "all.csv"));
+
+  // Missing, duplicated and foreign shards: exit 2 with one line that says which.
+  Outcome o = run({"merge", dir / "s1.csv", dir / "s2.csv", dir / "s4.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("1 of 4 shards missing: 3"), std::string::npos) << o.err;
+  o = run(
+      {"merge", dir / "s1.csv", dir / "s2.csv", dir / "s3.csv", dir / "s4.csv", dir / "s2.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("shard 2/4 is given twice"), std::string::npos) << o.err;
+  o = run({"sweep", study, "--shard", "3/4", "--out", dir / "foreign.csv", "-q", "--set",
+           "numerics.max_periods=4000"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  o = run({"merge", dir / "s1.csv", dir / "s2.csv", dir / "foreign.csv", dir / "s4.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("belongs to a different study"), std::string::npos) << o.err;
+  o = run({"merge", dir / "all.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("is not the output of 'oscidrum sweep --shard I/N'"), std::string::npos);
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1);
+  o = run({"sweep", study, "--shard", "5/4"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("1 <= I <= N"), std::string::npos) << o.err;
+}
+
+// Issue 14 (6): --out naming a directory failed only after every case had run, and left
+// DIR.journal behind.
+TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "results");
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  Outcome o = run({"sweep", study, "--out", dir / "results"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("is a directory"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "results.journal"));
+  o = run({"sweep", study, "--out", dir / "no/such/r.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("does not exist"), std::string::npos) << o.err;
+  o = run({"sweep", study, "--out", ""});  // issue 14 (4): an empty path was ignored
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--out needs a file name"), std::string::npos) << o.err;
+  EXPECT_EQ(o.out, "");
+}
+
 }  // namespace
 }  // namespace oscidrum::test

@@ -16,6 +16,7 @@
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
 #include "oscidrum_io/json.hpp"
+#include "oscidrum_io/shard.hpp"
 #include "oscidrum_io/sweep.hpp"
 
 namespace oscidrum::io {
@@ -216,7 +217,7 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
 
 TEST(CaseSpec, AssignTextParsesEachType) {
   CaseSpec spec;
-  assign_text(spec, "contact.pure_rolling", "yes", "--set");
+  assign_text(spec, "contact.pure_rolling", "true", "--set");
   assign_text(spec, "soil.input", "modulus", "--set");
   assign_text(spec, "numerics.max_periods", "300", "--set");
   assign_text(spec, "roller.f", "3.5e1", "--set");
@@ -227,9 +228,25 @@ TEST(CaseSpec, AssignTextParsesEachType) {
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "abc", "--set"); }),
             "roller.f must be a number [Hz]; got 'abc'");
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "nan", "--set"); }),
-            "roller.f must be > 0 [Hz]; got nan");
+            "roller.f must be in [0.1, 1000] [Hz]; got nan");
   EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", "maybe", "--set"); }),
             "contact.pure_rolling must be true or false; got 'maybe'");
+  // Issue 14 (4): the field table's rules, as in a config file: no yes/1 booleans, no 5.0 or
+  // 1e3 for an integer.
+  for (const char* text : {"yes", "1", "on", "True"})
+    EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", text, "--set"); }),
+              std::string("contact.pure_rolling must be true or false; got '") + text + "'");
+  for (const char* text : {"5.0", "1e3", "0x10", " 5", ""})
+    EXPECT_EQ(
+        error_of([&] { assign_text(spec, "numerics.max_periods", text, "--set"); }),
+        std::string("numerics.max_periods must be an integer (digits only); got '") + text + "'");
+  EXPECT_EQ(case_error("[numerics]\nmax_periods = 1e3\n"),
+            "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 1000.0 "
+            "(write an integer without a decimal point or exponent)");
+  // A range over an integer key still gives integers.
+  const StudySpec st = read_study_text(
+      "[sweep]\n\"numerics.max_periods\" = { start = 1000, stop = 3000, num = 3 }\n", "s", "");
+  EXPECT_EQ(expand(st).cases.at(2).numerics.max_periods, 3000);
 }
 
 // ---- studies ------------------------------------------------------------------------------
@@ -430,6 +447,98 @@ TEST(Files, JournalResumesAndDropsATornLine) {
   EXPECT_EQ(j.done().at(4), "4,c");
   j.remove();
   EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// Issue 14 (6): a journal killed before its first line was written is empty; --resume used to
+// call it "a different study".
+TEST(Files, EmptyOrTornHeaderJournalHoldsNoCaseAndIsResumable) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  std::ofstream(path).flush();  // 0 bytes
+  {
+    Journal j(path, 42, 5, true);
+    EXPECT_TRUE(j.done().empty());
+    j.append(1, "1,x");
+  }
+  std::ofstream(path) << "# oscidrum sweep jour";  // the header cut short
+  Journal j(path, 42, 5, true);
+  EXPECT_TRUE(j.done().empty());
+  EXPECT_EQ(read_file(path).rfind("# oscidrum sweep journal v1 fingerprint", 0), 0u);
+}
+
+// Issue 14 (6): two sweeps on one journal (two --resume at once) both ran every remaining case.
+TEST(Files, JournalIsLockedWhileInUse) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  {
+    Journal first(path, 42, 5, false);
+    first.append(0, "0,a");
+    EXPECT_NE(error_of([&] {
+                Journal second(path, 42, 5, true);
+              }).find("another oscidrum sweep is running"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] {
+                Journal second(path, 42, 5, false, true);
+              }).find("another oscidrum sweep is running"),
+              std::string::npos);  // --restart must not pull it away either
+  }
+  Journal again(path, 42, 5, true);  // released with the first
+  EXPECT_EQ(again.done().size(), 1u);
+}
+
+std::string shard_csv(std::size_t i, std::size_t n, std::uint64_t fp, std::size_t total,
+                      const std::string& header = "case[-],x[-]") {
+  std::string text = shard_line({fp, total, {i, n}}) + "\n" + header + "\n";
+  for (std::size_t c = 0; c < total; ++c)
+    if (c % n == i - 1) text += std::to_string(c) + ",v" + std::to_string(c) + "\n";
+  return text;
+}
+
+TEST(Shards, ParseAndSlice) {
+  const Shard s = parse_shard("2/4");
+  EXPECT_EQ(s.index, 2u);
+  EXPECT_EQ(s.count, 4u);
+  EXPECT_TRUE(s.holds(1));
+  EXPECT_TRUE(s.holds(5));
+  EXPECT_FALSE(s.holds(2));
+  for (const char* bad : {"0/4", "5/4", "2", "2/", "/4", "2/4x", "-1/4", "1.0/4", "1/0", ""})
+    EXPECT_NE(error_of([&] { parse_shard(bad); }).find("--shard"), std::string::npos) << bad;
+}
+
+TEST(Shards, MergeJoinsInCaseOrderAndRefusesBadSets) {
+  const std::uint64_t fp = 0x1234;
+  std::vector<ShardFile> files;
+  for (std::size_t i : {3u, 1u, 2u})
+    files.push_back({"s" + std::to_string(i), shard_csv(i, 3, fp, 7)});
+  EXPECT_EQ(merge_csv_shards(files), "case[-],x[-]\n0,v0\n1,v1\n2,v2\n3,v3\n4,v4\n5,v5\n6,v6\n");
+
+  auto refused = [&](std::vector<ShardFile> set) {
+    return error_of([&] { merge_csv_shards(set); });
+  };
+  EXPECT_NE(refused({files[0], files[1]}).find("1 of 3 shards missing: 2"), std::string::npos);
+  EXPECT_NE(refused({files[0], files[1], files[2], {"again", files[1].text}})
+                .find("shard 1/3 is given twice: s1 and again"),
+            std::string::npos);
+  EXPECT_NE(refused({files[0], files[1], {"other", shard_csv(2, 3, fp + 1, 7)}})
+                .find("other (shard 2/3) belongs to a different study than s3"),
+            std::string::npos);
+  EXPECT_NE(
+      refused({files[0], files[1], {"split", shard_csv(2, 4, fp, 7)}}).find("different splits"),
+      std::string::npos);
+  EXPECT_NE(refused({files[0], files[1], {"cols", shard_csv(2, 3, fp, 7, "case[-],y[-]")}})
+                .find("other columns"),
+            std::string::npos);
+  EXPECT_NE(refused({files[0], files[1], {"plain", "case[-],x[-]\n0,v0\n"}})
+                .find("plain is not the output of 'oscidrum sweep --shard I/N'"),
+            std::string::npos);
+  std::string cut = files[2].text;  // shard 2: cases 1 and 4; drop the last row
+  cut.resize(cut.rfind("4,v4"));
+  EXPECT_NE(refused({files[0], files[1], {"cut", cut}}).find("holds 1 cases, but the shard has 2"),
+            std::string::npos);
+  std::string foreign_row = files[2].text + "0,v0\n";
+  EXPECT_NE(refused({files[0], files[1], {"edited", foreign_row}})
+                .find("holds case 0, which belongs to another shard"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -309,8 +309,17 @@ TEST(Fields, TextParsesNumbersBooleansAndChoices) {
   EXPECT_TRUE(c.contact.pure_rolling);
   set_field_text(c, "contact.pure_rolling", "false");
   EXPECT_FALSE(c.contact.pure_rolling);
-  set_field_text(c, "numerics.suspension_from_static", "1");
+  set_field_text(c, "numerics.suspension_from_static", "true");
   EXPECT_TRUE(c.numerics.suspension_from_static);
+  // Issue 14 (4): exactly true/false, integers as digits (the config file's rules).
+  EXPECT_NE(error_of([&] {
+              set_field_text(c, "numerics.suspension_from_static", "1");
+            }).find("must be true or false"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              set_field_text(c, "numerics.max_periods", "1e3");
+            }).find("must be an integer"),
+            std::string::npos);
   set_field_text(c, "soil.input", "modulus");
   EXPECT_EQ(c.soil.input, SoilInput::modulus);
   EXPECT_EQ(format_field(c, *find_field("soil.input")), "modulus");

@@ -26,6 +26,10 @@ std::string format_value(const Value& value);
 /// "a boolean (true)", "an integer (3)", "a number (2.5)", "a string (\"x\")": for messages.
 std::string describe_value(const Value& value);
 
+/// Text from the user as it goes into a message: as is up to 80 bytes, else its first 60 and
+/// "... (N bytes)" (a 1 MB key is not echoed in a 1 MB line).
+std::string clip(std::string_view text);
+
 /// A config key that is not a field of fields(): a convenience resolved by finalize().
 struct ExtraKey {
   const char* key;

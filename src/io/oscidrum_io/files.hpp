@@ -30,8 +30,12 @@ class Journal {
  public:
   /// Start a new journal at `path`. If one exists: with `resume`, read its finished rows (it must
   /// belong to the same study, else oscidrum::Error) and go on appending; without `resume`,
-  /// oscidrum::Error (an unfinished sweep is not silently discarded).
-  Journal(std::string path, std::uint64_t fingerprint, std::size_t n_cases, bool resume);
+  /// oscidrum::Error (an unfinished sweep is not silently discarded); with `restart`, discard it.
+  /// An empty journal (or one with a cut-off first line) holds no case and is started afresh.
+  /// The journal is locked (flock) while this object lives: a second sweep on the same journal
+  /// gets oscidrum::Error "another oscidrum sweep is running ...".
+  Journal(std::string path, std::uint64_t fingerprint, std::size_t n_cases, bool resume,
+          bool restart = false);
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -48,6 +52,8 @@ class Journal {
   const std::string& path() const { return path_; }
 
  private:
+  void open_locked(const std::string& header, std::size_t n_cases, bool resume, bool restart);
+
   std::string path_;
   int fd_ = -1;
   std::map<std::size_t, std::string> done_;

@@ -1,0 +1,626 @@
+// A study in one HDF5 file (HDF5's C API), and the merge of shard files. Layout: docs/outputs.md.
+#include "oscidrum_io/hdf5.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <utility>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/version.hpp"
+#include "oscidrum_io/case_spec.hpp"
+#include "oscidrum_io/csv.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+constexpr const char* kFormat = "oscidrum-study";
+constexpr std::int64_t kFormatVersion = 1;
+
+// HDF5 prints a stack of messages on every failed call unless told not to; errors here become
+// oscidrum::Error instead. Restores the previous handler when it goes.
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// An HDF5 identifier closed by `close` when it goes out of scope.
+class Id {
+ public:
+  Id() = default;
+  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Id() { reset(); }
+  Id(Id&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
+  Id& operator=(Id&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, H5I_INVALID_HID);
+      close_ = o.close_;
+    }
+    return *this;
+  }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  hid_t get() const { return id_; }
+  operator hid_t() const { return id_; }
+  bool ok() const { return id_ >= 0; }
+  void reset() {
+    if (id_ >= 0 && close_) close_(id_);
+    id_ = H5I_INVALID_HID;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw Error(what);
+}
+
+Id checked(hid_t id, herr_t (*close)(hid_t), const std::string& what) {
+  if (id < 0) throw Error(what);
+  return Id(id, close);
+}
+
+Id string_type() {
+  Id t(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(t, H5T_VARIABLE);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  return t;
+}
+
+Id scalar_space() { return Id(H5Screate(H5S_SCALAR), H5Sclose); }
+
+Id vector_space(std::size_t n) {
+  const hsize_t dims[1] = {static_cast<hsize_t>(n)};
+  return Id(H5Screate_simple(1, dims, nullptr), H5Sclose);
+}
+
+void attr_string(hid_t obj, const char* name, const std::string& value, const std::string& file) {
+  const Id type = string_type();
+  const Id space = scalar_space();
+  const Id a = checked(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                       "cannot write " + file + ": attribute " + name);
+  const char* p = value.c_str();
+  check(H5Awrite(a, type, &p), "cannot write " + file + ": attribute " + name);
+}
+
+void attr_int(hid_t obj, const char* name, std::int64_t value, const std::string& file) {
+  const Id space = scalar_space();
+  const Id a = checked(H5Acreate2(obj, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                       H5Aclose, "cannot write " + file + ": attribute " + name);
+  check(H5Awrite(a, H5T_NATIVE_INT64, &value), "cannot write " + file + ": attribute " + name);
+}
+
+void attr_double(hid_t obj, const char* name, double value, const std::string& file) {
+  const Id space = scalar_space();
+  const Id a = checked(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                       H5Aclose, "cannot write " + file + ": attribute " + name);
+  check(H5Awrite(a, H5T_NATIVE_DOUBLE, &value), "cannot write " + file + ": attribute " + name);
+}
+
+void attr_strings(hid_t obj, const char* name, const std::vector<std::string>& values,
+                  const std::string& file) {
+  const Id type = string_type();
+  const Id space = vector_space(values.size());
+  const Id a = checked(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                       "cannot write " + file + ": attribute " + name);
+  std::vector<const char*> p;
+  for (const std::string& v : values) p.push_back(v.c_str());
+  if (!p.empty())
+    check(H5Awrite(a, type, p.data()), "cannot write " + file + ": attribute " + name);
+}
+
+std::string read_attr_string(hid_t obj, const char* name, const std::string& file) {
+  if (H5Aexists(obj, name) <= 0) throw Error(file + ": attribute " + name + " missing");
+  const Id a = checked(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, file + ": attribute " + name);
+  const Id type = string_type();
+  char* p = nullptr;
+  check(H5Aread(a, type, &p), file + ": attribute " + name + " is not a string");
+  std::string s = p ? p : "";
+  H5free_memory(p);
+  return s;
+}
+
+std::int64_t read_attr_int(hid_t obj, const char* name, const std::string& file) {
+  if (H5Aexists(obj, name) <= 0) throw Error(file + ": attribute " + name + " missing");
+  const Id a = checked(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, file + ": attribute " + name);
+  std::int64_t v = 0;
+  check(H5Aread(a, H5T_NATIVE_INT64, &v), file + ": attribute " + name + " is not an integer");
+  return v;
+}
+
+// A 1-D dataset; `compress`: chunked, shuffled and deflated (the steady states).
+Id create_dataset(hid_t group, const std::string& name, hid_t file_type, std::size_t n,
+                  bool compress, const std::string& file) {
+  const Id space = vector_space(n);
+  Id plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (compress && n > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    const hsize_t chunk[1] = {std::min<hsize_t>(n, 16384)};
+    H5Pset_chunk(plist, 1, chunk);
+    H5Pset_shuffle(plist);
+    H5Pset_deflate(plist, 4);
+  }
+  return checked(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+                 H5Dclose, "cannot write " + file + ": dataset " + name);
+}
+
+void write_doubles(hid_t group, const std::string& name, const std::vector<double>& v,
+                   const std::string& unit, bool compress, const std::string& file) {
+  const Id d = create_dataset(group, name, H5T_IEEE_F64LE, v.size(), compress, file);
+  if (!v.empty())
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+          "cannot write " + file + ": dataset " + name);
+  if (!unit.empty()) attr_string(d, "unit", unit, file);
+}
+
+void write_ints(hid_t group, const std::string& name, const std::vector<std::int64_t>& v,
+                hid_t file_type, bool compress, const std::string& file) {
+  const Id d = create_dataset(group, name, file_type, v.size(), compress, file);
+  if (!v.empty())
+    check(H5Dwrite(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()),
+          "cannot write " + file + ": dataset " + name);
+}
+
+void write_strings(hid_t group, const std::string& name, const std::vector<std::string>& v,
+                   const std::string& file) {
+  const Id type = string_type();
+  const Id d = create_dataset(group, name, type, v.size(), false, file);
+  std::vector<const char*> p;
+  for (const std::string& s : v) p.push_back(s.c_str());
+  if (!p.empty())
+    check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()),
+          "cannot write " + file + ": dataset " + name);
+}
+
+std::size_t dataset_size(hid_t d) {
+  const Id space(H5Dget_space(d), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  return n < 0 ? 0 : static_cast<std::size_t>(n);
+}
+
+std::vector<double> read_doubles(hid_t d, const std::string& what) {
+  std::vector<double> v(dataset_size(d));
+  if (!v.empty())
+    check(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), what);
+  return v;
+}
+
+std::vector<std::int64_t> read_ints(hid_t d, const std::string& what) {
+  std::vector<std::int64_t> v(dataset_size(d));
+  if (!v.empty())
+    check(H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), what);
+  return v;
+}
+
+std::vector<std::string> read_strings(hid_t d, const std::string& what) {
+  const std::size_t n = dataset_size(d);
+  std::vector<std::string> out;
+  if (n == 0) return out;
+  const Id type = string_type();
+  std::vector<char*> p(n, nullptr);
+  check(H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), what);
+  for (char* s : p) {
+    out.emplace_back(s ? s : "");
+    H5free_memory(s);
+  }
+  return out;
+}
+
+// Copy every attribute of `src` to `dst` (same types and values).
+void copy_attributes(hid_t src, hid_t dst, const std::string& file) {
+  H5O_info_t info;
+  check(H5Oget_info(src, &info), "cannot read " + file);
+  for (hsize_t i = 0; i < info.num_attrs; ++i) {
+    const Id a(
+        H5Aopen_by_idx(src, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose);
+    const Id a2 =
+        a.ok()
+            ? Id()
+            : Id(H5Aopen_by_idx(src, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Aclose);
+    const hid_t attr = a.ok() ? a.get() : a2.get();
+    if (attr < 0) throw Error("cannot read " + file + ": an attribute");
+    char name[256];
+    H5Aget_name(attr, sizeof name, name);
+    if (H5Aexists(dst, name) > 0) continue;
+    const Id type(H5Aget_type(attr), H5Tclose);
+    const Id space(H5Aget_space(attr), H5Sclose);
+    const hssize_t n = H5Sget_simple_extent_npoints(space);
+    std::vector<unsigned char> buf(static_cast<std::size_t>(std::max<hssize_t>(n, 1)) *
+                                   H5Tget_size(type));
+    check(H5Aread(attr, type, buf.data()), "cannot read " + file + ": attribute " + name);
+    const Id out = checked(H5Acreate2(dst, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                           "cannot write attribute " + std::string(name));
+    check(H5Awrite(out, type, buf.data()), "cannot write attribute " + std::string(name));
+    if (H5Tis_variable_str(type) > 0 || H5Tdetect_class(type, H5T_VLEN) > 0)
+      H5Dvlen_reclaim(type, space, H5P_DEFAULT, buf.data());
+  }
+}
+
+// The names of the links in a group, in name order.
+std::vector<std::string> member_names(hid_t group) {
+  H5G_info_t info;
+  std::vector<std::string> names;
+  if (H5Gget_info(group, &info) < 0) return names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (len < 0) continue;
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                       H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    names.push_back(name);
+  }
+  return names;
+}
+
+std::string case_group(std::size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06zu", index);
+  return buf;
+}
+
+std::string hex(std::uint64_t v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
+  return buf;
+}
+
+// "ddx_max[m/s^2]" -> ("ddx_max", "m/s^2"); a swept key's label may be quoted in the CSV.
+std::pair<std::string, std::string> split_label(const std::string& label) {
+  const std::size_t open = label.rfind('[');
+  if (open == std::string::npos || label.back() != ']') return {label, "-"};
+  return {label.substr(0, open), label.substr(open + 1, label.size() - open - 2)};
+}
+
+// The steady-state columns of docs/csv-columns.md.
+struct SampleColumn {
+  const char* name;
+  const char* unit;
+  const std::vector<double> Samples::*values;
+};
+constexpr SampleColumn kSampleColumns[] = {
+    {"t", "s", &Samples::t},
+    {"delta", "rad", &Samples::delta},
+    {"phi", "rad", &Samples::phi},
+    {"x_A", "m", &Samples::x_A},
+    {"s_A", "m", &Samples::s_A},
+    {"ddelta", "rad/s", &Samples::ddelta},
+    {"dphi", "rad/s", &Samples::dphi},
+    {"dx_A", "m/s", &Samples::dx_A},
+    {"ds_A", "m/s", &Samples::ds_A},
+    {"x_M", "m", &Samples::x_M},
+    {"z_M", "m", &Samples::z_M},
+    {"ddx_M", "m/s^2", &Samples::ddx_M},
+    {"ddz_M", "m/s^2", &Samples::ddz_M},
+    {"N", "N", &Samples::N},
+    {"T", "N", &Samples::T},
+    {"v_rel", "m/s", &Samples::v_rel},
+    {"torque", "N m", &Samples::torque},
+};
+
+void write_root_attributes(hid_t file, const Hdf5StudyInfo& info, const std::string& path) {
+  attr_string(file, "format", kFormat, path);
+  attr_int(file, "format_version", kFormatVersion, path);
+  attr_string(file, "oscidrum_version", oscidrum::version, path);
+  attr_string(file, "study_fingerprint", hex(info.fingerprint), path);
+  attr_int(file, "n_cases_in_study", static_cast<std::int64_t>(info.n_cases), path);
+  attr_string(file, "shard", info.sharded ? info.shard.text() : std::string(), path);
+}
+
+bool signature(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[8] = {};
+  in.read(head, sizeof head);
+  return in.gcount() == 8 && std::memcmp(head, "\x89HDF\r\n\x1a\n", 8) == 0;
+}
+
+}  // namespace
+
+bool is_hdf5_file(const std::string& path) { return signature(path); }
+
+struct StudyHdf5Writer::Impl {
+  std::string path, partial;
+  Id file;
+};
+
+StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bool resume)
+    : impl_(std::make_unique<Impl>()) {
+  const QuietErrors quiet;
+  impl_->path = std::move(path);
+  impl_->partial = impl_->path + ".partial";
+  const std::string& partial = impl_->partial;
+  std::error_code ec;
+  if (resume && std::filesystem::exists(partial, ec)) {
+    impl_->file = Id(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    bool same = impl_->file.ok();
+    try {
+      same = same &&
+             read_attr_string(impl_->file, "study_fingerprint", partial) == hex(info.fingerprint) &&
+             read_attr_string(impl_->file, "shard", partial) ==
+                 (info.sharded ? info.shard.text() : std::string());
+    } catch (const Error&) {
+      same = false;
+    }
+    if (!same)
+      throw Error("the HDF5 file " + partial +
+                  " is damaged or belongs to a different study; run with --restart to discard it");
+    return;
+  }
+  impl_->file = Id(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!impl_->file.ok()) throw Error("cannot write " + partial);
+  write_root_attributes(impl_->file, info, partial);
+  const Id g =
+      checked(H5Gcreate2(impl_->file, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+              H5Gclose, "cannot write " + partial);
+  std::vector<std::string> order;  // the column order of docs/csv-columns.md
+  for (const SampleColumn& c : kSampleColumns) order.emplace_back(c.name);
+  order.emplace_back("phase");
+  attr_strings(g, "columns", order, partial);
+  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+}
+
+StudyHdf5Writer::~StudyHdf5Writer() = default;
+
+bool StudyHdf5Writer::has_case(std::size_t index) const {
+  const QuietErrors quiet;
+  const std::string name = "steady_state/" + case_group(index);
+  return H5Lexists(impl_->file, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+void StudyHdf5Writer::add_case(std::size_t index, const CaseOutcome& outcome) {
+  const QuietErrors quiet;
+  const std::string& file = impl_->partial;
+  const std::string name = "steady_state/" + case_group(index);
+  if (H5Lexists(impl_->file, name.c_str(), H5P_DEFAULT) > 0)
+    H5Ldelete(impl_->file, name.c_str(), H5P_DEFAULT);  // a rerun of a case
+  const Id g = checked(H5Gcreate2(impl_->file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                       H5Gclose, "cannot write " + file + ": group " + name);
+  const Result& r = outcome.result;
+  attr_int(g, "case", static_cast<std::int64_t>(index), file);
+  attr_string(g, "status", outcome.valid ? to_string(r.status) : "invalid", file);
+  attr_double(g, "frequency", r.frequency, file);
+  attr_int(g, "sample_periods", r.sample_periods, file);
+  attr_int(g, "samples_per_period", r.samples_per_period, file);
+  for (const SampleColumn& c : kSampleColumns)
+    write_doubles(g, c.name, r.samples.*(c.values), c.unit, true, file);
+  std::vector<std::int64_t> phase;
+  for (Phase p : r.samples.phase) phase.push_back(static_cast<int>(p));
+  write_ints(g, "phase", phase, H5T_STD_I8LE, true, file);
+  {
+    const Id d(H5Dopen2(g, "phase", H5P_DEFAULT), H5Dclose);
+    attr_string(d, "unit", "-", file);
+    attr_string(d, "meaning", "-1 slip-, 0 stick, 1 slip+", file);
+  }
+  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);  // a kill after this keeps the case for --resume
+}
+
+void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>& indices,
+                             const std::string& header, const std::vector<std::string>& rows) {
+  const QuietErrors quiet;
+  const std::string& file = impl_->partial;
+  std::vector<std::int64_t> cases(indices.begin(), indices.end());
+  write_ints(impl_->file, "case", cases, H5T_STD_I64LE, false, file);
+  attr_strings(impl_->file, "swept_keys", study.keys, file);
+
+  const Id params =
+      checked(H5Gcreate2(impl_->file, "parameters", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+              H5Gclose, "cannot write " + file + ": group parameters");
+  for (const Field& f : fields()) {
+    std::vector<double> v;
+    for (std::size_t i : indices) v.push_back(f.get(study.cases[i]));
+    write_doubles(params, f.key, v, f.unit, false, file);
+    const Id d(H5Dopen2(params, f.key, H5P_DEFAULT), H5Dclose);
+    attr_string(d, "description", f.description, file);
+    attr_string(d, "rule", field_rule(f), file);
+    if (f.type == FieldType::choice) {
+      std::vector<std::string> names;
+      std::string_view all(f.choices);
+      for (std::size_t start = 0;;) {
+        const std::size_t bar = all.find('|', start);
+        names.emplace_back(all.substr(start, bar - start));
+        if (bar == std::string_view::npos) break;
+        start = bar + 1;
+      }
+      attr_strings(d, "choices", names, file);
+    }
+  }
+
+  const Id results =
+      checked(H5Gcreate2(impl_->file, "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+              "cannot write " + file + ": group results");
+  const std::vector<std::string> labels = csv_split(header);
+  std::vector<std::string> order;  // the CSV's column order (HDF5 lists members by name)
+  for (std::size_t c = 1; c < labels.size(); ++c) order.push_back(split_label(labels[c]).first);
+  attr_strings(results, "columns", order, file);
+  std::vector<std::vector<std::string>> cells;
+  for (const std::string& row : rows) cells.push_back(csv_split(row));
+  for (std::size_t c = 1; c < labels.size(); ++c) {  // column 0 is the case index: /case
+    const auto [name, unit] = split_label(labels[c]);
+    const Field* f = find_field(name);
+    const bool text = name == "status" || name == "message" ||
+                      (f && (f->type == FieldType::boolean || f->type == FieldType::choice));
+    if (text) {
+      std::vector<std::string> v;
+      for (const auto& row : cells) v.push_back(c < row.size() ? row[c] : std::string());
+      write_strings(results, name, v, file);
+      const Id d(H5Dopen2(results, name.c_str(), H5P_DEFAULT), H5Dclose);
+      attr_string(d, "unit", unit, file);
+    } else {
+      std::vector<double> v;
+      for (const auto& row : cells) {
+        const std::string cell = c < row.size() ? row[c] : std::string();
+        char* end = nullptr;
+        const double x = std::strtod(cell.c_str(), &end);
+        v.push_back(cell.empty() || *end ? std::nan("") : x);
+      }
+      write_doubles(results, name, v, unit, false, file);
+    }
+  }
+  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+  impl_->file.reset();
+  if (std::rename(file.c_str(), impl_->path.c_str()) != 0)
+    throw Error("cannot write " + impl_->path + ": " + std::strerror(errno));
+}
+
+void StudyHdf5Writer::discard_partial(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::remove(path + ".partial", ec);
+}
+
+void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string& out) {
+  const QuietErrors quiet;
+  std::vector<Id> files;
+  std::vector<ShardInfo> infos;
+  for (const std::string& p : paths) {
+    Id f(H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    if (!f.ok()) throw Error("cannot read " + p + " as HDF5");
+    std::string shard;
+    ShardInfo info;
+    try {
+      if (read_attr_string(f, "format", p) != kFormat) throw Error("");
+      shard = read_attr_string(f, "shard", p);
+      info.fingerprint =
+          std::strtoull(read_attr_string(f, "study_fingerprint", p).c_str(), nullptr, 16);
+      info.n_cases = static_cast<std::size_t>(read_attr_int(f, "n_cases_in_study", p));
+    } catch (const Error&) {
+      throw Error(p + " is not an HDF5 file of 'oscidrum sweep --hdf5'");
+    }
+    if (shard.empty())
+      throw Error(p +
+                  " is not the output of 'oscidrum sweep --shard I/N' (an HDF5 file of a "
+                  "whole study)");
+    info.shard = parse_shard(shard);
+    infos.push_back(info);
+    files.push_back(std::move(f));
+  }
+  check_shard_set(infos, paths);
+  const std::size_t total = infos.front().n_cases;
+
+  // Where each case's row is: (file, row).
+  std::vector<std::pair<std::size_t, std::size_t>> where(total, {SIZE_MAX, 0});
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const Id d(H5Dopen2(files[k], "case", H5P_DEFAULT), H5Dclose);
+    if (!d.ok()) throw Error(paths[k] + " is damaged: no /case (an unfinished shard?)");
+    const std::vector<std::int64_t> cases = read_ints(d, "cannot read " + paths[k] + ": /case");
+    const ShardInfo& s = infos[k];
+    const std::size_t expected =
+        total / s.shard.count + (s.shard.index - 1 < total % s.shard.count ? 1 : 0);
+    if (cases.size() != expected)
+      throw Error(paths[k] + " (shard " + s.shard.text() + ") holds " +
+                  std::to_string(cases.size()) + " cases, but the shard has " +
+                  std::to_string(expected));
+    for (std::size_t r = 0; r < cases.size(); ++r) {
+      const std::int64_t c = cases[r];
+      if (c < 0 || static_cast<std::size_t>(c) >= total ||
+          !s.shard.holds(static_cast<std::size_t>(c)) ||
+          where[static_cast<std::size_t>(c)].first != SIZE_MAX)
+        throw Error(paths[k] + " (shard " + s.shard.text() + ") holds case " + std::to_string(c) +
+                    ", which is not one of its cases");
+      where[static_cast<std::size_t>(c)] = {k, r};
+    }
+  }
+
+  const std::string tmp = out + ".tmp." + std::to_string(::getpid());
+  try {
+    Id dst(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!dst.ok()) throw Error("cannot write " + out);
+    Hdf5StudyInfo info{infos.front().fingerprint, total, false, {}};
+    write_root_attributes(dst, info, out);
+    copy_attributes(files.front(), dst, paths.front());  // swept_keys and anything newer
+    std::vector<std::int64_t> all(total);
+    for (std::size_t i = 0; i < total; ++i) all[i] = static_cast<std::int64_t>(i);
+    write_ints(dst, "case", all, H5T_STD_I64LE, false, out);
+
+    for (const char* group : {"parameters", "results"}) {
+      const Id g0(H5Gopen2(files.front(), group, H5P_DEFAULT), H5Gclose);
+      if (!g0.ok()) throw Error(paths.front() + " is damaged: no /" + group);
+      const Id g = checked(H5Gcreate2(dst, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                           "cannot write " + out);
+      copy_attributes(g0, g, paths.front());
+      for (const std::string& name : member_names(g0)) {
+        std::vector<Id> src;
+        for (std::size_t k = 0; k < files.size(); ++k) {
+          const std::string full = std::string(group) + "/" + name;
+          src.emplace_back(H5Dopen2(files[k], full.c_str(), H5P_DEFAULT), H5Dclose);
+          if (!src.back().ok())
+            throw Error(paths[k] + " has other columns than " + paths.front() + " (no /" + full +
+                        ")");
+        }
+        const Id type(H5Dget_type(src.front()), H5Tclose);
+        const H5T_class_t cls = H5Tget_class(type);
+        const std::string what = "cannot read " + std::string(group) + "/" + name;
+        if (cls == H5T_STRING) {
+          std::vector<std::vector<std::string>> parts;
+          for (const Id& d : src) parts.push_back(read_strings(d, what));
+          std::vector<std::string> v(total);
+          for (std::size_t i = 0; i < total; ++i) v[i] = parts[where[i].first][where[i].second];
+          write_strings(g, name, v, out);
+        } else if (cls == H5T_INTEGER) {
+          std::vector<std::vector<std::int64_t>> parts;
+          for (const Id& d : src) parts.push_back(read_ints(d, what));
+          std::vector<std::int64_t> v(total);
+          for (std::size_t i = 0; i < total; ++i) v[i] = parts[where[i].first][where[i].second];
+          write_ints(g, name, v, H5T_STD_I64LE, false, out);
+        } else {
+          std::vector<std::vector<double>> parts;
+          for (const Id& d : src) parts.push_back(read_doubles(d, what));
+          std::vector<double> v(total);
+          for (std::size_t i = 0; i < total; ++i) v[i] = parts[where[i].first][where[i].second];
+          write_doubles(g, name, v, "", false, out);
+        }
+        const Id d(H5Dopen2(g, name.c_str(), H5P_DEFAULT), H5Dclose);
+        copy_attributes(src.front(), d, paths.front());
+      }
+    }
+    const Id cases = checked(H5Gcreate2(dst, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                             H5Gclose, "cannot write " + out);
+    {
+      const Id g0(H5Gopen2(files.front(), "steady_state", H5P_DEFAULT), H5Gclose);
+      if (g0.ok()) copy_attributes(g0, cases, paths.front());
+    }
+    for (std::size_t i = 0; i < total; ++i) {
+      const std::string name = "steady_state/" + case_group(i);
+      if (H5Lexists(files[where[i].first], name.c_str(), H5P_DEFAULT) <= 0)
+        throw Error(paths[where[i].first] + " is damaged: no /" + name);
+      check(
+          H5Ocopy(files[where[i].first], name.c_str(), dst, name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+          "cannot write " + out + ": " + name);
+    }
+    H5Fflush(dst, H5F_SCOPE_GLOBAL);
+  } catch (...) {
+    std::filesystem::remove(tmp);
+    throw;
+  }
+  if (std::rename(tmp.c_str(), out.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::filesystem::remove(tmp);
+    throw Error("cannot write " + out + ": " + reason);
+  }
+}
+
+}  // namespace oscidrum::io

@@ -1,0 +1,68 @@
+// oscidrum_io/hdf5.hpp: a study's results and every case's steady state in one HDF5 file
+// (`oscidrum sweep --hdf5 FILE`), and the merge of the HDF5 files of a study's shards. The layout
+// is documented in docs/outputs.md ("HDF5"); h5py reads it directly. HDF5 (the C library) stays
+// out of this header.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "oscidrum/study.hpp"
+#include "oscidrum_io/shard.hpp"
+#include "oscidrum_io/sweep.hpp"
+
+namespace oscidrum::io {
+
+/// What identifies the file: the study and, for a shard, the slice.
+struct Hdf5StudyInfo {
+  std::uint64_t fingerprint = 0;  ///< of the study and its output columns (as the journal)
+  std::size_t n_cases = 0;        ///< cases of the whole study
+  bool sharded = false;
+  Shard shard;  ///< when sharded
+};
+
+/// Writes `path` while a sweep runs: each finished case's steady state goes into
+/// PATH.partial at once (flushed, so a killed sweep keeps it for --resume), the tables of
+/// parameters and results at the end, and finish() renames PATH.partial to PATH.
+class StudyHdf5Writer {
+ public:
+  /// Create PATH.partial, or with `resume` reopen the one an interrupted sweep left (if any).
+  /// Throws oscidrum::Error "cannot write PATH: ..." (or "... is damaged; run with --restart").
+  StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bool resume);
+  ~StudyHdf5Writer();
+  StudyHdf5Writer(const StudyHdf5Writer&) = delete;
+  StudyHdf5Writer& operator=(const StudyHdf5Writer&) = delete;
+
+  /// True if the partial file already holds case `index` (from an earlier, interrupted run).
+  bool has_case(std::size_t index) const;
+
+  /// Store case `index`'s steady state (its samples; none for a case without them) and status.
+  void add_case(std::size_t index, const CaseOutcome& outcome);
+
+  /// Write the tables: /case, /parameters/<key> for every field of every case in `indices`, and
+  /// /results/<column> from the result CSV `header` and `rows` (one per index, as the CSV has
+  /// them); then close and rename to PATH.
+  void finish(const Study& study, const std::vector<std::size_t>& indices,
+              const std::string& header, const std::vector<std::string>& rows);
+
+  /// Delete PATH.partial (with --restart).
+  static void discard_partial(const std::string& path);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// True if the file starts with the HDF5 signature.
+bool is_hdf5_file(const std::string& path);
+
+/// Merge the HDF5 files of every shard of one study into `out` (the layout of an unsharded
+/// sweep's file: rows in case order, every case's steady state). Refuses, as the CSV merge does,
+/// a file that is not a shard's output, shards of another study or split, a shard given twice or
+/// missing, a shard whose rows are not exactly its cases. Throws oscidrum::Error.
+void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string& out);
+
+}  // namespace oscidrum::io

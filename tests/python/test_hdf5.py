@@ -1,0 +1,140 @@
+"""`oscidrum sweep --hdf5`: a study in one HDF5 file, read with h5py (docs/outputs.md, "HDF5").
+
+The HDF5 file must hold exactly what the CSV outputs hold (results row by row, each case's steady
+state sample by sample), with units, and the HDF5 files of shards merged by `oscidrum merge` must
+equal the file of the unsharded sweep.
+"""
+
+import csv
+import math
+import subprocess
+
+import pytest
+
+h5py = pytest.importorskip("h5py")
+np = pytest.importorskip("numpy")
+
+STUDY = """
+[sweep]
+"soil.table2_G" = [5e6, 25e6, 45e6, 70e6]
+"contact.pure_rolling" = [false, true]
+"""
+
+
+def sweep(cli, *args):
+    done = subprocess.run([cli, "sweep", *map(str, args), "-q"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def split_label(label):
+    name, _, unit = label.rpartition("[")
+    return name, unit[:-1]
+
+
+@pytest.fixture(scope="module")
+def study(cli, tmp_path_factory):
+    d = tmp_path_factory.mktemp("hdf5")
+    (d / "study.toml").write_text(STUDY)
+    sweep(cli, d / "study.toml", "--out", d / "all.csv", "--hdf5", d / "all.h5",
+          "--cases-dir", d / "cases")
+    return d
+
+
+def test_results_and_parameters_match_the_csv_with_units(study):
+    with open(study / "all.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    header, rows = rows[0], rows[1:]
+    with h5py.File(study / "all.h5", "r") as h5:
+        assert h5.attrs["format"] == "oscidrum-study"
+        assert h5.attrs["format_version"] == 1
+        assert h5.attrs["shard"] == ""
+        assert list(h5.attrs["swept_keys"]) == ["soil.table2_G", "contact.pure_rolling"]
+        assert list(h5["case"][:]) == list(range(8))
+        assert list(h5["results"].attrs["columns"]) == [split_label(h)[0] for h in header[1:]]
+        for c, label in enumerate(header[1:], start=1):
+            name, unit = split_label(label)
+            ds = h5["results"][name]
+            assert ds.attrs["unit"] == unit, name
+            for r, row in enumerate(rows):
+                cell = row[c]
+                if ds.dtype.kind == "O":
+                    assert ds.asstr()[r] == cell, (name, r)
+                elif cell == "":
+                    assert math.isnan(ds[r]), (name, r)
+                else:
+                    assert ds[r] == float(cell), (name, r)  # exact: shortest round-trip text
+        # Every parameter of every case, with its unit: the swept ones vary as the CSV says.
+        G = h5["parameters/soil.G"]
+        assert G.attrs["unit"] == "Pa"
+        assert list(G[:]) == [5e6, 5e6, 25e6, 25e6, 45e6, 45e6, 70e6, 70e6]
+        assert list(h5["parameters/contact.pure_rolling"][:]) == [0, 1] * 4
+        assert h5["parameters/roller.f"].attrs["unit"] == "Hz"
+        assert list(h5["parameters/soil.input"].attrs["choices"]) == ["coefficients", "modulus"]
+        assert (h5["parameters/roller.m"][:] == 1851).all()
+
+
+def test_steady_states_equal_the_case_csvs(study):
+    with h5py.File(study / "all.h5", "r") as h5:
+        group = h5["steady_state"]
+        assert len(group) == 8
+        columns = list(group.attrs["columns"])
+        for i in range(8):
+            g = group[f"{i:06d}"]
+            assert g.attrs["case"] == i
+            assert g.attrs["status"] == "steady_state"
+            assert g.attrs["frequency"] == 39.0
+            table = np.genfromtxt(study / "cases" / f"case_{i:04d}.csv", delimiter=",",
+                                  names=True)
+            assert len(table) == g.attrs["sample_periods"] * g.attrs["samples_per_period"]
+            with open(study / "cases" / f"case_{i:04d}.csv") as f:
+                labels = f.readline().strip().split(",")
+            for label, column in zip(labels, columns):
+                name, unit = split_label(label)
+                assert name == column
+                assert g[name].attrs["unit"] == unit
+                values = table[table.dtype.names[labels.index(label)]]
+                assert np.array_equal(g[name][:], values), (i, name)  # %.17g: exact
+
+
+def compare(a, b, path=""):
+    assert sorted(a.keys()) == sorted(b.keys()), path
+    for key in a:
+        x, y = a[key], b[key]
+        assert dict(x.attrs).keys() == dict(y.attrs).keys(), path + key
+        for att in x.attrs:
+            assert np.all(x.attrs[att] == y.attrs[att]), (path + key, att)
+        if isinstance(x, h5py.Group):
+            compare(x, y, f"{path}/{key}")
+        else:
+            assert x.dtype == y.dtype, path + key
+            u, v = x[()], y[()]
+            if u.dtype.kind == "f":
+                assert np.array_equal(u, v, equal_nan=True), path + key
+            else:
+                assert np.array_equal(u, v), path + key
+
+
+def test_merged_hdf5_shards_equal_the_unsharded_file(cli, study):
+    shards = []
+    for i in (1, 2, 3):
+        path = study / f"s{i}.h5"
+        sweep(cli, study / "study.toml", "--shard", f"{i}/3", "--hdf5", path, "--format", "none")
+        shards.append(path)
+    with h5py.File(shards[1], "r") as h5:
+        assert h5.attrs["shard"] == "2/3"
+        assert list(h5["case"][:]) == [1, 4, 7]
+    merged = study / "merged.h5"
+    done = subprocess.run([cli, "merge", shards[2], shards[0], shards[1], "--out", merged],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(study / "all.h5", "r") as a, h5py.File(merged, "r") as b:
+        for att in a.attrs:
+            assert np.all(a.attrs[att] == b.attrs[att]), att
+        compare(a, b)
+    # A missing shard is refused, as for CSV shards.
+    done = subprocess.run([cli, "merge", shards[0], shards[1], "--out", study / "bad.h5"],
+                          capture_output=True, text=True)
+    assert done.returncode == 2
+    assert "1 of 3 shards missing: 3" in done.stderr
+    assert not (study / "bad.h5").exists()
