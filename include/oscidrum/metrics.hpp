@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "oscidrum/model.hpp"
 #include "oscidrum/outputs.hpp"
 #include "oscidrum/result.hpp"
 
@@ -52,5 +53,14 @@ struct Metrics {
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if
 /// the result holds no samples or its status is not Status::steady_state.
 Metrics compute_metrics(const Result& result, int n_max = 10);
+
+/// The same metrics from the trajectory itself instead of its samples: one steady period is
+/// integrated again from the first sample through the flow (oscidrum/flow.hpp) and every metric
+/// is evaluated on the dense output: peaks at both one-sided limits of every switch and at every
+/// interior extremum, harmonics, lags, THD and friction work as integrals over each piece, the
+/// area of the dense curve converged to 1e-9 relative (docs/outputs.md). Independent of
+/// numerics.samples_per_period. `model` must be the one `result` was simulated with. Throws
+/// oscidrum::Error as compute_metrics(result) does.
+Metrics compute_metrics(const Model& model, const Result& result, int n_max = 10);
 
 }  // namespace oscidrum

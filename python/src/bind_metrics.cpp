@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <deque>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/metrics.hpp"
+#include "oscidrum/model.hpp"
 #include "oscidrum/output_table.hpp"
 
 namespace oscidrum::python {
@@ -135,9 +137,18 @@ void bind_metrics(py::module_& m) {
       "Area of the region enclosed by the closed polygon (x, y) (non-zero winding: both lobes "
       "of a figure-eight count) [unit x * unit y].");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
-  m.def("compute_metrics", &compute_metrics, py::arg("result"), py::arg("n_max") = 10,
-        "Metrics of a Result's steady state, harmonics up to n_max. Raises oscidrum.Error if the "
-        "result holds no samples.");
+  m.def(
+      "compute_metrics",
+      [](const Result& result, int n_max, const std::optional<Case>& c) {
+        if (!c) return compute_metrics(result, n_max);
+        const Model model(*c);
+        return compute_metrics(model, result, n_max);
+      },
+      py::arg("result"), py::arg("n_max") = 10, py::arg("case") = py::none(),
+      "Metrics of a Result's steady state, harmonics up to n_max. With `case` (the Case the "
+      "result was simulated with) they are read off the trajectory's dense output, as `run` and "
+      "`run_study` do, independent of numerics.samples_per_period; without, off the uniform "
+      "samples. Raises oscidrum.Error if the result is no steady state or holds no samples.");
 }
 
 }  // namespace oscidrum::python

@@ -113,14 +113,15 @@ def test_parallel_study_equals_serial():
     serial = oscidrum.run_study(cases, threads=1, keep_samples=True)
     one_by_one = [oscidrum.simulate(c) for c in cases]
     assert len(parallel) == len(serial) == len(cases)
-    for p, s, r in zip(parallel, serial, one_by_one):
+    for p, s, r, case in zip(parallel, serial, one_by_one, cases):
         assert p.ok and s.ok
         for name, _ in COLUMNS:
             a, b, c = (getattr(x.samples, name) for x in (p.result, s.result, r))
             assert np.array_equal(a, b) and np.array_equal(a, c), name
         # assert_equal: NaN (an undefined ratio) equals NaN
         np.testing.assert_equal(p.metrics.to_dict(), s.metrics.to_dict())
-        np.testing.assert_equal(p.metrics.to_dict(), oscidrum.compute_metrics(r).to_dict())
+        np.testing.assert_equal(p.metrics.to_dict(),
+                                oscidrum.compute_metrics(r, case=case).to_dict())
 
 
 def test_study_options_and_invalid_cases():
