@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "oscidrum/flow.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
