@@ -11,12 +11,13 @@
 #include <numbers>
 #include <span>
 #include <string>
-#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "indicators.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/output_table.hpp"
 
 namespace oscidrum {
 
@@ -35,11 +36,9 @@ void require_size(const std::vector<double>& v, std::size_t n, const char* name)
 Metrics Metrics::unavailable() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Metrics m;
-  // Every scalar of the output table (OSCIDRUM_METRICS); the spectra stay empty.
-#define OSCIDRUM_NAN(type, name, unit, label, description) \
-  if constexpr (std::is_same_v<type, double>) m.name = nan;
-  OSCIDRUM_METRICS(OSCIDRUM_NAN)
-#undef OSCIDRUM_NAN
+  // Every scalar of the output table; the spectra stay empty.
+  for (const MetricOutput& o : metric_outputs())
+    if (const auto* member = std::get_if<double Metrics::*>(&o.member)) m.*(*member) = nan;
   return m;
 }
 
