@@ -242,9 +242,10 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   double work = 0.0;
   for (const Node& nd : acc.nodes_) work += nd.weight * nd.friction_power;
   m.friction_work = work / p;
-  m.stick_fraction = acc.time_[1] / P;
-  m.slip_positive_fraction = acc.time_[2] / P;
-  m.slip_negative_fraction = acc.time_[0] / P;
+  const double total = acc.time_[0] + acc.time_[1] + acc.time_[2];  // P up to round-off
+  m.stick_fraction = acc.time_[1] / total;
+  m.slip_positive_fraction = acc.time_[2] / total;
+  m.slip_negative_fraction = acc.time_[0] / total;
   m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
 
   // Area: Richardson-extrapolated polygon areas (error ~ h^2) until two agree.
