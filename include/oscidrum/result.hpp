@@ -10,7 +10,8 @@
 namespace oscidrum {
 
 /// How a simulation ended: steady_state, max_periods_reached, contact_lost, chattering,
-/// non_finite, invalid_geometry, gross_slip, budget_exceeded, cancelled (descriptions in OSCIDRUM_STATUSES, oscidrum/outputs.hpp).
+/// non_finite, invalid_geometry, gross_slip, budget_exceeded, cancelled (descriptions in
+/// OSCIDRUM_STATUSES, oscidrum/outputs.hpp).
 enum class Status {
 #define OSCIDRUM_ENUMERATOR(name, description) name,
   OSCIDRUM_STATUSES(OSCIDRUM_ENUMERATOR)

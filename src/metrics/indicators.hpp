@@ -21,7 +21,7 @@ inline double ratio_to_fundamental(double a, const Spectrum& h) {
   double largest = 0.0;
   for (std::size_t n = 1; n < h.size(); ++n) largest = std::max(largest, h[n].amplitude);
   return h[1].amplitude > kAbsentFundamental * largest ? a / h[1].amplitude
-                                                        : std::numeric_limits<double>::quiet_NaN();
+                                                       : std::numeric_limits<double>::quiet_NaN();
 }
 
 /// Harmonic ratios A_2/A_1, A_3/A_1 of x_M'' and z_M'', the CMV-type value 300 A_2/A_1 of z_M''

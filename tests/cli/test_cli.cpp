@@ -227,10 +227,10 @@ TEST(CliRun, InterruptExits130) {
   TempDir dir;
   // A long run: 1000 sampled periods of 10^4 samples (an impossible steady_tol no longer
   // runs forever: the run accepts the steady state at the integration's noise floor).
-  const pid_t pid = start({"run", "--set", "numerics.output_periods=1000", "--set",
-                           "numerics.samples_per_period=10000", "--set",
-                           "numerics.max_multiplicity=1", "--csv", dir / "s.csv"},
-                          dir / "out", dir / "err");
+  const pid_t pid = start(
+      {"run", "--set", "numerics.output_periods=1000", "--set", "numerics.samples_per_period=10000",
+       "--set", "numerics.max_multiplicity=1", "--csv", dir / "s.csv"},
+      dir / "out", dir / "err");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(pid, SIGINT);
   const Outcome o = finish(pid, dir / "out", dir / "err");

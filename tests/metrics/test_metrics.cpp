@@ -751,7 +751,8 @@ TEST(Indicators, RatioToAnAbsentFundamentalIsNaN) {
   Synthetic s;
   Result r = make_result(s);  // ddz_M = 5 sin(2 nu t + 0.9): no f component
   const std::size_t n = r.samples.size();
-  for (std::size_t j = 0; j < n; ++j) r.samples.ddz_M[j] += 1e-9 * std::sin(0.37 * static_cast<double>(j));
+  for (std::size_t j = 0; j < n; ++j)
+    r.samples.ddz_M[j] += 1e-9 * std::sin(0.37 * static_cast<double>(j));
   const Metrics m = compute_metrics(r, 10);
   EXPECT_TRUE(std::isnan(m.ddz_A2_A1));
   EXPECT_TRUE(std::isnan(m.ddz_A3_A1));
