@@ -4,13 +4,13 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/record.hpp"
 #include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/json.hpp"
 #include "output.hpp"
 
 namespace oscidrum::cli {
@@ -39,39 +39,21 @@ int run(const AnalyzeOptions& o) {
   const RecordMetrics m = analyze_record(column(o.t_col, "--t-col"), column(o.x_col, "--x-col"),
                                          column(o.z_col, "--z-col"), o.f, o.harmonics);
   if (o.format == "json") {
-    auto spectrum = [](const std::vector<Harmonic>& h) {
-      nlohmann::ordered_json a = nlohmann::json::array();
-      for (const Harmonic& x : h) a.push_back({{"amplitude", x.amplitude}, {"phase", x.phase}});
-      return a;
-    };
-    nlohmann::ordered_json j = {{"schema", "oscidrum-record/1"},
-                                {"file", o.file},
-                                {"f", o.f},
-                                {"cycles", m.cycles},
-                                {"ddx_max", m.ddx_max},
-                                {"ddx_min", m.ddx_min},
-                                {"ddz_max", m.ddz_max},
-                                {"ddz_min", m.ddz_min},
-                                {"psi_xz", m.psi_xz},
-                                {"area", m.area},
-                                {"residual_x", m.residual_x},
-                                {"residual_z", m.residual_z},
-                                {"ddx_harmonics", spectrum(m.ddx_harmonics)},
-                                {"ddz_harmonics", spectrum(m.ddz_harmonics)}};
-    std::cout << j.dump(2) << "\n";
+    std::cout << io::record_json(o.file, o.f, m);
     return kExitOk;
   }
   Summary s;
   s.section("Record");
   s.line("file", o.file);
-  s.line("excitation periods spanned", fmt(m.cycles, 4));
-  s.line("fit residual x_M'', z_M''",
-         fmt(m.residual_x, 3) + ", " + fmt(m.residual_z, 3) + " (RMS relative to the signal)");
-  s.section("Metrics of the fitted periodic signal");
-  s.line("x_M'' max / min [m/s^2]", fmt(m.ddx_max, 5) + " / " + fmt(m.ddx_min, 5));
-  s.line("z_M'' max / min [m/s^2]", fmt(m.ddz_max, 5) + " / " + fmt(m.ddz_min, 5));
-  s.line("psi (x_M'' -> z_M'') [rad]", fmt(m.psi_xz, 5));
-  s.line("area z_M''(x_M'') [m^2/s^4]", fmt(m.area, 5));
+  bool metrics_section = false;
+  for (const RecordOutput& out : record_outputs()) {
+    if (!is_scalar(out)) continue;  // the spectra are the table below
+    if (is_acceleration_metric(out.name) && !metrics_section) {
+      s.section("Metrics of the fitted periodic signal");
+      metrics_section = true;
+    }
+    s.line(out.label, output_text(m, out));
+  }
   TextTable t;
   t.header = {"n", "f [Hz]", "A(x_M'') [m/s^2]", "A(z_M'') [m/s^2]", "x / max", "z / max"};
   t.right = {true, true, true, true, true, true};

@@ -91,7 +91,7 @@ int run(const RunOptions& o) {
   std::unique_ptr<Metrics> metrics;
   if (ok(result.status) && result.samples.size() > 0) {  // only a steady state has metrics
     try {
-      metrics = std::make_unique<Metrics>(compute_metrics(result, o.harmonics));
+      metrics = std::make_unique<Metrics>(compute_metrics(model, result, o.harmonics));
     } catch (const Error& e) {
       warn(std::string("no metrics: ") + e.what());
     }

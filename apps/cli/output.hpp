@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "oscidrum/output_table.hpp"
+
 namespace oscidrum::cli {
 
 /// %.6g (people) or %.17g (machines) formatting of a number.
@@ -36,6 +38,16 @@ class Summary {
   };
   std::vector<Line> lines_;
 };
+
+/// "55.72 m/s^2", "0.3 (-)": a scalar output's value with its unit, for people (integers in full,
+/// reals with `digits` significant digits).
+template <class Struct, class... Types>
+std::string output_text(const Struct& s, const Output<Struct, Types...>& out, int digits = 5) {
+  const double v = scalar_value(s, out);
+  const std::string unit = out.unit;
+  return (is_integer(out) ? std::to_string(static_cast<long long>(v)) : fmt(v, digits)) +
+         (unit == "-" ? std::string() : " " + unit);
+}
 
 /// Write `text` to `path` atomically (io::write_file_atomic), or to stdout if path is "-".
 void write_output(const std::string& path, const std::string& text);

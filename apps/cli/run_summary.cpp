@@ -19,8 +19,6 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max) {
   return s + " m/s^2";
 }
 
-std::string percent(double fraction) { return fmt(100.0 * fraction, 4) + " %"; }
-
 }  // namespace
 
 std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& result,
@@ -50,42 +48,25 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
          "Tp = " + fmt(tr.Tp, 3) + " (Appendix A, m_f = " + fmt(c.roller.m_f) + " kg)");
 
   s.section("result");
-  const Diagnostics& d = result.diagnostics;
   s.line("status", to_string(result.status));
   if (!result.message.empty()) s.line("message", result.message);
-  s.line("steady after", d.periods_to_steady >= 0
-                             ? std::to_string(d.periods_to_steady) + " periods (multiplicity " +
-                                   std::to_string(d.multiplicity) + ")"
-                             : "not reached (" + std::to_string(d.periods_simulated) + " periods)");
-  s.line("final change",
-         fmt(d.final_change, 3) + " (tolerance " + fmt(c.numerics.steady_tol, 3) + ")");
-  s.line("integrator", std::to_string(d.steps) + " steps, " + std::to_string(d.rhs_evaluations) +
-                           " RHS evaluations");
-  s.line("events", std::to_string(d.events) + " (" + std::to_string(d.switches) + " switches, " +
-                       std::to_string(d.reversals) + " reversals, " +
-                       std::to_string(d.inconsistent_slip_ends) + " inconsistent slip ends)");
-  s.line("switches per period", fmt(d.switches_per_period, 4));
-  s.line("max slip residual (39)", fmt(d.max_slip_residual, 3) + " (relative to W)");
-  s.line("min N", fmt(d.min_N / 1e3, 5) + " kN");
+  for (const DiagnosticOutput& out : diagnostic_outputs())
+    s.line(out.label, output_text(result.diagnostics, out));
 
   if (metrics) {
     const Metrics& m = *metrics;
     s.section("steady state (" + std::to_string(result.sample_periods) + " periods, " +
               std::to_string(result.samples.size()) + " samples)");
-    s.line("x_M'' max, min", fmt(m.ddx_max, 5) + ", " + fmt(m.ddx_min, 5) + " m/s^2");
-    s.line("z_M'' max, min", fmt(m.ddz_max, 5) + ", " + fmt(m.ddz_min, 5) + " m/s^2");
-    const std::size_t shown = std::min<std::size_t>(6, m.ddx_harmonics.size());
-    s.line("x_M'' A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
-           harmonics_text(m.ddx_harmonics, shown - 1));
-    s.line("z_M'' A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
-           harmonics_text(m.ddz_harmonics, shown - 1));
-    s.line("lag torque -> phi",
-           fmt(m.phi_lag, 4) + " pi rad (amplitude " + fmt(m.phi_amplitude, 4) + " rad)");
-    s.line("lag psi_xz", fmt(m.psi_xz, 4) + " rad");
-    s.line("area z_M''(x_M'')", fmt(m.area, 5) + " m^2/s^4");
-    s.line("stick, slip+, slip-", percent(m.stick_fraction) + ", " +
-                                      percent(m.slip_positive_fraction) + ", " +
-                                      percent(m.slip_negative_fraction));
+    for (const MetricOutput& out : metric_outputs()) {
+      if (is_scalar(out)) {
+        s.line(out.label, output_text(m, out));
+        continue;
+      }
+      const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
+      const std::size_t shown = std::min<std::size_t>(6, h.size());
+      s.line(std::string(out.label) + " A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
+             harmonics_text(h, shown - 1));
+    }
   }
   return s.text();
 }

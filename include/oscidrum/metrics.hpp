@@ -5,6 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "oscidrum/model.hpp"
+#include "oscidrum/outputs.hpp"
 #include "oscidrum/result.hpp"
 
 namespace oscidrum {
@@ -33,24 +35,16 @@ double enclosed_area(std::span<const double> x, std::span<const double> y);
 /// Wrap an angle to (-pi, pi].
 double wrap_pi(double angle);
 
-/// Metrics of a simulated steady state (MODEL.md section 8).
+using Spectrum = std::vector<Harmonic>;  ///< harmonics n = 0 ... n_max of one signal
+
+/// Metrics of a simulated steady state: one member per entry of OSCIDRUM_METRICS
+/// (oscidrum/outputs.hpp), where each is defined with its unit (ddx_max, ..., ddx_harmonics,
+/// ddz_harmonics, psi_xz, area, the compaction indicators, delta_max, ..., phi_lag, the phase
+/// fractions, mu_required, friction_work). docs/outputs.md gives the formulas.
 struct Metrics {
-  double ddx_max = 0.0, ddx_min = 0.0;      ///< extremes of x_M'' [m/s^2]
-  double ddz_max = 0.0, ddz_min = 0.0;      ///< extremes of z_M'' [m/s^2]
-  double delta_max = 0.0, delta_min = 0.0;  ///< extremes of delta [rad] (NaN without samples)
-  std::vector<Harmonic> ddx_harmonics;      ///< harmonics n = 0 ... n_max of x_M'' [m/s^2]
-  std::vector<Harmonic> ddz_harmonics;      ///< harmonics n = 0 ... n_max of z_M'' [m/s^2]
-  /// Phase lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (linear drift
-  /// removed), wrapped to (-2, 0] and given in units of pi, as in paper Fig. 10 [pi rad].
-  double phi_lag = 0.0;
-  double phi_amplitude = 0.0;  ///< A_1 of phi [rad]
-  /// Lag between x_M'' and z_M'': psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]
-  /// (MODEL.md section 8; psi > 0: the 2f component of z_M'' leads) [rad].
-  double psi_xz = 0.0;
-  double area = 0.0;            ///< area enclosed by z_M'' over x_M'' (non-zero winding) [m^2/s^4]
-  double stick_fraction = 0.0;  ///< of the sampled time [-]
-  double slip_positive_fraction = 0.0;  ///< [-]
-  double slip_negative_fraction = 0.0;  ///< [-]
+#define OSCIDRUM_MEMBER(type, name, unit, label, description) type name{};
+  OSCIDRUM_METRICS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
 
   /// Every number NaN and no harmonics: what a result that is not a steady state has.
   static Metrics unavailable();
@@ -59,5 +53,14 @@ struct Metrics {
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if
 /// the result holds no samples or its status is not Status::steady_state.
 Metrics compute_metrics(const Result& result, int n_max = 10);
+
+/// The same metrics from the trajectory itself instead of its samples: one steady period is
+/// integrated again from the first sample through the flow (oscidrum/flow.hpp) and every metric
+/// is evaluated on the dense output: peaks at both one-sided limits of every switch and at every
+/// interior extremum, harmonics, lags, THD and friction work as integrals over each piece, the
+/// area of the dense curve converged to 1e-9 relative (docs/outputs.md). Independent of
+/// numerics.samples_per_period. `model` must be the one `result` was simulated with. Throws
+/// oscidrum::Error as compute_metrics(result) does.
+Metrics compute_metrics(const Model& model, const Result& result, int n_max = 10);
 
 }  // namespace oscidrum

@@ -8,6 +8,8 @@
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
+#include "oscidrum/output_table.hpp"
+#include "oscidrum/outputs.hpp"
 #include "oscidrum/parameters.hpp"
 #include "oscidrum/record.hpp"
 #include "oscidrum/result.hpp"

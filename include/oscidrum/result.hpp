@@ -4,21 +4,18 @@
 #include <string>
 #include <vector>
 
+#include "oscidrum/outputs.hpp"
 #include "oscidrum/state.hpp"
 
 namespace oscidrum {
 
-/// How a simulation ended.
+/// How a simulation ended: steady_state, max_periods_reached, contact_lost, chattering,
+/// non_finite, invalid_geometry, gross_slip, budget_exceeded, cancelled (descriptions in
+/// OSCIDRUM_STATUSES, oscidrum/outputs.hpp).
 enum class Status {
-  steady_state,         ///< the response repeats; the steady state was sampled
-  max_periods_reached,  ///< no steady state within Numerics::max_periods (last periods sampled)
-  contact_lost,         ///< N <= 0: lift-off, which the model does not cover
-  chattering,           ///< too many stick/slip switches in a vanishing time
-  non_finite,           ///< a NaN or infinity appeared in the state
-  invalid_geometry,     ///< trough curvature radius fell to the drum radius (f5 <= 0)
-  gross_slip,           ///< the drum spins: the driving torque exceeds what friction can hold
-  budget_exceeded,      ///< more steps in one period than Numerics::max_steps_per_period
-  cancelled,            ///< stopped by the caller (progress callback, cancellation, Ctrl-C)
+#define OSCIDRUM_ENUMERATOR(name, description) name,
+  OSCIDRUM_STATUSES(OSCIDRUM_ENUMERATOR)
+#undef OSCIDRUM_ENUMERATOR
 };
 
 /// "steady_state", "max_periods_reached", ...
@@ -42,46 +39,27 @@ struct Event {
   Phase to = Phase::stick;
 };
 
-/// Counters of the run.
+/// Counters of the run: one member per entry of OSCIDRUM_DIAGNOSTICS (oscidrum/outputs.hpp), with
+/// its type, initial value, unit and description there (periods_simulated, periods_to_steady,
+/// multiplicity, final_change, steps, ..., max_slip_residual, min_N [N]).
 struct Diagnostics {
-  int periods_simulated = 0;   ///< excitation periods integrated before sampling [-]
-  int periods_to_steady = -1;  ///< period index at which the steady state was found (-1: never)
-  int multiplicity = 0;        ///< steady period in excitation periods (0: none found)
-  double final_change = 0.0;   ///< last period-to-period change (scaled, see docs) [-]
-  long steps = 0;              ///< accepted integrator steps
-  long rejected_steps = 0;     ///< rejected trial steps (from the RHS count: 6 per attempt)
-  long rhs_evaluations = 0;    ///< right-hand-side evaluations
-  long events = 0;             ///< located events
-  long switches = 0;           ///< stick/slip phase changes
-  long reversals = 0;          ///< slip -> slip reversals (rare, see MODEL.md section 6)
-  long inconsistent_slip_ends = 0;   ///< slip ends where neither stick nor a reversal is
-                                     ///< consistent (docs/model.md); stick is taken
-  double switches_per_period = 0.0;  ///< in the sampled steady state
-  double max_slip_residual = 0.0;    ///< max |(39)| / W during slip, W = m g + Fz [-]
-  double min_N = 0.0;                ///< smallest normal force seen [N]
+#define OSCIDRUM_MEMBER(type, name, initial, unit, label, description) type name = initial;
+  OSCIDRUM_DIAGNOSTICS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
 };
 
+using SampleValues = std::vector<double>;  ///< one column of samples
+using SamplePhases = std::vector<Phase>;   ///< the contact phase per sample
+
 /// The sampled steady state: uniform samples over Result::sample_periods excitation periods,
-/// t_j = t0 + j / (f samples_per_period), j = 0 ... n-1 (the end point is not repeated).
+/// t_j = t0 + j / (f samples_per_period), j = 0 ... n-1 (the end point is not repeated). One
+/// member per column of OSCIDRUM_SAMPLE_COLUMNS (oscidrum/outputs.hpp): t [s], delta [rad], phi,
+/// x_A [m], s_A, ddelta [rad/s], dphi, dx_A [m/s], ds_A, x_M [m], z_M, ddx_M [m/s^2], ddz_M, N [N],
+/// T, v_rel [m/s], torque [N m], phase.
 struct Samples {
-  std::vector<double> t;       ///< time [s]
-  std::vector<double> delta;   ///< position angle [rad]
-  std::vector<double> phi;     ///< drum rotation [rad]
-  std::vector<double> x_A;     ///< trough horizontal displacement [m]
-  std::vector<double> s_A;     ///< trough vertical displacement (down) [m]
-  std::vector<double> ddelta;  ///< delta' [rad/s]
-  std::vector<double> dphi;    ///< phi' [rad/s]
-  std::vector<double> dx_A;    ///< x_A' [m/s]
-  std::vector<double> ds_A;    ///< s_A' [m/s]
-  std::vector<double> x_M;     ///< drum centre horizontal displacement [m]
-  std::vector<double> z_M;     ///< drum centre vertical displacement (down) [m]
-  std::vector<double> ddx_M;   ///< drum centre horizontal acceleration [m/s^2]
-  std::vector<double> ddz_M;   ///< drum centre vertical acceleration (down) [m/s^2]
-  std::vector<double> N;       ///< normal contact force [N]
-  std::vector<double> T;       ///< tangential contact force [N]
-  std::vector<double> v_rel;   ///< slip velocity [m/s]
-  std::vector<double> torque;  ///< excitation MM(t) [N m]
-  std::vector<Phase> phase;    ///< contact phase
+#define OSCIDRUM_MEMBER(type, name, unit, label, description) type name;
+  OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
 
   std::size_t size() const { return t.size(); }
 };

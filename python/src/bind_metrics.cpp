@@ -5,14 +5,18 @@
 
 #include <cstdio>
 #include <deque>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/metrics.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/output_table.hpp"
 
 namespace oscidrum::python {
 namespace {
@@ -31,37 +35,11 @@ py::array_t<double> phases(const std::vector<Harmonic>& h) {
   return a;
 }
 
-// Scalar metrics in a fixed order: (name, unit, member).
-struct Scalar {
-  const char* name;
-  const char* unit;
-  double Metrics::*member;
-  const char* doc;
-};
-const Scalar kScalars[] = {
-    {"ddx_max", "m/s^2", &Metrics::ddx_max, "largest x_M''"},
-    {"ddx_min", "m/s^2", &Metrics::ddx_min, "smallest x_M''"},
-    {"ddz_max", "m/s^2", &Metrics::ddz_max, "largest z_M'' (down positive)"},
-    {"ddz_min", "m/s^2", &Metrics::ddz_min, "smallest z_M''"},
-    {"delta_max", "rad", &Metrics::delta_max, "largest position angle delta"},
-    {"delta_min", "rad", &Metrics::delta_min, "smallest position angle delta"},
-    {"phi_lag", "pi rad", &Metrics::phi_lag,
-     "lag between M0 sin(nu t) and phi: theta_1 of phi (drift removed), wrapped to (-2, 0], in "
-     "units of pi (paper Fig. 10)"},
-    {"phi_amplitude", "rad", &Metrics::phi_amplitude, "A_1 of phi"},
-    {"psi_xz", "rad", &Metrics::psi_xz,
-     "lag psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi] (MODEL.md section 8; "
-     "psi > 0: the 2f component of z_M'' leads)"},
-    {"area", "m^2/s^4", &Metrics::area,
-     "area enclosed by z_M'' over x_M'' (non-zero winding, both lobes count)"},
-    {"stick_fraction", "-", &Metrics::stick_fraction, "stick share of the sampled time"},
-    {"slip_positive_fraction", "-", &Metrics::slip_positive_fraction, "slip+ share"},
-    {"slip_negative_fraction", "-", &Metrics::slip_negative_fraction, "slip- share"},
-};
-
-const char* scalar_doc(const Scalar& s) {
+// "description [unit]" with a stable address, for docstrings.
+const char* doc(const MetricOutput& o) {
   static std::deque<std::string> docs;  // stable addresses
-  docs.push_back(std::string(s.doc) + " [" + s.unit + "]");
+  docs.push_back(std::string(o.description) + " [" + o.unit + "]" +
+                 (is_scalar(o) ? "" : " (list of Harmonic)"));
   return docs.back().c_str();
 }
 
@@ -80,17 +58,14 @@ void bind_metrics(py::module_& m) {
       });
 
   py::class_<Metrics> cls(m, "Metrics",
-                          "Metrics of a simulated steady state (MODEL.md section 8). Harmonic n "
+                          "Metrics of a simulated steady state (docs/outputs.md). Harmonic n "
                           "of x_M'' is ddx_amplitude[n] [m/s^2], ddx_phase[n] [rad], n = 0 ... "
                           "n_max (n = 0: the mean).");
-  for (const Scalar& s : kScalars) cls.def_readonly(s.name, s.member, scalar_doc(s));
-  cls.def_readonly("ddx_harmonics", &Metrics::ddx_harmonics,
-                   "harmonics n = 0 ... n_max of x_M'' (list of Harmonic) [m/s^2]")
-      .def_readonly("ddz_harmonics", &Metrics::ddz_harmonics,
-                    "harmonics n = 0 ... n_max of z_M'' (list of Harmonic) [m/s^2]")
-      .def_property_readonly(
-          "ddx_amplitude", [](const Metrics& mt) { return amplitudes(mt.ddx_harmonics); },
-          "A_n of x_M'', n = 0 ... n_max [m/s^2]")
+  for (const MetricOutput& o : metric_outputs())
+    std::visit([&](auto member) { cls.def_readonly(o.name, member, doc(o)); }, o.member);
+  cls.def_property_readonly(
+         "ddx_amplitude", [](const Metrics& mt) { return amplitudes(mt.ddx_harmonics); },
+         "A_n of x_M'', n = 0 ... n_max [m/s^2]")
       .def_property_readonly(
           "ddx_phase", [](const Metrics& mt) { return phases(mt.ddx_harmonics); },
           "theta_n of x_M'' [rad]")
@@ -104,7 +79,8 @@ void bind_metrics(py::module_& m) {
           "scalar_names",
           [](py::handle) {
             py::list names;
-            for (const Scalar& s : kScalars) names.append(s.name);
+            for (const MetricOutput& o : metric_outputs())
+              if (is_scalar(o)) names.append(o.name);
             return names;
           },
           "names of the scalar metrics, in to_dict order")
@@ -112,7 +88,7 @@ void bind_metrics(py::module_& m) {
           "units",
           [](py::handle) {
             py::dict units;
-            for (const Scalar& s : kScalars) units[s.name] = s.unit;
+            for (const MetricOutput& o : metric_outputs()) units[o.name] = o.unit;
             return units;
           },
           "{scalar metric: unit}")
@@ -120,18 +96,20 @@ void bind_metrics(py::module_& m) {
           "to_dict",
           [](const Metrics& mt) {
             py::dict d;
-            for (const Scalar& s : kScalars) d[s.name] = mt.*(s.member);
+            for (const MetricOutput& o : metric_outputs())
+              if (is_scalar(o)) d[o.name] = scalar_value(mt, o);
             return d;
           },
           "The scalar metrics as {name: value} (units: Metrics.units).")
       .def("__repr__", [](const Metrics& mt) {
         std::string out = "Metrics(";
         bool first = true;
-        for (const Scalar& s : kScalars) {
+        for (const MetricOutput& o : metric_outputs()) {
+          if (!is_scalar(o)) continue;
           char buf[96];
-          std::snprintf(buf, sizeof buf, "%s%s=%.6g%s%s", first ? "" : ", ", s.name, mt.*(s.member),
-                        std::string(s.unit) == "-" ? "" : " ",
-                        std::string(s.unit) == "-" ? "" : s.unit);
+          std::snprintf(buf, sizeof buf, "%s%s=%.6g%s%s", first ? "" : ", ", o.name,
+                        scalar_value(mt, o), std::string(o.unit) == "-" ? "" : " ",
+                        std::string(o.unit) == "-" ? "" : o.unit);
           out += buf;
           first = false;
         }
@@ -159,9 +137,18 @@ void bind_metrics(py::module_& m) {
       "Area of the region enclosed by the closed polygon (x, y) (non-zero winding: both lobes "
       "of a figure-eight count) [unit x * unit y].");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
-  m.def("compute_metrics", &compute_metrics, py::arg("result"), py::arg("n_max") = 10,
-        "Metrics of a Result's steady state, harmonics up to n_max. Raises oscidrum.Error if the "
-        "result holds no samples.");
+  m.def(
+      "compute_metrics",
+      [](const Result& result, int n_max, const std::optional<Case>& c) {
+        if (!c) return compute_metrics(result, n_max);
+        const Model model(*c);
+        return compute_metrics(model, result, n_max);
+      },
+      py::arg("result"), py::arg("n_max") = 10, py::arg("case") = py::none(),
+      "Metrics of a Result's steady state, harmonics up to n_max. With `case` (the Case the "
+      "result was simulated with) they are read off the trajectory's dense output, as `run` and "
+      "`run_study` do, independent of numerics.samples_per_period; without, off the uniform "
+      "samples. Raises oscidrum.Error if the result is no steady state or holds no samples.");
 }
 
 }  // namespace oscidrum::python

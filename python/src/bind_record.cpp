@@ -3,11 +3,14 @@
 #include <pybind11/stl.h>
 
 #include <cstdio>
+#include <deque>
 #include <span>
 #include <string>
+#include <variant>
 
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/record.hpp"
 
 namespace oscidrum::python {
@@ -20,15 +23,39 @@ py::array_t<double> column(const std::vector<Harmonic>& h, double Harmonic::*mem
   return a;
 }
 
+const char* doc(const RecordOutput& o) {
+  static std::deque<std::string> docs;  // stable addresses
+  docs.push_back(std::string(o.description) + " [" + o.unit + "]" +
+                 (is_scalar(o) ? "" : " (list of Harmonic)"));
+  return docs.back().c_str();
+}
+
 }  // namespace
 
 void bind_record(py::module_& m) {
-  py::class_<RecordMetrics>(m, "RecordMetrics",
-                            "Metrics of a measured record, from a least-squares harmonic fit.")
-      .def_readonly("ddx_harmonics", &RecordMetrics::ddx_harmonics,
-                    "harmonics n = 0 ... n_max of x_M'' (absolute-time phases) [m/s^2]")
-      .def_readonly("ddz_harmonics", &RecordMetrics::ddz_harmonics,
-                    "harmonics n = 0 ... n_max of z_M'' [m/s^2]")
+  py::class_<RecordMetrics> cls(
+      m, "RecordMetrics",
+      "Metrics of a measured record, from a least-squares harmonic fit (docs/outputs.md).");
+  for (const RecordOutput& o : record_outputs())
+    std::visit([&](auto member) { cls.def_readonly(o.name, member, doc(o)); }, o.member);
+  cls.def_property_readonly_static(
+         "scalar_names",
+         [](py::handle) {
+           py::list names;
+           for (const RecordOutput& o : record_outputs())
+             if (is_scalar(o)) names.append(o.name);
+           return names;
+         },
+         "names of the scalar outputs, in to_dict order")
+      .def(
+          "to_dict",
+          [](const RecordMetrics& r) {
+            py::dict d;
+            for (const RecordOutput& o : record_outputs())
+              if (is_scalar(o)) d[o.name] = scalar_value(r, o);
+            return d;
+          },
+          "The scalar outputs as {name: value}.")
       .def_property_readonly(
           "ddx_amplitude",
           [](const RecordMetrics& r) { return column(r.ddx_harmonics, &Harmonic::amplitude); },
@@ -45,18 +72,6 @@ void bind_record(py::module_& m) {
           "ddz_phase",
           [](const RecordMetrics& r) { return column(r.ddz_harmonics, &Harmonic::phase); },
           "theta_n of z_M'' [rad]")
-      .def_readonly("ddx_max", &RecordMetrics::ddx_max, "largest fitted x_M'' [m/s^2]")
-      .def_readonly("ddx_min", &RecordMetrics::ddx_min, "smallest fitted x_M'' [m/s^2]")
-      .def_readonly("ddz_max", &RecordMetrics::ddz_max, "largest fitted z_M'' [m/s^2]")
-      .def_readonly("ddz_min", &RecordMetrics::ddz_min, "smallest fitted z_M'' [m/s^2]")
-      .def_readonly("psi_xz", &RecordMetrics::psi_xz,
-                    "theta_2(z) - 2 theta_1(x), wrapped to (-pi, pi] [rad]")
-      .def_readonly("area", &RecordMetrics::area, "area of the fitted periodic figure [m^2/s^4]")
-      .def_readonly("cycles", &RecordMetrics::cycles, "excitation periods the record spans [-]")
-      .def_readonly("residual_x", &RecordMetrics::residual_x,
-                    "RMS of record minus fit relative to the RMS of x_M'' [-]")
-      .def_readonly("residual_z", &RecordMetrics::residual_z,
-                    "RMS of record minus fit relative to the RMS of z_M'' [-]")
       .def("__repr__", [](const RecordMetrics& r) {
         char buf[240];
         std::snprintf(buf, sizeof buf,

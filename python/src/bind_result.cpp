@@ -7,9 +7,13 @@
 #include <cstdio>
 #include <deque>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "bindings.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/result.hpp"
 
 namespace oscidrum::python {
@@ -30,56 +34,21 @@ py::array_t<std::int8_t> phase_array(const std::vector<Phase>& phases) {
   return a;
 }
 
-// The columns of docs/csv-columns.md: (attribute, CSV header).
-struct Column {
-  const char* name;
-  const char* header;
-  std::vector<double> Samples::*member;
-};
-const Column kColumns[] = {
-    {"t", "t[s]", &Samples::t},
-    {"delta", "delta[rad]", &Samples::delta},
-    {"phi", "phi[rad]", &Samples::phi},
-    {"x_A", "x_A[m]", &Samples::x_A},
-    {"s_A", "s_A[m]", &Samples::s_A},
-    {"ddelta", "ddelta[rad/s]", &Samples::ddelta},
-    {"dphi", "dphi[rad/s]", &Samples::dphi},
-    {"dx_A", "dx_A[m/s]", &Samples::dx_A},
-    {"ds_A", "ds_A[m/s]", &Samples::ds_A},
-    {"x_M", "x_M[m]", &Samples::x_M},
-    {"z_M", "z_M[m]", &Samples::z_M},
-    {"ddx_M", "ddx_M[m/s^2]", &Samples::ddx_M},
-    {"ddz_M", "ddz_M[m/s^2]", &Samples::ddz_M},
-    {"N", "N[N]", &Samples::N},
-    {"T", "T[N]", &Samples::T},
-    {"v_rel", "v_rel[m/s]", &Samples::v_rel},
-    {"torque", "torque[N m]", &Samples::torque},
-};
-
-const char* column_doc(const char* header) {
-  static std::deque<std::string> docs;  // stable addresses
-  docs.push_back(std::string("steady-state samples, column ") + header +
-                 " of docs/csv-columns.md (read-only NumPy view)");
+// "description [unit]" with a stable address, for docstrings.
+const char* doc(const std::string& text) {
+  static std::deque<std::string> docs;
+  docs.push_back(text);
   return docs.back().c_str();
 }
+
+std::string header(const SampleOutput& c) { return std::string(c.name) + "[" + c.unit + "]"; }
 
 }  // namespace
 
 void bind_result(py::module_& m) {
-  py::enum_<Status>(m, "Status", "How a simulation ended (Result.status; .name gives the text).")
-      .value("steady_state", Status::steady_state, "the response repeats; steady state sampled")
-      .value("max_periods_reached", Status::max_periods_reached,
-             "no steady state within numerics.max_periods (last periods sampled)")
-      .value("contact_lost", Status::contact_lost, "N <= 0: lift-off, not covered by the model")
-      .value("chattering", Status::chattering, "too many stick/slip switches in a vanishing time")
-      .value("non_finite", Status::non_finite, "a NaN or infinity appeared in the state")
-      .value("invalid_geometry", Status::invalid_geometry,
-             "trough curvature radius fell to the drum radius (f5 <= 0)")
-      .value("gross_slip", Status::gross_slip,
-             "the drum spins: the driving torque exceeds what friction can hold")
-      .value("budget_exceeded", Status::budget_exceeded,
-             "more steps in one period than numerics.max_steps_per_period")
-      .value("cancelled", Status::cancelled, "stopped by the caller");
+  py::enum_<Status> status(m, "Status",
+                           "How a simulation ended (Result.status; .name gives the text).");
+  for (const StatusInfo& st : statuses()) status.value(st.name, st.status, st.description);
 
   py::enum_<EventKind>(m, "EventKind", "Kind of a located event.")
       .value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")
@@ -101,35 +70,34 @@ void bind_result(py::module_& m) {
         return std::string(buf);
       });
 
-  py::class_<Diagnostics> diag(m, "Diagnostics", "Counters of a run.");
-  diag.def_readonly("periods_simulated", &Diagnostics::periods_simulated,
-                    "excitation periods integrated before sampling [-]")
-      .def_readonly("periods_to_steady", &Diagnostics::periods_to_steady,
-                    "period index at which the steady state was found (-1: never) [-]")
-      .def_readonly("multiplicity", &Diagnostics::multiplicity,
-                    "steady period in excitation periods (0: none found) [-]")
-      .def_readonly("final_change", &Diagnostics::final_change,
-                    "last period-to-period change (scaled) [-]")
-      .def_readonly("steps", &Diagnostics::steps, "accepted integrator steps")
-      .def_readonly("rejected_steps", &Diagnostics::rejected_steps, "rejected trial steps")
-      .def_readonly("rhs_evaluations", &Diagnostics::rhs_evaluations, "right-hand-side evaluations")
-      .def_readonly("events", &Diagnostics::events, "located events")
-      .def_readonly("switches", &Diagnostics::switches, "stick/slip phase changes")
-      .def_readonly("reversals", &Diagnostics::reversals, "slip -> slip reversals")
-      .def_readonly("switches_per_period", &Diagnostics::switches_per_period,
-                    "in the sampled steady state [-]")
-      .def_readonly("max_slip_residual", &Diagnostics::max_slip_residual,
-                    "max |(39)| / max(N) during slip [-]")
-      .def_readonly("min_N", &Diagnostics::min_N, "smallest normal force seen [N]")
+  py::class_<Diagnostics> diag(m, "Diagnostics", "Counters of a run (docs/outputs.md).");
+  for (const DiagnosticOutput& d : diagnostic_outputs())
+    std::visit(
+        [&](auto member) {
+          diag.def_readonly(d.name, member, doc(std::string(d.description) + " [" + d.unit + "]"));
+        },
+        d.member);
+  diag.def_property_readonly_static(
+          "names",
+          [](py::handle) {
+            py::list names;
+            for (const DiagnosticOutput& d : diagnostic_outputs()) names.append(d.name);
+            return names;
+          },
+          "names of the diagnostics, in output order")
+      .def_property_readonly_static(
+          "units",
+          [](py::handle) {
+            py::dict units;
+            for (const DiagnosticOutput& d : diagnostic_outputs()) units[d.name] = d.unit;
+            return units;
+          },
+          "{diagnostic: unit}")
       .def(
           "to_dict",
-          [](const Diagnostics& d) {
+          [](py::object self) {
             py::dict out;
-            for (const char* name :
-                 {"periods_simulated", "periods_to_steady", "multiplicity", "final_change", "steps",
-                  "rejected_steps", "rhs_evaluations", "events", "switches", "reversals",
-                  "switches_per_period", "max_slip_residual", "min_N"})
-              out[name] = py::cast(d).attr(name);
+            for (const DiagnosticOutput& d : diagnostic_outputs()) out[d.name] = self.attr(d.name);
             return out;
           },
           "The counters as a dict.")
@@ -149,23 +117,32 @@ void bind_result(py::module_& m) {
                               "Result.sample_periods excitation periods). Every column of "
                               "docs/csv-columns.md is a read-only float64 NumPy view; `phase` is "
                               "an int8 array (0 stick, 1 slip+, -1 slip-).");
-  for (const Column& col : kColumns) {
-    auto member = col.member;
-    samples.def_property_readonly(
-        col.name,
-        [member](py::object self) { return view(self.cast<const Samples&>().*member, self); },
-        column_doc(col.header));
+  for (const SampleOutput& col : sample_outputs()) {
+    std::visit(
+        [&](auto member) {
+          using T = typename std::remove_cvref_t<decltype(std::declval<Samples>().*member)>;
+          if constexpr (std::is_same_v<T, SamplePhases>) {
+            samples.def_property_readonly(
+                col.name, [member](const Samples& s) { return phase_array(s.*member); },
+                doc(std::string(col.description) + " (int8 copy)"));
+          } else {
+            samples.def_property_readonly(
+                col.name,
+                [member](py::object self) {
+                  return view(self.cast<const Samples&>().*member, self);
+                },
+                doc("steady-state samples, column " + header(col) +
+                    " of docs/csv-columns.md: " + col.description + " (read-only NumPy view)"));
+          }
+        },
+        col.member);
   }
-  samples.def_property_readonly(
-      "phase", [](const Samples& s) { return phase_array(s.phase); },
-      "contact phase per sample: 0 stick, 1 slip+ (v_rel > 0), -1 slip- (int8 copy)");
   samples.def("__len__", &Samples::size);
   samples.def_property_readonly_static(
       "columns",
       [](py::handle) {
         py::list names;
-        for (const Column& col : kColumns) names.append(col.name);
-        names.append("phase");
+        for (const SampleOutput& col : sample_outputs()) names.append(col.name);
         return names;
       },
       "attribute names in CSV column order");
@@ -173,8 +150,7 @@ void bind_result(py::module_& m) {
       "headers",
       [](py::handle) {
         py::list names;
-        for (const Column& col : kColumns) names.append(col.header);
-        names.append("phase[-]");
+        for (const SampleOutput& col : sample_outputs()) names.append(header(col));
         return names;
       },
       "CSV headers name[unit] (docs/csv-columns.md), in column order");
@@ -182,8 +158,7 @@ void bind_result(py::module_& m) {
       "to_dict",
       [](py::object self) {
         py::dict out;
-        for (const Column& col : kColumns) out[col.name] = self.attr(col.name);
-        out["phase"] = self.attr("phase");
+        for (const SampleOutput& col : sample_outputs()) out[col.name] = self.attr(col.name);
         return out;
       },
       "{name: array} of every column.");

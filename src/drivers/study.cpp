@@ -58,8 +58,8 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
       *interrupted = true;
       return out;
     }
-    out.metrics =
-        ok(out.result.status) ? compute_metrics(out.result, n_harmonics) : Metrics::unavailable();
+    out.metrics = ok(out.result.status) ? compute_metrics(model, out.result, n_harmonics)
+                                        : Metrics::unavailable();
   } catch (const Error& e) {
     out.valid = false;
     out.error = e.what();

@@ -6,9 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <span>
+#include <type_traits>
+#include <variant>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/output_table.hpp"
 
 namespace oscidrum::io {
 namespace {
@@ -86,19 +90,27 @@ std::vector<std::string> csv_split(std::string_view line) {
 }
 
 void write_steady_state_csv(std::ostream& out, const Result& result) {
-  out << "t[s],delta[rad],phi[rad],x_A[m],s_A[m],ddelta[rad/s],dphi[rad/s],dx_A[m/s],ds_A[m/s],"
-         "x_M[m],z_M[m],ddx_M[m/s^2],ddz_M[m/s^2],N[N],T[N],v_rel[m/s],torque[N m],phase[-]\n";
+  const std::span<const SampleOutput> columns = sample_outputs();
+  std::vector<std::string> header;
+  for (const SampleOutput& c : columns) header.push_back(label(c.name, c.unit));
+  out << join(header) << '\n';
   const Samples& s = result.samples;
   std::string row;
   for (std::size_t j = 0; j < s.size(); ++j) {
     row.clear();
-    for (const std::vector<double>* column :
-         {&s.t, &s.delta, &s.phi, &s.x_A, &s.s_A, &s.ddelta, &s.dphi, &s.dx_A, &s.ds_A, &s.x_M,
-          &s.z_M, &s.ddx_M, &s.ddz_M, &s.N, &s.T, &s.v_rel, &s.torque}) {
-      row += j < column->size() ? format_double((*column)[j]) : std::string("nan");
-      row += ',';
+    for (const SampleOutput& c : columns) {
+      if (!row.empty()) row += ',';
+      std::visit(
+          [&](auto member) {
+            const auto& column = s.*member;
+            using T = typename std::remove_cvref_t<decltype(column)>::value_type;
+            if constexpr (std::is_same_v<T, Phase>)
+              row += j < column.size() ? std::to_string(static_cast<int>(column[j])) : "0";
+            else
+              row += j < column.size() ? format_double(column[j]) : std::string("nan");
+          },
+          c.member);
     }
-    row += j < s.phase.size() ? std::to_string(static_cast<int>(s.phase[j])) : std::string("0");
     out << row << '\n';
   }
 }
@@ -116,20 +128,17 @@ std::string study_csv_header(const StudyColumns& columns) {
     const std::string unit = key_unit(key);
     h.push_back(csv_quote(label(key, unit.empty() ? "-" : unit)));
   }
-  for (const char* name :
-       {"status[-]", "message[-]", "periods_to_steady[-]", "multiplicity[-]", "final_change[-]",
-        "periods_simulated[-]", "steps[-]", "rhs_evaluations[-]", "events[-]", "switches[-]",
-        "reversals[-]", "inconsistent_slip_ends[-]", "switches_per_period[-]",
-        "max_slip_residual[-]", "min_N[N]", "ddx_max[m/s^2]", "ddx_min[m/s^2]", "ddz_max[m/s^2]",
-        "ddz_min[m/s^2]"})
-    h.emplace_back(name);
-  for (const char* signal : {"ddx", "ddz"})
-    for (int n = 1; n <= columns.n_harmonics; ++n)
-      h.push_back(std::string(signal) + "_A" + std::to_string(n) + "[m/s^2]");
-  for (const char* name :
-       {"phi_lag[pi rad]", "phi_amplitude[rad]", "psi_xz[rad]", "area[m^2/s^4]",
-        "stick_fraction[-]", "slip_positive_fraction[-]", "slip_negative_fraction[-]"})
-    h.emplace_back(name);
+  h.emplace_back("status[-]");
+  h.emplace_back("message[-]");
+  for (const DiagnosticOutput& d : diagnostic_outputs()) h.push_back(label(d.name, d.unit));
+  for (const MetricOutput& m : metric_outputs()) {
+    if (is_scalar(m)) {
+      h.push_back(label(m.name, m.unit));
+    } else {  // a spectrum: the amplitudes A_1 ... A_N
+      for (int n = 1; n <= columns.n_harmonics; ++n)
+        h.push_back(label(spectrum_prefix(m.name) + "_A" + std::to_string(n), m.unit));
+    }
+  }
   return join(h);
 }
 
@@ -139,41 +148,35 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   for (std::size_t i = 0; i < columns.keys.size(); ++i)
     r.push_back(i < varied.size() ? csv_quote(format_value(varied[i])) : std::string());
   const Result& res = outcome.result;
-  const Diagnostics& d = res.diagnostics;
-  const std::size_t metric_cells = 4 + 2 * static_cast<std::size_t>(columns.n_harmonics) + 7;
+  std::size_t metric_cells = 0;
+  for (const MetricOutput& m : metric_outputs())
+    metric_cells += is_scalar(m) ? 1 : static_cast<std::size_t>(columns.n_harmonics);
   if (!outcome.valid) {
     r.emplace_back("invalid");
     r.push_back(csv_quote(outcome.error));
-    r.resize(r.size() + 13 + metric_cells);  // the 13 diagnostics cells above, empty
+    r.resize(r.size() + diagnostic_outputs().size() + metric_cells);  // empty cells
     return join(r);
   }
   r.emplace_back(to_string(res.status));
   r.push_back(csv_quote(res.message));
-  r.push_back(std::to_string(d.periods_to_steady));
-  r.push_back(std::to_string(d.multiplicity));
-  r.push_back(format_double_short(d.final_change));
-  r.push_back(std::to_string(d.periods_simulated));
-  r.push_back(std::to_string(d.steps));
-  r.push_back(std::to_string(d.rhs_evaluations));
-  r.push_back(std::to_string(d.events));
-  r.push_back(std::to_string(d.switches));
-  r.push_back(std::to_string(d.reversals));
-  r.push_back(std::to_string(d.inconsistent_slip_ends));
-  r.push_back(format_double_short(d.switches_per_period));
-  r.push_back(format_double_short(d.max_slip_residual));
-  r.push_back(format_double_short(d.min_N));
+  for (const DiagnosticOutput& d : diagnostic_outputs()) {
+    const double v = scalar_value(res.diagnostics, d);
+    r.push_back(is_integer(d) ? std::to_string(static_cast<long long>(v)) : format_double_short(v));
+  }
   if (res.samples.size() == 0 || !ok(res.status)) {  // only a steady state has metrics
     r.resize(r.size() + metric_cells);
     return join(r);
   }
   const Metrics& m = outcome.metrics;
-  for (double v : {m.ddx_max, m.ddx_min, m.ddz_max, m.ddz_min}) r.push_back(format_double_short(v));
-  for (const std::vector<Harmonic>* h : {&m.ddx_harmonics, &m.ddz_harmonics})
+  for (const MetricOutput& out : metric_outputs()) {
+    if (is_scalar(out)) {
+      r.push_back(format_double_short(scalar_value(m, out)));
+      continue;
+    }
+    const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
     for (std::size_t n = 1; n <= static_cast<std::size_t>(columns.n_harmonics); ++n)
-      r.push_back(n < h->size() ? format_double_short((*h)[n].amplitude) : std::string());
-  for (double v : {m.phi_lag, m.phi_amplitude, m.psi_xz, m.area, m.stick_fraction,
-                   m.slip_positive_fraction, m.slip_negative_fraction})
-    r.push_back(format_double_short(v));
+      r.push_back(n < h.size() ? format_double_short(h[n].amplitude) : std::string());
+  }
   return join(r);
 }
 

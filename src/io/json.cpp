@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "oscidrum/fields.hpp"
 #include "oscidrum/kinematics.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/soil.hpp"
 #include "oscidrum/transmissibility.hpp"
 #include "oscidrum/version.hpp"
@@ -38,6 +40,19 @@ json harmonics_json(const std::vector<Harmonic>& h) {
   for (std::size_t n = 0; n < h.size(); ++n)
     a.push_back({{"n", n}, {"amplitude", number(h[n].amplitude)}, {"phase", number(h[n].phase)}});
   return a;
+}
+
+// {name: value} of a metrics struct, in table order; spectra as arrays of harmonics.
+template <class Struct, class... Types>
+json outputs_json(const Struct& m, std::span<const Output<Struct, Types...>> table) {
+  json out = json::object();
+  for (const auto& o : table) {
+    if (is_scalar(o))
+      out[o.name] = number(scalar_value(m, o));
+    else
+      out[o.name] = harmonics_json(m.*std::get<Spectrum Struct::*>(o.member));
+  }
+  return out;
 }
 
 json soil_json(const CaseSpec& spec, const Case& c) {
@@ -101,21 +116,12 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                                       {"ratio", number(tr.ratio)},
                                       {"Tp", number(tr.Tp)}};
 
-  const Diagnostics& d = result.diagnostics;
-  j["diagnostics"] = {{"periods_simulated", d.periods_simulated},
-                      {"periods_to_steady", d.periods_to_steady},
-                      {"multiplicity", d.multiplicity},
-                      {"final_change", number(d.final_change)},
-                      {"steps", d.steps},
-                      {"rejected_steps", d.rejected_steps},
-                      {"rhs_evaluations", d.rhs_evaluations},
-                      {"events", d.events},
-                      {"switches", d.switches},
-                      {"reversals", d.reversals},
-                      {"inconsistent_slip_ends", d.inconsistent_slip_ends},
-                      {"switches_per_period", number(d.switches_per_period)},
-                      {"max_slip_residual", number(d.max_slip_residual)},
-                      {"min_N", number(d.min_N)}};
+  json diagnostics = json::object();
+  for (const DiagnosticOutput& d : diagnostic_outputs()) {
+    const double v = scalar_value(result.diagnostics, d);
+    diagnostics[d.name] = is_integer(d) ? json(static_cast<long long>(v)) : number(v);
+  }
+  j["diagnostics"] = diagnostics;
   j["sampling"] = {{"frequency", number(result.frequency)},
                    {"sample_periods", result.sample_periods},
                    {"samples_per_period", result.samples_per_period},
@@ -124,26 +130,17 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   j["phase_times"] = {{"stick", number(result.stick_time)},
                       {"slip_positive", number(result.slip_positive_time)},
                       {"slip_negative", number(result.slip_negative_time)}};
-  if (metrics) {
-    const Metrics& m = *metrics;
-    j["metrics"] = {{"ddx_max", number(m.ddx_max)},
-                    {"ddx_min", number(m.ddx_min)},
-                    {"ddz_max", number(m.ddz_max)},
-                    {"ddz_min", number(m.ddz_min)},
-                    {"delta_max", number(m.delta_max)},
-                    {"delta_min", number(m.delta_min)},
-                    {"phi_lag", number(m.phi_lag)},
-                    {"phi_amplitude", number(m.phi_amplitude)},
-                    {"psi_xz", number(m.psi_xz)},
-                    {"area", number(m.area)},
-                    {"stick_fraction", number(m.stick_fraction)},
-                    {"slip_positive_fraction", number(m.slip_positive_fraction)},
-                    {"slip_negative_fraction", number(m.slip_negative_fraction)},
-                    {"ddx_harmonics", harmonics_json(m.ddx_harmonics)},
-                    {"ddz_harmonics", harmonics_json(m.ddz_harmonics)}};
-  } else {
-    j["metrics"] = nullptr;
-  }
+  j["metrics"] = metrics ? outputs_json(*metrics, metric_outputs()) : json(nullptr);
+  return j.dump(2) + "\n";
+}
+
+std::string record_json(const std::string& file, double f, const RecordMetrics& metrics) {
+  json j;
+  j["schema"] = "oscidrum-record/1";
+  j["oscidrum_version"] = version;
+  j["file"] = file;
+  j["f"] = number(f);
+  j.update(outputs_json(metrics, record_outputs()));
   return j.dump(2) + "\n";
 }
 

@@ -12,9 +12,12 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
+#include "indicators.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/output_table.hpp"
 
 namespace oscidrum {
 
@@ -33,9 +36,9 @@ void require_size(const std::vector<double>& v, std::size_t n, const char* name)
 Metrics Metrics::unavailable() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Metrics m;
-  m.ddx_max = m.ddx_min = m.ddz_max = m.ddz_min = m.delta_max = m.delta_min = nan;
-  m.phi_lag = m.phi_amplitude = m.psi_xz = m.area = nan;
-  m.stick_fraction = m.slip_positive_fraction = m.slip_negative_fraction = nan;
+  // Every scalar of the output table; the spectra stay empty.
+  for (const MetricOutput& o : metric_outputs())
+    if (const auto* member = std::get_if<double Metrics::*>(&o.member)) m.*(*member) = nan;
   return m;
 }
 
@@ -85,16 +88,31 @@ Metrics compute_metrics(const Result& result, int n_max) {
     m.delta_max = *d_max;
   }
 
-  // psi needs theta_1(x_M'') and theta_2(z_M''): compute at least up to n = 2.
+  // psi needs theta_1(x_M'') and theta_2(z_M''), the harmonic ratios A_3/A_1: compute at least
+  // up to n = 3.
   const int cycles = result.sample_periods;
   const double f = result.frequency;
   const double t0 = s.t.front();  // the absolute time of the first sample, not assumed n / f
-  const int n_compute = std::max(n_max, 2);
+  const int n_compute = std::max(n_max, 3);
   std::vector<Harmonic> hx = harmonics(s.ddx_M, cycles, f, t0, n_compute);
   std::vector<Harmonic> hz = harmonics(s.ddz_M, cycles, f, t0, n_compute);
   // psi = theta_z - 2 theta_x (MODEL.md section 8): the lag of the 2f component of z_M'' against
   // the square of the fundamental of x_M''; psi > 0 means the 2f component leads.
   m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
+  // THD: everything in x_M'' but its mean and fundamental is distortion. By Parseval the mean
+  // square of the residual r = x_M'' - A_0 sin(theta_0) - A_1 sin(nu t + theta_1) over whole
+  // periods is sum_{k>=2} A_k^2 / 2 (with any subharmonic content of a p-periodic state). The
+  // residual is summed directly: no cancellation when the distortion is small.
+  {
+    const double nu = 2.0 * std::numbers::pi * f;
+    double sum = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double r = s.ddx_M[j] - hx[0].amplitude * std::sin(hx[0].phase) -
+                       hx[1].amplitude * std::sin(nu * s.t[j] + hx[1].phase);
+      sum += r * r;
+    }
+    detail::set_acceleration_indicators(m, hx, hz, 2.0 * sum / static_cast<double>(n));
+  }
   hx.resize(static_cast<std::size_t>(n_max) + 1);
   hz.resize(static_cast<std::size_t>(n_max) + 1);
   m.ddx_harmonics = std::move(hx);
@@ -121,6 +139,20 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.area = enclosed_area(std::span<const double>(s.ddx_M).first(n_area),
                          std::span<const double>(s.ddz_M).first(n_area));
 
+  // Friction: mu_required = max |T|/N (24-26); the friction work dissipated per excitation
+  // period, the mean of |T v_rel| (the power of sliding friction, zero in stick) times 1/f.
+  m.mu_required = m.friction_work = std::numeric_limits<double>::quiet_NaN();
+  if (s.T.size() == n && s.N.size() == n) {
+    m.mu_required = 0.0;
+    for (std::size_t j = 0; j < n; ++j)
+      m.mu_required = std::max(m.mu_required, std::abs(s.T[j]) / s.N[j]);
+  }
+  if (s.T.size() == n && s.v_rel.size() == n) {
+    double power = 0.0;
+    for (std::size_t j = 0; j < n; ++j) power += std::abs(s.T[j] * s.v_rel[j]);
+    m.friction_work = power / static_cast<double>(n) / f;
+  }
+
   const double total = result.stick_time + result.slip_positive_time + result.slip_negative_time;
   if (total > 0.0) {
     m.stick_fraction = result.stick_time / total;
@@ -140,6 +172,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
     m.slip_positive_fraction = count(Phase::slip_positive) / n_d;
     m.slip_negative_fraction = count(Phase::slip_negative) / n_d;
   }
+  m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
   return m;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <string>
 
+#include "indicators.hpp"
 #include "oscidrum/error.hpp"
 #include "util/format.hpp"
 
@@ -87,6 +88,10 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   m.residual_x = relative_rms(basis, cx, ddx);
   m.residual_z = relative_rms(basis, cz, ddz);
   m.psi_xz = wrap_pi(m.ddz_harmonics[2].phase - 2.0 * m.ddx_harmonics[1].phase);
+  // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
+  double overtones = 0.0;
+  for (int n = 2; n <= n_max; ++n) overtones += std::pow(m.ddx_harmonics[n].amplitude, 2);
+  detail::set_acceleration_indicators(m, m.ddx_harmonics, m.ddz_harmonics, overtones);
 
   // The fitted periodic signals over one period, for the extremes and the area.
   constexpr int kSamples = 1024;

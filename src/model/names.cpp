@@ -18,24 +18,11 @@ const char* to_string(Phase phase) {
 
 const char* to_string(Status status) {
   switch (status) {
-    case Status::steady_state:
-      return "steady_state";
-    case Status::max_periods_reached:
-      return "max_periods_reached";
-    case Status::contact_lost:
-      return "contact_lost";
-    case Status::chattering:
-      return "chattering";
-    case Status::non_finite:
-      return "non_finite";
-    case Status::invalid_geometry:
-      return "invalid_geometry";
-    case Status::gross_slip:
-      return "gross_slip";
-    case Status::budget_exceeded:
-      return "budget_exceeded";
-    case Status::cancelled:
-      return "cancelled";
+#define OSCIDRUM_CASE(name, description) \
+  case Status::name:                     \
+    return #name;
+    OSCIDRUM_STATUSES(OSCIDRUM_CASE)
+#undef OSCIDRUM_CASE
   }
   return "?";
 }

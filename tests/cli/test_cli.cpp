@@ -11,7 +11,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "oscidrum/fields.hpp"
 #include "process.hpp"
@@ -225,10 +228,10 @@ TEST(CliRun, InterruptExits130) {
   TempDir dir;
   // A long run: 1000 sampled periods of 10^4 samples (an impossible steady_tol no longer
   // runs forever: the run accepts the steady state at the integration's noise floor).
-  const pid_t pid = start({"run", "--set", "numerics.output_periods=1000", "--set",
-                           "numerics.samples_per_period=10000", "--set",
-                           "numerics.max_multiplicity=1", "--csv", dir / "s.csv"},
-                          dir / "out", dir / "err");
+  const pid_t pid = start(
+      {"run", "--set", "numerics.output_periods=1000", "--set", "numerics.samples_per_period=10000",
+       "--set", "numerics.max_multiplicity=1", "--csv", dir / "s.csv"},
+      dir / "out", dir / "err");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(pid, SIGINT);
   const Outcome o = finish(pid, dir / "out", dir / "err");
@@ -297,9 +300,48 @@ TEST(CliFields, DocsConfigTableIsTheGeneratedOne) {
   EXPECT_EQ(run({"params"}).code, 0);
 }
 
+// Every generated output table in the docs (between "<!-- BEGIN oscidrum outputs ARGS -->" and
+// "<!-- END oscidrum outputs -->") is the current output of `oscidrum outputs ARGS`.
+TEST(CliOutputs, DocsOutputTablesAreTheGeneratedOnes) {
+  int blocks = 0;
+  for (const char* file : {"/docs/outputs.md", "/docs/csv-columns.md", "/README.md"}) {
+    SCOPED_TRACE(file);
+    const std::string doc = slurp(kSource + file);
+    const std::string begin = "<!-- BEGIN oscidrum outputs", end = "<!-- END oscidrum outputs -->";
+    int in_file = 0;
+    for (std::size_t b = doc.find(begin); b != std::string::npos; b = doc.find(begin, b + 1)) {
+      const std::size_t args_end = doc.find(" -->\n", b);
+      ASSERT_NE(args_end, std::string::npos);
+      std::vector<std::string> args = {"outputs"};
+      std::istringstream words(doc.substr(b + begin.size(), args_end - b - begin.size()));
+      for (std::string w; words >> w;) args.push_back(w);
+      const std::size_t e = doc.find(end, args_end);
+      ASSERT_NE(e, std::string::npos);
+      const Outcome o = run(args);
+      ASSERT_EQ(o.code, 0) << o.err;
+      const std::size_t body = args_end + 5;
+      EXPECT_EQ(doc.substr(body, e - body), o.out)
+          << file << " is out of date: paste the output of 'oscidrum"
+          << doc.substr(b + 19, args_end - b - 19) << "' between its markers";
+      ++in_file;
+      ++blocks;
+    }
+    EXPECT_GT(in_file, 0) << "no generated output table";
+  }
+  EXPECT_GE(blocks, 5);
+  // The JSON of the table lists what a case summary holds.
+  const nlohmann::json table = nlohmann::json::parse(run({"outputs", "--format", "json"}).out);
+  const nlohmann::json summary = nlohmann::json::parse(run({"run", "--format", "json"}).out);
+  for (const auto& d : table["diagnostics"])
+    EXPECT_TRUE(summary["diagnostics"].contains(d["name"]));
+  for (const auto& m : table["metrics"]) EXPECT_TRUE(summary["metrics"].contains(m["name"]));
+  EXPECT_EQ(summary["metrics"].size(), table["metrics"].size());
+  EXPECT_NEAR(summary["metrics"]["mu_required"].get<double>(), 0.5, 1e-6);  // it slips: mu
+}
+
 TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
-  for (const char* command :
-       {"run", "sweep", "analyze", "validate", "paper", "soil", "transmissibility", "fields"}) {
+  for (const char* command : {"run", "sweep", "analyze", "validate", "paper", "soil",
+                              "transmissibility", "fields", "outputs"}) {
     SCOPED_TRACE(command);
     const Outcome o = run({command, "--help"});
     EXPECT_EQ(o.code, 0);

@@ -57,10 +57,12 @@ TEST(CliAnalyze, RecordOfASimulationGivesItsHarmonics) {
   ASSERT_EQ(hx.size(), 11u);
   const double a1 = hx[1]["amplitude"].get<double>();
   EXPECT_GT(a1, 1.0);
-  // The run's JSON holds the same harmonic (docs/outputs.md: metrics.ddx_harmonics).
+  // The run's JSON holds the same harmonic (docs/outputs.md: metrics.ddx_harmonics), there an
+  // integral over the trajectory; the record's fit of 1024 samples per period differs by the
+  // aliasing of the kinked signal's overtones above 512 f (about 1e-6 relative).
   const double sim_a1 = sim["metrics"]["ddx_harmonics"][1]["amplitude"].get<double>();
-  EXPECT_NEAR(a1, sim_a1, 1e-9 * sim_a1);
-  EXPECT_NEAR(rec["psi_xz"].get<double>(), sim["metrics"]["psi_xz"].get<double>(), 1e-9);
+  EXPECT_NEAR(a1, sim_a1, 1e-5 * sim_a1);
+  EXPECT_NEAR(rec["psi_xz"].get<double>(), sim["metrics"]["psi_xz"].get<double>(), 1e-5);
 }
 
 TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {

@@ -119,6 +119,19 @@ void check_energy_balance(Case c) {
   // 4096; steady_tol 1e-8. 1e-5 leaves margin but catches any wrong sign or missing term (a
   // single dissipation term is >= 1 % of the total in these cases).
   EXPECT_NEAR(P_out / P_in, 1.0, 1e-5) << "P_in = " << P_in << " W, P_out = " << P_out << " W";
+  // The metric friction_work is what the balance leaves for sliding friction: the input minus
+  // the dampers' dissipation, per excitation period.
+  const Metrics m = compute_metrics(r);
+  std::vector<double> friction(s.size());
+  for (std::size_t j = 0; j < s.size(); ++j) friction[j] = -s.T[j] * s.v_rel[j];
+  const double P_dampers = P_out - mean(friction);
+  EXPECT_NEAR(m.friction_work * c.roller.f, P_in - P_dampers, 1e-5 * P_in);
+  if (c.contact.pure_rolling) {
+    EXPECT_LT(m.friction_work, 1e-9 * P_in / c.roller.f);
+  } else {
+    EXPECT_GT(m.friction_work, 0.01 * P_in / c.roller.f);  // a sizeable share in stick-slip
+    EXPECT_NEAR(m.mu_required, c.contact.mu, 1e-6);        // slip: |T| = mu N
+  }
 }
 
 TEST(Simulate, EnergyBalancePureRolling) { check_energy_balance(pure_rolling_case(25)); }

@@ -704,5 +704,81 @@ TEST(ComputeMetrics, DeltaExtremesAreOptional) {
   EXPECT_THROW(compute_metrics(r, 4), Error);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Compaction indicators (docs/outputs.md) on band-limited signals, where each is known exactly.
+
+TEST(Indicators, HarmonicRatiosCmvAndThdOfKnownSignals) {
+  Synthetic s;
+  Result r = make_result(s);
+  const double nu = 2.0 * kPi * s.f;
+  const std::size_t n = r.samples.size();
+  r.samples.T.resize(n);
+  r.samples.N.resize(n);
+  r.samples.v_rel.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double t = r.samples.t[j];
+    r.samples.ddx_M[j] = 0.7 + 40.0 * std::sin(nu * t + 0.2) + 6.0 * std::sin(2 * nu * t) +
+                         9.0 * std::sin(3 * nu * t - 1.0) + 2.0 * std::sin(5 * nu * t);
+    r.samples.ddz_M[j] =
+        4.0 * std::sin(nu * t) + 3.0 * std::sin(2 * nu * t + 0.5) + 1.0 * std::sin(3 * nu * t);
+    // Slip with T = -mu N, mu = 0.4, and v_rel = 0.05 (1 + sin) >= 0: mean |T v_rel| = 0.4 N 0.05.
+    r.samples.N[j] = 40e3;
+    r.samples.T[j] = -0.4 * 40e3;
+    r.samples.v_rel[j] = 0.05 * (1.0 + std::sin(nu * t));
+  }
+  r.samples.T[7] = 0.45 * 40e3;  // one sample with a larger |T|/N
+  r.samples.v_rel[7] = 0.05 * (1.0 + std::sin(nu * r.samples.t[7]));
+  const Metrics m = compute_metrics(r, 10);
+  EXPECT_NEAR(m.ddx_A2_A1, 6.0 / 40.0, kIdentity);
+  EXPECT_NEAR(m.ddx_A3_A1, 9.0 / 40.0, kIdentity);
+  EXPECT_NEAR(m.ddz_A2_A1, 3.0 / 4.0, kIdentity);
+  EXPECT_NEAR(m.ddz_A3_A1, 1.0 / 4.0, kIdentity);
+  EXPECT_NEAR(m.cmv, 300.0 * 3.0 / 4.0, 300.0 * kIdentity);
+  // THD: sqrt(6^2 + 9^2 + 2^2) / 40; the mean 0.7 is no distortion.
+  EXPECT_NEAR(m.ddx_thd, std::sqrt(36.0 + 81.0 + 4.0) / 40.0, kIdentity);
+  EXPECT_NEAR(m.mu_required, 0.45, kIdentity);
+  // Friction work per period: (mean of |T v_rel|) / f; sample 7 changes |T| there by 0.45/0.4.
+  double power = 0.0;
+  for (std::size_t j = 0; j < n; ++j) power += std::abs(r.samples.T[j] * r.samples.v_rel[j]);
+  EXPECT_NEAR(m.friction_work, power / static_cast<double>(n) / s.f, 1e-12 * m.friction_work);
+  EXPECT_NEAR(m.friction_work, 0.4 * 40e3 * 0.05 / s.f, 1e-3 * m.friction_work);
+  EXPECT_DOUBLE_EQ(m.slip_fraction, 0.5);  // slip+ 0.3 + slip- 0.2 of make_result
+}
+
+TEST(Indicators, RatioToAnAbsentFundamentalIsNaN) {
+  // z_M'' of a symmetric stick-slip cycle has only even harmonics (paper Fig. 19b): its
+  // fundamental is noise, and a ratio to it is undefined, not a huge number.
+  Synthetic s;
+  Result r = make_result(s);  // ddz_M = 5 sin(2 nu t + 0.9): no f component
+  const std::size_t n = r.samples.size();
+  for (std::size_t j = 0; j < n; ++j)
+    r.samples.ddz_M[j] += 1e-9 * std::sin(0.37 * static_cast<double>(j));
+  const Metrics m = compute_metrics(r, 10);
+  EXPECT_TRUE(std::isnan(m.ddz_A2_A1));
+  EXPECT_TRUE(std::isnan(m.ddz_A3_A1));
+  EXPECT_TRUE(std::isnan(m.cmv));
+  EXPECT_NEAR(m.ddx_A2_A1, 0.0, kIdentity);  // x_M'' = 50 sin(nu t + 0.3): defined, zero
+  EXPECT_NEAR(m.ddx_thd, 0.0, 1e-6);
+  // Without T, N, v_rel (e.g. a record loaded as a Result) the friction metrics are NaN.
+  EXPECT_TRUE(std::isnan(m.mu_required));
+  EXPECT_TRUE(std::isnan(m.friction_work));
+}
+
+TEST(Indicators, ThdCountsSubharmonicsOfAMultiPeriodState) {
+  // A 2-periodic steady state: the f/2 content of x_M'' is distortion too (everything but the
+  // mean and the fundamental), as Parseval counts it.
+  Synthetic s;
+  s.periods = 2;
+  Result r = make_result(s);
+  r.diagnostics.multiplicity = 2;
+  const double nu = 2.0 * kPi * s.f;
+  for (std::size_t j = 0; j < r.samples.size(); ++j) {
+    const double t = r.samples.t[j];
+    r.samples.ddx_M[j] = 10.0 * std::sin(nu * t) + 3.0 * std::sin(0.5 * nu * t + 0.1);
+  }
+  const Metrics m = compute_metrics(r, 10);
+  EXPECT_NEAR(m.ddx_thd, 0.3, kIdentity);
+}
+
 }  // namespace
 }  // namespace oscidrum

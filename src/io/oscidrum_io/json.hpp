@@ -7,6 +7,7 @@
 
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/parameters.hpp"
+#include "oscidrum/record.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum_io/case_spec.hpp"
 
@@ -17,6 +18,10 @@ namespace oscidrum::io {
 /// `config` is the case file ("" for none).
 std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                       const Metrics* metrics, const std::string& config);
+
+/// Schema "oscidrum-record/1": the file, f [Hz] and every output of record_outputs() by name
+/// (docs/outputs.md), for `oscidrum analyze --format json`.
+std::string record_json(const std::string& file, double f, const RecordMetrics& metrics);
 
 /// Schema "oscidrum-sweep/1" from a sweep's CSV header and rows (docs/outputs.md): numbers
 /// become numbers, empty cells null.

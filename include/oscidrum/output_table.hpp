@@ -1,0 +1,90 @@
+// oscidrum/output_table.hpp: the output lists of oscidrum/outputs.hpp as tables to iterate at run
+// time: name, unit, label, description and the struct member of every output. The CSV and JSON
+// writers, the Python bindings, the run summary and `oscidrum outputs` read these tables.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "oscidrum/metrics.hpp"
+#include "oscidrum/record.hpp"
+#include "oscidrum/result.hpp"
+
+namespace oscidrum {
+
+/// One output: a member of `Struct` of one of the `Types`.
+template <class Struct, class... Types>
+struct Output {
+  const char* name;         ///< key in CSV headers, JSON and Python, e.g. "ddx_max"
+  const char* unit;         ///< SI unit, "-" if dimensionless
+  const char* label;        ///< short text for people, e.g. "x_M'' max"
+  const char* description;  ///< one line, for the docs and Python docstrings
+  std::variant<Types Struct::*...> member;
+};
+
+using SampleOutput = Output<Samples, SampleValues, SamplePhases>;
+using DiagnosticOutput = Output<Diagnostics, int, long, double>;
+using MetricOutput = Output<Metrics, double, Spectrum>;
+using RecordOutput = Output<RecordMetrics, double, Spectrum>;
+
+/// One Status with its name (as in to_string) and description.
+struct StatusInfo {
+  Status status;
+  const char* name;
+  const char* description;
+};
+
+/// Every output of each kind, in output order (OSCIDRUM_SAMPLE_COLUMNS, ...).
+std::span<const SampleOutput> sample_outputs();
+std::span<const DiagnosticOutput> diagnostic_outputs();
+std::span<const MetricOutput> metric_outputs();
+std::span<const RecordOutput> record_outputs();
+std::span<const StatusInfo> statuses();
+
+/// Which list an acceleration metric also belongs to: true for the outputs of
+/// OSCIDRUM_ACCELERATION_METRICS (computed for simulations and measured records alike).
+bool is_acceleration_metric(std::string_view name);
+
+/// The CSV column prefix of a spectrum output: "ddx" for "ddx_harmonics" (columns ddx_A1 ...).
+std::string spectrum_prefix(std::string_view name);
+
+/// A scalar member's value as a double (integers converted exactly up to 2^53).
+template <class Struct, class... Types>
+double scalar_value(const Struct& s, const Output<Struct, Types...>& out) {
+  return std::visit(
+      [&s](auto member) -> double {
+        if constexpr (std::is_arithmetic_v<std::remove_reference_t<decltype(s.*member)>>)
+          return static_cast<double>(s.*member);
+        else
+          return 0.0;  // not a scalar (a spectrum or a column)
+      },
+      out.member);
+}
+
+/// True if the output is a scalar of integer type (int, long).
+template <class Struct, class... Types>
+bool is_integer(const Output<Struct, Types...>& out) {
+  return std::visit(
+      [](auto member) {
+        using T = std::remove_cvref_t<decltype(std::declval<const Struct&>().*member)>;
+        return std::is_integral_v<T>;
+      },
+      out.member);
+}
+
+/// True if the output is a scalar (a number, not a spectrum or a column).
+template <class Struct, class... Types>
+bool is_scalar(const Output<Struct, Types...>& out) {
+  return std::visit(
+      [](auto member) {
+        using T = std::remove_cvref_t<decltype(std::declval<const Struct&>().*member)>;
+        return std::is_arithmetic_v<T>;
+      },
+      out.member);
+}
+
+}  // namespace oscidrum

@@ -1,0 +1,151 @@
+// oscidrum/outputs.hpp: the one description of every output. Each list below is an X-macro: one
+// entry per output with its type, name, unit and description. The result structs (Samples,
+// Diagnostics, Metrics, RecordMetrics) and the Status enum are generated from these lists, and the
+// same lists drive the CSV and JSON writers, the Python attributes, the run summary and the
+// tables of docs/outputs.md (`oscidrum outputs --format markdown`). Adding an output is one entry
+// here plus its computation.
+//
+// Entry forms (every macro argument X is applied to each entry):
+//   samples, metrics:  X(type, name, unit, label, description)
+//   diagnostics:       X(type, name, initial value, unit, label, description)
+//   statuses:          X(name, description)
+// `label` is the short text for people (the run summary); `description` says what the number is,
+// with the paper's equation numbers. Units are SI; "-" for dimensionless.
+#pragma once
+
+// ------------------------------------------------------------------------------------------------
+// How a simulation ended (Result::status). Only steady_state carries steady-state metrics.
+#define OSCIDRUM_STATUSES(X)                                                                   \
+  X(steady_state, "the response repeats; the steady state was sampled")                        \
+  X(max_periods_reached,                                                                       \
+    "no steady state within numerics.max_periods (the last periods are sampled, but they are " \
+    "no steady state)")                                                                        \
+  X(contact_lost, "N <= 0: lift-off, which the model does not cover")                          \
+  X(chattering, "too many stick/slip switches in a vanishing time")                            \
+  X(non_finite, "a NaN or infinity appeared in the state")                                     \
+  X(invalid_geometry, "the trough's curvature radius fell to the drum radius (f5 <= 0)")       \
+  X(gross_slip, "the drum spins: the driving torque exceeds what friction can hold")           \
+  X(budget_exceeded, "more steps in one period than numerics.max_steps_per_period")            \
+  X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")
+
+// ------------------------------------------------------------------------------------------------
+// The sampled steady state (Samples, the steady-state CSV), one column per entry, in file order.
+// SampleValues is std::vector<double>, SamplePhases std::vector<Phase>.
+#define OSCIDRUM_SAMPLE_COLUMNS(X)                                                               \
+  X(SampleValues, t, "s", "t", "time since the start of the excitation")                         \
+  X(SampleValues, delta, "rad", "delta", "position angle of the drum in the trough (0: bottom)") \
+  X(SampleValues, phi, "rad", "phi", "total drum rotation")                                      \
+  X(SampleValues, x_A, "m", "x_A", "horizontal displacement of the trough (soil point A)")       \
+  X(SampleValues, s_A, "m", "s_A", "vertical displacement of the trough, down positive")         \
+  X(SampleValues, ddelta, "rad/s", "delta'", "delta'")                                           \
+  X(SampleValues, dphi, "rad/s", "phi'", "phi'")                                                 \
+  X(SampleValues, dx_A, "m/s", "x_A'", "x_A'")                                                   \
+  X(SampleValues, ds_A, "m/s", "s_A'", "s_A'")                                                   \
+  X(SampleValues, x_M, "m", "x_M", "drum centre, horizontal (14)")                               \
+  X(SampleValues, z_M, "m", "z_M", "drum centre, vertical, down positive (14)")                  \
+  X(SampleValues, ddx_M, "m/s^2", "x_M''", "drum centre horizontal acceleration (18)")           \
+  X(SampleValues, ddz_M, "m/s^2", "z_M''",                                                       \
+    "drum centre vertical acceleration, down positive (18)")                                     \
+  X(SampleValues, N, "N", "N", "normal contact force (26)")                                      \
+  X(SampleValues, T, "N", "T", "tangential contact force (24, 25)")                              \
+  X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13)")                                   \
+  X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")           \
+  X(SamplePhases, phase, "-", "phase",                                                           \
+    "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0")
+
+// ------------------------------------------------------------------------------------------------
+// Counters of a run (Diagnostics), in output order.
+#define OSCIDRUM_DIAGNOSTICS(X)                                                                   \
+  X(int, periods_simulated, 0, "-", "periods simulated",                                          \
+    "excitation periods integrated before sampling")                                              \
+  X(int, periods_to_steady, -1, "-", "steady after (periods)",                                    \
+    "period index at which the steady state was found (-1: never)")                               \
+  X(int, multiplicity, 0, "-", "multiplicity",                                                    \
+    "steady period in excitation periods (0: none found)")                                        \
+  X(double, final_change, 0.0, "-", "final change",                                               \
+    "last period-to-period change of the state, scaled by its range over a period (see "          \
+    "numerics.steady_tol)")                                                                       \
+  X(long, steps, 0, "-", "integrator steps", "accepted integrator steps")                         \
+  X(long, rejected_steps, 0, "-", "rejected steps", "rejected trial steps")                       \
+  X(long, rhs_evaluations, 0, "-", "RHS evaluations", "right-hand-side evaluations")              \
+  X(long, events, 0, "-", "events", "located events")                                             \
+  X(long, switches, 0, "-", "switches", "stick/slip phase changes")                               \
+  X(long, reversals, 0, "-", "slip reversals", "slip -> slip reversals (docs/model.md)")          \
+  X(long, inconsistent_slip_ends, 0, "-", "inconsistent slip ends",                               \
+    "slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken") \
+  X(double, switches_per_period, 0.0, "-", "switches per period",                                 \
+    "stick/slip switches per excitation period in the sampled window")                            \
+  X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                \
+    "largest |residual of the slip coupling (39)| / W during slip, W = m g + Fz = P0 (a force "   \
+    "ratio)")                                                                                     \
+  X(double, min_N, 0.0, "N", "min N", "smallest normal force seen (26)")
+
+// ------------------------------------------------------------------------------------------------
+// Metrics of the drum-centre accelerations, for simulated steady states (Metrics) and measured
+// records (RecordMetrics) alike. Spectrum is std::vector<Harmonic> (n = 0 ... n_max); in CSV a
+// spectrum `<s>_harmonics` becomes the columns `<s>_A1` ... `<s>_AN` (amplitudes).
+#define OSCIDRUM_ACCELERATION_METRICS(X)                                                           \
+  X(double, ddx_max, "m/s^2", "x_M'' max", "largest x_M'' (paper Fig. 9)")                         \
+  X(double, ddx_min, "m/s^2", "x_M'' min", "smallest x_M''")                                       \
+  X(double, ddz_max, "m/s^2", "z_M'' max", "largest z_M'' (down positive)")                        \
+  X(double, ddz_min, "m/s^2", "z_M'' min", "smallest z_M''")                                       \
+  X(Spectrum, ddx_harmonics, "m/s^2", "x_M'' harmonics",                                           \
+    "harmonics A_n sin(n nu t + theta_n) of x_M'', n = 0 ... N, t absolute (paper Figs. 14, "      \
+    "19)")                                                                                         \
+  X(Spectrum, ddz_harmonics, "m/s^2", "z_M'' harmonics",                                           \
+    "harmonics of z_M'' (paper Figs. 15, 20)")                                                     \
+  X(double, psi_xz, "rad", "lag psi_xz",                                                           \
+    "lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: "   \
+    "the 2f component of z_M'' leads (paper Fig. 12)")                                             \
+  X(double, area, "m^2/s^4", "area z_M''(x_M'')",                                                  \
+    "area enclosed by the z_M''-over-x_M'' figure over one steady period (non-zero winding: "      \
+    "both lobes of a figure eight count; paper Figs. 16, 22)")                                     \
+  X(double, ddx_A2_A1, "-", "x_M'' A(2f)/A(f)", "harmonic ratio A_2/A_1 of x_M''")                 \
+  X(double, ddx_A3_A1, "-", "x_M'' A(3f)/A(f)",                                                    \
+    "harmonic ratio A_3/A_1 of x_M'' (odd overtones: slip, paper Fig. 19)")                        \
+  X(double, ddz_A2_A1, "-", "z_M'' A(2f)/A(f)", "harmonic ratio A_2/A_1 of z_M'' (paper Fig. 20)") \
+  X(double, ddz_A3_A1, "-", "z_M'' A(3f)/A(f)", "harmonic ratio A_3/A_1 of z_M''")                 \
+  X(double, cmv, "-", "CMV-type value",                                                            \
+    "300 A_2/A_1 of z_M'': the compaction meter value's formula applied to the oscillation "       \
+    "drum's vertical acceleration")                                                                \
+  X(double, ddx_thd, "-", "x_M'' THD",                                                             \
+    "total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1")
+
+// Metrics only a simulation has: the drum's rotation and the contact.
+#define OSCIDRUM_MOTION_METRICS(X)                                                              \
+  X(double, delta_max, "rad", "delta max", "largest position angle delta (paper Fig. 8a)")      \
+  X(double, delta_min, "rad", "delta min", "smallest position angle delta")                     \
+  X(double, phi_lag, "pi rad", "lag torque -> phi",                                             \
+    "lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped "  \
+    "to (-2, 0], in units of pi (paper Fig. 10)")                                               \
+  X(double, phi_amplitude, "rad", "phi amplitude", "amplitude A_1 of phi (drift removed)")      \
+  X(double, stick_fraction, "-", "stick fraction", "share of the sampled time in stick")        \
+  X(double, slip_positive_fraction, "-", "slip+ fraction",                                      \
+    "share of the sampled time in slip with v_rel > 0")                                         \
+  X(double, slip_negative_fraction, "-", "slip- fraction",                                      \
+    "share of the sampled time in slip with v_rel < 0")                                         \
+  X(double, slip_fraction, "-", "slip fraction",                                                \
+    "share of the sampled time in slip (either sign)")                                          \
+  X(double, mu_required, "-", "mu required",                                                    \
+    "max |T|/N over the steady period: the friction coefficient rolling without slip needs "    \
+    "(equals mu when the drum slips) (24-26)")                                                  \
+  X(double, friction_work, "J", "friction work per period",                                     \
+    "work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over " \
+    "the sampled window / its periods (13, 27)")
+
+// Quantities of the least-squares fit of a measured record.
+#define OSCIDRUM_RECORD_FIT(X)                                                     \
+  X(double, cycles, "-", "periods spanned", "excitation periods the record spans") \
+  X(double, residual_x, "-", "fit residual x_M''",                                 \
+    "RMS of record minus fit, relative to the RMS of x_M''")                       \
+  X(double, residual_z, "-", "fit residual z_M''", "the same for z_M''")
+
+// Metrics of a simulated steady state (Metrics), in output order.
+#define OSCIDRUM_METRICS(X)        \
+  OSCIDRUM_ACCELERATION_METRICS(X) \
+  OSCIDRUM_MOTION_METRICS(X)
+
+// Metrics of a measured record (RecordMetrics), in output order.
+#define OSCIDRUM_RECORD_METRICS(X) \
+  OSCIDRUM_RECORD_FIT(X)           \
+  OSCIDRUM_ACCELERATION_METRICS(X)

@@ -1,0 +1,164 @@
+// test_steady_metrics.cpp: metrics from the dense output (compute_metrics(model, result)) do not
+// depend on the output sampling and agree with a brute-force evaluation of the same trajectory.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "oscidrum/flow.hpp"
+#include "oscidrum/oscidrum.hpp"
+
+namespace oscidrum {
+namespace {
+
+Case default_with(int samples_per_period, double MMd_fraction = 0.0) {
+  Case c;
+  c.numerics.samples_per_period = samples_per_period;
+  c.numerics.output_periods = 1;
+  c.MMd = MMd_fraction * c.roller.M0;
+  return c;
+}
+
+// |a - b| <= rtol * scale for every scalar metric and every harmonic amplitude (scale: the
+// metric's magnitude, for a harmonic the largest amplitude of its signal).
+void expect_same_metrics(const Metrics& a, const Metrics& b, double rtol) {
+  for (const MetricOutput& o : metric_outputs()) {
+    SCOPED_TRACE(o.name);
+    if (is_scalar(o)) {
+      const double va = scalar_value(a, o), vb = scalar_value(b, o);
+      if (std::isnan(va) || std::isnan(vb)) {
+        EXPECT_EQ(std::isnan(va), std::isnan(vb));
+        continue;
+      }
+      // Scale: the value, floored for dimensionless numbers and angles at 1 (a ratio that is
+      // zero by symmetry is noise on the scale of 1), for accelerations at the largest peak.
+      const std::string unit = o.unit;
+      double floor = 0.0;
+      if (unit == "-" || unit == "rad" || unit == "pi rad") floor = 1.0;
+      if (unit == "m/s^2")
+        floor = std::max(
+            {std::abs(a.ddx_max), std::abs(a.ddx_min), std::abs(a.ddz_max), std::abs(a.ddz_min)});
+      EXPECT_LE(std::abs(va - vb), rtol * std::max(std::abs(va), floor)) << va << " vs " << vb;
+      continue;
+    }
+    const Spectrum& ha = a.*std::get<Spectrum Metrics::*>(o.member);
+    const Spectrum& hb = b.*std::get<Spectrum Metrics::*>(o.member);
+    ASSERT_EQ(ha.size(), hb.size());
+    double scale = 0.0;
+    for (const Harmonic& h : ha) scale = std::max(scale, h.amplitude);
+    for (std::size_t n = 0; n < ha.size(); ++n)
+      EXPECT_LE(std::abs(ha[n].amplitude - hb[n].amplitude), rtol * scale) << "n = " << n;
+  }
+}
+
+// The same metrics whether the steady state is sampled with 64 or 65536 points per period: the
+// dense-output metrics read the trajectory, not the samples.
+TEST(SteadyMetrics, IndependentOfTheOutputSampling) {
+  for (double MMd : {0.0, 0.05}) {
+    SCOPED_TRACE("MMd_fraction = " + std::to_string(MMd));
+    const Model coarse_model(default_with(64, MMd)), fine_model(default_with(65536, MMd));
+    const Result coarse = simulate(coarse_model), fine = simulate(fine_model);
+    ASSERT_EQ(coarse.status, Status::steady_state) << coarse.message;
+    ASSERT_EQ(fine.status, Status::steady_state) << fine.message;
+    expect_same_metrics(compute_metrics(coarse_model, coarse), compute_metrics(fine_model, fine),
+                        1e-9);
+  }
+}
+
+// Brute force: the re-integrated steady period sampled at 2^18 points; DFT harmonics and the
+// polygon area of those samples against the dense-output metrics; the sampled peaks can only
+// fall short of the exact ones, by at most the sampling's reach.
+class Brute : public FlowObserver {
+ public:
+  Brute(const Model& model, double t0, int n) : model_(model), t0_(t0), n_(n) {}
+  bool on_step(const StepView& step) override {
+    while (next_ < n_) {
+      const double t = t0_ + static_cast<double>(next_) * model_.period() / n_;
+      if (t > step.t1()) break;
+      const State q = step.state(t);
+      const Accelerations a =
+          accelerations(model_, t, q, step.phase(), FlowOptions::from(model_).baumgarte);
+      const DrumMotion d = drum_motion(model_, q, a);
+      r.samples.t.push_back(t);
+      r.samples.ddx_M.push_back(d.ddx_M);
+      r.samples.ddz_M.push_back(d.ddz_M);
+      r.samples.phi.push_back(q.phi);
+      r.samples.dphi.push_back(q.dphi);
+      r.samples.phase.push_back(step.phase());
+      ++next_;
+    }
+    return true;
+  }
+  Result r;
+
+ private:
+  const Model& model_;
+  const double t0_;
+  const int n_;
+  int next_ = 0;
+};
+
+TEST(SteadyMetrics, AgreeWithABruteForceEvaluation) {
+  const Model model(default_with(64, 0.05));
+  const Result res = simulate(model);
+  ASSERT_EQ(res.status, Status::steady_state) << res.message;
+  ASSERT_EQ(res.diagnostics.multiplicity, 1);
+  const Metrics exact = compute_metrics(model, res);
+  const int n = 1 << 18;
+  const Samples& s = res.samples;
+  Flow flow(model);
+  flow.reset(
+      s.t[0],
+      {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]},
+      s.phase[0]);
+  Brute brute(model, s.t[0], n);
+  ASSERT_EQ(flow.advance(s.t[0] + model.period(), &brute), FlowStop::reached);
+  Result& b = brute.r;
+  ASSERT_EQ(b.samples.size(), static_cast<std::size_t>(n));
+  b.frequency = res.frequency;
+  b.sample_periods = 1;
+  b.samples_per_period = n;
+  b.diagnostics.multiplicity = 1;
+  b.stick_time = 1.0;  // fractions are not compared here
+  const Metrics sampled = compute_metrics(b);
+  for (int k = 0; k <= 10; ++k) {
+    EXPECT_NEAR(exact.ddx_harmonics[k].amplitude, sampled.ddx_harmonics[k].amplitude,
+                1e-9 * exact.ddx_harmonics[1].amplitude)
+        << k;
+    EXPECT_NEAR(exact.ddz_harmonics[k].amplitude, sampled.ddz_harmonics[k].amplitude,
+                1e-9 * exact.ddz_harmonics[1].amplitude)
+        << k;
+  }
+  EXPECT_NEAR(exact.psi_xz, sampled.psi_xz, 1e-9);
+  EXPECT_NEAR(exact.phi_lag, sampled.phi_lag, 1e-9);
+  EXPECT_NEAR(exact.ddx_thd, sampled.ddx_thd, 1e-9 * exact.ddx_thd);
+  EXPECT_NEAR(exact.area, sampled.area, 1e-9 * exact.area);
+  // Peaks: every sample lies below the exact maximum; the samples come within their spacing.
+  for (auto [e, smp] : {std::pair{exact.ddx_max, sampled.ddx_max},
+                        {exact.ddz_max, sampled.ddz_max},
+                        {-exact.ddx_min, -sampled.ddx_min},
+                        {-exact.ddz_min, -sampled.ddz_min}}) {
+    EXPECT_GE(e, smp - 1e-12 * std::abs(e));
+    EXPECT_LE(e - smp, 1e-4 * std::abs(e));
+  }
+}
+
+// The default run's metrics are those of the trajectory to about the integration tolerance: an
+// rtol 1e-12 run agrees to 1e-8 relative.
+TEST(SteadyMetrics, DefaultRunAgreesWithATightRun) {
+  Case tight = default_with(64);
+  tight.numerics.rtol = 1e-12;
+  tight.numerics.atol = 1e-15;
+  const Model m_default(default_with(1024)), m_tight(tight);
+  const Result r_default = simulate(m_default), r_tight = simulate(m_tight);
+  ASSERT_EQ(r_default.status, Status::steady_state) << r_default.message;
+  ASSERT_EQ(r_tight.status, Status::steady_state) << r_tight.message;
+  expect_same_metrics(compute_metrics(m_default, r_default), compute_metrics(m_tight, r_tight),
+                      1e-8);
+}
+
+}  // namespace
+}  // namespace oscidrum
