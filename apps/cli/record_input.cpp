@@ -60,11 +60,12 @@ bool parse_number(std::string cell, bool decimal_comma, double& v) {
 
 }  // namespace
 
-void add_record_options(CLI::App& app, RecordInput& o) {
-  app.add_option("record", o.file,
-                 "CSV file of the record, or - for stdin (delimiter , ; tab or spaces and comment "
-                 "lines #, %, // are detected; a header line is optional)")
-      ->required();
+void add_record_options(CLI::App& app, RecordInput& o, bool required) {
+  auto* record = app.add_option(
+      "record", o.file,
+      "CSV file of the record, or - for stdin (delimiter , ; tab or spaces and comment "
+      "lines #, %, // are detected; a header line is optional)");
+  if (required) record->required();
   app.add_option("--t-col", o.t_col, "time column [s]: a name or a 1-based index (default t)");
   app.add_option("--x-col", o.x_col,
                  "horizontal acceleration column x_M'': name or index (default ddx_M)");

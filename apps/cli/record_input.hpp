@@ -28,7 +28,7 @@ struct RecordColumns {
 };
 
 /// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units.
-void add_record_options(CLI::App& app, RecordInput& o);
+void add_record_options(CLI::App& app, RecordInput& o, bool required = true);
 
 /// Read the record. Throws oscidrum::Error (exit 2) naming the file, line and column.
 RecordColumns read_record(const RecordInput& o);
