@@ -38,7 +38,7 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
 struct FrequencySearch {
   double f_min = 10.0;   ///< lowest excitation frequency considered [Hz]
   double f_max = 100.0;  ///< highest [Hz] (further limited so that 3 f stays below Nyquist)
-  int n_max = 4;         ///< harmonics of the least-squares refinement [-]
+  int n_max = 10;        ///< harmonics of the least-squares refinement [-]
 };
 
 /// The excitation frequency of a record [Hz]: the peak of the harmonic-sum spectrum
@@ -51,7 +51,8 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
                           std::span<const double> ddz_M, const FrequencySearch& search = {});
 
 /// Refine f [Hz] by minimising the residual of the harmonic fit (n = 0 ... n_max) over
-/// [f (1 - half_width), f (1 + half_width)] (golden section; f is returned to 1e-9 relative).
+/// [f (1 - half_width), f (1 + half_width)] (golden section, first with the fundamental, then
+/// with more harmonics in narrower brackets; f is returned to 1e-7 relative).
 double refine_frequency(std::span<const double> t, std::span<const double> ddx_M,
                         std::span<const double> ddz_M, double f, double half_width, int n_max);
 

@@ -112,6 +112,8 @@ class Problem {
     n_sim_ = std::max(o.harmonics, data.n_signal);
     case_.numerics.samples_per_period = std::max(64, 4 * n_sim_ + 8);
     case_.numerics.output_periods = 1;
+    // A trial that has not settled in 1500 periods is treated as a failed trial, not waited for.
+    case_.numerics.max_periods = std::min(base.numerics.max_periods, 1500);
     // The model to 1e-6 (its harmonics change by about that much; the measured ones are known to
     // about 1e-3), three times faster than the default 1e-8.
     case_.numerics.rtol = std::max(base.numerics.rtol, o.model_tolerance);
@@ -126,7 +128,7 @@ class Problem {
     }
     if (o.fit_mu) {
       case_.contact.pure_rolling = false;
-      params_.push_back({Kind::mu, std::log(0.01), std::log(5.0)});
+      params_.push_back({Kind::mu, std::log(0.05), std::log(5.0)});
     }
     if (o.fit_MMd) params_.push_back({Kind::MMd, -0.5, 0.5});
     rows_ = 4 * o.harmonics + (o.use_peaks ? 4 : 0) + (o.use_area ? 1 : 0);
@@ -366,6 +368,7 @@ Fit levenberg_marquardt(Problem& pr, Eigen::VectorXd p, const std::vector<bool>&
       // Trust region: internal coordinates move at most 0.7 (a factor 2 in G) per step.
       const double big = dp.cwiseAbs().maxCoeff();
       if (big > 0.7) dp *= 0.7 / big;
+      if (big < 1e-7) break;  // the steps have shrunk to nothing: at the minimum
       Eigen::VectorXd q = fit.p + dp;
       for (Eigen::Index j = 0; j < q.size(); ++j)
         q[j] = std::clamp(q[j], pr.params()[static_cast<std::size_t>(j)].lo,
@@ -579,7 +582,10 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
     e.standard_uncertainty =
         par.kind == Kind::MMd ? se[J_] * pr.M0() : e.value * se[J_];  // d exp(p) = exp(p) dp
     e.lower = e.upper = kNaN;
-    if (o.profile) {
+    if (o.profile && !std::isfinite(se[J_])) {
+      // No effect on the fit: nothing to profile; the parameter is not identifiable.
+      e.lower_open = e.upper_open = true;
+    } else if (o.profile) {
       std::vector<bool> others(q, true);
       others[j] = false;
       for (const int side : {-1, 1}) {
@@ -589,12 +595,12 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         double lo_step = 0, lo_delta = 0, hi_step = kNaN, hi_delta = kNaN;
         Eigen::VectorXd warm = fit.p;
         bool found = false, open = false;
-        for (int k = 0; k < 10 && step > 0; ++k) {
+        for (int k = 0; k < 7 && step > 0; ++k) {
           Eigen::VectorXd p = warm;
           p[J_] = pj + side * step;
           double S = kNaN;
           if (q > 1) {
-            const Fit inner = levenberg_marquardt(pr, p, others, 8);
+            const Fit inner = levenberg_marquardt(pr, p, others, 5);
             if (std::isfinite(inner.S)) {
               S = inner.S;
               warm = inner.p;

@@ -176,13 +176,16 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
 
 }  // namespace
 
-double refine_frequency(std::span<const double> t, std::span<const double> ddx,
-                        std::span<const double> ddz, double f, double half_width, int n_max) {
-  double a = f * (1.0 - half_width), b = f * (1.0 + half_width);
+namespace {
+
+// Golden-section search for the minimum of the fit residual over [f - h, f + h] to `tol` [Hz].
+double golden(std::span<const double> t, std::span<const double> ddx, std::span<const double> ddz,
+              double f, double h, int n_max, double tol) {
+  double a = f - h, b = f + h;
   const double g = (std::sqrt(5.0) - 1.0) / 2.0;
   double c = b - g * (b - a), d = a + g * (b - a);
   double fc = fit_residual(t, ddx, ddz, c, n_max), fd = fit_residual(t, ddx, ddz, d, n_max);
-  while (b - a > 1e-8 * f) {
+  while (b - a > tol) {
     if (fc < fd) {
       b = d;
       d = c;
@@ -198,6 +201,25 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
     }
   }
   return 0.5 * (a + b);
+}
+
+}  // namespace
+
+double refine_frequency(std::span<const double> t, std::span<const double> ddx,
+                        std::span<const double> ddz, double f, double half_width, int n_max) {
+  // The residual of harmonic n has side lobes 1/(n T) apart (T the record's span): refine with
+  // the fundamental over the whole bracket first, then with more harmonics in brackets narrow
+  // enough to hold only their main lobe.
+  const double span = t.empty() ? 0.0 : t.back() - t.front();
+  double h = half_width * f;
+  for (const int n : {1, 2, 4, n_max}) {
+    const int m = std::min(n, n_max);
+    const bool last = m == n_max;
+    f = golden(t, ddx, ddz, f, h, m, last ? 1e-7 * f : 1e-3 * h);
+    if (last) break;
+    if (span > 0) h = std::min(h, 0.15 / (m * span));
+  }
+  return f;
 }
 
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
@@ -389,7 +411,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     bool fitted = false;
     if (enough && gap <= o.gates.max_gap * median_dt) {
       const double periods = (w.t_end - w.t_start) * f_track;
-      const int nf = std::min(o.n_max, 4);  // f is set by the strong low harmonics
+      const int nf = o.n_max;  // all of them: unfitted harmonics would bias f
       const double fw =
           o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f_track, std::min(0.05, 0.5 / periods), nf);
       w.f = fw;
