@@ -310,7 +310,7 @@ int run(const IdentifyCliOptions& o) {
     std::error_code ec;
     std::filesystem::create_directories(o.plot_dir, ec);
     if (ec) throw Error("cannot create --plot directory " + o.plot_dir + ": " + ec.message());
-    if (csv_path.empty() || csv_path == "-") csv_path = o.plot_dir + "/identify.csv";
+    write_output(o.plot_dir + "/identify.csv", csv_text);  // what the plots read
   }
   if (!csv_path.empty()) write_output(csv_path, csv_text);
   if (!o.json.empty()) write_output(o.json, j.dump(2) + "\n");

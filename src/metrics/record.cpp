@@ -170,8 +170,8 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
       throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
                   " has t = " + num(t[i]) + " after " + num(t[i - 1]));
   }
-  if (t.size() < 8)
-    throw Error("record: needs at least 8 samples; got " + std::to_string(t.size()));
+  if (t.size() < 2)
+    throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
 }
 
 }  // namespace
@@ -225,6 +225,9 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
                           std::span<const double> ddz, const FrequencySearch& search) {
   check_record(t, ddx, ddz);
+  if (t.size() < 8)
+    throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
+                std::to_string(t.size()));
   const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
   const double span = t[n_seg - 1] - t[0];
   const double fs = static_cast<double>(n_seg - 1) / span;

@@ -174,8 +174,9 @@ TEST(CliAnalyze, DefectiveRecordsGiveTheirFlagAndExitOne) {
     std::vector<std::string> args;
     std::string flag;
   };
-  for (const Case& c : {Case{{"clipped.csv"}, "clipped"}, Case{{"gap.csv"}, "gap of"},
-                        Case{{"scaled_time.csv", "--f", "39.39"}, "fit residual"}}) {
+  for (const Case& c :
+       {Case{{"clipped.csv"}, "clipped"}, Case{{"gap.csv"}, "gap of"},
+        Case{{"scaled_time.csv", "--f", "39.39", "--harmonics", "6"}, "fit residual"}}) {
     std::vector<std::string> args = {"analyze", dir / c.args[0], "--format", "json"};
     args.insert(args.end(), c.args.begin() + 1, c.args.end());
     const Outcome o = run(args);
