@@ -1,76 +1,180 @@
 // oscidrum analyze: the paper's metrics for a measured (or any) acceleration record, to compare
-// field measurements with simulations (paper Fig. 23). Uses analyze_record (record.hpp).
+// field measurements with simulations (paper Fig. 23): the excitation frequency estimated (or
+// given), the record cut into windows, each fitted and checked by quality gates (record.hpp).
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/record.hpp"
 #include "oscidrum_io/csv.hpp"
-#include "oscidrum_io/json.hpp"
 #include "output.hpp"
+#include "record_input.hpp"
 
 namespace oscidrum::cli {
 namespace {
 
 struct AnalyzeOptions {
-  std::string file;
-  double f = 39.0;
-  std::string t_col = "t", x_col = "ddx_M", z_col = "ddz_M";
-  int harmonics = 10;
+  RecordInput input;
+  WindowOptions windows;
   std::string format = "table";
 };
 
-int run(const AnalyzeOptions& o) {
-  const io::NumericTable table = io::read_numeric_csv(o.file);
-  auto column = [&](const std::string& name, const char* flag) -> const std::vector<double>& {
-    const int c = table.find(name);
-    if (c < 0) {
-      std::string names;
-      for (const std::string& h : table.header) names += (names.empty() ? "" : ", ") + h;
-      throw Error(o.file + ": no column '" + name + "' (choose one with " + flag +
-                  "); the header has: " + names);
-    }
-    return table.columns[static_cast<std::size_t>(c)];
-  };
-  const RecordMetrics m = analyze_record(column(o.t_col, "--t-col"), column(o.x_col, "--x-col"),
-                                         column(o.z_col, "--z-col"), o.f, o.harmonics);
-  if (o.format == "json") {
-    std::cout << io::record_json(o.file, o.f, m);
-    return kExitOk;
-  }
-  Summary s;
-  s.section("Record");
-  s.line("file", o.file);
-  bool metrics_section = false;
+nlohmann::ordered_json spectrum(const std::vector<Harmonic>& h) {
+  nlohmann::ordered_json a = nlohmann::json::array();
+  for (const Harmonic& x : h) a.push_back({{"amplitude", x.amplitude}, {"phase", x.phase}});
+  return a;
+}
+
+nlohmann::ordered_json window_json(const RecordWindow& w) {
+  const RecordMetrics& m = w.metrics;
+  nlohmann::ordered_json j = {{"window", w.index},
+                              {"t_start", w.t_start},
+                              {"t_end", w.t_end},
+                              {"t", w.t_mid},
+                              {"position", w.position},
+                              {"samples", w.count},
+                              {"samples_per_period", w.samples_per_period},
+                              {"f", w.f},
+                              {"drift", w.drift},
+                              {"valid", w.valid},
+                              {"reason", w.reason}};
+  // Every output of a record, from the output table (peaks, lag, area, compaction indicators,
+  // residuals); the spectra as lists.
   for (const RecordOutput& out : record_outputs()) {
-    if (!is_scalar(out)) continue;  // the spectra are the table below
-    if (is_acceleration_metric(out.name) && !metrics_section) {
-      s.section("Metrics of the fitted periodic signal");
-      metrics_section = true;
+    if (std::holds_alternative<double RecordMetrics::*>(out.member))
+      j[out.name] = scalar_value(m, out);
+  }
+  j["ddx_harmonics"] = spectrum(m.ddx_harmonics);
+  j["ddz_harmonics"] = spectrum(m.ddz_harmonics);
+  return j;
+}
+
+std::string cell(double v) { return io::format_double_short(v); }
+
+// One CSV row per window (docs/cli.md, `oscidrum analyze`).
+std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
+  std::string out =
+      "window[-],t_start[s],t_end[s],t[s],position[m],samples[-],samples_per_period[-],f[Hz],"
+      "drift[-],valid[-],reason[-],residual_x[-],residual_z[-],ddx_max[m/s^2],ddx_min[m/s^2],"
+      "ddz_max[m/s^2],ddz_min[m/s^2],psi_xz[rad],area[m^2/s^4]";
+  for (const char* s : {"ddx", "ddz"})
+    for (int n = 1; n <= n_max; ++n)
+      out.append(",").append(s).append("_A").append(std::to_string(n)).append("[m/s^2]");
+  out += "\n";
+  for (const RecordWindow& w : ws) {
+    const RecordMetrics& m = w.metrics;
+    out += std::to_string(w.index) + "," + cell(w.t_start) + "," + cell(w.t_end) + "," +
+           cell(w.t_mid) + "," + cell(w.position) + "," + std::to_string(w.count) + "," +
+           cell(w.samples_per_period) + "," + cell(w.f) + "," + cell(w.drift) + "," +
+           (w.valid ? "1" : "0") + "," + io::csv_quote(w.reason);
+    for (double v :
+         {m.residual_x, m.residual_z, m.ddx_max, m.ddx_min, m.ddz_max, m.ddz_min, m.psi_xz, m.area})
+      out.append(",").append(cell(v));
+    for (const std::vector<Harmonic>* h : {&m.ddx_harmonics, &m.ddz_harmonics})
+      for (int n = 1; n <= n_max; ++n)
+        out.append(",").append(cell(n < static_cast<int>(h->size()) ? (*h)[n].amplitude : NAN));
+    out += "\n";
+  }
+  return out;
+}
+
+int run(const AnalyzeOptions& o) {
+  const RecordColumns rec = read_record(o.input);
+  const std::vector<RecordWindow> ws =
+      analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
+  std::size_t valid = 0;
+  for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
+  const bool single = o.windows.window_periods == 0;
+  const std::string name = o.input.file == "-" ? "<stdin>" : o.input.file;
+  const int n_max = o.windows.n_max;
+
+  if (o.format == "json") {
+    nlohmann::ordered_json j;
+    if (single) {
+      j = {{"schema", "oscidrum-record/1"}, {"file", name}};
+      j.update(window_json(ws.front()));
+      j.erase("window");
+    } else {
+      nlohmann::ordered_json rows = nlohmann::json::array();
+      for (const RecordWindow& w : ws) rows.push_back(window_json(w));
+      j = {{"schema", "oscidrum-record-windows/1"},
+           {"file", name},
+           {"window_periods", o.windows.window_periods},
+           {"hop_periods",
+            o.windows.hop_periods > 0 ? o.windows.hop_periods : o.windows.window_periods},
+           {"valid_windows", valid},
+           {"windows", rows}};
     }
-    s.line(out.label, output_text(m, out));
-  }
-  TextTable t;
-  t.header = {"n", "f [Hz]", "A(x_M'') [m/s^2]", "A(z_M'') [m/s^2]", "x / max", "z / max"};
-  t.right = {true, true, true, true, true, true};
-  double xmax = 0, zmax = 0;
-  for (int n = 1; n <= o.harmonics; ++n) {
-    xmax = std::max(xmax, m.ddx_harmonics[n].amplitude);
-    zmax = std::max(zmax, m.ddz_harmonics[n].amplitude);
-  }
-  for (int n = 0; n <= o.harmonics; ++n)
-    t.rows.push_back({std::to_string(n), fmt(n * o.f, 4), fmt(m.ddx_harmonics[n].amplitude, 5),
-                      fmt(m.ddz_harmonics[n].amplitude, 5),
-                      n ? fmt(m.ddx_harmonics[n].amplitude / xmax, 3) : "",
-                      n ? fmt(m.ddz_harmonics[n].amplitude / zmax, 3) : ""});
-  if (o.format == "csv") {
-    std::cout << t.csv();
+    std::cout << j.dump(2) << "\n";
+  } else if (!single || o.format == "csv") {
+    if (o.format == "csv" && !single) {
+      std::cout << windows_csv(ws, n_max);
+    } else if (o.format == "csv") {
+      // The spectrum of the whole record, as before windows existed.
+      const RecordMetrics& m = ws.front().metrics;
+      std::cout << "n,f[Hz],ddx_A[m/s^2],ddz_A[m/s^2],ddx_theta[rad],ddz_theta[rad]\n";
+      for (int n = 0; n <= n_max; ++n)
+        std::cout << n << "," << cell(n * ws.front().f) << "," << cell(m.ddx_harmonics[n].amplitude)
+                  << "," << cell(m.ddz_harmonics[n].amplitude) << ","
+                  << cell(m.ddx_harmonics[n].phase) << "," << cell(m.ddz_harmonics[n].phase)
+                  << "\n";
+    } else {
+      TextTable t;
+      t.header = {"window",    "t [s]", "position [m]", "f [Hz]", "x_M'' max",
+                  "z_M'' max", "area",  "res x",        "res z",  "status"};
+      t.right = {true, true, true, true, true, true, true, true, true, false};
+      for (const RecordWindow& w : ws)
+        t.rows.push_back({std::to_string(w.index), fmt(w.t_mid, 5),
+                          std::isfinite(w.position) ? fmt(w.position, 5) : "", fmt(w.f, 6),
+                          fmt(w.metrics.ddx_max, 4), fmt(w.metrics.ddz_max, 4),
+                          fmt(w.metrics.area, 4), fmt(w.metrics.residual_x, 3),
+                          fmt(w.metrics.residual_z, 3), w.valid ? "ok" : w.reason});
+      std::cout << name << ": " << ws.size() << " windows of " << fmt(o.windows.window_periods, 4)
+                << " periods, " << valid << " valid (accelerations in m/s^2, area in m^2/s^4)\n"
+                << t.text();
+    }
   } else {
+    const RecordWindow& w = ws.front();
+    const RecordMetrics& m = w.metrics;
+    Summary s;
+    s.section("Record");
+    s.line("file", name);
+    s.line("excitation frequency f [Hz]",
+           fmt(w.f, 8) + (o.windows.f > 0 ? " (given)" : " (estimated from the record)"));
+    s.line("excitation periods spanned", fmt(m.cycles, 4));
+    s.line("frequency drift (halves)", fmt(w.drift, 3));
+    s.line("fit residual x_M'', z_M''",
+           fmt(m.residual_x, 3) + ", " + fmt(m.residual_z, 3) + " (RMS relative to the signal)");
+    s.line("quality", w.valid ? "ok" : "FAILED: " + w.reason);
+    s.section("Metrics of the fitted periodic signal");
+    s.line("x_M'' max / min [m/s^2]", fmt(m.ddx_max, 5) + " / " + fmt(m.ddx_min, 5));
+    s.line("z_M'' max / min [m/s^2]", fmt(m.ddz_max, 5) + " / " + fmt(m.ddz_min, 5));
+    s.line("psi (x_M'' -> z_M'') [rad]", fmt(m.psi_xz, 5));
+    s.line("area z_M''(x_M'') [m^2/s^4]", fmt(m.area, 5));
+    TextTable t;
+    t.header = {"n", "f [Hz]", "A(x_M'') [m/s^2]", "A(z_M'') [m/s^2]", "x / max", "z / max"};
+    t.right = {true, true, true, true, true, true};
+    double xmax = 0, zmax = 0;
+    for (int n = 1; n <= n_max; ++n) {
+      xmax = std::max(xmax, m.ddx_harmonics[n].amplitude);
+      zmax = std::max(zmax, m.ddz_harmonics[n].amplitude);
+    }
+    for (int n = 0; n <= n_max; ++n)
+      t.rows.push_back({std::to_string(n), fmt(n * w.f, 4), fmt(m.ddx_harmonics[n].amplitude, 5),
+                        fmt(m.ddz_harmonics[n].amplitude, 5),
+                        n ? fmt(m.ddx_harmonics[n].amplitude / xmax, 3) : "",
+                        n ? fmt(m.ddz_harmonics[n].amplitude / zmax, 3) : ""});
     std::cout << s.text() << "\nHarmonics (normalised as in the paper's spectra):\n" << t.text();
+  }
+  if (valid == 0) {
+    std::cerr << "oscidrum: error: " << name << ": no valid fit: " << failure_reasons(ws) << "\n";
+    return kExitCaseFailed;
   }
   return kExitOk;
 }
@@ -82,25 +186,23 @@ void add_analyze_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand(
       "analyze",
       "The paper's metrics for a measured acceleration record. Reads a CSV with time [s] and the "
-      "drum-centre accelerations x_M'', z_M'' [m/s^2] (z down), any sampling and length (at "
-      "least one period), fits the harmonics n f by least squares and reports peaks, spectrum, "
-      "the lag psi [rad] and the area of the z_M''(x_M'') figure [m^2/s^4] of the fitted "
-      "periodic signal, to compare field data with `oscidrum run`.");
+      "drum-centre accelerations x_M'', z_M'' (z down), estimates the excitation frequency "
+      "(unless --f), fits the harmonics n f by least squares, over the whole record or in "
+      "windows along a pass, checks each fit by quality gates (residual, frequency drift, "
+      "clipping, samples per period, gaps) and reports peaks, spectrum, the lag psi [rad] and "
+      "the area of the z_M''(x_M'') figure [m^2/s^4] of the fitted periodic signal. A window "
+      "that fails a gate reports NaN and why; a record with no valid fit exits 1.");
   sub->footer(
       "Columns are found by name, with or without a [unit] suffix (defaults: t, ddx_M, ddz_M, as "
-      "in `oscidrum run --csv`).\nExamples:\n"
-      "  oscidrum analyze field.csv --f 39 --t-col time --x-col ax --z-col az\n"
-      "  oscidrum run --csv steady.csv && oscidrum analyze steady.csv");
-  sub->add_option("record", o->file, "CSV file with a header line")->required();
-  sub->add_option("--f", o->f, "excitation frequency [Hz] (default 39)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--t-col", o->t_col, "time column [s] (default t)");
-  sub->add_option("--x-col", o->x_col, "horizontal acceleration column [m/s^2] (default ddx_M)");
-  sub->add_option("--z-col", o->z_col,
-                  "vertical acceleration column, down positive [m/s^2] (default ddz_M)");
-  sub->add_option("--harmonics", o->harmonics, "harmonics n = 0 ... N fitted (default 10)")
-      ->check(CLI::Range(2, 200));
-  sub->add_option("--format", o->format, "table, csv (the spectrum) or json")
+      "in `oscidrum run --csv`), or by 1-based index. Output columns: docs/cli.md.\nExamples:\n"
+      "  oscidrum analyze field.csv --t-col time --x-col ax --z-col az --units g\n"
+      "  oscidrum analyze pass.csv --window 40 --speed-col v --format csv > windows.csv\n"
+      "  oscidrum run --csv steady.csv && oscidrum analyze steady.csv --f 39\n"
+      "  cat record.txt | oscidrum analyze - --t-col 1 --x-col 2 --z-col 3");
+  add_record_options(*sub, o->input);
+  add_window_options(*sub, o->windows, 0.0);
+  sub->add_option("--format", o->format,
+                  "table, csv (the spectrum; with --window one row per window) or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   sub->callback([o, &action] { action = [o] { return run(*o); }; });
 }

@@ -17,9 +17,9 @@ using namespace oscidrum::cli;
 
 // Every command, in the order of `oscidrum --help`.
 constexpr AddCommand kCommands[] = {
-    add_run_command,      add_sweep_command,   add_merge_command, add_analyze_command,
-    add_validate_command, add_paper_command,   add_soil_command,  add_transmissibility_command,
-    add_fields_command,   add_outputs_command,
+    add_run_command,      add_sweep_command, add_merge_command,   add_analyze_command,
+    add_identify_command, add_validate_command, add_paper_command, add_soil_command,
+    add_transmissibility_command, add_fields_command, add_outputs_command,
 };
 
 // Lists each command with the first sentence of its description only; `oscidrum CMD --help`
@@ -64,7 +64,8 @@ int run(int argc, char** argv) {
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
       "  oscidrum sweep study.toml --shard 2/4 --out s2.csv   one slice; oscidrum merge joins "
       "them\n"
-      "  oscidrum analyze field.csv --f 39     metrics of a measured acceleration record\n"
+      "  oscidrum analyze field.csv            metrics of a measured acceleration record\n"
+      "  oscidrum identify pass.csv            the soil's G along a pass, with its band\n"
       "  oscidrum validate                     check every result the paper states\n"
       "  oscidrum paper --out out/paper        the paper's figures, data and report\n"
       "  oscidrum soil --table2                Appendix B against paper Table 2\n"

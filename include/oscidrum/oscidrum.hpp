@@ -5,6 +5,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/friction.hpp"
+#include "oscidrum/identify.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"

@@ -4,7 +4,9 @@
 // squares rather than read off a DFT.
 #pragma once
 
+#include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "oscidrum/metrics.hpp"
@@ -28,5 +30,78 @@ struct RecordMetrics {
 /// period or too coarse for n_max (fewer than 2 n_max + 1 samples per period).
 RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx_M,
                              std::span<const double> ddz_M, double f, int n_max = 10);
+
+/// Search range and method of estimate_frequency.
+struct FrequencySearch {
+  double f_min = 10.0;   ///< lowest excitation frequency considered [Hz]
+  double f_max = 100.0;  ///< highest [Hz] (further limited so that 3 f stays below Nyquist)
+  int n_max = 10;        ///< harmonics of the least-squares refinement [-]
+};
+
+/// The excitation frequency of a record [Hz]: the peak of the harmonic-sum spectrum
+/// P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) of at most the first 4096 samples on a grid of
+/// a quarter of their frequency resolution, refined by minimising the residual of the
+/// least-squares harmonic fit (n = 0 ... n_max, both signals) over f itself, first on that
+/// segment, then on the whole record. Throws oscidrum::Error on the conditions of analyze_record
+/// and when the range holds no frequency.
+double estimate_frequency(std::span<const double> t, std::span<const double> ddx_M,
+                          std::span<const double> ddz_M, const FrequencySearch& search = {});
+
+/// Refine f [Hz] by minimising the residual of the harmonic fit (n = 0 ... n_max) over
+/// [f (1 - half_width), f (1 + half_width)] (golden section, first with the fundamental, then
+/// with more harmonics in narrower brackets; f is returned to 1e-7 relative).
+double refine_frequency(std::span<const double> t, std::span<const double> ddx_M,
+                        std::span<const double> ddz_M, double f, double half_width, int n_max);
+
+/// Quality gates of a window (docs/cli.md, `oscidrum analyze`). A window that fails one is
+/// flagged, and its metrics are NaN.
+struct RecordGates {
+  double max_residual = 0.5;  ///< largest fit residual (relative RMS) of x_M'' or z_M'' [-]
+  double max_drift = 0.002;   ///< largest |f(second half) - f(first half)| / f in a window [-]
+  double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
+  int clip_run = 3;           ///< this many equal samples at a channel's extreme: clipped [-]
+  double max_gap = 3.0;       ///< a time step longer than this times the median step: gap [-]
+};
+
+/// Windows along a record.
+struct WindowOptions {
+  double f = 0.0;               ///< excitation frequency [Hz]; 0: estimate (estimate_frequency)
+  FrequencySearch search;       ///< used when f == 0
+  double window_periods = 0.0;  ///< window length in excitation periods; 0: the whole record
+  double hop_periods = 0.0;     ///< hop between window starts [periods]; 0: window_periods
+  int n_max = 10;               ///< harmonics fitted [-]
+  RecordGates gates;
+};
+
+/// One window of a record.
+struct RecordWindow {
+  int index = 0;          ///< 0, 1, ... [-]
+  double t_start = 0.0;   ///< first sample time [s]
+  double t_end = 0.0;     ///< last sample time [s]
+  double t_mid = 0.0;     ///< (t_start + t_end) / 2 [s]
+  double position = 0.0;  ///< position at t_mid [m] (NaN without a position)
+  std::size_t first = 0;  ///< index of the first sample in the record [-]
+  std::size_t count = 0;  ///< samples in the window [-]
+  double f = 0.0;         ///< excitation frequency of the window [Hz] (NaN if not fitted)
+  double drift = 0.0;     ///< (f(second half) - f(first half)) / f [-] (NaN if not fitted)
+  double samples_per_period = 0.0;  ///< [-]
+  bool valid = false;               ///< passed every gate
+  std::string reason;               ///< why not valid (empty when valid); several joined by "; "
+  RecordMetrics metrics;            ///< NaN when not valid (residuals kept when the fit was made)
+};
+
+/// A record cut into windows, each with its own f, its metrics and its quality gates. `position`
+/// [m] (one per sample, or empty) is interpolated at the window centres. Windows are
+/// window_periods / f long at the record's f, start hop_periods / f apart, and the last one
+/// ends within the record. Throws oscidrum::Error for inconsistent input (sizes, non-finite or
+/// non-increasing t) and for a record shorter than one window; a window that fails a gate is
+/// returned with valid == false and its reason.
+std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<const double> ddx_M,
+                                          std::span<const double> ddz_M,
+                                          std::span<const double> position,
+                                          const WindowOptions& options = {});
+
+/// Position [m] from a speed column [m/s] by the trapezoidal rule, 0 at the first sample.
+std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed);
 
 }  // namespace oscidrum

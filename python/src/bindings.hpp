@@ -28,6 +28,7 @@ void bind_study(py::module_& m);
 void bind_soil(py::module_& m);
 void bind_transmissibility(py::module_& m);
 void bind_record(py::module_& m);
+void bind_identify(py::module_& m);
 void bind_validation(py::module_& m);
 
 /// A float64 NumPy array argument (converted if needed, C-contiguous).

@@ -23,6 +23,7 @@ PYBIND11_MODULE(_core, m) {
   op::bind_result(m);
   op::bind_metrics(m);
   op::bind_record(m);
+  op::bind_identify(m);
   op::bind_simulate(m);
   op::bind_study(m);
   op::bind_validation(m);

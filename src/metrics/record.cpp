@@ -4,7 +4,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "indicators.hpp"
@@ -115,6 +117,356 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   m.ddz_max = *zhi;
   m.area = enclosed_area(x, z);
   return m;
+}
+
+}  // namespace oscidrum
+
+// ---- Frequency estimation and windows ----------------------------------------------------------
+
+namespace oscidrum {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Sum over x_M'' and z_M'' of the residual of the harmonic fit at f, each relative to the
+// signal's variance about its mean (so that the two signals weigh alike).
+double fit_residual(std::span<const double> t, std::span<const double> x, std::span<const double> z,
+                    double f, int n_max) {
+  const Eigen::Index rows = static_cast<Eigen::Index>(t.size());
+  const int cols = 2 * n_max + 1;
+  if (rows < cols) return kNaN;
+  Eigen::MatrixXd basis(rows, cols);
+  const double nu = 2.0 * M_PI * f;
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const double c1 = std::cos(nu * t[static_cast<std::size_t>(i)]);
+    const double s1 = std::sin(nu * t[static_cast<std::size_t>(i)]);
+    basis(i, 0) = 1.0;
+    double c = 1.0, s = 0.0;
+    for (int n = 1; n <= n_max; ++n) {  // angle addition: cos, sin of n nu t
+      const double cn = c * c1 - s * s1;
+      s = s * c1 + c * s1;
+      c = cn;
+      basis(i, 2 * n - 1) = c;
+      basis(i, 2 * n) = s;
+    }
+  }
+  const auto qr = basis.colPivHouseholderQr();
+  double total = 0.0;
+  for (const std::span<const double> y : {x, z}) {
+    const Eigen::Map<const Eigen::VectorXd> v(y.data(), rows);
+    const Eigen::VectorXd c = qr.solve(v);
+    const double var = (v.array() - v.mean()).square().sum();
+    const double res = (basis * c - v).squaredNorm();
+    total += var > 0 ? res / var : 0.0;
+  }
+  return total;
+}
+
+void check_record(std::span<const double> t, std::span<const double> ddx,
+                  std::span<const double> ddz) {
+  if (t.size() != ddx.size() || t.size() != ddz.size())
+    throw Error("record: t, ddx_M and ddz_M must have the same length; got " +
+                std::to_string(t.size()) + ", " + std::to_string(ddx.size()) + ", " +
+                std::to_string(ddz.size()));
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i]) || !std::isfinite(ddx[i]) || !std::isfinite(ddz[i]))
+      throw Error("record: non-finite value in row " + std::to_string(i + 1));
+    if (i > 0 && !(t[i] > t[i - 1]))
+      throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
+                  " has t = " + num(t[i]) + " after " + num(t[i - 1]));
+  }
+  if (t.size() < 2)
+    throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
+}
+
+}  // namespace
+
+namespace {
+
+// Golden-section search for the minimum of the fit residual over [f - h, f + h] to `tol` [Hz].
+double golden(std::span<const double> t, std::span<const double> ddx, std::span<const double> ddz,
+              double f, double h, int n_max, double tol) {
+  double a = f - h, b = f + h;
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = fit_residual(t, ddx, ddz, c, n_max), fd = fit_residual(t, ddx, ddz, d, n_max);
+  while (b - a > tol) {
+    if (fc < fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = fit_residual(t, ddx, ddz, c, n_max);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = fit_residual(t, ddx, ddz, d, n_max);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+}  // namespace
+
+double refine_frequency(std::span<const double> t, std::span<const double> ddx,
+                        std::span<const double> ddz, double f, double half_width, int n_max) {
+  // The residual of harmonic n has side lobes 1/(n T) apart (T the record's span): refine with
+  // the fundamental over the whole bracket first, then with more harmonics in brackets narrow
+  // enough to hold only their main lobe.
+  const double span = t.empty() ? 0.0 : t.back() - t.front();
+  double h = half_width * f;
+  for (const int n : {1, 2, 4, n_max}) {
+    const int m = std::min(n, n_max);
+    const bool last = m == n_max;
+    f = golden(t, ddx, ddz, f, h, m, last ? 1e-7 * f : 1e-3 * h);
+    if (last) break;
+    if (span > 0) h = std::min(h, 0.15 / (m * span));
+  }
+  return f;
+}
+
+double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
+                          std::span<const double> ddz, const FrequencySearch& search) {
+  check_record(t, ddx, ddz);
+  if (t.size() < 8)
+    throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
+                std::to_string(t.size()));
+  const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
+  const double span = t[n_seg - 1] - t[0];
+  const double fs = static_cast<double>(n_seg - 1) / span;
+  const double f_hi = std::min(search.f_max, fs / 6.0);
+  const double f_lo = std::max(search.f_min, 1.0 / span);
+  if (!(f_hi > f_lo))
+    throw Error("record: no excitation frequency to search in [" + num(search.f_min) + ", " +
+                num(search.f_max) + "] Hz: the record (" + num(fs) + " samples/s over " +
+                num(span) + " s) resolves [" + num(f_lo) + ", " + num(f_hi) + "] Hz");
+  // Harmonic-sum spectrum on a grid of 1/(4 span).
+  std::vector<double> xs(ddx.begin(), ddx.begin() + static_cast<std::ptrdiff_t>(n_seg));
+  std::vector<double> zs(ddz.begin(), ddz.begin() + static_cast<std::ptrdiff_t>(n_seg));
+  auto demean = [](std::vector<double>& v) {
+    double m = 0;
+    for (double y : v) m += y;
+    m /= static_cast<double>(v.size());
+    for (double& y : v) y -= m;
+  };
+  demean(xs);
+  demean(zs);
+  const double df = 0.25 / span;
+  double best_f = f_lo, best_p = -1.0;
+  for (double f = f_lo; f <= f_hi; f += df) {
+    std::complex<double> X[3] = {}, Z[3] = {};
+    for (std::size_t k = 0; k < n_seg; ++k) {
+      const double w = 2.0 * M_PI * f * (t[k] - t[0]);
+      const std::complex<double> e1(std::cos(w), -std::sin(w));
+      std::complex<double> e = e1;
+      for (int n = 0; n < 3; ++n) {
+        X[n] += xs[k] * e;
+        Z[n] += zs[k] * e;
+        e *= e1;
+      }
+    }
+    double p = 0;
+    for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
+    if (p > best_p) {
+      best_p = p;
+      best_f = f;
+    }
+  }
+  if (!(best_p > 0)) throw Error("record: the accelerations are constant; no frequency to find");
+  // Least squares on f: on the segment, then on spans growing fourfold up to the whole record.
+  std::size_t len = n_seg;
+  double f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), best_f,
+                              1.5 * df / best_f, search.n_max);
+  while (len < t.size()) {
+    len = std::min(t.size(), 4 * len);
+    const double periods = (t[len - 1] - t[0]) * f;
+    f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), f, 0.3 / periods,
+                         search.n_max);
+  }
+  return f;
+}
+
+std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed) {
+  if (t.size() != speed.size())
+    throw Error("record: t and speed must have the same length; got " + std::to_string(t.size()) +
+                ", " + std::to_string(speed.size()));
+  std::vector<double> x(t.size(), 0.0);
+  for (std::size_t i = 1; i < t.size(); ++i)
+    x[i] = x[i - 1] + 0.5 * (speed[i] + speed[i - 1]) * (t[i] - t[i - 1]);
+  return x;
+}
+
+std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<const double> ddx,
+                                          std::span<const double> ddz,
+                                          std::span<const double> position,
+                                          const WindowOptions& o) {
+  check_record(t, ddx, ddz);
+  if (!position.empty() && position.size() != t.size())
+    throw Error("record: the position column must have one value per sample; got " +
+                std::to_string(position.size()) + " for " + std::to_string(t.size()));
+  if (o.n_max < 2)
+    throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
+                std::to_string(o.n_max));
+  if (o.f < 0 || !std::isfinite(o.f)) throw Error("record: f must be >= 0 [Hz]; got " + num(o.f));
+  if (o.window_periods < 0 || o.hop_periods < 0)
+    throw Error("record: window and hop must be >= 0 [periods]; got " + num(o.window_periods) +
+                ", " + num(o.hop_periods));
+  const bool windowed = o.window_periods > 0;
+  // The record's frequency: given, or from its beginning (windows) or the whole (no windows).
+  double f_rec = o.f;
+  if (f_rec == 0.0) {
+    const std::size_t n = windowed ? std::min<std::size_t>(t.size(), 4096) : t.size();
+    f_rec = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), o.search);
+  }
+  const double span = t.back() - t.front();
+  if (span * f_rec < std::max(1.0, o.window_periods))
+    throw Error("record: must span at least " +
+                (windowed ? "one window (" + num(o.window_periods) + " periods"
+                          : std::string("one excitation period (1/f")) +
+                " = " + num(std::max(1.0, o.window_periods) / f_rec) + " s at f = " + num(f_rec) +
+                " Hz); it spans " + num(span) + " s");
+
+  // Median time step, and the samples at a channel's extreme (plateaus: clipping).
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::vector<double> sorted = dt;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double median_dt = sorted[sorted.size() / 2];
+  std::vector<char> clipped(t.size(), 0);
+  for (const std::span<const double> y : {ddx, ddz}) {
+    const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+    if (o.gates.clip_level > 0) {
+      for (std::size_t i = 0; i < y.size(); ++i)
+        if (std::abs(y[i]) >= o.gates.clip_level) clipped[i] = 1;
+      continue;
+    }
+    if (*lo == *hi) continue;  // constant: no extreme to stick to
+    const double tol = 1e-9 * (*hi - *lo);
+    for (const double extreme : {*lo, *hi}) {
+      std::size_t run = 0;
+      for (std::size_t i = 0; i <= y.size(); ++i) {
+        if (i < y.size() && std::abs(y[i] - extreme) <= tol) {
+          ++run;
+          continue;
+        }
+        if (run >= static_cast<std::size_t>(std::max(1, o.gates.clip_run)))
+          for (std::size_t j = i - run; j < i; ++j) clipped[j] = 1;
+        run = 0;
+      }
+    }
+  }
+
+  std::vector<RecordWindow> out;
+  const double W = windowed ? o.window_periods / f_rec : span;
+  const double H = windowed ? (o.hop_periods > 0 ? o.hop_periods : o.window_periods) / f_rec : span;
+  double f_track = f_rec;
+  std::size_t first = 0;
+  for (int k = 0;; ++k) {
+    const double ts = t.front() + k * H;
+    if (ts + W > t.back() * (1 + 1e-12) + 1e-12) break;
+    while (first < t.size() && t[first] < ts - 1e-12 * W) ++first;
+    std::size_t last = first;
+    while (last + 1 < t.size() && t[last + 1] <= ts + W + 1e-12 * W) ++last;
+    RecordWindow w;
+    w.index = k;
+    w.first = first;
+    w.count = last - first + 1;
+    w.t_start = t[first];
+    w.t_end = t[last];
+    w.t_mid = 0.5 * (w.t_start + w.t_end);
+    w.position = kNaN;
+    if (!position.empty()) {
+      const auto it = std::lower_bound(t.begin(), t.end(), w.t_mid);
+      const std::size_t j = static_cast<std::size_t>(it - t.begin());
+      if (j == 0) {
+        w.position = position[0];
+      } else {
+        const double u = (w.t_mid - t[j - 1]) / (t[j] - t[j - 1]);
+        w.position = position[j - 1] + u * (position[j] - position[j - 1]);
+      }
+    }
+    w.f = kNaN;
+    w.drift = kNaN;
+    const auto tw = t.subspan(first, w.count), xw = ddx.subspan(first, w.count),
+               zw = ddz.subspan(first, w.count);
+    std::vector<std::string> reasons;
+    // Gates that need no fit.
+    double gap = 0, gap_at = 0;
+    for (std::size_t i = first; i < last; ++i)
+      if (dt[i] > gap) {
+        gap = dt[i];
+        gap_at = t[i];
+      }
+    if (gap > o.gates.max_gap * median_dt)
+      reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at) + " s (" +
+                        num(gap / median_dt) + " median steps > " + num(o.gates.max_gap) + ")");
+    std::size_t n_clipped = 0;
+    for (std::size_t i = first; i <= last; ++i) n_clipped += clipped[i] ? 1 : 0;
+    if (n_clipped > 0)
+      reasons.push_back("clipped: " + std::to_string(n_clipped) + " samples " +
+                        (o.gates.clip_level > 0 ? "at |a| >= " + num(o.gates.clip_level)
+                                                : std::string("on a plateau at the extreme")));
+    w.samples_per_period = static_cast<double>(w.count - 1) / ((w.t_end - w.t_start) * f_track);
+    const bool enough =
+        w.samples_per_period >= 2.0 * o.n_max + 1.0 && (w.t_end - w.t_start) * f_track >= 1.0;
+    if (!enough)
+      reasons.push_back("too few samples per period (" + num(w.samples_per_period) + " < " +
+                        std::to_string(2 * o.n_max + 1) + " for " + std::to_string(o.n_max) +
+                        " harmonics)");
+    bool fitted = false;
+    if (enough && gap <= o.gates.max_gap * median_dt) {
+      const double periods = (w.t_end - w.t_start) * f_track;
+      const int nf = o.n_max;  // all of them: unfitted harmonics would bias f
+      const double fw =
+          o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f_track, std::min(0.05, 0.5 / periods), nf);
+      w.f = fw;
+      const std::size_t half = w.count / 2;
+      const double hw = std::min(0.05, 1.0 / periods);
+      if (half >= static_cast<std::size_t>(2 * o.n_max + 2)) {
+        const double f1 =
+            refine_frequency(tw.first(half), xw.first(half), zw.first(half), fw, hw, nf);
+        const double f2 =
+            refine_frequency(tw.subspan(half), xw.subspan(half), zw.subspan(half), fw, hw, nf);
+        w.drift = (f2 - f1) / fw;
+      }
+      try {
+        w.metrics = analyze_record(tw, xw, zw, fw, o.n_max);
+        fitted = true;
+      } catch (const Error& e) {
+        reasons.push_back(e.what());
+      }
+      if (fitted) {
+        const double res = std::max(w.metrics.residual_x, w.metrics.residual_z);
+        if (!(res <= o.gates.max_residual))
+          reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
+                            num(o.gates.max_residual));
+        if (std::isfinite(w.drift) && std::abs(w.drift) > o.gates.max_drift)
+          reasons.push_back("frequency drift " + num(std::round(w.drift * 1e5) / 1e5) +
+                            " within the window (|drift| > " + num(o.gates.max_drift) + ")");
+      }
+    }
+    w.valid = reasons.empty();
+    for (const std::string& r : reasons) w.reason += (w.reason.empty() ? "" : "; ") + r;
+    if (w.valid) {
+      f_track = w.f;
+    } else {
+      // Metrics that could not be made, or failed a gate, are not reported as valid.
+      RecordMetrics nan;
+      nan.cycles = (w.t_end - w.t_start) * f_track;
+      nan.residual_x = fitted ? w.metrics.residual_x : kNaN;
+      nan.residual_z = fitted ? w.metrics.residual_z : kNaN;
+      nan.ddx_max = nan.ddx_min = nan.ddz_max = nan.ddz_min = nan.psi_xz = nan.area = kNaN;
+      nan.ddx_harmonics.assign(static_cast<std::size_t>(o.n_max) + 1, Harmonic{kNaN, kNaN});
+      nan.ddz_harmonics = nan.ddx_harmonics;
+      w.metrics = nan;
+    }
+    out.push_back(std::move(w));
+    if (!windowed) break;
+  }
+  return out;
 }
 
 }  // namespace oscidrum

@@ -1,0 +1,477 @@
+// oscidrum identify: the soil under the drum from a measured acceleration record (or from the
+// metrics `analyze --format json` wrote): one estimate of G (or ksh, ksv), optionally mu and
+// MMd, per window along a pass, with uncertainties, 95 % profile intervals and warnings
+// (identify.hpp, docs/identify.md).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "case_options.hpp"
+#include "commands.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/identify.hpp"
+#include "oscidrum/simulate.hpp"
+#include "oscidrum_io/config.hpp"
+#include "oscidrum_io/csv.hpp"
+#include "output.hpp"
+#include "plot.hpp"
+#include "record_input.hpp"
+#include "terminal.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+struct IdentifyCliOptions {
+  RecordInput input;
+  WindowOptions windows;
+  std::string config, metrics_file;
+  CaseOptions c;
+  std::string estimate = "G";
+  bool fit_mu = false, fit_MMd = false, use_peaks = false, use_area = false, no_profile = false;
+  int compare = 4;
+  std::string csv, json, plot_dir, format = "table";
+  int plot_window = -1;
+  bool quiet = false;
+};
+
+std::string cell(double v) { return io::format_double_short(v); }
+
+// The case the record is compared with: the case file, the flags, --set.
+Case base_case(const IdentifyCliOptions& o) {
+  io::CaseSpec spec;
+  if (!o.config.empty()) io::read_case_file(o.config, spec);
+  apply(o.c, spec);
+  std::vector<std::string> warnings;
+  const Case c = io::finalize(spec, &warnings);
+  for (const std::string& w : warnings) warn(w);
+  io::validate(c, spec);
+  return c;
+}
+
+// The measured response from `analyze --format json` (schema oscidrum-record/1).
+MeasuredResponse read_metrics(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw Error(path + ": not JSON: " + e.what());
+  }
+  if (j.value("schema", "") != "oscidrum-record/1")
+    throw Error(path +
+                ": expected the JSON of `oscidrum analyze --format json` (schema "
+                "oscidrum-record/1)");
+  auto number = [&](const char* key) {
+    if (!j.contains(key) || !j[key].is_number())
+      throw Error(path + ": '" + std::string(key) + "' must be a number (is the fit valid?)");
+    return j[key].get<double>();
+  };
+  RecordMetrics m;
+  for (const char* key : {"ddx_harmonics", "ddz_harmonics"}) {
+    std::vector<Harmonic>& h = key[2] == 'x' ? m.ddx_harmonics : m.ddz_harmonics;
+    for (const auto& e : j.at(key)) {
+      if (!e["amplitude"].is_number() || !e["phase"].is_number())
+        throw Error(path + ": " + key + " holds a value that is not a number");
+      h.push_back({e["amplitude"].get<double>(), e["phase"].get<double>()});
+    }
+  }
+  m.residual_x = number("residual_x");
+  m.residual_z = number("residual_z");
+  m.ddx_max = number("ddx_max");
+  m.ddx_min = number("ddx_min");
+  m.ddz_max = number("ddz_max");
+  m.ddz_min = number("ddz_min");
+  m.area = number("area");
+  const double samples = j.contains("samples") ? number("samples") : 1000.0;
+  return measured_response(m, number("f"), static_cast<std::size_t>(std::max(1.0, samples)));
+}
+
+const Estimate* find_estimate(const Identification& id, const std::string& name) {
+  for (const Estimate& e : id.estimates)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+std::vector<std::pair<std::string, std::string>> unknowns(const IdentifyOptions& io) {
+  std::vector<std::pair<std::string, std::string>> u;
+  if (io.modulus) {
+    u.push_back({"G", "Pa"});
+  } else {
+    u.push_back({"ksh", "N/m"});
+    u.push_back({"ksv", "N/m"});
+  }
+  if (io.fit_mu) u.push_back({"mu", "-"});
+  if (io.fit_MMd) u.push_back({"MMd", "N m"});
+  return u;
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string out;
+  for (const std::string& s : v) out += (out.empty() ? "" : "; ") + s;
+  return out;
+}
+
+// One row per window (docs/identify.md, "Output columns").
+std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOptions& io) {
+  std::ostringstream out;
+  out << "window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-]";
+  for (const auto& [name, unit] : unknowns(io))
+    for (const char* suffix : {"", "_u", "_lo", "_hi"})
+      out << "," << name << suffix << "[" << unit << "]";
+  out << ",tau[s],rms_residual[m/s^2],relative_residual[-],reduced_chi2[-],condition[-],"
+         "iterations[-],simulations[-],warnings[-]\n";
+  for (const PassEstimate& p : pass) {
+    const RecordWindow& w = p.window;
+    const Identification& id = p.identification;
+    out << w.index << "," << cell(w.t_start) << "," << cell(w.t_end) << "," << cell(w.t_mid) << ","
+        << cell(w.position) << "," << cell(w.f) << "," << (p.valid ? 1 : 0) << ","
+        << io::csv_quote(p.reason);
+    for (const auto& [name, unit] : unknowns(io)) {
+      const Estimate* e = p.valid ? find_estimate(id, name) : nullptr;
+      for (double v : {e ? e->value : NAN, e ? e->standard_uncertainty : NAN, e ? e->lower : NAN,
+                       e ? e->upper : NAN})
+        out << "," << cell(v);
+    }
+    const double nan = NAN;
+    out << "," << cell(p.valid ? id.time_shift : nan) << ","
+        << cell(p.valid ? id.rms_residual : nan) << ","
+        << cell(p.valid ? id.relative_residual : nan) << ","
+        << cell(p.valid ? id.reduced_chi2 : nan) << "," << cell(p.valid ? id.condition : nan) << ","
+        << (p.valid ? id.iterations : 0) << "," << (p.valid ? id.simulations : 0) << ","
+        << io::csv_quote(join(id.warnings)) << "\n";
+  }
+  return out.str();
+}
+
+nlohmann::ordered_json identification_json(const Identification& id) {
+  nlohmann::ordered_json est = nlohmann::json::array();
+  for (const Estimate& e : id.estimates)
+    est.push_back({{"name", e.name},
+                   {"unit", e.unit},
+                   {"value", e.value},
+                   {"standard_uncertainty", e.standard_uncertainty},
+                   {"lower", e.lower},
+                   {"upper", e.upper},
+                   {"lower_open", e.lower_open},
+                   {"upper_open", e.upper_open}});
+  return {{"estimates", est},
+          {"f", id.f},
+          {"tau", id.time_shift},
+          {"rms_residual", id.rms_residual},
+          {"relative_residual", id.relative_residual},
+          {"reduced_chi2", id.reduced_chi2},
+          {"condition", id.condition},
+          {"converged", id.converged},
+          {"message", id.message},
+          {"iterations", id.iterations},
+          {"simulations", id.simulations},
+          {"warnings", id.warnings}};
+}
+
+std::string value_text(const Estimate& e) {
+  const double k = e.name == "G" ? 1e-6 : (e.name == "ksh" || e.name == "ksv") ? 1e-6 : 1.0;
+  auto f = [&](double v, int d) { return std::isfinite(v) ? fmt(v * k, d) : std::string("?"); };
+  return f(e.value, 5) + " +- " + f(e.standard_uncertainty, 2) + "  [" + (e.lower_open ? "<" : "") +
+         f(e.lower, 4) + ", " + f(e.upper, 4) + (e.upper_open ? ">" : "") + "]";
+}
+
+std::string unit_text(const Estimate& e) {
+  if (e.name == "G") return "MN/m^2";
+  if (e.name == "ksh" || e.name == "ksv") return "MN/m";
+  return e.unit;
+}
+
+// Plot data of one window: measured and model over two periods, spectra, parameters.
+void write_fit_files(const std::string& dir, const RecordColumns& rec, const PassEstimate& p,
+                     int n_max) {
+  const Identification& id = p.identification;
+  Case c = id.fitted;
+  c.numerics.output_periods = 2;
+  c.numerics.samples_per_period = 256;
+  const Result r = simulate(c);
+  if (!ok(r.status))
+    throw Error("the best fit's model did not reach its steady state: " + r.message);
+  const double T = 1.0 / id.f;
+  const RecordWindow& w = p.window;
+  double shift = id.time_shift;  // record time = model time + tau + k T
+  const double t0 = r.samples.t.front() + shift;
+  shift += std::ceil((w.t_start - t0) / T) * T;
+  std::ostringstream model, measured, spectrum;
+  model << "t[s],ddx_M[m/s^2],ddz_M[m/s^2]\n";
+  for (std::size_t j = 0; j < r.samples.size(); ++j)
+    model << cell(r.samples.t[j] + shift) << "," << cell(r.samples.ddx_M[j]) << ","
+          << cell(r.samples.ddz_M[j]) << "\n";
+  const double a = r.samples.t.front() + shift, b = a + 2 * T;
+  measured << "t[s],ddx_M[m/s^2],ddz_M[m/s^2]\n";
+  for (std::size_t i = w.first; i < w.first + w.count; ++i)
+    if (rec.t[i] >= a && rec.t[i] <= b)
+      measured << cell(rec.t[i]) << "," << cell(rec.ddx_M[i]) << "," << cell(rec.ddz_M[i]) << "\n";
+  const Metrics sim = compute_metrics(r, n_max);
+  spectrum << "n[-],f[Hz],ddx_A_measured[m/s^2],ddx_A_model[m/s^2],ddz_A_measured[m/s^2],"
+              "ddz_A_model[m/s^2]\n";
+  for (int n = 1; n <= n_max; ++n)
+    spectrum << n << "," << cell(n * id.f) << "," << cell(w.metrics.ddx_harmonics[n].amplitude)
+             << "," << cell(sim.ddx_harmonics[n].amplitude) << ","
+             << cell(w.metrics.ddz_harmonics[n].amplitude) << ","
+             << cell(sim.ddz_harmonics[n].amplitude) << "\n";
+  nlohmann::ordered_json j = identification_json(id);
+  j["window"] = w.index;
+  j["t_start"] = w.t_start;
+  j["t_end"] = w.t_end;
+  j["position"] = w.position;
+  j["pure_rolling"] = c.contact.pure_rolling;
+  j["mu"] = c.contact.mu;
+  j["MMd"] = c.MMd;
+  write_output(dir + "/fit_model.csv", model.str());
+  write_output(dir + "/fit_measured.csv", measured.str());
+  write_output(dir + "/fit_spectrum.csv", spectrum.str());
+  write_output(dir + "/fit.json", j.dump(2) + "\n");
+}
+
+int run(const IdentifyCliOptions& o) {
+  if (o.input.file.empty() == o.metrics_file.empty())
+    throw Error("identify: give either a record or --metrics FILE (the JSON of analyze)");
+  const Case base = base_case(o);
+  IdentifyOptions io;
+  io.modulus = o.estimate == "G";
+  io.fit_mu = o.fit_mu;
+  io.fit_MMd = o.fit_MMd;
+  io.harmonics = o.compare;
+  io.use_peaks = o.use_peaks;
+  io.use_area = o.use_area;
+  io.profile = !o.no_profile;
+  if (o.compare > o.windows.n_max)
+    throw Error("--compare must be <= --harmonics = " + std::to_string(o.windows.n_max) + "; got " +
+                std::to_string(o.compare));
+
+  std::vector<PassEstimate> pass;
+  RecordColumns rec;
+  std::string name = o.metrics_file;
+  install_interrupt_handlers();
+  if (!o.metrics_file.empty()) {
+    const MeasuredResponse d = read_metrics(o.metrics_file);
+    PassEstimate p;
+    p.window.f = d.f;
+    p.window.position = NAN;
+    p.identification = identify(base, d, io);
+    p.valid = true;
+    pass.push_back(p);
+  } else {
+    name = o.input.file == "-" ? "<stdin>" : o.input.file;
+    rec = read_record(o.input);
+    ProgressLine line(stderr_is_terminal() && !o.quiet);
+    pass = identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows, io,
+                         [&](std::size_t k, std::size_t n) {
+                           line.update("oscidrum identify: window " + std::to_string(k + 1) +
+                                       " of " + std::to_string(n));
+                           return !interrupted();
+                         });
+    line.clear();
+    if (interrupted()) {
+      std::cerr << "oscidrum: interrupted after " << pass.size() << " windows; nothing written\n";
+      return kExitInterrupted;
+    }
+  }
+  std::size_t valid = 0;
+  for (const PassEstimate& p : pass) valid += p.valid ? 1 : 0;
+
+  const std::string csv_text = pass_csv(pass, io);
+  nlohmann::ordered_json rows = nlohmann::json::array();
+  for (const PassEstimate& p : pass) {
+    nlohmann::ordered_json r = {{"window", p.window.index},
+                                {"t_start", p.window.t_start},
+                                {"t_end", p.window.t_end},
+                                {"t", p.window.t_mid},
+                                {"position", p.window.position},
+                                {"f", p.window.f},
+                                {"valid", p.valid},
+                                {"reason", p.reason}};
+    if (p.valid) r.update(identification_json(p.identification));
+    rows.push_back(r);
+  }
+  const nlohmann::ordered_json j = {{"schema", "oscidrum-identify/1"},
+                                    {"file", name},
+                                    {"estimate", o.estimate},
+                                    {"fit_mu", o.fit_mu},
+                                    {"fit_MMd", o.fit_MMd},
+                                    {"compare_harmonics", o.compare},
+                                    {"window_periods", o.windows.window_periods},
+                                    {"valid_windows", valid},
+                                    {"windows", rows}};
+  std::string csv_path = o.csv;
+  if (!o.plot_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.plot_dir, ec);
+    if (ec) throw Error("cannot create --plot directory " + o.plot_dir + ": " + ec.message());
+    write_output(o.plot_dir + "/identify.csv", csv_text);  // what the plots read
+  }
+  if (!csv_path.empty()) write_output(csv_path, csv_text);
+  if (!o.json.empty()) write_output(o.json, j.dump(2) + "\n");
+
+  if (o.format == "csv") {
+    std::cout << csv_text;
+  } else if (o.format == "json") {
+    std::cout << j.dump(2) << "\n";
+  } else if (pass.size() == 1 && pass.front().valid) {
+    const Identification& id = pass.front().identification;
+    Summary s;
+    s.section("Identification");
+    s.line("data", name);
+    s.line("excitation frequency f [Hz]", fmt(id.f, 8));
+    for (const Estimate& e : id.estimates)
+      s.line(e.name + " [" + unit_text(e) + "]  value +- u  [95 %]", value_text(e));
+    s.line("relative residual", fmt(id.relative_residual, 3) + " (harmonics n = 1 ... " +
+                                    std::to_string(o.compare) + ")");
+    s.line("reduced chi^2", fmt(id.reduced_chi2, 3));
+    s.line("time shift tau [s]", fmt(id.time_shift, 6));
+    s.line("iterations, simulations",
+           std::to_string(id.iterations) + ", " + std::to_string(id.simulations));
+    for (const std::string& w : id.warnings) s.line("WARNING", w);
+    std::cout << s.text();
+  } else {
+    TextTable t;
+    t.header = {"window", "t [s]", "position [m]", "f [Hz]"};
+    for (const auto& [n, u] : unknowns(io)) {
+      const std::string unit = n == "G" ? "MN/m^2" : (n == "ksh" || n == "ksv") ? "MN/m" : u;
+      t.header.push_back(n + " [" + unit + "]  +- u  [95 %]");
+    }
+    t.header.push_back("rel. res.");
+    t.header.push_back("status");
+    t.right.assign(t.header.size(), true);
+    t.right.back() = false;
+    for (const PassEstimate& p : pass) {
+      std::vector<std::string> row = {
+          std::to_string(p.window.index), fmt(p.window.t_mid, 5),
+          std::isfinite(p.window.position) ? fmt(p.window.position, 5) : "", fmt(p.window.f, 6)};
+      for (const auto& [n, u] : unknowns(io)) {
+        const Estimate* e = p.valid ? find_estimate(p.identification, n) : nullptr;
+        row.push_back(e ? value_text(*e) : "");
+      }
+      row.push_back(p.valid ? fmt(p.identification.relative_residual, 3) : "");
+      row.push_back(!p.valid ? p.reason
+                             : (p.identification.warnings.empty()
+                                    ? "ok"
+                                    : "WARNING: " + join(p.identification.warnings)));
+      t.rows.push_back(row);
+    }
+    std::cout << name << ": " << pass.size() << " windows, " << valid << " identified\n"
+              << t.text();
+  }
+  std::cout.flush();
+
+  if (!o.plot_dir.empty() && valid > 0) {
+    // The window to compare in time: --plot-window, else the first valid one.
+    const PassEstimate* chosen = nullptr;
+    for (const PassEstimate& p : pass)
+      if (p.valid && (o.plot_window < 0 || p.window.index == o.plot_window)) {
+        chosen = &p;
+        break;
+      }
+    if (!chosen)
+      throw Error("--plot-window " + std::to_string(o.plot_window) +
+                  " is not a window with an estimate");
+    if (o.metrics_file.empty()) write_fit_files(o.plot_dir, rec, *chosen, o.windows.n_max);
+    if (run_python({"oscidrum.identify", "plot", "--dir", o.plot_dir},
+                   "the data are in " + o.plot_dir) != 0)
+      return kExitCaseFailed;
+  }
+  if (valid == 0) {
+    std::string reasons;
+    for (const PassEstimate& p : pass)
+      if (!p.valid && reasons.size() < 600)
+        reasons += (reasons.empty() ? "" : "; ") + std::string("window ") +
+                   std::to_string(p.window.index) + ": " + p.reason;
+    std::cerr << "oscidrum: error: " << name << ": no window could be identified: " << reasons
+              << "\n";
+    return kExitCaseFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_identify_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<IdentifyCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "identify",
+      "The soil under the drum from its measured accelerations: for each window of a record "
+      "(analyze's windows and quality gates), the shear modulus G [MN/m^2] through Appendix B "
+      "(42)-(45) (or the springs ksh, ksv), optionally mu and the driving torque MMd, such that "
+      "the model's complex harmonics of x_M'' and z_M'' at f, 2f, ... match the measured ones "
+      "(Levenberg-Marquardt; the record's time origin is fitted too). Each estimate comes with "
+      "a standard uncertainty, a 95 % interval from the profile of the objective, the fit "
+      "quality and warnings when parameters cannot be told apart. The G identified is the one "
+      "of this lumped model (docs/identify.md).");
+  sub->footer(
+      "The roller and everything not estimated come from --case, the flags and --set (defaults: "
+      "the paper's roller); roller.M0 is scaled by (f / roller.f)^2 to the record's f (5).\n"
+      "Output columns: docs/identify.md.\nExamples:\n"
+      "  oscidrum identify pass.csv --speed-col v --csv G.csv --plot plots/\n"
+      "  oscidrum identify record.csv --window 0 --fit-mu\n"
+      "  oscidrum identify --metrics record.json --pure-rolling\n"
+      "Exit codes: 0 at least one window identified, 1 none, 2 bad input, 130 interrupted.");
+  add_record_options(*sub, o->input, false);
+  add_window_options(*sub, o->windows, 40.0);
+  sub->add_option("--metrics", o->metrics_file,
+                  "identify from these metrics (the JSON of `oscidrum analyze --format json`) "
+                  "instead of a record")
+      ->type_name("FILE");
+  const char* model = "Model";
+  sub->add_option("--case", o->config, "case file (TOML) of the roller and the known parameters")
+      ->type_name("CASE.toml")
+      ->group(model);
+  add_roller_flags(*sub, o->c,
+                   {"roller.r", "roller.b", "roller.m", "roller.I", "roller.P0", "roller.M0",
+                    "roller.kd", "roller.cd"});
+  add_soil_flags(*sub, o->c);
+  add_model_flags(*sub, o->c);
+  add_set_flag(*sub, o->c);
+  const char* fit = "Identification";
+  sub->add_option("--estimate", o->estimate,
+                  "G (shear modulus through Appendix B with the case's nu and rho) or ks (ksh and "
+                  "ksv, with the case's csh and csv) (default G)")
+      ->check(CLI::IsMember({"G", "ks"}))
+      ->group(fit);
+  sub->add_flag("--fit-mu", o->fit_mu, "estimate the friction coefficient mu too")->group(fit);
+  sub->add_flag("--fit-MMd", o->fit_MMd, "estimate the driving torque MMd too")->group(fit);
+  sub->add_option("--compare", o->compare,
+                  "harmonics n = 1 ... N of x_M'' and z_M'' compared (default 4)")
+      ->check(CLI::Range(1, 50))
+      ->group(fit);
+  sub->add_flag("--use-peaks", o->use_peaks, "compare the peaks of x_M'' and z_M'' too")
+      ->group(fit);
+  sub->add_flag("--use-area", o->use_area, "compare the area of the z_M''(x_M'') figure too")
+      ->group(fit);
+  sub->add_flag("--no-profile", o->no_profile,
+                "skip the profile intervals (faster; the columns _lo, _hi are NaN)")
+      ->group(fit);
+  const char* out = "Output";
+  sub->add_option("--csv", o->csv, "write one row per window to FILE ('-': stdout)")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--json", o->json, "write the JSON of the identification to FILE")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--format", o->format, "stdout: table, csv or json")
+      ->check(CLI::IsMember({"table", "csv", "json"}))
+      ->group(out);
+  sub->add_option("--plot", o->plot_dir,
+                  "plot into DIR: G with its band against time or position, and measured against "
+                  "simulated accelerations, spectra and z_M''(x_M'') of one window")
+      ->type_name("DIR")
+      ->group(out);
+  sub->add_option("--plot-window", o->plot_window,
+                  "the window compared in --plot (default: the first identified)")
+      ->group(out);
+  sub->add_flag("--quiet,-q", o->quiet, "no progress line on stderr")->group(out);
+  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+}
+
+}  // namespace oscidrum::cli

@@ -1,0 +1,146 @@
+// oscidrum/identify.hpp: the soil under the drum from its measured accelerations. The inverse of
+// simulate: nonlinear least squares (Levenberg-Marquardt) of the model's complex harmonics of
+// x_M'' and z_M'' against the measured ones (docs/identify.md). What is identified is the soil
+// of this lumped model (Appendix B (42)-(45) or the springs ksh, ksv directly), not a property
+// of the ground measured independently of the model.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "oscidrum/metrics.hpp"
+#include "oscidrum/parameters.hpp"
+#include "oscidrum/record.hpp"
+#include "oscidrum/result.hpp"
+
+namespace oscidrum {
+
+/// What the model says for one case: the forward model of the identification. Every
+/// identification goes through simulate_metrics, so that a faster steady-state solver can
+/// replace the transient run in one place.
+struct ModelResponse {
+  Status status = Status::steady_state;
+  std::string message;
+  Metrics metrics;  ///< harmonics n = 0 ... n_max of x_M'', z_M'' (absolute-time phases)
+};
+
+/// Simulate `c` to its steady state and return its metrics with n_max harmonics. Throws
+/// oscidrum::Error only for an invalid case; numerical trouble is in `status`.
+ModelResponse simulate_metrics(const Case& c, int n_max);
+
+/// The measured quantities an identification compares with the model.
+struct MeasuredResponse {
+  double f = 0.0;  ///< excitation frequency [Hz]
+  /// C_n = A_n exp(i theta_n) of x_M'' and z_M'', n = 1 ... N (index n - 1), with the phases of
+  /// y(t) = sum A_n sin(n 2 pi f t + theta_n) in the record's own time [m/s^2]
+  std::vector<std::complex<double>> ddx, ddz;
+  double sigma_x = 1.0;  ///< standard uncertainty of Re C_n and Im C_n of x_M'' [m/s^2]
+  double sigma_z = 1.0;  ///< the same for z_M'' [m/s^2]
+  int n_signal = 10;     ///< harmonics of the fitted signal the peaks and area are taken from
+  double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0;  ///< peaks [m/s^2]
+  double area = 0;  ///< area of the z_M''(x_M'') figure [m^2/s^4]
+};
+
+/// The measured response of a fitted record (or window) of `samples` samples at f [Hz]. The
+/// uncertainty of each harmonic coefficient is s sqrt(2 / samples), s the RMS of the fit's
+/// residual (white noise; drift and misfit make it conservative).
+MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t samples);
+
+/// What is estimated, and how.
+struct IdentifyOptions {
+  bool modulus = true;      ///< true: G [Pa] by Appendix B (nu, rho of the case); false: ksh, ksv
+  bool fit_mu = false;      ///< estimate contact.mu too
+  bool fit_MMd = false;     ///< estimate the driving torque MMd too
+  int harmonics = 4;        ///< compare C_n for n = 1 ... harmonics [-]
+  bool use_peaks = false;   ///< also compare the four peaks of x_M'' and z_M''
+  bool use_area = false;    ///< also compare the area of the z_M''(x_M'') figure
+  bool profile = true;      ///< 95 % intervals from the profile of the objective
+  int max_iterations = 40;  ///< Levenberg-Marquardt iterations [-]
+  double max_condition = 1e6;     ///< a larger condition number of the scaled Jacobian: warn [-]
+  double model_tolerance = 1e-6;  ///< numerics.rtol and steady_tol of the model (at least) [-]
+  double max_correlation = 0.99;  ///< a larger |correlation| of two estimates: warn [-]
+};
+
+/// One estimated parameter.
+struct Estimate {
+  std::string name;  ///< G, ksh, ksv, mu, MMd
+  std::string unit;  ///< Pa, N/m, -, N m
+  double value = 0.0;
+  double standard_uncertainty = 0.0;  ///< from the Jacobian and the residual noise [unit]
+  double lower = 0.0, upper = 0.0;    ///< 95 % interval from the profile [unit] (NaN: none)
+  bool lower_open = false;            ///< the profile stayed flat down to the parameter's bound
+  bool upper_open = false;            ///< ... up to its bound
+};
+
+/// The result of one identification.
+struct Identification {
+  bool converged = false;
+  std::string message;              ///< why it stopped
+  std::vector<Estimate> estimates;  ///< in the order G (or ksh, ksv), mu, MMd
+  double f = 0.0;                   ///< excitation frequency used [Hz]
+  double time_shift = 0.0;          ///< tau [s]: record time = model time + tau (modulo 1/f)
+  double rms_residual = 0.0;        ///< RMS of C_n(measured) - C_n(model), over n and both [m/s^2]
+  double relative_residual = 0.0;   ///< ||C(measured) - C(model)|| / ||C(measured)|| [-]
+  double reduced_chi2 = 0.0;        ///< weighted sum of squares / degrees of freedom [-]
+  double condition = 0.0;           ///< condition number of the column-scaled Jacobian [-]
+  int iterations = 0;               ///< Levenberg-Marquardt iterations [-]
+  int simulations = 0;              ///< calls of simulate_metrics [-]
+  std::vector<std::string> warnings;  ///< parameters that cannot be told apart, flat profiles
+  Case fitted;                        ///< the case at the estimate (f and M0 of the record)
+  Metrics simulated;                  ///< its metrics
+};
+
+/// Estimate the soil (and optionally mu, MMd) so that the model's harmonics match `data`. The
+/// case `base` gives everything else; its roller.f is set to data.f and roller.M0 scaled by
+/// (data.f / base.roller.f)^2 (5). `start` (optional) is a previous identification to start
+/// from (a pass); without it a coarse scan of G picks the start. Throws oscidrum::Error for
+/// invalid input or if the model fails at every start.
+Identification identify(const Case& base, const MeasuredResponse& data,
+                        const IdentifyOptions& options = {}, const Identification* start = nullptr);
+
+/// One window of a pass with its identification (valid == false: the window failed a gate or
+/// the identification failed; `reason` says why and the estimates are NaN).
+struct PassEstimate {
+  RecordWindow window;
+  bool valid = false;
+  std::string reason;
+  Identification identification;
+};
+
+/// Called after each window with its index and the number of windows; return false to stop.
+using PassProgress = std::function<bool(std::size_t index, std::size_t count)>;
+
+/// Identify every window of a record (analyze_windows), each started from the previous valid
+/// estimate.
+std::vector<PassEstimate> identify_pass(
+    const Case& base, std::span<const double> t, std::span<const double> ddx_M,
+    std::span<const double> ddz_M, std::span<const double> position, const WindowOptions& windows,
+    const IdentifyOptions& options = {}, const PassProgress& progress = {});
+
+/// A synthetic record made by oscidrum itself, for tests and benchmarks.
+struct SyntheticRecord {
+  double duration = 1.0;      ///< [s]
+  double sample_rate = 1000;  ///< [1/s]
+  double noise = 0.0;         ///< white noise, standard deviation / peak |a| of each signal [-]
+  double drift = 0.0;         ///< slow drift amplitude / peak |a| (a sine of period `duration`)
+  double jitter = 0.0;        ///< random sample-time jitter / sample interval [-]
+  unsigned seed = 1;
+  double speed = 0.0;  ///< roller speed for the position column [m/s]
+};
+
+/// Samples of a synthetic record: t [s], x_M'', z_M'' [m/s^2], position [m].
+struct RecordSamples {
+  std::vector<double> t, ddx_M, ddz_M, position;
+};
+
+/// Simulate each case of `segments` (consecutive, each duration / segments.size() long) to its
+/// steady state and sample it at the record's times (linear interpolation of 1024 samples per
+/// period, in absolute time), then add noise and drift. Throws oscidrum::Error if a case does
+/// not reach its steady state.
+RecordSamples synthetic_record(const std::vector<Case>& segments, const SyntheticRecord& options);
+
+}  // namespace oscidrum

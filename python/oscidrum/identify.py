@@ -1,0 +1,200 @@
+"""The soil under the drum from measured accelerations (docs/identify.md).
+
+:func:`identify` estimates G (or ksh, ksv), optionally mu and MMd, in each window of a record,
+with the compiled core's Levenberg-Marquardt fit (the Python twin of ``oscidrum identify``).
+:func:`plot_pass` draws G with its 95 % band against time or position; :func:`plot_fit` the
+measured and the best-fitting simulated accelerations, spectra and z_M''-x_M'' figures of one
+window (as the paper's Fig. 23), from the files ``oscidrum identify --plot DIR`` writes.
+
+Command line (``oscidrum identify --plot DIR`` calls it)::
+
+    python3 -m oscidrum.identify plot --dir DIR [--format png|svg]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+
+#: The unknowns, their display unit and factor from SI.
+_DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6),
+            "ksv": (r"$k_{sv}$", "MN/m", 1e-6), "mu": (r"$\mu$", "-", 1.0),
+            "MMd": (r"$M_{Md}$", "kN m", 1e-3)}
+
+
+def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
+             position: Optional[Sequence[float]] = None, **options: Any) -> List[Dict[str, Any]]:
+    """Identify the soil in each window of a record (t [s], ddx_M, ddz_M [m/s^2], z down).
+
+    ``case`` (an :class:`oscidrum.Case`, default the paper's roller) gives everything not
+    estimated. Options as :func:`oscidrum.identify_record`: f (0: estimated), window (periods,
+    default 40; 0: the whole record), hop, n_max, estimate ('G' or 'ks'), fit_mu, fit_MMd,
+    compare (harmonics compared), use_peaks, use_area, profile. Returns one dict per window with
+    the keys of the CLI's CSV columns (G, G_u, G_lo, G_hi in Pa, ..., valid, reason, warnings).
+    """
+    from . import Case, identify_record
+    arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
+    pos = None if position is None else np.asarray(position, dtype=float)
+    return identify_record(case if case is not None else Case(), *arrays, position=pos,
+                           **options)
+
+
+def _figure(width: float = 7.0, height: float = 4.0):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def read_csv(path: str | Path) -> Dict[str, np.ndarray]:
+    """A CSV of the CLI as columns (names without their [unit]); text columns stay strings."""
+    lines = Path(path).read_text().splitlines()
+    import csv
+    rows = list(csv.reader(lines))
+    names = [h.split("[")[0] for h in rows[0]]
+    out: Dict[str, np.ndarray] = {}
+    for k, name in enumerate(names):
+        cells = [r[k] for r in rows[1:]]
+        try:
+            out[name] = np.array([float(c) if c != "" else math.nan for c in cells])
+        except ValueError:
+            out[name] = np.array(cells, dtype=object)
+    return out
+
+
+def plot_pass(rows, x: str = "auto", parameter: str = "G"):
+    """G (or another unknown) with its 95 % band against time or position (x = 't',
+    'position' or 'auto': position if the rows have it). ``rows``: the result of
+    :func:`identify` or the path of ``oscidrum identify --csv``. Returns a Figure."""
+    cols = read_csv(rows) if isinstance(rows, (str, Path)) else {
+        k: np.array([r.get(k, math.nan) for r in rows], dtype=float)
+        for k in ("t", "position", parameter, parameter + "_lo", parameter + "_hi", "valid")}
+    if x == "auto":
+        x = "position" if np.isfinite(cols.get("position", np.array([np.nan]))).any() else "t"
+    label, unit, k = _DISPLAY.get(parameter, (parameter, "", 1.0))
+    fig = _figure()
+    ax = fig.add_subplot()
+    xs = cols[x]
+    v, lo, hi = (cols[parameter] * k, cols[parameter + "_lo"] * k, cols[parameter + "_hi"] * k)
+    ax.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25, lw=0, label="95 % interval")
+    ax.plot(xs, v, "o-", color="tab:blue", ms=3, label="estimate")
+    bad = ~np.isfinite(v)
+    if bad.any():
+        for xb in xs[bad]:
+            ax.axvline(xb, color="tab:red", alpha=0.3, lw=1)
+        ax.plot([], [], color="tab:red", alpha=0.5, label="window failed a gate")
+    ax.set_xlabel("position [m]" if x == "position" else "time [s]")
+    ax.set_ylabel(f"{label} [{unit}]")
+    ax.set_title(f"identified {label} along the pass (lumped model, docs/identify.md)")
+    ax.legend(loc="best", fontsize="small")
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def plot_fit(directory: str | Path):
+    """Measured against simulated for one window, from the files of ``identify --plot DIR``
+    (fit_measured.csv, fit_model.csv, fit_spectrum.csv, fit.json): three Figures (time
+    histories over two periods, spectra, z_M''-x_M'' figure) with the estimates in the title."""
+    d = Path(directory)
+    meas = read_csv(d / "fit_measured.csv")
+    model = read_csv(d / "fit_model.csv")
+    spec = read_csv(d / "fit_spectrum.csv")
+    info = json.loads((d / "fit.json").read_text())
+    parts = []
+    for e in info["estimates"]:
+        label, unit, k = _DISPLAY.get(e["name"], (e["name"], e["unit"], 1.0))
+        parts.append(f"{label} = {e['value'] * k:.4g} ± {e['standard_uncertainty'] * k:.2g} {unit}")
+    title = (", ".join(parts) + f"; f = {info['f']:.4g} Hz, window {info['window']}"
+             f" (t = {info['t_start']:.3g}-{info['t_end']:.3g} s)")
+
+    t0 = model["t"][0]
+    figs = []
+    fig = _figure(7.5, 5.0)
+    axes = fig.subplots(2, 1, sharex=True)
+    for ax, key, lab in ((axes[0], "ddx_M", r"$\ddot{x}_M$ [m/s$^2$]"),
+                         (axes[1], "ddz_M", r"$\ddot{z}_M$ [m/s$^2$] (down +)")):
+        ax.plot(meas["t"] - t0, meas[key], ".", ms=3, color="0.4", label="measured")
+        ax.plot(model["t"] - t0, model[key], "-", color="tab:red", label="model, best fit")
+        ax.set_ylabel(lab)
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="upper right", fontsize="small")
+    axes[1].set_xlabel(f"time from t = {t0:.4g} s [s]")
+    fig.suptitle(title, fontsize="small")
+    figs.append(("fit_accelerations", fig))
+
+    fig = _figure(7.5, 4.0)
+    axes = fig.subplots(1, 2)
+    w = 0.38
+    for ax, key, lab in ((axes[0], "ddx", r"$\ddot{x}_M$"), (axes[1], "ddz", r"$\ddot{z}_M$")):
+        n = spec["n"]
+        ax.bar(n - w / 2, spec[key + "_A_measured"], w, color="0.5", label="measured")
+        ax.bar(n + w / 2, spec[key + "_A_model"], w, color="tab:red", label="model")
+        ax.set_xlabel(r"harmonic $n$ ($n f$)")
+        ax.set_ylabel(lab + r" amplitude $A_n$ [m/s$^2$]")
+        ax.grid(alpha=0.3, axis="y")
+    axes[0].legend(fontsize="small")
+    fig.suptitle(title, fontsize="small")
+    figs.append(("fit_spectra", fig))
+
+    fig = _figure(5.5, 5.0)
+    ax = fig.add_subplot()
+    ax.plot(meas["ddx_M"], meas["ddz_M"], ".", ms=3, color="0.4", label="measured")
+    ax.plot(np.append(model["ddx_M"], model["ddx_M"][:1]),
+            np.append(model["ddz_M"], model["ddz_M"][:1]), "-", color="tab:red",
+            label="model, best fit")
+    ax.set_xlabel(r"$\ddot{x}_M$ [m/s$^2$]")
+    ax.set_ylabel(r"$\ddot{z}_M$ [m/s$^2$] (down +)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small")
+    fig.suptitle(title, fontsize="small")
+    figs.append(("fit_figure", fig))
+    return figs
+
+
+def plot_directory(directory: str | Path, fmt: str = "png") -> List[Path]:
+    """Every plot of ``oscidrum identify --plot DIR``: pass_<unknown>.png from identify.csv,
+    and fit_accelerations, fit_spectra, fit_figure from the fit files (if there are)."""
+    d = Path(directory)
+    written = []
+    if (d / "identify.csv").exists():
+        cols = read_csv(d / "identify.csv")
+        for name in _DISPLAY:
+            if name in cols and name + "_lo" in cols:
+                fig = plot_pass(d / "identify.csv", parameter=name)
+                path = d / f"pass_{name}.{fmt}"
+                fig.savefig(path, dpi=120)
+                written.append(path)
+    if (d / "fit.json").exists() and (d / "fit_model.csv").exists():
+        for name, fig in plot_fit(d):
+            path = d / f"{name}.{fmt}"
+            fig.savefig(path, dpi=120)
+            written.append(path)
+    return written
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(prog="python3 -m oscidrum.identify",
+                                     description="Plots of `oscidrum identify --plot DIR`.")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("plot", help="plot the files in DIR")
+    p.add_argument("--dir", required=True)
+    p.add_argument("--format", default="png", choices=["png", "svg"])
+    args = parser.parse_args(argv)
+    written = plot_directory(args.dir, args.format)
+    if not written:
+        print(f"oscidrum.identify: nothing to plot in {args.dir}", file=sys.stderr)
+        return 1
+    for path in written:
+        print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

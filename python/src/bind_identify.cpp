@@ -1,0 +1,183 @@
+// Bindings of oscidrum/identify.hpp and the windows of oscidrum/record.hpp: the soil from measured
+// accelerations (docs/identify.md). Results are lists of dicts with the keys of the CLI's CSV
+// columns (without units), so that they read like `oscidrum identify --csv`.
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+
+#include "bindings.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/identify.hpp"
+
+namespace oscidrum::python {
+namespace {
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+py::dict window_dict(const RecordWindow& w) {
+  py::dict d;
+  d["window"] = w.index;
+  d["t_start"] = w.t_start;
+  d["t_end"] = w.t_end;
+  d["t"] = w.t_mid;
+  d["position"] = w.position;
+  d["samples"] = w.count;
+  d["samples_per_period"] = w.samples_per_period;
+  d["f"] = w.f;
+  d["drift"] = w.drift;
+  d["valid"] = w.valid;
+  d["reason"] = w.reason;
+  d["metrics"] = w.metrics;
+  return d;
+}
+
+WindowOptions window_options(double f, double window, double hop, int n_max, double max_residual,
+                             double max_drift, double clip_level, double max_gap) {
+  WindowOptions o;
+  o.f = f;
+  o.window_periods = window;
+  o.hop_periods = hop;
+  o.n_max = n_max;
+  o.gates.max_residual = max_residual;
+  o.gates.max_drift = max_drift;
+  o.gates.clip_level = clip_level;
+  o.gates.max_gap = max_gap;
+  return o;
+}
+
+std::span<const double> optional_span(const std::optional<Array>& a, const char* name) {
+  return a ? span_of(*a, name) : std::span<const double>();
+}
+
+}  // namespace
+
+void bind_identify(py::module_& m) {
+  m.def(
+      "estimate_frequency",
+      [](const Array& t, const Array& ddx, const Array& ddz, double f_min, double f_max) {
+        FrequencySearch s;
+        s.f_min = f_min;
+        s.f_max = f_max;
+        return estimate_frequency(span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"), s);
+      },
+      py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"), py::arg("f_min") = 10.0,
+      py::arg("f_max") = 100.0,
+      "The excitation frequency [Hz] of a record: the peak of the harmonic-sum spectrum, refined "
+      "by least squares on f.");
+  m.def(
+      "analyze_windows",
+      [](const Array& t, const Array& ddx, const Array& ddz, const std::optional<Array>& position,
+         double f, double window, double hop, int n_max, double max_residual, double max_drift,
+         double clip_level, double max_gap) {
+        const WindowOptions o =
+            window_options(f, window, hop, n_max, max_residual, max_drift, clip_level, max_gap);
+        const std::vector<RecordWindow> ws =
+            analyze_windows(span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"),
+                            optional_span(position, "position"), o);
+        py::list out;
+        for (const RecordWindow& w : ws) out.append(window_dict(w));
+        return out;
+      },
+      py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"), py::arg("position") = py::none(),
+      py::arg("f") = 0.0, py::arg("window") = 0.0, py::arg("hop") = 0.0, py::arg("n_max") = 10,
+      py::arg("max_residual") = 0.5, py::arg("max_drift") = 0.002, py::arg("clip_level") = 0.0,
+      py::arg("max_gap") = 3.0,
+      "The record in windows of `window` excitation periods (0: whole), each fitted and checked "
+      "by the quality gates, as `oscidrum analyze`: a list of dicts (window, t_start, t_end, t, "
+      "position, samples, samples_per_period, f, drift, valid, reason, metrics). f = 0: "
+      "estimated.");
+  m.def(
+      "identify_record",
+      [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,
+         const std::optional<Array>& position, double f, double window, double hop, int n_max,
+         const std::string& estimate, bool fit_mu, bool fit_MMd, int compare, bool use_peaks,
+         bool use_area, bool profile) {
+        if (estimate != "G" && estimate != "ks")
+          throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
+        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 3.0);
+        IdentifyOptions io;
+        io.modulus = estimate == "G";
+        io.fit_mu = fit_mu;
+        io.fit_MMd = fit_MMd;
+        io.harmonics = compare;
+        io.use_peaks = use_peaks;
+        io.use_area = use_area;
+        io.profile = profile;
+        std::vector<PassEstimate> pass;
+        {
+          py::gil_scoped_release release;
+          pass = identify_pass(c, span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"),
+                               optional_span(position, "position"), wo, io);
+        }
+        py::list out;
+        for (const PassEstimate& p : pass) {
+          py::dict d = window_dict(p.window);
+          d["valid"] = p.valid;
+          d["reason"] = p.reason;
+          const Identification& id = p.identification;
+          for (const Estimate& e : id.estimates) {
+            d[py::str(e.name)] = e.value;
+            d[py::str(e.name + "_u")] = e.standard_uncertainty;
+            d[py::str(e.name + "_lo")] = e.lower;
+            d[py::str(e.name + "_hi")] = e.upper;
+          }
+          d["tau"] = p.valid ? id.time_shift : NAN;
+          d["rms_residual"] = p.valid ? id.rms_residual : NAN;
+          d["relative_residual"] = p.valid ? id.relative_residual : NAN;
+          d["reduced_chi2"] = p.valid ? id.reduced_chi2 : NAN;
+          d["condition"] = p.valid ? id.condition : NAN;
+          d["iterations"] = id.iterations;
+          d["simulations"] = id.simulations;
+          d["warnings"] = id.warnings;
+          if (p.valid) d["fitted"] = id.fitted;
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("case"), py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"),
+      py::arg("position") = py::none(), py::arg("f") = 0.0, py::arg("window") = 40.0,
+      py::arg("hop") = 0.0, py::arg("n_max") = 10, py::arg("estimate") = "G",
+      py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
+      py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
+      "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
+      "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
+      "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "
+      "not estimated; its M0 is scaled by (f / roller.f)^2 to the record's f.");
+  m.def(
+      "synthetic_record",
+      [](const std::vector<Case>& cases, double duration, double sample_rate, double noise,
+         double drift, double jitter, unsigned seed, double speed) {
+        SyntheticRecord o;
+        o.duration = duration;
+        o.sample_rate = sample_rate;
+        o.noise = noise;
+        o.drift = drift;
+        o.jitter = jitter;
+        o.seed = seed;
+        o.speed = speed;
+        RecordSamples r;
+        {
+          py::gil_scoped_release release;
+          r = synthetic_record(cases, o);
+        }
+        py::dict d;
+        d["t"] = to_array(r.t);
+        d["ddx_M"] = to_array(r.ddx_M);
+        d["ddz_M"] = to_array(r.ddz_M);
+        d["position"] = to_array(r.position);
+        return d;
+      },
+      py::arg("cases"), py::arg("duration") = 1.0, py::arg("sample_rate") = 1000.0,
+      py::arg("noise") = 0.0, py::arg("drift") = 0.0, py::arg("jitter") = 0.0, py::arg("seed") = 1u,
+      py::arg("speed") = 0.0,
+      "A record made by oscidrum: each case of `cases` for duration / len(cases) seconds, "
+      "sampled at sample_rate [1/s], with white noise and a slow drift (fractions of each "
+      "signal's peak): a dict of arrays t [s], ddx_M, ddz_M [m/s^2], position [m].");
+}
+
+}  // namespace oscidrum::python

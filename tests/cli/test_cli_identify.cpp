@@ -1,0 +1,233 @@
+// End-to-end tests of `oscidrum identify` and of the robust `oscidrum analyze`: synthetic
+// records made by oscidrum itself (identify.hpp, synthetic_record), 1 % away from 39 Hz, 5 %
+// noise, a slow drift.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "oscidrum/oscidrum.hpp"
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+constexpr double kF = 39.0 * 1.01;
+
+Case truth(double G) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = G;
+  c.roller.M0 *= (kF / 39.0) * (kF / 39.0);  // (5)
+  c.roller.f = kF;
+  return c;
+}
+
+// t, ddx_M, ddz_M, v (speed 0.8 m/s) of consecutive cases.
+void write_record(const std::string& path, const std::vector<Case>& cases, double duration,
+                  double rate = 1000) {
+  SyntheticRecord o;
+  o.duration = duration;
+  o.sample_rate = rate;
+  o.noise = 0.05;
+  o.drift = 0.05;
+  o.seed = 4;
+  const RecordSamples r = synthetic_record(cases, o);
+  std::ofstream out(path);
+  out << "t,ddx_M,ddz_M,v\n";
+  char line[160];
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,0.8\n", r.t[i], r.ddx_M[i], r.ddz_M[i]);
+    out << line;
+  }
+}
+
+// Column `name` (without unit) of a CSV text, as numbers (NaN for text).
+std::vector<double> column(const std::string& csv, const std::string& name) {
+  std::istringstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::stringstream hs(header);
+  for (std::string h; std::getline(hs, h, ',');) names.push_back(h.substr(0, h.find('[')));
+  const auto it = std::find(names.begin(), names.end(), name);
+  EXPECT_NE(it, names.end()) << name << " not in " << header;
+  const std::size_t k = static_cast<std::size_t>(it - names.begin());
+  std::vector<double> v;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (char ch : line) {
+      if (ch == '"')
+        quoted = !quoted;
+      else if (ch == ',' && !quoted) {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += ch;
+      }
+    }
+    cells.push_back(cell);
+    v.push_back(k < cells.size() && !cells[k].empty() ? std::strtod(cells[k].c_str(), nullptr)
+                                                      : NAN);
+  }
+  return v;
+}
+
+TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
+  TempDir dir;
+  // Two soils along the pass: G = 17.3 for 0.8 s, then 8.1 MN/m^2.
+  write_record(dir / "pass.csv", {truth(17.3e6), truth(8.1e6)}, 1.6);
+  const Outcome o =
+      run({"identify", dir / "pass.csv", "--window", "20", "--hop", "31.6", "--speed-col", "v",
+           "--csv", dir / "G.csv", "--plot", dir / "plots", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err << o.out;
+  EXPECT_NE(o.out.find("G [MN/m^2]"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("2 identified"), std::string::npos) << o.out;
+  const std::string csv = slurp(dir / "G.csv");
+  EXPECT_EQ(csv.rfind("window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-],"
+                      "G[Pa],G_u[Pa],G_lo[Pa],G_hi[Pa],tau[s]",
+                      0),
+            0u)
+      << csv;
+  const std::vector<double> G = column(csv, "G"), lo = column(csv, "G_lo"),
+                            hi = column(csv, "G_hi"), x = column(csv, "position"),
+                            t = column(csv, "t");
+  ASSERT_EQ(G.size(), 2u);
+  const double expected[2] = {17.3e6, 8.1e6};
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(G[k] / expected[k], 1.0, 0.03) << k;
+    EXPECT_LE(lo[k], expected[k]) << k;
+    EXPECT_GE(hi[k], expected[k]) << k;
+    EXPECT_NEAR(x[k], 0.8 * t[k], 1e-6);
+  }
+  for (const char* png :
+       {"pass_G.png", "fit_accelerations.png", "fit_spectra.png", "fit_figure.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / ("plots/" + std::string(png)))) << png << o.err;
+}
+
+TEST(CliIdentify, FromTheMetricsOfAnalyze) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6, 1500);
+  const Outcome a = run({"analyze", dir / "r.csv", "--format", "json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  std::ofstream(dir / "r.json") << a.out;
+  const Outcome o = run({"identify", "--metrics", dir / "r.json", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["schema"], "oscidrum-identify/1");
+  const nlohmann::json& e = j["windows"][0]["estimates"][0];
+  EXPECT_EQ(e["name"], "G");
+  EXPECT_NEAR(e["value"].get<double>() / 17.3e6, 1.0, 0.03);
+  EXPECT_LE(e["lower"].get<double>(), 17.3e6);
+  EXPECT_GE(e["upper"].get<double>(), 17.3e6);
+}
+
+TEST(CliIdentify, NothingIdentifiableExitsOneWithTheReason) {
+  TempDir dir;
+  {
+    std::ofstream out(dir / "noise.csv");
+    out << "t,ddx_M,ddz_M\n";
+    std::mt19937 rng(2);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (int i = 0; i < 1200; ++i) out << i * 1e-3 << "," << g(rng) << "," << g(rng) << "\n";
+  }
+  const Outcome o = run({"identify", dir / "noise.csv", "--quiet"});
+  EXPECT_EQ(o.code, 1) << o.err;
+  EXPECT_NE(o.err.find("no window could be identified"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("fit residual"), std::string::npos) << o.err;
+}
+
+// Each defect of a record gives its documented flag and exit code 1 (docs/cli.md).
+TEST(CliAnalyze, DefectiveRecordsGiveTheirFlagAndExitOne) {
+  TempDir dir;
+  SyntheticRecord so;
+  so.duration = 0.5;
+  so.noise = 0.02;
+  const RecordSamples r = synthetic_record({truth(17.3e6)}, so);
+  auto write = [&](const std::string& name, auto&& edit) {
+    std::ofstream out(dir / name);
+    out << "t,ddx_M,ddz_M\n";
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      double t = r.t[i], x = r.ddx_M[i], z = r.ddz_M[i];
+      if (!edit(t, x, z)) continue;
+      out << t << "," << x << "," << z << "\n";
+    }
+  };
+  write("clipped.csv", [](double&, double& x, double&) {
+    x = std::clamp(x, -9.0, 9.0);
+    return true;
+  });
+  write("gap.csv", [](double& t, double&, double&) { return t < 0.2 || t > 0.23; });
+  write("scaled_time.csv", [](double& t, double&, double&) {  // a 30.3 Hz record
+    t *= kF / 30.3;
+    return true;
+  });
+  struct Case {
+    std::vector<std::string> args;
+    std::string flag;
+  };
+  for (const Case& c :
+       {Case{{"clipped.csv"}, "clipped"}, Case{{"gap.csv"}, "gap of"},
+        Case{{"scaled_time.csv", "--f", "39.39", "--harmonics", "6"}, "fit residual"}}) {
+    std::vector<std::string> args = {"analyze", dir / c.args[0], "--format", "json"};
+    args.insert(args.end(), c.args.begin() + 1, c.args.end());
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 1) << c.args[0] << o.err;
+    EXPECT_NE(o.err.find(c.flag), std::string::npos) << c.args[0] << ": " << o.err;
+    const nlohmann::json j = nlohmann::json::parse(o.out);
+    EXPECT_FALSE(j["valid"].get<bool>());
+    EXPECT_TRUE(j["ddx_max"].is_null()) << "a failed fit is not reported as a number";
+  }
+  // The other frequency, estimated: found and valid.
+  const Outcome o = run({"analyze", dir / "scaled_time.csv", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NEAR(nlohmann::json::parse(o.out)["f"].get<double>(), 30.3, 0.01);
+}
+
+TEST(CliAnalyze, SemicolonsDecimalCommasUnitsGColumnsByIndexAndWindows) {
+  TempDir dir;
+  SyntheticRecord so;
+  so.duration = 1.1;
+  const RecordSamples r = synthetic_record({truth(17.3e6)}, so);
+  {
+    std::ofstream out(dir / "eu.csv");
+    out << "% exported by a logger\nZeit;ax;az\n";
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      char line[120];
+      std::snprintf(line, sizeof line, "%.6f;%.7f;%.7f\n", r.t[i], r.ddx_M[i] / 9.80665,
+                    r.ddz_M[i] / 9.80665);
+      std::string s = line;
+      std::replace(s.begin(), s.end(), '.', ',');
+      out << s;
+    }
+  }
+  const Outcome o = run({"analyze", dir / "eu.csv", "--t-col", "1", "--x-col", "ax", "--z-col", "3",
+                         "--units", "g", "--window", "20", "--format", "csv"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<double> f = column(o.out, "f"), valid = column(o.out, "valid"),
+                            xmax = column(o.out, "ddx_max");
+  ASSERT_EQ(f.size(), 2u);
+  const Metrics m = compute_metrics(simulate(truth(17.3e6)), 10);
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    EXPECT_EQ(valid[k], 1.0);
+    EXPECT_NEAR(f[k] / kF, 1.0, 1e-5);
+    EXPECT_NEAR(xmax[k] / m.ddx_max, 1.0, 0.03);  // m/s^2 again, from g
+  }
+}
+
+TEST(CliAnalyze, EmptyStdinIsBadInput) {
+  const Outcome o = run({"analyze", "-"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("<stdin>: no data"), std::string::npos) << o.err;
+}
+
+}  // namespace
+}  // namespace oscidrum::test

@@ -1,0 +1,61 @@
+"""The Python twin of `oscidrum identify` on a synthetic record made by oscidrum itself."""
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import oscidrum
+import oscidrum.identify
+
+F = 39.0 * 1.01
+
+
+def truth(G):
+    c = oscidrum.Case()
+    c.set("soil.input", "modulus")
+    c.set("soil.G", G)
+    c.set("roller.M0", 54947.0 * (F / 39.0) ** 2)  # M0 grows with f^2, (5)
+    c.set("roller.f", F)
+    return c
+
+
+def test_identify_recovers_G_with_an_interval_that_covers_it():
+    r = oscidrum.synthetic_record([truth(17.3e6)], duration=0.6, sample_rate=1500, noise=0.05,
+                                  drift=0.05, seed=3)
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0)
+    assert len(rows) == 1 and rows[0]["valid"], rows[0]["reason"]
+    row = rows[0]
+    assert abs(row["G"] / 17.3e6 - 1) < 0.03
+    assert row["G_lo"] <= 17.3e6 <= row["G_hi"]
+    assert abs(row["f"] / F - 1) < 1e-4
+    assert row["fitted"].get("soil.G") == pytest.approx(row["G"])
+
+
+def test_pure_noise_is_not_a_valid_window():
+    rng = np.random.default_rng(1)
+    t = np.arange(1000) * 1e-3
+    rows = oscidrum.analyze_windows(t, rng.normal(size=1000), rng.normal(size=1000), f=39.0,
+                                    window=20)
+    assert rows and not any(w["valid"] for w in rows)
+    assert all("fit residual" in w["reason"] for w in rows)
+    assert all(math.isnan(w["metrics"].area) for w in rows)
+
+
+@pytest.mark.skipif("OSCIDRUM_CLI" not in os.environ, reason="needs the CLI")
+def test_cli_reads_stdin_and_agrees_with_python(tmp_path):
+    r = oscidrum.synthetic_record([truth(8.1e6)], duration=0.6, sample_rate=1000, noise=0.05)
+    text = "t,ddx_M,ddz_M\n" + "".join(
+        f"{t:.9g},{x:.9g},{z:.9g}\n" for t, x, z in zip(r["t"], r["ddx_M"], r["ddz_M"]))
+    out = subprocess.run([os.environ["OSCIDRUM_CLI"], "identify", "-", "--window", "0",
+                          "--format", "csv", "--quiet"], input=text, capture_output=True,
+                         text=True, check=True).stdout
+    (tmp_path / "id.csv").write_text(out)
+    cols = oscidrum.identify.read_csv(tmp_path / "id.csv")
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0)
+    assert cols["G"][0] == pytest.approx(rows[0]["G"], rel=1e-6)
+    assert abs(cols["G"][0] / 8.1e6 - 1) < 0.03
+    fig = oscidrum.identify.plot_pass(tmp_path / "id.csv")
+    fig.savefig(tmp_path / "g.png")
+    assert (tmp_path / "g.png").stat().st_size > 0
