@@ -195,11 +195,11 @@ double event_value(const Model& model, const State& q, EventFunction h) {
   switch (h) {
     case EventFunction::stick_limit_negative: {
       const ContactForces f = contact_forces(model, q);
-      return model.mu() * f.N - f.T;
+      return model.mu_static() * f.N - f.T;
     }
     case EventFunction::stick_limit_positive: {
       const ContactForces f = contact_forces(model, q);
-      return model.mu() * f.N + f.T;
+      return model.mu_static() * f.N + f.T;
     }
     case EventFunction::slip_velocity:
       return slip_velocity(model, q);
@@ -227,9 +227,9 @@ Vec8 event_gradient(const Model& model, const State& q, EventFunction h) {
   dT[DSA] = csv * sn;
   switch (h) {
     case EventFunction::stick_limit_negative:
-      return model.mu() * dN - dT;
+      return model.mu_static() * dN - dT;
     case EventFunction::stick_limit_positive:
-      return model.mu() * dN + dT;
+      return model.mu_static() * dN + dT;
     case EventFunction::slip_velocity: {
       // v_rel = r f5 delta' - r phi' (13)
       const Kinematics k = kinematics(model.geometry(), q.delta);
@@ -247,8 +247,9 @@ Vec8 event_gradient(const Model& model, const State& q, EventFunction h) {
 
 namespace {
 
-// The reversal's velocity change lambda (decide_slip_end) and its gradient: lambda = -g0 / dg
-// with g0 the residual of (39) under s_new and dg = d g0 / d lambda along (1, -f1, -f3).
+// The velocity jump lambda of a reversal or a slip start (event_logic.cpp) and its gradient:
+// lambda = -g0 / dg with g0 the residual of (39) under s_new (kinetic mu) and dg = d g0 / d lambda
+// along (1, -f1, -f3).
 struct Lambda {
   double value = 0.0;
   Vec8 gradient = Vec8::Zero();
@@ -282,26 +283,28 @@ Lambda reversal_lambda(const Model& model, const State& q, int s_new) {
 
 }  // namespace
 
-State jump_map(const Model& model, const State& q_in, bool reversal, int s_new) {
+State jump_map(const Model& model, const State& q_in, bool reset_phi, int coupling_sign) {
   State q = q_in;
   const Kinematics k = kinematics(model.geometry(), q.delta);
-  q.dphi = k.f5 * q.ddelta;  // (12) at v_rel = 0
-  if (!reversal) return q;
-  const Lambda l = reversal_lambda(model, q, s_new);
+  if (reset_phi) q.dphi = k.f5 * q.ddelta;  // (12) at v_rel = 0
+  if (coupling_sign == 0) return q;
+  const Lambda l = reversal_lambda(model, q, coupling_sign);
   q.ddelta += l.value;
   q.dx_A -= l.value * k.f1;
   q.ds_A -= l.value * k.f3;
   return q;
 }
 
-Mat8 jump_jacobian(const Model& model, const State& q, bool reversal, int s_new) {
+Mat8 jump_jacobian(const Model& model, const State& q, bool reset_phi, int coupling_sign) {
   const Kinematics k = kinematics(model.geometry(), q.delta);
   Mat8 G = Mat8::Identity();
-  G(DPHI, DPHI) = 0.0;
-  G(DPHI, D) = k.f6 * q.ddelta;
-  G(DPHI, DD) = k.f5;
-  if (!reversal) return G;
-  const Lambda l = reversal_lambda(model, q, s_new);  // independent of phi'
+  if (reset_phi) {
+    G(DPHI, DPHI) = 0.0;
+    G(DPHI, D) = k.f6 * q.ddelta;
+    G(DPHI, DD) = k.f5;
+  }
+  if (coupling_sign == 0) return G;
+  const Lambda l = reversal_lambda(model, q, coupling_sign);  // independent of phi'
   G.row(DD) += l.gradient.transpose();
   G.row(DXA) -= k.f1 * l.gradient.transpose();
   G(DXA, D) -= l.value * k.f2;
@@ -325,24 +328,21 @@ Saltation saltation(const Mat8& G, const Vec8& f_minus, const Vec8& f_plus, cons
 }
 
 Saltation switch_saltation(const Model& model, double t, const State& q, Phase from, Phase to,
-                           double baumgarte, double grazing_tol) {
+                           double baumgarte, bool jumped, double grazing_tol) {
   const Vec8 f_minus = phase_rhs(model, t, q, from, baumgarte);
-  if (from == Phase::stick) {
-    // Stick -> slip: the state carries over, G = I; the surface is |T| = mu N on the side of
-    // the new slip (T = -s mu N).
-    const EventFunction h = to == Phase::slip_negative ? EventFunction::stick_limit_negative
+  // Stick -> slip: the surface is |T| = mu_static N on the side of the new slip; the state
+  // carries over unless the soil's velocities jump (mu_static > mu). Slip end at v_rel = 0:
+  // phi' = f5 delta', and for a reversal the jump to the coupling (39) of the new sign.
+  const bool slip_start = from == Phase::stick;
+  const EventFunction h = !slip_start                  ? EventFunction::slip_velocity
+                          : to == Phase::slip_negative ? EventFunction::stick_limit_negative
                                                        : EventFunction::stick_limit_positive;
-    const Vec8 f_plus = phase_rhs(model, t, q, to, baumgarte);
-    return saltation(Mat8::Identity(), f_minus, f_plus, event_gradient(model, q, h), 0.0,
-                     grazing_tol);
-  }
-  // Slip end at v_rel = 0: stick with phi' = f5 delta', or a reversal.
-  const bool reversal = to != Phase::stick;
-  const int s_new = reversal ? static_cast<int>(to) : 0;
-  const State qp = jump_map(model, q, reversal, s_new);
+  const bool reset_phi = !slip_start;
+  const int coupling = (jumped && to != Phase::stick) ? static_cast<int>(to) : 0;
+  const State qp = jump_map(model, q, reset_phi, coupling);
   const Vec8 f_plus = phase_rhs(model, t, qp, to, baumgarte);
-  return saltation(jump_jacobian(model, q, reversal, s_new), f_minus, f_plus,
-                   event_gradient(model, q, EventFunction::slip_velocity), 0.0, grazing_tol);
+  return saltation(jump_jacobian(model, q, reset_phi, coupling), f_minus, f_plus,
+                   event_gradient(model, q, h), 0.0, grazing_tol);
 }
 
 }  // namespace oscidrum::detail

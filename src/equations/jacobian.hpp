@@ -36,8 +36,8 @@ Mat8 phase_jacobian(const Model& model, double t, const State& q, Phase phase, d
 
 /// The event functions of the hybrid flow (all depend on the state only, d h / d t = 0).
 enum class EventFunction {
-  stick_limit_negative,  ///< mu N - T: zero when stick ends into slip- (T = +mu N)
-  stick_limit_positive,  ///< mu N + T: zero when stick ends into slip+ (T = -mu N)
+  stick_limit_negative,  ///< mu_static N - T: zero when stick ends into slip- (T > 0)
+  stick_limit_positive,  ///< mu_static N + T: zero when stick ends into slip+ (T < 0)
   slip_velocity,         ///< v_rel (13): zero when a slip phase ends
   normal_force,          ///< N (26): zero when contact would be lost
 };
@@ -45,11 +45,13 @@ double event_value(const Model& model, const State& q, EventFunction h);
 /// Gradient of event_value with respect to y.
 Vec8 event_gradient(const Model& model, const State& q, EventFunction h);
 
-/// The jump map g applied at a slip end (decide_slip_end): stick resumes with phi' = f5 delta'
-/// (12); a reversal to s_new = -s additionally adds lambda (1, -f1, -f3) to (delta', x_A', s_A')
-/// so that (39) holds with s_new. jump_map returns g(y), jump_jacobian G = d g / d y.
-State jump_map(const Model& model, const State& q, bool reversal, int s_new);
-Mat8 jump_jacobian(const Model& model, const State& q, bool reversal, int s_new);
+/// The jump maps of the switches (src/equations/event_logic.cpp): at a slip end phi' is set to
+/// f5 delta' (12) (`reset_phi`); at a reversal to s, and at a slip start with mu_static > mu, the
+/// soil's velocities jump, (delta', x_A', s_A') += lambda (1, -f1, -f3), so that (39) holds with
+/// sign `coupling_sign` and the kinetic mu (0: no such jump). jump_map returns g(y),
+/// jump_jacobian G = d g / d y.
+State jump_map(const Model& model, const State& q, bool reset_phi, int coupling_sign);
+Mat8 jump_jacobian(const Model& model, const State& q, bool reset_phi, int coupling_sign);
 
 /// Saltation matrix S = G + (f+ - G f-) dh^T / (dh . f- + dh/dt) mapping a perturbation just
 /// before a switch to one just after it (f- at y-, f+ at g(y-)). `grazing` is set when the
@@ -63,9 +65,10 @@ Saltation saltation(const Mat8& G, const Vec8& f_minus, const Vec8& f_plus, cons
                     double dh_dt = 0.0, double grazing_tol = 1e-9);
 
 /// The saltation matrix of a switch of the hybrid flow at state q (the state before the switch,
-/// on the surface) and time t, from phase `from` to phase `to` by event function h; a slip end
-/// with to == stick or a reversal applies its jump map.
+/// on the surface) and time t, from phase `from` to phase `to`. `jumped`: the soil's velocities
+/// jumped at the switch (a reversal, or a slip start with mu_static > mu; the flow reports the
+/// state after the switch, see FlowObserver::on_event).
 Saltation switch_saltation(const Model& model, double t, const State& q, Phase from, Phase to,
-                           double baumgarte, double grazing_tol = 1e-9);
+                           double baumgarte, bool jumped, double grazing_tol = 1e-9);
 
 }  // namespace oscidrum::detail

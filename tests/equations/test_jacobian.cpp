@@ -164,22 +164,26 @@ TEST(Jacobian, EventGradientsAgainstFiniteDifferences) {
   }
 }
 
-TEST(Jacobian, JumpMapsAtSlipEndsAgainstFiniteDifferences) {
+TEST(Jacobian, JumpMapsAgainstFiniteDifferences) {
   std::mt19937 rng(5);
   for (bool spiral : {false, true}) {
     const Model model(trough_case(spiral));
     for (int i = 0; i < 20; ++i) {
       const State q = random_state(rng, model);
-      for (bool reversal : {false, true}) {
-        for (int s_new : {-1, 1}) {
-          const Mat8 G = jump_jacobian(model, q, reversal, s_new);
+      for (bool reset_phi : {false, true}) {
+        for (int coupling : {-1, 0, 1}) {
+          const Mat8 G = jump_jacobian(model, q, reset_phi, coupling);
           const Mat8 fd = fd_jacobian(
-              [&](const Vec8& y) { return to_vec8(jump_map(model, to_state(y), reversal, s_new)); },
+              [&](const Vec8& y) {
+                return to_vec8(jump_map(model, to_state(y), reset_phi, coupling));
+              },
               to_vec8(q));
-          expect_jacobian_near(G, fd, reversal ? "reversal" : "slip to stick");
+          expect_jacobian_near(G, fd,
+                               "jump reset_phi " + std::to_string(reset_phi) + " coupling " +
+                                   std::to_string(coupling));
         }
       }
-      // The reversal's map makes (39) hold with the new sign.
+      // The coupling jump makes (39) hold with its sign.
       for (int s_new : {-1, 1}) {
         const State qr = jump_map(model, q, true, s_new);
         EXPECT_NEAR(slip_constraint_residual(model, qr, s_new) / model.W(), 0.0,
@@ -205,13 +209,12 @@ State onto_surface(const Model& model, State q, EventFunction h, int j) {
 // order in y - q, is the state at the switching instant of q continued by S (y - q). The map is
 // strongly curved where the crossing is slow (tau ~ 1/(dh . f-)), hence the five-point stencil.
 Vec8 frozen_switch_map(const Model& model, double t, const State& q, Phase from, Phase to,
-                       EventFunction h, const Vec8& y) {
+                       EventFunction h, bool jumped, const Vec8& y) {
   const double beta = 2.0 * model.nu();
   const Vec8 fm = phase_rhs(model, t, q, from, beta);
-  const bool slip_end = from != Phase::stick;
-  const bool reversal = slip_end && to != Phase::stick;
-  const int s_new = reversal ? static_cast<int>(to) : 0;
-  const State gq = slip_end ? jump_map(model, q, reversal, s_new) : q;
+  const bool reset_phi = from != Phase::stick;
+  const int coupling = (jumped && to != Phase::stick) ? static_cast<int>(to) : 0;
+  const State gq = jump_map(model, q, reset_phi, coupling);
   const Vec8 fp = phase_rhs(model, t, gq, to, beta);
   double tau = 0.0;  // Newton on h(y + tau f-) = 0
   for (int it = 0; it < 30; ++it) {
@@ -219,7 +222,7 @@ Vec8 frozen_switch_map(const Model& model, double t, const State& q, Phase from,
     tau -= event_value(model, z, h) / event_gradient(model, z, h).dot(fm);
   }
   const State z = to_state(y + tau * fm);
-  const Vec8 after = slip_end ? to_vec8(jump_map(model, z, reversal, s_new)) : to_vec8(z);
+  const Vec8 after = to_vec8(jump_map(model, z, reset_phi, coupling));
   return after - tau * fp;
 }
 
@@ -228,46 +231,58 @@ TEST(Jacobian, SaltationMatricesAreTheDerivativeOfTheSwitch) {
   struct Switch {
     Phase from, to;
     EventFunction h;
-    int moved;  // the component moved to put the state on the surface
+    int moved;    // the component moved to put the state on the surface
+    bool jumped;  // the soil's velocities jump (reversal; slip start with mu_static > mu)
   };
   const Switch switches[] = {
-      {Phase::stick, Phase::slip_negative, EventFunction::stick_limit_negative, 5},
-      {Phase::stick, Phase::slip_positive, EventFunction::stick_limit_positive, 5},
-      {Phase::slip_positive, Phase::stick, EventFunction::slip_velocity, 7},
-      {Phase::slip_negative, Phase::stick, EventFunction::slip_velocity, 7},
-      {Phase::slip_positive, Phase::slip_negative, EventFunction::slip_velocity, 7},
-      {Phase::slip_negative, Phase::slip_positive, EventFunction::slip_velocity, 7},
+      {Phase::stick, Phase::slip_negative, EventFunction::stick_limit_negative, 5, false},
+      {Phase::stick, Phase::slip_positive, EventFunction::stick_limit_positive, 5, false},
+      {Phase::stick, Phase::slip_negative, EventFunction::stick_limit_negative, 5, true},
+      {Phase::stick, Phase::slip_positive, EventFunction::stick_limit_positive, 5, true},
+      {Phase::slip_positive, Phase::stick, EventFunction::slip_velocity, 7, false},
+      {Phase::slip_negative, Phase::stick, EventFunction::slip_velocity, 7, false},
+      {Phase::slip_positive, Phase::slip_negative, EventFunction::slip_velocity, 7, true},
+      {Phase::slip_negative, Phase::slip_positive, EventFunction::slip_velocity, 7, true},
   };
   for (bool spiral : {false, true}) {
-    const Model model(trough_case(spiral));
-    for (int i = 0; i < 10; ++i) {
-      const double t = 0.002 * i;
-      for (const Switch& sw : switches) {
-        // Near grazing (the flow almost tangent to the surface) the switch map curves on the
-        // scale of any finite-difference step; keep crossings that are transversal in scaled
-        // units (grazing itself is reported, see GrazingIsDetected).
-        State q;
-        for (;;) {
-          q = onto_surface(model, random_state(rng, model), sw.h, sw.moved);
-          const Vec8 dh = event_gradient(model, q, sw.h);
-          const Vec8 fm = phase_rhs(model, t, q, sw.from, 2.0 * model.nu());
-          const double cosine = std::abs(dh.dot(fm)) /
-                                (dh.cwiseProduct(kScale).norm() * fm.cwiseQuotient(kScale).norm());
-          if (cosine > 2e-3) break;
+    for (double mu_static : {-1.0, 0.6}) {
+      Case c = trough_case(spiral);
+      c.contact.mu_static = mu_static;  // 0.6: static above the kinetic 0.5
+      const Model model(c);
+      const double beta = 2.0 * model.nu();
+      for (int i = 0; i < 10; ++i) {
+        const double t = 0.002 * i;
+        for (const Switch& sw : switches) {
+          if (sw.from == Phase::stick && sw.jumped && mu_static < 0.0) continue;
+          // Near grazing (the flow almost tangent to the surface) the switch map curves on the
+          // scale of any finite-difference step; keep crossings that are transversal in scaled
+          // units (grazing itself is reported, see GrazingIsDetected).
+          State q;
+          for (;;) {
+            q = onto_surface(model, random_state(rng, model), sw.h, sw.moved);
+            const Vec8 dh = event_gradient(model, q, sw.h);
+            const Vec8 fm = phase_rhs(model, t, q, sw.from, beta);
+            const double cosine = std::abs(dh.dot(fm)) / (dh.cwiseProduct(kScale).norm() *
+                                                          fm.cwiseQuotient(kScale).norm());
+            if (cosine > 2e-3) break;
+          }
+          const Saltation S = switch_saltation(model, t, q, sw.from, sw.to, beta, sw.jumped);
+          ASSERT_FALSE(S.grazing);
+          const Mat8 fd = fd_jacobian(
+              [&](const Vec8& y) {
+                return frozen_switch_map(model, t, q, sw.from, sw.to, sw.h, sw.jumped, y);
+              },
+              to_vec8(q), true);
+          const std::string what = std::string(to_string(sw.from)) + " -> " + to_string(sw.to) +
+                                   (sw.jumped ? " with jump" : "");
+          expect_jacobian_near(S.S, fd, what);
+          // S maps the flow direction before the switch to the one after it (G f- + ... = f+).
+          const Vec8 fm = phase_rhs(model, t, q, sw.from, beta);
+          const int coupling = sw.jumped ? static_cast<int>(sw.to) : 0;
+          const State gq = jump_map(model, q, sw.from != Phase::stick, coupling);
+          const Vec8 fp = phase_rhs(model, t, gq, sw.to, beta);
+          EXPECT_LE((S.S * fm - fp).norm(), 1e-9 * fp.norm()) << what;
         }
-        const Saltation S = switch_saltation(model, t, q, sw.from, sw.to, 2.0 * model.nu());
-        ASSERT_FALSE(S.grazing);
-        const Mat8 fd = fd_jacobian(
-            [&](const Vec8& y) { return frozen_switch_map(model, t, q, sw.from, sw.to, sw.h, y); },
-            to_vec8(q), true);
-        expect_jacobian_near(S.S, fd, std::string(to_string(sw.from)) + " -> " + to_string(sw.to));
-        // S maps the flow direction before the switch to the one after it (G f- + ... = f+).
-        const Vec8 fm = phase_rhs(model, t, q, sw.from, 2.0 * model.nu());
-        const State gq = sw.from == Phase::stick
-                             ? q
-                             : jump_map(model, q, sw.to != Phase::stick, static_cast<int>(sw.to));
-        const Vec8 fp = phase_rhs(model, t, gq, sw.to, 2.0 * model.nu());
-        EXPECT_LE((S.S * fm - fp).norm(), 1e-9 * fp.norm());
       }
     }
   }
