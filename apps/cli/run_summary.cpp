@@ -59,6 +59,15 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
                              : "not reached (" + std::to_string(d.periods_simulated) + " periods)");
   s.line("final change",
          fmt(d.final_change, 3) + " (tolerance " + fmt(c.numerics.steady_tol, 3) + ")");
+  s.line("method", std::string(to_string(d.method)) +
+                       (d.method == SteadyMethod::shooting
+                            ? " (" + std::to_string(d.newton_iterations) + " Newton steps)"
+                            : std::string()) +
+                       ", " + fmt(d.period_equivalents, 4) + " period-equivalents");
+  if (!d.fallback.empty()) s.line("shooting fell back", d.fallback);
+  if (result.floquet.stability != Stability::unknown)
+    s.line("Floquet", std::string(to_string(result.floquet.stability)) + ", largest |multiplier| " +
+                          fmt(result.floquet.max_modulus, 6));
   s.line("integrator", std::to_string(d.steps) + " steps, " + std::to_string(d.rhs_evaluations) +
                            " RHS evaluations");
   s.line("events", std::to_string(d.events) + " (" + std::to_string(d.switches) + " switches, " +

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "oscidrum/floquet.hpp"
+#include "oscidrum/parameters.hpp"
 #include "oscidrum/state.hpp"
 
 namespace oscidrum {
@@ -59,6 +61,15 @@ struct Diagnostics {
   double switches_per_period = 0.0;  ///< in the sampled steady state
   double max_slip_residual = 0.0;    ///< max |(39)| / W during slip, W = m g + Fz [-]
   double min_N = 0.0;                ///< smallest normal force seen [N]
+  SteadyMethod method = SteadyMethod::transient;  ///< what produced the steady state
+  int newton_iterations = 0;      ///< shooting: Newton steps (0 for the transient method)
+  long jacobian_evaluations = 0;  ///< shooting: evaluations of the phase Jacobians
+  /// Cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations
+  /// weighted by their cost in right-hand-side evaluations) / right-hand-side evaluations of
+  /// one sampled period [-]
+  double period_equivalents = 0.0;
+  double phi_drift = 0.0;  ///< phi(t0 + T) - phi(t0) on the steady state (net slip / r) [rad]
+  std::string fallback;    ///< why shooting fell back to the transient method ("" if it did not)
 };
 
 /// The sampled steady state: uniform samples over Result::sample_periods excitation periods,
@@ -98,6 +109,8 @@ struct Result {
   double stick_time = 0.0;          ///< time in stick within the sampled window [s]
   double slip_positive_time = 0.0;  ///< time in slip+ within the sampled window [s]
   double slip_negative_time = 0.0;  ///< time in slip- within the sampled window [s]
+  /// Floquet multipliers of the steady state (shooting only; Stability::unknown otherwise).
+  Floquet floquet;
 };
 
 }  // namespace oscidrum

@@ -115,7 +115,23 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                       {"inconsistent_slip_ends", d.inconsistent_slip_ends},
                       {"switches_per_period", number(d.switches_per_period)},
                       {"max_slip_residual", number(d.max_slip_residual)},
-                      {"min_N", number(d.min_N)}};
+                      {"min_N", number(d.min_N)},
+                      {"method", to_string(d.method)},
+                      {"newton_iterations", d.newton_iterations},
+                      {"jacobian_evaluations", d.jacobian_evaluations},
+                      {"period_equivalents", number(d.period_equivalents)},
+                      {"phi_drift", number(d.phi_drift)},
+                      {"fallback", d.fallback}};
+  {
+    json multipliers = json::array();
+    for (const auto& z : result.floquet.multipliers)
+      multipliers.push_back(json::array({number(z.real()), number(z.imag())}));
+    j["floquet"] = {{"stability", to_string(result.floquet.stability)},
+                    {"max_modulus", result.floquet.stability == Stability::unknown
+                                        ? json()
+                                        : number(result.floquet.max_modulus)},
+                    {"multipliers", multipliers}};
+  }
   j["sampling"] = {{"frequency", number(result.frequency)},
                    {"sample_periods", result.sample_periods},
                    {"samples_per_period", result.samples_per_period},
