@@ -10,7 +10,7 @@ namespace oscidrum {
 /// the linearised period map on (delta, x_A, s_A, delta', x_A', s_A', phi')).
 enum class Stability {
   unknown,          ///< no multipliers (the steady state was not found by shooting)
-  stable,           ///< every multiplier inside the unit circle
+  stable,           ///< every multiplier inside the unit circle (or on it within 1e-6: neutral)
   fold,             ///< a real multiplier beyond +1 (saddle-node: jumps, hysteresis)
   period_doubling,  ///< a real multiplier beyond -1 (flip: a period-2 orbit branches off)
   torus,            ///< a complex pair outside the unit circle (Neimark-Sacker: quasi-periodic)

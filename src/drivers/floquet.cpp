@@ -6,6 +6,10 @@
 
 namespace oscidrum {
 
+// A multiplier within this of the unit circle is a neutral direction (the mean of phi' of the
+// frictionless drum), not an instability.
+constexpr double kNeutral = 1e-6;
+
 const char* to_string(Stability stability) {
   switch (stability) {
     case Stability::unknown:
@@ -30,7 +34,7 @@ Floquet classify_multipliers(std::vector<std::complex<double>> multipliers) {
   if (f.multipliers.empty()) return f;
   const std::complex<double> lead = f.multipliers.front();
   f.max_modulus = std::abs(lead);
-  if (f.max_modulus < 1.0) {
+  if (f.max_modulus <= 1.0 + kNeutral) {
     f.stability = Stability::stable;
   } else if (std::abs(lead.imag()) > 1e-8 * f.max_modulus) {
     f.stability = Stability::torus;

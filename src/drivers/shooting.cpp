@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -274,12 +275,15 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       F[i] = (cur.end.to_array()[c] - z.to_array()[c]) / s[i];
     }
     const Mat7 A = s.asDiagonal().inverse() * (cur.M - Mat7::Identity()) * s.asDiagonal();
-    const Eigen::FullPivLU<Mat7> lu(A);
-    if (!lu.isInvertible()) {
-      out.message = "the monodromy matrix has a multiplier at 1: Newton's matrix is singular";
+    // A multiplier at 1 (a neutral direction: phi' of the frictionless drum, whose mean any
+    // constant shifts) makes the matrix singular; the minimum-norm step leaves that direction
+    // where the transient put it.
+    const Eigen::CompleteOrthogonalDecomposition<Mat7> cod(A);
+    const Vec7 dz = cod.solve(-F);
+    if (!dz.allFinite()) {
+      out.message = "Newton's matrix M - I is singular";
       break;
     }
-    const Vec7 dz = lu.solve(-F);
     bool accepted = false;
     double lambda = 1.0;
     for (int h = 0; h <= kMaxHalvings; ++h, lambda *= 0.5) {
@@ -334,7 +338,7 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   std::vector<std::complex<double>> mult(7);
   for (int i = 0; i < 7; ++i) mult[i] = eig.eigenvalues()[i];
   out.floquet = classify_multipliers(std::move(mult));
-  if (out.floquet.max_modulus >= 1.0) {
+  if (out.floquet.stability != Stability::stable) {
     out.message = fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
                       out.floquet.max_modulus) +
                   to_string(out.floquet.stability) + "): the transient is followed instead";
