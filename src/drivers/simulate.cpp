@@ -35,9 +35,11 @@ Status status_of(FlowStop stop) {
 
 namespace {
 
-// Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) in right-hand-side
-// evaluations, for Diagnostics::period_equivalents (measured in bench/, see bench/README.md).
-constexpr double kJacobianCost = 5.0;
+// Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
+// of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
+// Diagnostics::period_equivalents: measured as the CPU time of the shooting benchmarks against the
+// transient's time per period (bench/README.md), about 15.
+constexpr double kJacobianCost = 15.0;
 
 // The transient search from rest and the sampling of what it found.
 void transient(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
