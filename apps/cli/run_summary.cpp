@@ -52,6 +52,16 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   if (!result.message.empty()) s.line("message", result.message);
   for (const DiagnosticOutput& out : diagnostic_outputs())
     s.line(out.label, output_text(result.diagnostics, out));
+  const Diagnostics& d = result.diagnostics;
+  s.line("method", std::string(to_string(d.method)) +
+                       (d.method == SteadyMethod::shooting
+                            ? " (" + std::to_string(d.newton_iterations) + " Newton steps)"
+                            : std::string()) +
+                       ", " + fmt(d.period_equivalents, 4) + " period-equivalents");
+  if (!d.fallback.empty()) s.line("shooting fell back", d.fallback);
+  if (result.floquet.stability != Stability::unknown)
+    s.line("Floquet", std::string(to_string(result.floquet.stability)) + ", largest |multiplier| " +
+                          fmt(result.floquet.max_modulus, 6));
 
   if (metrics) {
     const Metrics& m = *metrics;

@@ -53,8 +53,18 @@ struct Contact {
   bool pure_rolling = false;  ///< ignore the friction limit (mu -> infinity): stick throughout
 };
 
+/// How the periodic steady state is found (docs/periodic.md).
+enum class SteadyMethod {
+  shooting,   ///< Newton on the period map from a short transient, falling back to transient
+  transient,  ///< integrate from rest until the response repeats (the paper's method)
+};
+
+/// "shooting", "transient".
+const char* to_string(SteadyMethod method);
+
 /// Numerical options of the hybrid integration and the steady-state search.
 struct Numerics {
+  SteadyMethod method = SteadyMethod::shooting;  ///< how the steady state is found
   double rtol = 1e-8;                   ///< relative tolerance of the Dormand-Prince steps [-]
   double atol = 1e-11;                  ///< absolute tolerance (SI units of each state) [-]
   int max_periods = 5000;               ///< give up after this many excitation periods [-]

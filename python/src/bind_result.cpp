@@ -1,8 +1,10 @@
 // Bindings of oscidrum/result.hpp. The steady-state samples are exposed as read-only NumPy
 // views into the C++ vectors (no copy); each view keeps its Result alive.
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <deque>
@@ -92,12 +94,28 @@ void bind_result(py::module_& m) {
             for (const DiagnosticOutput& d : diagnostic_outputs()) units[d.name] = d.unit;
             return units;
           },
-          "{diagnostic: unit}")
+          "{diagnostic: unit}");
+  diag.def_property_readonly(
+          "method", [](const Diagnostics& d) { return std::string(to_string(d.method)); },
+          "what produced the steady state: 'shooting' or 'transient'")
+      .def_readonly("newton_iterations", &Diagnostics::newton_iterations,
+                    "shooting: Newton steps (0 for the transient method)")
+      .def_readonly("jacobian_evaluations", &Diagnostics::jacobian_evaluations,
+                    "shooting: evaluations of the phase Jacobians")
+      .def_readonly("period_equivalents", &Diagnostics::period_equivalents,
+                    "cost in plain excitation periods [-]")
+      .def_readonly("phi_drift", &Diagnostics::phi_drift,
+                    "phi(t0 + T) - phi(t0) on the steady state found by shooting [rad]")
+      .def_readonly("fallback", &Diagnostics::fallback,
+                    "why shooting fell back to the transient method ('' if it did not)")
       .def(
           "to_dict",
           [](py::object self) {
             py::dict out;
             for (const DiagnosticOutput& d : diagnostic_outputs()) out[d.name] = self.attr(d.name);
+            for (const char* name : {"method", "newton_iterations", "jacobian_evaluations",
+                                     "period_equivalents", "phi_drift", "fallback"})
+              out[name] = self.attr(name);
             return out;
           },
           "The counters as a dict.")
@@ -186,6 +204,19 @@ void bind_result(py::module_& m) {
                     "time in slip+ within the sampled window [s]")
       .def_readonly("slip_negative_time", &Result::slip_negative_time,
                     "time in slip- within the sampled window [s]")
+      .def_property_readonly(
+          "floquet_multipliers", [](const Result& r) { return r.floquet.multipliers; },
+          "Floquet multipliers of the steady state by decreasing modulus (shooting only; empty "
+          "otherwise) [-]")
+      .def_property_readonly(
+          "floquet_max_modulus",
+          [](const Result& r) {
+            return r.floquet.stability == Stability::unknown ? std::nan("") : r.floquet.max_modulus;
+          },
+          "largest |multiplier|: the transient decays like it per period (NaN without shooting)")
+      .def_property_readonly(
+          "stability", [](const Result& r) { return std::string(to_string(r.floquet.stability)); },
+          "'stable', 'fold' (+1), 'period_doubling' (-1), 'torus' (complex pair) or 'unknown'")
       .def("__repr__", [](const Result& r) {
         char buf[300];
         std::snprintf(buf, sizeof buf,

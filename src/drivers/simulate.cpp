@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "drivers/sampling.hpp"
+#include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
 #include "oscidrum/flow.hpp"
 
@@ -32,33 +33,38 @@ Status status_of(FlowStop stop) {
 
 }  // namespace
 
-Result simulate(const Model& model, const ProgressCallback& progress,
-                const std::function<bool()>& cancelled) {
-  FlowOptions options = FlowOptions::from(model);
-  options.cancelled = cancelled;
-  Flow flow(model, options);
-  flow.reset(0.0, model.initial_state(), initial_phase(model));
+namespace {
 
-  Result result;
-  result.frequency = model.parameters().roller.f;
+// Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
+// of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
+// Diagnostics::period_equivalents: measured as the CPU time of the shooting benchmarks against the
+// transient's time per period (bench/README.md), about 15.
+constexpr double kJacobianCost = 15.0;
+
+// The transient search from rest and the sampling of what it found.
+void transient(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
+               long* sample_rhs) {
+  flow.reset(0.0, model.initial_state(), initial_phase(model));
   const detail::SearchOutcome search = detail::find_steady_state(flow, progress);
   result.status = search.status;
   result.message = search.message;
   Diagnostics& d = result.diagnostics;
+  d.method = SteadyMethod::transient;
   d.final_change = search.final_change;
-  d.periods_simulated = search.periods;
+  d.periods_simulated += search.periods;
   if (search.status == Status::steady_state) {
     d.periods_to_steady = search.periods;
     d.multiplicity = search.multiplicity;
   }
-
   // Sample the steady state (or, when no steady state was found, the periods that follow, for
   // inspection: they carry no metrics).
   if (search.status == Status::steady_state || search.status == Status::max_periods_reached) {
     const Numerics& num = model.parameters().numerics;
     const int periods = num.output_periods * std::max(1, search.multiplicity);
+    const long rhs_before = flow.counters().rhs_evaluations;
     const FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result);
-    d.periods_simulated = search.periods + periods;
+    *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
+    d.periods_simulated += periods;
     if (stop != FlowStop::reached) {  // the steady state did not survive its own sampling
       result.status = status_of(stop);
       result.message = flow.message();
@@ -66,10 +72,81 @@ Result simulate(const Model& model, const ProgressCallback& progress,
   } else {
     result.events = search.recent_events;
   }
+}
+
+// Shooting (src/drivers/shooting.hpp); returns false when the run must fall back to the
+// transient method.
+bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
+              long* sample_rhs) {
+  flow.reset(0.0, model.initial_state(), initial_phase(model));
+  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress);
+  Diagnostics& d = result.diagnostics;
+  d.newton_iterations = shot.newton_iterations;
+  d.jacobian_evaluations = shot.jacobian_evaluations;
+  d.periods_simulated = shot.transient_periods + shot.period_maps + shot.plain_maps;
+  if (shot.terminal) {  // the transient from rest meets the same end
+    result.status = shot.status;
+    result.message = shot.message;
+    result.events = shot.recent_events;
+    d.method = SteadyMethod::shooting;
+    return true;
+  }
+  if (!shot.converged) {
+    d.fallback = shot.message;
+    return false;
+  }
+  const Numerics& num = model.parameters().numerics;
+  const long rhs_before = flow.counters().rhs_evaluations;
+  const FlowStop stop =
+      detail::sample_periods(flow, num.output_periods, num.samples_per_period, result);
+  *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, num.output_periods);
+  // Confirm the orbit by the plain integration of the sampled periods.
+  const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
+  if (stop != FlowStop::reached || !(change < num.steady_tol)) {
+    d.fallback = stop != FlowStop::reached
+                     ? "the orbit did not survive its sampling: " + flow.message()
+                     : "the orbit did not repeat under plain integration";
+    result.samples = Samples{};
+    result.events.clear();
+    result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
+    *sample_rhs = 0;
+    return false;
+  }
+  result.status = Status::steady_state;
+  result.message = shot.message;
+  result.floquet = shot.floquet;
+  d.method = SteadyMethod::shooting;
+  d.final_change = shot.final_change;
+  d.periods_to_steady = shot.transient_periods;
+  d.multiplicity = 1;
+  d.phi_drift = shot.phi_drift;
+  d.periods_simulated += num.output_periods;
+  return true;
+}
+
+}  // namespace
+
+Result simulate(const Model& model, const ProgressCallback& progress,
+                const std::function<bool()>& cancelled) {
+  FlowOptions options = FlowOptions::from(model);
+  options.cancelled = cancelled;
+  Flow flow(model, options);
+  const Numerics& num = model.parameters().numerics;
+
+  Result result;
+  result.frequency = model.parameters().roller.f;
+  long sample_rhs = 0;  // right-hand-side evaluations of one sampled period
+  const long rhs_start = flow.counters().rhs_evaluations;
+  bool done = false;
+  if (num.method == SteadyMethod::shooting) {
+    done = shooting(model, flow, progress, result, &sample_rhs);
+  }
+  if (!done) transient(model, flow, progress, result, &sample_rhs);
+  Diagnostics& d = result.diagnostics;
 
   const FlowCounters& c = flow.counters();
   d.steps = c.steps;
-  d.rhs_evaluations = c.rhs_evaluations;
+  d.rhs_evaluations = c.rhs_evaluations - rhs_start;
   d.events = c.events;
   d.switches = c.switches;
   d.reversals = c.reversals;
@@ -79,9 +156,18 @@ Result simulate(const Model& model, const ProgressCallback& progress,
   // Odeint retries rejected steps internally. Dormand-Prince with FSAL costs one evaluation per
   // (re)start and six per attempted step, and nothing else calls the right-hand side, so the
   // attempts follow from the count.
-  const long starts = 1 + c.events;
+  const long starts = c.restarts;
   const long attempts = (c.rhs_evaluations - starts) / 6;
   d.rejected_steps = std::max(0L, attempts - c.steps);
+  // sample_rhs: right-hand-side evaluations of one plain sampled period.
+  if (sample_rhs > 0) {
+    const double per_period = static_cast<double>(sample_rhs);
+    d.period_equivalents = (static_cast<double>(d.rhs_evaluations) +
+                            kJacobianCost * static_cast<double>(d.jacobian_evaluations)) /
+                           per_period;
+  } else {
+    d.period_equivalents = d.periods_simulated;
+  }
   return result;
 }
 

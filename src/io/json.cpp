@@ -121,7 +121,24 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
     const double v = scalar_value(result.diagnostics, d);
     diagnostics[d.name] = is_integer(d) ? json(static_cast<long long>(v)) : number(v);
   }
+  const Diagnostics& d = result.diagnostics;
+  diagnostics["method"] = to_string(d.method);
+  diagnostics["newton_iterations"] = d.newton_iterations;
+  diagnostics["jacobian_evaluations"] = d.jacobian_evaluations;
+  diagnostics["period_equivalents"] = number(d.period_equivalents);
+  diagnostics["phi_drift"] = number(d.phi_drift);
+  diagnostics["fallback"] = d.fallback;
   j["diagnostics"] = diagnostics;
+  {
+    json multipliers = json::array();
+    for (const auto& z : result.floquet.multipliers)
+      multipliers.push_back(json::array({number(z.real()), number(z.imag())}));
+    j["floquet"] = {{"stability", to_string(result.floquet.stability)},
+                    {"max_modulus", result.floquet.stability == Stability::unknown
+                                        ? json()
+                                        : number(result.floquet.max_modulus)},
+                    {"multipliers", multipliers}};
+  }
   j["sampling"] = {{"frequency", number(result.frequency)},
                    {"sample_periods", result.sample_periods},
                    {"samples_per_period", result.samples_per_period},

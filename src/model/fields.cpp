@@ -106,6 +106,15 @@ const std::array kFields = {
           "constant driving torque (6); the paper uses 0 and 0.05 M0", -inf, inf, false, false,
           nullptr, OSCIDRUM_REAL(MMd)},
     // numerics
+    Field{"numerics.method", FieldType::choice, "-",
+          "how the periodic steady state is found: shooting (Newton on the period map, falls back "
+          "to transient when it fails) or transient (integrate from rest until it repeats, the "
+          "paper's method)",
+          0, 1, false, false, "shooting|transient",
+          [](const Case& c) { return static_cast<double>(c.numerics.method); },
+          [](Case& c, double v) {
+            c.numerics.method = static_cast<SteadyMethod>(static_cast<int>(v));
+          }},
     Field{"numerics.rtol", FieldType::real, "-", "relative tolerance of the Dormand-Prince steps",
           0, 1e-2, true, false, nullptr, OSCIDRUM_REAL(numerics.rtol)},
     Field{"numerics.atol", FieldType::real, "-", "absolute tolerance (SI units of each state)", 0,

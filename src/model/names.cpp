@@ -27,6 +27,10 @@ const char* to_string(Status status) {
   return "?";
 }
 
+const char* to_string(SteadyMethod method) {
+  return method == SteadyMethod::shooting ? "shooting" : "transient";
+}
+
 const char* to_string(EventKind kind) {
   switch (kind) {
     case EventKind::stick_to_slip:

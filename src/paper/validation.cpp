@@ -175,7 +175,10 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
   std::vector<PaperSeries> all = paper_series();
   std::vector<Case> cases;
   for (const PaperSeries& s : all)
-    for (double G : s.G) cases.push_back(paper_case(s, G));
+    for (double G : s.G) {
+      cases.push_back(paper_case(s, G));
+      cases.back().numerics.method = options.method;
+    }
   StudyOptions so;
   so.threads = options.threads;
   so.keep_samples = options.keep_samples;

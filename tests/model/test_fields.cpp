@@ -66,6 +66,7 @@ double direct_value(const Case& c0, const std::string& key) {
   Case c = c0;
   if (auto it = members().find(key); it != members().end()) return it->second(c);
   if (key == "soil.input") return static_cast<double>(static_cast<int>(c.soil.input));
+  if (key == "numerics.method") return static_cast<double>(static_cast<int>(c.numerics.method));
   if (key == "contact.pure_rolling") return c.contact.pure_rolling ? 1.0 : 0.0;
   if (key == "numerics.suspension_from_static") return c.numerics.suspension_from_static;
   if (key == "numerics.max_periods") return c.numerics.max_periods;
@@ -109,8 +110,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 11 roller + 8 soil + 2 trough + 3 contact + MMd + 11 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 36u);
+  // 11 roller + 8 soil + 2 trough + 3 contact + MMd + 12 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 37u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;
@@ -194,6 +195,7 @@ TEST(Fields, DefaultTroughContactAndNumerics) {
   EXPECT_EQ(c.contact.mu, 0.5);
   EXPECT_FALSE(c.contact.pure_rolling);
   EXPECT_FALSE(c.numerics.suspension_from_static);  // the paper's convention by default
+  EXPECT_EQ(c.numerics.method, SteadyMethod::shooting);
   EXPECT_NO_THROW(Model{c});
 }
 

@@ -155,8 +155,14 @@ std::vector<double> row_of(const CaseOutcome& o) {
 }
 
 std::vector<std::vector<double>> compute(const std::vector<ProfileCase>& cases) {
+  // The profiles were computed by the transient method (it is the paper's, and they store the
+  // period at which the steady state was found): pinned here. Shooting is compared with the
+  // transient method on the paper's cases in tests/paper (test_method_agreement).
   std::vector<Case> cs;
-  for (const ProfileCase& p : cases) cs.push_back(p.c);
+  for (const ProfileCase& p : cases) {
+    cs.push_back(p.c);
+    cs.back().numerics.method = SteadyMethod::transient;
+  }
   StudyOptions options;
   options.n_harmonics = 10;
   const std::vector<CaseOutcome> outcomes = run_study(cs, options);

@@ -49,6 +49,7 @@ struct PaperRunOptions {
   int threads = 0;            ///< 0: all cores
   bool keep_samples = false;  ///< keep each case's steady state (for figures)
   int n_harmonics = 10;
+  SteadyMethod method = Numerics{}.method;  ///< how each case's steady state is found
   std::function<void(std::size_t done, std::size_t total)> progress;
   /// Polled as StudyOptions::cancelled; when it returns true the run stops and
   /// run_paper_studies throws oscidrum::Error("cancelled").

@@ -1,0 +1,60 @@
+// Internal: the periodic steady state by shooting, a driver on the flow (docs/periodic.md).
+// Newton's method on the period map P over one excitation period, P(z) = z, on the reduced state
+// z = (delta, x_A, s_A, delta', x_A', s_A', phi') (phi is cyclic: no right-hand side depends on
+// it), with the monodromy matrix from the variational equations (src/flow/monodromy.hpp).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "oscidrum/floquet.hpp"
+#include "oscidrum/flow.hpp"
+#include "oscidrum/result.hpp"
+#include "oscidrum/simulate.hpp"
+
+namespace oscidrum::detail {
+
+struct ShootingOutcome {
+  /// True: a periodic orbit was found; the flow stands at its section t0 (a period boundary)
+  /// on the orbit, ready for sampling.
+  bool converged = false;
+  /// Set when the short transient itself ended (contact lost, chattering, cancelled, ...): the
+  /// transient method would meet the same end, so it is the run's status (no fallback).
+  bool terminal = false;
+  Status status = Status::steady_state;
+  std::string message;            ///< why it converged or failed
+  int transient_periods = 0;      ///< plain periods integrated from the start before Newton
+  int newton_iterations = 0;      ///< Newton steps taken (each one period with sensitivities)
+  int period_maps = 0;            ///< period maps evaluated with sensitivities (incl. trials)
+  int plain_maps = 0;             ///< period maps evaluated without them (chord steps)
+  double final_change = 0.0;      ///< scaled |P(z) - z| at the orbit [-]
+  double phi_drift = 0.0;         ///< phi(t0 + T) - phi(t0) on the orbit [rad]
+  long jacobian_evaluations = 0;  ///< evaluations of the phase Jacobians
+  Floquet floquet;
+  std::array<double, 8> scale{};  ///< scale of each component (its range over a period)
+  double t0 = 0.0;                ///< the section [s]
+  State orbit;                    ///< the orbit's state at t0
+  Phase phase = Phase::stick;
+  std::vector<Event> recent_events;  ///< for a terminal end: the events before it
+};
+
+/// Where shooting starts: from `flow`'s current state after a short transient (the default), or
+/// directly from a supplied state (a neighbouring case's orbit).
+struct ShootingStart {
+  bool from_state = false;
+  State state;
+  Phase phase = Phase::stick;
+};
+
+/// Run the short transient (from the flow's current state, reset by the caller at t = 0) and
+/// Newton. Never throws for numerical trouble.
+ShootingOutcome shoot_periodic_orbit(Flow& flow, const ProgressCallback& progress,
+                                     const ShootingStart& start = {});
+
+/// Scaled distance between two states at a period boundary, as the transient search measures
+/// the period-to-period change: the largest over (delta, x_A, s_A, delta', x_A', s_A', phi') of
+/// the difference over the scale of that component.
+double scaled_change(const State& a, const State& b, const std::array<double, 8>& scale);
+
+}  // namespace oscidrum::detail
