@@ -178,6 +178,7 @@ std::vector<SeriesResult> run_paper_studies(const PaperRunOptions& options) {
     for (double G : s.G) {
       cases.push_back(paper_case(s, G));
       cases.back().numerics.method = options.method;
+      if (options.steady_tol > 0) cases.back().numerics.steady_tol = options.steady_tol;
     }
   StudyOptions so;
   so.threads = options.threads;

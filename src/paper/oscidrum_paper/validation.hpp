@@ -50,6 +50,7 @@ struct PaperRunOptions {
   bool keep_samples = false;  ///< keep each case's steady state (for figures)
   int n_harmonics = 10;
   SteadyMethod method = Numerics{}.method;  ///< how each case's steady state is found
+  double steady_tol = 0.0;  ///< numerics.steady_tol of every case (0: the default) [-]
   std::function<void(std::size_t done, std::size_t total)> progress;
   /// Polled as StudyOptions::cancelled; when it returns true the run stops and
   /// run_paper_studies throws oscidrum::Error("cancelled").
