@@ -77,7 +77,7 @@ def test_progress_callback_and_cancel():
     oscidrum.simulate(case, progress=lambda period, change: seen.append((period, change)))
     assert len(seen) > 10 and all(isinstance(p, int) for p, _ in seen)
     r = oscidrum.simulate(case, progress=lambda period, change: period < 5)
-    assert r.status == oscidrum.Status.max_periods_reached
+    assert r.status == oscidrum.Status.cancelled
 
 
 def test_exception_in_progress_propagates():
@@ -178,7 +178,12 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     assert [f"{c['name']}[{c['unit']}]" for c in table["samples"]] == r.samples.headers
     assert r.samples.headers == [f"{name}[{unit}]" for name, unit in COLUMNS]
     d = r.diagnostics
-    assert [x["name"] for x in table["diagnostics"]] == list(d.to_dict())
+    # The table's diagnostics, then the steady-state method's (not yet in the table).
+    names = [x["name"] for x in table["diagnostics"]]
+    assert list(d.to_dict())[: len(names)] == names
+    assert list(d.to_dict())[len(names) :] == [
+        "method", "newton_iterations", "jacobian_evaluations", "period_equivalents", "phi_drift",
+        "fallback"]
     assert d.inconsistent_slip_ends == 0  # was missing from Python before the table
     m = oscidrum.compute_metrics(r)
     for x in table["metrics"]:

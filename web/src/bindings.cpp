@@ -212,8 +212,9 @@ val error_object(const std::string& message) {
 }
 
 // Simulate the case `values` from rest to its steady state (oscidrum::simulate) and compute its
-// metrics (oscidrum::compute_metrics, harmonics n = 0 ... n_max). Returns {ok: false, error} for
-// bad input, else {ok: true, status, message, diagnostics, case, samples, metrics, ...}.
+// metrics (oscidrum::compute_metrics from the dense output, as the CLI, harmonics n = 0 ... n_max).
+// Returns {ok: false, error} for bad input, else {ok: true, status, message, diagnostics, case,
+// samples, metrics, ...}.
 val simulate(const val& values, int n_max) {
   try {
     const oscidrum::Case c = case_from(values);
@@ -235,7 +236,7 @@ val simulate(const val& values, int n_max) {
     out.set("slip_negative_time", r.slip_negative_time);
     out.set("samples", samples_of(r.samples));
     if (r.samples.size() > 0) {
-      out.set("metrics", metrics_of(oscidrum::compute_metrics(r, n_max)));
+      out.set("metrics", metrics_of(oscidrum::compute_metrics(model, r, n_max)));
     } else {
       out.set("metrics", val::null());
     }
