@@ -77,11 +77,27 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
   return t.text();
 }
 
+// A frequency study with M0 fixed is rarely what is meant (M0 = 4 m_u e_u e_w nu^2 (5)): say so
+// once, as io::finalize does for one case.
+void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study) {
+  bool M0_given = spec.base.given("roller.M0");
+  for (const std::string& k : study.keys) M0_given = M0_given || k == "roller.M0";
+  std::size_t fixed = 0;
+  for (const Case& c : study.cases) fixed += c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f;
+  if (fixed == 0 || M0_given) return;
+  warn(std::to_string(fixed) + " of the " + std::to_string(study.cases.size()) +
+       " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +
+       " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w nu^2 (5) grows "
+       "with f^2: give roller.unbalance (the paper's: 0.22877 kg m^2), or set roller.M0 to say "
+       "the moment is meant");
+}
+
 int run(const SweepOptions& o) {
   io::StudySpec spec = io::read_study_file(o.study);
   apply(o.c, spec.base);
   const io::Study study = io::expand(spec);
   const std::size_t total = study.cases.size();
+  warn_fixed_moment(spec, study);
   const io::StudyColumns columns{study.keys, o.harmonics};
   const std::string header = io::study_csv_header(columns);
 

@@ -33,7 +33,7 @@ double enclosed_area(std::span<const double> x, std::span<const double> y);
 /// Wrap an angle to (-pi, pi].
 double wrap_pi(double angle);
 
-/// Metrics of a simulated steady state (MODEL.md section 8).
+/// Metrics of a simulated steady state (docs/model.md section 8).
 struct Metrics {
   double ddx_max = 0.0, ddx_min = 0.0;      ///< extremes of x_M'' [m/s^2]
   double ddz_max = 0.0, ddz_min = 0.0;      ///< extremes of z_M'' [m/s^2]
@@ -45,7 +45,7 @@ struct Metrics {
   double phi_lag = 0.0;
   double phi_amplitude = 0.0;  ///< A_1 of phi [rad]
   /// Lag between x_M'' and z_M'': psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]
-  /// (MODEL.md section 8; psi > 0: the 2f component of z_M'' leads) [rad].
+  /// (docs/model.md section 8; psi > 0: the 2f component of z_M'' leads) [rad].
   double psi_xz = 0.0;
   double area = 0.0;            ///< area enclosed by z_M'' over x_M'' (non-zero winding) [m^2/s^4]
   double stick_fraction = 0.0;  ///< of the sampled time [-]

@@ -16,9 +16,9 @@ struct RecordMetrics {
   std::vector<Harmonic> ddz_harmonics;  ///< n = 0 ... n_max of z_M'' [m/s^2]
   double ddx_max = 0.0, ddx_min = 0.0;  ///< extremes of the fitted periodic x_M'' [m/s^2]
   double ddz_max = 0.0, ddz_min = 0.0;  ///< extremes of the fitted periodic z_M'' [m/s^2]
-  double psi_xz = 0.0;                  ///< theta_2(z) - 2 theta_1(x), wrapped (MODEL.md sec. 8)
-  double area = 0.0;                    ///< area of the fitted periodic figure [m^2/s^4]
-  double cycles = 0.0;                  ///< excitation periods the record spans [-]
+  double psi_xz = 0.0;      ///< theta_2(z) - 2 theta_1(x), wrapped (docs/model.md sec. 8)
+  double area = 0.0;        ///< area of the fitted periodic figure [m^2/s^4]
+  double cycles = 0.0;      ///< excitation periods the record spans [-]
   double residual_x = 0.0;  ///< RMS of record minus fit, relative to the RMS of x_M'' [-]
   double residual_z = 0.0;  ///< the same for z_M'' [-]
 };

@@ -53,7 +53,7 @@ struct Diagnostics {
   long rhs_evaluations = 0;    ///< right-hand-side evaluations
   long events = 0;             ///< located events
   long switches = 0;           ///< stick/slip phase changes
-  long reversals = 0;          ///< slip -> slip reversals (rare, see MODEL.md section 6)
+  long reversals = 0;          ///< slip -> slip reversals (rare, see docs/model.md section 6)
   long inconsistent_slip_ends = 0;   ///< slip ends where neither stick nor a reversal is
                                      ///< consistent (docs/model.md); stick is taken
   double switches_per_period = 0.0;  ///< in the sampled steady state
