@@ -21,6 +21,7 @@
 #include "oscidrum_io/json.hpp"
 #include "oscidrum_io/sweep.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "terminal.hpp"
 
 namespace oscidrum::cli {
@@ -30,6 +31,7 @@ struct SweepOptions {
   std::string study;
   CaseOptions c;  // --set only: changes the base case
   std::string out, cases_dir, format;
+  std::string plot, plot_metric = "area";  // --plot FILE: the study's figure
   int threads = 0, harmonics = 10;
   bool resume = false, restart = false, quiet = false, list = false;
 };
@@ -117,6 +119,8 @@ int run(const SweepOptions& o) {
   if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
   if ((o.resume || o.restart) && o.out.empty())
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
+  if (!o.plot.empty() && o.out.empty())
+    throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
   for (const Case& c : study.cases)
     if (o.harmonics >= c.numerics.samples_per_period / 2)
       throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
@@ -225,6 +229,11 @@ int run(const SweepOptions& o) {
               << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
   }
   const bool all_ok = counts.size() == 1 && counts.begin()->first == "steady_state";
+  // --plot: a curve over one swept key, a heat map over two (oscidrum.plot.plot_study).
+  if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
+                                     o.plot_metric, "--out", o.plot},
+                                    "the results are in " + o.out) != 0)
+    return kExitCaseFailed;
   return all_ok ? kExitOk : kExitCaseFailed;
 }
 
@@ -246,6 +255,8 @@ void add_sweep_command(CLI::App& app, Action& action) {
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv\n"
       "  oscidrum sweep examples/table2_sweep.toml --out results.csv --resume   (after Ctrl-C)\n"
       "  oscidrum sweep study.toml --list                 show the cases, run nothing\n"
+      "  oscidrum sweep examples/frequency_sweep.toml --out f.csv --plot f.png   heat map of "
+      "the area over f and G\n"
       "  oscidrum sweep study.toml --format table --set numerics.max_periods=500\n"
       "Study file syntax: docs/config.md (\"Sweeps\"). Exit codes: 0 all cases steady, 1 some "
       "case ended otherwise (see its status), 2 bad input, 130 interrupted (resume with "
@@ -273,6 +284,14 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("--harmonics", o->harmonics,
                   "harmonic amplitude columns A1 ... AN of x_M'' and z_M'' (default 10)")
       ->check(CLI::Range(0, 100000));
+  sub->add_option("--plot", o->plot,
+                  "also draw the study into FILE (.png or .svg; needs --out): the metric against "
+                  "the swept key, or a heat map over two swept keys (Python package, "
+                  "docs/python.md)")
+      ->type_name("FILE");
+  sub->add_option("--plot-metric", o->plot_metric,
+                  "the results column --plot shows (default area; e.g. ddx_max, psi_xz)")
+      ->type_name("COLUMN");
   sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });
