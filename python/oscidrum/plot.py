@@ -177,9 +177,11 @@ def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
     parts: Dict[str, str] = {}
     get = params.get
     if get("soil.input") == "modulus" and get("soil.G") is not None:
-        parts["soil"] = f"G = {_number(float(get('soil.G')) * 1e-6)} MN/m$^2$ (Appendix B)"
+        parts["soil"] = f"G = {_number(float(get('soil.G')) * 1e-6)} MN/m$^2$"
+        parts["soil source"] = "Appendix B soil"
     elif _table2_G(params) is not None:
-        parts["soil"] = f"G = {_number(_table2_G(params) * 1e-6)} MN/m$^2$ (Table 2)"
+        parts["soil"] = f"G = {_number(_table2_G(params) * 1e-6)} MN/m$^2$"
+        parts["soil source"] = "Table 2 soil"
     elif get("soil.ksh") is not None and get("soil.ksv") is not None:
         parts["soil"] = (f"$k_{{sh}}$ = {_number(float(get('soil.ksh')) * 1e-6)}, "
                          f"$k_{{sv}}$ = {_number(float(get('soil.ksv')) * 1e-6)} MN/m")
@@ -264,12 +266,18 @@ def shade_phases(ax: Any, tau: np.ndarray, phase: np.ndarray) -> List[Patch]:
     return handles
 
 
-def _legend(ax: Any, extra: Sequence[Any] = (), **kwargs: Any) -> None:
-    """A legend beside the axes (right of them, top-aligned), where it hides no data."""
+def _legend(ax: Any, extra: Sequence[Any] = (), below: bool = False, **kwargs: Any) -> None:
+    """A legend outside the axes, where it hides no data: right of them, top-aligned, or below
+    them (below=True, under the x label)."""
     handles, labels = ax.get_legend_handles_labels()
     handles = list(handles) + list(extra)
-    if handles:
-        kwargs.pop("loc", None)
+    if not handles:
+        return
+    kwargs.pop("loc", None)
+    if below:
+        ax.legend(handles=handles, fontsize="small", loc="upper center",
+                  bbox_to_anchor=(0.5, -0.13), borderaxespad=0.0, ncol=2, **kwargs)
+    else:
         ax.legend(handles=handles, fontsize="small", loc="upper left",
                   bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
 
@@ -301,7 +309,7 @@ def _finish(fig: Figure, axes: List[Any], made: bool, title: Optional[str]) -> A
 def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, float]],
                  periods: Optional[float], shade: Optional[bool], title: Optional[str],
                  ax: Any = None, transform: Optional[Dict[str, Any]] = None) -> Any:
-    fig, axes, made = _axes(ax, len(panels), sharex=True)
+    fig, axes, made = _axes(ax, len(panels), width=8.4, sharex=True)
     shade = (len(states) == 1) if shade is None else shade
     labels, title = _labels_and_title(states, title)
     for k, (axis, (column, ylabel, factor)) in enumerate(zip(axes, panels)):
@@ -320,7 +328,8 @@ def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, flo
         axis.set_ylabel(ylabel)
         axis.axhline(0.0, color="0.6", lw=0.5)
         axis.grid(alpha=0.3)
-        _legend(axis, handles)
+        if k == 0:  # one legend for the panels, which show the same cases
+            _legend(axis, handles)
     axes[-1].set_xlabel(TAU_LABEL)
     return _finish(fig, axes, made, title)
 
@@ -455,7 +464,7 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     the curve (slip+ orange, slip- cyan; stick: the bare line) and the enclosed area (non-zero
     winding number, docs/model.md section 8) in the legend. ax: the Axes to draw into."""
     states = _cases(cases, labels)
-    fig, axes, made = _axes(ax, 1, width=6.4, height=4.6)
+    fig, axes, made = _axes(ax, 1, width=6.4, height=6.0)
     axis = axes[0]
     names, title = _labels_and_title(states, title)
     slip_seen: Dict[int, bool] = {}
@@ -487,7 +496,7 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     axis.axhline(0.0, color="0.6", lw=0.5)
     axis.axvline(0.0, color="0.6", lw=0.5)
     axis.grid(alpha=0.3)
-    _legend(axis, handles)
+    _legend(axis, handles, below=True)
     return _finish(fig, axes, made, title)
 
 
@@ -654,6 +663,7 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
     zlabel, zf = axis_label(zcol, units.get(zcol, ""))
     fig, axes, made = _axes(ax, 1, width=6.4, height=4.8)
     axis = axes[0]
+    axis.grid(False)
     mesh = axis.pcolormesh(xu * xf, yu * yf, np.ma.masked_invalid(grid * zf), shading="nearest",
                            cmap="viridis")
     fig.colorbar(mesh, ax=axis, label=zlabel)

@@ -1,5 +1,6 @@
 """Plots: files written (PNG/SVG), axes and lines as expected, the CLI entry points."""
 
+import os
 import subprocess
 import sys
 
@@ -192,7 +193,7 @@ def stick_slip_driven_four():
 def test_titles_name_the_case_instead_of_case_1(slip_result, slip_case):
     fig = plot.plot_accelerations((slip_result, slip_case))
     title = fig._suptitle.get_text()
-    for part in ("G = 25 MN/m$^2$ (Table 2)", r"$\mu$ = 0.5", "$M_{Md}$ = 0.05 $M_0$",
+    for part in ("G = 25 MN/m$^2$", "Table 2 soil", r"$\mu$ = 0.5", "$M_{Md}$ = 0.05 $M_0$",
                  "R = 0.606 m", "f = 39 Hz"):
         assert part in title, (part, title)
     legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
@@ -231,12 +232,15 @@ def test_every_single_case_figure_keeps_its_legend_off_the_data(slip_result, sli
 
 def test_phi_is_drawn_without_its_drift(slip_result):
     phi = np.asarray(slip_result.samples.phi)
-    assert phi[-1] - phi[0] > 1.0  # MMd = 0.05 M0: the drum turns on by slip
-    fig = plot.plot_delta_phi(slip_result)
-    drawn = fig.axes[1].lines[0].get_ydata()
     period = len(phi) // slip_result.sample_periods
-    assert np.ptp(drawn) < 0.2 * np.ptp(phi)
-    assert abs(np.mean(drawn[:period]) - np.mean(drawn[period:2 * period])) < 1e-3 * np.ptp(phi)
+    drift = phi[period] - phi[0]  # MMd = 0.05 M0: the drum turns on by slip every period
+    assert drift > 0.5 * np.ptp(phi[:period] - np.linspace(0, drift, period, endpoint=False))
+    fig = plot.plot_delta_phi(slip_result)
+    drawn = np.asarray(fig.axes[1].lines[0].get_ydata())
+    assert abs(drawn[period] - drawn[0]) < 1e-6 * drift  # periodic: the drift is gone
+    assert abs(np.mean(drawn)) < 1e-6 * drift  # and the mean
+    assert np.ptp(drawn) < 0.5 * np.ptp(phi)  # so the oscillation fills the panel
+    assert "drift removed" in fig.axes[1].get_ylabel()
 
 
 def test_figure_eight_shows_travel_slip_and_area(slip_result, slip_case):
@@ -277,11 +281,11 @@ def test_many_groups_get_a_colour_map_and_bar():
 def test_plot_map_heat_map_of_any_metric():
     table = {"case": np.arange(6.0), "roller.f": np.repeat([30.0, 39.0, 45.0], 2),
              "soil.table2_G": np.tile([5e6, 25e6], 3),
-             "ddx_max": np.array([1.0, 2.0, 3.0, np.nan, 5.0, 6.0])}
+             "status": np.full(6, np.nan), "ddx_max": np.array([1.0, 2.0, 3.0, np.nan, 5.0, 6.0])}
     fig = plot.plot_map(table, "soil.G", "roller.f", "ddx_max")
     ax, bar = fig.axes
     mesh = ax.collections[0]
-    grid = mesh.get_array()
+    grid = np.ma.asarray(mesh.get_array()).reshape(3, 2)  # rows: f, columns: G
     assert grid.shape == (3, 2) and grid[1, 1] is np.ma.masked  # the failed case stays blank
     assert grid[2, 0] == 5.0 and grid[0, 1] == 2.0
     assert "MN/m$^2$" in ax.get_xlabel() and "Hz" in ax.get_ylabel()
@@ -323,3 +327,48 @@ def test_module_entry_map_and_study(tmp_path):
                    str(tmp_path / "study.svg"))
     assert p.returncode == 0, p.stderr
     assert b"<svg" in (tmp_path / "study.svg").read_bytes()[:2000]
+
+
+# ---- the CLI's plots and its Python interpreter ----------------------------------------------
+
+def _cli_env(**extra):
+    env = dict(os.environ)
+    env.update(extra)
+    return env
+
+
+def test_cli_sweep_plot_draws_a_heat_map(cli, root, tmp_path):
+    study = tmp_path / "study.toml"
+    study.write_text("[roller]\nunbalance = 0.22877\n[sweep]\n"
+                     "\"roller.f\" = { start = 30, stop = 40, step = 5 }\n"
+                     "\"soil.table2_G\" = [10e6, 25e6]\n")
+    out = tmp_path / "study.png"
+    p = subprocess.run([cli, "sweep", str(study), "--out", str(tmp_path / "r.csv"), "--quiet",
+                        "--plot", str(out)], capture_output=True, text=True, timeout=300,
+                       env=_cli_env(OSCIDRUM_PYTHON=sys.executable))
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "warning" not in p.stderr  # the unbalance makes M0 follow f
+    assert out.read_bytes().startswith(PNG)
+    p = subprocess.run([cli, "sweep", str(study), "--plot", str(out)], capture_output=True,
+                       text=True, timeout=60)
+    assert p.returncode == 2 and "--plot" in p.stderr and "needs --out" in p.stderr
+
+
+def test_cli_python_is_not_taken_from_path(cli, tmp_path):
+    """A `python3` on PATH without the package (here: one that always fails) does not matter;
+    $OSCIDRUM_PYTHON, when set, is used and named in the error."""
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    (fake / "python3").write_text("#!/bin/sh\nexit 7\n")
+    (fake / "python3").chmod(0o755)
+    env = _cli_env(PATH=f"{fake}:{os.environ.get('PATH', '')}")
+    env.pop("OSCIDRUM_PYTHON", None)
+    p = subprocess.run([cli, "run", "--quiet", "--plot", str(tmp_path / "plots")],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert (tmp_path / "plots" / "figure_eight.png").read_bytes().startswith(PNG)
+    env["OSCIDRUM_PYTHON"] = str(tmp_path / "no" / "python")
+    p = subprocess.run([cli, "run", "--quiet", "--plot", str(tmp_path / "plots2")],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert p.returncode == 1
+    assert str(tmp_path / "no" / "python") in p.stderr and "OSCIDRUM_PYTHON" in p.stderr
