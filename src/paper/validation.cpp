@@ -243,7 +243,7 @@ std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
       }
     add("all.slip_ends", "Sect. 3.4",
         "every slip phase ends in stick (no reversal, no slip end "
-        "without a consistent continuation; docs/model.md)",
+        "without a consistent continuation; docs/model.md section 6)",
         "stick-slip alternation",
         std::to_string(odd) + " irregular slip ends among " + std::to_string(switches) +
             " switches",
