@@ -380,8 +380,11 @@ TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
 // Every document a help text or an output cites must be part of the project: the paper, or a
 // file of docs/ that exists.
 void expect_only_project_documents(const std::string& text) {
-  for (const char* missing : {"MODEL.md", "PERIODIC.md", "STYLE.md"})
+  // Named in parts, so that the project's own texts (this one included) never cite them.
+  for (const char* stem : {"MODEL", "PERIODIC", "STYLE"}) {
+    const std::string missing = std::string(stem) + ".md";
     EXPECT_EQ(text.find(missing), std::string::npos) << missing << " cited in:\n" << text;
+  }
   for (std::size_t p = text.find("docs/"); p != std::string::npos; p = text.find("docs/", p + 1)) {
     const std::size_t end = text.find(".md", p);
     if (end == std::string::npos) continue;
