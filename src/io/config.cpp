@@ -423,6 +423,9 @@ std::string case_to_toml(const Case& c, bool table2) {
   const bool modulus = c.soil.input == SoilInput::modulus;
   auto unused = [&](const std::string& key) -> const char* {
     if (table2 && key.starts_with("soil.")) return "set by table2_G";
+    // The roller is given by M0 or by its unbalance, not both (5).
+    if (key == "roller.M0" && c.roller.unbalance > 0.0) return "replaced by unbalance";
+    if (key == "roller.unbalance" && c.roller.unbalance == 0.0) return "unused: M0 is given";
     if (key == "soil.G" || key == "soil.nu" || key == "soil.rho")
       return modulus ? nullptr : "unused with input = coefficients";
     if (key == "soil.ksh" || key == "soil.ksv" || key == "soil.csh" || key == "soil.csv")

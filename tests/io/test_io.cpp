@@ -242,6 +242,13 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
   Case t;
   t.soil = table2_soil(30e6);
   EXPECT_TRUE(same_case(read(case_to_toml(t, true)), t));
+
+  Case u;  // given by its unbalance: M0 is written as a comment (both would be an error)
+  u.roller.unbalance = 0.22877;
+  u.roller.f = 30.0;
+  const std::string text = case_to_toml(u);
+  EXPECT_NE(text.find("# M0 = "), std::string::npos) << text;
+  EXPECT_TRUE(same_case(read(text), u));
 }
 
 TEST(CaseSpec, AssignTextParsesEachType) {
