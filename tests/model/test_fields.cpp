@@ -36,6 +36,7 @@ const std::map<std::string, Member>& members() {
       {"roller.P0", [](Case& c) -> double& { return c.roller.P0; }},
       {"roller.f", [](Case& c) -> double& { return c.roller.f; }},
       {"roller.M0", [](Case& c) -> double& { return c.roller.M0; }},
+      {"roller.unbalance", [](Case& c) -> double& { return c.roller.unbalance; }},
       {"roller.kd", [](Case& c) -> double& { return c.roller.kd; }},
       {"roller.cd", [](Case& c) -> double& { return c.roller.cd; }},
       {"roller.g", [](Case& c) -> double& { return c.roller.g; }},
