@@ -74,7 +74,9 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   const int rc = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
-    std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc) << "); "
+    std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc)
+              << "; set OSCIDRUM_PYTHON to the interpreter the oscidrum package is installed for, "
+                 "see docs/python.md); "
               << data_note << "\n";
     return -1;
   }
