@@ -42,7 +42,8 @@ TEST(CliSweep, Table2StudyIsTheSameOnAnyNumberOfThreads) {
 // Range values as the user would write them, in --list and in the results CSV.
 TEST(CliSweep, RangeValuesPrintAsWritten) {
   TempDir dir;
-  std::ofstream(dir / "s.toml") << "[sweep]\n\"contact.mu\" = { start = 0.2, stop = 0.8, num = 13 }\n";
+  std::ofstream(dir / "s.toml")
+      << "[sweep]\n\"contact.mu\" = { start = 0.2, stop = 0.8, num = 13 }\n";
   const Outcome list = run({"sweep", dir / "s.toml", "--list"});
   ASSERT_EQ(list.code, 0) << list.err;
   EXPECT_NE(list.out.find(" 0.25\n"), std::string::npos) << list.out;
