@@ -84,10 +84,21 @@ void add_model_flags(CLI::App& app, CaseOptions& o) {
   o.a_flag = app.add_option("--a", o.a, "log-spiral trough: a [m]")->group(group);
 }
 
-void add_set_flag(CLI::App& app, CaseOptions& o) {
-  app.add_option("--set", o.sets,
-                 "set any parameter: --set KEY=VALUE, SI units, repeatable; keys as in the config "
-                 "file (see 'oscidrum fields'), e.g. --set numerics.max_periods=2000")
+void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only) {
+  o.set_keys = only;
+  o.command = app.get_name();
+  std::string help;
+  if (only.empty()) {
+    help =
+        "set any parameter: --set KEY=VALUE, SI units, repeatable; keys as in the config file "
+        "(see 'oscidrum fields'), e.g. --set numerics.max_periods=2000";
+  } else {
+    help = "set a parameter this command uses: --set KEY=VALUE, SI units, repeatable; KEY one of";
+    for (std::size_t i = 0; i < only.size(); ++i) help += (i ? ", " : " ") + only[i];
+    help += " (other keys have no effect here and are errors), e.g. --set " + only.back() + "=" +
+            format_field(Case{}, *find_field(only.back()));
+  }
+  app.add_option("--set", o.sets, help)
       ->allow_extra_args(false)
       // Checked while parsing: `--set --csv out.csv` must not take --csv as its value and leave
       // out.csv to be read as the case file.
@@ -114,6 +125,13 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
     if (eq == std::string::npos || eq == 0)
       throw Error("--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + io::clip(s) + "'");
     const std::string key = s.substr(0, eq);
+    if (!o.set_keys.empty() &&
+        std::find(o.set_keys.begin(), o.set_keys.end(), key) == o.set_keys.end()) {
+      std::string uses;
+      for (std::size_t i = 0; i < o.set_keys.size(); ++i) uses += (i ? ", " : "") + o.set_keys[i];
+      throw Error("--set " + s + ": 'oscidrum " + o.command + "' does not use " + key +
+                  " (it would have no effect); it uses " + uses);
+    }
     if (key == "MMd") forget(spec, "MMd_fraction");
     if (key == "MMd_fraction") forget(spec, "MMd");
     if (key == "soil.table2_G") io::clear_soil(spec);

@@ -31,6 +31,10 @@ struct CaseOptions {
   CLI::Option *MMd_flag = nullptr, *fraction_flag = nullptr;
   CLI::Option *R_flag = nullptr, *k_flag = nullptr, *a_flag = nullptr;
   std::vector<std::string> sets;  // --set key=value
+  // Keys --set may name (empty: every key); a command that uses only a few parameters rejects
+  // the others instead of ignoring them. `command` names it in the message.
+  std::vector<std::string> set_keys;
+  std::string command;
 };
 
 /// --r, --b, --m, --I, --P0, --f, --M0, --kd, --cd: one per roller field of fields() (except g,
@@ -44,8 +48,9 @@ void add_soil_flags(CLI::App& app, CaseOptions& o);
 /// --mu, --pure-rolling, --MMd, --MMd-fraction, --R, --k, --a.
 void add_model_flags(CLI::App& app, CaseOptions& o);
 
-/// --set key=value (repeatable), for any key of `oscidrum fields`.
-void add_set_flag(CLI::App& app, CaseOptions& o);
+/// --set key=value (repeatable), for any key of `oscidrum fields`; with `only`, for those keys
+/// alone (a key the command does not use is an error: exit code 2, not a silent no-op).
+void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only = {});
 
 /// Apply the flags that were given to `spec`. Throws oscidrum::Error (exit code 2).
 void apply(const CaseOptions& o, io::CaseSpec& spec);

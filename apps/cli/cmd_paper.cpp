@@ -1,5 +1,5 @@
 // oscidrum paper: reproduce the paper. The studies, the data behind Figs. 7-22, the figures and
-// the report come from the Python package (python3 -m oscidrum.paper, one plotting
+// the report come from the Python package (oscidrum.paper run by python_interpreter(), one plotting
 // implementation), which includes the validation table of src/validation.cpp. Without Python,
 // the validation table alone is written.
 #include <CLI/CLI.hpp>

@@ -182,8 +182,9 @@ void add_run_command(CLI::App& app, Action& action) {
   o->plot_flag =
       sub->add_option(
              "--plot", o->plot_dir,
-             "plot into DIR with the Python package (python3 -m oscidrum.plot); writes the "
-             "CSV and JSON there unless --csv/--json name files")
+             "plot into DIR with the Python package (oscidrum.plot, run by the interpreter "
+             "it is installed for: docs/python.md); writes the CSV and JSON there unless "
+             "--csv/--json name files")
           ->type_name("DIR")
           ->group(out);
   sub->add_flag("--print-config", o->print_config,

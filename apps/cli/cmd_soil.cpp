@@ -23,7 +23,7 @@ struct SoilOptions {
   std::string format = "table";
 };
 
-// MODEL.md, "Known discrepancy"; the ranges are computed, not copied.
+// docs/model.md section 1.3; the ranges are computed, not copied.
 std::string discrepancy_note(const Roller& roller) {
   double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
   for (const Table2Row& row : table2()) {
@@ -40,7 +40,7 @@ std::string discrepancy_note(const Roller& roller) {
          "digits, but (42) gives ksh " +
          range(1) + " and ksv " + range(2) +
          " off the table's stiffnesses: the table is 'based on' an earlier thesis and was "
-         "evidently computed another way (MODEL.md, \"Known discrepancy\"). oscidrum runs use "
+         "evidently computed another way (docs/model.md section 1.3). oscidrum runs use "
          "Table 2 for the paper's G values (run --G 25) and Appendix B for any other G, or with "
          "--soil-formula.";
 }
@@ -195,7 +195,7 @@ void add_soil_command(CLI::App& app, Action& action) {
   sub->add_option("--rho", o->rho, "density [kg/m^3] (default 1900)");
   sub->add_flag("--table2", o->all, "all G of paper Table 2 (5 ... 70 MN/m^2), side by side");
   add_roller_flags(*sub, o->c, {"roller.r", "roller.b", "roller.P0"});
-  add_set_flag(*sub, o->c);
+  add_set_flag(*sub, o->c, {"roller.r", "roller.b", "roller.P0"});
   sub->add_option("--format", o->format, "table, csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   sub->callback([o, &action] { action = [o] { return run(*o); }; });

@@ -23,6 +23,7 @@
 #include "oscidrum_io/shard.hpp"
 #include "oscidrum_io/sweep.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "terminal.hpp"
 
 namespace oscidrum::cli {
@@ -34,6 +35,7 @@ struct SweepOptions {
   std::string out, cases_dir, format, shard, hdf5;
   CLI::Option *out_flag = nullptr, *cases_dir_flag = nullptr, *shard_flag = nullptr,
               *hdf5_flag = nullptr;
+  std::string plot, plot_metric = "area";  // --plot FILE: the study's figure
   int threads = 0, harmonics = 10;
   bool resume = false, restart = false, quiet = false, list = false;
 };
@@ -81,6 +83,21 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
   return t.text();
 }
 
+// A frequency study with M0 fixed is rarely what is meant (M0 = 4 m_u e_u e_w nu^2 (5)): say so
+// once, as io::finalize does for one case.
+void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study) {
+  bool M0_given = spec.base.given("roller.M0");
+  for (const std::string& k : study.keys) M0_given = M0_given || k == "roller.M0";
+  std::size_t fixed = 0;
+  for (const Case& c : study.cases) fixed += c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f;
+  if (fixed == 0 || M0_given) return;
+  warn(std::to_string(fixed) + " of the " + std::to_string(study.cases.size()) +
+       " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +
+       " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w nu^2 (5) grows "
+       "with f^2: give roller.unbalance (the paper's: 0.22877 kg m^2), or set roller.M0 to say "
+       "the moment is meant");
+}
+
 int run(const SweepOptions& o) {
   // Output names first: a sweep must not fail at its end, after every case ran.
   if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out, false);
@@ -94,6 +111,7 @@ int run(const SweepOptions& o) {
   apply(o.c, spec.base);
   const io::Study study = io::expand(spec);
   const std::size_t total = study.cases.size();
+  warn_fixed_moment(spec, study);
   const io::StudyColumns columns{study.keys, o.harmonics};
   const std::string header = io::study_csv_header(columns);
   const std::uint64_t study_fingerprint = io::fingerprint(study, header);
@@ -123,6 +141,8 @@ int run(const SweepOptions& o) {
   if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
   if ((o.resume || o.restart) && o.out.empty())
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
+  if (!o.plot.empty() && o.out.empty())
+    throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
   for (const Case& c : study.cases)
     if (o.harmonics >= c.numerics.samples_per_period / 2)
       throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
@@ -260,6 +280,11 @@ int run(const SweepOptions& o) {
               << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
   }
   const bool all_ok = counts.size() == 1 && counts.begin()->first == "steady_state";
+  // --plot: a curve over one swept key, a heat map over two (oscidrum.plot.plot_study).
+  if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
+                                     o.plot_metric, "--out", o.plot},
+                                    "the results are in " + o.out) != 0)
+    return kExitCaseFailed;
   return all_ok ? kExitOk : kExitCaseFailed;
 }
 
@@ -283,6 +308,8 @@ void add_sweep_command(CLI::App& app, Action& action) {
       "  oscidrum sweep study.toml --list                 show the cases, run nothing\n"
       "  oscidrum sweep study.toml --shard 2/4 --out shard_2.csv   one of 4 slices\n"
       "  oscidrum sweep study.toml --out results.csv --hdf5 results.h5\n"
+      "  oscidrum sweep examples/frequency_sweep.toml --out f.csv --plot f.png   heat map of "
+      "the area over f and G\n"
       "  oscidrum sweep study.toml --format table --set numerics.max_periods=500\n"
       "Study file syntax: docs/config.md (\"Sweeps\"). Exit codes: 0 all cases steady, 1 some "
       "case ended otherwise (see its status), 2 bad input, 130 interrupted (resume with "
@@ -326,6 +353,14 @@ void add_sweep_command(CLI::App& app, Action& action) {
                       "I - 1. The CSV starts with a line naming the study and the shard; join the "
                       "shards with 'oscidrum merge' (examples/slurm/ for a cluster job array)")
           ->type_name("I/N");
+  sub->add_option("--plot", o->plot,
+                  "also draw the study into FILE (.png or .svg; needs --out): the metric against "
+                  "the swept key, or a heat map over two swept keys (Python package, "
+                  "docs/python.md)")
+      ->type_name("FILE");
+  sub->add_option("--plot-metric", o->plot_metric,
+                  "the results column --plot shows (default area; e.g. ddx_max, psi_xz)")
+      ->type_name("COLUMN");
   sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });

@@ -95,7 +95,7 @@ void add_transmissibility_command(CLI::App& app, Action& action) {
       "  oscidrum transmissibility                 the paper's values (Tp = 0.025)\n"
       "  oscidrum transmissibility --mf 3000 --kd 5e6 --format json");
   add_roller_flags(*sub, o->c, {"roller.m_f", "roller.kd", "roller.cd", "roller.f"});
-  add_set_flag(*sub, o->c);
+  add_set_flag(*sub, o->c, {"roller.m_f", "roller.kd", "roller.cd", "roller.f"});
   sub->add_option("--format", o->format, "table, csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
   sub->callback([o, &action] { action = [o] { return run(*o); }; });

@@ -23,9 +23,22 @@ bool run_plot(const std::string& csv, const std::string& json, const std::string
                     "the data are in " + csv + " and " + json) == 0;
 }
 
+std::string python_interpreter() {
+  // 1. The user's choice.
+  if (const char* env = std::getenv("OSCIDRUM_PYTHON"); env && *env) return env;
+    // 2. The interpreter this build made the package for (CMake's Python3_EXECUTABLE): `python3`
+    //    on PATH may be another one (a pyenv or venv interpreter without Debian's NumPy and
+    //    matplotlib), so PATH is not searched.
+#ifdef OSCIDRUM_PYTHON_EXECUTABLE
+  if (::access(OSCIDRUM_PYTHON_EXECUTABLE, X_OK) == 0) return OSCIDRUM_PYTHON_EXECUTABLE;
+#endif
+  // 3. Debian's interpreter, which scripts/setup-debian.sh installs the packages for.
+  return "/usr/bin/python3";
+}
+
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
                const std::vector<int>& quiet_status) {
-  const std::string python = "/usr/bin/python3";
+  const std::string python = python_interpreter();
   std::vector<std::string> args = {python, "-m"};
   args.insert(args.end(), module_args.begin(), module_args.end());
   const std::string what = "'" + python + " -m " + module_args.front() + "'";
@@ -61,7 +74,9 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   const int rc = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
-    std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc) << "); "
+    std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc)
+              << "; set OSCIDRUM_PYTHON to the interpreter the oscidrum package is installed for, "
+                 "see docs/python.md); "
               << data_note << "\n";
     return -1;
   }
@@ -77,11 +92,13 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   if (WIFEXITED(status) && std::find(quiet_status.begin(), quiet_status.end(),
                                      WEXITSTATUS(status)) != quiet_status.end())
     return WEXITSTATUS(status);
-  std::cerr << "oscidrum: error: " << what << " "
-            << (WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
-                                  : std::string("was killed by a signal"))
-            << " (is the oscidrum Python package installed, with matplotlib? see docs/python.md); "
-            << data_note << "\n";
+  std::cerr
+      << "oscidrum: error: " << what << " "
+      << (WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
+                            : std::string("was killed by a signal"))
+      << " (is the oscidrum Python package installed for it, with matplotlib? set OSCIDRUM_PYTHON "
+         "to the interpreter that has it; see docs/python.md); "
+      << data_note << "\n";
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 

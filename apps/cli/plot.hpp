@@ -6,13 +6,18 @@
 
 namespace oscidrum::cli {
 
-/// Run `/usr/bin/python3 -m oscidrum.plot case --csv CSV --json JSON --out DIR` (its stdout goes
-/// to our stderr, so that our stdout stays a clean result). The package's source directory is
+/// Run `python_interpreter() -m oscidrum.plot case --csv CSV --json JSON --out DIR` (its stdout
+/// goes to our stderr, so that our stdout stays a clean result). The package's source directory is
 /// put first on PYTHONPATH when the tool runs from a build tree. Returns true on success; on
 /// failure prints why on stderr and returns false.
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir);
 
-/// Run `/usr/bin/python3 -m <module_args...>` with the package found first in the build tree,
+/// The Python interpreter --plot and `paper` run: $OSCIDRUM_PYTHON if set, else the one the build
+/// made the package for (CMake's Python3_EXECUTABLE), else /usr/bin/python3. Never the
+/// `python3` on PATH, which may be an interpreter without the package's dependencies.
+std::string python_interpreter();
+
+/// Run `python_interpreter() -m <module_args...>` with the package found first in the build tree,
 /// its output on our stdout. Returns its exit status, or -1 if it could not start or was killed
 /// (then one error line ending with `data_note` is printed; for other non-zero statuses too unless
 /// `quiet_status` lists them).

@@ -12,10 +12,20 @@
 namespace oscidrum::cli {
 namespace {
 
-std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max) {
+// Harmonics below this fraction of the signal's largest one are printed as 0: with MMd = 0 the
+// even harmonics of x_M'' and the odd ones of z_M'' vanish by symmetry and only rounding
+// remains (1e-9 ... 1e-8 of the largest at the default tolerances).
+constexpr double kHarmonicZeroFraction = 1e-6;  // stated in the summary
+
+std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bool& zeroed) {
+  double largest = 0.0;
+  for (std::size_t n = 1; n < h.size(); ++n) largest = std::max(largest, h[n].amplitude);
   std::string s;
-  for (std::size_t n = 1; n < h.size() && n <= n_max; ++n)
-    s += (n > 1 ? ", " : "") + fmt(h[n].amplitude, 4);
+  for (std::size_t n = 1; n < h.size() && n <= n_max; ++n) {
+    const bool zero = h[n].amplitude < kHarmonicZeroFraction * largest;
+    zeroed = zeroed || (zero && h[n].amplitude != 0.0);
+    s += (n > 1 ? ", " : "") + (zero ? std::string("0") : fmt(h[n].amplitude, 4));
+  }
   return s + " m/s^2";
 }
 
@@ -38,10 +48,13 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.line("trough", c.trough.k == 0.0
                        ? "circle, R = " + fmt(c.trough.a) + " m"
                        : "log spiral, k = " + fmt(c.trough.k) + ", a = " + fmt(c.trough.a) + " m");
-  s.line("excitation", "f = " + fmt(c.roller.f) + " Hz, M0 = " + fmt(c.roller.M0) + " N m");
+  const double M0 = oscillation_moment(c.roller);
+  s.line("excitation", "f = " + fmt(c.roller.f) + " Hz, M0 = " + fmt(M0) + " N m" +
+                           (c.roller.unbalance > 0.0 ? " (4 m_u e_u e_w nu^2 (5), m_u e_u e_w = " +
+                                                           fmt(c.roller.unbalance) + " kg m^2)"
+                                                     : std::string()));
   s.line("driving torque MMd",
-         fmt(c.MMd) + " N m" +
-             (c.roller.M0 != 0.0 ? " (" + fmt(c.MMd / c.roller.M0, 4) + " M0)" : std::string()));
+         fmt(c.MMd) + " N m" + (M0 != 0.0 ? " (" + fmt(c.MMd / M0, 4) + " M0)" : std::string()));
   const Transmissibility tr =
       transmissibility(c.roller.kd, c.roller.cd, c.roller.m_f, 2.0 * M_PI * c.roller.f);
   s.line("frame transmissibility",
@@ -67,7 +80,10 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
     const Metrics& m = *metrics;
     s.section("steady state (" + std::to_string(result.sample_periods) + " periods, " +
               std::to_string(result.samples.size()) + " samples)");
-    for (const MetricOutput& out : metric_outputs()) {
+    bool zeroed = false;
+    const auto& outputs = metric_outputs();
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      const MetricOutput& out = outputs[i];
       if (is_scalar(out)) {
         s.line(out.label, output_text(m, out));
         continue;
@@ -75,7 +91,14 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
       const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
       const std::size_t shown = std::min<std::size_t>(6, h.size());
       s.line(std::string(out.label) + " A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
-             harmonics_text(h, shown - 1));
+             harmonics_text(h, shown - 1, zeroed));
+      // After the last of consecutive spectra: what a printed 0 means.
+      if (zeroed && (i + 1 == outputs.size() || is_scalar(outputs[i + 1]))) {
+        s.line("",
+               "(0: below 1e-6 of the signal's largest harmonic, e.g. zero by symmetry; "
+               "exact values: --json)");
+        zeroed = false;
+      }
     }
   }
   return s.text();

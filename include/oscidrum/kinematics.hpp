@@ -4,7 +4,7 @@
 
 namespace oscidrum {
 
-/// Geometry of the log-spiral trough (MODEL.md section 1): R(theta) = a exp(k theta),
+/// Geometry of the log-spiral trough (docs/model.md section 1.4): R(theta) = a exp(k theta),
 /// alpha = atan(1/k), theta0 = pi - alpha, R0 = a exp(k theta0). k = 0: alpha = pi/2, R0 = a.
 struct TroughGeometry {
   double r = 0.6;                     ///< drum radius [m]

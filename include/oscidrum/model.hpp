@@ -51,6 +51,7 @@ class Model {
   double mu_static_;
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
+  double M0_;  ///< oscillation_moment(roller) (5) [N m]
 };
 
 /// Normal and tangential contact forces at C. The soil is massless, so both are functions of

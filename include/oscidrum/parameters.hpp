@@ -1,7 +1,9 @@
 // oscidrum/parameters.hpp: plain input structs. Defaults are the paper's roller (HAMM HD+ 90 VO,
-// MODEL.md section 1, paper Table 1) on the Table 2 soil at G = 25 MN/m^2, circular trough
+// docs/model.md section 1, paper Table 1) on the Table 2 soil at G = 25 MN/m^2, circular trough
 // R = 0.606 m, Coulomb friction mu = 0.5, no driving torque. All units SI.
 #pragma once
+
+#include <numbers>
 
 namespace oscidrum {
 
@@ -14,11 +16,21 @@ struct Roller {
   double P0 = 45224.0;  ///< static axle load [N]; Fz = P0 - m g (7)
   double f = 39.0;      ///< excitation frequency [Hz]; nu = 2 pi f
   double M0 = 54947.0;  ///< amplitude of the oscillation moment M_Mu^(0) (5) [N m]
+  /// The unbalances' moment m_u e_u e_w [kg m^2]. > 0: M0 = 4 m_u e_u e_w nu^2 (5) follows f and
+  /// replaces M0 (see oscillation_moment); 0: M0 is used as given. The paper's roller: 0.22877.
+  double unbalance = 0.0;
   double kd = 4.0e6;    ///< drum/frame suspension stiffness, horizontal and vertical [N/m]
   double cd = 3.0e3;    ///< drum/frame suspension damping, horizontal and vertical [N s/m]
   double g = 9.81;      ///< gravitational acceleration [m/s^2]
   double m_f = 2760.0;  ///< effective frame mass on the drum's axle, Appendix A only [kg]
 };
+
+/// The amplitude of the oscillation moment [N m] the engine uses: 4 m_u e_u e_w nu^2 (5) with
+/// nu = 2 pi f when the roller is given by its unbalance (> 0), else roller.M0.
+inline double oscillation_moment(const Roller& r) {
+  const double nu = 2.0 * std::numbers::pi * r.f;
+  return r.unbalance > 0.0 ? 4.0 * r.unbalance * nu * nu : r.M0;
+}
 
 /// How the soil is given.
 enum class SoilInput {

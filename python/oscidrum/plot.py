@@ -2,16 +2,25 @@
 
 Every function takes steady states in any form :func:`oscidrum.data.as_steady_state` accepts (a
 ``Result``, a study's ``CaseOutcome``, a :class:`~oscidrum.data.SteadyState` read from the CLI's
-CSV, or the CSV's path) and returns a :class:`matplotlib.figure.Figure`; :func:`save` writes it
-as PNG or SVG. Figures are built with the object-oriented API (no pyplot state), so they are
-safe in scripts, tests and threads; in Jupyter, ``display(fig)`` shows them.
+CSV, or the CSV's path), or a ``(result, oscidrum.Case)`` pair that also gives the case's
+parameters, and returns a :class:`matplotlib.figure.Figure`; :func:`save` writes it as PNG or
+SVG. With ``ax=`` (an Axes, or a sequence of Axes for the two-panel plots) a function draws into
+the caller's axes and returns them instead. Titles name the cases' key parameters (soil,
+contact, driving torque, trough, f); legends sit beside the axes, where they hide no data.
+Figures are built with the object-oriented API (no pyplot state), so they are safe in scripts,
+tests and threads; in Jupyter, ``display(fig)`` shows them.
 
-Command line (the C++ CLI's ``oscidrum run --plot DIR`` calls the first form)::
+Command line (the C++ CLI's ``oscidrum run --plot DIR`` calls the first form and ``oscidrum
+sweep --plot FILE`` the last; run it with the interpreter the package is installed for, on
+Debian ``/usr/bin/python3``)::
 
-    python3 -m oscidrum.plot case --csv FILE [--json FILE] --out DIR [--format png|svg]
-    python3 -m oscidrum.plot sweep --csv results.csv --x soil.G --y area [--y ddx_max]
+    /usr/bin/python3 -m oscidrum.plot case --csv FILE [--json FILE] --out DIR [--format png|svg]
+    /usr/bin/python3 -m oscidrum.plot sweep --csv results.csv --x soil.G --y area [--y ddx_max]
                                    [--group MMd_fraction] [--where contact.pure_rolling=true]
                                    --out DIR [--format png|svg]
+    /usr/bin/python3 -m oscidrum.plot map --csv results.csv --x soil.G --y roller.f [--z area]
+                                   [--where KEY=VALUE] --out FILE.png
+    /usr/bin/python3 -m oscidrum.plot study --csv results.csv [--metric area] --out FILE.png
 """
 
 from __future__ import annotations
@@ -27,7 +36,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from .data import (SteadyState, as_steady_state, harmonic_amplitudes, read_case,
+from .data import (SteadyState, as_steady_state, from_result, harmonic_amplitudes, read_case,
                    read_csv_columns, resolve_column, split_header)
 
 # Axis labels with units (mathtext).
@@ -51,6 +60,8 @@ DISPLAY: Dict[str, Tuple[str, str, float]] = {
     "MMd_fraction": (r"$M_{Md}/M_0$", "-", 1.0),
     "contact.mu": (r"friction coefficient $\mu$", "-", 1.0),
     "roller.f": (r"excitation frequency $f$", "Hz", 1.0),
+    "roller.M0": (r"oscillation moment $M_0$", "kN m", 1e-3),
+    "roller.unbalance": (r"unbalance $m_u e_u e_w$", r"kg m$^2$", 1.0),
     "area": (r"area inside $\ddot{z}_M$-$\ddot{x}_M$", r"m$^2$/s$^4$", 1.0),
     "ddx_max": (r"peak $\ddot{x}_M$", r"m/s$^2$", 1.0),
     "ddx_min": (r"min $\ddot{x}_M$", r"m/s$^2$", 1.0),
@@ -104,21 +115,127 @@ def save(fig: Figure, path: str | os.PathLike, fmt: Optional[str] = None) -> Pat
     return path
 
 
+def _flat_parameters(case: Any) -> Dict[str, Any]:
+    """{dotted key: value} of an oscidrum.Case (its to_dict) or of a mapping."""
+    if case is None:
+        return {}
+    if hasattr(case, "to_dict"):
+        return dict(case.to_dict())
+    return dict(case)
+
+
 def _cases(cases: Any, labels: Optional[Sequence[str]]) -> List[SteadyState]:
-    if not isinstance(cases, (list, tuple)):
+    """Steady states from a case or a list of cases; a case may be a (result, oscidrum.Case)
+    pair, which gives the plot its parameters (for the title and legend)."""
+    if not isinstance(cases, list) and not (isinstance(cases, tuple) and not _is_pair(cases)):
         cases = [cases]
     out = []
     for i, case in enumerate(cases):
         label = labels[i] if labels is not None and i < len(labels) else ""
-        state = as_steady_state(case, label=label)
+        if _is_pair(case):
+            state = from_result(case[0], label=label, parameters=_flat_parameters(case[1]))
+        else:
+            state = as_steady_state(case, label=label)
         if label:
             state.label = label
         out.append(state)
     return out
 
 
-def _label(state: SteadyState, i: int) -> str:
-    return state.label or f"case {i + 1}"
+def _is_pair(obj: Any) -> bool:
+    return (isinstance(obj, tuple) and len(obj) == 2 and
+            (hasattr(obj[1], "to_dict") or isinstance(obj[1], Mapping)) and
+            not isinstance(obj[0], (str, os.PathLike)))
+
+
+def _number(v: float) -> str:
+    return f"{float(v):.4g}"
+
+
+def _table2_G(params: Mapping[str, Any]) -> Optional[float]:
+    """The G [Pa] of the paper's Table 2 row whose coefficients the case uses, if any."""
+    try:
+        from . import _core  # the compiled module; the pure-Python package works without it
+        rows = _core.table2()
+    except Exception:  # noqa: BLE001 - no compiled module: no Table 2 lookup
+        return None
+    try:
+        k = [float(params[f"soil.{n}"]) for n in ("ksh", "ksv", "csh", "csv")]
+    except (KeyError, TypeError, ValueError):
+        return None
+    for row in rows:
+        if all(abs(a - b) <= 1e-9 * abs(b) for a, b in
+               zip(k, (row.ksh, row.ksv, row.csh, row.csv))):
+            return float(row.G)
+    return None
+
+
+def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
+               ) -> Dict[str, str]:
+    """The key parameters of a case as {name: text} (soil, contact, torque, trough, excitation),
+    from its {dotted key: value} parameters; names without a value are left out."""
+    parts: Dict[str, str] = {}
+    get = params.get
+    if get("soil.input") == "modulus" and get("soil.G") is not None:
+        parts["soil"] = f"G = {_number(float(get('soil.G')) * 1e-6)} MN/m$^2$"
+        parts["soil source"] = "Appendix B soil"
+    elif _table2_G(params) is not None:
+        parts["soil"] = f"G = {_number(_table2_G(params) * 1e-6)} MN/m$^2$"
+        parts["soil source"] = "Table 2 soil"
+    elif get("soil.ksh") is not None and get("soil.ksv") is not None:
+        parts["soil"] = (f"$k_{{sh}}$ = {_number(float(get('soil.ksh')) * 1e-6)}, "
+                         f"$k_{{sv}}$ = {_number(float(get('soil.ksv')) * 1e-6)} MN/m")
+    pure = get("contact.pure_rolling")
+    if pure in (True, 1, "true"):
+        parts["contact"] = "pure rolling"
+    elif get("contact.mu") is not None:
+        parts["contact"] = rf"$\mu$ = {_number(get('contact.mu'))}"
+    if get("MMd") is not None:
+        mmd = float(get("MMd"))
+        M0 = get("roller.M0")
+        unbalance = float(get("roller.unbalance") or 0.0)
+        f = float(get("roller.f") or frequency or 0.0)
+        if unbalance > 0 and f > 0:
+            M0 = 4.0 * unbalance * (2.0 * np.pi * f) ** 2
+        if mmd == 0:
+            parts["torque"] = "$M_{Md}$ = 0"
+        elif M0:
+            parts["torque"] = f"$M_{{Md}}$ = {_number(mmd / float(M0))} $M_0$"
+        else:
+            parts["torque"] = f"$M_{{Md}}$ = {_number(mmd * 1e-3)} kN m"
+    k, a = get("trough.k"), get("trough.a")
+    if a is not None:
+        parts["trough"] = (f"R = {_number(a)} m" if not k else
+                           f"spiral k = {_number(k)}, a = {_number(a)} m")
+    f = get("roller.f") or frequency
+    if f:
+        parts["excitation"] = f"f = {_number(f)} Hz"
+    return parts
+
+
+def case_caption(state: SteadyState) -> str:
+    """One line of the case's key parameters, e.g. 'G = 25 MN/m^2 (Table 2), mu = 0.5,
+    M_Md = 0, R = 0.606 m, f = 39 Hz' (as far as the state knows them)."""
+    return ", ".join(case_parts(state.parameters, state.frequency).values())
+
+
+def _labels_and_title(states: List[SteadyState], title: Optional[str]
+                      ) -> Tuple[List[str], Optional[str]]:
+    """Legend labels and the title: what the cases share goes into the title, what differs into
+    the labels (explicit labels and an explicit title win)."""
+    parts = [case_parts(s.parameters, s.frequency) for s in states]
+    names = list(dict.fromkeys(n for p in parts for n in p))
+    common = [n for n in names if all(p.get(n) == parts[0].get(n) for p in parts)]
+    labels = []
+    for i, (state, p) in enumerate(zip(states, parts)):
+        differ = ", ".join(p[n] for n in names if n not in common and n in p)
+        labels.append(state.label or differ or (f"case {i + 1}" if len(states) > 1 else ""))
+    caption = ", ".join(parts[0][n] for n in common if n in parts[0])
+    if title is None:
+        title = caption or None
+    elif caption and len(states) > 0 and caption not in title:
+        title = f"{title}\n{caption}"
+    return labels, title
 
 
 def _window(state: SteadyState, periods: Optional[float]) -> np.ndarray:
@@ -149,66 +266,109 @@ def shade_phases(ax: Any, tau: np.ndarray, phase: np.ndarray) -> List[Patch]:
     return handles
 
 
-def _legend(ax: Any, extra: Sequence[Any] = (), **kwargs: Any) -> None:
+def _legend(ax: Any, extra: Sequence[Any] = (), below: bool = False, **kwargs: Any) -> None:
+    """A legend outside the axes, where it hides no data: right of them, top-aligned, or below
+    them (below=True, under the x label)."""
     handles, labels = ax.get_legend_handles_labels()
     handles = list(handles) + list(extra)
-    if handles:
-        ax.legend(handles=handles, fontsize="small", **kwargs)
+    if not handles:
+        return
+    kwargs.pop("loc", None)
+    if below:
+        ax.legend(handles=handles, fontsize="small", loc="upper center",
+                  bbox_to_anchor=(0.5, -0.13), borderaxespad=0.0, ncol=2, **kwargs)
+    else:
+        ax.legend(handles=handles, fontsize="small", loc="upper left",
+                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+
+
+def _axes(ax: Any, n: int, **figure_kwargs: Any) -> Tuple[Figure, List[Any], bool]:
+    """(figure, n axes, made here): a new figure, or the caller's axes (one Axes, or a sequence of
+    n Axes for the plots of n panels)."""
+    if ax is None:
+        fig, axes = new_figure(n, 1, **figure_kwargs)
+        return fig, list(np.atleast_1d(axes)), True
+    axes = list(np.atleast_1d(np.asarray(ax, dtype=object))) if not hasattr(ax, "plot") else [ax]
+    if len(axes) != n:
+        raise ValueError(f"ax: this plot draws {n} panel(s); pass {n} Axes (got {len(axes)})")
+    return axes[0].figure, axes, False
+
+
+def _finish(fig: Figure, axes: List[Any], made: bool, title: Optional[str]) -> Any:
+    """Title, and the return value: the Figure when it was made here, else the caller's Axes."""
+    if title:
+        if made:
+            fig.suptitle(title, fontsize="medium")
+        else:
+            axes[0].set_title(title, fontsize="medium")
+    if made:
+        return fig
+    return axes[0] if len(axes) == 1 else axes
 
 
 def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, float]],
                  periods: Optional[float], shade: Optional[bool], title: Optional[str],
-                 ) -> Figure:
-    fig, axes = new_figure(len(panels), 1, sharex=True)
-    axes = np.atleast_1d(axes)
+                 ax: Any = None, transform: Optional[Dict[str, Any]] = None) -> Any:
+    fig, axes, made = _axes(ax, len(panels), width=8.4, sharex=True)
     shade = (len(states) == 1) if shade is None else shade
-    for ax, (column, ylabel, factor) in zip(axes, panels):
+    labels, title = _labels_and_title(states, title)
+    for k, (axis, (column, ylabel, factor)) in enumerate(zip(axes, panels)):
         handles: List[Any] = []
         for i, state in enumerate(states):
             idx = _window(state, periods)
             tau = state.tau()[idx]
-            y = np.asarray(getattr(state.samples, column))[idx] * factor
-            ax.plot(tau, y, color=COLORS[i % len(COLORS)], lw=1.2, label=_label(state, i))
+            values = (transform[column](state) if transform and column in transform
+                      else np.asarray(getattr(state.samples, column)))
+            y = np.asarray(values)[idx] * factor
+            axis.plot(tau, y, color=COLORS[i % len(COLORS)], lw=1.2,
+                      label=labels[i] or None)
             if shade and i == 0:
-                patches = shade_phases(ax, tau, np.asarray(state.samples.phase)[idx])
-                handles = patches if ax is axes[0] else []
-        ax.set_ylabel(ylabel)
-        ax.axhline(0.0, color="0.6", lw=0.5)
-        ax.grid(alpha=0.3)
-        _legend(ax, handles, loc="best")
+                patches = shade_phases(axis, tau, np.asarray(state.samples.phase)[idx])
+                handles = patches if k == 0 else []
+        axis.set_ylabel(ylabel)
+        axis.axhline(0.0, color="0.6", lw=0.5)
+        axis.grid(alpha=0.3)
+        if k == 0:  # one legend for the panels, which show the same cases
+            _legend(axis, handles)
     axes[-1].set_xlabel(TAU_LABEL)
-    if title:
-        fig.suptitle(title)
-    return fig
+    return _finish(fig, axes, made, title)
 
 
 def plot_accelerations(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
-                       shade: Optional[bool] = None, title: Optional[str] = None) -> Figure:
+                       shade: Optional[bool] = None, title: Optional[str] = None,
+                       ax: Any = None) -> Any:
     """x_M'' (a) and z_M'' (b) [m/s^2] over `periods` excitation periods against t/T (paper
     Figs. 7, 11, 17, 18). Slip phases are shaded when one case is shown (or shade=True: those
-    of the first case)."""
+    of the first case). The title holds the parameters the cases share, the legend those that
+    differ. ax: two Axes to draw into (then they are returned instead of a new Figure)."""
     states = _cases(cases, labels)
     return _time_panels(states, [("ddx_M", DDX_LABEL, 1.0), ("ddz_M", DDZ_LABEL, 1.0)], periods,
-                        shade, title)
+                        shade, title, ax)
 
 
 def plot_delta_phi(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
-                   shade: Optional[bool] = None, title: Optional[str] = None) -> Figure:
-    """Position angle delta (a) and drum rotation phi (b) [rad] against t/T (paper Fig. 8a)."""
+                   shade: Optional[bool] = None, title: Optional[str] = None,
+                   ax: Any = None) -> Any:
+    """Position angle delta (a) and drum rotation phi (b) [rad] against t/T (paper Figs. 8a,
+    10a). phi is shown without its drift (the net slip per period, and its mean), so that its
+    oscillation is visible. ax: two Axes to draw into."""
     states = _cases(cases, labels)
-    return _time_panels(states, [("delta", DELTA_LABEL, 1.0), ("phi", PHI_LABEL, 1.0)], periods,
-                        shade, title)
+    return _time_panels(states, [("delta", DELTA_LABEL, 1.0),
+                                 ("phi", PHI_LABEL + " (drift removed)", 1.0)],
+                        periods, shade, title, ax, transform={"phi": remove_drift})
 
 
 def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
                 mu: Optional[float] = None, shade: Optional[bool] = None,
-                title: Optional[str] = None) -> Figure:
+                title: Optional[str] = None, ax: Any = None) -> Any:
     """Normal force N (a) and tangential force T (b) [kN] against t/T, with +-mu N on (b)
-    when mu is known (argument or the case's contact.mu)."""
+    when mu is known (argument or the case's contact.mu). ax: two Axes to draw into."""
     states = _cases(cases, labels)
-    fig = _time_panels(states, [("N", "normal force $N$ [kN]", 1e-3),
-                                ("T", "tangential force $T$ [kN]", 1e-3)], periods, shade, title)
-    ax = fig.axes[1]
+    result = _time_panels(states, [("N", "normal force $N$ [kN]", 1e-3),
+                                   ("T", "tangential force $T$ [kN]", 1e-3)], periods, shade,
+                          title, ax)
+    axes = result.axes if isinstance(result, Figure) else list(result)
+    axis = axes[1]
     for i, state in enumerate(states):
         m = mu if mu is not None else state.parameters.get("contact.mu")
         pure = state.parameters.get("contact.pure_rolling")
@@ -216,11 +376,13 @@ def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: flo
             continue
         idx = _window(state, periods)
         limit = float(m) * np.asarray(state.samples.N)[idx] * 1e-3
-        ax.plot(state.tau()[idx], limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8)
-        ax.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8,
-                label=r"$\pm\mu N$" if i == 0 else None)
-    _legend(ax, loc="upper right")
-    return fig
+        axis.plot(state.tau()[idx], limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8)
+        axis.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8,
+                  label=r"$\pm\mu N$" if i == 0 else None)
+    if axis.get_legend() is not None:
+        axis.get_legend().remove()
+    _legend(axis)
+    return result
 
 
 def remove_drift(state: SteadyState) -> np.ndarray:
@@ -234,49 +396,108 @@ def remove_drift(state: SteadyState) -> np.ndarray:
 
 
 def plot_torque_phi(cases: Any, labels: Optional[Sequence[str]] = None,
-                    title: Optional[str] = None) -> Figure:
+                    title: Optional[str] = None, ax: Any = None) -> Any:
     """One excitation period of the drum rotation phi [rad] (solid) with the excitation torque
-    M_M(t) [kN m] (dashed, right axis), as paper Fig. 10a. phi's drift (net slip) is removed."""
+    M_M(t) [kN m] (dashed, right axis), as paper Fig. 10a. phi's drift (net slip) is removed.
+    ax: the Axes to draw into (phi; the torque gets a twin axis)."""
     states = _cases(cases, labels)
-    fig, ax = new_figure(1, 1, height=3.6)
-    right = ax.twinx()
+    fig, axes, made = _axes(ax, 1, height=3.6)
+    axis = axes[0]
+    right = axis.twinx()
+    names, title = _labels_and_title(states, title)
     for i, state in enumerate(states):
         idx = _window(state, 1)
         tau = state.tau()[idx]
         phi = remove_drift(state)[idx]
-        ax.plot(tau, phi, color=COLORS[i % len(COLORS)], lw=1.2, label=_label(state, i))
+        axis.plot(tau, phi, color=COLORS[i % len(COLORS)], lw=1.2, label=names[i] or r"$\varphi$")
         if i == 0:
             right.plot(tau, np.asarray(state.samples.torque)[idx] * 1e-3, color="0.4", ls="--",
                        lw=1.0, label=r"$M_M(t)$")
-    ax.set_xlabel(TAU_LABEL)
-    ax.set_ylabel(PHI_LABEL + " (drift removed)")
+    axis.set_xlabel(TAU_LABEL)
+    axis.set_ylabel(PHI_LABEL + " (drift removed)")
     right.set_ylabel(TORQUE_LABEL)
-    ax.grid(alpha=0.3)
-    _legend(ax, right.get_legend_handles_labels()[0], loc="upper right")
-    if title:
-        fig.suptitle(title)
-    return fig
+    axis.grid(alpha=0.3)
+    handles, _ = axis.get_legend_handles_labels()
+    right_handles, _ = right.get_legend_handles_labels()
+    if handles or right_handles:
+        # Beside the twin axis' labels: below the plot, where no data are.
+        axis.legend(handles=handles + right_handles, fontsize="small", loc="upper center",
+                    bbox_to_anchor=(0.5, -0.22), ncol=min(4, len(handles) + 1),
+                    borderaxespad=0.0)
+    return _finish(fig, axes, made, title)
+
+
+def _area(state: SteadyState, x: np.ndarray, z: np.ndarray) -> Optional[float]:
+    """The area inside the z_M''-x_M'' curve [m^2/s^4]: the case's metric, else computed by the
+    compiled module (points of non-zero winding number), else None."""
+    if state.metrics and state.metrics.get("area") is not None:
+        return float(state.metrics["area"])
+    try:
+        from . import _core
+        n = state.samples_per_period
+        return float(_core.enclosed_area(np.ascontiguousarray(x[:n]),
+                                         np.ascontiguousarray(z[:n])))
+    except Exception:  # noqa: BLE001 - no compiled module: no area
+        return None
+
+
+def _arrows(axis: Any, x: np.ndarray, z: np.ndarray, color: Any, count: int = 6) -> None:
+    """Arrow heads along one period of the curve, in the direction of travel."""
+    n = len(x)
+    if n < 8:
+        return
+    step = max(1, n // 200)
+    for k in range(count):
+        i = int((k + 0.25) * n / count) % n
+        j = (i + step) % n
+        if x[i] == x[j] and z[i] == z[j]:
+            continue
+        axis.annotate("", xy=(x[j], z[j]), xytext=(x[i], z[i]),
+                      arrowprops=dict(arrowstyle="-|>", color=color, lw=1.0,
+                                      mutation_scale=14, shrinkA=0, shrinkB=0))
 
 
 def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
-                      title: Optional[str] = None) -> Figure:
-    """z_M'' over x_M'' [m/s^2] (paper Figs. 8b, 13, 21): a closed curve per case."""
+                      title: Optional[str] = None, ax: Any = None) -> Any:
+    """z_M'' over x_M'' [m/s^2] (paper Figs. 8b, 13, 21): one steady period per case as a closed
+    curve, with arrow heads in the direction of travel, the slip phases as a coloured band under
+    the curve (slip+ orange, slip- cyan; stick: the bare line) and the enclosed area (non-zero
+    winding number, docs/model.md section 8) in the legend. ax: the Axes to draw into."""
     states = _cases(cases, labels)
-    fig, ax = new_figure(1, 1, width=5.6, height=4.6)
+    fig, axes, made = _axes(ax, 1, width=6.4, height=6.0)
+    axis = axes[0]
+    names, title = _labels_and_title(states, title)
+    slip_seen: Dict[int, bool] = {}
     for i, state in enumerate(states):
-        x = np.asarray(state.samples.ddx_M)
-        z = np.asarray(state.samples.ddz_M)
-        ax.plot(np.append(x, x[:1]), np.append(z, z[:1]), color=COLORS[i % len(COLORS)],
-                lw=1.2, label=_label(state, i))
-    ax.set_xlabel(DDX_LABEL)
-    ax.set_ylabel(DDZ_LABEL)
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.axvline(0.0, color="0.6", lw=0.5)
-    ax.grid(alpha=0.3)
-    _legend(ax, loc="best")
-    if title:
-        fig.suptitle(title)
-    return fig
+        n = state.samples_per_period
+        x = np.asarray(state.samples.ddx_M, dtype=float)[:n]
+        z = np.asarray(state.samples.ddz_M, dtype=float)[:n]
+        phase = np.asarray(state.samples.phase).astype(int)[:n]
+        color = COLORS[i % len(COLORS)]
+        xc, zc = np.append(x, x[:1]), np.append(z, z[:1])
+        for value, (slip_color, _) in SLIP_COLORS.items():
+            mask = np.append(phase == value, phase[:1] == value)
+            if mask.any():
+                slip_seen[value] = True
+                axis.plot(np.where(mask, xc, np.nan), np.where(mask, zc, np.nan),
+                          color=slip_color, lw=6, alpha=0.45, solid_capstyle="round", zorder=1)
+        area = _area(state, x, z)
+        label = names[i]
+        if area is not None:
+            label = (f"{label}: " if label else "") + f"area {area:.4g} m$^2$/s$^4$"
+        axis.plot(xc, zc, color=color, lw=1.2, label=label or None, zorder=2)
+        _arrows(axis, x, z, color)
+    handles = [Patch(color=SLIP_COLORS[v][0], alpha=0.45, label=SLIP_COLORS[v][1])
+               for v in (1, -1) if slip_seen.get(v)]
+    if slip_seen:
+        handles.insert(0, Patch(facecolor="none", edgecolor="none", label="stick: bare line"))
+    axis.set_xlabel(DDX_LABEL)
+    axis.set_ylabel(DDZ_LABEL)
+    axis.axhline(0.0, color="0.6", lw=0.5)
+    axis.axvline(0.0, color="0.6", lw=0.5)
+    axis.grid(alpha=0.3)
+    _legend(axis, handles, below=True)
+    return _finish(fig, axes, made, title)
 
 
 def spectrum(state: SteadyState, column: str, n_max: int = 10) -> np.ndarray:
@@ -297,101 +518,207 @@ def normalised_spectrum(state: SteadyState, column: str, n_max: int = 10) -> np.
 
 
 def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int = 10,
-                 title: Optional[str] = None) -> Figure:
+                 title: Optional[str] = None, ax: Any = None) -> Any:
     """Harmonic spectra of x_M'' (a) and z_M'' (b): amplitude / largest amplitude against
-    f / f_exc = 1 ... n_max, one bar group per harmonic (paper Figs. 14, 15, 19, 20)."""
+    f / f_exc = 1 ... n_max, one bar group per harmonic (paper Figs. 14, 15, 19, 20).
+    ax: two Axes to draw into."""
     states = _cases(cases, labels)
-    fig, axes = new_figure(2, 1, sharex=True)
+    fig, axes, made = _axes(ax, 2, sharex=True)
+    names, title = _labels_and_title(states, title)
     width = 0.8 / max(len(states), 1)
-    for ax, column, ylabel in zip(axes, ("ddx_M", "ddz_M"), (DDX_LABEL, DDZ_LABEL)):
+    for axis, column, ylabel in zip(axes, ("ddx_M", "ddz_M"), (DDX_LABEL, DDZ_LABEL)):
         for i, state in enumerate(states):
             amp = normalised_spectrum(state, column, n_max)
             n = np.arange(1, len(amp) + 1)
-            ax.bar(n - 0.4 + width * (i + 0.5), amp, width=width, color=COLORS[i % len(COLORS)],
-                   label=_label(state, i))
+            axis.bar(n - 0.4 + width * (i + 0.5), amp, width=width,
+                     color=COLORS[i % len(COLORS)], label=names[i] or None)
         name = ylabel.split(" [")[0]
-        ax.set_ylabel(f"{AMP_LABEL} of {name}")
-        ax.set_ylim(0.0, 1.05)
-        ax.grid(alpha=0.3, axis="y")
-        _legend(ax, loc="upper right")
+        axis.set_ylabel(f"{AMP_LABEL} of {name}")
+        axis.set_ylim(0.0, 1.05)
+        axis.grid(alpha=0.3, axis="y")
+        _legend(axis)
     axes[-1].set_xlabel(FREQ_LABEL)
     axes[-1].set_xticks(np.arange(1, n_max + 1))
-    if title:
-        fig.suptitle(title)
-    return fig
+    return _finish(fig, axes, made, title)
+
+
+#: Above this many curves a study plot colours them by a colour map with a colour bar.
+COLORMAP_FROM = 6
 
 
 def plot_sweep(x: Optional[Sequence[float]], curves: Mapping[str, Any], xkey: str = "soil.G",
                ykey: str = "area", title: Optional[str] = None, xunit: str = "",
-               yunit: str = "", ax: Any = None) -> Figure:
+               yunit: str = "", ax: Any = None, color_values: Optional[Sequence[float]] = None,
+               color_key: str = "", color_unit: str = "") -> Any:
     """Metric-versus-parameter curves (paper Figs. 9, 10b, 12, 16, 22).
 
     x: parameter values in SI units, shared by all curves; curves: {legend label: metric values}
     or {legend label: (x values, metric values)} for curves on their own x (then x may be None).
     xkey / ykey name the parameter and the metric: labels, units and display scale come from
     DISPLAY (e.g. soil.G is shown in MN/m^2). The first curve is black with '+' markers, the
-    second red with circles, as in the paper.
+    second red with circles, as in the paper. color_values (one number per curve, SI, named by
+    color_key): the curves are coloured by a colour map with a colour bar instead of a legend,
+    for many curves. ax: the Axes to draw into (returned instead of a new Figure).
     """
     xlabel, xf = axis_label(xkey, xunit)
     ylabel, yf = axis_label(ykey, yunit)
-    if ax is None:
-        fig, ax = new_figure(1, 1, height=3.8)
-    else:
-        fig = ax.figure
+    fig, axes, made = _axes(ax, 1, height=3.8)
+    axis = axes[0]
+    mappable = None
+    if color_values is not None:
+        from matplotlib.cm import ScalarMappable
+        from matplotlib.colors import Normalize
+        clabel, cf = axis_label(color_key, color_unit)
+        cv = np.asarray(color_values, dtype=float) * cf
+        norm = Normalize(vmin=float(np.nanmin(cv)), vmax=float(np.nanmax(cv)))
+        mappable = ScalarMappable(norm=norm, cmap="viridis")
     for i, (label, values) in enumerate(curves.items()):
         if isinstance(values, tuple) and len(values) == 2:
             xs, ys = values
         else:
             xs, ys = x, values
-        style = dict(color=COLORS[i % len(COLORS)], marker=MARKERS[i % len(MARKERS)], lw=1.2,
-                     ms=6, mfc="none")
-        ax.plot(np.asarray(xs, dtype=float) * xf, np.asarray(ys, dtype=float) * yf,
-                label=label or None, **style)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    ax.grid(alpha=0.3)
-    if any(curves):
-        _legend(ax, loc="best")
-    if title:
-        fig.suptitle(title)
-    return fig
+        if mappable is not None:
+            style = dict(color=mappable.to_rgba(cv[i]), marker="o", lw=1.2, ms=4)
+        else:
+            style = dict(color=COLORS[i % len(COLORS)], marker=MARKERS[i % len(MARKERS)],
+                         lw=1.2, ms=6, mfc="none")
+        axis.plot(np.asarray(xs, dtype=float) * xf, np.asarray(ys, dtype=float) * yf,
+                  label=(label or None) if mappable is None else None, **style)
+    axis.set_xlabel(xlabel)
+    axis.set_ylabel(ylabel)
+    axis.grid(alpha=0.3)
+    if mappable is not None:
+        fig.colorbar(mappable, ax=axis, label=clabel)
+    elif any(curves):
+        _legend(axis)
+    return _finish(fig, axes, made, title)
 
 
 def _value_text(v: float) -> str:
     return f"{v:g}"
 
 
+def _select(table: Mapping[str, np.ndarray], where: Optional[Mapping[str, float]]) -> np.ndarray:
+    n = len(next(iter(table.values()))) if table else 0
+    keep = np.ones(n, dtype=bool)
+    for key, value in (where or {}).items():
+        keep &= np.asarray(table[resolve_column(table, key)], dtype=float) == float(value)
+    return keep
+
+
 def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
                group: Optional[Sequence[str] | str] = None,
                units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
-               where: Optional[Mapping[str, float]] = None) -> Figure:
+               where: Optional[Mapping[str, float]] = None, ax: Any = None) -> Any:
     """plot_sweep from a study table ({column: numeric values}, e.g. read_csv_columns of the
     CLI's sweep results): y against x, one curve per combination of the `group` columns, only
     rows whose `where` columns equal the given values (booleans as 1/0). Rows whose metric is
-    missing (invalid or failed cases) leave gaps."""
+    missing (invalid or failed cases) leave gaps. More than COLORMAP_FROM curves of one group
+    column are coloured by a colour map with a colour bar. ax: the Axes to draw into."""
     units = units or {}
     groups = [group] if isinstance(group, str) else list(group or [])
     xcol, ycol = resolve_column(table, x), resolve_column(table, y)
     xs, ys = np.asarray(table[xcol], dtype=float), np.asarray(table[ycol], dtype=float)
-    keep = np.ones(len(xs), dtype=bool)
-    for key, value in (where or {}).items():
-        keep &= np.asarray(table[resolve_column(table, key)], dtype=float) == float(value)
+    keep = _select(table, where)
     gcols = [resolve_column(table, g) for g in groups]
     keys = [tuple(float(table[c][i]) for c in gcols) for i in range(len(xs))]
     curves: Dict[str, Any] = {}
-    for combo in dict.fromkeys(k for k, ok in zip(keys, keep) if ok):
+    combos = list(dict.fromkeys(k for k, ok in zip(keys, keep) if ok))
+    for combo in combos:
         sel = keep & np.array([k == combo for k in keys])
         order = np.argsort(xs[sel])
         label = ", ".join(f"{c} = {_value_text(v)}" for c, v in zip(gcols, combo))
         curves[label] = (xs[sel][order], ys[sel][order])
+    many = len(gcols) == 1 and len(combos) > COLORMAP_FROM
     return plot_sweep(None, curves, xcol, ycol, title=title, xunit=units.get(xcol, ""),
-                      yunit=units.get(ycol, ""))
+                      yunit=units.get(ycol, ""), ax=ax,
+                      color_values=[c[0] for c in combos] if many else None,
+                      color_key=gcols[0] if many else "",
+                      color_unit=units.get(gcols[0], "") if many else "")
+
+
+def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
+             units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
+             where: Optional[Mapping[str, float]] = None, ax: Any = None,
+             annotate: Optional[bool] = None) -> Any:
+    """A heat map of the metric z over two swept parameters x and y (a study table as for
+    plot_table): one cell per (x, y) pair of the rows kept by `where`, coloured by z with a
+    colour bar; missing cases (failed, invalid) stay blank. Cells are labelled with their values
+    when there are at most 150 (annotate=True/False forces it). ax: the Axes to draw into."""
+    units = units or {}
+    xcol, ycol, zcol = (resolve_column(table, c) for c in (x, y, z))
+    keep = _select(table, where)
+    xs = np.asarray(table[xcol], dtype=float)[keep]
+    ys = np.asarray(table[ycol], dtype=float)[keep]
+    zs = np.asarray(table[zcol], dtype=float)[keep]
+    xu, yu = np.unique(xs[np.isfinite(xs)]), np.unique(ys[np.isfinite(ys)])
+    if len(xu) == 0 or len(yu) == 0:
+        raise ValueError(f"plot_map: no rows with values of {xcol} and {ycol}")
+    grid = np.full((len(yu), len(xu)), np.nan)
+    for xv, yv, zv in zip(xs, ys, zs):
+        if np.isfinite(xv) and np.isfinite(yv):
+            grid[np.searchsorted(yu, yv), np.searchsorted(xu, xv)] = zv
+    xlabel, xf = axis_label(xcol, units.get(xcol, ""))
+    ylabel, yf = axis_label(ycol, units.get(ycol, ""))
+    zlabel, zf = axis_label(zcol, units.get(zcol, ""))
+    fig, axes, made = _axes(ax, 1, width=6.4, height=4.8)
+    axis = axes[0]
+    axis.grid(False)
+    mesh = axis.pcolormesh(xu * xf, yu * yf, np.ma.masked_invalid(grid * zf), shading="nearest",
+                           cmap="viridis")
+    fig.colorbar(mesh, ax=axis, label=zlabel)
+    if annotate is None:
+        annotate = grid.size <= 150
+    if annotate:
+        lo, hi = np.nanmin(grid * zf), np.nanmax(grid * zf)
+        for r, yv in enumerate(yu):
+            for c, xv in enumerate(xu):
+                v = grid[r, c] * zf
+                if np.isfinite(v):
+                    light = hi > lo and (v - lo) / (hi - lo) < 0.6
+                    axis.text(xv * xf, yv * yf, f"{v:.3g}", ha="center", va="center",
+                              fontsize="x-small", color="white" if light else "black")
+    axis.set_xlabel(xlabel)
+    axis.set_ylabel(ylabel)
+    if len(xu) <= 16:
+        axis.set_xticks(xu * xf)
+    if len(yu) <= 16:
+        axis.set_yticks(yu * yf)
+    return _finish(fig, axes, made, title)
+
+
+def swept_columns(table: Mapping[str, Any]) -> List[str]:
+    """The swept keys of a study results table (oscidrum sweep --out): the columns between
+    'case' and 'status'."""
+    names = list(table)
+    if "case" in names and "status" in names:
+        return names[names.index("case") + 1: names.index("status")]
+    return []
+
+
+def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
+               units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
+               ax: Any = None) -> Any:
+    """The natural plot of a study's results (used by ``oscidrum sweep --plot``): one swept key:
+    the metric against it; two (each with several values): a heat map (plot_map) over them;
+    more: the metric against the first key, one curve per combination of the others."""
+    keys = [k for k in swept_columns(table)
+            if np.isfinite(np.asarray(table[k], dtype=float)).any()]
+    if not keys:
+        raise ValueError("no swept numeric column between 'case' and 'status' "
+                         "(a results CSV of oscidrum sweep --out)")
+    varying = [k for k in keys if len(np.unique(np.asarray(table[k], dtype=float))) > 1]
+    keys = varying or keys
+    if len(keys) == 2:
+        return plot_map(table, keys[0], keys[1], metric, units=units, title=title, ax=ax)
+    return plot_table(table, keys[0], metric, group=keys[1:], units=units, title=title, ax=ax)
 
 
 def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: str = "",
               periods: float = 2) -> List[Path]:
     """Every single-case figure of a steady state into out_dir: accelerations, figure_eight,
-    spectra, delta_phi, forces (.png or .svg). Returns the paths written."""
+    spectra, delta_phi, forces (.png or .svg), titled with the case's key parameters. Returns
+    the paths written."""
     state = as_steady_state(data, label=label)
     out = Path(out_dir)
     title = state.label or None
@@ -408,7 +735,9 @@ def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: st
 def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="python3 -m oscidrum.plot",
-        description="Plot a steady state or a study written by the oscidrum CLI.")
+        description="Plot a steady state or a study written by the oscidrum CLI. Run it with the "
+        "interpreter the package is installed for (on Debian /usr/bin/python3; see "
+        "docs/python.md).")
     sub = parser.add_subparsers(dest="command", required=True)
     case = sub.add_parser("case", help="figures of one steady state (CSV of docs/csv-columns.md)")
     case.add_argument("--csv", required=True, help="steady-state CSV (oscidrum run --csv)")
@@ -429,7 +758,31 @@ def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
                        help="only rows with this value, e.g. contact.pure_rolling=true")
     sweep.add_argument("--out", required=True, help="output directory")
     sweep.add_argument("--format", choices=("png", "svg"), default="png")
+    heat = sub.add_parser("map", help="heat map of a metric over two swept parameters")
+    heat.add_argument("--csv", required=True, help="study results CSV (oscidrum sweep)")
+    heat.add_argument("--x", required=True, help="parameter column on the x axis, e.g. soil.G")
+    heat.add_argument("--y", required=True, help="parameter column on the y axis, e.g. roller.f")
+    heat.add_argument("--z", default="area", help="metric column (default area)")
+    heat.add_argument("--where", action="append", default=[], metavar="KEY=VALUE",
+                      help="only rows with this value, e.g. contact.pure_rolling=true")
+    heat.add_argument("--out", required=True, help="output file (.png or .svg)")
+    study = sub.add_parser("study", help="the natural plot of a study (oscidrum sweep --plot): "
+                           "a curve for one swept key, a heat map for two")
+    study.add_argument("--csv", required=True, help="study results CSV (oscidrum sweep)")
+    study.add_argument("--metric", default="area", help="metric column (default area)")
+    study.add_argument("--out", required=True, help="output file (.png or .svg)")
     return parser.parse_args(argv)
+
+
+def _where(items: Sequence[str]) -> Dict[str, float]:
+    where: Dict[str, float] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise ValueError(f"--where expects KEY=VALUE; got '{item}'")
+        flag = {"true": 1.0, "false": 0.0}.get(value)
+        where[key] = flag if flag is not None else float(value)
+    return where
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -439,21 +792,22 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         if args.command == "case":
             state = read_case(args.csv, args.json, label=args.label)
             paths = plot_case(state, args.out, args.format, periods=args.periods)
-        else:
+        elif args.command == "sweep":
             table, units = read_csv_columns(args.csv)
-            where = {}
-            for item in args.where:
-                key, sep, value = item.partition("=")
-                if not sep:
-                    raise ValueError(f"--where expects KEY=VALUE; got '{item}'")
-                where[key] = {"true": 1.0, "false": 0.0}.get(value, None)
-                if where[key] is None:
-                    where[key] = float(value)
+            where = _where(args.where)
             paths = []
             for y in args.y:
                 fig = plot_table(table, args.x, y, group=args.group, units=units, where=where)
                 name = f"{split_header(y)[0]}_vs_{split_header(args.x)[0]}".replace("/", "_")
                 paths.append(save(fig, Path(args.out) / f"{name}.{args.format}", args.format))
+        elif args.command == "map":
+            table, units = read_csv_columns(args.csv)
+            fig = plot_map(table, args.x, args.y, args.z, units=units, where=_where(args.where))
+            paths = [save(fig, args.out)]
+        else:
+            table, units = read_csv_columns(args.csv)
+            fig = plot_study(table, args.metric, units=units)
+            paths = [save(fig, args.out)]
     except (OSError, ValueError, KeyError) as exc:
         print(f"oscidrum.plot: error: {exc}", file=sys.stderr)
         return 1

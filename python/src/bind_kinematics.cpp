@@ -5,8 +5,8 @@
 namespace oscidrum::python {
 
 void bind_kinematics(py::module_& m) {
-  py::class_<TroughGeometry>(m, "TroughGeometry",
-                             "Derived geometry of the log-spiral trough (MODEL.md section 1).")
+  py::class_<TroughGeometry>(
+      m, "TroughGeometry", "Derived geometry of the log-spiral trough (docs/model.md section 1.4).")
       .def_readonly("r", &TroughGeometry::r, "drum radius [m]")
       .def_readonly("k", &TroughGeometry::k, "spiral parameter [-]")
       .def_readonly("a", &TroughGeometry::a, "spiral parameter [m]")

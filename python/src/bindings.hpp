@@ -1,5 +1,5 @@
 // python/src/bindings.hpp: the pieces of the oscidrum._core extension module. One bind_*
-// function per public header of the library (see STYLE.md, "one binding file per core header").
+// function per public header of the library.
 #pragma once
 
 #include <pybind11/numpy.h>

@@ -1,4 +1,4 @@
-// Decisions at stick/slip events (docs/model.md, switching).
+// Decisions at stick/slip events (docs/model.md section 6).
 #include "equations/event_logic.hpp"
 
 #include <cmath>

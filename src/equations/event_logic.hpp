@@ -1,4 +1,4 @@
-// Internal: the decisions taken at stick/slip events (docs/model.md, switching).
+// Internal: the decisions taken at stick/slip events (docs/model.md section 6).
 #pragma once
 
 #include "oscidrum/model.hpp"
@@ -29,7 +29,7 @@ struct SlipEnd {
   State state;             ///< state to continue from (velocities adjusted for a reversal)
 };
 
-/// Decide by the rate (docs/model.md, switching): stick if the stick solution stays inside the
+/// Decide by the rate (docs/model.md section 6): stick if the stick solution stays inside the
 /// friction cone (stick_margin_rate >= 0). Otherwise slip reverses: the velocities change along the
 /// direction that keeps x_M', z_M' and phi' continuous, (delta', x_A', s_A') += lambda (1, -f1,
 /// -f3), so that the coupling (39) holds with the new sign; the reversal is taken only if the

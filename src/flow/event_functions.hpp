@@ -1,5 +1,5 @@
 // Internal: the event functions of the hybrid flow. Each is scaled to O(1) and an event happens
-// when one of them falls through zero (docs/model.md, switching).
+// when one of them falls through zero (docs/model.md section 6).
 #pragma once
 
 #include <array>

@@ -276,7 +276,7 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
     e_fresh[kEventSlipVelocity] = true;  // s v_rel starts at zero and must grow
   } else {
     // v_rel = 0: stick resumes if the stick solution stays inside the friction cone, else slip
-    // reverses (docs/model.md, the end of a slip phase).
+    // reverses (docs/model.md section 6).
     const SlipEnd decision = decide_slip_end(model, c.t, q, static_cast<int>(phase_));
     q = decision.state;
     if (decision.stick) {

@@ -24,7 +24,8 @@ constexpr std::array kExtraKeys = {
              "shorthand: soil.G = this value with the soil coefficients of paper Table 2 (the "
              "paper's simulations)"},
     ExtraKey{"MMd_fraction", "-", "finite",
-             "shorthand: MMd = MMd_fraction * roller.M0 (the paper uses 0 and 0.05)"},
+             "shorthand: MMd = MMd_fraction * M0 (roller.M0, or from roller.unbalance; the paper "
+             "uses 0 and 0.05)"},
 };
 
 std::string num(double v) {
@@ -334,11 +335,23 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
       warnings->push_back(spec.where("soil.G") + "soil.G = " + num(c.soil.G) +
                           " Pa is tiny; config values are SI: 25 MN/m^2 is 25e6");
   }
+  // The oscillation moment: M0, or the unbalance that gives M0 at every f (5).
+  if (spec.given("roller.unbalance") && spec.given("roller.M0") && c.roller.unbalance > 0.0)
+    throw Error(spec.where("roller.unbalance") +
+                "roller.unbalance gives M0 = 4 m_u e_u e_w nu^2 (5), so it cannot be given "
+                "together with roller.M0 (" +
+                spec.origin.at("roller.M0") + "); remove one of them");
+  if (warnings && c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f && !spec.given("roller.M0"))
+    warnings->push_back(spec.where("roller.f") + "roller.f = " + num(c.roller.f) +
+                        " Hz with M0 fixed at " + num(c.roller.M0) +
+                        " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w "
+                        "nu^2 (5) grows with f^2: give roller.unbalance (the paper's: 0.22877 kg "
+                        "m^2), or set roller.M0 to say the moment is meant");
   if (spec.MMd_fraction) {
     if (spec.given("MMd"))
       throw Error(spec.where("MMd") + "MMd cannot be given together with MMd_fraction (" +
                   spec.origin.at("MMd_fraction") + "); remove one of them");
-    c.MMd = *spec.MMd_fraction * c.roller.M0;
+    c.MMd = *spec.MMd_fraction * oscillation_moment(c.roller);
   }
   return c;
 }

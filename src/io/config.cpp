@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -214,6 +215,28 @@ bool is_range(const toml::table& t) {
   return true;
 }
 
+// x rounded to `decimals` decimal places, as the nearest double to that decimal.
+double round_decimals(double x, int decimals) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return std::strtod(buf, nullptr);
+}
+
+// The fewest decimals at which start, stop and step are all what they are (to 1e-12 of the
+// largest of them), or -1 if none up to 10 significant digits of the largest does.
+int range_decimals(double start, double stop, double step) {
+  const double scale = std::max({std::abs(start), std::abs(stop), std::abs(step)});
+  if (!(scale > 0.0) || !(scale < 1e15)) return -1;
+  const double tol = 1e-12 * scale;
+  const int most = 9 + std::max(0, -static_cast<int>(std::floor(std::log10(scale))));
+  for (int d = 0; d <= std::min(most, 300); ++d) {
+    bool exact = true;
+    for (double x : {start, stop, step}) exact = exact && std::abs(round_decimals(x, d) - x) <= tol;
+    if (exact) return d;
+  }
+  return -1;
+}
+
 std::vector<Value> range_values(const toml::table& t, const std::string& key,
                                 const std::string& where) {
   auto number = [&](const char* part, bool* is_int) -> std::optional<double> {
@@ -230,8 +253,15 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
     throw Error(where + ": " + key + " range must be {start, stop, step} or {start, stop, num}");
   if (!std::isfinite(*start) || !std::isfinite(*stop))
     throw Error(where + ": " + key + " range: start and stop must be finite");
+  // Values as the user would write them: a range of written decimals gives values of those
+  // decimals (0.2 ... 0.8 in 13 steps: 0.25, not 0.30000000000000004). The precision is the
+  // fewest decimals that hold start, stop and the step; a step with no short decimal form
+  // (0 ... 1 in 3 steps) leaves the values as computed.
+  const double step_size = step ? *step : (num && *num > 1 ? (*stop - *start) / (*num - 1.0) : 0.0);
+  const int decimals = range_decimals(*start, *stop, step_size);
   std::vector<Value> out;
   auto push = [&](double v) {
+    if (decimals >= 0) v = round_decimals(v, decimals);
     if (out.size() >= kMaxStudyCases)
       throw Error(where + ": " + key + " range has more than " + std::to_string(kMaxStudyCases) +
                   " values");
@@ -483,6 +513,9 @@ std::string case_to_toml(const Case& c, bool table2) {
   const bool modulus = c.soil.input == SoilInput::modulus;
   auto unused = [&](const std::string& key) -> const char* {
     if (table2 && key.starts_with("soil.")) return "set by table2_G";
+    // The roller is given by M0 or by its unbalance, not both (5).
+    if (key == "roller.M0" && c.roller.unbalance > 0.0) return "replaced by unbalance";
+    if (key == "roller.unbalance" && c.roller.unbalance == 0.0) return "unused: M0 is given";
     if (key == "soil.G" || key == "soil.nu" || key == "soil.rho")
       return modulus ? nullptr : "unused with input = coefficients";
     if (key == "soil.ksh" || key == "soil.ksv" || key == "soil.csh" || key == "soil.csv")

@@ -101,13 +101,15 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
 
   const Roller& R = c.roller;
   const TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
-  j["derived"] = {{"Fz", number(R.P0 - R.m * R.g)},
-                  {"W", number(R.P0)},
-                  {"nu", number(2.0 * M_PI * R.f)},
-                  {"period", number(1.0 / R.f)},
-                  {"MMd_fraction", number(R.M0 != 0.0 ? c.MMd / R.M0 : NAN)},
-                  {"R0", number(g.R0)},
-                  {"alpha", number(g.alpha)}};
+  j["derived"] = {
+      {"Fz", number(R.P0 - R.m * R.g)},
+      {"W", number(R.P0)},
+      {"nu", number(2.0 * M_PI * R.f)},
+      {"period", number(1.0 / R.f)},
+      {"M0", number(oscillation_moment(R))},
+      {"MMd_fraction", number(oscillation_moment(R) != 0.0 ? c.MMd / oscillation_moment(R) : NAN)},
+      {"R0", number(g.R0)},
+      {"alpha", number(g.alpha)}};
   // Appendix A: how much of the drum's oscillation reaches the frame (40).
   const Transmissibility tr = transmissibility(R.kd, R.cd, R.m_f, 2.0 * M_PI * R.f);
   j["derived"]["transmissibility"] = {{"m_f", number(R.m_f)},

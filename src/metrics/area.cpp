@@ -1,6 +1,6 @@
-// area.cpp: the area enclosed by the z_M''-x_M'' curve (MODEL.md section 8, paper Figs. 16, 22).
-// The curve is a figure-eight or a twisted bow tie, so the signed shoelace sum would cancel its
-// lobes: the area counted here is that of the points with non-zero winding number.
+// area.cpp: the area enclosed by the z_M''-x_M'' curve (docs/model.md section 8, paper Figs. 16,
+// 22). The curve is a figure-eight or a twisted bow tie, so the signed shoelace sum would cancel
+// its lobes: the area counted here is that of the points with non-zero winding number.
 //
 // Algorithm (a slab sweep; no pairwise edge test over the whole polygon):
 //  1. Cut the plane into horizontal slabs between consecutive distinct vertex heights. Every

@@ -1,6 +1,6 @@
 // harmonics.cpp: the Fourier coefficients at the multiples of the excitation frequency, read off a
-// record that covers whole periods (MODEL.md section 8: spectra of paper Figs. 14, 15, 19, 20 and
-// the phase lags of Figs. 10, 12).
+// record that covers whole periods (docs/model.md section 8: spectra of paper Figs. 14, 15, 19, 20
+// and the phase lags of Figs. 10, 12).
 #include <cmath>
 #include <numbers>
 #include <span>

@@ -1,4 +1,4 @@
-// metrics.cpp: the quantities the paper reads off a steady state (MODEL.md section 8): peak
+// metrics.cpp: the quantities the paper reads off a steady state (docs/model.md section 8): peak
 // accelerations (Fig. 9), spectra (Figs. 14, 15, 19, 20), the lag between the excitation and phi
 // (Fig. 10), the lag between x_M'' and z_M'' (Fig. 12), the enclosed area (Figs. 16, 22) and the
 // time shares of the contact phases.
@@ -96,8 +96,8 @@ Metrics compute_metrics(const Result& result, int n_max) {
   const int n_compute = std::max(n_max, 3);
   std::vector<Harmonic> hx = harmonics(s.ddx_M, cycles, f, t0, n_compute);
   std::vector<Harmonic> hz = harmonics(s.ddz_M, cycles, f, t0, n_compute);
-  // psi = theta_z - 2 theta_x (MODEL.md section 8): the lag of the 2f component of z_M'' against
-  // the square of the fundamental of x_M''; psi > 0 means the 2f component leads.
+  // psi = theta_z - 2 theta_x (docs/model.md section 8): the lag of the 2f component of z_M''
+  // against the square of the fundamental of x_M''; psi > 0 means the 2f component leads.
   m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   // THD: everything in x_M'' but its mean and fundamental is distortion. By Parseval the mean
   // square of the residual r = x_M'' - A_0 sin(theta_0) - A_1 sin(nu t + theta_1) over whole
@@ -119,7 +119,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.ddz_harmonics = std::move(hz);
 
   // phi need not be periodic: a driving torque makes the drum slip on by a net angle per period
-  // (MODEL.md section 7). The mean of phi' over whole periods is that drift rate; removing the
+  // (docs/model.md section 7). The mean of phi' over whole periods is that drift rate; removing the
   // ramp leaves the periodic part, whose fundamental is compared with M0 sin(nu t) (phase 0).
   double rate = 0.0;
   for (double v : s.dphi) rate += v;

@@ -49,8 +49,12 @@ const std::array kFields = {
           1000, false, false, nullptr, OSCIDRUM_REAL(roller.f)},
     Field{"roller.M0", FieldType::real, "N m",
           "amplitude of the oscillation moment (5), M0 = 4 m_u e_u e_w nu^2: it grows with f^2, so "
-          "set it with roller.f",
+          "set it with roller.f, or give roller.unbalance instead",
           0, inf, false, false, nullptr, OSCIDRUM_REAL(roller.M0)},
+    Field{"roller.unbalance", FieldType::real, "kg m^2",
+          "the unbalances' moment m_u e_u e_w; > 0: M0 = 4 m_u e_u e_w nu^2 (5) follows roller.f "
+          "and replaces roller.M0 (the paper's roller: 0.22877); 0: roller.M0 as given",
+          0, inf, false, false, nullptr, OSCIDRUM_REAL(roller.unbalance)},
     Field{"roller.kd", FieldType::real, "N/m", "drum/frame suspension stiffness", 0, inf, false,
           false, nullptr, OSCIDRUM_REAL(roller.kd)},
     Field{"roller.cd", FieldType::real, "N s/m", "drum/frame suspension damping", 0, inf, false,

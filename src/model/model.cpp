@@ -90,13 +90,14 @@ Model::Model(const Case& c) : case_(c) {
                 "(ksv + kd) = " + num(deflection) +
                 " m: a trough of the drum's own size makes the rolling relation (11) degenerate");
   nu_ = 2.0 * M_PI * R.f;
+  M0_ = oscillation_moment(R);
   // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
   // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.
   z_ref_ = c.numerics.suspension_from_static ? W_ / ksv_ : 0.0;
 }
 
 double Model::torque(double t) const {
-  return case_.roller.M0 * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
+  return M0_ * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
 }
 
 State Model::initial_state() const {

@@ -1,4 +1,5 @@
-// The paper's studies and the check of its stated results (MODEL.md section 8).
+// The paper's studies and the check of its stated results (docs/validation.md; the metrics:
+// docs/model.md section 8).
 #include "oscidrum_paper/validation.hpp"
 
 #include <algorithm>
@@ -117,7 +118,7 @@ Case paper_case(const PaperSeries& series, double G) {
   }
   c.contact.pure_rolling = series.pure_rolling;
   c.contact.mu = series.mu;
-  c.MMd = series.MMd_fraction * c.roller.M0;
+  c.MMd = series.MMd_fraction * oscillation_moment(c.roller);
   c.trough.k = series.k;
   c.trough.a = series.a;
   return c;
@@ -246,7 +247,7 @@ std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
       }
     add("all.slip_ends", "Sect. 3.4",
         "every slip phase ends in stick (no reversal, no slip end "
-        "without a consistent continuation; docs/model.md)",
+        "without a consistent continuation; docs/model.md section 6)",
         "stick-slip alternation",
         std::to_string(odd) + " irregular slip ends among " + std::to_string(switches) +
             " switches",
@@ -362,7 +363,8 @@ std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results) {
   // --- Figs. 12, 14: phase lag psi, harmonic content, pure rolling MMd = 0 --------------------
   {
     const double p5 = at(r606, 5e6, kPsi);
-    add("fig12.psi_G5", "Fig. 12", "phase lag x_M'' -> z_M'' at G = 5 (psi, MODEL.md section 8)",
+    add("fig12.psi_G5", "Fig. 12",
+        "phase lag x_M'' -> z_M'' at G = 5 (psi, docs/model.md section 8)",
         "about 0.11 rad (0.104 by the independent check)", fmt("%.3f rad", p5), "within 0.02 rad",
         std::abs(p5 - 0.11) <= 0.02);
     const double Gpsi = argmax_G(r606, kPsi), pmax = max_of(r606, kPsi);

@@ -34,7 +34,7 @@ SoilCoefficients soil_coefficients(double G, double nu, double rho, const Roller
   s.a0 = 4.0 * std::sqrt(2.0 * r * P0 * (1.0 - nu) / (M_PI * G * b0));
   const double q = b0 / s.a0;
   // (42), as printed in the paper (it does not reproduce Table 2's stiffness columns; see
-  // MODEL.md "Known discrepancy" and docs/validation.md).
+  // docs/model.md section 1.3 and docs/validation.md).
   s.ksh = G * s.a0 / (2.0 - nu) * (6.8 * std::pow(q, 0.65) + 0.8 * q + 1.6);
   s.ksv = G * s.a0 / (1.0 - nu) * (3.1 * std::pow(q, 0.75) + 1.6);
   // (44): csh = 2 rho sqrt(G / rho) 4 a0 b0 = 8 a0 b0 sqrt(G rho); csv = sqrt(2(1-nu)/(1-2nu)) csh.

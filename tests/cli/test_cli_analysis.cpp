@@ -14,6 +14,8 @@
 namespace oscidrum::test {
 namespace {
 
+const std::string kSource = OSCIDRUM_SOURCE_DIR;
+
 TEST(CliValidate, EveryClaimAgreesAndTheMarkdownIsWritten) {
   TempDir dir;
   const Outcome o = run({"validate", "--quiet", "--format", "json", "--markdown", dir / "v.md",
@@ -27,6 +29,15 @@ TEST(CliValidate, EveryClaimAgreesAndTheMarkdownIsWritten) {
   EXPECT_EQ(md.rfind("# Validation against the paper", 0), 0u);
   EXPECT_NE(md.find("| fig12.psi_max |"), std::string::npos);
   EXPECT_EQ(slurp(dir / "v.csv").rfind("id,figure,claim,paper,oscidrum,rule,agrees", 0), 0u);
+  EXPECT_EQ(slurp(kSource + "/docs/validation.md"), md)
+      << "docs/validation.md is out of date: run 'oscidrum validate --markdown "
+         "docs/validation.md'";
+  EXPECT_EQ(md.find(std::string("MODEL") + ".md"), std::string::npos);
+  // The terminal table shows each claim's text beside its id.
+  const Outcome table = run({"validate", "--quiet"});
+  ASSERT_EQ(table.code, 0) << table.err;
+  for (const auto& row : j["rows"])
+    EXPECT_NE(table.out.find(row["claim"].get<std::string>()), std::string::npos) << row["id"];
 }
 
 TEST(CliValidate, InterruptExits130WithoutWritingTheTable) {

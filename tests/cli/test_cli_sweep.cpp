@@ -39,6 +39,23 @@ TEST(CliSweep, Table2StudyIsTheSameOnAnyNumberOfThreads) {
   EXPECT_EQ(serial.out, csv);  // byte for byte
 }
 
+// Range values as the user would write them, in --list and in the results CSV.
+TEST(CliSweep, RangeValuesPrintAsWritten) {
+  TempDir dir;
+  std::ofstream(dir / "s.toml")
+      << "[sweep]\n\"contact.mu\" = { start = 0.2, stop = 0.8, num = 13 }\n";
+  const Outcome list = run({"sweep", dir / "s.toml", "--list"});
+  ASSERT_EQ(list.code, 0) << list.err;
+  EXPECT_NE(list.out.find(" 0.25\n"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find(" 0.3\n"), std::string::npos) << list.out;
+  EXPECT_EQ(list.out.find("0000000"), std::string::npos) << list.out;
+  const Outcome o = run({"sweep", dir / "s.toml", "-q"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("\n1,0.25,steady_state,"), std::string::npos) << o.out.substr(0, 400);
+  EXPECT_NE(o.out.find("\n2,0.3,steady_state,"), std::string::npos);
+  EXPECT_EQ(o.out.find("0.30000000000000004"), std::string::npos);
+}
+
 TEST(CliSweep, EveryExampleRuns) {
   for (const auto& entry : std::filesystem::directory_iterator(kSource + "/examples")) {
     const std::string path = entry.path().string();

@@ -50,7 +50,7 @@ TEST(Simulate, DefaultCaseReachesSteadyStateWithStickAndSlip) {
   EXPECT_EQ(r.diagnostics.multiplicity, 1);
   EXPECT_EQ(r.sample_periods, 2);
   EXPECT_EQ(r.samples.size(), 2u * 1024u);
-  // mu = 0.5 at G = 25 MN/m^2 slips twice and sticks twice per period (MODEL.md section 8).
+  // mu = 0.5 at G = 25 MN/m^2 slips twice and sticks twice per period (paper Fig. 17).
   EXPECT_DOUBLE_EQ(r.diagnostics.switches_per_period, 4.0);
   EXPECT_GT(r.stick_time, 0.0);
   EXPECT_GT(r.slip_positive_time, 0.0);
@@ -211,7 +211,7 @@ TEST(Simulate, LargeFrictionEqualsPureRolling) {
     EXPECT_DOUBLE_EQ(a.samples.ddx_M[j], b.samples.ddx_M[j]);
 }
 
-// k -> 0: the log spiral tends to the circle of radius a (MODEL.md section 1).
+// k -> 0: the log spiral tends to the circle of radius a (docs/model.md section 1.4).
 TEST(Simulate, SpiralTendsToCircle) {
   Case circle = pure_rolling_case(20), spiral = circle;
   spiral.trough.k = 1e-8;

@@ -1,4 +1,4 @@
-// Tests of the equations of motion (MODEL.md sections 3-5): the accelerations returned by
+// Tests of the equations of motion (docs/model.md sections 3-5): the accelerations returned by
 // stick_accelerations (30)-(32) and slip_accelerations (34), (36), (38), (53) are checked against
 // the balance equations (19), (20), (23) and the soil equations (24)-(26) they were derived from,
 // against an independent Eigen solve of those balance equations, and for equilibrium, mirror
@@ -51,7 +51,7 @@ Model make_model(const Config& cfg, double MMd_over_M0 = 0.05, double mu = 0.5) 
   return Model(c);
 }
 
-// ---- independent pieces, written here from MODEL.md --------------------------------------------
+// ---- independent pieces, written here from the paper --------------------------------------------
 
 // Slip friction factors (35).
 struct FrictionFactors {
@@ -174,7 +174,7 @@ struct Sample {
   State q;
 };
 
-// A state of realistic size (MODEL.md section 4 and 5 magnitudes at f = 39 Hz): delta in
+// A state of realistic size (docs/model.md section 4 and 5 magnitudes at f = 39 Hz): delta in
 // [-0.3, 0.3], x_A and s_A ~ 1e-3 m, delta' ~ 50 rad/s, x_A' ~ 0.2 m/s, s_A' ~ 0.05 m/s. In stick
 // phi' = f5 delta' (12); in slip phi' = f5 delta' - s u with u in (0, 0.5] rad/s so that
 // sign(v_rel) = s (13). With `on_cone`, x_A' is chosen so that the slip coupling (39) holds,

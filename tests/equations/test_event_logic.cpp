@@ -1,4 +1,4 @@
-// Tests of the decisions at stick/slip events (src/event_logic.cpp, MODEL.md section 6).
+// Tests of the decisions at stick/slip events (src/event_logic.cpp, docs/model.md section 6).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -182,6 +183,35 @@ TEST(CaseFile, MMdFractionFollowsM0) {
   EXPECT_DOUBLE_EQ(finalize(spec).MMd, 2000.0);
 }
 
+// roller.unbalance is the alternative to roller.M0: M0 = 4 m_u e_u e_w nu^2 (5). Giving both is
+// an error; changing f with M0 fixed is a warning; MMd_fraction refers to the M0 in use.
+TEST(CaseFile, UnbalanceReplacesM0AndFixedM0WithNewFWarns) {
+  CaseSpec spec;
+  read_case_text("MMd_fraction = 0.05\n[roller]\nunbalance = 0.22877\nf = 19.5\n", "case.toml",
+                 spec);
+  std::vector<std::string> warnings;
+  Case c = finalize(spec, &warnings);
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_NEAR(c.MMd, 0.05 * 54947.0 / 4.0, 0.05);
+  EXPECT_NE(case_error("[roller]\nunbalance = 0.2\nM0 = 50000\n")
+                .find("roller.unbalance gives M0 = 4 m_u e_u e_w nu^2 (5), so it cannot be given "
+                      "together with roller.M0"),
+            std::string::npos);
+  CaseSpec fixed;
+  read_case_text("[roller]\nf = 30\n", "case.toml", fixed);
+  c = finalize(fixed, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("case.toml:2:1: roller.f = 30 Hz with M0 fixed at 54947 N m"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_EQ(c.roller.M0, 54947.0);
+  // Saying the moment is meant (roller.M0 given) silences it.
+  warnings.clear();
+  read_case_text("[roller]\nM0 = 54947\n", "more.toml", fixed);
+  finalize(fixed, &warnings);
+  EXPECT_TRUE(warnings.empty());
+}
+
 TEST(CaseFile, LaterFilesOverrideEarlierOnes) {
   CaseSpec spec;
   read_case_text("[roller]\nr = 0.55\nm = 2000\n", "a.toml", spec);
@@ -213,6 +243,13 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
   Case t;
   t.soil = table2_soil(30e6);
   EXPECT_TRUE(same_case(read(case_to_toml(t, true)), t));
+
+  Case u;  // given by its unbalance: M0 is written as a comment (both would be an error)
+  u.roller.unbalance = 0.22877;
+  u.roller.f = 30.0;
+  const std::string text = case_to_toml(u);
+  EXPECT_NE(text.find("# M0 = "), std::string::npos) << text;
+  EXPECT_TRUE(same_case(read(text), u));
 }
 
 TEST(CaseSpec, AssignTextParsesEachType) {
@@ -286,6 +323,32 @@ TEST(Study, RangesAllAndNestedTables) {
   s = expand(read_study_text(
       "[sweep]\n\"numerics.max_periods\" = { start = 100, stop = 300, step = 100 }\n", "s", ""));
   EXPECT_EQ(format_value(s.varied[2][0]), "300");
+}
+
+// Range values print as the user would write them: rounded to the decimals of start, stop and
+// step, not start + i * step with its binary rounding (0.30000000000000004).
+TEST(Study, RangeValuesAreTheDecimalsAsWritten) {
+  Study s = expand(read_study_text(
+      "[sweep]\n\"contact.mu\" = { start = 0.2, stop = 0.8, num = 13 }\n", "s", ""));
+  ASSERT_EQ(s.cases.size(), 13u);
+  const char* want[] = {"0.2",  "0.25", "0.3",  "0.35", "0.4",  "0.45", "0.5",
+                        "0.55", "0.6",  "0.65", "0.7",  "0.75", "0.8"};
+  for (std::size_t i = 0; i < 13; ++i) {
+    EXPECT_EQ(format_value(s.varied[i][0]), want[i]);
+    EXPECT_EQ(s.cases[i].contact.mu, std::strtod(want[i], nullptr));
+  }
+  s = expand(read_study_text("[sweep]\n\"contact.mu\" = { start = 0.1, stop = 0.7, step = 0.1 }\n",
+                             "s", ""));
+  ASSERT_EQ(s.cases.size(), 7u);
+  EXPECT_EQ(format_value(s.varied[2][0]), "0.3");  // 0.1 + 2 * 0.1 = 0.30000000000000004
+  EXPECT_EQ(format_value(s.varied[6][0]), "0.7");
+  s = expand(read_study_text("[sweep]\n\"roller.f\" = { start = 25.5, stop = 40, step = 0.725 }\n",
+                             "s", ""));
+  EXPECT_EQ(format_value(s.varied[1][0]), "26.225");
+  // A step without a short decimal form keeps the computed values.
+  s = expand(
+      read_study_text("[sweep]\n\"contact.mu\" = { start = 0, stop = 1, num = 4 }\n", "s", ""));
+  EXPECT_EQ(s.cases[1].contact.mu, 1.0 / 3.0);
 }
 
 TEST(Study, ZipAndGroups) {

@@ -1,4 +1,5 @@
-// test_metrics.cpp: harmonics, wrap_pi, enclosed_area and compute_metrics (MODEL.md section 8).
+// test_metrics.cpp: harmonics, wrap_pi, enclosed_area and compute_metrics (docs/model.md section
+// 8).
 #include <gtest/gtest.h>
 
 #include <algorithm>

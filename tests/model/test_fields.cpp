@@ -1,5 +1,5 @@
 // Tests of the parameter table (oscidrum/fields.hpp) and of Model's validation (model.hpp):
-// defaults are the paper's roller (MODEL.md section 1, paper Table 1) on the Table 2 soil at
+// defaults are the paper's roller (docs/model.md section 1, paper Table 1) on the Table 2 soil at
 // G = 25 MN/m^2; every field round-trips and touches only its own member; bad values are
 // rejected with a message naming the key, the rule and the value.
 #include <gtest/gtest.h>
@@ -36,6 +36,7 @@ const std::map<std::string, Member>& members() {
       {"roller.P0", [](Case& c) -> double& { return c.roller.P0; }},
       {"roller.f", [](Case& c) -> double& { return c.roller.f; }},
       {"roller.M0", [](Case& c) -> double& { return c.roller.M0; }},
+      {"roller.unbalance", [](Case& c) -> double& { return c.roller.unbalance; }},
       {"roller.kd", [](Case& c) -> double& { return c.roller.kd; }},
       {"roller.cd", [](Case& c) -> double& { return c.roller.cd; }},
       {"roller.g", [](Case& c) -> double& { return c.roller.g; }},
@@ -110,8 +111,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 11 roller + 8 soil + 2 trough + 3 contact + MMd + 12 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 37u);
+  // 12 roller + 8 soil + 2 trough + 3 contact + MMd + 12 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 38u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;
@@ -162,7 +163,7 @@ TEST(Fields, DefaultsAreThePapersRoller) {
   EXPECT_EQ(c.roller.kd, 4e6);
   EXPECT_EQ(c.roller.cd, 3e3);
   EXPECT_EQ(c.roller.g, 9.81);
-  // Fz = P0 - m g = 27 066 N (7), as MODEL.md section 1 prints it (to 1 N).
+  // Fz = P0 - m g = 27 066 N (7), as paper Table 1 gives it (to 1 N).
   EXPECT_NEAR(c.roller.P0 - c.roller.m * c.roller.g, 27066.0, 0.5);
   EXPECT_EQ(c.MMd, 0.0);
 }
@@ -178,7 +179,7 @@ TEST(Fields, DefaultSoilIsTable2AtG25) {
   EXPECT_EQ(c.soil.ksv, row->ksv);
   EXPECT_EQ(c.soil.csh, row->csh);
   EXPECT_EQ(c.soil.csv, row->csv);
-  // The printed row itself (MODEL.md table): 41.4, 66.3 MN/m; 141, 263 kN s/m.
+  // The printed row itself (paper Table 2): 41.4, 66.3 MN/m; 141, 263 kN s/m.
   EXPECT_EQ(c.soil.ksh, 41.4e6);
   EXPECT_EQ(c.soil.ksv, 66.3e6);
   EXPECT_EQ(c.soil.csh, 141e3);
@@ -487,6 +488,24 @@ TEST(ModelValidation, DerivedConstants) {
   const double t = 0.3 / 39.0;
   EXPECT_NEAR(driven.torque(t), 54947.0 * std::sin(2.0 * M_PI * 39.0 * t) + 0.05 * 54947.0,
               1e-12 * 54947.0);
+}
+
+// (5): M0 = 4 m_u e_u e_w nu^2. The paper's roller (54 947 N m at 39 Hz) has m_u e_u e_w =
+// 0.22877 kg m^2; given by its unbalance, M0 follows f^2 and replaces roller.M0.
+TEST(ModelValidation, UnbalanceGivesM0ThatGrowsWithFSquared) {
+  Case c;
+  EXPECT_EQ(oscillation_moment(c.roller), 54947.0);  // unset: M0 as given
+  c.roller.unbalance = 0.22877;
+  EXPECT_NEAR(oscillation_moment(c.roller), 54947.0, 1.0);
+  c.roller.M0 = 1.0;  // ignored while the unbalance is set
+  c.roller.f = 19.5;  // half the frequency: a quarter of the moment
+  EXPECT_NEAR(oscillation_moment(c.roller), 54947.0 / 4.0, 0.25);
+  const Model model(c);
+  const double t = 0.3 / 19.5;
+  EXPECT_NEAR(model.torque(t), oscillation_moment(c.roller) * std::sin(2.0 * M_PI * 19.5 * t),
+              1e-9 * 54947.0);
+  EXPECT_NE(find_field("roller.unbalance"), nullptr);
+  EXPECT_THROW(set_field(c, "roller.unbalance", -1.0), Error);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Validation against the paper: every result MODEL.md section 8 lists that a simulation can check
+// Validation against the paper: every result docs/validation.md lists that a simulation can check
 // (src/validation.cpp states each acceptance rule next to the claim). The paper's studies run once
 // (about 100 cases, a few seconds on two cores) and each claim is one check.
 #include <gtest/gtest.h>
@@ -39,7 +39,7 @@ TEST(Validation, RowsAreWellFormed) {
     }
     checkable += row.checkable;
   }
-  EXPECT_GE(checkable, 40);  // MODEL.md section 8 holds over 40 checkable statements
+  EXPECT_GE(checkable, 40);  // docs/validation.md holds over 40 checkable statements
   const std::string md = validation_markdown(rows());
   EXPECT_NE(md.find("| fig9a.xmax_G5 |"), std::string::npos);
   EXPECT_NE(md.find("checkable claims agree"), std::string::npos);

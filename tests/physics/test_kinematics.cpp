@@ -1,4 +1,4 @@
-// Tests of the trough kinematics (MODEL.md section 2): (15)-(16), their derivatives f1 ... f6
+// Tests of the trough kinematics (docs/model.md section 2): (15)-(16), their derivatives f1 ... f6
 // (46)-(50) by finite differences, the exact identities of section 3, the circle's closed forms,
 // and the rolling condition (11)-(12).
 #include <gtest/gtest.h>
@@ -93,7 +93,7 @@ TEST(Kinematics, Geometry) {
   }
 }
 
-// MODEL.md section 3: f3~ == 0 (the centre moves tangentially to the trough), f1_bar == r f5,
+// docs/model.md section 2: f3~ == 0 (the centre moves tangentially to the trough), f1_bar == r f5,
 // f4~ == -f1_bar; and the shorthands are what (33) and (37) define.
 TEST(Kinematics, ExactIdentities) {
   for (const Shape& s : kShapes) {

@@ -1,5 +1,5 @@
 // Tests of Appendix B (soil coefficients (42)-(45)), the paper's Table 2 and Appendix A
-// (transmissibility (40)), against MODEL.md section 1.
+// (transmissibility (40)), against paper Table 2 (docs/model.md section 1).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +43,7 @@ TEST(Table2, HasFourteenRowsFromFiveToSeventyMegapascal) {
       EXPECT_GT(rows[i].ksv, rows[i - 1].ksv);
     }
   }
-  // Spot checks against the printed table (MODEL.md section 1).
+  // Spot checks against the printed table (docs/model.md section 1).
   EXPECT_EQ(rows[0].a0, 0.217);
   EXPECT_EQ(rows[0].ksh, 11.4e6);
   EXPECT_EQ(rows[0].ksv, 16.3e6);
@@ -84,7 +84,7 @@ TEST(Table2, SoilThrowsForAGNotInTheTable) {
 
 // ---- Appendix B -------------------------------------------------------------------------------
 
-// (43): a0 comes out 0.4-1.7 % below the a0 column, always low (MODEL.md "Known discrepancy").
+// (43): a0 comes out 0.4-1.7 % below the a0 column, always low (docs/model.md section 1.3).
 // The computed deficits are 0.43 % (G = 30) to 1.65 % (G = 60): both ends are inside the band.
 TEST(AppendixB, HalfContactLengthIsSlightlyBelowTable2) {
   const Roller roller;
@@ -141,10 +141,10 @@ TEST(AppendixB, TheTwoFormsOfHorizontalDampingAgree) {
   }
 }
 
-// (42) as printed does not reproduce Table 2 (MODEL.md "Known discrepancy"): ksh comes out
-// 18-26 % high and ksv 3-16 % low. The bands are MODEL.md's whole-percent figures, so each end is
-// taken to +-0.5 %: the computed values are ksh +17.6 % (G = 5) to +25.5 % (G = 70) and ksv
-// -3.8 % (G = 5) to -15.8 % (G = 70). A change of the formula moves them out of the band.
+// (42) as printed does not reproduce Table 2 (docs/model.md section 1.3): ksh comes out
+// 18-26 % high and ksv 3-16 % low. The bands are docs/model.md's whole-percent figures, so each end
+// is taken to +-0.5 %: the computed values are ksh +17.6 % (G = 5) to +25.5 % (G = 70) and ksv -3.8
+// % (G = 5) to -15.8 % (G = 70). A change of the formula moves them out of the band.
 TEST(AppendixB, StiffnessFormulaDeviatesFromTable2AsDocumented) {
   const Roller roller;
   for (const Table2Row& row : table2()) {
@@ -216,7 +216,7 @@ TEST(AppendixA, ReproducesThePrintedNumbers) {
   expect_to_print_precision(t.zeta, 0.014, 0.001, "zeta");
   expect_to_print_precision(t.ratio, 6.4, 0.1, "nu/omega");
   expect_to_print_precision(t.Tp, 0.025, 0.001, "Tp");
-  // Independently: the definitions of MODEL.md section 1.
+  // Independently: the definitions of docs/model.md section 1.
   const double omega = std::sqrt(4e6 / 2760.0);
   const double zeta = 3e3 / (2.0 * 2760.0 * omega);
   const double r = 2.0 * M_PI * 39.0 / omega;

@@ -53,6 +53,7 @@ def test_paper_reproduction(paper_out):
     for n in range(7, 23):
         assert f"## Fig. {n}" in heads
     assert "could not be drawn" not in report
+    assert ("MODEL" + ".md") not in report  # cites only the paper and the project's docs
     for link in re.findall(r"\]\(([^)]+)\)", report):  # every figure and file linked exists
         assert (out / link).exists(), link
     cases = (out / "cases.csv").read_text().splitlines()

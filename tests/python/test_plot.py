@@ -1,5 +1,6 @@
 """Plots: files written (PNG/SVG), axes and lines as expected, the CLI entry points."""
 
+import os
 import subprocess
 import sys
 
@@ -42,7 +43,7 @@ def test_figure_eight_and_delta_phi(rolling_result):
     x = fig.axes[0].lines[0].get_xdata()
     assert x[0] == x[-1]  # closed curve
     fig = plot.plot_delta_phi(rolling_result)
-    assert [y for _, y in labels(fig)] == [plot.DELTA_LABEL, plot.PHI_LABEL]
+    assert [y for _, y in labels(fig)] == [plot.DELTA_LABEL, plot.PHI_LABEL + " (drift removed)"]
 
 
 def test_spectra_normalised(rolling_result):
@@ -126,3 +127,248 @@ def test_module_entry_sweep(tmp_path):
     table, units = data.read_csv_columns(csv)
     fig = plot.plot_table(table, "soil.G", "area", group="MMd_fraction", units=units)
     assert len(fig.axes[0].lines) == 2
+
+
+# ---- plots that explain themselves -----------------------------------------------------------
+
+def _data_boxes(ax):
+    """Display-space boxes of every line's data points (and bars) of an Axes."""
+    from matplotlib.transforms import Bbox
+    boxes = []
+    for line in ax.lines:
+        xy = np.column_stack([line.get_xdata(), line.get_ydata()]).astype(float)
+        xy = xy[np.isfinite(xy).all(axis=1)]
+        if len(xy) == 0 or line.get_transform() != ax.transData:
+            continue  # axhline/axvline span the axes in axes coordinates: not data
+        pts = ax.transData.transform(xy)
+        boxes.append((pts, Bbox.from_extents(*pts.min(axis=0), *pts.max(axis=0))))
+    for patch in ax.patches:
+        if patch.get_transform() == ax.transData:  # bars, not the shading spans
+            box = patch.get_window_extent()
+            boxes.append((None, box))
+    return boxes
+
+
+def assert_legends_hide_no_data(fig):
+    """No legend covers a data point: each legend's box against every plotted point (and
+    against the extent of the data: a legend beside the axes lies outside it)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
+    assert legends, "the figure has no legend to check"
+    for _, legend in legends:
+        box = legend.get_window_extent(renderer)
+        for ax in fig.axes:
+            for pts, extent in _data_boxes(ax):
+                if pts is None:
+                    assert not box.overlaps(extent), "a legend covers a bar"
+                    continue
+                inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) &
+                          (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
+                assert not inside.any(), f"a legend covers {inside.sum()} data points"
+                assert not box.overlaps(extent), "a legend lies inside the data's extent"
+
+
+def _four_soils(pure_rolling, MMd_fraction=0.0):
+    """The paper's Figs. 13a, 17, 18: four Table 2 soils, as (result, case) pairs."""
+    pairs = []
+    for G in (5e6, 25e6, 50e6, 70e6):
+        case = oscidrum.Case(soil=oscidrum.table2_soil(G))
+        case.contact.pure_rolling = pure_rolling
+        case.MMd = MMd_fraction * case.roller.M0
+        pairs.append((oscidrum.simulate(case), case))
+    return pairs
+
+
+@pytest.fixture(scope="module")
+def stick_slip_four():
+    return _four_soils(False)
+
+
+@pytest.fixture(scope="module")
+def stick_slip_driven_four():
+    return _four_soils(False, 0.05)
+
+
+def test_titles_name_the_case_instead_of_case_1(slip_result, slip_case):
+    fig = plot.plot_accelerations((slip_result, slip_case))
+    title = fig._suptitle.get_text()
+    for part in ("G = 25 MN/m$^2$", "Table 2 soil", r"$\mu$ = 0.5", "$M_{Md}$ = 0.05 $M_0$",
+                 "R = 0.606 m", "f = 39 Hz"):
+        assert part in title, (part, title)
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert not any(t.startswith("case ") for t in legend), legend
+    # Several cases: what they share in the title, what differs in the legend.
+    rolling = oscidrum.Case(soil=oscidrum.table2_soil(5e6))
+    rolling.contact.pure_rolling = True
+    fig = plot.plot_figure_eight([(slip_result, slip_case),
+                                  (oscidrum.simulate(rolling), rolling)])
+    title = fig._suptitle.get_text()
+    assert "R = 0.606 m" in title and "G =" not in title
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert any("G = 5 MN/m$^2$" in t and "pure rolling" in t for t in legend), legend
+    # From the CLI's files: the JSON summary gives the parameters.
+    assert plot.case_caption(data.from_result(slip_result)) == "f = 39 Hz"
+
+
+@pytest.mark.parametrize("kind", ["fig13a", "fig17", "fig18"])
+def test_legends_hide_no_data(kind, request):
+    if kind == "fig13a":
+        fig = plot.plot_figure_eight(_four_soils(True))
+    elif kind == "fig17":
+        fig = plot.plot_accelerations(request.getfixturevalue("stick_slip_four"))
+    else:
+        fig = plot.plot_accelerations(request.getfixturevalue("stick_slip_driven_four"))
+    assert_legends_hide_no_data(fig)
+    assert fig._suptitle is not None and "f = 39 Hz" in fig._suptitle.get_text()
+
+
+def test_every_single_case_figure_keeps_its_legend_off_the_data(slip_result, slip_case):
+    pair = (slip_result, slip_case)
+    for fn in (plot.plot_accelerations, plot.plot_delta_phi, plot.plot_forces,
+               plot.plot_figure_eight, plot.plot_spectra, plot.plot_torque_phi):
+        assert_legends_hide_no_data(fn([pair, pair], labels=["a", "b"]))
+
+
+def test_phi_is_drawn_without_its_drift(slip_result):
+    phi = np.asarray(slip_result.samples.phi)
+    period = len(phi) // slip_result.sample_periods
+    drift = phi[period] - phi[0]  # MMd = 0.05 M0: the drum turns on by slip every period
+    assert drift > 0.5 * np.ptp(phi[:period] - np.linspace(0, drift, period, endpoint=False))
+    fig = plot.plot_delta_phi(slip_result)
+    drawn = np.asarray(fig.axes[1].lines[0].get_ydata())
+    assert abs(drawn[period] - drawn[0]) < 1e-6 * drift  # periodic: the drift is gone
+    assert abs(np.mean(drawn)) < 1e-6 * drift  # and the mean
+    assert np.ptp(drawn) < 0.5 * np.ptp(phi)  # so the oscillation fills the panel
+    assert "drift removed" in fig.axes[1].get_ylabel()
+
+
+def test_figure_eight_shows_travel_slip_and_area(slip_result, slip_case):
+    fig = plot.plot_figure_eight((slip_result, slip_case))
+    ax = fig.axes[0]
+    arrows = [c for c in ax.texts if getattr(c, "arrow_patch", None) is not None]
+    assert len(arrows) == 6
+    # The arrows follow the samples' order (the direction of travel).
+    x = np.asarray(slip_result.samples.ddx_M)
+    z = np.asarray(slip_result.samples.ddz_M)
+    a = arrows[0]
+    i = int(np.argmin(np.hypot(x - a.xyann[0], z - a.xyann[1])))
+    assert np.hypot(x[i + 1] - a.xy[0], z[i + 1] - a.xy[1]) < np.hypot(x[i - 1] - a.xy[0],
+                                                                       z[i - 1] - a.xy[1])
+    bands = [line for line in ax.lines if line.get_linewidth() >= 5]
+    assert len(bands) == 2  # slip+ and slip- (the stick parts are the bare line)
+    legend = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    area = oscidrum.compute_metrics(slip_result).area
+    assert f"area {area:.4g}" in legend and "slip+" in legend and "slip-" in legend
+
+
+def test_many_groups_get_a_colour_map_and_bar():
+    mu = np.round(np.linspace(0.2, 0.8, 13), 2)
+    G = np.array([5e6, 25e6, 50e6])
+    table = {"case": np.arange(39.0), "contact.mu": np.repeat(mu, 3),
+             "soil.table2_G": np.tile(G, 13), "area": np.arange(39.0)}
+    fig = plot.plot_table(table, "soil.G", "area", group="contact.mu")
+    assert len(fig.axes) == 2  # the plot and its colour bar
+    assert fig.axes[0].get_legend() is None
+    assert "friction coefficient" in fig.axes[1].get_ylabel()
+    colours = {tuple(line.get_color()) for line in fig.axes[0].lines}
+    assert len(colours) == 13  # no style reused
+    fig = plot.plot_table(table, "soil.G", "area", group="contact.mu",
+                          where={"contact.mu": 0.25})
+    assert len(fig.axes) == 1 and len(fig.axes[0].lines) == 1
+
+
+def test_plot_map_heat_map_of_any_metric():
+    table = {"case": np.arange(6.0), "roller.f": np.repeat([30.0, 39.0, 45.0], 2),
+             "soil.table2_G": np.tile([5e6, 25e6], 3),
+             "status": np.full(6, np.nan), "ddx_max": np.array([1.0, 2.0, 3.0, np.nan, 5.0, 6.0])}
+    fig = plot.plot_map(table, "soil.G", "roller.f", "ddx_max")
+    ax, bar = fig.axes
+    mesh = ax.collections[0]
+    grid = np.ma.asarray(mesh.get_array()).reshape(3, 2)  # rows: f, columns: G
+    assert grid.shape == (3, 2) and grid[1, 1] is np.ma.masked  # the failed case stays blank
+    assert grid[2, 0] == 5.0 and grid[0, 1] == 2.0
+    assert "MN/m$^2$" in ax.get_xlabel() and "Hz" in ax.get_ylabel()
+    assert "peak" in bar.get_ylabel()
+    assert sorted(t.get_text() for t in ax.texts) == ["1", "2", "3", "5", "6"]
+    # A study with two swept keys: plot_study draws the map.
+    fig = plot.plot_study(table, "ddx_max")
+    assert len(fig.axes[0].collections) == 1
+
+
+def test_every_plot_function_accepts_ax(slip_result):
+    from matplotlib.axes import Axes
+    fig, axes = plot.new_figure(2, 1)
+    for fn in (plot.plot_accelerations, plot.plot_delta_phi, plot.plot_forces,
+               plot.plot_spectra):
+        assert list(fn(slip_result, ax=axes)) == list(axes)
+    one = plot.new_figure(1, 1)[1]
+    for fn in (plot.plot_figure_eight, plot.plot_torque_phi):
+        assert fn(slip_result, ax=one) is one
+    assert plot.plot_sweep([1.0, 2.0], {"a": [1.0, 2.0]}, ax=one) is one
+    table = {"soil.G": np.array([5e6, 5e6, 25e6, 25e6]), "contact.mu": np.array([0.3, 0.5] * 2),
+             "area": np.arange(4.0)}
+    assert plot.plot_table(table, "soil.G", "area", ax=one) is one
+    assert isinstance(plot.plot_map(table, "soil.G", "contact.mu", "area", ax=one), Axes)
+    with pytest.raises(ValueError, match="2 Axes"):
+        plot.plot_accelerations(slip_result, ax=one)
+
+
+def test_module_entry_map_and_study(tmp_path):
+    csv = tmp_path / "results.csv"
+    csv.write_text("case[-],roller.f[Hz],soil.table2_G[Pa],status[-],area[m^2/s^4]\n"
+                   "0,30,5000000,steady_state,30\n1,30,25000000,steady_state,20\n"
+                   "2,39,5000000,steady_state,37\n3,39,25000000,steady_state,23\n")
+    p = run_module("oscidrum.plot", "map", "--csv", str(csv), "--x", "soil.G", "--y",
+                   "roller.f", "--out", str(tmp_path / "map.png"))
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "map.png").read_bytes().startswith(PNG)
+    p = run_module("oscidrum.plot", "study", "--csv", str(csv), "--out",
+                   str(tmp_path / "study.svg"))
+    assert p.returncode == 0, p.stderr
+    assert b"<svg" in (tmp_path / "study.svg").read_bytes()[:2000]
+
+
+# ---- the CLI's plots and its Python interpreter ----------------------------------------------
+
+def _cli_env(**extra):
+    env = dict(os.environ)
+    env.update(extra)
+    return env
+
+
+def test_cli_sweep_plot_draws_a_heat_map(cli, root, tmp_path):
+    study = tmp_path / "study.toml"
+    study.write_text("[roller]\nunbalance = 0.22877\n[sweep]\n"
+                     "\"roller.f\" = { start = 30, stop = 40, step = 5 }\n"
+                     "\"soil.table2_G\" = [10e6, 25e6]\n")
+    out = tmp_path / "study.png"
+    p = subprocess.run([cli, "sweep", str(study), "--out", str(tmp_path / "r.csv"), "--quiet",
+                        "--plot", str(out)], capture_output=True, text=True, timeout=300,
+                       env=_cli_env(OSCIDRUM_PYTHON=sys.executable))
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "warning" not in p.stderr  # the unbalance makes M0 follow f
+    assert out.read_bytes().startswith(PNG)
+    p = subprocess.run([cli, "sweep", str(study), "--plot", str(out)], capture_output=True,
+                       text=True, timeout=60)
+    assert p.returncode == 2 and "--plot" in p.stderr and "needs --out" in p.stderr
+
+
+def test_cli_python_is_not_taken_from_path(cli, tmp_path):
+    """A `python3` on PATH without the package (here: one that always fails) does not matter;
+    $OSCIDRUM_PYTHON, when set, is used and named in the error."""
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    (fake / "python3").write_text("#!/bin/sh\nexit 7\n")
+    (fake / "python3").chmod(0o755)
+    env = _cli_env(PATH=f"{fake}:{os.environ.get('PATH', '')}")
+    env.pop("OSCIDRUM_PYTHON", None)
+    p = subprocess.run([cli, "run", "--quiet", "--plot", str(tmp_path / "plots")],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert (tmp_path / "plots" / "figure_eight.png").read_bytes().startswith(PNG)
+    env["OSCIDRUM_PYTHON"] = str(tmp_path / "no" / "python")
+    p = subprocess.run([cli, "run", "--quiet", "--plot", str(tmp_path / "plots2")],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert p.returncode == 1
+    assert str(tmp_path / "no" / "python") in p.stderr and "OSCIDRUM_PYTHON" in p.stderr

@@ -1,4 +1,4 @@
-// oscidrum/validation.hpp: the paper's studies (MODEL.md section 8) and the check of every
+// oscidrum/validation.hpp: the paper's studies (docs/validation.md) and the check of every
 // result the paper states that a simulation can check. Used by the tests, by `oscidrum validate`
 // and `oscidrum paper`, and to generate docs/validation.md.
 #pragma once
@@ -73,7 +73,7 @@ struct ValidationRow {
   std::string note;       ///< explanation, required where it does not agree
 };
 
-/// Check every claim of MODEL.md section 8 against the results of run_paper_studies().
+/// Check every claim listed in docs/validation.md against the results of run_paper_studies().
 std::vector<ValidationRow> validate(const std::vector<SeriesResult>& results);
 
 /// The table as Markdown (with a summary line), for docs/validation.md.
