@@ -50,7 +50,7 @@ const Scalar kScalars[] = {
      "units of pi (paper Fig. 10)"},
     {"phi_amplitude", "rad", &Metrics::phi_amplitude, "A_1 of phi"},
     {"psi_xz", "rad", &Metrics::psi_xz,
-     "lag psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi] (MODEL.md section 8; "
+     "lag psi = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi] (docs/model.md; "
      "psi > 0: the 2f component of z_M'' leads)"},
     {"area", "m^2/s^4", &Metrics::area,
      "area enclosed by z_M'' over x_M'' (non-zero winding, both lobes count)"},
@@ -80,7 +80,7 @@ void bind_metrics(py::module_& m) {
       });
 
   py::class_<Metrics> cls(m, "Metrics",
-                          "Metrics of a simulated steady state (MODEL.md section 8). Harmonic n "
+                          "Metrics of a simulated steady state (docs/model.md). Harmonic n "
                           "of x_M'' is ddx_amplitude[n] [m/s^2], ddx_phase[n] [rad], n = 0 ... "
                           "n_max (n = 0: the mean).");
   for (const Scalar& s : kScalars) cls.def_readonly(s.name, s.member, scalar_doc(s));

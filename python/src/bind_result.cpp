@@ -66,8 +66,9 @@ const char* column_doc(const char* header) {
 }  // namespace
 
 void bind_result(py::module_& m) {
-  py::enum_<Status>(m, "Status", "How a simulation ended (Result.status; .name gives the text).")
-      .value("steady_state", Status::steady_state, "the response repeats; steady state sampled")
+  py::enum_<Status> status(m, "Status",
+                           "How a simulation ended (Result.status; .name gives the text).");
+  status.value("steady_state", Status::steady_state, "the response repeats; steady state sampled")
       .value("max_periods_reached", Status::max_periods_reached,
              "no steady state within numerics.max_periods (last periods sampled)")
       .value("contact_lost", Status::contact_lost, "N <= 0: lift-off, not covered by the model")
@@ -80,14 +81,16 @@ void bind_result(py::module_& m) {
       .value("budget_exceeded", Status::budget_exceeded,
              "more steps in one period than numerics.max_steps_per_period")
       .value("cancelled", Status::cancelled, "stopped by the caller");
+  strict_enum(status);
 
-  py::enum_<EventKind>(m, "EventKind", "Kind of a located event.")
-      .value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")
+  py::enum_<EventKind> event_kind(m, "EventKind", "Kind of a located event.");
+  event_kind.value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")
       .value("slip_to_stick", EventKind::slip_to_stick,
              "v_rel reached 0 and the stick solution stays in the friction cone")
       .value("slip_reversal", EventKind::slip_reversal,
              "v_rel reached 0, stick not sustainable: slip on with the opposite sign")
       .value("contact_lost", EventKind::contact_lost, "N reached 0");
+  strict_enum(event_kind);
 
   py::class_<Event>(m, "Event", "One located event.")
       .def_readonly("t", &Event::t, "time [s]")

@@ -33,7 +33,7 @@ void bind_soil(py::module_& m) {
       py::arg("G"), py::arg("nu") = 0.3, py::arg("rho") = 1900.0, py::arg("roller") = Roller{},
       "Appendix B: a0 (43) [m], ksh, ksv (42) [N/m], csh, csv (44)-(45) [N s/m] from G [Pa], nu "
       "[-], rho [kg/m^3] and the roller's r, b, P0. Note: (42) does not reproduce Table 2's "
-      "springs (MODEL.md section 1); use table2_soil() for the paper's figures.");
+      "springs (docs/model.md); use table2_soil() for the paper's figures.");
   m.def(
       "soil_coefficients",
       [](const Soil& soil, const Roller& roller) { return soil_coefficients(soil, roller); },

@@ -6,11 +6,15 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "bindings.hpp"
+#include "oscidrum/error.hpp"
 #include "oscidrum/study.hpp"
 
 namespace oscidrum::python {
@@ -21,19 +25,182 @@ constexpr std::int64_t kPollTicks =
     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(50))
         .count();
 
-std::vector<Case> to_cases(const py::iterable& items) {
+// ---- pickling of CaseOutcome (for studies on executors: outcomes travel between processes) ----
+// A flat little-endian byte string of this build's structs, headed by a format tag and the
+// sizes of the trivially copyable parts; only the same oscidrum build reads it back.
+
+constexpr std::uint32_t kOutcomeFormat = 0x4f534331;  // "OSC1"
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const char*>(&v);
+    bytes_.append(p, sizeof(T));
+  }
+  template <class T>
+  void put_vector(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put<std::uint64_t>(v.size());
+    if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put_string(const std::string& s) {
+    put<std::uint64_t>(s.size());
+    bytes_ += s;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+  template <class T>
+  T get() {
+    T v;
+    take(&v, sizeof(T));
+    return v;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    const auto n = get<std::uint64_t>();
+    if (n > (bytes_.size() - pos_) / sizeof(T)) fail();
+    std::vector<T> v(n);
+    if (n > 0) take(v.data(), n * sizeof(T));
+    return v;
+  }
+  std::string get_string() {
+    const auto n = get<std::uint64_t>();
+    if (n > bytes_.size() - pos_) fail();
+    std::string s(bytes_.substr(pos_, n));
+    pos_ += n;
+    return s;
+  }
+  bool at_end() const { return pos_ == bytes_.size(); }
+  [[noreturn]] static void fail() {
+    throw Error(
+        "cannot restore a CaseOutcome: the state is not one written by this build of oscidrum");
+  }
+
+ private:
+  void take(void* out, std::size_t n) {
+    if (n > bytes_.size() - pos_) fail();
+    std::memcpy(out, bytes_.data() + pos_, n);
+    pos_ += n;
+  }
+  std::string_view bytes_;
+  std::size_t pos_ = 0;
+};
+
+// Every member of Samples, in one place for writing and reading.
+template <class F>
+void each_sample_column(Samples& s, F&& f) {
+  for (std::vector<double>* v :
+       {&s.t, &s.delta, &s.phi, &s.x_A, &s.s_A, &s.ddelta, &s.dphi, &s.dx_A, &s.ds_A, &s.x_M,
+        &s.z_M, &s.ddx_M, &s.ddz_M, &s.N, &s.T, &s.v_rel, &s.torque})
+    f(*v);
+}
+template <class F>
+void each_metric_scalar(Metrics& m, F&& f) {
+  for (double* v : {&m.ddx_max, &m.ddx_min, &m.ddz_max, &m.ddz_min, &m.delta_max, &m.delta_min,
+                    &m.phi_lag, &m.phi_amplitude, &m.psi_xz, &m.area, &m.stick_fraction,
+                    &m.slip_positive_fraction, &m.slip_negative_fraction})
+    f(*v);
+}
+
+py::bytes outcome_state(const CaseOutcome& o) {
+  Writer w;
+  w.put(kOutcomeFormat);
+  w.put<std::uint32_t>(sizeof(Diagnostics));
+  w.put<std::uint32_t>(sizeof(Event));
+  w.put<std::uint32_t>(sizeof(Harmonic));
+  w.put(o.valid);
+  w.put_string(o.error);
+  const Result& r = o.result;
+  w.put(r.status);
+  w.put_string(r.message);
+  w.put(r.diagnostics);
+  w.put(r.frequency);
+  w.put(r.sample_periods);
+  w.put(r.samples_per_period);
+  each_sample_column(const_cast<Samples&>(r.samples),
+                     [&](std::vector<double>& v) { w.put_vector(v); });
+  w.put_vector(r.samples.phase);
+  w.put_vector(r.events);
+  w.put(r.stick_time);
+  w.put(r.slip_positive_time);
+  w.put(r.slip_negative_time);
+  Metrics& m = const_cast<Metrics&>(o.metrics);
+  each_metric_scalar(m, [&](double& v) { w.put(v); });
+  w.put_vector(m.ddx_harmonics);
+  w.put_vector(m.ddz_harmonics);
+  return py::bytes(w.bytes());
+}
+
+CaseOutcome outcome_from_state(py::handle state) {
+  if (!py::isinstance<py::bytes>(state)) Reader::fail();
+  const std::string bytes = state.cast<std::string>();
+  Reader rd(bytes);
+  if (rd.get<std::uint32_t>() != kOutcomeFormat || rd.get<std::uint32_t>() != sizeof(Diagnostics) ||
+      rd.get<std::uint32_t>() != sizeof(Event) || rd.get<std::uint32_t>() != sizeof(Harmonic))
+    Reader::fail();
+  CaseOutcome o;
+  o.valid = rd.get<bool>();
+  o.error = rd.get_string();
+  Result& r = o.result;
+  r.status = rd.get<Status>();
+  r.message = rd.get_string();
+  r.diagnostics = rd.get<Diagnostics>();
+  r.frequency = rd.get<double>();
+  r.sample_periods = rd.get<int>();
+  r.samples_per_period = rd.get<int>();
+  each_sample_column(r.samples, [&](std::vector<double>& v) { v = rd.get_vector<double>(); });
+  r.samples.phase = rd.get_vector<Phase>();
+  r.events = rd.get_vector<Event>();
+  r.stick_time = rd.get<double>();
+  r.slip_positive_time = rd.get<double>();
+  r.slip_negative_time = rd.get<double>();
+  each_metric_scalar(o.metrics, [&](double& v) { v = rd.get<double>(); });
+  o.metrics.ddx_harmonics = rd.get_vector<Harmonic>();
+  o.metrics.ddz_harmonics = rd.get_vector<Harmonic>();
+  if (!rd.at_end()) Reader::fail();
+  return o;
+}
+
+std::vector<Case> to_cases(const py::handle& items) {
+  if (!py::isinstance<py::iterable>(items) || py::isinstance<py::str>(items) ||
+      py::isinstance<py::dict>(items) || py::isinstance<Case>(items))
+    throw Error(
+        "cases must be a list (or other iterable) of Case objects or {key: value} dicts; "
+        "got " +
+        py::str(py::type::of(items).attr("__name__")).cast<std::string>());
   std::vector<Case> cases;
   py::object from_dict = py::module_::import("oscidrum._core").attr("Case").attr("from_dict");
   for (py::handle item : items) {
-    if (py::isinstance<py::dict>(item))
-      cases.push_back(from_dict(item).cast<Case>());
-    else
+    const std::string where = "cases[" + std::to_string(cases.size()) + "]";
+    if (py::isinstance<Case>(item)) {
       cases.push_back(item.cast<Case>());
+    } else if (py::isinstance<py::dict>(item)) {
+      try {
+        cases.push_back(from_dict(item).cast<Case>());
+      } catch (const py::error_already_set& e) {
+        throw Error(where + ": " + py::str(e.value()).cast<std::string>());
+      }
+    } else {
+      std::string text = py::repr(item).cast<std::string>();
+      if (text.size() > 60) text = text.substr(0, 60) + "...";
+      throw Error(where + " must be a Case or a {key: value} dict; got " +
+                  py::str(py::type::of(item).attr("__name__")).cast<std::string>() + " (" + text +
+                  ")");
+    }
   }
   return cases;
 }
 
-std::vector<CaseOutcome> run_study_py(const py::iterable& items, int threads, bool keep_samples,
+std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool keep_samples,
                                       int n_harmonics, const py::object& progress,
                                       const py::object& on_case_done) {
   const std::vector<Case> cases = to_cases(items);
@@ -86,7 +253,14 @@ std::vector<CaseOutcome> run_study_py(const py::iterable& items, int threads, bo
 }  // namespace
 
 void bind_study(py::module_& m) {
-  py::class_<CaseOutcome>(m, "CaseOutcome", "What one case of a study produced.")
+  py::class_<CaseOutcome> outcome(m, "CaseOutcome",
+                                  "What one case of a study produced. Picklable (for studies on "
+                                  "executors), between processes of the same oscidrum build.");
+  construct_on_new(outcome);
+  outcome.def("__getstate__", &outcome_state);
+  def_assigning(outcome, "__setstate__",
+                [](CaseOutcome& self, py::handle state) { self = outcome_from_state(state); });
+  outcome
       .def_readonly("valid", &CaseOutcome::valid,
                     "False: the case was rejected (invalid parameters); see `error`")
       .def_readonly("error", &CaseOutcome::error, "the oscidrum.Error message when not valid")

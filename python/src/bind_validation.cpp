@@ -202,7 +202,7 @@ void bind_validation(py::module_& m) {
   m.def(
       "validate", [](const py::iterable& results) { return validate(for_validation(results)); },
       py::arg("results"),
-      "Check every result the paper states (MODEL.md section 8) against the SeriesResults of "
+      "Check every result the paper states (docs/model.md) against the SeriesResults of "
       "run_paper_studies(): a list of ValidationRow, the same rows as `oscidrum validate` and "
       "docs/validation.md. Raises oscidrum.Error if a series or G is missing.");
   m.def("validation_markdown", &validation_markdown, py::arg("rows"),

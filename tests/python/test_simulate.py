@@ -59,7 +59,7 @@ def test_metrics(slip_result, rolling_result):
     assert m.area > 0 and set(m.to_dict()) == set(oscidrum.Metrics.scalar_names)
     assert m.stick_fraction + m.slip_positive_fraction + m.slip_negative_fraction == \
         pytest.approx(1.0)
-    # pure rolling at G = 5 (MODEL.md section 8: psi about 0.104 rad)
+    # pure rolling at G = 5 (docs/model.md: psi about 0.104 rad)
     mr = oscidrum.compute_metrics(rolling_result)
     assert mr.psi_xz == pytest.approx(0.104, abs=0.01)
     # the signal-level functions agree with the metrics
