@@ -258,6 +258,15 @@ void bind_study(py::module_& m) {
                                   "executors), between processes of the same oscidrum build.");
   construct_on_new(outcome);
   outcome.def("__getstate__", &outcome_state);
+  outcome.def_static(
+      "not_run",
+      [] {
+        CaseOutcome o;
+        o.valid = false;
+        o.error = "cancelled";
+        return o;
+      },
+      "The outcome of a case a study did not run (valid=False, error='cancelled').");
   def_assigning(outcome, "__setstate__",
                 [](CaseOutcome& self, py::handle state) { self = outcome_from_state(state); });
   outcome
