@@ -31,6 +31,7 @@ def clean(text):
 
 
 def signatures(func, name):
+    func = inspect.unwrap(func)
     if inspect.isfunction(func):  # pure Python (e.g. Result.to_dataframe)
         return [f"{name}(self) -> Any" if "self" in inspect.signature(func).parameters
                 else f"{name}{inspect.signature(func)}"]
