@@ -160,8 +160,14 @@ void bind_metrics(py::module_& m) {
       "of a figure-eight count) [unit x * unit y].");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
   m.def("compute_metrics", &compute_metrics, py::arg("result"), py::arg("n_max") = 10,
-        "Metrics of a Result's steady state, harmonics up to n_max. Raises oscidrum.Error if the "
-        "result holds no samples.");
+        "Metrics of a Result's steady state (docs/model.md).\n\n"
+        "Parameters\n----------\nresult : Result\n    A result with samples.\nn_max : int, "
+        "default 10\n    Highest harmonic.\n\n"
+        "Returns\n-------\nMetrics\n    ddx_max, ddz_max [m/s^2], phi_lag [pi rad], psi_xz "
+        "[rad], area [m^2/s^4], stick_fraction [-], harmonics, ... (units: Metrics.units).\n\n"
+        "Raises\n------\noscidrum.Error\n    If the result holds no samples.\n\n"
+        "Examples\n--------\n>>> m = oscidrum.compute_metrics(oscidrum.simulate(oscidrum.Case()))"
+        "\n>>> round(m.area, 1)   # [m^2/s^4]\n22.8\n");
 }
 
 }  // namespace oscidrum::python
