@@ -188,11 +188,12 @@ def test_type_stubs_ship_with_the_package():
 
 def test_docstrings_are_numpydoc_and_their_examples_run():
     import doctest
+    import inspect
     for obj in (oscidrum.Case, oscidrum.Case.get, oscidrum.Case.set, oscidrum.simulate,
                 oscidrum.compute_metrics, oscidrum.table2_soil, oscidrum.load_case,
                 oscidrum.run_study, oscidrum.StudyResult.to_dataframe,
                 oscidrum.StudyResult.to_xarray, oscidrum.Result.to_dataframe):
-        doc = obj.__doc__
+        doc = inspect.cleandoc(obj.__doc__)
         assert "Examples\n--------" in doc, obj
         assert "Returns\n-------" in doc or "Parameters\n----------" in doc, obj
         finder = doctest.DocTestFinder(recurse=False)
