@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_switches_per_period: Any = ..., mu: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -74,7 +74,9 @@ class Contact:
     def __init__(self, **kwargs: Any) -> None: ...
     def __setstate__(self, state: Any) -> None: ...
     mu: float
-    """Coulomb friction coefficient drum/soil [-]; >= 0; default 0.5."""
+    """Coulomb friction coefficient drum/soil (the kinetic one when contact.mu_static is set) [-]; >= 0; default 0.5."""
+    mu_static: float
+    """static friction coefficient of the friction cone (stick while |T| <= mu_static N); -1: equal to contact.mu; else >= contact.mu [-]; >= -1; default -1."""
     pure_rolling: bool
     """ignore the friction limit (mu -> infinity): stick throughout [-]; true or false; default false."""
     def to_dict(self: Contact, all: bool = ...) -> dict: ...
@@ -298,6 +300,8 @@ class Numerics:
     """longest steady period searched, in excitation periods [-]; an integer in [1, 64]; default 8."""
     max_periods: int
     """give up the steady-state search after this many excitation periods [-]; an integer in [1, 10000000]; default 5000."""
+    max_steps_per_period: int
+    """more integration steps than this in one period stop the run (status budget_exceeded): a bound on the work of every run [-]; an integer in [100, 1000000000]; default 100000."""
     max_switches_per_period: int
     """more stick/slip switches than this in one period stop the run as chattering [-]; an integer in [2, 10000000]; default 200."""
     output_periods: int
@@ -571,6 +575,9 @@ class Status(enum.IntEnum):
     chattering = 3
     non_finite = 4
     invalid_geometry = 5
+    gross_slip = 6
+    budget_exceeded = 7
+    cancelled = 8
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: Status, value: handle) -> None: ...

@@ -55,7 +55,7 @@ void bind_simulate(py::module_& m) {
       "Parameters\n----------\ncase : Case (or model : Model)\n    The parameters (SI units).\n"
       "progress : callable, optional\n    progress(period: int, change: float) once per "
       "integrated excitation period with the period-to-period change [-]; return False to "
-      "cancel (the result then has status max_periods_reached).\n\n"
+      "cancel (the result then has status cancelled).\n\n"
       "Returns\n-------\nResult\n    status, message, diagnostics, the sampled steady state "
       "(samples: t [s], ddx_M, ddz_M [m/s^2], ...), events; Result.to_dataframe() gives the "
       "samples as a pandas DataFrame.\n\n"
