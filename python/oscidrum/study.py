@@ -95,7 +95,7 @@ class StudyResult(list):
             d = o.result.diagnostics
             row["periods_to_steady"] = d.periods_to_steady
             row["multiplicity"] = d.multiplicity
-            has = o.valid and len(o.result.samples) > 0 or (o.valid and o.metrics.area != 0)
+            has = o.ok  # metrics exist for a steady state only
             m = o.metrics.to_dict() if o.valid else {}
             for n in names:
                 row[n] = m.get(n, np.nan) if has else np.nan
@@ -223,7 +223,6 @@ class _Progress:
             except ImportError:  # python3-tqdm missing: no bar
                 return
             self.bar = tqdm(total=total, unit="case", desc="oscidrum", file=sys.stderr)
-        self.done = 0
 
     def __call__(self, done, total):
         if self.call is not None:
