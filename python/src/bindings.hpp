@@ -51,7 +51,7 @@ void set_field_value(Case& c, std::string_view key, py::handle value);
 /// __init__ (and __setstate__) as ordinary methods that assign to the already-built value, since
 /// pybind11 ignores a constructor on an instance that is already built.
 template <class T>
-void construct_on_new(py::class_<T>& cls) {
+void construct_on_new(py::class_<T> cls) {
   cls.def_static("__new__", [](py::handle subtype, const py::args&, const py::kwargs&) {
     auto* type = reinterpret_cast<PyTypeObject*>(subtype.ptr());
     PyObject* self = py::detail::pybind11_object_new(type, nullptr, nullptr);

@@ -134,6 +134,11 @@ def test_new_without_init_is_a_default_value():
         assert obj == cls() and repr(obj) == cls.__name__ + "()"
     o = oscidrum.CaseOutcome.__new__(oscidrum.CaseOutcome)
     assert o.valid and o.metrics.area == 0.0
+    r = oscidrum.Result.__new__(oscidrum.Result)  # a default Result, never uninitialised memory
+    assert (r.frequency, len(r.samples), r.diagnostics.steps) == (0.0, 0, 0)
+    assert oscidrum.Metrics.__new__(oscidrum.Metrics).area == 0.0
+    with pytest.raises(oscidrum.Error, match="Result objects come from the library"):
+        oscidrum.Result()
 
 
 @pytest.mark.parametrize("case", [
