@@ -69,5 +69,6 @@ setup(
     cmdclass={"build_ext": CMakeBuild},
     # build/ is the CMake build tree of scripts/build.sh: keep setuptools' files apart.
     options={"build": {"build_base": "build-pip"}},
+    package_data={"oscidrum": ["*.pyi", "py.typed"]},
     zip_safe=False,
 )

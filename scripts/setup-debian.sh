@@ -20,6 +20,11 @@ packages=(
   python3-pip python3-setuptools python3-wheel
   emscripten                    # the browser explorer: the engine compiled to WebAssembly
   chromium                      # the explorer's end-to-end test (headless)
+  python3-pandas python3-tqdm   # DataFrames of results, progress bars of studies
+  python3-xarray python3-netcdf4  # studies as xarray Datasets and netCDF files
+  python3-distributed           # Dask: studies on a cluster (and its test)
+  python3-mpi4py openmpi-bin    # mpi4py.futures: studies under MPI (and its test)
+  python3-nbclient python3-nbformat python3-ipykernel  # the notebooks, run by the tests
 )
 # node and npm for the explorer (web/): Debian's, unless a node is already installed
 if ! command -v node >/dev/null; then packages+=(nodejs); fi

@@ -5,8 +5,7 @@ adds plots (:mod:`oscidrum.plot`), the paper's studies (:mod:`oscidrum.paper`) a
 writers of the CLI's files (:mod:`oscidrum.data`). All quantities are SI; see docs/python.md.
 
 >>> import oscidrum
->>> case = oscidrum.Case(soil=oscidrum.table2_soil(5e6), MMd=0.05 * 54947)
->>> case.set("contact.pure_rolling", True)
+>>> case = oscidrum.Case(table2_G=5e6, MMd_fraction=0.05, pure_rolling=True)
 >>> result = oscidrum.simulate(case)            # doctest: +SKIP
 >>> result.samples.ddx_M                         # NumPy array [m/s^2]   # doctest: +SKIP
 >>> oscidrum.compute_metrics(result).area        # [m^2/s^4]             # doctest: +SKIP
@@ -83,6 +82,7 @@ _CORE_NAMES = (
     "ValidationRow",
     "__version__",
     "accelerations",
+    "case_to_toml",
     "analyze_record",
     "analyze_windows",
     "compute_metrics",
@@ -95,13 +95,13 @@ _CORE_NAMES = (
     "harmonics",
     "identify_record",
     "kinematics",
+    "load_case",
     "make_trough_geometry",
     "paper_case",
     "paper_series",
     "phi_rolling",
     "run_case",
     "run_paper_studies",
-    "run_study",
     "simulate",
     "slip_constraint_residual",
     "slip_velocity",
@@ -115,14 +115,90 @@ _CORE_NAMES = (
     "wrap_pi",
 )
 
+def _explain(exc):
+    """pybind11's "f(): incompatible function arguments. The following argument types are
+    supported: 1. (x: float) -> ... Invoked with: 'a'" as one line naming the rule."""
+    text = str(exc)
+    head = text.split(":", 1)[0]
+    sigs = [line.strip() for line in text.splitlines() if line.strip()[:2].rstrip(".").isdigit()]
+    sigs = [s.split(".", 1)[1].strip().replace("oscidrum._core.", "") for s in sigs]
+    got = text.rsplit("Invoked with:", 1)[-1].strip() if "Invoked with:" in text else "?"
+    return f"{head}: arguments must be {' or '.join(sigs) or 'of other types'}; got {got}"
+
+
+def _friendly(func):
+    """Turn pybind11's TypeError for arguments of the wrong type into oscidrum.Error (only when
+    raised by the compiled function itself, not by a Python callback it called)."""
+    import functools
+
+    @functools.wraps(func)
+    def call(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except TypeError as exc:
+            tb = exc.__traceback__
+            if tb is not None and tb.tb_next is None and "incompatible" in str(exc):
+                raise _core.Error(_explain(exc)) from None
+            raise
+    return call
+
+
+def _friendly_class(cls):
+    for name, attr in list(vars(cls).items()):
+        if name.startswith("__") and name not in ("__init__", "__setstate__", "__call__"):
+            continue
+        if type(attr).__name__ == "instancemethod":
+            setattr(cls, name, _friendly(attr.__func__))
+        elif isinstance(attr, staticmethod):
+            setattr(cls, name, staticmethod(_friendly(attr.__func__)))
+        elif type(attr) is property and attr.fset is not None:
+            setattr(cls, name, property(attr.fget, _friendly(attr.fset), attr.fdel, attr.__doc__))
+
+
+def _result_to_dataframe(self):
+    """The steady-state samples as a pandas DataFrame.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One column per sample attribute (t [s], delta [rad], ..., ddx_M [m/s^2], ..., phase
+        [-]: 0 stick, 1 slip+, -1 slip-), in the column order of the CLI's CSV;
+        ``df.attrs['units']`` maps the columns to units.
+
+    Examples
+    --------
+    >>> df = oscidrum.simulate(oscidrum.Case()).to_dataframe()    # doctest: +SKIP
+    >>> df.plot(x="ddx_M", y="ddz_M")                            # doctest: +SKIP
+    """
+    import pandas as pd
+
+    s = self.samples
+    df = pd.DataFrame(s.to_dict(), columns=list(s.columns))
+    units = {}
+    for name, header in zip(s.columns, s.headers):
+        units[name] = header[header.index("[") + 1:-1] if "[" in header else "-"
+    df.attrs["units"] = units
+    return df
+
+
 if _core is not None:
-    globals().update({name: getattr(_core, name) for name in _CORE_NAMES})
+    for _name in _CORE_NAMES:
+        _obj = getattr(_core, _name)
+        if isinstance(_obj, type) and not issubclass(_obj, BaseException):
+            _friendly_class(_obj)
+            globals()[_name] = _obj
+        elif callable(_obj) and not isinstance(_obj, type):
+            globals()[_name] = _friendly(_obj)
+        else:
+            globals()[_name] = _obj
+    _core.Result.to_dataframe = _result_to_dataframe
+    from .study import Interrupted, StudyResult, run_study  # noqa: E402
 
 
 def __getattr__(name):
     # Only reached without a compiled core: oscidrum.data and oscidrum.plot still work on CSV
     # files, everything else explains what is missing.
-    if name in _CORE_NAMES:
+    if name in _CORE_NAMES or name in ("run_study", "StudyResult", "Interrupted"):
         raise ImportError(f"oscidrum.{name} needs the compiled module oscidrum._core, which "
                           f"could not be imported ({_core_error}); build it (cmake "
                           "-DOSCIDRUM_BUILD_PYTHON=ON) or install the package (pip install "
@@ -130,4 +206,5 @@ def __getattr__(name):
     raise AttributeError(f"module 'oscidrum' has no attribute '{name}'")
 
 
-__all__ = [name for name in _CORE_NAMES if name != "__version__"]
+__all__ = [name for name in _CORE_NAMES if name != "__version__"] + [
+    "run_study", "StudyResult", "Interrupted"]

@@ -1,6 +1,8 @@
 // Bindings of oscidrum/kinematics.hpp: trough geometry and the functions f1 ... f6 of delta.
 #include "bindings.hpp"
+#include "oscidrum/fields.hpp"
 #include "oscidrum/kinematics.hpp"
+#include "oscidrum/model.hpp"
 
 namespace oscidrum::python {
 
@@ -12,8 +14,21 @@ void bind_kinematics(py::module_& m) {
       .def_readonly("a", &TroughGeometry::a, "spiral parameter [m]")
       .def_readonly("alpha", &TroughGeometry::alpha, "alpha = atan(1/k) [rad]")
       .def_readonly("R0", &TroughGeometry::R0, "R0 = a exp(k theta0) [m]");
-  m.def("make_trough_geometry", &make_trough_geometry, py::arg("r"), py::arg("k"), py::arg("a"),
-        "Derived trough geometry from drum radius r [m], spiral k [-] and a [m].");
+  m.def(
+      "make_trough_geometry",
+      [](double r, double k, double a) {
+        // The rules of roller.r, trough.k and trough.a, and between them, as for a Case.
+        Case c;
+        set_field(c, "roller.r", r);
+        set_field(c, "trough.k", k);
+        set_field(c, "trough.a", a);
+        const Model model(c);
+        return model.geometry();
+      },
+      py::arg("r"), py::arg("k"), py::arg("a"),
+      "Derived trough geometry from drum radius r [m], spiral k [-] and a [m].\n\n"
+      "Raises\n------\noscidrum.Error\n    When r, k or a breaks the rule of roller.r, trough.k or "
+      "trough.a, or the trough does not fit the drum (e.g. a <= r for k = 0).");
 
   py::class_<Kinematics>(m, "Kinematics",
                          "Everything that depends on delta alone, (15)-(16), "

@@ -145,10 +145,19 @@ void bind_metrics(py::module_& m) {
         return compute_metrics(model, result, n_max);
       },
       py::arg("result"), py::arg("n_max") = 10, py::arg("case") = py::none(),
-      "Metrics of a Result's steady state, harmonics up to n_max. With `case` (the Case the "
-      "result was simulated with) they are read off the trajectory's dense output, as `run` and "
-      "`run_study` do, independent of numerics.samples_per_period; without, off the uniform "
-      "samples. Raises oscidrum.Error if the result is no steady state or holds no samples.");
+      "Metrics of a Result's steady state (docs/outputs.md).\n\n"
+      "Parameters\n----------\nresult : Result\n    A steady-state result with samples.\n"
+      "n_max : int, default 10\n    Highest harmonic.\n"
+      "case : Case, optional\n    The Case the result was simulated with: the metrics are then "
+      "read off the trajectory's dense output, as `run` and `run_study` do, independent of "
+      "numerics.samples_per_period; without it, off the uniform samples.\n\n"
+      "Returns\n-------\nMetrics\n    ddx_max, ddz_max [m/s^2], phi_lag [pi rad], psi_xz "
+      "[rad], area [m^2/s^4], stick_fraction [-], harmonics, ... (units: Metrics.units).\n\n"
+      "Raises\n------\noscidrum.Error\n    If the result is no steady state or holds no "
+      "samples.\n\n"
+      "Examples\n--------\n>>> case = oscidrum.Case()\n"
+      ">>> m = oscidrum.compute_metrics(oscidrum.simulate(case), case=case)"
+      "\n>>> round(m.area, 1)   # [m^2/s^4]\n22.8\n");
 }
 
 }  // namespace oscidrum::python

@@ -51,14 +51,16 @@ void bind_result(py::module_& m) {
   py::enum_<Status> status(m, "Status",
                            "How a simulation ended (Result.status; .name gives the text).");
   for (const StatusInfo& st : statuses()) status.value(st.name, st.status, st.description);
+  strict_enum(status);
 
-  py::enum_<EventKind>(m, "EventKind", "Kind of a located event.")
-      .value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")
+  py::enum_<EventKind> event_kind(m, "EventKind", "Kind of a located event.");
+  event_kind.value("stick_to_slip", EventKind::stick_to_slip, "|T| reached mu N")
       .value("slip_to_stick", EventKind::slip_to_stick,
              "v_rel reached 0 and the stick solution stays in the friction cone")
       .value("slip_reversal", EventKind::slip_reversal,
              "v_rel reached 0, stick not sustainable: slip on with the opposite sign")
       .value("contact_lost", EventKind::contact_lost, "N reached 0");
+  strict_enum(event_kind);
 
   py::class_<Event>(m, "Event", "One located event.")
       .def_readonly("t", &Event::t, "time [s]")

@@ -51,12 +51,20 @@ Result simulate_model(const Model& model, const py::object& progress) {
 void bind_simulate(py::module_& m) {
   const char* doc =
       "Integrate from rest at the bottom of the trough to the steady state and sample it "
-      "(Dormand-Prince 5(4), events located on the dense output). Raises oscidrum.Error for "
-      "invalid parameters; numerical trouble is reported in Result.status, not raised.\n\n"
-      "progress: optional callable progress(period: int, change: float) called once per "
+      "(Dormand-Prince 5(4), events located on the dense output).\n\n"
+      "Parameters\n----------\ncase : Case (or model : Model)\n    The parameters (SI units).\n"
+      "progress : callable, optional\n    progress(period: int, change: float) once per "
       "integrated excitation period with the period-to-period change [-]; return False to "
-      "cancel (the result then has status max_periods_reached). The GIL is released while "
-      "integrating; Ctrl-C raises KeyboardInterrupt.";
+      "cancel (the result then has status cancelled).\n\n"
+      "Returns\n-------\nResult\n    status, message, diagnostics, the sampled steady state "
+      "(samples: t [s], ddx_M, ddz_M [m/s^2], ...), events; Result.to_dataframe() gives the "
+      "samples as a pandas DataFrame.\n\n"
+      "Raises\n------\noscidrum.Error\n    For invalid parameters (numerical trouble is "
+      "reported in Result.status, not raised).\nKeyboardInterrupt\n    On Ctrl-C (the GIL is "
+      "released while integrating).\n\n"
+      "Examples\n--------\n>>> r = oscidrum.simulate(oscidrum.Case(table2_G=5e6, "
+      "pure_rolling=True))\n>>> r.status.name\n'steady_state'\n>>> float(r.samples.ddx_M.max())"
+      "   # [m/s^2]  # doctest: +SKIP\n";
   m.def(
       "simulate",
       [](const Case& c, const py::object& progress) { return simulate_model(Model(c), progress); },

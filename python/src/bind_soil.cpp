@@ -60,8 +60,11 @@ void bind_soil(py::module_& m) {
       "Paper Table 2: G = 5 ... 70 MN/m^2 in steps of 5 (nu = 0.3, rho = 1900 kg/m^3), as a "
       "list of Table2Row in SI units.");
   m.def("table2_soil", &table2_soil, py::arg("G"),
-        "The Table 2 soil (input = 'coefficients') at G [Pa], one of 5e6, 10e6, ..., 70e6; "
-        "raises oscidrum.Error otherwise.");
+        "The soil of paper Table 2 at G (input = 'coefficients').\n\n"
+        "Parameters\n----------\nG : float\n    Shear modulus [Pa], one of 5e6, 10e6, ..., "
+        "70e6.\n\nReturns\n-------\nSoil\n\nRaises\n------\noscidrum.Error\n    For "
+        "another G.\n\nExamples\n--------\n>>> oscidrum.table2_soil(5e6).ksh   # [N/m]\n"
+        "11400000.0\n");
 }
 
 }  // namespace oscidrum::python

@@ -8,9 +8,10 @@
 namespace oscidrum::python {
 
 void bind_state(py::module_& m) {
-  py::enum_<Phase>(m, "Phase",
-                   "Contact phase; the value of a slip phase is s = sign(v_rel) of (27)-(29).")
-      .value("slip_negative", Phase::slip_negative, "v_rel < 0, T = +mu N > 0 (-1)")
+  py::enum_<Phase> phase(
+      m, "Phase", "Contact phase; the value of a slip phase is s = sign(v_rel) of (27)-(29).");
+  strict_enum(phase);
+  phase.value("slip_negative", Phase::slip_negative, "v_rel < 0, T = +mu N > 0 (-1)")
       .value("stick", Phase::stick, "pure rolling, |T| <= mu N (0)")
       .value("slip_positive", Phase::slip_positive, "v_rel > 0, T = -mu N < 0 (+1)")
       .def_property_readonly(

@@ -6,11 +6,15 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "bindings.hpp"
+#include "oscidrum/error.hpp"
 #include "oscidrum/study.hpp"
 
 namespace oscidrum::python {
@@ -21,19 +25,159 @@ constexpr std::int64_t kPollTicks =
     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(50))
         .count();
 
-std::vector<Case> to_cases(const py::iterable& items) {
+// ---- pickling of CaseOutcome (for studies on executors: outcomes travel between processes) ----
+// A flat little-endian byte string of this build's structs, headed by a format tag and the sizes
+// of the fixed-size parts; only the same oscidrum build reads it back. The members of
+// Diagnostics, Samples and Metrics come from the output tables (oscidrum/outputs.hpp), so a new
+// output travels without a change here.
+
+constexpr std::uint32_t kOutcomeFormat = 0x4f534332;  // "OSC2"
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const char*>(&v);
+    bytes_.append(p, sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put<std::uint64_t>(v.size());
+    if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  void put(const std::string& s) {
+    put<std::uint64_t>(s.size());
+    bytes_ += s;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+  template <class T>
+  void get(T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    take(&v, sizeof(T));
+  }
+  template <class T>
+  void get(std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::uint64_t n = 0;
+    get(n);
+    if (n > (bytes_.size() - pos_) / sizeof(T)) fail();
+    v.resize(n);
+    if (n > 0) take(v.data(), n * sizeof(T));
+  }
+  void get(std::string& s) {
+    std::uint64_t n = 0;
+    get(n);
+    if (n > bytes_.size() - pos_) fail();
+    s.assign(bytes_.substr(pos_, n));
+    pos_ += n;
+  }
+  template <class T>
+  T get() {
+    T v{};
+    get(v);
+    return v;
+  }
+  bool at_end() const { return pos_ == bytes_.size(); }
+  [[noreturn]] static void fail() {
+    throw Error(
+        "cannot restore a CaseOutcome: the state is not one written by this build of oscidrum");
+  }
+
+ private:
+  void take(void* out, std::size_t n) {
+    if (n > bytes_.size() - pos_) fail();
+    std::memcpy(out, bytes_.data() + pos_, n);
+    pos_ += n;
+  }
+  std::string_view bytes_;
+  std::size_t pos_ = 0;
+};
+
+// Every member of a CaseOutcome, in one order for writing (Writer) and reading (Reader).
+template <class IO, class O>
+void each_member(IO&& io, O& o) {
+  auto& r = o.result;
+  auto& d = r.diagnostics;
+  io(o.valid), io(o.error), io(r.status), io(r.message);
+#define OSCIDRUM_MEMBER(type, name, initial, unit, label, description) io(d.name);
+  OSCIDRUM_DIAGNOSTICS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
+  io(d.method), io(d.newton_iterations), io(d.jacobian_evaluations), io(d.period_equivalents),
+      io(d.phi_drift), io(d.fallback);
+  io(r.frequency), io(r.sample_periods), io(r.samples_per_period);
+#define OSCIDRUM_MEMBER(type, name, unit, label, description) io(r.samples.name);
+  OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
+  io(r.events), io(r.stick_time), io(r.slip_positive_time), io(r.slip_negative_time);
+  io(r.floquet.multipliers), io(r.floquet.max_modulus), io(r.floquet.stability);
+#define OSCIDRUM_MEMBER(type, name, unit, label, description) io(o.metrics.name);
+  OSCIDRUM_METRICS(OSCIDRUM_MEMBER)
+#undef OSCIDRUM_MEMBER
+}
+
+py::bytes outcome_state(const CaseOutcome& o) {
+  Writer w;
+  w.put(kOutcomeFormat);
+  w.put<std::uint32_t>(sizeof(Event));
+  w.put<std::uint32_t>(sizeof(Harmonic));
+  each_member([&](const auto& v) { w.put(v); }, o);
+  return py::bytes(w.bytes());
+}
+
+CaseOutcome outcome_from_state(py::handle state) {
+  if (!py::isinstance<py::bytes>(state)) Reader::fail();
+  const std::string bytes = state.cast<std::string>();
+  Reader rd(bytes);
+  if (rd.get<std::uint32_t>() != kOutcomeFormat || rd.get<std::uint32_t>() != sizeof(Event) ||
+      rd.get<std::uint32_t>() != sizeof(Harmonic))
+    Reader::fail();
+  CaseOutcome o;
+  each_member([&](auto& v) { rd.get(v); }, o);
+  if (!rd.at_end()) Reader::fail();
+  return o;
+}
+
+std::vector<Case> to_cases(const py::handle& items) {
+  if (!py::isinstance<py::iterable>(items) || py::isinstance<py::str>(items) ||
+      py::isinstance<py::dict>(items) || py::isinstance<Case>(items))
+    throw Error(
+        "cases must be a list (or other iterable) of Case objects or {key: value} dicts; "
+        "got " +
+        py::str(py::type::of(items).attr("__name__")).cast<std::string>());
   std::vector<Case> cases;
   py::object from_dict = py::module_::import("oscidrum._core").attr("Case").attr("from_dict");
   for (py::handle item : items) {
-    if (py::isinstance<py::dict>(item))
-      cases.push_back(from_dict(item).cast<Case>());
-    else
+    const std::string where = "cases[" + std::to_string(cases.size()) + "]";
+    if (py::isinstance<Case>(item)) {
       cases.push_back(item.cast<Case>());
+    } else if (py::isinstance<py::dict>(item)) {
+      try {
+        cases.push_back(from_dict(item).cast<Case>());
+      } catch (const py::error_already_set& e) {
+        throw Error(where + ": " + py::str(e.value()).cast<std::string>());
+      }
+    } else {
+      std::string text = py::repr(item).cast<std::string>();
+      if (text.size() > 60) text = text.substr(0, 60) + "...";
+      throw Error(where + " must be a Case or a {key: value} dict; got " +
+                  py::str(py::type::of(item).attr("__name__")).cast<std::string>() + " (" + text +
+                  ")");
+    }
   }
   return cases;
 }
 
-std::vector<CaseOutcome> run_study_py(const py::iterable& items, int threads, bool keep_samples,
+std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool keep_samples,
                                       int n_harmonics, const py::object& progress,
                                       const py::object& on_case_done) {
   const std::vector<Case> cases = to_cases(items);
@@ -86,7 +230,23 @@ std::vector<CaseOutcome> run_study_py(const py::iterable& items, int threads, bo
 }  // namespace
 
 void bind_study(py::module_& m) {
-  py::class_<CaseOutcome>(m, "CaseOutcome", "What one case of a study produced.")
+  py::class_<CaseOutcome> outcome(m, "CaseOutcome",
+                                  "What one case of a study produced. Picklable (for studies on "
+                                  "executors), between processes of the same oscidrum build.");
+  construct_on_new(outcome);
+  outcome.def("__getstate__", &outcome_state);
+  outcome.def_static(
+      "not_run",
+      [] {
+        CaseOutcome o;
+        o.valid = false;
+        o.error = "cancelled";
+        return o;
+      },
+      "The outcome of a case a study did not run (valid=False, error='cancelled').");
+  def_assigning(outcome, "__setstate__",
+                [](CaseOutcome& self, py::handle state) { self = outcome_from_state(state); });
+  outcome
       .def_readonly("valid", &CaseOutcome::valid,
                     "False: the case was rejected (invalid parameters); see `error`")
       .def_readonly("error", &CaseOutcome::error, "the oscidrum.Error message when not valid")

@@ -6,8 +6,10 @@
 #include <pybind11/pybind11.h>
 
 #include <span>
+#include <string>
 #include <string_view>
 
+#include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/parameters.hpp"
 
@@ -44,5 +46,63 @@ py::object field_value(const Case& c, const Field& field);
 /// Set a field from a Python value (number, bool, or text as set_field_text reads it). Throws
 /// oscidrum::Error with the library's message when the value breaks the field's rule.
 void set_field_value(Case& c, std::string_view key, py::handle value);
+
+/// Make `T.__new__(T)` (without __init__) give a default-constructed T instead of uninitialised
+/// memory: the type's tp_new constructs the value and its holder. The class must then define
+/// __init__ (and __setstate__) as ordinary methods that assign to the already-built value, since
+/// pybind11 ignores a constructor on an instance that is already built.
+template <class T>
+void construct_on_new(py::class_<T> cls) {
+  cls.def_static("__new__", [](py::handle subtype, const py::args&, const py::kwargs&) {
+    auto* type = reinterpret_cast<PyTypeObject*>(subtype.ptr());
+    PyObject* self = py::detail::pybind11_object_new(type, nullptr, nullptr);
+    if (self == nullptr) throw py::error_already_set();
+    auto* inst = reinterpret_cast<py::detail::instance*>(self);
+    auto v_h = inst->get_value_and_holder(py::detail::get_type_info(typeid(T)));
+    v_h.value_ptr() = new T();
+    v_h.type->init_instance(inst, nullptr);
+    return py::reinterpret_steal<py::object>(self);
+  });
+}
+
+/// Define `attr` (__init__ or __setstate__) as an ordinary method on a class made by
+/// construct_on_new: pybind11 treats functions *named* __init__/__setstate__ as constructors and
+/// skips them on an instance that is already built, so the function gets another name.
+template <class Cls, class F, class... Extra>
+void def_assigning(Cls& cls, const char* attr, F&& f, const Extra&... extra) {
+  cls.attr(attr) =
+      py::cpp_function(std::forward<F>(f), py::name(attr[2] == 'i' ? "_init" : "_setstate"),
+                       py::is_method(cls), extra...);
+}
+
+/// Make an enum's constructor strict: Status(99), Status(True) or Status(2.0) raise
+/// oscidrum.Error instead of making a value outside the enumeration; the member's name is
+/// accepted too (Status('chattering')).
+template <class E>
+void strict_enum(py::enum_<E>& e) {
+  py::handle type = e;
+  e.def(py::init([type](py::handle value) {
+          const py::dict members = type.attr("__members__");
+          if (py::isinstance<E>(value)) return value.cast<E>();
+          const std::string name = py::str(type.attr("__name__"));
+          std::string names;
+          for (auto item : members) {
+            const long long number =
+                py::int_(py::reinterpret_borrow<py::object>(item.second)).cast<long long>();
+            names += (names.empty() ? "" : ", ") + py::str(item.first).cast<std::string>() + " (" +
+                     std::to_string(number) + ")";
+            if (py::isinstance<py::str>(value) && py::str(item.first).equal(value))
+              return item.second.cast<E>();
+            if (PyLong_Check(value.ptr()) && !py::isinstance<py::bool_>(value)) {
+              int overflow = 0;
+              const long long i = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+              if (overflow == 0 && i == number) return item.second.cast<E>();
+            }
+          }
+          throw Error(name + " must be one of " + names + "; got " +
+                      py::repr(value).cast<std::string>());
+        }),
+        py::arg("value"), py::prepend());
+}
 
 }  // namespace oscidrum::python

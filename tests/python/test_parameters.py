@@ -53,33 +53,42 @@ def test_types_of_values():
     assert isinstance(c.get("soil.input"), str)
     c.soil.input = oscidrum.SoilInput.modulus
     assert c.soil.input == "modulus"
-    c.set("contact.pure_rolling", "true")
+    c.set("contact.pure_rolling", True)
     assert c.contact.pure_rolling is True
+    with pytest.raises(oscidrum.Error, match="contact.pure_rolling must be true or false"):
+        c.set("contact.pure_rolling", "true")  # as in the config files: no quoted booleans
 
 
-def test_repr_has_units():
-    text = repr(oscidrum.Roller())
+def test_str_has_units_and_repr_is_python():
+    text = str(oscidrum.Roller())
     assert text.startswith("Roller(") and "r=0.6 m" in text and "I=411.78 kg m^2" in text
     assert "f=39 Hz" in text
-    case = repr(oscidrum.Case())
+    case = str(oscidrum.Case())
     for part in ("roller=Roller(", "soil=Soil(", "trough=Trough(", "contact=Contact(",
                  "MMd=0 N m", "numerics=Numerics("):
         assert part in case
+    assert repr(oscidrum.Case()) == "Case()" and repr(oscidrum.Roller(m=2000.0)) == \
+        "Roller(m=2000.0)"
 
 
 def test_set_get_and_nested_mutation():
     c = oscidrum.Case()
+    c.set("soil.input", "modulus")
     c.set("soil.G", 5e6)
-    assert c.get("soil.G") == 5e6 == c.soil.G
+    assert c.get("soil.G") == 5e6 == c.soil.G == c.get("G")
+    c.set("soil.input", "coefficients")
     c.soil.ksh = 1.0e7  # nested objects are references into the case
     assert c.get("soil.ksh") == 1.0e7
 
 
 def test_from_dict_to_dict_roundtrip():
-    c = oscidrum.Case.from_dict({"soil.G": 6e6, "MMd": 2747.35, "contact": {"mu": 0.4}})
+    c = oscidrum.Case.from_dict({"soil.input": "modulus", "soil.G": 6e6, "MMd": 2747.35,
+                                 "contact": {"mu": 0.4}})
     assert c.soil.G == 6e6 and c.MMd == 2747.35 and c.contact.mu == 0.4
-    d = c.to_dict()
-    assert list(d) == oscidrum.Case.keys()
+    d = c.to_dict()  # the keys in effect: no soil coefficients under soil.input = modulus
+    assert list(d) == [k for k in oscidrum.Case.keys()
+                       if k not in ("soil.ksh", "soil.ksv", "soil.csh", "soil.csv")]
+    assert list(c.to_dict(all=True)) == oscidrum.Case.keys()
     assert oscidrum.Case.from_dict(d) == c
     assert c.replace(MMd=0.0).MMd == 0.0 and c.MMd == 2747.35
 

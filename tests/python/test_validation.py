@@ -47,7 +47,7 @@ def test_paper_case():
             else:  # the soft soils towards G -> 0: Appendix B
                 assert c.get("soil.input") == "modulus" and c.soil.G == G
             c.validate()
-    with pytest.raises(TypeError):
+    with pytest.raises(oscidrum.Error, match="arguments must be"):
         oscidrum.paper_case("rolling_MMd0_R0.606", 5e6)
 
 

@@ -1,0 +1,185 @@
+"""Studies from Python: DataFrames, xarray/netCDF, progress, Ctrl-C, and executors (a local
+pool, Dask distributed, mpi4py.futures) giving results identical to a local run, in order."""
+
+import os
+import pathlib
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import oscidrum
+
+G_VALUES = (5e6, 15e6, 25e6, 40e6)
+MU_VALUES = (0.3, 0.5, 0.7)
+
+
+def grid():
+    return [oscidrum.Case(table2_G=G, mu=mu) for G in G_VALUES for mu in MU_VALUES]
+
+
+@pytest.fixture(scope="module")
+def local():
+    return oscidrum.run_study(grid(), threads=2)
+
+
+def same(a, b):
+    """Outcomes equal bit for bit (status, diagnostics, every scalar metric)."""
+    assert len(a) == len(b)
+    for x, y in zip(a, b):
+        assert (x.valid, x.error, x.result.status, x.result.message) == \
+            (y.valid, y.error, y.result.status, y.result.message)
+        assert same_values(x.metrics.to_dict(), y.metrics.to_dict())
+        assert same_values(x.result.diagnostics.to_dict(), y.result.diagnostics.to_dict())
+
+
+def same_values(a, b):
+    """Dicts equal bit for bit, NaN equal to NaN (a ratio over a harmonic that vanishes by
+    symmetry is NaN in both)."""
+    def key(v):
+        return "nan" if isinstance(v, float) and v != v else v
+    return a.keys() == b.keys() and all(key(a[k]) == key(b[k]) for k in a)
+
+
+def test_dataframe(local):
+    df = local.to_dataframe()
+    assert {"soil.G", "contact.mu"} <= set(df.columns) and "roller.m" not in df.columns
+    assert len(df) == len(G_VALUES) * len(MU_VALUES) and df["ok"].all()
+    assert df["area"].tolist() == [o.metrics.area for o in local]
+    assert df.attrs["units"]["area"] == "m^2/s^4" and df.attrs["units"]["soil.G"] == "Pa"
+    assert set(oscidrum.Case.keys()) <= set(local.to_dataframe("all").columns)
+
+
+def test_xarray_and_netcdf(local, tmp_path):
+    import xarray as xr
+    ds = local.to_xarray()
+    assert ds["area"].dims == ("soil.G", "contact.mu")
+    assert ds["area"].attrs["units"] == "m^2/s^4"
+    for o, case in zip(local, local.cases):
+        assert ds["area"].sel({"soil.G": case.soil.G, "contact.mu": case.contact.mu}).item() == \
+            o.metrics.area
+    path = local.to_netcdf(tmp_path / "study.nc")
+    back = xr.open_dataset(path)
+    np.testing.assert_array_equal(back["area"].values, ds["area"].values)
+    assert back["ok"].values.all() and back["area"].attrs["units"] == "m^2/s^4"
+    back.close()
+    with pytest.raises(oscidrum.Error, match="do not form a grid"):
+        oscidrum.StudyResult(local.cases * 2, list(local) * 2).to_xarray()
+
+
+def test_progress_bar_only_on_a_terminal(capsys):
+    cases = [oscidrum.Case(pure_rolling=True)] * 3
+    oscidrum.run_study(cases)  # stderr is not a terminal here: no bar
+    assert "case" not in capsys.readouterr().err
+    oscidrum.run_study(cases, progress=True)
+    assert "3/3" in capsys.readouterr().err
+    seen = []
+    oscidrum.run_study(cases, progress=lambda d, t: seen.append((d, t)))
+    assert seen[-1] == (3, 3)
+
+
+def test_ctrl_c_keeps_what_is_done():
+    slow = oscidrum.Case(table2_G=70e6, pure_rolling=True)
+    fast = [oscidrum.Case()] * 4
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(oscidrum.Interrupted) as info:
+        oscidrum.run_study(fast + [slow] * 400, threads=1)
+    timer.join()
+    assert time.perf_counter() - start < 5.0
+    res = info.value.result
+    assert isinstance(info.value, KeyboardInterrupt) and len(res) == 404
+    assert all(o.ok for o in res[:4])  # done before Ctrl-C, kept
+    assert res[-1].valid is False and res[-1].error == "cancelled"
+
+
+def test_thread_pool_executor_equals_local(local):
+    from concurrent.futures import ThreadPoolExecutor
+    with ThreadPoolExecutor(2) as pool:
+        res = oscidrum.run_study(grid(), executor=pool, chunk_size=5, threads=1)
+    same(res, local)
+    assert res.cases == local.cases
+
+
+def test_dask_distributed_executor(local):
+    distributed = pytest.importorskip("distributed")
+    env = {"PYTHONPATH": os.pathsep.join(sys.path)}
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  host="127.0.0.1", dashboard_address=None,
+                                  worker_class=distributed.Nanny, env=env) as cluster, \
+            distributed.Client(cluster) as client:
+        res = oscidrum.run_study(grid(), executor=client.get_executor(), chunk_size=4)
+        workers = client.run(os.getpid)
+    assert len(set(workers.values())) == 2
+    same(res, local)
+
+
+MPI_SCRIPT = """
+import sys
+from mpi4py.futures import MPIPoolExecutor
+import oscidrum
+cases = [oscidrum.Case(table2_G=G, mu=mu) for G in {G} for mu in {MU}]
+local = oscidrum.run_study(cases, threads=1)
+with MPIPoolExecutor() as pool:
+    res = oscidrum.run_study(cases, executor=pool, chunk_size=4, threads=1)
+# repr: exact for floats (shortest round trip) and NaN equal to NaN
+assert repr([o.metrics.to_dict() for o in res]) == repr([o.metrics.to_dict() for o in local])
+assert repr([o.result.diagnostics.to_dict() for o in res]) == \\
+    repr([o.result.diagnostics.to_dict() for o in local])
+print("identical", len(res))
+"""
+
+
+def test_mpi4py_futures_executor(tmp_path):
+    pytest.importorskip("mpi4py")
+    mpiexec = shutil.which("mpiexec")
+    if mpiexec is None:
+        pytest.skip("mpiexec (openmpi-bin) is not installed")
+    script = tmp_path / "mpi_study.py"
+    script.write_text(MPI_SCRIPT.format(G=G_VALUES, MU=MU_VALUES))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path),
+               OMPI_MCA_btl="self,vader,tcp", OMPI_MCA_btl_tcp_if_include="lo",
+               OMPI_MCA_oob_tcp_if_include="lo", OMPI_MCA_rmaps_base_oversubscribe="1",
+               OMPI_MCA_plm_rsh_agent="", OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", PRTE_MCA_rmaps_default_mapping_policy=":oversubscribe")
+    args = [mpiexec, "-n", "3", "--oversubscribe"]
+    if os.geteuid() == 0:
+        args.append("--allow-run-as-root")
+    args += [sys.executable, "-m", "mpi4py.futures", str(script)]
+    p = subprocess.run(args, capture_output=True, text=True, env=env, timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert f"identical {len(G_VALUES) * len(MU_VALUES)}" in p.stdout
+
+
+def test_dataframe_has_no_metrics_without_a_steady_state():
+    res = oscidrum.run_study([oscidrum.Case(max_periods=2), oscidrum.Case(mu=-1.0 + 1.3)])
+    df = res.to_dataframe()
+    assert not df["ok"][0] and np.isnan(df["area"][0]) and df["status"][0] == "max_periods_reached"
+    assert df["ok"][1] and df["area"][1] > 0
+
+
+def test_outcome_pickles_every_member():
+    """A CaseOutcome crosses processes whole: samples, events, the Floquet multipliers of a
+    shooting run, the method diagnostics and the metrics (every output-table member)."""
+    import pickle
+    case = oscidrum.Case(table2_G=25e6, mu=0.5, MMd_fraction=0.05, method="shooting")
+    (o,) = oscidrum.run_study([case], threads=1, keep_samples=True)
+    assert o.result.status == oscidrum.Status.steady_state and len(o.result.samples.t) > 0
+    back = pickle.loads(pickle.dumps(o))
+    assert same_values(back.metrics.to_dict(), o.metrics.to_dict())
+    assert same_values(back.result.diagnostics.to_dict(), o.result.diagnostics.to_dict())
+    assert back.result.diagnostics.method == o.result.diagnostics.method
+    assert back.result.floquet_multipliers == o.result.floquet_multipliers
+    assert len(o.result.floquet_multipliers) > 0
+    for column in oscidrum.Samples.columns:
+        np.testing.assert_array_equal(np.asarray(getattr(back.result.samples, column)),
+                                      np.asarray(getattr(o.result.samples, column)))
+    assert [(e.t, e.kind) for e in back.result.events] == [(e.t, e.kind) for e in o.result.events]
+    with pytest.raises(oscidrum.Error, match="not one written by this build"):
+        o.__setstate__(o.__getstate__()[:-3])
