@@ -138,15 +138,21 @@ RecordColumns read_record(const RecordInput& o) {
     if (!file) throw Error(name + ": cannot open the file");
   }
   std::istream& in = o.file == "-" ? std::cin : file;
-  std::vector<std::pair<std::size_t, std::string>> lines;
-  std::string line;
-  for (std::size_t no = 1; std::getline(in, line); ++no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!is_comment(line)) lines.emplace_back(no, line);
-  }
-  if (lines.empty()) throw Error(name + ": no data (the record is empty or all comments)");
+  // Streamed: the first non-comment line sets the delimiter and the header; every other line is
+  // parsed as it is read, so memory holds the columns, not the text (24 bytes per row).
+  std::string line, first;
+  std::size_t no = 0, first_no = 0;
+  auto next_line = [&](std::string& into) {
+    while (std::getline(in, into)) {
+      ++no;
+      if (!into.empty() && into.back() == '\r') into.pop_back();
+      if (!is_comment(into)) return true;
+    }
+    return false;
+  };
+  if (!next_line(first)) throw Error(name + ": no data (the record is empty or all comments)");
+  first_no = no;
   // Delimiter: the first of ; tab , that the first line holds, else whitespace.
-  const std::string& first = lines.front().second;
   char delim = ' ';
   RecordColumns out;
   out.delimiter = "whitespace";
@@ -194,27 +200,28 @@ RecordColumns read_record(const RecordInput& o) {
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
   std::vector<double> speed;
-  for (std::size_t i = has_header ? 1 : 0; i < lines.size(); ++i) {
-    const std::vector<std::string> cells = split(lines[i].second, delim);
+  const double g = o.units == "g" ? kStandardGravity : 1.0;
+  auto parse = [&](const std::string& text, std::size_t line_no) {
+    const std::vector<std::string> cells = split(text, delim);
     if (cells.size() != header.size())
-      throw Error(name + ":" + std::to_string(lines[i].first) + ": " +
-                  std::to_string(cells.size()) + " cells, but the header has " +
-                  std::to_string(header.size()));
+      throw Error(name + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                  " cells, but the header has " + std::to_string(header.size()));
     auto get = [&](int c) {
       double v = 0;
       if (!parse_number(cells[static_cast<std::size_t>(c)], decimal_comma, v))
-        throw Error(name + ":" + std::to_string(lines[i].first) + ": column '" +
+        throw Error(name + ":" + std::to_string(line_no) + ": column '" +
                     header[static_cast<std::size_t>(c)] + "' must be a number; got '" +
                     cells[static_cast<std::size_t>(c)] + "'");
       return v;
     };
-    const double g = o.units == "g" ? kStandardGravity : 1.0;
     out.t.push_back(get(ct));
     out.ddx_M.push_back(g * get(cx));
     out.ddz_M.push_back(g * get(cz));
     if (cp >= 0) out.position.push_back(get(cp));
     if (cs >= 0) speed.push_back(get(cs));
-  }
+  };
+  if (!has_header) parse(first, first_no);
+  while (next_line(line)) parse(line, no);
   if (out.t.empty()) throw Error(name + ": no data rows after the header");
   if (cs >= 0 && cp < 0) {
     for (std::size_t i = 1; i < out.t.size(); ++i)

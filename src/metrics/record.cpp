@@ -3,11 +3,14 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "indicators.hpp"
 #include "oscidrum/error.hpp"
@@ -19,10 +22,110 @@ namespace {
 using detail::shortest;
 std::string num(double v) { return shortest(v); }
 
-// Least-squares coefficients (a_0, a_1, b_1, ..., a_N, b_N) of y on the harmonic basis.
-Eigen::VectorXd fit(const Eigen::MatrixXd& basis, std::span<const double> y) {
-  const Eigen::Map<const Eigen::VectorXd> v(y.data(), static_cast<Eigen::Index>(y.size()));
-  return basis.colPivHouseholderQr().solve(v);
+// The least-squares fit of a record on the harmonic basis 1, cos(n w), sin(n w), n = 1 ... n_max,
+// w = nu (t - t_ref), by the normal equations without the n x (2 n_max + 1) basis: B^T B needs
+// only the sums of cos(m w) and sin(m w), m = 0 ... 2 n_max (products of harmonics are
+// harmonics), and B^T y one more pass. O(n n_max) work, O(n_max^2) memory. The signals are taken
+// about their means (the constant column absorbs them exactly), so rounding stays at the scale
+// of their variation, not of an offset (gravity in a vertical record, a sensor's bias). For a
+// record of one period or more B^T B is close to diag(n, n/2, ..., n/2): well conditioned.
+struct HarmonicFit {
+  Eigen::VectorXd cx, cz;  ///< (a_0, a_1, b_1, ..., a_N, b_N) of x and z
+  double x_res = 0.0;      ///< |x - B cx|^2 by |x|^2 - cx . B^T x (sums about the mean)
+  double z_res = 0.0;      ///< the same for z
+  double x_var = 0.0;      ///< sum of (x - mean)^2
+  double z_var = 0.0;      ///< sum of (z - mean)^2
+};
+
+// Column j of the basis is cos(k w) (j = 2k - 1, or j = 0 with k = 0) or sin(k w) (j = 2k).
+void harmonics_at(double w, int m_max, std::vector<double>& cm, std::vector<double>& sm) {
+  const double c1 = std::cos(w), s1 = std::sin(w);
+  cm[0] = 1.0;
+  sm[0] = 0.0;
+  for (int m = 1; m <= m_max; ++m) {  // angle addition: cos, sin of m w
+    cm[m] = cm[m - 1] * c1 - sm[m - 1] * s1;
+    sm[m] = sm[m - 1] * c1 + cm[m - 1] * s1;
+  }
+}
+
+HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
+                          std::span<const double> z, double f, int n_max, double t_ref) {
+  const std::size_t rows = t.size();
+  const int cols = 2 * n_max + 1, m_max = 2 * n_max;
+  double x_mean = 0.0, z_mean = 0.0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    x_mean += x[i];
+    z_mean += z[i];
+  }
+  x_mean /= static_cast<double>(rows);
+  z_mean /= static_cast<double>(rows);
+  std::vector<double> sc(m_max + 1, 0.0), ss(m_max + 1, 0.0);  // sum cos(m w), sum sin(m w)
+  Eigen::VectorXd bx = Eigen::VectorXd::Zero(cols), bz = Eigen::VectorXd::Zero(cols);  // B^T y
+  std::vector<double> cm(m_max + 1), sm(m_max + 1);
+  HarmonicFit fit;
+  const double nu = 2.0 * M_PI * f;
+  for (std::size_t i = 0; i < rows; ++i) {
+    harmonics_at(nu * (t[i] - t_ref), m_max, cm, sm);
+    for (int m = 0; m <= m_max; ++m) {
+      sc[m] += cm[m];
+      ss[m] += sm[m];
+    }
+    const double xi = x[i] - x_mean, zi = z[i] - z_mean;
+    bx[0] += xi;
+    bz[0] += zi;
+    for (int n = 1; n <= n_max; ++n) {
+      bx[2 * n - 1] += xi * cm[n];
+      bx[2 * n] += xi * sm[n];
+      bz[2 * n - 1] += zi * cm[n];
+      bz[2 * n] += zi * sm[n];
+    }
+    fit.x_var += xi * xi;
+    fit.z_var += zi * zi;
+  }
+  auto sum_cos = [&](int m) { return sc[static_cast<std::size_t>(std::abs(m))]; };
+  auto sum_sin = [&](int m) { return m >= 0 ? ss[m] : -ss[-m]; };
+  Eigen::MatrixXd gram(cols, cols);
+  for (int i = 0; i < cols; ++i) {
+    const int ki = (i + 1) / 2;
+    const bool si = i > 0 && i % 2 == 0;
+    for (int j = 0; j < cols; ++j) {
+      const int kj = (j + 1) / 2;
+      const bool sj = j > 0 && j % 2 == 0;
+      if (!si && !sj)  // cos a cos b = (cos(a - b) + cos(a + b)) / 2
+        gram(i, j) = 0.5 * (sum_cos(ki - kj) + sum_cos(ki + kj));
+      else if (si && sj)  // sin a sin b = (cos(a - b) - cos(a + b)) / 2
+        gram(i, j) = 0.5 * (sum_cos(ki - kj) - sum_cos(ki + kj));
+      else if (!si && sj)  // cos a sin b = (sin(a + b) - sin(a - b)) / 2
+        gram(i, j) = 0.5 * (sum_sin(ki + kj) - sum_sin(ki - kj));
+      else  // sin a cos b = (sin(a + b) + sin(a - b)) / 2
+        gram(i, j) = 0.5 * (sum_sin(ki + kj) + sum_sin(ki - kj));
+    }
+  }
+  const auto solver = gram.colPivHouseholderQr();
+  fit.cx = solver.solve(bx);
+  fit.cz = solver.solve(bz);
+  fit.x_res = std::max(0.0, fit.x_var - fit.cx.dot(bx));
+  fit.z_res = std::max(0.0, fit.z_var - fit.cz.dot(bz));
+  fit.cx[0] += x_mean;
+  fit.cz[0] += z_mean;
+  return fit;
+}
+
+// RMS of y minus the fitted series, relative to the RMS of y, summed explicitly (a second pass:
+// the reported residual does not rest on the difference of sums).
+double relative_rms(std::span<const double> t, std::span<const double> y, const Eigen::VectorXd& c,
+                    double f, int n_max) {
+  std::vector<double> cm(2 * n_max + 1), sm(2 * n_max + 1);
+  const double nu = 2.0 * M_PI * f;
+  double yy = 0.0, rr = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    harmonics_at(nu * t[i], n_max, cm, sm);
+    double fitted = c[0];
+    for (int n = 1; n <= n_max; ++n) fitted += c[2 * n - 1] * cm[n] + c[2 * n] * sm[n];
+    yy += y[i] * y[i];
+    rr += (y[i] - fitted) * (y[i] - fitted);
+  }
+  return yy > 0 ? std::sqrt(rr / yy) : 0.0;
 }
 
 std::vector<Harmonic> to_harmonics(const Eigen::VectorXd& c, int n_max) {
@@ -36,22 +139,8 @@ std::vector<Harmonic> to_harmonics(const Eigen::VectorXd& c, int n_max) {
   return h;
 }
 
-double relative_rms(const Eigen::MatrixXd& basis, const Eigen::VectorXd& c,
-                    std::span<const double> y) {
-  const Eigen::Map<const Eigen::VectorXd> v(y.data(), static_cast<Eigen::Index>(y.size()));
-  const double rms = std::sqrt(v.squaredNorm() / static_cast<double>(y.size()));
-  const double res = std::sqrt((basis * c - v).squaredNorm() / static_cast<double>(y.size()));
-  return rms > 0 ? res / rms : 0.0;
-}
-
-}  // namespace
-
-RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx,
-                             std::span<const double> ddz, double f, int n_max) {
-  if (!(std::isfinite(f) && f > 0)) throw Error("record: f must be > 0 [Hz]; got " + num(f));
-  if (n_max < 2)
-    throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
-                std::to_string(n_max));
+void check_record(std::span<const double> t, std::span<const double> ddx,
+                  std::span<const double> ddz) {
   if (t.size() != ddx.size() || t.size() != ddz.size())
     throw Error("record: t, ddx_M and ddz_M must have the same length; got " +
                 std::to_string(t.size()) + ", " + std::to_string(ddx.size()) + ", " +
@@ -63,6 +152,19 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
       throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
                   " has t = " + num(t[i]) + " after " + num(t[i - 1]));
   }
+  if (t.size() < 2)
+    throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
+}
+
+}  // namespace
+
+RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx,
+                             std::span<const double> ddz, double f, int n_max) {
+  if (!(std::isfinite(f) && f > 0)) throw Error("record: f must be > 0 [Hz]; got " + num(f));
+  if (n_max < 2)
+    throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
+                std::to_string(n_max));
+  check_record(t, ddx, ddz);
   RecordMetrics m;
   m.cycles = t.empty() ? 0.0 : (t.back() - t.front()) * f;
   if (t.size() < 2 || m.cycles < 1.0)
@@ -73,22 +175,14 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
     throw Error("record: " + num(per_period) + " samples per period are too few for n_max = " +
                 std::to_string(n_max) + " (need at least " + std::to_string(2 * n_max + 1) + ")");
 
-  const double nu = 2.0 * M_PI * f;
-  const Eigen::Index rows = static_cast<Eigen::Index>(t.size());
-  Eigen::MatrixXd basis(rows, 2 * n_max + 1);
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    basis(i, 0) = 1.0;
-    for (int n = 1; n <= n_max; ++n) {
-      const double phase = n * nu * t[static_cast<std::size_t>(i)];
-      basis(i, 2 * n - 1) = std::cos(phase);
-      basis(i, 2 * n) = std::sin(phase);
-    }
-  }
-  const Eigen::VectorXd cx = fit(basis, ddx), cz = fit(basis, ddz);
+  // Harmonics with absolute-time phases (t_ref = 0).
+  const HarmonicFit fit = fit_harmonics(t, ddx, ddz, f, n_max, 0.0);
+  const Eigen::VectorXd& cx = fit.cx;
+  const Eigen::VectorXd& cz = fit.cz;
   m.ddx_harmonics = to_harmonics(cx, n_max);
   m.ddz_harmonics = to_harmonics(cz, n_max);
-  m.residual_x = relative_rms(basis, cx, ddx);
-  m.residual_z = relative_rms(basis, cz, ddz);
+  m.residual_x = relative_rms(t, ddx, cx, f, n_max);
+  m.residual_z = relative_rms(t, ddz, cz, f, n_max);
   m.psi_xz = wrap_pi(m.ddz_harmonics[2].phase - 2.0 * m.ddx_harmonics[1].phase);
   // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
   double overtones = 0.0;
@@ -97,6 +191,7 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
 
   // The fitted periodic signals over one period, for the extremes and the area.
   constexpr int kSamples = 1024;
+  const double nu = 2.0 * M_PI * f;
   std::vector<double> x(kSamples), z(kSamples);
   for (int j = 0; j < kSamples; ++j) {
     const double tj = static_cast<double>(j) / (kSamples * f);
@@ -129,83 +224,34 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Sum over x_M'' and z_M'' of the residual of the harmonic fit at f, each relative to the
-// signal's variance about its mean (so that the two signals weigh alike).
+// signal's variance about its mean (so that the two signals weigh alike). By the normal
+// equations (fit_harmonics): their difference of sums loses ~1e-16 of the variance to rounding,
+// far below the residual changes the frequency search resolves.
 double fit_residual(std::span<const double> t, std::span<const double> x, std::span<const double> z,
                     double f, int n_max) {
-  const Eigen::Index rows = static_cast<Eigen::Index>(t.size());
-  const int cols = 2 * n_max + 1;
-  if (rows < cols) return kNaN;
-  Eigen::MatrixXd basis(rows, cols);
-  const double nu = 2.0 * M_PI * f;
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    const double c1 = std::cos(nu * t[static_cast<std::size_t>(i)]);
-    const double s1 = std::sin(nu * t[static_cast<std::size_t>(i)]);
-    basis(i, 0) = 1.0;
-    double c = 1.0, s = 0.0;
-    for (int n = 1; n <= n_max; ++n) {  // angle addition: cos, sin of n nu t
-      const double cn = c * c1 - s * s1;
-      s = s * c1 + c * s1;
-      c = cn;
-      basis(i, 2 * n - 1) = c;
-      basis(i, 2 * n) = s;
-    }
-  }
-  const auto qr = basis.colPivHouseholderQr();
-  double total = 0.0;
-  for (const std::span<const double> y : {x, z}) {
-    const Eigen::Map<const Eigen::VectorXd> v(y.data(), rows);
-    const Eigen::VectorXd c = qr.solve(v);
-    const double var = (v.array() - v.mean()).square().sum();
-    const double res = (basis * c - v).squaredNorm();
-    total += var > 0 ? res / var : 0.0;
-  }
-  return total;
-}
-
-void check_record(std::span<const double> t, std::span<const double> ddx,
-                  std::span<const double> ddz) {
-  if (t.size() != ddx.size() || t.size() != ddz.size())
-    throw Error("record: t, ddx_M and ddz_M must have the same length; got " +
-                std::to_string(t.size()) + ", " + std::to_string(ddx.size()) + ", " +
-                std::to_string(ddz.size()));
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    if (!std::isfinite(t[i]) || !std::isfinite(ddx[i]) || !std::isfinite(ddz[i]))
-      throw Error("record: non-finite value in row " + std::to_string(i + 1));
-    if (i > 0 && !(t[i] > t[i - 1]))
-      throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
-                  " has t = " + num(t[i]) + " after " + num(t[i - 1]));
-  }
-  if (t.size() < 2)
-    throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
+  if (t.size() < static_cast<std::size_t>(2 * n_max + 1)) return kNaN;
+  const HarmonicFit fit = fit_harmonics(t, x, z, f, n_max, t[0]);  // the phase origin is free
+  return (fit.x_var > 0 ? fit.x_res / fit.x_var : 0.0) +
+         (fit.z_var > 0 ? fit.z_res / fit.z_var : 0.0);
 }
 
 }  // namespace
 
 namespace {
 
-// Golden-section search for the minimum of the fit residual over [f - h, f + h] to `tol` [Hz].
-double golden(std::span<const double> t, std::span<const double> ddx, std::span<const double> ddz,
-              double f, double h, int n_max, double tol) {
-  double a = f - h, b = f + h;
-  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = fit_residual(t, ddx, ddz, c, n_max), fd = fit_residual(t, ddx, ddz, d, n_max);
-  while (b - a > tol) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = fit_residual(t, ddx, ddz, c, n_max);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = fit_residual(t, ddx, ddz, d, n_max);
-    }
-  }
-  return 0.5 * (a + b);
+// Brent's minimisation (golden sections with parabolic steps) of the fit residual over
+// [f - h, f + h] to about `tol` [Hz]: the residual is smooth and unimodal in a bracket that holds
+// only the main lobe, where the parabolic steps converge in a few evaluations.
+double minimise_residual(std::span<const double> t, std::span<const double> ddx,
+                         std::span<const double> ddz, double f, double h, int n_max, double tol) {
+  // Boost's tolerance is relative: 2^(1 - bits) |f|; more than half the digits of a double
+  // cannot be resolved at a minimum.
+  const int bits = std::clamp(static_cast<int>(std::ceil(1.0 - std::log2(tol / f))), 8, 26);
+  std::uintmax_t max_iter = 200;
+  const auto [f_min, residual] = boost::math::tools::brent_find_minima(
+      [&](double g) { return fit_residual(t, ddx, ddz, g, n_max); }, f - h, f + h, bits, max_iter);
+  (void)residual;
+  return f_min;
 }
 
 }  // namespace
@@ -220,7 +266,7 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
   for (const int n : {1, 2, 4, n_max}) {
     const int m = std::min(n, n_max);
     const bool last = m == n_max;
-    f = golden(t, ddx, ddz, f, h, m, last ? 1e-7 * f : 1e-3 * h);
+    f = minimise_residual(t, ddx, ddz, f, h, m, last ? 1e-7 * f : 1e-3 * h);
     if (last) break;
     if (span > 0) h = std::min(h, 0.15 / (m * span));
   }

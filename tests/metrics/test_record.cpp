@@ -1,8 +1,10 @@
 // Tests of analyze_record (src/record.cpp): metrics of measured records by least squares.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "oscidrum/oscidrum.hpp"
@@ -76,6 +78,49 @@ TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
   EXPECT_NEAR(m.cycles, 3.37, 0.01);
   // Residual = noise RMS / signal RMS (x RMS = sqrt((40^2 + 4^2)/2 + 0.25)).
   EXPECT_NEAR(m.residual_x, 0.5 / std::sqrt((1600 + 16) / 2.0 + 0.25), 0.002);
+}
+
+// analyze_record fits by the normal equations (one pass, no n x (2 n_max + 1) basis): on a short,
+// jittered record with a large offset (1.2 periods, z about 9.81 as a vertical channel with
+// gravity), where the basis is furthest from orthogonal, its coefficients and residuals equal
+// those of an independent QR of the explicit basis to rounding.
+TEST(Record, NormalEquationsFitEqualsTheQrOfTheBasis) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const int n_max = 10;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<double> t, x, z;
+  const int n = 360;  // 300 per period
+  for (int i = 0; i < n; ++i) {
+    const double ti = 5.0 + (i + jitter(rng)) * 1.2 / f / n;
+    t.push_back(ti);
+    x.push_back(12.0 * std::sin(nu * ti) + 3.0 * std::sin(3 * nu * ti + 0.4) + noise(rng));
+    z.push_back(9.81 + std::sin(2 * nu * ti - 0.2) + 0.3 * std::sin(nu * ti) + noise(rng));
+  }
+  const RecordMetrics m = analyze_record(t, x, z, f, n_max);
+  Eigen::MatrixXd basis(n, 2 * n_max + 1);
+  for (int i = 0; i < n; ++i) {
+    basis(i, 0) = 1.0;
+    for (int k = 1; k <= n_max; ++k) {
+      basis(i, 2 * k - 1) = std::cos(k * nu * t[i]);
+      basis(i, 2 * k) = std::sin(k * nu * t[i]);
+    }
+  }
+  for (const auto& [y, h, residual] : {std::tuple{&x, &m.ddx_harmonics, m.residual_x},
+                                       std::tuple{&z, &m.ddz_harmonics, m.residual_z}}) {
+    const Eigen::Map<const Eigen::VectorXd> v(y->data(), n);
+    const Eigen::VectorXd c = basis.colPivHouseholderQr().solve(v);
+    const double scale = c.cwiseAbs().maxCoeff();
+    EXPECT_NEAR((*h)[0].amplitude, std::abs(c[0]), 1e-11 * scale);
+    for (int k = 1; k <= n_max; ++k) {
+      SCOPED_TRACE(k);
+      // A sin(w + theta) = a cos w + b sin w with a = A sin theta, b = A cos theta.
+      EXPECT_NEAR((*h)[k].amplitude * std::sin((*h)[k].phase), c[2 * k - 1], 1e-11 * scale);
+      EXPECT_NEAR((*h)[k].amplitude * std::cos((*h)[k].phase), c[2 * k], 1e-11 * scale);
+    }
+    EXPECT_NEAR(residual, (basis * c - v).norm() / v.norm(), 1e-9 * residual);
+  }
 }
 
 TEST(Record, RejectsBadRecords) {
