@@ -2,11 +2,15 @@
 // derivatives f1 ... f6 (46)-(50), plus the shorthands (33) and (37).
 #pragma once
 
+#include "oscidrum/trough.hpp"
+
 namespace oscidrum {
 
-/// Geometry of the log-spiral trough (docs/model.md section 1.4): R(theta) = a exp(k theta),
-/// alpha = atan(1/k), theta0 = pi - alpha, R0 = a exp(k theta0). k = 0: alpha = pi/2, R0 = a.
+/// The trough's shape with the drum radius and derived values cached for the kinematics
+/// (docs/model.md section 1.4): R(theta) = a exp(k theta), alpha = atan(1/k), theta0 = pi - alpha,
+/// R0 = a exp(k theta0); the circle (k = 0): alpha = pi/2, R0 = a.
 struct TroughGeometry {
+  TroughShape shape;                  ///< circle or log spiral; the kinematics dispatch on it
   double r = 0.6;                     ///< drum radius [m]
   double k = 0.0;                     ///< [-]
   double a = 0.606;                   ///< [m]
@@ -17,7 +21,7 @@ struct TroughGeometry {
   double root = 1.0;                  ///< sqrt(1 + k^2), cached [-]
 };
 
-/// Build the derived geometry from r, k, a.
+/// Build the derived geometry from r, k, a (k = 0: the circle of radius a).
 TroughGeometry make_trough_geometry(double r, double k, double a);
 
 /// Everything that depends on delta alone.
@@ -38,8 +42,16 @@ struct Kinematics {
   double f4_tilde = 0.0;  ///< (37) f2 sin + f4 cos (identically -f1_bar)
 };
 
-/// Evaluate (15), (16), (46)-(50), (33), (37) at delta [rad].
+/// Evaluate (15), (16), (46)-(50), (33), (37) at delta [rad], by the shape's own formulas.
 Kinematics kinematics(const TroughGeometry& geometry, double delta);
+
+/// Third derivatives of the roll curves (15), (16), for the Jacobians of the equations of motion.
+struct KinematicsRates {
+  double df2 = 0.0;  ///< d f2 / d delta (derivative of (47)) [m]
+  double df4 = 0.0;  ///< d f4 / d delta (derivative of (49)) [m]
+  double df6 = 0.0;  ///< d f6 / d delta (derivative of (50)) [1/rad]
+};
+KinematicsRates kinematics_rates(const TroughGeometry& geometry, double delta);
 
 /// Rolling condition (11): phi as a function of delta with no slip since t = 0 [rad]
 /// (k -> 0: (R0 - r) delta / r).

@@ -1,4 +1,6 @@
 // Bindings of oscidrum/kinematics.hpp: trough geometry and the functions f1 ... f6 of delta.
+#include <variant>
+
 #include "bindings.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/kinematics.hpp"
@@ -13,7 +15,13 @@ void bind_kinematics(py::module_& m) {
       .def_readonly("k", &TroughGeometry::k, "spiral parameter [-]")
       .def_readonly("a", &TroughGeometry::a, "spiral parameter [m]")
       .def_readonly("alpha", &TroughGeometry::alpha, "alpha = atan(1/k) [rad]")
-      .def_readonly("R0", &TroughGeometry::R0, "R0 = a exp(k theta0) [m]");
+      .def_readonly("R0", &TroughGeometry::R0, "R0 = a exp(k theta0) [m]")
+      .def_property_readonly(
+          "shape",
+          [](const TroughGeometry& g) {
+            return std::holds_alternative<CircleTrough>(g.shape) ? "circle" : "log_spiral";
+          },
+          "the trough's shape: 'circle' (k = 0, radius a) or 'log_spiral' (k > 0)");
   m.def(
       "make_trough_geometry",
       [](double r, double k, double a) {

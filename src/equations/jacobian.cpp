@@ -17,19 +17,6 @@ Vec8 to_vec8(const State& q) {
 
 State to_state(const Vec8& y) { return {y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7]}; }
 
-KinematicsRates kinematics_rates(const TroughGeometry& g, double delta) {
-  // Derivatives of (47) and (49), with u = alpha + delta and d exp(-k delta) / d delta = -k E.
-  const double k = g.k, r = g.r;
-  const double E = (k == 0.0) ? 1.0 : std::exp(-k * delta);
-  const double s = std::sin(delta), c = std::cos(delta);
-  const double su = g.sin_alpha * c + g.cos_alpha * s, cu = g.cos_alpha * c - g.sin_alpha * s;
-  const double RE = g.R0 * E;
-  KinematicsRates d;
-  d.df2 = RE * ((k * k * k - 3.0 * k) * cu + (3.0 * k * k - 1.0) * su) + r * c;
-  d.df4 = -RE * ((k * k * k - 3.0 * k) * su + (1.0 - 3.0 * k * k) * cu) - r * s;
-  return d;
-}
-
 Vec8 phase_rhs(const Model& model, double t, const State& q, Phase phase, double baumgarte) {
   const Kinematics k = kinematics(model.geometry(), q.delta);
   const Accelerations a =
@@ -57,7 +44,7 @@ Mat8 stick_jacobian(const Model& model, double t, const State& q) {
   const Accelerations a = stick_accelerations(model, t, q, k);
   const double sn = k.sin_delta, cs = k.cos_delta, dd = q.ddelta, dd2 = dd * dd;
   const double zs = k.z_roll - model.z_ref();
-  const double df6 = -model.geometry().k * k.f6;
+  const double df6 = kr.df6;
   const double df1_bar = k.f2_bar - k.f3_tilde;
   const double df2_bar = kr.df2 * cs - kr.df4 * sn - k.f4_tilde;
 

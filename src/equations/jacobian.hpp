@@ -19,13 +19,6 @@ using Mat8 = Eigen::Matrix<double, 8, 8>;
 Vec8 to_vec8(const State& q);
 State to_state(const Vec8& y);
 
-/// Third derivatives of the roll curves (15), (16): d f2 / d delta and d f4 / d delta [m].
-struct KinematicsRates {
-  double df2 = 0.0;  ///< d f2 / d delta (derivative of (47)) [m]
-  double df4 = 0.0;  ///< d f4 / d delta (derivative of (49)) [m]
-};
-KinematicsRates kinematics_rates(const TroughGeometry& geometry, double delta);
-
 /// y' = f(t, y) of `phase` ((52) in stick, (55) in slip with s = phase).
 Vec8 phase_rhs(const Model& model, double t, const State& q, Phase phase, double baumgarte);
 

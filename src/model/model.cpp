@@ -28,21 +28,9 @@ void validate(const Case& c) {
     throw Error(
         "roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
         num(R.P0) + " < m g = " + num(R.m * R.g));
-  if (c.trough.k == 0.0 && !(c.trough.a > R.r))
-    throw Error(
-        "trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
-        "must exceed the drum radius [m]; got a = " +
-        num(c.trough.a) + " <= r = " + num(R.r));
-  if (c.trough.k > 0.0) {
-    TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
-    // Curvature radius of the spiral at the bottom, sqrt(1+k^2) R0, must exceed r (f5(0) > 0).
-    const double rho_c = std::sqrt(1.0 + c.trough.k * c.trough.k) * g.R0;
-    if (!(rho_c > R.r))
-      throw Error(
-          "trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the "
-          "bottom [m]; got " +
-          num(rho_c) + " <= " + num(R.r));
-  }
+  if (const std::string problem = trough_problem(trough_shape(c.trough.k, c.trough.a), R.r);
+      !problem.empty())
+    throw Error(problem);
   if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
     throw Error(
         "contact.mu_static must be >= contact.mu (static friction is at least the kinetic), or "
@@ -82,7 +70,7 @@ Model::Model(const Case& c) : case_(c) {
   // degenerates (f5 = sqrt(1+k^2) R0/r - 1 -> 0 divides the stick equation) and no integrator
   // can follow the drum. 1 % of the deflection W / (ksv + kd) is far below any trough a drum
   // digs (the paper's smallest clearance, 3 mm, is over 10 times the deflection).
-  const double clearance = geometry_.root * geometry_.R0 - R.r;
+  const double clearance = curvature_radius_at_bottom(geometry_.shape) - R.r;
   const double deflection = W_ / (s.ksv + R.kd);
   if (clearance < 0.01 * deflection)
     throw Error("trough: the clearance between trough and drum, sqrt(1+k^2) R0 - roller.r = " +

@@ -1,12 +1,25 @@
-// Kinematics of the drum centre relative to the trough: (15), (16), (46)-(50), (33), (37), (11).
+// Kinematics of the drum centre relative to the trough: (15), (16), (46)-(50), (33), (37), (11),
+// dispatched on the trough's shape (oscidrum/trough.hpp; the formulas in trough_circle.cpp and
+// trough_log_spiral.cpp).
 #include "oscidrum/kinematics.hpp"
 
 #include <cmath>
+#include <type_traits>
+#include <variant>
+
+#include "physics/trough_shapes.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 
+TroughShape trough_shape(double k, double a) {
+  if (k == 0.0) return CircleTrough{a};
+  return LogSpiralTrough{k, a};
+}
+
 TroughGeometry make_trough_geometry(double r, double k, double a) {
   TroughGeometry g;
+  g.shape = trough_shape(k, a);
   g.r = r;
   g.k = k;
   g.a = a;
@@ -20,45 +33,53 @@ TroughGeometry make_trough_geometry(double r, double k, double a) {
   return g;
 }
 
-Kinematics kinematics(const TroughGeometry& g, double delta) {
-  Kinematics q;
-  const double k = g.k, r = g.r;
-  const double E = (k == 0.0) ? 1.0 : std::exp(-k * delta);
-  const double s = std::sin(delta), c = std::cos(delta);
-  // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
-  const double sa = g.sin_alpha, ca = g.cos_alpha;
-  const double sad = sa * c + ca * s, cad = ca * c - sa * s;
-  const double RE = g.R0 * E;
+double curvature_radius_at_bottom(const TroughShape& shape) {
+  return std::visit(
+      [](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, CircleTrough>) {
+          return s.R;
+        } else {
+          const double alpha = std::atan2(1.0, s.k);               // (8)
+          const double R0 = s.a * std::exp(s.k * (M_PI - alpha));  // (8), theta0 = pi - alpha
+          return std::sqrt(1.0 + s.k * s.k) * R0;
+        }
+      },
+      shape);
+}
 
-  q.sin_delta = s;
-  q.cos_delta = c;
-  q.x_roll = -RE * cad - r * s + g.R0 * ca;                    // (15)
-  q.z_roll = RE * sad - r * c - (g.R0 * sa - r);               // (16)
-  q.f1 = RE * (k * cad + sad) - r * c;                         // (46)
-  q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;   // (47)
-  q.f3 = -RE * (k * sad - cad) + r * s;                        // (48)
-  q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;  // (49)
-  const double root = g.root;
-  q.f5 = root * E * g.R0 / r - 1.0;  // (50)
-  q.f6 = -k * root * E * g.R0 / r;   // (50)
-  q.f1_bar = q.f1 * c - q.f3 * s;    // (33)
-  q.f2_bar = q.f2 * c - q.f4 * s;    // (33)
-  q.f3_tilde = q.f1 * s + q.f3 * c;  // (37)
-  q.f4_tilde = q.f2 * s + q.f4 * c;  // (37)
-  return q;
+std::string trough_problem(const TroughShape& shape, double r) {
+  using detail::shortest;
+  if (const auto* circle = std::get_if<CircleTrough>(&shape)) {
+    if (!(circle->R > r))
+      return "trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
+             "must exceed the drum radius [m]; got a = " +
+             shortest(circle->R) + " <= r = " + shortest(r);
+    return "";
+  }
+  // The spiral's curvature radius at the bottom, sqrt(1+k^2) R0, must exceed r (f5(0) > 0).
+  const double rho = curvature_radius_at_bottom(shape);
+  if (!(rho > r))
+    return "trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the bottom "
+           "[m]; got " +
+           shortest(rho) + " <= " + shortest(r);
+  return "";
+}
+
+Kinematics kinematics(const TroughGeometry& g, double delta) {
+  return std::holds_alternative<CircleTrough>(g.shape) ? detail::circle_kinematics(g, delta)
+                                                       : detail::log_spiral_kinematics(g, delta);
+}
+
+KinematicsRates kinematics_rates(const TroughGeometry& g, double delta) {
+  return std::holds_alternative<CircleTrough>(g.shape)
+             ? detail::circle_kinematics_rates(g, delta)
+             : detail::log_spiral_kinematics_rates(g, delta);
 }
 
 double phi_rolling(const TroughGeometry& g, double delta) {
-  // (11): phi = sqrt(1 + k^2) / (k r) R0 [1 - exp(-k delta)] - delta. For small k delta use the
-  // series of (1 - exp(-x)) / x to avoid cancellation; k = 0 gives (R0 - r) delta / r.
-  const double x = g.k * delta;
-  double ratio;  // (1 - exp(-x)) / x
-  if (std::abs(x) < 1e-5) {
-    ratio = 1.0 - x / 2.0 + x * x / 6.0;
-  } else {
-    ratio = -std::expm1(-x) / x;
-  }
-  return std::sqrt(1.0 + g.k * g.k) * g.R0 * delta * ratio / g.r - delta;
+  return std::holds_alternative<CircleTrough>(g.shape) ? detail::circle_phi_rolling(g, delta)
+                                                       : detail::log_spiral_phi_rolling(g, delta);
 }
 
 }  // namespace oscidrum

@@ -93,6 +93,7 @@ TEST(Jacobian, ThirdDerivativesOfTheRollCurves) {
       const double scale = model.r();
       EXPECT_NEAR(d.df2, (kp.f2 - km.f2) / (2 * h), test::kFiniteDifference * scale);
       EXPECT_NEAR(d.df4, (kp.f4 - km.f4) / (2 * h), test::kFiniteDifference * scale);
+      EXPECT_NEAR(d.df6, (kp.f6 - km.f6) / (2 * h), test::kFiniteDifference);
     }
   }
 }

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "oscidrum/kinematics.hpp"
@@ -134,6 +136,31 @@ TEST(Kinematics, ContactPointLiesOnTheSpiral) {
           << s.name << " delta = " << d;
     }
   }
+}
+
+// The trough as a component (oscidrum/trough.hpp): k = 0 is the circle of radius a, k > 0 the
+// spiral; each owns its curvature at the bottom and its check against the drum radius.
+TEST(Trough, ShapeComponentsAndTheirChecks) {
+  const TroughShape circle = trough_shape(0.0, 0.606);
+  ASSERT_TRUE(std::holds_alternative<CircleTrough>(circle));
+  EXPECT_EQ(std::get<CircleTrough>(circle).R, 0.606);
+  EXPECT_EQ(curvature_radius_at_bottom(circle), 0.606);
+  EXPECT_TRUE(std::holds_alternative<CircleTrough>(make_trough_geometry(kR, 0.0, 0.606).shape));
+  const TroughShape spiral = trough_shape(0.05, 0.65);
+  ASSERT_TRUE(std::holds_alternative<LogSpiralTrough>(spiral));
+  const TroughGeometry g = make_trough_geometry(kR, 0.05, 0.65);
+  EXPECT_TRUE(std::holds_alternative<LogSpiralTrough>(g.shape));
+  // Curvature radius of the spiral at the bottom: sqrt(1 + k^2) R0 = r (1 + f5(0)) by (50).
+  EXPECT_NEAR(curvature_radius_at_bottom(spiral), kR * (1.0 + kinematics(g, 0.0).f5),
+              kIdentity * kR);
+  EXPECT_EQ(trough_problem(circle, kR), "");
+  EXPECT_EQ(trough_problem(spiral, kR), "");
+  EXPECT_NE(trough_problem(trough_shape(0.0, 0.6), kR).find("trough.a must be > roller.r"),
+            std::string::npos);
+  // A spiral whose bottom is tighter than the drum: sqrt(1 + k^2) a exp(k (pi - atan(1/k))) =
+  // 0.155 m < r.
+  EXPECT_NE(trough_problem(trough_shape(0.5, 0.05), kR).find("curvature radius"),
+            std::string::npos);
 }
 
 TEST(Kinematics, CircleClosedForms) {

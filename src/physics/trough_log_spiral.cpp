@@ -1,0 +1,56 @@
+// The log-spiral trough R(theta) = a exp(k theta), k > 0 (8): the roll curve (15)-(16), its
+// derivatives (46)-(50) and the rolling relation (11).
+#include <cmath>
+
+#include "physics/trough_shapes.hpp"
+
+namespace oscidrum::detail {
+
+Kinematics log_spiral_kinematics(const TroughGeometry& g, double delta) {
+  Kinematics q;
+  const double k = g.k, r = g.r;
+  const double E = std::exp(-k * delta);
+  const double s = std::sin(delta), c = std::cos(delta);
+  // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
+  const double sa = g.sin_alpha, ca = g.cos_alpha;
+  const double sad = sa * c + ca * s, cad = ca * c - sa * s;
+  const double RE = g.R0 * E;
+
+  q.sin_delta = s;
+  q.cos_delta = c;
+  q.x_roll = -RE * cad - r * s + g.R0 * ca;                    // (15)
+  q.z_roll = RE * sad - r * c - (g.R0 * sa - r);               // (16)
+  q.f1 = RE * (k * cad + sad) - r * c;                         // (46)
+  q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;   // (47)
+  q.f3 = -RE * (k * sad - cad) + r * s;                        // (48)
+  q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;  // (49)
+  q.f5 = g.root * E * g.R0 / r - 1.0;                          // (50)
+  q.f6 = -k * g.root * E * g.R0 / r;                           // (50)
+  set_bar_tilde(q);
+  return q;
+}
+
+KinematicsRates log_spiral_kinematics_rates(const TroughGeometry& g, double delta) {
+  // Derivatives of (47), (49) and (50), with u = alpha + delta and
+  // d exp(-k delta) / d delta = -k exp(-k delta).
+  const double k = g.k, r = g.r;
+  const double E = std::exp(-k * delta);
+  const double s = std::sin(delta), c = std::cos(delta);
+  const double su = g.sin_alpha * c + g.cos_alpha * s, cu = g.cos_alpha * c - g.sin_alpha * s;
+  const double RE = g.R0 * E;
+  KinematicsRates d;
+  d.df2 = RE * ((k * k * k - 3.0 * k) * cu + (3.0 * k * k - 1.0) * su) + r * c;
+  d.df4 = -RE * ((k * k * k - 3.0 * k) * su + (1.0 - 3.0 * k * k) * cu) - r * s;
+  d.df6 = -k * (-k * g.root * E * g.R0 / r);
+  return d;
+}
+
+double log_spiral_phi_rolling(const TroughGeometry& g, double delta) {
+  // (11): phi = sqrt(1 + k^2) / (k r) R0 [1 - exp(-k delta)] - delta. For small k delta use the
+  // series of (1 - exp(-x)) / x to avoid cancellation.
+  const double x = g.k * delta;
+  const double ratio = std::abs(x) < 1e-5 ? 1.0 - x / 2.0 + x * x / 6.0 : -std::expm1(-x) / x;
+  return g.root * g.R0 * delta * ratio / g.r - delta;
+}
+
+}  // namespace oscidrum::detail
