@@ -44,7 +44,10 @@ TextTable diagnostics_table(bool markdown) {
   TextTable t;
   t.header = {"key", "unit", "type", "meaning"};
   for (const DiagnosticOutput& d : diagnostic_outputs())
-    t.rows.push_back({markdown ? code(d.name) : d.name, d.unit, is_integer(d) ? "integer" : "real",
+    t.rows.push_back({markdown ? code(d.name) : d.name, d.unit,
+                      is_integer(d) ? "integer"
+                      : is_text(d)  ? "text"
+                                    : "real",
                       d.description});
   return t;
 }
@@ -82,6 +85,7 @@ nlohmann::ordered_json json_rows(const Table& table) {
                  {"unit", o.unit},
                  {"type", is_integer(o)  ? "integer"
                           : is_scalar(o) ? "real"
+                          : is_text(o)   ? "text"
                                          : "array"},
                  {"label", o.label},
                  {"description", o.description}});

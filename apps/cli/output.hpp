@@ -43,6 +43,7 @@ class Summary {
 /// reals with `digits` significant digits).
 template <class Struct, class... Types>
 std::string output_text(const Struct& s, const Output<Struct, Types...>& out, int digits = 5) {
+  if (is_text(out)) return text_value(s, out);
   const double v = scalar_value(s, out);
   const std::string unit = out.unit;
   return (is_integer(out) ? std::to_string(static_cast<long long>(v)) : fmt(v, digits)) +

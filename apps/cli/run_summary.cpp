@@ -63,15 +63,10 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.section("result");
   s.line("status", to_string(result.status));
   if (!result.message.empty()) s.line("message", result.message);
-  for (const DiagnosticOutput& out : diagnostic_outputs())
-    s.line(out.label, output_text(result.diagnostics, out));
-  const Diagnostics& d = result.diagnostics;
-  s.line("method", std::string(to_string(d.method)) +
-                       (d.method == SteadyMethod::shooting
-                            ? " (" + std::to_string(d.newton_iterations) + " Newton steps)"
-                            : std::string()) +
-                       ", " + fmt(d.period_equivalents, 4) + " period-equivalents");
-  if (!d.fallback.empty()) s.line("shooting fell back", d.fallback);
+  for (const DiagnosticOutput& out : diagnostic_outputs()) {
+    const std::string value = output_text(result.diagnostics, out);
+    if (!value.empty()) s.line(out.label, value);  // the fallback reason only when there is one
+  }
   if (result.floquet.stability != Stability::unknown)
     s.line("Floquet", std::string(to_string(result.floquet.stability)) + ", largest |multiplier| " +
                           fmt(result.floquet.max_modulus, 6));

@@ -27,7 +27,9 @@ struct Output {
 };
 
 using SampleOutput = Output<Samples, SampleValues, SamplePhases>;
-using DiagnosticOutput = Output<Diagnostics, int, long, double>;
+/// Diagnostics are numbers, except the method (an enumeration, written as its name) and the
+/// fallback reason (text).
+using DiagnosticOutput = Output<Diagnostics, int, long, double, SteadyMethod, std::string>;
 using MetricOutput = Output<Metrics, double, Spectrum>;
 using RecordOutput = Output<RecordMetrics, double, Spectrum>;
 
@@ -86,5 +88,35 @@ bool is_scalar(const Output<Struct, Types...>& out) {
       },
       out.member);
 }
+
+/// True if the output is text (an enumeration written by its name, or a string).
+template <class Struct, class... Types>
+bool is_text(const Output<Struct, Types...>& out) {
+  return std::visit(
+      [](auto member) {
+        using T = std::remove_cvref_t<decltype(std::declval<const Struct&>().*member)>;
+        return std::is_enum_v<T> || std::is_same_v<T, std::string>;
+      },
+      out.member);
+}
+
+/// A text output's value: the enumeration's name (to_string) or the string ("" for others).
+template <class Struct, class... Types>
+std::string text_value(const Struct& s, const Output<Struct, Types...>& out) {
+  return std::visit(
+      [&s](auto member) -> std::string {
+        using T = std::remove_cvref_t<decltype(s.*member)>;
+        if constexpr (std::is_enum_v<T>)
+          return to_string(s.*member);
+        else if constexpr (std::is_same_v<T, std::string>)
+          return s.*member;
+        else
+          return std::string();
+      },
+      out.member);
+}
+
+/// True if `name` is a text column of the study CSV (status, message, the text diagnostics).
+bool is_text_column(std::string_view name);
 
 }  // namespace oscidrum

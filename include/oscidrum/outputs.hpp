@@ -78,7 +78,21 @@
   X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                \
     "largest |residual of the slip coupling (39)| / W during slip, W = m g + Fz = P0 (a force "   \
     "ratio)")                                                                                     \
-  X(double, min_N, 0.0, "N", "min N", "smallest normal force seen (26)")
+  X(double, min_N, 0.0, "N", "min N", "smallest normal force seen (26)")                          \
+  X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
+    "what produced the steady state: transient (integrated from rest until it repeats) or "       \
+    "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \
+  X(int, newton_iterations, 0, "-", "Newton iterations",                                          \
+    "shooting: Newton steps (0 for the transient method)")                                        \
+  X(long, jacobian_evaluations, 0, "-", "Jacobian evaluations",                                   \
+    "shooting: evaluations of the phase Jacobians (0 for the transient method)")                  \
+  X(double, period_equivalents, 0.0, "-", "period-equivalents",                                   \
+    "cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations "  \
+    "weighted by their cost) / the right-hand-side evaluations of one sampled period")            \
+  X(double, phi_drift, 0.0, "rad", "phi drift per period",                                        \
+    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
+  X(std::string, fallback, "", "-", "shooting fell back",                                         \
+    "why shooting fell back to the transient method (empty if it did not)")
 
 // ------------------------------------------------------------------------------------------------
 // Metrics of the drum-centre accelerations, for simulated steady states (Metrics) and measured

@@ -48,17 +48,6 @@ struct Diagnostics {
 #define OSCIDRUM_MEMBER(type, name, initial, unit, label, description) type name = initial;
   OSCIDRUM_DIAGNOSTICS(OSCIDRUM_MEMBER)
 #undef OSCIDRUM_MEMBER
-  // How the steady state was found (numerics.method; docs/periodic.md). Not yet in the output
-  // table: the JSON writer, the run summary and Python list them by hand.
-  SteadyMethod method = SteadyMethod::transient;  ///< what produced the steady state
-  int newton_iterations = 0;      ///< shooting: Newton steps (0 for the transient method)
-  long jacobian_evaluations = 0;  ///< shooting: evaluations of the phase Jacobians
-  /// Cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations
-  /// weighted by their cost in right-hand-side evaluations) / right-hand-side evaluations of
-  /// one sampled period [-]
-  double period_equivalents = 0.0;
-  double phi_drift = 0.0;  ///< phi(t0 + T) - phi(t0) on the steady state (net slip / r) [rad]
-  std::string fallback;    ///< why shooting fell back to the transient method ("" if it did not)
 };
 
 using SampleValues = std::vector<double>;  ///< one column of samples

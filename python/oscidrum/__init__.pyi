@@ -93,32 +93,32 @@ class Diagnostics:
     events: int
     """located events [-]"""
     fallback: str
-    """why shooting fell back to the transient method ('' if it did not)"""
+    """why shooting fell back to the transient method (empty if it did not) [-]"""
     final_change: float
     """last period-to-period change of the state, scaled by its range over a period (see numerics.steady_tol) [-]"""
     inconsistent_slip_ends: int
     """slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken [-]"""
     jacobian_evaluations: int
-    """shooting: evaluations of the phase Jacobians"""
+    """shooting: evaluations of the phase Jacobians (0 for the transient method) [-]"""
     max_slip_residual: float
     """largest |residual of the slip coupling (39)| / W during slip, W = m g + Fz = P0 (a force ratio) [-]"""
     method: str
-    """what produced the steady state: 'shooting' or 'transient'"""
+    """what produced the steady state: transient (integrated from rest until it repeats) or shooting (solved for by Newton's method on the period map, docs/periodic.md) [-]"""
     min_N: float
     """smallest normal force seen (26) [N]"""
     multiplicity: int
     """steady period in excitation periods (0: none found) [-]"""
     names: list
     newton_iterations: int
-    """shooting: Newton steps (0 for the transient method)"""
+    """shooting: Newton steps (0 for the transient method) [-]"""
     period_equivalents: float
-    """cost in plain excitation periods [-]"""
+    """cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations weighted by their cost) / the right-hand-side evaluations of one sampled period [-]"""
     periods_simulated: int
     """excitation periods integrated before sampling [-]"""
     periods_to_steady: int
     """period index at which the steady state was found (-1: never) [-]"""
     phi_drift: float
-    """phi(t0 + T) - phi(t0) on the steady state found by shooting [rad]"""
+    """phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r [rad]"""
     rejected_steps: int
     """rejected trial steps [-]"""
     reversals: int
@@ -694,6 +694,8 @@ class TroughGeometry:
     """spiral parameter [-]"""
     r: float
     """drum radius [m]"""
+    shape: str
+    """the trough's shape: 'circle' (k = 0, radius a) or 'log_spiral' (k > 0)"""
 
 class ValidationRow:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...

@@ -78,7 +78,14 @@ void bind_result(py::module_& m) {
   for (const DiagnosticOutput& d : diagnostic_outputs())
     std::visit(
         [&](auto member) {
-          diag.def_readonly(d.name, member, doc(std::string(d.description) + " [" + d.unit + "]"));
+          const char* text = doc(std::string(d.description) + " [" + d.unit + "]");
+          using T = std::remove_cvref_t<decltype(std::declval<const Diagnostics&>().*member)>;
+          if constexpr (std::is_enum_v<T>)  // by its name, e.g. 'shooting'
+            diag.def_property_readonly(
+                d.name,
+                [member](const Diagnostics& x) { return std::string(to_string(x.*member)); }, text);
+          else
+            diag.def_readonly(d.name, member, text);
         },
         d.member);
   diag.def_property_readonly_static(
@@ -97,27 +104,11 @@ void bind_result(py::module_& m) {
             return units;
           },
           "{diagnostic: unit}");
-  diag.def_property_readonly(
-          "method", [](const Diagnostics& d) { return std::string(to_string(d.method)); },
-          "what produced the steady state: 'shooting' or 'transient'")
-      .def_readonly("newton_iterations", &Diagnostics::newton_iterations,
-                    "shooting: Newton steps (0 for the transient method)")
-      .def_readonly("jacobian_evaluations", &Diagnostics::jacobian_evaluations,
-                    "shooting: evaluations of the phase Jacobians")
-      .def_readonly("period_equivalents", &Diagnostics::period_equivalents,
-                    "cost in plain excitation periods [-]")
-      .def_readonly("phi_drift", &Diagnostics::phi_drift,
-                    "phi(t0 + T) - phi(t0) on the steady state found by shooting [rad]")
-      .def_readonly("fallback", &Diagnostics::fallback,
-                    "why shooting fell back to the transient method ('' if it did not)")
-      .def(
+  diag.def(
           "to_dict",
           [](py::object self) {
             py::dict out;
             for (const DiagnosticOutput& d : diagnostic_outputs()) out[d.name] = self.attr(d.name);
-            for (const char* name : {"method", "newton_iterations", "jacobian_evaluations",
-                                     "period_equivalents", "phi_drift", "fallback"})
-              out[name] = self.attr(name);
             return out;
           },
           "The counters as a dict.")

@@ -112,8 +112,6 @@ void each_member(IO&& io, O& o) {
 #define OSCIDRUM_MEMBER(type, name, initial, unit, label, description) io(d.name);
   OSCIDRUM_DIAGNOSTICS(OSCIDRUM_MEMBER)
 #undef OSCIDRUM_MEMBER
-  io(d.method), io(d.newton_iterations), io(d.jacobian_evaluations), io(d.period_equivalents),
-      io(d.phi_drift), io(d.fallback);
   io(r.frequency), io(r.sample_periods), io(r.samples_per_period);
 #define OSCIDRUM_MEMBER(type, name, unit, label, description) io(r.samples.name);
   OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_MEMBER)

@@ -68,6 +68,9 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
     if (stop != FlowStop::reached) {  // the steady state did not survive its own sampling
       result.status = status_of(stop);
       result.message = flow.message();
+    } else if (result.samples.size() > 0) {
+      // phi(t0 + T) - phi(t0), averaged over the sampled periods (net slip per period / r).
+      d.phi_drift = (flow.state().phi - result.samples.phi.front()) / periods;
     }
   } else {
     result.events = search.recent_events;

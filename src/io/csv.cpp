@@ -160,6 +160,10 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   r.emplace_back(to_string(res.status));
   r.push_back(csv_quote(res.message));
   for (const DiagnosticOutput& d : diagnostic_outputs()) {
+    if (is_text(d)) {
+      r.push_back(csv_quote(text_value(res.diagnostics, d)));
+      continue;
+    }
     const double v = scalar_value(res.diagnostics, d);
     r.push_back(is_integer(d) ? std::to_string(static_cast<long long>(v)) : format_double_short(v));
   }

@@ -17,6 +17,7 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/version.hpp"
 #include "oscidrum_io/case_spec.hpp"
 #include "oscidrum_io/csv.hpp"
@@ -462,7 +463,7 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
   for (std::size_t c = 1; c < labels.size(); ++c) {  // column 0 is the case index: /case
     const auto [name, unit] = split_label(labels[c]);
     const Field* f = find_field(name);
-    const bool text = name == "status" || name == "message" ||
+    const bool text = oscidrum::is_text_column(name) ||
                       (f && (f->type == FieldType::boolean || f->type == FieldType::choice));
     if (text) {
       std::vector<std::string> v;

@@ -120,16 +120,13 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
 
   json diagnostics = json::object();
   for (const DiagnosticOutput& d : diagnostic_outputs()) {
+    if (is_text(d)) {
+      diagnostics[d.name] = text_value(result.diagnostics, d);
+      continue;
+    }
     const double v = scalar_value(result.diagnostics, d);
     diagnostics[d.name] = is_integer(d) ? json(static_cast<long long>(v)) : number(v);
   }
-  const Diagnostics& d = result.diagnostics;
-  diagnostics["method"] = to_string(d.method);
-  diagnostics["newton_iterations"] = d.newton_iterations;
-  diagnostics["jacobian_evaluations"] = d.jacobian_evaluations;
-  diagnostics["period_equivalents"] = number(d.period_equivalents);
-  diagnostics["phi_drift"] = number(d.phi_drift);
-  diagnostics["fallback"] = d.fallback;
   j["diagnostics"] = diagnostics;
   {
     json multipliers = json::array();

@@ -42,6 +42,13 @@ std::span<const MetricOutput> metric_outputs() { return kMetrics; }
 std::span<const RecordOutput> record_outputs() { return kRecord; }
 std::span<const StatusInfo> statuses() { return kStatuses; }
 
+bool is_text_column(std::string_view name) {
+  if (name == "status" || name == "message") return true;
+  for (const DiagnosticOutput& d : kDiagnostics)
+    if (d.name == name) return is_text(d);
+  return false;
+}
+
 bool is_acceleration_metric(std::string_view name) {
   for (std::string_view n : kAccelerationNames)
     if (n == name) return true;

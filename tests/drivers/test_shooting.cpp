@@ -158,6 +158,14 @@ TEST(Shooting, AgreesWithTheTransientMethod) {
     EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
     EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
     EXPECT_NEAR(a.phi_lag, b.phi_lag, tol * std::abs(b.phi_lag));
+    // Both methods report the drift of phi per period (the net slip over r): the same, and zero
+    // when the drum cannot slip.
+    const double scale = std::max(std::abs(b.phi_amplitude), 1e-300);
+    EXPECT_NEAR(shot.diagnostics.phi_drift, trans.diagnostics.phi_drift, tol * scale);
+    if (c.contact.pure_rolling)
+      EXPECT_NEAR(trans.diagnostics.phi_drift, 0.0, tol * scale);
+    else
+      EXPECT_GT(std::abs(trans.diagnostics.phi_drift), 1e-3 * scale);  // MMd drives it on
   }
 }
 

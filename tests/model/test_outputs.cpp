@@ -66,6 +66,15 @@ TEST(Outputs, TheTableReadsTheStructMembers) {
     }
   }
   EXPECT_EQ(found, 3.0);
+  // The method and the fallback reason are text columns of the same table.
+  d.method = SteadyMethod::shooting;
+  d.fallback = "Newton did not converge";
+  std::string texts;
+  for (const DiagnosticOutput& o : diagnostic_outputs())
+    if (is_text(o)) texts += std::string(o.name) + "=" + text_value(d, o) + ";";
+  EXPECT_EQ(texts, "method=shooting;fallback=Newton did not converge;");
+  EXPECT_TRUE(is_text_column("method") && is_text_column("fallback") && is_text_column("status"));
+  EXPECT_FALSE(is_text_column("newton_iterations") || is_text_column("min_N"));
   Metrics m;
   m.friction_work = 12.5;
   int spectra = 0;

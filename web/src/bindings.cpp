@@ -16,6 +16,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/parameters.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
@@ -159,22 +160,16 @@ val metrics_of(const oscidrum::Metrics& m) {
   return out;
 }
 
+// Every diagnostic of the output table (oscidrum/output_table.hpp): numbers, or text for the
+// method and the fallback reason.
 val diagnostics_of(const oscidrum::Diagnostics& d) {
   val out = val::object();
-  out.set("periods_simulated", d.periods_simulated);
-  out.set("periods_to_steady", d.periods_to_steady);
-  out.set("multiplicity", d.multiplicity);
-  out.set("final_change", d.final_change);
-  out.set("steps", static_cast<double>(d.steps));
-  out.set("rejected_steps", static_cast<double>(d.rejected_steps));
-  out.set("rhs_evaluations", static_cast<double>(d.rhs_evaluations));
-  out.set("events", static_cast<double>(d.events));
-  out.set("switches", static_cast<double>(d.switches));
-  out.set("reversals", static_cast<double>(d.reversals));
-  out.set("inconsistent_slip_ends", static_cast<double>(d.inconsistent_slip_ends));
-  out.set("switches_per_period", d.switches_per_period);
-  out.set("max_slip_residual", d.max_slip_residual);
-  out.set("min_N", d.min_N);
+  for (const oscidrum::DiagnosticOutput& o : oscidrum::diagnostic_outputs()) {
+    if (oscidrum::is_text(o))
+      out.set(o.name, oscidrum::text_value(d, o));
+    else
+      out.set(o.name, oscidrum::scalar_value(d, o));
+  }
   return out;
 }
 
