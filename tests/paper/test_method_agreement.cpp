@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -54,9 +55,16 @@ Scales scales_of(const Metrics& m, const Model& model) {
           m.mu_required * model.W() * model.r() * m.phi_amplitude};
 }
 
+// The largest difference met, relative to its scale, and where.
+struct Worst {
+  double relative = 0.0;
+  std::string what;
+};
+
 class Checker {
  public:
-  Checker(std::string id, const Scales& s) : id_(std::move(id)), s_(s) {}
+  Checker(std::string id, const Scales& s, Worst& worst)
+      : id_(std::move(id)), s_(s), worst_(worst) {}
 
   // Scalars, by the name of the metric (OSCIDRUM_METRICS).
   void operator()(const std::string& name, double a, double b) const {
@@ -97,6 +105,7 @@ class Checker {
       ADD_FAILURE() << "no scale for the metric " << name << ": add it to the test";
       return;
     }
+    note(diff / scale, name);
     EXPECT_LE(diff, kAgreement * scale)
         << id_ << " " << name << ": shooting " << a << ", transient " << b << " (difference "
         << diff / scale << " of the scale)";
@@ -109,6 +118,7 @@ class Checker {
     for (std::size_t n = 0; n < a.size(); ++n) {
       const std::complex<double> ca = std::polar(a[n].amplitude, a[n].phase);
       const std::complex<double> cb = std::polar(b[n].amplitude, b[n].phase);
+      note(std::abs(ca - cb) / scale, name);
       EXPECT_LE(std::abs(ca - cb), kAgreement * scale)
           << id_ << " " << name << "[" << n << "]: shooting " << a[n].amplitude << " at "
           << a[n].phase << " rad, transient " << b[n].amplitude << " at " << b[n].phase << " rad";
@@ -116,8 +126,13 @@ class Checker {
   }
 
  private:
+  void note(double relative, const std::string& name) const {
+    if (relative > worst_.relative) worst_ = {relative, id_ + " " + name};
+  }
+
   std::string id_;
   Scales s_;
+  Worst& worst_;
 };
 
 TEST(MethodAgreement, EveryMetricOfEveryPaperCaseAndEveryClaimAgree) {
@@ -129,6 +144,7 @@ TEST(MethodAgreement, EveryMetricOfEveryPaperCaseAndEveryClaimAgree) {
   const std::vector<SeriesResult> b = run_paper_studies(transient);
   ASSERT_EQ(a.size(), b.size());
   int by_shooting = 0, cases = 0;
+  Worst worst;
   for (std::size_t s = 0; s < a.size(); ++s) {
     for (std::size_t i = 0; i < a[s].metrics.size(); ++i) {
       const std::string id = a[s].series.id + " #" + std::to_string(i);
@@ -140,12 +156,13 @@ TEST(MethodAgreement, EveryMetricOfEveryPaperCaseAndEveryClaimAgree) {
       const Metrics& ma = a[s].metrics[i];
       const Metrics& mb = b[s].metrics[i];
       const Model model(paper_case(a[s].series, a[s].series.G[i]));
-      const Checker check(id, scales_of(mb, model));
+      const Checker check(id, scales_of(mb, model), worst);
 #define OSCIDRUM_CHECK(type, name, unit, label, description) check(#name, ma.name, mb.name);
       OSCIDRUM_METRICS(OSCIDRUM_CHECK)
 #undef OSCIDRUM_CHECK
     }
   }
+  std::printf("largest difference: %.2g of its scale (%s)\n", worst.relative, worst.what.c_str());
   // Shooting must actually be what produced the steady states (not its fallback).
   EXPECT_EQ(by_shooting, cases);
 
