@@ -24,7 +24,7 @@ constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
 
 // Short transient: at least kMinTransient plain periods, until the switching sequence of a
 // period repeats in the next one; at most kMaxTransient.
-constexpr int kMinTransient = 3;
+constexpr int kMinTransient = 2;
 constexpr int kMaxTransient = 24;
 
 // Newton: at most kMaxNewton steps; each halves its step up to kMaxHalvings times until the
@@ -41,6 +41,13 @@ constexpr double kNewtonTol = 1e-2;
 
 // Below this scaled residual, Newton steps reuse the last monodromy matrix (chord steps).
 constexpr double kFreshMonodromy = 1e-3;
+
+// The last step is taken without evaluating the period map at its result when the previous full
+// step contracted the residual by at least kPredictContraction and the same contraction predicts
+// a residual below kPredictMargin times the convergence threshold: the plain integration of the
+// sampled periods that follows confirms it (or the run falls back).
+constexpr double kPredictContraction = 1e-2;
+constexpr double kPredictMargin = 0.1;
 
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
 constexpr double kSubstepsPerPeriod = 64.0;
@@ -244,6 +251,8 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   PeriodMap cur = period_map(z, phase, true);
   int sequence_changes = 0;
   bool converged = false;
+  // Contraction of the residual by the last accepted full step (1: none yet).
+  double contraction = 1.0;
   for (int k = 0; k <= kMaxNewton; ++k) {
     if (cur.stop != FlowStop::reached || cur.grazing || !std::isfinite(cur.residual)) {
       out.message = cur.stop != FlowStop::reached
@@ -284,6 +293,16 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       out.message = "Newton's matrix M - I is singular";
       break;
     }
+    if (contraction < kPredictContraction &&
+        contraction * cur.residual < kPredictMargin * kNewtonTol * num_.steady_tol) {
+      Vec y = z.to_array();
+      for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += dz[i] * s[i];
+      z = consistent(State::from_array(y), phase);
+      ++out.newton_iterations;
+      out.predicted_last_step = true;
+      converged = true;
+      break;
+    }
     bool accepted = false;
     double lambda = 1.0;
     for (int h = 0; h <= kMaxHalvings; ++h, lambda *= 0.5) {
@@ -301,6 +320,7 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
         if (!same_switching_sequence(next.switches, cur.switches)) ++sequence_changes;
         const bool stalled =
             lambda == 1.0 && cur.residual < num_.steady_tol && next.residual > 0.5 * cur.residual;
+        contraction = lambda == 1.0 ? next.residual / cur.residual : 1.0;
         z = trial;
         cur = std::move(next);
         accepted = true;

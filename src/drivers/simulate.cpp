@@ -119,7 +119,10 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   result.message = shot.message;
   result.floquet = shot.floquet;
   d.method = SteadyMethod::shooting;
-  d.final_change = shot.final_change;
+  // A last Newton step taken on prediction was never mapped: what the sampled periods measured
+  // (the change over output_periods periods, at most about twice the one-period change) is the
+  // evaluated residual then.
+  d.final_change = shot.predicted_last_step ? change : shot.final_change;
   d.periods_to_steady = shot.transient_periods;
   d.multiplicity = 1;
   d.phi_drift = shot.phi_drift;
