@@ -3,8 +3,12 @@
 // Counters: RHS evaluations, accepted steps and periods to the steady state per case. Every
 // iteration simulates from the same immutable Model (no state carried between iterations).
 #include <benchmark/benchmark.h>
+#include <time.h>
+
+#include <vector>
 
 #include "oscidrum/oscidrum.hpp"
+#include "oscidrum_paper/validation.hpp"
 
 namespace {
 
@@ -67,6 +71,72 @@ BENCHMARK(BM_Method_Rolling_R0606_Transient)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Method_Rolling_R0606_Shooting)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Method_Rolling_R065_Transient)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Method_Rolling_R065_Shooting)->Unit(benchmark::kMillisecond);
+
+// The same, interleaved: every iteration runs the case with both methods and times each by the
+// thread's CPU clock, so that both see the same machine load; the counters are the two times per
+// case, their ratio and each method's period-equivalents (RHS-evaluation cost in plain periods).
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void side_by_side(benchmark::State& state, oscidrum::Case c) {
+  c.numerics.method = SteadyMethod::transient;
+  const oscidrum::Model transient(c);
+  c.numerics.method = SteadyMethod::shooting;
+  const oscidrum::Model shooting(c);
+  double t_transient = 0.0, t_shooting = 0.0;
+  oscidrum::Result a, b;
+  for (auto _ : state) {
+    double t0 = cpu_seconds();
+    a = oscidrum::simulate(transient);
+    const double t1 = cpu_seconds();
+    b = oscidrum::simulate(shooting);
+    t_transient += t1 - t0;
+    t_shooting += cpu_seconds() - t1;
+    benchmark::DoNotOptimize(b.samples.ddx_M.data());
+  }
+  if (a.status != oscidrum::Status::steady_state) state.SkipWithError(a.message.c_str());
+  if (b.diagnostics.method != SteadyMethod::shooting)
+    state.SkipWithError(("shooting fell back: " + b.diagnostics.fallback).c_str());
+  const double n = static_cast<double>(state.iterations());
+  state.counters["transient_ms"] = 1e3 * t_transient / n;
+  state.counters["shooting_ms"] = 1e3 * t_shooting / n;
+  state.counters["speedup"] = t_transient / t_shooting;
+  state.counters["pe_transient"] = a.diagnostics.period_equivalents;
+  state.counters["pe_shooting"] = b.diagnostics.period_equivalents;
+  state.counters["newton"] = b.diagnostics.newton_iterations;
+}
+
+void BM_SideBySide_StickSlip(benchmark::State& s) { side_by_side(s, bench_case(false, 0.05, 0)); }
+void BM_SideBySide_Rolling_R0606(benchmark::State& s) { side_by_side(s, bench_case(true, 0.0, 0)); }
+void BM_SideBySide_Rolling_R065(benchmark::State& s) {
+  side_by_side(s, bench_case(true, 0.0, 0, SteadyMethod::transient, 0.65));
+}
+BENCHMARK(BM_SideBySide_StickSlip)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SideBySide_Rolling_R0606)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SideBySide_Rolling_R065)->Unit(benchmark::kMillisecond);
+
+// `oscidrum validate`: all of the paper's cases on all cores, and the check of every claim (the
+// command's work without its output); wall time.
+void validate_with(benchmark::State& state, SteadyMethod method) {
+  oscidrum::PaperRunOptions o;
+  o.method = method;
+  std::size_t agree = 0;
+  for (auto _ : state) {
+    const std::vector<oscidrum::ValidationRow> rows =
+        oscidrum::validate(oscidrum::run_paper_studies(o));
+    agree = 0;
+    for (const auto& r : rows) agree += r.agrees;
+    benchmark::DoNotOptimize(agree);
+  }
+  state.counters["claims_agreeing"] = static_cast<double>(agree);
+}
+void BM_Validate_Shooting(benchmark::State& s) { validate_with(s, SteadyMethod::shooting); }
+void BM_Validate_Transient(benchmark::State& s) { validate_with(s, SteadyMethod::transient); }
+BENCHMARK(BM_Validate_Shooting)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Validate_Transient)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_StickSlip_G25_MMd005(benchmark::State& s) { run(s, bench_case(false, 0.05, 0)); }
 void BM_StickSlip_G25_MMd005_rtol1e7(benchmark::State& s) { run(s, bench_case(false, 0.05, 1e-7)); }

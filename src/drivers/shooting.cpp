@@ -22,10 +22,12 @@ using Vec7 = Eigen::Matrix<double, 7, 1>;
 // The components of the fixed-point problem: all but phi (index 3), which is cyclic.
 constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
 
-// Short transient: at least kMinTransient plain periods, until the switching sequence of a
-// period repeats in the next one; at most kMaxTransient.
-constexpr int kMinTransient = 3;
+// Short transient: at least kMinTransient periods, until the switching sequence of a period
+// repeats in the next one; at most kMaxTransient.
+constexpr int kMinTransient = 2;
 constexpr int kMaxTransient = 24;
+// Transient periods integrated as period maps with sensitivities, at most (see short_transient).
+constexpr int kMaxTransientMaps = 2;
 
 // Newton: at most kMaxNewton steps; each halves its step up to kMaxHalvings times until the
 // scaled residual decreases; more than kMaxSequenceChanges changes of the switching sequence
@@ -41,6 +43,13 @@ constexpr double kNewtonTol = 1e-2;
 
 // Below this scaled residual, Newton steps reuse the last monodromy matrix (chord steps).
 constexpr double kFreshMonodromy = 1e-3;
+
+// The last step is taken without evaluating the period map at its result when the previous full
+// step contracted the residual by at least kPredictContraction and the same contraction predicts
+// a residual below kPredictMargin times the convergence threshold: the plain integration of the
+// sampled periods that follows confirms it (or the run falls back).
+constexpr double kPredictContraction = 1e-2;
+constexpr double kPredictMargin = 0.1;
 
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
 constexpr double kSubstepsPerPeriod = 64.0;
@@ -112,6 +121,11 @@ class Shooter {
   const double period_;
   const ProgressCallback& progress_;
   MonodromyObserver mono_;
+  // The last period of the short transient, integrated as the period map of its start.
+  bool have_first_ = false;
+  PeriodMap first_;
+  State first_z_;
+  Phase first_phase_ = Phase::stick;
   double t0_ = 0.0;
   std::array<double, 8> scale_{};
   int maps_ = 0, plain_maps_ = 0;
@@ -127,12 +141,35 @@ bool Shooter::short_transient(ShootingOutcome& out) {
   PlainObserver obs;
   std::vector<Event> previous;
   bool have_previous = false;
+  int map_periods = 0;
   for (int n = 1; n <= kMaxTransient; ++n) {
-    obs.start(flow_.state().to_array());
-    const FlowStop stop = flow_.advance(n * period_, &obs);
+    // A period that may be the last one (the third, or the second after a period without
+    // switches, as in pure rolling) is integrated as the period map of its consistent start,
+    // with sensitivities: if its switching sequence repeats, it is Newton's first map.
+    // Only up to kMaxTransientMaps such periods: a transient that takes longer to settle goes on
+    // plainly, and Newton's first map follows it.
+    const bool as_map = map_periods < kMaxTransientMaps &&
+                        (n >= kMinTransient + 1 || (n >= kMinTransient && previous.empty()));
+    if (as_map) ++map_periods;
+    FlowStop stop;
+    std::vector<Event> switches;
+    if (as_map) {
+      t0_ = flow_.t();
+      const Phase phase = flow_.phase();
+      const State z = consistent(flow_.state(), phase);
+      first_ = period_map(z, phase, true);
+      first_z_ = z;
+      first_phase_ = phase;
+      stop = first_.stop;
+      switches = first_.switches;
+    } else {
+      obs.start(flow_.state().to_array());
+      stop = flow_.advance(n * period_, &obs);
+      switches = obs.switches;
+    }
     if (stop != FlowStop::reached) {
       out.terminal = true;
-      out.recent_events = obs.recent;
+      out.recent_events = as_map ? first_.switches : obs.recent;
       switch (stop) {
         case FlowStop::contact_lost:
           out.status = Status::contact_lost;
@@ -155,14 +192,17 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       out.message = flow_.message();
       return false;
     }
-    out.transient_periods = n;
+    out.transient_periods = n - map_periods;  // the maps are counted as such
     // The scale of each component: its range over the period, floored at what the integration
-    // tolerances resolve (as in the transient search).
-    for (int i = 0; i < 8; ++i) {
-      const double range = obs.hi[i] - obs.lo[i];
-      const double floor =
-          100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
-      scale_[i] = std::max(range, floor);
+    // tolerances resolve (as in the transient search). A period integrated as a map keeps the
+    // scale of the period before.
+    if (!as_map) {
+      for (int i = 0; i < 8; ++i) {
+        const double range = obs.hi[i] - obs.lo[i];
+        const double floor =
+            100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
+        scale_[i] = std::max(range, floor);
+      }
     }
     if (progress_ && !progress_(n, std::numeric_limits<double>::infinity())) {
       out.terminal = true;
@@ -170,9 +210,12 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       out.message = fmt("cancelled after %.0f periods", n);
       return false;
     }
-    const bool same = have_previous && same_switching_sequence(previous, obs.switches);
-    if (n >= kMinTransient && same) break;
-    previous = obs.switches;
+    const bool same = have_previous && same_switching_sequence(previous, switches);
+    if (n >= kMinTransient && same) {
+      have_first_ = as_map;
+      break;
+    }
+    previous = switches;
     have_previous = true;
   }
   return true;
@@ -235,15 +278,22 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
     out.transient_periods = 1;
   } else {
     if (!short_transient(out)) return out;
-    t0_ = flow_.t();
-    z = flow_.state();
-    phase = flow_.phase();
+    if (have_first_) {  // t0_ is its start
+      z = first_z_;
+      phase = first_phase_;
+    } else {
+      t0_ = flow_.t();
+      z = flow_.state();
+      phase = flow_.phase();
+    }
   }
   z = consistent(z, phase);
 
-  PeriodMap cur = period_map(z, phase, true);
+  PeriodMap cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
   int sequence_changes = 0;
   bool converged = false;
+  // Contraction of the residual by the last accepted full step (1: none yet).
+  double contraction = 1.0;
   for (int k = 0; k <= kMaxNewton; ++k) {
     if (cur.stop != FlowStop::reached || cur.grazing || !std::isfinite(cur.residual)) {
       out.message = cur.stop != FlowStop::reached
@@ -284,6 +334,16 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       out.message = "Newton's matrix M - I is singular";
       break;
     }
+    if (contraction < kPredictContraction &&
+        contraction * cur.residual < kPredictMargin * kNewtonTol * num_.steady_tol) {
+      Vec y = z.to_array();
+      for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += dz[i] * s[i];
+      z = consistent(State::from_array(y), phase);
+      ++out.newton_iterations;
+      out.predicted_last_step = true;
+      converged = true;
+      break;
+    }
     bool accepted = false;
     double lambda = 1.0;
     for (int h = 0; h <= kMaxHalvings; ++h, lambda *= 0.5) {
@@ -301,6 +361,7 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
         if (!same_switching_sequence(next.switches, cur.switches)) ++sequence_changes;
         const bool stalled =
             lambda == 1.0 && cur.residual < num_.steady_tol && next.residual > 0.5 * cur.residual;
+        contraction = lambda == 1.0 ? next.residual / cur.residual : 1.0;
         z = trial;
         cur = std::move(next);
         accepted = true;

@@ -23,12 +23,16 @@ struct ShootingOutcome {
   /// transient method would meet the same end, so it is the run's status (no fallback).
   bool terminal = false;
   Status status = Status::steady_state;
-  std::string message;            ///< why it converged or failed
-  int transient_periods = 0;      ///< plain periods integrated from the start before Newton
-  int newton_iterations = 0;      ///< Newton steps taken (each one period with sensitivities)
-  int period_maps = 0;            ///< period maps evaluated with sensitivities (incl. trials)
-  int plain_maps = 0;             ///< period maps evaluated without them (chord steps)
-  double final_change = 0.0;      ///< scaled |P(z) - z| at the orbit [-]
+  std::string message;        ///< why it converged or failed
+  int transient_periods = 0;  ///< plain periods integrated from the start before Newton
+  int newton_iterations = 0;  ///< Newton steps taken (each one period with sensitivities)
+  int period_maps = 0;        ///< period maps evaluated with sensitivities (incl. trials)
+  int plain_maps = 0;         ///< period maps evaluated without them (chord steps)
+  double final_change = 0.0;  ///< scaled |P(z) - z| at the last evaluated iterate [-]
+  /// The last Newton step was taken without evaluating the period map at its result (its
+  /// predicted residual was far below the threshold); the caller's plain integration of the
+  /// sampled periods from the orbit confirms it.
+  bool predicted_last_step = false;
   double phi_drift = 0.0;         ///< phi(t0 + T) - phi(t0) on the orbit [rad]
   long jacobian_evaluations = 0;  ///< evaluations of the phase Jacobians
   Floquet floquet;

@@ -40,12 +40,12 @@ Point evaluate(const Model& model, double baumgarte, double t, const State& q, P
   const Accelerations a = accelerations(model, t, q, phase, baumgarte);
   const DrumMotion d = drum_motion(model, q, a);
   const ContactForces f = contact_forces(model, q);
-  return {d.ddx_M,
-          d.ddz_M,
-          q.delta,
-          q.phi,
-          std::abs(f.T) / f.N,
-          std::abs(f.T * slip_velocity(model, q))};
+  return {d.ddx_M, d.ddz_M, q.delta, q.phi, std::abs(f.T) / f.N,
+          // Friction does work only while the drum slides (13, 27). In stick v_rel = 0 by the
+          // rolling condition (12); the flow integrates phi' there without reading it, so
+          // slip_velocity would return its round-off drift (over a long transient from rest, up
+          // to ~1e-6 of the work of a slipping case).
+          phase == Phase::stick ? 0.0 : std::abs(f.T * slip_velocity(model, q))};
 }
 
 // Largest (sign = +1) or smallest (-1) value of member m on the piece: ends and interior extrema.
@@ -108,13 +108,23 @@ class Accumulator : public FlowObserver {
                      const std::array<double, kScan + 1>& ts, const At& at, double Point::*m,
                      Extremes& out) {
     for (const Point& p : scan) out.add(p.*m);
-    for (int k = 1; k < kScan; ++k) {
-      const double v = scan[k].*m, l = scan[k - 1].*m, r = scan[k + 1].*m;
+    // A scan point not beaten by its neighbours brackets an extremum between them. At the ends
+    // of the piece only one neighbour exists: an end that is not beaten by it may have the
+    // extremum just inside the piece (between the last scan point and the end), which the end's
+    // value alone misses by about half the curvature times the squared distance (up to ~1e-5
+    // of a peak); the one-sided bracket finds it (or returns the end itself).
+    for (int k = 0; k <= kScan; ++k) {
+      const int lo = std::max(0, k - 1), hi = std::min(kScan, k + 1);
+      const double v = scan[k].*m, l = scan[lo].*m, r = scan[hi].*m;
       for (double sign : {1.0, -1.0}) {
         if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
-        const auto f = [&](double t) { return -sign * (at(t).*m); };
+        // In the offset from the bracket's start: Brent's tolerance is relative to the
+        // abscissa, and relative to the absolute time (seconds into a long transient) it would
+        // leave the extremum ~1e-7 s off, ~1e-10 of the peak.
+        const double t_lo = ts[lo];
+        const auto f = [&](double u) { return -sign * (at(t_lo + u).*m); };
         const auto best = boost::math::tools::brent_find_minima(
-            f, ts[k - 1], ts[k + 1], std::numeric_limits<double>::digits);
+            f, 0.0, ts[hi] - t_lo, std::numeric_limits<double>::digits);
         out.add(-sign * best.second);
       }
     }

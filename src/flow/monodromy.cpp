@@ -35,10 +35,12 @@ bool MonodromyObserver::on_step(const StepView& step) {
     const double t = a + i * h, tm = t + 0.5 * h, t1 = (i + 1 == n) ? b : t + h;
     const Mat8 Jm = jacobian(tm, step.state(tm), phase);
     const Mat8 J1 = jacobian(t1, step.state(t1), phase);
-    const Mat8 k1 = J0 * phi_;
-    const Mat8 k2 = Jm * (phi_ + 0.5 * h * k1);
-    const Mat8 k3 = Jm * (phi_ + 0.5 * h * k2);
-    const Mat8 k4 = J1 * (phi_ + h * k3);
+    // lazyProduct: coefficient-wise, unrolled for 8x8 (a plain product of this size goes
+    // through Eigen's general blocked kernel with packing, several times slower).
+    const Mat8 k1 = J0.lazyProduct(phi_);
+    const Mat8 k2 = Jm.lazyProduct(Mat8(phi_ + 0.5 * h * k1));
+    const Mat8 k3 = Jm.lazyProduct(Mat8(phi_ + 0.5 * h * k2));
+    const Mat8 k4 = J1.lazyProduct(Mat8(phi_ + h * k3));
     phi_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     J0 = J1;
   }
@@ -58,7 +60,7 @@ bool MonodromyObserver::on_event(const Event& event, const State& before, const 
       switch_saltation(model_, event.t, before, event.from, event.to, baumgarte_, jumped);
   if (s.grazing) grazing_ = true;
   have_last_ = false;
-  phi_ = s.S * phi_;
+  phi_ = s.S.lazyProduct(phi_).eval();
   switches_.push_back(event);
   return true;
 }

@@ -111,9 +111,10 @@ const std::array kFields = {
           nullptr, OSCIDRUM_REAL(MMd)},
     // numerics
     Field{"numerics.method", FieldType::choice, "-",
-          "how the periodic steady state is found: transient (integrate from rest until it "
-          "repeats, the paper's method) or shooting (Newton on the period map, falls back to "
-          "transient when it fails; agrees with transient to about 2e-6 so far)",
+          "how the periodic steady state is found: shooting (Newton on the period map after a "
+          "short transient; falls back to transient when it fails or the orbit is unstable) or "
+          "transient (integrate from rest until it repeats, the paper's method); both agree to "
+          "1e-7 on the paper's cases",
           0, 1, false, false, "shooting|transient",
           [](const Case& c) { return static_cast<double>(c.numerics.method); },
           [](Case& c, double v) {

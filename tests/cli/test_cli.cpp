@@ -252,7 +252,9 @@ TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
 }
 
 TEST(CliRun, ExitCodeOneWhenNotSteady) {
-  const Outcome o = run({"run", "--set", "numerics.max_periods=3"});
+  // The transient method's budget (shooting would find the orbit within it).
+  const Outcome o =
+      run({"run", "--set", "numerics.method=transient", "--set", "numerics.max_periods=3"});
   EXPECT_EQ(o.code, 1) << o.err;
   EXPECT_NE(o.out.find("max_periods_reached"), std::string::npos);
   EXPECT_NE(o.err.find("status max_periods_reached"), std::string::npos);

@@ -93,7 +93,9 @@ TEST(CliSweep, CasesDirHoldsEachSteadyState) {
 
 TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
   TempDir dir;
-  std::ofstream(dir / "s.toml") << "[sweep]\n\"numerics.max_periods\" = [3, 2000]\n";
+  // The transient method's budget (shooting would find the orbit within 3 periods' budget).
+  std::ofstream(dir / "s.toml")
+      << "[numerics]\nmethod = \"transient\"\n[sweep]\n\"numerics.max_periods\" = [3, 2000]\n";
   const Outcome o = run({"sweep", dir / "s.toml", "-q"});
   EXPECT_EQ(o.code, 1) << o.err;
   EXPECT_NE(o.out.find("\n0,3,max_periods_reached,"), std::string::npos);
@@ -105,6 +107,8 @@ TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
 std::string write_slow_study(const TempDir& dir) {
   std::ofstream(dir / "slow.toml")
       << "[soil]\ninput = \"modulus\"\n[contact]\npure_rolling = true\n"
+         // slow: the transient method takes 300-1600 periods per pure-rolling case
+         "[numerics]\nmethod = \"transient\"\n"
          "[sweep]\n\"soil.G\" = { start = 5e6, stop = 70e6, num = 60 }\n";
   return dir / "slow.toml";
 }

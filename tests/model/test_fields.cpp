@@ -196,7 +196,7 @@ TEST(Fields, DefaultTroughContactAndNumerics) {
   EXPECT_EQ(c.contact.mu, 0.5);
   EXPECT_FALSE(c.contact.pure_rolling);
   EXPECT_FALSE(c.numerics.suspension_from_static);  // the paper's convention by default
-  EXPECT_EQ(c.numerics.method, SteadyMethod::transient);
+  EXPECT_EQ(c.numerics.method, SteadyMethod::shooting);
   EXPECT_NO_THROW(Model{c});
 }
 

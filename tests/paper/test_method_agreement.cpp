@@ -1,10 +1,13 @@
 // The two steady-state methods on all of the paper's validation cases: shooting (the default) and
-// the transient integration from rest (the paper's method) give the same metrics and the same
-// verdict on every claim of the paper.
+// the transient integration from rest (the paper's method) give the same metrics, every one of
+// them to 1e-7 relative, and the same verdict on every claim of the paper.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -14,79 +17,152 @@
 namespace oscidrum {
 namespace {
 
-// 1e-7 relative, or the transient's own distance from the orbit where that is larger: it stops
-// when the period-to-period change is below steady_tol (or at its noise floor), and a state whose
-// change per period is c lies about c / (1 - |lambda_max|) from the orbit (the error shrinks by
-// |lambda_max| per period); metrics move with the state in proportion (factor 10 of margin for
-// the amplification from states to accelerations and areas).
-// NOT the target. Issue 7 asks for 1e-7 relative; with the transient reference tightened to
-// steady_tol 1e-10, shooting still differs by up to 2.2e-6 of a peak of x_M'' or z_M'' (e.g.
-// pure rolling, MMd = 0.05 M0, R = 0.606 m, G = 25: z_M'' max 10.7315137 by shooting, 10.7314921
-// by the transient, which moved by 1e-8 when tightened). The shooting orbit, not the reference,
-// is off: that is why the transient stays the default method. kShootingAgreement records the
-// agreement reached so far, so that it cannot get worse unnoticed; it is to be brought down to
-// 1e-7 (and this comment removed) when the shooting orbit is converged further.
-constexpr double kShootingAgreement = 5e-6;
+// Issue 7: every metric of every paper case agrees to 1e-7 relative between the methods.
+//
+// "Relative" is to the natural scale of each metric, so that the check is neither vacuous nor
+// asks for digits a quantity does not have:
+// - peaks of a signal and its harmonics (as complex numbers A_n exp(i theta_n), so that the phase
+//   of a small harmonic is weighed by its amplitude): the largest |value| of that signal over the
+//   period (x_M'', z_M'', delta);
+// - the harmonic ratios, THD and the CMV-type value, A_k / A_1: the signal's peak over A_1 (the
+//   error of A_k is bounded relative to the peak, not to A_k, which vanishes by symmetry in some
+//   cases);
+// - the lags psi_xz and phi_lag, angles: pi rad, with psi_xz's error weighed by the amplitude of
+//   the 2f component of z_M'' relative to the peak (its phase is undefined where that vanishes);
+// - the phase fractions: the whole period; the friction work its own magnitude or, where it is
+//   zero (pure rolling), the work of the largest friction force over the drum's travel;
+//   everything else (area, phi amplitude, mu_required) its own magnitude.
+//
+// The transient reference is integrated closer to its orbit than by default (steady_tol 1e-10):
+// it stops when the period-to-period change c is below steady_tol, which leaves it about
+// c / (1 - |lambda_max|) from the orbit, up to 9e-8 of a peak at the default steady_tol 1e-8 in
+// the slowly decaying pure-rolling cases at R = 0.65 m (|lambda_max| = 0.987). So the comparison
+// tests shooting, not the reference's stopping rule (docs/periodic.md, "Agreement").
+constexpr double kAgreement = 1e-7;
 
-double tolerance(const Diagnostics& transient, double max_modulus) {
-  const double distance = transient.final_change / std::max(1e-3, 1.0 - max_modulus);
-  return std::max(kShootingAgreement, 10.0 * distance);
+struct Scales {
+  double x, z, delta, A1x, A1z, A2z, work;
+};
+
+Scales scales_of(const Metrics& m, const Model& model) {
+  auto peak = [](double a, double b) { return std::max(std::abs(a), std::abs(b)); };
+  return {peak(m.ddx_max, m.ddx_min), peak(m.ddz_max, m.ddz_min), peak(m.delta_max, m.delta_min),
+          m.ddx_harmonics.size() > 1 ? m.ddx_harmonics[1].amplitude : 0.0,
+          m.ddz_harmonics.size() > 1 ? m.ddz_harmonics[1].amplitude : 0.0,
+          m.ddz_harmonics.size() > 2 ? m.ddz_harmonics[2].amplitude : 0.0,
+          // friction work: the largest friction force mu_required W over the drum's travel
+          // r phi_amplitude (pure rolling does none: what is computed there is round-off)
+          m.mu_required * model.W() * model.r() * m.phi_amplitude};
 }
 
-void expect_close(double a, double b, double scale, double tol, const std::string& what) {
-  EXPECT_LE(std::abs(a - b), tol * scale) << what << ": shooting " << a << ", transient " << b;
-}
+// The largest difference met, relative to its scale, and where.
+struct Worst {
+  double relative = 0.0;
+  std::string what;
+};
 
-TEST(MethodAgreement, EveryPaperCaseAndClaimAgree) {
+class Checker {
+ public:
+  Checker(std::string id, const Scales& s, Worst& worst)
+      : id_(std::move(id)), s_(s), worst_(worst) {}
+
+  // Scalars, by the name of the metric (OSCIDRUM_METRICS).
+  void operator()(const std::string& name, double a, double b) const {
+    const double pi = std::numbers::pi;
+    // A ratio whose denominator vanishes by symmetry (A_1 of z_M'' in pure rolling with MMd = 0)
+    // is NaN for both methods.
+    if (std::isnan(a) || std::isnan(b)) {
+      EXPECT_TRUE(std::isnan(a) && std::isnan(b))
+          << id_ << " " << name << ": shooting " << a << ", transient " << b;
+      return;
+    }
+    double diff = std::abs(a - b), scale = 0.0;
+    if (name == "ddx_max" || name == "ddx_min") {
+      scale = s_.x;
+    } else if (name == "ddz_max" || name == "ddz_min") {
+      scale = s_.z;
+    } else if (name == "delta_max" || name == "delta_min") {
+      scale = s_.delta;
+    } else if (name == "ddx_A2_A1" || name == "ddx_A3_A1" || name == "ddx_thd") {
+      scale = s_.x / s_.A1x;
+    } else if (name == "ddz_A2_A1" || name == "ddz_A3_A1") {
+      scale = s_.z / s_.A1z;
+    } else if (name == "cmv") {
+      scale = 300.0 * s_.z / s_.A1z;
+    } else if (name == "psi_xz") {
+      diff = std::abs(wrap_pi(a - b)) * (s_.z > 0.0 ? s_.A2z / s_.z : 1.0);
+      scale = pi;
+    } else if (name == "phi_lag") {  // in units of pi
+      diff = std::abs(wrap_pi(pi * (a - b)));
+      scale = pi;
+    } else if (name.find("fraction") != std::string::npos) {
+      scale = 1.0;
+    } else if (name == "friction_work") {
+      scale = std::max(std::abs(b), s_.work);
+    } else if (name == "area" || name == "phi_amplitude" || name == "mu_required") {
+      scale = std::abs(b);
+    } else {
+      ADD_FAILURE() << "no scale for the metric " << name << ": add it to the test";
+      return;
+    }
+    note(diff / scale, name);
+    EXPECT_LE(diff, kAgreement * scale)
+        << id_ << " " << name << ": shooting " << a << ", transient " << b << " (difference "
+        << diff / scale << " of the scale)";
+  }
+
+  // Spectra: every harmonic as a complex number, relative to the signal's peak.
+  void operator()(const std::string& name, const Spectrum& a, const Spectrum& b) const {
+    ASSERT_EQ(a.size(), b.size()) << id_ << " " << name;
+    const double scale = name.rfind("ddx", 0) == 0 ? s_.x : s_.z;
+    for (std::size_t n = 0; n < a.size(); ++n) {
+      const std::complex<double> ca = std::polar(a[n].amplitude, a[n].phase);
+      const std::complex<double> cb = std::polar(b[n].amplitude, b[n].phase);
+      note(std::abs(ca - cb) / scale, name);
+      EXPECT_LE(std::abs(ca - cb), kAgreement * scale)
+          << id_ << " " << name << "[" << n << "]: shooting " << a[n].amplitude << " at "
+          << a[n].phase << " rad, transient " << b[n].amplitude << " at " << b[n].phase << " rad";
+    }
+  }
+
+ private:
+  void note(double relative, const std::string& name) const {
+    if (relative > worst_.relative) worst_ = {relative, id_ + " " + name};
+  }
+
+  std::string id_;
+  Scales s_;
+  Worst& worst_;
+};
+
+TEST(MethodAgreement, EveryMetricOfEveryPaperCaseAndEveryClaimAgree) {
   PaperRunOptions shooting, transient;
   shooting.method = SteadyMethod::shooting;
   transient.method = SteadyMethod::transient;
-  // The reference is integrated closer to its orbit than by default (the transient's own
-  // distance from the orbit, final change / (1 - |lambda|), reached 2e-6 of z_M'' at the
-  // default steady_tol in a slowly decaying pure-rolling case), so that the comparison tests
-  // shooting and not the reference's stopping rule.
-  transient.steady_tol = 1e-10;
-  shooting.keep_samples = true;  // for the Floquet multipliers
+  transient.steady_tol = 1e-10;  // see kAgreement
   const std::vector<SeriesResult> a = run_paper_studies(shooting);
   const std::vector<SeriesResult> b = run_paper_studies(transient);
   ASSERT_EQ(a.size(), b.size());
   int by_shooting = 0, cases = 0;
+  Worst worst;
   for (std::size_t s = 0; s < a.size(); ++s) {
     for (std::size_t i = 0; i < a[s].metrics.size(); ++i) {
       const std::string id = a[s].series.id + " #" + std::to_string(i);
       ++cases;
       ASSERT_EQ(a[s].status[i], b[s].status[i]) << id;
       if (a[s].status[i] != Status::steady_state) continue;
-      const Diagnostics& da = a[s].diagnostics[i];
-      if (da.method == SteadyMethod::shooting) ++by_shooting;
+      if (a[s].diagnostics[i].method == SteadyMethod::shooting) ++by_shooting;
       EXPECT_EQ(b[s].diagnostics[i].method, SteadyMethod::transient);
-      const double lambda = a[s].results[i].floquet.stability == Stability::unknown
-                                ? 0.999
-                                : a[s].results[i].floquet.max_modulus;
-      const double tol = tolerance(b[s].diagnostics[i], lambda);
       const Metrics& ma = a[s].metrics[i];
       const Metrics& mb = b[s].metrics[i];
-      const double x = std::max(std::abs(mb.ddx_max), std::abs(mb.ddx_min));
-      const double z = std::max(std::abs(mb.ddz_max), std::abs(mb.ddz_min));
-      expect_close(ma.ddx_max, mb.ddx_max, x, tol, id + " ddx_max");
-      expect_close(ma.ddx_min, mb.ddx_min, x, tol, id + " ddx_min");
-      expect_close(ma.ddz_max, mb.ddz_max, z, tol, id + " ddz_max");
-      expect_close(ma.ddz_min, mb.ddz_min, z, tol, id + " ddz_min");
-      const double d = std::max(std::abs(mb.delta_max), std::abs(mb.delta_min));
-      expect_close(ma.delta_max, mb.delta_max, d, tol, id + " delta_max");
-      expect_close(ma.delta_min, mb.delta_min, d, tol, id + " delta_min");
-      for (std::size_t n = 0; n < std::min(ma.ddx_harmonics.size(), std::size_t{6}); ++n) {
-        expect_close(ma.ddx_harmonics[n].amplitude, mb.ddx_harmonics[n].amplitude, x, tol,
-                     id + " A_x(" + std::to_string(n) + "f)");
-        expect_close(ma.ddz_harmonics[n].amplitude, mb.ddz_harmonics[n].amplitude, z, tol,
-                     id + " A_z(" + std::to_string(n) + "f)");
-      }
-      expect_close(ma.phi_lag, mb.phi_lag, M_PI, tol, id + " phi_lag");
-      expect_close(ma.psi_xz, mb.psi_xz, M_PI, tol, id + " psi_xz");
-      expect_close(ma.area, mb.area, std::abs(mb.area), tol, id + " area");
-      expect_close(ma.stick_fraction, mb.stick_fraction, 1.0, tol, id + " stick_fraction");
+      const Model model(paper_case(a[s].series, a[s].series.G[i]));
+      const Checker check(id, scales_of(mb, model), worst);
+#define OSCIDRUM_CHECK(type, name, unit, label, description) check(#name, ma.name, mb.name);
+      OSCIDRUM_METRICS(OSCIDRUM_CHECK)
+#undef OSCIDRUM_CHECK
     }
   }
+  std::printf("largest difference: %.2g of its scale (%s)\n", worst.relative, worst.what.c_str());
   // Shooting must actually be what produced the steady states (not its fallback).
   EXPECT_EQ(by_shooting, cases);
 

@@ -72,7 +72,8 @@ def test_metrics(slip_result, rolling_result):
 
 
 def test_progress_callback_and_cancel():
-    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6))
+    # the transient method reports every period (shooting: a few periods and Newton steps)
+    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6), **{"numerics.method": "transient"})
     seen = []
     oscidrum.simulate(case, progress=lambda period, change: seen.append((period, change)))
     assert len(seen) > 10 and all(isinstance(p, int) for p, _ in seen)
@@ -90,7 +91,9 @@ def test_exception_in_progress_propagates():
 
 def test_simulate_releases_the_gil(ticking):
     """Another Python thread runs while simulate integrates."""
-    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6), **{"contact.pure_rolling": True})
+    # the transient method: long enough (~300 periods per case) for the other thread to tick
+    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6),
+                         **{"contact.pure_rolling": True, "numerics.method": "transient"})
     with ticking() as ticks:
         for _ in range(3):
             oscidrum.simulate(case)
@@ -154,7 +157,9 @@ def test_ctrl_c_interrupts_a_study():
     import signal
     import time
 
-    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6), **{"contact.pure_rolling": True})
+    # the transient method: long enough (~300 periods per case) for the other thread to tick
+    case = oscidrum.Case(soil=oscidrum.table2_soil(70e6),
+                         **{"contact.pure_rolling": True, "numerics.method": "transient"})
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     start = time.perf_counter()
     timer.start()
