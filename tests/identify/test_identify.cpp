@@ -3,7 +3,10 @@
 // with the excitation 1 % away from 39 Hz, 5 % noise and a slow drift.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -120,6 +123,61 @@ TEST(Identify, StickSlipG173WithMu) {
   expect_recovered(id.estimates[0], 17.3e6, 0.03);
   EXPECT_EQ(id.estimates[1].name, "mu");
   expect_recovered(id.estimates[1], 0.42, 0.10);
+}
+
+// For pure rolling mu does not enter the response: above the friction the rolling steady state
+// needs, every mu gives the same response. Asked to fit mu anyway, the identification must say
+// so, recover G all the same, and not spend long on trials at large mu, where the run from rest
+// slips and fails (chattering or a diverging slip phase, docs/model.md section 6).
+TEST(Identify, PureRollingMuIsNotIdentifiable) {
+  const RecordSamples r = noisy_record(truth(42.7e6, true, 0.03), 0.6, 1000, 11);
+  IdentifyOptions o;
+  o.fit_mu = true;
+  const Identification id = identify_whole(base(true, 0.03), r, o);
+  ASSERT_EQ(id.estimates.size(), 2u);
+  expect_recovered(id.estimates[0], 42.7e6, 0.03);
+  const Estimate& mu = id.estimates[1];
+  EXPECT_EQ(mu.name, "mu");
+  EXPECT_TRUE(mu.upper_open);
+  EXPECT_TRUE(std::isnan(mu.upper));
+  bool warned = false;
+  for (const std::string& w : id.warnings)
+    warned = warned || w.find("mu is not identifiable") != std::string::npos;
+  EXPECT_TRUE(warned) << "warnings: " << ::testing::PrintToString(id.warnings);
+  // A deterministic stand-in for "quickly": the model runs, each bounded (kMaxStepsPerRun).
+  EXPECT_LT(id.simulations, 100);
+}
+
+// The premise of the above: a slipping model whose mu exceeds the friction the pure-rolling
+// steady state needs (max |T| / N) reaches that same steady state from rest, and a
+// budget-limited run ends with budget_exceeded instead of running on.
+TEST(SimulateMetrics, RollingSteadyStateIsTheResponseAboveTheFrictionItNeeds) {
+  const ModelResponse rolling = simulate_metrics(truth(42.7e6, true, 0.03), 4);
+  ASSERT_EQ(rolling.status, Status::steady_state);
+  EXPECT_EQ(rolling.switches_per_period, 0.0);
+  ASSERT_GT(rolling.friction_ratio, 0.5);  // far above the stick-slip cases' mu
+  const ModelResponse slipping =
+      simulate_metrics(truth(42.7e6, false, 0.03, 1.15 * rolling.friction_ratio), 4);
+  ASSERT_EQ(slipping.status, Status::steady_state) << slipping.message;
+  EXPECT_EQ(slipping.switches_per_period, 0.0);
+  for (int n = 1; n <= 4; ++n) {
+    const double scale = rolling.metrics.ddx_harmonics[1].amplitude;
+    EXPECT_LT(std::abs(std::polar(slipping.metrics.ddx_harmonics[n].amplitude,
+                                  slipping.metrics.ddx_harmonics[n].phase) -
+                       std::polar(rolling.metrics.ddx_harmonics[n].amplitude,
+                                  rolling.metrics.ddx_harmonics[n].phase)),
+              1e-6 * scale)
+        << "n = " << n;
+  }
+  // Below it the drum slips.
+  const ModelResponse below =
+      simulate_metrics(truth(42.7e6, false, 0.03, 0.9 * rolling.friction_ratio), 4);
+  ASSERT_EQ(below.status, Status::steady_state) << below.message;
+  EXPECT_GT(below.switches_per_period, 0.0);
+
+  const ModelResponse bounded = simulate_metrics(truth(42.7e6, true, 0.03), 4, 2000);
+  EXPECT_EQ(bounded.status, Status::budget_exceeded);
+  EXPECT_NE(bounded.message.find("2000 integration steps"), std::string::npos) << bounded.message;
 }
 
 TEST(Identify, KshAndKsvDirectly) {
