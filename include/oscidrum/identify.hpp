@@ -70,6 +70,10 @@ struct IdentifyOptions {
   double max_condition = 1e6;     ///< a larger condition number of the scaled Jacobian: warn [-]
   double model_tolerance = 1e-6;  ///< numerics.rtol and steady_tol of the model (at least) [-]
   double max_correlation = 0.99;  ///< a larger |correlation| of two estimates: warn [-]
+  /// Find the model's steady states by shooting (numerics.method = shooting; about three times
+  /// faster than the transient from rest, and the same estimates, bench/README.md); false: the
+  /// base case's numerics.method.
+  bool shooting = true;
 };
 
 /// One estimated parameter.

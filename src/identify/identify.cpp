@@ -124,6 +124,7 @@ class Problem {
     // pure rolling, about 1100 periods).
     case_.numerics.max_periods = std::min(base.numerics.max_periods, 1500);
     case_.numerics.max_steps_per_period = std::min(base.numerics.max_steps_per_period, 2000);
+    if (o.shooting) case_.numerics.method = SteadyMethod::shooting;
     // The model to 1e-6 (its harmonics change by about that much; the measured ones are known to
     // about 1e-3), three times faster than the default 1e-8.
     case_.numerics.rtol = std::max(base.numerics.rtol, o.model_tolerance);
