@@ -4,6 +4,8 @@
 // for the one-window case whether mu is estimated too (0/1).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "oscidrum/oscidrum.hpp"
 
 namespace {
@@ -26,9 +28,13 @@ oscidrum::RecordSamples record(double duration, bool pure_rolling) {
 oscidrum::Case base(const benchmark::State& state) {
   oscidrum::Case b;
   b.contact.pure_rolling = state.range(0) != 0;
-  b.numerics.method =
-      state.range(1) != 0 ? oscidrum::SteadyMethod::shooting : oscidrum::SteadyMethod::transient;
   return b;
+}
+
+oscidrum::IdentifyOptions options(const benchmark::State& state) {
+  oscidrum::IdentifyOptions o;
+  o.shooting = state.range(1) != 0;  // else the transient from rest (the case's method)
+  return o;
 }
 
 void BM_IdentifyOneWindow(benchmark::State& state) {
@@ -36,7 +42,7 @@ void BM_IdentifyOneWindow(benchmark::State& state) {
   const oscidrum::RecordSamples r = record(1.05, b.contact.pure_rolling);
   oscidrum::WindowOptions w;
   w.window_periods = 40;
-  oscidrum::IdentifyOptions o;
+  oscidrum::IdentifyOptions o = options(state);
   o.fit_mu = state.range(2) != 0;
   double G = 0;
   int simulations = 0;
@@ -57,6 +63,8 @@ BENCHMARK(BM_IdentifyOneWindow)
     ->Args({1, 0, 1})
     ->Args({0, 1, 0})
     ->Args({1, 1, 0})
+    ->Args({0, 1, 1})
+    ->Args({1, 1, 1})
     ->Unit(benchmark::kMillisecond);
 
 void BM_IdentifyPass60s(benchmark::State& state) {
@@ -66,7 +74,7 @@ void BM_IdentifyPass60s(benchmark::State& state) {
   w.window_periods = 39;
   double G_min = 0, G_max = 0;
   for (auto _ : state) {
-    const auto pass = oscidrum::identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, w);
+    const auto pass = oscidrum::identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, w, options(state));
     G_min = 1e300;
     G_max = 0;
     for (const auto& p : pass) {
