@@ -610,6 +610,15 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
     id.rms_residual = std::sqrt(num2 / (2.0 * o.harmonics));
     id.relative_residual = den2 > 0 ? std::sqrt(num2 / den2) : kNaN;
   }
+  // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
+  if (s2 > o.max_reduced_chi2)
+    id.warnings.push_back(
+        "poor fit: reduced chi^2 " + num(std::round(s2 * 10) / 10) + " > " +
+        num(o.max_reduced_chi2) + " (relative residual " +
+        num(std::round(id.relative_residual * 1000) / 1000) +
+        "): the model does not reproduce the measured harmonics to their noise, and the "
+        "estimates are biased by what it lacks (an unknown not fitted, such as mu or MMd, or "
+        "a case that does not describe the roller)");
 
   // Covariance s^2 (J^T J)^-1, condition number and correlations of the column-scaled Jacobian.
   Eigen::MatrixXd J;

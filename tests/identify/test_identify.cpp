@@ -227,6 +227,24 @@ TEST(Identify, ShootingAndTransientGiveTheSameEstimates) {
   }
 }
 
+// A model that cannot reproduce the record (here: mu 0.5 assumed, 0.42 true, not fitted) gives
+// a biased G (about 20 % here) whose interval does not cover the truth: it must say so.
+TEST(Identify, AWrongKnownParameterGivesAPoorFitWarning) {
+  const RecordSamples r = noisy_record(truth(17.3e6, false, 0.0, 0.42), 0.6, 1000, 7);
+  IdentifyOptions o;
+  o.profile = false;
+  const Identification id = identify_whole(base(false, 0.0), r, o);
+  EXPECT_GT(id.reduced_chi2, 10 * o.max_reduced_chi2);
+  bool warned = false;
+  for (const std::string& w : id.warnings) warned = warned || w.rfind("poor fit", 0) == 0;
+  EXPECT_TRUE(warned) << ::testing::PrintToString(id.warnings);
+  // With mu fitted the same record is explained to its noise.
+  o.fit_mu = true;
+  const Identification fitted = identify_whole(base(false, 0.0), r, o);
+  EXPECT_LT(fitted.reduced_chi2, o.max_reduced_chi2);
+  for (const std::string& w : fitted.warnings) EXPECT_NE(w.rfind("poor fit", 0), 0u) << w;
+}
+
 TEST(Identify, KshAndKsvDirectly) {
   const Case t = truth(17.3e6, false, 0.0);
   const SoilCoefficients s = soil_coefficients(t.soil, t.roller);
