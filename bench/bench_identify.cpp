@@ -1,6 +1,10 @@
 // Benchmarks of the identification (docs/identify.md): one window of 40 periods at 1 kHz, and a
 // pass of 60 s at 1 kHz in 1 s windows (39 periods), each window started from the previous one.
+// Arguments: pure rolling (0/1), the model's steady-state method (0 transient, 1 shooting), and
+// for the one-window case whether mu is estimated too (0/1).
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
 
 #include "oscidrum/oscidrum.hpp"
 
@@ -21,27 +25,76 @@ oscidrum::RecordSamples record(double duration, bool pure_rolling) {
   return oscidrum::synthetic_record({c}, o);
 }
 
+oscidrum::Case base(const benchmark::State& state) {
+  oscidrum::Case b;
+  b.contact.pure_rolling = state.range(0) != 0;
+  return b;
+}
+
+oscidrum::IdentifyOptions options(const benchmark::State& state) {
+  oscidrum::IdentifyOptions o;
+  o.shooting = state.range(1) != 0;  // else the transient from rest (the case's method)
+  return o;
+}
+
 void BM_IdentifyOneWindow(benchmark::State& state) {
-  const bool pure_rolling = state.range(0) != 0;
-  const oscidrum::RecordSamples r = record(1.05, pure_rolling);
-  oscidrum::Case base;
-  base.contact.pure_rolling = pure_rolling;
+  const oscidrum::Case b = base(state);
+  const oscidrum::RecordSamples r = record(1.05, b.contact.pure_rolling);
   oscidrum::WindowOptions w;
   w.window_periods = 40;
-  for (auto _ : state)
-    benchmark::DoNotOptimize(oscidrum::identify_pass(base, r.t, r.ddx_M, r.ddz_M, {}, w));
+  oscidrum::IdentifyOptions o = options(state);
+  o.fit_mu = state.range(2) != 0;
+  double G = 0;
+  int simulations = 0;
+  for (auto _ : state) {
+    const auto pass = oscidrum::identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, w, o);
+    G = pass.front().identification.estimates.front().value;
+    simulations = pass.front().identification.simulations;
+    benchmark::DoNotOptimize(pass);
+  }
+  state.counters["G_MPa"] = G / 1e6;
+  state.counters["model_runs"] = simulations;
 }
-BENCHMARK(BM_IdentifyOneWindow)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyOneWindow)
+    ->ArgNames({"rolling", "shooting", "fit_mu"})
+    ->Args({0, 0, 0})
+    ->Args({1, 0, 0})
+    ->Args({0, 0, 1})
+    ->Args({1, 0, 1})
+    ->Args({0, 1, 0})
+    ->Args({1, 1, 0})
+    ->Args({0, 1, 1})
+    ->Args({1, 1, 1})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_IdentifyPass60s(benchmark::State& state) {
-  const oscidrum::RecordSamples r = record(60.0, false);
+  const oscidrum::Case b = base(state);
+  const oscidrum::RecordSamples r = record(60.0, b.contact.pure_rolling);
   oscidrum::WindowOptions w;
   w.window_periods = 39;
-  for (auto _ : state)
-    benchmark::DoNotOptimize(
-        oscidrum::identify_pass(oscidrum::Case{}, r.t, r.ddx_M, r.ddz_M, {}, w));
+  double G_min = 0, G_max = 0;
+  for (auto _ : state) {
+    const auto pass = oscidrum::identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, w, options(state));
+    G_min = 1e300;
+    G_max = 0;
+    for (const auto& p : pass) {
+      if (!p.valid) continue;
+      G_min = std::min(G_min, p.identification.estimates.front().value);
+      G_max = std::max(G_max, p.identification.estimates.front().value);
+    }
+    benchmark::DoNotOptimize(pass);
+  }
+  state.counters["G_min_MPa"] = G_min / 1e6;
+  state.counters["G_max_MPa"] = G_max / 1e6;
 }
-BENCHMARK(BM_IdentifyPass60s)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_IdentifyPass60s)
+    ->ArgNames({"rolling", "shooting"})
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace
 

@@ -34,6 +34,7 @@ struct IdentifyCliOptions {
   CaseOptions c;
   std::string estimate = "G";
   bool fit_mu = false, fit_MMd = false, use_peaks = false, use_area = false, no_profile = false;
+  bool transient = false;
   int compare = 4;
   std::string csv, json, plot_dir, format = "table";
   int plot_window = -1;
@@ -247,6 +248,7 @@ int run(const IdentifyCliOptions& o) {
   io.use_peaks = o.use_peaks;
   io.use_area = o.use_area;
   io.profile = !o.no_profile;
+  io.shooting = !o.transient;
   if (o.compare > o.windows.n_max)
     throw Error("--compare must be <= --harmonics = " + std::to_string(o.windows.n_max) + "; got " +
                 std::to_string(o.compare));
@@ -302,6 +304,7 @@ int run(const IdentifyCliOptions& o) {
                                     {"fit_mu", o.fit_mu},
                                     {"fit_MMd", o.fit_MMd},
                                     {"compare_harmonics", o.compare},
+                                    {"model_method", o.transient ? "transient" : "shooting"},
                                     {"window_periods", o.windows.window_periods},
                                     {"valid_windows", valid},
                                     {"windows", rows}};
@@ -451,6 +454,10 @@ void add_identify_command(CLI::App& app, Action& action) {
       ->group(fit);
   sub->add_flag("--no-profile", o->no_profile,
                 "skip the profile intervals (faster; the columns _lo, _hi are NaN)")
+      ->group(fit);
+  sub->add_flag("--transient", o->transient,
+                "find the model's steady states by the transient from rest (the paper's method) "
+                "instead of shooting (slower, the same estimates)")
       ->group(fit);
   const char* out = "Output";
   sub->add_option("--csv", o->csv, "write one row per window to FILE ('-': stdout)")

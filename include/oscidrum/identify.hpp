@@ -26,11 +26,18 @@ struct ModelResponse {
   Status status = Status::steady_state;
   std::string message;
   Metrics metrics;  ///< harmonics n = 0 ... n_max of x_M'', z_M'' (absolute-time phases)
+  /// The largest |T| / N over the sampled steady state [-] (NaN without one). For a steady state
+  /// that sticks throughout, the friction coefficient it needs: every mu (of the friction cone)
+  /// at least this large admits it (docs/identify.md, "mu of a drum that does not slip").
+  double friction_ratio = 0.0;
+  double switches_per_period = 0.0;  ///< stick/slip switches per period of the steady state [-]
 };
 
-/// Simulate `c` to its steady state and return its metrics with n_max harmonics. Throws
-/// oscidrum::Error only for an invalid case; numerical trouble is in `status`.
-ModelResponse simulate_metrics(const Case& c, int n_max);
+/// Simulate `c` to its steady state and return its metrics with n_max harmonics. `max_steps` > 0
+/// bounds the run's accepted integration steps in total: a run that needs more ends with
+/// Status::budget_exceeded and a message saying so (the identification's bound on one model
+/// run). Throws oscidrum::Error only for an invalid case; numerical trouble is in `status`.
+ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps = 0);
 
 /// The measured quantities an identification compares with the model.
 struct MeasuredResponse {
@@ -63,6 +70,14 @@ struct IdentifyOptions {
   double max_condition = 1e6;     ///< a larger condition number of the scaled Jacobian: warn [-]
   double model_tolerance = 1e-6;  ///< numerics.rtol and steady_tol of the model (at least) [-]
   double max_correlation = 0.99;  ///< a larger |correlation| of two estimates: warn [-]
+  /// A larger reduced chi^2 (the model misses the measured harmonics by more than their noise):
+  /// warn that the estimates are biased [-]. Fits of the right model give 0.3-1.2 on synthetic
+  /// records; a mu 16 % off the truth, not fitted, gives 300-800.
+  double max_reduced_chi2 = 4.0;
+  /// Find the model's steady states by shooting (numerics.method = shooting; about three times
+  /// faster than the transient from rest, and the same estimates, bench/README.md); false: the
+  /// base case's numerics.method.
+  bool shooting = true;
 };
 
 /// One estimated parameter.

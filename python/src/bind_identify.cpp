@@ -96,7 +96,7 @@ void bind_identify(py::module_& m) {
       [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,
          const std::optional<Array>& position, double f, double window, double hop, int n_max,
          const std::string& estimate, bool fit_mu, bool fit_MMd, int compare, bool use_peaks,
-         bool use_area, bool profile) {
+         bool use_area, bool profile, bool shooting) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
         const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 3.0);
@@ -108,6 +108,7 @@ void bind_identify(py::module_& m) {
         io.use_peaks = use_peaks;
         io.use_area = use_area;
         io.profile = profile;
+        io.shooting = shooting;
         std::vector<PassEstimate> pass;
         {
           py::gil_scoped_release release;
@@ -144,6 +145,7 @@ void bind_identify(py::module_& m) {
       py::arg("hop") = 0.0, py::arg("n_max") = 10, py::arg("estimate") = "G",
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
+      py::arg("shooting") = true,
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -21,6 +22,7 @@ namespace oscidrum {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr long kMaxStepsPerRun = 400000;  // integration steps of one model run (about 0.5 s)
 std::string num(double v) { return detail::shortest(v); }
 
 // ---- the forward model, reduced to what the fit compares --------------------------------------
@@ -31,6 +33,8 @@ struct Simulated {
   std::vector<std::complex<double>> x, z;  // C_n, n = 1 ... N
   double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0, area = 0;
   Metrics metrics;
+  double friction_ratio = kNaN;  // largest |T| / N of the steady state
+  bool rolling = false;          // the steady state sticks throughout (no slip)
 };
 
 std::complex<double> coefficient(const Harmonic& h) { return std::polar(h.amplitude, h.phase); }
@@ -112,8 +116,15 @@ class Problem {
     n_sim_ = std::max(o.harmonics, data.n_signal);
     case_.numerics.samples_per_period = std::max(64, 4 * n_sim_ + 8);
     case_.numerics.output_periods = 1;
-    // A trial that has not settled in 1500 periods is treated as a failed trial, not waited for.
+    // Every model run is bounded, so that no trial the optimiser visits can take long: one that
+    // has not settled in 1500 periods, needs more than 2000 steps in one period (a diverging slip
+    // phase, a stiff corner of the parameter space) or more than kMaxStepsPerRun steps in all is
+    // a failed trial (Simulated::ok false, with the run's message), not waited for. The paper's
+    // cases need 40-130 steps per period at rtol 1e-6 and at most ~140 000 in all (G = 2e9 Pa,
+    // pure rolling, about 1100 periods).
     case_.numerics.max_periods = std::min(base.numerics.max_periods, 1500);
+    case_.numerics.max_steps_per_period = std::min(base.numerics.max_steps_per_period, 2000);
+    if (o.shooting) case_.numerics.method = SteadyMethod::shooting;
     // The model to 1e-6 (its harmonics change by about that much; the measured ones are known to
     // about 1e-3), three times faster than the default 1e-8.
     case_.numerics.rtol = std::max(base.numerics.rtol, o.model_tolerance);
@@ -197,11 +208,14 @@ class Problem {
     const auto it = cache_.find(key);
     if (it != cache_.end()) return it->second;
     Simulated s;
-    ++simulations_;
     try {
-      const ModelResponse r = simulate_metrics(case_at(p), n_sim_);
+      const Case c = case_at(p);
+      ModelResponse r = run(c);
+      if (!ok(r.status) && !c.contact.pure_rolling) r = rolling_instead(c, p, r);
       s.ok = ok(r.status);
       s.message = r.message;
+      s.friction_ratio = r.friction_ratio;
+      s.rolling = s.ok && r.switches_per_period == 0 && !(r.metrics.slip_fraction > 0);
       if (s.ok) {
         for (int n = 1; n <= o_.harmonics; ++n) {
           s.x.push_back(coefficient(r.metrics.ddx_harmonics[n]));
@@ -211,12 +225,51 @@ class Problem {
                      s.ddx_min, s.ddz_max, s.ddz_min, s.area);
         s.metrics = r.metrics;
       }
-    } catch (const Error& e) {
+    } catch (const std::exception& e) {  // an invalid trial case, or the integrator gave up
       s.ok = false;
       s.message = e.what();
     }
     if (cache_.size() > 4096) cache_.clear();
     return cache_.emplace(std::move(key), std::move(s)).first->second;
+  }
+
+  // One bounded model run (the constructor's numerics, kMaxStepsPerRun).
+  ModelResponse run(const Case& c) {
+    ++simulations_;
+    return simulate_metrics(c, n_sim_, kMaxStepsPerRun);
+  }
+
+  // The run from rest of `c` (with slip) failed, which happens for large mu: the transient from
+  // rest slips, and a slip phase at such mu can end inconsistently (chattering) or diverge
+  // (docs/model.md section 6). The pure-rolling steady state at the same soil and torque is also
+  // a steady state of `c` when it never needs more friction than the cone of `c` offers
+  // (|T| <= mu N throughout): then it is the response at this mu, and every larger mu gives the
+  // same response (mu is not identifiable there). Otherwise the trial fails with both reasons.
+  ModelResponse rolling_instead(const Case& c, const Eigen::VectorXd& p, const ModelResponse& r) {
+    std::vector<double> key(p.data(), p.data() + p.size());
+    for (std::size_t j = 0; j < params_.size(); ++j)
+      if (params_[j].kind == Kind::mu) key[j] = 0;  // the rolling response does not depend on mu
+    auto it = rolling_cache_.find(key);
+    if (it == rolling_cache_.end()) {
+      Case roll = c;
+      roll.contact.pure_rolling = true;
+      if (rolling_cache_.size() > 1024) rolling_cache_.clear();
+      it = rolling_cache_.emplace(std::move(key), run(roll)).first;
+    }
+    const ModelResponse& roll = it->second;
+    const double cone = c.contact.mu_static >= 0 ? c.contact.mu_static : c.contact.mu;
+    if (ok(roll.status) && roll.friction_ratio <= cone) {
+      ModelResponse out = roll;
+      out.message =
+          "the run from rest failed (" + r.message +
+          "); the pure-rolling steady state, which needs mu >= " + num(roll.friction_ratio) +
+          ", is the steady state at mu = " + num(cone);
+      return out;
+    }
+    ModelResponse out = r;
+    if (ok(roll.status))
+      out.message += "; the pure-rolling steady state needs mu >= " + num(roll.friction_ratio);
+    return out;
   }
 
   // The time shift (as the phase phi = nu tau) that best aligns the model's harmonics with the
@@ -298,6 +351,7 @@ class Problem {
   std::vector<Parameter> params_;
   int n_sim_ = 10, rows_ = 0, simulations_ = 0;
   std::map<std::vector<double>, Simulated> cache_;
+  std::map<std::vector<double>, ModelResponse> rolling_cache_;
 };
 
 // ---- Levenberg-Marquardt with a mask of fixed parameters --------------------------------------
@@ -412,13 +466,31 @@ double t_quantile(double dof) {
 
 // ---- public functions --------------------------------------------------------------------------
 
-ModelResponse simulate_metrics(const Case& c, int n_max) {
+ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps) {
   const Model model(c);
-  const Result r = simulate(model);
+  // The budget counts the flow's polls of `cancelled`: one per accepted integration step.
+  long steps = 0;
+  std::function<bool()> over_budget;
+  if (max_steps > 0) over_budget = [&steps, max_steps] { return ++steps > max_steps; };
+  const Result r = simulate(model, {}, over_budget);
   ModelResponse out;
   out.status = r.status;
   out.message = r.message;
+  out.friction_ratio = kNaN;
+  if (r.status == Status::cancelled && max_steps > 0 && steps > max_steps) {
+    out.status = Status::budget_exceeded;
+    out.message = "no steady state within " + std::to_string(max_steps) +
+                  " integration steps (the budget of one model run; " + r.message + ")";
+    return out;
+  }
   if (!r.samples.t.empty()) out.metrics = compute_metrics(r, n_max);
+  if (r.status == Status::steady_state) {
+    double ratio = 0;
+    for (std::size_t j = 0; j < r.samples.size(); ++j)
+      ratio = std::max(ratio, std::abs(r.samples.T[j]) / r.samples.N[j]);
+    out.friction_ratio = ratio;
+    out.switches_per_period = r.diagnostics.switches_per_period;
+  }
   return out;
 }
 
@@ -480,22 +552,32 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
     double best = std::numeric_limits<double>::infinity();
     Eigen::VectorXd best_p = p0;
     const Roller roller = pr.base().roller;
-    for (const double G : {4e6, 8e6, 16e6, 32e6, 64e6, 128e6}) {
+    // With mu unknown, the scan is made at the case's mu and at the largest mu (a drum that
+    // does not slip): a record of a rolling drum is far from any slipping response.
+    std::vector<Eigen::VectorXd> starts{p0};
+    for (std::size_t j = 0; j < q; ++j) {
+      if (pr.params()[j].kind != Kind::mu) continue;
       Eigen::VectorXd p = p0;
-      if (o.modulus) {
-        p[0] = std::log(G);
-      } else {
-        const SoilCoefficients s =
-            soil_coefficients(G, pr.base().soil.nu, pr.base().soil.rho, roller);
-        p[0] = std::log(s.ksh);
-        p[1] = std::log(s.ksv);
-      }
-      Eigen::VectorXd r;
-      if (pr.residual(p, r) && r.squaredNorm() < best) {
-        best = r.squaredNorm();
-        best_p = p;
-      }
+      p[static_cast<Eigen::Index>(j)] = pr.params()[j].hi;
+      starts.push_back(p);
     }
+    for (const Eigen::VectorXd& p_start : starts)
+      for (const double G : {4e6, 8e6, 16e6, 32e6, 64e6, 128e6}) {
+        Eigen::VectorXd p = p_start;
+        if (o.modulus) {
+          p[0] = std::log(G);
+        } else {
+          const SoilCoefficients s =
+              soil_coefficients(G, pr.base().soil.nu, pr.base().soil.rho, roller);
+          p[0] = std::log(s.ksh);
+          p[1] = std::log(s.ksv);
+        }
+        Eigen::VectorXd r;
+        if (pr.residual(p, r) && r.squaredNorm() < best) {
+          best = r.squaredNorm();
+          best_p = p;
+        }
+      }
     if (!std::isfinite(best))
       throw Error("identify: the model fails for every start (G = 4 ... 128 MN/m^2)");
     p0 = best_p;
@@ -528,6 +610,15 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
     id.rms_residual = std::sqrt(num2 / (2.0 * o.harmonics));
     id.relative_residual = den2 > 0 ? std::sqrt(num2 / den2) : kNaN;
   }
+  // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
+  if (s2 > o.max_reduced_chi2)
+    id.warnings.push_back(
+        "poor fit: reduced chi^2 " + num(std::round(s2 * 10) / 10) + " > " +
+        num(o.max_reduced_chi2) + " (relative residual " +
+        num(std::round(id.relative_residual * 1000) / 1000) +
+        "): the model does not reproduce the measured harmonics to their noise, and the "
+        "estimates are biased by what it lacks (an unknown not fitted, such as mu or MMd, or "
+        "a case that does not describe the roller)");
 
   // Covariance s^2 (J^T J)^-1, condition number and correlations of the column-scaled Jacobian.
   Eigen::MatrixXd J;
@@ -595,6 +686,7 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         double lo_step = 0, lo_delta = 0, hi_step = kNaN, hi_delta = kNaN;
         Eigen::VectorXd warm = fit.p;
         bool found = false, open = false;
+        std::string failure;  // why the model failed at hi_step (when hi_delta is infinite)
         for (int k = 0; k < 7 && step > 0; ++k) {
           Eigen::VectorXd p = warm;
           p[J_] = pj + side * step;
@@ -610,6 +702,7 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
             if (pr.residual(p, rr)) S = rr.squaredNorm();
           }
           if (!std::isfinite(S)) {  // the model fails out there: stop at the last good point
+            failure = pr.simulate_at(p).message;
             hi_step = step;
             hi_delta = std::numeric_limits<double>::infinity();
             step = 0.5 * (lo_step + step);
@@ -644,6 +737,12 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         const double at = to_physical(par.kind, pj + side * lo_step, pr.M0());
         if (found || open) {
           (side < 0 ? e.lower : e.upper) = at;
+        } else if (std::isfinite(hi_step) && !std::isfinite(hi_delta)) {
+          // Where the model fails, the data have not excluded anything: that is no limit.
+          id.warnings.push_back("no 95 % " + std::string(side < 0 ? "lower" : "upper") +
+                                " limit of " + e.name + ": the profile stays below it up to " +
+                                e.name + " = " + num(at) + " and the model fails beyond (" +
+                                (failure.empty() ? std::string("no steady state") : failure) + ")");
         } else if (std::isfinite(hi_step)) {
           (side < 0 ? e.lower : e.upper) =
               to_physical(par.kind, pj + side * 0.5 * (lo_step + hi_step), pr.M0());
@@ -658,6 +757,19 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
       }
     }
     id.estimates.push_back(e);
+  }
+  // mu of a drum that does not slip: every mu above the friction the steady state needs gives
+  // the same response, whatever the Jacobian or the profile (within the budget) saw.
+  const Simulated& at_estimate = pr.simulate_at(fit.p);
+  for (Estimate& e : id.estimates) {
+    if (e.name != "mu" || !at_estimate.rolling) continue;
+    e.upper = kNaN;
+    e.upper_open = true;
+    id.warnings.push_back(
+        "mu is not identifiable: the drum does not slip in the fitted steady "
+        "state, which needs mu >= " +
+        num(std::round(at_estimate.friction_ratio * 1000) / 1000) +
+        "; every larger mu gives the same response");
   }
   id.simulations = pr.simulations();
   return id;

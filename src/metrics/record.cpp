@@ -315,6 +315,11 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
     }
     double p = 0;
     for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
+    // The excitation frequency carries the drum's largest acceleration (x_M'' at f). A frequency
+    // whose own term is a small part of the sum is a subharmonic that collects the harmonics of
+    // the true f, e.g. f/2 when a change of the soil along a pass shifts the phase abruptly and
+    // splits the peak at f in two.
+    if (std::norm(X[0]) + std::norm(Z[0]) < 0.1 * p) continue;
     if (p > best_p) {
       best_p = p;
       best_f = f;

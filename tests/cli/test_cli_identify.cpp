@@ -130,6 +130,27 @@ TEST(CliIdentify, FromTheMetricsOfAnalyze) {
   EXPECT_GE(e["upper"].get<double>(), 17.3e6);
 }
 
+// A drum that rolls without slipping: --fit-mu must say that mu is not identifiable (and
+// still recover G), with the upper limit of mu open (null in the JSON), quickly.
+TEST(CliIdentify, PureRollingWithFitMuWarnsThatMuIsNotIdentifiable) {
+  TempDir dir;
+  Case c = truth(25.3e6);
+  c.contact.pure_rolling = true;
+  write_record(dir / "r.csv", {c}, 0.6);
+  const Outcome o = run({"identify", dir / "r.csv", "--window", "0", "--pure-rolling", "--fit-mu",
+                         "--format", "json", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["model_method"], "shooting");
+  const nlohmann::json& w = j["windows"][0];
+  EXPECT_NEAR(w["estimates"][0]["value"].get<double>() / 25.3e6, 1.0, 0.03);
+  const nlohmann::json& mu = w["estimates"][1];
+  EXPECT_EQ(mu["name"], "mu");
+  EXPECT_TRUE(mu["upper_open"].get<bool>());
+  EXPECT_TRUE(mu["upper"].is_null()) << mu;
+  EXPECT_NE(w["warnings"].dump().find("mu is not identifiable"), std::string::npos) << w;
+}
+
 TEST(CliIdentify, NothingIdentifiableExitsOneWithTheReason) {
   TempDir dir;
   {

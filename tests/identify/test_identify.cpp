@@ -3,7 +3,10 @@
 // with the excitation 1 % away from 39 Hz, 5 % noise and a slow drift.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -69,6 +72,22 @@ TEST(Frequency, FoundOnePercentAwayFrom39HzInANoisyRecord) {
   EXPECT_NEAR(f / kF, 1.0, 2e-5);
 }
 
+// Abrupt changes of the soil along a pass shift the response's phase and split the spectral peak
+// at f in two; the harmonic sum then peaked at f/2 (whose harmonics 2, 4, 6 collect both halves)
+// and every window failed its gates at 19.7 Hz.
+TEST(Frequency, FoundInAPassWhoseSoilChangesAbruptly) {
+  std::vector<Case> segments;
+  for (const double k : {1.0, 1.1, 0.9, 1.0}) segments.push_back(truth(25e6 * k, true, 0.03));
+  SyntheticRecord o;
+  o.duration = 8.0;
+  o.noise = 0.05;
+  o.drift = 0.05;
+  o.jitter = 0.1;
+  o.seed = 5;
+  const RecordSamples r = synthetic_record(segments, o);
+  EXPECT_NEAR(estimate_frequency(r.t, r.ddx_M, r.ddz_M) / kF, 1.0, 1e-4);
+}
+
 TEST(Frequency, FoundInAnExactRecord) {
   Case c = truth(25e6, false, 0.0);
   SyntheticRecord o;
@@ -120,6 +139,110 @@ TEST(Identify, StickSlipG173WithMu) {
   expect_recovered(id.estimates[0], 17.3e6, 0.03);
   EXPECT_EQ(id.estimates[1].name, "mu");
   expect_recovered(id.estimates[1], 0.42, 0.10);
+}
+
+// For pure rolling mu does not enter the response: above the friction the rolling steady state
+// needs, every mu gives the same response. Asked to fit mu anyway, the identification must say
+// so, recover G all the same, and not spend long on trials at large mu, where the run from rest
+// slips and fails (chattering or a diverging slip phase, docs/model.md section 6).
+TEST(Identify, PureRollingMuIsNotIdentifiable) {
+  const RecordSamples r = noisy_record(truth(42.7e6, true, 0.03), 0.6, 1000, 11);
+  IdentifyOptions o;
+  o.fit_mu = true;
+  const Identification id = identify_whole(base(true, 0.03), r, o);
+  ASSERT_EQ(id.estimates.size(), 2u);
+  expect_recovered(id.estimates[0], 42.7e6, 0.03);
+  const Estimate& mu = id.estimates[1];
+  EXPECT_EQ(mu.name, "mu");
+  EXPECT_TRUE(mu.upper_open);
+  EXPECT_TRUE(std::isnan(mu.upper));
+  bool warned = false;
+  for (const std::string& w : id.warnings)
+    warned = warned || w.find("mu is not identifiable") != std::string::npos;
+  EXPECT_TRUE(warned) << "warnings: " << ::testing::PrintToString(id.warnings);
+  // A deterministic stand-in for "quickly": the model runs, each bounded (kMaxStepsPerRun).
+  EXPECT_LT(id.simulations, 100);
+}
+
+// The premise of the above: a slipping model whose mu exceeds the friction the pure-rolling
+// steady state needs (max |T| / N) reaches that same steady state from rest, and a
+// budget-limited run ends with budget_exceeded instead of running on.
+TEST(SimulateMetrics, RollingSteadyStateIsTheResponseAboveTheFrictionItNeeds) {
+  const ModelResponse rolling = simulate_metrics(truth(42.7e6, true, 0.03), 4);
+  ASSERT_EQ(rolling.status, Status::steady_state);
+  EXPECT_EQ(rolling.switches_per_period, 0.0);
+  ASSERT_GT(rolling.friction_ratio, 0.5);  // far above the stick-slip cases' mu
+  const ModelResponse slipping =
+      simulate_metrics(truth(42.7e6, false, 0.03, 1.15 * rolling.friction_ratio), 4);
+  ASSERT_EQ(slipping.status, Status::steady_state) << slipping.message;
+  EXPECT_EQ(slipping.switches_per_period, 0.0);
+  for (int n = 1; n <= 4; ++n) {
+    const double scale = rolling.metrics.ddx_harmonics[1].amplitude;
+    EXPECT_LT(std::abs(std::polar(slipping.metrics.ddx_harmonics[n].amplitude,
+                                  slipping.metrics.ddx_harmonics[n].phase) -
+                       std::polar(rolling.metrics.ddx_harmonics[n].amplitude,
+                                  rolling.metrics.ddx_harmonics[n].phase)),
+              1e-6 * scale)
+        << "n = " << n;
+  }
+  // Below it the drum slips.
+  const ModelResponse below =
+      simulate_metrics(truth(42.7e6, false, 0.03, 0.9 * rolling.friction_ratio), 4);
+  ASSERT_EQ(below.status, Status::steady_state) << below.message;
+  EXPECT_GT(below.switches_per_period, 0.0);
+
+  const ModelResponse bounded = simulate_metrics(truth(42.7e6, true, 0.03), 4, 2000);
+  EXPECT_EQ(bounded.status, Status::budget_exceeded);
+  EXPECT_NE(bounded.message.find("2000 integration steps"), std::string::npos) << bounded.message;
+}
+
+// The model's steady states found by shooting (the default) or by the transient from rest give
+// the same estimates: far within their uncertainty (the two methods' steady states agree to
+// about 1e-6 of a peak; the measured harmonics are known to about 1e-3).
+TEST(Identify, ShootingAndTransientGiveTheSameEstimates) {
+  struct Trial {
+    Case truth, base;
+    bool fit_mu;
+  };
+  const std::vector<Trial> trials = {{truth(42.7e6, true, 0.03), base(true, 0.03), false},
+                                     {truth(17.3e6, false, 0.03, 0.42), base(false, 0.03), true}};
+  for (const Trial& t : trials) {
+    const RecordSamples r = noisy_record(t.truth, 0.6, 1000, 5);
+    IdentifyOptions o;
+    o.fit_mu = t.fit_mu;
+    o.profile = false;
+    const Identification shooting = identify_whole(t.base, r, o);
+    o.shooting = false;
+    const Identification transient = identify_whole(t.base, r, o);
+    ASSERT_EQ(shooting.estimates.size(), transient.estimates.size());
+    for (std::size_t j = 0; j < shooting.estimates.size(); ++j) {
+      const Estimate& a = shooting.estimates[j];
+      const Estimate& b = transient.estimates[j];
+      EXPECT_LT(std::abs(a.value - b.value), 0.01 * b.standard_uncertainty)
+          << a.name << ": shooting " << a.value << ", transient " << b.value << " +- "
+          << b.standard_uncertainty;
+    }
+    EXPECT_NEAR(shooting.relative_residual, transient.relative_residual,
+                0.01 * transient.relative_residual);
+  }
+}
+
+// A model that cannot reproduce the record (here: mu 0.5 assumed, 0.42 true, not fitted) gives
+// a biased G (about 20 % here) whose interval does not cover the truth: it must say so.
+TEST(Identify, AWrongKnownParameterGivesAPoorFitWarning) {
+  const RecordSamples r = noisy_record(truth(17.3e6, false, 0.0, 0.42), 0.6, 1000, 7);
+  IdentifyOptions o;
+  o.profile = false;
+  const Identification id = identify_whole(base(false, 0.0), r, o);
+  EXPECT_GT(id.reduced_chi2, 10 * o.max_reduced_chi2);
+  bool warned = false;
+  for (const std::string& w : id.warnings) warned = warned || w.rfind("poor fit", 0) == 0;
+  EXPECT_TRUE(warned) << ::testing::PrintToString(id.warnings);
+  // With mu fitted the same record is explained to its noise.
+  o.fit_mu = true;
+  const Identification fitted = identify_whole(base(false, 0.0), r, o);
+  EXPECT_LT(fitted.reduced_chi2, o.max_reduced_chi2);
+  for (const std::string& w : fitted.warnings) EXPECT_NE(w.rfind("poor fit", 0), 0u) << w;
 }
 
 TEST(Identify, KshAndKsvDirectly) {

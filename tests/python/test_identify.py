@@ -33,6 +33,23 @@ def test_identify_recovers_G_with_an_interval_that_covers_it():
     assert row["fitted"].get("soil.G") == pytest.approx(row["G"])
 
 
+def test_mu_of_a_rolling_drum_is_not_identifiable_with_either_method():
+    c = truth(25.3e6)
+    c.set("contact.pure_rolling", True)
+    r = oscidrum.synthetic_record([c], duration=0.6, sample_rate=1000, noise=0.05, drift=0.05,
+                                  seed=2)
+    rows = {}
+    for shooting in (True, False):
+        (row,) = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], case=c, window=0,
+                                            fit_mu=True, profile=False, shooting=shooting)
+        assert row["valid"], row["reason"]
+        assert any("mu is not identifiable" in w for w in row["warnings"])
+        assert math.isnan(row["mu_hi"])
+        rows[shooting] = row
+    assert abs(rows[True]["G"] / 25.3e6 - 1) < 0.03
+    assert abs(rows[True]["G"] - rows[False]["G"]) < 0.01 * rows[False]["G_u"]
+
+
 def test_pure_noise_is_not_a_valid_window():
     rng = np.random.default_rng(1)
     t = np.arange(1000) * 1e-3
