@@ -128,8 +128,8 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     return false;
   }
   result.status = Status::steady_state;
-  result.message = warm.from_state ? shot.message + ", started from the neighbouring case's orbit"
-                                   : shot.message;
+  result.message =
+      warm.from_state ? shot.message + " from the neighbouring case's orbit" : shot.message;
   result.floquet = shot.floquet;
   d.method = SteadyMethod::shooting;
   // A last Newton step taken on prediction was never mapped: what the sampled periods measured
