@@ -106,6 +106,7 @@ def _cases():
         for pure in (True, False):
             c = oscidrum.Case(soil=oscidrum.table2_soil(G), MMd=0.05 * 54947.0)
             c.contact.pure_rolling = pure
+            c.numerics.continuation = False  # independent cases: each equals simulate(c)
             cases.append(c)
     return cases
 
@@ -211,3 +212,24 @@ def test_compaction_indicators(slip_result, rolling_result):
     mr = oscidrum.compute_metrics(rolling_result)
     assert mr.friction_work < 1e-9 * m.friction_work and mr.slip_fraction == 0  # stick only
     assert mr.mu_required > 0  # pure rolling: the friction rolling needs, |T|/N somewhere
+
+
+def test_study_with_shooting_continues_from_the_neighbour():
+    """Continuation (docs/periodic.md): with shooting, consecutive cases along G form a chain; every
+    case after the first starts from its neighbour's steady state, whatever the thread count."""
+    cases = []
+    for G in (5e6, 10e6, 15e6, 20e6):
+        c = oscidrum.Case(soil=oscidrum.table2_soil(G), **{"contact.pure_rolling": True})
+        c.numerics.method = "shooting"
+        c.numerics.samples_per_period = 256
+        cases.append(c)
+    one = oscidrum.run_study(cases, threads=1, progress=False)
+    two = oscidrum.run_study(cases, threads=2, progress=False)
+    assert [o.result.diagnostics.warm_start for o in one] == [0, 1, 1, 1]
+    for a, b in zip(one, two):
+        assert a.ok and b.ok
+        assert a.metrics.area == b.metrics.area
+    for c in cases:
+        c.numerics.continuation = False
+    cold = oscidrum.run_study(cases, threads=2, progress=False)
+    assert [o.result.diagnostics.warm_start for o in cold] == [0, 0, 0, 0]
