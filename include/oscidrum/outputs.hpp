@@ -93,7 +93,7 @@
     "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
     "why shooting fell back to the transient method (empty if it did not)")                       \
-  X(int, warm_start, 0, "-", "warm start",                                                        \
+  X(int, warm_start, 0, "-", "warm start (continuation)",                                         \
     "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "     \
     "found from the neighbouring case's steady state, -1 that start failed and the case started " \
     "from rest, 0 the case started from rest")
