@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 #include "case_options.hpp"
 #include "commands.hpp"
@@ -37,8 +38,41 @@ struct SweepOptions {
               *hdf5_flag = nullptr;
   std::string plot, plot_metric = "area";  // --plot FILE: the study's figure
   int threads = 0, harmonics = 10;
-  bool resume = false, restart = false, quiet = false, list = false;
+  bool resume = false, restart = false, quiet = false, list = false, no_continuation = false;
 };
+
+// Continuation (docs/periodic.md): each case of `pending` (study indices, increasing) starts from
+// the steady state of the pending case before it on its line: the cases that differ only in the
+// values of the chain factor, the factor with the most values (the last of those on a tie; every
+// key of a zipped study). Only cases this run computes are linked, so a shard's chains stay in
+// the shard and a resumed sweep continues from the cases it runs.
+std::vector<std::ptrdiff_t> continuation_links(const io::StudySpec& spec, const io::Study& study,
+                                               const std::vector<std::size_t>& pending) {
+  const std::size_t n_keys = study.keys.size();
+  std::size_t along_begin = 0, along_end = n_keys;  // the chain factor's key columns
+  if (spec.mode == io::SweepMode::product) {
+    std::size_t column = 0, longest = 0;
+    for (const io::SweepFactor& f : spec.factors) {
+      if (f.size() >= longest) {
+        longest = f.size();
+        along_begin = column;
+        along_end = column + f.axes.size();
+      }
+      column += f.axes.size();
+    }
+  }
+  std::map<std::string, std::ptrdiff_t> last_on_line;  // line -> index into pending
+  std::vector<std::ptrdiff_t> previous(pending.size(), -1);
+  for (std::size_t j = 0; j < pending.size(); ++j) {
+    std::string line;
+    for (std::size_t k = 0; k < n_keys; ++k)
+      if (k < along_begin || k >= along_end)
+        line += io::format_value(study.varied[pending[j]][k]) + '\n';
+    const auto [it, fresh] = last_on_line.try_emplace(line, static_cast<std::ptrdiff_t>(j));
+    if (!fresh) previous[j] = std::exchange(it->second, static_cast<std::ptrdiff_t>(j));
+  }
+  return previous;
+}
 
 std::string case_file_name(std::size_t index, std::size_t total) {
   std::string digits = std::to_string(total > 0 ? total - 1 : 0);
@@ -109,7 +143,9 @@ int run(const SweepOptions& o) {
   const io::Shard shard = sharded ? io::parse_shard(o.shard) : io::Shard{};
   io::StudySpec spec = io::read_study_file(o.study);
   apply(o.c, spec.base);
-  const io::Study study = io::expand(spec);
+  io::Study study = io::expand(spec);
+  if (o.no_continuation)
+    for (Case& c : study.cases) c.numerics.continuation = false;
   const std::size_t total = study.cases.size();
   warn_fixed_moment(spec, study);
   const io::StudyColumns columns{study.keys, o.harmonics};
@@ -196,6 +232,7 @@ int run(const SweepOptions& o) {
   options.threads = o.threads;
   options.n_harmonics = o.harmonics;
   options.cancelled = [] { return interrupted(); };
+  options.previous = continuation_links(spec, study, pending);
   options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
     const std::size_t g = pending[i];
     const std::string row = io::study_csv_row(columns, g, study.varied[g], outcome);
@@ -361,6 +398,10 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("--plot-metric", o->plot_metric,
                   "the results column --plot shows (default area; e.g. ddx_max, psi_xz)")
       ->type_name("COLUMN");
+  sub->add_flag("--no-continuation", o->no_continuation,
+                "start every case from rest (numerics.continuation = false): with numerics.method "
+                "= shooting, a case otherwise starts from the steady state of its neighbour "
+                "along the last swept key (docs/periodic.md)");
   sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });

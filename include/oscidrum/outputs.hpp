@@ -92,7 +92,11 @@
   X(double, phi_drift, 0.0, "rad", "phi drift per period",                                        \
     "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
-    "why shooting fell back to the transient method (empty if it did not)")
+    "why shooting fell back to the transient method (empty if it did not)")                       \
+  X(int, warm_start, 0, "-", "warm start (continuation)",                                         \
+    "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "     \
+    "found from the neighbouring case's steady state, -1 that start failed and the case started " \
+    "from rest, 0 the case started from rest")
 
 // ------------------------------------------------------------------------------------------------
 // Metrics of the drum-centre accelerations, for simulated steady states (Metrics) and measured

@@ -90,6 +90,9 @@ struct Numerics {
   int max_steps_per_period = 20000;     ///< more steps in one period: budget_exceeded [-]
   double slip_constraint_rate = 0.0;    ///< Baumgarte rate on (39) during slip [1/s]; 0: 2 nu
   bool suspension_from_static = false;  ///< measure kd from static equilibrium (not the paper)
+  /// In a study (sweep, run_study) with method shooting: start from the steady state of the
+  /// neighbouring case (docs/periodic.md, "Continuation in studies"); ignored by a single run.
+  bool continuation = true;
 };
 
 /// One simulation case: everything the engine needs.

@@ -34,11 +34,32 @@ struct StudyOptions {
   /// period inside a running case; return true to stop (interrupt): running cases end as
   /// "cancelled" and are not passed to on_case_done.
   std::function<bool()> cancelled;
+  /// Continuation (numerics.continuation, docs/periodic.md): for each case, the index of the
+  /// case whose steady state it starts from (an earlier case: its predecessor in a chain), or -1
+  /// for a start from rest. A case is the predecessor of at most one case. Empty: the chains of
+  /// continuation_chains(cases). Links to a case that does not use continuation are ignored.
+  std::vector<std::ptrdiff_t> previous;
 };
 
-/// Run every case (each is independent: identical results to a serial run). The outcome vector
-/// has one entry per input case, in input order; cases not started because of cancellation have
-/// valid = false and error = "cancelled".
+/// Longest chain of continuation: a chain is cut into pieces of at most this many cases (each
+/// piece starts from rest), so that a long one-parameter study still spreads over the threads.
+inline constexpr std::size_t kMaxContinuationChain = 16;
+
+/// Chains of continuation inferred from the input order, as StudyOptions::previous: case k
+/// continues case k - 1 when the parameters in which they differ are among those in which the
+/// chain's first two cases differ (a nested-loop product, innermost loop last, gives one chain
+/// per line of the innermost loop; zipped values give one chain). Only cases with
+/// numerics.method = shooting and numerics.continuation are linked.
+std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases);
+
+/// Run every case on `threads` threads. Cases are independent, except that with continuation
+/// (numerics.method = shooting and numerics.continuation) a case starts from the steady state of
+/// its predecessor in its chain (StudyOptions::previous), falling back to the start from rest
+/// when that fails. Each chain runs in order on one thread, so the outcomes are identical whatever
+/// the number of threads; they agree with run_case to the steady-state tolerance
+/// (Diagnostics::warm_start says how each case started). The outcome vector has one entry per
+/// input case, in input order; cases not started because of cancellation have valid = false and
+/// error = "cancelled".
 std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptions& options = {});
 
 /// One case, as run_study runs it (never throws for invalid parameters: see CaseOutcome::valid).

@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -133,6 +133,8 @@ class Diagnostics:
     """stick/slip switches per excitation period in the sampled window [-]"""
     def to_dict(self: Any) -> dict: ...
     units: dict
+    warm_start: int
+    """continuation in a study (numerics.continuation, shooting only): 1 the steady state was found from the neighbouring case's steady state, -1 that start failed and the case started from rest, 0 the case started from rest [-]"""
 
 class DrumMotion:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
@@ -330,6 +332,8 @@ class Numerics:
     def __setstate__(self, state: Any) -> None: ...
     atol: float
     """absolute tolerance (SI units of each state) [-]; in (0, 0.01]; default 1e-11."""
+    continuation: bool
+    """in a study (sweep, run_study) with method shooting: start each case from the steady state of its neighbour along the swept values, falling back to the start from rest when that fails (docs/periodic.md); false: every case starts from rest [-]; true or false; default true."""
     max_multiplicity: int
     """longest steady period searched, in excitation periods [-]; an integer in [1, 64]; default 8."""
     max_periods: int

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "drivers/continuation.hpp"
 #include "drivers/sampling.hpp"
 #include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
@@ -80,14 +82,22 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
 
 // Shooting (src/drivers/shooting.hpp); returns false when the run must fall back to the
 // transient method.
+// `warm`: start Newton from a neighbouring case's orbit (continuation in studies) instead of a
+// short transient from rest; a failed warm start returns false without ending the run.
 bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
-              long* sample_rhs) {
-  flow.reset(0.0, model.initial_state(), initial_phase(model));
-  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress);
+              long* sample_rhs, const detail::ShootingStart& warm = {}) {
+  if (warm.from_state)
+    flow.reset(0.0, warm.state, warm.phase);
+  else
+    flow.reset(0.0, model.initial_state(), initial_phase(model));
+  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress, warm);
   Diagnostics& d = result.diagnostics;
-  d.newton_iterations = shot.newton_iterations;
-  d.jacobian_evaluations = shot.jacobian_evaluations;
-  d.periods_simulated = shot.transient_periods + shot.period_maps + shot.plain_maps;
+  d.newton_iterations += shot.newton_iterations;
+  d.jacobian_evaluations += shot.jacobian_evaluations;
+  d.periods_simulated += shot.transient_periods + shot.period_maps + shot.plain_maps;
+  // A warm start that ends the flow (contact lost, ...) says nothing about the cold start;
+  // only cancellation ends the run.
+  if (shot.terminal && warm.from_state && shot.status != Status::cancelled) return false;
   if (shot.terminal) {  // the transient from rest meets the same end
     result.status = shot.status;
     result.message = shot.message;
@@ -96,7 +106,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     return true;
   }
   if (!shot.converged) {
-    d.fallback = shot.message;
+    if (!warm.from_state) d.fallback = shot.message;
     return false;
   }
   const Numerics& num = model.parameters().numerics;
@@ -107,9 +117,10 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   // Confirm the orbit by the plain integration of the sampled periods.
   const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
   if (stop != FlowStop::reached || !(change < num.steady_tol)) {
-    d.fallback = stop != FlowStop::reached
-                     ? "the orbit did not survive its sampling: " + flow.message()
-                     : "the orbit did not repeat under plain integration";
+    if (!warm.from_state)
+      d.fallback = stop != FlowStop::reached
+                       ? "the orbit did not survive its sampling: " + flow.message()
+                       : "the orbit did not repeat under plain integration";
     result.samples = Samples{};
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
@@ -117,7 +128,8 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     return false;
   }
   result.status = Status::steady_state;
-  result.message = shot.message;
+  result.message =
+      warm.from_state ? shot.message + " from the neighbouring case's orbit" : shot.message;
   result.floquet = shot.floquet;
   d.method = SteadyMethod::shooting;
   // A last Newton step taken on prediction was never mapped: what the sampled periods measured
@@ -133,8 +145,23 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
 
 }  // namespace
 
-Result simulate(const Model& model, const ProgressCallback& progress,
-                const std::function<bool()>& cancelled) {
+namespace detail {
+
+std::optional<ShootingStart> orbit_start(const Result& result) {
+  const Samples& s = result.samples;
+  if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
+  ShootingStart start;
+  start.from_state = true;
+  start.state =
+      State{s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]};
+  start.phase = s.phase[0];
+  for (double v : start.state.to_array())
+    if (!std::isfinite(v)) return {};
+  return start;
+}
+
+Result simulate_from(const Model& model, const ProgressCallback& progress,
+                     const std::function<bool()>& cancelled, const ShootingStart* warm) {
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
   Flow flow(model, options);
@@ -145,9 +172,22 @@ Result simulate(const Model& model, const ProgressCallback& progress,
   long sample_rhs = 0;  // right-hand-side evaluations of one sampled period
   const long rhs_start = flow.counters().rhs_evaluations;
   bool done = false;
-  if (num.method == SteadyMethod::shooting) {
-    done = shooting(model, flow, progress, result, &sample_rhs);
+  if (num.method == SteadyMethod::shooting && warm && warm->from_state) {
+    // Continuation (docs/periodic.md): Newton from the neighbour's orbit; when it fails, the
+    // cold start below runs as if it had not been tried (only its cost remains).
+    detail::ShootingStart start = *warm;
+    // A phase the new case cannot be in (slip under pure rolling, stick without friction).
+    if (model.parameters().contact.pure_rolling || start.phase == Phase::stick)
+      start.phase = initial_phase(model);
+    done = shooting(model, flow, progress, result, &sample_rhs, start);
+    result.diagnostics.warm_start = done ? 1 : -1;
+    if (!done) {
+      result.floquet = Floquet{};
+      result.events.clear();
+    }
   }
+  if (!done && num.method == SteadyMethod::shooting)
+    done = shooting(model, flow, progress, result, &sample_rhs);
   if (!done) transient(model, flow, progress, result, &sample_rhs);
   Diagnostics& d = result.diagnostics;
 
@@ -176,6 +216,13 @@ Result simulate(const Model& model, const ProgressCallback& progress,
     d.period_equivalents = d.periods_simulated;
   }
   return result;
+}
+
+}  // namespace detail
+
+Result simulate(const Model& model, const ProgressCallback& progress,
+                const std::function<bool()>& cancelled) {
+  return detail::simulate_from(model, progress, cancelled, nullptr);
 }
 
 Result simulate(const Case& c, const ProgressCallback& progress,

@@ -1,18 +1,24 @@
-// The study runner: a pool of worker threads takes case indices from one atomic counter and
-// stores each outcome at its index, so the outcome vector is the same whatever the number of
-// threads or the order in which cases finish (each case is an independent, deterministic
-// simulation). The callbacks are serialised by one mutex; the first exception a callback throws
-// stops the pool and is rethrown to the caller.
+// The study runner: cases are grouped into chains of continuation (a chain runs in order, each
+// case starting from its predecessor's steady state; a case without continuation is a chain of
+// its own). A pool of worker threads takes chains from one atomic counter and stores each outcome
+// at its case's index, so the outcome vector is the same whatever the number of threads or the
+// order in which chains finish (each chain is a deterministic sequence of simulations). The
+// callbacks are serialised by one mutex; the first exception a callback throws stops the pool and
+// is rethrown to the caller.
 #include "oscidrum/study.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 
+#include "drivers/continuation.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/simulate.hpp"
 
@@ -21,15 +27,17 @@ namespace {
 
 // Shared by the workers of one run_study call.
 struct Pool {
-  Pool(std::span<const Case> c, const StudyOptions& o, std::vector<CaseOutcome>& out)
-      : cases(c), options(o), outcomes(out) {}
+  Pool(std::span<const Case> c, const StudyOptions& o, std::vector<CaseOutcome>& out,
+       std::vector<std::vector<std::size_t>> ch)
+      : cases(c), options(o), outcomes(out), chains(std::move(ch)) {}
 
   std::span<const Case> cases;
   const StudyOptions& options;
   std::vector<CaseOutcome>& outcomes;
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};  // cancelled, or a callback threw
-  std::mutex mutex;               // serialises the callbacks and `done`
+  std::vector<std::vector<std::size_t>> chains;  // case indices, each chain in order
+  std::atomic<std::size_t> next{0};              // the next chain to run
+  std::atomic<bool> stop{false};                 // cancelled, or a callback threw
+  std::mutex mutex;                              // serialises the callbacks and `done`
   std::size_t done = 0;
   std::exception_ptr error;
 
@@ -45,15 +53,19 @@ struct Pool {
 // One case; `interrupted` is set if the cancellation callback stopped it midway.
 // `cancelled` (the caller's callback, serialised) is polled once per period, `stop_now` (cheap)
 // at every integration step.
+// `warm`: the predecessor's steady state (continuation), or null; `orbit` (may be null) receives
+// this case's steady state as a start for its successor.
 CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
                     const std::function<bool()>& cancelled, const std::function<bool()>& stop_now,
-                    bool* interrupted) {
+                    bool* interrupted, const detail::ShootingStart* warm = nullptr,
+                    std::optional<detail::ShootingStart>* orbit = nullptr) {
   CaseOutcome out;
   try {
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
-    out.result = simulate(model, progress, stop_now);
+    out.result = detail::simulate_from(model, progress, stop_now, warm);
+    if (orbit) *orbit = detail::orbit_start(out.result);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
@@ -87,26 +99,74 @@ void work(Pool& pool) {
     };
   }
   while (!pool.stop.load()) {
-    const std::size_t i = pool.next.fetch_add(1);
-    if (i >= pool.cases.size()) break;
-    if (pool.cancelled()) break;
-    bool interrupted = false;
-    CaseOutcome outcome =
-        run_one(pool.cases[i], opt.keep_samples || static_cast<bool>(opt.on_case_done),
-                opt.n_harmonics, cancelled, stop_now, &interrupted);
-    if (interrupted) break;  // stays "cancelled"; never reported as done
-    std::lock_guard lock(pool.mutex);
-    try {
-      ++pool.done;
-      if (opt.on_case_done) opt.on_case_done(i, outcome);
-      if (opt.progress) opt.progress(pool.done, pool.cases.size());
-    } catch (...) {
-      if (!pool.error) pool.error = std::current_exception();
-      pool.stop.store(true);
+    const std::size_t k = pool.next.fetch_add(1);
+    if (k >= pool.chains.size()) break;
+    std::optional<detail::ShootingStart> warm;  // the predecessor's steady state
+    for (const std::size_t i : pool.chains[k]) {
+      if (pool.cancelled()) return;
+      bool interrupted = false;
+      std::optional<detail::ShootingStart> orbit;
+      CaseOutcome outcome = run_one(
+          pool.cases[i], opt.keep_samples || static_cast<bool>(opt.on_case_done), opt.n_harmonics,
+          cancelled, stop_now, &interrupted, warm ? &*warm : nullptr, &orbit);
+      if (interrupted) return;  // stays "cancelled"; never reported as done
+      warm = std::move(orbit);
+      std::lock_guard lock(pool.mutex);
+      try {
+        ++pool.done;
+        if (opt.on_case_done) opt.on_case_done(i, outcome);
+        if (opt.progress) opt.progress(pool.done, pool.cases.size());
+      } catch (...) {
+        if (!pool.error) pool.error = std::current_exception();
+        pool.stop.store(true);
+      }
+      if (!opt.keep_samples) outcome.result.samples = Samples{};
+      pool.outcomes[i] = std::move(outcome);
+      if (pool.stop.load()) return;
     }
-    if (!opt.keep_samples) outcome.result.samples = Samples{};
-    pool.outcomes[i] = std::move(outcome);
   }
+}
+
+bool continues(const Case& c) {
+  return c.numerics.method == SteadyMethod::shooting && c.numerics.continuation;
+}
+
+// The chains of `previous` (validated), cut at kMaxContinuationChain, ordered by their first case.
+std::vector<std::vector<std::size_t>> make_chains(std::span<const Case> cases,
+                                                  const std::vector<std::ptrdiff_t>& previous) {
+  const std::size_t n = cases.size();
+  if (previous.size() != n)
+    throw Error("StudyOptions::previous must have one entry per case (" + std::to_string(n) +
+                "); got " + std::to_string(previous.size()));
+  std::vector<std::ptrdiff_t> next(n, -1);
+  std::vector<bool> linked(n, false);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::ptrdiff_t p = previous[k];
+    if (p == -1) continue;
+    if (p < 0 || static_cast<std::size_t>(p) >= k)
+      throw Error("StudyOptions::previous[" + std::to_string(k) +
+                  "] must be -1 or the index of an earlier case (0 ... " + std::to_string(k) +
+                  " - 1); got " + std::to_string(p));
+    if (next[p] != -1)
+      throw Error("StudyOptions::previous: case " + std::to_string(p) +
+                  " is the predecessor of two cases (" + std::to_string(next[p]) + " and " +
+                  std::to_string(k) + "); a case continues at most one chain");
+    if (!continues(cases[k])) continue;
+    next[p] = static_cast<std::ptrdiff_t>(k);
+    linked[k] = true;
+  }
+  std::vector<std::vector<std::size_t>> chains;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (linked[k]) continue;  // inside a chain
+    chains.emplace_back();
+    for (std::ptrdiff_t i = static_cast<std::ptrdiff_t>(k); i != -1; i = next[i]) {
+      if (chains.back().size() == kMaxContinuationChain) chains.emplace_back();
+      chains.back().push_back(static_cast<std::size_t>(i));
+    }
+  }
+  std::sort(chains.begin(), chains.end(),
+            [](const auto& a, const auto& b) { return a.front() < b.front(); });
+  return chains;
 }
 
 }  // namespace
@@ -114,6 +174,33 @@ void work(Pool& pool) {
 CaseOutcome run_case(const Case& c, bool keep_samples, int n_harmonics) {
   bool interrupted = false;
   return run_one(c, keep_samples, n_harmonics, {}, {}, &interrupted);
+}
+
+std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases) {
+  std::vector<std::ptrdiff_t> previous(cases.size(), -1);
+  const std::span<const Field> all = fields();
+  std::vector<bool> along;  // the fields in which the chain's first two cases differ
+  std::size_t length = 0;   // of the current chain
+  auto differs = [&](std::size_t k, std::size_t f) {
+    const double a = all[f].get(cases[k - 1]), b = all[f].get(cases[k]);
+    return !(a == b || (std::isnan(a) && std::isnan(b)));
+  };
+  for (std::size_t k = 1; k < cases.size(); ++k) {
+    bool link = continues(cases[k - 1]) && continues(cases[k]);
+    if (link && length <= 1) {  // the chain's second case: its step sets the direction
+      along.assign(all.size(), false);
+      for (std::size_t f = 0; f < all.size(); ++f) along[f] = differs(k, f);
+    } else if (link) {
+      for (std::size_t f = 0; f < all.size() && link; ++f) link = along[f] || !differs(k, f);
+    }
+    if (link) {
+      previous[k] = static_cast<std::ptrdiff_t>(k - 1);
+      length = std::max<std::size_t>(length, 1) + 1;
+    } else {
+      length = 1;
+    }
+  }
+  return previous;
 }
 
 std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptions& options) {
@@ -125,10 +212,12 @@ std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptio
                 std::to_string(options.n_harmonics));
   std::vector<CaseOutcome> outcomes(cases.size());
   for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
-  Pool pool(cases, options, outcomes);
+  Pool pool(
+      cases, options, outcomes,
+      make_chains(cases, options.previous.empty() ? continuation_chains(cases) : options.previous));
   std::size_t threads = options.threads > 0 ? static_cast<std::size_t>(options.threads)
                                             : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, cases.size());
+  threads = std::min(threads, pool.chains.size());
   if (threads <= 1) {
     work(pool);
   } else {

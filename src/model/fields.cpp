@@ -152,6 +152,11 @@ const std::array kFields = {
     Field{"numerics.suspension_from_static", FieldType::boolean, "-",
           "measure the suspension from static equilibrium instead of t = 0 (not the paper)", 0, 1,
           false, false, nullptr, OSCIDRUM_BOOL(numerics.suspension_from_static)},
+    Field{"numerics.continuation", FieldType::boolean, "-",
+          "in a study (sweep, run_study) with method shooting: start each case from the steady "
+          "state of its neighbour along the swept values, falling back to the start from rest "
+          "when that fails (docs/periodic.md); false: every case starts from rest",
+          0, 1, false, false, nullptr, OSCIDRUM_BOOL(numerics.continuation)},
 };
 
 #undef OSCIDRUM_REAL

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "process.hpp"
@@ -104,6 +106,8 @@ TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
 
 // 60 pure-rolling cases on Appendix B soils: long enough (a second or two on one thread) to be
 // stopped in the middle.
+// The transient method: independent cases (no continuation), so that resuming gives the same
+// bytes.
 std::string write_slow_study(const TempDir& dir) {
   std::ofstream(dir / "slow.toml")
       << "[soil]\ninput = \"modulus\"\n[contact]\npure_rolling = true\n"
@@ -181,7 +185,9 @@ TEST(CliSweep, ResumeRefusesAJournalOfAnotherStudy) {
 }
 
 // Issue 11 (2): a study split into 4 shards that run as separate processes (at the same time),
-// merged, is byte for byte the unsharded result.
+// merged, is byte for byte the unsharded result when the cases are independent (without
+// continuation: with it, a shard's chains start from rest where the unsharded ones continue, which
+// agrees to the steady-state tolerance only).
 TEST(CliSweep, FourShardsMergeToTheUnshardedResult) {
   TempDir dir;
   const std::string study = kSource + "/examples/table2_sweep.toml";
@@ -189,10 +195,10 @@ TEST(CliSweep, FourShardsMergeToTheUnshardedResult) {
   for (int i = 1; i <= 4; ++i) {
     const std::string n = std::to_string(i);
     pids.push_back(start({"sweep", study, "--shard", n + "/4", "--out", dir / ("s" + n + ".csv"),
-                          "--threads", "1", "-q"},
+                          "--threads", "1", "-q", "--no-continuation"},
                          dir / ("out" + n), dir / ("err" + n)));
   }
-  const Outcome whole = run({"sweep", study, "--out", dir / "all.csv", "-q"});
+  const Outcome whole = run({"sweep", study, "--out", dir / "all.csv", "-q", "--no-continuation"});
   ASSERT_EQ(whole.code, 0) << whole.err;
   for (int i = 1; i <= 4; ++i) {
     const std::string n = std::to_string(i);
@@ -232,6 +238,60 @@ TEST(CliSweep, FourShardsMergeToTheUnshardedResult) {
   o = run({"sweep", study, "--shard", "5/4"});
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("1 <= I <= N"), std::string::npos) << o.err;
+}
+
+std::vector<std::string> column(const std::string& csv, const std::string& name) {
+  std::istringstream lines(csv);
+  std::string line;
+  std::vector<std::string> out;
+  std::size_t index = std::string::npos;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells(1);  // RFC 4180: a quoted cell may hold commas
+    bool quoted = false;
+    for (char ch : line) {
+      if (ch == '"')
+        quoted = !quoted;
+      else if (ch == ',' && !quoted)
+        cells.emplace_back();
+      else
+        cells.back() += ch;
+    }
+    if (index == std::string::npos) {
+      index = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), name) - cells.begin());
+      continue;
+    }
+    out.push_back(index < cells.size() ? cells[index] : "");
+  }
+  return out;
+}
+
+// Issue 7 (3): with shooting, the cases of examples/table2_sweep.toml (14 G slowest x 2 contacts
+// x 2 torques) are chained along G, the factor with the most values: 4 chains of 14, each case
+// after the first of its chain started from its neighbour. --no-continuation starts all from
+// rest; a shard chains its own cases.
+TEST(CliSweep, ShootingContinuesAlongTheLongestFactor) {
+  TempDir dir;
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  const std::string shooting = "numerics.method=shooting";
+  const Outcome warm = run({"sweep", study, "--set", shooting, "-q", "--threads", "2"});
+  ASSERT_EQ(warm.code, 0) << warm.err;
+  const std::vector<std::string> started = column(warm.out, "warm_start[-]");
+  ASSERT_EQ(started.size(), 56u);
+  for (std::size_t i = 0; i < started.size(); ++i)
+    EXPECT_EQ(started[i], i < 4 ? "0" : "1") << "case " << i;
+  const Outcome cold =
+      run({"sweep", study, "--set", shooting, "-q", "--threads", "2", "--no-continuation"});
+  ASSERT_EQ(cold.code, 0) << cold.err;
+  const std::vector<std::string> not_started = column(cold.out, "warm_start[-]");
+  EXPECT_EQ(std::count(not_started.begin(), not_started.end(), "0"), 56);
+  EXPECT_EQ(column(warm.out, "status[-]"), column(cold.out, "status[-]"));
+  // Shard 2/4 holds cases 1, 5, ..., 53: one contact and torque, all 14 G values, one chain.
+  const Outcome shard = run({"sweep", study, "--set", shooting, "-q", "--shard", "2/4"});
+  ASSERT_EQ(shard.code, 0) << shard.err;
+  const std::vector<std::string> in_shard = column(shard.out, "warm_start[-]");
+  ASSERT_EQ(in_shard.size(), 14u);
+  EXPECT_EQ(std::count(in_shard.begin(), in_shard.end(), "1"), 13);
 }
 
 // Issue 14 (6): --out naming a directory failed only after every case had run, and left

@@ -70,6 +70,7 @@ double direct_value(const Case& c0, const std::string& key) {
   if (key == "numerics.method") return static_cast<double>(static_cast<int>(c.numerics.method));
   if (key == "contact.pure_rolling") return c.contact.pure_rolling ? 1.0 : 0.0;
   if (key == "numerics.suspension_from_static") return c.numerics.suspension_from_static;
+  if (key == "numerics.continuation") return c.numerics.continuation;
   if (key == "numerics.max_periods") return c.numerics.max_periods;
   if (key == "numerics.max_multiplicity") return c.numerics.max_multiplicity;
   if (key == "numerics.output_periods") return c.numerics.output_periods;
@@ -112,7 +113,7 @@ std::string error_of(const std::function<void()>& action) {
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
   // 12 roller + 8 soil + 2 trough + 3 contact + MMd + 12 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 38u);
+  EXPECT_EQ(fields().size(), 39u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;

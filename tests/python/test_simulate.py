@@ -106,6 +106,7 @@ def _cases():
         for pure in (True, False):
             c = oscidrum.Case(soil=oscidrum.table2_soil(G), MMd=0.05 * 54947.0)
             c.contact.pure_rolling = pure
+            c.numerics.continuation = False  # independent cases: each equals simulate(c)
             cases.append(c)
     return cases
 
@@ -186,8 +187,9 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     # The table's diagnostics, the steady-state method's included (the method by its name).
     names = [x["name"] for x in table["diagnostics"]]
     assert list(d.to_dict()) == names
-    assert names[-6:] == ["method", "newton_iterations", "jacobian_evaluations",
-                          "period_equivalents", "phi_drift", "fallback"]
+    assert names[-7:] == ["method", "newton_iterations", "jacobian_evaluations",
+                          "period_equivalents", "phi_drift", "fallback", "warm_start"]
+    assert d.warm_start == 0  # a single run starts from rest
     assert d.method in ("transient", "shooting") and isinstance(d.fallback, str)
     assert d.inconsistent_slip_ends == 0  # was missing from Python before the table
     m = oscidrum.compute_metrics(r)
@@ -211,3 +213,24 @@ def test_compaction_indicators(slip_result, rolling_result):
     mr = oscidrum.compute_metrics(rolling_result)
     assert mr.friction_work < 1e-9 * m.friction_work and mr.slip_fraction == 0  # stick only
     assert mr.mu_required > 0  # pure rolling: the friction rolling needs, |T|/N somewhere
+
+
+def test_study_with_shooting_continues_from_the_neighbour():
+    """Continuation (docs/periodic.md): with shooting, consecutive cases along G form a chain; every
+    case after the first starts from its neighbour's steady state, whatever the thread count."""
+    cases = []
+    for G in (5e6, 10e6, 15e6, 20e6):
+        c = oscidrum.Case(soil=oscidrum.table2_soil(G), **{"contact.pure_rolling": True})
+        c.numerics.method = "shooting"
+        c.numerics.samples_per_period = 256
+        cases.append(c)
+    one = oscidrum.run_study(cases, threads=1, progress=False)
+    two = oscidrum.run_study(cases, threads=2, progress=False)
+    assert [o.result.diagnostics.warm_start for o in one] == [0, 1, 1, 1]
+    for a, b in zip(one, two):
+        assert a.ok and b.ok
+        assert a.metrics.area == b.metrics.area
+    for c in cases:
+        c.numerics.continuation = False
+    cold = oscidrum.run_study(cases, threads=2, progress=False)
+    assert [o.result.diagnostics.warm_start for o in cold] == [0, 0, 0, 0]

@@ -20,7 +20,9 @@ MU_VALUES = (0.3, 0.5, 0.7)
 
 
 def grid():
-    return [oscidrum.Case(table2_G=G, mu=mu) for G in G_VALUES for mu in MU_VALUES]
+    # Independent cases (no continuation): an executor's chunks then give the local bits.
+    return [oscidrum.Case(table2_G=G, mu=mu, continuation=False) for G in G_VALUES
+            for mu in MU_VALUES]
 
 
 @pytest.fixture(scope="module")
@@ -124,7 +126,7 @@ MPI_SCRIPT = """
 import sys
 from mpi4py.futures import MPIPoolExecutor
 import oscidrum
-cases = [oscidrum.Case(table2_G=G, mu=mu) for G in {G} for mu in {MU}]
+cases = [oscidrum.Case(table2_G=G, mu=mu, continuation=False) for G in {G} for mu in {MU}]
 local = oscidrum.run_study(cases, threads=1)
 with MPIPoolExecutor() as pool:
     res = oscidrum.run_study(cases, executor=pool, chunk_size=4, threads=1)

@@ -1,0 +1,59 @@
+// Benchmark of a Table 2 sweep with shooting, warm-started case to case (continuation,
+// docs/periodic.md) against every case from rest, on one thread: 14 G x 4 trough radii x
+// {stick-slip, pure rolling} = 112 cases, G varying fastest (the chains). Counter: cases per
+// second (per core: one thread).
+#include <benchmark/benchmark.h>
+
+#include "oscidrum/oscidrum.hpp"
+
+namespace {
+
+std::vector<oscidrum::Case> table2_sweep(bool continuation) {
+  std::vector<oscidrum::Case> cases;
+  for (double R : {0.603, 0.606, 0.62, 0.65})
+    for (bool pure : {false, true})
+      for (const oscidrum::Table2Row& row : oscidrum::table2()) {
+        oscidrum::Case c;
+        c.numerics.method = oscidrum::SteadyMethod::shooting;
+        c.numerics.continuation = continuation;
+        c.trough.a = R;
+        c.soil = oscidrum::table2_soil(row.G);
+        c.contact.pure_rolling = pure;
+        cases.push_back(c);
+      }
+  return cases;
+}
+
+void run(benchmark::State& state, bool continuation) {
+  const std::vector<oscidrum::Case> cases = table2_sweep(continuation);
+  oscidrum::StudyOptions options;
+  options.threads = 1;
+  std::vector<oscidrum::CaseOutcome> out;
+  for (auto _ : state) {
+    out = oscidrum::run_study(cases, options);
+    benchmark::DoNotOptimize(out.data());
+  }
+  double warm = 0, equivalents = 0;
+  for (const oscidrum::CaseOutcome& o : out) {
+    if (!o.valid || o.result.status != oscidrum::Status::steady_state) {
+      state.SkipWithError("a case did not reach its steady state");
+      return;
+    }
+    warm += o.result.diagnostics.warm_start == 1;
+    equivalents += o.result.diagnostics.period_equivalents;
+  }
+  const double n = static_cast<double>(cases.size());
+  state.counters["cases_per_s"] =
+      benchmark::Counter(n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["warm_started"] = warm;
+  state.counters["period_equivalents"] = equivalents / n;
+}
+
+void BM_Table2Sweep_Shooting_Continuation(benchmark::State& s) { run(s, true); }
+void BM_Table2Sweep_Shooting_FromRest(benchmark::State& s) { run(s, false); }
+BENCHMARK(BM_Table2Sweep_Shooting_Continuation)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Table2Sweep_Shooting_FromRest)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

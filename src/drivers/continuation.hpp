@@ -1,0 +1,27 @@
+// Internal: continuation in studies (docs/periodic.md, "Continuation in studies"). A case of a
+// study may start shooting from the steady state of its neighbour, the case before it in its
+// chain, instead of from a short transient from rest.
+#pragma once
+
+#include <functional>
+#include <optional>
+
+#include "drivers/shooting.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/result.hpp"
+#include "oscidrum/simulate.hpp"
+
+namespace oscidrum::detail {
+
+/// The state of a steady state at its section (the first sample, t0 a period boundary) as a
+/// start for a neighbouring case; empty unless `result` is a period-1 steady state with samples.
+std::optional<ShootingStart> orbit_start(const Result& result);
+
+/// simulate(), but with numerics.method = shooting and `warm` given, Newton starts from `warm`
+/// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs
+/// exactly as simulate() runs it. Diagnostics::warm_start says which happened. The transient
+/// method ignores `warm` (it always integrates from rest).
+Result simulate_from(const Model& model, const ProgressCallback& progress,
+                     const std::function<bool()>& cancelled, const ShootingStart* warm);
+
+}  // namespace oscidrum::detail

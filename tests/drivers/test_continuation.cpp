@@ -1,0 +1,217 @@
+// Tests of continuation in studies (src/drivers/study.cpp, src/drivers/continuation.hpp): a Table 2
+// sweep warm-started case to case finds the steady states of the cold start, independently of the
+// thread count; a warm start that fails falls back to exactly the cold start; the chains.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "drivers/continuation.hpp"
+#include "oscidrum/oscidrum.hpp"
+
+namespace oscidrum {
+namespace {
+
+Case shooting_case(double G, bool pure_rolling) {
+  Case c;
+  c.soil = table2_soil(G);
+  c.contact.pure_rolling = pure_rolling;
+  c.numerics.method = SteadyMethod::shooting;
+  c.numerics.samples_per_period = 256;
+  return c;
+}
+
+// Paper Table 2: 14 G values, pure rolling and stick-slip (mu = 0.5); G varies fastest.
+std::vector<Case> table2_sweep(bool continuation) {
+  std::vector<Case> cases;
+  for (bool pure : {true, false})
+    for (const Table2Row& row : table2()) {
+      Case c = shooting_case(row.G, pure);
+      c.numerics.continuation = continuation;
+      cases.push_back(c);
+    }
+  return cases;
+}
+
+// Largest difference of two sampled steady states over the state components (phi excluded: it
+// is cyclic, its offset is arbitrary), each scaled by its range over the steady period, as
+// numerics.steady_tol measures a change.
+double scaled_difference(const Samples& a, const Samples& b) {
+  double worst = 0.0;
+  for (auto member : {&Samples::delta, &Samples::x_A, &Samples::s_A, &Samples::ddelta,
+                      &Samples::dx_A, &Samples::ds_A, &Samples::dphi}) {
+    const std::vector<double>&x = a.*member, &y = b.*member;
+    EXPECT_EQ(x.size(), y.size());
+    if (x.size() != y.size() || x.empty()) return INFINITY;
+    const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+    const double range = *hi - *lo;
+    for (std::size_t j = 0; j < x.size(); ++j)
+      worst = std::max(worst, std::abs(x[j] - y[j]) / range);
+  }
+  return worst;
+}
+
+TEST(Continuation, Table2SweepEqualsColdStartToTheSteadyTolerance) {
+  const std::vector<Case> warm_cases = table2_sweep(true), cold_cases = table2_sweep(false);
+  StudyOptions options;
+  options.threads = 2;
+  options.keep_samples = true;
+  const std::vector<CaseOutcome> warm = run_study(warm_cases, options);
+  const std::vector<CaseOutcome> cold = run_study(cold_cases, options);
+  ASSERT_EQ(warm.size(), 28u);
+  long warm_rhs = 0, cold_rhs = 0;
+  int warm_started = 0;
+  for (std::size_t i = 0; i < warm.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    ASSERT_TRUE(warm[i].valid && cold[i].valid);
+    ASSERT_EQ(warm[i].result.status, Status::steady_state) << warm[i].result.message;
+    ASSERT_EQ(cold[i].result.status, Status::steady_state) << cold[i].result.message;
+    const Diagnostics &dw = warm[i].result.diagnostics, &dc = cold[i].result.diagnostics;
+    EXPECT_EQ(dc.warm_start, 0);
+    // Each of the two chains (14 G values) starts from rest; every later case from its neighbour.
+    EXPECT_EQ(dw.warm_start, i % 14 == 0 ? 0 : 1) << dw.fallback;
+    warm_started += dw.warm_start == 1;
+    warm_rhs += dw.rhs_evaluations;
+    cold_rhs += dc.rhs_evaluations;
+    // Both orbits are steady to steady_tol (a period changes them by less), so they are the same
+    // orbit to 2 steady_tol.
+    EXPECT_LE(scaled_difference(warm[i].result.samples, cold[i].result.samples),
+              2.0 * warm_cases[i].numerics.steady_tol);
+    // The switching structure is the same.
+    EXPECT_NEAR(warm[i].metrics.stick_fraction, cold[i].metrics.stick_fraction,
+                2.0 * warm_cases[i].numerics.steady_tol);
+  }
+  EXPECT_EQ(warm_started, 26);
+  // Starting next to the orbit saves the short transient.
+  EXPECT_LT(warm_rhs, cold_rhs);
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_identical(const CaseOutcome& a, const CaseOutcome& b) {
+  ASSERT_EQ(a.valid, b.valid);
+  EXPECT_EQ(a.result.status, b.result.status);
+  EXPECT_EQ(a.result.diagnostics.warm_start, b.result.diagnostics.warm_start);
+  EXPECT_EQ(a.result.diagnostics.rhs_evaluations, b.result.diagnostics.rhs_evaluations);
+  EXPECT_EQ(a.result.diagnostics.newton_iterations, b.result.diagnostics.newton_iterations);
+  for (auto member : {&Samples::t, &Samples::delta, &Samples::x_A, &Samples::s_A, &Samples::ddx_M,
+                      &Samples::ddz_M, &Samples::N, &Samples::T})
+    EXPECT_TRUE(same_bits(a.result.samples.*member, b.result.samples.*member));
+  EXPECT_TRUE(same_bits(a.metrics.ddx_max, b.metrics.ddx_max));
+  EXPECT_TRUE(same_bits(a.metrics.ddz_max, b.metrics.ddz_max));
+  EXPECT_TRUE(same_bits(a.metrics.area, b.metrics.area));
+}
+
+TEST(Continuation, OutcomesDoNotDependOnTheThreadCount) {
+  // Two chains of 7 (every other G value), stick-slip then pure rolling.
+  std::vector<Case> cases;
+  for (bool pure : {false, true})
+    for (std::size_t k = 0; k < table2().size(); k += 2)
+      cases.push_back(shooting_case(table2()[k].G, pure));
+  StudyOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  one.keep_samples = two.keep_samples = true;
+  const std::vector<CaseOutcome> a = run_study(cases, one), b = run_study(cases, two);
+  ASSERT_EQ(a.size(), b.size());
+  int warm_started = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    expect_identical(a[i], b[i]);
+    warm_started += a[i].result.diagnostics.warm_start == 1;
+  }
+  EXPECT_EQ(warm_started, 12);  // the continuation did run
+}
+
+TEST(Continuation, AFailingWarmStartFallsBackToTheColdStart) {
+  const Case c = shooting_case(25e6, false);
+  const Model model(c);
+  const Result cold = simulate(model);
+  ASSERT_EQ(cold.status, Status::steady_state);
+  // A start far from any orbit: the drum high up the trough and spinning; the flow from it loses
+  // contact or Newton cannot converge from it.
+  detail::ShootingStart far;
+  far.from_state = true;
+  far.state.delta = 0.6;
+  far.state.ddelta = 300.0;
+  far.state.dphi = 30.0;
+  far.phase = Phase::slip_positive;
+  const Result r = detail::simulate_from(model, {}, {}, &far);
+  EXPECT_EQ(r.diagnostics.warm_start, -1);
+  EXPECT_EQ(r.status, Status::steady_state) << r.message;
+  // The cold start that follows is the cold start: the same steady state, bit for bit.
+  EXPECT_TRUE(same_bits(r.samples.ddz_M, cold.samples.ddz_M));
+  EXPECT_TRUE(same_bits(r.samples.delta, cold.samples.delta));
+  EXPECT_EQ(r.diagnostics.newton_iterations >= cold.diagnostics.newton_iterations, true);
+  EXPECT_GT(r.diagnostics.rhs_evaluations, cold.diagnostics.rhs_evaluations);  // it cost work
+
+  // A warm start from the orbit itself converges at once.
+  const std::optional<detail::ShootingStart> own = detail::orbit_start(cold);
+  ASSERT_TRUE(own.has_value());
+  const Result again = detail::simulate_from(model, {}, {}, &*own);
+  EXPECT_EQ(again.diagnostics.warm_start, 1);
+  EXPECT_EQ(again.diagnostics.newton_iterations, 0);
+}
+
+TEST(Continuation, TheTransientMethodAlwaysStartsFromRest) {
+  Case c = shooting_case(25e6, true);
+  c.numerics.method = SteadyMethod::transient;
+  const Model model(c);
+  const Result cold = simulate(model);
+  const std::optional<detail::ShootingStart> own = detail::orbit_start(cold);
+  ASSERT_TRUE(own.has_value());
+  const Result r = detail::simulate_from(model, {}, {}, &*own);
+  EXPECT_EQ(r.diagnostics.warm_start, 0);
+  EXPECT_TRUE(same_bits(r.samples.ddz_M, cold.samples.ddz_M));
+}
+
+TEST(Continuation, ChainsFollowTheInnermostLoopOfAProduct) {
+  // 3 radii (outer) x 4 G values (inner): one chain per radius.
+  std::vector<Case> cases;
+  for (double R : {0.606, 0.62, 0.65})
+    for (double G : {5e6, 10e6, 15e6, 20e6}) {
+      Case c = shooting_case(G, true);
+      c.trough.a = R;
+      cases.push_back(c);
+    }
+  const std::vector<std::ptrdiff_t> p = continuation_chains(cases);
+  const std::vector<std::ptrdiff_t> expected = {-1, 0, 1, 2, -1, 4, 5, 6, -1, 8, 9, 10};
+  EXPECT_EQ(p, expected);
+  // Zipped values (G and f change together at every step) make one chain.
+  std::vector<Case> zip;
+  for (std::size_t i = 0; i < 6; ++i) {
+    zip.push_back(shooting_case(table2()[i].G, true));
+    zip.back().roller.f = 30.0 + static_cast<double>(i);
+  }
+  const std::vector<std::ptrdiff_t> zipped = continuation_chains(zip);
+  EXPECT_EQ(std::count(zipped.begin(), zipped.end(), -1), 1);
+  // No links where continuation is off or the method is the transient one.
+  cases[3].numerics.continuation = false;
+  cases[7].numerics.method = SteadyMethod::transient;
+  const std::vector<std::ptrdiff_t> off = continuation_chains(cases);
+  EXPECT_EQ(off[3], -1);
+  EXPECT_EQ(off[4], -1);
+  EXPECT_EQ(off[7], -1);
+  EXPECT_EQ(off[8], -1);
+  EXPECT_EQ(off[5], 4);
+}
+
+TEST(Continuation, LinksAreChecked) {
+  const std::vector<Case> cases(3, shooting_case(25e6, true));
+  StudyOptions o;
+  o.previous = {-1, 0, 0};  // case 0 would continue into two chains
+  EXPECT_THROW(run_study(cases, o), Error);
+  o.previous = {-1, 2, -1};  // a later case
+  EXPECT_THROW(run_study(cases, o), Error);
+  o.previous = {-1, 0};  // one per case
+  EXPECT_THROW(run_study(cases, o), Error);
+}
+
+}  // namespace
+}  // namespace oscidrum
