@@ -343,7 +343,7 @@ class Numerics:
     max_switches_per_period: int
     """more stick/slip switches than this in one period stop the run as chattering [-]; an integer in [2, 10000000]; default 200."""
     method: str
-    """how the periodic steady state is found: transient (integrate from rest until it repeats, the paper's method) or shooting (Newton on the period map, falls back to transient when it fails; agrees with transient to about 2e-6 so far) [-]; one of shooting, transient; default transient."""
+    """how the periodic steady state is found: shooting (Newton on the period map after a short transient; falls back to transient when it fails or the orbit is unstable) or transient (integrate from rest until it repeats, the paper's method); both agree to 1e-7 on the paper's cases [-]; one of shooting, transient; default shooting."""
     output_periods: int
     """steady periods sampled (times the multiplicity) [-]; an integer in [1, 1000]; default 2."""
     rtol: float
