@@ -33,11 +33,10 @@ const BAND_FACTOR = 4;
 let tolerance = RTOL;
 
 // The cases: the paper's default, stick-slip with the driving torque, pure rolling on stiff soil,
-// and the log-spiral trough; then two with the steady state solved for directly (shooting) at
-// rtol 1e-12. There the orbit is a fixed point of the period map rather than the end of a
-// transient, so the rounding band shrinks to ~1e-12 (pure rolling: from ~3e-8 with the transient
-// method) and the builds agree to a few 1e-12: what remains is the integrator's own error at
-// rtol 1e-12, which a last-bit change of the input already moves by that much.
+// and the log-spiral trough (steady states by shooting, the default: a fixed point of the period
+// map rather than the end of a transient, so the rounding band is ~1e-12; pure rolling had ~3e-8
+// with the transient method); then two at rtol 1e-12. What remains is the integrator's own error,
+// which a last-bit change of an input already moves by about that much.
 const tight = ['--set', 'numerics.method=shooting', '--set', 'numerics.rtol=1e-12'];
 const cases = [
   { name: 'default (G 25, mu 0.5)', args: [] },
