@@ -8,6 +8,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
+#include "oscidrum_io/config.hpp"
 #include "output.hpp"
 
 namespace oscidrum::cli {
@@ -116,6 +117,16 @@ void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>&
 namespace {
 void apply_flags(const CaseOptions& o, io::CaseSpec& spec);
 }  // namespace
+
+Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec) {
+  if (!config.empty()) io::read_case_file(config, spec);
+  apply(o, spec);
+  std::vector<std::string> warnings;
+  const Case c = io::finalize(spec, &warnings);
+  for (const std::string& w : warnings) warn(w);
+  io::validate(c, spec);
+  return c;
+}
 
 void apply(const CaseOptions& o, io::CaseSpec& spec) {
   // --set, in order, after the named flags; errors name the setting.

@@ -55,4 +55,8 @@ void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>&
 /// Apply the flags that were given to `spec`. Throws oscidrum::Error (exit code 2).
 void apply(const CaseOptions& o, io::CaseSpec& spec);
 
+/// The case a command runs: the case file `config` (if any), then the flags and --set of `o`,
+/// finalised with its warnings on stderr and validated. `spec` keeps where each key was set.
+Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec);
+
 }  // namespace oscidrum::cli

@@ -46,13 +46,7 @@ std::string cell(double v) { return io::format_double_short(v); }
 // The case the record is compared with: the case file, the flags, --set.
 Case base_case(const IdentifyCliOptions& o) {
   io::CaseSpec spec;
-  if (!o.config.empty()) io::read_case_file(o.config, spec);
-  apply(o.c, spec);
-  std::vector<std::string> warnings;
-  const Case c = io::finalize(spec, &warnings);
-  for (const std::string& w : warnings) warn(w);
-  io::validate(c, spec);
-  return c;
+  return resolve_case(o.config, o.c, spec);
 }
 
 // The measured response from `analyze --format json` (schema oscidrum-record/1).

@@ -54,12 +54,7 @@ int run(const RunOptions& o) {
   if (given(o.plot_flag) && o.plot_dir.empty())
     throw Error("--plot needs a directory name; got an empty one");
   io::CaseSpec spec;
-  if (!o.config.empty()) io::read_case_file(o.config, spec);
-  apply(o.c, spec);
-  std::vector<std::string> warnings;
-  const Case c = io::finalize(spec, &warnings);
-  for (const std::string& w : warnings) warn(w);
-  io::validate(c, spec);
+  const Case c = resolve_case(o.config, o.c, spec);
   if (o.print_config) {
     std::cout << io::case_to_toml(c, spec.table2);
     return kExitOk;

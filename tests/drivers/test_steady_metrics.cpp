@@ -102,13 +102,8 @@ class Brute : public FlowObserver {
   int next_ = 0;
 };
 
-TEST(SteadyMetrics, AgreeWithABruteForceEvaluation) {
-  const Model model(default_with(64, 0.05));
-  const Result res = simulate(model);
-  ASSERT_EQ(res.status, Status::steady_state) << res.message;
-  ASSERT_EQ(res.diagnostics.multiplicity, 1);
-  const Metrics exact = compute_metrics(model, res);
-  const int n = 1 << 18;
+// n uniform samples of the first steady period of `res`, integrated again from its first sample.
+Result brute_force_period(const Model& model, const Result& res, int n) {
   const Samples& s = res.samples;
   Flow flow(model);
   flow.reset(
@@ -116,8 +111,18 @@ TEST(SteadyMetrics, AgreeWithABruteForceEvaluation) {
       {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]},
       s.phase[0]);
   Brute brute(model, s.t[0], n);
-  ASSERT_EQ(flow.advance(s.t[0] + model.period(), &brute), FlowStop::reached);
-  Result& b = brute.r;
+  EXPECT_EQ(flow.advance(s.t[0] + model.period(), &brute), FlowStop::reached);
+  return brute.r;
+}
+
+TEST(SteadyMetrics, AgreeWithABruteForceEvaluation) {
+  const Model model(default_with(64, 0.05));
+  const Result res = simulate(model);
+  ASSERT_EQ(res.status, Status::steady_state) << res.message;
+  ASSERT_EQ(res.diagnostics.multiplicity, 1);
+  const Metrics exact = compute_metrics(model, res);
+  const int n = 1 << 18;
+  Result b = brute_force_period(model, res, n);
   ASSERT_EQ(b.samples.size(), static_cast<std::size_t>(n));
   b.frequency = res.frequency;
   b.sample_periods = 1;
@@ -165,15 +170,8 @@ TEST(SteadyMetrics, PeaksNearTheEndsOfStepsAreFound) {
     ASSERT_EQ(res.status, Status::steady_state) << res.message;
     const Metrics exact = compute_metrics(model, res);
     const int n = 1 << 16;
-    const Samples& s = res.samples;
-    Flow flow(model);
-    flow.reset(
-        s.t[0],
-        {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]},
-        s.phase[0]);
-    Brute brute(model, s.t[0], n);
-    ASSERT_EQ(flow.advance(s.t[0] + model.period(), &brute), FlowStop::reached);
-    const Samples& b = brute.r.samples;
+    const Result brute = brute_force_period(model, res, n);
+    const Samples& b = brute.samples;
     ASSERT_EQ(b.size(), static_cast<std::size_t>(n));
     const auto [x_lo, x_hi] = std::minmax_element(b.ddx_M.begin(), b.ddx_M.end());
     const auto [z_lo, z_hi] = std::minmax_element(b.ddz_M.begin(), b.ddz_M.end());
