@@ -31,26 +31,26 @@
 // ------------------------------------------------------------------------------------------------
 // The sampled steady state (Samples, the steady-state CSV), one column per entry, in file order.
 // SampleValues is std::vector<double>, SamplePhases std::vector<Phase>.
-#define OSCIDRUM_SAMPLE_COLUMNS(X)                                                               \
-  X(SampleValues, t, "s", "t", "time since the start of the excitation")                         \
-  X(SampleValues, delta, "rad", "delta", "position angle of the drum in the trough (0: bottom)") \
-  X(SampleValues, phi, "rad", "phi", "total drum rotation")                                      \
-  X(SampleValues, x_A, "m", "x_A", "horizontal displacement of the trough (soil point A)")       \
-  X(SampleValues, s_A, "m", "s_A", "vertical displacement of the trough, down positive")         \
-  X(SampleValues, ddelta, "rad/s", "delta'", "delta'")                                           \
-  X(SampleValues, dphi, "rad/s", "phi'", "phi'")                                                 \
-  X(SampleValues, dx_A, "m/s", "x_A'", "x_A'")                                                   \
-  X(SampleValues, ds_A, "m/s", "s_A'", "s_A'")                                                   \
-  X(SampleValues, x_M, "m", "x_M", "drum centre, horizontal (14)")                               \
-  X(SampleValues, z_M, "m", "z_M", "drum centre, vertical, down positive (14)")                  \
-  X(SampleValues, ddx_M, "m/s^2", "x_M''", "drum centre horizontal acceleration (18)")           \
-  X(SampleValues, ddz_M, "m/s^2", "z_M''",                                                       \
-    "drum centre vertical acceleration, down positive (18)")                                     \
-  X(SampleValues, N, "N", "N", "normal contact force (26)")                                      \
-  X(SampleValues, T, "N", "T", "tangential contact force (24, 25)")                              \
-  X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13)")                                   \
-  X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")           \
-  X(SamplePhases, phase, "-", "phase",                                                           \
+#define OSCIDRUM_SAMPLE_COLUMNS(X)                                                                 \
+  X(SampleValues, t, "s", "t", "time since the start of the excitation")                           \
+  X(SampleValues, delta, "rad", "delta", "position angle of the drum in the trough (0: bottom)")   \
+  X(SampleValues, phi, "rad", "phi", "total drum rotation")                                        \
+  X(SampleValues, x_A, "m", "x_A", "horizontal displacement of the trough (soil point A)")         \
+  X(SampleValues, s_A, "m", "s_A", "vertical displacement of the trough, down positive")           \
+  X(SampleValues, ddelta, "rad/s", "delta'", "delta'")                                             \
+  X(SampleValues, dphi, "rad/s", "phi'", "phi' (in stick: f5 delta', the rolling condition (12))") \
+  X(SampleValues, dx_A, "m/s", "x_A'", "x_A'")                                                     \
+  X(SampleValues, ds_A, "m/s", "s_A'", "s_A'")                                                     \
+  X(SampleValues, x_M, "m", "x_M", "drum centre, horizontal (14)")                                 \
+  X(SampleValues, z_M, "m", "z_M", "drum centre, vertical, down positive (14)")                    \
+  X(SampleValues, ddx_M, "m/s^2", "x_M''", "drum centre horizontal acceleration (18)")             \
+  X(SampleValues, ddz_M, "m/s^2", "z_M''",                                                         \
+    "drum centre vertical acceleration, down positive (18)")                                       \
+  X(SampleValues, N, "N", "N", "normal contact force (26)")                                        \
+  X(SampleValues, T, "N", "T", "tangential contact force (24, 25)")                                \
+  X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13); 0 in stick")                         \
+  X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")             \
+  X(SamplePhases, phase, "-", "phase",                                                             \
     "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0")
 
 // ------------------------------------------------------------------------------------------------

@@ -523,7 +523,7 @@ class Samples:
     delta: numpy.ndarray
     """steady-state samples, column delta[rad] of docs/csv-columns.md: position angle of the drum in the trough (0: bottom) (read-only NumPy view)"""
     dphi: numpy.ndarray
-    """steady-state samples, column dphi[rad/s] of docs/csv-columns.md: phi' (read-only NumPy view)"""
+    """steady-state samples, column dphi[rad/s] of docs/csv-columns.md: phi' (in stick: f5 delta', the rolling condition (12)) (read-only NumPy view)"""
     ds_A: numpy.ndarray
     """steady-state samples, column ds_A[m/s] of docs/csv-columns.md: s_A' (read-only NumPy view)"""
     dx_A: numpy.ndarray
@@ -541,7 +541,7 @@ class Samples:
     torque: numpy.ndarray
     """steady-state samples, column torque[N m] of docs/csv-columns.md: excitation MM(t) = M0 sin(nu t) + MMd (5, 6) (read-only NumPy view)"""
     v_rel: numpy.ndarray
-    """steady-state samples, column v_rel[m/s] of docs/csv-columns.md: slip velocity (13) (read-only NumPy view)"""
+    """steady-state samples, column v_rel[m/s] of docs/csv-columns.md: slip velocity (13); 0 in stick (read-only NumPy view)"""
     x_A: numpy.ndarray
     """steady-state samples, column x_A[m] of docs/csv-columns.md: horizontal displacement of the trough (soil point A) (read-only NumPy view)"""
     x_M: numpy.ndarray
