@@ -61,6 +61,9 @@ constexpr double kKick = 1e-2;
 constexpr int kSubharmonicTransient = 32;
 constexpr int kSubharmonicTries = 3;
 constexpr double kSubharmonicGap = 1e-4;
+// Past a period doubling, Newton on P^2 starts from the period-1 orbit displaced along the
+// eigenvector by these multiples of the components' ranges (both sides), before the search above.
+constexpr std::array<double, 6> kFlipKicks = {0.03, -0.03, 0.1, -0.1, 0.3, -0.3};
 
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
 constexpr double kSubstepsPerPeriod = 64.0;
@@ -127,6 +130,7 @@ class Shooter {
   bool newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out);
   bool subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
                    ShootingOutcome& out);
+  bool try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out);
   // Count k periods against the budget; false (and nothing counted) when they would exceed it.
   bool spend(int k) {
     if (used_ + k > budget_) {
@@ -414,6 +418,39 @@ Floquet multipliers_of(const Mat7& M) {
   return classify_multipliers(std::move(mult));
 }
 
+// Newton on P^p_ from w (its map `map`); true when it converges to a stable orbit of P^p that is
+// not one of P^d for a d < p dividing p (the change over d periods stays above kSubharmonicGap).
+bool Shooter::try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out) {
+  const int p = p_;
+  ShootingOutcome trial;
+  trial.transient_periods = out.transient_periods;
+  const bool converged = newton(w, wphase, map, trial);
+  out.newton_iterations += trial.newton_iterations;
+  if (!converged) {
+    if (trial.terminal || budget_hit_) {
+      out.terminal = trial.terminal;
+      out.status = trial.status;
+      out.message = trial.message;
+    }
+    return false;
+  }
+  if (multipliers_of(map.M).stability != Stability::stable) return false;
+  if (!spend(p)) {
+    out.message = budget_message();
+    return false;
+  }
+  flow_.reset(t0_, w, wphase);
+  for (int d = 1; d < p; ++d) {
+    if (flow_.advance(t0_ + d * period_) != FlowStop::reached) return false;
+    if (p % d == 0 && flow_.phase() == wphase &&
+        scaled_change(flow_.state(), w, scale_) < kSubharmonicGap)
+      return false;
+  }
+  out.final_change = trial.final_change;
+  out.predicted_last_step = trial.predicted_last_step;
+  return true;
+}
+
 // The period-1 orbit `orbit` (monodromy M) is unstable: look for a stable orbit of P^p,
 // p = 2 ... max_multiplicity (docs/periodic.md, "Subharmonic orbits"). On success, t0_ and p_ are
 // the new orbit's section and multiplicity, z its state and cur its map.
@@ -433,6 +470,28 @@ bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State&
   if (!(amplitude > 0.0)) return false;
   v /= amplitude;
   const double t_orbit = t0_;
+  // Near a period doubling (a real multiplier just beyond -1) the period-2 orbit lies on both
+  // sides of the period-1 orbit along v, at a distance that grows like the square root of the
+  // distance from the bifurcation, and the flow leaves the period-1 orbit only slowly (by the
+  // multiplier's modulus per period): Newton on P^2 starts directly from displaced states.
+  const std::complex<double> critical = eig.eigenvalues()[lead];
+  if (critical.real() < -1.0 && std::abs(critical.imag()) <= 1e-8 * std::abs(critical)) {
+    for (const double kick : kFlipKicks) {
+      p_ = 2;
+      t0_ = t_orbit;
+      Vec y = orbit.to_array();
+      for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += kick * v[i];
+      State w = consistent(State::from_array(y), phase);
+      PeriodMap map = period_map(w, phase, true);
+      if (try_orbit(w, phase, map, out)) {
+        z = w;
+        cur = std::move(map);
+        phase_ = phase;
+        return true;
+      }
+      if (out.terminal || budget_hit_) return false;
+    }
+  }
   for (const double sign : {1.0, -1.0}) {
     // Displace the orbit and follow the flow: it leaves the unstable orbit along v.
     Vec y = orbit.to_array();
@@ -477,43 +536,13 @@ bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State&
       State w = consistent(boundary[last].first, boundary[last].second);
       const Phase wphase = boundary[last].second;
       PeriodMap map = period_map(w, wphase, true);
-      ShootingOutcome trial;
-      trial.transient_periods = out.transient_periods;
-      if (!newton(w, wphase, map, trial)) {
-        out.newton_iterations += trial.newton_iterations;
-        if (trial.terminal || budget_hit_) {
-          out.terminal = trial.terminal;
-          out.status = trial.status;
-          out.message = trial.message;
-          return false;
-        }
-        continue;
+      if (try_orbit(w, wphase, map, out)) {
+        z = w;
+        cur = std::move(map);
+        phase_ = wphase;
+        return true;
       }
-      out.newton_iterations += trial.newton_iterations;
-      if (multipliers_of(map.M).stability != Stability::stable) continue;
-      // Not an orbit of P^d for a d < p dividing p: the change over d periods stays macroscopic.
-      if (!spend(p)) {
-        out.message = budget_message();
-        return false;
-      }
-      flow_.reset(t0_, w, wphase);
-      bool proper = true;
-      for (int d = 1; d < p && proper; ++d) {
-        if (flow_.advance(t0_ + d * period_) != FlowStop::reached) {
-          proper = false;
-          break;
-        }
-        if (p % d == 0 &&
-            (flow_.phase() == wphase && scaled_change(flow_.state(), w, scale_) < kSubharmonicGap))
-          proper = false;
-      }
-      if (!proper) continue;
-      out.final_change = trial.final_change;
-      out.predicted_last_step = trial.predicted_last_step;
-      z = w;
-      cur = std::move(map);
-      phase_ = wphase;
-      return true;
+      if (out.terminal || budget_hit_) return false;
     }
   }
   p_ = 1;
