@@ -141,7 +141,7 @@ class Shooter {
     return true;
   }
   std::string budget_message() const {
-    return fmt("shooting reached numerics.max_periods: %.0f of its %.0f excitation periods used",
+    return fmt("shooting reached numerics.max_periods: %.0f periods integrated of the %.0f it had",
                used_, budget_);
   }
   PeriodMap period_map(const State& z, Phase phase, bool sensitivities);
