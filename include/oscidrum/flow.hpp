@@ -115,6 +115,9 @@ class Flow {
   const FlowOptions& options() const;
   const FlowCounters& counters() const;
   const std::string& message() const;  ///< why the last advance() stopped early ("" if reached)
+  /// Restart the extremes of the counters (min_N, max_slip_residual): a driver that integrates
+  /// states off the trajectory it reports (Newton's iterates) keeps them to that trajectory.
+  void reset_extremes();
 
  private:
   struct Impl;

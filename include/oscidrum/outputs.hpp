@@ -57,7 +57,8 @@
 // Counters of a run (Diagnostics), in output order.
 #define OSCIDRUM_DIAGNOSTICS(X)                                                                   \
   X(int, periods_simulated, 0, "-", "periods simulated",                                          \
-    "excitation periods integrated before sampling")                                              \
+    "excitation periods integrated, the sampled ones included (shooting: every period map, P^p "  \
+    "counting p); all but the sampled ones count against numerics.max_periods")                   \
   X(int, periods_to_steady, -1, "-", "steady after (periods)",                                    \
     "period index at which the steady state was found (-1: never)")                               \
   X(int, multiplicity, 0, "-", "multiplicity",                                                    \
@@ -76,9 +77,12 @@
   X(double, switches_per_period, 0.0, "-", "switches per period",                                 \
     "stick/slip switches per excitation period in the sampled window")                            \
   X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                \
-    "largest |residual of the slip coupling (39)| / W during slip, W = m g + Fz = P0 (a force "   \
-    "ratio)")                                                                                     \
-  X(double, min_N, 0.0, "N", "min N", "smallest normal force seen (26)")                          \
+    "largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = "  \
+    "P0 (a force ratio), over the result's trajectory: the run from rest and the sampled "        \
+    "periods (shooting: its short transient from rest and the sampled periods of the orbit, "     \
+    "not Newton's iterates)")                                                                     \
+  X(double, min_N, 0.0, "N", "min N",                                                             \
+    "smallest normal force (26) at the step ends of the same trajectory")                         \
   X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
     "what produced the steady state: transient (integrated from rest until it repeats) or "       \
     "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \

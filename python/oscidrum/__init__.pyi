@@ -101,11 +101,11 @@ class Diagnostics:
     jacobian_evaluations: int
     """shooting: evaluations of the phase Jacobians (0 for the transient method) [-]"""
     max_slip_residual: float
-    """largest |residual of the slip coupling (39)| / W during slip, W = m g + Fz = P0 (a force ratio) [-]"""
+    """largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = P0 (a force ratio), over the result's trajectory: the run from rest and the sampled periods (shooting: its short transient from rest and the sampled periods of the orbit, not Newton's iterates) [-]"""
     method: str
     """what produced the steady state: transient (integrated from rest until it repeats) or shooting (solved for by Newton's method on the period map, docs/periodic.md) [-]"""
     min_N: float
-    """smallest normal force seen (26) [N]"""
+    """smallest normal force (26) at the step ends of the same trajectory [N]"""
     multiplicity: int
     """steady period in excitation periods (0: none found) [-]"""
     names: list
@@ -114,7 +114,7 @@ class Diagnostics:
     period_equivalents: float
     """cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations weighted by their cost) / the right-hand-side evaluations of one sampled period [-]"""
     periods_simulated: int
-    """excitation periods integrated before sampling [-]"""
+    """excitation periods integrated, the sampled ones included (shooting: every period map, P^p counting p); all but the sampled ones count against numerics.max_periods [-]"""
     periods_to_steady: int
     """period index at which the steady state was found (-1: never) [-]"""
     phi_drift: float
@@ -335,15 +335,15 @@ class Numerics:
     continuation: bool
     """in a study (sweep, run_study) with method shooting: start each case from the steady state of its neighbour along the swept values, falling back to the start from rest when that fails (docs/periodic.md); false: every case starts from rest [-]; true or false; default true."""
     max_multiplicity: int
-    """longest steady period searched, in excitation periods [-]; an integer in [1, 64]; default 8."""
+    """longest steady period searched, in excitation periods (shooting: orbits of P^p up to it when the period-1 orbit is unstable) [-]; an integer in [1, 64]; default 8."""
     max_periods: int
-    """give up the steady-state search after this many excitation periods [-]; an integer in [1, 10000000]; default 5000."""
+    """give up the steady-state search after this many excitation periods (with shooting: its short transient and period maps, P^p counting p, and the fallback's periods share them) [-]; an integer in [1, 10000000]; default 5000."""
     max_steps_per_period: int
     """more integration steps than this in one period stop the run (status budget_exceeded): a bound on the work of every run [-]; an integer in [100, 1000000000]; default 20000."""
     max_switches_per_period: int
     """more stick/slip switches than this in one period stop the run as chattering [-]; an integer in [2, 10000000]; default 200."""
     method: str
-    """how the periodic steady state is found: shooting (Newton on the period map after a short transient; falls back to transient when it fails or the orbit is unstable) or transient (integrate from rest until it repeats, the paper's method); both agree to 1e-7 on the paper's cases [-]; one of shooting, transient; default shooting."""
+    """how the periodic steady state is found: shooting (Newton on the period map after a short transient; on P^p when the period-1 orbit is unstable; falls back to transient when it fails) or transient (integrate from rest until it repeats, the paper's method); both agree to 1e-7 on the paper's cases [-]; one of shooting, transient; default shooting."""
     output_periods: int
     """steady periods sampled (times the multiplicity) [-]; an integer in [1, 1000]; default 2."""
     rtol: float

@@ -51,6 +51,20 @@ constexpr double kFreshMonodromy = 1e-3;
 constexpr double kPredictContraction = 1e-2;
 constexpr double kPredictMargin = 0.1;
 
+// Subharmonic orbits (the period-1 orbit is unstable): the orbit is displaced along the
+// eigenvector of the critical multiplier by kKick of each component's range, then followed for at
+// most kSubharmonicTransient plain periods; Newton on P^p starts there for the (at most
+// kSubharmonicTries) p = 2 ... max_multiplicity whose p-period change is smallest. An orbit of
+// P^p is accepted only when it is not one of P^d, d < p dividing p: the change over d periods
+// stays above kSubharmonicGap (as in the transient search).
+constexpr double kKick = 1e-2;
+constexpr int kSubharmonicTransient = 32;
+constexpr int kSubharmonicTries = 3;
+constexpr double kSubharmonicGap = 1e-4;
+// Past a period doubling, Newton on P^2 starts from the period-1 orbit displaced along the
+// eigenvector by these multiples of the components' ranges (both sides), before the search above.
+constexpr std::array<double, 6> kFlipKicks = {0.03, -0.03, 0.1, -0.1, 0.3, -0.3};
+
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
 constexpr double kSubstepsPerPeriod = 64.0;
 
@@ -95,6 +109,7 @@ struct PeriodMap {
   std::vector<Event> switches;
   bool grazing = false;
   bool has_monodromy = false;  // M was computed at this state (else: carried over)
+  bool over_budget = false;    // not integrated: it would exceed the budget of periods
   double residual = std::numeric_limits<double>::infinity();  // scaled |P(z) - z|
 };
 
@@ -112,6 +127,23 @@ class Shooter {
 
  private:
   bool short_transient(ShootingOutcome& out);
+  bool newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out);
+  bool subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
+                   ShootingOutcome& out);
+  bool try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out);
+  // Count k periods against the budget; false (and nothing counted) when they would exceed it.
+  bool spend(int k) {
+    if (used_ + k > budget_) {
+      budget_hit_ = true;
+      return false;
+    }
+    used_ += k;
+    return true;
+  }
+  std::string budget_message() const {
+    return fmt("shooting reached numerics.max_periods: %.0f periods integrated of the %.0f it had",
+               used_, budget_);
+  }
   PeriodMap period_map(const State& z, Phase phase, bool sensitivities);
   State consistent(State z, Phase phase) const;
 
@@ -127,8 +159,12 @@ class Shooter {
   State first_z_;
   Phase first_phase_ = Phase::stick;
   double t0_ = 0.0;
+  Phase phase_ = Phase::stick;  // the phase at the section of the orbit
   std::array<double, 8> scale_{};
   int maps_ = 0, plain_maps_ = 0;
+  int p_ = 1;  // periods of the map: P^p
+  int budget_ = 0, used_ = 0;
+  bool budget_hit_ = false;
 };
 
 State Shooter::consistent(State z, Phase phase) const {
@@ -150,6 +186,11 @@ bool Shooter::short_transient(ShootingOutcome& out) {
     // plainly, and Newton's first map follows it.
     const bool as_map = map_periods < kMaxTransientMaps &&
                         (n >= kMinTransient + 1 || (n >= kMinTransient && previous.empty()));
+    if (!spend(1)) {
+      out.budget_exhausted = true;
+      out.message = budget_message();
+      return false;
+    }
     if (as_map) ++map_periods;
     FlowStop stop;
     std::vector<Event> switches;
@@ -157,6 +198,7 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       t0_ = flow_.t();
       const Phase phase = flow_.phase();
       const State z = consistent(flow_.state(), phase);
+      used_ -= 1;  // counted by period_map
       first_ = period_map(z, phase, true);
       first_z_ = z;
       first_phase_ = phase;
@@ -223,17 +265,23 @@ bool Shooter::short_transient(ShootingOutcome& out) {
 
 PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
   PeriodMap p;
+  if (!spend(p_)) {
+    p.over_budget = true;
+    p.stop = FlowStop::observer;
+    return p;
+  }
   flow_.reset(t0_, z, phase);
+  const double t_end = t0_ + p_ * period_;
   if (sensitivities) {
     ++maps_;
     mono_.reset();
-    p.stop = flow_.advance(t0_ + period_, &mono_);
+    p.stop = flow_.advance(t_end, &mono_);
     p.switches = mono_.switches();
     p.grazing = mono_.grazing();
   } else {
     ++plain_maps_;
     PlainObserver obs;
-    p.stop = flow_.advance(t0_ + period_, &obs);
+    p.stop = flow_.advance(t_end, &obs);
     p.switches = obs.switches;
   }
   if (p.stop != FlowStop::reached) return p;
@@ -242,6 +290,8 @@ PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
   p.residual =
       p.phase == phase ? scaled_change(p.end, z, scale_) : std::numeric_limits<double>::infinity();
   if (!sensitivities) return p;
+  // Over p periods the variational equations run on through the section boundaries, so Phi is
+  // the product of the p period monodromies with every saltation between.
   // The map Newton sees is P(consistent(z)): at a stick section phi' is set to f5 delta' (12)
   // before the period starts (the flow's stick phase integrates phi' without ever reading it, so
   // without the projection its offset would be a neutral direction, a multiplier 1).
@@ -253,48 +303,17 @@ PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
   return p;
 }
 
-ShootingOutcome Shooter::run(const ShootingStart& start) {
-  ShootingOutcome out;
-  State z;
-  Phase phase;
-  if (start.from_state) {
-    z = start.state;
-    phase = start.phase;
-    t0_ = flow_.t();
-    // Scales from one plain period from the supplied state.
-    PlainObserver obs;
-    flow_.reset(t0_, z, phase);
-    obs.start(z.to_array());
-    if (flow_.advance(t0_ + period_, &obs) != FlowStop::reached) {
-      out.message = "the supplied start state does not survive one period: " + flow_.message();
-      return out;
-    }
-    for (int i = 0; i < 8; ++i) {
-      const double range = obs.hi[i] - obs.lo[i];
-      const double floor =
-          100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
-      scale_[i] = std::max(range, floor);
-    }
-    out.transient_periods = 1;
-  } else {
-    if (!short_transient(out)) return out;
-    if (have_first_) {  // t0_ is its start
-      z = first_z_;
-      phase = first_phase_;
-    } else {
-      t0_ = flow_.t();
-      z = flow_.state();
-      phase = flow_.phase();
-    }
-  }
-  z = consistent(z, phase);
-
-  PeriodMap cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
+// Newton on P^p(z) = z from z, whose map is cur; on success z is the orbit and cur its map.
+bool Shooter::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out) {
   int sequence_changes = 0;
   bool converged = false;
   // Contraction of the residual by the last accepted full step (1: none yet).
   double contraction = 1.0;
   for (int k = 0; k <= kMaxNewton; ++k) {
+    if (cur.over_budget) {
+      out.message = budget_message();
+      break;
+    }
     if (cur.stop != FlowStop::reached || cur.grazing || !std::isfinite(cur.residual)) {
       out.message = cur.stop != FlowStop::reached
                         ? "the period map failed at a Newton iterate: " + flow_.message()
@@ -311,13 +330,13 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
           fmt("Newton did not converge in %.0f steps (scaled residual %.3g)", k, cur.residual);
       break;
     }
-    if (progress_ && !progress_(out.transient_periods + k + 1, cur.residual)) {
+    if (progress_ && !progress_(out.transient_periods + out.newton_iterations + 1, cur.residual)) {
       out.terminal = true;
       out.status = Status::cancelled;
       out.message = "cancelled during the Newton iteration";
-      return out;
+      return false;
     }
-    // (M - I) dz = -(P(z) - z) on the reduced state, in scaled units.
+    // (M - I) dz = -(P^p(z) - z) on the reduced state, in scaled units.
     Vec7 F, s;
     for (int i = 0; i < 7; ++i) {
       const int c = kPeriodic[i];
@@ -353,6 +372,7 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       // Close to the orbit (residual below kFreshMonodromy) the step is small and the monodromy
       // hardly changes: the trial is integrated without sensitivities and keeps the current M.
       PeriodMap next = period_map(trial, phase, cur.residual > kFreshMonodromy);
+      if (next.over_budget) break;
       if (next.stop != FlowStop::reached || !std::isfinite(next.residual)) continue;
       if (!next.has_monodromy) next.M = cur.M;
       // Accept a decrease; near the noise floor (below the steady tolerance) a full step that
@@ -377,7 +397,9 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
         converged = true;  // at the integration's noise floor
         break;
       }
-      out.message = fmt("Newton's step did not reduce the residual (scaled %.3g)", cur.residual);
+      out.message = budget_hit_ ? budget_message()
+                                : fmt("Newton's step did not reduce the residual (scaled %.3g)",
+                                      cur.residual);
       break;
     }
     if (sequence_changes > kMaxSequenceChanges) {
@@ -385,35 +407,257 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       break;
     }
   }
+  out.final_change = cur.residual;
+  return converged;
+}
+
+Floquet multipliers_of(const Mat7& M) {
+  const Eigen::EigenSolver<Mat7> eig(M, false);
+  std::vector<std::complex<double>> mult(7);
+  for (int i = 0; i < 7; ++i) mult[i] = eig.eigenvalues()[i];
+  return classify_multipliers(std::move(mult));
+}
+
+// Newton on P^p_ from w (its map `map`); true when it converges to a stable orbit of P^p that is
+// not one of P^d for a d < p dividing p (the change over d periods stays above kSubharmonicGap).
+bool Shooter::try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out) {
+  const int p = p_;
+  ShootingOutcome trial;
+  trial.transient_periods = out.transient_periods;
+  const bool converged = newton(w, wphase, map, trial);
+  out.newton_iterations += trial.newton_iterations;
+  if (!converged) {
+    if (trial.terminal || budget_hit_) {
+      out.terminal = trial.terminal;
+      out.status = trial.status;
+      out.message = trial.message;
+    }
+    return false;
+  }
+  if (multipliers_of(map.M).stability != Stability::stable) return false;
+  if (!spend(p)) {
+    out.message = budget_message();
+    return false;
+  }
+  flow_.reset(t0_, w, wphase);
+  for (int d = 1; d < p; ++d) {
+    if (flow_.advance(t0_ + d * period_) != FlowStop::reached) return false;
+    if (p % d == 0 && flow_.phase() == wphase &&
+        scaled_change(flow_.state(), w, scale_) < kSubharmonicGap)
+      return false;
+  }
+  out.final_change = trial.final_change;
+  out.predicted_last_step = trial.predicted_last_step;
+  return true;
+}
+
+// The period-1 orbit `orbit` (monodromy M) is unstable: look for a stable orbit of P^p,
+// p = 2 ... max_multiplicity (docs/periodic.md, "Subharmonic orbits"). On success, t0_ and p_ are
+// the new orbit's section and multiplicity, z its state and cur its map.
+bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
+                          ShootingOutcome& out) {
+  const int max_p = num_.max_multiplicity;
+  if (max_p < 2) return false;
+  // The eigenvector of the critical (largest) multiplier, in units of each component's range.
+  const Eigen::EigenSolver<Mat7> eig(M, true);
+  int lead = 0;
+  for (int i = 1; i < 7; ++i)
+    if (std::abs(eig.eigenvalues()[i]) > std::abs(eig.eigenvalues()[lead])) lead = i;
+  Vec7 v = eig.eigenvectors().col(lead).real();
+  double amplitude = 0.0;
+  for (int i = 0; i < 7; ++i)
+    amplitude = std::max(amplitude, std::abs(v[i]) / scale_[kPeriodic[i]]);
+  if (!(amplitude > 0.0)) return false;
+  v /= amplitude;
+  const double t_orbit = t0_;
+  // Near a period doubling (a real multiplier just beyond -1) the period-2 orbit lies on both
+  // sides of the period-1 orbit along v, at a distance that grows like the square root of the
+  // distance from the bifurcation, and the flow leaves the period-1 orbit only slowly (by the
+  // multiplier's modulus per period): Newton on P^2 starts directly from displaced states.
+  const std::complex<double> critical = eig.eigenvalues()[lead];
+  if (critical.real() < -1.0 && std::abs(critical.imag()) <= 1e-8 * std::abs(critical)) {
+    for (const double kick : kFlipKicks) {
+      p_ = 2;
+      t0_ = t_orbit;
+      Vec y = orbit.to_array();
+      for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += kick * v[i];
+      State w = consistent(State::from_array(y), phase);
+      PeriodMap map = period_map(w, phase, true);
+      if (try_orbit(w, phase, map, out)) {
+        z = w;
+        cur = std::move(map);
+        phase_ = phase;
+        return true;
+      }
+      if (out.terminal || budget_hit_) return false;
+    }
+  }
+  for (const double sign : {1.0, -1.0}) {
+    // Displace the orbit and follow the flow: it leaves the unstable orbit along v.
+    Vec y = orbit.to_array();
+    for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += sign * kKick * v[i];
+    flow_.reset(t_orbit, consistent(State::from_array(y), phase), phase);
+    std::vector<std::pair<State, Phase>> boundary{{flow_.state(), flow_.phase()}};
+    bool survived = true;
+    for (int n = 1; n <= kSubharmonicTransient; ++n) {
+      if (!spend(1)) {
+        out.message = budget_message();
+        return false;
+      }
+      const FlowStop stop = flow_.advance(t_orbit + n * period_);
+      if (stop == FlowStop::cancelled) {
+        out.terminal = true;
+        out.status = Status::cancelled;
+        out.message = "cancelled during the search for a subharmonic orbit";
+        return false;
+      }
+      if (stop != FlowStop::reached) {
+        survived = false;
+        break;
+      }
+      boundary.emplace_back(flow_.state(), flow_.phase());
+    }
+    if (!survived) continue;
+    // The p whose p-period change at the end is smallest are tried first.
+    const int last = static_cast<int>(boundary.size()) - 1;
+    std::vector<std::pair<double, int>> candidates;
+    for (int p = 2; p <= max_p && p <= last; ++p) {
+      const auto& [a, pa] = boundary[last];
+      const auto& [b, pb] = boundary[last - p];
+      candidates.emplace_back(pa == pb ? scaled_change(a, b, scale_) : 1e300, p);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    if (static_cast<int>(candidates.size()) > kSubharmonicTries)
+      candidates.resize(kSubharmonicTries);
+    for (const auto& [change, p] : candidates) {
+      (void)change;
+      p_ = p;
+      t0_ = t_orbit + last * period_;
+      State w = consistent(boundary[last].first, boundary[last].second);
+      const Phase wphase = boundary[last].second;
+      PeriodMap map = period_map(w, wphase, true);
+      if (try_orbit(w, wphase, map, out)) {
+        z = w;
+        cur = std::move(map);
+        phase_ = wphase;
+        return true;
+      }
+      if (out.terminal || budget_hit_) return false;
+    }
+  }
+  p_ = 1;
+  t0_ = t_orbit;
+  return false;
+}
+
+ShootingOutcome Shooter::run(const ShootingStart& start) {
+  ShootingOutcome out;
+  budget_ = start.budget > 0 ? start.budget : num_.max_periods;
+  State z;
+  Phase phase;
+  if (start.from_state) {
+    z = start.state;
+    phase = start.phase;
+    t0_ = flow_.t();
+    // Scales from one plain period from the supplied state.
+    if (!spend(1)) {
+      out.budget_exhausted = true;
+      out.message = budget_message();
+      return out;
+    }
+    PlainObserver obs;
+    flow_.reset(t0_, z, phase);
+    obs.start(z.to_array());
+    if (flow_.advance(t0_ + period_, &obs) != FlowStop::reached) {
+      out.message = "the supplied start state does not survive one period: " + flow_.message();
+      out.periods_integrated = used_;
+      return out;
+    }
+    for (int i = 0; i < 8; ++i) {
+      const double range = obs.hi[i] - obs.lo[i];
+      const double floor =
+          100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
+      scale_[i] = std::max(range, floor);
+    }
+    out.transient_periods = 1;
+  } else {
+    const bool ok = short_transient(out);
+    // The short transient from rest is a trajectory of the run (the transient method integrates
+    // it too); what Newton integrates next is not.
+    out.transient_max_slip_residual = flow_.counters().max_slip_residual;
+    out.transient_min_N = flow_.counters().min_N;
+    if (!ok) {
+      out.periods_integrated = used_;
+      out.period_maps = maps_;
+      out.jacobian_evaluations = mono_.jacobian_evaluations();
+      return out;
+    }
+    if (have_first_) {  // t0_ is its start
+      z = first_z_;
+      phase = first_phase_;
+    } else {
+      t0_ = flow_.t();
+      z = flow_.state();
+      phase = flow_.phase();
+    }
+  }
+  z = consistent(z, phase);
+  phase_ = phase;
+
+  p_ = std::max(1, start.multiplicity);
+  PeriodMap cur = have_first_ && p_ == 1 ? std::move(first_) : period_map(z, phase, true);
+  bool converged = newton(z, phase, cur, out);
+  if (converged) {
+    // Floquet multipliers: eigenvalues of the monodromy at the orbit.
+    out.floquet = multipliers_of(cur.M);
+    if (out.floquet.stability != Stability::stable && p_ == 1) {
+      const std::string why =
+          fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
+              out.floquet.max_modulus) +
+          to_string(out.floquet.stability) + ")";
+      out.period1_floquet = out.floquet;
+      const Mat7 M = cur.M;
+      const State orbit = z;
+      converged = subharmonic(orbit, phase, M, z, cur, out);
+      if (converged) {
+        out.floquet = multipliers_of(cur.M);
+        out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
+                                "shooting on P^%.0f",
+                                p_, p_);
+      } else if (!out.terminal) {
+        out.floquet = Floquet{};
+        out.message = why +
+                      ", and no stable orbit of P^p, p = 2 ... numerics.max_multiplicity, "
+                      "was found: the transient is followed instead" +
+                      (budget_hit_ ? " (" + budget_message() + ")" : std::string());
+      }
+    } else if (out.floquet.stability != Stability::stable) {
+      converged = false;
+      out.message = fmt("the orbit of P^%.0f is unstable (largest Floquet multiplier modulus %.6g)",
+                        p_, out.floquet.max_modulus);
+    }
+  }
   out.period_maps = maps_;
   out.plain_maps = plain_maps_;
   out.jacobian_evaluations = mono_.jacobian_evaluations();
-  out.final_change = cur.residual;
+  out.periods_integrated = used_;
+  out.budget_exhausted = budget_hit_;
   if (!converged) {
     if (out.message.empty()) out.message = "Newton failed";
     return out;
   }
-
-  // Floquet multipliers: eigenvalues of the monodromy at the orbit.
-  const Eigen::EigenSolver<Mat7> eig(cur.M, false);
-  std::vector<std::complex<double>> mult(7);
-  for (int i = 0; i < 7; ++i) mult[i] = eig.eigenvalues()[i];
-  out.floquet = classify_multipliers(std::move(mult));
-  if (out.floquet.stability != Stability::stable) {
-    out.message = fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
-                      out.floquet.max_modulus) +
-                  to_string(out.floquet.stability) + "): the transient is followed instead";
-    return out;
-  }
   out.converged = true;
+  out.multiplicity = p_;
   out.t0 = t0_;
   out.scale = scale_;
   out.orbit = z;
-  out.phase = phase;
-  out.phi_drift = cur.end.phi - z.phi;
-  out.message = fmt("periodic orbit by shooting after %.0f transient periods and %.0f Newton steps",
-                    out.transient_periods, out.newton_iterations);
-  flow_.reset(t0_, z, phase);
+  out.phase = phase_;
+  out.phi_drift = (cur.end.phi - z.phi) / p_;
+  if (p_ == 1 || start.multiplicity > 1)
+    out.message =
+        fmt("periodic orbit by shooting after %.0f transient periods and %.0f Newton steps",
+            out.transient_periods, out.newton_iterations);
+  flow_.reset(t0_, z, phase_);
   return out;
 }
 

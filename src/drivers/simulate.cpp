@@ -12,6 +12,7 @@
 #include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
 #include "oscidrum/flow.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 namespace {
@@ -44,14 +45,28 @@ namespace {
 // (pure rolling, whose right-hand side is cheaper), about 10.
 constexpr double kJacobianCost = 10.0;
 
-// The transient search from rest and the sampling of what it found.
+// The transient search from rest and the sampling of what it found. It may integrate what is left
+// of numerics.max_periods after the periods shooting spent before falling back.
 void transient(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
                long* sample_rhs) {
   flow.reset(0.0, model.initial_state(), initial_phase(model));
-  const detail::SearchOutcome search = detail::find_steady_state(flow, progress);
+  // Diagnostics::max_slip_residual and min_N: over this run from rest and its sampled periods.
+  flow.reset_extremes();
+  const Numerics& num = model.parameters().numerics;
+  Diagnostics& d = result.diagnostics;
+  const int spent = d.periods_simulated;
+  detail::SearchOutcome search;
+  if (spent >= num.max_periods) {
+    search.status = Status::max_periods_reached;
+    search.message = detail::format(
+        "no steady state: shooting integrated all numerics.max_periods = %.0f periods before it "
+        "fell back; the periods from rest are sampled for inspection, with no metrics",
+        num.max_periods);
+  } else {
+    search = detail::find_steady_state(flow, progress, num.max_periods - spent, spent);
+  }
   result.status = search.status;
   result.message = search.message;
-  Diagnostics& d = result.diagnostics;
   d.method = SteadyMethod::transient;
   d.final_change = search.final_change;
   d.periods_simulated += search.periods;
@@ -62,7 +77,6 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
   // Sample the steady state (or, when no steady state was found, the periods that follow, for
   // inspection: they carry no metrics).
   if (search.status == Status::steady_state || search.status == Status::max_periods_reached) {
-    const Numerics& num = model.parameters().numerics;
     const int periods = num.output_periods * std::max(1, search.multiplicity);
     const long rhs_before = flow.counters().rhs_evaluations;
     const FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result);
@@ -78,6 +92,8 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
   } else {
     result.events = search.recent_events;
   }
+  d.max_slip_residual = flow.counters().max_slip_residual;
+  d.min_N = flow.counters().min_N;
 }
 
 // Shooting (src/drivers/shooting.hpp); returns false when the run must fall back to the
@@ -86,15 +102,22 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
 // short transient from rest; a failed warm start returns false without ending the run.
 bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
               long* sample_rhs, const detail::ShootingStart& warm = {}) {
+  const Numerics& num = model.parameters().numerics;
+  Diagnostics& d = result.diagnostics;
+  if (d.periods_simulated >= num.max_periods) return false;  // the fallback reports it
   if (warm.from_state)
     flow.reset(0.0, warm.state, warm.phase);
   else
     flow.reset(0.0, model.initial_state(), initial_phase(model));
-  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress, warm);
-  Diagnostics& d = result.diagnostics;
+  flow.reset_extremes();
+  // Every period shooting integrates counts against numerics.max_periods, a failed warm start's
+  // too: the fallbacks get what is left.
+  detail::ShootingStart start = warm;
+  start.budget = num.max_periods - d.periods_simulated;
+  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress, start);
   d.newton_iterations += shot.newton_iterations;
   d.jacobian_evaluations += shot.jacobian_evaluations;
-  d.periods_simulated += shot.transient_periods + shot.period_maps + shot.plain_maps;
+  d.periods_simulated += shot.periods_integrated;
   // A warm start that ends the flow (contact lost, ...) says nothing about the cold start;
   // only cancellation ends the run.
   if (shot.terminal && warm.from_state && shot.status != Status::cancelled) return false;
@@ -103,17 +126,48 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     result.message = shot.message;
     result.events = shot.recent_events;
     d.method = SteadyMethod::shooting;
+    d.max_slip_residual = flow.counters().max_slip_residual;
+    d.min_N = flow.counters().min_N;
+    return true;
+  }
+  if (!shot.converged && shot.budget_exhausted) {
+    // No periods are left for a fallback: the run ends as the transient method ends when it
+    // reaches numerics.max_periods, with the periods that follow sampled for inspection.
+    result.status = Status::max_periods_reached;
+    result.message =
+        "no steady state within numerics.max_periods = " + std::to_string(num.max_periods) +
+        " periods: " + shot.message +
+        "; the last periods are sampled for inspection, with no metrics";
+    d.method = SteadyMethod::shooting;
+    d.final_change = shot.final_change;
+    flow.reset_extremes();
+    const long rhs_before = flow.counters().rhs_evaluations;
+    const FlowStop stop =
+        detail::sample_periods(flow, num.output_periods, num.samples_per_period, result);
+    *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / num.output_periods;
+    d.periods_simulated += num.output_periods;
+    if (stop != FlowStop::reached) {
+      result.status = status_of(stop);
+      result.message = flow.message();
+    }
+    d.max_slip_residual = flow.counters().max_slip_residual;
+    d.min_N = flow.counters().min_N;
     return true;
   }
   if (!shot.converged) {
     if (!warm.from_state) d.fallback = shot.message;
     return false;
   }
-  const Numerics& num = model.parameters().numerics;
+  // A steady state repeating every p excitation periods is sampled over output_periods * p
+  // periods, as the transient method samples one.
+  const int p = shot.multiplicity;
+  const int periods = num.output_periods * p;
+  // Diagnostics::max_slip_residual and min_N: over the trajectory of the result, the short
+  // transient from rest and the sampled periods of the orbit (Newton's iterates are not on it).
+  flow.reset_extremes();
   const long rhs_before = flow.counters().rhs_evaluations;
-  const FlowStop stop =
-      detail::sample_periods(flow, num.output_periods, num.samples_per_period, result);
-  *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, num.output_periods);
+  const FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result);
+  *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
   const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
   if (stop != FlowStop::reached || !(change < num.steady_tol)) {
@@ -125,6 +179,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
     *sample_rhs = 0;
+    d.periods_simulated += periods;  // integrated, and counted against the budget
     return false;
   }
   result.status = Status::steady_state;
@@ -137,9 +192,14 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   // evaluated residual then.
   d.final_change = shot.predicted_last_step ? change : shot.final_change;
   d.periods_to_steady = shot.transient_periods;
-  d.multiplicity = 1;
+  d.multiplicity = p;
   d.phi_drift = shot.phi_drift;
-  d.periods_simulated += num.output_periods;
+  d.periods_simulated += periods;
+  d.max_slip_residual = std::max(flow.counters().max_slip_residual,
+                                 warm.from_state ? 0.0 : shot.transient_max_slip_residual);
+  d.min_N =
+      std::min(flow.counters().min_N,
+               warm.from_state ? std::numeric_limits<double>::infinity() : shot.transient_min_N);
   return true;
 }
 
@@ -198,8 +258,7 @@ Result simulate_from(const Model& model, const ProgressCallback& progress,
   d.switches = c.switches;
   d.reversals = c.reversals;
   d.inconsistent_slip_ends = c.inconsistent_slip_ends;
-  d.max_slip_residual = c.max_slip_residual;
-  d.min_N = std::isfinite(c.min_N) ? c.min_N : 0.0;
+  if (!std::isfinite(d.min_N)) d.min_N = 0.0;  // no step end seen
   // Odeint retries rejected steps internally. Dormand-Prince with FSAL costs one evaluation per
   // (re)start and six per attempted step, and nothing else calls the right-hand side, so the
   // attempts follow from the count.

@@ -40,8 +40,10 @@ constexpr std::size_t kRecentEvents = 64;
 
 class Search : public FlowObserver {
  public:
-  Search(Flow& flow, const ProgressCallback& progress)
-      : flow_(flow),
+  Search(Flow& flow, const ProgressCallback& progress, int budget, int spent)
+      : budget_(budget > 0 ? budget : flow.model().parameters().numerics.max_periods),
+        spent_(spent),
+        flow_(flow),
         model_(flow.model()),
         num_(flow.model().parameters().numerics),
         period_(flow.model().period()),
@@ -73,6 +75,8 @@ class Search : public FlowObserver {
   bool gross_slip(int n, const Vec& x);
   double noise_floor() const;
 
+  const int budget_;  // periods this search may integrate
+  const int spent_;   // periods shooting integrated before this fallback
   Flow& flow_;
   const Model& model_;
   const Numerics& num_;
@@ -205,12 +209,17 @@ bool Search::on_boundary(int n, const Vec& x) {
                          n, found);
     return true;
   }
-  if (n >= num_.max_periods) {
+  if (n >= budget_) {
     out_.status = Status::max_periods_reached;
     out_.message = detail::format(
         "no steady state within %.0f periods (last period-to-period change %.3g); the last "
         "periods are sampled for inspection, with no metrics",
         n, change1);
+    if (spent_ > 0)
+      out_.message += detail::format(
+          " (numerics.max_periods = %.0f counts the %.0f periods shooting integrated before it "
+          "fell back)",
+          num_.max_periods, spent_);
     return true;
   }
   return false;
@@ -257,8 +266,9 @@ SearchOutcome Search::run() {
 
 }  // namespace
 
-SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress) {
-  Search search(flow, progress);
+SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress, int budget,
+                                int spent) {
+  Search search(flow, progress, budget, spent);
   return search.run();
 }
 

@@ -24,6 +24,9 @@ struct SearchOutcome {
 };
 
 /// Run the search on `flow` (reset by the caller at t = 0). `progress` is called once per period.
-SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress);
+/// It gives up after `budget` periods (0: numerics.max_periods); `spent` > 0 periods were already
+/// integrated by shooting before it fell back, and the message says so.
+SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress, int budget = 0,
+                                int spent = 0);
 
 }  // namespace oscidrum::detail

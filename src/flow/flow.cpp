@@ -448,6 +448,10 @@ Phase Flow::phase() const { return impl_->phase_; }
 const Model& Flow::model() const { return impl_->model; }
 const FlowOptions& Flow::options() const { return impl_->options; }
 const FlowCounters& Flow::counters() const { return impl_->counters; }
+void Flow::reset_extremes() {
+  impl_->counters.min_N = std::numeric_limits<double>::infinity();
+  impl_->counters.max_slip_residual = 0.0;
+}
 const std::string& Flow::message() const { return impl_->message; }
 
 }  // namespace oscidrum

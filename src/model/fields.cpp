@@ -112,7 +112,8 @@ const std::array kFields = {
     // numerics
     Field{"numerics.method", FieldType::choice, "-",
           "how the periodic steady state is found: shooting (Newton on the period map after a "
-          "short transient; falls back to transient when it fails or the orbit is unstable) or "
+          "short transient; on P^p when the period-1 orbit is unstable; falls back to transient "
+          "when it fails) or "
           "transient (integrate from rest until it repeats, the paper's method); both agree to "
           "1e-7 on the paper's cases",
           0, 1, false, false, "shooting|transient",
@@ -125,14 +126,17 @@ const std::array kFields = {
     Field{"numerics.atol", FieldType::real, "-", "absolute tolerance (SI units of each state)", 0,
           1e-2, true, false, nullptr, OSCIDRUM_REAL(numerics.atol)},
     Field{"numerics.max_periods", FieldType::integer, "-",
-          "give up the steady-state search after this many excitation periods", 1, 1e7, false,
-          false, nullptr, OSCIDRUM_INT(numerics.max_periods)},
+          "give up the steady-state search after this many excitation periods (with shooting: its "
+          "short "
+          "transient and period maps, P^p counting p, and the fallback's periods share them)",
+          1, 1e7, false, false, nullptr, OSCIDRUM_INT(numerics.max_periods)},
     Field{"numerics.steady_tol", FieldType::real, "-",
           "period-to-period change of the state (scaled by its range) that counts as steady", 0, 1,
           true, false, nullptr, OSCIDRUM_REAL(numerics.steady_tol)},
     Field{"numerics.max_multiplicity", FieldType::integer, "-",
-          "longest steady period searched, in excitation periods", 1, 64, false, false, nullptr,
-          OSCIDRUM_INT(numerics.max_multiplicity)},
+          "longest steady period searched, in excitation periods (shooting: orbits of P^p up to it "
+          "when the period-1 orbit is unstable)",
+          1, 64, false, false, nullptr, OSCIDRUM_INT(numerics.max_multiplicity)},
     Field{"numerics.output_periods", FieldType::integer, "-",
           "steady periods sampled (times the multiplicity)", 1, 1000, false, false, nullptr,
           OSCIDRUM_INT(numerics.output_periods)},
