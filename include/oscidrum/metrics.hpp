@@ -32,6 +32,16 @@ std::vector<Harmonic> harmonics(std::span<const double> y, int cycles, double f,
 /// lobes (the signed shoelace sum would cancel them). [unit x * unit y]
 double enclosed_area(std::span<const double> x, std::span<const double> y);
 
+/// Area enclosed (non-zero winding) by the closed curve made of arcs, arc j from point j to point
+/// j + 1 (the last back to the first), where bulge[j] is the signed area between arc j and its
+/// chord:  bulge[j] = integral over the arc of x dy - (x[j] + x[j+1]) / 2 * (y[j+1] - y[j]),
+/// positive when the arc lies to the right of the chord (seen along the curve). Exact when every
+/// self-intersection of the curve is one of the points and each arc stays close enough to its chord
+/// to cross no other arc or chord; a crossing inside an arc costs an error of the order of that
+/// arc's bulge. [unit x * unit y]
+double enclosed_area(std::span<const double> x, std::span<const double> y,
+                     std::span<const double> bulge);
+
 /// Wrap an angle to (-pi, pi].
 double wrap_pi(double angle);
 

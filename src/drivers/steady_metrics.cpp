@@ -1,14 +1,21 @@
 // steady_metrics.cpp: metrics of a steady state from the dense output of the flow (metrics.hpp,
-// compute_metrics(model, result)): one steady period is integrated again from the first sample,
-// and every metric is evaluated on the trajectory itself rather than on the uniform samples, so
-// that it does not depend on numerics.samples_per_period.
+// compute_metrics(model, result)): one steady period is integrated again, once, from the first
+// sample, and every metric is evaluated on the trajectory itself rather than on the uniform
+// samples, so that it does not depend on numerics.samples_per_period.
+// On each piece of the period (one integrator step in one phase) every quantity (x_M'', z_M''
+// from (18), delta, phi, T/N, the friction power) is an analytic function of t: the
+// Dormand-Prince interpolant (a polynomial) through the equations of motion. Each is replaced by
+// its degree-10 Chebyshev interpolant through 11 right-hand-side evaluations (both ends among
+// them), accurate to round-off (tests/drivers/test_steady_metrics.cpp), and everything below reads
+// the interpolants:
 //   peaks: at both ends of every piece (the one-sided limits at each switch instant) and at every
-//     interior extremum, located by Brent's method on the piece's dense output;
+//     interior extremum, located by Brent's method;
 //   harmonics, phase lags, THD, friction work, phase fractions: integrals over each piece by
-//     16-point Gauss-Legendre quadrature (a piece is smooth; its Dormand-Prince interpolant is a
-//     polynomial in t);
-//   area: of the polygon through n points per piece (the switch instants are vertices), n doubled
-//     and Richardson-extrapolated until two estimates agree to 1e-9 relative.
+//     16-point Gauss-Legendre quadrature;
+//   area: exact for the piecewise curve (enclosed_area with bulges): a polygon through 5 points
+//     per piece, every self-intersection of the curve located by Newton on the interpolants and
+//     made a point of both branches, and each edge corrected by the area between its arc and its
+//     chord.
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
@@ -17,9 +24,12 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "metrics/area.hpp"
 #include "metrics/indicators.hpp"
+#include "metrics/piece_interpolant.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/metrics.hpp"
@@ -28,27 +38,67 @@ namespace oscidrum {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kScan = 16;                // sub-intervals scanned per piece for interior extrema
-constexpr double kAreaRtol = 1e-9;       // convergence of the area
-constexpr int kAreaMaxPoints = 1 << 14;  // points per piece at most
+constexpr int kDegree = 10;     // Chebyshev interpolant per piece: kDegree + 1 RHS evaluations
+constexpr int kScan = 16;       // sub-intervals scanned per piece for interior extrema
+constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
 
-struct Point {
-  double ddx, ddz, delta, phi, mu, friction_power;
-};
+using Interpolant = detail::ChebyshevInterpolant<kDegree>;
 
-Point evaluate(const Model& model, double baumgarte, double t, const State& q, Phase phase) {
+// The quantities interpolated on each piece.
+enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kQuantities };
+
+std::array<double, kQuantities> evaluate(const Model& model, double baumgarte, double t,
+                                         const State& q, Phase phase) {
   const Accelerations a = accelerations(model, t, q, phase, baumgarte);
   const DrumMotion d = drum_motion(model, q, a);
   const ContactForces f = contact_forces(model, q);
-  return {d.ddx_M, d.ddz_M, q.delta, q.phi, std::abs(f.T) / f.N,
+  return {d.ddx_M, d.ddz_M, q.delta, q.phi,
+          // T / N signed (mu_required is its largest magnitude): smooth inside a piece, where
+          // |T| / N would have a kink at T = 0.
+          f.T / f.N,
           // Friction does work only while the drum slides (13, 27). In stick v_rel = 0 by the
           // rolling condition (12); the flow integrates phi' there without reading it, so
           // slip_velocity would return its round-off drift (over a long transient from rest, up
-          // to ~1e-6 of the work of a slipping case).
+          // to ~1e-6 of the work of a slipping case). In slip T v_rel keeps its sign.
           phase == Phase::stick ? 0.0 : std::abs(f.T * slip_velocity(model, q))};
 }
 
-// Largest (sign = +1) or smallest (-1) value of member m on the piece: ends and interior extrema.
+// One piece of the steady period (an integrator step in one phase, cut at the period's ends):
+// every quantity as its Chebyshev interpolant in t.
+struct Piece {
+  double a, b;  // [s]
+  Phase phase;
+  std::array<Interpolant, kQuantities> f;
+};
+
+class Recorder : public FlowObserver {
+ public:
+  Recorder(const Model& model, double baumgarte, double t_begin, double t_end)
+      : model_(model), baumgarte_(baumgarte), t_begin_(t_begin), t_end_(t_end) {}
+
+  bool on_step(const StepView& step) override {
+    const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
+    if (!(b > a)) return true;
+    std::array<std::array<double, Interpolant::kNodes>, kQuantities> values;
+    for (int k = 0; k < Interpolant::kNodes; ++k) {
+      // The end nodes exactly at a and b (the one-sided limits at a switch).
+      const double t = k == 0 ? b : k == kDegree ? a : Interpolant::node(a, b, k);
+      const auto v = evaluate(model_, baumgarte_, t, step.state(t), step.phase());
+      for (int m = 0; m < kQuantities; ++m) values[m][k] = v[m];
+    }
+    Piece piece{a, b, step.phase(), {}};
+    for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, values[m]);
+    pieces.push_back(piece);
+    return true;
+  }
+  std::vector<Piece> pieces;
+
+ private:
+  const Model& model_;
+  const double baumgarte_, t_begin_, t_end_;
+};
+
+// Largest and smallest value of a quantity: ends and interior extrema of every piece.
 struct Extremes {
   double hi = -std::numeric_limits<double>::infinity();
   double lo = std::numeric_limits<double>::infinity();
@@ -58,109 +108,219 @@ struct Extremes {
   }
 };
 
+void add_extremes(const Interpolant& f, Extremes& out) {
+  const double a = f.a(), b = f.b();
+  std::array<double, kScan + 1> ts, scan;
+  for (int k = 0; k <= kScan; ++k) {
+    ts[k] = k == kScan ? b : a + (b - a) * k / kScan;
+    scan[k] = f(ts[k]);
+    out.add(scan[k]);
+  }
+  // A scan point not beaten by its neighbours brackets an extremum between them. At the ends of
+  // the piece only one neighbour exists: an end that is not beaten by it may have the extremum
+  // just inside the piece (between the last scan point and the end), which the end's value alone
+  // misses by about half the curvature times the squared distance (up to ~1e-5 of a peak); the
+  // one-sided bracket finds it (or returns the end itself).
+  for (int k = 0; k <= kScan; ++k) {
+    const int lo = std::max(0, k - 1), hi = std::min(kScan, k + 1);
+    const double v = scan[k], l = scan[lo], r = scan[hi];
+    for (double sign : {1.0, -1.0}) {
+      if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
+      // In the offset from the bracket's start: Brent's tolerance is relative to the abscissa,
+      // and relative to the absolute time (seconds into a long transient) it would leave the
+      // extremum ~1e-7 s off, ~1e-10 of the peak.
+      const double t_lo = ts[lo];
+      const auto g = [&](double u) { return -sign * f(t_lo + u); };
+      const auto best = boost::math::tools::brent_find_minima(g, 0.0, ts[hi] - t_lo,
+                                                              std::numeric_limits<double>::digits);
+      out.add(-sign * best.second);
+    }
+  }
+}
+
 struct Node {  // a Gauss-Legendre node of one piece
   double tau, weight, ddx, ddz, phi, friction_power;
 };
 
-class Accumulator : public FlowObserver {
- public:
-  Accumulator(const Model& model, double baumgarte, double t_begin, double t_end)
-      : model_(model), baumgarte_(baumgarte), t_begin_(t_begin), t_end_(t_end) {}
-
-  bool on_step(const StepView& step) override {
-    const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
-    if (!(b > a)) return true;
-    const Phase phase = step.phase();
-    auto at = [&](double t) { return evaluate(model_, baumgarte_, t, step.state(t), phase); };
-    // Extremes: the scan points, including both ends (one-sided limits at switches), then every
-    // interior local extremum of the scan refined by Brent's method.
-    std::array<Point, kScan + 1> scan;
-    std::array<double, kScan + 1> ts;
-    for (int k = 0; k <= kScan; ++k) {
-      ts[k] = k == kScan ? b : a + (b - a) * k / kScan;
-      scan[k] = at(ts[k]);
-    }
-    refine(scan, ts, at, &Point::ddx, ddx_);
-    refine(scan, ts, at, &Point::ddz, ddz_);
-    refine(scan, ts, at, &Point::delta, delta_);
-    refine(scan, ts, at, &Point::mu, mu_);
-    // Quadrature nodes.
-    boost::math::quadrature::gauss<double, 16> rule;
-    const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
-    const auto& x = rule.abscissa();
-    const auto& w = rule.weights();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      for (double sign : {-1.0, 1.0}) {
-        if (x[i] == 0.0 && sign > 0) continue;
-        const double t = mid + sign * half * x[i];
-        const Point p = at(t);
-        nodes_.push_back({t - t_begin_, half * w[i], p.ddx, p.ddz, p.phi, p.friction_power});
-      }
-    }
-    time_[static_cast<int>(phase) + 1] += b - a;
-    if (a == t_begin_) phi_begin_ = at(a).phi;
-    if (b == t_end_) phi_end_ = at(b).phi;
-    return true;
-  }
-
-  template <class At>
-  static void refine(const std::array<Point, kScan + 1>& scan,
-                     const std::array<double, kScan + 1>& ts, const At& at, double Point::*m,
-                     Extremes& out) {
-    for (const Point& p : scan) out.add(p.*m);
-    // A scan point not beaten by its neighbours brackets an extremum between them. At the ends
-    // of the piece only one neighbour exists: an end that is not beaten by it may have the
-    // extremum just inside the piece (between the last scan point and the end), which the end's
-    // value alone misses by about half the curvature times the squared distance (up to ~1e-5
-    // of a peak); the one-sided bracket finds it (or returns the end itself).
-    for (int k = 0; k <= kScan; ++k) {
-      const int lo = std::max(0, k - 1), hi = std::min(kScan, k + 1);
-      const double v = scan[k].*m, l = scan[lo].*m, r = scan[hi].*m;
-      for (double sign : {1.0, -1.0}) {
-        if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
-        // In the offset from the bracket's start: Brent's tolerance is relative to the
-        // abscissa, and relative to the absolute time (seconds into a long transient) it would
-        // leave the extremum ~1e-7 s off, ~1e-10 of the peak.
-        const double t_lo = ts[lo];
-        const auto f = [&](double u) { return -sign * (at(t_lo + u).*m); };
-        const auto best = boost::math::tools::brent_find_minima(
-            f, 0.0, ts[hi] - t_lo, std::numeric_limits<double>::digits);
-        out.add(-sign * best.second);
-      }
-    }
-  }
-
-  const Model& model_;
-  const double baumgarte_, t_begin_, t_end_;
-  Extremes ddx_, ddz_, delta_, mu_;
-  std::vector<Node> nodes_;
-  std::array<double, 3> time_{};  // slip-, stick, slip+ [s]
-  double phi_begin_ = 0.0, phi_end_ = 0.0;
+// The area of the z_M''-x_M'' curve of the pieces: a polygon through kAreaPoints + 1 points per
+// piece (the jumps of the accelerations at switches are straight edges between pieces), with
+// every self-intersection of the curve located on the interpolants (Newton) and inserted as a
+// point of both branches, and each polygon edge inside a piece corrected by the exact area
+// between the arc and its chord (enclosed_area with bulges).
+double curve_area(const std::vector<Piece>& pieces);
+// A polygon vertex on the curve: the point of piece `piece` at time t (or, for a crossing, the
+// point shared by both branches).
+struct Vertex {
+  int piece;
+  double t;       // [s]
+  double x, z;    // x_M'', z_M'' [m/s^2]
+  bool crossing;  // a self-intersection (x, z shared with the other branch)
 };
 
-// The polygon through `per_piece` + 1 points of every piece of one steady period.
-class Polygon : public FlowObserver {
- public:
-  Polygon(const Model& model, double baumgarte, double t_begin, double t_end, int per_piece)
-      : model_(model), baumgarte_(baumgarte), t_begin_(t_begin), t_end_(t_end), n_(per_piece) {}
-  bool on_step(const StepView& step) override {
-    const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
-    if (!(b > a)) return true;
-    for (int k = 0; k <= n_; ++k) {
-      const double t = k == n_ ? b : a + (b - a) * k / n_;
-      const Point p = evaluate(model_, baumgarte_, t, step.state(t), step.phase());
-      x.push_back(p.ddx);
-      z.push_back(p.ddz);
-    }
-    return true;
+// A point of an edge as a function of its parameter: an arc edge (both ends in one piece) by its
+// time, a straight edge between pieces by s in [0, 1].
+struct EdgeCurve {
+  const Piece* piece;  // null: straight
+  double u0, u1;       // parameter range of the edge (t, or 0 and 1)
+  double x0, z0, x1, z1;
+  std::array<double, 2> at(double u) const {
+    if (piece != nullptr) return {piece->f[kDdx](u), piece->f[kDdz](u)};
+    return {x0 + u * (x1 - x0), z0 + u * (z1 - z0)};
   }
+  std::array<double, 2> tangent(double u) const {
+    if (piece != nullptr) return {piece->f[kDdx].derivative(u), piece->f[kDdz].derivative(u)};
+    return {x1 - x0, z1 - z0};
+  }
+  // Newton may move into the neighbouring edges of the same piece (the interpolant holds on the
+  // whole piece); a straight edge only slightly past its ends.
+  bool admissible(double u) const {
+    if (piece != nullptr) return u >= piece->a && u <= piece->b;
+    return u >= -1e-9 && u <= 1.0 + 1e-9;
+  }
+};
+
+EdgeCurve edge_curve(const std::vector<Piece>& pieces, const std::vector<Vertex>& v,
+                     std::size_t i) {
+  const Vertex& p = v[i];
+  const Vertex& q = v[(i + 1) % v.size()];
+  if (p.piece == q.piece && q.t > p.t) return {&pieces[p.piece], p.t, q.t, p.x, p.z, q.x, q.z};
+  return {nullptr, 0.0, 1.0, p.x, p.z, q.x, q.z};
+}
+
+// The crossing of the curve near the crossing chords e and g: Newton on e(u) = g(w) from the
+// chords' crossing. False if it does not converge inside the edges' pieces.
+bool locate_crossing(const EdgeCurve& e, const EdgeCurve& g, double& u, double& w) {
+  // The chords' crossing: fractions along each chord.
+  const double ax = e.x1 - e.x0, az = e.z1 - e.z0, bx = g.x1 - g.x0, bz = g.z1 - g.z0;
+  const double det = ax * (-bz) - az * (-bx);
+  if (det == 0.0) return false;
+  const double rx = g.x0 - e.x0, rz = g.z0 - e.z0;
+  const double se = (rx * (-bz) - rz * (-bx)) / det, sg = (ax * rz - az * rx) / det;
+  u = e.u0 + se * (e.u1 - e.u0);
+  w = g.u0 + sg * (g.u1 - g.u0);
+  for (int it = 0; it < 30; ++it) {
+    const auto pe = e.at(u), pg = g.at(w), te = e.tangent(u), tg = g.tangent(w);
+    const double fx = pe[0] - pg[0], fz = pe[1] - pg[1];
+    const double d = te[0] * (-tg[1]) - te[1] * (-tg[0]);
+    if (d == 0.0 || !std::isfinite(d)) return false;
+    const double du = -(fx * (-tg[1]) - fz * (-tg[0])) / d;
+    const double dw = -(te[0] * fz - te[1] * fx) / d;
+    u += du;
+    w += dw;
+    if (!e.admissible(u) || !g.admissible(w)) return false;
+    const double scale_u = e.piece != nullptr ? e.piece->b - e.piece->a : 1.0;
+    const double scale_w = g.piece != nullptr ? g.piece->b - g.piece->a : 1.0;
+    // Quadratic convergence: a step of 1e-10 leaves ~1e-20, below the round-off of the points.
+    if (std::abs(du) <= 1e-10 * scale_u && std::abs(dw) <= 1e-10 * scale_w) return true;
+  }
+  return false;
+}
+
+double curve_area(const std::vector<Piece>& pieces) {
+  // The polygon: kAreaPoints + 1 points per piece.
+  std::vector<Vertex> v;
+  v.reserve(pieces.size() * (kAreaPoints + 1));
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const Piece& pc = pieces[p];
+    for (int k = 0; k <= kAreaPoints; ++k) {
+      const double t = k == kAreaPoints ? pc.b : pc.a + (pc.b - pc.a) * k / kAreaPoints;
+      v.push_back({static_cast<int>(p), t, pc.f[kDdx](t), pc.f[kDdz](t), false});
+    }
+  }
+  auto coordinates = [&](std::vector<double>& x, std::vector<double>& z) {
+    x.resize(v.size());
+    z.resize(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) x[i] = v[i].x, z[i] = v[i].z;
+  };
   std::vector<double> x, z;
+  coordinates(x, z);
 
- private:
-  const Model& model_;
-  const double baumgarte_, t_begin_, t_end_;
-  const int n_;
-};
+  // Self-intersections: each crossing of two chords refined to the crossing of the arcs, then
+  // inserted into both branches as one shared point (a straight edge between pieces takes it as
+  // a new point in its piece-less position: after the end of its first piece).
+  struct Insert {
+    std::size_t edge;  // inserted after vertex `edge`
+    double key;        // t (arc) or s (straight), for the order inside the edge
+    Vertex vertex;
+  };
+  std::vector<Insert> inserts;
+  for (const auto& [i, j] : detail::polygon_crossings(x, z)) {
+    const EdgeCurve e = edge_curve(pieces, v, i), g = edge_curve(pieces, v, j);
+    double u = 0.0, w = 0.0;
+    if (!locate_crossing(e, g, u, w)) continue;
+    const auto pe = e.at(u), pg = g.at(w);
+    const double cx = 0.5 * (pe[0] + pg[0]), cz = 0.5 * (pe[1] + pg[1]);
+    for (const auto& [edge, curve, par] : {std::tuple{i, e, u}, std::tuple{j, g, w}}) {
+      // The edge of the polygon that holds the parameter (Newton may have moved to a
+      // neighbouring edge of the same piece).
+      std::size_t k = edge;
+      if (curve.piece != nullptr) {
+        while (k > 0 && v[k].piece == v[edge].piece && v[k].t > par) --k;
+        while (k + 1 < v.size() && v[k + 1].piece == v[edge].piece && v[k + 1].t < par) ++k;
+      }
+      inserts.push_back({k, par, {curve.piece != nullptr ? v[edge].piece : -1, par, cx, cz, true}});
+    }
+  }
+  if (!inserts.empty()) {
+    std::sort(inserts.begin(), inserts.end(), [](const Insert& a, const Insert& b) {
+      return a.edge != b.edge ? a.edge < b.edge : a.key < b.key;
+    });
+    std::vector<Vertex> merged;
+    merged.reserve(v.size() + inserts.size());
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      merged.push_back(v[i]);
+      while (next < inserts.size() && inserts[next].edge == i) {
+        const Vertex& c = inserts[next++].vertex;
+        const Vertex& last = merged.back();
+        // The same crossing found twice, or at an existing point: keep one, shared.
+        if (c.piece >= 0 && last.piece == c.piece &&
+            std::abs(c.t - last.t) <= 1e-12 * (pieces[c.piece].b - pieces[c.piece].a)) {
+          merged.back().x = c.x, merged.back().z = c.z, merged.back().crossing = true;
+          continue;
+        }
+        if (c.piece < 0 && last.crossing && last.x == c.x && last.z == c.z) continue;
+        if (c.piece < 0) {
+          // On a straight edge between pieces: a point of no piece (its arc edges are straight).
+          merged.push_back({-1, 0.0, c.x, c.z, true});
+        } else {
+          merged.push_back(c);
+        }
+      }
+    }
+    v = std::move(merged);
+    coordinates(x, z);
+  }
+
+  // Bulges: for an edge inside a piece, the area between the arc and its chord,
+  // integral of (x - x_mean) dz along the arc (exact: 16-point Gauss-Legendre on polynomials of
+  // degree 2 kDegree - 1) minus the chord's, which is zero for x_mean the mean of its ends.
+  static_assert(2 * kDegree - 1 <= 31, "16-point Gauss-Legendre is exact to degree 31");
+  boost::math::quadrature::gauss<double, 16> rule;
+  std::vector<double> bulge(v.size(), 0.0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vertex& p = v[i];
+    const Vertex& q = v[(i + 1) % v.size()];
+    if (p.piece < 0 || p.piece != q.piece || !(q.t > p.t)) continue;
+    const Piece& pc = pieces[p.piece];
+    const double x_mean = 0.5 * (p.x + q.x);
+    const double half = 0.5 * (q.t - p.t), mid = 0.5 * (p.t + q.t);
+    const auto& xs = rule.abscissa();
+    const auto& ws = rule.weights();
+    double sum = 0.0;
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      for (double sign : {-1.0, 1.0}) {
+        if (xs[k] == 0.0 && sign > 0) continue;
+        const double t = mid + sign * half * xs[k];
+        sum += ws[k] * (pc.f[kDdx](t) - x_mean) * pc.f[kDdz].derivative(t);
+      }
+    }
+    // The arc's ends may differ from the (shared) crossing points by round-off: the chord's
+    // integral of (x - x_mean) dz is zero.
+    bulge[i] = half * sum;
+  }
+  return enclosed_area(x, z, bulge);
+}
 
 State first_state(const Samples& s) {
   return {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]};
@@ -210,24 +370,48 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
 
   Flow flow(model, options);
   flow.reset(t0, q0, phase0);
-  Accumulator acc(model, options.baumgarte, t0, t1);
-  if (flow.advance(t1, &acc) != FlowStop::reached)
+  Recorder rec(model, options.baumgarte, t0, t1);
+  if (flow.advance(t1, &rec) != FlowStop::reached)
     throw Error("compute_metrics: the steady period did not integrate again: " + flow.message());
+  const std::vector<Piece>& pieces = rec.pieces;
 
   Metrics m;
-  m.ddx_max = acc.ddx_.hi, m.ddx_min = acc.ddx_.lo;
-  m.ddz_max = acc.ddz_.hi, m.ddz_min = acc.ddz_.lo;
-  m.delta_max = acc.delta_.hi, m.delta_min = acc.delta_.lo;
-  m.mu_required = acc.mu_.hi;
+  Extremes ddx, ddz, delta, traction;
+  std::vector<Node> nodes;
+  std::array<double, 3> time{};  // slip-, stick, slip+ [s]
+  boost::math::quadrature::gauss<double, 16> rule;
+  for (const Piece& pc : pieces) {
+    add_extremes(pc.f[kDdx], ddx);
+    add_extremes(pc.f[kDdz], ddz);
+    add_extremes(pc.f[kDelta], delta);
+    add_extremes(pc.f[kTraction], traction);
+    // Quadrature nodes (16-point Gauss-Legendre on each piece).
+    const double half = 0.5 * (pc.b - pc.a), mid = 0.5 * (pc.a + pc.b);
+    const auto& x = rule.abscissa();
+    const auto& w = rule.weights();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      for (double sign : {-1.0, 1.0}) {
+        if (x[i] == 0.0 && sign > 0) continue;
+        const double t = mid + sign * half * x[i];
+        nodes.push_back({t - t0, half * w[i], pc.f[kDdx](t), pc.f[kDdz](t), pc.f[kPhi](t),
+                         std::abs(pc.f[kFrictionPower](t))});
+      }
+    }
+    time[static_cast<int>(pc.phase) + 1] += pc.b - pc.a;
+  }
+  m.ddx_max = ddx.hi, m.ddx_min = ddx.lo;
+  m.ddz_max = ddz.hi, m.ddz_min = ddz.lo;
+  m.delta_max = delta.hi, m.delta_min = delta.lo;
+  m.mu_required = std::max(traction.hi, -traction.lo);
 
   const int n_compute = std::max(n_max, 3);
-  Spectrum hx = spectrum(acc.nodes_, &Node::ddx, P, t0, f, p, n_compute);
-  Spectrum hz = spectrum(acc.nodes_, &Node::ddz, P, t0, f, p, n_compute);
+  Spectrum hx = spectrum(nodes, &Node::ddx, P, t0, f, p, n_compute);
+  Spectrum hz = spectrum(nodes, &Node::ddz, P, t0, f, p, n_compute);
   m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   {
     const double nu = 2.0 * kPi * f;
     double sum = 0.0;
-    for (const Node& nd : acc.nodes_) {
+    for (const Node& nd : nodes) {
       const double r = nd.ddx - hx[0].amplitude * std::sin(hx[0].phase) -
                        hx[1].amplitude * std::sin(nu * (t0 + nd.tau) + hx[1].phase);
       sum += nd.weight * r * r;
@@ -240,8 +424,8 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   m.ddz_harmonics = std::move(hz);
 
   // phi: drift removed, the fundamental against M0 sin(nu t).
-  const double rate = (acc.phi_end_ - acc.phi_begin_) / P;
-  std::vector<Node> phi_nodes = acc.nodes_;
+  const double rate = (pieces.back().f[kPhi](pieces.back().b) - pieces.front().f[kPhi](t0)) / P;
+  std::vector<Node> phi_nodes = nodes;
   for (Node& nd : phi_nodes) nd.phi -= rate * nd.tau;
   const Spectrum hphi = spectrum(phi_nodes, &Node::phi, P, t0, f, p, 1);
   m.phi_amplitude = hphi[1].amplitude;
@@ -250,33 +434,15 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   m.phi_lag = lag / kPi;
 
   double work = 0.0;
-  for (const Node& nd : acc.nodes_) work += nd.weight * nd.friction_power;
+  for (const Node& nd : nodes) work += nd.weight * nd.friction_power;
   m.friction_work = work / p;
-  const double total = acc.time_[0] + acc.time_[1] + acc.time_[2];  // P up to round-off
-  m.stick_fraction = acc.time_[1] / total;
-  m.slip_positive_fraction = acc.time_[2] / total;
-  m.slip_negative_fraction = acc.time_[0] / total;
+  const double total = time[0] + time[1] + time[2];  // P up to round-off
+  m.stick_fraction = time[1] / total;
+  m.slip_positive_fraction = time[2] / total;
+  m.slip_negative_fraction = time[0] / total;
   m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
 
-  // Area: Richardson-extrapolated polygon areas (error ~ h^2) until two agree.
-  double previous = std::numeric_limits<double>::quiet_NaN(), coarse = 0.0;
-  for (int n = 4; n <= kAreaMaxPoints; n *= 2) {
-    Flow again(model, options);
-    again.reset(t0, q0, phase0);
-    Polygon poly(model, options.baumgarte, t0, t1, n);
-    again.advance(t1, &poly);
-    const double fine = enclosed_area(poly.x, poly.z);
-    if (n > 4) {
-      const double extrapolated = (4.0 * fine - coarse) / 3.0;
-      if (std::abs(extrapolated - previous) <= kAreaRtol * std::abs(extrapolated)) {
-        m.area = extrapolated;
-        break;
-      }
-      previous = extrapolated;
-      m.area = extrapolated;
-    }
-    coarse = fine;
-  }
+  m.area = curve_area(pieces);
   return m;
 }
 

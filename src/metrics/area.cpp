@@ -19,6 +19,8 @@
 // O((n + c) k log k) for c crossings. The drum curves have k of a handful and a few crossings
 // per period (4096 vertices: well under a millisecond); only contrived stars with ~n^2 crossings
 // are slow (a {1001/400} star takes about two seconds).
+#include "metrics/area.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -37,7 +39,8 @@ namespace {
 /// A non-horizontal polygon edge, stored bottom (y0) to top (y1), y0 < y1.
 struct Edge {
   double x0, y0, x1, y1;
-  int direction;  ///< +1: traversed upwards, -1: downwards
+  int direction;      ///< +1: traversed upwards, -1: downwards
+  std::size_t index;  ///< the edge joins point index and index + 1 (the last: to the first)
 
   /// x on the edge's line at height y; exact at both end points (std::lerp is exact at 0 and 1)
   /// so that edges sharing a vertex agree there.
@@ -50,8 +53,12 @@ struct Edge {
 
 /// Area with non-zero winding between heights lo < hi, where the order of `active` by x is the
 /// same at every height inside (lo, hi). `scratch` holds x at mid-height for sorting.
+/// If `boundary` is not null, boundary[e.index] accumulates height * c for every edge, with
+/// c = [winding on the edge's left != 0] - [winding on its right != 0] (left and right seen along
+/// the edge's direction): +1 or -1 where the edge bounds the enclosed region, 0 inside or outside.
 double crossing_free_slab_area(const std::vector<const Edge*>& active, double lo, double hi,
-                               std::vector<std::pair<double, const Edge*>>& scratch) {
+                               std::vector<std::pair<double, const Edge*>>& scratch,
+                               std::vector<double>* boundary) {
   const double height = hi - lo;
   if (!(height > 0.0)) return 0.0;
   const double mid = lo + 0.5 * height;
@@ -62,9 +69,22 @@ double crossing_free_slab_area(const std::vector<const Edge*>& active, double lo
   double width = 0.0;
   int winding = 0;
   for (std::size_t i = 0; i + 1 < scratch.size(); ++i) {
+    const int before = winding;
     winding += scratch[i].second->direction;
+    if (boundary != nullptr) {
+      // Going up, the edge's left is the side of smaller x; going down, the side of larger x.
+      const bool left = (scratch[i].second->direction > 0 ? before : winding) != 0;
+      const bool right = (scratch[i].second->direction > 0 ? winding : before) != 0;
+      (*boundary)[scratch[i].second->index] += height * (int{left} - int{right});
+    }
     // The integral of a linear width over [lo, hi] is the height times the width at mid-height.
     if (winding != 0) width += scratch[i + 1].first - scratch[i].first;
+  }
+  if (boundary != nullptr && !scratch.empty()) {
+    // The rightmost edge: winding 0 to its right (x), `winding` to its left.
+    const Edge* e = scratch.back().second;
+    const bool inside = winding != 0;
+    (*boundary)[e->index] += height * (e->direction > 0 ? int{inside} : -int{inside});
   }
   return height * width;
 }
@@ -74,6 +94,8 @@ struct Workspace {
   std::vector<const Edge*> order;
   std::vector<double> cuts;
   std::vector<std::pair<double, const Edge*>> by_x;
+  std::vector<double>* boundary = nullptr;  ///< see crossing_free_slab_area (optional)
+  std::vector<std::pair<std::size_t, std::size_t>>* crossings = nullptr;  ///< (optional)
 };
 
 /// Area with non-zero winding inside the slab [lo, hi] (every active edge spans it).
@@ -99,35 +121,43 @@ double slab_area(std::vector<const Edge*>& active, double lo, double hi, Workspa
       const double gap_hi = right->x_at(hi) - left->x_at(hi);  // < 0
       const double s = gap_lo / (gap_lo - gap_hi);             // in [0, 1)
       cuts.push_back(lo + std::clamp(s, 0.0, 1.0) * (hi - lo));
+      if (ws.crossings != nullptr) ws.crossings->emplace_back(left->index, right->index);
       std::swap(order[j - 1], order[j]);
     }
   }
-  if (cuts.empty()) return crossing_free_slab_area(active, lo, hi, ws.by_x);
+  if (cuts.empty()) return crossing_free_slab_area(active, lo, hi, ws.by_x, ws.boundary);
   std::sort(cuts.begin(), cuts.end());
   double area = 0.0;
   double below = lo;
   for (double cut : cuts) {
-    area += crossing_free_slab_area(active, below, cut, ws.by_x);
+    area += crossing_free_slab_area(active, below, cut, ws.by_x, ws.boundary);
     below = std::max(below, cut);
   }
-  area += crossing_free_slab_area(active, below, hi, ws.by_x);
+  area += crossing_free_slab_area(active, below, hi, ws.by_x, ws.boundary);
   return area;
 }
 
 }  // namespace
 
-double enclosed_area(std::span<const double> x, std::span<const double> y) {
+namespace {
+
+void check_points(const char* who, std::span<const double> x, std::span<const double> y) {
   if (x.size() != y.size()) {
-    throw Error("enclosed_area: x and y must have the same size; got " + std::to_string(x.size()) +
-                " and " + std::to_string(y.size()));
+    throw Error(std::string(who) + ": x and y must have the same size; got " +
+                std::to_string(x.size()) + " and " + std::to_string(y.size()));
   }
-  const std::size_t n = x.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < x.size(); ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
-      throw Error("enclosed_area: the points must be finite; point " + std::to_string(i) + " is (" +
-                  std::to_string(x[i]) + ", " + std::to_string(y[i]) + ")");
+      throw Error(std::string(who) + ": the points must be finite; point " + std::to_string(i) +
+                  " is (" + std::to_string(x[i]) + ", " + std::to_string(y[i]) + ")");
     }
   }
+}
+
+/// The slab sweep over the polygon (x, y); fills ws.boundary (one entry per edge, summed
+/// height * c) and ws.crossings when they are set.
+double sweep(std::span<const double> x, std::span<const double> y, Workspace& ws) {
+  const std::size_t n = x.size();
   if (n < 3) return 0.0;
 
   // Horizontal edges (and repeated points) bound no slab and change no winding: skip them.
@@ -136,9 +166,9 @@ double enclosed_area(std::span<const double> x, std::span<const double> y) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = (i + 1 == n) ? 0 : i + 1;
     if (y[i] < y[k]) {
-      edges.push_back({x[i], y[i], x[k], y[k], +1});
+      edges.push_back({x[i], y[i], x[k], y[k], +1, i});
     } else if (y[i] > y[k]) {
-      edges.push_back({x[k], y[k], x[i], y[i], -1});
+      edges.push_back({x[k], y[k], x[i], y[i], -1, i});
     }
   }
   if (edges.size() < 2) return 0.0;
@@ -149,7 +179,6 @@ double enclosed_area(std::span<const double> x, std::span<const double> y) {
   levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
 
   std::vector<const Edge*> active;
-  Workspace ws;
   std::size_t next_edge = 0;
   double area = 0.0;
   for (std::size_t s = 0; s + 1 < levels.size(); ++s) {
@@ -163,6 +192,74 @@ double enclosed_area(std::span<const double> x, std::span<const double> y) {
     if (active.size() >= 2) area += slab_area(active, lo, hi, ws);
   }
   return area;
+}
+
+/// Winding number (counter-clockwise positive) of the closed polygon (x, y) around (px, py).
+int winding_number(std::span<const double> x, std::span<const double> y, double px, double py) {
+  int w = 0;
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i + 1 == n) ? 0 : i + 1;
+    const double cross = (x[k] - x[i]) * (py - y[i]) - (px - x[i]) * (y[k] - y[i]);
+    if (y[i] <= py && y[k] > py && cross > 0.0) ++w;
+    if (y[i] > py && y[k] <= py && cross < 0.0) --w;
+  }
+  return w;
+}
+
+}  // namespace
+
+double enclosed_area(std::span<const double> x, std::span<const double> y) {
+  check_points("enclosed_area", x, y);
+  Workspace ws;
+  return sweep(x, y, ws);
+}
+
+double enclosed_area(std::span<const double> x, std::span<const double> y,
+                     std::span<const double> bulge) {
+  check_points("enclosed_area", x, y);
+  if (bulge.size() != x.size()) {
+    throw Error("enclosed_area: bulge must have one entry per point (arc); got " +
+                std::to_string(bulge.size()) + " for " + std::to_string(x.size()) + " points");
+  }
+  const std::size_t n = x.size();
+  if (n < 2) return 0.0;
+  std::vector<double> boundary(n, 0.0);
+  Workspace ws;
+  ws.boundary = &boundary;
+  double area = sweep(x, y, ws);
+  // Each arc changes the area by its bulge where its chord bounds the region (c = +-1; 0 where
+  // both sides are inside or both outside), weighted by the part of the chord's height where it
+  // does (all or nothing when every crossing of the curve is one of the points).
+  double scale = 0.0;
+  for (std::size_t i = 0; i < n; ++i) scale = std::max({scale, std::abs(x[i]), std::abs(y[i])});
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bulge[i] == 0.0) continue;
+    const std::size_t k = (i + 1 == n) ? 0 : i + 1;
+    const double height = std::abs(y[k] - y[i]);
+    if (height > 0.0) {
+      area += bulge[i] * boundary[i] / height;
+    } else if (x[k] != x[i]) {
+      // A horizontal chord bounds no slab: the windings just above and below its middle.
+      const double mx = 0.5 * (x[i] + x[k]), eps = 1e-9 * scale;
+      const int above = winding_number(x, y, mx, y[i] + eps);
+      const int below = winding_number(x, y, mx, y[i] - eps);
+      // Going right (x[k] > x[i]) the left is above.
+      const int left = x[k] > x[i] ? above : below, right = x[k] > x[i] ? below : above;
+      area += bulge[i] * (int{left != 0} - int{right != 0});
+    }
+  }
+  return area;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> detail::polygon_crossings(
+    std::span<const double> x, std::span<const double> y) {
+  check_points("polygon_crossings", x, y);
+  std::vector<std::pair<std::size_t, std::size_t>> crossings;
+  Workspace ws;
+  ws.crossings = &crossings;
+  sweep(x, y, ws);
+  return crossings;
 }
 
 }  // namespace oscidrum

@@ -1,0 +1,17 @@
+// area.hpp: internals of the enclosed area (area.cpp) used by the steady-state metrics.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace oscidrum::detail {
+
+/// The pairs of edges (i, j) of the closed polygon (x, y) that cross strictly inside both (edge i
+/// joins point i to point i + 1, the last edge the last point to the first). Edges meeting at a
+/// shared point, and crossings exactly at the height of a point, are not reported.
+std::vector<std::pair<std::size_t, std::size_t>> polygon_crossings(std::span<const double> x,
+                                                                   std::span<const double> y);
+
+}  // namespace oscidrum::detail

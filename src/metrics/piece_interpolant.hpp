@@ -1,0 +1,88 @@
+// piece_interpolant.hpp: the Chebyshev interpolant of a smooth function on one interval [a, b],
+// through the N + 1 Chebyshev-Lobatto points t_k = (a + b)/2 + (b - a)/2 cos(pi k / N) (both ends
+// included). Used for the metrics of a steady state (steady_metrics.cpp): on one piece of the
+// trajectory (one integrator step in one phase) every metric quantity is an analytic function of
+// t, so a degree-N interpolant from N + 1 right-hand-side evaluations is accurate to round-off and
+// replaces the many evaluations that peaks, quadrature and the area would otherwise need.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace oscidrum::detail {
+
+template <int N>
+class ChebyshevInterpolant {
+ public:
+  static constexpr int kNodes = N + 1;
+
+  /// The k-th interpolation point in [a, b] (k = 0: b, k = N: a).
+  static double node(double a, double b, int k) {
+    return 0.5 * (a + b) + 0.5 * (b - a) * std::cos(std::numbers::pi * k / N);
+  }
+
+  ChebyshevInterpolant() = default;
+  /// From the values f(node(a, b, k)), k = 0 ... N.
+  ChebyshevInterpolant(double a, double b, const std::array<double, kNodes>& values)
+      : a_(a), b_(b) {
+    for (int j = 0; j <= N; ++j) {
+      double sum = 0.0;
+      for (int k = 0; k <= N; ++k) {
+        const double w = (k == 0 || k == N) ? 0.5 : 1.0;
+        // cos(pi j k / N) with the product reduced mod 2N, exact at the symmetric points.
+        sum += w * values[k] * cos_table()[(j * k) % (2 * N)];
+      }
+      c_[j] = sum * (2.0 / N) * ((j == 0 || j == N) ? 0.5 : 1.0);
+    }
+  }
+
+  /// The interpolant at t (Clenshaw's recurrence); t outside [a, b] extrapolates.
+  double operator()(double t) const {
+    const double x = (2.0 * t - a_ - b_) / (b_ - a_);
+    double b1 = 0.0, b2 = 0.0;
+    for (int j = N; j >= 1; --j) {
+      const double b0 = 2.0 * x * b1 - b2 + c_[j];
+      b2 = b1;
+      b1 = b0;
+    }
+    return x * b1 - b2 + c_[0];
+  }
+
+  /// d/dt of the interpolant at t.
+  double derivative(double t) const {
+    // Coefficients of the derivative series (in x), then the chain rule dx/dt = 2 / (b - a).
+    std::array<double, N + 1> d{};
+    for (int j = N - 1; j >= 0; --j)
+      d[j] = (j + 2 <= N ? d[j + 2] : 0.0) + 2.0 * (j + 1) * c_[j + 1];
+    d[0] *= 0.5;
+    const double x = (2.0 * t - a_ - b_) / (b_ - a_);
+    double b1 = 0.0, b2 = 0.0;
+    for (int j = N - 1; j >= 1; --j) {
+      const double b0 = 2.0 * x * b1 - b2 + d[j];
+      b2 = b1;
+      b1 = b0;
+    }
+    return (x * b1 - b2 + d[0]) * 2.0 / (b_ - a_);
+  }
+
+  double a() const { return a_; }
+  double b() const { return b_; }
+  /// The Chebyshev coefficients (in x = (2 t - a - b) / (b - a)).
+  const std::array<double, kNodes>& coefficients() const { return c_; }
+
+ private:
+  static const std::array<double, 2 * N>& cos_table() {
+    static const std::array<double, 2 * N> table = [] {
+      std::array<double, 2 * N> c{};
+      for (int m = 0; m < 2 * N; ++m) c[m] = std::cos(std::numbers::pi * m / N);
+      return c;
+    }();
+    return table;
+  }
+
+  double a_ = 0.0, b_ = 1.0;
+  std::array<double, kNodes> c_{};
+};
+
+}  // namespace oscidrum::detail
