@@ -126,6 +126,10 @@ void add_extremes(const Interpolant& f, Extremes& out) {
     const double v = scan[k], l = scan[lo], r = scan[hi];
     for (double sign : {1.0, -1.0}) {
       if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
+      // An end where the quantity still rises towards the end (falls, for a minimum) is the
+      // extremum of its one-sided bracket: nothing to refine.
+      if (k == 0 && sign * f.derivative(a) <= 0.0) continue;
+      if (k == kScan && sign * f.derivative(b) >= 0.0) continue;
       // In the offset from the bracket's start: Brent's tolerance is relative to the abscissa,
       // and relative to the absolute time (seconds into a long transient) it would leave the
       // extremum ~1e-7 s off, ~1e-10 of the peak.
@@ -140,6 +144,7 @@ void add_extremes(const Interpolant& f, Extremes& out) {
 
 struct Node {  // a Gauss-Legendre node of one piece
   double tau, weight, ddx, ddz, phi, friction_power;
+  double cos1, sin1;  // cos(nu tau), sin(nu tau)
 };
 
 // The area of the z_M''-x_M'' curve of the pieces: a polygon through kAreaPoints + 1 points per
@@ -329,24 +334,31 @@ State first_state(const Samples& s) {
 Spectrum spectrum(const std::vector<Node>& nodes, double Node::*m, double P, double t0, double f,
                   int cycles, int n_max) {
   Spectrum h(static_cast<std::size_t>(n_max) + 1);
-  const double nu = 2.0 * kPi * f;
   double mean = 0.0;
   for (const Node& nd : nodes) mean += nd.weight * (nd.*m);
   mean /= P;
   h[0] = {std::abs(mean), mean >= 0.0 ? kPi / 2.0 : -kPi / 2.0};
-  for (int n = 1; n <= n_max; ++n) {
-    double a = 0.0, b = 0.0;  // y = a cos(n nu tau) + b sin(n nu tau) + ...
-    for (const Node& nd : nodes) {
-      a += nd.weight * (nd.*m) * std::cos(n * nu * nd.tau);
-      b += nd.weight * (nd.*m) * std::sin(n * nu * nd.tau);
+  // y = a_n cos(n nu tau) + b_n sin(n nu tau) + ...: cos and sin of n nu tau from those of
+  // nu tau by the angle-addition recurrence (error ~n ulp).
+  std::vector<double> a(static_cast<std::size_t>(n_max) + 1, 0.0), b(a.size(), 0.0);
+  for (const Node& nd : nodes) {
+    const double y = nd.weight * (nd.*m);
+    double c = nd.cos1, s = nd.sin1;
+    for (int n = 1; n <= n_max; ++n) {
+      a[n] += y * c;
+      b[n] += y * s;
+      const double next = c * nd.cos1 - s * nd.sin1;
+      s = s * nd.cos1 + c * nd.sin1;
+      c = next;
     }
-    a *= 2.0 / P;
-    b *= 2.0 / P;
+  }
+  for (int n = 1; n <= n_max; ++n) {
+    const double an = a[n] * 2.0 / P, bn = b[n] * 2.0 / P;
     // Phase at tau = 0, then in absolute time: n nu t = n nu tau + n nu t0 (reduced in cycles).
     double cyc = n * f * t0;
     cyc -= std::round(cyc);
-    h[static_cast<std::size_t>(n)] = {std::hypot(a, b),
-                                      wrap_pi(std::atan2(a, b) - 2.0 * kPi * cyc)};
+    h[static_cast<std::size_t>(n)] = {std::hypot(an, bn),
+                                      wrap_pi(std::atan2(an, bn) - 2.0 * kPi * cyc)};
   }
   (void)cycles;
   return h;
@@ -380,6 +392,7 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   std::vector<Node> nodes;
   std::array<double, 3> time{};  // slip-, stick, slip+ [s]
   boost::math::quadrature::gauss<double, 16> rule;
+  const double nu = 2.0 * kPi * f;
   for (const Piece& pc : pieces) {
     add_extremes(pc.f[kDdx], ddx);
     add_extremes(pc.f[kDdz], ddz);
@@ -393,8 +406,10 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
       for (double sign : {-1.0, 1.0}) {
         if (x[i] == 0.0 && sign > 0) continue;
         const double t = mid + sign * half * x[i];
-        nodes.push_back({t - t0, half * w[i], pc.f[kDdx](t), pc.f[kDdz](t), pc.f[kPhi](t),
-                         std::abs(pc.f[kFrictionPower](t))});
+        const double tau = t - t0;
+        nodes.push_back({tau, half * w[i], pc.f[kDdx](t), pc.f[kDdz](t), pc.f[kPhi](t),
+                         std::abs(pc.f[kFrictionPower](t)), std::cos(nu * tau),
+                         std::sin(nu * tau)});
       }
     }
     time[static_cast<int>(pc.phase) + 1] += pc.b - pc.a;
@@ -409,7 +424,6 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   Spectrum hz = spectrum(nodes, &Node::ddz, P, t0, f, p, n_compute);
   m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   {
-    const double nu = 2.0 * kPi * f;
     double sum = 0.0;
     for (const Node& nd : nodes) {
       const double r = nd.ddx - hx[0].amplitude * std::sin(hx[0].phase) -
