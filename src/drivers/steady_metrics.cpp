@@ -39,7 +39,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kDegree = 10;     // Chebyshev interpolant per piece: kDegree + 1 RHS evaluations
-constexpr int kScan = 16;       // sub-intervals scanned per piece for interior extrema
 constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
 
 using Interpolant = detail::ChebyshevInterpolant<kDegree>;
@@ -69,6 +68,8 @@ struct Piece {
   double a, b;  // [s]
   Phase phase;
   std::array<Interpolant, kQuantities> f;
+  std::array<std::array<double, Interpolant::kNodes>, kQuantities> values;  // at the nodes
+  Interpolant dx, dz;  // d/dt of x_M'' and z_M'' [m/s^3]
 };
 
 class Recorder : public FlowObserver {
@@ -86,8 +87,10 @@ class Recorder : public FlowObserver {
       const auto v = evaluate(model_, baumgarte_, t, step.state(t), step.phase());
       for (int m = 0; m < kQuantities; ++m) values[m][k] = v[m];
     }
-    Piece piece{a, b, step.phase(), {}};
+    Piece piece{a, b, step.phase(), {}, values, {}, {}};
     for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, values[m]);
+    piece.dx = piece.f[kDdx].derivative_interpolant();
+    piece.dz = piece.f[kDdz].derivative_interpolant();
     pieces.push_back(piece);
     return true;
   }
@@ -108,12 +111,15 @@ struct Extremes {
   }
 };
 
-void add_extremes(const Interpolant& f, Extremes& out) {
+// The scan: the interpolation nodes (exact values), in increasing t.
+void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kNodes>& values,
+                  Extremes& out) {
+  constexpr int kScan = kDegree;
   const double a = f.a(), b = f.b();
   std::array<double, kScan + 1> ts, scan;
   for (int k = 0; k <= kScan; ++k) {
-    ts[k] = k == kScan ? b : a + (b - a) * k / kScan;
-    scan[k] = f(ts[k]);
+    ts[k] = k == 0 ? a : k == kScan ? b : Interpolant::node(a, b, kScan - k);
+    scan[k] = values[kScan - k];
     out.add(scan[k]);
   }
   // A scan point not beaten by its neighbours brackets an extremum between them. At the ends of
@@ -130,13 +136,14 @@ void add_extremes(const Interpolant& f, Extremes& out) {
       // extremum of its one-sided bracket: nothing to refine.
       if (k == 0 && sign * f.derivative(a) <= 0.0) continue;
       if (k == kScan && sign * f.derivative(b) >= 0.0) continue;
-      // In the offset from the bracket's start: Brent's tolerance is relative to the abscissa,
-      // and relative to the absolute time (seconds into a long transient) it would leave the
-      // extremum ~1e-7 s off, ~1e-10 of the peak.
-      const double t_lo = ts[lo];
-      const auto g = [&](double u) { return -sign * f(t_lo + u); };
-      const auto best = boost::math::tools::brent_find_minima(g, 0.0, ts[hi] - t_lo,
-                                                              std::numeric_limits<double>::digits);
+      // In the fraction u in [0, 1] of the bracket: Brent's tolerance (half the digits) is
+      // relative to the abscissa plus an absolute part; in the absolute time (seconds into a
+      // long transient) it would leave the extremum ~1e-7 s off (~1e-10 of the peak), in
+      // seconds from the bracket's start still ~4e-9 s (~1e-12 of the peak).
+      const double t_lo = ts[lo], width = ts[hi] - ts[lo];
+      const auto g = [&](double u) { return -sign * f(t_lo + u * width); };
+      const auto best =
+          boost::math::tools::brent_find_minima(g, 0.0, 1.0, std::numeric_limits<double>::digits);
       out.add(-sign * best.second);
     }
   }
@@ -173,7 +180,7 @@ struct EdgeCurve {
     return {x0 + u * (x1 - x0), z0 + u * (z1 - z0)};
   }
   std::array<double, 2> tangent(double u) const {
-    if (piece != nullptr) return {piece->f[kDdx].derivative(u), piece->f[kDdz].derivative(u)};
+    if (piece != nullptr) return {piece->dx(u), piece->dz(u)};
     return {x1 - x0, z1 - z0};
   }
   // Newton may move into the neighbouring edges of the same piece (the interpolant holds on the
@@ -298,10 +305,10 @@ double curve_area(const std::vector<Piece>& pieces) {
   }
 
   // Bulges: for an edge inside a piece, the area between the arc and its chord,
-  // integral of (x - x_mean) dz along the arc (exact: 16-point Gauss-Legendre on polynomials of
+  // integral of (x - x_mean) dz along the arc (exact: 10-point Gauss-Legendre on polynomials of
   // degree 2 kDegree - 1) minus the chord's, which is zero for x_mean the mean of its ends.
-  static_assert(2 * kDegree - 1 <= 31, "16-point Gauss-Legendre is exact to degree 31");
-  boost::math::quadrature::gauss<double, 16> rule;
+  static_assert(2 * kDegree - 1 <= 2 * 10 - 1, "10-point Gauss-Legendre is exact to degree 19");
+  boost::math::quadrature::gauss<double, 10> rule;
   std::vector<double> bulge(v.size(), 0.0);
   for (std::size_t i = 0; i < v.size(); ++i) {
     const Vertex& p = v[i];
@@ -317,7 +324,7 @@ double curve_area(const std::vector<Piece>& pieces) {
       for (double sign : {-1.0, 1.0}) {
         if (xs[k] == 0.0 && sign > 0) continue;
         const double t = mid + sign * half * xs[k];
-        sum += ws[k] * (pc.f[kDdx](t) - x_mean) * pc.f[kDdz].derivative(t);
+        sum += ws[k] * (pc.f[kDdx](t) - x_mean) * pc.dz(t);
       }
     }
     // The arc's ends may differ from the (shared) crossing points by round-off: the chord's
@@ -394,10 +401,10 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   boost::math::quadrature::gauss<double, 16> rule;
   const double nu = 2.0 * kPi * f;
   for (const Piece& pc : pieces) {
-    add_extremes(pc.f[kDdx], ddx);
-    add_extremes(pc.f[kDdz], ddz);
-    add_extremes(pc.f[kDelta], delta);
-    add_extremes(pc.f[kTraction], traction);
+    add_extremes(pc.f[kDdx], pc.values[kDdx], ddx);
+    add_extremes(pc.f[kDdz], pc.values[kDdz], ddz);
+    add_extremes(pc.f[kDelta], pc.values[kDelta], delta);
+    add_extremes(pc.f[kTraction], pc.values[kTraction], traction);
     // Quadrature nodes (16-point Gauss-Legendre on each piece).
     const double half = 0.5 * (pc.b - pc.a), mid = 0.5 * (pc.a + pc.b);
     const auto& x = rule.abscissa();

@@ -66,6 +66,18 @@ class ChebyshevInterpolant {
     return (x * b1 - b2 + d[0]) * 2.0 / (b_ - a_);
   }
 
+  /// The derivative d/dt as an interpolant of the same form (its highest coefficient zero).
+  ChebyshevInterpolant derivative_interpolant() const {
+    ChebyshevInterpolant d;
+    d.a_ = a_;
+    d.b_ = b_;
+    for (int j = N - 1; j >= 0; --j)
+      d.c_[j] = (j + 2 <= N ? d.c_[j + 2] : 0.0) + 2.0 * (j + 1) * c_[j + 1];
+    d.c_[0] *= 0.5;
+    for (double& c : d.c_) c *= 2.0 / (b_ - a_);
+    return d;
+  }
+
   double a() const { return a_; }
   double b() const { return b_; }
   /// The Chebyshev coefficients (in x = (2 t - a - b) / (b - a)).
