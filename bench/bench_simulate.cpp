@@ -118,6 +118,39 @@ BENCHMARK(BM_SideBySide_StickSlip)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SideBySide_Rolling_R0606)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SideBySide_Rolling_R065)->Unit(benchmark::kMillisecond);
 
+// The steady-state metrics (compute_metrics(model, result): one period integrated again, peaks,
+// harmonics, lags, area on the trajectory) against the simulation (shooting) they follow: every
+// iteration runs both, each timed by the thread's CPU clock.
+void metrics_after_simulate(benchmark::State& state, oscidrum::Case c) {
+  c.numerics.method = SteadyMethod::shooting;
+  const oscidrum::Model model(c);
+  double t_simulate = 0.0, t_metrics = 0.0;
+  for (auto _ : state) {
+    const double t0 = cpu_seconds();
+    const oscidrum::Result r = oscidrum::simulate(model);
+    const double t1 = cpu_seconds();
+    if (r.status != oscidrum::Status::steady_state) {
+      state.SkipWithError(r.message.c_str());
+      break;
+    }
+    const oscidrum::Metrics m = oscidrum::compute_metrics(model, r);
+    t_simulate += t1 - t0;
+    t_metrics += cpu_seconds() - t1;
+    benchmark::DoNotOptimize(m.area);
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["simulate_ms"] = 1e3 * t_simulate / n;
+  state.counters["metrics_ms"] = 1e3 * t_metrics / n;
+}
+void BM_Metrics_StickSlip(benchmark::State& s) {
+  metrics_after_simulate(s, bench_case(false, 0.05, 0));
+}
+void BM_Metrics_Rolling_R0606(benchmark::State& s) {
+  metrics_after_simulate(s, bench_case(true, 0.0, 0));
+}
+BENCHMARK(BM_Metrics_StickSlip)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Metrics_Rolling_R0606)->Unit(benchmark::kMillisecond);
+
 // `oscidrum validate`: all of the paper's cases on all cores, and the check of every claim (the
 // command's work without its output); wall time.
 void validate_with(benchmark::State& state, SteadyMethod method) {
