@@ -68,7 +68,8 @@ Metrics compute_metrics(const Result& result, int n_max = 10);
 /// integrated again from the first sample through the flow (oscidrum/flow.hpp) and every metric
 /// is evaluated on the dense output: peaks at both one-sided limits of every switch and at every
 /// interior extremum, harmonics, lags, THD and friction work as integrals over each piece, the
-/// area of the dense curve converged to 1e-9 relative (docs/outputs.md). Independent of
+/// area of the dense curve exactly (every piece's quantities as Chebyshev interpolants accurate to
+/// round-off; docs/outputs.md). Independent of
 /// numerics.samples_per_period. `model` must be the one `result` was simulated with. Throws
 /// oscidrum::Error as compute_metrics(result) does.
 Metrics compute_metrics(const Model& model, const Result& result, int n_max = 10);
