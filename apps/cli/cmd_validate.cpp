@@ -119,7 +119,7 @@ void add_validate_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand(
       "validate",
       "Check oscidrum against every result the paper states. Simulates the paper's studies "
-      "(about 100 cases on all cores, a few seconds) and checks each claim listed in "
+      "(about 100 cases on all cores, well under a second) and checks each claim listed in "
       "docs/validation.md "
       "(peaks against G, the G of each maximum, harmonic parity, spectral ratios, phase lags, the "
       "area curves of Figs. 16 and 22) by a stated rule. Exit code 1 if any claim disagrees.");
