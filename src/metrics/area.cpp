@@ -19,6 +19,13 @@
 // O((n + c) k log k) for c crossings. The drum curves have k of a handful and a few crossings
 // per period (4096 vertices: well under a millisecond); only contrived stars with ~n^2 crossings
 // are slow (a {1001/400} star takes about two seconds).
+// Curves (enclosed_area with bulges): the same sweep also records, for every edge, where it bounds
+// the region (winding zero on one side, non-zero on the other; c = +1 with the region on its
+// left, -1 on its right, 0 elsewhere, as a fraction of the edge's height). The region enclosed by
+// the curve differs from the polygon's by the segment between each such edge and its arc, so the
+// curve's area is the polygon's plus the sum of c times bulge (Green's theorem on the region's
+// boundary: bulge = integral of x dy along the arc minus along the chord).
+// polygon_crossings (area.hpp) reports the crossing edge pairs the sweep meets.
 #include "metrics/area.hpp"
 
 #include <algorithm>
