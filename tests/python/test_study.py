@@ -86,7 +86,9 @@ def test_progress_bar_only_on_a_terminal(capsys):
 
 
 def test_ctrl_c_keeps_what_is_done():
-    slow = oscidrum.Case(table2_G=70e6, pure_rolling=True)
+    # Pure rolling from rest by the transient method: ~60 ms a case, so that 400 of them are still
+    # running when Ctrl-C arrives (by shooting they take ~2 ms and the study would be done).
+    slow = oscidrum.Case(table2_G=70e6, pure_rolling=True, method="transient")
     fast = [oscidrum.Case()] * 4
     timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
     start = time.perf_counter()
