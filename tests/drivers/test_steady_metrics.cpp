@@ -104,14 +104,19 @@ class Brute : public FlowObserver {
   int next_ = 0;
 };
 
-// n uniform samples of the first steady period of `res`, integrated again from its first sample.
-Result brute_force_period(const Model& model, const Result& res, int n) {
-  const Samples& s = res.samples;
-  Flow flow(model);
+// Put `flow` at the first sample of a steady state (to integrate its first period again).
+void start_at_first_sample(Flow& flow, const Samples& s) {
   flow.reset(
       s.t[0],
       {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]},
       s.phase[0]);
+}
+
+// n uniform samples of the first steady period of `res`, integrated again from its first sample.
+Result brute_force_period(const Model& model, const Result& res, int n) {
+  const Samples& s = res.samples;
+  Flow flow(model);
+  start_at_first_sample(flow, s);
   Brute brute(model, s.t[0], n);
   EXPECT_EQ(flow.advance(s.t[0] + model.period(), &brute), FlowStop::reached);
   return brute.r;
@@ -239,10 +244,7 @@ template <int N>
 std::array<double, 3> interpolant_error(const Model& model, const Result& res) {
   const Samples& s = res.samples;
   Flow flow(model);
-  flow.reset(
-      s.t[0],
-      {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]},
-      s.phase[0]);
+  start_at_first_sample(flow, s);
   InterpolantCheck<N> check(model);
   EXPECT_EQ(flow.advance(s.t[0] + model.period(), &check), FlowStop::reached);
   std::array<double, 3> relative{};
