@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "equations/equations.hpp"
 #include "oscidrum/kinematics.hpp"
 
 namespace oscidrum::detail {
@@ -64,21 +65,22 @@ class Sampler : public FlowObserver {
 
 void append_sample(const Model& model, double baumgarte, double t, const State& q, Phase phase,
                    Samples& s) {
-  const Accelerations a = accelerations(model, t, q, phase, baumgarte);
-  const DrumMotion d = drum_motion(model, q, a);
-  const ContactForces f = contact_forces(model, q);
+  const Kinematics k = kinematics(model.geometry(), q.delta);  // once for all columns
+  const Accelerations a = accelerations(model, t, q, phase, baumgarte, k);
+  const DrumMotion d = drum_motion(q, a, k);
+  const ContactForces f = contact_forces(model, q, k);
+  // In stick phi' is fixed by the rolling condition (12), phi' = f5 delta', and the drum does not
+  // slide (v_rel = 0, (13)). The flow integrates phi' there without reading it, so the state's
+  // own phi' carries the integration's round-off drift (up to ~1e-9 rad/s after a long transient
+  // from rest): the columns report the constrained values instead.
+  const bool stick = phase == Phase::stick;
   s.t.push_back(t);
   s.delta.push_back(q.delta);
   s.phi.push_back(q.phi);
   s.x_A.push_back(q.x_A);
   s.s_A.push_back(q.s_A);
   s.ddelta.push_back(q.ddelta);
-  // In stick phi' is fixed by the rolling condition (12), phi' = f5 delta', and the drum does not
-  // slide (v_rel = 0, (13)). The flow integrates phi' there without reading it, so the state's
-  // own phi' carries the integration's round-off drift (up to ~1e-9 rad/s after a long transient
-  // from rest): the columns report the constrained values instead.
-  const bool stick = phase == Phase::stick;
-  s.dphi.push_back(stick ? kinematics(model.geometry(), q.delta).f5 * q.ddelta : q.dphi);
+  s.dphi.push_back(stick ? k.f5 * q.ddelta : q.dphi);
   s.dx_A.push_back(q.dx_A);
   s.ds_A.push_back(q.ds_A);
   s.x_M.push_back(d.x_M);
@@ -87,7 +89,7 @@ void append_sample(const Model& model, double baumgarte, double t, const State& 
   s.ddz_M.push_back(d.ddz_M);
   s.N.push_back(f.N);
   s.T.push_back(f.T);
-  s.v_rel.push_back(stick ? 0.0 : slip_velocity(model, q));
+  s.v_rel.push_back(stick ? 0.0 : slip_velocity(model, q, k));
   s.torque.push_back(model.torque(t));
   s.phase.push_back(phase);
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "equations/equations.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
@@ -95,22 +96,33 @@ State Model::initial_state() const {
   return q;
 }
 
-ContactForces contact_forces(const Model& model, const State& q) {
-  // Soil subsystem (24), (25), solved for N (26) and T. The soil is massless, so these hold in
-  // every phase and equal (21), (22).
+namespace {
+// Soil subsystem (24), (25), solved for N (26) and T. The soil is massless, so these hold in
+// every phase and equal (21), (22). s, c: sin and cos of delta.
+ContactForces soil_contact_forces(const Model& model, const State& q, double s, double c) {
   const double Fh = model.ksh() * q.x_A + model.csh() * q.dx_A;
   const double Fv = model.ksv() * q.s_A + model.csv() * q.ds_A;
-  const double s = std::sin(q.delta), c = std::cos(q.delta);
   return {Fh * s + Fv * c, Fv * s - Fh * c};
 }
+}  // namespace
 
-double slip_velocity(const Model& model, const State& q) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);
+ContactForces detail::contact_forces(const Model& model, const State& q, const Kinematics& k) {
+  return soil_contact_forces(model, q, k.sin_delta, k.cos_delta);
+}
+
+ContactForces contact_forces(const Model& model, const State& q) {
+  return soil_contact_forces(model, q, std::sin(q.delta), std::cos(q.delta));
+}
+
+double detail::slip_velocity(const Model& model, const State& q, const Kinematics& k) {
   return model.r() * k.f5 * q.ddelta - model.r() * q.dphi;  // (13)
 }
 
-DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);
+double slip_velocity(const Model& model, const State& q) {
+  return detail::slip_velocity(model, q, kinematics(model.geometry(), q.delta));
+}
+
+DrumMotion detail::drum_motion(const State& q, const Accelerations& a, const Kinematics& k) {
   DrumMotion d;
   d.x_M = k.x_roll + q.x_A;  // (14)
   d.z_M = k.z_roll + q.s_A;
@@ -121,10 +133,20 @@ DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& 
   return d;
 }
 
+DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a) {
+  return detail::drum_motion(q, a, kinematics(model.geometry(), q.delta));
+}
+
+Accelerations detail::accelerations(const Model& model, double t, const State& q, Phase phase,
+                                    double baumgarte, const Kinematics& k) {
+  if (phase == Phase::stick) return stick_accelerations(model, t, q, k);
+  return slip_accelerations(model, t, q, static_cast<int>(phase), baumgarte, k);
+}
+
 Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,
                             double baumgarte) {
-  if (phase == Phase::stick) return stick_accelerations(model, t, q);
-  return slip_accelerations(model, t, q, static_cast<int>(phase), baumgarte);
+  return detail::accelerations(model, t, q, phase, baumgarte,
+                               kinematics(model.geometry(), q.delta));
 }
 
 }  // namespace oscidrum
