@@ -470,6 +470,21 @@ bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State&
   if (!(amplitude > 0.0)) return false;
   v /= amplitude;
   const double t_orbit = t0_;
+  // Newton on P^p from `start` at the section t0: 1 found (z, cur and phase_ set), -1 give up
+  // (terminal or out of budget), 0 try the next start.
+  const auto attempt = [&](int p, double t0, const State& start, Phase start_phase) {
+    p_ = p;
+    t0_ = t0;
+    State w = consistent(start, start_phase);
+    PeriodMap map = period_map(w, start_phase, true);
+    if (try_orbit(w, start_phase, map, out)) {
+      z = w;
+      cur = std::move(map);
+      phase_ = start_phase;
+      return 1;
+    }
+    return out.terminal || budget_hit_ ? -1 : 0;
+  };
   // Near a period doubling (a real multiplier just beyond -1) the period-2 orbit lies on both
   // sides of the period-1 orbit along v, at a distance that grows like the square root of the
   // distance from the bifurcation, and the flow leaves the period-1 orbit only slowly (by the
@@ -477,19 +492,10 @@ bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State&
   const std::complex<double> critical = eig.eigenvalues()[lead];
   if (critical.real() < -1.0 && std::abs(critical.imag()) <= 1e-8 * std::abs(critical)) {
     for (const double kick : kFlipKicks) {
-      p_ = 2;
-      t0_ = t_orbit;
       Vec y = orbit.to_array();
       for (int i = 0; i < 7; ++i) y[kPeriodic[i]] += kick * v[i];
-      State w = consistent(State::from_array(y), phase);
-      PeriodMap map = period_map(w, phase, true);
-      if (try_orbit(w, phase, map, out)) {
-        z = w;
-        cur = std::move(map);
-        phase_ = phase;
-        return true;
-      }
-      if (out.terminal || budget_hit_) return false;
+      const int found = attempt(2, t_orbit, State::from_array(y), phase);
+      if (found != 0) return found > 0;
     }
   }
   for (const double sign : {1.0, -1.0}) {
@@ -531,18 +537,9 @@ bool Shooter::subharmonic(const State& orbit, Phase phase, const Mat7& M, State&
       candidates.resize(kSubharmonicTries);
     for (const auto& [change, p] : candidates) {
       (void)change;
-      p_ = p;
-      t0_ = t_orbit + last * period_;
-      State w = consistent(boundary[last].first, boundary[last].second);
-      const Phase wphase = boundary[last].second;
-      PeriodMap map = period_map(w, wphase, true);
-      if (try_orbit(w, wphase, map, out)) {
-        z = w;
-        cur = std::move(map);
-        phase_ = wphase;
-        return true;
-      }
-      if (out.terminal || budget_hit_) return false;
+      const int found =
+          attempt(p, t_orbit + last * period_, boundary[last].first, boundary[last].second);
+      if (found != 0) return found > 0;
     }
   }
   p_ = 1;
