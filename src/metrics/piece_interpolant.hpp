@@ -50,21 +50,7 @@ class ChebyshevInterpolant {
   }
 
   /// d/dt of the interpolant at t.
-  double derivative(double t) const {
-    // Coefficients of the derivative series (in x), then the chain rule dx/dt = 2 / (b - a).
-    std::array<double, N + 1> d{};
-    for (int j = N - 1; j >= 0; --j)
-      d[j] = (j + 2 <= N ? d[j + 2] : 0.0) + 2.0 * (j + 1) * c_[j + 1];
-    d[0] *= 0.5;
-    const double x = (2.0 * t - a_ - b_) / (b_ - a_);
-    double b1 = 0.0, b2 = 0.0;
-    for (int j = N - 1; j >= 1; --j) {
-      const double b0 = 2.0 * x * b1 - b2 + d[j];
-      b2 = b1;
-      b1 = b0;
-    }
-    return (x * b1 - b2 + d[0]) * 2.0 / (b_ - a_);
-  }
+  double derivative(double t) const { return derivative_interpolant()(t); }
 
   /// The derivative d/dt as an interpolant of the same form (its highest coefficient zero).
   ChebyshevInterpolant derivative_interpolant() const {
