@@ -20,6 +20,12 @@ struct Outcome {
 pid_t start(const std::vector<std::string>& args, const std::string& out_file,
             const std::string& err_file);
 
+/// Wait until the started child `pid` has installed a handler for `signal` (Linux: the SigCgt
+/// mask of /proc/<pid>/status), so that a signal sent next reaches the handler rather than
+/// killing a child that is still starting up (slow under sanitizers). False if the child ended
+/// or `timeout_ms` passed first.
+bool wait_until_catching(pid_t pid, int signal, int timeout_ms = 10000);
+
 /// Wait for a started child and collect its output files.
 Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file);
 
