@@ -9,16 +9,18 @@
 // them), accurate to round-off (tests/drivers/test_steady_metrics.cpp), and everything below reads
 // the interpolants:
 //   peaks: at both ends of every piece (the one-sided limits at each switch instant) and at every
-//     interior extremum, located by Brent's method;
+//     interior extremum, located by Newton's method on the derivative of the interpolant;
 //   harmonics, phase lags, THD, friction work, phase fractions: integrals over each piece by
 //     16-point Gauss-Legendre quadrature;
 //   area: exact for the piecewise curve (enclosed_area with bulges): a polygon through 5 points
 //     per piece, every self-intersection of the curve located by Newton on the interpolants and
 //     made a point of both branches, and each edge corrected by the area between its arc and its
-//     chord. Where Newton cannot place a crossing of two chords on the arcs (at a sharp corner
-//     where two pieces join, a few cases in a hundred), polygons of the interpolants, n points
-//     per piece doubled and Richardson-extrapolated to 1e-11, instead (the two agree to 1.7e-12
-//     on every regression profile).
+//     chord. The polygon's points where two pieces join are the exact node values, the same bits
+//     on both sides (an ulp apart, the chords beside a turning point of the curve crossed at the
+//     joint: 5 of the 112 cases of a Table 2 sweep). Where Newton cannot place a crossing of two
+//     chords on the arcs (a sharp corner where two pieces join), polygons of the interpolants, n
+//     points per piece doubled and Richardson-extrapolated to 1e-11, instead (the two agree
+//     to 1.7e-12 on every regression profile).
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
@@ -30,11 +32,13 @@
 #include <tuple>
 #include <vector>
 
+#include "equations/equations.hpp"
 #include "metrics/area.hpp"
 #include "metrics/indicators.hpp"
 #include "metrics/piece_interpolant.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/flow.hpp"
+#include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 
 namespace oscidrum {
@@ -51,9 +55,10 @@ enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kQuantities
 
 std::array<double, kQuantities> evaluate(const Model& model, double baumgarte, double t,
                                          const State& q, Phase phase) {
-  const Accelerations a = accelerations(model, t, q, phase, baumgarte);
-  const DrumMotion d = drum_motion(model, q, a);
-  const ContactForces f = contact_forces(model, q);
+  const Kinematics k = kinematics(model.geometry(), q.delta);  // once for all quantities
+  const Accelerations a = detail::accelerations(model, t, q, phase, baumgarte, k);
+  const DrumMotion d = detail::drum_motion(q, a, k);
+  const ContactForces f = detail::contact_forces(model, q, k);
   return {d.ddx_M, d.ddz_M, q.delta, q.phi,
           // T / N signed (mu_required is its largest magnitude): smooth inside a piece, where
           // |T| / N would have a kink at T = 0.
@@ -62,7 +67,7 @@ std::array<double, kQuantities> evaluate(const Model& model, double baumgarte, d
           // rolling condition (12); the flow integrates phi' there without reading it, so
           // slip_velocity would return its round-off drift (over a long transient from rest, up
           // to ~1e-6 of the work of a slipping case). In slip T v_rel keeps its sign.
-          phase == Phase::stick ? 0.0 : std::abs(f.T * slip_velocity(model, q))};
+          phase == Phase::stick ? 0.0 : std::abs(f.T * detail::slip_velocity(model, q, k))};
 }
 
 // One piece of the steady period (an integrator step in one phase, cut at the period's ends):
@@ -114,6 +119,40 @@ struct Extremes {
   }
 };
 
+// The extremum of f (a maximum for sign +1, a minimum for -1) in the bracket [t_lo, t_lo + width]:
+// the root of f' there, by Newton's method on f' (with f'') kept inside the bracket by bisection,
+// when sign f' is >= 0 at the bracket's start and <= 0 at its end; otherwise (a bracket holding
+// more than one turn of f) Brent's method on f. Both in the fraction u in [0, 1] of the bracket:
+// in absolute time (seconds into a long transient) a tolerance on t would leave the extremum
+// ~1e-7 s off. The value at the root is exact to round-off (an error d in the abscissa changes
+// it by f'' d^2 / 2).
+double extremum(const Interpolant& f, const Interpolant& df, const Interpolant& d2f, double t_lo,
+                double width, double sign) {
+  const auto g = [&](double u) { return sign * df(t_lo + u * width); };  // decreasing at the root
+  double lo = 0.0, hi = 1.0;
+  const double g_lo = g(lo), g_hi = g(hi);
+  if (g_lo >= 0.0 && g_hi <= 0.0) {
+    double u = g_lo == 0.0 ? 0.0 : g_hi == 0.0 ? 1.0 : g_lo / (g_lo - g_hi);  // secant start
+    for (int it = 0; it < 100 && g_lo != 0.0 && g_hi != 0.0; ++it) {
+      const double gu = g(u);
+      if (gu == 0.0) break;
+      (gu > 0.0 ? lo : hi) = u;
+      const double slope = sign * d2f(t_lo + u * width) * width;  // dg/du
+      double next = slope < 0.0 ? u - gu / slope : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const double step = std::abs(next - u);
+      u = next;
+      // Quadratic convergence: a step of 1e-9 leaves ~1e-18 of the bracket, below round-off.
+      if (step <= 1e-9 || hi - lo <= 1e-15) break;
+    }
+    return f(t_lo + u * width);
+  }
+  const auto minus_f = [&](double u) { return -sign * f(t_lo + u * width); };
+  const auto best =
+      boost::math::tools::brent_find_minima(minus_f, 0.0, 1.0, std::numeric_limits<double>::digits);
+  return -sign * best.second;
+}
+
 // The scan: the interpolation nodes (exact values), in increasing t.
 void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kNodes>& values,
                   Extremes& out) {
@@ -125,6 +164,15 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
     scan[k] = values[kScan - k];
     out.add(scan[k]);
   }
+  // f' and f'' only for a piece that holds an extremum or ends on the way to one (most do not).
+  Interpolant df, d2f;
+  bool have_derivatives = false;
+  const auto derivatives = [&] {
+    if (have_derivatives) return;
+    df = f.derivative_interpolant();
+    d2f = df.derivative_interpolant();
+    have_derivatives = true;
+  };
   // A scan point not beaten by its neighbours brackets an extremum between them. At the ends of
   // the piece only one neighbour exists: an end that is not beaten by it may have the extremum
   // just inside the piece (between the last scan point and the end), which the end's value alone
@@ -137,17 +185,11 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
       if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
       // An end where the quantity still rises towards the end (falls, for a minimum) is the
       // extremum of its one-sided bracket: nothing to refine.
-      if (k == 0 && sign * f.derivative(a) <= 0.0) continue;
-      if (k == kScan && sign * f.derivative(b) >= 0.0) continue;
-      // In the fraction u in [0, 1] of the bracket: Brent's tolerance (half the digits) is
-      // relative to the abscissa plus an absolute part; in the absolute time (seconds into a
-      // long transient) it would leave the extremum ~1e-7 s off (~1e-10 of the peak), in
-      // seconds from the bracket's start still ~4e-9 s (~1e-12 of the peak).
-      const double t_lo = ts[lo], width = ts[hi] - ts[lo];
-      const auto g = [&](double u) { return -sign * f(t_lo + u * width); };
-      const auto best =
-          boost::math::tools::brent_find_minima(g, 0.0, 1.0, std::numeric_limits<double>::digits);
-      out.add(-sign * best.second);
+      if (k == 0 || k == kScan) derivatives();
+      if (k == 0 && sign * df(a) <= 0.0) continue;
+      if (k == kScan && sign * df(b) >= 0.0) continue;
+      derivatives();
+      out.add(extremum(f, df, d2f, ts[lo], ts[hi] - ts[lo], sign));
     }
   }
 }
@@ -274,7 +316,14 @@ double curve_area(const std::vector<Piece>& pieces) {
     const Piece& pc = pieces[p];
     for (int k = 0; k <= kAreaPoints; ++k) {
       const double t = k == kAreaPoints ? pc.b : pc.a + (pc.b - pc.a) * k / kAreaPoints;
-      v.push_back({static_cast<int>(p), t, pc.f[kDdx](t), pc.f[kDdz](t), false});
+      // The ends from the exact node values, not the interpolant (which reproduces them only to
+      // an ulp): where two pieces join without a switch both evaluate the same state, and the
+      // shared point must be the same bit for bit. One ulp apart, the chords on either side of a
+      // turning point of the curve would cross at the joint, a crossing that is not one.
+      const int node = k == 0 ? kDegree : k == kAreaPoints ? 0 : -1;
+      const double x = node >= 0 ? pc.values[kDdx][node] : pc.f[kDdx](t);
+      const double z = node >= 0 ? pc.values[kDdz][node] : pc.f[kDdz](t);
+      v.push_back({static_cast<int>(p), t, x, z, false});
     }
   }
   auto coordinates = [&](std::vector<double>& x, std::vector<double>& z) {
