@@ -233,6 +233,8 @@ int run(const SweepOptions& o) {
   options.n_harmonics = o.harmonics;
   options.cancelled = [] { return interrupted(); };
   options.previous = continuation_links(spec, study, pending);
+  // The steady states' samples only for the files that hold them.
+  options.samples_in_callback = !o.cases_dir.empty() || hdf5 != nullptr;
   options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
     const std::size_t g = pending[i];
     const std::string row = io::study_csv_row(columns, g, study.varied[g], outcome);

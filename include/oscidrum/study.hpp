@@ -28,6 +28,10 @@ struct StudyOptions {
   /// Called from worker threads, serialised by the runner, after each case (index into the
   /// input, outcome). Use it to stream results to disk.
   std::function<void(std::size_t index, const CaseOutcome& outcome)> on_case_done;
+  /// Whether on_case_done receives each case's samples. False: a case's samples are not taken
+  /// unless keep_samples (the periods are integrated all the same, so every number of the
+  /// outcome is the same); a study that keeps only the metrics then runs faster.
+  bool samples_in_callback = true;
   /// Called (serialised) after each case with (done, total).
   std::function<void(std::size_t done, std::size_t total)> progress;
   /// Polled (serialised with the other callbacks) before each case and once per excitation

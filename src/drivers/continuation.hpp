@@ -21,7 +21,10 @@ std::optional<ShootingStart> orbit_start(const Result& result);
 /// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs
 /// exactly as simulate() runs it. Diagnostics::warm_start says which happened. The transient
 /// method ignores `warm` (it always integrates from rest).
+/// all_samples false: result.samples holds only the first sample (the steady state at its
+/// section, enough for compute_metrics and orbit_start); every other number is the same.
 Result simulate_from(const Model& model, const ProgressCallback& progress,
-                     const std::function<bool()>& cancelled, const ShootingStart* warm);
+                     const std::function<bool()>& cancelled, const ShootingStart* warm,
+                     bool all_samples = true);
 
 }  // namespace oscidrum::detail

@@ -12,14 +12,15 @@ namespace {
 
 class Sampler : public FlowObserver {
  public:
-  Sampler(const Flow& flow, double t_start, int periods, int per_period, Result& result)
+  Sampler(const Flow& flow, double t_start, int periods, int per_period, bool all_samples,
+          Result& result)
       : model_(flow.model()),
         baumgarte_(flow.options().baumgarte),
         period_(flow.model().period()),
         t_start_(t_start),
         t_end_(t_start + periods * flow.model().period()),
         per_period_(per_period),
-        total_(static_cast<long>(periods) * per_period),
+        total_(all_samples ? static_cast<long>(periods) * per_period : 1),
         result_(result) {}
 
   bool on_step(const StepView& step) override {
@@ -56,7 +57,7 @@ class Sampler : public FlowObserver {
   const Model& model_;
   const double baumgarte_, period_, t_start_, t_end_;
   const int per_period_;
-  const long total_;
+  const long total_;  // samples to record
   long next_ = 0;
   Result& result_;
 };
@@ -94,11 +95,12 @@ void append_sample(const Model& model, double baumgarte, double t, const State& 
   s.phase.push_back(phase);
 }
 
-FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result) {
+FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result,
+                        bool all_samples) {
   const double t0 = flow.t();
   result.sample_periods = periods;
   result.samples_per_period = samples_per_period;
-  Sampler sampler(flow, t0, periods, samples_per_period, result);
+  Sampler sampler(flow, t0, periods, samples_per_period, all_samples, result);
   const FlowStop stop = flow.advance(t0 + periods * flow.model().period(), &sampler);
   long switches = 0;
   for (const Event& e : result.events)

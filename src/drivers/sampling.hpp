@@ -11,7 +11,11 @@ namespace oscidrum::detail {
 /// periods, writing result.samples (t_j = t0 + j T / samples_per_period, j = 0 ... n-1), the
 /// events in [t0, t0 + periods T) into result.events, the phase times, sample_periods,
 /// samples_per_period and switches_per_period. Returns how the flow ended.
-FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result);
+/// With all_samples false only the first sample (j = 0: the state at t0, where the metrics and a
+/// neighbour's continuation start) is recorded; the integration, the events and the phase times
+/// are the same.
+FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result,
+                        bool all_samples = true);
 
 /// One row of the samples: the state, the drum motion (14), (17), (18), the contact forces
 /// (24)-(26), the slip velocity (13) and the excitation (5), (6) at time t in the given phase.

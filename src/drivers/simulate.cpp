@@ -48,7 +48,7 @@ constexpr double kJacobianCost = 10.0;
 // The transient search from rest and the sampling of what it found. It may integrate what is left
 // of numerics.max_periods after the periods shooting spent before falling back.
 void transient(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
-               long* sample_rhs) {
+               long* sample_rhs, bool all_samples) {
   flow.reset(0.0, model.initial_state(), initial_phase(model));
   // Diagnostics::max_slip_residual and min_N: over this run from rest and its sampled periods.
   flow.reset_extremes();
@@ -79,7 +79,8 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
   if (search.status == Status::steady_state || search.status == Status::max_periods_reached) {
     const int periods = num.output_periods * std::max(1, search.multiplicity);
     const long rhs_before = flow.counters().rhs_evaluations;
-    const FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result);
+    const FlowStop stop =
+        detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
     *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
     d.periods_simulated += periods;
     if (stop != FlowStop::reached) {  // the steady state did not survive its own sampling
@@ -101,7 +102,7 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
 // `warm`: start Newton from a neighbouring case's orbit (continuation in studies) instead of a
 // short transient from rest; a failed warm start returns false without ending the run.
 bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
-              long* sample_rhs, const detail::ShootingStart& warm = {}) {
+              long* sample_rhs, bool all_samples, const detail::ShootingStart& warm = {}) {
   const Numerics& num = model.parameters().numerics;
   Diagnostics& d = result.diagnostics;
   if (d.periods_simulated >= num.max_periods) return false;  // the fallback reports it
@@ -142,8 +143,8 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
     d.final_change = shot.final_change;
     flow.reset_extremes();
     const long rhs_before = flow.counters().rhs_evaluations;
-    const FlowStop stop =
-        detail::sample_periods(flow, num.output_periods, num.samples_per_period, result);
+    const FlowStop stop = detail::sample_periods(flow, num.output_periods, num.samples_per_period,
+                                                 result, all_samples);
     *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / num.output_periods;
     d.periods_simulated += num.output_periods;
     if (stop != FlowStop::reached) {
@@ -166,7 +167,8 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   // transient from rest and the sampled periods of the orbit (Newton's iterates are not on it).
   flow.reset_extremes();
   const long rhs_before = flow.counters().rhs_evaluations;
-  const FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result);
+  const FlowStop stop =
+      detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
   const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
@@ -221,7 +223,8 @@ std::optional<ShootingStart> orbit_start(const Result& result) {
 }
 
 Result simulate_from(const Model& model, const ProgressCallback& progress,
-                     const std::function<bool()>& cancelled, const ShootingStart* warm) {
+                     const std::function<bool()>& cancelled, const ShootingStart* warm,
+                     bool all_samples) {
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
   Flow flow(model, options);
@@ -239,7 +242,7 @@ Result simulate_from(const Model& model, const ProgressCallback& progress,
     // A phase the new case cannot be in (slip under pure rolling, stick without friction).
     if (model.parameters().contact.pure_rolling || start.phase == Phase::stick)
       start.phase = initial_phase(model);
-    done = shooting(model, flow, progress, result, &sample_rhs, start);
+    done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
     result.diagnostics.warm_start = done ? 1 : -1;
     if (!done) {
       result.floquet = Floquet{};
@@ -247,8 +250,8 @@ Result simulate_from(const Model& model, const ProgressCallback& progress,
     }
   }
   if (!done && num.method == SteadyMethod::shooting)
-    done = shooting(model, flow, progress, result, &sample_rhs);
-  if (!done) transient(model, flow, progress, result, &sample_rhs);
+    done = shooting(model, flow, progress, result, &sample_rhs, all_samples);
+  if (!done) transient(model, flow, progress, result, &sample_rhs, all_samples);
   Diagnostics& d = result.diagnostics;
 
   const FlowCounters& c = flow.counters();

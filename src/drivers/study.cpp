@@ -54,7 +54,8 @@ struct Pool {
 // `cancelled` (the caller's callback, serialised) is polled once per period, `stop_now` (cheap)
 // at every integration step.
 // `warm`: the predecessor's steady state (continuation), or null; `orbit` (may be null) receives
-// this case's steady state as a start for its successor.
+// this case's steady state as a start for its successor. Without keep_samples only the first
+// sample is taken (what the metrics and the successor start from), and none is kept.
 CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
                     const std::function<bool()>& cancelled, const std::function<bool()>& stop_now,
                     bool* interrupted, const detail::ShootingStart* warm = nullptr,
@@ -64,7 +65,7 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
-    out.result = detail::simulate_from(model, progress, stop_now, warm);
+    out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples);
     if (orbit) *orbit = detail::orbit_start(out.result);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
@@ -106,9 +107,10 @@ void work(Pool& pool) {
       if (pool.cancelled()) return;
       bool interrupted = false;
       std::optional<detail::ShootingStart> orbit;
-      CaseOutcome outcome = run_one(
-          pool.cases[i], opt.keep_samples || static_cast<bool>(opt.on_case_done), opt.n_harmonics,
-          cancelled, stop_now, &interrupted, warm ? &*warm : nullptr, &orbit);
+      const bool samples =
+          opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
+      CaseOutcome outcome = run_one(pool.cases[i], samples, opt.n_harmonics, cancelled, stop_now,
+                                    &interrupted, warm ? &*warm : nullptr, &orbit);
       if (interrupted) return;  // stays "cancelled"; never reported as done
       warm = std::move(orbit);
       std::lock_guard lock(pool.mutex);

@@ -167,7 +167,7 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
     const double v = scalar_value(res.diagnostics, d);
     r.push_back(is_integer(d) ? std::to_string(static_cast<long long>(v)) : format_double_short(v));
   }
-  if (res.samples.size() == 0 || !ok(res.status)) {  // only a steady state has metrics
+  if (!ok(res.status)) {  // only a steady state has metrics (its samples may not be kept)
     r.resize(r.size() + metric_cells);
     return join(r);
   }

@@ -82,6 +82,50 @@ TEST(Study, ParallelEqualsSerialBitForBitInInputOrder) {
   EXPECT_LT(a[0].metrics.stick_fraction, 1.0);
 }
 
+// Without keep_samples (and without samples for the callback) a case takes only its first sample:
+// the periods are integrated all the same, so every metric and counter is the same bit for bit.
+TEST(Study, MetricsWithoutSamplesEqualThoseWithSamples) {
+  std::vector<Case> cases = some_cases();
+  for (Case& c : cases) c.numerics.continuation = true;  // and the chains start the same
+  StudyOptions with;
+  with.threads = 1;
+  with.keep_samples = true;
+  StudyOptions without = with;
+  without.keep_samples = false;
+  std::size_t callbacks = 0;
+  without.samples_in_callback = false;
+  without.on_case_done = [&](std::size_t, const CaseOutcome& outcome) {
+    ++callbacks;
+    EXPECT_EQ(outcome.result.samples.size(), 0u);
+  };
+  const std::vector<CaseOutcome> a = run_study(cases, with);
+  const std::vector<CaseOutcome> b = run_study(cases, without);
+  EXPECT_EQ(callbacks, cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(i);
+    ASSERT_TRUE(a[i].valid) << a[i].error;
+    ASSERT_EQ(a[i].result.status, Status::steady_state);
+    EXPECT_GT(a[i].result.samples.size(), 0u);
+    EXPECT_EQ(b[i].result.samples.size(), 0u);
+    const Diagnostics &x = a[i].result.diagnostics, &y = b[i].result.diagnostics;
+    EXPECT_EQ(x.warm_start, y.warm_start);
+    EXPECT_EQ(x.periods_simulated, y.periods_simulated);
+    EXPECT_TRUE(same_bits(x.final_change, y.final_change));
+    EXPECT_TRUE(same_bits(x.phi_drift, y.phi_drift));
+    EXPECT_TRUE(same_bits(x.period_equivalents, y.period_equivalents));
+    EXPECT_TRUE(same_bits(a[i].result.stick_time, b[i].result.stick_time));
+    EXPECT_EQ(a[i].result.events.size(), b[i].result.events.size());
+    const Metrics &m = a[i].metrics, &n = b[i].metrics;
+    for (auto member : {&Metrics::ddx_max, &Metrics::ddz_min, &Metrics::delta_max,
+                        &Metrics::mu_required, &Metrics::area, &Metrics::psi_xz, &Metrics::phi_lag,
+                        &Metrics::friction_work, &Metrics::stick_fraction})
+      EXPECT_TRUE(same_bits(m.*member, n.*member));
+    ASSERT_EQ(m.ddx_harmonics.size(), n.ddx_harmonics.size());
+    for (std::size_t k = 0; k < m.ddx_harmonics.size(); ++k)
+      EXPECT_TRUE(same_bits(m.ddx_harmonics[k].phase, n.ddx_harmonics[k].phase));
+  }
+}
+
 TEST(Study, CallbacksAreSerialisedAndCoverEveryCase) {
   const std::vector<Case> cases = some_cases();
   StudyOptions options;
