@@ -185,10 +185,9 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
       if (!(sign * v >= sign * l && sign * v >= sign * r)) continue;
       // An end where the quantity still rises towards the end (falls, for a minimum) is the
       // extremum of its one-sided bracket: nothing to refine.
-      if (k == 0 || k == kScan) derivatives();
+      derivatives();
       if (k == 0 && sign * df(a) <= 0.0) continue;
       if (k == kScan && sign * df(b) >= 0.0) continue;
-      derivatives();
       out.add(extremum(f, df, d2f, ts[lo], ts[hi] - ts[lo], sign));
     }
   }
