@@ -15,16 +15,16 @@
 //     between two neighbouring edges is a trapezoid whose area is exactly
 //     height * (x_right(y_mid) - x_left(y_mid)) for straight edges; it counts if the winding
 //     there is non-zero.
-// Cost: O(n log n) to sort, O(k log k) per slab and O(k log k) more per crossing, so
-// O((n + c) k log k) for c crossings. The drum curves have k of a handful and a few crossings
-// per period (4096 vertices: well under a millisecond); only contrived stars with ~n^2 crossings
-// are slow (a {1001/400} star takes about two seconds).
-// Curves (enclosed_area with bulges): the same sweep also records, for every edge, where it bounds
-// the region (winding zero on one side, non-zero on the other; c = +1 with the region on its
-// left, -1 on its right, 0 elsewhere, as a fraction of the edge's height). The region enclosed by
-// the curve differs from the polygon's by the segment between each such edge and its arc, so the
-// curve's area is the polygon's plus the sum of c times bulge (Green's theorem on the region's
-// boundary: bulge = integral of x dy along the arc minus along the chord).
+// Cost: O(n log n) to sort, O(k) per slab (the edges stay in the order of the slab below, which an
+// insertion sort repairs) and O(k log k) more per crossing, so O(n k + c k log k) for c crossings.
+// The drum curves have k of a handful and a few crossings per period (4096 vertices: well under a
+// millisecond); only contrived stars with ~n^2 crossings are slow (a {1001/400} star takes about
+// two seconds). Curves (enclosed_area with bulges): the same sweep also records, for every edge,
+// where it bounds the region (winding zero on one side, non-zero on the other; c = +1 with the
+// region on its left, -1 on its right, 0 elsewhere, as a fraction of the edge's height). The region
+// enclosed by the curve differs from the polygon's by the segment between each such edge and its
+// arc, so the curve's area is the polygon's plus the sum of c times bulge (Green's theorem on the
+// region's boundary: bulge = integral of x dy along the arc minus along the chord).
 // polygon_crossings (area.hpp) reports the crossing edge pairs the sweep meets.
 #include "metrics/area.hpp"
 
@@ -63,16 +63,19 @@ struct Edge {
 /// If `boundary` is not null, boundary[e.index] accumulates height * c for every edge, with
 /// c = [winding on the edge's left != 0] - [winding on its right != 0] (left and right seen along
 /// the edge's direction): +1 or -1 where the edge bounds the enclosed region, 0 inside or outside.
-double crossing_free_slab_area(const std::vector<const Edge*>& active, double lo, double hi,
+/// `in_order`: `active` is already in the order by x inside the slab (no sort).
+double crossing_free_slab_area(std::span<const Edge* const> active, double lo, double hi,
                                std::vector<std::pair<double, const Edge*>>& scratch,
-                               std::vector<double>* boundary) {
+                               std::vector<double>* boundary, bool in_order = false) {
   const double height = hi - lo;
   if (!(height > 0.0)) return 0.0;
   const double mid = lo + 0.5 * height;
   scratch.clear();
   for (const Edge* e : active) scratch.emplace_back(e->x_at(mid), e);
-  std::sort(scratch.begin(), scratch.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (!in_order) {
+    std::sort(scratch.begin(), scratch.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
   double width = 0.0;
   int winding = 0;
   for (std::size_t i = 0; i + 1 < scratch.size(); ++i) {
@@ -96,43 +99,60 @@ double crossing_free_slab_area(const std::vector<const Edge*>& active, double lo
   return height * width;
 }
 
+/// An active edge with its x at the bottom and the top of the slab.
+struct Spanning {
+  const Edge* edge;
+  double lo, hi;
+};
+
 /// Buffers reused from slab to slab (the sweep allocates only while they grow).
 struct Workspace {
-  std::vector<const Edge*> order;
+  std::vector<Spanning> bottom, order;
   std::vector<double> cuts;
   std::vector<std::pair<double, const Edge*>> by_x;
   std::vector<double>* boundary = nullptr;  ///< see crossing_free_slab_area (optional)
   std::vector<std::pair<std::size_t, std::size_t>>* crossings = nullptr;  ///< (optional)
 };
 
-/// Area with non-zero winding inside the slab [lo, hi] (every active edge spans it).
+/// Area with non-zero winding inside the slab [lo, hi] (every active edge spans it). `active` is
+/// left in the bottom order, which is nearly that of the next slab up.
 double slab_area(std::vector<const Edge*>& active, double lo, double hi, Workspace& ws) {
   // Bottom order: x at lo, ties broken by x at hi (edges sharing a vertex at lo are ordered by
-  // where they go, so they do not count as crossing).
-  std::sort(active.begin(), active.end(), [lo, hi](const Edge* a, const Edge* b) {
-    const double xa = a->x_at(lo), xb = b->x_at(lo);
-    if (xa != xb) return xa < xb;
-    return a->x_at(hi) < b->x_at(hi);
-  });
+  // where they go, so they do not count as crossing). An insertion sort: `active` comes in the
+  // order of the slab below, with the edges that start at lo appended.
+  std::vector<Spanning>& bottom = ws.bottom;
+  bottom.clear();
+  for (const Edge* e : active) bottom.push_back({e, e->x_at(lo), e->x_at(hi)});
+  for (std::size_t i = 1; i < bottom.size(); ++i) {
+    const Spanning key = bottom[i];
+    std::size_t j = i;
+    for (; j > 0 &&
+           (key.lo != bottom[j - 1].lo ? key.lo < bottom[j - 1].lo : key.hi < bottom[j - 1].hi);
+         --j)
+      bottom[j] = bottom[j - 1];
+    bottom[j] = key;
+  }
+  for (std::size_t i = 0; i < bottom.size(); ++i) active[i] = bottom[i].edge;
   // Insertion sort by x at hi (strict comparison: edges meeting at hi do not cross inside).
   // Each swap exchanges a pair whose order differs at lo and hi: a crossing strictly inside.
   std::vector<double>& cuts = ws.cuts;
-  std::vector<const Edge*>& order = ws.order;
+  std::vector<Spanning>& order = ws.order;
   cuts.clear();
-  order.assign(active.begin(), active.end());
+  order.assign(bottom.begin(), bottom.end());
   for (std::size_t i = 1; i < order.size(); ++i) {
-    for (std::size_t j = i; j > 0 && order[j - 1]->x_at(hi) > order[j]->x_at(hi); --j) {
-      const Edge* left = order[j - 1];  // left at lo, right at hi
-      const Edge* right = order[j];
-      const double gap_lo = right->x_at(lo) - left->x_at(lo);  // >= 0
-      const double gap_hi = right->x_at(hi) - left->x_at(hi);  // < 0
-      const double s = gap_lo / (gap_lo - gap_hi);             // in [0, 1)
+    for (std::size_t j = i; j > 0 && order[j - 1].hi > order[j].hi; --j) {
+      const Spanning& left = order[j - 1];  // left at lo, right at hi
+      const Spanning& right = order[j];
+      const double gap_lo = right.lo - left.lo;     // >= 0
+      const double gap_hi = right.hi - left.hi;     // < 0
+      const double s = gap_lo / (gap_lo - gap_hi);  // in [0, 1)
       cuts.push_back(lo + std::clamp(s, 0.0, 1.0) * (hi - lo));
-      if (ws.crossings != nullptr) ws.crossings->emplace_back(left->index, right->index);
+      if (ws.crossings != nullptr) ws.crossings->emplace_back(left.edge->index, right.edge->index);
       std::swap(order[j - 1], order[j]);
     }
   }
-  if (cuts.empty()) return crossing_free_slab_area(active, lo, hi, ws.by_x, ws.boundary);
+  // Without a crossing the bottom order holds throughout the slab.
+  if (cuts.empty()) return crossing_free_slab_area(active, lo, hi, ws.by_x, ws.boundary, true);
   std::sort(cuts.begin(), cuts.end());
   double area = 0.0;
   double below = lo;
