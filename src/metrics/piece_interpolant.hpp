@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace oscidrum::detail {
@@ -19,7 +20,7 @@ class ChebyshevInterpolant {
 
   /// The k-th interpolation point in [a, b] (k = 0: b, k = N: a).
   static double node(double a, double b, int k) {
-    return 0.5 * (a + b) + 0.5 * (b - a) * std::cos(std::numbers::pi * k / N);
+    return 0.5 * (a + b) + 0.5 * (b - a) * cos_table()[k];  // cos(pi k / N)
   }
 
   ChebyshevInterpolant() = default;
@@ -62,6 +63,22 @@ class ChebyshevInterpolant {
     d.c_[0] *= 0.5;
     for (double& c : d.c_) c *= 2.0 / (b_ - a_);
     return d;
+  }
+
+  /// How far the interpolant can rise above the largest of its values at the nodes, or fall below
+  /// the smallest, anywhere on [a, b], the round-off of its evaluation included. At an extremum
+  /// t* (f' = 0) the nearest node lies at most half the largest gap between neighbouring nodes,
+  /// (b - a) sin(pi / 2N), away, where f differs by at most max|f''| d^2 / 2; and
+  /// max|f''| <= sum |c_k| T_k''(1) (2 / (b - a))^2 with T_k''(1) = k^2 (k^2 - 1) / 3 (Markov).
+  /// Together: sum |c_k| k^2 (k^2 - 1) / 3 * sin^2(pi / 2N) / 2.
+  double overshoot_bound() const {
+    double curvature = 0.0, magnitude = 0.0;
+    for (int k = 0; k <= N; ++k) {
+      curvature += std::abs(c_[k]) * k * k * (k * k - 1) / 3.0;
+      magnitude += std::abs(c_[k]);
+    }
+    const double s = std::sin(std::numbers::pi / (2 * N));
+    return 0.5 * curvature * s * s + 64.0 * std::numeric_limits<double>::epsilon() * magnitude;
   }
 
   double a() const { return a_; }
