@@ -101,6 +101,23 @@ class PlainObserver : public FlowObserver {
   std::vector<Event> switches, recent;
 };
 
+// Two observers of one flow.
+class Tee : public FlowObserver {
+ public:
+  Tee(FlowObserver& a, FlowObserver& b) : a_(a), b_(b) {}
+  bool on_step(const StepView& step) override {
+    const bool a = a_.on_step(step), b = b_.on_step(step);
+    return a && b;
+  }
+  bool on_event(const Event& event, const State& before, const State& after) override {
+    const bool a = a_.on_event(event, before, after), b = b_.on_event(event, before, after);
+    return a && b;
+  }
+
+ private:
+  FlowObserver &a_, &b_;
+};
+
 struct PeriodMap {
   FlowStop stop = FlowStop::reached;
   State end;
@@ -144,7 +161,11 @@ class Shooter {
     return fmt("shooting reached numerics.max_periods: %.0f periods integrated of the %.0f it had",
                used_, budget_);
   }
-  PeriodMap period_map(const State& z, Phase phase, bool sensitivities);
+  // `range` (optional, with sensitivities): the scales are set from the components' ranges
+  // along the map before its residual is taken.
+  PeriodMap period_map(const State& z, Phase phase, bool sensitivities,
+                       PlainObserver* range = nullptr);
+  void set_scales(const PlainObserver& range);
   State consistent(State z, Phase phase) const;
 
   Flow& flow_;
@@ -235,17 +256,8 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       return false;
     }
     out.transient_periods = n - map_periods;  // the maps are counted as such
-    // The scale of each component: its range over the period, floored at what the integration
-    // tolerances resolve (as in the transient search). A period integrated as a map keeps the
-    // scale of the period before.
-    if (!as_map) {
-      for (int i = 0; i < 8; ++i) {
-        const double range = obs.hi[i] - obs.lo[i];
-        const double floor =
-            100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
-        scale_[i] = std::max(range, floor);
-      }
-    }
+    // A period integrated as a map keeps the scale of the period before.
+    if (!as_map) set_scales(obs);
     if (progress_ && !progress_(n, std::numeric_limits<double>::infinity())) {
       out.terminal = true;
       out.status = Status::cancelled;
@@ -263,7 +275,19 @@ bool Shooter::short_transient(ShootingOutcome& out) {
   return true;
 }
 
-PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
+void Shooter::set_scales(const PlainObserver& range) {
+  // The scale of each component: its range over the period, floored at what the integration
+  // tolerances resolve (as in the transient search).
+  for (int i = 0; i < 8; ++i) {
+    const double width = range.hi[i] - range.lo[i];
+    const double floor =
+        100.0 * (num_.atol + num_.rtol * std::max(std::abs(range.hi[i]), std::abs(range.lo[i])));
+    scale_[i] = std::max(width, floor);
+  }
+}
+
+PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities,
+                              PlainObserver* range) {
   PeriodMap p;
   if (!spend(p_)) {
     p.over_budget = true;
@@ -275,7 +299,12 @@ PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
   if (sensitivities) {
     ++maps_;
     mono_.reset();
-    p.stop = flow_.advance(t_end, &mono_);
+    if (range != nullptr) {
+      Tee both(mono_, *range);
+      p.stop = flow_.advance(t_end, &both);
+    } else {
+      p.stop = flow_.advance(t_end, &mono_);
+    }
     p.switches = mono_.switches();
     p.grazing = mono_.grazing();
   } else {
@@ -285,6 +314,7 @@ PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities) {
     p.switches = obs.switches;
   }
   if (p.stop != FlowStop::reached) return p;
+  if (range != nullptr) set_scales(*range);
   p.end = flow_.state();
   p.phase = flow_.phase();
   p.residual =
@@ -553,30 +583,28 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   State z;
   Phase phase;
   if (start.from_state) {
-    z = start.state;
     phase = start.phase;
+    z = consistent(start.state, phase);
     t0_ = flow_.t();
-    // Scales from one plain period from the supplied state.
-    if (!spend(1)) {
+    p_ = std::max(1, start.multiplicity);
+    // Newton's first map, from the supplied state, gives the scales too: the range of each
+    // component along it.
+    PlainObserver range;
+    range.start(z.to_array());
+    first_ = period_map(z, phase, true, &range);
+    if (first_.over_budget) {
       out.budget_exhausted = true;
       out.message = budget_message();
       return out;
     }
-    PlainObserver obs;
-    flow_.reset(t0_, z, phase);
-    obs.start(z.to_array());
-    if (flow_.advance(t0_ + period_, &obs) != FlowStop::reached) {
+    if (first_.stop != FlowStop::reached) {
       out.message = "the supplied start state does not survive one period: " + flow_.message();
       out.periods_integrated = used_;
+      out.period_maps = maps_;
+      out.jacobian_evaluations = mono_.jacobian_evaluations();
       return out;
     }
-    for (int i = 0; i < 8; ++i) {
-      const double range = obs.hi[i] - obs.lo[i];
-      const double floor =
-          100.0 * (num_.atol + num_.rtol * std::max(std::abs(obs.hi[i]), std::abs(obs.lo[i])));
-      scale_[i] = std::max(range, floor);
-    }
-    out.transient_periods = 1;
+    have_first_ = true;
   } else {
     const bool ok = short_transient(out);
     // The short transient from rest is a trajectory of the run (the transient method integrates
@@ -602,7 +630,10 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   phase_ = phase;
 
   p_ = std::max(1, start.multiplicity);
-  PeriodMap cur = have_first_ && p_ == 1 ? std::move(first_) : period_map(z, phase, true);
+  // The short transient's last period is the first map of P (p = 1); a supplied state's first
+  // map is that of P^p.
+  PeriodMap cur =
+      have_first_ && (p_ == 1 || start.from_state) ? std::move(first_) : period_map(z, phase, true);
   bool converged = newton(z, phase, cur, out);
   if (converged) {
     // Floquet multipliers: eigenvalues of the monodromy at the orbit.
