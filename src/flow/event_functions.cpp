@@ -3,8 +3,9 @@
 
 namespace oscidrum {
 
-EventValues event_values(const Model& model, Phase phase, const State& q) {
+EventValues event_values(const Model& model, Phase phase, const State& q, double* N) {
   const ContactForces f = contact_forces(model, q);
+  if (N != nullptr) *N = f.N;
   const double W = model.W();
   EventValues e{1.0, 1.0, f.N / W};
   if (phase == Phase::stick) {

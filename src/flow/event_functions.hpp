@@ -18,7 +18,8 @@ inline constexpr int kEventSlipVelocity = 0;  ///< slip: s v_rel reaches 0
 inline constexpr int kEventContact = 2;       ///< N reaches 0
 using EventValues = std::array<double, kEventCount>;
 
-/// The event functions at state q in the given phase.
-EventValues event_values(const Model& model, Phase phase, const State& q);
+/// The event functions at state q in the given phase; N (optional) receives the normal force
+/// they were computed from [N].
+EventValues event_values(const Model& model, Phase phase, const State& q, double* N = nullptr);
 
 }  // namespace oscidrum

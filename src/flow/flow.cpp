@@ -135,13 +135,13 @@ struct Flow::Impl : StepView {
     int which = -1;  // index into EventValues
   };
 
-  EventValues values(const Vec& x) const {
-    return event_values(model, phase_, State::from_array(x));
+  EventValues values(const Vec& x, double* N = nullptr) const {
+    return event_values(model, phase_, State::from_array(x), N);
   }
   Crossing find_event(double ta, double tb);
   void restart(double t, const Vec& x);
   FlowStop apply_event(const Crossing& c, FlowObserver* observer);
-  void track_step_end(const Vec& x);
+  void track_step_end(const Vec& x, double N);
   bool report(double a, double b, bool ends, FlowObserver* observer);
   FlowStop stop(FlowStop s, double t, const Vec& x, std::string why) {
     t_now = t;
@@ -162,6 +162,10 @@ struct Flow::Impl : StepView {
   // by construction (the function that just caused a switch): those must move positive.
   EventValues e_prev{};
   std::array<bool, kEventCount> e_fresh{};
+  // The event functions at the end of the current step and the normal force there, as
+  // find_event evaluated them (the start of the next step when no event cuts it).
+  EventValues e_end{};
+  double N_end = 0.0;
 
   // The step taken but not yet wholly consumed.
   bool have_step = false;
@@ -191,7 +195,8 @@ Flow::Impl::Crossing Flow::Impl::find_event(double ta, double tb) {
     } else {
       stepper.calc_state(tk, x);
     }
-    const EventValues e = values(x);
+    const EventValues e = k == kEventSubsamples ? values(x, &N_end) : values(x);
+    if (k == kEventSubsamples) e_end = e;
     for (int i = 0; i < kEventCount; ++i) {
       // A fresh function is zero at ta by construction and counts as positive there.
       const bool was_positive = prev[i] > 0.0 || e_fresh[i];
@@ -327,9 +332,9 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
   return FlowStop::reached;
 }
 
-void Flow::Impl::track_step_end(const Vec& x) {
+void Flow::Impl::track_step_end(const Vec& x, double N) {
   const State q = State::from_array(x);
-  counters.min_N = std::min(counters.min_N, contact_forces(model, q).N);
+  counters.min_N = std::min(counters.min_N, N);
   if (phase_ != Phase::stick && model.mu() > 0.0) {
     const double residual =
         std::abs(slip_constraint_residual(model, q, static_cast<int>(phase_))) / model.W();
@@ -429,9 +434,10 @@ FlowStop Flow::advance(double t_end, FlowObserver* observer) {
       const FlowStop r = s.apply_event(s.crossing, observer);
       if (r != FlowStop::reached) return r;
     } else {
+      // find_event evaluated the event functions at the step's end (x1) last.
       const Vec x1 = s.stepper.current_state();
-      s.track_step_end(x1);
-      s.e_prev = s.values(x1);
+      s.track_step_end(x1, s.N_end);
+      s.e_prev = s.e_end;
       s.e_fresh = {};
       s.have_step = false;
       s.t_now = s.step_t1;
