@@ -46,57 +46,63 @@ namespace {
 /// A non-horizontal polygon edge, stored bottom (y0) to top (y1), y0 < y1.
 struct Edge {
   double x0, y0, x1, y1;
+  double dxdy;        ///< (x1 - x0) / (y1 - y0)
   int direction;      ///< +1: traversed upwards, -1: downwards
   std::size_t index;  ///< the edge joins point index and index + 1 (the last: to the first)
 
-  /// x on the edge's line at height y; exact at both end points (std::lerp is exact at 0 and 1)
-  /// so that edges sharing a vertex agree there.
+  /// x on the edge's line at height y; exact at both end points, so that edges sharing a vertex
+  /// agree there, and monotonic in y.
   double x_at(double y) const {
     if (y <= y0) return x0;
     if (y >= y1) return x1;
-    return std::lerp(x0, x1, (y - y0) / (y1 - y0));
+    return x0 + (y - y0) * dxdy;
   }
 };
+
+/// The left-to-right walk over the edges of a crossing-free slab of height `height`, by_x their x
+/// at mid-height in increasing order: the area with non-zero winding, and the boundary
+/// coefficients (see crossing_free_slab_area).
+double walk_slab(const std::vector<std::pair<double, const Edge*>>& by_x, double height,
+                 std::vector<double>* boundary) {
+  double width = 0.0;
+  int winding = 0;
+  for (std::size_t i = 0; i + 1 < by_x.size(); ++i) {
+    const int before = winding;
+    winding += by_x[i].second->direction;
+    if (boundary != nullptr) {
+      // Going up, the edge's left is the side of smaller x; going down, the side of larger x.
+      const bool left = (by_x[i].second->direction > 0 ? before : winding) != 0;
+      const bool right = (by_x[i].second->direction > 0 ? winding : before) != 0;
+      (*boundary)[by_x[i].second->index] += height * (int{left} - int{right});
+    }
+    // The integral of a linear width over the slab is the height times the width at mid-height.
+    if (winding != 0) width += by_x[i + 1].first - by_x[i].first;
+  }
+  if (boundary != nullptr && !by_x.empty()) {
+    // The rightmost edge: winding 0 to its right (x), `winding` to its left.
+    const Edge* e = by_x.back().second;
+    const bool inside = winding != 0;
+    (*boundary)[e->index] += height * (e->direction > 0 ? int{inside} : -int{inside});
+  }
+  return height * width;
+}
 
 /// Area with non-zero winding between heights lo < hi, where the order of `active` by x is the
 /// same at every height inside (lo, hi). `scratch` holds x at mid-height for sorting.
 /// If `boundary` is not null, boundary[e.index] accumulates height * c for every edge, with
 /// c = [winding on the edge's left != 0] - [winding on its right != 0] (left and right seen along
 /// the edge's direction): +1 or -1 where the edge bounds the enclosed region, 0 inside or outside.
-/// `in_order`: `active` is already in the order by x inside the slab (no sort).
 double crossing_free_slab_area(std::span<const Edge* const> active, double lo, double hi,
                                std::vector<std::pair<double, const Edge*>>& scratch,
-                               std::vector<double>* boundary, bool in_order = false) {
+                               std::vector<double>* boundary) {
   const double height = hi - lo;
   if (!(height > 0.0)) return 0.0;
   const double mid = lo + 0.5 * height;
   scratch.clear();
   for (const Edge* e : active) scratch.emplace_back(e->x_at(mid), e);
-  if (!in_order) {
-    std::sort(scratch.begin(), scratch.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-  }
-  double width = 0.0;
-  int winding = 0;
-  for (std::size_t i = 0; i + 1 < scratch.size(); ++i) {
-    const int before = winding;
-    winding += scratch[i].second->direction;
-    if (boundary != nullptr) {
-      // Going up, the edge's left is the side of smaller x; going down, the side of larger x.
-      const bool left = (scratch[i].second->direction > 0 ? before : winding) != 0;
-      const bool right = (scratch[i].second->direction > 0 ? winding : before) != 0;
-      (*boundary)[scratch[i].second->index] += height * (int{left} - int{right});
-    }
-    // The integral of a linear width over [lo, hi] is the height times the width at mid-height.
-    if (winding != 0) width += scratch[i + 1].first - scratch[i].first;
-  }
-  if (boundary != nullptr && !scratch.empty()) {
-    // The rightmost edge: winding 0 to its right (x), `winding` to its left.
-    const Edge* e = scratch.back().second;
-    const bool inside = winding != 0;
-    (*boundary)[e->index] += height * (e->direction > 0 ? int{inside} : -int{inside});
-  }
-  return height * width;
+  std::sort(scratch.begin(), scratch.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  return walk_slab(scratch, height, boundary);
 }
 
 /// An active edge with its x at the bottom and the top of the slab.
@@ -112,6 +118,7 @@ struct Workspace {
   std::vector<std::pair<double, const Edge*>> by_x;
   std::vector<double>* boundary = nullptr;  ///< see crossing_free_slab_area (optional)
   std::vector<std::pair<std::size_t, std::size_t>>* crossings = nullptr;  ///< (optional)
+  bool area = true;  ///< false: only the crossings are wanted
 };
 
 /// Area with non-zero winding inside the slab [lo, hi] (every active edge spans it). `active` is
@@ -133,6 +140,17 @@ double slab_area(std::vector<const Edge*>& active, double lo, double hi, Workspa
     bottom[j] = key;
   }
   for (std::size_t i = 0; i < bottom.size(); ++i) active[i] = bottom[i].edge;
+  // Without a crossing the bottom order holds throughout the slab, and x at mid-height is the
+  // mean of the ends (the edges are straight).
+  bool crossing = false;
+  for (std::size_t i = 1; i < bottom.size() && !crossing; ++i)
+    crossing = bottom[i - 1].hi > bottom[i].hi;
+  if (!crossing) {
+    if (!ws.area) return 0.0;
+    ws.by_x.clear();
+    for (const Spanning& b : bottom) ws.by_x.emplace_back(0.5 * (b.lo + b.hi), b.edge);
+    return walk_slab(ws.by_x, hi - lo, ws.boundary);
+  }
   // Insertion sort by x at hi (strict comparison: edges meeting at hi do not cross inside).
   // Each swap exchanges a pair whose order differs at lo and hi: a crossing strictly inside.
   std::vector<double>& cuts = ws.cuts;
@@ -151,8 +169,7 @@ double slab_area(std::vector<const Edge*>& active, double lo, double hi, Workspa
       std::swap(order[j - 1], order[j]);
     }
   }
-  // Without a crossing the bottom order holds throughout the slab.
-  if (cuts.empty()) return crossing_free_slab_area(active, lo, hi, ws.by_x, ws.boundary, true);
+  if (!ws.area) return 0.0;
   std::sort(cuts.begin(), cuts.end());
   double area = 0.0;
   double below = lo;
@@ -193,9 +210,9 @@ double sweep(std::span<const double> x, std::span<const double> y, Workspace& ws
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = (i + 1 == n) ? 0 : i + 1;
     if (y[i] < y[k]) {
-      edges.push_back({x[i], y[i], x[k], y[k], +1, i});
+      edges.push_back({x[i], y[i], x[k], y[k], (x[k] - x[i]) / (y[k] - y[i]), +1, i});
     } else if (y[i] > y[k]) {
-      edges.push_back({x[k], y[k], x[i], y[i], -1, i});
+      edges.push_back({x[k], y[k], x[i], y[i], (x[i] - x[k]) / (y[i] - y[k]), -1, i});
     }
   }
   if (edges.size() < 2) return 0.0;
@@ -285,6 +302,7 @@ std::vector<std::pair<std::size_t, std::size_t>> detail::polygon_crossings(
   std::vector<std::pair<std::size_t, std::size_t>> crossings;
   Workspace ws;
   ws.crossings = &crossings;
+  ws.area = false;
   sweep(x, y, ws);
   return crossings;
 }
