@@ -91,18 +91,19 @@ class Recorder : public FlowObserver {
   bool on_step(const StepView& step) override {
     const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
     if (!(b > a)) return true;
-    std::array<std::array<double, Interpolant::kNodes>, kQuantities> values;
+    Piece& piece = pieces.emplace_back();  // filled in place (a Piece is ~1.4 kB)
+    piece.a = a;
+    piece.b = b;
+    piece.phase = step.phase();
     for (int k = 0; k < Interpolant::kNodes; ++k) {
       // The end nodes exactly at a and b (the one-sided limits at a switch).
       const double t = k == 0 ? b : k == kDegree ? a : Interpolant::node(a, b, k);
       const auto v = evaluate(model_, baumgarte_, t, step.state(t), step.phase());
-      for (int m = 0; m < kQuantities; ++m) values[m][k] = v[m];
+      for (int m = 0; m < kQuantities; ++m) piece.values[m][k] = v[m];
     }
-    Piece piece{a, b, step.phase(), {}, values, {}, {}};
-    for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, values[m]);
+    for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, piece.values[m]);
     piece.dx = piece.f[kDdx].derivative_interpolant();
     piece.dz = piece.f[kDdz].derivative_interpolant();
-    pieces.push_back(piece);
     return true;
   }
   std::vector<Piece> pieces;
@@ -341,10 +342,9 @@ class BulgeSeries {
     }
   }
   double x_offset() const { return x_offset_; }
-  // The integral from t0 to t1 (both in the piece).
-  double integral(double t0, double t1) const { return 0.5 * (b_ - a_) * (G(t1) - G(t0)); }
-
- private:
+  // The integral from t0 to t1 (both in the piece), from G(t0) and G(t1).
+  double integral(double G0, double G1) const { return 0.5 * (b_ - a_) * (G1 - G0); }
+  // The antiderivative at t (in u; times (b - a) / 2 it is in t).
   double G(double t) const {
     const double u = (2.0 * t - a_ - b_) / (b_ - a_);
     double b1 = 0.0, b2 = 0.0;
@@ -355,6 +355,8 @@ class BulgeSeries {
     }
     return u * b1 - b2 + g_[0];
   }
+
+ private:
   double a_ = 0.0, b_ = 1.0, x_offset_ = 0.0;
   std::array<double, kG + 1> g_{};
 };
@@ -452,17 +454,26 @@ double curve_area(const std::vector<Piece>& pieces) {
   std::vector<double> bulge(v.size(), 0.0);
   BulgeSeries series;
   int series_piece = -1;
+  // G and z at the end of the last edge: the start of the next one in the same piece.
+  double last_t = std::numeric_limits<double>::quiet_NaN(), last_G = 0.0, last_z = 0.0;
   for (std::size_t i = 0; i < v.size(); ++i) {
     const Vertex& p = v[i];
     const Vertex& q = v[(i + 1) % v.size()];
     if (p.piece < 0 || p.piece != q.piece || !(q.t > p.t)) continue;
     const Piece& pc = pieces[p.piece];
-    if (series_piece != p.piece) series = BulgeSeries(pc), series_piece = p.piece;
+    if (series_piece != p.piece) {
+      series = BulgeSeries(pc);
+      series_piece = p.piece;
+      last_t = std::numeric_limits<double>::quiet_NaN();
+    }
+    const double G_p = p.t == last_t ? last_G : series.G(p.t);
+    const double z_p = p.t == last_t ? last_z : pc.f[kDdz](p.t);
+    const double G_q = series.G(q.t), z_q = pc.f[kDdz](q.t);
+    last_t = q.t, last_G = G_q, last_z = z_q;
     // The arc's ends may differ from the (shared) crossing points by round-off: the chord's
     // integral of (x - x_mean) dz is zero.
     const double x_mean = 0.5 * (p.x + q.x);
-    bulge[i] = series.integral(p.t, q.t) -
-               (x_mean - series.x_offset()) * (pc.f[kDdz](q.t) - pc.f[kDdz](p.t));
+    bulge[i] = series.integral(G_p, G_q) - (x_mean - series.x_offset()) * (z_q - z_p);
   }
   return enclosed_area(x, z, bulge);
 }

@@ -27,14 +27,11 @@ class ChebyshevInterpolant {
   /// From the values f(node(a, b, k)), k = 0 ... N.
   ChebyshevInterpolant(double a, double b, const std::array<double, kNodes>& values)
       : a_(a), b_(b) {
+    const auto& C = coefficient_matrix();
     for (int j = 0; j <= N; ++j) {
       double sum = 0.0;
-      for (int k = 0; k <= N; ++k) {
-        const double w = (k == 0 || k == N) ? 0.5 : 1.0;
-        // cos(pi j k / N) with the product reduced mod 2N, exact at the symmetric points.
-        sum += w * values[k] * cos_table()[(j * k) % (2 * N)];
-      }
-      c_[j] = sum * (2.0 / N) * ((j == 0 || j == N) ? 0.5 : 1.0);
+      for (int k = 0; k <= N; ++k) sum += C[j][k] * values[k];
+      c_[j] = sum;
     }
   }
 
@@ -94,6 +91,23 @@ class ChebyshevInterpolant {
       return c;
     }();
     return table;
+  }
+
+  // c_j = sum_k C_jk f_k: C_jk = (2 / N) w_j w_k cos(pi j k / N), w = 1/2 at 0 and N, else 1
+  // (the discrete cosine transform of the values at the Chebyshev-Lobatto points).
+  static const std::array<std::array<double, kNodes>, kNodes>& coefficient_matrix() {
+    static const auto matrix = [] {
+      std::array<std::array<double, kNodes>, kNodes> C{};
+      for (int j = 0; j <= N; ++j) {
+        for (int k = 0; k <= N; ++k) {
+          const double w = ((j == 0 || j == N) ? 0.5 : 1.0) * ((k == 0 || k == N) ? 0.5 : 1.0);
+          // cos(pi j k / N) with the product reduced mod 2N, exact at the symmetric points.
+          C[j][k] = (2.0 / N) * w * cos_table()[(j * k) % (2 * N)];
+        }
+      }
+      return C;
+    }();
+    return matrix;
   }
 
   double a_ = 0.0, b_ = 1.0;
