@@ -95,12 +95,25 @@ class Recorder : public FlowObserver {
     piece.a = a;
     piece.b = b;
     piece.phase = step.phase();
+    std::array<double, 8> end_state{};
+    std::array<double, kQuantities> end_values{};
     for (int k = 0; k < Interpolant::kNodes; ++k) {
       // The end nodes exactly at a and b (the one-sided limits at a switch).
       const double t = k == 0 ? b : k == kDegree ? a : Interpolant::node(a, b, k);
-      const auto v = evaluate(model_, baumgarte_, t, step.state(t), step.phase());
+      const State q = step.state(t);
+      // A piece that continues the last one (no switch between them) starts where it ended:
+      // the same time, state and phase, so the same values.
+      const bool same = k == kDegree && have_end_ && t == end_t_ && step.phase() == end_phase_ &&
+                        q.to_array() == end_state_;
+      const auto v = same ? end_values_ : evaluate(model_, baumgarte_, t, q, step.phase());
       for (int m = 0; m < kQuantities; ++m) piece.values[m][k] = v[m];
+      if (k == 0) end_state = q.to_array(), end_values = v;
     }
+    have_end_ = true;
+    end_t_ = b;
+    end_phase_ = step.phase();
+    end_state_ = end_state;
+    end_values_ = end_values;
     for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, piece.values[m]);
     piece.dx = piece.f[kDdx].derivative_interpolant();
     piece.dz = piece.f[kDdz].derivative_interpolant();
@@ -111,6 +124,12 @@ class Recorder : public FlowObserver {
  private:
   const Model& model_;
   const double baumgarte_, t_begin_, t_end_;
+  // The values at the end of the last piece (node 0).
+  bool have_end_ = false;
+  double end_t_ = 0.0;
+  Phase end_phase_ = Phase::stick;
+  std::array<double, 8> end_state_{};
+  std::array<double, kQuantities> end_values_{};
 };
 
 // Largest and smallest value of a quantity: ends and interior extrema of every piece.
