@@ -175,6 +175,16 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
 
 }  // namespace
 
+Mat8 jacobian_times(const Mat8& J, const Mat8& X) {
+  Mat8 Y;
+  Y.topRows<3>() = X.middleRows<3>(DD);  // delta'' ... = rows DD, DXA, DSA: J(D, DD) = 1, ...
+  // The other rows as dot products of J's rows (stored as columns) with X's columns.
+  const Eigen::Matrix<double, 8, 5> rows = J.bottomRows<5>().transpose();
+  for (int c = 0; c < 8; ++c)
+    for (int r = 0; r < 5; ++r) Y(PHI + r, c) = rows.col(r).dot(X.col(c));
+  return Y;
+}
+
 Mat8 phase_jacobian(const Model& model, double t, const State& q, Phase phase, double baumgarte) {
   return phase == Phase::stick ? stick_jacobian(model, t, q)
                                : slip_jacobian(model, t, q, static_cast<int>(phase), baumgarte);

@@ -35,12 +35,11 @@ bool MonodromyObserver::on_step(const StepView& step) {
     const double t = a + i * h, tm = t + 0.5 * h, t1 = (i + 1 == n) ? b : t + h;
     const Mat8 Jm = jacobian(tm, step.state(tm), phase);
     const Mat8 J1 = jacobian(t1, step.state(t1), phase);
-    // lazyProduct: coefficient-wise, unrolled for 8x8 (a plain product of this size goes
-    // through Eigen's general blocked kernel with packing, several times slower).
-    const Mat8 k1 = J0.lazyProduct(phi_);
-    const Mat8 k2 = Jm.lazyProduct(Mat8(phi_ + 0.5 * h * k1));
-    const Mat8 k3 = Jm.lazyProduct(Mat8(phi_ + 0.5 * h * k2));
-    const Mat8 k4 = J1.lazyProduct(Mat8(phi_ + h * k3));
+    // jacobian_times: the structure of J (three unit rows) halves the work of the products.
+    const Mat8 k1 = jacobian_times(J0, phi_);
+    const Mat8 k2 = jacobian_times(Jm, phi_ + 0.5 * h * k1);
+    const Mat8 k3 = jacobian_times(Jm, phi_ + 0.5 * h * k2);
+    const Mat8 k4 = jacobian_times(J1, phi_ + h * k3);
     phi_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     J0 = J1;
   }

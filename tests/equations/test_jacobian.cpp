@@ -136,6 +136,36 @@ TEST(Jacobian, PhiIsCyclicAndStickSlavesPhiDot) {
   }
 }
 
+// jacobian_times relies on the rows of delta, x_A and s_A being the unit rows of their velocities
+// in every phase (with and without the Baumgarte term), and equals the full product.
+TEST(Jacobian, KinematicRowsAndTheStructuredProduct) {
+  std::mt19937 rng(17);
+  for (bool spiral : {false, true}) {
+    const Model model(trough_case(spiral));
+    for (int i = 0; i < 5; ++i) {
+      const State q = random_state(rng, model);
+      for (Phase phase : {Phase::stick, Phase::slip_positive, Phase::slip_negative}) {
+        for (double b : {0.0, 2.0 * model.nu()}) {
+          const Mat8 J = phase_jacobian(model, 0.002 * i, q, phase, b);
+          for (int row = 0; row < 3; ++row) {
+            Eigen::Matrix<double, 1, 8> unit = Eigen::Matrix<double, 1, 8>::Zero();
+            unit[row + 4] = 1.0;
+            EXPECT_EQ(J.row(row), unit) << to_string(phase) << " row " << row;
+          }
+          Mat8 X = Mat8::Random();
+          X(3, 3) = 1e3;  // entries of different sizes
+          const Mat8 full = J * X, structured = jacobian_times(J, X);
+          EXPECT_LE((structured - full).cwiseAbs().maxCoeff(),
+                    1e-14 * (J.cwiseAbs() * X.cwiseAbs()).maxCoeff())
+              << to_string(phase);
+          // The unit rows are copies, exactly.
+          EXPECT_EQ(structured.topRows<3>(), X.middleRows<3>(4));
+        }
+      }
+    }
+  }
+}
+
 TEST(Jacobian, EventGradientsAgainstFiniteDifferences) {
   std::mt19937 rng(11);
   for (bool spiral : {false, true}) {
