@@ -364,16 +364,7 @@ class BulgeSeries {
   // The integral from t0 to t1 (both in the piece), from G(t0) and G(t1).
   double integral(double G0, double G1) const { return 0.5 * (b_ - a_) * (G1 - G0); }
   // The antiderivative at t (in u; times (b - a) / 2 it is in t).
-  double G(double t) const {
-    const double u = (2.0 * t - a_ - b_) / (b_ - a_);
-    double b1 = 0.0, b2 = 0.0;
-    for (int k = kG; k >= 1; --k) {
-      const double b0 = 2.0 * u * b1 - b2 + g_[k];
-      b2 = b1;
-      b1 = b0;
-    }
-    return u * b1 - b2 + g_[0];
-  }
+  double G(double t) const { return detail::chebyshev_sum(g_, (2.0 * t - a_ - b_) / (b_ - a_)); }
 
  private:
   double a_ = 0.0, b_ = 1.0, x_offset_ = 0.0;

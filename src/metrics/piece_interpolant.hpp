@@ -8,10 +8,23 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 
 namespace oscidrum::detail {
+
+/// The Chebyshev series sum_k c_k T_k(x) at x (Clenshaw's recurrence).
+template <std::size_t M>
+double chebyshev_sum(const std::array<double, M>& c, double x) {
+  double b1 = 0.0, b2 = 0.0;
+  for (std::size_t j = M - 1; j >= 1; --j) {
+    const double b0 = 2.0 * x * b1 - b2 + c[j];
+    b2 = b1;
+    b1 = b0;
+  }
+  return x * b1 - b2 + c[0];
+}
 
 template <int N>
 class ChebyshevInterpolant {
@@ -36,16 +49,7 @@ class ChebyshevInterpolant {
   }
 
   /// The interpolant at t (Clenshaw's recurrence); t outside [a, b] extrapolates.
-  double operator()(double t) const {
-    const double x = (2.0 * t - a_ - b_) / (b_ - a_);
-    double b1 = 0.0, b2 = 0.0;
-    for (int j = N; j >= 1; --j) {
-      const double b0 = 2.0 * x * b1 - b2 + c_[j];
-      b2 = b1;
-      b1 = b0;
-    }
-    return x * b1 - b2 + c_[0];
-  }
+  double operator()(double t) const { return chebyshev_sum(c_, (2.0 * t - a_ - b_) / (b_ - a_)); }
 
   /// d/dt of the interpolant at t.
   double derivative(double t) const { return derivative_interpolant()(t); }
