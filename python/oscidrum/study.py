@@ -247,7 +247,8 @@ def run_study(cases: Iterable[Any], threads: int = 0, keep_samples: bool = False
               n_harmonics: int = 10, progress: Union[None, bool, Callable[[int, int], Any]] = None,
               on_case_done: Optional[Callable[[int, Any], Any]] = None,
               executor: Optional[_cf.Executor] = None,
-              chunk_size: Optional[int] = None) -> StudyResult:
+              chunk_size: Optional[int] = None,
+              samples_in_callback: bool = False) -> StudyResult:
     """Run every case and return the outcomes in case order.
 
     Locally, the cases run on ``threads`` C++ threads with the GIL released. With an
@@ -269,12 +270,18 @@ def run_study(cases: Iterable[Any], threads: int = 0, keep_samples: bool = False
         force; or a callable ``progress(done, total)``.
     on_case_done : callable, optional
         ``on_case_done(index, outcome)`` after each case (locally) or each case of a finished
-        chunk (executor).
+        chunk (executor). The outcome has samples only with ``keep_samples`` or
+        ``samples_in_callback``.
     executor : concurrent.futures.Executor, optional
         E.g. ``distributed.Client(...).get_executor()``, ``mpi4py.futures.MPIPoolExecutor()``
         or ``ProcessPoolExecutor``. The workers must be able to import oscidrum.
     chunk_size : int, optional
         Cases per executor task (default 500, or fewer so that every worker gets work).
+    samples_in_callback : bool, default False
+        Give ``on_case_done`` each case's samples even without ``keep_samples`` (to write each
+        steady state to disk while the study keeps only the metrics). Sampling costs about a
+        fifth of a case; without it, and without ``keep_samples``, no case is sampled (every
+        number of the outcomes is the same either way).
 
     Returns
     -------
@@ -300,15 +307,20 @@ def run_study(cases: Iterable[Any], threads: int = 0, keep_samples: bool = False
     _check_options(threads, keep_samples, n_harmonics)
     if on_case_done is not None and not callable(on_case_done):
         raise _core.Error(f"on_case_done must be callable or None; got {on_case_done!r}")
+    if not isinstance(samples_in_callback, bool):
+        raise _core.Error(f"samples_in_callback must be True or False; got {samples_in_callback!r}")
+    # Samples for the callback only: taken, passed on, then dropped.
+    sample = keep_samples or (samples_in_callback and on_case_done is not None)
     bar = _Progress(progress, len(case_list))
     try:
         if executor is None:
-            return _run_local(case_list, threads, keep_samples, n_harmonics, bar, on_case_done)
+            return _run_local(case_list, threads, keep_samples, sample, n_harmonics, bar,
+                              on_case_done)
         if not isinstance(executor, _cf.Executor) and not hasattr(executor, "submit"):
             raise _core.Error("executor must be a concurrent.futures.Executor; got "
                               f"{type(executor).__name__}")
-        return _run_executor(case_list, executor, chunk_size, threads, keep_samples, n_harmonics,
-                             bar, on_case_done)
+        return _run_executor(case_list, executor, chunk_size, threads, keep_samples, sample,
+                             n_harmonics, bar, on_case_done)
     finally:
         bar.close()
 
@@ -319,24 +331,24 @@ def _not_run(cases, outcomes):
                                for o in outcomes])
 
 
-def _run_local(cases, threads, keep_samples, n_harmonics, bar, on_case_done):
-    done = [None] * len(cases)
+def _run_local(cases, threads, keep_samples, sample, n_harmonics, bar, on_case_done):
+    done = [None] * len(cases)  # for Interrupted: what is done, without the callback's samples
 
     def finished(index, outcome):
-        done[index] = outcome
         if on_case_done is not None:
             on_case_done(index, outcome)
+        done[index] = outcome if keep_samples or not sample else _core._without_samples(outcome)
 
     try:
         outcomes = _core.run_study(cases, threads=threads, keep_samples=keep_samples,
                                    n_harmonics=n_harmonics, progress=bar,
-                                   on_case_done=finished)
+                                   on_case_done=finished, samples_in_callback=sample)
     except KeyboardInterrupt:
         raise Interrupted(_not_run(cases, done)) from None
     return StudyResult(cases, outcomes)
 
 
-def _run_executor(cases, executor, chunk_size, threads, keep_samples, n_harmonics, bar,
+def _run_executor(cases, executor, chunk_size, threads, keep_samples, sample, n_harmonics, bar,
                   on_case_done):
     n = len(cases)
     if chunk_size is None:
@@ -350,7 +362,7 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, n_harmonic
     done_count = 0
     try:
         for s in starts:
-            f = executor.submit(run_chunk, cases[s:s + chunk_size], threads, keep_samples,
+            f = executor.submit(run_chunk, cases[s:s + chunk_size], threads, sample,
                                 n_harmonics)
             futures[f] = s
         pending = set(futures)
@@ -359,10 +371,10 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, n_harmonic
             for f in finished:
                 s = futures[f]
                 chunk = f.result()
-                outcomes[s:s + len(chunk)] = chunk
                 for i, o in enumerate(chunk):
                     if on_case_done is not None:
                         on_case_done(s + i, o)
+                    outcomes[s + i] = o if keep_samples or not sample else _core._without_samples(o)
                 done_count += len(chunk)
                 bar(done_count, n)
     except KeyboardInterrupt:

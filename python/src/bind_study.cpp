@@ -177,7 +177,7 @@ std::vector<Case> to_cases(const py::handle& items) {
 
 std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool keep_samples,
                                       int n_harmonics, const py::object& progress,
-                                      const py::object& on_case_done) {
+                                      const py::object& on_case_done, bool samples_in_callback) {
   const std::vector<Case> cases = to_cases(items);
   std::exception_ptr error;                // written with the GIL held, so the GIL guards it
   std::atomic<bool> stop{false};           // set once `error` is: read without the GIL
@@ -185,6 +185,7 @@ std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool
   StudyOptions options;
   options.threads = threads;
   options.keep_samples = keep_samples;
+  options.samples_in_callback = samples_in_callback;
   options.n_harmonics = n_harmonics;
   auto guarded = [&](auto&& call) {
     py::gil_scoped_acquire gil;
@@ -263,6 +264,7 @@ void bind_study(py::module_& m) {
   m.def("run_study", &run_study_py, py::arg("cases"), py::arg("threads") = 0,
         py::arg("keep_samples") = false, py::arg("n_harmonics") = 10,
         py::arg("progress") = py::none(), py::arg("on_case_done") = py::none(),
+        py::arg("samples_in_callback") = false,
         "Run every case (Case objects or {dotted key: value} dicts) on `threads` C++ worker "
         "threads (0: all cores) with the GIL released. Returns one CaseOutcome per case, in "
         "input order; identical to running them one by one. Invalid cases do not raise: their "
@@ -271,8 +273,19 @@ void bind_study(py::module_& m) {
         "n_harmonics: harmonics in the metrics.\n"
         "progress: optional callable progress(done, total), called after each case.\n"
         "on_case_done: optional callable on_case_done(index, outcome), called after each case.\n"
+        "samples_in_callback: on_case_done's outcome carries the samples even without "
+        "keep_samples (the sampling then costs about a fifth of a case); without it, and "
+        "without keep_samples, no case is sampled.\n"
         "An exception raised by a callback (or Ctrl-C) stops new cases from starting and is "
         "re-raised.");
+  m.def(
+      "_without_samples",
+      [](const CaseOutcome& o) {
+        CaseOutcome copy = o;
+        copy.result.samples = Samples{};
+        return copy;
+      },
+      py::arg("outcome"), "A copy of the outcome without its samples (internal).");
   m.def(
       "run_case",
       [](const Case& c, bool keep_samples, int n_harmonics) {

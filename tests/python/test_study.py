@@ -111,6 +111,36 @@ def test_thread_pool_executor_equals_local(local):
     assert res.cases == local.cases
 
 
+def test_samples_reach_the_callback_only_when_asked(local):
+    """Without keep_samples no case is sampled, unless samples_in_callback: then on_case_done
+    sees each steady state's samples, and the outcomes returned (locally and from an executor)
+    do not keep them. Every number is the same in all three runs."""
+    from concurrent.futures import ThreadPoolExecutor
+    seen = {}
+
+    def record(index, outcome):
+        seen[index] = len(outcome.result.samples)
+
+    plain = oscidrum.run_study(grid(), threads=2, on_case_done=record)
+    assert sorted(seen) == list(range(len(grid()))) and set(seen.values()) == {0}
+    same(plain, local)
+    seen.clear()
+    streamed = oscidrum.run_study(grid(), threads=2, on_case_done=record,
+                                  samples_in_callback=True)
+    assert set(seen.values()) == {2 * 1024}  # 2 output periods of 1024 samples
+    assert all(len(o.result.samples) == 0 for o in streamed)
+    same(streamed, local)
+    seen.clear()
+    with ThreadPoolExecutor(2) as pool:
+        remote = oscidrum.run_study(grid(), executor=pool, chunk_size=5, threads=1,
+                                    on_case_done=record, samples_in_callback=True)
+    assert set(seen.values()) == {2 * 1024}
+    assert all(len(o.result.samples) == 0 for o in remote)
+    same(remote, local)
+    with pytest.raises(oscidrum.Error, match="samples_in_callback must be True or False"):
+        oscidrum.run_study(grid(), samples_in_callback="yes")
+
+
 def test_dask_distributed_executor(local):
     distributed = pytest.importorskip("distributed")
     env = {"PYTHONPATH": os.pathsep.join(sys.path)}
