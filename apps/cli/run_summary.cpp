@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include "oscidrum/soil.hpp"
 #include "oscidrum/transmissibility.hpp"
@@ -64,7 +65,13 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.line("status", to_string(result.status));
   if (!result.message.empty()) s.line("message", result.message);
   for (const DiagnosticOutput& out : diagnostic_outputs()) {
-    const std::string value = output_text(result.diagnostics, out);
+    std::string value = output_text(result.diagnostics, out);
+    if (std::string_view(out.name) == "warm_start") {  // a code in CSV and JSON; words here
+      const int w = result.diagnostics.warm_start;
+      value = w > 0   ? "yes: from the neighbouring case's steady state"
+              : w < 0 ? "failed: started again from rest"
+                      : "no: started from rest";
+    }
     if (!value.empty()) s.line(out.label, value);  // the fallback reason only when there is one
   }
   if (result.floquet.stability != Stability::unknown)

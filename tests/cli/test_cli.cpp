@@ -157,6 +157,9 @@ TEST(CliRun, DefaultCaseReachesSteadyState) {
   const std::string z_line = z.substr(0, z.find('\n'));
   EXPECT_NE(z_line.find("  0, "), std::string::npos) << z_line;  // A(f) of z_M'': 0
   EXPECT_NE(o.out.find("(0: below 1e-6 of the signal's largest harmonic"), std::string::npos);
+  // Codes of the CSV and JSON in words: a single run starts from rest.
+  EXPECT_NE(o.out.find("warm start (continuation)       no: started from rest"), std::string::npos)
+      << o.out;
 }
 
 // f changed with M0 fixed is rarely meant (M0 = 4 m_u e_u e_w nu^2 (5)): a warning on stderr. The
