@@ -128,9 +128,12 @@ void add_run_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand(
       "run",
-      "Simulate one case to its steady state and print its metrics. It integrates from rest at the "
-      "bottom of the trough until the response repeats from "
-      "one excitation period to the next, then samples the steady state and computes its metrics: "
+      "Simulate one case to its steady state and print its metrics. Starting from rest at the "
+      "bottom of the trough, it finds the periodic steady state (by default by shooting: Newton's "
+      "method on the period map after a short transient, falling back to the paper's method when "
+      "that fails; --set numerics.method=transient integrates until the response repeats from one "
+      "excitation period to the next, as the paper does), then samples it and computes its "
+      "metrics: "
       "peaks of the drum-centre accelerations x_M'', z_M'' [m/s^2], their harmonics n f, the lag "
       "between torque and drum rotation [pi rad], the x_M''-z_M'' lag psi [rad], the area of the "
       "z_M''(x_M'') figure [m^2/s^4] and the stick/slip fractions. Defaults: the paper's roller "
