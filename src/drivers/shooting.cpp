@@ -144,6 +144,9 @@ class Shooter {
 
  private:
   bool short_transient(ShootingOutcome& out);
+  // The short transient from the flow's state; on success z and phase (at the section t0_) are
+  // Newton's start, and first_ its first map when have_first_. False: `out` says why.
+  bool transient_start(ShootingOutcome& out, State& z, Phase& phase);
   bool newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out);
   bool subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
                    ShootingOutcome& out);
@@ -199,6 +202,10 @@ bool Shooter::short_transient(ShootingOutcome& out) {
   std::vector<Event> previous;
   bool have_previous = false;
   int map_periods = 0;
+  // Periods are counted from where the flow is (rest at t = 0, or the end of a first map that
+  // changed phase, see run()).
+  const double base = flow_.t();
+  const int before = out.transient_periods;
   for (int n = 1; n <= kMaxTransient; ++n) {
     // A period that may be the last one (the third, or the second after a period without
     // switches, as in pure rolling) is integrated as the period map of its consistent start,
@@ -227,7 +234,7 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       switches = first_.switches;
     } else {
       obs.start(flow_.state().to_array());
-      stop = flow_.advance(n * period_, &obs);
+      stop = flow_.advance(base + n * period_, &obs);
       switches = obs.switches;
     }
     if (stop != FlowStop::reached) {
@@ -255,10 +262,10 @@ bool Shooter::short_transient(ShootingOutcome& out) {
       out.message = flow_.message();
       return false;
     }
-    out.transient_periods = n - map_periods;  // the maps are counted as such
+    out.transient_periods = before + n - map_periods;  // the maps are counted as such
     // A period integrated as a map keeps the scale of the period before.
     if (!as_map) set_scales(obs);
-    if (progress_ && !progress_(n, std::numeric_limits<double>::infinity())) {
+    if (progress_ && !progress_(before + n, std::numeric_limits<double>::infinity())) {
       out.terminal = true;
       out.status = Status::cancelled;
       out.message = fmt("cancelled after %.0f periods", n);
@@ -284,6 +291,29 @@ void Shooter::set_scales(const PlainObserver& range) {
         100.0 * (num_.atol + num_.rtol * std::max(std::abs(range.hi[i]), std::abs(range.lo[i])));
     scale_[i] = std::max(width, floor);
   }
+}
+
+bool Shooter::transient_start(ShootingOutcome& out, State& z, Phase& phase) {
+  const bool ok = short_transient(out);
+  // The short transient from rest is a trajectory of the run (the transient method integrates
+  // it too); what Newton integrates next is not.
+  out.transient_max_slip_residual = flow_.counters().max_slip_residual;
+  out.transient_min_N = flow_.counters().min_N;
+  if (!ok) {
+    out.periods_integrated = used_;
+    out.period_maps = maps_;
+    out.jacobian_evaluations = mono_.jacobian_evaluations();
+    return false;
+  }
+  if (have_first_) {  // t0_ is its start
+    z = first_z_;
+    phase = first_phase_;
+  } else {
+    t0_ = flow_.t();
+    z = flow_.state();
+    phase = flow_.phase();
+  }
+  return true;
 }
 
 PeriodMap Shooter::period_map(const State& z, Phase phase, bool sensitivities,
@@ -605,26 +635,8 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
       return out;
     }
     have_first_ = true;
-  } else {
-    const bool ok = short_transient(out);
-    // The short transient from rest is a trajectory of the run (the transient method integrates
-    // it too); what Newton integrates next is not.
-    out.transient_max_slip_residual = flow_.counters().max_slip_residual;
-    out.transient_min_N = flow_.counters().min_N;
-    if (!ok) {
-      out.periods_integrated = used_;
-      out.period_maps = maps_;
-      out.jacobian_evaluations = mono_.jacobian_evaluations();
-      return out;
-    }
-    if (have_first_) {  // t0_ is its start
-      z = first_z_;
-      phase = first_phase_;
-    } else {
-      t0_ = flow_.t();
-      z = flow_.state();
-      phase = flow_.phase();
-    }
+  } else if (!transient_start(out, z, phase)) {
+    return out;
   }
   z = consistent(z, phase);
   phase_ = phase;
@@ -634,6 +646,19 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   // map is that of P^p.
   PeriodMap cur =
       have_first_ && (p_ == 1 || start.from_state) ? std::move(first_) : period_map(z, phase, true);
+  // A short transient whose switches were still moving (the sequence repeated, the switch times
+  // not yet) can stop just before a switch drifts across the period boundary: the first map
+  // then ends in another phase than it started in, and Newton cannot start. The transient goes
+  // on from the end of that map instead, once (the map is one of its periods).
+  if (!start.from_state && p_ == 1 && cur.stop == FlowStop::reached && !cur.over_budget &&
+      cur.phase != phase) {
+    ++out.transient_periods;
+    have_first_ = false;
+    if (!transient_start(out, z, phase)) return out;
+    z = consistent(z, phase);
+    phase_ = phase;
+    cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
+  }
   bool converged = newton(z, phase, cur, out);
   if (converged) {
     // Floquet multipliers: eigenvalues of the monodromy at the orbit.

@@ -175,15 +175,13 @@ TEST(Shooting, MaxPeriodsBoundsAShootingRun) {
       EXPECT_THROW(compute_metrics(r), Error);
     }
   }
-  // A case where Newton fails (found by scanning: near the friction limit the switching sequence
-  // changes between iterates) and the transient method from rest reaches the steady state after
-  // about 40 periods: the fallback gets only what shooting left of the budget.
+  // A case where shooting falls back (found by scanning): Table 2 soil at G = 5 MN/m^2 with
+  // mu = 0.3. Newton converges, but under plain integration the orbit's change over the sampled
+  // periods stays just above steady_tol (1-3e-8: the integration's noise at the default rtol),
+  // and the transient method from rest reaches the steady state after about 100 periods: the
+  // fallback gets only what shooting left of the budget.
   Case hard;
-  hard.soil.input = SoilInput::modulus;
-  hard.soil.G = 15e6;
-  hard.roller.unbalance = 0.22877;
-  hard.roller.f = 28.0;
-  hard.MMd = 4000.0;
+  hard.soil = table2_soil(5e6);
   hard.contact.mu = 0.3;
   const Result fell = simulate(hard);
   ASSERT_EQ(fell.status, Status::steady_state) << fell.message;
@@ -296,6 +294,35 @@ TEST(Shooting, AgreesWithTheTransientMethod) {
     else
       EXPECT_GT(std::abs(trans.diagnostics.phi_drift), 1e-3 * scale);  // MMd drives it on
   }
+}
+
+// A short transient can stop while its switches still move: here (G = 25 MN/m^2, mu = 0.3,
+// MMd = 0.1 M0, R = 0.603 m) the slip end falls at 0.878 T, then 0.915 T in the first two periods
+// (the same sequence, so the transient stops), crosses the period boundary in the third and
+// settles at 0.866 T. The first map then starts in stick and ends in slip. Shooting used to fall
+// back to the transient method (51 periods); it now goes on with the transient from the end of
+// that map and converges, to the transient method's metrics.
+TEST(Shooting, ASwitchDriftingAcrossTheSectionExtendsTheTransient) {
+  Case c;
+  c.soil = table2_soil(25e6);
+  c.contact.mu = 0.3;
+  c.MMd = 0.1 * oscillation_moment(c.roller);
+  c.trough.a = 0.603;
+  const Result shot = simulate(c);
+  ASSERT_EQ(shot.status, Status::steady_state) << shot.message;
+  EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
+  EXPECT_EQ(shot.diagnostics.fallback, "");
+  EXPECT_GT(shot.diagnostics.periods_to_steady, 2);  // the transient went on
+  c.numerics.method = SteadyMethod::transient;
+  const Result trans = simulate(c);
+  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  EXPECT_LT(shot.diagnostics.period_equivalents, trans.diagnostics.period_equivalents);
+  const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
+  const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
+  EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
+  EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
+  EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
+  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, tol);
 }
 
 // A real period doubling (found by examples/cpp/floquet_scan, docs/periodic.md): the paper's log
