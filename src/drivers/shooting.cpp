@@ -28,6 +28,8 @@ constexpr int kMinTransient = 2;
 constexpr int kMaxTransient = 24;
 // Transient periods integrated as period maps with sensitivities, at most (see short_transient).
 constexpr int kMaxTransientMaps = 2;
+// Extensions of the short transient when Newton's first map changes phase (see run()), at most.
+constexpr int kMaxExtensions = 3;
 
 // Newton: at most kMaxNewton steps; each halves its step up to kMaxHalvings times until the
 // scaled residual decreases; more than kMaxSequenceChanges changes of the switching sequence
@@ -649,9 +651,11 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   // A short transient whose switches were still moving (the sequence repeated, the switch times
   // not yet) can stop just before a switch drifts across the period boundary: the first map
   // then ends in another phase than it started in, and Newton cannot start. The transient goes
-  // on from the end of that map instead, once (the map is one of its periods).
-  if (!start.from_state && p_ == 1 && cur.stop == FlowStop::reached && !cur.over_budget &&
-      cur.phase != phase) {
+  // on from the end of that map instead (the map is one of its periods), up to kMaxExtensions
+  // times.
+  for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
+                          cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
+       ++extension) {
     ++out.transient_periods;
     have_first_ = false;
     if (!transient_start(out, z, phase)) return out;
