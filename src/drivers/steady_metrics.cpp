@@ -25,7 +25,6 @@
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
-#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -142,40 +141,6 @@ struct Extremes {
   }
 };
 
-// The extremum of f (a maximum for sign +1, a minimum for -1) in the bracket [t_lo, t_lo + width]:
-// the root of f' there, by Newton's method on f' (with f'') kept inside the bracket by bisection,
-// when sign f' is >= 0 at the bracket's start and <= 0 at its end; otherwise (a bracket holding
-// more than one turn of f) Brent's method on f. Both in the fraction u in [0, 1] of the bracket:
-// in absolute time (seconds into a long transient) a tolerance on t would leave the extremum
-// ~1e-7 s off. The value at the root is exact to round-off (an error d in the abscissa changes
-// it by f'' d^2 / 2).
-double extremum(const Interpolant& f, const Interpolant& df, const Interpolant& d2f, double t_lo,
-                double width, double sign) {
-  const auto g = [&](double u) { return sign * df(t_lo + u * width); };  // decreasing at the root
-  double lo = 0.0, hi = 1.0;
-  const double g_lo = g(lo), g_hi = g(hi);
-  if (g_lo >= 0.0 && g_hi <= 0.0) {
-    double u = g_lo == 0.0 ? 0.0 : g_hi == 0.0 ? 1.0 : g_lo / (g_lo - g_hi);  // secant start
-    for (int it = 0; it < 100 && g_lo != 0.0 && g_hi != 0.0; ++it) {
-      const double gu = g(u);
-      if (gu == 0.0) break;
-      (gu > 0.0 ? lo : hi) = u;
-      const double slope = sign * d2f(t_lo + u * width) * width;  // dg/du
-      double next = slope < 0.0 ? u - gu / slope : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      const double step = std::abs(next - u);
-      u = next;
-      // Quadratic convergence: a step of 1e-9 leaves ~1e-18 of the bracket, below round-off.
-      if (step <= 1e-9 || hi - lo <= 1e-15) break;
-    }
-    return f(t_lo + u * width);
-  }
-  const auto minus_f = [&](double u) { return -sign * f(t_lo + u * width); };
-  const auto best =
-      boost::math::tools::brent_find_minima(minus_f, 0.0, 1.0, std::numeric_limits<double>::digits);
-  return -sign * best.second;
-}
-
 // The scan: the interpolation nodes (exact values), in increasing t. Maxima only if want_max,
 // minima only if want_min.
 void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kNodes>& values,
@@ -213,7 +178,7 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
       derivatives();
       if (k == 0 && sign * df(a) <= 0.0) continue;
       if (k == kScan && sign * df(b) >= 0.0) continue;
-      out.add(extremum(f, df, d2f, ts[lo], ts[hi] - ts[lo], sign));
+      out.add(detail::extremum(f, df, d2f, ts[lo], ts[hi] - ts[lo], sign));
     }
   }
 }

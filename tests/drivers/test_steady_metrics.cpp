@@ -270,6 +270,47 @@ std::array<double, 3> interpolant_error(const Model& model, const Result& res) {
   return relative;
 }
 
+// extremum() on polynomials that the degree-10 interpolant represents exactly: a maximum and a
+// minimum by Newton's method (the value exact to round-off), a bracket with two maxima and a
+// minimum between them (Newton with bisection ends at one of the maxima, never at the minimum),
+// and a bracket that starts beyond a maximum (Brent's method).
+TEST(SteadyMetrics, ExtremumOfAnInterpolant) {
+  using I = detail::ChebyshevInterpolant<10>;
+  const auto interpolant = [](auto f, double a, double b) {
+    std::array<double, I::kNodes> v;
+    for (int k = 0; k < I::kNodes; ++k) v[k] = f(I::node(a, b, k));
+    return I(a, b, v);
+  };
+  const auto extremum = [](const I& f, double lo, double hi, double sign) {
+    const I df = f.derivative_interpolant(), d2f = df.derivative_interpolant();
+    return detail::extremum(f, df, d2f, lo, hi - lo, sign);
+  };
+  // A maximum 0 at t = 0.37 (the cubic term moves no root inside [0, 1]), on [10, 11] s too: the
+  // bracket in absolute time, as after a long transient.
+  for (double t0 : {0.0, 10.0}) {
+    const I peak = interpolant(
+        [t0](double t) {
+          const double d = t - t0 - 0.37;
+          return 2.0 - d * d + 0.1 * d * d * d;
+        },
+        t0, t0 + 1.0);
+    EXPECT_NEAR(extremum(peak, t0 + 0.2, t0 + 0.5, 1.0), 2.0, 1e-14);
+    const I trough = interpolant(
+        [t0](double t) {
+          const double d = t - t0 - 0.61;
+          return -3.0 + d * d - 0.05 * d * d * d;
+        },
+        t0, t0 + 1.0);
+    EXPECT_NEAR(extremum(trough, t0 + 0.5, t0 + 0.8, -1.0), -3.0, 1e-14);
+  }
+  // -(t - 0.2)^2 (t - 0.8)^2: maxima 0 at 0.2 and 0.8, a minimum -0.0081 at 0.5.
+  const I twin = interpolant(
+      [](double t) { return -(t - 0.2) * (t - 0.2) * (t - 0.8) * (t - 0.8); }, 0.0, 1.0);
+  EXPECT_NEAR(extremum(twin, 0.0, 1.0, 1.0), 0.0, 1e-15);
+  EXPECT_NEAR(extremum(twin, 0.3, 1.0, 1.0), 0.0, 1e-15);  // f' < 0 at 0.3: Brent
+  EXPECT_NEAR(extremum(twin, 0.3, 0.7, -1.0), -0.0081, 1e-15);
+}
+
 // overshoot_bound on known functions: sin(omega t + 0.3) on [0, 1], one to several turns between
 // the nodes. The interpolant's largest excursion beyond its node values stays within the bound,
 // and the bound is not vacuous (within a factor 1000 of the excursion where there is one; 205
