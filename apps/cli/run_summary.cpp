@@ -77,6 +77,10 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   if (result.floquet.stability != Stability::unknown)
     s.line("Floquet", std::string(to_string(result.floquet.stability)) + ", largest |multiplier| " +
                           fmt(result.floquet.max_modulus, 6));
+  if (result.period1_floquet.stability != Stability::unknown)
+    s.line("period-1 orbit (replaced)", std::string(to_string(result.period1_floquet.stability)) +
+                                            ", largest |multiplier| " +
+                                            fmt(result.period1_floquet.max_modulus, 6));
 
   if (metrics) {
     const Metrics& m = *metrics;

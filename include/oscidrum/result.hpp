@@ -80,6 +80,11 @@ struct Result {
   double slip_negative_time = 0.0;  ///< time in slip- within the sampled window [s]
   /// Floquet multipliers of the steady state (shooting only; Stability::unknown otherwise).
   Floquet floquet;
+  /// The multipliers of the unstable period-1 orbit when shooting replaced it by a stable orbit
+  /// repeating every p > 1 periods (a period doubling: a real multiplier beyond -1).
+  /// Stability::unknown otherwise, and for a study's case that Newton started on P^p from its
+  /// neighbour's orbit (the period-1 orbit is then not computed).
+  Floquet period1_floquet;
 };
 
 }  // namespace oscidrum

@@ -458,6 +458,10 @@ class Result:
     """True only for a steady state"""
     period: float
     """excitation period 1/f [s]"""
+    period1_floquet_multipliers: List[complex]
+    """a steady state repeating every p > 1 periods found by shooting on P^p: the Floquet multipliers of the unstable period-1 orbit it replaced (empty otherwise) [-]"""
+    period1_stability: str
+    """the stability of that period-1 orbit (e.g. 'period_doubling'), or 'unknown'"""
     sample_periods: int
     """excitation periods covered by `samples` [-]"""
     samples: Samples

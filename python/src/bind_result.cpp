@@ -210,6 +210,15 @@ void bind_result(py::module_& m) {
       .def_property_readonly(
           "stability", [](const Result& r) { return std::string(to_string(r.floquet.stability)); },
           "'stable', 'fold' (+1), 'period_doubling' (-1), 'torus' (complex pair) or 'unknown'")
+      .def_property_readonly(
+          "period1_floquet_multipliers",
+          [](const Result& r) { return r.period1_floquet.multipliers; },
+          "a steady state repeating every p > 1 periods found by shooting on P^p: the Floquet "
+          "multipliers of the unstable period-1 orbit it replaced (empty otherwise) [-]")
+      .def_property_readonly(
+          "period1_stability",
+          [](const Result& r) { return std::string(to_string(r.period1_floquet.stability)); },
+          "the stability of that period-1 orbit (e.g. 'period_doubling'), or 'unknown'")
       .def("__repr__", [](const Result& r) {
         char buf[300];
         std::snprintf(buf, sizeof buf,

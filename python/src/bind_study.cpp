@@ -118,6 +118,8 @@ void each_member(IO&& io, O& o) {
 #undef OSCIDRUM_MEMBER
   io(r.events), io(r.stick_time), io(r.slip_positive_time), io(r.slip_negative_time);
   io(r.floquet.multipliers), io(r.floquet.max_modulus), io(r.floquet.stability);
+  io(r.period1_floquet.multipliers), io(r.period1_floquet.max_modulus),
+      io(r.period1_floquet.stability);
 #define OSCIDRUM_MEMBER(type, name, unit, label, description) io(o.metrics.name);
   OSCIDRUM_METRICS(OSCIDRUM_MEMBER)
 #undef OSCIDRUM_MEMBER

@@ -188,6 +188,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   result.message =
       warm.from_state ? shot.message + " from the neighbouring case's orbit" : shot.message;
   result.floquet = shot.floquet;
+  if (p > 1) result.period1_floquet = shot.period1_floquet;
   d.method = SteadyMethod::shooting;
   // A last Newton step taken on prediction was never mapped: what the sampled periods measured
   // (the change over output_periods periods, at most about twice the one-period change) is the

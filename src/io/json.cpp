@@ -129,14 +129,20 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   }
   j["diagnostics"] = diagnostics;
   {
-    json multipliers = json::array();
-    for (const auto& z : result.floquet.multipliers)
-      multipliers.push_back(json::array({number(z.real()), number(z.imag())}));
-    j["floquet"] = {{"stability", to_string(result.floquet.stability)},
-                    {"max_modulus", result.floquet.stability == Stability::unknown
-                                        ? json()
-                                        : number(result.floquet.max_modulus)},
-                    {"multipliers", multipliers}};
+    const auto floquet_json = [](const Floquet& f) {
+      json multipliers = json::array();
+      for (const auto& z : f.multipliers)
+        multipliers.push_back(json::array({number(z.real()), number(z.imag())}));
+      return json{
+          {"stability", to_string(f.stability)},
+          {"max_modulus", f.stability == Stability::unknown ? json() : number(f.max_modulus)},
+          {"multipliers", multipliers}};
+    };
+    j["floquet"] = floquet_json(result.floquet);
+    // The unstable period-1 orbit a subharmonic steady state replaced (null otherwise).
+    j["floquet"]["period1"] = result.period1_floquet.stability == Stability::unknown
+                                  ? json()
+                                  : floquet_json(result.period1_floquet);
   }
   j["sampling"] = {{"frequency", number(result.frequency)},
                    {"sample_periods", result.sample_periods},

@@ -410,6 +410,28 @@ TEST(CliOutputs, DocsOutputTablesAreTheGeneratedOnes) {
   for (const auto& m : table["metrics"]) EXPECT_TRUE(summary["metrics"].contains(m["name"]));
   EXPECT_EQ(summary["metrics"].size(), table["metrics"].size());
   EXPECT_NEAR(summary["metrics"]["mu_required"].get<double>(), 0.5, 1e-6);  // it slips: mu
+  EXPECT_EQ(summary["floquet"]["stability"], "stable");
+  EXPECT_TRUE(summary["floquet"]["period1"].is_null());  // a period-1 steady state
+}
+
+// A period doubling (docs/periodic.md): the JSON and the summary give the multipliers of the
+// stable period-2 orbit and of the unstable period-1 orbit it replaced.
+TEST(CliRun, PeriodDoublingShowsBothOrbitsFloquetMultipliers) {
+  const std::vector<std::string> args = {
+      "run",  "--G", "150",   "--unbalance",    "0.22877", "--f",           "25",
+      "--mu", "0.7", "--set", "trough.k=0.002", "--set",   "trough.a=0.601"};
+  const Outcome text = run(args);
+  EXPECT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("period-1 orbit (replaced)       period_doubling"), std::string::npos)
+      << text.out;
+  auto json_args = args;
+  json_args.insert(json_args.end(), {"--format", "json"});
+  const nlohmann::json j = nlohmann::json::parse(run(json_args).out);
+  EXPECT_EQ(j["diagnostics"]["multiplicity"], 2);
+  EXPECT_EQ(j["floquet"]["stability"], "stable");
+  EXPECT_EQ(j["floquet"]["period1"]["stability"], "period_doubling");
+  EXPECT_GT(j["floquet"]["period1"]["max_modulus"].get<double>(), 1.0);
+  EXPECT_EQ(j["floquet"]["period1"]["multipliers"].size(), 7u);
 }
 
 TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {

@@ -275,6 +275,9 @@ TEST(Shooting, AgreesWithTheTransientMethod) {
     EXPECT_EQ(trans.diagnostics.method, SteadyMethod::transient);
     EXPECT_EQ(shot.floquet.stability, Stability::stable);
     EXPECT_EQ(trans.floquet.stability, Stability::unknown);
+    // A period-1 steady state replaced no orbit.
+    EXPECT_EQ(shot.period1_floquet.stability, Stability::unknown);
+    EXPECT_TRUE(shot.period1_floquet.multipliers.empty());
     EXPECT_GT(shot.diagnostics.newton_iterations, 0);
     EXPECT_LT(shot.diagnostics.period_equivalents, trans.diagnostics.period_equivalents);
     const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
@@ -354,6 +357,12 @@ TEST(Shooting, PeriodDoublingGivesTheStablePeriodTwoOrbit) {
   // The multipliers are those of P^2 at the period-2 orbit: inside the unit circle.
   EXPECT_EQ(shot.floquet.stability, Stability::stable);
   EXPECT_LT(shot.floquet.max_modulus, 1.0);
+  // Those of the period-1 orbit it replaced: a real multiplier beyond -1.
+  EXPECT_EQ(shot.period1_floquet.stability, Stability::period_doubling);
+  ASSERT_EQ(shot.period1_floquet.multipliers.size(), 7u);
+  EXPECT_GT(shot.period1_floquet.max_modulus, 1.0);
+  EXPECT_LT(shot.period1_floquet.multipliers[0].real(), -1.0);
+  EXPECT_EQ(shot.period1_floquet.multipliers[0].imag(), 0.0);
 
   // A fixed point of P^2 but not of P: integrated plainly from the first sample.
   const Model model(c);

@@ -219,3 +219,26 @@ def test_outcome_pickles_every_member():
     assert [(e.t, e.kind) for e in back.result.events] == [(e.t, e.kind) for e in o.result.events]
     with pytest.raises(oscidrum.Error, match="not one written by this build"):
         o.__setstate__(o.__getstate__()[:-3])
+
+
+def test_period_doubling_keeps_the_period_one_multipliers():
+    """A steady state repeating every 2 periods (a period doubling, docs/periodic.md): the
+    multipliers of the stable period-2 orbit, and those of the unstable period-1 orbit it
+    replaced, through a process boundary too."""
+    import pickle
+    case = oscidrum.Case.from_dict({"soil.input": "modulus", "soil.G": 150e6,
+                                    "roller.unbalance": 0.22877, "roller.f": 25.0,
+                                    "trough.k": 0.002, "trough.a": 0.601, "contact.mu": 0.7})
+    (o,) = oscidrum.run_study([case], threads=1)
+    r = o.result
+    assert o.ok and r.diagnostics.multiplicity == 2
+    assert r.stability == "stable" and r.floquet_max_modulus < 1.0
+    assert r.period1_stability == "period_doubling"
+    assert len(r.period1_floquet_multipliers) == 7
+    assert r.period1_floquet_multipliers[0].real < -1.0
+    back = pickle.loads(pickle.dumps(o))
+    assert back.result.period1_floquet_multipliers == r.period1_floquet_multipliers
+    assert back.result.period1_stability == "period_doubling"
+    plain = oscidrum.run_case(oscidrum.Case())
+    assert plain.result.period1_stability == "unknown"
+    assert plain.result.period1_floquet_multipliers == []
