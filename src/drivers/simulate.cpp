@@ -38,6 +38,9 @@ Status status_of(FlowStop stop) {
 
 namespace {
 
+// Periods a shooting orbit may be integrated on plainly to settle (see shooting()), at most.
+constexpr int kSettlePeriods = 32;
+
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
 // of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
 // Diagnostics::period_equivalents: measured as the CPU time of the side-by-side benchmarks
@@ -171,32 +174,84 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
       detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
-  const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
-  if (stop != FlowStop::reached || !(change < num.steady_tol)) {
-    if (!warm.from_state)
-      d.fallback = stop != FlowStop::reached
-                       ? "the orbit did not survive its sampling: " + flow.message()
-                       : "the orbit did not repeat under plain integration";
+  double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
+  const auto discard_samples = [&] {
     result.samples = Samples{};
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
     *sample_rhs = 0;
+  };
+  // Settled: the orbit moved a little under plain integration and the transient method's own
+  // test, run on from there, found it steady (sampled again after it).
+  std::optional<detail::SearchOutcome> settled;
+  double section = shot.t0;  // where the samples start
+  if (stop == FlowStop::reached && !(change < num.steady_tol) && p == 1) {
+    // Newton's orbit is the fixed point of the period map as the map integrates it, each period
+    // from a restart of the integrator; integrated on without restarts, the integrator's other
+    // steps put the fixed point a little elsewhere (a few steady_tol on soft soil), and the
+    // sampled periods move towards it (their period-to-period change falls by orders of magnitude
+    // within a few periods). The transient method's test, run on from there for at most
+    // kSettlePeriods periods, accepts it; otherwise the run falls back.
+    discard_samples();
+    d.periods_simulated += periods;  // integrated, and counted against the budget
+    const int budget = std::min(kSettlePeriods, num.max_periods - d.periods_simulated);
+    if (budget > 0) {
+      const detail::SearchOutcome search = detail::find_steady_state(flow, progress, budget);
+      d.periods_simulated += search.periods;
+      if (search.status == Status::steady_state && search.multiplicity == 1) {
+        section = flow.t();
+        const long rhs_again = flow.counters().rhs_evaluations;
+        const FlowStop again =
+            detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
+        *sample_rhs = (flow.counters().rhs_evaluations - rhs_again) / std::max(1, periods);
+        if (again == FlowStop::reached) {
+          settled = search;
+        } else {
+          discard_samples();
+        }
+      }
+    }
+    if (!settled) {
+      if (!warm.from_state)
+        d.fallback =
+            "the orbit did not repeat under plain integration (its change over the "
+            "sampled periods was " +
+            detail::format("%.3g", change) + ") and did not settle within " +
+            std::to_string(kSettlePeriods) + " more periods";
+      return false;
+    }
+  } else if (stop != FlowStop::reached || !(change < num.steady_tol)) {
+    if (!warm.from_state)
+      d.fallback = stop != FlowStop::reached
+                       ? "the orbit did not survive its sampling: " + flow.message()
+                       : "the orbit did not repeat under plain integration";
+    discard_samples();
     d.periods_simulated += periods;  // integrated, and counted against the budget
     return false;
   }
   result.status = Status::steady_state;
   result.message =
       warm.from_state ? shot.message + " from the neighbouring case's orbit" : shot.message;
+  if (settled)
+    result.message += detail::format(
+        "; integrated on plainly (its change over the sampled periods was %.3g, above "
+        "numerics.steady_tol), it settled after %.0f more periods",
+        change, settled->periods);
   result.floquet = shot.floquet;
   if (p > 1) result.period1_floquet = shot.period1_floquet;
   d.method = SteadyMethod::shooting;
   // A last Newton step taken on prediction was never mapped: what the sampled periods measured
   // (the change over output_periods periods, at most about twice the one-period change) is the
   // evaluated residual then.
-  d.final_change = shot.predicted_last_step ? change : shot.final_change;
-  d.periods_to_steady = shot.transient_periods;
+  d.final_change = settled                    ? settled->final_change
+                   : shot.predicted_last_step ? change
+                                              : shot.final_change;
+  d.periods_to_steady =
+      settled ? static_cast<int>(std::lround(section / model.period())) : shot.transient_periods;
   d.multiplicity = p;
-  d.phi_drift = shot.phi_drift;
+  d.phi_drift = settled && result.samples.size() > 0
+                    ? (flow.state().phi - result.samples.phi.front()) / periods
+                    : shot.phi_drift;
   d.periods_simulated += periods;
   d.max_slip_residual = std::max(flow.counters().max_slip_residual,
                                  warm.from_state ? 0.0 : shot.transient_max_slip_residual);

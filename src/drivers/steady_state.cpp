@@ -47,6 +47,7 @@ class Search : public FlowObserver {
         model_(flow.model()),
         num_(flow.model().parameters().numerics),
         period_(flow.model().period()),
+        base_(flow.t()),
         progress_(progress) {}
 
   SearchOutcome run();
@@ -81,6 +82,7 @@ class Search : public FlowObserver {
   const Model& model_;
   const Numerics& num_;
   const double period_;
+  const double base_;  // the flow's time at the start: a boundary, t = 0 from rest
   const ProgressCallback& progress_;
   SearchOutcome out_;
 
@@ -230,7 +232,7 @@ SearchOutcome Search::run() {
   range_lo_ = range_hi_ = x0;
   history_.emplace_front(x0, flow_.phase());
   for (int n = 1;; ++n) {
-    const FlowStop stop = flow_.advance(n * period_, this);
+    const FlowStop stop = flow_.advance(base_ + n * period_, this);
     if (stop != FlowStop::reached) {
       switch (stop) {
         case FlowStop::contact_lost:

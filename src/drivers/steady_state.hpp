@@ -23,7 +23,8 @@ struct SearchOutcome {
   std::vector<Event> recent_events;  ///< the last events before a stop other than steady/max
 };
 
-/// Run the search on `flow` (reset by the caller at t = 0). `progress` is called once per period.
+/// Run the search on `flow` (reset by the caller at t = 0, or standing at a later period boundary:
+/// the periods are counted from there). `progress` is called once per period.
 /// It gives up after `budget` periods (0: numerics.max_periods); `spent` > 0 periods were already
 /// integrated by shooting before it fell back, and the message says so.
 SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress, int budget = 0,
