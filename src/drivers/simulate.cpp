@@ -174,7 +174,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
       detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
-  double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
+  const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
   const auto discard_samples = [&] {
     result.samples = Samples{};
     result.events.clear();
