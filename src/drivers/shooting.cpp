@@ -30,6 +30,9 @@ constexpr int kMaxTransient = 24;
 constexpr int kMaxTransientMaps = 2;
 // Extensions of the short transient when Newton's first map changes phase (see run()), at most.
 constexpr int kMaxExtensions = 3;
+// When Newton fails from the short transient: the transient goes on plainly for this many
+// periods from where Newton started, and Newton tries once more (see run()).
+constexpr int kRetryTransient = 20;
 
 // Newton: at most kMaxNewton steps; each halves its step up to kMaxHalvings times until the
 // scaled residual decreases; more than kMaxSequenceChanges changes of the switching sequence
@@ -652,18 +655,50 @@ ShootingOutcome Shooter::run(const ShootingStart& start) {
   // not yet) can stop just before a switch drifts across the period boundary: the first map
   // then ends in another phase than it started in, and Newton cannot start. The transient goes
   // on from the end of that map instead (the map is one of its periods), up to kMaxExtensions
-  // times.
-  for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
-                          cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
-       ++extension) {
-    ++out.transient_periods;
-    have_first_ = false;
-    if (!transient_start(out, z, phase)) return out;
-    z = consistent(z, phase);
-    phase_ = phase;
-    cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
-  }
+  // times. False: the transient ended the run (`out` says how).
+  const auto extend_while_the_phase_changes = [&] {
+    for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
+                            cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
+         ++extension) {
+      ++out.transient_periods;
+      have_first_ = false;
+      if (!transient_start(out, z, phase)) return false;
+      z = consistent(z, phase);
+      phase_ = phase;
+      cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
+    }
+    return true;
+  };
+  if (!extend_while_the_phase_changes()) return out;
+  const State z_start = z;
+  const Phase phase_start = phase;
+  const double t_start = t0_;
   bool converged = newton(z, phase, cur, out);
+  // From rest, a few periods can leave the state too far from the orbit for Newton (with a
+  // driving torque at high frequency, where the transient method needs 100-600 periods: on a
+  // random scan every such failure converged from 20 periods later). The transient goes on
+  // plainly from where Newton started, and Newton tries once more, before the run falls back.
+  if (!converged && !start.from_state && p_ == 1 && !out.terminal && !budget_hit_ &&
+      spend(kRetryTransient)) {
+    PlainObserver range;
+    flow_.reset(t_start, z_start, phase_start);
+    FlowStop stop = flow_.advance(t_start + (kRetryTransient - 1) * period_);
+    if (stop == FlowStop::reached) {
+      range.start(flow_.state().to_array());
+      stop = flow_.advance(t_start + kRetryTransient * period_, &range);
+    }
+    if (stop == FlowStop::reached) {
+      set_scales(range);
+      out.transient_periods += kRetryTransient;
+      t0_ = flow_.t();
+      phase = flow_.phase();
+      z = consistent(flow_.state(), phase);
+      phase_ = phase;
+      cur = period_map(z, phase, true);
+      if (!extend_while_the_phase_changes()) return out;
+      converged = newton(z, phase, cur, out);
+    }
+  }
   if (converged) {
     // Floquet multipliers: eigenvalues of the monodromy at the orbit.
     out.floquet = multipliers_of(cur.M);

@@ -176,17 +176,18 @@ TEST(Shooting, MaxPeriodsBoundsAShootingRun) {
     }
   }
   // A case where shooting falls back (found by a random scan, docs/periodic.md): a driving torque
-  // of 8700 N m at 37 Hz on G = 65 MN/m^2 (Appendix B), mu = 0.35, R = 0.633 m. Newton's steps
-  // stop reducing the residual, and the transient method from rest reaches the steady state
-  // after about 120 periods: the fallback gets only what shooting left of the budget.
+  // of 12900 N m at 47.7 Hz on G = 140 MN/m^2 (Appendix B), mu = 0.5, R = 0.64 m. Newton's steps
+  // stop reducing the residual, also after the 20 more transient periods of its retry, and the
+  // transient method from rest reaches the steady state after about 175 periods: the fallback
+  // gets only what shooting left of the budget.
   Case hard;
   hard.soil.input = SoilInput::modulus;
-  hard.soil.G = 65e6;
+  hard.soil.G = 140e6;
   hard.roller.unbalance = 0.22877;
-  hard.roller.f = 37.0;
-  hard.MMd = 8700.0;
-  hard.contact.mu = 0.35;
-  hard.trough.a = 0.633;
+  hard.roller.f = 47.7;
+  hard.MMd = 12900.0;
+  hard.contact.mu = 0.5;
+  hard.trough.a = 0.64;
   const Result fell = simulate(hard);
   ASSERT_EQ(fell.status, Status::steady_state) << fell.message;
   ASSERT_EQ(fell.diagnostics.method, SteadyMethod::transient);
@@ -324,6 +325,35 @@ TEST(Shooting, ASwitchDriftingAcrossTheSectionExtendsTheTransient) {
   const Result trans = simulate(c);
   ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
   EXPECT_LT(shot.diagnostics.period_equivalents, trans.diagnostics.period_equivalents);
+  const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
+  const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
+  EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
+  EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
+  EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
+  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, tol);
+}
+
+// From a short transient, Newton can start too far from the orbit: with a driving torque of
+// 8700 N m at 37 Hz on G = 65 MN/m^2 (Appendix B), mu = 0.35, R = 0.633 m its steps stop reducing
+// the residual (the transient method needs about 120 periods from rest). The transient goes on
+// for 20 more periods and Newton converges from there, to the transient method's metrics.
+TEST(Shooting, NewtonRetriesAfterALongerTransient) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 65e6;
+  c.roller.unbalance = 0.22877;
+  c.roller.f = 37.0;
+  c.MMd = 8700.0;
+  c.contact.mu = 0.35;
+  c.trough.a = 0.633;
+  const Result shot = simulate(c);
+  ASSERT_EQ(shot.status, Status::steady_state) << shot.message;
+  EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
+  EXPECT_GE(shot.diagnostics.periods_to_steady, 20);  // the retry's transient
+  c.numerics.method = SteadyMethod::transient;
+  const Result trans = simulate(c);
+  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  EXPECT_LT(shot.diagnostics.periods_simulated, trans.diagnostics.periods_simulated / 2);
   const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
   const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
   EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
