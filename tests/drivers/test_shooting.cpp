@@ -151,6 +151,21 @@ TEST(Shooting, ShootingOnTheSecondIterateFindsTheStablePeriodOneOrbit) {
 // Issue 7: numerics.max_periods limits a shooting run too: the periods it integrates (short
 // transient, period maps of Newton with or without sensitivities) and those of a fallback to the
 // transient method share it, and a run out of periods ends as max_periods_reached.
+// The paper's roller (its unbalance, so M0 follows f) with a driving torque MMd [N m] at f [Hz]
+// on soil of modulus G [Pa] (Appendix B), friction mu, circular trough of radius R [m]: the
+// cases of the random scan in docs/periodic.md.
+Case driven_case(double G, double f, double MMd, double mu, double R) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = G;
+  c.roller.unbalance = 0.22877;
+  c.roller.f = f;
+  c.MMd = MMd;
+  c.contact.mu = mu;
+  c.trough.a = R;
+  return c;
+}
+
 TEST(Shooting, MaxPeriodsBoundsAShootingRun) {
   const Case base = stick_slip_case();
   const Result free = simulate(base);
@@ -180,14 +195,7 @@ TEST(Shooting, MaxPeriodsBoundsAShootingRun) {
   // stop reducing the residual, also after the 20 more transient periods of its retry, and the
   // transient method from rest reaches the steady state after about 175 periods: the fallback
   // gets only what shooting left of the budget.
-  Case hard;
-  hard.soil.input = SoilInput::modulus;
-  hard.soil.G = 140e6;
-  hard.roller.unbalance = 0.22877;
-  hard.roller.f = 47.7;
-  hard.MMd = 12900.0;
-  hard.contact.mu = 0.5;
-  hard.trough.a = 0.64;
+  Case hard = driven_case(140e6, 47.7, 12900.0, 0.5, 0.64);
   const Result fell = simulate(hard);
   ASSERT_EQ(fell.status, Status::steady_state) << fell.message;
   ASSERT_EQ(fell.diagnostics.method, SteadyMethod::transient);
@@ -304,6 +312,20 @@ TEST(Shooting, AgreesWithTheTransientMethod) {
   }
 }
 
+// The same case by the transient method (`trans`, which must reach a steady state) and the
+// metrics of both; the peaks and the area of `shot` agree with it to kMethodTolerance.
+constexpr double kMethodTolerance = 2e-7;  // as in AgreesWithTheTransientMethod
+void compare_with_transient(Case c, const Result& shot, Result& trans, Metrics& a, Metrics& b) {
+  c.numerics.method = SteadyMethod::transient;
+  trans = simulate(c);
+  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  a = compute_metrics(shot);
+  b = compute_metrics(trans);
+  EXPECT_NEAR(a.ddx_max, b.ddx_max, kMethodTolerance * std::abs(b.ddx_max));
+  EXPECT_NEAR(a.ddz_max, b.ddz_max, kMethodTolerance * std::abs(b.ddz_max));
+  EXPECT_NEAR(a.area, b.area, kMethodTolerance * std::abs(b.area));
+}
+
 // A short transient can stop while its switches still move: here (G = 25 MN/m^2, mu = 0.3,
 // MMd = 0.1 M0, R = 0.603 m) the slip end falls at 0.878 T, then 0.915 T in the first two periods
 // (the same sequence, so the transient stops), crosses the period boundary in the third and
@@ -321,16 +343,12 @@ TEST(Shooting, ASwitchDriftingAcrossTheSectionExtendsTheTransient) {
   EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
   EXPECT_EQ(shot.diagnostics.fallback, "");
   EXPECT_GT(shot.diagnostics.periods_to_steady, 2);  // the transient went on
-  c.numerics.method = SteadyMethod::transient;
-  const Result trans = simulate(c);
-  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  Result trans;
+  Metrics a, b;
+  compare_with_transient(c, shot, trans, a, b);
+  if (HasFatalFailure()) return;
   EXPECT_LT(shot.diagnostics.period_equivalents, trans.diagnostics.period_equivalents);
-  const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
-  const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
-  EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
-  EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
-  EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
-  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, tol);
+  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, kMethodTolerance);
 }
 
 // From a short transient, Newton can start too far from the orbit: with a driving torque of
@@ -338,28 +356,17 @@ TEST(Shooting, ASwitchDriftingAcrossTheSectionExtendsTheTransient) {
 // the residual (the transient method needs about 120 periods from rest). The transient goes on
 // for 20 more periods and Newton converges from there, to the transient method's metrics.
 TEST(Shooting, NewtonRetriesAfterALongerTransient) {
-  Case c;
-  c.soil.input = SoilInput::modulus;
-  c.soil.G = 65e6;
-  c.roller.unbalance = 0.22877;
-  c.roller.f = 37.0;
-  c.MMd = 8700.0;
-  c.contact.mu = 0.35;
-  c.trough.a = 0.633;
+  Case c = driven_case(65e6, 37.0, 8700.0, 0.35, 0.633);
   const Result shot = simulate(c);
   ASSERT_EQ(shot.status, Status::steady_state) << shot.message;
   EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
   EXPECT_GE(shot.diagnostics.periods_to_steady, 20);  // the retry's transient
-  c.numerics.method = SteadyMethod::transient;
-  const Result trans = simulate(c);
-  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  Result trans;
+  Metrics a, b;
+  compare_with_transient(c, shot, trans, a, b);
+  if (HasFatalFailure()) return;
   EXPECT_LT(shot.diagnostics.periods_simulated, trans.diagnostics.periods_simulated / 2);
-  const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
-  const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
-  EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
-  EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
-  EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
-  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, tol);
+  EXPECT_NEAR(a.stick_fraction, b.stick_fraction, kMethodTolerance);
 }
 
 // Newton's orbit is the fixed point of the period map as the map integrates it (each period from
@@ -384,18 +391,14 @@ TEST(Shooting, AnOrbitThatMovesUnderPlainIntegrationSettles) {
   // periods_to_steady.
   const double T = Model(c).period();
   EXPECT_NEAR(shot.samples.t.front(), shot.diagnostics.periods_to_steady * T, 1e-9 * T);
-  c.numerics.method = SteadyMethod::transient;
-  const Result trans = simulate(c);
-  ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+  Result trans;
+  Metrics a, b;
+  compare_with_transient(c, shot, trans, a, b);
+  if (HasFatalFailure()) return;
   EXPECT_LT(shot.diagnostics.periods_simulated, trans.diagnostics.periods_simulated / 3);
-  const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
-  const double tol = 2e-7;  // as in AgreesWithTheTransientMethod
-  EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
-  EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
-  EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
-  EXPECT_NEAR(a.friction_work, b.friction_work, tol * std::abs(b.friction_work));
+  EXPECT_NEAR(a.friction_work, b.friction_work, kMethodTolerance * std::abs(b.friction_work));
   const double scale = std::abs(b.phi_amplitude);
-  EXPECT_NEAR(shot.diagnostics.phi_drift, trans.diagnostics.phi_drift, tol * scale);
+  EXPECT_NEAR(shot.diagnostics.phi_drift, trans.diagnostics.phi_drift, kMethodTolerance * scale);
 }
 
 // A real period doubling (found by examples/cpp/floquet_scan, docs/periodic.md): the paper's log
