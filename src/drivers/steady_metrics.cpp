@@ -141,7 +141,8 @@ struct Extremes {
   }
 };
 
-// The scan: the interpolation nodes (exact values), in increasing t. Maxima only if want_max,
+// The interior extrema of one piece, bracketed by its interpolation nodes (exact values, scanned
+// in increasing t; the caller has added the node values themselves). Maxima only if want_max,
 // minima only if want_min.
 void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kNodes>& values,
                   bool want_max, bool want_min, Extremes& out) {
@@ -151,7 +152,6 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
   for (int k = 0; k <= kScan; ++k) {
     ts[k] = k == 0 ? a : k == kScan ? b : Interpolant::node(a, b, kScan - k);
     scan[k] = values[kScan - k];
-    out.add(scan[k]);
   }
   // f' and f'' only for a piece that holds an extremum or ends on the way to one (most do not).
   Interpolant df, d2f;
