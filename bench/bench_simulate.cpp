@@ -17,7 +17,7 @@ oscidrum::Case bench_case(bool pure_rolling, double MMd_fraction, double rtol,
                           double R = 0.606) {
   oscidrum::Case c;
   c.numerics.method = method;
-  c.trough.a = R;
+  c.trough.shape = oscidrum::CircleTrough{R};
   c.soil = oscidrum::table2_soil(25e6);
   c.contact.pure_rolling = pure_rolling;
   c.contact.mu = 0.5;

@@ -16,7 +16,7 @@ std::vector<oscidrum::Case> table2_sweep(bool continuation) {
         oscidrum::Case c;
         c.numerics.method = oscidrum::SteadyMethod::shooting;
         c.numerics.continuation = continuation;
-        c.trough.a = R;
+        c.trough.shape = oscidrum::CircleTrough{R};
         c.soil = oscidrum::table2_soil(row.G);
         c.contact.pure_rolling = pure;
         cases.push_back(c);

@@ -46,9 +46,7 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
   s.line("csh, csv", fmt(k.csh / 1e3, 4) + ", " + fmt(k.csv / 1e3, 4) + " kN s/m");
   s.line("contact", c.contact.pure_rolling ? "pure rolling (no friction limit)"
                                            : "Coulomb friction, mu = " + fmt(c.contact.mu));
-  s.line("trough", c.trough.k == 0.0
-                       ? "circle, R = " + fmt(c.trough.a) + " m"
-                       : "log spiral, k = " + fmt(c.trough.k) + ", a = " + fmt(c.trough.a) + " m");
+  s.line("trough", summary(c.trough.shape));
   const double M0 = oscillation_moment(c.roller);
   s.line("excitation", "f = " + fmt(c.roller.f) + " Hz, M0 = " + fmt(M0) + " N m" +
                            (c.roller.unbalance > 0.0 ? " (4 m_u e_u e_w nu^2 (5), m_u e_u e_w = " +

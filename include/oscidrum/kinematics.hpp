@@ -6,22 +6,15 @@
 
 namespace oscidrum {
 
-/// The trough's shape with the drum radius and derived values cached for the kinematics
-/// (docs/model.md section 1.4): R(theta) = a exp(k theta), alpha = atan(1/k), theta0 = pi - alpha,
-/// R0 = a exp(k theta0); the circle (k = 0): alpha = pi/2, R0 = a.
+/// The trough's shape with the drum radius: what the kinematics need (docs/model.md section 1.4).
+/// The shape holds its own parameters and derived values (oscidrum/trough.hpp).
 struct TroughGeometry {
-  TroughShape shape;                  ///< circle or log spiral; the kinematics dispatch on it
-  double r = 0.6;                     ///< drum radius [m]
-  double k = 0.0;                     ///< [-]
-  double a = 0.606;                   ///< [m]
-  double alpha = 1.5707963267948966;  ///< [rad]
-  double R0 = 0.606;                  ///< [m]
-  double sin_alpha = 1.0;             ///< sin(alpha), cached [-]
-  double cos_alpha = 0.0;             ///< cos(alpha), cached [-]
-  double root = 1.0;                  ///< sqrt(1 + k^2), cached [-]
+  TroughShape shape;  ///< the kinematics dispatch on it
+  double r = 0.6;     ///< drum radius [m]
 };
 
-/// Build the derived geometry from r, k, a (k = 0: the circle of radius a).
+/// The geometry of a drum of radius r [m] in the trough that trough.k and trough.a describe
+/// (trough_shape: k = 0 is the circle of radius a).
 TroughGeometry make_trough_geometry(double r, double k, double a);
 
 /// Everything that depends on delta alone.
@@ -42,7 +35,8 @@ struct Kinematics {
   double f4_tilde = 0.0;  ///< (37) f2 sin + f4 cos (identically -f1_bar)
 };
 
-/// Evaluate (15), (16), (46)-(50), (33), (37) at delta [rad], by the shape's own formulas.
+/// Evaluate (15), (16), (46)-(50), (33), (37) at delta [rad], by the shape's own formulas
+/// (std::visit on the shape).
 Kinematics kinematics(const TroughGeometry& geometry, double delta);
 
 /// Third derivatives of the roll curves (15), (16), for the Jacobians of the equations of motion.
@@ -53,8 +47,8 @@ struct KinematicsRates {
 };
 KinematicsRates kinematics_rates(const TroughGeometry& geometry, double delta);
 
-/// Rolling condition (11): phi as a function of delta with no slip since t = 0 [rad]
-/// (k -> 0: (R0 - r) delta / r).
+/// Rolling condition (11): phi as a function of delta with no slip since t = 0 [rad], by the
+/// shape's own formula.
 double phi_rolling(const TroughGeometry& geometry, double delta);
 
 }  // namespace oscidrum

@@ -5,6 +5,8 @@
 
 #include <numbers>
 
+#include "oscidrum/trough.hpp"
+
 namespace oscidrum {
 
 /// The drum and its suspension (paper Table 1).
@@ -51,11 +53,11 @@ struct Soil {
   double csv = 263.0e3;  ///< vertical dashpot [N s/m] (input == coefficients)
 };
 
-/// The settlement trough: logarithmic spiral R(theta) = a exp(k theta) (8); k = 0 is a circle of
-/// radius a.
+/// The settlement trough: its shape, a component of oscidrum/trough.hpp (the paper's circle of
+/// radius 0.606 m by default). The case keys trough.k and trough.a give it as the logarithmic
+/// spiral R(theta) = a exp(k theta) (8), k = 0 being the circle of radius a (trough_shape).
 struct Trough {
-  double k = 0.0;    ///< spiral parameter [-], k >= 0 (0: circle)
-  double a = 0.606;  ///< spiral parameter [m]; the circle's radius when k = 0
+  TroughShape shape;  ///< CircleTrough{0.606} by default
 };
 
 /// Drum/soil contact.

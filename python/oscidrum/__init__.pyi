@@ -691,19 +691,17 @@ class Trough:
     def to_dict(self: Trough, all: bool = ...) -> dict: ...
 
 class TroughGeometry:
-    R0: float
-    """R0 = a exp(k theta0) [m]"""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
-    a: float
-    """spiral parameter [m]"""
-    alpha: float
-    """alpha = atan(1/k) [rad]"""
-    k: float
-    """spiral parameter [-]"""
+    curvature_radius: float
+    """radius of curvature of the trough at its bottom [m] (R of a circle, sqrt(1+k^2) R0 of a log spiral)"""
+    parameters: dict
+    """the shape's parameters {symbol: value} in SI units (e.g. {'R': 0.606}; a log spiral also its derived alpha [rad] and R0 [m])"""
     r: float
     """drum radius [m]"""
     shape: str
-    """the trough's shape: 'circle' (k = 0, radius a) or 'log_spiral' (k > 0)"""
+    """the trough's shape: one of 'circle', 'log_spiral'"""
+    summary: str
+    """the shape in words, e.g. 'circle, R = 0.606 m'"""
 
 class ValidationRow:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...

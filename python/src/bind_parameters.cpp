@@ -302,6 +302,9 @@ std::vector<std::string> differing(const Case& c, const char* group, bool flat) 
   std::vector<std::string> out;
   const bool table2_soil_given = is_table2(c.soil);
   const bool default_soil = table2_soil_given && c.soil.G == d.soil.G;
+  std::string_view first_trough_key;
+  for (const Field& f : fields())
+    if (first_trough_key.empty() && in_group(f.key, "trough")) first_trough_key = f.key;
   for (const Field& f : fields()) {
     const std::string_view key = f.key;
     if (group != nullptr && !in_group(key, group)) continue;
@@ -314,13 +317,17 @@ std::vector<std::string> differing(const Case& c, const char* group, bool flat) 
         out.push_back("table2_G=" + py::repr(py::float_(c.soil.G)).cast<std::string>());
       continue;
     }
-    if (key == "trough.a" && flat && c.trough.k == 0.0) {
-      if (c.trough.a != d.trough.a)
-        out.push_back(std::string(kRadius) + "=" + python_literal(c, f));
+    if (flat && in_group(key, "trough")) {
+      // The trough as its shape describes itself: a circle is R=..., a log spiral k=..., a=...
+      if (key == first_trough_key && !(c.trough.shape == d.trough.shape))
+        for (const TroughParameter& p : parameters(c.trough.shape))
+          if (p.key != nullptr)
+            out.push_back(
+                (std::string(p.symbol) == kRadius ? std::string(kRadius) : keyword(p.key)) + "=" +
+                py::repr(py::float_(p.value)).cast<std::string>());
       continue;
     }
-    if (key == "trough.k" && flat && c.trough.k == 0.0) continue;
-    if (f.get(c) == f.get(d) && !(key == "trough.a" && c.trough.k != 0.0)) continue;
+    if (f.get(c) == f.get(d)) continue;
     out.push_back(name + "=" + python_literal(c, f));
   }
   return out;
@@ -555,7 +562,7 @@ void bind_parameters(py::module_& m) {
       "get",
       [](const Case& c, const std::string& name) {
         const std::string key = resolve_key(name);
-        if (key == kRadius) return py::object(py::float_(c.trough.a));
+        if (key == kRadius) return py::object(py::float_(get_field(c, "trough.a")));
         if (const Field* f = find_field(key)) return field_value(c, *f);
         if (key == "MMd_fraction") return py::object(py::float_(c.MMd / c.roller.M0));
         return py::object(py::float_(c.soil.G));  // soil.table2_G

@@ -100,16 +100,18 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   j["soil"] = soil_json(spec, c);
 
   const Roller& R = c.roller;
-  const TroughGeometry g = make_trough_geometry(R.r, c.trough.k, c.trough.a);
   j["derived"] = {
       {"Fz", number(R.P0 - R.m * R.g)},
       {"W", number(R.P0)},
       {"nu", number(2.0 * M_PI * R.f)},
       {"period", number(1.0 / R.f)},
       {"M0", number(oscillation_moment(R))},
-      {"MMd_fraction", number(oscillation_moment(R) != 0.0 ? c.MMd / oscillation_moment(R) : NAN)},
-      {"R0", number(g.R0)},
-      {"alpha", number(g.alpha)}};
+      {"MMd_fraction", number(oscillation_moment(R) != 0.0 ? c.MMd / oscillation_moment(R) : NAN)}};
+  // The trough as its shape describes itself: its name and its parameters (given and derived).
+  json trough = {{"shape", trough_name(c.trough.shape)}};
+  for (const TroughParameter& p : parameters(c.trough.shape)) trough[p.symbol] = number(p.value);
+  trough["curvature_radius"] = number(curvature_radius_at_bottom(c.trough.shape));
+  j["derived"]["trough"] = trough;
   // Appendix A: how much of the drum's oscillation reaches the frame (40).
   const Transmissibility tr = transmissibility(R.kd, R.cd, R.m_f, 2.0 * M_PI * R.f);
   j["derived"]["transmissibility"] = {{"m_f", number(R.m_f)},

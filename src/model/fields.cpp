@@ -21,6 +21,11 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
+// The trough keys read the shape (key_value) and set it through trough_shape(k, a): k = 0 is the
+// circle of radius a, k > 0 the log spiral (oscidrum/trough.hpp).
+double trough_k(const Case& c) { return key_value(c.trough.shape, "trough.k"); }
+double trough_a(const Case& c) { return key_value(c.trough.shape, "trough.a"); }
+
 // Accessor pairs. Captureless lambdas convert to the plain function pointers of Field.
 #define OSCIDRUM_REAL(path) \
   [](const Case& c) { return static_cast<double>(c.path); }, [](Case& c, double v) { c.path = v; }
@@ -90,10 +95,12 @@ const std::array kFields = {
     Field{"trough.k", FieldType::real, "-",
           "log-spiral parameter k (0: circle of radius a); at most 1: a settlement trough, not a "
           "tight spiral",
-          0, 1, false, false, nullptr, OSCIDRUM_REAL(trough.k)},
+          0, 1, false, false, nullptr, [](const Case& c) { return trough_k(c); },
+          [](Case& c, double v) { c.trough.shape = trough_shape(v, trough_a(c)); }},
     Field{"trough.a", FieldType::real, "m",
           "log-spiral parameter a; the trough radius R when k = 0 (must exceed roller.r)", 0, inf,
-          true, false, nullptr, OSCIDRUM_REAL(trough.a)},
+          true, false, nullptr, [](const Case& c) { return trough_a(c); },
+          [](Case& c, double v) { c.trough.shape = trough_shape(trough_k(c), v); }},
     // contact
     Field{"contact.mu", FieldType::real, "-",
           "Coulomb friction coefficient drum/soil (the kinetic one when contact.mu_static is set)",

@@ -29,9 +29,7 @@ void validate(const Case& c) {
     throw Error(
         "roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
         num(R.P0) + " < m g = " + num(R.m * R.g));
-  if (const std::string problem = trough_problem(trough_shape(c.trough.k, c.trough.a), R.r);
-      !problem.empty())
-    throw Error(problem);
+  check_fit(c.trough.shape, R.r);
   if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
     throw Error(
         "contact.mu_static must be >= contact.mu (static friction is at least the kinetic), or "
@@ -56,7 +54,7 @@ void validate(const Case& c) {
 Model::Model(const Case& c) : case_(c) {
   validate(c);
   const Roller& R = c.roller;
-  geometry_ = make_trough_geometry(R.r, c.trough.k, c.trough.a);
+  geometry_ = TroughGeometry{c.trough.shape, R.r};
   friction_ = friction_law(c.contact);
   mu_static_ = c.contact.pure_rolling ? c.contact.mu : cone_coefficient(friction_);
   SoilCoefficients s = soil_coefficients(c.soil, R);
@@ -68,13 +66,14 @@ Model::Model(const Case& c) : case_(c) {
   W_ = R.m * R.g + Fz_;    // the vertical load on the drum, = P0
   // The trough must be measurably larger than the drum: with a clearance (curvature radius at
   // the bottom minus r) far below the static soil deflection, the rolling relation (11)
-  // degenerates (f5 = sqrt(1+k^2) R0/r - 1 -> 0 divides the stick equation) and no integrator
-  // can follow the drum. 1 % of the deflection W / (ksv + kd) is far below any trough a drum
-  // digs (the paper's smallest clearance, 3 mm, is over 10 times the deflection).
+  // degenerates (f5(0) = curvature radius / r - 1 -> 0 divides the stick equation) and no
+  // integrator can follow the drum. 1 % of the deflection W / (ksv + kd) is far below any trough a
+  // drum digs (the paper's smallest clearance, 3 mm, is over 10 times the deflection).
   const double clearance = curvature_radius_at_bottom(geometry_.shape) - R.r;
   const double deflection = W_ / (s.ksv + R.kd);
   if (clearance < 0.01 * deflection)
-    throw Error("trough: the clearance between trough and drum, sqrt(1+k^2) R0 - roller.r = " +
+    throw Error("trough: the clearance between trough and drum, " +
+                std::string(curvature_radius_formula(geometry_.shape)) + " - roller.r = " +
                 num(clearance) + " m, must be at least 1 % of the static soil deflection W / " +
                 "(ksv + kd) = " + num(deflection) +
                 " m: a trough of the drum's own size makes the rolling relation (11) degenerate");

@@ -119,8 +119,7 @@ Case paper_case(const PaperSeries& series, double G) {
   c.contact.pure_rolling = series.pure_rolling;
   c.contact.mu = series.mu;
   c.MMd = series.MMd_fraction * oscillation_moment(c.roller);
-  c.trough.k = series.k;
-  c.trough.a = series.a;
+  c.trough.shape = trough_shape(series.k, series.a);
   return c;
 }
 

@@ -3,14 +3,43 @@
 // (R - r) s) so that they round exactly as the spiral's formulas at k = 0 did, which keeps the
 // stored regression profiles bit for bit.
 #include <cmath>
+#include <limits>
 
 #include "physics/trough_shapes.hpp"
+#include "util/format.hpp"
 
-namespace oscidrum::detail {
+namespace oscidrum {
 
-Kinematics circle_kinematics(const TroughGeometry& g, double delta) {
+using detail::shortest;
+
+std::string summary(const CircleTrough& s) { return "circle, R = " + shortest(s.R) + " m"; }
+
+std::vector<TroughParameter> parameters(const CircleTrough& s) {
+  return {{"R", s.R, "m", "trough.a"}};
+}
+
+double key_value(const CircleTrough& s, std::string_view key) {
+  if (key == "trough.k") return 0.0;  // the circle is the spiral family's k = 0
+  if (key == "trough.a") return s.R;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double curvature_radius_at_bottom(const CircleTrough& s) { return s.R; }
+
+const char* curvature_radius_formula(const CircleTrough&) { return "trough.a"; }
+
+FitProblem fit_problem(const CircleTrough& s, double r) {
+  if (s.R > r) return {};
+  return {
+      "trough.a must be > roller.r for a circular trough (k = 0): the trough radius R = a "
+      "must exceed the drum radius [m]; got a = " +
+          shortest(s.R) + " <= r = " + shortest(r),
+      "trough.a"};
+}
+
+Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
   Kinematics q;
-  const double R = g.R0, r = g.r;
+  const double R = trough.R;
   const double s = std::sin(delta), c = std::cos(delta);
   q.sin_delta = s;
   q.cos_delta = c;
@@ -22,12 +51,12 @@ Kinematics circle_kinematics(const TroughGeometry& g, double delta) {
   q.f4 = -R * c + r * c;               // (49)
   q.f5 = R / r - 1.0;                  // (50): phi' = (R - r) / r delta' in stick
   q.f6 = 0.0;                          // (50)
-  set_bar_tilde(q);
+  detail::set_bar_tilde(q);
   return q;
 }
 
-KinematicsRates circle_kinematics_rates(const TroughGeometry& g, double delta) {
-  const double R = g.R0, r = g.r;
+KinematicsRates kinematics_rates(const CircleTrough& trough, double r, double delta) {
+  const double R = trough.R;
   KinematicsRates d;
   d.df2 = -R * std::cos(delta) + r * std::cos(delta);
   d.df4 = R * std::sin(delta) - r * std::sin(delta);
@@ -35,8 +64,8 @@ KinematicsRates circle_kinematics_rates(const TroughGeometry& g, double delta) {
   return d;
 }
 
-double circle_phi_rolling(const TroughGeometry& g, double delta) {
-  return g.R0 * delta / g.r - delta;  // (11) at k = 0: (R - r) delta / r
+double phi_rolling(const CircleTrough& trough, double r, double delta) {
+  return trough.R * delta / r - delta;  // (11) at k = 0: (R - r) delta / r
 }
 
-}  // namespace oscidrum::detail
+}  // namespace oscidrum

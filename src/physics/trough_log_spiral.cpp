@@ -1,56 +1,102 @@
 // The log-spiral trough R(theta) = a exp(k theta), k > 0 (8): the roll curve (15)-(16), its
 // derivatives (46)-(50) and the rolling relation (11).
 #include <cmath>
+#include <limits>
 
 #include "physics/trough_shapes.hpp"
+#include "util/format.hpp"
 
-namespace oscidrum::detail {
+namespace oscidrum {
 
-Kinematics log_spiral_kinematics(const TroughGeometry& g, double delta) {
+using detail::shortest;
+
+LogSpiralTrough::LogSpiralTrough(double k, double a) : k_(k), a_(a) {
+  alpha_ = std::atan2(1.0, k);          // (8): alpha = arctan(1/k); k = 0 gives pi/2 exactly
+  const double theta0 = M_PI - alpha_;  // (8)
+  R0_ = a * std::exp(k * theta0);       // (8)
+  sin_alpha_ = std::sin(alpha_);
+  cos_alpha_ = (k == 0.0) ? 0.0 : std::cos(alpha_);
+  root_ = std::sqrt(1.0 + k * k);
+}
+
+std::string summary(const LogSpiralTrough& s) {
+  return "log spiral, k = " + shortest(s.k()) + ", a = " + shortest(s.a()) + " m";
+}
+
+std::vector<TroughParameter> parameters(const LogSpiralTrough& s) {
+  return {{"k", s.k(), "-", "trough.k"},
+          {"a", s.a(), "m", "trough.a"},
+          {"alpha", s.alpha(), "rad", nullptr},
+          {"R0", s.R0(), "m", nullptr}};
+}
+
+double key_value(const LogSpiralTrough& s, std::string_view key) {
+  if (key == "trough.k") return s.k();
+  if (key == "trough.a") return s.a();
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double curvature_radius_at_bottom(const LogSpiralTrough& s) { return s.root() * s.R0(); }
+
+const char* curvature_radius_formula(const LogSpiralTrough&) { return "sqrt(1+k^2) R0"; }
+
+FitProblem fit_problem(const LogSpiralTrough& s, double r) {
+  // The curvature radius at the bottom, sqrt(1+k^2) R0, must exceed r (f5(0) > 0).
+  const double rho = curvature_radius_at_bottom(s);
+  if (rho > r) return {};
+  return {
+      "trough (k, a) must give a curvature radius sqrt(1+k^2) R0 > roller.r at the bottom "
+      "[m]; got " +
+          shortest(rho) + " <= " + shortest(r),
+      "trough.a"};
+}
+
+Kinematics kinematics(const LogSpiralTrough& g, double r, double delta) {
   Kinematics q;
-  const double k = g.k, r = g.r;
+  const double k = g.k();
   const double E = std::exp(-k * delta);
   const double s = std::sin(delta), c = std::cos(delta);
   // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
-  const double sa = g.sin_alpha, ca = g.cos_alpha;
+  const double sa = g.sin_alpha(), ca = g.cos_alpha();
   const double sad = sa * c + ca * s, cad = ca * c - sa * s;
-  const double RE = g.R0 * E;
+  const double RE = g.R0() * E;
 
   q.sin_delta = s;
   q.cos_delta = c;
-  q.x_roll = -RE * cad - r * s + g.R0 * ca;                    // (15)
-  q.z_roll = RE * sad - r * c - (g.R0 * sa - r);               // (16)
+  q.x_roll = -RE * cad - r * s + g.R0() * ca;                  // (15)
+  q.z_roll = RE * sad - r * c - (g.R0() * sa - r);             // (16)
   q.f1 = RE * (k * cad + sad) - r * c;                         // (46)
   q.f2 = RE * ((1.0 - k * k) * cad - 2.0 * k * sad) + r * s;   // (47)
   q.f3 = -RE * (k * sad - cad) + r * s;                        // (48)
   q.f4 = -RE * ((1.0 - k * k) * sad + 2.0 * k * cad) + r * c;  // (49)
-  q.f5 = g.root * E * g.R0 / r - 1.0;                          // (50)
-  q.f6 = -k * g.root * E * g.R0 / r;                           // (50)
-  set_bar_tilde(q);
+  q.f5 = g.root() * E * g.R0() / r - 1.0;                      // (50)
+  q.f6 = -k * g.root() * E * g.R0() / r;                       // (50)
+  detail::set_bar_tilde(q);
   return q;
 }
 
-KinematicsRates log_spiral_kinematics_rates(const TroughGeometry& g, double delta) {
+KinematicsRates kinematics_rates(const LogSpiralTrough& g, double r, double delta) {
   // Derivatives of (47), (49) and (50), with u = alpha + delta and
   // d exp(-k delta) / d delta = -k exp(-k delta).
-  const double k = g.k, r = g.r;
+  const double k = g.k();
   const double E = std::exp(-k * delta);
   const double s = std::sin(delta), c = std::cos(delta);
-  const double su = g.sin_alpha * c + g.cos_alpha * s, cu = g.cos_alpha * c - g.sin_alpha * s;
-  const double RE = g.R0 * E;
+  const double su = g.sin_alpha() * c + g.cos_alpha() * s;
+  const double cu = g.cos_alpha() * c - g.sin_alpha() * s;
+  const double RE = g.R0() * E;
   KinematicsRates d;
   d.df2 = RE * ((k * k * k - 3.0 * k) * cu + (3.0 * k * k - 1.0) * su) + r * c;
   d.df4 = -RE * ((k * k * k - 3.0 * k) * su + (1.0 - 3.0 * k * k) * cu) - r * s;
-  d.df6 = -k * (-k * g.root * E * g.R0 / r);
+  d.df6 = -k * (-k * g.root() * E * g.R0() / r);
   return d;
 }
 
-double log_spiral_phi_rolling(const TroughGeometry& g, double delta) {
+double phi_rolling(const LogSpiralTrough& g, double r, double delta) {
   // (11): phi = sqrt(1 + k^2) / (k r) R0 [1 - exp(-k delta)] - delta. For small k delta use the
   // series of (1 - exp(-x)) / x to avoid cancellation.
-  const double x = g.k * delta;
+  const double x = g.k() * delta;
   const double ratio = std::abs(x) < 1e-5 ? 1.0 - x / 2.0 + x * x / 6.0 : -std::expm1(-x) / x;
-  return g.root * g.R0 * delta * ratio / g.r - delta;
+  return g.root() * g.R0() * delta * ratio / r - delta;
 }
 
-}  // namespace oscidrum::detail
+}  // namespace oscidrum

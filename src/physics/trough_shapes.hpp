@@ -1,20 +1,10 @@
-// Internal: the kinematics of each trough shape (oscidrum/trough.hpp). kinematics.cpp dispatches
-// on the shape; each shape's file holds its formulas.
+// Internal: what the trough shapes' files share (oscidrum/trough.hpp). Each shape's formulas are
+// in its own file, src/physics/trough_<name>.cpp.
 #pragma once
 
 #include "oscidrum/kinematics.hpp"
 
 namespace oscidrum::detail {
-
-// The circle (src/physics/trough_circle.cpp).
-Kinematics circle_kinematics(const TroughGeometry& g, double delta);
-KinematicsRates circle_kinematics_rates(const TroughGeometry& g, double delta);
-double circle_phi_rolling(const TroughGeometry& g, double delta);
-
-// The log spiral (src/physics/trough_log_spiral.cpp).
-Kinematics log_spiral_kinematics(const TroughGeometry& g, double delta);
-KinematicsRates log_spiral_kinematics_rates(const TroughGeometry& g, double delta);
-double log_spiral_phi_rolling(const TroughGeometry& g, double delta);
 
 // (33), (37) from f1 ... f4, shared by the shapes.
 inline void set_bar_tilde(Kinematics& q) {

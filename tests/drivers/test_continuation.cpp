@@ -177,7 +177,7 @@ TEST(Continuation, ChainsFollowTheInnermostLoopOfAProduct) {
   for (double R : {0.606, 0.62, 0.65})
     for (double G : {5e6, 10e6, 15e6, 20e6}) {
       Case c = shooting_case(G, true);
-      c.trough.a = R;
+      c.trough.shape = CircleTrough{R};
       cases.push_back(c);
     }
   const std::vector<std::ptrdiff_t> p = continuation_chains(cases);

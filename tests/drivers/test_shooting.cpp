@@ -162,7 +162,7 @@ Case driven_case(double G, double f, double MMd, double mu, double R) {
   c.roller.f = f;
   c.MMd = MMd;
   c.contact.mu = mu;
-  c.trough.a = R;
+  c.trough.shape = CircleTrough{R};
   return c;
 }
 
@@ -337,7 +337,7 @@ TEST(Shooting, ASwitchDriftingAcrossTheSectionExtendsTheTransient) {
   c.soil = table2_soil(25e6);
   c.contact.mu = 0.3;
   c.MMd = 0.1 * oscillation_moment(c.roller);
-  c.trough.a = 0.603;
+  c.trough.shape = CircleTrough{0.603};
   const Result shot = simulate(c);
   ASSERT_EQ(shot.status, Status::steady_state) << shot.message;
   EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
@@ -412,8 +412,7 @@ Case period_doubling_case() {
   c.soil.G = 150e6;
   c.roller.unbalance = 0.22877;
   c.roller.f = 25.0;
-  c.trough.k = 0.002;
-  c.trough.a = 0.601;
+  c.trough.shape = trough_shape(0.002, 0.601);
   c.contact.mu = 0.7;
   c.numerics.method = SteadyMethod::shooting;
   return c;

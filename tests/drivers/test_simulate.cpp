@@ -219,7 +219,7 @@ TEST(Simulate, LargeFrictionEqualsPureRolling) {
 // k -> 0: the log spiral tends to the circle of radius a (docs/model.md section 1.4).
 TEST(Simulate, SpiralTendsToCircle) {
   Case circle = pure_rolling_case(20), spiral = circle;
-  spiral.trough.k = 1e-8;
+  spiral.trough.shape = trough_shape(1e-8, get_field(circle, "trough.a"));
   const Result a = simulate(circle), b = simulate(spiral);
   ASSERT_EQ(a.status, Status::steady_state);
   ASSERT_EQ(b.status, Status::steady_state);
@@ -235,7 +235,7 @@ TEST(Simulate, SpiralTendsToCircle) {
 // must approach it as the soil stiffens, the error falling like 1/k (0.11, 5e-3, 7e-4, 7e-5 for
 // k = 1e8 ... 1e11 N/m; a 1 % change of I in the reference moves it by 1e-2).
 double rolling_disc_delta(const Case& c, double t_end) {
-  const double R = c.trough.a, r = c.roller.r, L = R - r;
+  const double R = get_field(c, "trough.a"), r = c.roller.r, L = R - r;
   const double m = c.roller.m, I = c.roller.I, kd = c.roller.kd, cd = c.roller.cd;
   const double W = c.roller.P0, nu = 2 * M_PI * c.roller.f;
   auto acc = [&](double t, double d, double v) {
@@ -411,7 +411,7 @@ TEST(Simulate, SteadyStateAtTheNoiseFloorIsAccepted) {
   c.soil.nu = 0.42439;
   c.soil.rho = 1905.37313;
   c.MMd = -258.08125;
-  c.trough.a = 0.65787;
+  c.trough.shape = CircleTrough{0.65787};
   const Result r = simulate(c);
   ASSERT_EQ(r.status, Status::steady_state) << r.message;
   EXPECT_LT(r.diagnostics.final_change, 1e-7);
@@ -450,7 +450,7 @@ TEST(Simulate, TooManySamplesAreRefusedBeforeIntegrating) {
 
 TEST(Simulate, InvalidCaseThrowsBeforeIntegrating) {
   Case c;
-  c.trough.a = 0.59;
+  c.trough.shape = CircleTrough{0.59};
   EXPECT_THROW(simulate(c), Error);
 }
 

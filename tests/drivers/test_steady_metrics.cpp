@@ -170,7 +170,7 @@ TEST(SteadyMetrics, PeaksNearTheEndsOfStepsAreFound) {
     SCOPED_TRACE("G = " + std::to_string(G) + ", R = " + std::to_string(R));
     Case c = default_with(64);
     c.soil = table2_soil(G);
-    c.trough.a = R;
+    c.trough.shape = CircleTrough{R};
     c.contact.pure_rolling = true;
     const Model model(c);
     const Result res = simulate(model);

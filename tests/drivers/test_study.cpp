@@ -200,7 +200,7 @@ TEST(Study, CancellationStopsARunningCase) {
 
 TEST(Study, InvalidCaseIsReportedNotThrown) {
   std::vector<Case> cases = some_cases();
-  cases[1].trough.a = 0.5;  // R < r
+  cases[1].trough.shape = CircleTrough{0.5};  // R < r
   const std::vector<CaseOutcome> out = run_study(cases, {});
   EXPECT_TRUE(out[0].valid);
   EXPECT_FALSE(out[1].valid);

@@ -43,8 +43,7 @@ const std::vector<Config> kConfigs = {
 
 Model make_model(const Config& cfg, double MMd_over_M0 = 0.05, double mu = 0.5) {
   Case c;
-  c.trough.k = cfg.k;
-  c.trough.a = cfg.a;
+  c.trough.shape = trough_shape(cfg.k, cfg.a);
   c.numerics.suspension_from_static = cfg.from_static;
   c.MMd = MMd_over_M0 * c.roller.M0;
   c.contact.mu = mu;

@@ -23,10 +23,9 @@ constexpr double kStep = 1e-5;  // relative step of the central differences
 Case trough_case(bool spiral) {
   Case c;
   if (spiral) {
-    c.trough.k = 0.002;  // the paper's spiral (Figs. 7, 8)
-    c.trough.a = 0.601;
+    c.trough.shape = trough_shape(0.002, 0.601);  // the paper's spiral (Figs. 7, 8)
   } else {
-    c.trough.a = 0.606;
+    c.trough.shape = CircleTrough{0.606};
   }
   c.MMd = 0.05 * c.roller.M0;
   return c;

@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "oscidrum/error.hpp"
@@ -48,8 +49,6 @@ const std::map<std::string, Member>& members() {
       {"soil.ksv", [](Case& c) -> double& { return c.soil.ksv; }},
       {"soil.csh", [](Case& c) -> double& { return c.soil.csh; }},
       {"soil.csv", [](Case& c) -> double& { return c.soil.csv; }},
-      {"trough.k", [](Case& c) -> double& { return c.trough.k; }},
-      {"trough.a", [](Case& c) -> double& { return c.trough.a; }},
       {"contact.mu", [](Case& c) -> double& { return c.contact.mu; }},
       {"contact.mu_static", [](Case& c) -> double& { return c.contact.mu_static; }},
       {"MMd", [](Case& c) -> double& { return c.MMd; }},
@@ -62,10 +61,39 @@ const std::map<std::string, Member>& members() {
   return m;
 }
 
+// The trough keys, read and written on the shape itself: the circle of radius R is k = 0, a = R;
+// the log spiral holds k and a.
+bool is_trough_key(const std::string& key) { return key == "trough.k" || key == "trough.a"; }
+
+double trough_direct(const Case& c, const std::string& key) {
+  if (const auto* circle = std::get_if<CircleTrough>(&c.trough.shape))
+    return key == "trough.k" ? 0.0 : circle->R;
+  const auto& spiral = std::get<LogSpiralTrough>(c.trough.shape);
+  return key == "trough.k" ? spiral.k() : spiral.a();
+}
+
+void set_trough_direct(Case& c, const std::string& key, double v) {
+  double k = trough_direct(c, "trough.k"), a = trough_direct(c, "trough.a");
+  (key == "trough.k" ? k : a) = v;
+  if (k == 0.0)
+    c.trough.shape = CircleTrough{a};
+  else
+    c.trough.shape = LogSpiralTrough(k, a);
+}
+
+// A real field set directly, bypassing the field table.
+void set_direct(Case& c, const std::string& key, double v) {
+  if (is_trough_key(key))
+    set_trough_direct(c, key, v);
+  else
+    members().at(key)(c) = v;
+}
+
 // Non-double members (integers, booleans, the choice), read directly.
 double direct_value(const Case& c0, const std::string& key) {
   Case c = c0;
   if (auto it = members().find(key); it != members().end()) return it->second(c);
+  if (is_trough_key(key)) return trough_direct(c, key);
   if (key == "soil.input") return static_cast<double>(static_cast<int>(c.soil.input));
   if (key == "numerics.method") return static_cast<double>(static_cast<int>(c.numerics.method));
   if (key == "contact.pure_rolling") return c.contact.pure_rolling ? 1.0 : 0.0;
@@ -192,8 +220,10 @@ TEST(Fields, DefaultSoilIsTable2AtG25) {
 
 TEST(Fields, DefaultTroughContactAndNumerics) {
   const Case c;
-  EXPECT_EQ(c.trough.a, 0.606);
-  EXPECT_EQ(c.trough.k, 0.0);
+  ASSERT_TRUE(std::holds_alternative<CircleTrough>(c.trough.shape));  // the paper's circle
+  EXPECT_EQ(std::get<CircleTrough>(c.trough.shape).R, 0.606);
+  EXPECT_EQ(get_field(c, "trough.a"), 0.606);
+  EXPECT_EQ(get_field(c, "trough.k"), 0.0);
   EXPECT_EQ(c.contact.mu, 0.5);
   EXPECT_FALSE(c.contact.pure_rolling);
   EXPECT_FALSE(c.numerics.suspension_from_static);  // the paper's convention by default
@@ -403,11 +433,11 @@ TEST(ModelValidation, RejectsNonPositiveStiffness) {
 
 TEST(ModelValidation, RejectsCircularTroughNotLargerThanTheDrum) {
   Case c;
-  c.trough.a = 0.6;  // R = r
+  c.trough.shape = CircleTrough{0.6};  // R = r
   expect_model_rejects(c, {"trough.a", "roller.r", "0.6"});
-  c.trough.a = 0.59;  // R < r
+  c.trough.shape = CircleTrough{0.59};  // R < r
   expect_model_rejects(c, {"trough.a", "roller.r", "0.59"});
-  c.trough.a = 0.603;  // the paper's smallest R: fine
+  c.trough.shape = CircleTrough{0.603};  // the paper's smallest R: fine
   EXPECT_NO_THROW(Model{c});
 }
 
@@ -446,9 +476,8 @@ TEST(ModelValidation, RejectsNaNInEveryRealField) {
   for (const Field& f : fields()) {
     if (f.type != FieldType::real) continue;
     Case c;
-    auto it = members().find(f.key);
-    ASSERT_NE(it, members().end()) << f.key;
-    it->second(c) = kNaN;
+    ASSERT_TRUE(members().count(f.key) || is_trough_key(f.key)) << f.key;
+    set_direct(c, f.key, kNaN);
     expect_model_rejects(c, {std::string(f.key) + " must be ", "nan"});
   }
 }
@@ -457,7 +486,7 @@ TEST(ModelValidation, RejectsInfinityInEveryRealField) {
   for (const Field& f : fields()) {
     if (f.type != FieldType::real) continue;
     Case c;
-    members().at(f.key)(c) = kInf;
+    set_direct(c, f.key, kInf);
     expect_model_rejects(c, {std::string(f.key) + " must be ", "inf"});
   }
 }

@@ -174,3 +174,19 @@ def test_model_and_kinematics():
     kin = oscidrum.kinematics(m.geometry, 0.1)
     assert kin.f3_tilde == pytest.approx(0.0, abs=1e-12)
     assert kin.f1_bar == pytest.approx(0.6 * kin.f5, rel=1e-12)
+
+
+def test_trough_geometry_asks_its_shape():
+    circle = oscidrum.Model(oscidrum.Case(R=0.62)).geometry
+    assert circle.shape == "circle" and circle.summary == "circle, R = 0.62 m"
+    assert circle.parameters == {"R": 0.62} and circle.R == 0.62 and circle.r == 0.6
+    assert circle.curvature_radius == 0.62
+    with pytest.raises(AttributeError, match="a circle trough has no parameter 'k'"):
+        circle.k
+    spiral = oscidrum.make_trough_geometry(0.6, 0.002, 0.601)
+    assert spiral.shape == "log_spiral" and spiral.summary == "log spiral, k = 0.002, a = 0.601 m"
+    assert set(spiral.parameters) == {"k", "a", "alpha", "R0"}
+    assert spiral.alpha == pytest.approx(math.atan(1 / 0.002), rel=1e-14)
+    assert spiral.R0 == pytest.approx(0.601 * math.exp(0.002 * (math.pi - spiral.alpha)), rel=1e-14)
+    assert spiral.curvature_radius == pytest.approx(math.sqrt(1 + 0.002**2) * spiral.R0, rel=1e-15)
+    assert "log spiral" in repr(spiral)

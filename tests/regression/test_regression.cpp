@@ -53,8 +53,7 @@ std::vector<ProfileCase> profile_cases() {
   };
   {
     Case c = table2(10e6);
-    c.trough.k = 0.002;
-    c.trough.a = 0.601;
+    c.trough.shape = trough_shape(0.002, 0.601);
     out.push_back({"extra.spiral_stickslip@G10", c});
   }
   {

@@ -502,7 +502,7 @@ function startAnimation(r) {
   let maxN = 0;
   for (let i = 0; i < n; i++) maxN = Math.max(maxN, Math.abs(s.N[i]), Math.abs(s.T[i]));
   const c = r.case;
-  animation = { s, n, maxN, r: c['roller.r'], k: c['trough.k'], a: c['trough.a'], frame: 0, start: performance.now() };
+  animation = { s, n, maxN, r: c['roller.r'], outline: r.trough.outline, frame: 0, start: performance.now() };
   const tick = (now) => {
     // one excitation period takes 2 s on screen
     const i = Math.floor((Math.max(0, now - animation.start) / 2000) * r.samples_per_period) % n;
@@ -532,14 +532,14 @@ function drawDrum(canvas, an, i) {
   const { s } = an;
   ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, w, h);
   const scale = (0.36 * h) / an.r;  // px per m
-  // trough centre C: moves with the soil point A (x_A, s_A down), exaggerated
-  const cx = w / 2 + DISPLACEMENT_FACTOR * s.x_A[i] * scale;
-  const cy = 0.47 * h + DISPLACEMENT_FACTOR * s.s_A[i] * scale;
-  const R = (th) => an.a * Math.exp(an.k * th);  // (8)
-  // the drum: centre at distance R(delta) - r from C along the direction delta (exact for a circle)
+  // The drum centre at rest is the origin; the trough moves with the soil point A (x_A, s_A down),
+  // exaggerated; the drum centre rolls along the trough by (x_M - x_A, z_M - s_A) = the roll curve
+  // (15)-(16), drawn to scale.
+  const ox = w / 2 + DISPLACEMENT_FACTOR * s.x_A[i] * scale;
+  const oy = 0.47 * h + DISPLACEMENT_FACTOR * s.s_A[i] * scale;
   const d = s.delta[i];
-  const mx = cx + (R(d) - an.r) * Math.sin(d) * scale;
-  const my = cy + (R(d) - an.r) * Math.cos(d) * scale;
+  const mx = ox + (s.x_M[i] - s.x_A[i]) * scale;
+  const my = oy + (s.z_M[i] - s.s_A[i]) * scale;
   ctx.fillStyle = '#c8ccd2'; ctx.strokeStyle = '#444'; ctx.lineWidth = 2;
   ctx.beginPath(); ctx.arc(mx, my, an.r * scale, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
   // spokes show the rotation phi (exaggerated)
@@ -553,15 +553,16 @@ function drawDrum(canvas, an, i) {
   }
   ctx.fillStyle = '#b00'; ctx.beginPath();
   ctx.arc(mx + 0.85 * an.r * scale * Math.sin(phi), my - 0.85 * an.r * scale * Math.cos(phi), 5, 0, 2 * Math.PI); ctx.fill();
-  // soil and trough, drawn over the drum: the drum shows only inside the trough
+  // soil and trough, drawn over the drum: the drum shows only inside the trough. The trough's
+  // surface comes from the engine (the shape's own kinematics), then the flat soil surface.
   ctx.fillStyle = '#d9c9a8';
-  const edge = 1.2;  // the trough drawn for |theta| <= edge, then the flat soil surface
-  const yEdge = cy + R(edge) * Math.cos(edge) * scale;
+  const { x: tx0, z: tz0 } = an.outline;
+  const yEdge = oy + tz0[0] * scale;
   ctx.beginPath();
   ctx.moveTo(0, h);
   ctx.lineTo(0, yEdge);
-  for (let th = -edge; th <= edge + 1e-9; th += 0.02) ctx.lineTo(cx + R(th) * Math.sin(th) * scale, cy + R(th) * Math.cos(th) * scale);
-  ctx.lineTo(w, yEdge);
+  for (let j = 0; j < tx0.length; j++) ctx.lineTo(ox + tx0[j] * scale, oy + tz0[j] * scale);
+  ctx.lineTo(w, oy + tz0[tz0.length - 1] * scale);
   ctx.lineTo(w, h);
   ctx.closePath();
   ctx.fill();
@@ -607,6 +608,7 @@ function fillMetrics(r, m) {
     const c = r.case;
     rows.push(['soil (Table 2)', `ksh ${fmt(c['soil.ksh'] / 1e6, 4)}, ksv ${fmt(c['soil.ksv'] / 1e6, 4)} MN/m; csh ${fmt(c['soil.csh'] / 1e3, 4)}, csv ${fmt(c['soil.csv'] / 1e3, 4)} kN s/m`, '']);
   }
+  rows.push(['trough', r.trough.summary, '']);
   rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
   const body = $('metrics').tBodies[0];
   body.innerHTML = '';

@@ -14,6 +14,7 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/output_table.hpp"
@@ -199,6 +200,27 @@ val samples_of(const oscidrum::Samples& s) {
   return out;
 }
 
+// The trough as its shape describes itself: its name, a summary, and its surface (the contact
+// points C = M + r (sin delta, cos delta) of (15)-(16) for |delta| <= 1.2 rad) relative to the drum
+// centre at rest, x to the right and z down [m], for drawing any shape.
+val trough_of(const oscidrum::TroughGeometry& g) {
+  val out = val::object();
+  out.set("shape", std::string(oscidrum::trough_name(g.shape)));
+  out.set("summary", oscidrum::summary(g.shape));
+  std::vector<double> x, z;
+  for (int i = -60; i <= 60; ++i) {
+    const double delta = 0.02 * i;
+    const oscidrum::Kinematics k = oscidrum::kinematics(g, delta);
+    x.push_back(k.x_roll + g.r * k.sin_delta);
+    z.push_back(k.z_roll + g.r * k.cos_delta);
+  }
+  val outline = val::object();
+  outline.set("x", float64_array(x));
+  outline.set("z", float64_array(z));
+  out.set("outline", outline);
+  return out;
+}
+
 val error_object(const std::string& message) {
   val out = val::object();
   out.set("ok", false);
@@ -222,6 +244,7 @@ val simulate(const val& values, int n_max) {
     out.set("status", std::string(oscidrum::to_string(r.status)));
     out.set("message", r.message);
     out.set("case", case_values(c));
+    out.set("trough", trough_of(model.geometry()));
     out.set("diagnostics", diagnostics_of(r.diagnostics));
     out.set("frequency", r.frequency);
     out.set("sample_periods", r.sample_periods);
