@@ -26,12 +26,13 @@ class Model {
   double ksv() const { return ksv_; }  ///< [N/m]
   double csh() const { return csh_; }  ///< [N s/m]
   double csv() const { return csv_; }  ///< [N s/m]
+  /// The friction law at the contact (oscidrum/friction.hpp): the equations, the events and the
+  /// steady-state search ask it, never the contact's coefficients directly.
   const FrictionLaw& friction() const { return friction_; }
-  /// Coefficient of the slip phase (kinetic), T = -s mu N (27), (29) [-].
-  double mu() const { return case_.contact.mu; }
-  /// Coefficient of the friction cone (static), stick while |T| <= mu_static N (28) [-].
-  double mu_static() const { return mu_static_; }
-  bool pure_rolling() const { return case_.contact.pure_rolling; }
+  /// Its cone coefficient, stick while |T| <= cone N (28) [-] (cone_coefficient, cached).
+  double cone() const { return cone_; }
+  /// Its phases (friction_phases, cached).
+  FrictionPhases friction_phases() const { return phases_; }
   double W() const { return W_; }    ///< m g + Fz (= P0) [N]
   double Fz() const { return Fz_; }  ///< P0 - m g (7) [N]
   double nu() const { return nu_; }  ///< excitation circular frequency 2 pi f [rad/s]
@@ -48,7 +49,8 @@ class Model {
   Case case_;
   TroughGeometry geometry_;
   FrictionLaw friction_;
-  double mu_static_;
+  double cone_;
+  FrictionPhases phases_;
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
   double M0_;  ///< oscillation_moment(roller) (5) [N m]
@@ -70,11 +72,15 @@ double slip_velocity(const Model& model, const State& q);
 Accelerations stick_accelerations(const Model& model, double t, const State& q);
 
 /// Slip phase (34), (38), (53), (36) solved for (delta'', x_A'', s_A'', phi''); s = +1 or -1 is
-/// sign(v_rel). `baumgarte` [1/s] adds rate * residual(39) to (53) so that drift decays.
+/// sign(v_rel), 0 the smooth phase of a regularised law. T = -m N with m the friction law's slip
+/// coefficient at v_rel (s mu for Coulomb's law). `baumgarte` [1/s] adds rate * residual(39) to
+/// (53) so that drift decays.
 Accelerations slip_accelerations(const Model& model, double t, const State& q, int s,
                                  double baumgarte = 0.0);
 
-/// Residual of the slip coupling (39): fmu1 (csh x_A' + ksh x_A) - fmu2 (csv s_A' + ksv s_A) [N].
+/// Residual of the slip coupling (39): fmu1 (csh x_A' + ksh x_A) - fmu2 (csv s_A' + ksv s_A) [N],
+/// fmu1 = cos - m sin, fmu2 = sin + m cos (35), m the law's slip coefficient in a slip phase of
+/// sign s (0: the smooth phase) at the state's v_rel.
 double slip_constraint_residual(const Model& model, const State& q, int s);
 
 /// Drum-centre displacement (14), velocity (17) and acceleration (18).
@@ -85,7 +91,7 @@ struct DrumMotion {
 };
 DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a);
 
-/// Accelerations of the given phase (stick, or slip with s = phase).
+/// Accelerations of the given phase (stick, slip with s = phase, or the smooth phase).
 Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,
                             double baumgarte = 0.0);
 

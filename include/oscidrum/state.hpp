@@ -10,10 +10,18 @@ enum class Phase : int {
   slip_negative = -1,  ///< v_rel < 0, T = +mu N > 0
   stick = 0,           ///< pure rolling, |T| <= mu N
   slip_positive = 1,   ///< v_rel > 0, T = -mu N < 0
+  /// The one phase of a smooth (regularised) friction law: T = -m(v_rel) N for every v_rel,
+  /// no stick and no switches (oscidrum/friction.hpp). Samples show its apparent phase instead.
+  smooth = 2,
 };
 
-/// Human-readable name: "stick", "slip+", "slip-".
+/// Human-readable name: "stick", "slip+", "slip-", "smooth".
 const char* to_string(Phase phase);
+
+/// The sign s of a slip phase (+1, -1), 0 for stick and the smooth phase.
+constexpr int slip_sign(Phase phase) {
+  return phase == Phase::slip_positive ? 1 : phase == Phase::slip_negative ? -1 : 0;
+}
 
 /// The state q = (delta, x_A, s_A, phi, delta', x_A', s_A', phi') of (51) and (54). The engine
 /// carries phi in every phase; in stick phi' = f5 delta' (12).

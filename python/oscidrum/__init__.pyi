@@ -381,6 +381,7 @@ class Phase(enum.IntEnum):
     slip_negative = -1
     stick = 0
     slip_positive = 1
+    smooth = 2
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: Phase, value: handle) -> None: ...
@@ -388,7 +389,7 @@ class Phase(enum.IntEnum):
     def __init__(self: Phase, value: int) -> None: ...
     def __setstate__(self: Phase, state: int) -> None: ...
     label: str
-    """'stick', 'slip+' or 'slip-'"""
+    """'stick', 'slip+', 'slip-' or 'smooth'"""
     name: str
     """name(self: handle) -> str"""
     value: int

@@ -14,8 +14,11 @@ void bind_state(py::module_& m) {
   phase.value("slip_negative", Phase::slip_negative, "v_rel < 0, T = +mu N > 0 (-1)")
       .value("stick", Phase::stick, "pure rolling, |T| <= mu N (0)")
       .value("slip_positive", Phase::slip_positive, "v_rel > 0, T = -mu N < 0 (+1)")
+      .value("smooth", Phase::smooth,
+             "the one phase of the regularised friction law (2); samples show its apparent "
+             "phase (stick while creeping) instead")
       .def_property_readonly(
-          "label", [](Phase p) { return to_string(p); }, "'stick', 'slip+' or 'slip-'");
+          "label", [](Phase p) { return to_string(p); }, "'stick', 'slip+', 'slip-' or 'smooth'");
 
   py::class_<State>(m, "State",
                     "The state q = (delta, x_A, s_A, phi, delta', x_A', s_A', phi') of (51), "

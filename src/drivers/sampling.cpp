@@ -33,19 +33,37 @@ class Sampler : public FlowObserver {
     }
     const double lo = std::max(step.t0(), t_start_), hi = std::min(step.t1(), t_end_);
     if (hi > lo) {
-      switch (step.phase()) {
-        case Phase::stick:
-          result_.stick_time += hi - lo;
-          break;
-        case Phase::slip_positive:
-          result_.slip_positive_time += hi - lo;
-          break;
-        case Phase::slip_negative:
-          result_.slip_negative_time += hi - lo;
-          break;
+      if (step.phase() != Phase::smooth) {
+        add_time(step.phase(), hi - lo);
+      } else {
+        // The smooth phase of a regularised law: the time in each apparent phase, from the
+        // midpoints of kSmoothParts equal parts of the piece (a piece is at most T/16, so the
+        // times are good to about 1/500 of a period).
+        constexpr int kSmoothParts = 16;
+        const double h = (hi - lo) / kSmoothParts;
+        for (int i = 0; i < kSmoothParts; ++i) {
+          const State q = step.state(lo + (i + 0.5) * h);
+          add_time(apparent_phase(model_.friction(), Phase::smooth, slip_velocity(model_, q)), h);
+        }
       }
     }
     return true;
+  }
+
+  void add_time(Phase phase, double dt) {
+    switch (phase) {
+      case Phase::stick:
+        result_.stick_time += dt;
+        break;
+      case Phase::slip_positive:
+        result_.slip_positive_time += dt;
+        break;
+      case Phase::slip_negative:
+        result_.slip_negative_time += dt;
+        break;
+      case Phase::smooth:
+        break;  // apparent phases only
+    }
   }
 
   bool on_event(const Event& event, const State&, const State&) override {
@@ -75,6 +93,7 @@ void append_sample(const Model& model, double baumgarte, double t, const State& 
   // own phi' carries the integration's round-off drift (up to ~1e-9 rad/s after a long transient
   // from rest): the columns report the constrained values instead.
   const bool stick = phase == Phase::stick;
+  const double v_rel = stick ? 0.0 : slip_velocity(model, q, k);
   s.t.push_back(t);
   s.delta.push_back(q.delta);
   s.phi.push_back(q.phi);
@@ -90,9 +109,10 @@ void append_sample(const Model& model, double baumgarte, double t, const State& 
   s.ddz_M.push_back(d.ddz_M);
   s.N.push_back(f.N);
   s.T.push_back(f.T);
-  s.v_rel.push_back(stick ? 0.0 : slip_velocity(model, q, k));
+  s.v_rel.push_back(v_rel);
   s.torque.push_back(model.torque(t));
-  s.phase.push_back(phase);
+  // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
+  s.phase.push_back(apparent_phase(model.friction(), phase, v_rel));
 }
 
 FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result,

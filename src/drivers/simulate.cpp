@@ -295,9 +295,9 @@ Result simulate_from(const Model& model, const ProgressCallback& progress,
     // Continuation (docs/periodic.md): Newton from the neighbour's orbit; when it fails, the
     // cold start below runs as if it had not been tried (only its cost remains).
     detail::ShootingStart start = *warm;
-    // A phase the new case cannot be in (slip under pure rolling, stick without friction).
-    if (model.parameters().contact.pure_rolling || start.phase == Phase::stick)
-      start.phase = initial_phase(model);
+    // A phase the new case cannot be in (slip under pure rolling, stick without friction, stick
+    // or slip under a smooth law): its start phase instead.
+    start.phase = flow_phase(model.friction(), start.phase);
     done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
     result.diagnostics.warm_start = done ? 1 : -1;
     if (!done) {

@@ -503,7 +503,7 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   const double f = result.frequency, P = p / f;
   const double t0 = s.t.front(), t1 = t0 + P;
   const State q0 = first_state(s);
-  const Phase phase0 = s.phase.front();
+  const Phase phase0 = flow_phase(model.friction(), s.phase.front());
   const FlowOptions options = FlowOptions::from(model);
 
   Flow flow(model, options);
@@ -555,8 +555,12 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
                          s_mid * c_off + sign * c_mid * s_off});
       }
     }
-    time[static_cast<int>(pc.phase) + 1] += pc.b - pc.a;
+    // A smooth law's one phase: its apparent phases' times come from the sampling (below).
+    if (pc.phase != Phase::smooth)
+      time[static_cast<std::size_t>(static_cast<int>(pc.phase) + 1)] += pc.b - pc.a;
   }
+  if (model.friction_phases() == FrictionPhases::smooth)
+    time = {result.slip_negative_time, result.stick_time, result.slip_positive_time};
   const Extremes &ddx = peaks[0], &ddz = peaks[1], &delta = peaks[2], &traction = peaks[3];
   m.ddx_max = ddx.hi, m.ddx_min = ddx.lo;
   m.ddz_max = ddz.hi, m.ddz_min = ddz.lo;

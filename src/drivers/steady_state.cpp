@@ -112,9 +112,11 @@ bool Search::gross_slip(int n, const Vec& x) {
   // (-s MMd > 0), with MMd beyond mu W r (mean N is W) and phi' grown over those periods, it
   // spins: the friction cannot hold the driving torque.
   const Phase p = flow_.phase();
-  const int s = static_cast<int>(p);
+  // The sign of the slip: the phase's, or in the smooth phase of a regularised law v_rel's.
+  const double v_rel = p == Phase::smooth ? slip_velocity(model_, State::from_array(x)) : 0.0;
+  const int s = p == Phase::smooth ? (v_rel > 0.0) - (v_rel < 0.0) : slip_sign(p);
   const double MMd = model_.parameters().MMd;
-  const double hold = model_.mu() * model_.W() * model_.r();
+  const double hold = largest_slip_coefficient(model_.friction()) * model_.W() * model_.r();
   if (p != Phase::stick && switches_this_period_ == 0 && -s * MMd > hold)
     ++slipping_periods_;
   else

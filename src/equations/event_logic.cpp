@@ -14,10 +14,14 @@ double stick_margin_rate(const Model& model, double t, const State& q, int sign_
   const double dFv = model.ksv() * q.ds_A + model.csv() * a.s_A;
   const double dN = dFh * sn + Fh * cs * dd + dFv * cs - Fv * sn * dd;  // d/dt of (26)
   const double dT = dFv * sn + Fv * cs * dd - dFh * cs + Fh * sn * dd;  // d/dt of T
-  return model.mu_static() * dN - sign_T * dT;
+  return model.cone() * dN - sign_T * dT;
 }
 
 namespace {
+
+// The law's slip coefficient m of a slip phase of sign s as slip starts or ends (v_rel = 0), for
+// the stick/slip laws whose coefficient does not depend on v_rel (s mu, s mu_kinetic).
+double kinetic(const Model& model, int s) { return slip_coefficient(model.friction(), s, 0.0).m; }
 
 // The velocity jump that makes the slip coupling (39) hold with sign s and the kinetic
 // coefficient: the massless soil's velocities may jump, the drum's may not, so
@@ -25,7 +29,7 @@ namespace {
 // linear in lambda. Returns false if there is no such jump (the coupling does not depend on it).
 bool slip_coupling_jump(const Model& model, const Kinematics& k, const State& q, int s,
                         State& out) {
-  const double smu = s * model.mu();
+  const double smu = kinetic(model, s);
   const double fmu1 = k.cos_delta - smu * k.sin_delta, fmu2 = k.sin_delta + smu * k.cos_delta;
   const double g0 = slip_constraint_residual(model, q, s);
   const double dg = -fmu1 * model.csh() * k.f1 + fmu2 * model.csv() * k.f3;
@@ -43,7 +47,7 @@ bool slip_coupling_jump(const Model& model, const Kinematics& k, const State& q,
 SlipStart decide_slip_start(const Model& model, const State& q, int s) {
   SlipStart out;
   out.state = q;
-  if (model.mu_static() == model.mu()) return out;  // T is continuous: nothing jumps
+  if (model.cone() == std::abs(kinetic(model, s))) return out;  // T is continuous: no jump
   // The tangential force drops from mu_static N to mu N: the soil's velocities jump so that (39)
   // holds with the kinetic coefficient, and the drum starts slipping in direction s.
   State r;
@@ -64,7 +68,7 @@ SlipEnd decide_slip_end(const Model& model, double t, const State& q_in, int s) 
   q.dphi = k.f5 * q.ddelta;
   out.state = q;
   // With a static coefficient above the kinetic one, |T| = mu N < mu_static N: stick holds.
-  if (model.mu_static() > model.mu()) return out;
+  if (model.cone() > std::abs(kinetic(model, s))) return out;
   if (stick_margin_rate(model, t, q, -s) >= 0.0) return out;
 
   // Reversal to s_new = -s, if the jump that satisfies (39) with s_new gives v_rel that sign.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "equations/equations.hpp"
+#include "equations/slip_general.hpp"
 
 namespace oscidrum::detail {
 
@@ -19,10 +20,9 @@ State to_state(const Vec8& y) { return {y[0], y[1], y[2], y[3], y[4], y[5], y[6]
 
 Vec8 phase_rhs(const Model& model, double t, const State& q, Phase phase, double baumgarte) {
   const Kinematics k = kinematics(model.geometry(), q.delta);
-  const Accelerations a =
-      phase == Phase::stick
-          ? stick_accelerations(model, t, q, k)
-          : slip_accelerations(model, t, q, static_cast<int>(phase), baumgarte, k);
+  const Accelerations a = phase == Phase::stick
+                              ? stick_accelerations(model, t, q, k)
+                              : slip_accelerations(model, t, q, slip_sign(phase), baumgarte, k);
   Vec8 f;
   // In stick phi follows the rolling condition (12): phi' = f5 delta'.
   f << q.ddelta, q.dx_A, q.ds_A, phase == Phase::stick ? k.f5 * q.ddelta : q.dphi, a.delta, a.x_A,
@@ -103,7 +103,8 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   const KinematicsRates kr = kinematics_rates(model.geometry(), q.delta);
   const Accelerations a = slip_accelerations(model, t, q, s, beta, k);
   const double sn = k.sin_delta, cs = k.cos_delta, dd = q.ddelta, dd2 = dd * dd;
-  const double smu = s * model.mu();
+  // The law's coefficient at this state (s mu for Coulomb's law; its derivative is zero here).
+  const double smu = slip_coefficient(model.friction(), s, detail::slip_velocity(model, q, k)).m;
   const double fmu1 = cs - smu * sn, fmu2 = sn + smu * cs;  // (35)
   const double dfmu1 = -fmu2, dfmu2 = fmu1;
   const double xs = k.x_roll + q.x_A, zs = k.z_roll + q.s_A - model.z_ref();
@@ -173,6 +174,31 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   return J;
 }
 
+// The slip phase with a velocity-dependent friction coefficient (src/equations/slip_general.hpp):
+// the accelerations evaluated on dual numbers seeded with the eight state components give the
+// exact Jacobian (checked against finite differences in tests/equations/test_jacobian.cpp).
+Mat8 general_slip_jacobian(const Model& model, double t, const State& q, int s, double beta) {
+  using Dn = Dual<8>;
+  const std::array<double, 8> x = q.to_array();
+  std::array<Dn, 8> y;
+  for (int i = 0; i < 8; ++i) y[i] = Dn::variable(x[i], i);
+  const Kinematics k = kinematics(model.geometry(), q.delta);
+  const KinematicsRates kr = kinematics_rates(model.geometry(), q.delta);
+  const KinematicsT<Dn> kin = kinematics_t(k, kr, y[D]);
+  const Dn v = model.r() * kin.f5 * y[DD] - model.r() * y[DPHI];  // (13)
+  const SlipCoefficient c = slip_coefficient(model.friction(), s, v.v);
+  const Dn m = Dn::chain(v, c.m, c.dm_dv), m_v = Dn::chain(v, c.dm_dv, c.d2m_dv2);
+  const std::array<Dn, 4> a = general_slip_accelerations(model, t, y, kin, m, m_v, beta);
+  Mat8 J = Mat8::Zero();
+  J(D, DD) = 1.0;
+  J(XA, DXA) = 1.0;
+  J(SA, DSA) = 1.0;
+  J(PHI, DPHI) = 1.0;
+  for (int r = 0; r < 4; ++r)
+    for (int col = 0; col < 8; ++col) J(DD + r, col) = a[r].d[col];
+  return J;
+}
+
 }  // namespace
 
 Mat8 jacobian_times(const Mat8& J, const Mat8& X) {
@@ -186,19 +212,26 @@ Mat8 jacobian_times(const Mat8& J, const Mat8& X) {
 }
 
 Mat8 phase_jacobian(const Model& model, double t, const State& q, Phase phase, double baumgarte) {
-  return phase == Phase::stick ? stick_jacobian(model, t, q)
-                               : slip_jacobian(model, t, q, static_cast<int>(phase), baumgarte);
+  if (phase == Phase::stick) return stick_jacobian(model, t, q);
+  const int s = slip_sign(phase);
+  // A friction coefficient that depends on v_rel (the smooth phase, or a slip phase of a law
+  // whose coefficient changes here): the general slip equations, differentiated automatically;
+  // a constant one (Coulomb): the terms coded by hand below.
+  if (phase == Phase::smooth ||
+      slip_coefficient(model.friction(), s, slip_velocity(model, q)).dm_dv != 0.0)
+    return general_slip_jacobian(model, t, q, s, baumgarte);
+  return slip_jacobian(model, t, q, s, baumgarte);
 }
 
 double event_value(const Model& model, const State& q, EventFunction h) {
   switch (h) {
     case EventFunction::stick_limit_negative: {
       const ContactForces f = contact_forces(model, q);
-      return model.mu_static() * f.N - f.T;
+      return model.cone() * f.N - f.T;
     }
     case EventFunction::stick_limit_positive: {
       const ContactForces f = contact_forces(model, q);
-      return model.mu_static() * f.N + f.T;
+      return model.cone() * f.N + f.T;
     }
     case EventFunction::slip_velocity:
       return slip_velocity(model, q);
@@ -226,9 +259,9 @@ Vec8 event_gradient(const Model& model, const State& q, EventFunction h) {
   dT[DSA] = csv * sn;
   switch (h) {
     case EventFunction::stick_limit_negative:
-      return model.mu_static() * dN - dT;
+      return model.cone() * dN - dT;
     case EventFunction::stick_limit_positive:
-      return model.mu_static() * dN + dT;
+      return model.cone() * dN + dT;
     case EventFunction::slip_velocity: {
       // v_rel = r f5 delta' - r phi' (13)
       const Kinematics k = kinematics(model.geometry(), q.delta);
@@ -259,7 +292,7 @@ Lambda reversal_lambda(const Model& model, const State& q, int s_new) {
   const Kinematics k = kinematics(model.geometry(), q.delta);
   const double sn = k.sin_delta, cs = k.cos_delta;
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
-  const double smu = s_new * model.mu();
+  const double smu = slip_coefficient(model.friction(), s_new, 0.0).m;  // s_new mu (kinetic)
   const double fmu1 = cs - smu * sn, fmu2 = sn + smu * cs;
   const double Fh = csh * q.dx_A + ksh * q.x_A, Fv = csv * q.ds_A + ksv * q.s_A;
   const double g0 = fmu1 * Fh - fmu2 * Fv;  // (39)

@@ -1,15 +1,19 @@
 // Slip phase: equations of motion (34), (38), (53) and (36) in the state form (55), and the
-// friction coupling (39).
+// friction coupling (39). The friction coefficient is the law's (oscidrum/friction.hpp): a
+// constant s mu solves (55) as the paper does; one that depends on v_rel takes the general system
+// of src/equations/slip_general.hpp.
 #include <cmath>
 
 #include "equations/equations.hpp"
+#include "equations/slip_general.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum {
 
 double slip_constraint_residual(const Model& model, const State& q, int s) {
-  const double sd = std::sin(q.delta), cdl = std::cos(q.delta);
-  const double smu = s * model.mu();
+  const Kinematics k = kinematics(model.geometry(), q.delta);
+  const double sd = k.sin_delta, cdl = k.cos_delta;
+  const double smu = slip_coefficient(model.friction(), s, detail::slip_velocity(model, q, k)).m;
   const double fmu1 = cdl - smu * sd, fmu2 = sd + smu * cdl;  // (35)
   return fmu1 * (model.csh() * q.dx_A + model.ksh() * q.x_A) -
          fmu2 * (model.csv() * q.ds_A + model.ksv() * q.s_A);  // (39)
@@ -26,9 +30,15 @@ Accelerations detail::slip_accelerations(const Model& model, double t, const Sta
   const double m = model.m(), I = model.I(), r = model.r();
   const double kd = model.kd(), cd = model.cd(), W = model.W();
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
+  const SlipCoefficient mu = slip_coefficient(model.friction(), s, slip_velocity(model, q, k));
+  if (mu.dm_dv != 0.0) {  // a velocity-dependent coefficient: the full 4 x 4 system
+    const auto a = general_slip_accelerations(model, t, q.to_array(), kinematics_t(k), mu.m,
+                                              mu.dm_dv, baumgarte);
+    return {a[0], a[1], a[2], a[3]};
+  }
   const double sn = k.sin_delta, cs = k.cos_delta;
   const double dd = q.ddelta, dd2 = dd * dd;
-  const double smu = s * model.mu();
+  const double smu = mu.m;                                  // s mu for Coulomb's law
   const double fmu1 = cs - smu * sn, fmu2 = sn + smu * cs;  // (35)
   const double xs = k.x_roll + q.x_A;                       // x_M
   const double zs = k.z_roll + q.s_A - model.z_ref();       // z_M from the suspension reference

@@ -8,12 +8,15 @@ EventValues event_values(const Model& model, Phase phase, const State& q, double
   if (N != nullptr) *N = f.N;
   const double W = model.W();
   EventValues e{1.0, 1.0, f.N / W};
+  // The friction law decides which switches exist: the cone in stick (none without a limit), the
+  // end of slip in a slip phase (none without friction, and none in the smooth phase of a
+  // regularised law, which has no stick).
   if (phase == Phase::stick) {
-    if (!model.pure_rolling()) {
-      e[kEventConeNegative] = (model.mu_static() * f.N - f.T) / W;
-      e[kEventConePositive] = (model.mu_static() * f.N + f.T) / W;
+    if (model.friction_phases() == FrictionPhases::stick_slip) {
+      e[kEventConeNegative] = (model.cone() * f.N - f.T) / W;
+      e[kEventConePositive] = (model.cone() * f.N + f.T) / W;
     }
-  } else if (model.mu() > 0.0) {
+  } else if (phase != Phase::smooth && model.cone() > 0.0) {
     const double v_scale = model.r() * model.nu() * 1e-3;  // 1 mrad amplitude at nu
     e[kEventSlipVelocity] = static_cast<int>(phase) * slip_velocity(model, q) / v_scale;
   }

@@ -54,7 +54,7 @@ struct Rhs {
     const Accelerations a =
         phase == Phase::stick
             ? detail::stick_accelerations(*model, t, q, k)
-            : detail::slip_accelerations(*model, t, q, static_cast<int>(phase), baumgarte, k);
+            : detail::slip_accelerations(*model, t, q, slip_sign(phase), baumgarte, k);
     dxdt[0] = x[4];
     dxdt[1] = x[5];
     dxdt[2] = x[6];
@@ -103,9 +103,7 @@ FlowOptions FlowOptions::from(const Model& model) {
   return o;
 }
 
-Phase initial_phase(const Model& model) {
-  return (!model.pure_rolling() && model.mu() == 0.0) ? Phase::slip_positive : Phase::stick;
-}
+Phase initial_phase(const Model& model) { return initial_phase(model.friction()); }
 
 struct Flow::Impl : StepView {
   Impl(const Model& m, const FlowOptions& o)
@@ -335,9 +333,9 @@ FlowStop Flow::Impl::apply_event(const Crossing& c, FlowObserver* observer) {
 void Flow::Impl::track_step_end(const Vec& x, double N) {
   const State q = State::from_array(x);
   counters.min_N = std::min(counters.min_N, N);
-  if (phase_ != Phase::stick && model.mu() > 0.0) {
+  if (phase_ != Phase::stick && model.cone() > 0.0) {
     const double residual =
-        std::abs(slip_constraint_residual(model, q, static_cast<int>(phase_))) / model.W();
+        std::abs(slip_constraint_residual(model, q, slip_sign(phase_))) / model.W();
     counters.max_slip_residual = std::max(counters.max_slip_residual, residual);
   }
 }

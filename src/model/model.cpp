@@ -56,7 +56,8 @@ Model::Model(const Case& c) : case_(c) {
   const Roller& R = c.roller;
   geometry_ = TroughGeometry{c.trough.shape, R.r};
   friction_ = friction_law(c.contact);
-  mu_static_ = c.contact.pure_rolling ? c.contact.mu : cone_coefficient(friction_);
+  cone_ = cone_coefficient(friction_);
+  phases_ = oscidrum::friction_phases(friction_);
   SoilCoefficients s = soil_coefficients(c.soil, R);
   ksh_ = s.ksh;
   ksv_ = s.ksv;
@@ -139,7 +140,7 @@ DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& 
 Accelerations detail::accelerations(const Model& model, double t, const State& q, Phase phase,
                                     double baumgarte, const Kinematics& k) {
   if (phase == Phase::stick) return stick_accelerations(model, t, q, k);
-  return slip_accelerations(model, t, q, static_cast<int>(phase), baumgarte, k);
+  return slip_accelerations(model, t, q, slip_sign(phase), baumgarte, k);
 }
 
 Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,

@@ -12,6 +12,8 @@ const char* to_string(Phase phase) {
       return "slip+";
     case Phase::slip_negative:
       return "slip-";
+    case Phase::smooth:
+      return "smooth";
   }
   return "?";
 }

@@ -1,19 +1,10 @@
-// Friction laws (oscidrum/friction.hpp).
+// Friction laws (oscidrum/friction.hpp): which law a Contact describes, and the dispatchers that
+// visit the variant. Each law's own answers are in src/physics/friction_<law>.cpp.
 #include "oscidrum/friction.hpp"
 
-#include <limits>
+#include <cmath>
 
 namespace oscidrum {
-namespace {
-
-template <class... F>
-struct overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-overloaded(F...) -> overloaded<F...>;
-
-}  // namespace
 
 FrictionLaw friction_law(const Contact& contact) {
   if (contact.pure_rolling) return PureRolling{};
@@ -22,19 +13,52 @@ FrictionLaw friction_law(const Contact& contact) {
   return CoulombFriction{contact.mu};
 }
 
-double cone_coefficient(const FrictionLaw& law) {
-  return std::visit(
-      overloaded{[](const PureRolling&) { return std::numeric_limits<double>::infinity(); },
-                 [](const CoulombFriction& f) { return f.mu; },
-                 [](const StaticKineticFriction& f) { return f.mu_static; }},
-      law);
+FrictionPhases friction_phases(const FrictionLaw& law) {
+  return std::visit([](const auto& l) { return l.phases(); }, law);
 }
 
-double slip_coefficient(const FrictionLaw& law) {
-  return std::visit(overloaded{[](const PureRolling&) { return 0.0; },
-                               [](const CoulombFriction& f) { return f.mu; },
-                               [](const StaticKineticFriction& f) { return f.mu_kinetic; }},
-                    law);
+double cone_coefficient(const FrictionLaw& law) {
+  return std::visit([](const auto& l) { return l.cone(); }, law);
+}
+
+SlipCoefficient slip_coefficient(const FrictionLaw& law, int s, double v_rel) {
+  return std::visit([s, v_rel](const auto& l) { return l.slip(s, v_rel); }, law);
+}
+
+double largest_slip_coefficient(const FrictionLaw& law) {
+  return std::visit([](const auto& l) { return l.largest_coefficient(); }, law);
+}
+
+Phase initial_phase(const FrictionLaw& law) {
+  switch (friction_phases(law)) {
+    case FrictionPhases::stick_only:
+      return Phase::stick;
+    case FrictionPhases::smooth:
+      return Phase::smooth;
+    case FrictionPhases::stick_slip:
+      // Without friction the cone is a point: the drum slips from the start.
+      return cone_coefficient(law) == 0.0 ? Phase::slip_positive : Phase::stick;
+  }
+  return Phase::stick;
+}
+
+bool has_phase(const FrictionLaw& law, Phase phase) {
+  switch (friction_phases(law)) {
+    case FrictionPhases::stick_only:
+      return phase == Phase::stick;
+    case FrictionPhases::smooth:
+      return phase == Phase::smooth;
+    case FrictionPhases::stick_slip:
+      return phase != Phase::smooth && (phase != Phase::stick || cone_coefficient(law) > 0.0);
+  }
+  return false;
+}
+
+Phase apparent_phase(const FrictionLaw& law, Phase phase, double v_rel) {
+  if (phase != Phase::smooth) return phase;
+  const double creep = std::visit([](const auto& l) { return l.creep_velocity(); }, law);
+  if (std::abs(v_rel) <= creep) return Phase::stick;
+  return v_rel > 0.0 ? Phase::slip_positive : Phase::slip_negative;
 }
 
 }  // namespace oscidrum

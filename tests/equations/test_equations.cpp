@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "equations/slip_general.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/parameters.hpp"
@@ -57,7 +58,7 @@ struct FrictionFactors {
   double fmu1, fmu2;
 };
 FrictionFactors friction_factors(const Model& model, double delta, int s) {
-  const double smu = s * model.mu();
+  const double smu = s * model.cone();
   return {std::cos(delta) - smu * std::sin(delta), std::sin(delta) + smu * std::cos(delta)};
 }
 
@@ -358,7 +359,7 @@ TEST(SlipPhase, SatisfiesTheBalanceEquations) {
         EXPECT_NEAR(coupling(model, p.q, s), 0.0, kIdentity * model.W()) << where;
         EXPECT_GT(s * slip_velocity(model, p.q), 0.0) << where;
         const ForcePair soil = soil_contact(model, p.q);
-        EXPECT_NEAR(soil.T, -s * model.mu() * soil.N, kBalanceResidual * model.W()) << where;
+        EXPECT_NEAR(soil.T, -s * model.cone() * soil.N, kBalanceResidual * model.W()) << where;
         const Accelerations a = slip_accelerations(model, p.t, p.q, s);
         expect_balanced(model, p.t, p.q, a, soil, where);
       }
@@ -380,8 +381,8 @@ TEST(SlipPhase, UsesNormalForceOfTheSoilAndCoulombFriction) {
         const double N = contact_forces(model, p.q).N;  // (26)
         const ForcePair drum = drum_contact(model, p.q, a);
         EXPECT_NEAR(drum.N, N, kBalanceResidual * model.W()) << where;
-        EXPECT_NEAR(drum.T, -s * model.mu() * N, kBalanceResidual * model.W()) << where;
-        expect_balanced(model, p.t, p.q, a, {N, -s * model.mu() * N}, where);
+        EXPECT_NEAR(drum.T, -s * model.cone() * N, kBalanceResidual * model.W()) << where;
+        expect_balanced(model, p.t, p.q, a, {N, -s * model.cone() * N}, where);
       }
     }
   }
@@ -399,7 +400,7 @@ TEST(SlipPhase, CouplingIsTheFrictionLaw) {
         const double R = coupling(model, p.q, s);
         EXPECT_NEAR(slip_constraint_residual(model, p.q, s), R, kIdentity * model.W());
         const ContactForces F = contact_forces(model, p.q);
-        EXPECT_NEAR(F.T + s * model.mu() * F.N, -R, kIdentity * model.W()) << describe(cfg, s, p);
+        EXPECT_NEAR(F.T + s * model.cone() * F.N, -R, kIdentity * model.W()) << describe(cfg, s, p);
       }
     }
   }
@@ -447,7 +448,7 @@ Accelerations solve_slip(const Model& model, double t, const State& q, int s, do
   b(3) = F.Fh * sn + F.Fv * cs;
   // (27): T + s mu N = 0
   A(4, 5) = 1.0;
-  A(4, 4) = s * model.mu();
+  A(4, 4) = s * model.cone();
   b(4) = 0.0;
   // d/dt (39) = fmu1 (csh x_A'' + ksh x_A') - fmu2 (csv s_A'' + ksv s_A')
   //             - (fmu2 Fh + fmu1 Fv) delta' = -beta (39); scaled by 1/csh.
@@ -529,6 +530,29 @@ TEST(SlipPhase, SlipVelocity) {
   EXPECT_NEAR(slip_velocity(model, q), model.r() * (f5 * q.ddelta - q.dphi), kIdentity);  // (13)
   q.dphi = f5 * q.ddelta;  // rolling: no slip
   EXPECT_NEAR(slip_velocity(model, q), 0.0, kIdentity);
+}
+
+// ---- the slip phase with a velocity-dependent coefficient (a regularised law) -------------------
+
+// With a constant coefficient (dm/dv = 0) the general system is the paper's (55): the general
+// solve and the paper's elimination agree.
+TEST(SmoothSlipPhase, GeneralSystemWithAConstantCoefficientIsThePapers) {
+  std::mt19937 rng(99);
+  for (const Config& cfg : kConfigs) {
+    const Model model = make_model(cfg);
+    for (int s : {1, -1}) {
+      for (int i = 0; i < 50; ++i) {
+        const Sample p = random_sample(rng, model, s, i % 2 == 0);
+        const double beta = 2.0 * model.nu();
+        const auto a = detail::general_slip_accelerations(
+            model, p.t, p.q.to_array(),
+            detail::kinematics_t(kinematics(model.geometry(), p.q.delta)), s * 0.5, 0.0, beta);
+        const Accelerations want = slip_accelerations(model, p.t, p.q, s, beta);
+        expect_same_accelerations({a[0], a[1], a[2], a[3]}, want, scales(model), kIndependentSolve,
+                                  describe(cfg, s, p));
+      }
+    }
+  }
 }
 
 // ---- equilibrium

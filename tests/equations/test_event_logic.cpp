@@ -27,7 +27,7 @@ State random_state(std::mt19937& rng, const Model& model) {
 // mu N - |T| along the stick dynamics, by a central difference of the soil forces.
 double margin(const Model& model, const State& q, int sign_T) {
   const ContactForces f = contact_forces(model, q);
-  return model.mu() * f.N - sign_T * f.T;
+  return model.cone() * f.N - sign_T * f.T;
 }
 
 State advance(const Model& model, double t, const State& q, double h) {
@@ -66,7 +66,7 @@ TEST(EventLogic, StickMarginRateIsTheDerivativeAlongTheStickSolution) {
 // (39) holding for s (T = -s mu N), obtained by solving (39) for s_A'.
 State slip_end_state(std::mt19937& rng, const Model& model, int s) {
   State q = random_state(rng, model);
-  const double smu = s * model.mu();
+  const double smu = s * model.cone();
   const double fmu1 = std::cos(q.delta) - smu * std::sin(q.delta);
   const double fmu2 = std::sin(q.delta) + smu * std::cos(q.delta);
   q.ds_A = (fmu1 * (model.csh() * q.dx_A + model.ksh() * q.x_A) / fmu2 - model.ksv() * q.s_A) /
@@ -84,7 +84,7 @@ TEST(EventLogic, SlipEndDecisionFollowsTheRateAndKeepsMomentum) {
     ASSERT_NEAR(slip_constraint_residual(model, q, s), 0.0, 1e-6);
     const ContactForces f = contact_forces(model, q);
     if (f.N <= 0) continue;
-    ASSERT_NEAR(f.T, -s * model.mu() * f.N, 1e-9 * std::abs(f.N));
+    ASSERT_NEAR(f.T, -s * model.cone() * f.N, 1e-9 * std::abs(f.N));
     const double rate = stick_margin_rate(model, 0.0, q, -s);
     const SlipEnd d = decide_slip_end(model, 0.0, q, s);
     if (d.stick && d.consistent) {

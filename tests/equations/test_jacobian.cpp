@@ -48,10 +48,10 @@ State random_state(std::mt19937& rng, const Model& model) {
 // Central-difference Jacobian of a map R^8 -> R^8 at y, column j with step kStep * kScale[j];
 // `fourth_order` uses the five-point stencil (truncation O(h^4)) for strongly curved maps.
 Mat8 fd_jacobian(const std::function<Vec8(const Vec8&)>& map, const Vec8& y,
-                 bool fourth_order = false) {
+                 bool fourth_order = false, const Vec8& scale = kScale) {
   Mat8 J;
   for (int j = 0; j < 8; ++j) {
-    const double h = kStep * kScale[j];
+    const double h = kStep * scale[j];
     auto at = [&](double dy) {
       Vec8 z = y;
       z[j] += dy;
@@ -68,12 +68,13 @@ Mat8 fd_jacobian(const std::function<Vec8(const Vec8&)>& map, const Vec8& y,
 
 // Compare row by row in scaled units: the error of each entry, times the scale of its column,
 // relative to the row's largest scaled entry (the row's size of a unit perturbation).
-void expect_jacobian_near(const Mat8& analytic, const Mat8& fd, const std::string& what) {
+void expect_jacobian_near(const Mat8& analytic, const Mat8& fd, const std::string& what,
+                          const Vec8& scale = kScale) {
   for (int i = 0; i < 8; ++i) {
     double row = 0.0;
-    for (int j = 0; j < 8; ++j) row = std::max(row, std::abs(fd(i, j)) * kScale[j]);
+    for (int j = 0; j < 8; ++j) row = std::max(row, std::abs(fd(i, j)) * scale[j]);
     for (int j = 0; j < 8; ++j) {
-      EXPECT_LE(std::abs(analytic(i, j) - fd(i, j)) * kScale[j],
+      EXPECT_LE(std::abs(analytic(i, j) - fd(i, j)) * scale[j],
                 test::kFiniteDifference * std::max(row, 1e-300))
           << what << ": entry (" << i << ", " << j << ") analytic " << analytic(i, j) << " fd "
           << fd(i, j);

@@ -22,7 +22,8 @@ TEST(Friction, ContactChoosesTheLaw) {
   const FrictionLaw law = friction_law(c);
   ASSERT_TRUE(std::holds_alternative<StaticKineticFriction>(law));
   EXPECT_EQ(cone_coefficient(law), 0.6);
-  EXPECT_EQ(slip_coefficient(law), 0.5);
+  EXPECT_EQ(slip_coefficient(law, 1, 0.0).m, 0.5);
+  EXPECT_EQ(slip_coefficient(law, -1, 3.0).m, -0.5);
   c.pure_rolling = true;
   EXPECT_TRUE(never_slips(friction_law(c)));
   EXPECT_TRUE(std::isinf(cone_coefficient(friction_law(c))));
