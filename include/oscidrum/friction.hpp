@@ -68,9 +68,23 @@ struct StaticKineticFriction {
   double creep_velocity() const;                    ///< 0: slip is slip
 };
 
-using FrictionLaw = std::variant<PureRolling, CoulombFriction, StaticKineticFriction>;
+/// Regularised Coulomb friction: T = -mu tanh(v_rel / v_eps) N for every v_rel, one smooth
+/// phase without stick (docs/model.md section 12). As v_eps -> 0 it tends to the Coulomb law
+/// with the same mu; the stick phase becomes creep at |v_rel| of order v_eps.
+struct RegularisedCoulomb {
+  double mu = 0.5;      ///< [-]
+  double v_eps = 0.01;  ///< regularisation velocity [m/s], > 0
+  FrictionPhases phases() const;
+  double cone() const;                              ///< mu (the bound |T| < mu N)
+  SlipCoefficient slip(int s, double v_rel) const;  ///< mu tanh(v_rel / v_eps); s is ignored
+  double largest_coefficient() const;               ///< mu
+  double creep_velocity() const;                    ///< 4 v_eps (|T| < 0.9993 mu N)
+};
 
-/// The law a Contact describes: pure_rolling; else
+using FrictionLaw =
+    std::variant<PureRolling, CoulombFriction, StaticKineticFriction, RegularisedCoulomb>;
+
+/// The law a Contact describes: pure_rolling; else contact.law = regularised; else
 /// static/kinetic when contact.mu_static is set (>= 0) and differs from contact.mu; else Coulomb.
 FrictionLaw friction_law(const Contact& contact);
 

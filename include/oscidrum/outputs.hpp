@@ -51,7 +51,8 @@
   X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13); 0 in stick")                         \
   X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")             \
   X(SamplePhases, phase, "-", "phase",                                                             \
-    "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0")
+    "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised "          \
+    "friction: the apparent phase, stick while |v_rel| <= 4 v_eps)")
 
 // ------------------------------------------------------------------------------------------------
 // Counters of a run (Diagnostics), in output order.

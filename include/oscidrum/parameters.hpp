@@ -60,11 +60,20 @@ struct Trough {
   TroughShape shape;  ///< CircleTrough{0.606} by default
 };
 
+/// Which friction law a Contact describes (besides pure_rolling and mu_static, see
+/// oscidrum/friction.hpp).
+enum class FrictionChoice {
+  coulomb,      ///< the paper's Coulomb law (static/kinetic when mu_static is set)
+  regularised,  ///< T = -mu tanh(v_rel / v_eps) N: one smooth phase, no stick
+};
+
 /// Drum/soil contact.
 struct Contact {
   double mu = 0.5;            ///< Coulomb friction coefficient (kinetic: slip) [-], >= 0
   double mu_static = -1.0;    ///< static coefficient (the friction cone) [-]; < 0: equal to mu
   bool pure_rolling = false;  ///< ignore the friction limit (mu -> infinity): stick throughout
+  FrictionChoice law = FrictionChoice::coulomb;  ///< the friction law
+  double v_eps = 0.01;  ///< regularisation velocity of the regularised law [m/s]
 };
 
 /// How the periodic steady state is found (docs/periodic.md).

@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -73,6 +73,8 @@ class Contact:
     def __getstate__(self: Contact) -> dict: ...
     def __init__(self, **kwargs: Any) -> None: ...
     def __setstate__(self, state: Any) -> None: ...
+    law: str
+    """friction law: coulomb (the paper: stick while |T| <= mu N, slip with T = -s mu N) or regularised (T = -mu tanh(v_rel / v_eps) N, one smooth phase without stick) [-]; one of coulomb, regularised; default coulomb."""
     mu: float
     """Coulomb friction coefficient drum/soil (the kinetic one when contact.mu_static is set) [-]; >= 0; default 0.5."""
     mu_static: float
@@ -80,6 +82,8 @@ class Contact:
     pure_rolling: bool
     """ignore the friction limit (mu -> infinity): stick throughout [-]; true or false; default false."""
     def to_dict(self: Contact, all: bool = ...) -> dict: ...
+    v_eps: float
+    """regularisation velocity of contact.law = regularised: tanh(v_rel / v_eps) (-> Coulomb as v_eps -> 0; slip slower than v_eps is creep, shown as stick) [m/s]; in [1e-06, 10]; default 0.01."""
 
 class ContactForces:
     N: float
@@ -535,7 +539,7 @@ class Samples:
     """steady-state samples, column dx_A[m/s] of docs/csv-columns.md: x_A' (read-only NumPy view)"""
     headers: list
     phase: numpy.ndarray
-    """contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (int8 copy)"""
+    """contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised friction: the apparent phase, stick while |v_rel| <= 4 v_eps) (int8 copy)"""
     phi: numpy.ndarray
     """steady-state samples, column phi[rad] of docs/csv-columns.md: total drum rotation (read-only NumPy view)"""
     s_A: numpy.ndarray

@@ -112,6 +112,20 @@ const std::array kFields = {
     Field{"contact.pure_rolling", FieldType::boolean, "-",
           "ignore the friction limit (mu -> infinity): stick throughout", 0, 1, false, false,
           nullptr, OSCIDRUM_BOOL(contact.pure_rolling)},
+    Field{"contact.law", FieldType::choice, "-",
+          "friction law: coulomb (the paper: stick while |T| <= mu N, slip with T = -s mu N) or "
+          "regularised (T = -mu tanh(v_rel / v_eps) N, one smooth phase without stick)",
+          0, 1, false, false, "coulomb|regularised",
+          [](const Case& c) { return static_cast<double>(c.contact.law); },
+          [](Case& c, double v) {
+            c.contact.law = static_cast<FrictionChoice>(static_cast<int>(v));
+          }},
+    // v_eps is bounded below: far below 1e-6 m/s the smooth law is as stiff as a switch and the
+    // explicit integrator cannot follow it within any step budget.
+    Field{"contact.v_eps", FieldType::real, "m/s",
+          "regularisation velocity of contact.law = regularised: tanh(v_rel / v_eps) (-> Coulomb "
+          "as v_eps -> 0; slip slower than v_eps is creep, shown as stick)",
+          1e-6, 10, false, false, nullptr, OSCIDRUM_REAL(contact.v_eps)},
     // driving torque
     Field{"MMd", FieldType::real, "N m",
           "constant driving torque (6); the paper uses 0 and 0.05 M0", -inf, inf, false, false,

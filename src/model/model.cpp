@@ -30,6 +30,12 @@ void validate(const Case& c) {
         "roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
         num(R.P0) + " < m g = " + num(R.m * R.g));
   check_fit(c.trough.shape, R.r);
+  if (c.contact.law == FrictionChoice::regularised && !c.contact.pure_rolling &&
+      c.contact.mu_static != -1.0 && c.contact.mu_static != c.contact.mu)
+    throw Error(
+        "contact.mu_static must be -1 (or equal to contact.mu) with contact.law = regularised: "
+        "the regularised law has one coefficient and no stick; got mu_static = " +
+        num(c.contact.mu_static));
   if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
     throw Error(
         "contact.mu_static must be >= contact.mu (static friction is at least the kinetic), or "

@@ -8,6 +8,8 @@ namespace oscidrum {
 
 FrictionLaw friction_law(const Contact& contact) {
   if (contact.pure_rolling) return PureRolling{};
+  if (contact.law == FrictionChoice::regularised)
+    return RegularisedCoulomb{contact.mu, contact.v_eps};
   if (contact.mu_static >= 0.0 && contact.mu_static != contact.mu)
     return StaticKineticFriction{contact.mu_static, contact.mu};
   return CoulombFriction{contact.mu};

@@ -106,6 +106,18 @@ TEST(Shooting, MonodromyIsTheJacobianOfThePeriodMapInPureRolling) {
 
 // The monodromy of P^2, integrated through the section in between (the product of the two period
 // monodromies with the saltations of all switches), is the Jacobian of P^2.
+// The smooth phase of the regularised friction law (its Jacobian by dual numbers), no switches.
+Case regularised_case() {
+  Case c = stick_slip_case();
+  c.contact.law = FrictionChoice::regularised;
+  c.contact.v_eps = 1e-3;
+  return c;
+}
+
+TEST(Shooting, MonodromyIsTheJacobianOfThePeriodMapWithTheRegularisedLaw) {
+  check_monodromy(regularised_case(), false);
+}
+
 TEST(Shooting, MonodromyOfTwoPeriodsIsTheJacobianOfTheirMap) {
   check_monodromy(stick_slip_case(), true, 2);
 }
@@ -277,7 +289,7 @@ TEST(Shooting, TransientDecaysLikeTheLargestMultiplierInPureRolling) {
 }
 
 TEST(Shooting, AgreesWithTheTransientMethod) {
-  for (const Case& c0 : {stick_slip_case(), pure_rolling_case()}) {
+  for (const Case& c0 : {stick_slip_case(), pure_rolling_case(), regularised_case()}) {
     Case c = c0;
     const Result shot = simulate(c);
     c.numerics.method = SteadyMethod::transient;

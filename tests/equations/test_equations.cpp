@@ -534,6 +534,83 @@ TEST(SlipPhase, SlipVelocity) {
 
 // ---- the slip phase with a velocity-dependent coefficient (a regularised law) -------------------
 
+Model make_regularised_model(const Config& cfg, double v_eps) {
+  Case c;
+  c.trough.shape = trough_shape(cfg.k, cfg.a);
+  c.numerics.suspension_from_static = cfg.from_static;
+  c.MMd = 0.05 * c.roller.M0;
+  c.contact.law = FrictionChoice::regularised;
+  c.contact.v_eps = v_eps;
+  return Model(c);
+}
+
+// A random state whose slip velocity is within a few v_eps, where tanh(v_rel / v_eps) and its
+// derivatives are far from their limits.
+Sample random_creep_sample(std::mt19937& rng, const Model& model, double v_eps) {
+  Sample p = random_sample(rng, model, 1, false);
+  const double f5 = kinematics(model.geometry(), p.q.delta).f5;
+  const double v = std::uniform_real_distribution<double>(-3.0, 3.0)(rng) * v_eps;
+  p.q.dphi = f5 * p.q.ddelta - v / model.r();  // (13)
+  return p;
+}
+
+// The smooth phase takes N from the soil (26) and T = -mu tanh(v_rel / v_eps) N at any state, and
+// its accelerations satisfy the drum's balances (19), (20), (23) with them.
+TEST(SmoothSlipPhase, SatisfiesTheBalanceEquationsWithTheRegularisedLaw) {
+  std::mt19937 rng(4242);
+  for (const Config& cfg : kConfigs) {
+    for (double v_eps : {1e-3, 0.1}) {
+      const Model model = make_regularised_model(cfg, v_eps);
+      for (int i = 0; i < kSamples; ++i) {
+        const Sample p = random_creep_sample(rng, model, v_eps);
+        const std::string where = describe(cfg, 0, p) + ", v_eps = " + std::to_string(v_eps);
+        const Accelerations a = accelerations(model, p.t, p.q, Phase::smooth, 2.0 * model.nu());
+        const double N = contact_forces(model, p.q).N;  // (26)
+        const double T = -0.5 * std::tanh(slip_velocity(model, p.q) / v_eps) * N;
+        const ForcePair drum = drum_contact(model, p.q, a);
+        EXPECT_NEAR(drum.N, N, kBalanceResidual * model.W()) << where;
+        EXPECT_NEAR(drum.T, T, kBalanceResidual * model.W()) << where;
+        expect_balanced(model, p.t, p.q, a, {N, T}, where);
+      }
+    }
+  }
+}
+
+// d(39)/dt along the smooth phase, with m = mu tanh(v_rel / v_eps) changing in time: written here
+// from (35) and (13), fmu1' = -fmu2 delta' - m' sin, fmu2' = fmu1 delta' + m' cos,
+// m' = dm/dv (r f6 delta'^2 + r f5 delta'' - r phi''). It equals -beta (39).
+TEST(SmoothSlipPhase, CouplingRateIncludesTheChangingCoefficient) {
+  std::mt19937 rng(777);
+  for (const Config& cfg : kConfigs) {
+    const double v_eps = 0.01;
+    const Model model = make_regularised_model(cfg, v_eps);
+    const double rate_scale = model.nu() * model.W();
+    for (int i = 0; i < kSamples; ++i) {
+      const Sample p = random_creep_sample(rng, model, v_eps);
+      const State& q = p.q;
+      const Kinematics k = kinematics(model.geometry(), q.delta);
+      const double v = slip_velocity(model, q), th = std::tanh(v / v_eps);
+      const double m = 0.5 * th, m_v = 0.5 * (1.0 - th * th) / v_eps;
+      const double sn = std::sin(q.delta), cs = std::cos(q.delta);
+      const double fmu1 = cs - m * sn, fmu2 = sn + m * cs;
+      const SoilForces F = soil_forces(model, q);
+      for (double beta : {0.0, 2.0 * model.nu()}) {
+        const Accelerations a = accelerations(model, p.t, q, Phase::smooth, beta);
+        const double dv = model.r() * (k.f6 * q.ddelta * q.ddelta + k.f5 * a.delta - a.phi);
+        const double dm = m_v * dv;
+        const double dFh = model.csh() * a.x_A + model.ksh() * q.dx_A;
+        const double dFv = model.csv() * a.s_A + model.ksv() * q.ds_A;
+        const double rate = (-fmu2 * q.ddelta - dm * sn) * F.Fh + fmu1 * dFh -
+                            (fmu1 * q.ddelta + dm * cs) * F.Fv - fmu2 * dFv;
+        const double g = fmu1 * F.Fh - fmu2 * F.Fv;
+        EXPECT_NEAR(rate, -beta * g, kBalanceResidual * (rate_scale + beta * std::abs(g)))
+            << describe(cfg, 0, p) << ", beta = " << beta;
+        EXPECT_NEAR(slip_constraint_residual(model, q, 0), g, kIdentity * model.W());
+      }
+    }
+  }
+}
+
 // With a constant coefficient (dm/dv = 0) the general system is the paper's (55): the general
 // solve and the paper's elimination agree.
 TEST(SmoothSlipPhase, GeneralSystemWithAConstantCoefficientIsThePapers) {

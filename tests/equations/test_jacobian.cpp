@@ -122,6 +122,44 @@ TEST(Jacobian, StickAndSlipRightHandSidesAgainstFiniteDifferences) {
   }
 }
 
+// The smooth phase of the regularised law (T = -mu tanh(v_rel / v_eps) N), whose Jacobian comes
+// from dual numbers: at states whose v_rel is within a few v_eps (where the coefficient changes).
+TEST(Jacobian, SmoothPhaseOfTheRegularisedLawAgainstFiniteDifferences) {
+  std::mt19937 rng(8128);
+  for (bool spiral : {false, true}) {
+    for (double v_eps : {1e-3, 0.05}) {
+      Case c = trough_case(spiral);
+      c.contact.law = FrictionChoice::regularised;
+      c.contact.v_eps = v_eps;
+      const Model model(c);
+      for (int i = 0; i < 20; ++i) {
+        State q = random_state(rng, model);
+        const double f5 = kinematics(model.geometry(), q.delta).f5;
+        q.dphi = f5 * q.ddelta - std::uniform_real_distribution<double>(-3.0, 3.0)(rng) * v_eps /
+                                     model.r();  // v_rel (13) within 3 v_eps
+        const double t = 0.0017 * i;
+        for (double b : {0.0, 2.0 * model.nu()}) {
+          const Mat8 J = phase_jacobian(model, t, q, Phase::smooth, b);
+          // The differences in delta' and phi' on the scale of the regularisation: with the
+          // default scale (50 rad/s) a step moves v_rel by ~1e-4 m/s, a tenth of v_eps = 1e-3,
+          // where tanh is far from linear; steps of 1e-3 v_eps in v_rel are smooth enough for
+          // the fourth-order stencil and large enough against the round-off of delta' ~ 50.
+          Vec8 scale = kScale;
+          scale[4] = scale[7] = 100.0 * v_eps / model.r();
+          const Mat8 fd = fd_jacobian(
+              [&](const Vec8& y) { return phase_rhs(model, t, to_state(y), Phase::smooth, b); },
+              to_vec8(q), true, scale);
+          expect_jacobian_near(J, fd,
+                               std::string(spiral ? "spiral" : "circle") + " smooth v_eps " +
+                                   std::to_string(v_eps) + (b != 0.0 ? " Baumgarte" : "") + " #" +
+                                   std::to_string(i),
+                               scale);
+        }
+      }
+    }
+  }
+}
+
 TEST(Jacobian, PhiIsCyclicAndStickSlavesPhiDot) {
   // No right-hand side depends on phi; in stick none depends on phi' either (phi' = f5 delta').
   std::mt19937 rng(3);

@@ -51,6 +51,7 @@ const std::map<std::string, Member>& members() {
       {"soil.csv", [](Case& c) -> double& { return c.soil.csv; }},
       {"contact.mu", [](Case& c) -> double& { return c.contact.mu; }},
       {"contact.mu_static", [](Case& c) -> double& { return c.contact.mu_static; }},
+      {"contact.v_eps", [](Case& c) -> double& { return c.contact.v_eps; }},
       {"MMd", [](Case& c) -> double& { return c.MMd; }},
       {"numerics.rtol", [](Case& c) -> double& { return c.numerics.rtol; }},
       {"numerics.atol", [](Case& c) -> double& { return c.numerics.atol; }},
@@ -97,6 +98,7 @@ double direct_value(const Case& c0, const std::string& key) {
   if (key == "soil.input") return static_cast<double>(static_cast<int>(c.soil.input));
   if (key == "numerics.method") return static_cast<double>(static_cast<int>(c.numerics.method));
   if (key == "contact.pure_rolling") return c.contact.pure_rolling ? 1.0 : 0.0;
+  if (key == "contact.law") return static_cast<double>(static_cast<int>(c.contact.law));
   if (key == "numerics.suspension_from_static") return c.numerics.suspension_from_static;
   if (key == "numerics.continuation") return c.numerics.continuation;
   if (key == "numerics.max_periods") return c.numerics.max_periods;
@@ -140,8 +142,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 12 roller + 8 soil + 2 trough + 3 contact + MMd + 12 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 39u);
+  // 12 roller + 8 soil + 2 trough + 5 contact + MMd + 12 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 41u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;
