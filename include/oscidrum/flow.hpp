@@ -11,6 +11,7 @@
 
 #include "oscidrum/model.hpp"
 #include "oscidrum/result.hpp"
+#include "oscidrum/roller.hpp"
 #include "oscidrum/state.hpp"
 
 namespace oscidrum {
@@ -46,12 +47,18 @@ enum class FlowStop {
 };
 const char* to_string(FlowStop stop);
 
+/// The status of a run that the flow stopped early (contact_lost, chattering, non_finite,
+/// invalid_geometry, budget_exceeded; cancelled and observer give Status::cancelled).
+Status status_of(FlowStop stop);
+
 /// The part of an accepted integration step that lies in one phase and one advance() interval:
 /// the dense output (Dormand-Prince's continuous extension, 4th order) between t0() and t1().
 /// Valid only inside the observer call that receives it.
-class StepView {
+template <class Roller>
+class BasicStepView {
  public:
-  virtual ~StepView() = default;
+  using State = typename Roller::State;
+  virtual ~BasicStepView() = default;
   virtual double t0() const = 0;  ///< [s]
   virtual double t1() const = 0;  ///< [s]
   virtual Phase phase() const = 0;
@@ -61,12 +68,14 @@ class StepView {
   virtual bool ends_step() const = 0;
 };
 
-/// Receives the trajectory as Flow::advance produces it, in time order.
-class FlowObserver {
+/// Receives the trajectory as BasicFlow::advance produces it, in time order.
+template <class Roller>
+class BasicFlowObserver {
  public:
-  virtual ~FlowObserver() = default;
+  using State = typename Roller::State;
+  virtual ~BasicFlowObserver() = default;
   /// A piece of the trajectory; return false to stop the flow (FlowStop::observer).
-  virtual bool on_step(const StepView& /*step*/) { return true; }
+  virtual bool on_step(const BasicStepView<Roller>& /*step*/) { return true; }
   /// An event at event.t: the state just before it and the state the flow continues from (the
   /// same but for a velocity reset at a slip end). Return false to stop the flow.
   virtual bool on_event(const Event& /*event*/, const State& /*before*/, const State& /*after*/) {
@@ -88,16 +97,21 @@ struct FlowCounters {
   double max_slip_residual = 0.0;   ///< max |(39)| / W at step ends in slip [-]
 };
 
-/// The hybrid flow of one model. Holds the integrator between calls, so that consecutive
-/// advance() calls continue one trajectory exactly as a single call would (a step that straddles
-/// the end of an interval is not cut; its dense output serves both sides).
-class Flow {
+/// The hybrid flow of one model for the roller type `Roller` (oscidrum/roller.hpp): its state,
+/// phases, equations and events are the roller's (src/roller/), the integration, the location of
+/// events, the guards and the observers are this class's. Holds the integrator between calls, so
+/// that consecutive advance() calls continue one trajectory exactly as a single call would (a
+/// step that straddles the end of an interval is not cut; its dense output serves both sides).
+template <class Roller>
+class BasicFlow {
  public:
-  Flow(const Model& model, const FlowOptions& options);
-  explicit Flow(const Model& model) : Flow(model, FlowOptions::from(model)) {}
-  ~Flow();
-  Flow(const Flow&) = delete;
-  Flow& operator=(const Flow&) = delete;
+  using State = typename Roller::State;
+  using Observer = BasicFlowObserver<Roller>;
+  BasicFlow(const Model& model, const FlowOptions& options);
+  explicit BasicFlow(const Model& model) : BasicFlow(model, FlowOptions::from(model)) {}
+  ~BasicFlow();
+  BasicFlow(const BasicFlow&) = delete;
+  BasicFlow& operator=(const BasicFlow&) = delete;
 
   /// Start (or restart) at time t from state q in the given phase.
   void reset(double t, const State& q, Phase phase);
@@ -106,7 +120,7 @@ class Flow {
   /// Events at t <= t_end are applied. On FlowStop::reached, t() == t_end and state() is the
   /// state there; on any other stop, t() and state() are where the flow stopped and message()
   /// explains it. Never throws for numerical trouble.
-  FlowStop advance(double t_end, FlowObserver* observer = nullptr);
+  FlowStop advance(double t_end, Observer* observer = nullptr);
 
   double t() const;     ///< [s]
   State state() const;  ///< the state at t()
@@ -123,6 +137,12 @@ class Flow {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The paper's oscillation drum: its flow, step views and observers.
+using Flow = BasicFlow<OscillationDrum>;
+using StepView = BasicStepView<OscillationDrum>;
+using FlowObserver = BasicFlowObserver<OscillationDrum>;
+extern template class BasicFlow<OscillationDrum>;
 
 /// The phase a trajectory starts in from rest: stick, except without friction (mu = 0 and not
 /// pure rolling), where the drum slips from the start (the sign does not matter then).

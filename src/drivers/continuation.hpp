@@ -5,17 +5,24 @@
 
 #include <functional>
 #include <optional>
+#include <vector>
 
-#include "drivers/shooting.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
 
 namespace oscidrum::detail {
 
+/// A neighbour's steady state at its section, as a start for shooting: the roller's state vector
+/// and the phase of the sample there (the roller maps it to a phase the new case can be in).
+struct WarmStart {
+  std::vector<double> state;  ///< the roller's state components (Dynamics<R>::Vector)
+  Phase phase = Phase::stick;
+};
+
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a
 /// start for a neighbouring case; empty unless `result` is a period-1 steady state with samples.
-std::optional<ShootingStart> orbit_start(const Result& result);
+std::optional<WarmStart> orbit_start(const Model& model, const Result& result);
 
 /// simulate(), but with numerics.method = shooting and `warm` given, Newton starts from `warm`
 /// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs
@@ -24,7 +31,7 @@ std::optional<ShootingStart> orbit_start(const Result& result);
 /// all_samples false: result.samples holds only the first sample (the steady state at its
 /// section, enough for compute_metrics and orbit_start); every other number is the same.
 Result simulate_from(const Model& model, const ProgressCallback& progress,
-                     const std::function<bool()>& cancelled, const ShootingStart* warm,
+                     const std::function<bool()>& cancelled, const WarmStart* warm,
                      bool all_samples = true);
 
 }  // namespace oscidrum::detail

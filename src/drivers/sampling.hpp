@@ -1,11 +1,88 @@
-// Internal: the sampling driver. Records whole excitation periods of a trajectory into a Result:
-// uniform samples, the events and the time spent in each phase.
+// Internal: the sampling driver, for any roller type R. Records whole excitation periods of a
+// trajectory into a Result: uniform samples (the roller's columns, Dynamics<R>::sample), the
+// events and the time spent in each phase.
 #pragma once
+
+#include <algorithm>
 
 #include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
+#include "roller/dynamics.hpp"
 
 namespace oscidrum::detail {
+
+namespace sampling {
+
+template <class R>
+class Sampler : public BasicFlowObserver<R> {
+ public:
+  using State = typename R::State;
+  Sampler(const BasicFlow<R>& flow, double t_start, int periods, int per_period, bool all_samples,
+          Result& result)
+      : dynamics_(flow.model(), flow.options().baumgarte),
+        period_(flow.model().period()),
+        t_start_(t_start),
+        t_end_(t_start + periods * flow.model().period()),
+        per_period_(per_period),
+        total_(all_samples ? static_cast<long>(periods) * per_period : 1),
+        result_(result) {}
+
+  bool on_step(const BasicStepView<R>& step) override {
+    // Samples in [t0, t1] not yet taken (a sample on a piece boundary belongs to the first).
+    while (next_ < total_) {
+      const double ts = t_start_ + static_cast<double>(next_) * period_ / per_period_;
+      if (ts > step.t1()) break;
+      dynamics_.sample(ts, step.state(ts).to_array(), step.phase(), result_.samples);
+      ++next_;
+    }
+    const double lo = std::max(step.t0(), t_start_), hi = std::min(step.t1(), t_end_);
+    if (hi > lo) {
+      if (step.phase() != Phase::smooth) {
+        add_time(step.phase(), hi - lo);
+      } else {
+        // The smooth phase of a regularised law: the time in each apparent phase, from the
+        // midpoints of kSmoothParts equal parts of the piece (a piece is at most T/16, so the
+        // times are good to about 1/500 of a period).
+        constexpr int kSmoothParts = 16;
+        const double h = (hi - lo) / kSmoothParts;
+        for (int i = 0; i < kSmoothParts; ++i)
+          add_time(dynamics_.apparent(Phase::smooth, step.state(lo + (i + 0.5) * h).to_array()), h);
+      }
+    }
+    return true;
+  }
+
+  bool on_event(const Event& event, const State&, const State&) override {
+    if (event.t >= t_start_ && event.t < t_end_) result_.events.push_back(event);
+    return true;
+  }
+
+ private:
+  void add_time(Phase phase, double dt) {
+    switch (phase) {
+      case Phase::stick:
+        result_.stick_time += dt;
+        break;
+      case Phase::slip_positive:
+        result_.slip_positive_time += dt;
+        break;
+      case Phase::slip_negative:
+        result_.slip_negative_time += dt;
+        break;
+      case Phase::smooth:
+        break;  // apparent phases only
+    }
+  }
+
+  const Dynamics<R> dynamics_;
+  const double period_, t_start_, t_end_;
+  const int per_period_;
+  const long total_;  // samples to record
+  long next_ = 0;
+  Result& result_;
+};
+
+}  // namespace sampling
 
 /// Integrate `flow` from its current time t0 (a period boundary) over `periods` excitation
 /// periods, writing result.samples (t_j = t0 + j T / samples_per_period, j = 0 ... n-1), the
@@ -14,12 +91,19 @@ namespace oscidrum::detail {
 /// With all_samples false only the first sample (j = 0: the state at t0, where the metrics and a
 /// neighbour's continuation start) is recorded; the integration, the events and the phase times
 /// are the same.
-FlowStop sample_periods(Flow& flow, int periods, int samples_per_period, Result& result,
-                        bool all_samples = true);
-
-/// One row of the samples: the state, the drum motion (14), (17), (18), the contact forces
-/// (24)-(26), the slip velocity (13) and the excitation (5), (6) at time t in the given phase.
-void append_sample(const Model& model, double baumgarte, double t, const State& q, Phase phase,
-                   Samples& samples);
+template <class R>
+FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period, Result& result,
+                        bool all_samples = true) {
+  const double t0 = flow.t();
+  result.sample_periods = periods;
+  result.samples_per_period = samples_per_period;
+  sampling::Sampler<R> sampler(flow, t0, periods, samples_per_period, all_samples, result);
+  const FlowStop stop = flow.advance(t0 + periods * flow.model().period(), &sampler);
+  long switches = 0;
+  for (const Event& e : result.events)
+    if (e.kind != EventKind::contact_lost) ++switches;
+  result.diagnostics.switches_per_period = static_cast<double>(switches) / periods;
+  return stop;
+}
 
 }  // namespace oscidrum::detail

@@ -1,22 +1,36 @@
-// Internal: the periodic steady state by shooting, a driver on the flow (docs/periodic.md).
-// Newton's method on the period map P over one excitation period, P(z) = z, on the reduced state
-// z = (delta, x_A, s_A, delta', x_A', s_A', phi') (phi is cyclic: no right-hand side depends on
-// it), with the monodromy matrix from the variational equations (src/flow/monodromy.hpp).
+// Internal: the periodic steady state by shooting, a driver on the flow of any roller type R
+// (docs/periodic.md). Newton's method on the period map P over one excitation period, P(z) = z,
+// on the reduced state z of the roller's periodic components (Dynamics<R>::kPeriodic; for the
+// oscillation drum (delta, x_A, s_A, delta', x_A', s_A', phi'): phi is cyclic, no right-hand
+// side depends on it), with the monodromy matrix from the variational equations
+// (src/flow/monodromy.hpp).
 #pragma once
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <complex>
+#include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "flow/monodromy.hpp"
 #include "oscidrum/floquet.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
+#include "roller/dynamics.hpp"
 
 namespace oscidrum::detail {
 
-struct ShootingOutcome {
+template <class R>
+struct BasicShootingOutcome {
+  using State = typename R::State;
   /// True: a periodic orbit was found; the flow stands at its section t0 (a period boundary)
   /// on the orbit, ready for sampling.
   bool converged = false;
@@ -43,14 +57,14 @@ struct ShootingOutcome {
   /// predicted residual was far below the threshold); the caller's plain integration of the
   /// sampled periods from the orbit confirms it.
   bool predicted_last_step = false;
-  double phi_drift = 0.0;         ///< (phi(t0 + p T) - phi(t0)) / p on the orbit [rad]
+  double phi_drift = 0.0;  ///< drift of the cyclic coordinate (phi) per period on the orbit [rad]
   long jacobian_evaluations = 0;  ///< evaluations of the phase Jacobians
   Floquet floquet;                ///< the multipliers of P^p at the orbit (p = multiplicity)
   /// The multipliers of the unstable period-1 orbit when a P^p orbit (p > 1) replaced it.
   Floquet period1_floquet;
-  std::array<double, 8> scale{};  ///< scale of each component (its range over a period)
-  double t0 = 0.0;                ///< the section [s]
-  State orbit;                    ///< the orbit's state at t0
+  std::array<double, R::kStates> scale{};  ///< scale of each component (its range over a period)
+  double t0 = 0.0;                         ///< the section [s]
+  State orbit;                             ///< the orbit's state at t0
   /// Largest |(39)| / W and smallest N [N] at the step ends of the short transient from rest (a
   /// trajectory of the run; Newton's iterates are not): Diagnostics::max_slip_residual, min_N.
   double transient_max_slip_residual = 0.0;
@@ -61,7 +75,9 @@ struct ShootingOutcome {
 
 /// Where shooting starts: from `flow`'s current state after a short transient (the default), or
 /// directly from a supplied state (a neighbouring case's orbit).
-struct ShootingStart {
+template <class R>
+struct BasicShootingStart {
+  using State = typename R::State;
   bool from_state = false;
   State state;
   Phase phase = Phase::stick;
@@ -72,14 +88,790 @@ struct ShootingStart {
   int multiplicity = 1;
 };
 
-/// Run the short transient (from the flow's current state, reset by the caller at t = 0) and
-/// Newton. Never throws for numerical trouble.
-ShootingOutcome shoot_periodic_orbit(Flow& flow, const ProgressCallback& progress,
-                                     const ShootingStart& start = {});
+using ShootingOutcome = BasicShootingOutcome<OscillationDrum>;
+using ShootingStart = BasicShootingStart<OscillationDrum>;
 
 /// Scaled distance between two states at a period boundary, as the transient search measures
-/// the period-to-period change: the largest over (delta, x_A, s_A, delta', x_A', s_A', phi') of
-/// the difference over the scale of that component.
-double scaled_change(const State& a, const State& b, const std::array<double, 8>& scale);
+/// the period-to-period change: the largest over the roller's periodic components (for the
+/// oscillation drum all but phi) of the difference over the scale of that component.
+template <class R>
+double scaled_change(const typename R::State& a, const typename R::State& b,
+                     const std::array<double, R::kStates>& scale) {
+  const auto x = a.to_array(), y = b.to_array();
+  double change = 0.0;
+  for (int i : Dynamics<R>::kPeriodic) change = std::max(change, std::abs(x[i] - y[i]) / scale[i]);
+  return change;
+}
+
+namespace shooting {
+
+// Short transient: at least kMinTransient periods, until the switching sequence of a period
+// repeats in the next one; at most kMaxTransient.
+inline constexpr int kMinTransient = 2;
+inline constexpr int kMaxTransient = 24;
+// Transient periods integrated as period maps with sensitivities, at most (see short_transient).
+inline constexpr int kMaxTransientMaps = 2;
+// Extensions of the short transient when Newton's first map changes phase (see run()), at most.
+inline constexpr int kMaxExtensions = 3;
+// When Newton fails from the short transient: the transient goes on plainly for this many
+// periods from where Newton started, and Newton tries once more (see run()).
+inline constexpr int kRetryTransient = 20;
+
+// Newton: at most kMaxNewton steps; each halves its step up to kMaxHalvings times until the
+// scaled residual decreases; more than kMaxSequenceChanges changes of the switching sequence
+// between accepted iterates mean the linearisation does not hold (fall back).
+inline constexpr int kMaxNewton = 12;
+inline constexpr int kMaxHalvings = 4;
+inline constexpr int kMaxSequenceChanges = 3;
+
+// Converged when the scaled residual is below kNewtonTol times the steady-state tolerance (the
+// orbit is then closer to periodic than any state the transient accepts), or below the
+// steady-state tolerance and no longer decreasing by half (the integration's noise floor).
+inline constexpr double kNewtonTol = 1e-2;
+
+// Below this scaled residual, Newton steps reuse the last monodromy matrix (chord steps).
+inline constexpr double kFreshMonodromy = 1e-3;
+
+// The last step is taken without evaluating the period map at its result when the previous full
+// step contracted the residual by at least kPredictContraction and the same contraction predicts
+// a residual below kPredictMargin times the convergence threshold: the plain integration of the
+// sampled periods that follows confirms it (or the run falls back).
+inline constexpr double kPredictContraction = 1e-2;
+inline constexpr double kPredictMargin = 0.1;
+
+// Subharmonic orbits (the period-1 orbit is unstable): the orbit is displaced along the
+// eigenvector of the critical multiplier by kKick of each component's range, then followed for at
+// most kSubharmonicTransient plain periods; Newton on P^p starts there for the (at most
+// kSubharmonicTries) p = 2 ... max_multiplicity whose p-period change is smallest. An orbit of
+// P^p is accepted only when it is not one of P^d, d < p dividing p: the change over d periods
+// stays above kSubharmonicGap (as in the transient search).
+inline constexpr double kKick = 1e-2;
+inline constexpr int kSubharmonicTransient = 32;
+inline constexpr int kSubharmonicTries = 3;
+inline constexpr double kSubharmonicGap = 1e-4;
+// Past a period doubling, Newton on P^2 starts from the period-1 orbit displaced along the
+// eigenvector by these multiples of the components' ranges (both sides), before the search above.
+inline constexpr std::array<double, 6> kFlipKicks = {0.03, -0.03, 0.1, -0.1, 0.3, -0.3};
+
+// Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
+inline constexpr double kSubstepsPerPeriod = 64.0;
+
+inline std::string fmt(const char* format, double a = 0.0, double b = 0.0, double c = 0.0) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, a, b, c);
+  return buf;
+}
+
+template <int P>
+Floquet multipliers_of(const Eigen::Matrix<double, P, P>& M) {
+  const Eigen::EigenSolver<Eigen::Matrix<double, P, P>> eig(M, false);
+  std::vector<std::complex<double>> mult(P);
+  for (int i = 0; i < P; ++i) mult[i] = eig.eigenvalues()[i];
+  return classify_multipliers(std::move(mult));
+}
+
+// Records the switches and the range of each component over a plain period.
+template <class R>
+class PlainObserver : public BasicFlowObserver<R> {
+ public:
+  using State = typename R::State;
+  using Dyn = Dynamics<R>;
+  using Vec = typename Dyn::Vector;
+  static constexpr int P = static_cast<int>(Dyn::kPeriodic.size());
+  using Mat7 = Eigen::Matrix<double, P, P>;
+  using Vec7 = Eigen::Matrix<double, P, 1>;
+  static constexpr auto kPeriodic = Dyn::kPeriodic;
+  bool on_step(const BasicStepView<R>& step) override {
+    if (step.ends_step()) include(step.state(step.t1()).to_array());
+    return true;
+  }
+  bool on_event(const Event& event, const State&, const State&) override {
+    if (event.kind != EventKind::contact_lost) switches.push_back(event);
+    recent.push_back(event);
+    if (recent.size() > 64) recent.erase(recent.begin());
+    return true;
+  }
+  void start(const Vec& x) {
+    lo = hi = x;
+    switches.clear();
+  }
+  void include(const Vec& x) {
+    for (int i = 0; i < Dyn::kStates; ++i) {
+      lo[i] = std::min(lo[i], x[i]);
+      hi[i] = std::max(hi[i], x[i]);
+    }
+  }
+  Vec lo{}, hi{};
+  std::vector<Event> switches, recent;
+};
+
+// Two observers of one flow.
+template <class R>
+class Tee : public BasicFlowObserver<R> {
+ public:
+  using State = typename R::State;
+  Tee(BasicFlowObserver<R>& a, BasicFlowObserver<R>& b) : a_(a), b_(b) {}
+  bool on_step(const BasicStepView<R>& step) override {
+    const bool a = a_.on_step(step), b = b_.on_step(step);
+    return a && b;
+  }
+  bool on_event(const Event& event, const State& before, const State& after) override {
+    const bool a = a_.on_event(event, before, after), b = b_.on_event(event, before, after);
+    return a && b;
+  }
+
+ private:
+  BasicFlowObserver<R>&a_, &b_;
+};
+
+template <class R>
+struct PeriodMap {
+  using State = typename R::State;
+  using Dyn = Dynamics<R>;
+  using Vec = typename Dyn::Vector;
+  static constexpr int P = static_cast<int>(Dyn::kPeriodic.size());
+  using Mat7 = Eigen::Matrix<double, P, P>;
+  using Vec7 = Eigen::Matrix<double, P, 1>;
+  static constexpr auto kPeriodic = Dyn::kPeriodic;
+  FlowStop stop = FlowStop::reached;
+  State end;
+  Phase phase = Phase::stick;
+  Mat7 M = Mat7::Zero();
+  std::vector<Event> switches;
+  bool grazing = false;
+  bool has_monodromy = false;  // M was computed at this state (else: carried over)
+  bool over_budget = false;    // not integrated: it would exceed the budget of periods
+  double residual = std::numeric_limits<double>::infinity();  // scaled |P(z) - z|
+};
+
+template <class R>
+class Shooter {
+ public:
+  using State = typename R::State;
+  using Dyn = Dynamics<R>;
+  using Vec = typename Dyn::Vector;
+  static constexpr int P = static_cast<int>(Dyn::kPeriodic.size());
+  using Mat7 = Eigen::Matrix<double, P, P>;
+  using Vec7 = Eigen::Matrix<double, P, 1>;
+  static constexpr auto kPeriodic = Dyn::kPeriodic;
+  using Flow = BasicFlow<R>;
+  using ShootingOutcome = BasicShootingOutcome<R>;
+  using ShootingStart = BasicShootingStart<R>;
+  using PeriodMap = shooting::PeriodMap<R>;
+  using PlainObserver = shooting::PlainObserver<R>;
+  using Tee = shooting::Tee<R>;
+
+  Shooter(Flow& flow, const ProgressCallback& progress)
+      : flow_(flow),
+        model_(flow.model()),
+        num_(flow.model().parameters().numerics),
+        period_(flow.model().period()),
+        progress_(progress),
+        dynamics_(flow.model(), flow.options().baumgarte),
+        mono_(flow.model(), flow.options().baumgarte, flow.model().period() / kSubstepsPerPeriod) {}
+
+  ShootingOutcome run(const ShootingStart& start);
+
+ private:
+  bool short_transient(ShootingOutcome& out);
+  // The short transient from the flow's state; on success z and phase (at the section t0_) are
+  // Newton's start, and first_ its first map when have_first_. False: `out` says why.
+  bool transient_start(ShootingOutcome& out, State& z, Phase& phase);
+  bool newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out);
+  bool subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
+                   ShootingOutcome& out);
+  bool try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out);
+  // Count k periods against the budget; false (and nothing counted) when they would exceed it.
+  bool spend(int k) {
+    if (used_ + k > budget_) {
+      budget_hit_ = true;
+      return false;
+    }
+    used_ += k;
+    return true;
+  }
+  std::string budget_message() const {
+    return fmt("shooting reached numerics.max_periods: %.0f periods integrated of the %.0f it had",
+               used_, budget_);
+  }
+  // `range` (optional, with sensitivities): the scales are set from the components' ranges
+  // along the map before its residual is taken.
+  PeriodMap period_map(const State& z, Phase phase, bool sensitivities,
+                       PlainObserver* range = nullptr);
+  void set_scales(const PlainObserver& range);
+  State consistent(State z, Phase phase) const;
+
+  Flow& flow_;
+  const Model& model_;
+  const Numerics& num_;
+  const double period_;
+  const ProgressCallback& progress_;
+  const Dyn dynamics_;
+  MonodromyObserver<R> mono_;
+  // The last period of the short transient, integrated as the period map of its start.
+  bool have_first_ = false;
+  PeriodMap first_;
+  State first_z_;
+  Phase first_phase_ = Phase::stick;
+  double t0_ = 0.0;
+  Phase phase_ = Phase::stick;  // the phase at the section of the orbit
+  std::array<double, Dyn::kStates> scale_{};
+  int maps_ = 0, plain_maps_ = 0;
+  int p_ = 1;  // periods of the map: P^p
+  int budget_ = 0, used_ = 0;
+  bool budget_hit_ = false;
+};
+
+template <class R>
+typename R::State Shooter<R>::consistent(State z, Phase phase) const {
+  // The roller's projection onto the phase's constraints (in stick phi' = f5 delta' (12)): a
+  // Newton update must not break them.
+  return State::from_array(dynamics_.consistent(z.to_array(), phase));
+}
+
+template <class R>
+bool Shooter<R>::short_transient(ShootingOutcome& out) {
+  PlainObserver obs;
+  std::vector<Event> previous;
+  bool have_previous = false;
+  int map_periods = 0;
+  // Periods are counted from where the flow is (rest at t = 0, or the end of a first map that
+  // changed phase, see run()).
+  const double base = flow_.t();
+  const int before = out.transient_periods;
+  for (int n = 1; n <= kMaxTransient; ++n) {
+    // A period that may be the last one (the third, or the second after a period without
+    // switches, as in pure rolling) is integrated as the period map of its consistent start,
+    // with sensitivities: if its switching sequence repeats, it is Newton's first map.
+    // Only up to kMaxTransientMaps such periods: a transient that takes longer to settle goes on
+    // plainly, and Newton's first map follows it.
+    const bool as_map = map_periods < kMaxTransientMaps &&
+                        (n >= kMinTransient + 1 || (n >= kMinTransient && previous.empty()));
+    if (!spend(1)) {
+      out.budget_exhausted = true;
+      out.message = budget_message();
+      return false;
+    }
+    if (as_map) ++map_periods;
+    FlowStop stop;
+    std::vector<Event> switches;
+    if (as_map) {
+      t0_ = flow_.t();
+      const Phase phase = flow_.phase();
+      const State z = consistent(flow_.state(), phase);
+      used_ -= 1;  // counted by period_map
+      first_ = period_map(z, phase, true);
+      first_z_ = z;
+      first_phase_ = phase;
+      stop = first_.stop;
+      switches = first_.switches;
+    } else {
+      obs.start(flow_.state().to_array());
+      stop = flow_.advance(base + n * period_, &obs);
+      switches = obs.switches;
+    }
+    if (stop != FlowStop::reached) {
+      out.terminal = true;
+      out.recent_events = as_map ? first_.switches : obs.recent;
+      out.status = status_of(stop);
+      out.message = flow_.message();
+      return false;
+    }
+    out.transient_periods = before + n - map_periods;  // the maps are counted as such
+    // A period integrated as a map keeps the scale of the period before.
+    if (!as_map) set_scales(obs);
+    if (progress_ && !progress_(before + n, std::numeric_limits<double>::infinity())) {
+      out.terminal = true;
+      out.status = Status::cancelled;
+      out.message = fmt("cancelled after %.0f periods", n);
+      return false;
+    }
+    const bool same = have_previous && same_switching_sequence(previous, switches);
+    if (n >= kMinTransient && same) {
+      have_first_ = as_map;
+      break;
+    }
+    previous = switches;
+    have_previous = true;
+  }
+  return true;
+}
+
+template <class R>
+void Shooter<R>::set_scales(const PlainObserver& range) {
+  // The scale of each component: its range over the period, floored at what the integration
+  // tolerances resolve (as in the transient search).
+  for (int i = 0; i < Dyn::kStates; ++i) {
+    const double width = range.hi[i] - range.lo[i];
+    const double floor =
+        100.0 * (num_.atol + num_.rtol * std::max(std::abs(range.hi[i]), std::abs(range.lo[i])));
+    scale_[i] = std::max(width, floor);
+  }
+}
+
+template <class R>
+bool Shooter<R>::transient_start(ShootingOutcome& out, State& z, Phase& phase) {
+  const bool ok = short_transient(out);
+  // The short transient from rest is a trajectory of the run (the transient method integrates
+  // it too); what Newton integrates next is not.
+  out.transient_max_slip_residual = flow_.counters().max_slip_residual;
+  out.transient_min_N = flow_.counters().min_N;
+  if (!ok) {
+    out.periods_integrated = used_;
+    out.period_maps = maps_;
+    out.jacobian_evaluations = mono_.jacobian_evaluations();
+    return false;
+  }
+  if (have_first_) {  // t0_ is its start
+    z = first_z_;
+    phase = first_phase_;
+  } else {
+    t0_ = flow_.t();
+    z = flow_.state();
+    phase = flow_.phase();
+  }
+  return true;
+}
+
+template <class R>
+PeriodMap<R> Shooter<R>::period_map(const State& z, Phase phase, bool sensitivities,
+                                    PlainObserver* range) {
+  PeriodMap p;
+  if (!spend(p_)) {
+    p.over_budget = true;
+    p.stop = FlowStop::observer;
+    return p;
+  }
+  flow_.reset(t0_, z, phase);
+  const double t_end = t0_ + p_ * period_;
+  if (sensitivities) {
+    ++maps_;
+    mono_.reset();
+    if (range != nullptr) {
+      Tee both(mono_, *range);
+      p.stop = flow_.advance(t_end, &both);
+    } else {
+      p.stop = flow_.advance(t_end, &mono_);
+    }
+    p.switches = mono_.switches();
+    p.grazing = mono_.grazing();
+  } else {
+    ++plain_maps_;
+    PlainObserver obs;
+    p.stop = flow_.advance(t_end, &obs);
+    p.switches = obs.switches;
+  }
+  if (p.stop != FlowStop::reached) return p;
+  if (range != nullptr) set_scales(*range);
+  p.end = flow_.state();
+  p.phase = flow_.phase();
+  p.residual = p.phase == phase ? scaled_change<R>(p.end, z, scale_)
+                                : std::numeric_limits<double>::infinity();
+  if (!sensitivities) return p;
+  // Over p periods the variational equations run on through the section boundaries, so Phi is
+  // the product of the p period monodromies with every saltation between.
+  // The map Newton sees is P(consistent(z)): at a stick section phi' is set to f5 delta' (12)
+  // before the period starts (the flow's stick phase integrates phi' without ever reading it, so
+  // without the projection its offset would be a neutral direction, a multiplier 1).
+  const auto G = dynamics_.section_jacobian(z.to_array(), phase);
+  const typename Dyn::Matrix phi = G ? typename Dyn::Matrix(mono_.phi() * *G) : mono_.phi();
+  for (int i = 0; i < P; ++i)
+    for (int j = 0; j < P; ++j) p.M(i, j) = phi(kPeriodic[i], kPeriodic[j]);
+  p.has_monodromy = true;
+  return p;
+}
+
+// Newton on P^p(z) = z from z, whose map is cur; on success z is the orbit and cur its map.
+template <class R>
+bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& out) {
+  int sequence_changes = 0;
+  bool converged = false;
+  // Contraction of the residual by the last accepted full step (1: none yet).
+  double contraction = 1.0;
+  for (int k = 0; k <= kMaxNewton; ++k) {
+    if (cur.over_budget) {
+      out.message = budget_message();
+      break;
+    }
+    if (cur.stop != FlowStop::reached || cur.grazing || !std::isfinite(cur.residual)) {
+      out.message = cur.stop != FlowStop::reached
+                        ? "the period map failed at a Newton iterate: " + flow_.message()
+                        : (cur.grazing ? "a switch grazes the switching surface"
+                                       : "the phase at the section changed over a period");
+      break;
+    }
+    if (cur.residual < kNewtonTol * num_.steady_tol) {
+      converged = true;
+      break;
+    }
+    if (k == kMaxNewton) {
+      out.message =
+          fmt("Newton did not converge in %.0f steps (scaled residual %.3g)", k, cur.residual);
+      break;
+    }
+    if (progress_ && !progress_(out.transient_periods + out.newton_iterations + 1, cur.residual)) {
+      out.terminal = true;
+      out.status = Status::cancelled;
+      out.message = "cancelled during the Newton iteration";
+      return false;
+    }
+    // (M - I) dz = -(P^p(z) - z) on the reduced state, in scaled units.
+    Vec7 F, s;
+    for (int i = 0; i < P; ++i) {
+      const int c = kPeriodic[i];
+      s[i] = scale_[c];
+      F[i] = (cur.end.to_array()[c] - z.to_array()[c]) / s[i];
+    }
+    const Mat7 A = s.asDiagonal().inverse() * (cur.M - Mat7::Identity()) * s.asDiagonal();
+    // A multiplier at 1 (a neutral direction: phi' of the frictionless drum, whose mean any
+    // constant shifts) makes the matrix singular; the minimum-norm step leaves that direction
+    // where the transient put it.
+    const Eigen::CompleteOrthogonalDecomposition<Mat7> cod(A);
+    const Vec7 dz = cod.solve(-F);
+    if (!dz.allFinite()) {
+      out.message = "Newton's matrix M - I is singular";
+      break;
+    }
+    if (contraction < kPredictContraction &&
+        contraction * cur.residual < kPredictMargin * kNewtonTol * num_.steady_tol) {
+      Vec y = z.to_array();
+      for (int i = 0; i < P; ++i) y[kPeriodic[i]] += dz[i] * s[i];
+      z = consistent(State::from_array(y), phase);
+      ++out.newton_iterations;
+      out.predicted_last_step = true;
+      converged = true;
+      break;
+    }
+    bool accepted = false;
+    double lambda = 1.0;
+    for (int h = 0; h <= kMaxHalvings; ++h, lambda *= 0.5) {
+      Vec y = z.to_array();
+      for (int i = 0; i < P; ++i) y[kPeriodic[i]] += lambda * dz[i] * s[i];
+      const State trial = consistent(State::from_array(y), phase);
+      // Close to the orbit (residual below kFreshMonodromy) the step is small and the monodromy
+      // hardly changes: the trial is integrated without sensitivities and keeps the current M.
+      PeriodMap next = period_map(trial, phase, cur.residual > kFreshMonodromy);
+      if (next.over_budget) break;
+      if (next.stop != FlowStop::reached || !std::isfinite(next.residual)) continue;
+      if (!next.has_monodromy) next.M = cur.M;
+      // Accept a decrease; near the noise floor (below the steady tolerance) a full step that
+      // does not halve the residual ends the iteration as converged.
+      if (next.residual < (1.0 - 0.1 * lambda) * cur.residual) {
+        if (!same_switching_sequence(next.switches, cur.switches)) ++sequence_changes;
+        const bool stalled =
+            lambda == 1.0 && cur.residual < num_.steady_tol && next.residual > 0.5 * cur.residual;
+        contraction = lambda == 1.0 ? next.residual / cur.residual : 1.0;
+        z = trial;
+        cur = std::move(next);
+        accepted = true;
+        ++out.newton_iterations;
+        if (stalled) converged = true;
+        break;
+      }
+      if (cur.residual < num_.steady_tol) break;  // already steady: halving will not help
+    }
+    if (converged) break;
+    if (!accepted) {
+      if (cur.residual < num_.steady_tol) {
+        converged = true;  // at the integration's noise floor
+        break;
+      }
+      out.message = budget_hit_ ? budget_message()
+                                : fmt("Newton's step did not reduce the residual (scaled %.3g)",
+                                      cur.residual);
+      break;
+    }
+    if (sequence_changes > kMaxSequenceChanges) {
+      out.message = "the switching sequence changed between Newton iterates";
+      break;
+    }
+  }
+  out.final_change = cur.residual;
+  return converged;
+}
+
+// Newton on P^p_ from w (its map `map`); true when it converges to a stable orbit of P^p that is
+// not one of P^d for a d < p dividing p (the change over d periods stays above kSubharmonicGap).
+template <class R>
+bool Shooter<R>::try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out) {
+  const int p = p_;
+  ShootingOutcome trial;
+  trial.transient_periods = out.transient_periods;
+  const bool converged = newton(w, wphase, map, trial);
+  out.newton_iterations += trial.newton_iterations;
+  if (!converged) {
+    if (trial.terminal || budget_hit_) {
+      out.terminal = trial.terminal;
+      out.status = trial.status;
+      out.message = trial.message;
+    }
+    return false;
+  }
+  if (multipliers_of(map.M).stability != Stability::stable) return false;
+  if (!spend(p)) {
+    out.message = budget_message();
+    return false;
+  }
+  flow_.reset(t0_, w, wphase);
+  for (int d = 1; d < p; ++d) {
+    if (flow_.advance(t0_ + d * period_) != FlowStop::reached) return false;
+    if (p % d == 0 && flow_.phase() == wphase &&
+        scaled_change<R>(flow_.state(), w, scale_) < kSubharmonicGap)
+      return false;
+  }
+  out.final_change = trial.final_change;
+  out.predicted_last_step = trial.predicted_last_step;
+  return true;
+}
+
+// The period-1 orbit `orbit` (monodromy M) is unstable: look for a stable orbit of P^p,
+// p = 2 ... max_multiplicity (docs/periodic.md, "Subharmonic orbits"). On success, t0_ and p_ are
+// the new orbit's section and multiplicity, z its state and cur its map.
+template <class R>
+bool Shooter<R>::subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z,
+                             PeriodMap& cur, ShootingOutcome& out) {
+  const int max_p = num_.max_multiplicity;
+  if (max_p < 2) return false;
+  // The eigenvector of the critical (largest) multiplier, in units of each component's range.
+  const Eigen::EigenSolver<Mat7> eig(M, true);
+  int lead = 0;
+  for (int i = 1; i < P; ++i)
+    if (std::abs(eig.eigenvalues()[i]) > std::abs(eig.eigenvalues()[lead])) lead = i;
+  Vec7 v = eig.eigenvectors().col(lead).real();
+  double amplitude = 0.0;
+  for (int i = 0; i < P; ++i)
+    amplitude = std::max(amplitude, std::abs(v[i]) / scale_[kPeriodic[i]]);
+  if (!(amplitude > 0.0)) return false;
+  v /= amplitude;
+  const double t_orbit = t0_;
+  // Newton on P^p from `start` at the section t0: 1 found (z, cur and phase_ set), -1 give up
+  // (terminal or out of budget), 0 try the next start.
+  const auto attempt = [&](int p, double t0, const State& start, Phase start_phase) {
+    p_ = p;
+    t0_ = t0;
+    State w = consistent(start, start_phase);
+    PeriodMap map = period_map(w, start_phase, true);
+    if (try_orbit(w, start_phase, map, out)) {
+      z = w;
+      cur = std::move(map);
+      phase_ = start_phase;
+      return 1;
+    }
+    return out.terminal || budget_hit_ ? -1 : 0;
+  };
+  // Near a period doubling (a real multiplier just beyond -1) the period-2 orbit lies on both
+  // sides of the period-1 orbit along v, at a distance that grows like the square root of the
+  // distance from the bifurcation, and the flow leaves the period-1 orbit only slowly (by the
+  // multiplier's modulus per period): Newton on P^2 starts directly from displaced states.
+  const std::complex<double> critical = eig.eigenvalues()[lead];
+  if (critical.real() < -1.0 && std::abs(critical.imag()) <= 1e-8 * std::abs(critical)) {
+    for (const double kick : kFlipKicks) {
+      Vec y = orbit.to_array();
+      for (int i = 0; i < P; ++i) y[kPeriodic[i]] += kick * v[i];
+      const int found = attempt(2, t_orbit, State::from_array(y), phase);
+      if (found != 0) return found > 0;
+    }
+  }
+  for (const double sign : {1.0, -1.0}) {
+    // Displace the orbit and follow the flow: it leaves the unstable orbit along v.
+    Vec y = orbit.to_array();
+    for (int i = 0; i < P; ++i) y[kPeriodic[i]] += sign * kKick * v[i];
+    flow_.reset(t_orbit, consistent(State::from_array(y), phase), phase);
+    std::vector<std::pair<State, Phase>> boundary{{flow_.state(), flow_.phase()}};
+    bool survived = true;
+    for (int n = 1; n <= kSubharmonicTransient; ++n) {
+      if (!spend(1)) {
+        out.message = budget_message();
+        return false;
+      }
+      const FlowStop stop = flow_.advance(t_orbit + n * period_);
+      if (stop == FlowStop::cancelled) {
+        out.terminal = true;
+        out.status = Status::cancelled;
+        out.message = "cancelled during the search for a subharmonic orbit";
+        return false;
+      }
+      if (stop != FlowStop::reached) {
+        survived = false;
+        break;
+      }
+      boundary.emplace_back(flow_.state(), flow_.phase());
+    }
+    if (!survived) continue;
+    // The p whose p-period change at the end is smallest are tried first.
+    const int last = static_cast<int>(boundary.size()) - 1;
+    std::vector<std::pair<double, int>> candidates;
+    for (int p = 2; p <= max_p && p <= last; ++p) {
+      const auto& [a, pa] = boundary[last];
+      const auto& [b, pb] = boundary[last - p];
+      candidates.emplace_back(pa == pb ? scaled_change<R>(a, b, scale_) : 1e300, p);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    if (static_cast<int>(candidates.size()) > kSubharmonicTries)
+      candidates.resize(kSubharmonicTries);
+    for (const auto& [change, p] : candidates) {
+      (void)change;
+      const int found =
+          attempt(p, t_orbit + last * period_, boundary[last].first, boundary[last].second);
+      if (found != 0) return found > 0;
+    }
+  }
+  p_ = 1;
+  t0_ = t_orbit;
+  return false;
+}
+
+template <class R>
+BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
+  ShootingOutcome out;
+  budget_ = start.budget > 0 ? start.budget : num_.max_periods;
+  State z;
+  Phase phase;
+  if (start.from_state) {
+    phase = start.phase;
+    z = consistent(start.state, phase);
+    t0_ = flow_.t();
+    p_ = std::max(1, start.multiplicity);
+    // Newton's first map, from the supplied state, gives the scales too: the range of each
+    // component along it.
+    PlainObserver range;
+    range.start(z.to_array());
+    first_ = period_map(z, phase, true, &range);
+    if (first_.over_budget) {
+      out.budget_exhausted = true;
+      out.message = budget_message();
+      return out;
+    }
+    if (first_.stop != FlowStop::reached) {
+      out.message = "the supplied start state does not survive one period: " + flow_.message();
+      out.periods_integrated = used_;
+      out.period_maps = maps_;
+      out.jacobian_evaluations = mono_.jacobian_evaluations();
+      return out;
+    }
+    have_first_ = true;
+  } else if (!transient_start(out, z, phase)) {
+    return out;
+  }
+  z = consistent(z, phase);
+  phase_ = phase;
+
+  p_ = std::max(1, start.multiplicity);
+  // The short transient's last period is the first map of P (p = 1); a supplied state's first
+  // map is that of P^p.
+  PeriodMap cur =
+      have_first_ && (p_ == 1 || start.from_state) ? std::move(first_) : period_map(z, phase, true);
+  // A short transient whose switches were still moving (the sequence repeated, the switch times
+  // not yet) can stop just before a switch drifts across the period boundary: the first map
+  // then ends in another phase than it started in, and Newton cannot start. The transient goes
+  // on from the end of that map instead (the map is one of its periods), up to kMaxExtensions
+  // times. False: the transient ended the run (`out` says how).
+  const auto extend_while_the_phase_changes = [&] {
+    for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
+                            cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
+         ++extension) {
+      ++out.transient_periods;
+      have_first_ = false;
+      if (!transient_start(out, z, phase)) return false;
+      z = consistent(z, phase);
+      phase_ = phase;
+      cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
+    }
+    return true;
+  };
+  if (!extend_while_the_phase_changes()) return out;
+  const State z_start = z;
+  const Phase phase_start = phase;
+  const double t_start = t0_;
+  bool converged = newton(z, phase, cur, out);
+  // From rest, a few periods can leave the state too far from the orbit for Newton (with a
+  // driving torque at high frequency, where the transient method needs 100-600 periods: on a
+  // random scan every such failure converged from 20 periods later). The transient goes on
+  // plainly from where Newton started, and Newton tries once more, before the run falls back.
+  if (!converged && !start.from_state && p_ == 1 && !out.terminal && !budget_hit_ &&
+      spend(kRetryTransient)) {
+    PlainObserver range;
+    flow_.reset(t_start, z_start, phase_start);
+    FlowStop stop = flow_.advance(t_start + (kRetryTransient - 1) * period_);
+    if (stop == FlowStop::reached) {
+      range.start(flow_.state().to_array());
+      stop = flow_.advance(t_start + kRetryTransient * period_, &range);
+    }
+    if (stop == FlowStop::reached) {
+      set_scales(range);
+      out.transient_periods += kRetryTransient;
+      t0_ = flow_.t();
+      phase = flow_.phase();
+      z = consistent(flow_.state(), phase);
+      phase_ = phase;
+      cur = period_map(z, phase, true);
+      if (!extend_while_the_phase_changes()) return out;
+      converged = newton(z, phase, cur, out);
+    }
+  }
+  if (converged) {
+    // Floquet multipliers: eigenvalues of the monodromy at the orbit.
+    out.floquet = multipliers_of(cur.M);
+    if (out.floquet.stability != Stability::stable && p_ == 1) {
+      const std::string why =
+          fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
+              out.floquet.max_modulus) +
+          to_string(out.floquet.stability) + ")";
+      out.period1_floquet = out.floquet;
+      const Mat7 M = cur.M;
+      const State orbit = z;
+      converged = subharmonic(orbit, phase, M, z, cur, out);
+      if (converged) {
+        out.floquet = multipliers_of(cur.M);
+        out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
+                                "shooting on P^%.0f",
+                                p_, p_);
+      } else if (!out.terminal) {
+        out.floquet = Floquet{};
+        out.message = why +
+                      ", and no stable orbit of P^p, p = 2 ... numerics.max_multiplicity, "
+                      "was found: the transient is followed instead" +
+                      (budget_hit_ ? " (" + budget_message() + ")" : std::string());
+      }
+    } else if (out.floquet.stability != Stability::stable) {
+      converged = false;
+      out.message = fmt("the orbit of P^%.0f is unstable (largest Floquet multiplier modulus %.6g)",
+                        p_, out.floquet.max_modulus);
+    }
+  }
+  out.period_maps = maps_;
+  out.plain_maps = plain_maps_;
+  out.jacobian_evaluations = mono_.jacobian_evaluations();
+  out.periods_integrated = used_;
+  out.budget_exhausted = budget_hit_;
+  if (!converged) {
+    if (out.message.empty()) out.message = "Newton failed";
+    return out;
+  }
+  out.converged = true;
+  out.multiplicity = p_;
+  out.t0 = t0_;
+  out.scale = scale_;
+  out.orbit = z;
+  out.phase = phase_;
+  out.phi_drift = Dyn::cyclic_drift(cur.end.to_array(), z.to_array()) / p_;
+  if (p_ == 1 || start.multiplicity > 1)
+    out.message =
+        fmt("periodic orbit by shooting after %.0f transient periods and %.0f Newton steps",
+            out.transient_periods, out.newton_iterations);
+  flow_.reset(t0_, z, phase_);
+  return out;
+}
+
+}  // namespace shooting
+
+/// Run the short transient (from the flow's current state, reset by the caller at t = 0) and
+/// Newton. Never throws for numerical trouble.
+template <class R>
+BasicShootingOutcome<R> shoot_periodic_orbit(BasicFlow<R>& flow, const ProgressCallback& progress,
+                                             const BasicShootingStart<R>& start = {}) {
+  shooting::Shooter<R> shooter(flow, progress);
+  return shooter.run(start);
+}
 
 }  // namespace oscidrum::detail

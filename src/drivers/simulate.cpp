@@ -1,5 +1,6 @@
 // simulate (oscidrum/simulate.hpp): the flow from rest, the transient steady-state search and
-// the sampling of the steady state, composed.
+// the sampling of the steady state, composed; written once for any roller type R and dispatched
+// on the model's roller (src/roller/rollers.hpp).
 #include "oscidrum/simulate.hpp"
 
 #include <algorithm>
@@ -12,29 +13,10 @@
 #include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
 #include "oscidrum/flow.hpp"
+#include "roller/rollers.hpp"
 #include "util/format.hpp"
 
 namespace oscidrum {
-namespace {
-
-Status status_of(FlowStop stop) {
-  switch (stop) {
-    case FlowStop::contact_lost:
-      return Status::contact_lost;
-    case FlowStop::chattering:
-      return Status::chattering;
-    case FlowStop::non_finite:
-      return Status::non_finite;
-    case FlowStop::invalid_geometry:
-      return Status::invalid_geometry;
-    case FlowStop::budget_exceeded:
-      return Status::budget_exceeded;
-    default:
-      return Status::cancelled;
-  }
-}
-
-}  // namespace
 
 namespace {
 
@@ -50,9 +32,11 @@ constexpr double kJacobianCost = 10.0;
 
 // The transient search from rest and the sampling of what it found. It may integrate what is left
 // of numerics.max_periods after the periods shooting spent before falling back.
-void transient(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
-               long* sample_rhs, bool all_samples) {
-  flow.reset(0.0, model.initial_state(), initial_phase(model));
+template <class R>
+void transient(const Model& model, BasicFlow<R>& flow, const ProgressCallback& progress,
+               Result& result, long* sample_rhs, bool all_samples) {
+  const detail::Dynamics<R> dynamics(model, flow.options().baumgarte);
+  flow.reset(0.0, R::State::from_array(dynamics.initial_state()), dynamics.initial_phase());
   // Diagnostics::max_slip_residual and min_N: over this run from rest and its sampled periods.
   flow.reset_extremes();
   const Numerics& num = model.parameters().numerics;
@@ -82,6 +66,7 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
   if (search.status == Status::steady_state || search.status == Status::max_periods_reached) {
     const int periods = num.output_periods * std::max(1, search.multiplicity);
     const long rhs_before = flow.counters().rhs_evaluations;
+    const auto section = flow.state().to_array();
     const FlowStop stop =
         detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
     *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
@@ -91,7 +76,7 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
       result.message = flow.message();
     } else if (result.samples.size() > 0) {
       // phi(t0 + T) - phi(t0), averaged over the sampled periods (net slip per period / r).
-      d.phi_drift = (flow.state().phi - result.samples.phi.front()) / periods;
+      d.phi_drift = detail::Dynamics<R>::cyclic_drift(flow.state().to_array(), section) / periods;
     }
   } else {
     result.events = search.recent_events;
@@ -104,19 +89,22 @@ void transient(const Model& model, Flow& flow, const ProgressCallback& progress,
 // transient method.
 // `warm`: start Newton from a neighbouring case's orbit (continuation in studies) instead of a
 // short transient from rest; a failed warm start returns false without ending the run.
-bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, Result& result,
-              long* sample_rhs, bool all_samples, const detail::ShootingStart& warm = {}) {
+template <class R>
+bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& progress,
+              Result& result, long* sample_rhs, bool all_samples,
+              const detail::BasicShootingStart<R>& warm = {}) {
   const Numerics& num = model.parameters().numerics;
   Diagnostics& d = result.diagnostics;
   if (d.periods_simulated >= num.max_periods) return false;  // the fallback reports it
+  const detail::Dynamics<R> dynamics(model, flow.options().baumgarte);
   if (warm.from_state)
     flow.reset(0.0, warm.state, warm.phase);
   else
-    flow.reset(0.0, model.initial_state(), initial_phase(model));
+    flow.reset(0.0, R::State::from_array(dynamics.initial_state()), dynamics.initial_phase());
   flow.reset_extremes();
   // Every period shooting integrates counts against numerics.max_periods, a failed warm start's
   // too: the fallbacks get what is left.
-  detail::ShootingStart start = warm;
+  detail::BasicShootingStart<R> start = warm;
   start.budget = num.max_periods - d.periods_simulated;
   const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress, start);
   d.newton_iterations += shot.newton_iterations;
@@ -174,7 +162,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
       detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
-  const double change = detail::scaled_change(flow.state(), shot.orbit, shot.scale);
+  const double change = detail::scaled_change<R>(flow.state(), shot.orbit, shot.scale);
   const auto discard_samples = [&] {
     result.samples = Samples{};
     result.events.clear();
@@ -184,7 +172,8 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   // Settled: the orbit moved a little under plain integration and the transient method's own
   // test, run on from there, found it steady (sampled again after it).
   std::optional<detail::SearchOutcome> settled;
-  double section = shot.t0;  // where the samples start
+  double section = shot.t0;                                // where the samples start
+  typename detail::Dynamics<R>::Vector settled_section{};  // the state there, once settled
   if (stop == FlowStop::reached && !(change < num.steady_tol) && p == 1) {
     // Newton's orbit is the fixed point of the period map as the map integrates it, each period
     // from a restart of the integrator; integrated on without restarts, the integrator's other
@@ -200,6 +189,7 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
       d.periods_simulated += search.periods;
       if (search.status == Status::steady_state && search.multiplicity == 1) {
         section = flow.t();
+        settled_section = flow.state().to_array();
         const long rhs_again = flow.counters().rhs_evaluations;
         const FlowStop again =
             detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
@@ -249,9 +239,10 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   d.periods_to_steady =
       settled ? static_cast<int>(std::lround(section / model.period())) : shot.transient_periods;
   d.multiplicity = p;
-  d.phi_drift = settled && result.samples.size() > 0
-                    ? (flow.state().phi - result.samples.phi.front()) / periods
-                    : shot.phi_drift;
+  d.phi_drift =
+      settled && result.samples.size() > 0
+          ? detail::Dynamics<R>::cyclic_drift(flow.state().to_array(), settled_section) / periods
+          : shot.phi_drift;
   d.periods_simulated += periods;
   d.max_slip_residual = std::max(flow.counters().max_slip_residual,
                                  warm.from_state ? 0.0 : shot.transient_max_slip_residual);
@@ -261,43 +252,33 @@ bool shooting(const Model& model, Flow& flow, const ProgressCallback& progress, 
   return true;
 }
 
-}  // namespace
-
-namespace detail {
-
-std::optional<ShootingStart> orbit_start(const Result& result) {
-  const Samples& s = result.samples;
-  if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
-  ShootingStart start;
-  start.from_state = true;
-  start.state =
-      State{s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]};
-  start.phase = s.phase[0];
-  for (double v : start.state.to_array())
-    if (!std::isfinite(v)) return {};
-  return start;
-}
-
-Result simulate_from(const Model& model, const ProgressCallback& progress,
-                     const std::function<bool()>& cancelled, const ShootingStart* warm,
-                     bool all_samples) {
+template <class R>
+Result simulate_roller(const Model& model, const ProgressCallback& progress,
+                       const std::function<bool()>& cancelled, const detail::WarmStart* warm,
+                       bool all_samples) {
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
-  Flow flow(model, options);
+  BasicFlow<R> flow(model, options);
   const Numerics& num = model.parameters().numerics;
+  const detail::Dynamics<R> dynamics(model, options.baumgarte);
 
   Result result;
   result.frequency = model.parameters().roller.f;
   long sample_rhs = 0;  // right-hand-side evaluations of one sampled period
   const long rhs_start = flow.counters().rhs_evaluations;
   bool done = false;
-  if (num.method == SteadyMethod::shooting && warm && warm->from_state) {
+  if (num.method == SteadyMethod::shooting && warm &&
+      warm->state.size() == static_cast<std::size_t>(R::kStates)) {
     // Continuation (docs/periodic.md): Newton from the neighbour's orbit; when it fails, the
     // cold start below runs as if it had not been tried (only its cost remains).
-    detail::ShootingStart start = *warm;
+    detail::BasicShootingStart<R> start;
+    start.from_state = true;
+    typename detail::Dynamics<R>::Vector x{};
+    std::copy(warm->state.begin(), warm->state.end(), x.begin());
+    start.state = R::State::from_array(x);
     // A phase the new case cannot be in (slip under pure rolling, stick without friction, stick
     // or slip under a smooth law): its start phase instead.
-    start.phase = flow_phase(model.friction(), start.phase);
+    start.phase = dynamics.flow_phase(warm->phase);
     done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
     result.diagnostics.warm_start = done ? 1 : -1;
     if (!done) {
@@ -334,6 +315,32 @@ Result simulate_from(const Model& model, const ProgressCallback& progress,
     d.period_equivalents = d.periods_simulated;
   }
   return result;
+}
+
+template <class R>
+std::optional<detail::WarmStart> orbit_start_of(const Result& result) {
+  const Samples& s = result.samples;
+  if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
+  const auto x = detail::Dynamics<R>::sampled_state(s, 0);
+  for (double v : x)
+    if (!std::isfinite(v)) return {};
+  return detail::WarmStart{std::vector<double>(x.begin(), x.end()), s.phase[0]};
+}
+
+}  // namespace
+
+namespace detail {
+
+std::optional<WarmStart> orbit_start(const Model& model, const Result& result) {
+  return with_roller(model, [&]<class R>() { return orbit_start_of<R>(result); });
+}
+
+Result simulate_from(const Model& model, const ProgressCallback& progress,
+                     const std::function<bool()>& cancelled, const WarmStart* warm,
+                     bool all_samples) {
+  return with_roller(model, [&]<class R>() {
+    return simulate_roller<R>(model, progress, cancelled, warm, all_samples);
+  });
 }
 
 }  // namespace detail

@@ -1,14 +1,23 @@
-// Internal: the transient steady-state search, a driver on the flow. Integrates period by period
+// Internal: the transient steady-state search, a driver on the flow of any roller type R.
+// Integrates period by period
 // until the state at t = n T repeats (Numerics::steady_tol, multiplicity up to
 // Numerics::max_multiplicity), and tells the other ways a run can end.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
 #include <functional>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
+#include "roller/dynamics.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum::detail {
 
@@ -23,11 +32,261 @@ struct SearchOutcome {
   std::vector<Event> recent_events;  ///< the last events before a stop other than steady/max
 };
 
+namespace steady {
+
+// A steady state repeating only every p > 1 excitation periods is accepted only while every
+// comparison over fewer periods differs by more than this (scaled) amount.
+inline constexpr double kSubharmonicGap = 1e-4;
+
+// Gross slip: this many consecutive periods in one slip phase without a switch (see gross_slip).
+inline constexpr int kGrossSlipPeriods = 3;
+
+// Noise floor: the smallest period-to-period change of the last kStagnationPeriods periods is
+// not below kStagnationRatio times the smallest of the kStagnationPeriods before (a transient,
+// even one decaying by 1 % per period, gains a factor 0.6 over 50 periods), and the change is
+// below the level the integration resolves (noise_floor): the state is as periodic as the
+// integration can tell.
+inline constexpr int kStagnationPeriods = 50;
+inline constexpr double kStagnationRatio = 0.9;
+
+// Events kept for a run that ends early, to show what led to the end.
+inline constexpr std::size_t kRecentEvents = 64;
+
+// The components compared between excitation periods are the roller's periodic ones
+// (Dynamics<R>::kPeriodic): for the oscillation drum everything but phi, which may drift by the
+// net slip per period; phi' is compared instead.
+template <class R>
+class Search : public BasicFlowObserver<R> {
+ public:
+  using State = typename R::State;
+  using Dyn = Dynamics<R>;
+  using Vec = typename Dyn::Vector;
+  static constexpr auto kPeriodic = Dyn::kPeriodic;
+
+  Search(BasicFlow<R>& flow, const ProgressCallback& progress, int budget, int spent)
+      : budget_(budget > 0 ? budget : flow.model().parameters().numerics.max_periods),
+        spent_(spent),
+        flow_(flow),
+        model_(flow.model()),
+        num_(flow.model().parameters().numerics),
+        period_(flow.model().period()),
+        base_(flow.t()),
+        progress_(progress),
+        dynamics_(flow.model(), flow.options().baumgarte) {}
+
+  SearchOutcome run();
+
+  bool on_step(const BasicStepView<R>& step) override {
+    if (step.ends_step()) {
+      const Vec x = step.state(step.t1()).to_array();
+      for (int i : kPeriodic) {
+        range_lo_[i] = std::min(range_lo_[i], x[i]);
+        range_hi_[i] = std::max(range_hi_[i], x[i]);
+      }
+    }
+    return true;
+  }
+
+  bool on_event(const Event& event, const State&, const State&) override {
+    recent_.push_back(event);
+    if (recent_.size() > kRecentEvents) recent_.pop_front();
+    if (event.kind != EventKind::contact_lost) ++switches_this_period_;
+    return true;
+  }
+
+ private:
+  // Returns true when the search ends at boundary n.
+  bool on_boundary(int n, const Vec& x);
+  bool gross_slip(int n, const Vec& x);
+  double noise_floor() const;
+
+  const int budget_;  // periods this search may integrate
+  const int spent_;   // periods shooting integrated before this fallback
+  BasicFlow<R>& flow_;
+  const Model& model_;
+  const Numerics& num_;
+  const double period_;
+  const double base_;  // the flow's time at the start: a boundary, t = 0 from rest
+  const ProgressCallback& progress_;
+  const Dyn dynamics_;
+  SearchOutcome out_;
+
+  std::deque<std::pair<Vec, Phase>> history_;  // states at the last boundaries, newest first
+  Vec range_lo_{}, range_hi_{}, last_range_{};
+  std::array<int, 65> below_{};  // consecutive boundaries with change_p < steady_tol, per p
+  std::deque<Event> recent_;
+  long switches_this_period_ = 0;
+  int slipping_periods_ = 0;
+  std::deque<double> changes_;  // the last 2 kStagnationPeriods period-to-period changes
+};
+
+// What the integration can resolve of the scaled period-to-period change: local errors of about
+// rtol per step, and the rounding of the excitation's phase nu t, which grows with the simulated
+// time t (eps nu t), both amplified by the sensitivity of the period map (the factors 10 and
+// 1e3 are generous bounds for this model, measured on pure-rolling cases at 10-40 Hz).
+template <class R>
+double Search<R>::noise_floor() const {
+  const double t = flow_.t();
+  return 10.0 * num_.rtol + 1e3 * std::numeric_limits<double>::epsilon() * model_.nu() * t;
+}
+
+template <class R>
+bool Search<R>::gross_slip(int n, const Vec& x) {
+  // Slip of one sign s through whole periods cannot be periodic: phi' is periodic only if the
+  // mean of (23), I phi'' = MM + s mu N r, vanishes, i.e. MMd = -s mu mean(N) r, while the
+  // torque of a drum sliding the other way would make it stick. So once the drum has slipped
+  // without a switch for kGrossSlipPeriods periods, in the direction its driving torque pushes
+  // (-s MMd > 0), with MMd beyond mu W r (mean N is W) and phi' grown over those periods, it
+  // spins: the friction cannot hold the driving torque. The roller says which slip that is
+  // (Dynamics<R>::pushed_slip) and how fast it spins up (spin_up).
+  double hold = 0.0;
+  const int s = dynamics_.pushed_slip(flow_.phase(), x, &hold);
+  if (s != 0 && switches_this_period_ == 0)
+    ++slipping_periods_;
+  else
+    slipping_periods_ = 0;
+  if (slipping_periods_ < kGrossSlipPeriods ||
+      static_cast<int>(history_.size()) <= kGrossSlipPeriods)
+    return false;
+  const double growth = Dyn::spin_up(x, history_[kGrossSlipPeriods].first, s, kGrossSlipPeriods);
+  if (!(growth > 0.0)) return false;
+  const double MMd = flow_.model().parameters().MMd;
+  out_.status = Status::gross_slip;
+  out_.message = detail::format(
+      "gross slip: the drum spins (phi' grows by %.3g rad/s per excitation period, slipping "
+      "without stick for %.0f periods): the driving torque MMd = %.6g N m exceeds what friction "
+      "can hold, about mu W r",
+      growth, kGrossSlipPeriods, MMd);
+  out_.message +=
+      detail::format(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
+  return true;
+}
+
+template <class R>
+bool Search<R>::on_boundary(int n, const Vec& x) {
+  out_.periods = n;
+  // The scale of each compared component: its range over the last period, floored at a level
+  // the integration tolerances can resolve (a component that hardly moves, like s_A around its
+  // static value, must not demand more than the integrator delivers).
+  for (int i : kPeriodic) {
+    const double range = range_hi_[i] - range_lo_[i];
+    const double floor =
+        100.0 * (num_.atol + num_.rtol * std::max(std::abs(range_hi_[i]), std::abs(range_lo_[i])));
+    last_range_[i] = std::max(range, floor);
+    range_lo_[i] = range_hi_[i] = x[i];
+  }
+
+  history_.emplace_front(x, flow_.phase());
+  if (static_cast<int>(history_.size()) > num_.max_multiplicity + 1) history_.pop_back();
+
+  // A p-periodic steady state must repeat at p consecutive boundaries (a whole cycle of the
+  // subharmonic), and for p > 1 every shorter comparison must stay macroscopic (above
+  // kSubharmonicGap): the slow, lightly damped pendulum mode of the drum in its trough can alias
+  // to almost a whole number of cycles over p periods, making the p-period change of a decaying
+  // transient smaller than the 1-period change although the motion tends to period 1.
+  int found = 0;
+  double change1 = std::numeric_limits<double>::infinity();
+  double shorter_min = std::numeric_limits<double>::infinity();
+  for (int p = 1; p < static_cast<int>(history_.size()); ++p) {
+    const auto& [xp, phase_p] = history_[p];
+    double change = 0.0;
+    for (int i : kPeriodic) change = std::max(change, std::abs(x[i] - xp[i]) / last_range_[i]);
+    if (phase_p != history_.front().second) change = std::max(change, 1.0);
+    if (p == 1) change1 = change;
+    below_[p] = change < num_.steady_tol ? below_[p] + 1 : 0;
+    if (found == 0 && below_[p] >= p && (p == 1 || shorter_min > kSubharmonicGap)) found = p;
+    shorter_min = std::min(shorter_min, change);
+  }
+  out_.final_change = change1;
+  const bool spinning = gross_slip(n, x);
+  switches_this_period_ = 0;
+  if (spinning) return true;
+  if (progress_ && !progress_(n, change1)) {
+    out_.status = Status::cancelled;
+    out_.message = detail::format("cancelled after %.0f periods", n);
+    return true;
+  }
+
+  // The noise floor: the change no longer decreases and is within what the integration
+  // resolves. Accept period 1 there, and say so.
+  bool at_floor = false;
+  changes_.push_back(change1);
+  if (changes_.size() > 2 * kStagnationPeriods) changes_.pop_front();
+  if (found == 0 && changes_.size() == 2 * kStagnationPeriods && change1 < noise_floor()) {
+    const auto mid = changes_.begin() + kStagnationPeriods;
+    const double before = *std::min_element(changes_.begin(), mid);
+    const double recent = *std::min_element(mid, changes_.end());
+    if (recent > kStagnationRatio * before) {
+      at_floor = true;
+      found = 1;
+    }
+  }
+
+  if (found > 0) {
+    out_.status = Status::steady_state;
+    out_.multiplicity = found;
+    if (at_floor)
+      out_.message = detail::format(
+          "steady state after %.0f periods, at the noise floor of the integration: the "
+          "period-to-period change stopped decreasing at %.3g, above numerics.steady_tol but "
+          "within what numerics.rtol = %.3g resolves (tighten rtol for a smaller change)",
+          n, change1, num_.rtol);
+    else
+      out_.message =
+          detail::format(found == 1 ? "steady state after %.0f periods"
+                                    : "steady state after %.0f periods, repeating every %.0f "
+                                      "excitation periods",
+                         n, found);
+    return true;
+  }
+  if (n >= budget_) {
+    out_.status = Status::max_periods_reached;
+    out_.message = detail::format(
+        "no steady state within %.0f periods (last period-to-period change %.3g); the last "
+        "periods are sampled for inspection, with no metrics",
+        n, change1);
+    if (spent_ > 0)
+      out_.message += detail::format(
+          " (numerics.max_periods = %.0f counts the %.0f periods shooting integrated before it "
+          "fell back)",
+          num_.max_periods, spent_);
+    return true;
+  }
+  return false;
+}
+
+template <class R>
+SearchOutcome Search<R>::run() {
+  const Vec x0 = flow_.state().to_array();
+  range_lo_ = range_hi_ = x0;
+  history_.emplace_front(x0, flow_.phase());
+  for (int n = 1;; ++n) {
+    const FlowStop stop = flow_.advance(base_ + n * period_, this);
+    if (stop != FlowStop::reached) {
+      out_.status = status_of(stop);
+      out_.message = flow_.message();
+      out_.recent_events.assign(recent_.begin(), recent_.end());
+      return out_;
+    }
+    if (on_boundary(n, flow_.state().to_array())) {
+      if (out_.status != Status::steady_state && out_.status != Status::max_periods_reached)
+        out_.recent_events.assign(recent_.begin(), recent_.end());
+      return out_;
+    }
+  }
+}
+
+}  // namespace steady
+
 /// Run the search on `flow` (reset by the caller at t = 0, or standing at a later period boundary:
 /// the periods are counted from there). `progress` is called once per period.
 /// It gives up after `budget` periods (0: numerics.max_periods); `spent` > 0 periods were already
 /// integrated by shooting before it fell back, and the message says so.
-SearchOutcome find_steady_state(Flow& flow, const ProgressCallback& progress, int budget = 0,
-                                int spent = 0);
+template <class R>
+SearchOutcome find_steady_state(BasicFlow<R>& flow, const ProgressCallback& progress,
+                                int budget = 0, int spent = 0) {
+  steady::Search<R> search(flow, progress, budget, spent);
+  return search.run();
+}
 
 }  // namespace oscidrum::detail

@@ -58,15 +58,15 @@ struct Pool {
 // sample is taken (what the metrics and the successor start from), and none is kept.
 CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
                     const std::function<bool()>& cancelled, const std::function<bool()>& stop_now,
-                    bool* interrupted, const detail::ShootingStart* warm = nullptr,
-                    std::optional<detail::ShootingStart>* orbit = nullptr) {
+                    bool* interrupted, const detail::WarmStart* warm = nullptr,
+                    std::optional<detail::WarmStart>* orbit = nullptr) {
   CaseOutcome out;
   try {
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
     out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples);
-    if (orbit) *orbit = detail::orbit_start(out.result);
+    if (orbit) *orbit = detail::orbit_start(model, out.result);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
@@ -102,11 +102,11 @@ void work(Pool& pool) {
   while (!pool.stop.load()) {
     const std::size_t k = pool.next.fetch_add(1);
     if (k >= pool.chains.size()) break;
-    std::optional<detail::ShootingStart> warm;  // the predecessor's steady state
+    std::optional<detail::WarmStart> warm;  // the predecessor's steady state
     for (const std::size_t i : pool.chains[k]) {
       if (pool.cancelled()) return;
       bool interrupted = false;
-      std::optional<detail::ShootingStart> orbit;
+      std::optional<detail::WarmStart> orbit;
       const bool samples =
           opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
       CaseOutcome outcome = run_one(pool.cases[i], samples, opt.n_harmonics, cancelled, stop_now,

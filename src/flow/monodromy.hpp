@@ -1,10 +1,11 @@
-// Internal: the variational equations of the hybrid flow. An observer of the flow
-// (oscidrum/flow.hpp) that carries the sensitivity matrix Phi = d y(t) / d y(t0) along the
-// trajectory the flow reports: Phi' = J(t, y(t)) Phi inside each phase, with J the analytic
-// Jacobian of that phase's right-hand side (src/equations/jacobian.hpp) evaluated on the flow's
-// dense output, and Phi+ = S Phi- at every switch, with S the saltation matrix of the switch
-// (and of the jump map of a slip end). Over one excitation period from a periodic orbit, Phi is
-// the monodromy matrix whose eigenvalues are the Floquet multipliers (docs/periodic.md).
+// Internal: the variational equations of the hybrid flow of a roller type R. An observer of the
+// flow (oscidrum/flow.hpp) that carries the sensitivity matrix Phi = d y(t) / d y(t0) along the
+// trajectory the flow reports: Phi' = J(t, y(t)) Phi inside each phase, with J the Jacobian of
+// that phase's right-hand side (Dynamics<R>::jacobian, analytic or by dual numbers) evaluated on
+// the flow's dense output, and Phi+ = S Phi- at every switch, with S the saltation matrix of the
+// switch (and of its jump map, Dynamics<R>::saltation). Over one excitation period from a
+// periodic orbit, Phi is the monodromy matrix whose eigenvalues are the Floquet multipliers
+// (docs/periodic.md).
 //
 // The state is integrated once, by the flow; this observer only integrates the linear equation
 // for Phi along it (classical Runge-Kutta on the flow's steps, subdivided to at most
@@ -12,26 +13,75 @@
 // unchanged.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
-#include "equations/jacobian.hpp"
 #include "oscidrum/flow.hpp"
+#include "roller/dynamics.hpp"
 
 namespace oscidrum::detail {
 
-class MonodromyObserver : public FlowObserver {
+template <class R>
+class MonodromyObserver : public BasicFlowObserver<R> {
  public:
+  using Dyn = Dynamics<R>;
+  using Matrix = typename Dyn::Matrix;
+  using StateT = typename R::State;
+
   /// `baumgarte` must be the flow's rate (FlowOptions::baumgarte); `max_substep` [s] bounds the
   /// Runge-Kutta substeps of Phi.
-  MonodromyObserver(const Model& model, double baumgarte, double max_substep);
+  MonodromyObserver(const Model& model, double baumgarte, double max_substep)
+      : dynamics_(model, baumgarte), max_substep_(max_substep) {}
 
   /// Phi = I, no switches seen.
-  void reset();
+  void reset() {
+    phi_.setIdentity();
+    have_last_ = false;
+    grazing_ = false;
+    switches_.clear();
+  }
 
-  bool on_step(const StepView& step) override;
-  bool on_event(const Event& event, const State& before, const State& after) override;
+  bool on_step(const BasicStepView<R>& step) override {
+    const double a = step.t0(), b = step.t1();
+    if (!(b > a)) return true;
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a) / max_substep_)));
+    const double h = (b - a) / n;
+    const Phase phase = step.phase();
+    // Classical Runge-Kutta for the linear equation Phi' = J(t) Phi, J on the dense output.
+    Matrix J0 = (have_last_ && last_t_ == a && last_phase_ == phase)
+                    ? last_J_
+                    : jacobian(a, step.state(a), phase);
+    for (int i = 0; i < n; ++i) {
+      const double t = a + i * h, tm = t + 0.5 * h, t1 = (i + 1 == n) ? b : t + h;
+      const Matrix Jm = jacobian(tm, step.state(tm), phase);
+      const Matrix J1 = jacobian(t1, step.state(t1), phase);
+      // jacobian_times: the roller's structure of J (unit rows) saves work in the products.
+      const Matrix k1 = Dyn::jacobian_times(J0, phi_);
+      const Matrix k2 = Dyn::jacobian_times(Jm, phi_ + 0.5 * h * k1);
+      const Matrix k3 = Dyn::jacobian_times(Jm, phi_ + 0.5 * h * k2);
+      const Matrix k4 = Dyn::jacobian_times(J1, phi_ + h * k3);
+      phi_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      J0 = J1;
+    }
+    have_last_ = true;
+    last_t_ = b;
+    last_phase_ = phase;
+    last_J_ = J0;
+    return true;
+  }
 
-  const Mat8& phi() const { return phi_; }
+  bool on_event(const Event& event, const StateT& before, const StateT& after) override {
+    if (event.kind == EventKind::contact_lost) return true;  // terminal: the flow stops
+    const auto s = dynamics_.saltation(event, before.to_array(), after.to_array());
+    if (s.grazing) grazing_ = true;
+    have_last_ = false;
+    phi_ = s.S.lazyProduct(phi_).eval();
+    switches_.push_back(event);
+    return true;
+  }
+
+  const Matrix& phi() const { return phi_; }
   /// A switch met the switching surface tangentially: the linearisation does not exist there.
   bool grazing() const { return grazing_; }
   /// The switches since reset(), in time order (their kinds and phases, not their times).
@@ -39,24 +89,31 @@ class MonodromyObserver : public FlowObserver {
   long jacobian_evaluations() const { return jacobian_evaluations_; }
 
  private:
-  Mat8 jacobian(double t, const State& q, Phase phase);
+  Matrix jacobian(double t, const StateT& q, Phase phase) {
+    ++jacobian_evaluations_;
+    return dynamics_.jacobian(phase, t, q.to_array());
+  }
 
-  const Model& model_;
-  double baumgarte_;
+  const Dyn dynamics_;
   double max_substep_;
-  Mat8 phi_ = Mat8::Identity();
+  Matrix phi_ = Matrix::Identity();
   // J at the end of the last piece, reused when the next piece continues it (same time, same
   // phase, no event between).
   bool have_last_ = false;
   double last_t_ = 0.0;
   Phase last_phase_ = Phase::stick;
-  Mat8 last_J_ = Mat8::Zero();
+  Matrix last_J_ = Matrix::Zero();
   bool grazing_ = false;
   std::vector<Event> switches_;
   long jacobian_evaluations_ = 0;
 };
 
 /// True when two switch sequences have the same kinds and phases in the same order.
-bool same_switching_sequence(const std::vector<Event>& a, const std::vector<Event>& b);
+inline bool same_switching_sequence(const std::vector<Event>& a, const std::vector<Event>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].kind != b[i].kind || a[i].from != b[i].from || a[i].to != b[i].to) return false;
+  return true;
+}
 
 }  // namespace oscidrum::detail

@@ -136,12 +136,12 @@ TEST(Continuation, AFailingWarmStartFallsBackToTheColdStart) {
   ASSERT_EQ(cold.status, Status::steady_state);
   // A start far from any orbit: the drum high up the trough and spinning; the flow from it loses
   // contact or Newton cannot converge from it.
-  detail::ShootingStart far;
-  far.from_state = true;
-  far.state.delta = 0.6;
-  far.state.ddelta = 300.0;
-  far.state.dphi = 30.0;
-  far.phase = Phase::slip_positive;
+  State far_state;
+  far_state.delta = 0.6;
+  far_state.ddelta = 300.0;
+  far_state.dphi = 30.0;
+  const auto x = far_state.to_array();
+  const detail::WarmStart far{std::vector<double>(x.begin(), x.end()), Phase::slip_positive};
   const Result r = detail::simulate_from(model, {}, {}, &far);
   EXPECT_EQ(r.diagnostics.warm_start, -1);
   EXPECT_EQ(r.status, Status::steady_state) << r.message;
@@ -152,7 +152,7 @@ TEST(Continuation, AFailingWarmStartFallsBackToTheColdStart) {
   EXPECT_GT(r.diagnostics.rhs_evaluations, cold.diagnostics.rhs_evaluations);  // it cost work
 
   // A warm start from the orbit itself converges at once.
-  const std::optional<detail::ShootingStart> own = detail::orbit_start(cold);
+  const std::optional<detail::WarmStart> own = detail::orbit_start(model, cold);
   ASSERT_TRUE(own.has_value());
   const Result again = detail::simulate_from(model, {}, {}, &*own);
   EXPECT_EQ(again.diagnostics.warm_start, 1);
@@ -164,7 +164,7 @@ TEST(Continuation, TheTransientMethodAlwaysStartsFromRest) {
   c.numerics.method = SteadyMethod::transient;
   const Model model(c);
   const Result cold = simulate(model);
-  const std::optional<detail::ShootingStart> own = detail::orbit_start(cold);
+  const std::optional<detail::WarmStart> own = detail::orbit_start(model, cold);
   ASSERT_TRUE(own.has_value());
   const Result r = detail::simulate_from(model, {}, {}, &*own);
   EXPECT_EQ(r.diagnostics.warm_start, 0);

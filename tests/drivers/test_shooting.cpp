@@ -14,6 +14,7 @@
 #include "drivers/shooting.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/oscidrum.hpp"
+#include "roller/oscillation_drum.hpp"
 
 namespace oscidrum {
 namespace {
@@ -57,7 +58,8 @@ void check_monodromy(Case c, bool expect_switches, int p = 1) {
   ASSERT_EQ(shot.multiplicity, p);
   const double T = p * model.period();  // the map is P^p
 
-  detail::MonodromyObserver mono(model, flow.options().baumgarte, model.period() / 64.0);
+  detail::MonodromyObserver<OscillationDrum> mono(model, flow.options().baumgarte,
+                                                  model.period() / 64.0);
   flow.reset(shot.t0, shot.orbit, shot.phase);
   ASSERT_EQ(flow.advance(shot.t0 + T, &mono), FlowStop::reached);
   if (expect_switches) {
@@ -141,7 +143,7 @@ TEST(Shooting, ShootingOnTheSecondIterateFindsTheStablePeriodOneOrbit) {
     EXPECT_EQ(two.phase, one.phase);
     // Both are on the orbit to the steady tolerance (each residual is below 0.01 steady_tol; the
     // orbit's distance is that over 1 - the largest multiplier).
-    EXPECT_LT(detail::scaled_change(one.orbit, two.orbit, one.scale), 1e-7);
+    EXPECT_LT(detail::scaled_change<OscillationDrum>(one.orbit, two.orbit, one.scale), 1e-7);
     // phi drifts by the net slip per period (none in pure rolling: round-off of 1e-12 rad).
     EXPECT_NEAR(two.phi_drift, one.phi_drift, 1e-6 * std::abs(one.phi_drift) + 1e-9);
     ASSERT_EQ(two.floquet.stability, Stability::stable);
@@ -463,9 +465,9 @@ TEST(Shooting, PeriodDoublingGivesTheStablePeriodTwoOrbit) {
     scale[i] = *hi - *lo;
   }
   ASSERT_EQ(flow.advance(q.t[0] + model.period()), FlowStop::reached);
-  EXPECT_GT(detail::scaled_change(flow.state(), z0, scale), 1e-2);
+  EXPECT_GT(detail::scaled_change<OscillationDrum>(flow.state(), z0, scale), 1e-2);
   ASSERT_EQ(flow.advance(q.t[0] + 2.0 * model.period()), FlowStop::reached);
-  EXPECT_LT(detail::scaled_change(flow.state(), z0, scale), c.numerics.steady_tol);
+  EXPECT_LT(detail::scaled_change<OscillationDrum>(flow.state(), z0, scale), c.numerics.steady_tol);
 
   // The transient method finds the same steady state (tightened as in
   // tests/paper/test_method_agreement.cpp: its distance from the orbit is about its last change

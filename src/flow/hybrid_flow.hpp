@@ -1,0 +1,403 @@
+// Internal: the hybrid flow of any roller type R (oscidrum/flow.hpp's BasicFlow<R>), Dormand-
+// Prince 5(4) with its dense output (Boost.Odeint), the scheme of MATLAB's ode45 that the paper
+// used, through the roller's events. Included by the one file that instantiates the engine for
+// each roller (src/roller/engine.cpp).
+//
+// The state is the roller's vector (Dynamics<R>::Vector) in every phase; the right-hand side,
+// the event functions and what an event does are the roller's (src/roller/dynamics.hpp). Events
+// are located by TOMS 748 root finding on the dense output of the step that contains them, never
+// by shrinking steps; the integrator restarts at each event with the state of the new phase. A
+// step that straddles the end of an advance() interval is kept whole: its dense output serves the
+// rest of it in the next call, so a trajectory does not depend on how it is cut into intervals.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "oscidrum/flow.hpp"
+#include "roller/dynamics.hpp"
+#include "util/format.hpp"
+
+namespace oscidrum {
+namespace detail {
+
+// Event functions are sampled at this many points inside each step before root finding, so that
+// a function dipping below zero and back within one step is not missed.
+inline constexpr int kEventSubsamples = 2;
+
+// Chattering in a vanishing time: this many switches within kChatterWindow excitation periods.
+inline constexpr std::size_t kChatterSwitches = 20;
+inline constexpr double kChatterWindow = 1e-6;
+
+}  // namespace detail
+
+template <class R>
+struct BasicFlow<R>::Impl : BasicStepView<R> {
+  using Dyn = detail::Dynamics<R>;
+  using Vec = typename Dyn::Vector;
+  using EventValues = typename Dyn::EventValues;
+  using Dopri5 = boost::numeric::odeint::runge_kutta_dopri5<Vec>;
+  using DenseStepper = boost::numeric::odeint::dense_output_runge_kutta<
+      boost::numeric::odeint::controlled_runge_kutta<Dopri5>>;
+  using Observer = BasicFlowObserver<R>;
+  using StateT = typename R::State;
+
+  // The right-hand side of the current phase as a first-order system, for Odeint.
+  struct Rhs {
+    const Dyn* dynamics;
+    Phase phase;
+    long* evaluations;
+    void operator()(const Vec& x, Vec& dxdt, double t) const {
+      ++*evaluations;
+      dynamics->rhs(phase, t, x, dxdt);
+    }
+  };
+
+  Impl(const Model& m, const FlowOptions& o)
+      : model(m),
+        options(o),
+        period(m.period()),
+        dynamics(m, o.baumgarte),
+        stepper(boost::numeric::odeint::make_dense_output(o.atol, o.rtol, o.max_step, Dopri5())) {
+    counters.min_N = std::numeric_limits<double>::infinity();
+  }
+
+  // --- StepView: the piece [piece_t0, piece_t1] of the current step ---------------------------
+  double t0() const override { return piece_t0; }
+  double t1() const override { return piece_t1; }
+  Phase phase() const override { return phase_; }
+  bool ends_step() const override { return piece_ends_step; }
+  StateT state(double t) const override { return StateT::from_array(vector_at(t)); }
+  Vec vector_at(double t) const {
+    // At the step's end the integrator's own state, elsewhere the continuous extension.
+    if (t == step_t1) return stepper.current_state();
+    Vec x;
+    stepper.calc_state(t, x);
+    return x;
+  }
+
+  struct Crossing {
+    bool found = false;
+    double t = 0.0;
+    int which = -1;  // index into EventValues
+  };
+
+  EventValues values(const Vec& x, double* N = nullptr) const {
+    return dynamics.events(phase_, x, N);
+  }
+  Crossing find_event(double ta, double tb);
+  void restart(double t, const Vec& x);
+  FlowStop apply_event(const Crossing& c, Observer* observer);
+  bool report(double a, double b, bool ends, Observer* observer);
+  FlowStop stop(FlowStop s, double t, const Vec& x, std::string why) {
+    t_now = t;
+    x_now = x;
+    message = std::move(why);
+    return s;
+  }
+  FlowStop advance(double t_end, Observer* observer);
+
+  const Model& model;
+  const FlowOptions options;
+  const double period;
+  const Dyn dynamics;
+  mutable DenseStepper stepper;
+  Phase phase_ = Phase::stick;
+  FlowCounters counters;
+  std::string message;
+
+  // Event function values at the start of the current step, and which of them started at zero
+  // by construction (the function that just caused a switch): those must move positive.
+  EventValues e_prev{};
+  std::array<bool, Dyn::kEvents> e_fresh{};
+  // The event functions at the end of the current step and the normal force there, as
+  // find_event evaluated them (the start of the next step when no event cuts it).
+  EventValues e_end{};
+  double N_end = 0.0;
+
+  // The step taken but not yet wholly consumed.
+  bool have_step = false;
+  double step_t0 = 0.0, step_t1 = 0.0, cursor = 0.0;
+  Crossing crossing;
+  double piece_t0 = 0.0, piece_t1 = 0.0;
+  bool piece_ends_step = false;
+
+  double t_now = 0.0;
+  Vec x_now{};
+
+  // Budgets per excitation period (t in [nT, (n+1)T)).
+  long switch_period = -1, switches_in_period = 0;
+  long step_period = -1, steps_in_period = 0;
+  std::deque<double> recent_switches;
+};
+
+template <class R>
+typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, double tb) {
+  Crossing best;
+  EventValues prev = e_prev;
+  double tp = ta;
+  Vec x;
+  constexpr int kSub = detail::kEventSubsamples;
+  for (int k = 1; k <= kSub && !best.found; ++k) {
+    const double tk = (k == kSub) ? tb : ta + (tb - ta) * k / kSub;
+    if (k == kSub) {
+      x = stepper.current_state();
+    } else {
+      stepper.calc_state(tk, x);
+    }
+    const EventValues e = k == kSub ? values(x, &N_end) : values(x);
+    if (k == kSub) e_end = e;
+    for (int i = 0; i < Dyn::kEvents; ++i) {
+      // A fresh function is zero at ta by construction and counts as positive there.
+      const bool was_positive = prev[i] > 0.0 || e_fresh[i];
+      if (!(was_positive && e[i] <= 0.0)) continue;
+      // Root in (tp, tk]: TOMS 748 on the dense output. For a fresh function the bracket's lower
+      // end is moved off the switching instant, where it is zero.
+      double a = tp, fa = prev[i];
+      if (e_fresh[i] && tp == ta) {
+        a = ta + 1e-9 * (tk - ta);
+        Vec xa;
+        stepper.calc_state(a, xa);
+        fa = values(xa)[i];
+        if (fa <= 0.0) {  // the new phase is inconsistent at once: switch back immediately
+          if (!best.found || a < best.t) best = {true, a, i};
+          continue;
+        }
+      }
+      auto f = [&](double t) {
+        Vec xt;
+        stepper.calc_state(t, xt);
+        return values(xt)[i];
+      };
+      const double t_tol =
+          std::max(1e-13 * period, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(tk));
+      auto tol = [t_tol](double lo, double hi) { return std::abs(hi - lo) <= t_tol; };
+      std::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(f, a, tk, fa, e[i], tol, iterations);
+      // Take the end where the event has happened (function <= 0), so that the new phase starts
+      // consistently.
+      const double te = bracket.second;
+      if (!best.found || te < best.t) best = {true, te, i};
+    }
+    prev = e;
+    tp = tk;
+  }
+  return best;
+}
+
+template <class R>
+void BasicFlow<R>::Impl::restart(double t, const Vec& x) {
+  const double dt = stepper.current_time_step();
+  stepper.initialize(x, t, std::min(dt > 0 ? dt : period / 100.0, options.max_step));
+  ++counters.restarts;
+  e_prev = values(x);
+  have_step = false;
+  t_now = t;
+  x_now = x;
+}
+
+template <class R>
+FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) {
+  Vec x;
+  stepper.calc_state(c.t, x);
+  ++counters.events;
+  Event ev;
+  ev.t = c.t;
+  ev.from = phase_;
+  e_fresh = {};
+  const typename Dyn::Switch sw = dynamics.apply(phase_, c.which, c.t, x);
+  ev.kind = sw.kind;
+  ev.to = sw.to;
+  const StateT before = StateT::from_array(x);
+  if (sw.terminal) {
+    if (observer) observer->on_event(ev, before, before);
+    return stop(sw.stop, c.t, x, sw.message);
+  }
+  phase_ = sw.to;
+  e_fresh = sw.fresh;
+  if (!sw.consistent) ++counters.inconsistent_slip_ends;
+  if (sw.reversal) ++counters.reversals;
+  x = sw.after;
+  ++counters.switches;
+  const bool go_on = observer ? observer->on_event(ev, before, StateT::from_array(x)) : true;
+
+  // Chattering: many switches in a vanishing time, or too many in one excitation period.
+  recent_switches.push_back(c.t);
+  if (recent_switches.size() > detail::kChatterSwitches) recent_switches.pop_front();
+  if (recent_switches.size() == detail::kChatterSwitches &&
+      recent_switches.back() - recent_switches.front() < detail::kChatterWindow * period) {
+    return stop(
+        FlowStop::chattering, c.t, x,
+        detail::format("chattering: 20 stick/slip switches within %.3g s ending at t = %.9g s",
+                       recent_switches.back() - recent_switches.front(), c.t));
+  }
+  const long n = static_cast<long>(std::floor(c.t / period));
+  if (n != switch_period) {
+    switch_period = n;
+    switches_in_period = 0;
+  }
+  if (++switches_in_period > options.max_switches_per_period) {
+    return stop(
+        FlowStop::chattering, c.t, x,
+        detail::format("chattering: more than %.0f stick/slip switches in the excitation period "
+                       "starting at t = %.9g s",
+                       static_cast<double>(options.max_switches_per_period),
+                       static_cast<double>(n) * period));
+  }
+  restart(c.t, x);
+  if (!go_on) return stop(FlowStop::observer, c.t, x, "stopped by an observer");
+  return FlowStop::reached;
+}
+
+template <class R>
+bool BasicFlow<R>::Impl::report(double a, double b, bool ends, Observer* observer) {
+  if (!observer || !(b > a)) return true;
+  piece_t0 = a;
+  piece_t1 = b;
+  piece_ends_step = ends;
+  return observer->on_step(*this);
+}
+
+template <class R>
+FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
+  message.clear();
+  if (!(t_end > t_now)) return FlowStop::reached;
+  while (true) {
+    if (!have_step) {
+      if (options.cancelled && options.cancelled())
+        return stop(FlowStop::cancelled, t_now, x_now,
+                    detail::format("cancelled at t = %.9g s", t_now));
+      Rhs rhs{&dynamics, phase_, &counters.rhs_evaluations};
+      const auto [a, b] = stepper.do_step(rhs);
+      ++counters.steps;
+      const Vec& x1 = stepper.current_state();
+      if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); }))
+        return stop(FlowStop::non_finite, b, x1,
+                    detail::format("non-finite state at t = %.9g s (the integration diverged)", b));
+      std::string why;
+      if (dynamics.invalid(x1, b, &why)) return stop(FlowStop::invalid_geometry, b, x1, why);
+      const long n = static_cast<long>(std::floor(a / period));
+      if (n != step_period) {
+        step_period = n;
+        steps_in_period = 0;
+      }
+      if (options.max_steps_per_period > 0 && ++steps_in_period > options.max_steps_per_period)
+        return stop(
+            FlowStop::budget_exceeded, a, x_now,
+            detail::format(
+                "more than %.0f integration steps in the excitation period starting at t = "
+                "%.9g s: the problem is too stiff or too fast for the explicit Dormand-Prince "
+                "method at these parameters (see numerics.max_steps_per_period)",
+                static_cast<double>(options.max_steps_per_period),
+                static_cast<double>(n) * period));
+      crossing = find_event(a, b);
+      have_step = true;
+      step_t0 = a;
+      step_t1 = b;
+      cursor = a;
+    }
+    const double seg_end = crossing.found ? crossing.t : step_t1;
+    if (t_end < seg_end) {
+      if (!report(cursor, t_end, false, observer)) {
+        cursor = t_end;
+        Vec x;
+        stepper.calc_state(t_end, x);
+        return stop(FlowStop::observer, t_end, x, "stopped by an observer");
+      }
+      cursor = t_end;
+      t_now = t_end;
+      stepper.calc_state(t_end, x_now);
+      return FlowStop::reached;
+    }
+    const bool go_on = report(cursor, seg_end, !crossing.found, observer);
+    cursor = seg_end;
+    if (crossing.found) {
+      const FlowStop r = apply_event(crossing, observer);
+      if (r != FlowStop::reached) return r;
+    } else {
+      // find_event evaluated the event functions at the step's end (x1) last.
+      const Vec x1 = stepper.current_state();
+      dynamics.track(phase_, x1, N_end, counters);
+      e_prev = e_end;
+      e_fresh = {};
+      have_step = false;
+      t_now = step_t1;
+      x_now = x1;
+    }
+    if (!go_on) return stop(FlowStop::observer, t_now, x_now, "stopped by an observer");
+    if (seg_end == t_end) return FlowStop::reached;
+  }
+}
+
+template <class R>
+BasicFlow<R>::BasicFlow(const Model& model, const FlowOptions& options)
+    : impl_(std::make_unique<Impl>(model, options)) {}
+
+template <class R>
+BasicFlow<R>::~BasicFlow() = default;
+
+template <class R>
+void BasicFlow<R>::reset(double t, const State& q, Phase phase) {
+  Impl& s = *impl_;
+  const typename Impl::Vec x = q.to_array();
+  s.phase_ = phase;
+  s.e_fresh = {};
+  s.recent_switches.clear();
+  s.switch_period = s.step_period = -1;
+  s.stepper.initialize(x, t, std::min(s.period / 100.0, s.options.max_step));
+  ++s.counters.restarts;
+  s.e_prev = s.values(x);
+  s.have_step = false;
+  s.t_now = t;
+  s.x_now = x;
+  s.message.clear();
+}
+
+template <class R>
+FlowStop BasicFlow<R>::advance(double t_end, Observer* observer) {
+  return impl_->advance(t_end, observer);
+}
+
+template <class R>
+double BasicFlow<R>::t() const {
+  return impl_->t_now;
+}
+template <class R>
+typename BasicFlow<R>::State BasicFlow<R>::state() const {
+  return State::from_array(impl_->x_now);
+}
+template <class R>
+Phase BasicFlow<R>::phase() const {
+  return impl_->phase_;
+}
+template <class R>
+const Model& BasicFlow<R>::model() const {
+  return impl_->model;
+}
+template <class R>
+const FlowOptions& BasicFlow<R>::options() const {
+  return impl_->options;
+}
+template <class R>
+const FlowCounters& BasicFlow<R>::counters() const {
+  return impl_->counters;
+}
+template <class R>
+void BasicFlow<R>::reset_extremes() {
+  impl_->counters.min_N = std::numeric_limits<double>::infinity();
+  impl_->counters.max_slip_residual = 0.0;
+}
+template <class R>
+const std::string& BasicFlow<R>::message() const {
+  return impl_->message;
+}
+
+}  // namespace oscidrum

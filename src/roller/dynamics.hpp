@@ -1,0 +1,70 @@
+// Internal: what a roller type supplies to the engine (docs/architecture.md, "The roller as a
+// component"). The flow (src/flow/hybrid_flow.hpp), the variational equations
+// (src/flow/monodromy.hpp), shooting (src/drivers/shooting.hpp), the transient steady-state search
+// (src/drivers/steady_state.hpp) and the sampling (src/drivers/sampling.hpp) are templates on a
+// roller type R (oscidrum/roller.hpp) and use only the members of Dynamics<R> listed below. A new
+// roller is a specialisation of Dynamics in its own files under src/roller/ and one line that
+// instantiates the engine for it (src/roller/engine.cpp).
+//
+//   constants   kStates (the state's size), kEvents (event functions), kPeriodic (the components
+//               that repeat on a periodic orbit: all but the cyclic ones, e.g. the drum angle)
+//   types       Vector = std::array<double, kStates>, Matrix (kStates x kStates, Eigen),
+//               EventValues = std::array<double, kEvents>, Switch (below)
+//   flow        rhs(phase, t, x, dxdt); events(phase, x, &N) (scaled to O(1), an event when one
+//               falls through zero; N the normal force [N]); apply(phase, which, t, x) -> Switch
+//               (what the event does: its kind, the new phase, the state after, the functions
+//               that start at zero, a terminal stop); invalid(x, t, &why) (a state the equations
+//               are undefined at); track(phase, x, N, counters) (extremes at step ends);
+//               initial_state(), initial_phase()
+//   variational jacobian(phase, t, x); jacobian_times(J, X) (J X, exploiting J's structure);
+//               saltation(event, before, after)
+//   shooting    consistent(z, phase) (the section state Newton sees: a projection onto the
+//               phase's constraints) and section_jacobian(z, phase) (its Jacobian)
+//   sampling    sample(t, x, phase, samples) (one row of the output columns); sampled_state(
+//               samples, j) (the state of row j, for continuation)
+//   search      gross_slip(...) (motion that cannot become periodic, see steady_state.hpp)
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+
+#include "oscidrum/result.hpp"
+#include "oscidrum/state.hpp"
+
+namespace oscidrum::detail {
+
+/// The dynamics of roller type R: specialised by each roller (src/roller/<roller>.hpp).
+template <class R>
+class Dynamics;
+
+/// The saltation matrix of a switch, S = G + (f+ - G f-) dh^T / (dh . f- + dh/dt), which maps a
+/// perturbation just before a switch to one just after it (f- at y-, f+ at g(y-), G the Jacobian
+/// of the jump map g, dh the gradient of the event function). `grazing` is set when the
+/// denominator is below grazing_tol |dh| |f-|: the flow meets the switching surface tangentially
+/// and the linearisation does not exist.
+template <int N>
+struct SaltationMatrix {
+  Eigen::Matrix<double, N, N> S = Eigen::Matrix<double, N, N>::Identity();
+  bool grazing = false;
+};
+
+template <int N>
+SaltationMatrix<N> saltation_matrix(const Eigen::Matrix<double, N, N>& G,
+                                    const Eigen::Matrix<double, N, 1>& f_minus,
+                                    const Eigen::Matrix<double, N, 1>& f_plus,
+                                    const Eigen::Matrix<double, N, 1>& dh, double dh_dt = 0.0,
+                                    double grazing_tol = 1e-9) {
+  SaltationMatrix<N> out;
+  const double denominator = dh.dot(f_minus) + dh_dt;
+  const double scale = dh.norm() * f_minus.norm() + std::abs(dh_dt);
+  if (!(std::abs(denominator) > grazing_tol * scale)) {
+    out.grazing = true;
+    out.S = G;
+    return out;
+  }
+  out.S = G + (f_plus - G * f_minus) * dh.transpose() / denominator;
+  return out;
+}
+
+}  // namespace oscidrum::detail

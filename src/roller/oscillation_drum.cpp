@@ -1,0 +1,163 @@
+// The oscillation drum as a roller component (src/roller/oscillation_drum.hpp): the flow's
+// right-hand side, the event decisions, the checks at step ends, the saltation matrices, the
+// section projection and the samples, on the equations of src/equations/.
+#include "roller/oscillation_drum.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "equations/equations.hpp"
+#include "equations/event_logic.hpp"
+#include "util/format.hpp"
+
+namespace oscidrum::detail {
+
+void Dynamics<OscillationDrum>::rhs(Phase phase, double t, const Vector& x, Vector& dxdt) const {
+  const State q = State::from_array(x);
+  const Kinematics k = kinematics(model_.geometry(), q.delta);
+  const Accelerations a =
+      phase == Phase::stick
+          ? detail::stick_accelerations(model_, t, q, k)
+          : detail::slip_accelerations(model_, t, q, slip_sign(phase), baumgarte_, k);
+  dxdt[0] = x[4];
+  dxdt[1] = x[5];
+  dxdt[2] = x[6];
+  // (12): in stick phi' = f5 delta' exactly, so phi cannot drift from the rolling condition.
+  dxdt[3] = phase == Phase::stick ? k.f5 * x[4] : x[7];
+  dxdt[4] = a.delta;
+  dxdt[5] = a.x_A;
+  dxdt[6] = a.s_A;
+  dxdt[7] = a.phi;
+}
+
+Dynamics<OscillationDrum>::Switch Dynamics<OscillationDrum>::apply(Phase phase, int which, double t,
+                                                                   const Vector& x) const {
+  Switch out;
+  out.after = x;
+  if (which == kEventContact) {  // N reached 0: lift-off is outside the model
+    out.kind = EventKind::contact_lost;
+    out.to = phase;
+    out.terminal = true;
+    out.stop = FlowStop::contact_lost;
+    out.message = detail::format(
+        "contact lost at t = %.9g s (N reached 0): the model assumes permanent "
+        "contact and does not cover lift-off",
+        t);
+    return out;
+  }
+  const State q = State::from_array(x);
+  if (phase == Phase::stick) {
+    // The friction limit is reached: slip starts with s = -sign(T) (29). The negative-side
+    // function (mu N - T) reaching zero means T > 0, hence slip-.
+    out.to = (which == kEventConeNegative) ? Phase::slip_negative : Phase::slip_positive;
+    out.kind = EventKind::stick_to_slip;
+    const SlipStart start = decide_slip_start(model_, q, static_cast<int>(out.to));
+    out.after = start.state.to_array();
+    out.consistent = start.consistent;
+    out.fresh[kEventSlipVelocity] = true;  // s v_rel starts at zero and must grow
+    return out;
+  }
+  // v_rel = 0: stick resumes if the stick solution stays inside the friction cone, else slip
+  // reverses (docs/model.md section 6).
+  const SlipEnd decision = decide_slip_end(model_, t, q, static_cast<int>(phase));
+  out.after = decision.state.to_array();
+  if (decision.stick) {
+    out.kind = EventKind::slip_to_stick;
+    out.to = Phase::stick;
+    // The cone function on the side of the old slip starts at zero: slip+ ended with
+    // T = -mu N (mu N + T = 0), slip- with T = +mu N (mu N - T = 0).
+    out.fresh[phase == Phase::slip_positive ? kEventConePositive : kEventConeNegative] = true;
+    out.consistent = decision.consistent;
+  } else {
+    out.kind = EventKind::slip_reversal;
+    out.to = (phase == Phase::slip_positive) ? Phase::slip_negative : Phase::slip_positive;
+    out.reversal = true;
+    out.fresh[kEventSlipVelocity] = true;
+  }
+  return out;
+}
+
+bool Dynamics<OscillationDrum>::invalid(const Vector& x, double t, std::string* why) const {
+  if (!(kinematics(model_.geometry(), x[0]).f5 <= 0.0)) return false;
+  *why = detail::format(
+      "at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
+      "to the drum radius (f5 <= 0): rolling is undefined there",
+      t, x[0]);
+  return true;
+}
+
+void Dynamics<OscillationDrum>::track(Phase phase, const Vector& x, double N,
+                                      FlowCounters& counters) const {
+  counters.min_N = std::min(counters.min_N, N);
+  if (phase != Phase::stick && model_.cone() > 0.0) {
+    const double residual =
+        std::abs(slip_constraint_residual(model_, State::from_array(x), slip_sign(phase))) /
+        model_.W();
+    counters.max_slip_residual = std::max(counters.max_slip_residual, residual);
+  }
+}
+
+SaltationMatrix<8> Dynamics<OscillationDrum>::saltation(const Event& event, const Vector& before,
+                                                        const Vector& after) const {
+  // The soil's velocities jumped (a reversal, or a slip start with mu_static > mu).
+  const bool jumped = after[4] != before[4] || after[5] != before[5] || after[6] != before[6];
+  const Saltation s = switch_saltation(model_, event.t, State::from_array(before), event.from,
+                                       event.to, baumgarte_, jumped);
+  return {s.S, s.grazing};
+}
+
+Dynamics<OscillationDrum>::Vector Dynamics<OscillationDrum>::consistent(Vector z,
+                                                                        Phase phase) const {
+  if (phase == Phase::stick) z[7] = kinematics(model_.geometry(), z[0]).f5 * z[4];
+  return z;
+}
+
+std::optional<Dynamics<OscillationDrum>::Matrix> Dynamics<OscillationDrum>::section_jacobian(
+    const Vector& z, Phase phase) const {
+  if (phase != Phase::stick) return std::nullopt;
+  return jump_jacobian(model_, State::from_array(z), true, 0);
+}
+
+void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
+  const State q = State::from_array(x);
+  const Kinematics k = kinematics(model_.geometry(), q.delta);  // once for all columns
+  const Accelerations a = accelerations(model_, t, q, phase, baumgarte_, k);
+  const DrumMotion d = drum_motion(q, a, k);
+  const ContactForces f = contact_forces(model_, q, k);
+  // In stick phi' is fixed by the rolling condition (12), phi' = f5 delta', and the drum does not
+  // slide (v_rel = 0, (13)). The flow integrates phi' there without reading it, so the state's
+  // own phi' carries the integration's round-off drift (up to ~1e-9 rad/s after a long transient
+  // from rest): the columns report the constrained values instead.
+  const bool stick = phase == Phase::stick;
+  const double v_rel = stick ? 0.0 : slip_velocity(model_, q, k);
+  s.t.push_back(t);
+  s.delta.push_back(q.delta);
+  s.phi.push_back(q.phi);
+  s.x_A.push_back(q.x_A);
+  s.s_A.push_back(q.s_A);
+  s.ddelta.push_back(q.ddelta);
+  s.dphi.push_back(stick ? k.f5 * q.ddelta : q.dphi);
+  s.dx_A.push_back(q.dx_A);
+  s.ds_A.push_back(q.ds_A);
+  s.x_M.push_back(d.x_M);
+  s.z_M.push_back(d.z_M);
+  s.ddx_M.push_back(d.ddx_M);
+  s.ddz_M.push_back(d.ddz_M);
+  s.N.push_back(f.N);
+  s.T.push_back(f.T);
+  s.v_rel.push_back(v_rel);
+  s.torque.push_back(model_.torque(t));
+  // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
+  s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
+}
+
+int Dynamics<OscillationDrum>::pushed_slip(Phase phase, const Vector& x, double* hold) const {
+  // The sign of the slip: the phase's, or in the smooth phase of a regularised law v_rel's.
+  const double v_rel = phase == Phase::smooth ? slip_velocity(model_, State::from_array(x)) : 0.0;
+  const int s = phase == Phase::smooth ? (v_rel > 0.0) - (v_rel < 0.0) : slip_sign(phase);
+  const double MMd = model_.parameters().MMd;
+  *hold = largest_slip_coefficient(model_.friction()) * model_.W() * model_.r();
+  return (phase != Phase::stick && -s * MMd > *hold) ? s : 0;
+}
+
+}  // namespace oscidrum::detail
