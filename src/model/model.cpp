@@ -1,11 +1,10 @@
-// Model: validation of a Case, derived constants, contact forces and drum motion.
+// Model: validation of a Case and its derived constants.
 #include "oscidrum/model.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "equations/equations.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
@@ -100,59 +99,6 @@ State Model::initial_state() const {
   // At rest at the bottom (delta = 0, z_roll = 0): (ksv + kd) s_A = W + kd z_ref, from (31).
   q.s_A = (W_ + kd() * z_ref_) / (ksv_ + kd());
   return q;
-}
-
-namespace {
-// Soil subsystem (24), (25), solved for N (26) and T. The soil is massless, so these hold in
-// every phase and equal (21), (22). s, c: sin and cos of delta.
-ContactForces soil_contact_forces(const Model& model, const State& q, double s, double c) {
-  const double Fh = model.ksh() * q.x_A + model.csh() * q.dx_A;
-  const double Fv = model.ksv() * q.s_A + model.csv() * q.ds_A;
-  return {Fh * s + Fv * c, Fv * s - Fh * c};
-}
-}  // namespace
-
-ContactForces detail::contact_forces(const Model& model, const State& q, const Kinematics& k) {
-  return soil_contact_forces(model, q, k.sin_delta, k.cos_delta);
-}
-
-ContactForces contact_forces(const Model& model, const State& q) {
-  return soil_contact_forces(model, q, std::sin(q.delta), std::cos(q.delta));
-}
-
-double detail::slip_velocity(const Model& model, const State& q, const Kinematics& k) {
-  return model.r() * k.f5 * q.ddelta - model.r() * q.dphi;  // (13)
-}
-
-double slip_velocity(const Model& model, const State& q) {
-  return detail::slip_velocity(model, q, kinematics(model.geometry(), q.delta));
-}
-
-DrumMotion detail::drum_motion(const State& q, const Accelerations& a, const Kinematics& k) {
-  DrumMotion d;
-  d.x_M = k.x_roll + q.x_A;  // (14)
-  d.z_M = k.z_roll + q.s_A;
-  d.dx_M = k.f1 * q.ddelta + q.dx_A;  // (17)
-  d.dz_M = k.f3 * q.ddelta + q.ds_A;
-  d.ddx_M = k.f1 * a.delta + k.f2 * q.ddelta * q.ddelta + a.x_A;  // (18)
-  d.ddz_M = k.f3 * a.delta + k.f4 * q.ddelta * q.ddelta + a.s_A;
-  return d;
-}
-
-DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& a) {
-  return detail::drum_motion(q, a, kinematics(model.geometry(), q.delta));
-}
-
-Accelerations detail::accelerations(const Model& model, double t, const State& q, Phase phase,
-                                    double baumgarte, const Kinematics& k) {
-  if (phase == Phase::stick) return stick_accelerations(model, t, q, k);
-  return slip_accelerations(model, t, q, slip_sign(phase), baumgarte, k);
-}
-
-Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,
-                            double baumgarte) {
-  return detail::accelerations(model, t, q, phase, baumgarte,
-                               kinematics(model.geometry(), q.delta));
 }
 
 }  // namespace oscidrum

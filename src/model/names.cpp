@@ -1,4 +1,5 @@
 // Names of the enumerations, used in CSV, JSON and messages.
+#include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/state.hpp"
 
@@ -43,6 +44,28 @@ const char* to_string(EventKind kind) {
       return "slip_reversal";
     case EventKind::contact_lost:
       return "contact_lost";
+  }
+  return "?";
+}
+
+const char* to_string(FlowStop stop) {
+  switch (stop) {
+    case FlowStop::reached:
+      return "reached";
+    case FlowStop::observer:
+      return "observer";
+    case FlowStop::contact_lost:
+      return "contact_lost";
+    case FlowStop::chattering:
+      return "chattering";
+    case FlowStop::non_finite:
+      return "non_finite";
+    case FlowStop::invalid_geometry:
+      return "invalid_geometry";
+    case FlowStop::budget_exceeded:
+      return "budget_exceeded";
+    case FlowStop::cancelled:
+      return "cancelled";
   }
   return "?";
 }
