@@ -5,28 +5,6 @@
 
 namespace oscidrum {
 
-const char* to_string(FlowStop stop) {
-  switch (stop) {
-    case FlowStop::reached:
-      return "reached";
-    case FlowStop::observer:
-      return "observer";
-    case FlowStop::contact_lost:
-      return "contact_lost";
-    case FlowStop::chattering:
-      return "chattering";
-    case FlowStop::non_finite:
-      return "non_finite";
-    case FlowStop::invalid_geometry:
-      return "invalid_geometry";
-    case FlowStop::budget_exceeded:
-      return "budget_exceeded";
-    case FlowStop::cancelled:
-      return "cancelled";
-  }
-  return "?";
-}
-
 Status status_of(FlowStop stop) {
   switch (stop) {
     case FlowStop::contact_lost:
