@@ -281,6 +281,15 @@ class Shooter {
   bool subharmonic(const State& orbit, Phase phase, const Mat7& M, State& z, PeriodMap& cur,
                    ShootingOutcome& out);
   bool try_orbit(State& w, Phase wphase, PeriodMap& map, ShootingOutcome& out);
+  bool begin(const ShootingStart& start, ShootingOutcome& out, State& z, Phase& phase,
+             PeriodMap& cur);
+  bool extend_while_the_phase_changes(const ShootingStart& start, ShootingOutcome& out, State& z,
+                                      Phase& phase, PeriodMap& cur);
+  std::optional<bool> retry_after_a_longer_transient(const ShootingStart& start,
+                                                     ShootingOutcome& out, const State& z_start,
+                                                     Phase phase_start, double t_start, State& z,
+                                                     Phase& phase, PeriodMap& cur);
+  bool stable_orbit(ShootingOutcome& out, State& z, Phase phase, PeriodMap& cur);
   // Count k periods against the budget; false (and nothing counted) when they would exceed it.
   bool spend(int k) {
     if (used_ + k > budget_) {
@@ -721,12 +730,12 @@ bool Shooter<R>::subharmonic(const State& orbit, Phase phase, const Mat7& M, Sta
   return false;
 }
 
+// Newton's start: the supplied state (a neighbour's orbit) with its first map, or the short
+// transient from the flow's state with its last period as the first map; then the extensions
+// while the first map changes phase. False: the run ends here (`out` says how).
 template <class R>
-BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
-  ShootingOutcome out;
-  budget_ = start.budget > 0 ? start.budget : num_.max_periods;
-  State z;
-  Phase phase;
+bool Shooter<R>::begin(const ShootingStart& start, ShootingOutcome& out, State& z, Phase& phase,
+                       PeriodMap& cur) {
   if (start.from_state) {
     phase = start.phase;
     z = consistent(start.state, phase);
@@ -740,18 +749,18 @@ BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
     if (first_.over_budget) {
       out.budget_exhausted = true;
       out.message = budget_message();
-      return out;
+      return false;
     }
     if (first_.stop != FlowStop::reached) {
       out.message = "the supplied start state does not survive one period: " + flow_.message();
       out.periods_integrated = used_;
       out.period_maps = maps_;
       out.jacobian_evaluations = mono_.jacobian_evaluations();
-      return out;
+      return false;
     }
     have_first_ = true;
   } else if (!transient_start(out, z, phase)) {
-    return out;
+    return false;
   }
   z = consistent(z, phase);
   phase_ = phase;
@@ -759,86 +768,117 @@ BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
   p_ = std::max(1, start.multiplicity);
   // The short transient's last period is the first map of P (p = 1); a supplied state's first
   // map is that of P^p.
-  PeriodMap cur =
+  cur =
       have_first_ && (p_ == 1 || start.from_state) ? std::move(first_) : period_map(z, phase, true);
-  // A short transient whose switches were still moving (the sequence repeated, the switch times
-  // not yet) can stop just before a switch drifts across the period boundary: the first map
-  // then ends in another phase than it started in, and Newton cannot start. The transient goes
-  // on from the end of that map instead (the map is one of its periods), up to kMaxExtensions
-  // times. False: the transient ended the run (`out` says how).
-  const auto extend_while_the_phase_changes = [&] {
-    for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
-                            cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
-         ++extension) {
-      ++out.transient_periods;
-      have_first_ = false;
-      if (!transient_start(out, z, phase)) return false;
-      z = consistent(z, phase);
-      phase_ = phase;
-      cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
-    }
+  return extend_while_the_phase_changes(start, out, z, phase, cur);
+}
+
+// A short transient whose switches were still moving (the sequence repeated, the switch times
+// not yet) can stop just before a switch drifts across the period boundary: the first map then
+// ends in another phase than it started in, and Newton cannot start. The transient goes on from
+// the end of that map instead (the map is one of its periods), up to kMaxExtensions times.
+// False: the transient ended the run (`out` says how).
+template <class R>
+bool Shooter<R>::extend_while_the_phase_changes(const ShootingStart& start, ShootingOutcome& out,
+                                                State& z, Phase& phase, PeriodMap& cur) {
+  for (int extension = 0; extension < kMaxExtensions && !start.from_state && p_ == 1 &&
+                          cur.stop == FlowStop::reached && !cur.over_budget && cur.phase != phase;
+       ++extension) {
+    ++out.transient_periods;
+    have_first_ = false;
+    if (!transient_start(out, z, phase)) return false;
+    z = consistent(z, phase);
+    phase_ = phase;
+    cur = have_first_ ? std::move(first_) : period_map(z, phase, true);
+  }
+  return true;
+}
+
+// From rest, a few periods can leave the state too far from the orbit for Newton (with a
+// driving torque at high frequency, where the transient method needs 100-600 periods: on a
+// random scan every such failure converged from 20 periods later). The transient goes on plainly
+// from where Newton started (z_start, phase_start at t_start), and Newton tries once more,
+// before the run falls back. Empty: the run ends here (the transient ended it); else whether
+// Newton converged.
+template <class R>
+std::optional<bool> Shooter<R>::retry_after_a_longer_transient(
+    const ShootingStart& start, ShootingOutcome& out, const State& z_start, Phase phase_start,
+    double t_start, State& z, Phase& phase, PeriodMap& cur) {
+  PlainObserver range;
+  flow_.reset(t_start, z_start, phase_start);
+  FlowStop stop = flow_.advance(t_start + (kRetryTransient - 1) * period_);
+  if (stop == FlowStop::reached) {
+    range.start(flow_.state().to_array());
+    stop = flow_.advance(t_start + kRetryTransient * period_, &range);
+  }
+  if (stop != FlowStop::reached) return false;
+  set_scales(range);
+  out.transient_periods += kRetryTransient;
+  t0_ = flow_.t();
+  phase = flow_.phase();
+  z = consistent(flow_.state(), phase);
+  phase_ = phase;
+  cur = period_map(z, phase, true);
+  if (!extend_while_the_phase_changes(start, out, z, phase, cur)) return std::nullopt;
+  return newton(z, phase, cur, out);
+}
+
+// The converged orbit's Floquet multipliers; an unstable period-1 orbit is replaced by a stable
+// orbit of P^p when one is found (subharmonic). Returns whether a stable orbit stands.
+template <class R>
+bool Shooter<R>::stable_orbit(ShootingOutcome& out, State& z, Phase phase, PeriodMap& cur) {
+  // Floquet multipliers: eigenvalues of the monodromy at the orbit.
+  out.floquet = multipliers_of(cur.M);
+  if (out.floquet.stability == Stability::stable) return true;
+  if (p_ != 1) {
+    out.message = fmt("the orbit of P^%.0f is unstable (largest Floquet multiplier modulus %.6g)",
+                      p_, out.floquet.max_modulus);
+    return false;
+  }
+  const std::string why =
+      fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
+          out.floquet.max_modulus) +
+      to_string(out.floquet.stability) + ")";
+  out.period1_floquet = out.floquet;
+  const Mat7 M = cur.M;
+  const State orbit = z;
+  if (subharmonic(orbit, phase, M, z, cur, out)) {
+    out.floquet = multipliers_of(cur.M);
+    out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
+                            "shooting on P^%.0f",
+                            p_, p_);
     return true;
-  };
-  if (!extend_while_the_phase_changes()) return out;
+  }
+  if (!out.terminal) {
+    out.floquet = Floquet{};
+    out.message = why +
+                  ", and no stable orbit of P^p, p = 2 ... numerics.max_multiplicity, "
+                  "was found: the transient is followed instead" +
+                  (budget_hit_ ? " (" + budget_message() + ")" : std::string());
+  }
+  return false;
+}
+
+template <class R>
+BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
+  ShootingOutcome out;
+  budget_ = start.budget > 0 ? start.budget : num_.max_periods;
+  State z;
+  Phase phase;
+  PeriodMap cur;
+  if (!begin(start, out, z, phase, cur)) return out;
   const State z_start = z;
   const Phase phase_start = phase;
   const double t_start = t0_;
   bool converged = newton(z, phase, cur, out);
-  // From rest, a few periods can leave the state too far from the orbit for Newton (with a
-  // driving torque at high frequency, where the transient method needs 100-600 periods: on a
-  // random scan every such failure converged from 20 periods later). The transient goes on
-  // plainly from where Newton started, and Newton tries once more, before the run falls back.
   if (!converged && !start.from_state && p_ == 1 && !out.terminal && !budget_hit_ &&
       spend(kRetryTransient)) {
-    PlainObserver range;
-    flow_.reset(t_start, z_start, phase_start);
-    FlowStop stop = flow_.advance(t_start + (kRetryTransient - 1) * period_);
-    if (stop == FlowStop::reached) {
-      range.start(flow_.state().to_array());
-      stop = flow_.advance(t_start + kRetryTransient * period_, &range);
-    }
-    if (stop == FlowStop::reached) {
-      set_scales(range);
-      out.transient_periods += kRetryTransient;
-      t0_ = flow_.t();
-      phase = flow_.phase();
-      z = consistent(flow_.state(), phase);
-      phase_ = phase;
-      cur = period_map(z, phase, true);
-      if (!extend_while_the_phase_changes()) return out;
-      converged = newton(z, phase, cur, out);
-    }
+    const std::optional<bool> retried =
+        retry_after_a_longer_transient(start, out, z_start, phase_start, t_start, z, phase, cur);
+    if (!retried) return out;
+    converged = *retried;
   }
-  if (converged) {
-    // Floquet multipliers: eigenvalues of the monodromy at the orbit.
-    out.floquet = multipliers_of(cur.M);
-    if (out.floquet.stability != Stability::stable && p_ == 1) {
-      const std::string why =
-          fmt("the period-1 orbit is unstable (largest Floquet multiplier modulus %.6g, ",
-              out.floquet.max_modulus) +
-          to_string(out.floquet.stability) + ")";
-      out.period1_floquet = out.floquet;
-      const Mat7 M = cur.M;
-      const State orbit = z;
-      converged = subharmonic(orbit, phase, M, z, cur, out);
-      if (converged) {
-        out.floquet = multipliers_of(cur.M);
-        out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
-                                "shooting on P^%.0f",
-                                p_, p_);
-      } else if (!out.terminal) {
-        out.floquet = Floquet{};
-        out.message = why +
-                      ", and no stable orbit of P^p, p = 2 ... numerics.max_multiplicity, "
-                      "was found: the transient is followed instead" +
-                      (budget_hit_ ? " (" + budget_message() + ")" : std::string());
-      }
-    } else if (out.floquet.stability != Stability::stable) {
-      converged = false;
-      out.message = fmt("the orbit of P^%.0f is unstable (largest Floquet multiplier modulus %.6g)",
-                        p_, out.floquet.max_modulus);
-    }
-  }
+  if (converged) converged = stable_orbit(out, z, phase, cur);
   out.period_maps = maps_;
   out.plain_maps = plain_maps_;
   out.jacobian_evaluations = mono_.jacobian_evaluations();
