@@ -1,5 +1,5 @@
-// Tests of the shooting driver (src/drivers/shooting.cpp) and the variational equations along the
-// flow (src/flow/monodromy.cpp): the monodromy matrix against a finite-difference Jacobian of the
+// Tests of the shooting driver (src/drivers/shooting.hpp) and the variational equations along the
+// flow (src/flow/monodromy.hpp): the monodromy matrix against a finite-difference Jacobian of the
 // period map (across stick/slip switches), the decay of the transient against the largest Floquet
 // multiplier, and the agreement of the two steady-state methods.
 #include <gtest/gtest.h>

@@ -1,0 +1,188 @@
+// The oscillation drum as a roller component (src/roller/oscillation_drum.cpp): its right-hand
+// side is the one the Jacobians differentiate, its events do what docs/model.md section 6 says,
+// its section projection and its Jacobian agree, its samples give back the state, and its
+// gross-slip test reads the slip the driving torque pushes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "equations/event_logic.hpp"
+#include "equations/jacobian.hpp"
+#include "roller/oscillation_drum.hpp"
+#include "tolerances.hpp"
+
+namespace oscidrum::detail {
+namespace {
+
+using Dyn = Dynamics<OscillationDrum>;
+
+Case driven_case() {
+  Case c;
+  c.MMd = 0.05 * c.roller.M0;
+  return c;
+}
+
+State random_state(std::mt19937& rng, const Model& model) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  State q;
+  q.delta = 0.3 * u(rng);
+  q.x_A = 1e-3 * u(rng);
+  q.s_A = model.initial_state().s_A * (1.0 + 0.3 * u(rng));
+  q.phi = u(rng);
+  q.ddelta = 50.0 * u(rng);
+  q.dx_A = 0.2 * u(rng);
+  q.ds_A = 0.05 * u(rng);
+  q.dphi = 50.0 * u(rng);
+  return q;
+}
+
+// The flow integrates rhs(); shooting differentiates phase_rhs(): the same numbers, bit for bit.
+TEST(OscillationDrum, RightHandSideIsTheOneTheJacobiansDifferentiate) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 2.0 * model.nu());
+  std::mt19937 rng(42);
+  for (int i = 0; i < 50; ++i) {
+    const State q = random_state(rng, model);
+    for (Phase phase : {Phase::stick, Phase::slip_positive, Phase::slip_negative}) {
+      Dyn::Vector f;
+      dyn.rhs(phase, 0.001 * i, q.to_array(), f);
+      const Vec8 g = phase_rhs(model, 0.001 * i, q, phase, 2.0 * model.nu());
+      for (int k = 0; k < 8; ++k) EXPECT_EQ(f[k], g[k]) << to_string(phase) << " " << k;
+    }
+  }
+}
+
+TEST(OscillationDrum, ContactEventIsTerminal) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 0.0);
+  const Dyn::Switch sw =
+      dyn.apply(Phase::stick, kEventContact, 0.5, model.initial_state().to_array());
+  EXPECT_TRUE(sw.terminal);
+  EXPECT_EQ(sw.kind, EventKind::contact_lost);
+  EXPECT_EQ(sw.stop, FlowStop::contact_lost);
+  EXPECT_NE(sw.message.find("contact lost at t = 0.5"), std::string::npos) << sw.message;
+}
+
+// Stick -> slip: the side of the cone names the slip's sign (T > 0 at mu N - T = 0: slip-), the
+// state carries over with one coefficient, and the slip velocity function starts at zero.
+TEST(OscillationDrum, ConeEventsStartSlipOfTheirSide) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 0.0);
+  std::mt19937 rng(7);
+  const State q = random_state(rng, model);
+  for (int which : {kEventConeNegative, kEventConePositive}) {
+    const Dyn::Switch sw = dyn.apply(Phase::stick, which, 0.1, q.to_array());
+    EXPECT_FALSE(sw.terminal);
+    EXPECT_EQ(sw.kind, EventKind::stick_to_slip);
+    EXPECT_EQ(sw.to, which == kEventConeNegative ? Phase::slip_negative : Phase::slip_positive);
+    EXPECT_EQ(sw.after, q.to_array());
+    EXPECT_TRUE(sw.fresh[kEventSlipVelocity]);
+  }
+}
+
+// Slip -> stick or reversal at v_rel = 0 (docs/model.md section 6): at a state where the stick
+// solution stays in the cone, stick, phi' set to f5 delta' (12), and the cone function of the
+// old slip's side starts at zero.
+TEST(OscillationDrum, SlipEndDecidesByTheRate) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 0.0);
+  std::mt19937 rng(3);
+  int sticks = 0, reversals = 0;
+  for (int i = 0; i < 200; ++i) {
+    State q = random_state(rng, model);
+    q.dphi = kinematics(model.geometry(), q.delta).f5 * q.ddelta;  // v_rel = 0
+    for (Phase phase : {Phase::slip_positive, Phase::slip_negative}) {
+      const Dyn::Switch sw = dyn.apply(phase, kEventSlipVelocity, 0.01 * i, q.to_array());
+      const int s = slip_sign(phase);
+      const bool stick = stick_margin_rate(model, 0.01 * i, q, -s) >= 0.0;
+      if (stick) {
+        ++sticks;
+        EXPECT_EQ(sw.kind, EventKind::slip_to_stick);
+        EXPECT_EQ(sw.to, Phase::stick);
+        EXPECT_TRUE(sw.fresh[s > 0 ? kEventConePositive : kEventConeNegative]);
+        EXPECT_EQ(sw.after[7], kinematics(model.geometry(), q.delta).f5 * q.ddelta);
+      } else if (sw.reversal) {
+        ++reversals;
+        EXPECT_EQ(sw.kind, EventKind::slip_reversal);
+        EXPECT_EQ(sw.to, s > 0 ? Phase::slip_negative : Phase::slip_positive);
+        EXPECT_TRUE(sw.fresh[kEventSlipVelocity]);
+      }
+    }
+  }
+  EXPECT_GT(sticks, 0);
+  EXPECT_GT(reversals, 0);
+}
+
+// The section projection (stick: phi' = f5 delta') and its Jacobian by central differences; off
+// stick it is the identity (no Jacobian).
+TEST(OscillationDrum, SectionProjectionAndItsJacobian) {
+  Case c = driven_case();
+  c.trough.shape = trough_shape(0.002, 0.601);  // the spiral: f5 depends on delta
+  const Model model(c);
+  const Dyn dyn(model, 0.0);
+  std::mt19937 rng(11);
+  const State q = random_state(rng, model);
+  const Dyn::Vector z = q.to_array();
+  EXPECT_EQ(dyn.consistent(z, Phase::slip_positive), z);
+  EXPECT_FALSE(dyn.section_jacobian(z, Phase::slip_negative).has_value());
+  const auto G = dyn.section_jacobian(z, Phase::stick);
+  ASSERT_TRUE(G.has_value());
+  const Dyn::Vector p = dyn.consistent(z, Phase::stick);
+  EXPECT_EQ(p[7], kinematics(model.geometry(), z[0]).f5 * z[4]);
+  for (int j = 0; j < 8; ++j) {
+    const double h = 1e-6 * (1.0 + std::abs(z[j]));
+    Dyn::Vector a = z, b = z;
+    a[j] += h;
+    b[j] -= h;
+    const Dyn::Vector pa = dyn.consistent(a, Phase::stick), pb = dyn.consistent(b, Phase::stick);
+    for (int i = 0; i < 8; ++i)
+      EXPECT_NEAR((*G)(i, j), (pa[i] - pb[i]) / (2 * h),
+                  test::kFiniteDifference * (1.0 + std::abs((*G)(i, j))))
+          << i << ", " << j;
+  }
+}
+
+// A sample row gives back the state it was taken at (phi' of stick: the rolling condition).
+TEST(OscillationDrum, SamplesGiveBackTheState) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 2.0 * model.nu());
+  std::mt19937 rng(5);
+  Samples s;
+  const State q = random_state(rng, model);
+  dyn.sample(0.01, q.to_array(), Phase::slip_negative, s);
+  dyn.sample(0.02, q.to_array(), Phase::stick, s);
+  EXPECT_EQ(Dyn::sampled_state(s, 0), q.to_array());
+  EXPECT_EQ(s.phase[0], Phase::slip_negative);
+  EXPECT_EQ(s.v_rel[0], slip_velocity(model, q));
+  State rolled = q;
+  rolled.dphi = kinematics(model.geometry(), q.delta).f5 * q.ddelta;
+  EXPECT_EQ(Dyn::sampled_state(s, 1), rolled.to_array());
+  EXPECT_EQ(s.v_rel[1], 0.0);
+  EXPECT_EQ(s.torque[1], model.torque(0.02));
+}
+
+// Gross slip: only a slip in the direction the driving torque pushes, beyond mu W r.
+TEST(OscillationDrum, PushedSlipNeedsATorqueBeyondWhatFrictionHolds) {
+  Case c;
+  const double hold = c.contact.mu * c.roller.P0 * c.roller.r;  // mu W r, W = P0
+  c.MMd = 1.5 * hold;
+  const Model model(c);
+  const Dyn dyn(model, 0.0);
+  const Dyn::Vector x = model.initial_state().to_array();
+  double h = 0.0;
+  // MMd > 0 pushes phi' up, i.e. v_rel = r f5 delta' - r phi' down: slip-.
+  EXPECT_EQ(dyn.pushed_slip(Phase::slip_negative, x, &h), -1);
+  EXPECT_NEAR(h, hold, 1e-9 * hold);
+  EXPECT_EQ(dyn.pushed_slip(Phase::slip_positive, x, &h), 0);
+  EXPECT_EQ(dyn.pushed_slip(Phase::stick, x, &h), 0);
+  c.MMd = 0.5 * hold;
+  const Model weak(c);
+  EXPECT_EQ(Dyn(weak, 0.0).pushed_slip(Phase::slip_negative, x, &h), 0);
+  Dyn::Vector later = x;
+  later[7] += 3.0;  // phi' grew by 3 rad/s over 3 periods while slipping with s = -1
+  EXPECT_EQ(Dyn::spin_up(later, x, -1, 3), 1.0);
+}
+
+}  // namespace
+}  // namespace oscidrum::detail
