@@ -1,7 +1,7 @@
 // The output tables of oscidrum/output_table.hpp, generated from the lists of oscidrum/outputs.hpp.
-#include <string>
-
 #include "oscidrum/output_table.hpp"
+
+#include <string>
 
 namespace oscidrum {
 namespace {
