@@ -39,7 +39,8 @@ class Model {
   double period() const { return 1.0 / case_.roller.f; }  ///< excitation period [s]
   double z_ref() const { return z_ref_; }  ///< suspension reference of z_M (0 as in the paper) [m]
 
-  /// Total excitation MM(t) = M0 sin(nu t) + MMd (5, 6) [N m].
+  /// Total excitation MM(t) = M0 sin(nu t) + MMd (5, 6) [N m], times the start ramp
+  /// (1 - cos(pi t / t_ramp)) / 2 for t < t_ramp = numerics.start_ramp_periods T.
   double torque(double t) const;
 
   /// The initial state: at rest at the bottom of the trough, s_A = (W + kd z_ref)/(ksv + kd).
@@ -53,6 +54,7 @@ class Model {
   FrictionPhases phases_;
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
+  double ramp_end_;  ///< the end of the start ramp, numerics.start_ramp_periods T (0: none) [s]
   double M0_;  ///< oscillation_moment(roller) (5) [N m]
 };
 

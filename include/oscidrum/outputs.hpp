@@ -98,6 +98,10 @@
     "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
     "why shooting fell back to the transient method (empty if it did not)")                       \
+  X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                      \
+    "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or " \
+    "20 when the start from rest lost contact before a steady state and the run was retried "     \
+    "with a ramp (0: the paper's start)")                                                         \
   X(int, warm_start, 0, "-", "warm start (continuation)",                                         \
     "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "     \
     "found from the neighbouring case's steady state, -1 that start failed and the case started " \

@@ -104,6 +104,10 @@ struct Numerics {
   /// In a study (sweep, run_study) with method shooting: start from the steady state of the
   /// neighbouring case (docs/periodic.md, "Continuation in studies"); ignored by a single run.
   bool continuation = true;
+  /// Excitation periods over which the torque M0 sin(nu t) + MMd is ramped in from rest by
+  /// (1 - cos(pi t / (n T))) / 2 (0: all at once, the paper's start). A run whose start from rest
+  /// loses contact before a steady state is retried with a ramp (docs/periodic.md).
+  int start_ramp_periods = 0;
 };
 
 /// One simulation case: everything the engine needs.

@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., start_ramp_periods: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -129,6 +129,8 @@ class Diagnostics:
     """slip -> slip reversals (docs/model.md) [-]"""
     rhs_evaluations: int
     """right-hand-side evaluations [-]"""
+    start_ramp_periods: int
+    """periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or 20 when the start from rest lost contact before a steady state and the run was retried with a ramp (0: the paper's start) [-]"""
     steps: int
     """accepted integrator steps [-]"""
     switches: int
@@ -356,6 +358,8 @@ class Numerics:
     """uniform samples per excitation period in the output [-]; an integer in [16, 1000000]; default 1024."""
     slip_constraint_rate: float
     """Baumgarte rate that pulls the slip coupling (39) back to zero; 0 means 2 nu [1/s]; >= 0; default 0."""
+    start_ramp_periods: int
+    """excitation periods over which the torque is ramped in from rest, (1 - cos(pi t / (n T))) / 2 (0: all at once, the paper's start); a run whose start from rest loses contact before a steady state is retried with a ramp of 20 periods [-]; an integer in [0, 1000]; default 0."""
     steady_tol: float
     """period-to-period change of the state (scaled by its range) that counts as steady [-]; in (0, 1]; default 1e-08."""
     suspension_from_static: bool

@@ -348,14 +348,19 @@ bool Shooter<R>::short_transient(ShootingOutcome& out) {
   // changed phase, see run()).
   const double base = flow_.t();
   const int before = out.transient_periods;
-  for (int n = 1; n <= kMaxTransient; ++n) {
+  // A start ramp (numerics.start_ramp_periods) is no period of the periodic system: the
+  // transient runs through it first.
+  const int ramp =
+      std::max(0, num_.start_ramp_periods - static_cast<int>(std::lround(base / period_)));
+  const int min_periods = kMinTransient + ramp;
+  for (int n = 1; n <= kMaxTransient + ramp; ++n) {
     // A period that may be the last one (the third, or the second after a period without
     // switches, as in pure rolling) is integrated as the period map of its consistent start,
     // with sensitivities: if its switching sequence repeats, it is Newton's first map.
     // Only up to kMaxTransientMaps such periods: a transient that takes longer to settle goes on
     // plainly, and Newton's first map follows it.
     const bool as_map = map_periods < kMaxTransientMaps &&
-                        (n >= kMinTransient + 1 || (n >= kMinTransient && previous.empty()));
+                        (n >= min_periods + 1 || (n >= min_periods && previous.empty()));
     if (!spend(1)) {
       out.budget_exhausted = true;
       out.message = budget_message();
@@ -396,7 +401,7 @@ bool Shooter<R>::short_transient(ShootingOutcome& out) {
       return false;
     }
     const bool same = have_previous && same_switching_sequence(previous, switches);
-    if (n >= kMinTransient && same) {
+    if (n >= min_periods && same) {
       have_first_ = as_map;
       break;
     }

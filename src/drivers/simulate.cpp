@@ -80,6 +80,7 @@ void transient(const Model& model, BasicFlow<R>& flow, const ProgressCallback& p
     }
   } else {
     result.events = search.recent_events;
+    if (search.status == Status::gross_slip) d.phi_drift = search.phi_drift;
   }
   d.max_slip_residual = flow.counters().max_slip_residual;
   d.min_N = flow.counters().min_N;
@@ -253,9 +254,9 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
 }
 
 template <class R>
-Result simulate_roller(const Model& model, const ProgressCallback& progress,
-                       const std::function<bool()>& cancelled, const detail::WarmStart* warm,
-                       bool all_samples) {
+Result simulate_once(const Model& model, const ProgressCallback& progress,
+                     const std::function<bool()>& cancelled, const detail::WarmStart* warm,
+                     bool all_samples) {
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
   BasicFlow<R> flow(model, options);
@@ -315,6 +316,52 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
     d.period_equivalents = d.periods_simulated;
   }
   return result;
+}
+
+// A start from rest can be violent enough to lift the drum off although the steady orbit keeps
+// contact (the status must not depend on how a case is started). A run that loses contact before
+// a steady state is found is run again with the excitation ramped in over kRampPeriods periods
+// (numerics.start_ramp_periods); contact_lost stands only when that run loses contact too, or
+// when the steady orbit itself does (its sampling loses contact: no retry).
+constexpr int kRampPeriods = 20;
+
+template <class R>
+Result simulate_roller(const Model& model, const ProgressCallback& progress,
+                       const std::function<bool()>& cancelled, const detail::WarmStart* warm,
+                       bool all_samples) {
+  Result first = simulate_once<R>(model, progress, cancelled, warm, all_samples);
+  const Numerics& num = model.parameters().numerics;
+  first.diagnostics.start_ramp_periods = num.start_ramp_periods;
+  if (first.status != Status::contact_lost || first.diagnostics.periods_to_steady >= 0 ||
+      num.start_ramp_periods > 0 || first.diagnostics.periods_simulated >= num.max_periods)
+    return first;
+  Case gentle = model.parameters();
+  gentle.numerics.start_ramp_periods = kRampPeriods;
+  gentle.numerics.max_periods = num.max_periods - first.diagnostics.periods_simulated;
+  const Model ramped(gentle);
+  Result again = simulate_once<R>(ramped, progress, cancelled, nullptr, all_samples);
+  Diagnostics& d = again.diagnostics;
+  const Diagnostics& f = first.diagnostics;
+  d.start_ramp_periods = kRampPeriods;
+  // The work of both runs.
+  d.periods_simulated += f.periods_simulated;
+  d.steps += f.steps;
+  d.rejected_steps += f.rejected_steps;
+  d.rhs_evaluations += f.rhs_evaluations;
+  d.jacobian_evaluations += f.jacobian_evaluations;
+  d.newton_iterations += f.newton_iterations;
+  d.period_equivalents += f.period_equivalents;
+  const std::string lost = first.message;
+  if (again.status == Status::contact_lost) {
+    again.message = lost + "; started again with the excitation ramped in over " +
+                    std::to_string(kRampPeriods) + " periods, " + again.message;
+    return again;
+  }
+  again.message += "; the start from rest lost contact (" + lost +
+                   "), so the excitation was ramped in over " + std::to_string(kRampPeriods) +
+                   " periods (diagnostic start_ramp_periods)";
+  if (again.status == Status::steady_state) again.message += ": the steady state keeps contact";
+  return again;
 }
 
 template <class R>

@@ -29,6 +29,7 @@ struct SearchOutcome {
   int multiplicity = 0;              ///< steady period in excitation periods (0: none found)
   int periods = 0;                   ///< boundary index n reached
   double final_change = 0.0;         ///< last period-to-period change (scaled) [-]
+  double phi_drift = 0.0;  ///< gross slip: the drift of phi over the last period [rad]
   std::vector<Event> recent_events;  ///< the last events before a stop other than steady/max
 };
 
@@ -133,12 +134,15 @@ double Search<R>::noise_floor() const {
 template <class R>
 bool Search<R>::gross_slip(int n, const Vec& x) {
   // Slip of one sign s through whole periods cannot be periodic: phi' is periodic only if the
-  // mean of (23), I phi'' = MM + s mu N r, vanishes, i.e. MMd = -s mu mean(N) r, while the
-  // torque of a drum sliding the other way would make it stick. So once the drum has slipped
-  // without a switch for kGrossSlipPeriods periods, in the direction its driving torque pushes
-  // (-s MMd > 0), with MMd beyond mu W r (mean N is W) and phi' grown over those periods, it
-  // spins: the friction cannot hold the driving torque. The roller says which slip that is
-  // (Dynamics<R>::pushed_slip) and how fast it spins up (spin_up).
+  // mean of (23), I phi'' = MM + s mu N r, vanishes, i.e. MMd = -s mu mean(N) r, which Coulomb
+  // friction (its torque does not depend on the slip speed) meets only by coincidence. So once
+  // the drum has slipped without a switch for kGrossSlipPeriods periods, in the direction its
+  // driving torque pushes (-s MMd > 0), and phi' has grown in that direction in each of those
+  // periods by more than the steady state's tolerance allows, it spins: the friction cannot hold
+  // the driving torque on this motion. This reads the motion, not a threshold: mean(N) is below
+  // W when the suspension carries part of the load, so a drum can spin with MMd below mu W r.
+  // The roller says which slip that is (Dynamics<R>::pushed_slip) and how fast phi' grows
+  // (spin_up, its component kSpin).
   double hold = 0.0;
   const int s = dynamics_.pushed_slip(flow_.phase(), x, &hold);
   if (s != 0 && switches_this_period_ == 0)
@@ -148,17 +152,20 @@ bool Search<R>::gross_slip(int n, const Vec& x) {
   if (slipping_periods_ < kGrossSlipPeriods ||
       static_cast<int>(history_.size()) <= kGrossSlipPeriods)
     return false;
+  // Growth in each of the periods, above what a steady state may still change by.
+  const double noise = 10.0 * num_.steady_tol * last_range_[Dyn::kSpin];
+  for (int k = 0; k < kGrossSlipPeriods; ++k)
+    if (!(Dyn::spin_up(history_[k].first, history_[k + 1].first, s, 1) > noise)) return false;
   const double growth = Dyn::spin_up(x, history_[kGrossSlipPeriods].first, s, kGrossSlipPeriods);
-  if (!(growth > 0.0)) return false;
   const double MMd = flow_.model().parameters().MMd;
   out_.status = Status::gross_slip;
+  out_.phi_drift = Dyn::cyclic_drift(x, history_[1].first);
   out_.message = detail::format(
       "gross slip: the drum spins (phi' grows by %.3g rad/s per excitation period, slipping "
       "without stick for %.0f periods): the driving torque MMd = %.6g N m exceeds what friction "
-      "can hold, about mu W r",
-      growth, kGrossSlipPeriods, MMd);
-  out_.message +=
-      detail::format(" = %.6g N m; no steady state (stopped after %.0f periods)", hold, n);
+      "holds on this motion, mu mean(N) r (mu W r = %.6g N m)",
+      growth, slipping_periods_, MMd, hold);
+  out_.message += detail::format("; no steady state (stopped after %.0f periods)", n + spent_);
   return true;
 }
 
@@ -178,6 +185,26 @@ bool Search<R>::on_boundary(int n, const Vec& x) {
 
   history_.emplace_front(x, flow_.phase());
   if (static_cast<int>(history_.size()) > num_.max_multiplicity + 1) history_.pop_back();
+
+  // During a start ramp (numerics.start_ramp_periods) the excitation is not yet periodic: no
+  // verdict on steadiness or gross slip, only the progress and the budget.
+  if (flow_.t() < num_.start_ramp_periods * period_ - 0.5 * period_) {
+    switches_this_period_ = 0;
+    if (progress_ && !progress_(n, std::numeric_limits<double>::infinity())) {
+      out_.status = Status::cancelled;
+      out_.message = detail::format("cancelled after %.0f periods", n);
+      return true;
+    }
+    if (n >= budget_) {
+      out_.status = Status::max_periods_reached;
+      out_.message = detail::format(
+          "no steady state within %.0f periods: they did not reach the end of the start ramp "
+          "(numerics.start_ramp_periods = %.0f)",
+          n, num_.start_ramp_periods);
+      return true;
+    }
+    return false;
+  }
 
   // A p-periodic steady state must repeat at p consecutive boundaries (a whole cycle of the
   // subharmonic), and for p > 1 every shorter comparison must stay macroscopic (above

@@ -182,6 +182,11 @@ const std::array kFields = {
           "state of its neighbour along the swept values, falling back to the start from rest "
           "when that fails (docs/periodic.md); false: every case starts from rest",
           0, 1, false, false, nullptr, OSCIDRUM_BOOL(numerics.continuation)},
+    Field{"numerics.start_ramp_periods", FieldType::integer, "-",
+          "excitation periods over which the torque is ramped in from rest, (1 - cos(pi t / (n "
+          "T))) / 2 (0: all at once, the paper's start); a run whose start from rest loses "
+          "contact before a steady state is retried with a ramp of 20 periods",
+          0, 1000, false, false, nullptr, OSCIDRUM_INT(numerics.start_ramp_periods)},
 };
 
 #undef OSCIDRUM_REAL

@@ -88,10 +88,14 @@ Model::Model(const Case& c) : case_(c) {
   // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
   // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.
   z_ref_ = c.numerics.suspension_from_static ? W_ / ksv_ : 0.0;
+  ramp_end_ = c.numerics.start_ramp_periods / R.f;
 }
 
 double Model::torque(double t) const {
-  return M0_ * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
+  const double MM = M0_ * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
+  if (!(t < ramp_end_)) return MM;
+  // A gentler start from rest: the excitation ramped in (docs/periodic.md).
+  return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
 }
 
 State Model::initial_state() const {

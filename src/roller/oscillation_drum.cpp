@@ -157,7 +157,7 @@ int Dynamics<OscillationDrum>::pushed_slip(Phase phase, const Vector& x, double*
   const int s = phase == Phase::smooth ? (v_rel > 0.0) - (v_rel < 0.0) : slip_sign(phase);
   const double MMd = model_.parameters().MMd;
   *hold = largest_slip_coefficient(model_.friction()) * model_.W() * model_.r();
-  return (phase != Phase::stick && -s * MMd > *hold) ? s : 0;
+  return (phase != Phase::stick && -s * MMd > 0.0) ? s : 0;
 }
 
 }  // namespace oscidrum::detail

@@ -26,6 +26,8 @@ class Dynamics<OscillationDrum> {
   /// The components that repeat on a periodic orbit: all but phi (index 3), which is cyclic (no
   /// right-hand side depends on it; it may drift by the net slip per period).
   static constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
+  /// The component whose growth is a spin (gross slip): phi'.
+  static constexpr int kSpin = 7;
   using Vector = std::array<double, kStates>;
   using Matrix = Mat8;
   using EventValues = oscidrum::EventValues;
@@ -96,14 +98,14 @@ class Dynamics<OscillationDrum> {
   }
 
   // ---- the steady-state search ----------------------------------------------------------------
-  /// Gross slip (see src/drivers/steady_state.hpp): the sign s of a slip that the driving torque
-  /// pushes beyond what friction can hold (-s MMd > hold, `hold` the largest slip coefficient
-  /// times W r [N m]), else 0.
+  /// Gross slip (see src/drivers/steady_state.hpp): the sign s of a slip in the direction the
+  /// driving torque pushes (-s MMd > 0), else 0; `hold` receives mu W r, what friction holds
+  /// with the mean normal force W (the largest slip coefficient times W r) [N m].
   int pushed_slip(Phase phase, const Vector& x, double* hold) const;
   /// How fast such a slip spins the drum up: -s (phi'(x) - phi'(x_before)) / periods, > 0 when
   /// phi' grows in the direction that makes the slip of sign s faster (13) [rad/s per period].
   static double spin_up(const Vector& x, const Vector& x_before, int s, int periods) {
-    return -s * (x[7] - x_before[7]) / periods;
+    return -s * (x[kSpin] - x_before[kSpin]) / periods;
   }
 
  private:

@@ -107,6 +107,7 @@ double direct_value(const Case& c0, const std::string& key) {
   if (key == "numerics.samples_per_period") return c.numerics.samples_per_period;
   if (key == "numerics.max_switches_per_period") return c.numerics.max_switches_per_period;
   if (key == "numerics.max_steps_per_period") return c.numerics.max_steps_per_period;
+  if (key == "numerics.start_ramp_periods") return c.numerics.start_ramp_periods;
   ADD_FAILURE() << "the test does not know the field '" << key << "': add it to members()";
   return kNaN;
 }
@@ -142,8 +143,8 @@ std::string error_of(const std::function<void()>& action) {
 // ---- the table ------------------------------------------------------------------------------
 
 TEST(Fields, EveryCaseMemberHasExactlyOneField) {
-  // 12 roller + 8 soil + 2 trough + 5 contact + MMd + 12 numerics members in parameters.hpp.
-  EXPECT_EQ(fields().size(), 41u);
+  // 12 roller + 8 soil + 2 trough + 5 contact + MMd + 13 numerics members in parameters.hpp.
+  EXPECT_EQ(fields().size(), 42u);
   std::set<std::string> keys;
   for (const Field& f : fields()) {
     EXPECT_TRUE(keys.insert(f.key).second) << "duplicate key " << f.key;

@@ -187,8 +187,10 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     # The table's diagnostics, the steady-state method's included (the method by its name).
     names = [x["name"] for x in table["diagnostics"]]
     assert list(d.to_dict()) == names
-    assert names[-7:] == ["method", "newton_iterations", "jacobian_evaluations",
-                          "period_equivalents", "phi_drift", "fallback", "warm_start"]
+    assert names[-8:] == ["method", "newton_iterations", "jacobian_evaluations",
+                          "period_equivalents", "phi_drift", "fallback", "start_ramp_periods",
+                          "warm_start"]
+    assert d.start_ramp_periods == 0  # the paper's start: all at once
     assert d.warm_start == 0  # a single run starts from rest
     assert d.method in ("transient", "shooting") and isinstance(d.fallback, str)
     assert d.inconsistent_slip_ends == 0  # was missing from Python before the table

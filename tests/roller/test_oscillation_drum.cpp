@@ -162,26 +162,28 @@ TEST(OscillationDrum, SamplesGiveBackTheState) {
   EXPECT_EQ(s.torque[1], model.torque(0.02));
 }
 
-// Gross slip: only a slip in the direction the driving torque pushes, beyond mu W r.
-TEST(OscillationDrum, PushedSlipNeedsATorqueBeyondWhatFrictionHolds) {
+// Gross slip: only a slip in the direction the driving torque pushes counts; how fast it spins
+// up is the growth of phi' against the slip (v_rel = r f5 delta' - r phi' (13)).
+TEST(OscillationDrum, PushedSlipIsTheSlipTheDrivingTorquePushes) {
   Case c;
   const double hold = c.contact.mu * c.roller.P0 * c.roller.r;  // mu W r, W = P0
-  c.MMd = 1.5 * hold;
+  c.MMd = 0.5 * hold;
   const Model model(c);
   const Dyn dyn(model, 0.0);
   const Dyn::Vector x = model.initial_state().to_array();
   double h = 0.0;
-  // MMd > 0 pushes phi' up, i.e. v_rel = r f5 delta' - r phi' down: slip-.
+  // MMd > 0 pushes phi' up, i.e. v_rel down: slip-.
   EXPECT_EQ(dyn.pushed_slip(Phase::slip_negative, x, &h), -1);
   EXPECT_NEAR(h, hold, 1e-9 * hold);
   EXPECT_EQ(dyn.pushed_slip(Phase::slip_positive, x, &h), 0);
   EXPECT_EQ(dyn.pushed_slip(Phase::stick, x, &h), 0);
-  c.MMd = 0.5 * hold;
-  const Model weak(c);
-  EXPECT_EQ(Dyn(weak, 0.0).pushed_slip(Phase::slip_negative, x, &h), 0);
+  c.MMd = 0.0;
+  const Model free(c);
+  EXPECT_EQ(Dyn(free, 0.0).pushed_slip(Phase::slip_negative, x, &h), 0);
   Dyn::Vector later = x;
-  later[7] += 3.0;  // phi' grew by 3 rad/s over 3 periods while slipping with s = -1
+  later[Dyn::kSpin] += 3.0;  // phi' grew by 3 rad/s over 3 periods while slipping with s = -1
   EXPECT_EQ(Dyn::spin_up(later, x, -1, 3), 1.0);
+  EXPECT_EQ(Dyn::spin_up(later, x, 1, 3), -1.0);
 }
 
 }  // namespace
