@@ -55,7 +55,7 @@ class Model {
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
   double ramp_end_;  ///< the end of the start ramp, numerics.start_ramp_periods T (0: none) [s]
-  double M0_;  ///< oscillation_moment(roller) (5) [N m]
+  double M0_;        ///< oscillation_moment(roller) (5) [N m]
 };
 
 /// Normal and tangential contact forces at C. The soil is massless, so both are functions of

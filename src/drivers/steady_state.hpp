@@ -29,7 +29,7 @@ struct SearchOutcome {
   int multiplicity = 0;              ///< steady period in excitation periods (0: none found)
   int periods = 0;                   ///< boundary index n reached
   double final_change = 0.0;         ///< last period-to-period change (scaled) [-]
-  double phi_drift = 0.0;  ///< gross slip: the drift of phi over the last period [rad]
+  double phi_drift = 0.0;            ///< gross slip: the drift of phi over the last period [rad]
   std::vector<Event> recent_events;  ///< the last events before a stop other than steady/max
 };
 
