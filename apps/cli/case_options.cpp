@@ -42,12 +42,32 @@ void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::stri
   }
 }
 
+double soil_G_flag(double value) {
+  const Field& G = *find_field("soil.G");
+  const std::string unit = display_unit(G);
+  if (!std::isfinite(value) || value <= 0)
+    throw Error("--G must be > 0 [" + unit + "]; got " + fmt(value, 10), "soil.G", value);
+  const double pa = value * G.display_scale;
+  if (check_field(G, pa).empty()) return pa;
+  // 30000000 is 30 MN/m^2 written in Pa.
+  if (check_field(G, value).empty())
+    throw Error("--G is the shear modulus in " + unit + " (soils: about 1 to 500), not in " +
+                    G.unit + "; got " + fmt(value, 10) + " " + unit + " = " + fmt(pa, 10) + " " +
+                    G.unit + ": did you mean --G " + fmt(value / G.display_scale, 10) + "?",
+                "soil.G", value);
+  throw Error("--G must be in [" + fmt(G.min / G.display_scale, 10) + ", " +
+                  fmt(G.max / G.display_scale, 10) + "] [" + unit + "] (soil.G in " + G.unit +
+                  " / " + fmt(G.display_scale, 10) + "); got " + fmt(value, 10),
+              "soil.G", value);
+}
+
 void add_soil_flags(CLI::App& app, CaseOptions& o) {
   const char* group = "Soil";
   o.G_flag = app.add_option("--G", o.G,
-                            "soil shear modulus in MN/m^2 (not Pa). A G of paper Table 2 (5, 10, "
-                            "..., 70) uses Table 2's coefficients; any other G, or --soil-formula, "
-                            "uses Appendix B (42)-(45)")
+                            "soil shear modulus in MN/m^2 (not Pa: --G 30 is soil.G = 30e6; "
+                            "values plainly in Pa are refused). A G of paper Table 2 (5, 10, ..., "
+                            "70) gives the Table 2 soil (soil.input = table2), any other G, or "
+                            "--soil-formula, Appendix B (42)-(45) (soil.input = modulus)")
                  ->group(group);
   o.formula_flag =
       app.add_flag("--soil-formula", o.soil_formula,
@@ -176,22 +196,20 @@ void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
   if (given(o.G_flag)) {
     if (coefficient_flags)
       throw Error("give the soil either by --G or by --ksh, --ksv, --csh, --csv-soil, not both");
-    if (!std::isfinite(o.G) || o.G <= 0)
-      throw Error("--G must be > 0 [MN/m^2]; got " + fmt(o.G, 10));
+    const double G = soil_G_flag(o.G);
     const std::string from = origin("--G", o.G);
     io::clear_soil(spec);
-    if (is_table2_G(o.G * 1e6) && !o.soil_formula) {
+    if (is_table2_G(G) && !o.soil_formula) {
       if (given(o.nu_flag) || given(o.rho_flag))
         throw Error("--G " + fmt(o.G) +
                     " uses paper Table 2, which holds nu = 0.3 and rho = 1900 "
                     "only; add --soil-formula to compute the soil for --nu/--rho by Appendix B");
-      put(spec, "soil.table2_G", o.G * 1e6, from);
+      put(spec, "soil.table2_G", G, from);
     } else {
       put(spec, "soil.input", std::string("modulus"), from);
-      put(spec, "soil.G", o.G * 1e6, from);
+      put(spec, "soil.G", G, from);
     }
   } else if (o.soil_formula) {
-    spec.table2 = false;
     forget(spec, "soil.table2_G");
     put(spec, "soil.input", std::string("modulus"), "--soil-formula");
   }

@@ -55,6 +55,11 @@ void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>&
 /// Apply the flags that were given to `spec`. Throws oscidrum::Error (exit code 2).
 void apply(const CaseOptions& o, io::CaseSpec& spec);
 
+/// The shear modulus [Pa] of a --G value, which is in the field table's display unit of soil.G
+/// (MN/m^2). Throws oscidrum::Error for a value outside soil.G's rule, and says "did you mean
+/// --G 30?" for one that is plainly in Pa (--G 30000000).
+double soil_G_flag(double value);
+
 /// The case a command runs: the case file `config` (if any), then the flags and --set of `o`,
 /// finalised with its warnings on stderr and validated. `spec` keeps where each key was set.
 Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec);

@@ -15,6 +15,7 @@
 #include "case_options.hpp"
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
 #include "oscidrum/identify.hpp"
 #include "oscidrum/simulate.hpp"
 #include "oscidrum_io/config.hpp"
@@ -170,18 +171,25 @@ nlohmann::ordered_json identification_json(const Identification& id) {
           {"warnings", id.warnings}};
 }
 
+// An unknown's soil field ("G" -> soil.G), whose display unit it is shown in (the field table's
+// MN/m^2 for G, MN/m for ksh and ksv), else the unknown's own unit.
+std::string shown_unit(const std::string& name, const std::string& unit) {
+  const Field* f = find_field("soil." + name);
+  return f && f->display_unit ? f->display_unit : unit;
+}
+double shown_scale(const std::string& name) {
+  const Field* f = find_field("soil." + name);
+  return f ? f->display_scale : 1.0;
+}
+
 std::string value_text(const Estimate& e) {
-  const double k = e.name == "G" ? 1e-6 : (e.name == "ksh" || e.name == "ksv") ? 1e-6 : 1.0;
+  const double k = 1.0 / shown_scale(e.name);
   auto f = [&](double v, int d) { return std::isfinite(v) ? fmt(v * k, d) : std::string("?"); };
   return f(e.value, 5) + " +- " + f(e.standard_uncertainty, 2) + "  [" + (e.lower_open ? "<" : "") +
          f(e.lower, 4) + ", " + f(e.upper, 4) + (e.upper_open ? ">" : "") + "]";
 }
 
-std::string unit_text(const Estimate& e) {
-  if (e.name == "G") return "MN/m^2";
-  if (e.name == "ksh" || e.name == "ksv") return "MN/m";
-  return e.unit;
-}
+std::string unit_text(const Estimate& e) { return shown_unit(e.name, e.unit); }
 
 // Plot data of one window: measured and model over two periods, spectra, parameters.
 void write_fit_files(const std::string& dir, const RecordColumns& rec, const PassEstimate& p,
@@ -336,7 +344,7 @@ int run(const IdentifyCliOptions& o) {
     TextTable t;
     t.header = {"window", "t [s]", "position [m]", "f [Hz]"};
     for (const auto& [n, u] : unknowns(io)) {
-      const std::string unit = n == "G" ? "MN/m^2" : (n == "ksh" || n == "ksv") ? "MN/m" : u;
+      const std::string unit = shown_unit(n, u);
       t.header.push_back(n + " [" + unit + "]  +- u  [95 %]");
     }
     t.header.push_back("rel. res.");

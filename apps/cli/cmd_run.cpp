@@ -56,7 +56,7 @@ int run(const RunOptions& o) {
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
   if (o.print_config) {
-    std::cout << io::case_to_toml(c, spec.table2);
+    std::cout << io::case_to_toml(c);
     return kExitOk;
   }
   if (o.harmonics >= c.numerics.samples_per_period / 2)

@@ -84,9 +84,7 @@ int run(const SoilOptions& o) {
   if (o.all) {
     for (const Table2Row& row : table2()) Gs.push_back(row.G);
   } else {
-    if (!std::isfinite(o.G) || o.G <= 0)
-      throw Error("--G must be > 0 [MN/m^2]; got " + fmt(o.G, 10));
-    Gs.push_back(o.G * 1e6);
+    Gs.push_back(soil_G_flag(o.G));
   }
   const bool compare = comparable(roller, o.nu, o.rho);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
 #include "oscidrum/transmissibility.hpp"
 #include "oscidrum/version.hpp"
@@ -30,9 +31,17 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bo
   return s + " m/s^2";
 }
 
+// Two values of fields in the unit people read them in (the field table's display unit).
+std::string pair_text(const char* key1, double v1, const char* key2, double v2) {
+  const Field& f1 = *find_field(key1);
+  const Field& f2 = *find_field(key2);
+  return fmt(v1 / f1.display_scale, 4) + ", " + fmt(v2 / f2.display_scale, 4) + " " +
+         display_unit(f2);
+}
+
 }  // namespace
 
-std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& result,
+std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Result& result,
                         const Metrics* metrics, const std::string& config) {
   Summary s;
   s.section(std::string("oscidrum ") + version +
@@ -41,9 +50,9 @@ std::string run_summary(const io::CaseSpec& spec, const Case& c, const Result& r
 
   s.section("case");
   const SoilCoefficients k = soil_coefficients(c.soil, c.roller);
-  s.line("soil", io::soil_source(spec));
-  s.line("ksh, ksv", fmt(k.ksh / 1e6, 4) + ", " + fmt(k.ksv / 1e6, 4) + " MN/m");
-  s.line("csh, csv", fmt(k.csh / 1e3, 4) + ", " + fmt(k.csv / 1e3, 4) + " kN s/m");
+  s.line("soil", soil_summary(c.soil));
+  s.line("ksh, ksv", pair_text("soil.ksh", k.ksh, "soil.ksv", k.ksv));
+  s.line("csh, csv", pair_text("soil.csh", k.csh, "soil.csv", k.csv));
   s.line("contact", c.contact.pure_rolling ? "pure rolling (no friction limit)"
                                            : "Coulomb friction, mu = " + fmt(c.contact.mu));
   s.line("trough", summary(c.trough.shape));

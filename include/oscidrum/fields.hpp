@@ -26,6 +26,11 @@ struct Field {
   const char* choices;  ///< FieldType::choice: names separated by '|', index = value
   double (*get)(const Case&);
   void (*set)(Case&, double);
+  /// The unit people read and type the value in, where it is not `unit` (e.g. "MN/m^2" for
+  /// soil.G): displayed value = value / display_scale. The one place of these scalings, for
+  /// summaries, plots, the web page and the CLI's --G.
+  const char* display_unit = nullptr;
+  double display_scale = 1.0;
 };
 
 /// Every field, in documentation order.
@@ -62,5 +67,22 @@ std::string check_field(const Field& field, double value);
 
 /// The index of `name` among a choice field's names (FieldType::choice), or -1.
 int choice_index(const Field& field, std::string_view name);
+
+/// The name of choice `index` of a choice field ("" if there is none).
+std::string choice_name(const Field& field, int index);
+
+/// The unit a field is shown in (its display_unit, else its unit).
+const char* display_unit(const Field& field);
+
+/// Whether the key (a field of fields()) takes effect in `c`: the soil keys that the soil.input in
+/// force reads (soil.G for modulus and table2; nu, rho for modulus; ksh, ksv, csh, csv for
+/// coefficients), roller.M0 unless roller.unbalance > 0 replaces it, the trough keys the shape
+/// is given by; every other key. The config reader refuses a key that would have no effect, the
+/// Python reprs and dicts and the web page's exports leave such keys out.
+bool key_in_effect(const Case& c, std::string_view key);
+
+/// Why a key has no effect in `c`, naming what to change (e.g. "soil.nu has no effect while
+/// soil.input = \"table2\" (...); set soil.input = \"modulus\" ..."), or "" if it takes effect.
+std::string key_not_in_effect(const Case& c, std::string_view key);
 
 }  // namespace oscidrum

@@ -34,17 +34,21 @@ inline double oscillation_moment(const Roller& r) {
   return r.unbalance > 0.0 ? 4.0 * r.unbalance * nu * nu : r.M0;
 }
 
-/// How the soil is given.
+/// How the soil is given. Model turns each into the discrete coefficients ksh, ksv, csh, csv
+/// (soil_coefficients in oscidrum/soil.hpp); key_in_effect (oscidrum/fields.hpp) says which keys
+/// each input reads.
 enum class SoilInput {
   coefficients,  ///< directly as the discrete Kelvin-Voigt coefficients ksh, ksv, csh, csv
   modulus,       ///< as continuum (G, nu, rho), converted by Appendix B (42)-(45)
+  table2,        ///< the row of paper Table 2 at G (nu = 0.3, rho = 1900 kg/m^3)
 };
 
-/// The soil below the drum: either continuum properties or discrete coefficients (see `input`).
-/// The default coefficients are paper Table 2 at G = 25 MN/m^2.
+/// The soil below the drum: the row of paper Table 2 at G (the default, G = 25 MN/m^2),
+/// continuum properties or discrete coefficients (see `input`). The default coefficients are
+/// Table 2's at G = 25 MN/m^2.
 struct Soil {
-  SoilInput input = SoilInput::coefficients;
-  double G = 25.0e6;     ///< shear modulus [Pa] (input == modulus)
+  SoilInput input = SoilInput::table2;
+  double G = 25.0e6;     ///< shear modulus [Pa] (input == modulus or table2)
   double nu = 0.3;       ///< Poisson's ratio [-], 0 <= nu < 0.5 (input == modulus)
   double rho = 1900.0;   ///< density [kg/m^3] (input == modulus)
   double ksh = 41.4e6;   ///< horizontal spring [N/m] (input == coefficients)

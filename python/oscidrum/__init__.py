@@ -94,6 +94,7 @@ _CORE_NAMES = (
     "find_field",
     "harmonics",
     "identify_record",
+    "key_in_effect",
     "kinematics",
     "load_case",
     "make_trough_geometry",

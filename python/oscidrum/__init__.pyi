@@ -192,6 +192,10 @@ class Field:
     """the default value (the paper's roller, Table 2 soil at G = 25 MN/m^2)"""
     description: str
     """one-line description"""
+    display_scale: float
+    """value in display_unit = value / display_scale (1e6 for soil.G)"""
+    display_unit: str
+    """the unit people read and type the value in, e.g. 'MN/m^2' for soil.G (else `unit`)"""
     key: str
     """dotted key, e.g. 'soil.G'"""
     max: float
@@ -578,7 +582,7 @@ class SeriesResult:
 
 class Soil:
     G: float
-    """shear modulus (soil.input = modulus) [Pa]; > 0; default 25000000."""
+    """shear modulus (soil.input = table2: one of Table 2's 5e6, 10e6, ..., 70e6; modulus: any, through Appendix B) [Pa]; in [10000, 1e+11]; default 25000000."""
     def __getstate__(self: Soil) -> dict: ...
     def __init__(self, **kwargs: Any) -> None: ...
     def __setstate__(self, state: Any) -> None: ...
@@ -587,7 +591,7 @@ class Soil:
     csv: float
     """vertical soil dashpot (soil.input = coefficients) [N s/m]; > 0; default 263000."""
     input: str
-    """how the soil is given: coefficients (ksh, ksv, csh, csv) or modulus (G, nu, rho via Appendix B) [-]; one of coefficients, modulus; default coefficients."""
+    """how the soil is given: table2 (the row of paper Table 2 at G, the paper's soils; the default), modulus (G, nu, rho via Appendix B (42)-(45)) or coefficients (ksh, ksv, csh, csv) [-]; one of coefficients, modulus, table2; default table2."""
     ksh: float
     """horizontal soil spring (soil.input = coefficients) [N/m]; > 0; default 41400000."""
     ksv: float
@@ -614,6 +618,7 @@ class SoilCoefficients:
 class SoilInput(enum.IntEnum):
     coefficients = 0
     modulus = 1
+    table2 = 2
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: SoilInput, value: handle) -> None: ...
@@ -747,6 +752,7 @@ def fields() -> list: ...
 def find_field(key: str) -> Field: ...
 def harmonics(y: numpy.ndarray, cycles: int, f: float, t0: float = ..., n_max: int = ...) -> Tuple[numpy.ndarray, numpy.ndarray]: ...
 def identify_record(case: Case, t: numpy.ndarray, ddx_M: numpy.ndarray, ddz_M: numpy.ndarray, position: Optional[numpy.ndarray] = ..., f: float = ..., window: float = ..., hop: float = ..., n_max: int = ..., estimate: str = ..., fit_mu: bool = ..., fit_MMd: bool = ..., compare: int = ..., use_peaks: bool = ..., use_area: bool = ..., profile: bool = ..., shooting: bool = ...) -> list: ...
+def key_in_effect(case: Case, key: str) -> bool: ...
 def kinematics(geometry: TroughGeometry, delta: float) -> Kinematics: ...
 def load_case(path: Union[str, os.PathLike]) -> Case: ...
 def make_trough_geometry(r: float, k: float, a: float) -> TroughGeometry: ...

@@ -152,22 +152,18 @@ def _number(v: float) -> str:
     return f"{float(v):.4g}"
 
 
-def _table2_G(params: Mapping[str, Any]) -> Optional[float]:
-    """The G [Pa] of the paper's Table 2 row whose coefficients the case uses, if any."""
+def _trough_text(params: Mapping[str, Any]) -> Optional[str]:
+    """The trough as its shape describes itself ('circle, R = 0.606 m'), from the compiled
+    module; without it (or for keys it refuses), the keys trough.k and trough.a as given."""
+    k, a = params.get("trough.k"), params.get("trough.a")
+    if a is None:
+        return None
     try:
         from . import _core  # the compiled module; the pure-Python package works without it
-        rows = _core.table2()
-    except Exception:  # noqa: BLE001 - no compiled module: no Table 2 lookup
-        return None
-    try:
-        k = [float(params[f"soil.{n}"]) for n in ("ksh", "ksv", "csh", "csv")]
-    except (KeyError, TypeError, ValueError):
-        return None
-    for row in rows:
-        if all(abs(a - b) <= 1e-9 * abs(b) for a, b in
-               zip(k, (row.ksh, row.ksv, row.csh, row.csv))):
-            return float(row.G)
-    return None
+        return _core.make_trough_geometry(float(params.get("roller.r") or 0.6), float(k or 0.0),
+                                          float(a)).summary
+    except Exception:  # noqa: BLE001 - no compiled module or an invalid trough: the keys
+        return f"trough k = {_number(float(k or 0.0))}, a = {_number(float(a))} m"
 
 
 def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
@@ -176,12 +172,11 @@ def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
     from its {dotted key: value} parameters; names without a value are left out."""
     parts: Dict[str, str] = {}
     get = params.get
-    if get("soil.input") == "modulus" and get("soil.G") is not None:
+    # soil.input says how the soil is given (Table 2 is one of its values).
+    source = {"modulus": "Appendix B soil", "table2": "Table 2 soil"}.get(get("soil.input"))
+    if source and get("soil.G") is not None:
         parts["soil"] = f"G = {_number(float(get('soil.G')) * 1e-6)} MN/m$^2$"
-        parts["soil source"] = "Appendix B soil"
-    elif _table2_G(params) is not None:
-        parts["soil"] = f"G = {_number(_table2_G(params) * 1e-6)} MN/m$^2$"
-        parts["soil source"] = "Table 2 soil"
+        parts["soil source"] = source
     elif get("soil.ksh") is not None and get("soil.ksv") is not None:
         parts["soil"] = (f"$k_{{sh}}$ = {_number(float(get('soil.ksh')) * 1e-6)}, "
                          f"$k_{{sv}}$ = {_number(float(get('soil.ksv')) * 1e-6)} MN/m")
@@ -203,10 +198,9 @@ def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
             parts["torque"] = f"$M_{{Md}}$ = {_number(mmd / float(M0))} $M_0$"
         else:
             parts["torque"] = f"$M_{{Md}}$ = {_number(mmd * 1e-3)} kN m"
-    k, a = get("trough.k"), get("trough.a")
-    if a is not None:
-        parts["trough"] = (f"R = {_number(a)} m" if not k else
-                           f"spiral k = {_number(k)}, a = {_number(a)} m")
+    trough = _trough_text(params)
+    if trough:
+        parts["trough"] = trough
     f = get("roller.f") or frequency
     if f:
         parts["excitation"] = f"f = {_number(f)} Hz"

@@ -1,5 +1,7 @@
 // Bindings of oscidrum/error.hpp: oscidrum::Error becomes the Python exception oscidrum.Error, a
 // subclass of ValueError carrying the library's message unchanged.
+#include <cmath>
+
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
 
@@ -11,11 +13,25 @@ std::span<const double> span_of(const Array& a, const char* name) {
 }
 
 void bind_error(py::module_& m) {
-  auto error = py::register_exception<Error>(m, "Error", PyExc_ValueError);
-  error.attr("__doc__") =
+  // The exception type lives as long as the module (the translator below refers to it).
+  static py::handle type = py::exception<Error>(m, "Error", PyExc_ValueError).release();
+  type.attr("__doc__") =
       "Raised for invalid parameters and every other error of the oscidrum library. The message "
       "names the field, the rule and the value received, e.g. "
-      "\"soil.G must be > 0 [Pa]; got -5e+06\". Subclass of ValueError.";
+      "\"soil.G must be > 0 [Pa]; got -5e+06\". Subclass of ValueError. `key` is the dotted key "
+      "of the parameter it is about ('soil.G') or None, `value` the value received [SI] or None.";
+  type.attr("key") = py::none();
+  type.attr("value") = py::none();
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      py::object error = py::reinterpret_borrow<py::object>(type)(e.what());
+      if (!e.key().empty()) error.attr("key") = py::str(e.key());
+      if (!std::isnan(e.value())) error.attr("value") = py::float_(e.value());
+      PyErr_SetObject(type.ptr(), error.ptr());
+    }
+  });
 }
 
 }  // namespace oscidrum::python

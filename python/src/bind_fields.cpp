@@ -117,6 +117,12 @@ void bind_fields(py::module_& m) {
           "True: the value must be < max (not <=)")
       .def_property_readonly("choices", &choice_names, "names of a choice field (else empty)")
       .def_property_readonly(
+          "display_unit", [](const Field& f) { return display_unit(f); },
+          "the unit people read and type the value in, e.g. 'MN/m^2' for soil.G (else `unit`)")
+      .def_property_readonly(
+          "display_scale", [](const Field& f) { return f.display_scale; },
+          "value in display_unit = value / display_scale (1e6 for soil.G)")
+      .def_property_readonly(
           "default", [](const Field& f) { return field_value(Case{}, f); },
           "the default value (the paper's roller, Table 2 soil at G = 25 MN/m^2)")
       .def(

@@ -120,7 +120,7 @@ io::Value to_value(const std::string& key, py::handle value) {
     return io::Value(value.cast<bool>());
   if (py::isinstance<SoilInput>(value))
     return io::Value(
-        std::string(value.cast<SoilInput>() == SoilInput::modulus ? "modulus" : "coefficients"));
+        choice_name(*find_field("soil.input"), static_cast<int>(value.cast<SoilInput>())));
   if (py::isinstance<py::str>(value)) return io::Value(value.cast<std::string>());
   if (PyLong_Check(value.ptr()) || py::isinstance(value, np.integer)) {
     py::object number = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
@@ -178,6 +178,13 @@ class Builder {
   bool set_group(const std::string& name, py::handle value);
 
   void assign(const std::string& key, const std::string& name, py::handle value) {
+    // One key, one name: Case(**{'roller.r': 0.6, 'r': 0.7}) would silently take the later.
+    // soil.table2_G names soil.G too (it sets soil.input = 'table2' and soil.G).
+    for (const std::string& k : {key, key == "soil.table2_G" ? std::string("soil.G") : key}) {
+      if (auto [it, fresh] = named_.emplace(k, name); !fresh && it->second != name)
+        throw Error(
+            k + " is given twice, as '" + it->second + "' and as '" + name + "'; give it once", k);
+    }
     const std::string origin = "argument " + name;
     if (key == kRadius) {
       const io::Value v = to_value("trough.a", value);
@@ -193,6 +200,7 @@ class Builder {
 
   io::CaseSpec spec_;
   bool radius_ = false;
+  std::map<std::string, std::string> named_;  // key -> the name it was given by
 };
 
 // A parameter group (Roller, Soil, ...) is a member of Case; fields address it through a Case.
@@ -262,14 +270,9 @@ Case set_one(const Case& base, const std::string& key, py::handle value) {
 
 // ---- which keys are in effect, reprs ---------------------------------------------------------
 
-// Soil keys without effect under the soil.input in force (the config reader rejects them).
-bool in_effect(const Case& c, std::string_view key) {
-  const bool modulus = c.soil.input == SoilInput::modulus;
-  if (key == "soil.G" || key == "soil.nu" || key == "soil.rho") return modulus;
-  if (key == "soil.ksh" || key == "soil.ksv" || key == "soil.csh" || key == "soil.csv")
-    return !modulus;
-  return true;
-}
+// Keys without effect (the config reader rejects them) are left out of reprs and dicts: the
+// library's key_in_effect, as for the config files and the web page.
+bool in_effect(const Case& c, std::string_view key) { return key_in_effect(c, key); }
 
 // The flat keyword for a key (its alias if it has one, else the dotted key).
 std::string keyword(std::string_view key) {
@@ -284,24 +287,11 @@ std::string python_literal(const Case& c, const Field& f) {
   return py::repr(v).cast<std::string>();
 }
 
-// The soil coefficients are those of paper Table 2 at soil.G (so soil.table2_G = G says it all).
-bool is_table2(const Soil& s) {
-  if (s.input != SoilInput::coefficients) return false;
-  for (const Table2Row& row : table2())
-    if (row.G == s.G) {
-      const Soil t = table2_soil(s.G);
-      return t.ksh == s.ksh && t.ksv == s.ksv && t.csh == s.csh && t.csv == s.csv;
-    }
-  return false;
-}
-
 // "name=value" for every field of `keys_of` (a group prefix, or "" for the whole case) whose value
 // differs from the default and is in effect; flat keywords when `flat`, else names in the group.
 std::vector<std::string> differing(const Case& c, const char* group, bool flat) {
   const Case d{};
   std::vector<std::string> out;
-  const bool table2_soil_given = is_table2(c.soil);
-  const bool default_soil = table2_soil_given && c.soil.G == d.soil.G;
   std::string_view first_trough_key;
   for (const Field& f : fields())
     if (first_trough_key.empty() && in_group(f.key, "trough")) first_trough_key = f.key;
@@ -312,11 +302,6 @@ std::vector<std::string> differing(const Case& c, const char* group, bool flat) 
     const std::string name =
         flat ? keyword(key)
              : std::string(group ? key.substr(std::string_view(group).size() + 1) : key);
-    if (in_group(key, "soil") && table2_soil_given) {
-      if (key == "soil.input" && !default_soil)
-        out.push_back("table2_G=" + py::repr(py::float_(c.soil.G)).cast<std::string>());
-      continue;
-    }
     if (flat && in_group(key, "trough")) {
       // The trough as its shape describes itself: a circle is R=..., a log spiral k=..., a=...
       if (key == first_trough_key && !(c.trough.shape == d.trough.shape))
@@ -501,18 +486,21 @@ void bind_parameters(py::module_& m) {
       .value("coefficients", SoilInput::coefficients,
              "directly as the discrete Kelvin-Voigt coefficients ksh, ksv, csh, csv")
       .value("modulus", SoilInput::modulus,
-             "as continuum (G, nu, rho), converted by Appendix B (42)-(45)");
+             "as continuum (G, nu, rho), converted by Appendix B (42)-(45)")
+      .value("table2", SoilInput::table2,
+             "the row of paper Table 2 at G (nu = 0.3, rho = 1900 kg/m^3); the default");
   strict_enum(soil_input);
 
   bind_group<Roller>(m, "Roller",
                      "The drum and its suspension (paper Table 1: HAMM HD+ 90 VO). SI units.",
                      kRoller);
   bind_group<Soil>(m, "Soil",
-                   "The soil below the drum: continuum (G, nu, rho) when input = 'modulus', or "
-                   "discrete Kelvin-Voigt coefficients (ksh, ksv, csh, csv) when input = "
-                   "'coefficients' (the default: paper Table 2 at G = 25 MN/m^2). Setting a key "
+                   "The soil below the drum: the row of paper Table 2 at G when input = 'table2' "
+                   "(the default, G = 25 MN/m^2), continuum (G, nu, rho) through Appendix B when "
+                   "input = 'modulus', or discrete Kelvin-Voigt coefficients (ksh, ksv, csh, csv) "
+                   "when input = 'coefficients'. G is in Pa (30 MN/m^2 is 30e6). Setting a key "
                    "without effect under the input in force is an error naming soil.input; "
-                   "table2_G=G gives the Table 2 soil at G.",
+                   "table2_G=G is input='table2' with G.",
                    kSoil);
   bind_group<Trough>(m, "Trough",
                      "Settlement trough, logarithmic spiral R(theta) = a exp(k theta) (8); k = 0 "
@@ -537,14 +525,17 @@ void bind_parameters(py::module_& m) {
            alias_table() +
            "\nRaises\n------\noscidrum.Error\n    For an unknown key, a value of the wrong type "
            "('1851' for a number, 1 or 'off' for a boolean, True for an integer), a value that "
-           "breaks its rule, or a soil key without effect under soil.input (e.g. G while "
-           "soil.input = 'coefficients': set input='modulus', or use table2_G).\n\n"
+           "breaks its rule, or a key without effect (e.g. nu while soil.input = 'table2', the "
+           "default: set input='modulus'), or a G that Table 2 does not hold while soil.input = "
+           "'table2'.\n\n"
            "Examples\n--------\n>>> import oscidrum\n"
            ">>> case = oscidrum.Case(table2_G=5e6, mu=0.3, MMd_fraction=0.05, R=0.62)\n"
-           ">>> case.soil.ksh                 # [N/m], paper Table 2 at G = 5 MN/m^2\n"
+           ">>> oscidrum.Model(case).ksh      # [N/m], paper Table 2 at G = 5 MN/m^2\n"
            "11400000.0\n"
-           ">>> oscidrum.Case(input='modulus', G=30e6).soil.G   # [Pa], Appendix B soil\n"
-           "30000000.0\n"));
+           ">>> oscidrum.Case(G=30e6).soil.input     # Table 2 at 30 MN/m^2, as the CLI's --G 30\n"
+           "'table2'\n"
+           ">>> oscidrum.Case(input='modulus', G=27e6).soil.G   # [Pa], Appendix B soil\n"
+           "27000000.0\n"));
   construct_on_new(cls);
   def_assigning(
       cls, "__init__", [](Case& self, const py::kwargs& kwargs) { self = build(Case{}, kwargs); },
@@ -657,8 +648,19 @@ void bind_parameters(py::module_& m) {
       "Examples\n--------\n>>> case = oscidrum.load_case('examples/case.toml')   # doctest: +SKIP\n"
       ">>> case.trough.a                                # [m]   # doctest: +SKIP");
   m.def(
-      "case_to_toml", [](const Case& c) { return io::case_to_toml(c, is_table2(c.soil)); },
-      py::arg("case"),
+      "key_in_effect",
+      [](const Case& c, const std::string& key) {
+        get_field(c, key);  // raises the "did you mean" error for an unknown key
+        return key_in_effect(c, key);
+      },
+      py::arg("case"), py::arg("key"),
+      "Whether a key takes effect in the case: the soil keys its soil.input reads (soil.G for "
+      "'table2' and 'modulus'; nu, rho for 'modulus'; ksh, ksv, csh, csv for 'coefficients'), "
+      "roller.M0 unless roller.unbalance replaces it, the trough keys of its shape, and every "
+      "other key. The library's rule, as the config files and the web page apply it.\n\n"
+      "Examples\n--------\n>>> oscidrum.key_in_effect(oscidrum.Case(), 'soil.nu')\nFalse");
+  m.def(
+      "case_to_toml", [](const Case& c) { return io::case_to_toml(c); }, py::arg("case"),
       "The case as the text of a case file (TOML, every key with unit and description); "
       "load_case reads it back.");
 }

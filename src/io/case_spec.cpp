@@ -21,8 +21,8 @@ namespace {
 
 constexpr std::array kExtraKeys = {
     ExtraKey{"soil.table2_G", "Pa", "one of 5e6, 10e6, ..., 70e6",
-             "shorthand: soil.G = this value with the soil coefficients of paper Table 2 (the "
-             "paper's simulations)"},
+             "shorthand: soil.input = \"table2\" and soil.G = this value, the soil of paper "
+             "Table 2 (the paper's simulations)"},
     ExtraKey{"MMd_fraction", "-", "finite",
              "shorthand: MMd = MMd_fraction * M0 (roller.M0, or from roller.unbalance; the paper "
              "uses 0 and 0.05)"},
@@ -58,7 +58,7 @@ std::string_view last_part(std::string_view key) {
       std::string(f.key) + " must be " + expected + unit + "; got " + describe_value(v);
   if (std::holds_alternative<std::string>(v) && f.type != FieldType::choice)
     msg += " (write numbers and booleans without quotes)";
-  throw Error(msg);
+  throw Error(msg, f.key);
 }
 
 double number_of(const Value& v, bool* ok) {
@@ -69,7 +69,6 @@ double number_of(const Value& v, bool* ok) {
   return 0.0;
 }
 
-constexpr std::array kModulusKeys = {"soil.G", "soil.nu", "soil.rho"};
 constexpr std::array kCoefficientKeys = {"soil.ksh", "soil.ksv", "soil.csh", "soil.csv"};
 
 }  // namespace
@@ -181,17 +180,23 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
     bool is_number = false;
     const double v = number_of(value, &is_number);
     if (!is_number)
-      throw Error(std::string(e->key) + " must be a number [" + e->unit + "]; got " +
-                  describe_value(value));
-    if (!std::isfinite(v)) throw Error(std::string(e->key) + " must be finite; got " + num(v));
+      throw Error(
+          std::string(e->key) + " must be a number [" + e->unit + "]; got " + describe_value(value),
+          e->key);
+    if (!std::isfinite(v))
+      throw Error(std::string(e->key) + " must be finite; got " + num(v), e->key, v);
     if (key == "soil.table2_G") {
-      if (!is_table2_G(v))
-        throw Error(
+      if (!is_table2_G(v)) {
+        std::string msg =
             "soil.table2_G must be a G of paper Table 2: 5e6, 10e6, ..., 70e6 [Pa] "
             "(5 ... 70 MN/m^2 in steps of 5); got " +
-            num(v) + " (for other G use soil.input = \"modulus\" and soil.G)");
+            num(v);
+        msg += is_table2_G(v * 1e6) ? " (values are in Pa: did you mean " + num(v * 1e6) + "?)"
+                                    : " (for other G use soil.input = \"modulus\" and soil.G)";
+        throw Error(msg, e->key, v);
+      }
+      spec.values.soil.input = SoilInput::table2;
       spec.values.soil.G = v;
-      spec.table2 = true;
       spec.origin["soil.G"] = origin;
     } else {
       spec.MMd_fraction = v;
@@ -200,7 +205,7 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
     return;
   }
   const Field* f = find_field(key);
-  if (!f) throw Error("unknown parameter '" + clip(key) + "'" + suggest_key(key));
+  if (!f) throw Error("unknown parameter '" + clip(key) + "'" + suggest_key(key), std::string(key));
   double v = 0.0;
   switch (f->type) {
     case FieldType::real: {
@@ -215,9 +220,11 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
       const auto* i = std::get_if<std::int64_t>(&value);
       if (const auto* d = std::get_if<double>(&value)) {
         const bool whole = std::isfinite(*d) && *d == std::floor(*d) && std::abs(*d) < 1e15;
-        throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got " +
-                    (whole ? num(*d) + ".0 (write an integer without a decimal point or exponent)"
-                           : num(*d)));
+        throw Error(
+            std::string(f->key) + " must be " + field_rule(*f) + "; got " +
+                (whole ? num(*d) + ".0 (write an integer without a decimal point or exponent)"
+                       : num(*d)),
+            f->key, *d);
       }
       if (!i) type_error(*f, "an integer", value);
       v = static_cast<double>(*i);
@@ -237,7 +244,7 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
     }
   }
   const std::string problem = check_field(*f, v);
-  if (!problem.empty()) throw Error(problem);
+  if (!problem.empty()) throw Error(problem, f->key, v);
   f->set(spec.values, v);
   spec.origin[std::string(key)] = origin;
 }
@@ -276,18 +283,17 @@ void assign_text(CaseSpec& spec, std::string_view key, std::string_view text,
 void clear_soil(CaseSpec& spec) {
   for (auto it = spec.origin.begin(); it != spec.origin.end();)
     it = it->first.starts_with("soil.") ? spec.origin.erase(it) : std::next(it);
-  spec.table2 = false;
 }
 
 void materialize_soil(CaseSpec& spec) {
   Soil& soil = spec.values.soil;
-  if (spec.table2) {
-    const double G = soil.G;
-    soil = table2_soil(G);
-  } else if (soil.input == SoilInput::modulus) {
-    const SoilCoefficients k = soil_coefficients(soil, spec.values.roller);
-    soil.ksh = k.ksh, soil.ksv = k.ksv, soil.csh = k.csh, soil.csv = k.csv;
+  SoilCoefficients k;
+  try {
+    k = soil_coefficients(soil, spec.values.roller);
+  } catch (const Error& e) {
+    throw e.prefixed(spec.where(e.key()));
   }
+  soil.ksh = k.ksh, soil.ksv = k.ksv, soil.csh = k.csh, soil.csv = k.csv;
   soil.input = SoilInput::coefficients;
   std::map<std::string, std::string, std::less<>> kept;
   for (const auto& [key, where] : spec.origin)
@@ -295,52 +301,74 @@ void materialize_soil(CaseSpec& spec) {
         std::find(kCoefficientKeys.begin(), kCoefficientKeys.end(), key) != kCoefficientKeys.end())
       kept.emplace(key, where);
   spec.origin = std::move(kept);
-  spec.table2 = false;
 }
+
+namespace {
+
+// The soil as the spec gives it: the shorthand soil.table2_G against soil.input, coefficient keys
+// under the default input, and a Table 2 G that the table holds.
+void resolve_soil(const CaseSpec& spec, Case& c) {
+  if (spec.given("soil.input") && spec.given("soil.table2_G"))
+    throw Error(spec.where("soil.input") +
+                    "soil.input cannot be set together with soil.table2_G (" +
+                    spec.origin.at("soil.table2_G") +
+                    "), which means soil.input = \"table2\"; remove one of them",
+                "soil.input");
+  // Coefficient keys while soil.input was left at its default (table2): the soil is given by its
+  // coefficients, those not given from the Table 2 row at soil.G (the default soil's).
+  const bool input_given = spec.given("soil.input") || spec.given("soil.table2_G");
+  bool coefficient_given = false;
+  for (const char* key : kCoefficientKeys) coefficient_given = coefficient_given || spec.given(key);
+  if (!input_given && coefficient_given && c.soil.input == SoilInput::table2) {
+    const Soil given = c.soil;
+    SoilCoefficients row;
+    try {
+      row = soil_coefficients(c.soil, c.roller);
+    } catch (const Error& e) {
+      throw e.prefixed(spec.where(e.key()));
+    }
+    c.soil.input = SoilInput::coefficients;
+    c.soil.ksh = spec.given("soil.ksh") ? given.ksh : row.ksh;
+    c.soil.ksv = spec.given("soil.ksv") ? given.ksv : row.ksv;
+    c.soil.csh = spec.given("soil.csh") ? given.csh : row.csh;
+    c.soil.csv = spec.given("soil.csv") ? given.csv : row.csv;
+  }
+  // Every soil key given must take effect under the input in force.
+  for (const auto& [key, where] : spec.origin) {
+    if (!key.starts_with("soil.") || !find_field(key)) continue;
+    const std::string why = key_not_in_effect(c, key);
+    if (!why.empty()) throw Error(where + ": " + why, key);
+  }
+  // The one conversion, for its check (a G that Table 2 does not hold), with the key's origin.
+  try {
+    (void)soil_coefficients(c.soil, c.roller);
+  } catch (const Error& e) {
+    std::string because;
+    if (spec.given("soil.table2_G"))
+      because = " (soil.G is used with Table 2 because of soil.table2_G (" +
+                spec.origin.at("soil.table2_G") + "))";
+    throw Error(spec.where(e.key()) + e.what() + because, e.key(), e.value());
+  }
+}
+
+}  // namespace
 
 Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
   Case c = spec.values;
-  if (spec.table2) {
-    const std::string from = spec.given("soil.table2_G")
-                                 ? "soil.table2_G (" + spec.origin.at("soil.table2_G") + ")"
-                                 : "soil.table2_G";
-    if (spec.given("soil.input"))
-      throw Error(spec.where("soil.input") + "soil.input cannot be set together with " + from +
-                  ", which takes the soil coefficients from paper Table 2; remove one of them");
-    for (const char* key : {"soil.nu", "soil.rho", "soil.ksh", "soil.ksv", "soil.csh", "soil.csv"})
-      if (spec.given(key))
-        throw Error(spec.where(key) + key + " has no effect with " + from +
-                    " (Table 2 gives ksh, ksv, csh, csv for nu = 0.3, rho = 1900 kg/m^3); remove "
-                    "it, or give the soil by soil.input = \"modulus\" and soil.G, nu, rho");
-    try {
-      c.soil = table2_soil(c.soil.G);
-    } catch (const Error& e) {
-      throw Error(spec.where("soil.G") + e.what() + " (soil.G is used with Table 2 because of " +
-                  from + ")");
-    }
-  } else if (c.soil.input == SoilInput::coefficients) {
-    for (const char* key : kModulusKeys)
-      if (spec.given(key))
-        throw Error(spec.where(key) + key +
-                    " has no effect while soil.input = \"coefficients\" (the default: the soil is "
-                    "ksh, ksv, csh, csv); set soil.input = \"modulus\" to compute the coefficients "
-                    "by Appendix B, or use soil.table2_G for paper Table 2");
-  } else {
-    for (const char* key : kCoefficientKeys)
-      if (spec.given(key))
-        throw Error(spec.where(key) + key +
-                    " has no effect while soil.input = \"modulus\" (the coefficients come from "
-                    "G, nu, rho by Appendix B); remove it or set soil.input = \"coefficients\"");
-    if (warnings && c.soil.G < 1e4)
-      warnings->push_back(spec.where("soil.G") + "soil.G = " + num(c.soil.G) +
-                          " Pa is tiny; config values are SI: 25 MN/m^2 is 25e6");
-  }
+  resolve_soil(spec, c);
   // The oscillation moment: M0, or the unbalance that gives M0 at every f (5).
   if (spec.given("roller.unbalance") && spec.given("roller.M0") && c.roller.unbalance > 0.0)
     throw Error(spec.where("roller.unbalance") +
-                "roller.unbalance gives M0 = 4 m_u e_u e_w nu^2 (5), so it cannot be given "
-                "together with roller.M0 (" +
-                spec.origin.at("roller.M0") + "); remove one of them");
+                    "roller.unbalance gives M0 = 4 m_u e_u e_w nu^2 (5), so it cannot be given "
+                    "together with roller.M0 (" +
+                    spec.origin.at("roller.M0") + "); remove one of them",
+                "roller.unbalance");
+  // Every other key given must take effect too (roller.M0 under a base case's unbalance, ...).
+  for (const auto& [key, where] : spec.origin) {
+    if (key.starts_with("soil.") || !find_field(key)) continue;
+    const std::string why = key_not_in_effect(c, key);
+    if (!why.empty()) throw Error(where + ": " + why, key);
+  }
   if (warnings && c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f && !spec.given("roller.M0"))
     warnings->push_back(spec.where("roller.f") + "roller.f = " + num(c.roller.f) +
                         " Hz with M0 fixed at " + num(c.roller.M0) +
@@ -361,34 +389,8 @@ void validate(const Case& c, const CaseSpec& spec) {
     const Model model(c);
     (void)model;
   } catch (const Error& e) {
-    const std::string msg = e.what();
-    const std::string key = msg.substr(0, msg.find(' '));
-    throw Error(spec.where(key) + msg);
+    throw e.prefixed(spec.where(e.key()));
   }
-}
-
-namespace {
-// No soil key given at all: the default soil, which is Table 2 at G = 25 MN/m^2.
-bool default_soil(const CaseSpec& spec) {
-  for (const auto& entry : spec.origin)
-    if (entry.first.starts_with("soil.")) return false;
-  return !spec.table2 && spec.values.soil.input == SoilInput::coefficients;
-}
-}  // namespace
-
-std::string soil_source(const CaseSpec& spec) {
-  const Soil& soil = spec.values.soil;
-  if (default_soil(spec)) return "paper Table 2 at G = 25 MN/m^2 (the default soil)";
-  if (spec.table2) return "paper Table 2 at G = " + num(soil.G / 1e6) + " MN/m^2";
-  if (soil.input == SoilInput::modulus)
-    return "Appendix B (42)-(45) from G = " + num(soil.G / 1e6) + " MN/m^2, nu = " + num(soil.nu) +
-           ", rho = " + num(soil.rho) + " kg/m^3";
-  return "coefficients given directly";
-}
-
-std::string soil_source_id(const CaseSpec& spec) {
-  if (spec.table2 || default_soil(spec)) return "table2";
-  return spec.values.soil.input == SoilInput::modulus ? "appendix_b" : "coefficients";
 }
 
 }  // namespace oscidrum::io

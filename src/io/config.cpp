@@ -155,6 +155,16 @@ void require_not_empty(const toml::table& t, const std::string& name, const char
     throw Error(name + ": the file holds no settings (it is empty or only comments); " + what);
 }
 
+// A quoted key with a dot ('roller.r' = 0.6) is, in TOML, one key named "roller.r", not the key r
+// of [roller] (which roller.r = 0.6 without quotes is): refused rather than guessed.
+void refuse_quoted_dotted_key(std::string_view key, const std::string& where) {
+  if (key.find('.') == std::string_view::npos) return;
+  throw Error(where + ": '" + clip(key) + "' is a quoted key: TOML reads it as one key named \"" +
+                  clip(key) + "\", not as a dotted key; write it without quotes (" + clip(key) +
+                  " = ...) or under its [section]",
+              std::string(key));
+}
+
 // Keys of a case, at the top level of `t` (sections, dotted keys and top-level fields).
 // `skip` names top-level keys the caller handles (study files: "base", "sweep").
 void read_case_keys(const toml::table& t, const std::string& name, CaseSpec& spec,
@@ -173,6 +183,7 @@ void read_case_keys(const toml::table& t, const std::string& name, CaseSpec& spe
       for (auto&& [sk, sn] : *section) {
         const std::string full = key + "." + std::string(sk.str());
         const std::string swhere = loc(name, sk.source());
+        refuse_quoted_dotted_key(sk.str(), swhere);
         if (sn.is_table() && !find_field(full) && !find_extra_key(full))
           throw Error(swhere + ": unknown parameter '" + clip(full) +
                       "' (a table; parameters are " + "numbers, booleans or strings)" +
@@ -181,16 +192,17 @@ void read_case_keys(const toml::table& t, const std::string& name, CaseSpec& spe
           assign(spec, full, scalar(sn, full, swhere), swhere);
         } catch (const Error& e) {
           if (std::string_view(e.what()).starts_with(name + ":")) throw;
-          throw Error(swhere + ": " + e.what());
+          throw e.prefixed(swhere + ": ");
         }
       }
       continue;
     }
+    refuse_quoted_dotted_key(key, where);
     try {
       assign(spec, key, scalar(node, key, where), where);
     } catch (const Error& e) {
       if (std::string_view(e.what()).starts_with(name + ":")) throw;
-      throw Error(where + ": " + e.what());
+      throw e.prefixed(where + ": ");
     }
   }
 }
@@ -359,7 +371,7 @@ void collect_axes(const toml::node& node, const std::string& key, const toml::so
     try {
       assign(probe, key, v, where);
     } catch (const Error& e) {
-      throw Error(where + ": sweep value of " + e.what());
+      throw e.prefixed(where + ": sweep value of ");
     }
   }
   if (grouped) {
@@ -488,7 +500,7 @@ StudySpec read_study_file(const std::string& path) {
   return read_study_text(read_file(path), path, dir);
 }
 
-std::string case_to_toml(const Case& c, bool table2) {
+std::string case_to_toml(const Case& c) {
   std::ostringstream out;
   out << "# oscidrum case file: every parameter (SI units; see docs/config.md)\n";
   std::string section;
@@ -509,23 +521,21 @@ std::string case_to_toml(const Case& c, bool table2) {
     }
     return toml_number(f.get(c));
   };
-  // Soil keys that would have no effect are written as comments (reading them would be an error).
-  const bool modulus = c.soil.input == SoilInput::modulus;
-  auto unused = [&](const std::string& key) -> const char* {
-    if (table2 && key.starts_with("soil.")) return "set by table2_G";
+  // Keys that would have no effect (key_in_effect) are written as comments (reading them would be
+  // an error).
+  const std::string input = format_field(c, *find_field("soil.input"));
+  auto unused = [&](const std::string& key) -> std::string {
     // The roller is given by M0 or by its unbalance, not both (5).
-    if (key == "roller.M0" && c.roller.unbalance > 0.0) return "replaced by unbalance";
+    if (key == "roller.M0" && !key_in_effect(c, key)) return "replaced by unbalance";
     if (key == "roller.unbalance" && c.roller.unbalance == 0.0) return "unused: M0 is given";
-    if (key == "soil.G" || key == "soil.nu" || key == "soil.rho")
-      return modulus ? nullptr : "unused with input = coefficients";
-    if (key == "soil.ksh" || key == "soil.ksv" || key == "soil.csh" || key == "soil.csv")
-      return modulus ? "unused with input = modulus" : nullptr;
-    return nullptr;
+    if (key.starts_with("soil.") && !key_in_effect(c, key)) return "unused with input = " + input;
+    if (!key_in_effect(c, key)) return "unused";
+    return "";
   };
   auto line = [&](const Field& f, const std::string& name) {
-    const char* why = unused(f.key);
-    out << (why ? "# " : "") << name << " = " << value_text(f) << "  # [" << f.unit << "] "
-        << (why ? std::string("(") + why + ") " : std::string()) << f.description << "\n";
+    const std::string why = unused(f.key);
+    out << (why.empty() ? "" : "# ") << name << " = " << value_text(f) << "  # [" << f.unit << "] "
+        << (why.empty() ? std::string() : "(" + why + ") ") << f.description << "\n";
   };
   // Top-level keys first (TOML puts everything after a [section] header into it).
   for (const Field& f : fields()) {
@@ -539,9 +549,6 @@ std::string case_to_toml(const Case& c, bool table2) {
     if (key.substr(0, dot) != section) {
       section = key.substr(0, dot);
       out << "\n[" << section << "]\n";
-      if (section == "soil" && table2)
-        out << "table2_G = " << toml_number(c.soil.G)
-            << "  # [Pa] soil.G with the coefficients of paper Table 2\n";
     }
     line(f, key.substr(dot + 1));
   }

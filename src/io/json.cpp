@@ -55,23 +55,19 @@ json outputs_json(const Struct& m, std::span<const Output<Struct, Types...>> tab
   return out;
 }
 
-json soil_json(const CaseSpec& spec, const Case& c) {
+json soil_json(const Case& c) {
   json s;
-  s["source"] = soil_source_id(spec);
-  s["description"] = soil_source(spec);
-  json a0 = nullptr;
-  SoilCoefficients k = soil_coefficients(c.soil, c.roller);
-  if (c.soil.input == SoilInput::modulus) {
-    a0 = number(k.a0);
-  } else if (soil_source_id(spec) == "table2") {
-    for (const Table2Row& row : table2())
-      if (std::abs(row.G - c.soil.G) <= 1e-9 * row.G) a0 = number(row.a0);
-  }
-  const bool has_modulus = c.soil.input == SoilInput::modulus || soil_source_id(spec) == "table2";
+  s["source"] = soil_source_id(c.soil);
+  s["description"] = soil_summary(c.soil);
+  // The coefficients the model uses (its one conversion of the soil input); G, nu, rho where the
+  // input has them (Table 2: its nu = 0.3 and rho = 1900 kg/m^3).
+  const SoilCoefficients k = soil_coefficients(c.soil, c.roller);
+  const bool has_modulus = c.soil.input != SoilInput::coefficients;
   s["G"] = has_modulus ? number(c.soil.G) : json(nullptr);
-  s["nu"] = has_modulus ? number(c.soil.nu) : json(nullptr);
-  s["rho"] = has_modulus ? number(c.soil.rho) : json(nullptr);
-  s["a0"] = a0;
+  const bool table2 = c.soil.input == SoilInput::table2;
+  s["nu"] = has_modulus ? number(table2 ? kTable2Nu : c.soil.nu) : json(nullptr);
+  s["rho"] = has_modulus ? number(table2 ? kTable2Rho : c.soil.rho) : json(nullptr);
+  s["a0"] = has_modulus ? number(k.a0) : json(nullptr);
   s["ksh"] = number(k.ksh);
   s["ksv"] = number(k.ksv);
   s["csh"] = number(k.csh);
@@ -97,7 +93,7 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   json origins = json::object();
   for (const auto& [key, where] : spec.origin) origins[key] = where;
   j["origins"] = origins;
-  j["soil"] = soil_json(spec, c);
+  j["soil"] = soil_json(c);
 
   const Roller& R = c.roller;
   j["derived"] = {

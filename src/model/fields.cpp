@@ -71,26 +71,31 @@ const std::array kFields = {
           true, false, nullptr, OSCIDRUM_REAL(roller.m_f)},
     // soil
     Field{"soil.input", FieldType::choice, "-",
-          "how the soil is given: coefficients (ksh, ksv, csh, csv) or modulus (G, nu, rho via "
-          "Appendix B)",
-          0, 1, false, false, "coefficients|modulus",
+          "how the soil is given: table2 (the row of paper Table 2 at G, the paper's soils; the "
+          "default), modulus (G, nu, rho via Appendix B (42)-(45)) or coefficients (ksh, ksv, "
+          "csh, csv)",
+          0, 2, false, false, "coefficients|modulus|table2",
           [](const Case& c) { return static_cast<double>(c.soil.input); },
           [](Case& c, double v) { c.soil.input = static_cast<SoilInput>(static_cast<int>(v)); }},
-    Field{"soil.G", FieldType::real, "Pa", "shear modulus (soil.input = modulus)", 0, inf, true,
-          false, nullptr, OSCIDRUM_REAL(soil.G)},
+    // G is bounded so that a value in the wrong unit is refused with a hint: 30 [Pa] is meant as
+    // 30 MN/m^2 (soils: about 1 to 500 MN/m^2; 1e11 Pa is stiffer than steel).
+    Field{"soil.G", FieldType::real, "Pa",
+          "shear modulus (soil.input = table2: one of Table 2's 5e6, 10e6, ..., 70e6; modulus: "
+          "any, through Appendix B)",
+          1e4, 1e11, false, false, nullptr, OSCIDRUM_REAL(soil.G), "MN/m^2", 1e6},
     Field{"soil.nu", FieldType::real, "-", "Poisson's ratio (soil.input = modulus)", 0, 0.5, false,
           true, nullptr, OSCIDRUM_REAL(soil.nu)},
     Field{"soil.rho", FieldType::real, "kg/m^3", "density (soil.input = modulus)", 0, inf, true,
           false, nullptr, OSCIDRUM_REAL(soil.rho)},
     Field{"soil.ksh", FieldType::real, "N/m", "horizontal soil spring (soil.input = coefficients)",
-          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksh)},
+          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksh), "MN/m", 1e6},
     Field{"soil.ksv", FieldType::real, "N/m", "vertical soil spring (soil.input = coefficients)", 0,
-          inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksv)},
+          inf, true, false, nullptr, OSCIDRUM_REAL(soil.ksv), "MN/m", 1e6},
     Field{"soil.csh", FieldType::real, "N s/m",
           "horizontal soil dashpot (soil.input = coefficients)", 0, inf, true, false, nullptr,
-          OSCIDRUM_REAL(soil.csh)},
+          OSCIDRUM_REAL(soil.csh), "kN s/m", 1e3},
     Field{"soil.csv", FieldType::real, "N s/m", "vertical soil dashpot (soil.input = coefficients)",
-          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.csv)},
+          0, inf, true, false, nullptr, OSCIDRUM_REAL(soil.csv), "kN s/m", 1e3},
     // trough
     Field{"trough.k", FieldType::real, "-",
           "log-spiral parameter k (0: circle of radius a); at most 1: a settlement trough, not a "
@@ -199,7 +204,7 @@ std::string format_number(double v) {
   return buf;
 }
 
-std::string choice_name(const char* choices, int index) {
+std::string choice_name_of(const char* choices, int index) {
   std::string_view all(choices);
   int i = 0;
   std::size_t start = 0;
@@ -235,6 +240,14 @@ std::string choice_name(const char* choices, int index) {
 }  // namespace
 
 std::span<const Field> fields() { return kFields; }
+
+std::string choice_name(const Field& field, int index) {
+  return field.choices ? choice_name_of(field.choices, index) : std::string();
+}
+
+const char* display_unit(const Field& field) {
+  return field.display_unit ? field.display_unit : field.unit;
+}
 
 int choice_index(const Field& field, std::string_view name) {
   if (!field.choices) return -1;
@@ -284,7 +297,8 @@ std::string field_rule(const Field& f) {
          format_number(f.max) + (f.max_open ? ")" : "]");
 }
 
-std::string check_field(const Field& f, double v) {
+namespace {
+bool check_field_value(const Field& f, double v) {
   bool good = std::isfinite(v);
   if (good && f.type == FieldType::integer) good = (v == std::floor(v));
   if (good && (f.type == FieldType::boolean)) good = (v == 0.0 || v == 1.0);
@@ -293,16 +307,28 @@ std::string check_field(const Field& f, double v) {
     good = f.min_open ? v > f.min : v >= f.min;
     if (good) good = f.max_open ? v < f.max : v <= f.max;
   }
-  if (good) return {};
+  return good;
+}
+}  // namespace
+
+std::string check_field(const Field& f, double v) {
+  if (check_field_value(f, v)) return {};
   std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
-  return std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + detail::shortest(v);
+  std::string msg =
+      std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + detail::shortest(v);
+  // A value that is right in the unit people say it in (30 for 30 MN/m^2) was meant in it.
+  if (f.display_unit && std::isfinite(v) && check_field_value(f, v * f.display_scale))
+    msg += " (values are in " + std::string(f.unit) + ": did you mean " +
+           detail::shortest(v * f.display_scale) + ", i.e. " + detail::shortest(v) + " " +
+           f.display_unit + "?)";
+  return msg;
 }
 
 void set_field(Case& c, std::string_view key, double value) {
   const Field* f = find_field(key);
   if (!f) throw_unknown(key);
   std::string problem = check_field(*f, value);
-  if (!problem.empty()) throw Error(problem);
+  if (!problem.empty()) throw Error(problem, f->key, value);
   f->set(c, value);
 }
 
@@ -314,11 +340,12 @@ double parse_field_text(const Field& f, std::string_view text) {
     case FieldType::boolean:
       if (text == "true") return 1.0;
       if (text == "false") return 0.0;
-      throw Error(std::string(f.key) + " must be true or false; got '" + shown + "'");
+      throw Error(std::string(f.key) + " must be true or false; got '" + shown + "'", f.key);
     case FieldType::choice: {
       const int i = choice_index(f, text);
       if (i < 0)
-        throw Error(std::string(f.key) + " must be " + field_rule(f) + "; got '" + shown + "'");
+        throw Error(std::string(f.key) + " must be " + field_rule(f) + "; got '" + shown + "'",
+                    f.key);
       return i;
     }
     case FieldType::integer: {
@@ -328,7 +355,8 @@ double parse_field_text(const Field& f, std::string_view text) {
       for (; digits && i < s.size(); ++i) digits = std::isdigit(static_cast<unsigned char>(s[i]));
       if (!digits)
         throw Error(std::string(f.key) + " must be an integer" + unit + " (digits only); got '" +
-                    shown + "'");
+                        shown + "'",
+                    f.key);
       return static_cast<double>(std::strtoll(s.c_str(), nullptr, 10));
     }
     case FieldType::real:
@@ -337,7 +365,7 @@ double parse_field_text(const Field& f, std::string_view text) {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) || end != s.c_str() + s.size())
-    throw Error(std::string(f.key) + " must be a number" + unit + "; got '" + shown + "'");
+    throw Error(std::string(f.key) + " must be a number" + unit + "; got '" + shown + "'", f.key);
   return v;
 }
 
@@ -355,10 +383,77 @@ std::string format_field(const Case& c, const Field& f) {
     case FieldType::boolean:
       return v != 0.0 ? "true" : "false";
     case FieldType::choice:
-      return choice_name(f.choices, static_cast<int>(v));
+      return choice_name_of(f.choices, static_cast<int>(v));
     default:
       return format_number(v);
   }
+}
+
+namespace {
+
+const char* input_name(SoilInput input) {
+  switch (input) {
+    case SoilInput::coefficients:
+      return "coefficients";
+    case SoilInput::modulus:
+      return "modulus";
+    case SoilInput::table2:
+      return "table2";
+  }
+  return "?";
+}
+
+bool is_one_of(std::string_view key, std::initializer_list<std::string_view> keys) {
+  for (std::string_view k : keys)
+    if (key == k) return true;
+  return false;
+}
+
+// What each soil input reads, and what a key it does not read should make the user do.
+std::string soil_key_not_in_effect(const Soil& soil, std::string_view key) {
+  const bool modulus_key = is_one_of(key, {"soil.G", "soil.nu", "soil.rho"});
+  const bool coefficient_key = is_one_of(key, {"soil.ksh", "soil.ksv", "soil.csh", "soil.csv"});
+  if (!modulus_key && !coefficient_key) return "";
+  const std::string head =
+      std::string(key) + " has no effect while soil.input = \"" + input_name(soil.input) + "\"";
+  switch (soil.input) {
+    case SoilInput::modulus:
+      if (!coefficient_key) return "";
+      return head +
+             " (the coefficients come from G, nu, rho by Appendix B); remove it or set "
+             "soil.input = \"coefficients\"";
+    case SoilInput::table2:
+      if (key == "soil.G") return "";
+      if (coefficient_key)
+        return head +
+               " (Table 2 gives ksh, ksv, csh, csv at soil.G); remove it or set soil.input = "
+               "\"coefficients\"";
+      return head +
+             " (Table 2 holds nu = 0.3, rho = 1900 kg/m^3 only); remove it, or set soil.input = "
+             "\"modulus\" to compute the soil from G, nu, rho by Appendix B";
+    case SoilInput::coefficients:
+      if (coefficient_key) return "";
+      return head +
+             " (the soil is ksh, ksv, csh, csv); set soil.input = \"modulus\" to compute the "
+             "coefficients by Appendix B, or \"table2\" (soil.table2_G) for paper Table 2";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string key_not_in_effect(const Case& c, std::string_view key) {
+  if (key.starts_with("soil.")) return soil_key_not_in_effect(c.soil, key);
+  if (key == "roller.M0" && c.roller.unbalance > 0.0)
+    return "roller.M0 has no effect while roller.unbalance > 0, which gives M0 = 4 m_u e_u e_w "
+           "nu^2 (5); remove one of them";
+  if (key.starts_with("trough.") && std::isnan(key_value(c.trough.shape, key)))
+    return std::string(key) + " has no effect on a " + trough_name(c.trough.shape) + " trough";
+  return "";
+}
+
+bool key_in_effect(const Case& c, std::string_view key) {
+  return key_not_in_effect(c, key).empty();
 }
 
 }  // namespace oscidrum

@@ -19,27 +19,31 @@ std::string num(double v) { return shortest(v); }
 // Every field against its rule in the field table, then the rules that tie fields together.
 void validate(const Case& c) {
   for (const Field& f : fields()) {
-    std::string problem = check_field(f, f.get(c));
-    if (!problem.empty()) throw Error(problem);
+    const double value = f.get(c);
+    std::string problem = check_field(f, value);
+    if (!problem.empty()) throw Error(problem, f.key, value);
   }
   const Roller& R = c.roller;
   const double Fz = R.P0 - R.m * R.g;
   if (Fz < 0)
     throw Error(
         "roller.P0 must be >= roller.m * roller.g (Fz = P0 - m g >= 0, (7)) [N]; got P0 = " +
-        num(R.P0) + " < m g = " + num(R.m * R.g));
+            num(R.P0) + " < m g = " + num(R.m * R.g),
+        "roller.P0", R.P0);
   check_fit(c.trough.shape, R.r);
   if (c.contact.law == FrictionChoice::regularised && !c.contact.pure_rolling &&
       c.contact.mu_static != -1.0 && c.contact.mu_static != c.contact.mu)
     throw Error(
         "contact.mu_static must be -1 (or equal to contact.mu) with contact.law = regularised: "
         "the regularised law has one coefficient and no stick; got mu_static = " +
-        num(c.contact.mu_static));
+            num(c.contact.mu_static),
+        "contact.mu_static", c.contact.mu_static);
   if (c.contact.mu_static >= 0.0 ? c.contact.mu_static < c.contact.mu : c.contact.mu_static != -1.0)
     throw Error(
         "contact.mu_static must be >= contact.mu (static friction is at least the kinetic), or "
         "-1 (equal to contact.mu); got mu_static = " +
-        num(c.contact.mu_static) + ", mu = " + num(c.contact.mu));
+            num(c.contact.mu_static) + ", mu = " + num(c.contact.mu),
+        "contact.mu_static", c.contact.mu_static);
   // The sampled steady state is kept in memory: 21 columns of doubles per sample.
   const double samples = static_cast<double>(c.numerics.samples_per_period) *
                          c.numerics.output_periods * c.numerics.max_multiplicity;
@@ -48,10 +52,12 @@ void validate(const Case& c) {
         "numerics.samples_per_period * numerics.output_periods * "
         "numerics.max_multiplicity must be <= 1e7 (the most samples a run may keep, "
         "about 1.7 GB); got " +
-        num(samples));
+            num(samples),
+        "numerics.samples_per_period");
   if (!c.contact.pure_rolling && c.soil.input == SoilInput::coefficients && c.soil.csh <= 0)
     throw Error("soil.csh must be > 0 [N s/m] (the slip coupling (53) divides by it); got " +
-                num(c.soil.csh));
+                    num(c.soil.csh),
+                "soil.csh", c.soil.csh);
 }
 
 }  // namespace
@@ -63,6 +69,7 @@ Model::Model(const Case& c) : case_(c) {
   friction_ = friction_law(c.contact);
   cone_ = cone_coefficient(friction_);
   phases_ = oscidrum::friction_phases(friction_);
+  // The one conversion of the soil input (Table 2, Appendix B or as given) into the coefficients.
   SoilCoefficients s = soil_coefficients(c.soil, R);
   ksh_ = s.ksh;
   ksv_ = s.ksv;

@@ -14,19 +14,27 @@ namespace {
 using detail::shortest;
 std::string num(double v) { return shortest(v); }
 
-void require(bool ok, const char* what, double value) {
-  if (!ok) throw Error(std::string(what) + "; got " + num(value));
+void require(bool ok, const char* key, const char* rule, double value) {
+  if (!ok) throw Error(std::string(key) + " must be " + rule + "; got " + num(value), key, value);
+}
+
+[[noreturn]] void no_table2_row(double G) {
+  throw Error(
+      "soil.G must be a G of paper Table 2 while soil.input = \"table2\": 5e6, 10e6, ..., "
+      "70e6 [Pa] (5 ... 70 MN/m^2 in steps of 5); got " +
+          num(G) + " (for other G set soil.input = \"modulus\": Appendix B)",
+      "soil.G", G);
 }
 
 }  // namespace
 
 SoilCoefficients soil_coefficients(double G, double nu, double rho, const Roller& roller) {
-  require(std::isfinite(G) && G > 0, "soil.G must be > 0 [Pa]", G);
-  require(std::isfinite(nu) && nu >= 0 && nu < 0.5, "soil.nu must be in [0, 0.5)", nu);
-  require(std::isfinite(rho) && rho > 0, "soil.rho must be > 0 [kg/m^3]", rho);
-  require(std::isfinite(roller.r) && roller.r > 0, "roller.r must be > 0 [m]", roller.r);
-  require(std::isfinite(roller.b) && roller.b > 0, "roller.b must be > 0 [m]", roller.b);
-  require(std::isfinite(roller.P0) && roller.P0 > 0, "roller.P0 must be > 0 [N]", roller.P0);
+  require(std::isfinite(G) && G > 0, "soil.G", "> 0 [Pa]", G);
+  require(std::isfinite(nu) && nu >= 0 && nu < 0.5, "soil.nu", "in [0, 0.5)", nu);
+  require(std::isfinite(rho) && rho > 0, "soil.rho", "> 0 [kg/m^3]", rho);
+  require(std::isfinite(roller.r) && roller.r > 0, "roller.r", "> 0 [m]", roller.r);
+  require(std::isfinite(roller.b) && roller.b > 0, "roller.b", "> 0 [m]", roller.b);
+  require(std::isfinite(roller.P0) && roller.P0 > 0, "roller.P0", "> 0 [N]", roller.P0);
 
   const double r = roller.r, b0 = roller.b / 2.0, P0 = roller.P0;
   SoilCoefficients s;
@@ -44,13 +52,54 @@ SoilCoefficients soil_coefficients(double G, double nu, double rho, const Roller
 }
 
 SoilCoefficients soil_coefficients(const Soil& soil, const Roller& roller) {
-  if (soil.input == SoilInput::modulus) return soil_coefficients(soil.G, soil.nu, soil.rho, roller);
   SoilCoefficients s;
+  switch (soil.input) {
+    case SoilInput::modulus:
+      return soil_coefficients(soil.G, soil.nu, soil.rho, roller);
+    case SoilInput::table2: {
+      const Table2Row* row = table2_row(soil.G);
+      if (!row) no_table2_row(soil.G);
+      s.a0 = row->a0;
+      s.ksh = row->ksh;
+      s.ksv = row->ksv;
+      s.csh = row->csh;
+      s.csv = row->csv;
+      return s;
+    }
+    case SoilInput::coefficients:
+      break;
+  }
   s.ksh = soil.ksh;
   s.ksv = soil.ksv;
   s.csh = soil.csh;
   s.csv = soil.csv;
   return s;
+}
+
+std::string soil_summary(const Soil& soil) {
+  const std::string G = num(soil.G / 1e6) + " MN/m^2";
+  switch (soil.input) {
+    case SoilInput::table2:
+      return "paper Table 2 at G = " + G + (soil.G == Soil{}.G ? " (the default soil)" : "");
+    case SoilInput::modulus:
+      return "Appendix B (42)-(45) from G = " + G + ", nu = " + num(soil.nu) +
+             ", rho = " + num(soil.rho) + " kg/m^3";
+    case SoilInput::coefficients:
+      break;
+  }
+  return "coefficients given directly";
+}
+
+const char* soil_source_id(const Soil& soil) {
+  switch (soil.input) {
+    case SoilInput::table2:
+      return "table2";
+    case SoilInput::modulus:
+      return "appendix_b";
+    case SoilInput::coefficients:
+      break;
+  }
+  return "coefficients";
 }
 
 const std::array<Table2Row, 14>& table2() {
@@ -74,29 +123,30 @@ const std::array<Table2Row, 14>& table2() {
   return rows;
 }
 
-Soil table2_soil(double G) {
-  for (const Table2Row& row : table2()) {
-    if (std::abs(row.G - G) <= 1e-9 * row.G) {
-      Soil s;
-      s.input = SoilInput::coefficients;
-      s.G = row.G;
-      s.nu = 0.3;
-      s.rho = 1900.0;
-      s.ksh = row.ksh;
-      s.ksv = row.ksv;
-      s.csh = row.csh;
-      s.csv = row.csv;
-      return s;
-    }
-  }
-  throw Error("Table 2 has no row for G = " + num(G) +
-              " Pa; it has G = 5e6, 10e6, ..., 70e6 Pa (5 ... 70 MN/m^2 in steps of 5)");
+const Table2Row* table2_row(double G) {
+  for (const Table2Row& row : table2())
+    if (std::abs(row.G - G) <= 1e-9 * row.G) return &row;
+  return nullptr;
 }
 
-bool is_table2_G(double G) {
-  for (const Table2Row& row : table2())
-    if (std::abs(row.G - G) <= 1e-9 * row.G) return true;
-  return false;
+bool is_table2_G(double G) { return table2_row(G) != nullptr; }
+
+Soil table2_soil(double G) {
+  const Table2Row* row = table2_row(G);
+  if (!row)
+    throw Error("Table 2 has no row for G = " + num(G) +
+                    " Pa; it has G = 5e6, 10e6, ..., 70e6 Pa (5 ... 70 MN/m^2 in steps of 5)",
+                "soil.G", G);
+  Soil s;
+  s.input = SoilInput::table2;
+  s.G = row->G;
+  s.nu = kTable2Nu;
+  s.rho = kTable2Rho;
+  s.ksh = row->ksh;
+  s.ksv = row->ksv;
+  s.csh = row->csh;
+  s.csv = row->csv;
+  return s;
 }
 
 }  // namespace oscidrum

@@ -267,6 +267,7 @@ TEST(Simulate, StiffSoilTendsToRollingDiscInFixedTrack) {
   c.numerics.output_periods = 1;
   double previous_error = 1e300;
   for (double k : {1e8, 1e9, 1e10, 1e11}) {
+    c.soil.input = SoilInput::coefficients;
     c.soil.ksh = c.soil.ksv = k;
     const Result r = simulate(c);
     ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;

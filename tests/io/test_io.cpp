@@ -11,6 +11,7 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/model.hpp"
 #include "oscidrum/soil.hpp"
 #include "oscidrum_io/case_spec.hpp"
 #include "oscidrum_io/config.hpp"
@@ -50,9 +51,13 @@ std::string study_error(const std::string& text) {
   return error_of([&] { expand(read_study_text(text, "study.toml", "")); });
 }
 
+// The same case: every key in effect (key_in_effect) has the same value (a key without effect, such
+// as soil.ksh under soil.input = "table2", is written as a comment and not read back).
 bool same_case(const Case& a, const Case& b) {
-  for (const Field& f : fields())
-    if (f.get(a) != f.get(b)) return false;
+  for (const Field& f : fields()) {
+    if (key_in_effect(a, f.key) != key_in_effect(b, f.key)) return false;
+    if (key_in_effect(a, f.key) && f.get(a) != f.get(b)) return false;
+  }
   return true;
 }
 
@@ -85,8 +90,16 @@ TEST(CaseFile, SectionsTopLevelAndDottedKeysSetFields) {
   EXPECT_EQ(c.roller.f, 30.0);
   EXPECT_TRUE(c.contact.pure_rolling);
   EXPECT_EQ(c.numerics.max_periods, 200);
-  EXPECT_EQ(get_field(read("trough.a = 0.62\n"), "trough.a"),
-            0.62);  // a dotted key at the top level
+  // A dotted key at the top level.
+  EXPECT_EQ(get_field(read("trough.a = 0.62\n"), "trough.a"), 0.62);
+  // A quoted key with a dot is one key of that name in TOML, not the dotted key (issue 24, 11).
+  EXPECT_EQ(case_error("'roller.r' = 0.6\n"),
+            "case.toml:1:1: 'roller.r' is a quoted key: TOML reads it as one key named "
+            "\"roller.r\", not as a dotted key; write it without quotes (roller.r = ...) or under "
+            "its [section]");
+  EXPECT_NE(case_error("[roller]\n\"r.x\" = 0.6\n").find("'r.x' is a quoted key"),
+            std::string::npos);
+  EXPECT_EQ(read("[roller]\n\"r\" = 0.55\n").roller.r, 0.55);  // quoted without a dot: the key
   // ... but after a [section] header it belongs to that section.
   EXPECT_NE(case_error("[numerics]\ntrough.a = 0.62\n").find("unknown parameter 'numerics.trough'"),
             std::string::npos);
@@ -103,7 +116,7 @@ TEST(CaseFile, ErrorsNameFileLineKeyRuleAndValue) {
   EXPECT_EQ(case_error("[numerics]\nmax_periods = 2.5\n"),
             "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 2.5");
   EXPECT_EQ(case_error("[soil]\ninput = \"modulos\"\n"),
-            "case.toml:2:1: soil.input must be one of coefficients, modulus; got a string "
+            "case.toml:2:1: soil.input must be one of coefficients, modulus, table2; got a string "
             "(\"modulos\")");
   EXPECT_EQ(case_error("[roller]\nr = [1, 2]\n"),
             "case.toml:2:1: roller.r must be a single value [m]; got an array");
@@ -146,9 +159,19 @@ TEST(CaseFile, CrossFieldRulesNameTheOrigin) {
   EXPECT_EQ(
       case_error("[trough]\na = 0.5\n").rfind("case.toml:2:1: trough.a must be > roller.r", 0), 0u);
   EXPECT_EQ(
-      case_error("[soil]\nG = 30e6\n")
-          .rfind("case.toml:2:1: soil.G has no effect while soil.input = \"coefficients\"", 0),
+      case_error("[soil]\ninput = \"coefficients\"\nG = 30e6\n")
+          .rfind("case.toml:3:1: soil.G has no effect while soil.input = \"coefficients\"", 0),
       0u);
+  // The default soil is Table 2: G picks its row (a G it does not hold is an error at G's line),
+  // nu and rho have no effect there.
+  EXPECT_EQ(case_error("[soil]\nG = 27e6\n")
+                .rfind("case.toml:2:1: soil.G must be a G of paper Table 2 while soil.input = "
+                       "\"table2\"",
+                       0),
+            0u);
+  EXPECT_EQ(case_error("[soil]\nnu = 0.35\n")
+                .rfind("case.toml:2:1: soil.nu has no effect while soil.input = \"table2\"", 0),
+            0u);
   EXPECT_NE(case_error("[soil]\ninput = \"modulus\"\nksh = 1e7\n").find("soil.ksh has no effect"),
             std::string::npos);
   EXPECT_NE(case_error("MMd = 1\nMMd_fraction = 0.05\n").find("MMd cannot be given together"),
@@ -158,22 +181,45 @@ TEST(CaseFile, CrossFieldRulesNameTheOrigin) {
 TEST(CaseFile, Table2ShorthandTakesTheTableRow) {
   const Case c = read("[soil]\ntable2_G = 40e6\n");
   const Soil t = table2_soil(40e6);
-  EXPECT_EQ(c.soil.input, SoilInput::coefficients);
+  EXPECT_EQ(c.soil.input, SoilInput::table2);  // the shorthand is a value of the soil input
   EXPECT_EQ(c.soil.G, 40e6);
-  EXPECT_EQ(c.soil.ksh, t.ksh);
-  EXPECT_EQ(c.soil.ksv, t.ksv);
-  EXPECT_EQ(c.soil.csh, t.csh);
-  EXPECT_EQ(c.soil.csv, t.csv);
+  // The model makes the one conversion.
+  const Model model(c);
+  EXPECT_EQ(model.ksh(), t.ksh);
+  EXPECT_EQ(model.ksv(), t.ksv);
+  EXPECT_EQ(model.csh(), t.csh);
+  EXPECT_EQ(model.csv(), t.csv);
+  EXPECT_EQ(read("[soil]\ninput = \"table2\"\nG = 40e6\n").soil.G, 40e6);  // the same, spelt out
   EXPECT_NE(case_error("[soil]\ntable2_G = 42e6\n").find("must be a G of paper Table 2"),
             std::string::npos);
-  EXPECT_NE(
-      case_error("[soil]\ntable2_G = 40e6\nksh = 1e7\n").find("has no effect with soil.table2_G"),
-      std::string::npos);
+  EXPECT_NE(case_error("[soil]\ntable2_G = 40\n").find("did you mean 40000000?"),
+            std::string::npos);
+  EXPECT_NE(case_error("[soil]\ntable2_G = 40e6\nksh = 1e7\n")
+                .find("soil.ksh has no effect while soil.input = \"table2\""),
+            std::string::npos);
+  EXPECT_NE(case_error("[soil]\ntable2_G = 40e6\ninput = \"modulus\"\n")
+                .find("soil.input cannot be set together with soil.table2_G"),
+            std::string::npos);
   // A later soil.G keeps the Table 2 choice (a sweep over soil.G on a Table 2 base).
   CaseSpec spec;
   read_case_text("[soil]\ntable2_G = 40e6\n", "case.toml", spec);
   assign(spec, "soil.G", 10e6, "sweep");
-  EXPECT_EQ(finalize(spec).soil.ksh, table2_soil(10e6).ksh);
+  EXPECT_EQ(Model(finalize(spec)).ksh(), table2_soil(10e6).ksh);
+}
+
+// Coefficients given while soil.input is left at its default (Table 2) give the soil by its
+// coefficients, the others from the Table 2 row at soil.G, as before Table 2 was an input.
+TEST(CaseFile, CoefficientKeysAloneGiveTheSoilByItsCoefficients) {
+  const Case c = read("[soil]\nksh = 5e7\n");
+  EXPECT_EQ(c.soil.input, SoilInput::coefficients);
+  EXPECT_EQ(c.soil.ksh, 5e7);
+  EXPECT_EQ(c.soil.ksv, table2_soil(25e6).ksv);
+  EXPECT_NE(case_error("[soil]\nksh = 5e7\nG = 30e6\n")
+                .find("soil.G has no effect while soil.input = \"coefficients\""),
+            std::string::npos);
+  EXPECT_NE(case_error("[soil]\ninput = \"table2\"\nksh = 5e7\n")
+                .find("case.toml:3:1: soil.ksh has no effect while soil.input = \"table2\""),
+            std::string::npos);
 }
 
 TEST(CaseFile, MMdFractionFollowsM0) {
@@ -229,6 +275,7 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
   c.MMd = 1.0 / 3.0;
   c.contact.pure_rolling = true;
   c.numerics.max_periods = 1234;
+  c.soil.input = SoilInput::coefficients;
   c.soil.ksh = 12345678.9;
   EXPECT_TRUE(same_case(read(case_to_toml(c)), c));
 
@@ -243,7 +290,8 @@ TEST(CaseFile, WrittenCaseReadsBackIdentically) {
 
   Case t;
   t.soil = table2_soil(30e6);
-  EXPECT_TRUE(same_case(read(case_to_toml(t, true)), t));
+  EXPECT_TRUE(same_case(read(case_to_toml(t)), t));
+  EXPECT_EQ(read(case_to_toml(t)).soil.input, SoilInput::table2);
 
   Case u;  // given by its unbalance: M0 is written as a comment (both would be an error)
   u.roller.unbalance = 0.22877;
@@ -301,7 +349,7 @@ TEST(Study, ProductCountsLikeNestedLoopsInFileOrder) {
   EXPECT_EQ(format_value(s.varied[1][2]), "0.05");
   EXPECT_EQ(format_value(s.varied[2][1]), "false");
   EXPECT_EQ(format_value(s.varied[4][0]), "10000000");
-  EXPECT_EQ(s.cases[5].soil.ksh, table2_soil(10e6).ksh);
+  EXPECT_EQ(Model(s.cases[5]).ksh(), table2_soil(10e6).ksh);
   EXPECT_TRUE(s.cases[5].contact.pure_rolling);
   EXPECT_DOUBLE_EQ(s.cases[5].MMd, 0.05 * Roller{}.M0);
 }
@@ -309,7 +357,7 @@ TEST(Study, ProductCountsLikeNestedLoopsInFileOrder) {
 TEST(Study, RangesAllAndNestedTables) {
   Study s = expand(read_study_text("[sweep]\n\"soil.table2_G\" = \"all\"\n", "study.toml", ""));
   ASSERT_EQ(s.cases.size(), 14u);
-  EXPECT_EQ(s.cases[13].soil.ksv, table2_soil(70e6).ksv);
+  EXPECT_EQ(Model(s.cases[13]).ksv(), table2_soil(70e6).ksv);
   s = expand(read_study_text("[sweep.trough]\na = { start = 0.61, stop = 0.65, step = 0.01 }\n",
                              "study.toml", ""));
   ASSERT_EQ(s.cases.size(), 5u);
@@ -402,7 +450,13 @@ TEST(Study, ErrorsNameTheLineOrTheCase) {
   EXPECT_EQ(study_error("[sweep]\n\"trough.a\" = [0.62, 0.55]\n")
                 .rfind("case 1 (trough.a = 0.55): study.toml:2:1: trough.a must be > roller.r", 0),
             0u);
-  EXPECT_NE(study_error("[sweep]\n\"soil.G\" = [5e6]\n").find("soil.G has no effect"),
+  EXPECT_NE(study_error("[soil]\ninput = \"coefficients\"\n[sweep]\n\"soil.G\" = [5e6]\n")
+                .find("soil.G has no effect"),
+            std::string::npos);
+  // On the default Table 2 soil a swept G picks the row; a G it does not hold names its case.
+  EXPECT_NE(study_error("[sweep]\n\"soil.G\" = [5e6, 27e6]\n")
+                .find("case 1 (soil.G = 27000000): study.toml:2:1: soil.G must be a G of paper "
+                      "Table 2"),
             std::string::npos);
 }
 

@@ -206,7 +206,14 @@ TEST(Fields, DefaultSoilIsTable2AtG25) {
   for (const Table2Row& r : table2())
     if (r.G == 25e6) row = &r;
   ASSERT_NE(row, nullptr);
-  EXPECT_EQ(c.soil.input, SoilInput::coefficients);
+  EXPECT_EQ(c.soil.input, SoilInput::table2);
+  // The model takes the row at G = 25 MN/m^2 (its one conversion of the soil input) ...
+  const Model model(c);
+  EXPECT_EQ(model.ksh(), row->ksh);
+  EXPECT_EQ(model.ksv(), row->ksv);
+  EXPECT_EQ(model.csh(), row->csh);
+  EXPECT_EQ(model.csv(), row->csv);
+  // ... which the default coefficients also hold (for soil.input = "coefficients").
   EXPECT_EQ(c.soil.ksh, row->ksh);
   EXPECT_EQ(c.soil.ksv, row->ksv);
   EXPECT_EQ(c.soil.csh, row->csh);
@@ -240,8 +247,69 @@ TEST(Fields, ExactMessageForNegativeShearModulus) {
   Case c;
   const std::string msg = error_of([&] { set_field(c, "soil.G", -5e6); });
   // The message documented in fields.hpp and error.hpp: key, rule, unit, value.
-  EXPECT_NE(msg.find("soil.G must be > 0 [Pa]; got -5e+06"), std::string::npos) << msg;
+  EXPECT_EQ(msg, "soil.G must be in [10000, 1e+11] [Pa]; got -5e+06") << msg;
   EXPECT_EQ(c.soil.G, 25e6) << "a rejected value must leave the case unchanged";
+  // The error carries the key and the value.
+  try {
+    set_field(c, "soil.G", -5e6);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.key(), "soil.G");
+    EXPECT_EQ(e.value(), -5e6);
+  }
+}
+
+// Which keys take effect (key_in_effect): each soil input reads its own keys, roller.M0 is replaced
+// by an unbalance, the trough keys are those of the shape; every other key always.
+TEST(Fields, KeyInEffectFollowsTheSoilInputTheUnbalanceAndTheShape) {
+  const std::vector<std::string> modulus_keys = {"soil.G", "soil.nu", "soil.rho"};
+  const std::vector<std::string> coefficient_keys = {"soil.ksh", "soil.ksv", "soil.csh",
+                                                     "soil.csv"};
+  Case c;  // Table 2: G only
+  EXPECT_TRUE(key_in_effect(c, "soil.G"));
+  for (const char* k : {"soil.nu", "soil.rho", "soil.ksh", "soil.csv"})
+    EXPECT_FALSE(key_in_effect(c, k)) << k;
+  EXPECT_NE(key_not_in_effect(c, "soil.nu").find("Table 2 holds nu = 0.3"), std::string::npos);
+  c.soil.input = SoilInput::modulus;
+  for (const std::string& k : modulus_keys) EXPECT_TRUE(key_in_effect(c, k)) << k;
+  for (const std::string& k : coefficient_keys) EXPECT_FALSE(key_in_effect(c, k)) << k;
+  c.soil.input = SoilInput::coefficients;
+  for (const std::string& k : modulus_keys) EXPECT_FALSE(key_in_effect(c, k)) << k;
+  for (const std::string& k : coefficient_keys) EXPECT_TRUE(key_in_effect(c, k)) << k;
+  EXPECT_EQ(key_not_in_effect(c, "soil.G")
+                .rfind("soil.G has no effect while soil.input = \"coefficients\"", 0),
+            0u);
+  EXPECT_TRUE(key_in_effect(c, "roller.M0"));
+  c.roller.unbalance = 0.22877;
+  EXPECT_FALSE(key_in_effect(c, "roller.M0"));
+  // Both shapes are given by trough.k and trough.a; every other key takes effect.
+  c.trough.shape = LogSpiralTrough(0.002, 0.601);
+  EXPECT_TRUE(key_in_effect(c, "trough.k"));
+  EXPECT_TRUE(key_in_effect(Case{}, "trough.a"));
+  for (const Field& f : fields()) {
+    const std::string key = f.key;
+    if (!key.starts_with("soil.") && key != "roller.M0") {
+      EXPECT_TRUE(key_in_effect(c, key)) << key;
+    }
+    EXPECT_EQ(key_in_effect(c, key), key_not_in_effect(c, key).empty()) << key;
+  }
+}
+
+// A value that is right in the unit people say it in (issue 25, point 8): soil.G = 30 is meant as
+// 30 MN/m^2 = 30e6 Pa. Values are SI; the message says so and what was meant.
+TEST(Fields, ValueInTheDisplayUnitGetsAHint) {
+  Case c;
+  const Field& G = *find_field("soil.G");
+  EXPECT_EQ(std::string(G.display_unit), "MN/m^2");
+  EXPECT_EQ(G.display_scale, 1e6);
+  EXPECT_EQ(error_of([&] { set_field(c, "soil.G", 30.0); }),
+            "soil.G must be in [10000, 1e+11] [Pa]; got 30 (values are in Pa: did you mean 3e+07, "
+            "i.e. 30 MN/m^2?)");
+  // No hint where the value would not fit either, nor for a field shown in its own unit.
+  EXPECT_EQ(error_of([&] { set_field(c, "soil.G", 1e6 * 1e6); }).find("did you mean"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { set_field(c, "roller.r", -0.6); }).find("did you mean"),
+            std::string::npos);
+  EXPECT_EQ(std::string(display_unit(*find_field("roller.r"))), "m");
 }
 
 TEST(Fields, MessagesNameKeyRuleAndValue) {
@@ -311,12 +379,12 @@ TEST(Fields, EveryFieldRejectsValuesOutsideItsRange) {
 }
 
 TEST(Fields, RulesReadAsDocumented) {
-  EXPECT_EQ(field_rule(*find_field("soil.G")), "> 0");
+  EXPECT_EQ(field_rule(*find_field("soil.G")), "in [10000, 1e+11]");
   EXPECT_EQ(field_rule(*find_field("soil.nu")), "in [0, 0.5)");
   EXPECT_EQ(field_rule(*find_field("contact.mu")), ">= 0");
   EXPECT_EQ(field_rule(*find_field("MMd")), "finite");
   EXPECT_EQ(field_rule(*find_field("contact.pure_rolling")), "true or false");
-  EXPECT_EQ(field_rule(*find_field("soil.input")), "one of coefficients, modulus");
+  EXPECT_EQ(field_rule(*find_field("soil.input")), "one of coefficients, modulus, table2");
 }
 
 TEST(Fields, UnknownKeySuggestsTheNearestKey) {
@@ -383,7 +451,7 @@ TEST(Fields, TextRejectsGarbage) {
   EXPECT_THROW(set_field_text(c, "contact.pure_rolling", "maybe"), Error);
   EXPECT_THROW(set_field_text(c, "contact.pure_rolling", "2"), Error);
   const std::string msg = error_of([&] { set_field_text(c, "soil.input", "gravel"); });
-  EXPECT_EQ(msg, "soil.input must be one of coefficients, modulus; got 'gravel'");
+  EXPECT_EQ(msg, "soil.input must be one of coefficients, modulus, table2; got 'gravel'");
   EXPECT_EQ(c.soil.G, defaults.soil.G);
   EXPECT_EQ(c.soil.input, defaults.soil.input);
   EXPECT_EQ(c.contact.pure_rolling, defaults.contact.pure_rolling);
@@ -431,7 +499,7 @@ TEST(ModelValidation, RejectsNonPositiveStiffness) {
   c = Case{};
   c.soil.input = SoilInput::modulus;
   c.soil.G = 0.0;
-  expect_model_rejects(c, {"soil.G", "> 0", "got 0"});
+  expect_model_rejects(c, {"soil.G", "in [10000, 1e+11]", "got 0"});
 }
 
 TEST(ModelValidation, RejectsCircularTroughNotLargerThanTheDrum) {

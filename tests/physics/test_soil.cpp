@@ -53,11 +53,11 @@ TEST(Table2, HasFourteenRowsFromFiveToSeventyMegapascal) {
   EXPECT_EQ(rows[13].ksv, 169e6);
 }
 
-TEST(Table2, SoilReturnsEachRowAsCoefficients) {
+TEST(Table2, SoilReturnsEachRowAsTheTable2Input) {
   for (const Table2Row& row : table2()) {
     const Soil s = table2_soil(row.G);
-    EXPECT_EQ(s.input, SoilInput::coefficients);
-    EXPECT_EQ(s.ksh, row.ksh);
+    EXPECT_EQ(s.input, SoilInput::table2);
+    EXPECT_EQ(s.ksh, row.ksh);  // for reading: the model converts G itself
     EXPECT_EQ(s.ksv, row.ksv);
     EXPECT_EQ(s.csh, row.csh);
     EXPECT_EQ(s.csv, row.csv);
@@ -67,8 +67,47 @@ TEST(Table2, SoilReturnsEachRowAsCoefficients) {
     const SoilCoefficients c = soil_coefficients(s);
     EXPECT_EQ(c.ksh, row.ksh);
     EXPECT_EQ(c.csv, row.csv);
-    EXPECT_EQ(c.a0, 0.0);  // given directly: no contact length
+    EXPECT_EQ(c.a0, row.a0);  // Table 2's contact length
+    // Given directly, the same coefficients have no contact length.
+    Soil direct = s;
+    direct.input = SoilInput::coefficients;
+    EXPECT_EQ(soil_coefficients(direct).ksh, row.ksh);
+    EXPECT_EQ(soil_coefficients(direct).a0, 0.0);
   }
+}
+
+// The one conversion of every soil input (soil_coefficients(Soil)), which Model makes: the
+// Table 2 row at G (only at the table's G, with the key in the error), Appendix B for modulus,
+// the coefficients as given.
+TEST(SoilInput, EachInputConvertsOnce) {
+  Soil s;  // the default: Table 2 at G = 25 MN/m^2
+  EXPECT_EQ(s.input, SoilInput::table2);
+  EXPECT_EQ(soil_coefficients(s).ksv, 66.3e6);
+  s.G = 27e6;
+  try {
+    (void)soil_coefficients(s);
+    ADD_FAILURE() << "Table 2 converted G = 27e6";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.key(), "soil.G");
+    EXPECT_EQ(e.value(), 27e6);
+    EXPECT_NE(std::string(e.what()).find("soil.input = \"modulus\""), std::string::npos);
+  }
+  s.input = SoilInput::modulus;
+  const SoilCoefficients b = soil_coefficients(s);
+  const SoilCoefficients direct = soil_coefficients(27e6, s.nu, s.rho);
+  EXPECT_EQ(b.ksh, direct.ksh);
+  EXPECT_EQ(b.a0, direct.a0);
+  EXPECT_EQ(std::string(soil_source_id(s)), "appendix_b");
+  EXPECT_EQ(soil_summary(s),
+            "Appendix B (42)-(45) from G = 27 MN/m^2, nu = 0.3, rho = 1900 kg/m^3");
+  EXPECT_EQ(soil_summary(Soil{}), "paper Table 2 at G = 25 MN/m^2 (the default soil)");
+  EXPECT_EQ(soil_summary(table2_soil(40e6)), "paper Table 2 at G = 40 MN/m^2");
+  EXPECT_EQ(std::string(soil_source_id(table2_soil(40e6))), "table2");
+  s.input = SoilInput::coefficients;
+  EXPECT_EQ(soil_summary(s), "coefficients given directly");
+  EXPECT_EQ(std::string(soil_source_id(s)), "coefficients");
+  EXPECT_EQ(table2_row(40e6)->ksh, 61.2e6);
+  EXPECT_EQ(table2_row(41e6), nullptr);
 }
 
 TEST(Table2, SoilThrowsForAGNotInTheTable) {

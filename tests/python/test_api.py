@@ -39,29 +39,75 @@ def test_R_is_a_circular_trough_only():
 
 
 @pytest.mark.parametrize("call", [
-    lambda: Case(soil={"G": 3e7}),
-    lambda: Case().set("soil.G", 5e6),
-    lambda: Case(G=25e6),
+    lambda: Case(soil={"nu": 0.35}),
+    lambda: Case(input="coefficients").set("soil.G", 5e6),
+    lambda: Case(input="coefficients", G=25e6),
     lambda: Soil(nu=0.3),
     lambda: Case(input="modulus", ksh=1e7),
+    lambda: Case(table2_G=30e6, rho=1800.0),
 ])
 def test_soil_keys_without_effect_are_errors_naming_soil_input(call):
-    with pytest.raises(oscidrum.Error, match=r"has no effect while soil\.input"):
+    with pytest.raises(oscidrum.Error, match=r"has no effect while soil\.input") as info:
         call()
+    assert info.value.key.startswith("soil.")  # the error carries the key
 
 
 def test_soil_rule_is_the_config_files(cli, tmp_path):
     """The CLI rejects the same soil key by the same rule and words."""
     import subprocess
-    (tmp_path / "c.toml").write_text("[soil]\nG = 3e7\n")
+    (tmp_path / "c.toml").write_text("[soil]\nnu = 0.35\n")
     p = subprocess.run([cli, "run", str(tmp_path / "c.toml")], capture_output=True, text=True)
     assert p.returncode == 2
     with pytest.raises(oscidrum.Error) as info:
-        Case(soil={"G": 3e7})
+        Case(soil={"nu": 0.35})
     rule = str(info.value).split(": ", 1)[1]
     assert rule in p.stderr
-    with pytest.raises(oscidrum.Error, match=r"c\.toml:2:\d+: soil\.G has no effect"):
+    with pytest.raises(oscidrum.Error, match=r"c\.toml:2:\d+: soil\.nu has no effect"):
         oscidrum.load_case(tmp_path / "c.toml")
+
+
+def test_G_has_one_meaning_in_python_and_on_the_command_line(cli):
+    """Issue 25, point 8: the CLI's --G 30 (MN/m^2) and Case(G=30e6) (Pa) are the same soil, the
+    Table 2 row at 30 MN/m^2 (the default soil input is Table 2); values plainly in the wrong
+    unit are refused with what was meant."""
+    import json
+    import subprocess
+    case = Case(G=30e6)
+    assert case.soil.input == "table2" and case == Case(table2_G=30e6)
+    p = subprocess.run([cli, "run", "--G", "30", "--format", "json"], capture_output=True,
+                       text=True, check=True)
+    soil = json.loads(p.stdout)["soil"]
+    model = oscidrum.Model(case)
+    assert soil["source"] == "table2" and soil["G"] == 30e6
+    assert (soil["ksh"], soil["ksv"], soil["csh"], soil["csv"]) == (model.ksh, model.ksv,
+                                                                    model.csh, model.csv)
+    with pytest.raises(oscidrum.Error, match=r"soil\.G must be a G of paper Table 2") as info:
+        Case(G=27e6)
+    assert info.value.key == "soil.G" and info.value.value == 27e6
+    assert Case(input="modulus", G=27e6).soil.G == 27e6  # any G through Appendix B
+    with pytest.raises(oscidrum.Error, match=r"did you mean 3e\+07, i\.e\. 30 MN/m\^2\?"):
+        Case(G=30)
+    p = subprocess.run([cli, "run", "--G", "30000000"], capture_output=True, text=True)
+    assert p.returncode == 2 and "did you mean --G 30?" in p.stderr
+
+
+@pytest.mark.parametrize("kwargs", [
+    {"roller.r": 0.6, "r": 0.7},
+    {"soil": {"nu": 0.3}, "nu": 0.35, "input": "modulus"},
+    {"table2_G": 30e6, "G": 40e6},
+])
+def test_a_key_given_twice_is_refused(kwargs):
+    """Issue 24, point 11: Case(**{'roller.r': 0.6, 'r': 0.7}) took 0.7 silently."""
+    with pytest.raises(oscidrum.Error, match=r"is given twice, as '.*' and as '.*'; give it once"):
+        Case(**kwargs)
+
+
+def test_table2_G_then_soil_G_moves_to_that_row():
+    """docs/config.md: a later soil.G keeps the Table 2 choice (issue 24, point 11)."""
+    c = Case(table2_G=30e6)
+    c.set("soil.G", 40e6)
+    assert c == Case(table2_G=40e6) and c.soil.input == "table2"
+    assert oscidrum.Model(c).ksh == oscidrum.table2_soil(40e6).ksh
 
 
 def test_setting_soil_modulus_after_switching_input():
@@ -110,7 +156,7 @@ def test_numpy_scalars_are_numbers():
     (lambda: Status(True), "Status must be one of"),
     (lambda: oscidrum.EventKind(7), "EventKind must be one of"),
     (lambda: Case().__setstate__("garbage"), "cannot restore a Case"),
-    (lambda: Case().__setstate__({"soil.G": -1.0}), "soil.G must be > 0"),
+    (lambda: Case().__setstate__({"soil.G": -1.0}), r"soil.G must be in \[10000, 1e\+11\]"),
     (lambda: Roller().__setstate__(None), "cannot restore a Roller"),
     (lambda: oscidrum.CaseOutcome.not_run().__setstate__(b"x"), "cannot restore a CaseOutcome"),
     (lambda: oscidrum.load_case(3), "path must be a str"),

@@ -13,14 +13,13 @@ import oscidrum
 from oscidrum import data, paper
 
 
-INERT = {"coefficients": ("soil.G", "soil.nu", "soil.rho"),
-         "modulus": ("soil.ksh", "soil.ksv", "soil.csh", "soil.csv")}
-
-
 def effective(case):
-    """The case's fields that matter (the CLI rejects soil keys its soil.input ignores)."""
-    values = case.to_dict()
-    return {k: v for k, v in values.items() if k not in INERT[values["soil.input"]]}
+    """The case's fields that matter (the CLI rejects keys without effect): the library's
+    key_in_effect, which to_dict() follows."""
+    values = case.to_dict(all=True)
+    kept = {k: v for k, v in values.items() if oscidrum.key_in_effect(case, k)}
+    assert kept == case.to_dict()
+    return kept
 
 
 def set_args(case):

@@ -72,7 +72,7 @@ def test_results_and_parameters_match_the_csv_with_units(study):
         assert list(G[:]) == [5e6, 5e6, 25e6, 25e6, 45e6, 45e6, 70e6, 70e6]
         assert list(h5["parameters/contact.pure_rolling"][:]) == [0, 1] * 4
         assert h5["parameters/roller.f"].attrs["unit"] == "Hz"
-        assert list(h5["parameters/soil.input"].attrs["choices"]) == ["coefficients", "modulus"]
+        assert list(h5["parameters/soil.input"].attrs["choices"]) == ["coefficients", "modulus", "table2"]
         assert (h5["parameters/roller.m"][:] == 1851).all()
 
 

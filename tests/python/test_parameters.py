@@ -15,7 +15,10 @@ def test_defaults_are_the_papers_roller():
     assert c.roller.r == 0.6 and c.roller.m == 1851.0 and c.roller.I == 411.78
     assert c.roller.P0 == 45224.0 and c.roller.f == 39.0 and c.roller.M0 == 54947.0
     assert c.roller.kd == 4e6 and c.roller.cd == 3e3
-    assert c.soil.input == "coefficients" and c.soil.ksh == 41.4e6 and c.soil.csv == 263e3
+    # the soil of paper Table 2 at G = 25 MN/m^2, whose coefficients are also the default ones
+    assert c.soil.input == "table2" and c.soil.G == 25e6
+    assert c.soil.ksh == 41.4e6 and c.soil.csv == 263e3
+    assert oscidrum.Model(c).ksh == 41.4e6
     assert c.trough.k == 0.0 and c.trough.a == 0.606
     assert c.contact.mu == 0.5 and c.contact.pure_rolling is False
     assert c.MMd == 0.0
@@ -109,7 +112,9 @@ def test_errors_carry_the_librarys_message():
         c.set("soil.G", -5e6)
     message = str(info.value)
     assert message == oscidrum.find_field("soil.G").check(-5e6)
-    assert re.fullmatch(r"soil\.G must be > 0 \[Pa\]; got -5(e\+06|000000)", message)
+    assert re.fullmatch(r"soil\.G must be in \[10000, 1e\+11\] \[Pa\]; got -5(e\+06|000000)",
+                        message)
+    assert info.value.key == "soil.G" and info.value.value == -5e6  # carried, not parsed
     assert isinstance(info.value, ValueError)
     with pytest.raises(oscidrum.Error, match=r"unknown parameter 'soil.g'; did you mean 'soil.G'"):
         c.set("soil.g", 1.0)
@@ -119,7 +124,8 @@ def test_errors_carry_the_librarys_message():
         oscidrum.Soil(nu=0.5)
     with pytest.raises(oscidrum.Error, match="numerics.max_periods must be an integer"):
         c.numerics.max_periods = 2.5
-    with pytest.raises(oscidrum.Error, match="soil.input must be one of coefficients, modulus"):
+    with pytest.raises(oscidrum.Error,
+                       match="soil.input must be one of coefficients, modulus, table2"):
         c.soil.input = "table"
     with pytest.raises(oscidrum.Error, match="must be a number"):
         c.set("soil.G", None)
@@ -140,9 +146,10 @@ def test_fields_table():
     keys = [f.key for f in fields]
     assert "soil.G" in keys and "MMd" in keys and len(set(keys)) == len(keys)
     g = oscidrum.find_field("soil.G")
-    assert g.unit == "Pa" and g.rule == "> 0" and g.type == "real" and g.min_open
-    assert g.check(1.0) is None
-    assert oscidrum.find_field("soil.input").choices == ["coefficients", "modulus"]
+    assert g.unit == "Pa" and g.rule == "in [10000, 1e+11]" and g.type == "real"
+    assert g.display_unit == "MN/m^2" and g.display_scale == 1e6
+    assert g.check(1e6) is None and "did you mean 1e+06" in g.check(1.0)
+    assert oscidrum.find_field("soil.input").choices == ["coefficients", "modulus", "table2"]
     with pytest.raises(oscidrum.Error, match="did you mean"):
         oscidrum.find_field("soil.GG")
 
@@ -151,7 +158,7 @@ def test_soil_table2_and_transmissibility():
     rows = oscidrum.table2()
     assert len(rows) == 14 and rows[0].G == 5e6 and rows[-1].G == 70e6
     soil = oscidrum.table2_soil(5e6)
-    assert soil.ksh == rows[0].ksh == 11.4e6 and soil.input == "coefficients"
+    assert soil.ksh == rows[0].ksh == 11.4e6 and soil.input == "table2"
     with pytest.raises(oscidrum.Error):
         oscidrum.table2_soil(7e6)
     k = oscidrum.soil_coefficients(25e6)

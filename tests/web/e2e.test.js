@@ -147,7 +147,7 @@ async function main() {
       ['mu', 'NaN', /not a number/],
       ['mu', '-0.2', /contact\.mu must be >= 0/],
       ['kd', '1e999', /finite/],
-      ['G', '12', /Table 2 has G = 5, 10/],
+      ['G', '12', /soil\.G must be a G of paper Table 2/],
       ['R', '0.5', /trough/],
       // a field of the table without its own input ('more parameters')
       ['x:roller.r', '-1', /roller\.r must be > 0/],

@@ -158,7 +158,10 @@ async function main() {
   // Bad input is an error object with the library's message, never an abort.
   const bad = engine.simulate({ 'soil.G': -5e6, 'soil.input': 'modulus' }, 10);
   assert.equal(bad.ok, false);
-  assert.match(bad.error, /soil\.G must be > 0/);
+  assert.match(bad.error, /soil\.G must be in \[10000, 1e\+11\]/);
+  assert.equal(bad.key, 'soil.G');  // the error carries its key
+  assert.equal(engine.keyInEffect({ 'soil.input': 'table2' }, 'soil.nu'), false);
+  assert.equal(engine.keyInEffect({ 'soil.input': 'modulus' }, 'soil.nu'), true);
   const typo = engine.simulate({ 'soil.g': 1 }, 10);
   assert.match(typo.error, /did you mean 'soil\.G'/);
   // ... and the module still works afterwards.

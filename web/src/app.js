@@ -11,10 +11,11 @@ const DISPLACEMENT_FACTOR = 50;  // the soil displacements x_A, s_A are drawn th
 const N_MAX = 10;                // harmonics n = 0 ... N_MAX
 const F_REF = 39;                // [Hz] the frequency of the paper's M0 (Table 1)
 
-// The inputs of the page. `key`: the field of the engine (default, unit, rule come from there);
-// `scale`: displayed value = SI value / scale.
+// The inputs of the page. `key`: the field of the engine (default, unit, rule and the unit shown
+// come from there: the field's display_unit and display_scale, e.g. MN/m^2 for soil.G, replace
+// `unit` and `scale` when the engine is ready); `scale`: displayed value = SI value / scale.
 const INPUTS = {
-  G: { key: 'soil.G', label: 'G', unit: 'MN/m²', scale: 1e6, hint: 'shear modulus' },
+  G: { key: 'soil.G', label: 'G', hint: 'shear modulus' },
   nu: { key: 'soil.nu', label: 'ν', unit: '-', scale: 1 },
   rho: { key: 'soil.rho', label: 'ρ', unit: 'kg/m³', scale: 1 },
   mu: { key: 'contact.mu', label: 'μ', unit: '-', scale: 1 },
@@ -36,7 +37,7 @@ const COVERED = new Set(['soil.input', 'soil.G', 'soil.nu', 'soil.rho', 'soil.ks
   'roller.kd', 'roller.cd']);
 const extraName = (key) => `x:${key}`;
 let fieldByKey = {};
-let table2 = [];            // paper Table 2 rows (SI)
+let soilKeys = {};          // soil.input name -> the soil keys it reads (the engine's key_in_effect)
 let worker = null;
 let seq = 0;                // number of the latest request
 let busySince = 0;          // time the running request was sent (0: idle)
@@ -51,7 +52,17 @@ function fmt(x, digits = 6) {
   return Number(x.toPrecision(digits)).toString();
 }
 
+// 'MN/m^2' -> 'MN/m²'
+const prettyUnit = (unit) => unit.replace(/\^2/g, '²').replace(/\^3/g, '³');
+
 function buildInputs() {
+  for (const spec of Object.values(INPUTS)) {
+    const field = spec.key ? fieldByKey[spec.key] : null;
+    if (field && spec.scale === undefined) {
+      spec.unit = prettyUnit(field.display_unit);
+      spec.scale = field.display_scale;
+    }
+  }
   for (const div of document.querySelectorAll('.field[data-input]')) {
     const name = div.dataset.input;
     const spec = INPUTS[name];
@@ -112,11 +123,16 @@ function setError(name, message) {
   $(`err-${name}`).textContent = message || '';
 }
 
+// The soil inputs (G, nu, rho) the chosen soil.input reads, by the engine's key_in_effect.
+const SOIL_INPUTS = ['G', 'nu', 'rho'];
+function soilInputInEffect(name) {
+  return (soilKeys[$('soil_mode').value] || []).includes(INPUTS[name].key);
+}
+
 function visibleInputs() {
-  const modulus = $('soil_mode').value === 'modulus';
   const spiral = $('trough_mode').value === 'spiral';
-  const names = ['G', 'mu', 'f', 'M0', 'MMd', 'kd', 'cd'];
-  if (modulus) names.push('nu', 'rho');
+  const names = ['mu', 'f', 'M0', 'MMd', 'kd', 'cd'];
+  names.unshift(...SOIL_INPUTS.filter(soilInputInEffect));
   names.push(...(spiral ? ['k', 'a'] : ['R']));
   if ($('rolling').checked) names.splice(names.indexOf('mu'), 1);
   for (const f of extras) names.push(extraName(f.key));
@@ -124,9 +140,8 @@ function visibleInputs() {
 }
 
 function updateVisibility() {
-  const modulus = $('soil_mode').value === 'modulus';
   const spiral = $('trough_mode').value === 'spiral';
-  for (const el of document.querySelectorAll('.modulus-only')) el.hidden = !modulus;
+  for (const name of SOIL_INPUTS) document.querySelector(`.field[data-input="${name}"]`).hidden = !soilInputInEffect(name);
   for (const el of document.querySelectorAll('.spiral-only')) el.hidden = !spiral;
   for (const el of document.querySelectorAll('.circle-only')) el.hidden = spiral;
   $('in-mu').disabled = $('rolling').checked;
@@ -135,8 +150,8 @@ function updateVisibility() {
 }
 
 // Parse the visible inputs. Returns {values, errors}: values (display units) by input name,
-// errors (messages) by input name for empty, non-numeric or non-finite text and for a G that is
-// not in Table 2.
+// errors (messages) by input name for empty, non-numeric or non-finite text (the rules of the
+// values, a G that Table 2 does not hold included, are the engine's).
 function readInputs() {
   const values = {};
   const errors = {};
@@ -156,23 +171,14 @@ function readInputs() {
     else if (!Number.isFinite(v)) errors[name] = 'must be finite';
     else values[name] = v;
   }
-  if ($('soil_mode').value === 'table2' && 'G' in values &&
-      !table2.some((row) => row.G === values.G * 1e6)) {
-    errors.G = `Table 2 has G = 5, 10, ..., 70 MN/m²; got ${values.G} (choose "modulus" for any G)`;
-  }
   return { values, errors };
 }
 
 // The engine's case (field key -> SI number) from the parsed inputs.
 function caseValues(v) {
-  const c = {};
-  if ($('soil_mode').value === 'table2') {
-    const row = table2.find((r) => r.G === v.G * 1e6);
-    Object.assign(c, { 'soil.input': 0, 'soil.G': row.G, 'soil.ksh': row.ksh, 'soil.ksv': row.ksv,
-      'soil.csh': row.csh, 'soil.csv': row.csv });
-  } else {
-    Object.assign(c, { 'soil.input': 1, 'soil.G': v.G * 1e6, 'soil.nu': v.nu, 'soil.rho': v.rho });
-  }
+  // The soil: its input (the engine converts it, Table 2 or Appendix B) and the keys it reads.
+  const c = { 'soil.input': fieldByKey['soil.input'].choices.indexOf($('soil_mode').value) };
+  for (const name of SOIL_INPUTS.filter(soilInputInEffect)) c[INPUTS[name].key] = v[name] * INPUTS[name].scale;
   if ($('rolling').checked) c['contact.pure_rolling'] = 1;
   else c['contact.mu'] = v.mu;
   c['roller.f'] = v.f;
@@ -201,19 +207,6 @@ function inputForKey(key) {
   return null;
 }
 
-function inputForMessage(message) {
-  // the field the message is about: the key it names first ("trough.a must be > roller.r ...")
-  let best = null, at = Infinity;
-  for (const f of fields) {
-    const i = message.indexOf(f.key);
-    const name = i >= 0 ? inputForKey(f.key) : null;
-    if (name && visibleInputs().includes(name) && (i < at || (i === at && f.key.length > best.length))) {
-      best = f.key;
-      at = i;
-    }
-  }
-  return best ? inputForKey(best) : null;
-}
 
 // ---------------------------------------------------------------- URL state
 
@@ -280,7 +273,7 @@ function onMessage(msg) {
     if (fields.length) return;  // a restarted worker (see request): the page is set up
     fields = msg.fields;
     fieldByKey = Object.fromEntries(fields.map((f) => [f.key, f]));
-    table2 = msg.table2;
+    soilKeys = msg.soilKeys;
     $('engine-version').textContent = `Engine: oscidrum ${msg.version} (WebAssembly).`;
     init();
     return;
@@ -304,12 +297,13 @@ function onMessage(msg) {
   }
   const r = msg.result;
   if (!r.ok) {
-    const name = inputForMessage(r.error);
-    if (name) setError(name, r.error);
+    // the input of the parameter the error is about (the engine's error carries its key)
+    const name = r.key ? inputForKey(r.key) : null;
+    if (name && visibleInputs().includes(name)) setError(name, r.error);
     showStatus(`invalid input: ${r.error}`, false);
     return;
   }
-  last = { result: r, soil: msg.soil, ms: msg.ms, inputs: values };
+  last = { result: r, ms: msg.ms, inputs: values };
   render();
 }
 
@@ -601,13 +595,12 @@ function fillMetrics(r, m) {
     ['required μ', fmt(required, 4), 'max |T| / N (pure rolling needs this friction)'],
     ['δ max / min', `${fmt(m.delta_max, 4)} / ${fmt(m.delta_min, 4)}`, 'rad'],
   ];
-  if (last.soil && last.soil.ok) {
-    const c = last.soil;
-    rows.push(['soil (Appendix B)', `a0 ${fmt(c.a0, 4)} m; ksh ${fmt(c.ksh / 1e6, 4)}, ksv ${fmt(c.ksv / 1e6, 4)} MN/m; csh ${fmt(c.csh / 1e3, 4)}, csv ${fmt(c.csv / 1e3, 4)} kN s/m`, '(42)-(45)']);
-  } else {
-    const c = r.case;
-    rows.push(['soil (Table 2)', `ksh ${fmt(c['soil.ksh'] / 1e6, 4)}, ksv ${fmt(c['soil.ksv'] / 1e6, 4)} MN/m; csh ${fmt(c['soil.csh'] / 1e3, 4)}, csv ${fmt(c['soil.csv'] / 1e3, 4)} kN s/m`, '']);
-  }
+  // The soil the model uses (its one conversion of the soil input), in the fields' display units.
+  const soil = r.soil;
+  const shown = (key) => `${fmt(soil[key.slice(5)] / fieldByKey[key].display_scale, 4)}`;
+  const unit = (key) => fieldByKey[key].display_unit;
+  rows.push(['soil', `${soil.summary}:${soil.a0 ? ` a0 ${fmt(soil.a0, 4)} m;` : ''} ksh ${shown('soil.ksh')}, ksv ${shown('soil.ksv')} ${unit('soil.ksv')}; ` +
+    `csh ${shown('soil.csh')}, csv ${shown('soil.csv')} ${unit('soil.csv')}`, '']);
   rows.push(['trough', r.trough.summary, '']);
   rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
   const body = $('metrics').tBodies[0];
@@ -650,18 +643,14 @@ function caseToml() {
   const c = last.result.case;
   const lines = ['# oscidrum case exported by the explorer; run it with: oscidrum run case.toml', ''];
   const sections = {};
-  // only the soil keys that take effect (oscidrum run refuses the others)
-  const modulus = c['soil.input'] === 1;
-  const skip = modulus ? ['soil.ksh', 'soil.ksv', 'soil.csh', 'soil.csv'] : ['soil.G', 'soil.nu', 'soil.rho'];
+  // only the keys that take effect (the engine's key_in_effect; oscidrum run refuses the others)
   for (const f of fields) {
-    if (skip.includes(f.key)) continue;
+    if (!last.result.in_effect[f.key]) continue;
     const dot = f.key.indexOf('.');
     if (dot < 0) lines.push(`${f.key} = ${tomlNumber(f, c[f.key])}  # [${f.unit}] ${f.description}`);
     else (sections[f.key.slice(0, dot)] ||= []).push(`${f.key.slice(dot + 1)} = ${tomlNumber(f, c[f.key])}  # [${f.unit}]`);
   }
-  if (!modulus && $('soil_mode').value === 'table2' && sections.soil) {
-    sections.soil.unshift(`# paper Table 2 at G = ${fmt(c['soil.G'] / 1e6, 6)} MN/m^2`);
-  }
+  if (sections.soil) sections.soil.unshift(`# ${last.result.soil.summary}`);
   for (const [name, body] of Object.entries(sections)) lines.push('', `[${name}]`, ...body);
   return lines.join('\n') + '\n';
 }

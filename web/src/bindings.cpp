@@ -75,6 +75,9 @@ val fields() {
     f.set("choices", choice_names(field));
     f.set("rule", oscidrum::field_rule(field));
     f.set("default", field.get(defaults));
+    // The unit the page shows and reads the value in (MN/m^2 for soil.G): value / display_scale.
+    f.set("display_unit", std::string(oscidrum::display_unit(field)));
+    f.set("display_scale", field.display_scale);
     out.call<void>("push", f);
   }
   return out;
@@ -120,6 +123,39 @@ oscidrum::Case case_from(const val& values) {
 val case_values(const oscidrum::Case& c) {
   val out = val::object();
   for (const oscidrum::Field& field : oscidrum::fields()) out.set(field.key, field.get(c));
+  return out;
+}
+
+// Whether each field takes effect in the case (oscidrum::key_in_effect), keyed as above.
+val keys_in_effect(const oscidrum::Case& c) {
+  val out = val::object();
+  for (const oscidrum::Field& field : oscidrum::fields())
+    out.set(field.key, oscidrum::key_in_effect(c, field.key));
+  return out;
+}
+
+// Whether `key` takes effect in the case `values` (oscidrum::key_in_effect): the page asks which
+// soil keys each soil.input reads.
+bool key_in_effect(const val& values, const std::string& key) {
+  try {
+    return oscidrum::key_in_effect(case_from(values), key);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The soil the model uses: how it is given, in words, and the coefficients of the model's one
+// conversion of the soil input (oscidrum::soil_coefficients).
+val soil_of(const oscidrum::Case& c) {
+  const oscidrum::SoilCoefficients k = oscidrum::soil_coefficients(c.soil, c.roller);
+  val out = val::object();
+  out.set("source", std::string(oscidrum::soil_source_id(c.soil)));
+  out.set("summary", oscidrum::soil_summary(c.soil));
+  out.set("a0", k.a0);  // [m], 0 when the coefficients are given directly
+  out.set("ksh", k.ksh);
+  out.set("ksv", k.ksv);
+  out.set("csh", k.csh);
+  out.set("csv", k.csv);
   return out;
 }
 
@@ -221,10 +257,11 @@ val trough_of(const oscidrum::TroughGeometry& g) {
   return out;
 }
 
-val error_object(const std::string& message) {
+val error_object(const std::string& message, const std::string& key = {}) {
   val out = val::object();
   out.set("ok", false);
   out.set("error", message);
+  if (!key.empty()) out.set("key", key);  // the parameter the error is about (oscidrum::Error)
   return out;
 }
 
@@ -244,6 +281,8 @@ val simulate(const val& values, int n_max) {
     out.set("status", std::string(oscidrum::to_string(r.status)));
     out.set("message", r.message);
     out.set("case", case_values(c));
+    out.set("in_effect", keys_in_effect(c));
+    out.set("soil", soil_of(c));
     out.set("trough", trough_of(model.geometry()));
     out.set("diagnostics", diagnostics_of(r.diagnostics));
     out.set("frequency", r.frequency);
@@ -259,6 +298,8 @@ val simulate(const val& values, int n_max) {
       out.set("metrics", val::null());
     }
     return out;
+  } catch (const oscidrum::Error& e) {
+    return error_object(e.what(), e.key());
   } catch (const std::exception& e) {
     return error_object(e.what());
   }
@@ -303,7 +344,7 @@ val table2() {
   return out;
 }
 
-// The Table 2 soil at G [Pa] as field values ({"soil.input": 0, "soil.ksh": ...}).
+// The Table 2 soil at G [Pa] as field values ({"soil.input": 2, "soil.G": ..., "soil.ksh": ...}).
 val table2_soil(double G) {
   try {
     oscidrum::Case c;
@@ -323,6 +364,7 @@ std::string version() { return oscidrum::version; }
 EMSCRIPTEN_BINDINGS(oscidrum) {
   emscripten::function("fields", &fields);
   emscripten::function("checkField", &check_field);
+  emscripten::function("keyInEffect", &key_in_effect);
   emscripten::function("simulate", &simulate);
   emscripten::function("soilCoefficients", &soil_coefficients);
   emscripten::function("table2", &table2);

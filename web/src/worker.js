@@ -1,8 +1,8 @@
 // The engine runs here, off the page's thread: the page never freezes, whatever the case costs.
 // Messages in:  {type: 'run', seq, values, n_max}  (values: field key -> number, as in fields())
-// Messages out: {type: 'ready', fields, table2, version}
-//               {type: 'result', seq, result, errors, soil, ms}   (errors: key -> message;
-//               soil: the Appendix B coefficients when soil.input is modulus)
+// Messages out: {type: 'ready', fields, soilKeys, version}   (soilKeys: soil.input name -> the
+//               soil keys it reads, by the engine's key_in_effect)
+//               {type: 'result', seq, result, errors, ms}   (errors: key -> message)
 'use strict';
 importScripts('oscidrum.js');
 
@@ -12,7 +12,12 @@ const ready = createOscidrum().then((m) => {
   const fields = m.fields();
   // Warm the engine up (the browser compiles the hot code fully after a first run).
   m.simulate({}, 10);
-  postMessage({ type: 'ready', fields, table2: m.table2(), version: m.version() });
+  const soilKeys = {};
+  for (const choice of fields.find((f) => f.key === 'soil.input').choices) {
+    soilKeys[choice] = fields.filter((f) => f.key.startsWith('soil.') && f.key !== 'soil.input' &&
+                                            m.keyInEffect({ 'soil.input': choice }, f.key)).map((f) => f.key);
+  }
+  postMessage({ type: 'ready', fields, soilKeys, version: m.version() });
 });
 
 function run(msg) {
@@ -25,14 +30,12 @@ function run(msg) {
     postMessage({ type: 'result', seq: msg.seq, result: null, errors, ms: 0 });
     return;
   }
-  const v = msg.values;
-  const soil = v['soil.input'] === 1 ? engine.soilCoefficients(v['soil.G'], v['soil.nu'], v['soil.rho'], v) : null;
   const t0 = performance.now();
   const result = engine.simulate(msg.values, msg.n_max);
   const ms = performance.now() - t0;
   const transfer = [];
   if (result.ok) for (const v of Object.values(result.samples)) transfer.push(v.buffer);
-  postMessage({ type: 'result', seq: msg.seq, result, errors, soil, ms }, transfer);
+  postMessage({ type: 'result', seq: msg.seq, result, errors, ms }, transfer);
 }
 
 onmessage = (ev) => {

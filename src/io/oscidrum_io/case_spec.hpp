@@ -1,7 +1,7 @@
 // oscidrum_io/case_spec.hpp: a case as the user wrote it (config file, flags, sweep values),
 // before it becomes a Case. It remembers where every explicit value came from, so that errors
-// can name the file and line, and it holds the two conveniences that must be resolved only once
-// all values are known (a sweep over roller.M0 with MMd_fraction, over soil.G with Table 2).
+// can name the file and line, and it holds the convenience that must be resolved only once all
+// values are known (a sweep over roller.M0 with MMd_fraction).
 #pragma once
 
 #include <cstdint>
@@ -60,7 +60,6 @@ struct CaseSpec {
   Case values;  ///< every field; defaults = the paper's roller
   /// Keys set explicitly, and where: "case.toml:3:1", "--G", "--set soil.G=5e6", "sweep (...)".
   std::map<std::string, std::string, std::less<>> origin;
-  bool table2 = false;                 ///< soil coefficients from paper Table 2 at soil.G
   std::optional<double> MMd_fraction;  ///< MMd = MMd_fraction * roller.M0
 
   bool given(std::string_view key) const { return origin.find(key) != origin.end(); }
@@ -77,27 +76,22 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
 void assign_text(CaseSpec& spec, std::string_view key, std::string_view text,
                  const std::string& origin);
 
-/// Forget how the soil was given (for a flag that redefines it): values stay, origins and the
-/// Table 2 choice go.
+/// Forget how the soil was given (for a flag that redefines it): values stay, origins go.
 void clear_soil(CaseSpec& spec);
 
-/// Turn the soil into explicit coefficients (Table 2 or Appendix B as the spec says), so that a
-/// flag can override one of them.
+/// Turn the soil into explicit coefficients (Table 2 or Appendix B as soil.input says, by the
+/// model's own conversion), so that a flag can override one of them.
 void materialize_soil(CaseSpec& spec);
 
-/// Resolve the conveniences and check the rules that tie keys together (a soil key that would
-/// have no effect, MMd and MMd_fraction both given, ...). Warnings (plausible mistakes that are
-/// not errors) are appended to `warnings` if given. Throws oscidrum::Error naming the origin.
+/// Resolve the conveniences and check the rules that tie keys together (a key given that would
+/// have no effect, by key_in_effect; a G that Table 2 does not hold; MMd and MMd_fraction both
+/// given, ...). Coefficient keys given while soil.input was left at its default (table2) give the
+/// soil by its coefficients, the others from the Table 2 row at soil.G. Warnings (plausible
+/// mistakes that are not errors) are appended to `warnings` if given. Throws oscidrum::Error
+/// naming the origin.
 Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings = nullptr);
 
-/// Validate `c` as Model does; on failure rethrow with the origin of the key the message names.
+/// Validate `c` as Model does; on failure rethrow with the origin of the key the error carries.
 void validate(const Case& c, const CaseSpec& spec);
-
-/// How the soil is given, for summaries: "Table 2 at G = 25 MN/m^2", "Appendix B (42)-(45) from
-/// G = 27 MN/m^2, nu = 0.3, rho = 1900 kg/m^3", "coefficients given directly".
-std::string soil_source(const CaseSpec& spec);
-
-/// Machine name of the same: "table2", "appendix_b", "coefficients".
-std::string soil_source_id(const CaseSpec& spec);
 
 }  // namespace oscidrum::io

@@ -25,10 +25,10 @@ StudySpec read_study_file(const std::string& path);
 /// The same for TOML text; `dir` resolves `base`.
 StudySpec read_study_text(std::string_view text, const std::string& name, const std::string& dir);
 
-/// A case file that sets every field of `c` (with unit and description as comments). The soil
-/// keys that would have no effect are written as comments: with `table2`, soil.table2_G = G
-/// stands for the coefficients. Reading it back gives `c` again (the unused soil keys aside).
-std::string case_to_toml(const Case& c, bool table2 = false);
+/// A case file that sets every field of `c` (with unit and description as comments). The keys
+/// that would have no effect (key_in_effect) are written as comments. Reading it back gives `c`
+/// again (the unused keys aside).
+std::string case_to_toml(const Case& c);
 
 /// The whole file as bytes. Throws oscidrum::Error "cannot read FILE: reason".
 std::string read_file(const std::string& path);
