@@ -1,0 +1,62 @@
+// Tests of src/io/csv.cpp: quoting, splitting and numbers that read back exactly; the study
+// row and the steady-state header, the contract of the CSV files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/io_test_util.hpp"
+#include "oscidrum_io/csv.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+using namespace oscidrum::io::test;
+
+TEST(Csv, QuoteSplitAndNumbersRoundTrip) {
+  const std::vector<std::string> cells = {"plain", "a,b", "say \"hi\"", "", "x\ny"};
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) line += ',';
+    line += csv_quote(cells[i]);
+  }
+  EXPECT_EQ(csv_split(line), cells);
+  for (double v : {0.05, 1.0 / 3.0, 5e6, -2.5e-300, 0.1 + 0.2}) {
+    EXPECT_EQ(std::strtod(format_double(v).c_str(), nullptr), v);
+    EXPECT_EQ(std::strtod(format_double_short(v).c_str(), nullptr), v);
+  }
+  EXPECT_EQ(format_double_short(0.05), "0.05");
+  EXPECT_EQ(format_double(std::nan("")), "nan");
+}
+
+TEST(Csv, StudyRowHasAsManyCellsAsTheHeader) {
+  const StudyColumns columns{{"soil.table2_G", "contact.pure_rolling"}, 4};
+  const std::size_t n = csv_split(study_csv_header(columns)).size();
+  CaseOutcome invalid;
+  invalid.valid = false;
+  invalid.error = "bad, really";
+  EXPECT_EQ(csv_split(study_csv_row(columns, 3, {5e6, true}, invalid)).size(), n);
+  CaseOutcome no_samples;
+  no_samples.result.status = Status::contact_lost;
+  EXPECT_EQ(csv_split(study_csv_row(columns, 3, {5e6, true}, no_samples)).size(), n);
+  CaseOutcome full;
+  full.result.samples.t = {0.0};
+  full.metrics.ddx_harmonics.resize(5);
+  full.metrics.ddz_harmonics.resize(5);
+  EXPECT_EQ(csv_split(study_csv_row(columns, 3, {5e6, true}, full)).size(), n);
+  EXPECT_EQ(csv_split(study_csv_header(columns))[1], "soil.table2_G[Pa]");
+}
+
+TEST(Csv, SteadyStateHeaderIsTheContract) {
+  std::ostringstream out;
+  write_steady_state_csv(out, Result{});
+  EXPECT_EQ(out.str(),
+            "t[s],delta[rad],phi[rad],x_A[m],s_A[m],ddelta[rad/s],dphi[rad/s],dx_A[m/s],ds_A[m/s],"
+            "x_M[m],z_M[m],ddx_M[m/s^2],ddz_M[m/s^2],N[N],T[N],v_rel[m/s],torque[N m],phase[-]\n");
+}
+
+}  // namespace
+}  // namespace oscidrum::io

@@ -1,0 +1,99 @@
+// Tests of src/io/files.cpp: atomic writes and the sweep journal (resume, torn lines, the lock).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "io/io_test_util.hpp"
+#include "oscidrum_io/config.hpp"
+#include "oscidrum_io/files.hpp"
+
+namespace oscidrum::io {
+namespace {
+
+using namespace oscidrum::io::test;
+
+TEST(Files, AtomicWriteReplacesWholeFile) {
+  TempDir dir;
+  const std::string path = dir.file("out.csv");
+  write_file_atomic(path, "old\n");
+  write_file_atomic(path, "new\n");
+  EXPECT_EQ(read_file(path), "new\n");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.file("")),
+                          std::filesystem::directory_iterator{}),
+            1);
+  EXPECT_NE(
+      error_of([&] { write_file_atomic(dir.file("no/such/dir/x"), "x"); }).find("cannot write"),
+      std::string::npos);
+}
+
+TEST(Files, JournalResumesAndDropsATornLine) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  {
+    Journal j(path, 42, 5, false);
+    EXPECT_TRUE(j.done().empty());
+    j.append(3, "3,a");
+    j.append(0, "0,b");
+  }
+  {  // a kill in the middle of a row
+    std::ofstream(path, std::ios::app) << "4,tor";
+  }
+  EXPECT_NE(error_of([&] { Journal j(path, 42, 5, false); }).find("run again with --resume"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Journal j(path, 43, 5, true); }).find("belongs to a different study"),
+            std::string::npos);
+  {
+    Journal j(path, 42, 5, true);
+    ASSERT_EQ(j.done().size(), 2u);
+    EXPECT_EQ(j.done().at(3), "3,a");
+    EXPECT_EQ(j.done().at(0), "0,b");
+    j.append(4, "4,c");
+  }
+  Journal j(path, 42, 5, true);
+  EXPECT_EQ(j.done().size(), 3u);
+  EXPECT_EQ(j.done().at(4), "4,c");
+  j.remove();
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+// Issue 14 (6): a journal killed before its first line was written is empty; --resume used to
+// call it "a different study".
+TEST(Files, EmptyOrTornHeaderJournalHoldsNoCaseAndIsResumable) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  std::ofstream(path).flush();  // 0 bytes
+  {
+    Journal j(path, 42, 5, true);
+    EXPECT_TRUE(j.done().empty());
+    j.append(1, "1,x");
+  }
+  std::ofstream(path) << "# oscidrum sweep jour";  // the header cut short
+  Journal j(path, 42, 5, true);
+  EXPECT_TRUE(j.done().empty());
+  EXPECT_EQ(read_file(path).rfind("# oscidrum sweep journal v1 fingerprint", 0), 0u);
+}
+
+// Issue 14 (6): two sweeps on one journal (two --resume at once) both ran every remaining case.
+TEST(Files, JournalIsLockedWhileInUse) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  {
+    Journal first(path, 42, 5, false);
+    first.append(0, "0,a");
+    EXPECT_NE(error_of([&] {
+                Journal second(path, 42, 5, true);
+              }).find("another oscidrum sweep is running"),
+              std::string::npos);
+    EXPECT_NE(error_of([&] {
+                Journal second(path, 42, 5, false, true);
+              }).find("another oscidrum sweep is running"),
+              std::string::npos);  // --restart must not pull it away either
+  }
+  Journal again(path, 42, 5, true);  // released with the first
+  EXPECT_EQ(again.done().size(), 1u);
+}
+
+}  // namespace
+}  // namespace oscidrum::io
