@@ -1,0 +1,43 @@
+// The forward model of the identification (identify.hpp, simulate_metrics): one bounded run of
+// the model to its steady state, reduced to its metrics and what the fit needs beside them.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "oscidrum/identify.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/simulate.hpp"
+
+namespace oscidrum {
+
+ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps) {
+  const Model model(c);
+  // The budget counts the flow's polls of `cancelled`: one per accepted integration step.
+  long steps = 0;
+  std::function<bool()> over_budget;
+  if (max_steps > 0) over_budget = [&steps, max_steps] { return ++steps > max_steps; };
+  const Result r = simulate(model, {}, over_budget);
+  ModelResponse out;
+  out.status = r.status;
+  out.message = r.message;
+  out.friction_ratio = std::numeric_limits<double>::quiet_NaN();
+  if (r.status == Status::cancelled && max_steps > 0 && steps > max_steps) {
+    out.status = Status::budget_exceeded;
+    out.message = "no steady state within " + std::to_string(max_steps) +
+                  " integration steps (the budget of one model run; " + r.message + ")";
+    return out;
+  }
+  if (!r.samples.t.empty()) out.metrics = compute_metrics(r, n_max);
+  if (r.status == Status::steady_state) {
+    double ratio = 0;
+    for (std::size_t j = 0; j < r.samples.size(); ++j)
+      ratio = std::max(ratio, std::abs(r.samples.T[j]) / r.samples.N[j]);
+    out.friction_ratio = ratio;
+    out.switches_per_period = r.diagnostics.switches_per_period;
+  }
+  return out;
+}
+
+}  // namespace oscidrum

@@ -1,0 +1,82 @@
+// identify/problem.hpp: the identification as a least-squares problem (solver.hpp): the unknowns
+// in internal coordinates, the forward model (simulate_metrics at the record's f, cached), the
+// time shift projected out, and the weighted residuals of the measured harmonics.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "identify/solver.hpp"
+#include "oscidrum/identify.hpp"
+
+namespace oscidrum::detail {
+
+/// The unknowns an identification can estimate.
+enum class Unknown { G, ksh, ksv, mu, MMd };
+
+const char* name_of(Unknown k);
+const char* unit_of(Unknown k);
+
+/// Internal coordinates: ln G, ln ksh, ln ksv, ln mu, MMd / M0.
+double to_internal(Unknown k, double v, double M0);
+double to_physical(Unknown k, double p, double M0);
+
+/// The model's response at one point, reduced to what the fit compares.
+struct Simulated {
+  bool ok = false;
+  std::string message;
+  std::vector<std::complex<double>> x, z;  ///< C_n, n = 1 ... harmonics
+  double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0, area = 0;
+  Metrics metrics;
+  double friction_ratio = std::numeric_limits<double>::quiet_NaN();  ///< largest |T| / N [-]
+  bool rolling = false;  ///< the steady state sticks throughout (no slip)
+};
+
+/// Every model run of an identification is bounded: at most this many integration steps in all
+/// (about half a second).
+inline constexpr long kMaxStepsPerRun = 400000;
+
+class Problem : public LeastSquares {
+ public:
+  Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& options);
+
+  int rows() const override { return rows_; }
+  const std::vector<Bounds>& bounds() const override { return bounds_; }
+  bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override;
+  std::string failure(const Eigen::VectorXd& p) override { return simulate_at(p).message; }
+
+  /// The residual at p and the time shift (as the phase phi = 2 pi f tau) that aligns the model.
+  bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r, double& phi);
+
+  const std::vector<Unknown>& unknowns() const { return unknowns_; }
+  int simulations() const { return simulations_; }
+  double M0() const { return case_.roller.M0; }
+  /// The base case at the record's f (M0 scaled by (f / roller.f)^2, (5)), with the numerics of
+  /// the identification.
+  const Case& base() const { return case_; }
+  Case case_at(const Eigen::VectorXd& p) const;
+  /// The internal coordinates of the unknowns of c, clamped to their bounds.
+  Eigen::VectorXd internal_of(const Case& c) const;
+  /// The model at p (cached).
+  const Simulated& simulate_at(const Eigen::VectorXd& p);
+
+ private:
+  ModelResponse run(const Case& c);
+  ModelResponse rolling_instead(const Case& c, const Eigen::VectorXd& p, const ModelResponse& r);
+  double best_phase(const Simulated& s) const;
+
+  MeasuredResponse data_;
+  IdentifyOptions o_;
+  Case case_;
+  std::vector<Unknown> unknowns_;
+  std::vector<Bounds> bounds_;
+  int n_sim_ = 10, rows_ = 0, simulations_ = 0;
+  std::map<std::vector<double>, Simulated> cache_;
+  std::map<std::vector<double>, ModelResponse> rolling_cache_;
+};
+
+}  // namespace oscidrum::detail

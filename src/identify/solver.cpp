@@ -1,0 +1,99 @@
+// Levenberg-Marquardt with a mask of fixed parameters (solver.hpp).
+#include "identify/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace oscidrum::detail {
+
+bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::VectorXd& r,
+              const std::vector<bool>& free, Eigen::MatrixXd& J) {
+  J.setZero(problem.rows(), p.size());
+  for (Eigen::Index j = 0; j < p.size(); ++j) {
+    if (!free[static_cast<std::size_t>(j)]) continue;
+    const Bounds& b = problem.bounds()[static_cast<std::size_t>(j)];
+    Eigen::VectorXd q = p;
+    double h = kJacobianStep;
+    if (q[j] + h > b.hi) h = -h;  // step inwards at the upper bound
+    q[j] += h;
+    Eigen::VectorXd rq;
+    if (!problem.residual(q, rq)) {
+      q[j] = p[j] - h;  // the other side
+      if (!problem.residual(q, rq)) return false;
+      h = -h;
+    }
+    J.col(j) = (rq - r) / h;
+  }
+  return true;
+}
+
+Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
+                        const std::vector<bool>& free, int max_iterations) {
+  Fit fit;
+  fit.p = p;
+  if (!problem.residual(p, fit.r)) {
+    fit.message = "the model fails at the start";
+    return fit;
+  }
+  fit.S = fit.r.squaredNorm();
+  double lambda = 1e-3;
+  Eigen::MatrixXd J;
+  for (int it = 0; it < max_iterations; ++it) {
+    fit.iterations = it + 1;
+    if (!jacobian(problem, fit.p, fit.r, free, J)) {
+      fit.message = "the model fails next to the estimate";
+      return fit;
+    }
+    fit.J = J;
+    fit.last_step = 1.0;
+    const Eigen::MatrixXd A = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * fit.r;
+    bool accepted = false;
+    double step_norm = 0, gain = 0;
+    while (lambda < 1e12) {
+      Eigen::MatrixXd M = A;
+      for (Eigen::Index j = 0; j < A.rows(); ++j)
+        M(j, j) = free[static_cast<std::size_t>(j)] ? A(j, j) * (1 + lambda) + 1e-12 : 1.0;
+      Eigen::VectorXd dp = -M.ldlt().solve(g);
+      for (Eigen::Index j = 0; j < dp.size(); ++j)
+        if (!free[static_cast<std::size_t>(j)]) dp[j] = 0;
+      // Trust region: internal coordinates move at most 0.7 (a factor 2 in G) per step.
+      const double big = dp.cwiseAbs().maxCoeff();
+      if (big > 0.7) dp *= 0.7 / big;
+      if (big < 1e-7) break;  // the steps have shrunk to nothing: at the minimum
+      Eigen::VectorXd q = fit.p + dp;
+      for (Eigen::Index j = 0; j < q.size(); ++j) {
+        const Bounds& b = problem.bounds()[static_cast<std::size_t>(j)];
+        q[j] = std::clamp(q[j], b.lo, b.hi);
+      }
+      Eigen::VectorXd rq;
+      if (problem.residual(q, rq) && rq.squaredNorm() < fit.S) {
+        gain = fit.S - rq.squaredNorm();
+        step_norm = (q - fit.p).cwiseAbs().maxCoeff();
+        fit.p = q;
+        fit.r = rq;
+        fit.S = rq.squaredNorm();
+        fit.last_step = step_norm;
+        lambda = std::max(lambda / 5, 1e-9);
+        accepted = true;
+        break;
+      }
+      lambda *= 8;
+    }
+    if (!accepted) {
+      fit.converged = true;  // no step lowers the objective: a minimum (to the FD precision)
+      fit.message = "no step lowers the objective";
+      return fit;
+    }
+    // 1e-4 in ln G is 0.01 % of G, far below any uncertainty the data allow.
+    if (step_norm < 1e-4 || gain < 1e-8 * fit.S) {
+      fit.converged = true;
+      fit.message = "converged";
+      return fit;
+    }
+  }
+  fit.message = "iteration limit reached";
+  return fit;
+}
+
+}  // namespace oscidrum::detail

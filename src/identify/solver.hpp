@@ -1,0 +1,59 @@
+// identify/solver.hpp: bounded nonlinear least squares by Levenberg-Marquardt, with a mask of
+// fixed parameters (the profile intervals hold one parameter fixed and refit the others). The
+// problem is anything that gives weighted residuals r(p) on a box of p, or says that it fails
+// there (the model has no steady state at p): the solver steps back from such points.
+#pragma once
+
+#include <Eigen/Dense>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace oscidrum::detail {
+
+/// The box of one parameter (internal coordinates).
+struct Bounds {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+};
+
+/// Weighted residuals r(p): the objective is S(p) = |r(p)|^2.
+class LeastSquares {
+ public:
+  virtual ~LeastSquares() = default;
+  virtual int rows() const = 0;
+  virtual const std::vector<Bounds>& bounds() const = 0;
+  /// r at p; false when there is none (the model fails at p).
+  virtual bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) = 0;
+  /// Why residual(p) failed, in words ("" if it did not or the problem cannot say).
+  virtual std::string failure(const Eigen::VectorXd& /*p*/) { return {}; }
+};
+
+/// The result of a fit.
+struct Fit {
+  Eigen::VectorXd p, r;
+  Eigen::MatrixXd J;       ///< the last Jacobian, at a point at most last_step from p
+  double last_step = 1.0;  ///< size of the last accepted step (internal coordinates)
+  double S = std::numeric_limits<double>::infinity();  ///< |r|^2 (infinite: no fit)
+  int iterations = 0;
+  bool converged = false;
+  std::string message;  ///< why it stopped
+};
+
+/// Forward-difference step of the internal coordinates.
+inline constexpr double kJacobianStep = 1e-3;
+
+/// The Jacobian dr/dp at p (r = r(p)) by forward differences of kJacobianStep (inwards at an
+/// upper bound, the other side where the problem fails); columns of fixed parameters are 0.
+/// False when the problem fails on both sides of some parameter.
+bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::VectorXd& r,
+              const std::vector<bool>& free, Eigen::MatrixXd& J);
+
+/// Levenberg-Marquardt from p over the free parameters, steps clamped to the bounds and limited
+/// to 0.7 in any internal coordinate (a factor 2 in a parameter on a log scale). Converged when
+/// no step lowers S, a step is below 1e-4 or the decrease below 1e-8 S. S is infinite (and
+/// `message` says why) when the problem fails at the start or next to it.
+Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
+                        const std::vector<bool>& free, int max_iterations);
+
+}  // namespace oscidrum::detail

@@ -1,0 +1,101 @@
+// Tests of the bounded Levenberg-Marquardt solver (src/identify/solver.cpp) on problems whose
+// minimum is known: an exponential decay fitted to exact data, with a fixed parameter, a bound
+// and a region where the "model" fails.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "identify/solver.hpp"
+
+namespace oscidrum::detail {
+namespace {
+
+// y_i = a exp(-b x_i), x_i = 0, 0.1, ..., 2; p = (ln a, ln b); fails where b > fail_above.
+class Decay : public LeastSquares {
+ public:
+  Decay(double a, double b) {
+    for (int i = 0; i <= 20; ++i) {
+      x_.push_back(0.1 * i);
+      y_.push_back(a * std::exp(-b * x_.back()));
+    }
+    bounds_ = {{std::log(1e-3), std::log(1e3)}, {std::log(1e-3), std::log(1e3)}};
+  }
+  int rows() const override { return static_cast<int>(x_.size()); }
+  const std::vector<Bounds>& bounds() const override { return bounds_; }
+  bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override {
+    ++calls;
+    const double a = std::exp(p[0]), b = std::exp(p[1]);
+    if (b > fail_above) return false;
+    r.resize(rows());
+    for (int i = 0; i < rows(); ++i) r[i] = y_[i] - a * std::exp(-b * x_[i]);
+    return true;
+  }
+  std::string failure(const Eigen::VectorXd&) override { return "b too large"; }
+  std::vector<Bounds> bounds_;
+  double fail_above = 1e300;
+  int calls = 0;
+
+ private:
+  std::vector<double> x_, y_;
+};
+
+TEST(LevenbergMarquardt, FindsTheExactMinimumFromAFarStart) {
+  Decay d(2.0, 1.5);
+  const Fit fit =
+      levenberg_marquardt(d, Eigen::Vector2d(std::log(20.0), std::log(0.1)), {true, true}, 100);
+  ASSERT_TRUE(fit.converged) << fit.message;
+  EXPECT_NEAR(std::exp(fit.p[0]), 2.0, 1e-3);
+  EXPECT_NEAR(std::exp(fit.p[1]), 1.5, 1e-3);
+  EXPECT_LT(fit.S, 1e-8);
+}
+
+TEST(LevenbergMarquardt, AFixedParameterDoesNotMove) {
+  Decay d(2.0, 1.5);
+  const Fit fit =
+      levenberg_marquardt(d, Eigen::Vector2d(std::log(1.0), std::log(1.5)), {true, false}, 100);
+  EXPECT_EQ(fit.p[1], std::log(1.5));
+  EXPECT_NEAR(std::exp(fit.p[0]), 2.0, 1e-3);
+  EXPECT_TRUE(fit.J.col(1).isZero());
+}
+
+TEST(LevenbergMarquardt, StaysInsideTheBounds) {
+  Decay d(2.0, 1.5);
+  d.bounds_[1].hi = std::log(1.0);  // the truth lies beyond: the fit ends on the bound
+  const Fit fit =
+      levenberg_marquardt(d, Eigen::Vector2d(std::log(1.0), std::log(0.5)), {true, true}, 100);
+  EXPECT_LE(fit.p[1], std::log(1.0) + 1e-15);
+  EXPECT_NEAR(fit.p[1], std::log(1.0), 1e-6);
+  EXPECT_GT(fit.S, 1e-4);
+}
+
+TEST(LevenbergMarquardt, StepsBackFromWhereTheModelFails) {
+  Decay d(2.0, 1.5);
+  d.fail_above = 1.6;  // a failing region next to the minimum
+  const Fit fit =
+      levenberg_marquardt(d, Eigen::Vector2d(std::log(20.0), std::log(0.1)), {true, true}, 100);
+  EXPECT_TRUE(std::isfinite(fit.S));
+  EXPECT_LE(std::exp(fit.p[1]), 1.6);
+  // The failure at the start is reported, not thrown.
+  const Fit bad =
+      levenberg_marquardt(d, Eigen::Vector2d(std::log(2.0), std::log(3.0)), {true, true}, 100);
+  EXPECT_FALSE(std::isfinite(bad.S));
+  EXPECT_EQ(bad.message, "the model fails at the start");
+}
+
+TEST(Jacobian, ForwardDifferencesOfAnExactDerivative) {
+  Decay d(2.0, 1.5);
+  const Eigen::Vector2d p(std::log(1.7), std::log(1.2));
+  Eigen::VectorXd r;
+  ASSERT_TRUE(d.residual(p, r));
+  Eigen::MatrixXd J;
+  ASSERT_TRUE(jacobian(d, p, r, {true, true}, J));
+  for (int i = 0; i < d.rows(); ++i) {
+    const double x = 0.1 * i, a = 1.7, b = 1.2, y = a * std::exp(-b * x);
+    // dr/dln a = -y, dr/dln b = y b x; forward differences of step h: error O(h) relative.
+    EXPECT_NEAR(J(i, 0), -y, 2 * kJacobianStep * std::abs(y) + 1e-12);
+    EXPECT_NEAR(J(i, 1), y * b * x, 2 * kJacobianStep * (1 + b * x) * std::abs(y * b * x) + 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum::detail
