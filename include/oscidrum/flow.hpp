@@ -144,6 +144,10 @@ using StepView = BasicStepView<OscillationDrum>;
 using FlowObserver = BasicFlowObserver<OscillationDrum>;
 extern template class BasicFlow<OscillationDrum>;
 
+/// The drum with unilateral contact (contact.unilateral): its flow, with the flight phase.
+using UnilateralFlow = BasicFlow<UnilateralDrum>;
+extern template class BasicFlow<UnilateralDrum>;
+
 /// The phase a trajectory starts in from rest: stick, except without friction (mu = 0 and not
 /// pure rolling), where the drum slips from the start (the sign does not matter then).
 Phase initial_phase(const Model& model);

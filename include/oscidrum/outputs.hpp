@@ -48,7 +48,11 @@
     "drum centre vertical acceleration, down positive (18)")                                       \
   X(SampleValues, N, "N", "N", "normal contact force (26)")                                        \
   X(SampleValues, T, "N", "T", "tangential contact force (24, 25)")                                \
-  X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13); 0 in stick")                         \
+  X(SampleValues, v_rel, "m/s", "v_rel", "slip velocity (13); 0 in stick and in flight")           \
+  X(SampleValues, gap, "m", "gap",                                                                 \
+    "gap between drum and trough along the normal at the trough's nearest point (contact."         \
+    "unilateral; 0 in contact)")                                                                   \
+  X(SampleValues, dgap, "m/s", "gap'", "rate of the gap (0 in contact)")                           \
   X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")             \
   X(SamplePhases, phase, "-", "phase",                                                             \
     "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised "          \
@@ -98,6 +102,10 @@
     "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
     "why shooting fell back to the transient method (empty if it did not)")                       \
+  X(std::string, contact_mode, "", "-", "contact mode",                                           \
+    "how the steady state uses its contact: permanent contact, periodic lift-off (every "         \
+    "period), lift-off every p periods (a subharmonic with periods of permanent contact); "       \
+    "aperiodic for a run with lift-offs that reaches no steady state; empty otherwise")           \
   X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                      \
     "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or " \
     "20 when the start from rest lost contact before a steady state and the run was retried "     \
@@ -158,7 +166,16 @@
     "(equals mu when the drum slips) (24-26)")                                                  \
   X(double, friction_work, "J", "friction work per period",                                     \
     "work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over " \
-    "the sampled window / its periods (13, 27)")
+    "the sampled window / its periods (13, 27)")                                                \
+  X(double, flight_fraction, "-", "flight fraction",                                            \
+    "share of the time in flight, the drum off the trough (contact.unilateral; 0 with "         \
+    "permanent contact)")                                                                       \
+  X(double, liftoffs_per_period, "-", "lift-offs per period",                                   \
+    "lift-offs per excitation period on the steady state (contact.unilateral)")                 \
+  X(double, gap_max, "m", "largest gap",                                                        \
+    "largest gap between drum and trough over the steady period (contact.unilateral)")          \
+  X(double, landing_velocity, "m/s", "landing velocity",                                        \
+    "largest speed at which the gap closes at a landing, -g' (contact.unilateral)")
 
 // Quantities of the least-squares fit of a measured record.
 #define OSCIDRUM_RECORD_FIT(X)                                                     \

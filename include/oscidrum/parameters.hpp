@@ -78,6 +78,9 @@ struct Contact {
   bool pure_rolling = false;  ///< ignore the friction limit (mu -> infinity): stick throughout
   FrictionChoice law = FrictionChoice::coulomb;  ///< the friction law
   double v_eps = 0.01;  ///< regularisation velocity of the regularised law [m/s]
+  /// Unilateral contact: the drum may lift off (N reaching 0) and land again (docs/model.md
+  /// section 13); false: the paper's permanent contact (N reaching 0 ends the run).
+  bool unilateral = false;
 };
 
 /// How the periodic steady state is found (docs/periodic.md).

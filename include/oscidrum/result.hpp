@@ -30,7 +30,9 @@ enum class EventKind {
   stick_to_slip,  ///< |T| reached mu N
   slip_to_stick,  ///< v_rel reached 0 and the stick solution stays in the friction cone
   slip_reversal,  ///< v_rel reached 0, stick not sustainable: slip on with the opposite sign
-  contact_lost,   ///< N reached 0
+  contact_lost,   ///< N reached 0 (permanent contact: the run stops)
+  lift_off,       ///< N reached 0 with contact.unilateral: the drum leaves the trough (flight)
+  landing,        ///< the gap closed: contact resumes in stick or slip
 };
 const char* to_string(EventKind kind);
 
@@ -39,6 +41,8 @@ struct Event {
   EventKind kind = EventKind::stick_to_slip;
   Phase from = Phase::stick;
   Phase to = Phase::stick;
+  /// A landing: the speed at which the gap closed, -g' [m/s] (0 for every other event).
+  double speed = 0.0;
 };
 
 /// Counters of the run: one member per entry of OSCIDRUM_DIAGNOSTICS (oscidrum/outputs.hpp), with
@@ -78,6 +82,7 @@ struct Result {
   double stick_time = 0.0;          ///< time in stick within the sampled window [s]
   double slip_positive_time = 0.0;  ///< time in slip+ within the sampled window [s]
   double slip_negative_time = 0.0;  ///< time in slip- within the sampled window [s]
+  double flight_time = 0.0;         ///< time in flight within the sampled window [s]
   /// Floquet multipliers of the steady state (shooting only; Stability::unknown otherwise).
   Floquet floquet;
   /// The multipliers of the unstable period-1 orbit when shooting replaced it by a stable orbit

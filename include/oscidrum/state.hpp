@@ -10,12 +10,15 @@ enum class Phase : int {
   slip_negative = -1,  ///< v_rel < 0, T = +mu N > 0
   stick = 0,           ///< pure rolling, |T| <= mu N
   slip_positive = 1,   ///< v_rel > 0, T = -mu N < 0
+  /// No contact: the drum has lifted off the trough (contact.unilateral, docs/model.md
+  /// section 13); N = T = 0 and the soil relaxes.
+  flight = 2,
   /// The one phase of a smooth (regularised) friction law: T = -m(v_rel) N for every v_rel,
   /// no stick and no switches (oscidrum/friction.hpp). Samples show its apparent phase instead.
-  smooth = 2,
+  smooth = 3,
 };
 
-/// Human-readable name: "stick", "slip+", "slip-", "smooth".
+/// Human-readable name: "stick", "slip+", "slip-", "flight", "smooth".
 const char* to_string(Phase phase);
 
 /// The sign s of a slip phase (+1, -1), 0 for stick and the smooth phase.

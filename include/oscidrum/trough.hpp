@@ -26,6 +26,15 @@ struct TroughParameter {
   const char* key;     ///< the case key that sets it ("trough.a"), or nullptr if derived
 };
 
+/// Where a drum stands against the trough when it is not in contact (contact.unilateral, docs/
+/// model.md section 13): the position angle delta of the trough's point nearest to the drum (its
+/// normal passes through the drum centre M), and the gap between drum and trough along that
+/// normal, > 0 apart, < 0 overlapping. In contact the gap is 0 and delta is the contact's.
+struct TroughGap {
+  double delta = 0.0;  ///< [rad]
+  double gap = 0.0;    ///< [m]
+};
+
 /// Why a drum cannot roll in a trough: the message, naming the rule and the values, and the case
 /// key it is about. An empty message: the drum fits.
 struct FitProblem {
@@ -61,6 +70,10 @@ Kinematics kinematics(const CircleTrough& s, double r, double delta);
 KinematicsRates kinematics_rates(const CircleTrough& s, double r, double delta);
 /// (11) at k = 0: phi = (R - r) delta / r [rad].
 double phi_rolling(const CircleTrough& s, double r, double delta);
+/// The gap of a drum of radius r [m] whose centre is at (x, z) [m] from the trough's point A
+/// (the centre's position in contact at delta is (x_roll, z_roll) (15), (16)): the drum centre's
+/// distance from the trough's centre, (0, -(R - r)), falls short of R - r by the gap.
+TroughGap gap(const CircleTrough& s, double r, double x, double z);
 
 // ---- the logarithmic spiral ---------------------------------------------------------------------
 
@@ -103,6 +116,9 @@ Kinematics kinematics(const LogSpiralTrough& s, double r, double delta);
 KinematicsRates kinematics_rates(const LogSpiralTrough& s, double r, double delta);
 /// (11): phi = sqrt(1 + k^2) R0 [1 - exp(-k delta)] / (k r) - delta [rad].
 double phi_rolling(const LogSpiralTrough& s, double r, double delta);
+/// The gap of a drum centred at (x, z) [m] from A: delta by Newton's method on the condition that
+/// the normal (sin delta, cos delta) at the roll curve's point passes through the centre.
+TroughGap gap(const LogSpiralTrough& s, double r, double x, double z);
 
 // ---- every shape --------------------------------------------------------------------------------
 
@@ -120,6 +136,7 @@ concept TroughShapeType = requires(const S& s, double r, double delta, std::stri
   kinematics(s, r, delta);
   kinematics_rates(s, r, delta);
   { phi_rolling(s, r, delta) } -> std::same_as<double>;
+  { gap(s, r, delta, delta) } -> std::same_as<TroughGap>;
 };
 
 /// The trough shapes. Registering a new shape is adding it here.
@@ -140,6 +157,8 @@ double key_value(const TroughShape& shape, std::string_view key);
 double curvature_radius_at_bottom(const TroughShape& shape);
 const char* curvature_radius_formula(const TroughShape& shape);
 FitProblem fit_problem(const TroughShape& shape, double r);
+/// The gap of a drum of radius r [m] centred at (x, z) [m] from the trough's point A.
+TroughGap gap(const TroughShape& shape, double r, double x, double z);
 /// Throws oscidrum::Error (with the key of the problem and its value) if the drum of radius r [m]
 /// cannot roll in the trough.
 void check_fit(const TroughShape& shape, double r);

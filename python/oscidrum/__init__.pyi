@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., start_ramp_periods: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., start_ramp_periods: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., unilateral: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -82,6 +82,8 @@ class Contact:
     pure_rolling: bool
     """ignore the friction limit (mu -> infinity): stick throughout [-]; true or false; default false."""
     def to_dict(self: Contact, all: bool = ...) -> dict: ...
+    unilateral: bool
+    """unilateral contact: the drum may lift off the trough (N reaching 0) and land again, with a flight phase between (docs/model.md section 13); false: the paper's permanent contact, where N reaching 0 ends the run as contact_lost [-]; true or false; default false."""
     v_eps: float
     """regularisation velocity of contact.law = regularised: tanh(v_rel / v_eps) (-> Coulomb as v_eps -> 0; slip slower than v_eps is creep, shown as stick) [m/s]; in [1e-06, 10]; default 0.01."""
 
@@ -94,6 +96,8 @@ class ContactForces:
 
 class Diagnostics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    contact_mode: str
+    """how the steady state uses its contact: permanent contact, periodic lift-off (every period), lift-off every p periods (a subharmonic with periods of permanent contact); aperiodic for a run with lift-offs that reaches no steady state; empty otherwise [-]"""
     events: int
     """located events [-]"""
     fallback: str
@@ -173,6 +177,8 @@ class EventKind(enum.IntEnum):
     slip_to_stick = 1
     slip_reversal = 2
     contact_lost = 3
+    lift_off = 4
+    landing = 5
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: EventKind, value: handle) -> None: ...
@@ -287,8 +293,16 @@ class Metrics:
     """largest position angle delta (paper Fig. 8a) [rad]"""
     delta_min: float
     """smallest position angle delta [rad]"""
+    flight_fraction: float
+    """share of the time in flight, the drum off the trough (contact.unilateral; 0 with permanent contact) [-]"""
     friction_work: float
     """work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over the sampled window / its periods (13, 27) [J]"""
+    gap_max: float
+    """largest gap between drum and trough over the steady period (contact.unilateral) [m]"""
+    landing_velocity: float
+    """largest speed at which the gap closes at a landing, -g' (contact.unilateral) [m/s]"""
+    liftoffs_per_period: float
+    """lift-offs per excitation period on the steady state (contact.unilateral) [-]"""
     mu_required: float
     """max |T|/N over the steady period: the friction coefficient rolling without slip needs (equals mu when the drum slips) (24-26) [-]"""
     phi_amplitude: float
@@ -393,7 +407,8 @@ class Phase(enum.IntEnum):
     slip_negative = -1
     stick = 0
     slip_positive = 1
-    smooth = 2
+    flight = 2
+    smooth = 3
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: Phase, value: handle) -> None: ...
@@ -401,7 +416,7 @@ class Phase(enum.IntEnum):
     def __init__(self: Phase, value: int) -> None: ...
     def __setstate__(self: Phase, state: int) -> None: ...
     label: str
-    """'stick', 'slip+', 'slip-' or 'smooth'"""
+    """'stick', 'slip+', 'slip-', 'flight' or 'smooth'"""
     name: str
     """name(self: handle) -> str"""
     value: int
@@ -459,6 +474,8 @@ class Result:
     """Diagnostics"""
     events: List[Event]
     """every event of the run, in time order"""
+    flight_time: float
+    """time in flight within the sampled window [s] (contact.unilateral)"""
     floquet_max_modulus: float
     """largest |multiplier|: the transient decays like it per period (NaN without shooting)"""
     floquet_multipliers: List[complex]
@@ -539,12 +556,16 @@ class Samples:
     """steady-state samples, column ddz_M[m/s^2] of docs/csv-columns.md: drum centre vertical acceleration, down positive (18) (read-only NumPy view)"""
     delta: numpy.ndarray
     """steady-state samples, column delta[rad] of docs/csv-columns.md: position angle of the drum in the trough (0: bottom) (read-only NumPy view)"""
+    dgap: numpy.ndarray
+    """steady-state samples, column dgap[m/s] of docs/csv-columns.md: rate of the gap (0 in contact) (read-only NumPy view)"""
     dphi: numpy.ndarray
     """steady-state samples, column dphi[rad/s] of docs/csv-columns.md: phi' (in stick: f5 delta', the rolling condition (12)) (read-only NumPy view)"""
     ds_A: numpy.ndarray
     """steady-state samples, column ds_A[m/s] of docs/csv-columns.md: s_A' (read-only NumPy view)"""
     dx_A: numpy.ndarray
     """steady-state samples, column dx_A[m/s] of docs/csv-columns.md: x_A' (read-only NumPy view)"""
+    gap: numpy.ndarray
+    """steady-state samples, column gap[m] of docs/csv-columns.md: gap between drum and trough along the normal at the trough's nearest point (contact.unilateral; 0 in contact) (read-only NumPy view)"""
     headers: list
     phase: numpy.ndarray
     """contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised friction: the apparent phase, stick while |v_rel| <= 4 v_eps) (int8 copy)"""
@@ -558,7 +579,7 @@ class Samples:
     torque: numpy.ndarray
     """steady-state samples, column torque[N m] of docs/csv-columns.md: excitation MM(t) = M0 sin(nu t) + MMd (5, 6) (read-only NumPy view)"""
     v_rel: numpy.ndarray
-    """steady-state samples, column v_rel[m/s] of docs/csv-columns.md: slip velocity (13); 0 in stick (read-only NumPy view)"""
+    """steady-state samples, column v_rel[m/s] of docs/csv-columns.md: slip velocity (13); 0 in stick and in flight (read-only NumPy view)"""
     x_A: numpy.ndarray
     """steady-state samples, column x_A[m] of docs/csv-columns.md: horizontal displacement of the trough (soil point A) (read-only NumPy view)"""
     x_M: numpy.ndarray

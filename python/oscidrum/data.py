@@ -21,27 +21,12 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-#: Columns of docs/csv-columns.md: (attribute, unit), in file order.
-COLUMNS: Tuple[Tuple[str, str], ...] = (
-    ("t", "s"),
-    ("delta", "rad"),
-    ("phi", "rad"),
-    ("x_A", "m"),
-    ("s_A", "m"),
-    ("ddelta", "rad/s"),
-    ("dphi", "rad/s"),
-    ("dx_A", "m/s"),
-    ("ds_A", "m/s"),
-    ("x_M", "m"),
-    ("z_M", "m"),
-    ("ddx_M", "m/s^2"),
-    ("ddz_M", "m/s^2"),
-    ("N", "N"),
-    ("T", "N"),
-    ("v_rel", "m/s"),
-    ("torque", "N m"),
-    ("phase", "-"),
-)
+from . import _core
+
+#: Columns of docs/csv-columns.md: (attribute, unit), in file order, from the library's output
+#: table (the one description of every output).
+COLUMNS: Tuple[Tuple[str, str], ...] = tuple(
+    (name, unit) for name, unit in _core.sample_columns())
 
 #: The CSV header line of docs/csv-columns.md (without line break).
 HEADER = ",".join(f"{name}[{unit}]" for name, unit in COLUMNS)

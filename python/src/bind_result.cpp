@@ -59,7 +59,10 @@ void bind_result(py::module_& m) {
              "v_rel reached 0 and the stick solution stays in the friction cone")
       .value("slip_reversal", EventKind::slip_reversal,
              "v_rel reached 0, stick not sustainable: slip on with the opposite sign")
-      .value("contact_lost", EventKind::contact_lost, "N reached 0");
+      .value("contact_lost", EventKind::contact_lost, "N reached 0 (permanent contact)")
+      .value("lift_off", EventKind::lift_off,
+             "N reached 0 with contact.unilateral: the drum leaves the trough")
+      .value("landing", EventKind::landing, "the gap closed: contact resumes");
   strict_enum(event_kind);
 
   py::class_<Event>(m, "Event", "One located event.")
@@ -122,6 +125,17 @@ void bind_result(py::module_& m) {
                       d.steps, d.events, d.switches, d.reversals, d.min_N);
         return std::string(buf);
       });
+
+  m.def(
+      "sample_columns",
+      [] {
+        py::list out;
+        for (const SampleOutput& col : sample_outputs())
+          out.append(py::make_tuple(col.name, col.unit));
+        return out;
+      },
+      "The columns of the sampled steady state (docs/csv-columns.md): (name, unit) pairs in file "
+      "order, from the output table.");
 
   py::class_<Samples> samples(m, "Samples",
                               "The sampled steady state (uniform samples over "
@@ -197,6 +211,8 @@ void bind_result(py::module_& m) {
                     "time in slip+ within the sampled window [s]")
       .def_readonly("slip_negative_time", &Result::slip_negative_time,
                     "time in slip- within the sampled window [s]")
+      .def_readonly("flight_time", &Result::flight_time,
+                    "time in flight within the sampled window [s] (contact.unilateral)")
       .def_property_readonly(
           "floquet_multipliers", [](const Result& r) { return r.floquet.multipliers; },
           "Floquet multipliers of the steady state by decreasing modulus (shooting only; empty "

@@ -14,11 +14,14 @@ void bind_state(py::module_& m) {
   phase.value("slip_negative", Phase::slip_negative, "v_rel < 0, T = +mu N > 0 (-1)")
       .value("stick", Phase::stick, "pure rolling, |T| <= mu N (0)")
       .value("slip_positive", Phase::slip_positive, "v_rel > 0, T = -mu N < 0 (+1)")
+      .value("flight", Phase::flight,
+             "no contact: the drum has lifted off (contact.unilateral), N = T = 0 (2)")
       .value("smooth", Phase::smooth,
              "the one phase of the regularised friction law (2); samples show its apparent "
              "phase (stick while creeping) instead")
       .def_property_readonly(
-          "label", [](Phase p) { return to_string(p); }, "'stick', 'slip+', 'slip-' or 'smooth'");
+          "label", [](Phase p) { return to_string(p); },
+          "'stick', 'slip+', 'slip-', 'flight' or 'smooth'");
 
   py::class_<State>(m, "State",
                     "The state q = (delta, x_A, s_A, phi, delta', x_A', s_A', phi') of (51), "

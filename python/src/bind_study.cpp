@@ -31,7 +31,7 @@ constexpr std::int64_t kPollTicks =
 // Diagnostics, Samples and Metrics come from the output tables (oscidrum/outputs.hpp), so a new
 // output travels without a change here.
 
-constexpr std::uint32_t kOutcomeFormat = 0x4f534332;  // "OSC2"
+constexpr std::uint32_t kOutcomeFormat = 0x4f534333;  // "OSC3"
 
 class Writer {
  public:
@@ -116,7 +116,8 @@ void each_member(IO&& io, O& o) {
 #define OSCIDRUM_MEMBER(type, name, unit, label, description) io(r.samples.name);
   OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_MEMBER)
 #undef OSCIDRUM_MEMBER
-  io(r.events), io(r.stick_time), io(r.slip_positive_time), io(r.slip_negative_time);
+  io(r.events), io(r.stick_time), io(r.slip_positive_time), io(r.slip_negative_time),
+      io(r.flight_time);
   io(r.floquet.multipliers), io(r.floquet.max_modulus), io(r.floquet.stability);
   io(r.period1_floquet.multipliers), io(r.period1_floquet.max_modulus),
       io(r.period1_floquet.stability);

@@ -69,6 +69,9 @@ class Sampler : public BasicFlowObserver<R> {
       case Phase::slip_negative:
         result_.slip_negative_time += dt;
         break;
+      case Phase::flight:
+        result_.flight_time += dt;
+        break;
       case Phase::smooth:
         break;  // apparent phases only
     }

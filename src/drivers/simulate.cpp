@@ -107,7 +107,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // too: the fallbacks get what is left.
   detail::BasicShootingStart<R> start = warm;
   start.budget = num.max_periods - d.periods_simulated;
-  const detail::ShootingOutcome shot = detail::shoot_periodic_orbit(flow, progress, start);
+  const auto shot = detail::shoot_periodic_orbit(flow, progress, start);
   d.newton_iterations += shot.newton_iterations;
   d.jacobian_evaluations += shot.jacobian_evaluations;
   d.periods_simulated += shot.periods_integrated;
@@ -168,6 +168,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     result.samples = Samples{};
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
+    result.flight_time = 0.0;
     *sample_rhs = 0;
   };
   // Settled: the orbit moved a little under plain integration and the transient method's own
@@ -325,8 +326,30 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
 // when the steady orbit itself does (its sampling loses contact: no retry).
 constexpr int kRampPeriods = 20;
 
+// Diagnostics::contact_mode from the sampled window's lift-offs (docs/model.md section 13).
+std::string contact_mode(const Result& r) {
+  const int p = std::max(1, r.diagnostics.multiplicity);
+  std::vector<int> per_period(static_cast<std::size_t>(std::max(1, r.sample_periods)), 0);
+  int lift_offs = 0;
+  const double t0 = r.samples.size() > 0 ? r.samples.t.front() : 0.0;
+  for (const Event& e : r.events) {
+    if (e.kind != EventKind::lift_off) continue;
+    ++lift_offs;
+    const auto k = static_cast<std::size_t>(std::floor((e.t - t0) * r.frequency));
+    if (k < per_period.size()) ++per_period[k];
+  }
+  if (r.status == Status::max_periods_reached) return lift_offs > 0 ? "aperiodic" : "";
+  if (r.status != Status::steady_state) return "";
+  if (lift_offs == 0) return "permanent contact";
+  const bool every = std::all_of(per_period.begin(), per_period.end(), [](int n) { return n > 0; });
+  if (every)
+    return p == 1 ? "periodic lift-off"
+                  : "lift-off every period, repeating every " + std::to_string(p) + " periods";
+  return "lift-off every " + std::to_string(p) + " periods";
+}
+
 template <class R>
-Result simulate_roller(const Model& model, const ProgressCallback& progress,
+Result simulate_ramped(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
                        bool all_samples) {
   Result first = simulate_once<R>(model, progress, cancelled, warm, all_samples);
@@ -360,8 +383,16 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
   again.message += "; the start from rest lost contact (" + lost +
                    "), so the excitation was ramped in over " + std::to_string(kRampPeriods) +
                    " periods (diagnostic start_ramp_periods)";
-  if (again.status == Status::steady_state) again.message += ": the steady state keeps contact";
   return again;
+}
+
+template <class R>
+Result simulate_roller(const Model& model, const ProgressCallback& progress,
+                       const std::function<bool()>& cancelled, const detail::WarmStart* warm,
+                       bool all_samples) {
+  Result result = simulate_ramped<R>(model, progress, cancelled, warm, all_samples);
+  result.diagnostics.contact_mode = contact_mode(result);
+  return result;
 }
 
 template <class R>

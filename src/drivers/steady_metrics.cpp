@@ -40,6 +40,7 @@
 #include "oscidrum/flow.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
+#include "roller/rollers.hpp"
 
 namespace oscidrum {
 namespace {
@@ -51,24 +52,8 @@ constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the ar
 using Interpolant = detail::ChebyshevInterpolant<kDegree>;
 
 // The quantities interpolated on each piece.
-enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kQuantities };
-
-std::array<double, kQuantities> evaluate(const Model& model, double baumgarte, double t,
-                                         const State& q, Phase phase) {
-  const Kinematics k = kinematics(model.geometry(), q.delta);  // once for all quantities
-  const Accelerations a = detail::accelerations(model, t, q, phase, baumgarte, k);
-  const DrumMotion d = detail::drum_motion(q, a, k);
-  const ContactForces f = detail::contact_forces(model, q, k);
-  return {d.ddx_M, d.ddz_M, q.delta, q.phi,
-          // T / N signed (mu_required is its largest magnitude): smooth inside a piece, where
-          // |T| / N would have a kink at T = 0.
-          f.T / f.N,
-          // Friction does work only while the drum slides (13, 27). In stick v_rel = 0 by the
-          // rolling condition (12); the flow integrates phi' there without reading it, so
-          // slip_velocity would return its round-off drift (over a long transient from rest, up
-          // to ~1e-6 of the work of a slipping case). In slip T v_rel keeps its sign.
-          phase == Phase::stick ? 0.0 : std::abs(f.T * detail::slip_velocity(model, q, k))};
-}
+// The quantities interpolated on each piece, as the roller's Dynamics::quantities returns them.
+enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kGap, kQuantities };
 
 // One piece of the steady period (an integrator step in one phase, cut at the period's ends):
 // every quantity as its Chebyshev interpolant in t.
@@ -80,33 +65,42 @@ struct Piece {
   Interpolant dx, dz;  // d/dt of x_M'' and z_M'' [m/s^3]
 };
 
-class Recorder : public FlowObserver {
+template <class R>
+class Recorder : public BasicFlowObserver<R> {
  public:
+  using Dyn = detail::Dynamics<R>;
   Recorder(const Model& model, double baumgarte, double t_begin, double t_end)
-      : model_(model), baumgarte_(baumgarte), t_begin_(t_begin), t_end_(t_end) {
+      : dynamics_(model, baumgarte), t_begin_(t_begin), t_end_(t_end) {
     pieces.reserve(256);  // a steady period has some 50 to 200 (growing copies ~1.4 kB each)
   }
 
-  bool on_step(const StepView& step) override {
+  bool on_event(const Event& event, const typename R::State&, const typename R::State&) override {
+    if (event.t < t_begin_ || event.t >= t_end_) return true;
+    if (event.kind == EventKind::lift_off) ++lift_offs;
+    if (event.kind == EventKind::landing) landing_speed = std::max(landing_speed, event.speed);
+    return true;
+  }
+
+  bool on_step(const BasicStepView<R>& step) override {
     const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
     if (!(b > a)) return true;
     Piece& piece = pieces.emplace_back();  // filled in place (a Piece is ~1.4 kB)
     piece.a = a;
     piece.b = b;
     piece.phase = step.phase();
-    std::array<double, 8> end_state{};
+    typename Dyn::Vector end_state{};
     std::array<double, kQuantities> end_values{};
     for (int k = 0; k < Interpolant::kNodes; ++k) {
       // The end nodes exactly at a and b (the one-sided limits at a switch).
       const double t = k == 0 ? b : k == kDegree ? a : Interpolant::node(a, b, k);
-      const State q = step.state(t);
+      const typename Dyn::Vector q = step.state(t).to_array();
       // A piece that continues the last one (no switch between them) starts where it ended:
       // the same time, state and phase, so the same values.
-      const bool same = k == kDegree && have_end_ && t == end_t_ && step.phase() == end_phase_ &&
-                        q.to_array() == end_state_;
-      const auto v = same ? end_values_ : evaluate(model_, baumgarte_, t, q, step.phase());
+      const bool same =
+          k == kDegree && have_end_ && t == end_t_ && step.phase() == end_phase_ && q == end_state_;
+      const auto v = same ? end_values_ : dynamics_.quantities(t, q, step.phase());
       for (int m = 0; m < kQuantities; ++m) piece.values[m][k] = v[m];
-      if (k == 0) end_state = q.to_array(), end_values = v;
+      if (k == 0) end_state = q, end_values = v;
     }
     have_end_ = true;
     end_t_ = b;
@@ -119,15 +113,17 @@ class Recorder : public FlowObserver {
     return true;
   }
   std::vector<Piece> pieces;
+  int lift_offs = 0;           // lift-offs in the period
+  double landing_speed = 0.0;  // the largest approach speed at a landing [m/s]
 
  private:
-  const Model& model_;
-  const double baumgarte_, t_begin_, t_end_;
+  const Dyn dynamics_;
+  const double t_begin_, t_end_;
   // The values at the end of the last piece (node 0).
   bool have_end_ = false;
   double end_t_ = 0.0;
   Phase end_phase_ = Phase::stick;
-  std::array<double, 8> end_state_{};
+  typename Dyn::Vector end_state_{};
   std::array<double, kQuantities> end_values_{};
 };
 
@@ -453,10 +449,6 @@ double curve_area(const std::vector<Piece>& pieces) {
   return enclosed_area(x, z, bulge);
 }
 
-State first_state(const Samples& s) {
-  return {s.delta[0], s.x_A[0], s.s_A[0], s.phi[0], s.ddelta[0], s.dx_A[0], s.ds_A[0], s.dphi[0]};
-}
-
 Spectrum spectrum(const std::vector<Node>& nodes, double Node::*m, double P, double t0, double f,
                   int cycles, int n_max) {
   Spectrum h(static_cast<std::size_t>(n_max) + 1);
@@ -490,6 +482,27 @@ Spectrum spectrum(const std::vector<Node>& nodes, double Node::*m, double P, dou
   return h;
 }
 
+// One steady period integrated again from the first sample, recorded piece by piece.
+struct Recording {
+  std::vector<Piece> pieces;
+  int lift_offs = 0;           // lift-offs in the period
+  double landing_speed = 0.0;  // the largest approach speed at a landing [m/s]
+};
+
+template <class R>
+Recording record_period(const Model& model, const Samples& s, double t0, double t1) {
+  using Dyn = detail::Dynamics<R>;
+  const FlowOptions options = FlowOptions::from(model);
+  const Dyn dynamics(model, options.baumgarte);
+  BasicFlow<R> flow(model, options);
+  flow.reset(t0, R::State::from_array(Dyn::sampled_state(s, 0)),
+             dynamics.flow_phase(s.phase.front()));
+  Recorder<R> rec(model, options.baumgarte, t0, t1);
+  if (flow.advance(t1, &rec) != FlowStop::reached)
+    throw Error("compute_metrics: the steady period did not integrate again: " + flow.message());
+  return {std::move(rec.pieces), rec.lift_offs, rec.landing_speed};
+}
+
 }  // namespace
 
 Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
@@ -502,22 +515,15 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
   const double f = result.frequency, P = p / f;
   const double t0 = s.t.front(), t1 = t0 + P;
-  const State q0 = first_state(s);
-  const Phase phase0 = flow_phase(model.friction(), s.phase.front());
-  const FlowOptions options = FlowOptions::from(model);
-
-  Flow flow(model, options);
-  flow.reset(t0, q0, phase0);
-  Recorder rec(model, options.baumgarte, t0, t1);
-  if (flow.advance(t1, &rec) != FlowStop::reached)
-    throw Error("compute_metrics: the steady period did not integrate again: " + flow.message());
+  const Recording rec =
+      detail::with_roller(model, [&]<class R>() { return record_period<R>(model, s, t0, t1); });
   const std::vector<Piece>& pieces = rec.pieces;
 
   Metrics m;
   // Peaks: first the values at every node, then the interior extrema of only those pieces whose
   // extremum could beat the values already found (most cannot: ChebyshevInterpolant::
   // overshoot_bound). The peaks are the same as with every piece searched.
-  constexpr std::array<Quantity, 4> kPeakQuantities = {kDdx, kDdz, kDelta, kTraction};
+  constexpr std::array<Quantity, 5> kPeakQuantities = {kDdx, kDdz, kDelta, kTraction, kGap};
   std::array<Extremes, kPeakQuantities.size()> peaks;
   for (const Piece& pc : pieces)
     for (std::size_t q = 0; q < kPeakQuantities.size(); ++q)
@@ -534,7 +540,7 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   }
   std::vector<Node> nodes;
   nodes.reserve(pieces.size() * 16);
-  std::array<double, 3> time{};  // slip-, stick, slip+ [s]
+  std::array<double, 4> time{};  // slip-, stick, slip+, flight [s]
   boost::math::quadrature::gauss<double, 16> rule;
   const double nu = 2.0 * kPi * f;
   for (const Piece& pc : pieces) {
@@ -555,13 +561,16 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
                          s_mid * c_off + sign * c_mid * s_off});
       }
     }
-    // A smooth law's one phase: its apparent phases' times come from the sampling (below).
+    // slip- 0, stick 1, slip+ 2, flight 3; a smooth law's one phase: its apparent phases' times
+    // come from the sampling (below).
     if (pc.phase != Phase::smooth)
       time[static_cast<std::size_t>(static_cast<int>(pc.phase) + 1)] += pc.b - pc.a;
   }
   if (model.friction_phases() == FrictionPhases::smooth)
-    time = {result.slip_negative_time, result.stick_time, result.slip_positive_time};
-  const Extremes &ddx = peaks[0], &ddz = peaks[1], &delta = peaks[2], &traction = peaks[3];
+    time = {result.slip_negative_time, result.stick_time, result.slip_positive_time,
+            result.flight_time};
+  const Extremes &ddx = peaks[0], &ddz = peaks[1], &delta = peaks[2], &traction = peaks[3],
+                 &gap = peaks[4];
   m.ddx_max = ddx.hi, m.ddx_min = ddx.lo;
   m.ddz_max = ddz.hi, m.ddz_min = ddz.lo;
   m.delta_max = delta.hi, m.delta_min = delta.lo;
@@ -605,10 +614,14 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   double work = 0.0;
   for (const Node& nd : nodes) work += nd.weight * nd.friction_power;
   m.friction_work = work / p;
-  const double total = time[0] + time[1] + time[2];  // P up to round-off
+  const double total = time[0] + time[1] + time[2] + time[3];  // P up to round-off
   m.stick_fraction = time[1] / total;
   m.slip_positive_fraction = time[2] / total;
   m.slip_negative_fraction = time[0] / total;
+  m.flight_fraction = time[3] / total;
+  m.liftoffs_per_period = static_cast<double>(rec.lift_offs) / p;
+  m.gap_max = std::max(gap.hi, 0.0);
+  m.landing_velocity = rec.landing_speed;
   m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
 
   m.area = curve_area(pieces);

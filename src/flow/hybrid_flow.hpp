@@ -216,6 +216,7 @@ FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) 
   const typename Dyn::Switch sw = dynamics.apply(phase_, c.which, c.t, x);
   ev.kind = sw.kind;
   ev.to = sw.to;
+  ev.speed = sw.speed;
   const StateT before = StateT::from_array(x);
   if (sw.terminal) {
     if (observer) observer->on_event(ev, before, before);

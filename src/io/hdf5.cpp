@@ -298,31 +298,20 @@ std::pair<std::string, std::string> split_label(const std::string& label) {
   return {label.substr(0, open), label.substr(open + 1, label.size() - open - 2)};
 }
 
-// The steady-state columns of docs/csv-columns.md.
+// The steady-state columns of docs/csv-columns.md, from the output table: every numeric column
+// (the phase, an enumeration, is written apart as int8).
 struct SampleColumn {
   const char* name;
   const char* unit;
   const std::vector<double> Samples::*values;
 };
-constexpr SampleColumn kSampleColumns[] = {
-    {"t", "s", &Samples::t},
-    {"delta", "rad", &Samples::delta},
-    {"phi", "rad", &Samples::phi},
-    {"x_A", "m", &Samples::x_A},
-    {"s_A", "m", &Samples::s_A},
-    {"ddelta", "rad/s", &Samples::ddelta},
-    {"dphi", "rad/s", &Samples::dphi},
-    {"dx_A", "m/s", &Samples::dx_A},
-    {"ds_A", "m/s", &Samples::ds_A},
-    {"x_M", "m", &Samples::x_M},
-    {"z_M", "m", &Samples::z_M},
-    {"ddx_M", "m/s^2", &Samples::ddx_M},
-    {"ddz_M", "m/s^2", &Samples::ddz_M},
-    {"N", "N", &Samples::N},
-    {"T", "N", &Samples::T},
-    {"v_rel", "m/s", &Samples::v_rel},
-    {"torque", "N m", &Samples::torque},
-};
+std::vector<SampleColumn> sample_columns() {
+  std::vector<SampleColumn> out;
+  for (const SampleOutput& o : sample_outputs())
+    if (const auto* m = std::get_if<SampleValues Samples::*>(&o.member))
+      out.push_back({o.name, o.unit, *m});
+  return out;
+}
 
 void write_root_attributes(hid_t file, const Hdf5StudyInfo& info, const std::string& path) {
   attr_string(file, "format", kFormat, path);
@@ -379,7 +368,7 @@ StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bo
       checked(H5Gcreate2(impl_->file, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
               H5Gclose, "cannot write " + partial);
   std::vector<std::string> order;  // the column order of docs/csv-columns.md
-  for (const SampleColumn& c : kSampleColumns) order.emplace_back(c.name);
+  for (const SampleColumn& c : sample_columns()) order.emplace_back(c.name);
   order.emplace_back("phase");
   attr_strings(g, "columns", order, partial);
   H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
@@ -407,7 +396,7 @@ void StudyHdf5Writer::add_case(std::size_t index, const CaseOutcome& outcome) {
   attr_double(g, "frequency", r.frequency, file);
   attr_int(g, "sample_periods", r.sample_periods, file);
   attr_int(g, "samples_per_period", r.samples_per_period, file);
-  for (const SampleColumn& c : kSampleColumns)
+  for (const SampleColumn& c : sample_columns())
     write_doubles(g, c.name, r.samples.*(c.values), c.unit, true, file);
   std::vector<std::int64_t> phase;
   for (Phase p : r.samples.phase) phase.push_back(static_cast<int>(p));
@@ -415,7 +404,7 @@ void StudyHdf5Writer::add_case(std::size_t index, const CaseOutcome& outcome) {
   {
     const Id d(H5Dopen2(g, "phase", H5P_DEFAULT), H5Dclose);
     attr_string(d, "unit", "-", file);
-    attr_string(d, "meaning", "-1 slip-, 0 stick, 1 slip+", file);
+    attr_string(d, "meaning", "-1 slip-, 0 stick, 1 slip+, 2 flight", file);
   }
   H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);  // a kill after this keeps the case for --resume
 }

@@ -149,7 +149,8 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                    {"t0", result.samples.size() ? number(result.samples.t.front()) : json()}};
   j["phase_times"] = {{"stick", number(result.stick_time)},
                       {"slip_positive", number(result.slip_positive_time)},
-                      {"slip_negative", number(result.slip_negative_time)}};
+                      {"slip_negative", number(result.slip_negative_time)},
+                      {"flight", number(result.flight_time)}};
   j["metrics"] = metrics ? outputs_json(*metrics, metric_outputs()) : json(nullptr);
   return j.dump(2) + "\n";
 }

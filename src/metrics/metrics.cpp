@@ -153,11 +153,13 @@ Metrics compute_metrics(const Result& result, int n_max) {
     m.friction_work = power / static_cast<double>(n) / f;
   }
 
-  const double total = result.stick_time + result.slip_positive_time + result.slip_negative_time;
+  const double total = result.stick_time + result.slip_positive_time + result.slip_negative_time +
+                       result.flight_time;
   if (total > 0.0) {
     m.stick_fraction = result.stick_time / total;
     m.slip_positive_fraction = result.slip_positive_time / total;
     m.slip_negative_fraction = result.slip_negative_time / total;
+    m.flight_fraction = result.flight_time / total;
   } else {
     // No phase times recorded: count the samples (uniform in time, so counts are time shares).
     if (s.phase.size() != n) {
@@ -171,8 +173,21 @@ Metrics compute_metrics(const Result& result, int n_max) {
     m.stick_fraction = count(Phase::stick) / n_d;
     m.slip_positive_fraction = count(Phase::slip_positive) / n_d;
     m.slip_negative_fraction = count(Phase::slip_negative) / n_d;
+    m.flight_fraction = count(Phase::flight) / n_d;
   }
   m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
+  // Flight (contact.unilateral): lift-offs and landings are events of the sampled window; the
+  // largest gap is the samples' (the dense output's is compute_metrics(model, result)'s).
+  long lift_offs = 0;
+  m.landing_velocity = 0.0;
+  for (const Event& e : result.events) {
+    if (e.kind == EventKind::lift_off) ++lift_offs;
+    if (e.kind == EventKind::landing) m.landing_velocity = std::max(m.landing_velocity, e.speed);
+  }
+  m.liftoffs_per_period = static_cast<double>(lift_offs) / result.sample_periods;
+  m.gap_max = 0.0;
+  if (s.gap.size() == n)
+    for (double g : s.gap) m.gap_max = std::max(m.gap_max, g);
   return m;
 }
 

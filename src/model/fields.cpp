@@ -131,6 +131,11 @@ const std::array kFields = {
           "regularisation velocity of contact.law = regularised: tanh(v_rel / v_eps) (-> Coulomb "
           "as v_eps -> 0; slip slower than v_eps is creep, shown as stick)",
           1e-6, 10, false, false, nullptr, OSCIDRUM_REAL(contact.v_eps)},
+    Field{"contact.unilateral", FieldType::boolean, "-",
+          "unilateral contact: the drum may lift off the trough (N reaching 0) and land again, "
+          "with a flight phase between (docs/model.md section 13); false: the paper's permanent "
+          "contact, where N reaching 0 ends the run as contact_lost",
+          0, 1, false, false, nullptr, OSCIDRUM_BOOL(contact.unilateral)},
     // driving torque
     Field{"MMd", FieldType::real, "N m",
           "constant driving torque (6); the paper uses 0 and 0.05 M0", -inf, inf, false, false,

@@ -13,6 +13,8 @@ const char* to_string(Phase phase) {
       return "slip+";
     case Phase::slip_negative:
       return "slip-";
+    case Phase::flight:
+      return "flight";
     case Phase::smooth:
       return "smooth";
   }
@@ -44,6 +46,10 @@ const char* to_string(EventKind kind) {
       return "slip_reversal";
     case EventKind::contact_lost:
       return "contact_lost";
+    case EventKind::lift_off:
+      return "lift_off";
+    case EventKind::landing:
+      return "landing";
   }
   return "?";
 }

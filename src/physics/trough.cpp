@@ -66,6 +66,10 @@ FitProblem fit_problem(const TroughShape& shape, double r) {
   return std::visit([r](const auto& s) { return fit_problem(s, r); }, shape);
 }
 
+TroughGap gap(const TroughShape& shape, double r, double x, double z) {
+  return std::visit([=](const auto& s) { return gap(s, r, x, z); }, shape);
+}
+
 void check_fit(const TroughShape& shape, double r) {
   const FitProblem p = fit_problem(shape, r);
   if (!p.message.empty()) throw Error(p.message, p.key, key_value(shape, p.key));

@@ -68,4 +68,11 @@ double phi_rolling(const CircleTrough& trough, double r, double delta) {
   return trough.R * delta / r - delta;  // (11) at k = 0: (R - r) delta / r
 }
 
+TroughGap gap(const CircleTrough& trough, double r, double x, double z) {
+  // The centre M = O + (R - r - gap) (sin delta, cos delta), O = (0, -(R - r)) from A (z down).
+  const double c = trough.R - r;
+  const double dx = x, dz = z + c;
+  return {std::atan2(dx, dz), c - std::hypot(dx, dz)};
+}
+
 }  // namespace oscidrum

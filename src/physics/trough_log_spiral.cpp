@@ -99,4 +99,24 @@ double phi_rolling(const LogSpiralTrough& g, double r, double delta) {
   return g.root() * g.R0() * delta * ratio / r - delta;
 }
 
+TroughGap gap(const LogSpiralTrough& g, double r, double x, double z) {
+  // M - A - roll(delta) = -gap n(delta), n = (sin, cos): the tangential part of the offset,
+  // F(delta) = dx cos - dz sin with (dx, dz) = (x, z) - roll(delta), vanishes. F' = -(r f5 - gap)
+  // ((f1, f3) = r f5 (cos, -sin): (33), (37)), so Newton's step is F / (r f5 - gap). Start at the
+  // angle of the circle of the bottom's curvature.
+  const double rho = curvature_radius_at_bottom(g);
+  double delta = std::atan2(x, z + (rho - r));
+  for (int i = 0; i < 50; ++i) {
+    const Kinematics k = kinematics(g, r, delta);
+    const double dx = x - k.x_roll, dz = z - k.z_roll;
+    const double F = dx * k.cos_delta - dz * k.sin_delta;
+    const double lever = r * k.f5 + (dx * k.sin_delta + dz * k.cos_delta);  // r f5 - gap
+    const double step = F / lever;
+    delta += step;
+    if (std::abs(step) <= 1e-15 * (1.0 + std::abs(delta))) break;
+  }
+  const Kinematics k = kinematics(g, r, delta);
+  return {delta, -((x - k.x_roll) * k.sin_delta + (z - k.z_roll) * k.cos_delta)};
+}
+
 }  // namespace oscidrum

@@ -4,9 +4,11 @@
 // adds its Dynamics specialisation (src/roller/<roller>.hpp, .cpp) and its line here.
 #include "flow/hybrid_flow.hpp"
 #include "roller/oscillation_drum.hpp"
+#include "roller/unilateral_drum.hpp"
 
 namespace oscidrum {
 
 template class BasicFlow<OscillationDrum>;
+template class BasicFlow<UnilateralDrum>;
 
 }  // namespace oscidrum

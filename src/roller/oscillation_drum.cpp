@@ -146,9 +146,29 @@ void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, S
   s.N.push_back(f.N);
   s.T.push_back(f.T);
   s.v_rel.push_back(v_rel);
+  s.gap.push_back(0.0);  // permanent contact
+  s.dgap.push_back(0.0);
   s.torque.push_back(model_.torque(t));
   // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
   s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
+}
+
+std::array<double, 7> Dynamics<OscillationDrum>::quantities(double t, const Vector& x,
+                                                            Phase phase) const {
+  const State q = State::from_array(x);
+  const Kinematics k = kinematics(model_.geometry(), q.delta);  // once for all quantities
+  const Accelerations a = detail::accelerations(model_, t, q, phase, baumgarte_, k);
+  const DrumMotion d = detail::drum_motion(q, a, k);
+  const ContactForces f = detail::contact_forces(model_, q, k);
+  return {d.ddx_M, d.ddz_M, q.delta, q.phi,
+          // T / N signed (mu_required is its largest magnitude): smooth inside a piece, where
+          // |T| / N would have a kink at T = 0.
+          f.T / f.N,
+          // Friction does work only while the drum slides (13, 27). In stick v_rel = 0 by the
+          // rolling condition (12); the flow integrates phi' there without reading it, so
+          // slip_velocity would return its round-off drift (over a long transient from rest, up
+          // to ~1e-6 of the work of a slipping case). In slip T v_rel keeps its sign.
+          phase == Phase::stick ? 0.0 : std::abs(f.T * detail::slip_velocity(model_, q, k)), 0.0};
 }
 
 int Dynamics<OscillationDrum>::pushed_slip(Phase phase, const Vector& x, double* hold) const {

@@ -42,7 +42,9 @@ class Dynamics<OscillationDrum> {
     FlowStop stop = FlowStop::contact_lost;  ///< why, when terminal
     std::string message;                     ///< why, when terminal
     bool consistent = true;                  ///< false: an inconsistent slip end or start (counted)
-    bool reversal = false;                   ///< a slip -> slip reversal (counted)
+    bool reversal = false;
+    double speed = 0.0;  ///< a landing's approach speed -g' (Event::speed) [m/s] ///< a slip ->
+                         ///< slip reversal (counted)
   };
 
   Dynamics(const Model& model, double baumgarte) : model_(model), baumgarte_(baumgarte) {}
@@ -93,6 +95,9 @@ class Dynamics<OscillationDrum> {
     if (phase != Phase::smooth) return phase;
     return apparent_phase(model_.friction(), phase, slip_velocity(model_, State::from_array(x)));
   }
+  /// What the steady metrics read at a point of the trajectory (src/drivers/steady_metrics.cpp):
+  /// x_M'', z_M'' (18), delta, phi, T/N, the friction power |T v_rel| (0 in stick), the gap (0).
+  std::array<double, 7> quantities(double t, const Vector& x, Phase phase) const;
   static Vector sampled_state(const Samples& s, std::size_t j) {
     return {s.delta[j], s.x_A[j], s.s_A[j], s.phi[j], s.ddelta[j], s.dx_A[j], s.ds_A[j], s.dphi[j]};
   }

@@ -6,12 +6,14 @@
 
 #include "oscidrum/model.hpp"
 #include "roller/oscillation_drum.hpp"
+#include "roller/unilateral_drum.hpp"
 
 namespace oscidrum::detail {
 
 template <class F>
-decltype(auto) with_roller(const Model& /*model*/, F&& f) {
-  // One roller so far: the paper's oscillation drum.
+decltype(auto) with_roller(const Model& model, F&& f) {
+  // The paper's oscillation drum, with permanent contact or with contact that can open.
+  if (model.parameters().contact.unilateral) return f.template operator()<UnilateralDrum>();
   return f.template operator()<OscillationDrum>();
 }
 

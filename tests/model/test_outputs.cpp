@@ -35,7 +35,7 @@ TEST(Outputs, EveryOutputHasAUniqueNameAUnitAndADescription) {
   expect_described(record_outputs(), record);
   // Diagnostics and metrics share the sweep CSV: no name may appear in both.
   for (const std::string& d : diagnostics) EXPECT_EQ(metrics.count(d), 0u) << d;
-  EXPECT_EQ(sample_outputs().size(), 18u);
+  EXPECT_EQ(sample_outputs().size(), 20u);
   EXPECT_EQ(sample_outputs().front().name, std::string("t"));
   EXPECT_EQ(sample_outputs().back().name, std::string("phase"));
 }
@@ -72,8 +72,9 @@ TEST(Outputs, TheTableReadsTheStructMembers) {
   std::string texts;
   for (const DiagnosticOutput& o : diagnostic_outputs())
     if (is_text(o)) texts += std::string(o.name) + "=" + text_value(d, o) + ";";
-  EXPECT_EQ(texts, "method=shooting;fallback=Newton did not converge;");
+  EXPECT_EQ(texts, "method=shooting;fallback=Newton did not converge;contact_mode=;");
   EXPECT_TRUE(is_text_column("method") && is_text_column("fallback") && is_text_column("status"));
+  EXPECT_TRUE(is_text_column("contact_mode"));
   EXPECT_FALSE(is_text_column("newton_iterations") || is_text_column("min_N"));
   Metrics m;
   m.friction_work = 12.5;

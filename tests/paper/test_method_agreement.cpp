@@ -97,6 +97,12 @@ class Checker {
       scale = pi;
     } else if (name.find("fraction") != std::string::npos) {
       scale = 1.0;
+    } else if (name == "liftoffs_per_period") {  // a count: exactly
+      scale = 1.0;
+    } else if (name == "gap_max") {  // permanent contact: 0; scale: the static soil deflection
+      scale = 1e-3;
+    } else if (name == "landing_velocity") {
+      scale = 1.0;
     } else if (name == "friction_work") {
       scale = std::max(std::abs(b), s_.work);
     } else if (name == "area" || name == "phi_amplitude" || name == "mu_required") {

@@ -20,7 +20,7 @@ def test_result_arrays(slip_result):
         assert isinstance(a, np.ndarray) and a.shape == (n,)
     assert r.samples.ddx_M.dtype == np.float64 and not r.samples.ddx_M.flags.writeable
     assert r.samples.phase.dtype == np.int8
-    assert set(np.unique(r.samples.phase)) <= {-1, 0, 1}
+    assert set(np.unique(r.samples.phase)) <= {-1, 0, 1}  # no flight: permanent contact
     assert (r.samples.phase != 0).any()  # stick-slip
     dt = np.diff(r.samples.t)
     assert np.allclose(dt, 1 / (r.frequency * r.samples_per_period), rtol=1e-9)
@@ -187,9 +187,10 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     # The table's diagnostics, the steady-state method's included (the method by its name).
     names = [x["name"] for x in table["diagnostics"]]
     assert list(d.to_dict()) == names
-    assert names[-8:] == ["method", "newton_iterations", "jacobian_evaluations",
-                          "period_equivalents", "phi_drift", "fallback", "start_ramp_periods",
-                          "warm_start"]
+    assert names[-9:] == ["method", "newton_iterations", "jacobian_evaluations",
+                          "period_equivalents", "phi_drift", "fallback", "contact_mode",
+                          "start_ramp_periods", "warm_start"]
+    assert d.contact_mode == "permanent contact"  # a steady state of the paper's drum
     assert d.start_ramp_periods == 0  # the paper's start: all at once
     assert d.warm_start == 0  # a single run starts from rest
     assert d.method in ("transient", "shooting") and isinstance(d.fallback, str)
