@@ -452,6 +452,10 @@ std::string key_not_in_effect(const Case& c, std::string_view key) {
   if (key == "roller.M0" && c.roller.unbalance > 0.0)
     return "roller.M0 has no effect while roller.unbalance > 0, which gives M0 = 4 m_u e_u e_w "
            "nu^2 (5); remove one of them";
+  if (key == "contact.v_eps" &&
+      (c.contact.law != FrictionChoice::regularised || c.contact.pure_rolling))
+    return "contact.v_eps has no effect unless contact.law = \"regularised\" (and not "
+           "contact.pure_rolling); remove it or set contact.law = \"regularised\"";
   if (key.starts_with("trough.") && std::isnan(key_value(c.trough.shape, key)))
     return std::string(key) + " has no effect on a " + trough_name(c.trough.shape) + " trough";
   return "";

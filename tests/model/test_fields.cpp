@@ -282,13 +282,20 @@ TEST(Fields, KeyInEffectFollowsTheSoilInputTheUnbalanceAndTheShape) {
   EXPECT_TRUE(key_in_effect(c, "roller.M0"));
   c.roller.unbalance = 0.22877;
   EXPECT_FALSE(key_in_effect(c, "roller.M0"));
+  // The regularisation velocity only with the regularised law.
+  EXPECT_FALSE(key_in_effect(c, "contact.v_eps"));
+  c.contact.law = FrictionChoice::regularised;
+  EXPECT_TRUE(key_in_effect(c, "contact.v_eps"));
+  c.contact.pure_rolling = true;
+  EXPECT_FALSE(key_in_effect(c, "contact.v_eps"));
+  c.contact = Contact{};
   // Both shapes are given by trough.k and trough.a; every other key takes effect.
   c.trough.shape = LogSpiralTrough(0.002, 0.601);
   EXPECT_TRUE(key_in_effect(c, "trough.k"));
   EXPECT_TRUE(key_in_effect(Case{}, "trough.a"));
   for (const Field& f : fields()) {
     const std::string key = f.key;
-    if (!key.starts_with("soil.") && key != "roller.M0") {
+    if (!key.starts_with("soil.") && key != "roller.M0" && key != "contact.v_eps") {
       EXPECT_TRUE(key_in_effect(c, key)) << key;
     }
     EXPECT_EQ(key_in_effect(c, key), key_not_in_effect(c, key).empty()) << key;
