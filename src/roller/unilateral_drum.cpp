@@ -49,7 +49,6 @@ Eigen::Matrix<double, 10, 1> as_column(const U::Vector& v) {
 
 Dynamics<UnilateralDrum>::Dynamics(const Model& model, double baumgarte)
     : drum_(model, baumgarte),
-      baumgarte_(baumgarte),
       gap_scale_(model.W() / (model.ksv() + model.kd())) {}
 
 void Dynamics<UnilateralDrum>::flight_rhs(double t, const Vector& x, Vector& dxdt) const {

@@ -116,7 +116,6 @@ class Dynamics<UnilateralDrum> {
   void flight_rhs(double t, const Vector& x, Vector& dxdt) const;
 
   Drum drum_;
-  double baumgarte_;
   double gap_scale_;  ///< the static soil deflection W / (ksv + kd), the gap event's unit [m]
 };
 
