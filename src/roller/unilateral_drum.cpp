@@ -48,8 +48,7 @@ Eigen::Matrix<double, 10, 1> as_column(const U::Vector& v) {
 }  // namespace
 
 Dynamics<UnilateralDrum>::Dynamics(const Model& model, double baumgarte)
-    : drum_(model, baumgarte),
-      gap_scale_(model.W() / (model.ksv() + model.kd())) {}
+    : drum_(model, baumgarte), gap_scale_(model.W() / (model.ksv() + model.kd())) {}
 
 void Dynamics<UnilateralDrum>::flight_rhs(double t, const Vector& x, Vector& dxdt) const {
   const Model& m = model();
