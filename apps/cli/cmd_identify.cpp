@@ -168,6 +168,9 @@ nlohmann::ordered_json identification_json(const Identification& id) {
           {"message", id.message},
           {"iterations", id.iterations},
           {"simulations", id.simulations},
+          {"harmonics_fitted", id.measured.ddx.size()},
+          {"noise_x", id.measured.noise_x},
+          {"noise_z", id.measured.noise_z},
           {"warnings", id.warnings}};
 }
 
@@ -191,38 +194,47 @@ std::string value_text(const Estimate& e) {
 
 std::string unit_text(const Estimate& e) { return shown_unit(e.name, e.unit); }
 
-// Plot data of one window: measured and model over two periods, spectra, parameters.
+// Plot data of one window: measured and model over two periods, spectra, parameters. The model
+// is drawn in the record's time (fit_curves: shifted by tau, with the window's offsets and
+// drift), beside the samples and at them.
 void write_fit_files(const std::string& dir, const RecordColumns& rec, const PassEstimate& p,
                      int n_max) {
   const Identification& id = p.identification;
-  Case c = id.fitted;
-  c.numerics.output_periods = 2;
-  c.numerics.samples_per_period = 256;
-  const Result r = simulate(c);
-  if (!ok(r.status))
-    throw Error("the best fit's model did not reach its steady state: " + r.message);
   const double T = 1.0 / id.f;
   const RecordWindow& w = p.window;
-  double shift = id.time_shift;  // record time = model time + tau + k T
-  const double t0 = r.samples.t.front() + shift;
-  shift += std::ceil((w.t_start - t0) / T) * T;
+  const double a = w.t_start, b = std::min(w.t_end, a + 2 * T);
+  std::vector<double> ts;
+  for (std::size_t i = w.first; i < w.first + w.count; ++i)
+    if (rec.t[i] >= a && rec.t[i] <= b) ts.push_back(rec.t[i]);
+  std::vector<double> grid;
+  const int steps = 512;
+  for (int j = 0; j <= steps; ++j) grid.push_back(a + (b - a) * j / steps);
+  const FitCurves at_samples = fit_curves(id, ts), curve = fit_curves(id, grid);
   std::ostringstream model, measured, spectrum;
   model << "t[s],ddx_M[m/s^2],ddz_M[m/s^2]\n";
-  for (std::size_t j = 0; j < r.samples.size(); ++j)
-    model << cell(r.samples.t[j] + shift) << "," << cell(r.samples.ddx_M[j]) << ","
-          << cell(r.samples.ddz_M[j]) << "\n";
-  const double a = r.samples.t.front() + shift, b = a + 2 * T;
-  measured << "t[s],ddx_M[m/s^2],ddz_M[m/s^2]\n";
-  for (std::size_t i = w.first; i < w.first + w.count; ++i)
-    if (rec.t[i] >= a && rec.t[i] <= b)
-      measured << cell(rec.t[i]) << "," << cell(rec.ddx_M[i]) << "," << cell(rec.ddz_M[i]) << "\n";
-  const Metrics sim = compute_metrics(r, n_max);
+  for (std::size_t j = 0; j < grid.size(); ++j)
+    model << cell(grid[j]) << "," << cell(curve.ddx_M[j]) << "," << cell(curve.ddz_M[j]) << "\n";
+  measured << "t[s],ddx_M[m/s^2],ddz_M[m/s^2],ddx_M_fit[m/s^2],ddz_M_fit[m/s^2]\n";
+  for (std::size_t i = w.first, k = 0; i < w.first + w.count; ++i)
+    if (rec.t[i] >= a && rec.t[i] <= b) {
+      measured << cell(rec.t[i]) << "," << cell(rec.ddx_M[i]) << "," << cell(rec.ddz_M[i]) << ","
+               << cell(at_samples.ddx_M[k]) << "," << cell(at_samples.ddz_M[k]) << "\n";
+      ++k;
+    }
+  const MeasuredResponse& d = id.measured;
+  const int shown = std::min<int>(n_max, static_cast<int>(d.ddx.size()));
+  Case c = id.fitted;
+  c.numerics.output_periods = 1;
+  const Model model_at_fit(c);
+  const Result r = simulate(model_at_fit);
+  if (!ok(r.status))
+    throw Error("the best fit's model did not reach its steady state: " + r.message);
+  const Metrics sim = compute_metrics(model_at_fit, r, shown);
   spectrum << "n[-],f[Hz],ddx_A_measured[m/s^2],ddx_A_model[m/s^2],ddz_A_measured[m/s^2],"
               "ddz_A_model[m/s^2]\n";
-  for (int n = 1; n <= n_max; ++n)
-    spectrum << n << "," << cell(n * id.f) << "," << cell(w.metrics.ddx_harmonics[n].amplitude)
-             << "," << cell(sim.ddx_harmonics[n].amplitude) << ","
-             << cell(w.metrics.ddz_harmonics[n].amplitude) << ","
+  for (int n = 1; n <= shown; ++n)
+    spectrum << n << "," << cell(n * id.f) << "," << cell(std::abs(d.ddx[n - 1])) << ","
+             << cell(sim.ddx_harmonics[n].amplitude) << "," << cell(std::abs(d.ddz[n - 1])) << ","
              << cell(sim.ddz_harmonics[n].amplitude) << "\n";
   nlohmann::ordered_json j = identification_json(id);
   j["window"] = w.index;
@@ -251,7 +263,8 @@ int run(const IdentifyCliOptions& o) {
   io.use_area = o.use_area;
   io.profile = !o.no_profile;
   io.shooting = !o.transient;
-  if (o.compare > o.windows.n_max)
+  io.measure.harmonics = o.windows.n_max;
+  if (o.windows.n_max > 0 && o.compare > o.windows.n_max)
     throw Error("--compare must be <= --harmonics = " + std::to_string(o.windows.n_max) + "; got " +
                 std::to_string(o.compare));
 
@@ -382,7 +395,7 @@ int run(const IdentifyCliOptions& o) {
     if (!chosen)
       throw Error("--plot-window " + std::to_string(o.plot_window) +
                   " is not a window with an estimate");
-    if (o.metrics_file.empty()) write_fit_files(o.plot_dir, rec, *chosen, o.windows.n_max);
+    if (o.metrics_file.empty()) write_fit_files(o.plot_dir, rec, *chosen, 10);
     if (run_python({"oscidrum.identify", "plot", "--dir", o.plot_dir},
                    "the data are in " + o.plot_dir) != 0)
       return kExitCaseFailed;
@@ -423,7 +436,7 @@ void add_identify_command(CLI::App& app, Action& action) {
       "  oscidrum identify --metrics record.json --pure-rolling\n"
       "Exit codes: 0 at least one window identified, 1 none, 2 bad input, 130 interrupted.");
   add_record_options(*sub, o->input, false);
-  add_window_options(*sub, o->windows, 40.0);
+  add_window_options(*sub, o->windows, 40.0, true);
   sub->add_option("--metrics", o->metrics_file,
                   "identify from these metrics (the JSON of `oscidrum analyze --format json`) "
                   "instead of a record")

@@ -80,8 +80,10 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required) {
       ->check(CLI::IsMember({"m/s2", "g"}));
 }
 
-void add_window_options(CLI::App& app, WindowOptions& o, double default_window) {
+void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
+                        bool auto_harmonics) {
   o.window_periods = default_window;
+  if (auto_harmonics) o.n_max = 0;
   app.add_option("--f", o.f,
                  "excitation frequency [Hz]; default: estimated from the record (spectral peak, "
                  "refined by least squares) and tracked from window to window")
@@ -90,8 +92,15 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window) 
       ->check(CLI::PositiveNumber);
   app.add_option("--f-max", o.search.f_max, "highest frequency searched [Hz] (default 100)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--harmonics", o.n_max, "harmonics n = 0 ... N fitted (default 10)")
-      ->check(CLI::Range(2, 200));
+  if (auto_harmonics)
+    app.add_option("--harmonics", o.n_max,
+                   "harmonics n = 1 ... N fitted in each window beside a cubic trend; 0 (the "
+                   "default): as many as the sampling resolves (2 N + 2 samples per period), at "
+                   "most 40")
+        ->check(CLI::Range(0, 200));
+  else
+    app.add_option("--harmonics", o.n_max, "harmonics n = 0 ... N fitted (default 10)")
+        ->check(CLI::Range(2, 200));
   app.add_option("--window", o.window_periods,
                  "window length in excitation periods; 0: the whole record (default " +
                      std::to_string(static_cast<int>(default_window)) + ")")
@@ -111,7 +120,8 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window) 
                  "3 or more equal samples at a channel's extreme")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--max-gap", o.gates.max_gap,
-                 "gate: a time step longer than this times the median step is a gap (default 3)")
+                 "gate: a time step longer than this part of an excitation period is a gap "
+                 "(default 0.5; a few lost samples are not)")
       ->check(CLI::PositiveNumber);
 }
 

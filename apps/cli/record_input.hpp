@@ -34,8 +34,10 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required = true);
 RecordColumns read_record(const RecordInput& o);
 
 /// Adds --f, --f-min, --f-max, --harmonics, --window, --hop and the gates --max-residual,
-/// --max-drift, --clip-level, --max-gap to `app`, stored in `o`.
-void add_window_options(CLI::App& app, WindowOptions& o, double default_window);
+/// --max-drift, --clip-level, --max-gap to `app`, stored in `o`. `auto_harmonics`: --harmonics
+/// defaults to 0, the number chosen from the sampling (identify).
+void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
+                        bool auto_harmonics = false);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);

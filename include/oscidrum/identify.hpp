@@ -42,20 +42,58 @@ ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps = 0);
 /// The measured quantities an identification compares with the model.
 struct MeasuredResponse {
   double f = 0.0;  ///< excitation frequency [Hz]
+  /// Record time [s] at which the phases below are taken (the model's time shift tau is found
+  /// against it and reported in record time): the window's first sample.
+  double t_ref = 0.0;
   /// C_n = A_n exp(i theta_n) of x_M'' and z_M'', n = 1 ... N (index n - 1), with the phases of
-  /// y(t) = sum A_n sin(n 2 pi f t + theta_n) in the record's own time [m/s^2]
+  /// y(t) = sum A_n sin(n 2 pi f (t - t_ref) + theta_n) [m/s^2]
   std::vector<std::complex<double>> ddx, ddz;
+  /// Covariance of (Re C_1, Im C_1, ..., Re C_K, Im C_K) of x_M'' (row-major 2K x 2K, K <= N)
+  /// [(m/s^2)^2]; empty: sigma_x^2 times the identity.
+  std::vector<double> cov_x, cov_z;
   double sigma_x = 1.0;  ///< standard uncertainty of Re C_n and Im C_n of x_M'' [m/s^2]
   double sigma_z = 1.0;  ///< the same for z_M'' [m/s^2]
   int n_signal = 10;     ///< harmonics of the fitted signal the peaks and area are taken from
   double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0;  ///< peaks [m/s^2]
   double area = 0;  ///< area of the z_M''(x_M'') figure [m^2/s^4]
+  /// The fit of a window (measure_window): samples, residual RMS (the noise) [m/s^2], and the
+  /// trend beside the harmonics (Legendre coefficients c_k of sum c_k P_k(u), u from -1 at
+  /// t_first to 1 at t_last; c_0 holds the offset) [m/s^2].
+  std::size_t samples = 0;
+  double noise_x = 0.0, noise_z = 0.0;
+  double t_first = 0.0, t_last = 0.0;
+  std::vector<double> trend_x, trend_z;
 };
 
-/// The measured response of a fitted record (or window) of `samples` samples at f [Hz]. The
-/// uncertainty of each harmonic coefficient is s sqrt(2 / samples), s the RMS of the fit's
-/// residual (white noise; drift and misfit make it conservative).
+/// The measured response of a fitted record (or window) of `samples` samples at f [Hz] from
+/// analyze's metrics (phases in the record's own time, t_ref = 0). The uncertainty of each
+/// harmonic coefficient is s sqrt(2 / samples), s the RMS of the fit's residual (white noise;
+/// drift and misfit make it conservative).
 MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t samples);
+
+/// Harmonics fitted to a window when chosen from its sampling: at most this many.
+inline constexpr int kMaxMeasuredHarmonics = 40;
+
+/// How the harmonics of a window are measured (measure_window).
+struct MeasureOptions {
+  /// Harmonics n = 1 ... N fitted [-]; 0: from the sampling, the largest N with at least
+  /// 2 N + 2 samples per period at the median time step, at most kMaxMeasuredHarmonics, so that
+  /// few harmonics are left out to leak into the compared ones (docs/identify.md).
+  int harmonics = 0;
+  /// Degree of the polynomial fitted beside the harmonics [-]: offsets and slow drifts, which
+  /// would otherwise leak into the harmonics.
+  int trend_degree = 3;
+  int covariance = 4;  ///< harmonics whose covariance is kept (K above) [-]
+};
+
+/// The measured response of one window (t [s] strictly increasing, any spacing; x_M'', z_M''
+/// [m/s^2]) at f [Hz]: y(t) = trend + sum_{n=1}^{N} (a_n cos + b_n sin)(n 2 pi f (t - t_ref)) by
+/// least squares, the noise s^2 = RSS / (samples - parameters) of each channel, and the
+/// covariance s^2 (B^T B)^-1 of the kept harmonics. Throws oscidrum::Error for fewer than 2 N +
+/// 2 samples per period with N given, or too few samples for the fit.
+MeasuredResponse measure_window(std::span<const double> t, std::span<const double> ddx_M,
+                                std::span<const double> ddz_M, double f,
+                                const MeasureOptions& options = {});
 
 /// What is estimated, and how.
 struct IdentifyOptions {
@@ -74,6 +112,9 @@ struct IdentifyOptions {
   /// warn that the estimates are biased [-]. Fits of the right model give 0.3-1.2 on synthetic
   /// records; a mu 16 % off the truth, not fitted, gives 300-800.
   double max_reduced_chi2 = 4.0;
+  /// How each window's harmonics are measured (identify_pass); measure.covariance is raised to
+  /// `harmonics`.
+  MeasureOptions measure;
   /// Find the model's steady states by shooting (numerics.method = shooting; about three times
   /// faster than the transient from rest, and the same estimates, bench/README.md); false: the
   /// base case's numerics.method.
@@ -107,6 +148,7 @@ struct Identification {
   std::vector<std::string> warnings;  ///< parameters that cannot be told apart, flat profiles
   Case fitted;                        ///< the case at the estimate (f and M0 of the record)
   Metrics simulated;                  ///< its metrics
+  MeasuredResponse measured;          ///< what the model was fitted to
 };
 
 /// Estimate the soil (and optionally mu, MMd) so that the model's harmonics match `data`. The
@@ -116,6 +158,15 @@ struct Identification {
 /// invalid input or if the model fails at every start.
 Identification identify(const Case& base, const MeasuredResponse& data,
                         const IdentifyOptions& options = {}, const Identification* start = nullptr);
+
+/// The best fit in the record's time, for plots: the model's accelerations at record times t
+/// [s], the steady state of id.fitted shifted by id.time_shift, plus the trend of the window
+/// (id.measured: offsets and slow drift; none from analyze's metrics). Throws oscidrum::Error
+/// when the fitted case does not reach its steady state.
+struct FitCurves {
+  std::vector<double> ddx_M, ddz_M;  ///< [m/s^2]
+};
+FitCurves fit_curves(const Identification& id, std::span<const double> t);
 
 /// One window of a pass with its identification (valid == false: the window failed a gate or
 /// the identification failed; `reason` says why and the estimates are NaN).
@@ -129,8 +180,11 @@ struct PassEstimate {
 /// Called after each window with its index and the number of windows; return false to stop.
 using PassProgress = std::function<bool(std::size_t index, std::size_t count)>;
 
-/// Identify every window of a record (analyze_windows), each started from the previous valid
-/// estimate.
+/// Identify every window of a record, each started from the previous valid estimate. The windows
+/// and their gates are analyze_windows' (windows.n_max == 0: the gates' harmonics from the
+/// sampling, at most 10), on the record's times less its first (so that clock times such as
+/// 1.7e9 s keep their precision; the windows report record times); each window's harmonics are
+/// measured by measure_window (options.measure).
 std::vector<PassEstimate> identify_pass(
     const Case& base, std::span<const double> t, std::span<const double> ddx_M,
     std::span<const double> ddz_M, std::span<const double> position, const WindowOptions& windows,
@@ -144,7 +198,9 @@ struct SyntheticRecord {
   double drift = 0.0;         ///< slow drift amplitude / peak |a| (a sine of period `duration`)
   double jitter = 0.0;        ///< random sample-time jitter / sample interval [-]
   unsigned seed = 1;
-  double speed = 0.0;  ///< roller speed for the position column [m/s]
+  double speed = 0.0;    ///< roller speed for the position column [m/s]
+  double start = 0.0;    ///< time of the first sample [s] (a logger's clock)
+  double dropped = 0.0;  ///< fraction of the samples lost at random [-], in [0, 1)
 };
 
 /// Samples of a synthetic record: t [s], x_M'', z_M'' [m/s^2], position [m].
@@ -153,9 +209,9 @@ struct RecordSamples {
 };
 
 /// Simulate each case of `segments` (consecutive, each duration / segments.size() long) to its
-/// steady state and sample it at the record's times (linear interpolation of 1024 samples per
-/// period, in absolute time), then add noise and drift. Throws oscidrum::Error if a case does
-/// not reach its steady state.
+/// steady state and sample it at the record's times (linear interpolation of 8192 samples per
+/// period; record time = model time modulo the period, so a fit's time shift is 0), then add
+/// noise and drift. Throws oscidrum::Error if a case does not reach its steady state.
 RecordSamples synthetic_record(const std::vector<Case>& segments, const SyntheticRecord& options);
 
 }  // namespace oscidrum

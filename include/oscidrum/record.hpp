@@ -60,7 +60,7 @@ struct RecordGates {
   double max_drift = 0.002;   ///< largest |f(second half) - f(first half)| / f in a window [-]
   double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
   int clip_run = 3;           ///< this many equal samples at a channel's extreme: clipped [-]
-  double max_gap = 3.0;       ///< a time step longer than this times the median step: gap [-]
+  double max_gap = 0.5;  ///< a time step longer than this part of an excitation period: gap [-]
 };
 
 /// Windows along a record.

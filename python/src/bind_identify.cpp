@@ -86,7 +86,7 @@ void bind_identify(py::module_& m) {
       py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"), py::arg("position") = py::none(),
       py::arg("f") = 0.0, py::arg("window") = 0.0, py::arg("hop") = 0.0, py::arg("n_max") = 10,
       py::arg("max_residual") = 0.5, py::arg("max_drift") = 0.002, py::arg("clip_level") = 0.0,
-      py::arg("max_gap") = 3.0,
+      py::arg("max_gap") = 0.5,
       "The record in windows of `window` excitation periods (0: whole), each fitted and checked "
       "by the quality gates, as `oscidrum analyze`: a list of dicts (window, t_start, t_end, t, "
       "position, samples, samples_per_period, f, drift, valid, reason, metrics). f = 0: "
@@ -99,7 +99,7 @@ void bind_identify(py::module_& m) {
          bool use_area, bool profile, bool shooting) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
-        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 3.0);
+        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 0.5);
         IdentifyOptions io;
         io.modulus = estimate == "G";
         io.fit_mu = fit_mu;
@@ -109,6 +109,7 @@ void bind_identify(py::module_& m) {
         io.use_area = use_area;
         io.profile = profile;
         io.shooting = shooting;
+        io.measure.harmonics = n_max;
         std::vector<PassEstimate> pass;
         {
           py::gil_scoped_release release;
@@ -142,7 +143,7 @@ void bind_identify(py::module_& m) {
       },
       py::arg("case"), py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"),
       py::arg("position") = py::none(), py::arg("f") = 0.0, py::arg("window") = 40.0,
-      py::arg("hop") = 0.0, py::arg("n_max") = 10, py::arg("estimate") = "G",
+      py::arg("hop") = 0.0, py::arg("n_max") = 0, py::arg("estimate") = "G",
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
       py::arg("shooting") = true,

@@ -157,13 +157,19 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
 
   Identification id;
   id.f = data.f;
+  id.measured = data;
   id.converged = fit.converged;
   id.message = fit.message;
   id.iterations = fit.iterations;
   double phi = 0;
   Eigen::VectorXd r;
   pr.residual(fit.p, r, phi);
-  id.time_shift = phi / (2.0 * M_PI * data.f);
+  // The model's harmonics times e^{i n phi} are the measured ones about t_ref: record time
+  // t_ref + s is model time s + phi / (2 pi f), i.e. record time = model time + tau with
+  // tau = t_ref - phi / (2 pi f), taken in [0, 1/f).
+  const double T = 1.0 / data.f;
+  const double tau = std::fmod(data.t_ref, T) - phi / (2.0 * M_PI * data.f);
+  id.time_shift = tau - T * std::floor(tau / T);
   const double s2 = fit.S / dof;
   id.reduced_chi2 = s2;
   id.fitted = pr.case_at(fit.p);

@@ -1,13 +1,74 @@
-// The measured response of a record's window (identify.hpp, measured_response): its harmonics
-// with their standard uncertainties, peaks and area, as the fit compares them with the model's.
+// The measured response of a record's window (identify.hpp): its harmonics with their
+// covariance, noise, peaks and area, as the fit compares them with the model's.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
+#include <vector>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
+namespace {
+
+std::string num(double v) { return detail::shortest(v); }
+
+// Legendre polynomials P_0 ... P_d at u (Bonnet's recurrence).
+void legendre(double u, int d, std::vector<double>& P) {
+  P[0] = 1.0;
+  if (d >= 1) P[1] = u;
+  for (int k = 1; k < d; ++k) P[k + 1] = ((2 * k + 1) * u * P[k] - k * P[k - 1]) / (k + 1);
+}
+
+// cos(k w), sin(k w), k = 0 ... m, by angle addition.
+void harmonics_at(double w, int m, std::vector<double>& c, std::vector<double>& s) {
+  const double c1 = std::cos(w), s1 = std::sin(w);
+  c[0] = 1.0;
+  s[0] = 0.0;
+  for (int k = 1; k <= m; ++k) {
+    c[k] = c[k - 1] * c1 - s[k - 1] * s1;
+    s[k] = s[k - 1] * c1 + c[k - 1] * s1;
+  }
+}
+
+double median_step(std::span<const double> t) {
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  return dt[dt.size() / 2];
+}
+
+// The periodic signal of harmonics 1 ... N over one period: extremes and area.
+void signal_shape(const std::vector<std::complex<double>>& cx,
+                  const std::vector<std::complex<double>>& cz, MeasuredResponse& d) {
+  constexpr int kSamples = 1024;
+  std::vector<double> x(kSamples), z(kSamples);
+  for (int j = 0; j < kSamples; ++j) {
+    const double w = 2.0 * M_PI * j / kSamples;
+    double sx = 0, sz = 0;
+    for (std::size_t n = 1; n <= cx.size(); ++n) {
+      // A sin(n w + theta) = Re C sin(n w) + Im C cos(n w).
+      const double c = std::cos(static_cast<double>(n) * w),
+                   s = std::sin(static_cast<double>(n) * w);
+      sx += cx[n - 1].real() * s + cx[n - 1].imag() * c;
+      sz += cz[n - 1].real() * s + cz[n - 1].imag() * c;
+    }
+    x[j] = sx;
+    z[j] = sz;
+  }
+  const auto [xlo, xhi] = std::minmax_element(x.begin(), x.end());
+  const auto [zlo, zhi] = std::minmax_element(z.begin(), z.end());
+  d.ddx_min = *xlo;
+  d.ddx_max = *xhi;
+  d.ddz_min = *zlo;
+  d.ddz_max = *zhi;
+  d.area = enclosed_area(x, z);
+}
+
+}  // namespace
 
 MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t samples) {
   if (m.ddx_harmonics.size() < 2 || samples == 0)
@@ -15,6 +76,7 @@ MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t
   MeasuredResponse d;
   d.f = f;
   d.n_signal = static_cast<int>(m.ddx_harmonics.size()) - 1;
+  d.samples = samples;
   double px = 0, pz = 0;  // mean square of the fitted signals
   for (std::size_t n = 0; n < m.ddx_harmonics.size(); ++n) {
     const double k = n == 0 ? 1.0 : 0.5;
@@ -30,16 +92,197 @@ MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t
     const double rr = std::min(r * r, 0.99);
     return std::sqrt(fitted * rr / (1.0 - rr));
   };
+  d.noise_x = noise(px, m.residual_x);
+  d.noise_z = noise(pz, m.residual_z);
   const double k = std::sqrt(2.0 / static_cast<double>(samples));
   // A floor (1e-6 of the signal) keeps the weights finite for noise-free records.
-  d.sigma_x = std::max(noise(px, m.residual_x) * k, 1e-6 * std::sqrt(px) + 1e-300);
-  d.sigma_z = std::max(noise(pz, m.residual_z) * k, 1e-6 * std::sqrt(pz) + 1e-300);
+  d.sigma_x = std::max(d.noise_x * k, 1e-6 * std::sqrt(px) + 1e-300);
+  d.sigma_z = std::max(d.noise_z * k, 1e-6 * std::sqrt(pz) + 1e-300);
   d.ddx_max = m.ddx_max;
   d.ddx_min = m.ddx_min;
   d.ddz_max = m.ddz_max;
   d.ddz_min = m.ddz_min;
   d.area = m.area;
   return d;
+}
+
+MeasuredResponse measure_window(std::span<const double> t, std::span<const double> ddx,
+                                std::span<const double> ddz, double f, const MeasureOptions& o) {
+  if (!(std::isfinite(f) && f > 0)) throw Error("identify: f must be > 0 [Hz]; got " + num(f));
+  if (t.size() != ddx.size() || t.size() != ddz.size())
+    throw Error("identify: t, ddx_M and ddz_M must have the same length; got " +
+                std::to_string(t.size()) + ", " + std::to_string(ddx.size()) + ", " +
+                std::to_string(ddz.size()));
+  if (o.trend_degree < 0 || o.trend_degree > 10)
+    throw Error("identify: the trend's degree must be in [0, 10]; got " +
+                std::to_string(o.trend_degree));
+  if (o.harmonics < 0 || o.harmonics > 200)
+    throw Error("identify: the harmonics fitted must be in [0, 200] (0: from the sampling); got " +
+                std::to_string(o.harmonics));
+  if (t.size() < 8) throw Error("identify: a window needs at least 8 samples");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i]) || !std::isfinite(ddx[i]) || !std::isfinite(ddz[i]))
+      throw Error("identify: non-finite value in sample " + std::to_string(i + 1));
+    if (i > 0 && !(t[i] > t[i - 1]))
+      throw Error("identify: t must increase strictly; sample " + std::to_string(i + 1) +
+                  " has t = " + num(t[i]) + " after " + num(t[i - 1]));
+  }
+  const std::size_t M = t.size();
+  const double span = t.back() - t.front();
+  const double per_period = 1.0 / (f * median_step(t));  // samples per period
+  int N = o.harmonics;
+  if (N == 0)
+    N = std::min(kMaxMeasuredHarmonics, static_cast<int>(std::floor((per_period - 2) / 2)));
+  if (N < 1 || 2.0 * N + 2 > per_period + 1e-9)
+    throw Error("identify: " + num(std::round(per_period * 10) / 10) +
+                " samples per period are too few for " + std::to_string(std::max(N, 1)) +
+                " harmonics (need at least " + std::to_string(2 * std::max(N, 1) + 2) + ")");
+  const int d = o.trend_degree, np = d + 1, p = np + 2 * N;
+  if (M < static_cast<std::size_t>(p) + 8)
+    throw Error("identify: " + std::to_string(M) + " samples are too few for " + std::to_string(p) +
+                " fitted parameters");
+  auto col_cos = [&](int n) { return np + 2 * (n - 1); };
+  auto col_sin = [&](int n) { return np + 2 * (n - 1) + 1; };
+
+  MeasuredResponse out;
+  out.f = f;
+  out.t_ref = t.front();
+  out.t_first = t.front();
+  out.t_last = t.back();
+  out.samples = M;
+  out.n_signal = N;
+  double mean_x = 0, mean_z = 0;  // fitted about the means: no cancellation against offsets
+  for (std::size_t i = 0; i < M; ++i) {
+    mean_x += ddx[i];
+    mean_z += ddz[i];
+  }
+  mean_x /= static_cast<double>(M);
+  mean_z /= static_cast<double>(M);
+
+  // Normal equations from sums: products of harmonics are harmonics (sums of cos, sin of k w,
+  // k <= 2N), the rest accumulated per sample. O(M N d) work, O(p^2) memory.
+  const double nu = 2.0 * M_PI * f, mid = 0.5 * (t.front() + t.back());
+  std::vector<double> P(np), cm(2 * N + 1), sm(2 * N + 1), sc(2 * N + 1, 0.0), ss(2 * N + 1, 0.0);
+  Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, N + 1), ps = Eigen::MatrixXd::Zero(np, N + 1),
+                  pp = Eigen::MatrixXd::Zero(np, np);
+  Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
+  for (std::size_t i = 0; i < M; ++i) {
+    legendre(2.0 * (t[i] - mid) / span, d, P);
+    harmonics_at(nu * (t[i] - out.t_ref), 2 * N, cm, sm);
+    const double yx = ddx[i] - mean_x, yz = ddz[i] - mean_z;
+    for (int k = 0; k <= 2 * N; ++k) {
+      sc[k] += cm[k];
+      ss[k] += sm[k];
+    }
+    for (int j = 0; j < np; ++j) {
+      for (int n = 1; n <= N; ++n) {
+        pc(j, n) += P[j] * cm[n];
+        ps(j, n) += P[j] * sm[n];
+      }
+      for (int l = j; l < np; ++l) pp(j, l) += P[j] * P[l];
+      bx[j] += yx * P[j];
+      bz[j] += yz * P[j];
+    }
+    for (int n = 1; n <= N; ++n) {
+      bx[col_cos(n)] += yx * cm[n];
+      bx[col_sin(n)] += yx * sm[n];
+      bz[col_cos(n)] += yz * cm[n];
+      bz[col_sin(n)] += yz * sm[n];
+    }
+  }
+  Eigen::MatrixXd G(p, p);
+  for (int j = 0; j < np; ++j) {
+    for (int l = j; l < np; ++l) G(j, l) = G(l, j) = pp(j, l);
+    for (int n = 1; n <= N; ++n) {
+      G(j, col_cos(n)) = G(col_cos(n), j) = pc(j, n);
+      G(j, col_sin(n)) = G(col_sin(n), j) = ps(j, n);
+    }
+  }
+  auto sum_sin = [&](int k) { return k >= 0 ? ss[k] : -ss[-k]; };
+  for (int a = 1; a <= N; ++a)
+    for (int b = 1; b <= N; ++b) {
+      const double cd = sc[std::abs(a - b)], cs = sc[a + b];
+      G(col_cos(a), col_cos(b)) = 0.5 * (cd + cs);                          // cos a cos b
+      G(col_sin(a), col_sin(b)) = 0.5 * (cd - cs);                          // sin a sin b
+      G(col_cos(a), col_sin(b)) = 0.5 * (sum_sin(a + b) - sum_sin(a - b));  // cos a sin b
+      G(col_sin(b), col_cos(a)) = G(col_cos(a), col_sin(b));
+    }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);
+  if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
+    throw Error("identify: the window's samples do not determine " + std::to_string(N) +
+                " harmonics and a trend of degree " + std::to_string(d) +
+                " (a gap too large, or too few samples per period)");
+  const Eigen::VectorXd cx = ldlt.solve(bx), cz = ldlt.solve(bz);
+
+  // The residual, summed explicitly in a second pass.
+  double rss_x = 0, rss_z = 0;
+  for (std::size_t i = 0; i < M; ++i) {
+    legendre(2.0 * (t[i] - mid) / span, d, P);
+    harmonics_at(nu * (t[i] - out.t_ref), N, cm, sm);
+    double fx = 0, fz = 0;
+    for (int j = 0; j < np; ++j) {
+      fx += cx[j] * P[j];
+      fz += cz[j] * P[j];
+    }
+    for (int n = 1; n <= N; ++n) {
+      fx += cx[col_cos(n)] * cm[n] + cx[col_sin(n)] * sm[n];
+      fz += cz[col_cos(n)] * cm[n] + cz[col_sin(n)] * sm[n];
+    }
+    rss_x += std::pow(ddx[i] - mean_x - fx, 2);
+    rss_z += std::pow(ddz[i] - mean_z - fz, 2);
+  }
+  const double dof = static_cast<double>(M) - p;
+  out.noise_x = std::sqrt(rss_x / dof);
+  out.noise_z = std::sqrt(rss_z / dof);
+  for (int n = 1; n <= N; ++n) {
+    // a cos + b sin = A sin(x + theta): C = A e^{i theta} = b + i a.
+    out.ddx.emplace_back(cx[col_sin(n)], cx[col_cos(n)]);
+    out.ddz.emplace_back(cz[col_sin(n)], cz[col_cos(n)]);
+  }
+  out.trend_x.assign(cx.data(), cx.data() + np);
+  out.trend_z.assign(cz.data(), cz.data() + np);
+  out.trend_x[0] += mean_x;
+  out.trend_z[0] += mean_z;
+
+  // Covariance of (Re C_n, Im C_n) = (b_n, a_n), n <= K: s^2 [G^-1] on those rows and columns.
+  const int K = std::clamp(o.covariance, 1, N);
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(p, 2 * K);
+  std::vector<int> idx;
+  for (int n = 1; n <= K; ++n) {
+    idx.push_back(col_sin(n));
+    idx.push_back(col_cos(n));
+  }
+  for (int k = 0; k < 2 * K; ++k) E(idx[static_cast<std::size_t>(k)], k) = 1.0;
+  const Eigen::MatrixXd X = ldlt.solve(E);
+  // A floor (1e-6 of the signal) keeps the weights finite for noise-free records.
+  double power_x = 0, power_z = 0;
+  for (int n = 1; n <= N; ++n) {
+    power_x += 0.5 * std::norm(out.ddx[n - 1]);
+    power_z += 0.5 * std::norm(out.ddz[n - 1]);
+  }
+  const double floor_x = 1e-6 * std::sqrt(power_x) + 1e-300,
+               floor_z = 1e-6 * std::sqrt(power_z) + 1e-300;
+  const double s2x =
+      std::max(out.noise_x * out.noise_x, floor_x * floor_x * static_cast<double>(M) / 2);
+  const double s2z =
+      std::max(out.noise_z * out.noise_z, floor_z * floor_z * static_cast<double>(M) / 2);
+  out.cov_x.resize(static_cast<std::size_t>(4 * K * K));
+  out.cov_z.resize(out.cov_x.size());
+  double var_x = 0, var_z = 0;
+  for (int a = 0; a < 2 * K; ++a) {
+    for (int b = 0; b < 2 * K; ++b) {
+      const double g =
+          0.5 * (X(idx[static_cast<std::size_t>(a)], b) + X(idx[static_cast<std::size_t>(b)], a));
+      out.cov_x[static_cast<std::size_t>(a * 2 * K + b)] = s2x * g;
+      out.cov_z[static_cast<std::size_t>(a * 2 * K + b)] = s2z * g;
+    }
+    var_x += out.cov_x[static_cast<std::size_t>(a * 2 * K + a)];
+    var_z += out.cov_z[static_cast<std::size_t>(a * 2 * K + a)];
+  }
+  out.sigma_x = std::sqrt(var_x / (2 * K));
+  out.sigma_z = std::sqrt(var_z / (2 * K));
+  signal_shape(out.ddx, out.ddz, out);
+  return out;
 }
 
 }  // namespace oscidrum

@@ -1,35 +1,78 @@
 // Identification along a pass (identify.hpp, identify_pass): every window of the record, each
 // started from the previous valid estimate.
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 
 namespace oscidrum {
+namespace {
+
+// The harmonics of the gates when not given: as many as the record's sampling resolves at its
+// frequency (2 N + 1 samples per period at the median step), at most analyze's default 10.
+int gate_harmonics(std::span<const double> t, std::span<const double> ddx,
+                   std::span<const double> ddz, const WindowOptions& w) {
+  if (t.size() < 8) return 10;  // analyze_windows says what is wrong
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  const double step = dt[dt.size() / 2];
+  double f = w.f;
+  if (!(f > 0)) {
+    const std::size_t n = std::min<std::size_t>(t.size(), 4096);
+    FrequencySearch search = w.search;
+    search.n_max = 2;
+    f = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), search);
+  }
+  const double per_period = 1.0 / (f * step);
+  return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
+}
+
+}  // namespace
 
 std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double> t,
                                         std::span<const double> ddx, std::span<const double> ddz,
                                         std::span<const double> position,
                                         const WindowOptions& windows, const IdentifyOptions& o,
                                         const PassProgress& progress) {
-  const std::vector<RecordWindow> ws = analyze_windows(t, ddx, ddz, position, windows);
+  // The record's times from its first sample: phases of n 2 pi f t at t ~ 1e9 s would keep
+  // only a few digits.
+  const double t0 = t.empty() ? 0.0 : t.front();
+  std::vector<double> local(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) local[i] = t[i] - t0;
+  WindowOptions wo = windows;
+  if (wo.n_max == 0) wo.n_max = gate_harmonics(local, ddx, ddz, wo);
+  std::vector<RecordWindow> ws = analyze_windows(local, ddx, ddz, position, wo);
+  MeasureOptions mo = o.measure;
+  mo.covariance = std::max(mo.covariance, o.harmonics);
   std::vector<PassEstimate> out;
   const Identification* previous = nullptr;
   for (std::size_t k = 0; k < ws.size(); ++k) {
     PassEstimate pe;
-    pe.window = ws[k];
-    pe.identification.f = ws[k].f;
-    if (!ws[k].valid) {
-      pe.reason = ws[k].reason;
+    RecordWindow& w = ws[k];
+    pe.identification.f = w.f;
+    if (!w.valid) {
+      pe.reason = w.reason;
     } else {
       try {
-        const MeasuredResponse d = measured_response(ws[k].metrics, ws[k].f, ws[k].count);
+        const std::span<const double> tw = std::span<const double>(local).subspan(w.first, w.count);
+        MeasuredResponse d = measure_window(tw, ddx.subspan(w.first, w.count),
+                                            ddz.subspan(w.first, w.count), w.f, mo);
+        d.t_ref += t0;
+        d.t_first += t0;
+        d.t_last += t0;
         pe.identification = identify(base, d, o, previous);
         pe.valid = true;
       } catch (const Error& e) {
         pe.reason = e.what();
       }
     }
+    w.t_start += t0;
+    w.t_end += t0;
+    w.t_mid += t0;
+    pe.window = std::move(w);
     out.push_back(std::move(pe));
     if (out.back().valid) previous = &out.back().identification;
     if (progress && !progress(k, ws.size())) break;

@@ -3,6 +3,7 @@
 #include "identify/problem.hpp"
 
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -17,7 +18,7 @@ std::string num(double v) { return shortest(v); }
 
 std::complex<double> coefficient(const Harmonic& h) { return std::polar(h.amplitude, h.phase); }
 
-// Extremes and area of the periodic signal made of harmonics 0 ... n (as for a record).
+// Extremes and area of the periodic signal made of harmonics 1 ... n (as for a record).
 void signal_shape(const std::vector<Harmonic>& hx, const std::vector<Harmonic>& hz, int n,
                   double& xmax, double& xmin, double& zmax, double& zmin, double& area) {
   constexpr int kSamples = 512;
@@ -25,7 +26,8 @@ void signal_shape(const std::vector<Harmonic>& hx, const std::vector<Harmonic>& 
   for (int j = 0; j < kSamples; ++j) {
     const double w = 2.0 * M_PI * j / kSamples;
     double sx = 0, sz = 0;
-    for (int k = 0; k <= n && k < static_cast<int>(hx.size()); ++k) {
+    // n >= 1: the mean is an offset in a record, and left out of both.
+    for (int k = 1; k <= n && k < static_cast<int>(hx.size()); ++k) {
       sx += hx[k].amplitude * std::sin(k * w + hx[k].phase);
       sz += hz[k].amplitude * std::sin(k * w + hz[k].phase);
     }
@@ -85,7 +87,8 @@ Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyO
   const double scale = data.f / base.roller.f;
   case_.roller.f = data.f;
   case_.roller.M0 = base.roller.M0 * scale * scale;  // M0 grows with f^2 (5)
-  n_sim_ = std::max(o.harmonics, data.n_signal);
+  // The harmonics compared, and those of the signal whose peaks and area are compared.
+  n_sim_ = std::max({3, o.harmonics, o.use_peaks || o.use_area ? data.n_signal : 0});
   case_.numerics.samples_per_period = std::max(64, 4 * n_sim_ + 8);
   case_.numerics.output_periods = 1;
   // Every model run is bounded, so that no trial the optimiser visits can take long: one that
@@ -122,6 +125,23 @@ Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyO
     bounds_.push_back({-0.5, 0.5});
   }
   rows_ = 4 * o.harmonics + (o.use_peaks ? 4 : 0) + (o.use_area ? 1 : 0);
+  // The weights: the inverse Cholesky factor of each signal's covariance (measure_window), or
+  // 1 / sigma without one.
+  const int m = 2 * o.harmonics;
+  auto whitening = [m](const std::vector<double>& cov, double sigma) {
+    const std::size_t k2 = static_cast<std::size_t>(std::sqrt(static_cast<double>(cov.size())));
+    if (k2 < static_cast<std::size_t>(m) || k2 * k2 != cov.size())
+      return Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m) / sigma);
+    Eigen::MatrixXd C(m, m);
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < m; ++b) C(a, b) = cov[static_cast<std::size_t>(a) * k2 + b];
+    const Eigen::LLT<Eigen::MatrixXd> llt(C);
+    if (llt.info() != Eigen::Success)
+      return Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m) / sigma);
+    return Eigen::MatrixXd(llt.matrixL().solve(Eigen::MatrixXd(Eigen::MatrixXd::Identity(m, m))));
+  };
+  wx_ = whitening(data.cov_x, data.sigma_x);
+  wz_ = whitening(data.cov_z, data.sigma_z);
 }
 
 Case Problem::case_at(const Eigen::VectorXd& p) const {
@@ -283,7 +303,32 @@ double Problem::best_phase(const Simulated& s) const {
     best += step;
     if (std::abs(step) < 1e-13) break;
   }
-  return best;
+  // The above weighs each signal's harmonics alike; with the full covariance the minimum moves
+  // a little: Brent's method on the weighted objective itself, within one grid step.
+  Eigen::VectorXd r(4 * o_.harmonics);
+  auto objective = [&](double phi) {
+    harmonic_residual(s, phi, r);
+    return r.squaredNorm();
+  };
+  std::uintmax_t iterations = 60;
+  const double h = 2.0 * M_PI / 96;
+  return boost::math::tools::brent_find_minima(objective, best - h, best + h, 40, iterations).first;
+}
+
+void Problem::harmonic_residual(const Simulated& s, double phi, Eigen::VectorXd& r) const {
+  const int m = 2 * o_.harmonics;
+  Eigen::VectorXd vx(m), vz(m);
+  for (int n = 1; n <= o_.harmonics; ++n) {
+    const std::complex<double> e = std::polar(1.0, n * phi);
+    const std::complex<double> dx = data_.ddx[n - 1] - s.x[n - 1] * e;
+    const std::complex<double> dz = data_.ddz[n - 1] - s.z[n - 1] * e;
+    vx[2 * n - 2] = dx.real();
+    vx[2 * n - 1] = dx.imag();
+    vz[2 * n - 2] = dz.real();
+    vz[2 * n - 1] = dz.imag();
+  }
+  r.head(m) = wx_ * vx;
+  r.segment(m, m) = wz_ * vz;
 }
 
 bool Problem::residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) {
@@ -296,16 +341,8 @@ bool Problem::residual(const Eigen::VectorXd& p, Eigen::VectorXd& r, double& phi
   if (!s.ok) return false;
   phi = best_phase(s);
   r.resize(rows_);
-  Eigen::Index i = 0;
-  for (int n = 1; n <= o_.harmonics; ++n) {
-    const std::complex<double> e = std::polar(1.0, n * phi);
-    const std::complex<double> dx = (data_.ddx[n - 1] - s.x[n - 1] * e) / data_.sigma_x;
-    const std::complex<double> dz = (data_.ddz[n - 1] - s.z[n - 1] * e) / data_.sigma_z;
-    r[i++] = dx.real();
-    r[i++] = dx.imag();
-    r[i++] = dz.real();
-    r[i++] = dz.imag();
-  }
+  harmonic_residual(s, phi, r);
+  Eigen::Index i = 4 * o_.harmonics;
   const double sq = std::sqrt(data_.n_signal + 0.5);
   if (o_.use_peaks) {
     r[i++] = (data_.ddx_max - s.ddx_max) / (data_.sigma_x * sq);

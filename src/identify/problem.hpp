@@ -68,12 +68,16 @@ class Problem : public LeastSquares {
   ModelResponse run(const Case& c);
   ModelResponse rolling_instead(const Case& c, const Eigen::VectorXd& p, const ModelResponse& r);
   double best_phase(const Simulated& s) const;
+  /// The weighted residual of the harmonics at phase phi, into r[0 ... 4 harmonics).
+  void harmonic_residual(const Simulated& s, double phi, Eigen::VectorXd& r) const;
 
   MeasuredResponse data_;
   IdentifyOptions o_;
   Case case_;
   std::vector<Unknown> unknowns_;
   std::vector<Bounds> bounds_;
+  // Whitening of the measured harmonics: W^T W = Cov^-1 of (Re C_1, Im C_1, ...) of each signal.
+  Eigen::MatrixXd wx_, wz_;
   int n_sim_ = 10, rows_ = 0, simulations_ = 0;
   std::map<std::vector<double>, Simulated> cache_;
   std::map<std::vector<double>, ModelResponse> rolling_cache_;

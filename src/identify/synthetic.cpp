@@ -16,22 +16,35 @@ RecordSamples synthetic_record(const std::vector<Case>& segments, const Syntheti
   if (segments.empty()) throw Error("synthetic_record: no case given");
   if (!(o.duration > 0 && o.sample_rate > 0))
     throw Error("synthetic_record: duration and sample_rate must be > 0");
-  const std::size_t n = static_cast<std::size_t>(std::floor(o.duration * o.sample_rate)) + 1;
+  std::size_t n = static_cast<std::size_t>(std::floor(o.duration * o.sample_rate)) + 1;
   RecordSamples rec;
   rec.t.resize(n);
   rec.ddx_M.resize(n);
   rec.ddz_M.resize(n);
   rec.position.resize(n);
+  if (!(o.dropped >= 0 && o.dropped < 1))
+    throw Error("synthetic_record: dropped must be in [0, 1)");
   std::mt19937 rng(o.seed);
   std::uniform_real_distribution<double> uni(-0.5, 0.5);
   for (std::size_t i = 0; i < n; ++i)
     rec.t[i] =
         (static_cast<double>(i) + (i > 0 && i + 1 < n ? o.jitter * uni(rng) : 0.0)) / o.sample_rate;
+  if (o.dropped > 0) {  // samples lost at random (never the first or the last)
+    std::vector<double> kept;
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || i + 1 == n || uni(rng) + 0.5 >= o.dropped) kept.push_back(rec.t[i]);
+    rec.t = std::move(kept);
+    n = rec.t.size();
+    rec.ddx_M.resize(n);
+    rec.ddz_M.resize(n);
+    rec.position.resize(n);
+  }
+  for (double& ti : rec.t) ti += o.start;
   const double seg = o.duration / static_cast<double>(segments.size());
   double peak_x = 0, peak_z = 0;
   for (std::size_t s = 0; s < segments.size(); ++s) {
     Case c = segments[s];
-    c.numerics.samples_per_period = 1024;
+    c.numerics.samples_per_period = 8192;  // linear interpolation to about 1e-7 of a peak
     c.numerics.output_periods = 1;
     const Result r = simulate(c);
     if (!ok(r.status))
@@ -42,8 +55,9 @@ RecordSamples synthetic_record(const std::vector<Case>& segments, const Syntheti
     const double t0 = r.samples.t.front();
     for (std::size_t i = 0; i < n; ++i) {
       const double ti = rec.t[i];
-      if (ti < seg * static_cast<double>(s) - 1e-12 ||
-          (s + 1 < segments.size() && ti >= seg * static_cast<double>(s + 1)))
+      const double from_start = ti - o.start;
+      if (from_start < seg * static_cast<double>(s) - 1e-12 ||
+          (s + 1 < segments.size() && from_start >= seg * static_cast<double>(s + 1)))
         continue;
       double u = std::fmod(ti - t0, T);
       if (u < 0) u += T;
@@ -61,10 +75,10 @@ RecordSamples synthetic_record(const std::vector<Case>& segments, const Syntheti
   }
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const double slow = std::sin(2.0 * M_PI * rec.t[i] / o.duration + 0.3);
+    const double slow = std::sin(2.0 * M_PI * (rec.t[i] - o.start) / o.duration + 0.3);
     rec.ddx_M[i] += peak_x * (o.noise * gauss(rng) + o.drift * slow);
     rec.ddz_M[i] += peak_z * (o.noise * gauss(rng) + o.drift * slow);
-    rec.position[i] = o.speed * rec.t[i];
+    rec.position[i] = o.speed * (rec.t[i] - o.start);
   }
   return rec;
 }

@@ -379,13 +379,9 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                 " = " + num(std::max(1.0, o.window_periods) / f_rec) + " s at f = " + num(f_rec) +
                 " Hz); it spans " + num(span) + " s");
 
-  // Median time step, and the samples at a channel's extreme (plateaus: clipping).
+  // Time steps (gaps), and the samples at a channel's extreme (plateaus: clipping).
   std::vector<double> dt(t.size() - 1);
   for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
-  std::vector<double> sorted = dt;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
-                   sorted.end());
-  const double median_dt = sorted[sorted.size() / 2];
   std::vector<char> clipped(t.size(), 0);
   for (const std::span<const double> y : {ddx, ddz}) {
     const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
@@ -451,9 +447,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         gap = dt[i];
         gap_at = t[i];
       }
-    if (gap > o.gates.max_gap * median_dt)
+    // A few lost samples are not a gap: the least-squares fit takes the samples where they
+    // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
+    const double max_gap = o.gates.max_gap / f_track;
+    if (gap > max_gap)
       reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at) + " s (" +
-                        num(gap / median_dt) + " median steps > " + num(o.gates.max_gap) + ")");
+                        num(std::round(gap * f_track * 100) / 100) + " excitation periods > " +
+                        num(o.gates.max_gap) + "; a harmonic fit does not bridge it)");
     std::size_t n_clipped = 0;
     for (std::size_t i = first; i <= last; ++i) n_clipped += clipped[i] ? 1 : 0;
     if (n_clipped > 0)
@@ -468,7 +468,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                         std::to_string(2 * o.n_max + 1) + " for " + std::to_string(o.n_max) +
                         " harmonics)");
     bool fitted = false;
-    if (enough && gap <= o.gates.max_gap * median_dt) {
+    if (enough && gap <= max_gap) {
       const double periods = (w.t_end - w.t_start) * f_track;
       const int nf = o.n_max;  // all of them: unfitted harmonics would bias f
       const double fw =

@@ -31,13 +31,14 @@ Case truth(double G) {
 
 // t, ddx_M, ddz_M, v (speed 0.8 m/s) of consecutive cases.
 void write_record(const std::string& path, const std::vector<Case>& cases, double duration,
-                  double rate = 1000) {
+                  double rate = 1000, double start = 0.0) {
   SyntheticRecord o;
   o.duration = duration;
   o.sample_rate = rate;
   o.noise = 0.05;
   o.drift = 0.05;
   o.seed = 4;
+  o.start = start;
   const RecordSamples r = synthetic_record(cases, o);
   std::ofstream out(path);
   out << "t,ddx_M,ddz_M,v\n";
@@ -111,6 +112,41 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
   for (const char* png :
        {"pass_G.png", "fit_accelerations.png", "fit_spectra.png", "fit_figure.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / ("plots/" + std::string(png)))) << png << o.err;
+}
+
+// The fit plots show the fit: on a record whose clock starts at 1.2345 s, the model drawn in
+// fit_model.csv and at the samples in fit_measured.csv differs from the samples by the noise
+// (5 % of the peak), as the fit's residual says, not by a curve shifted in time.
+TEST(CliIdentify, TheFitPlotsModelLiesOnTheSamples) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6, 1500, 1.2345);
+  const Outcome o = run({"identify", dir / "r.csv", "--window", "0", "--plot", dir / "plots",
+                         "--format", "json", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string measured = slurp(dir / "plots/fit_measured.csv"),
+                    model = slurp(dir / "plots/fit_model.csv");
+  const std::vector<double> t = column(measured, "t"), x = column(measured, "ddx_M"),
+                            fit = column(measured, "ddx_M_fit"), tm = column(model, "t"),
+                            xm = column(model, "ddx_M");
+  ASSERT_GT(t.size(), 50u);
+  EXPECT_NEAR(t.front(), 1.2345, 1e-6);
+  double s2 = 0, peak = 0, s2_curve = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    s2 += (x[i] - fit[i]) * (x[i] - fit[i]);
+    peak = std::max(peak, std::abs(fit[i]));
+    // The drawn curve, linearly interpolated at the sample, is the model at the sample.
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(tm.begin(), tm.end(), t[i]) - tm.begin());
+    if (k == 0 || k >= tm.size()) continue;
+    const double w = (t[i] - tm[k - 1]) / (tm[k] - tm[k - 1]);
+    const double curve = (1 - w) * xm[k - 1] + w * xm[k];
+    s2_curve += (curve - fit[i]) * (curve - fit[i]);
+  }
+  const double n = static_cast<double>(t.size());
+  EXPECT_NEAR(std::sqrt(s2 / n) / (0.05 * peak), 1.0, 0.3);
+  EXPECT_LT(std::sqrt(s2_curve / n), 0.01 * peak);
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_NEAR(std::sqrt(s2 / n), j["windows"][0]["noise_x"].get<double>(), 0.3 * 0.05 * peak);
 }
 
 TEST(CliIdentify, FromTheMetricsOfAnalyze) {

@@ -1,0 +1,139 @@
+// Tests of the measured response of a window (src/identify/measured.cpp, measure_window):
+// signals made of known harmonics, sampled irregularly with samples lost, with offsets, drifts
+// and noise.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <complex>
+#include <random>
+#include <vector>
+
+#include "oscidrum/oscidrum.hpp"
+
+namespace oscidrum {
+namespace {
+
+constexpr double kF = 39.39;  // [Hz]
+
+// C_n of the test signal, n = 1 ... 15: decaying like a signal with kinks.
+std::complex<double> coefficient(int n) { return std::polar(10.0 / (n * n), 0.3 + 0.7 * n); }
+
+struct Signal {
+  std::vector<double> t, x, z;
+};
+
+// sum_n A_n sin(n w (t - t_ref) + theta_n) of x (and of z with other phases), sampled at
+// rate [1/s] with 10 % jitter and 2 % of the samples lost, from t_start.
+Signal make(double rate, double t_start, unsigned seed, int n_max = 15) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Signal s;
+  const int samples = static_cast<int>(40.3 / kF * rate);
+  for (int i = 0; i < samples; ++i) {
+    if (i > 0 && u(rng) < 0.02) continue;
+    const double t = t_start + (i + (i > 0 ? 0.1 * (u(rng) - 0.5) : 0.0)) / rate;
+    double x = 0, z = 0;
+    for (int n = 1; n <= n_max; ++n) {
+      const std::complex<double> c = coefficient(n);
+      const double w = n * 2 * M_PI * kF * (t - t_start);
+      x += std::abs(c) * std::sin(w + std::arg(c));
+      z += 0.5 * std::abs(c) * std::sin(w + std::arg(c) + 1.0);
+    }
+    s.t.push_back(t);
+    s.x.push_back(x);
+    s.z.push_back(z);
+  }
+  return s;
+}
+
+TEST(MeasureWindow, RecoversTheHarmonicsOfAnIrregularRecordExactly) {
+  const Signal s = make(2000, 3.0, 1);
+  MeasureOptions o;
+  o.harmonics = 20;  // every harmonic of the signal is fitted
+  const MeasuredResponse m = measure_window(s.t, s.x, s.z, kF, o);
+  EXPECT_EQ(m.t_ref, s.t.front());
+  ASSERT_EQ(m.ddx.size(), 20u);
+  for (int n = 1; n <= 15; ++n) {
+    EXPECT_LT(std::abs(m.ddx[n - 1] - coefficient(n)), 1e-9) << n;
+    EXPECT_LT(std::abs(m.ddz[n - 1] - 0.5 * coefficient(n) * std::polar(1.0, 1.0)), 1e-9) << n;
+  }
+  EXPECT_LT(m.noise_x, 1e-9);
+}
+
+// "Constant offsets ignored": an offset (gravity in a vertical channel, a sensor's bias) and a
+// slow drift do not change the harmonics; they are the trend's.
+TEST(MeasureWindow, OffsetsAndSlowDriftsGoToTheTrend) {
+  const Signal s = make(1000, 1.2345, 2);
+  MeasureOptions o;
+  o.harmonics = 10;
+  const MeasuredResponse clean = measure_window(s.t, s.x, s.z, kF, o);
+  Signal d = s;
+  for (std::size_t i = 0; i < d.t.size(); ++i) {
+    const double v = d.t[i] - d.t.front();
+    d.x[i] += 3.0 + 0.4 * v - 0.2 * v * v;
+    d.z[i] += 9.80665 - 0.1 * v * v * v;
+  }
+  const MeasuredResponse shifted = measure_window(d.t, d.x, d.z, kF, o);
+  for (std::size_t n = 0; n < clean.ddx.size(); ++n) {
+    EXPECT_LT(std::abs(shifted.ddx[n] - clean.ddx[n]), 1e-10) << n;
+    EXPECT_LT(std::abs(shifted.ddz[n] - clean.ddz[n]), 1e-10) << n;
+  }
+  EXPECT_NEAR(shifted.trend_z[0] - clean.trend_z[0], 9.80665 - 0.1 * std::pow(0.5 * 40.3 / kF, 3),
+              0.2);
+}
+
+// The covariance is what the noise does: over 400 noise realisations the squared Mahalanobis
+// distance of the first 4 harmonics (8 numbers per signal) has the chi^2 mean 8 and variance 16.
+TEST(MeasureWindow, TheCovarianceIsCalibrated) {
+  const Signal s = make(1500, 0.0, 3);
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g(0.0, 1.0);
+  MeasureOptions o;  // harmonics from the sampling
+  o.covariance = 4;
+  double sum = 0, sum2 = 0;
+  const int trials = 400;
+  const MeasuredResponse clean = measure_window(s.t, s.x, s.z, kF, o);
+  for (int k = 0; k < trials; ++k) {
+    Signal noisy = s;
+    for (double& x : noisy.x) x += 0.3 * g(rng);
+    for (double& z : noisy.z) z += 0.1 * g(rng);
+    const MeasuredResponse m = measure_window(noisy.t, noisy.x, noisy.z, kF, o);
+    Eigen::MatrixXd C(8, 8);
+    Eigen::VectorXd e(8);
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b) C(a, b) = m.cov_x[static_cast<std::size_t>(a * 8 + b)];
+    for (int n = 0; n < 4; ++n) {
+      const std::complex<double> d = m.ddx[static_cast<std::size_t>(n)] - clean.ddx[n];
+      e[2 * n] = d.real();
+      e[2 * n + 1] = d.imag();
+    }
+    const double d2 = e.dot(C.ldlt().solve(e));
+    sum += d2;
+    sum2 += d2 * d2;
+  }
+  const double mean = sum / trials, var = sum2 / trials - mean * mean;
+  // The mean of 400 draws of chi^2_8 has a standard deviation of 4 / 20 = 0.2.
+  EXPECT_NEAR(mean, 8.0, 0.8);
+  EXPECT_NEAR(var, 16.0, 6.0);
+}
+
+TEST(MeasureWindow, HarmonicsFromTheSampling) {
+  const Signal s = make(1000, 0.0, 5);  // 25.4 samples per period: 11 harmonics
+  EXPECT_EQ(measure_window(s.t, s.x, s.z, kF).ddx.size(), 11u);
+  const Signal fast = make(5000, 0.0, 5);  // 127 per period: at most kMaxMeasuredHarmonics
+  EXPECT_EQ(measure_window(fast.t, fast.x, fast.z, kF).ddx.size(),
+            static_cast<std::size_t>(kMaxMeasuredHarmonics));
+  MeasureOptions o;
+  o.harmonics = 12;  // 2 * 12 + 2 = 26 > 25.4
+  try {
+    measure_window(s.t, s.x, s.z, kF, o);
+    ADD_FAILURE() << "12 harmonics at 25.4 samples per period accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("too few for 12 harmonics"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum
