@@ -185,6 +185,26 @@ BENCHMARK(BM_PureRolling_G25_MMd005)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PureRolling_G25_MMd005_rtol1e7)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PureRolling_G25_MMd0)->Unit(benchmark::kMillisecond);
 
+// Unilateral contact (issue 27): a steady state with flight against comparable cases without
+// (pure rolling, Appendix B soil, 65 Hz with M0 following f^2): G = 80 MN/m^2 lifts off once per
+// period; G = 40 MN/m^2 stays in contact, with unilateral contact and with the paper's.
+oscidrum::Case flight_case(double G, bool unilateral) {
+  oscidrum::Case c;
+  c.soil.input = oscidrum::SoilInput::modulus;
+  c.soil.G = G;
+  c.roller.f = 65.0;
+  c.roller.unbalance = 0.22877;
+  c.contact.pure_rolling = true;
+  c.contact.unilateral = unilateral;
+  return c;
+}
+void BM_Unilateral_WithFlight_G80(benchmark::State& s) { run(s, flight_case(80e6, true)); }
+void BM_Unilateral_NoFlight_G40(benchmark::State& s) { run(s, flight_case(40e6, true)); }
+void BM_Permanent_NoFlight_G40(benchmark::State& s) { run(s, flight_case(40e6, false)); }
+BENCHMARK(BM_Unilateral_WithFlight_G80)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Unilateral_NoFlight_G40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Permanent_NoFlight_G40)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -92,6 +92,11 @@ void add_model_flags(CLI::App& app, CaseOptions& o) {
   o.pure_flag = app.add_flag("--pure-rolling", o.pure_rolling,
                              "ignore the friction limit (mu -> infinity): the drum never slips")
                     ->group(group);
+  o.unilateral_flag =
+      app.add_flag("--unilateral", o.unilateral,
+                   "unilateral contact: the drum may lift off the trough and land again "
+                   "(contact.unilateral; docs/model.md section 13)")
+          ->group(group);
   o.MMd_flag =
       app.add_option("--MMd", o.MMd, "constant driving torque [N m] (default 0)")->group(group);
   o.fraction_flag =
@@ -230,6 +235,7 @@ void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
   if (given(o.pure_flag) && given(o.mu_flag))
     throw Error("--pure-rolling ignores friction; give either --mu or --pure-rolling");
   if (given(o.pure_flag)) put(spec, "contact.pure_rolling", true, "--pure-rolling");
+  if (given(o.unilateral_flag)) put(spec, "contact.unilateral", true, "--unilateral");
   if (given(o.mu_flag)) {
     put(spec, "contact.mu", o.mu, origin("--mu", o.mu));
     put(spec, "contact.pure_rolling", false, origin("--mu", o.mu));

@@ -24,10 +24,11 @@ struct CaseOptions {
   double G = 0, nu = 0, rho = 0;  // --G [MN/m^2], --nu, --rho
   double ksh = 0, ksv = 0, csh = 0, csv = 0;
   double mu = 0, MMd = 0, MMd_fraction = 0, R = 0, k = 0, a = 0;
-  bool pure_rolling = false, soil_formula = false;
+  bool pure_rolling = false, soil_formula = false, unilateral = false;
   CLI::Option *G_flag = nullptr, *nu_flag = nullptr, *rho_flag = nullptr;
   CLI::Option *ksh_flag = nullptr, *ksv_flag = nullptr, *csh_flag = nullptr, *csv_flag = nullptr;
-  CLI::Option *mu_flag = nullptr, *pure_flag = nullptr, *formula_flag = nullptr;
+  CLI::Option *mu_flag = nullptr, *pure_flag = nullptr, *formula_flag = nullptr,
+              *unilateral_flag = nullptr;
   CLI::Option *MMd_flag = nullptr, *fraction_flag = nullptr;
   CLI::Option *R_flag = nullptr, *k_flag = nullptr, *a_flag = nullptr;
   std::vector<std::string> sets;  // --set key=value

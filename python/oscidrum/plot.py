@@ -80,7 +80,8 @@ COLORS = ("black", "tab:red", "tab:blue", "tab:green", "tab:purple", "tab:orange
           "tab:pink", "tab:gray", "tab:olive", "tab:cyan")
 MARKERS = ("+", "o", "s", "^", "v", "D", "x", "*", "<", ">", "p")
 SLIP_COLORS = {1: ("tab:orange", "slip+ ($v_{rel} > 0$)"),
-               -1: ("tab:cyan", "slip- ($v_{rel} < 0$)")}
+               -1: ("tab:cyan", "slip- ($v_{rel} < 0$)"),
+               2: ("tab:purple", "flight (no contact)")}
 
 
 def axis_label(key: str, unit: str = "") -> Tuple[str, float]:
@@ -482,7 +483,7 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
         axis.plot(xc, zc, color=color, lw=1.2, label=label or None, zorder=2)
         _arrows(axis, x, z, color)
     handles = [Patch(color=SLIP_COLORS[v][0], alpha=0.45, label=SLIP_COLORS[v][1])
-               for v in (1, -1) if slip_seen.get(v)]
+               for v in (1, -1, 2) if slip_seen.get(v)]
     if slip_seen:
         handles.insert(0, Patch(facecolor="none", edgecolor="none", label="stick: bare line"))
     axis.set_xlabel(DDX_LABEL)

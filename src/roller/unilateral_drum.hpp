@@ -65,7 +65,14 @@ class Dynamics<UnilateralDrum> {
 
   // ---- variational equations ------------------------------------------------------------------
   Matrix jacobian(Phase phase, double t, const Vector& x) const;
-  static Matrix jacobian_times(const Matrix& J, const Matrix& X) { return J * X; }
+  /// J X: the rows of delta, x_A and s_A of every phase's J are the unit rows of their rates
+  /// (columns 5, 6, 7), so those rows of J X are copies of X's; the other seven are products.
+  static Matrix jacobian_times(const Matrix& J, const Matrix& X) {
+    Matrix Y;
+    Y.topRows<3>() = X.middleRows<3>(5);
+    Y.bottomRows<7>().noalias() = J.bottomRows<7>() * X;
+    return Y;
+  }
   SaltationMatrix<kStates> saltation(const Event& event, const Vector& before,
                                      const Vector& after) const;
 
