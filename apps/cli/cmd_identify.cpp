@@ -34,6 +34,7 @@ struct IdentifyCliOptions {
   std::string config, metrics_file;
   CaseOptions c;
   std::string estimate = "G";
+  std::string soil_scale = "formulas";
   bool fit_mu = false, fit_MMd = false, use_peaks = false, use_area = false, no_profile = false;
   bool transient = false;
   int compare = 4;
@@ -121,6 +122,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
   for (const auto& [name, unit] : unknowns(io))
     for (const char* suffix : {"", "_u", "_lo", "_hi"})
       out << "," << name << suffix << "[" << unit << "]";
+  if (io.modulus) out << ",soil_scale[-]";
   out << ",tau[s],rms_residual[m/s^2],relative_residual[-],reduced_chi2[-],condition[-],"
          "iterations[-],simulations[-],warnings[-]\n";
   for (const PassEstimate& p : pass) {
@@ -136,6 +138,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
         out << "," << cell(v);
     }
     const double nan = NAN;
+    if (io.modulus) out << "," << to_string(io.soil_scale);
     out << "," << cell(p.valid ? id.time_shift : nan) << ","
         << cell(p.valid ? id.rms_residual : nan) << ","
         << cell(p.valid ? id.relative_residual : nan) << ","
@@ -193,6 +196,12 @@ std::string value_text(const Estimate& e) {
 }
 
 std::string unit_text(const Estimate& e) { return shown_unit(e.name, e.unit); }
+
+std::string scale_text(SoilScale scale) {
+  return scale == SoilScale::table2
+             ? "paper Table 2 (--soil-scale table2; interpolated between its rows)"
+             : "Appendix B (42)-(45) with the case's nu and rho (--soil-scale formulas)";
+}
 
 // Plot data of one window: measured and model over two periods, spectra, parameters. The model
 // is drawn in the record's time (fit_curves: shifted by tau, with the window's offsets and
@@ -256,6 +265,7 @@ int run(const IdentifyCliOptions& o) {
   const Case base = base_case(o);
   IdentifyOptions io;
   io.modulus = o.estimate == "G";
+  io.soil_scale = soil_scale_from(o.soil_scale, "--soil-scale");
   io.fit_mu = o.fit_mu;
   io.fit_MMd = o.fit_MMd;
   io.harmonics = o.compare;
@@ -316,6 +326,7 @@ int run(const IdentifyCliOptions& o) {
   const nlohmann::ordered_json j = {{"schema", "oscidrum-identify/1"},
                                     {"file", name},
                                     {"estimate", o.estimate},
+                                    {"soil_scale", o.estimate == "G" ? o.soil_scale : ""},
                                     {"fit_mu", o.fit_mu},
                                     {"fit_MMd", o.fit_MMd},
                                     {"compare_harmonics", o.compare},
@@ -345,6 +356,7 @@ int run(const IdentifyCliOptions& o) {
     s.line("excitation frequency f [Hz]", fmt(id.f, 8));
     for (const Estimate& e : id.estimates)
       s.line(e.name + " [" + unit_text(e) + "]  value +- u  [95 %]", value_text(e));
+    if (io.modulus) s.line("scale of G", scale_text(io.soil_scale));
     s.line("relative residual", fmt(id.relative_residual, 3) + " (harmonics n = 1 ... " +
                                     std::to_string(o.compare) + ")");
     s.line("reduced chi^2", fmt(id.reduced_chi2, 3));
@@ -379,7 +391,9 @@ int run(const IdentifyCliOptions& o) {
                                     : "WARNING: " + join(p.identification.warnings)));
       t.rows.push_back(row);
     }
-    std::cout << name << ": " << pass.size() << " windows, " << valid << " identified\n"
+    std::cout << name << ": " << pass.size() << " windows, " << valid << " identified"
+              << (io.modulus ? "; G on the scale of " + scale_text(io.soil_scale) : std::string())
+              << "\n"
               << t.text();
   }
   std::cout.flush();
@@ -456,6 +470,12 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "G (shear modulus through Appendix B with the case's nu and rho) or ks (ksh and "
                   "ksv, with the case's csh and csv) (default G)")
       ->check(CLI::IsMember({"G", "ks"}))
+      ->group(fit);
+  sub->add_option("--soil-scale", o->soil_scale,
+                  "the scale of G: formulas (Appendix B (42)-(45) with the case's nu and rho, "
+                  "the default) or table2 (the paper's Table 2, interpolated between its rows: "
+                  "the soil `oscidrum run --G` simulates)")
+      ->check(CLI::IsMember({"formulas", "table2"}))
       ->group(fit);
   sub->add_flag("--fit-mu", o->fit_mu, "estimate the friction coefficient mu too")->group(fit);
   sub->add_flag("--fit-MMd", o->fit_MMd, "estimate the driving torque MMd too")->group(fit);

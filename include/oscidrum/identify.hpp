@@ -95,16 +95,29 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
                                 std::span<const double> ddz_M, double f,
                                 const MeasureOptions& options = {});
 
+/// The scale a G is identified on: which soil coefficients a G stands for.
+enum class SoilScale {
+  formulas,  ///< Appendix B (42)-(45) with the case's nu and rho (soil.input = modulus)
+  table2,    ///< the paper's Table 2, interpolated between its rows (table2_coefficients)
+};
+const char* to_string(SoilScale scale);  ///< "formulas", "table2"
+/// SoilScale from its name; throws oscidrum::Error naming `what` and the choices.
+SoilScale soil_scale_from(const std::string& name, const std::string& what = "soil_scale");
+
 /// What is estimated, and how.
 struct IdentifyOptions {
-  bool modulus = true;      ///< true: G [Pa] by Appendix B (nu, rho of the case); false: ksh, ksv
-  bool fit_mu = false;      ///< estimate contact.mu too
-  bool fit_MMd = false;     ///< estimate the driving torque MMd too
-  int harmonics = 4;        ///< compare C_n for n = 1 ... harmonics [-]
-  bool use_peaks = false;   ///< also compare the four peaks of x_M'' and z_M''
-  bool use_area = false;    ///< also compare the area of the z_M''(x_M'') figure
-  bool profile = true;      ///< 95 % intervals from the profile of the objective
-  int max_iterations = 40;  ///< Levenberg-Marquardt iterations [-]
+  bool modulus = true;  ///< true: G [Pa] (on soil_scale); false: ksh, ksv
+  /// The scale of G: Appendix B's formulas, or Table 2's (what `oscidrum run --G 30` simulates:
+  /// the Table 2 soil; (42) as printed does not reproduce Table 2's stiffness columns, so the
+  /// same record gives different G on the two scales, docs/identify.md).
+  SoilScale soil_scale = SoilScale::formulas;
+  bool fit_mu = false;            ///< estimate contact.mu too
+  bool fit_MMd = false;           ///< estimate the driving torque MMd too
+  int harmonics = 4;              ///< compare C_n for n = 1 ... harmonics [-]
+  bool use_peaks = false;         ///< also compare the four peaks of x_M'' and z_M''
+  bool use_area = false;          ///< also compare the area of the z_M''(x_M'') figure
+  bool profile = true;            ///< 95 % intervals from the profile of the objective
+  int max_iterations = 40;        ///< Levenberg-Marquardt iterations [-]
   double max_condition = 1e6;     ///< a larger condition number of the scaled Jacobian: warn [-]
   double model_tolerance = 1e-6;  ///< numerics.rtol and steady_tol of the model (at least) [-]
   double max_correlation = 0.99;  ///< a larger |correlation| of two estimates: warn [-]

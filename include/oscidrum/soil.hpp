@@ -59,6 +59,20 @@ const Table2Row* table2_row(double G);
 /// True when G [Pa] is one of Table 2's shear moduli (to 1e-9 relative).
 bool is_table2_G(double G);
 
+/// The range of G [Pa] table2_coefficients covers: Table 2's 5 ... 70 MN/m^2, and a factor 4
+/// beyond each end.
+inline constexpr double kTable2InterpolatedMin = 1.25e6;
+inline constexpr double kTable2InterpolatedMax = 280e6;
+
+/// Table 2's coefficients at any G [Pa] in [kTable2InterpolatedMin, kTable2InterpolatedMax]:
+/// the rows themselves at the table's G; between rows, a monotone cubic (Fritsch-Carlson,
+/// PCHIP) through the rows of ln(coefficient) against ln(G) (continuously differentiable,
+/// monotone in G where the column is: a0 falls, ksh and ksv rise, csh and csv are constant);
+/// beyond the table, the end rows' power laws (the log-log slope at the end row). The scale on
+/// which `identify --soil-scale table2` gives G (docs/identify.md). Throws oscidrum::Error (key
+/// soil.G) outside the range.
+SoilCoefficients table2_coefficients(double G);
+
 /// The Table 2 soil at G [Pa]: input == table2 at the row's G, with the row's coefficients also
 /// in ksh, ksv, csh, csv (for reading; the model takes them from the table). G must be one of
 /// the table's values (5e6, 10e6, ..., 70e6), else oscidrum::Error.

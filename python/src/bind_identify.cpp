@@ -96,12 +96,13 @@ void bind_identify(py::module_& m) {
       [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,
          const std::optional<Array>& position, double f, double window, double hop, int n_max,
          const std::string& estimate, bool fit_mu, bool fit_MMd, int compare, bool use_peaks,
-         bool use_area, bool profile, bool shooting) {
+         bool use_area, bool profile, bool shooting, const std::string& soil_scale) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
         const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 0.5);
         IdentifyOptions io;
         io.modulus = estimate == "G";
+        io.soil_scale = soil_scale_from(soil_scale);
         io.fit_mu = fit_mu;
         io.fit_MMd = fit_MMd;
         io.harmonics = compare;
@@ -146,7 +147,7 @@ void bind_identify(py::module_& m) {
       py::arg("hop") = 0.0, py::arg("n_max") = 0, py::arg("estimate") = "G",
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
-      py::arg("shooting") = true,
+      py::arg("shooting") = true, py::arg("soil_scale") = "formulas",
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "

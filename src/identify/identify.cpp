@@ -140,6 +140,24 @@ Estimate estimate_of(Problem& pr, const detail::Fit& fit, std::size_t j, double 
 
 }  // namespace
 
+const char* to_string(SoilScale scale) {
+  switch (scale) {
+    case SoilScale::formulas:
+      return "formulas";
+    case SoilScale::table2:
+      return "table2";
+  }
+  return "";
+}
+
+SoilScale soil_scale_from(const std::string& name, const std::string& what) {
+  if (name == "formulas") return SoilScale::formulas;
+  if (name == "table2") return SoilScale::table2;
+  throw Error(what + " must be formulas (Appendix B (42)-(45)) or table2 (the paper's Table 2, " +
+                  "interpolated); got '" + name + "'",
+              what);
+}
+
 Identification identify(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
                         const Identification* start) {
   check_input(data, o);

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "oscidrum/simulate.hpp"
+#include "oscidrum/soil.hpp"
 #include "util/format.hpp"
 
 namespace oscidrum::detail {
@@ -104,7 +105,12 @@ Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyO
   // about 1e-3), three times faster than the default 1e-8.
   case_.numerics.rtol = std::max(base.numerics.rtol, o.model_tolerance);
   case_.numerics.steady_tol = std::max(base.numerics.steady_tol, o.model_tolerance);
-  if (o.modulus) {
+  if (o.modulus && o.soil_scale == SoilScale::table2) {
+    // Table 2's coefficients at G (case_at), given to the model as coefficients.
+    case_.soil.input = SoilInput::coefficients;
+    unknowns_.push_back(Unknown::G);
+    bounds_.push_back({std::log(kTable2InterpolatedMin), std::log(kTable2InterpolatedMax)});
+  } else if (o.modulus) {
     case_.soil.input = SoilInput::modulus;
     unknowns_.push_back(Unknown::G);
     bounds_.push_back({std::log(1e5), std::log(2e9)});
@@ -151,6 +157,13 @@ Case Problem::case_at(const Eigen::VectorXd& p) const {
     switch (unknowns_[j]) {
       case Unknown::G:
         c.soil.G = v;
+        if (c.soil.input == SoilInput::coefficients) {  // the Table 2 scale
+          const SoilCoefficients s = table2_coefficients(v);
+          c.soil.ksh = s.ksh;
+          c.soil.ksv = s.ksv;
+          c.soil.csh = s.csh;
+          c.soil.csv = s.csv;
+        }
         break;
       case Unknown::ksh:
         c.soil.ksh = v;

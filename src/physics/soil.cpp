@@ -1,6 +1,7 @@
 // Appendix B: discrete soil coefficients (42)-(45), and the paper's Table 2.
 #include "oscidrum/soil.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -130,6 +131,73 @@ const Table2Row* table2_row(double G) {
 }
 
 bool is_table2_G(double G) { return table2_row(G) != nullptr; }
+
+namespace {
+
+// Fritsch-Carlson (PCHIP) slopes of y(x) at the nodes: the harmonic mean of the neighbouring
+// secants where they have the same sign (0 otherwise), one-sided three-point formulas at the
+// ends, limited so that the interpolant stays monotone between nodes.
+template <std::size_t N>
+std::array<double, N> pchip_slopes(const std::array<double, N>& x, const std::array<double, N>& y) {
+  std::array<double, N - 1> h{}, d{};
+  for (std::size_t k = 0; k + 1 < N; ++k) {
+    h[k] = x[k + 1] - x[k];
+    d[k] = (y[k + 1] - y[k]) / h[k];
+  }
+  std::array<double, N> m{};
+  for (std::size_t k = 1; k + 1 < N; ++k) {
+    if (d[k - 1] * d[k] <= 0) continue;
+    const double w1 = 2 * h[k] + h[k - 1], w2 = h[k] + 2 * h[k - 1];
+    m[k] = (w1 + w2) / (w1 / d[k - 1] + w2 / d[k]);
+  }
+  auto end = [](double h0, double h1, double d0, double d1) {
+    double s = ((2 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+    if (s * d0 <= 0) return 0.0;
+    if (d0 * d1 <= 0 && std::abs(s) > 3 * std::abs(d0)) s = 3 * d0;
+    return s;
+  };
+  m[0] = end(h[0], h[1], d[0], d[1]);
+  m[N - 1] = end(h[N - 2], h[N - 3], d[N - 2], d[N - 3]);
+  return m;
+}
+
+}  // namespace
+
+SoilCoefficients table2_coefficients(double G) {
+  if (!(G >= kTable2InterpolatedMin && G <= kTable2InterpolatedMax))
+    throw Error("soil.G must be in [" + num(kTable2InterpolatedMin) + ", " +
+                    num(kTable2InterpolatedMax) +
+                    "] [Pa] on the Table 2 scale (its rows 5 ... 70 MN/m^2, and a factor 4 "
+                    "beyond each end); got " +
+                    num(G),
+                "soil.G", G);
+  if (const Table2Row* row = table2_row(G))
+    return {row->a0, row->ksh, row->ksv, row->csh, row->csv};
+  constexpr std::size_t n = 14;
+  const auto& rows = table2();
+  std::array<double, n> x{};
+  for (std::size_t k = 0; k < n; ++k) x[k] = std::log(rows[k].G);
+  const double u = std::log(G);
+  std::size_t k = 0;  // the interval [x_k, x_k+1] holding u (clamped to the end intervals)
+  while (k + 2 < n && u > x[k + 1]) ++k;
+  auto column = [&](double Table2Row::*member) {
+    bool constant = true;  // csh, csv: the same in every row, and exactly so between them
+    for (const Table2Row& row : rows) constant = constant && row.*member == rows[0].*member;
+    if (constant) return rows[0].*member;
+    std::array<double, n> y{};
+    for (std::size_t j = 0; j < n; ++j) y[j] = std::log(rows[j].*member);
+    const std::array<double, n> m = pchip_slopes(x, y);
+    if (u < x[0]) return std::exp(y[0] + m[0] * (u - x[0]));  // power laws beyond the ends
+    if (u > x[n - 1]) return std::exp(y[n - 1] + m[n - 1] * (u - x[n - 1]));
+    // Cubic Hermite on [x_k, x_k+1].
+    const double h = x[k + 1] - x[k], s = (u - x[k]) / h;
+    const double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+    const double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+    return std::exp(h00 * y[k] + h10 * h * m[k] + h01 * y[k + 1] + h11 * h * m[k + 1]);
+  };
+  return {column(&Table2Row::a0), column(&Table2Row::ksh), column(&Table2Row::ksv),
+          column(&Table2Row::csh), column(&Table2Row::csv)};
+}
 
 Soil table2_soil(double G) {
   const Table2Row* row = table2_row(G);

@@ -94,7 +94,7 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
   EXPECT_NE(o.out.find("2 identified"), std::string::npos) << o.out;
   const std::string csv = slurp(dir / "G.csv");
   EXPECT_EQ(csv.rfind("window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-],"
-                      "G[Pa],G_u[Pa],G_lo[Pa],G_hi[Pa],tau[s]",
+                      "G[Pa],G_u[Pa],G_lo[Pa],G_hi[Pa],soil_scale[-],tau[s]",
                       0),
             0u)
       << csv;

@@ -121,6 +121,90 @@ TEST(Table2, SoilThrowsForAGNotInTheTable) {
   }
 }
 
+// ---- Table 2 between its rows (table2_coefficients) ------------------------------------------
+
+double column(const SoilCoefficients& s, int k) {
+  const double v[5] = {s.a0, s.ksh, s.ksv, s.csh, s.csv};
+  return v[k];
+}
+
+TEST(Table2Interpolated, IsTheRowAtEveryRow) {
+  for (const Table2Row& row : table2()) {
+    const SoilCoefficients s = table2_coefficients(row.G);
+    EXPECT_EQ(s.ksh, row.ksh);
+    EXPECT_EQ(s.ksv, row.ksv);
+    EXPECT_EQ(s.csv, row.csv);
+    EXPECT_EQ(s.a0, row.a0);
+    // Just off the row the interpolant is continuous with it.
+    const SoilCoefficients near = table2_coefficients(row.G * (1 + 1e-9));
+    EXPECT_NEAR(near.ksh / row.ksh, 1.0, 1e-8);
+    EXPECT_NEAR(near.ksv / row.ksv, 1.0, 1e-8);
+  }
+}
+
+// Monotone in G where the table is: a0 falls, ksh and ksv rise, csh and csv stay; between two
+// rows every coefficient lies between theirs.
+TEST(Table2Interpolated, IsMonotoneAndBetweenTheRows) {
+  SoilCoefficients previous = table2_coefficients(kTable2InterpolatedMin);
+  for (double G = kTable2InterpolatedMin * 1.01; G <= kTable2InterpolatedMax; G *= 1.01) {
+    const SoilCoefficients s = table2_coefficients(G);
+    EXPECT_LT(s.a0, previous.a0) << G;
+    EXPECT_GT(s.ksh, previous.ksh) << G;
+    EXPECT_GT(s.ksv, previous.ksv) << G;
+    EXPECT_EQ(s.csh, 141e3);
+    EXPECT_EQ(s.csv, 263e3);
+    previous = s;
+  }
+  const auto& rows = table2();
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    const SoilCoefficients s = table2_coefficients(0.5 * (rows[k].G + rows[k + 1].G));
+    EXPECT_GT(s.ksh, rows[k].ksh);
+    EXPECT_LT(s.ksh, rows[k + 1].ksh);
+    EXPECT_LT(s.a0, rows[k].a0);
+    EXPECT_GT(s.a0, rows[k + 1].a0);
+  }
+}
+
+// Continuously differentiable: the log-log slope just left and just right of every inner row
+// agrees (a piecewise linear interpolation would jump there, and a Jacobian by finite
+// differences across a row would see the jump).
+TEST(Table2Interpolated, HasAContinuousSlopeAtTheRows) {
+  const auto& rows = table2();
+  const double h = 1e-5;
+  for (std::size_t k = 1; k + 1 < rows.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double G = rows[k].G;
+      const double at = std::log(column(table2_coefficients(G), c));
+      const double left = (at - std::log(column(table2_coefficients(G * std::exp(-h)), c))) / h;
+      const double right = (std::log(column(table2_coefficients(G * std::exp(h)), c)) - at) / h;
+      EXPECT_NEAR(left, right, 1e-4) << "row " << k << " column " << c;
+    }
+}
+
+// Beyond the table the end rows' power laws continue: equal factors of G give equal factors of
+// each coefficient.
+TEST(Table2Interpolated, ContinuesAsPowerLawsBeyondTheTable) {
+  for (int c = 0; c < 3; ++c) {
+    const double lo1 = column(table2_coefficients(1.25e6), c),
+                 lo2 = column(table2_coefficients(2.5e6), c),
+                 row = column(table2_coefficients(5e6), c);
+    EXPECT_NEAR(lo2 * lo2 / (lo1 * row), 1.0, 1e-12) << c;
+    const double hi1 = column(table2_coefficients(70e6), c),
+                 hi2 = column(table2_coefficients(140e6), c),
+                 hi3 = column(table2_coefficients(280e6), c);
+    EXPECT_NEAR(hi2 * hi2 / (hi1 * hi3), 1.0, 1e-12) << c;
+  }
+  for (const double G : {1.2e6, 300e6, 0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    try {
+      (void)table2_coefficients(G);
+      ADD_FAILURE() << "no error for G = " << G;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.key(), "soil.G");
+      EXPECT_NE(std::string(e.what()).find("Table 2 scale"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // ---- Appendix B -------------------------------------------------------------------------------
 
 // (43): a0 comes out 0.4-1.7 % below the a0 column, always low (docs/model.md section 1.3).

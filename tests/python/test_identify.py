@@ -76,3 +76,17 @@ def test_cli_reads_stdin_and_agrees_with_python(tmp_path):
     fig = oscidrum.identify.plot_pass(tmp_path / "id.csv")
     fig.savefig(tmp_path / "g.png")
     assert (tmp_path / "g.png").stat().st_size > 0
+
+
+def test_a_table2_soil_on_the_table2_scale():
+    c = oscidrum.Case(G=30e6)  # the Table 2 soil at 30 MN/m^2, as `oscidrum run --G 30`
+    c.set("roller.M0", 54947.0 * (F / 39.0) ** 2)
+    c.set("roller.f", F)
+    r = oscidrum.synthetic_record([c], duration=0.6, sample_rate=1500, noise=0.02, seed=3)
+    (row,) = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0,
+                                        soil_scale="table2")
+    assert row["valid"], row["reason"]
+    assert abs(row["G"] / 30e6 - 1) < 0.01
+    assert row["G_lo"] <= 30e6 <= row["G_hi"]
+    with pytest.raises(oscidrum.Error, match="soil_scale must be formulas"):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0, soil_scale="tabel2")
