@@ -4,7 +4,7 @@
 import uPlot from './vendor/uPlot.esm.js';
 
 const $ = (id) => document.getElementById(id);
-const COLORS = { x: '#1f5fa8', z: '#c23b22', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1' };
+const COLORS = { x: '#1f5fa8', z: '#c23b22', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1', flight: '#ddd0f2' };
 const ARROW = { stick: '#1d7a1d', slip: '#d46a00' };
 const ROTATION_FACTOR = 100;     // the drum's rotation phi is drawn this many times larger
 const DISPLACEMENT_FACTOR = 50;  // the soil displacements x_A, s_A are drawn this many times larger
@@ -366,7 +366,9 @@ function phaseRuns(phase, n) {
   return runs;
 }
 
-const phaseColor = (p) => (p === 0 ? COLORS.stick : p > 0 ? COLORS.slipp : COLORS.slipn);
+// 0 stick, 1 slip+, -1 slip-, 2 flight (contact.unilateral)
+const phaseColor = (p) => (p === 0 ? COLORS.stick : p === 2 ? COLORS.flight : p > 0 ? COLORS.slipp : COLORS.slipn);
+const phaseName = (p) => (p === 0 ? 'stick' : p === 2 ? 'flight' : p > 0 ? 'slip +' : 'slip −');
 
 function drawTimePlot(r) {
   const s = r.samples;
@@ -571,7 +573,7 @@ function drawDrum(canvas, an, i) {
   arrow(ctx, px, py, nx * s.N[i] * len, ny * s.N[i] * len, color);
   arrow(ctx, px, py, tx * s.T[i] * len, ty * s.T[i] * len, color);
   ctx.fillStyle = '#222'; ctx.font = '12px system-ui, sans-serif'; ctx.textAlign = 'left';
-  ctx.fillText(`t - t0 = ${((s.t[i] - s.t[0]) * 1e3).toFixed(2)} ms   ${stick ? 'stick' : s.phase[i] > 0 ? 'slip +' : 'slip −'}`, 8, 16);
+  ctx.fillText(`t - t0 = ${((s.t[i] - s.t[0]) * 1e3).toFixed(2)} ms   ${phaseName(s.phase[i])}`, 8, 16);
   ctx.fillText(`N = ${(s.N[i] / 1e3).toFixed(1)} kN   T = ${(s.T[i] / 1e3).toFixed(1)} kN   δ = ${s.delta[i].toFixed(4)} rad`, 8, 32);
 }
 
@@ -655,16 +657,13 @@ function caseToml() {
   return lines.join('\n') + '\n';
 }
 
-const CSV_COLUMNS = [['t', 's'], ['delta', 'rad'], ['phi', 'rad'], ['x_A', 'm'], ['s_A', 'm'], ['ddelta', 'rad/s'],
-  ['dphi', 'rad/s'], ['dx_A', 'm/s'], ['ds_A', 'm/s'], ['x_M', 'm'], ['z_M', 'm'], ['ddx_M', 'm/s^2'],
-  ['ddz_M', 'm/s^2'], ['N', 'N'], ['T', 'N'], ['v_rel', 'm/s'], ['torque', 'N m'], ['phase', '-']];
-
-// The sampled steady state with the columns of `oscidrum run --csv`.
+// The sampled steady state with the columns of `oscidrum run --csv` (the engine's output table).
 function steadyCsv() {
   if (!last) return '';
   const s = last.result.samples;
-  const out = [CSV_COLUMNS.map(([n, u]) => `${n}[${u}]`).join(',')];
-  for (let i = 0; i < s.t.length; i++) out.push(CSV_COLUMNS.map(([n]) => String(s[n][i])).join(','));
+  const columns = s.columns;
+  const out = [columns.map(([n, u]) => `${n}[${u}]`).join(',')];
+  for (let i = 0; i < s.t.length; i++) out.push(columns.map(([n]) => String(s[n][i])).join(','));
   return out.join('\n') + '\n';
 }
 

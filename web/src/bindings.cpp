@@ -210,29 +210,26 @@ val diagnostics_of(const oscidrum::Diagnostics& d) {
   return out;
 }
 
+// Every column of the output table (oscidrum/outputs.hpp), and `columns`: [name, unit] pairs in
+// file order, from which the page writes the CSV of `oscidrum run --csv`.
 val samples_of(const oscidrum::Samples& s) {
   val out = val::object();
-  out.set("t", float64_array(s.t));
-  out.set("delta", float64_array(s.delta));
-  out.set("phi", float64_array(s.phi));
-  out.set("x_A", float64_array(s.x_A));
-  out.set("s_A", float64_array(s.s_A));
-  out.set("ddelta", float64_array(s.ddelta));
-  out.set("dphi", float64_array(s.dphi));
-  out.set("dx_A", float64_array(s.dx_A));
-  out.set("ds_A", float64_array(s.ds_A));
-  out.set("x_M", float64_array(s.x_M));
-  out.set("z_M", float64_array(s.z_M));
-  out.set("ddx_M", float64_array(s.ddx_M));
-  out.set("ddz_M", float64_array(s.ddz_M));
-  out.set("N", float64_array(s.N));
-  out.set("T", float64_array(s.T));
-  out.set("v_rel", float64_array(s.v_rel));
-  out.set("torque", float64_array(s.torque));
-  std::vector<double> phase;
-  phase.reserve(s.phase.size());
-  for (const oscidrum::Phase p : s.phase) phase.push_back(static_cast<double>(static_cast<int>(p)));
-  out.set("phase", float64_array(phase));  // 0 stick, 1 slip+, -1 slip-
+  val columns = val::array();
+  for (const oscidrum::SampleOutput& o : oscidrum::sample_outputs()) {
+    val column = val::array();
+    column.call<void>("push", std::string(o.name));
+    column.call<void>("push", std::string(o.unit));
+    columns.call<void>("push", column);
+    if (const auto* m = std::get_if<oscidrum::SampleValues oscidrum::Samples::*>(&o.member)) {
+      out.set(o.name, float64_array(s.**m));
+    } else {  // the phase: 0 stick, 1 slip+, -1 slip-, 2 flight
+      std::vector<double> phase;
+      phase.reserve(s.phase.size());
+      for (const oscidrum::Phase p : s.phase) phase.push_back(static_cast<double>(static_cast<int>(p)));
+      out.set(o.name, float64_array(phase));
+    }
+  }
+  out.set("columns", columns);
   return out;
 }
 
@@ -291,6 +288,7 @@ val simulate(const val& values, int n_max) {
     out.set("stick_time", r.stick_time);
     out.set("slip_positive_time", r.slip_positive_time);
     out.set("slip_negative_time", r.slip_negative_time);
+    out.set("flight_time", r.flight_time);
     out.set("samples", samples_of(r.samples));
     if (r.samples.size() > 0) {
       out.set("metrics", metrics_of(oscidrum::compute_metrics(model, r, n_max)));

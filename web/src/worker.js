@@ -34,7 +34,8 @@ function run(msg) {
   const result = engine.simulate(msg.values, msg.n_max);
   const ms = performance.now() - t0;
   const transfer = [];
-  if (result.ok) for (const v of Object.values(result.samples)) transfer.push(v.buffer);
+  // The sample columns travel without a copy (their buffers are transferred; `columns` is copied).
+  if (result.ok) for (const v of Object.values(result.samples)) if (ArrayBuffer.isView(v)) transfer.push(v.buffer);
   postMessage({ type: 'result', seq: msg.seq, result, errors, ms }, transfer);
 }
 
