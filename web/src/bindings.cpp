@@ -225,7 +225,8 @@ val samples_of(const oscidrum::Samples& s) {
     } else {  // the phase: 0 stick, 1 slip+, -1 slip-, 2 flight
       std::vector<double> phase;
       phase.reserve(s.phase.size());
-      for (const oscidrum::Phase p : s.phase) phase.push_back(static_cast<double>(static_cast<int>(p)));
+      for (const oscidrum::Phase p : s.phase)
+        phase.push_back(static_cast<double>(static_cast<int>(p)));
       out.set(o.name, float64_array(phase));
     }
   }
