@@ -88,6 +88,9 @@ int run(const AnalyzeOptions& o) {
   const RecordColumns rec = read_record(o.input);
   const std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
+  // analyze_windows refuses a record shorter than one window, so there is always a first window;
+  // should that ever fail, say so instead of reading an empty list.
+  if (ws.empty()) throw oscidrum::Error("analyze: no window fits in the record " + o.input.file);
   std::size_t valid = 0;
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
   const bool single = o.windows.window_periods == 0;

@@ -411,12 +411,19 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   const double H = windowed ? (o.hop_periods > 0 ? o.hop_periods : o.window_periods) / f_rec : span;
   double f_track = f_rec;
   std::size_t first = 0;
+  // Window ends are compared with the sample times up to their rounding: a small fraction of the
+  // window plus a few ulps of the times themselves (t.front() + k H rounds at the scale of the
+  // times, which may be far from 0: a record may start at t = -100 s or on a clock at 1e6 s). The
+  // slack must not depend on the sign of t: a bound scaled by t.back() itself fell below t.back()
+  // for a record ending before t = -1 s, no window fitted, and analyze read the empty list.
+  const double t_scale = std::max(std::abs(t.front()), std::abs(t.back()));
+  const double slack = 1e-12 * W + 16.0 * std::numeric_limits<double>::epsilon() * t_scale;
   for (int k = 0;; ++k) {
     const double ts = t.front() + k * H;
-    if (ts + W > t.back() * (1 + 1e-12) + 1e-12) break;
-    while (first < t.size() && t[first] < ts - 1e-12 * W) ++first;
+    if (k > 0 && ts + W > t.back() + slack) break;  // the first window fits: span >= W (above)
+    while (first < t.size() && t[first] < ts - slack) ++first;
     std::size_t last = first;
-    while (last + 1 < t.size() && t[last + 1] <= ts + W + 1e-12 * W) ++last;
+    while (last + 1 < t.size() && t[last + 1] <= ts + W + slack) ++last;
     RecordWindow w;
     w.index = k;
     w.first = first;
@@ -461,12 +468,16 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                         (o.gates.clip_level > 0 ? "at |a| >= " + num(o.gates.clip_level)
                                                 : std::string("on a plateau at the extreme")));
     w.samples_per_period = static_cast<double>(w.count - 1) / ((w.t_end - w.t_start) * f_track);
-    const bool enough =
-        w.samples_per_period >= 2.0 * o.n_max + 1.0 && (w.t_end - w.t_start) * f_track >= 1.0;
-    if (!enough)
+    const double spanned = (w.t_end - w.t_start) * f_track;
+    const bool dense = w.samples_per_period >= 2.0 * o.n_max + 1.0, long_enough = spanned >= 1.0;
+    if (!dense)
       reasons.push_back("too few samples per period (" + num(w.samples_per_period) + " < " +
                         std::to_string(2 * o.n_max + 1) + " for " + std::to_string(o.n_max) +
                         " harmonics)");
+    if (!long_enough)
+      reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
+                        " excitation periods (< 1)");
+    const bool enough = dense && long_enough;
     bool fitted = false;
     if (enough && gap <= max_gap) {
       const double periods = (w.t_end - w.t_start) * f_track;

@@ -123,6 +123,56 @@ TEST(Record, NormalEquationsFitEqualsTheQrOfTheBasis) {
   }
 }
 
+// The windows are placed in the record's own time: a record whose clock starts far from 0 (at
+// t = -100 s, or on a logger's clock at 1e6 s) is cut into the same windows, with the same
+// metrics, as the same record starting at 0.123 s. (A window end compared with t.back() scaled by
+// t.back() itself once lost every window of a record ending before t = -1 s.)
+TEST(Record, WindowsDoNotDependOnTheClockOrigin) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const int n = 2000;  // 6.3 periods, about 317 samples per period
+  std::vector<double> since_start(n), x(n), z(n);
+  for (int i = 0; i < n; ++i) {
+    const double u = i * 6.3 / f / (n - 1);
+    since_start[i] = u;
+    x[i] = 12.0 * std::sin(nu * u + 0.2) + 2.0 * std::sin(3 * nu * u - 0.7);
+    z[i] = 0.4 + 1.1 * std::sin(2 * nu * u + 1.3) + 0.3 * std::sin(nu * u);
+  }
+  auto analyse = [&](double origin, double window) {
+    std::vector<double> t(n);
+    for (int i = 0; i < n; ++i) t[i] = origin + since_start[i];
+    WindowOptions o;
+    o.f = f;
+    o.n_max = 6;
+    o.window_periods = window;
+    return analyze_windows(t, x, z, {}, o);
+  };
+  for (const double window : {0.0, 1.5, 2.5}) {
+    const std::vector<RecordWindow> reference = analyse(0.123, window);
+    ASSERT_EQ(reference.size(), window == 0.0 ? 1u : static_cast<std::size_t>(6.3 / window));
+    for (const double origin : {-1.5, -100.0, -1e4, 1e6}) {
+      SCOPED_TRACE("window " + std::to_string(window) + ", origin " + std::to_string(origin));
+      const std::vector<RecordWindow> ws = analyse(origin, window);
+      ASSERT_EQ(ws.size(), reference.size());
+      for (std::size_t k = 0; k < ws.size(); ++k) {
+        EXPECT_TRUE(ws[k].valid) << ws[k].reason;
+        EXPECT_EQ(ws[k].first, reference[k].first);
+        EXPECT_EQ(ws[k].count, reference[k].count);
+        // The times carry ulp(origin) of rounding (1.2e-10 s at 1e6 s): the phases nu t move by
+        // ~3e-8 rad, the amplitudes by as much relative to the fundamental.
+        const double tol = 1e-6;
+        for (int h = 0; h <= 6; ++h) {
+          EXPECT_NEAR(ws[k].metrics.ddx_harmonics[h].amplitude,
+                      reference[k].metrics.ddx_harmonics[h].amplitude, tol * 12.0);
+          EXPECT_NEAR(ws[k].metrics.ddz_harmonics[h].amplitude,
+                      reference[k].metrics.ddz_harmonics[h].amplitude, tol * 1.1);
+        }
+        EXPECT_NEAR(ws[k].metrics.psi_xz, reference[k].metrics.psi_xz, tol);
+        EXPECT_NEAR(ws[k].metrics.ddx_A3_A1, 2.0 / 12.0, tol);
+      }
+    }
+  }
+}
+
 TEST(Record, RejectsBadRecords) {
   const std::vector<double> t = {0.0, 0.01, 0.02}, y = {0, 1, 2};
   auto message = [](auto fn) {
