@@ -57,12 +57,15 @@ nlohmann::ordered_json window_json(const RecordWindow& w) {
 
 std::string cell(double v) { return io::format_double_short(v); }
 
-// One CSV row per window (docs/cli.md, `oscidrum analyze`).
+// One CSV row per window (docs/cli.md, `oscidrum analyze`): the window's own columns, then every
+// scalar output of a record in the order of the output table, then the spectra's amplitudes.
 std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
   std::string out =
       "window[-],t_start[s],t_end[s],t[s],position[m],samples[-],samples_per_period[-],f[Hz],"
-      "drift[-],valid[-],reason[-],residual_x[-],residual_z[-],ddx_max[m/s^2],ddx_min[m/s^2],"
-      "ddz_max[m/s^2],ddz_min[m/s^2],psi_xz[rad],area[m^2/s^4]";
+      "drift[-],valid[-],reason[-]";
+  for (const RecordOutput& o : record_outputs())
+    if (std::holds_alternative<double RecordMetrics::*>(o.member))
+      out.append(",").append(o.name).append("[").append(o.unit).append("]");
   for (const char* s : {"ddx", "ddz"})
     for (int n = 1; n <= n_max; ++n)
       out.append(",").append(s).append("_A").append(std::to_string(n)).append("[m/s^2]");
@@ -73,9 +76,9 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
            cell(w.t_mid) + "," + cell(w.position) + "," + std::to_string(w.count) + "," +
            cell(w.samples_per_period) + "," + cell(w.f) + "," + cell(w.drift) + "," +
            (w.valid ? "1" : "0") + "," + io::csv_quote(w.reason);
-    for (double v :
-         {m.residual_x, m.residual_z, m.ddx_max, m.ddx_min, m.ddz_max, m.ddz_min, m.psi_xz, m.area})
-      out.append(",").append(cell(v));
+    for (const RecordOutput& o : record_outputs())
+      if (std::holds_alternative<double RecordMetrics::*>(o.member))
+        out.append(",").append(cell(scalar_value(m, o)));
     for (const std::vector<Harmonic>* h : {&m.ddx_harmonics, &m.ddz_harmonics})
       for (int n = 1; n <= n_max; ++n)
         out.append(",").append(cell(n < static_cast<int>(h->size()) ? (*h)[n].amplitude : NAN));

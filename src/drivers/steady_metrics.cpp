@@ -579,7 +579,6 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   const int n_compute = std::max(n_max, 3);
   Spectrum hx = spectrum(nodes, &Node::ddx, P, t0, f, p, n_compute);
   Spectrum hz = spectrum(nodes, &Node::ddz, P, t0, f, p, n_compute);
-  m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   {
     // The fundamental at a node: A1 sin(nu (t0 + tau) + phase1) = A1 sin(nu tau + theta), theta
     // with nu t0 reduced in cycles, by angle addition from the node's cos and sin of nu tau.
@@ -594,35 +593,23 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
       const double r = nd.ddx - mean - (nd.sin1 * a1_cos + nd.cos1 * a1_sin);
       sum += nd.weight * r * r;
     }
-    detail::set_acceleration_indicators(m, hx, hz, 2.0 * sum / P);
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), 2.0 * sum / P, n_max);
   }
-  hx.resize(static_cast<std::size_t>(n_max) + 1);
-  hz.resize(static_cast<std::size_t>(n_max) + 1);
-  m.ddx_harmonics = std::move(hx);
-  m.ddz_harmonics = std::move(hz);
 
   // phi: drift removed, the fundamental against M0 sin(nu t).
   const double rate = (pieces.back().f[kPhi](pieces.back().b) - pieces.front().f[kPhi](t0)) / P;
   std::vector<Node> phi_nodes = nodes;
   for (Node& nd : phi_nodes) nd.phi -= rate * nd.tau;
   const Spectrum hphi = spectrum(phi_nodes, &Node::phi, P, t0, f, p, 1);
-  m.phi_amplitude = hphi[1].amplitude;
-  double lag = wrap_pi(hphi[1].phase);
-  if (lag > 0.0) lag -= 2.0 * kPi;
-  m.phi_lag = lag / kPi;
+  detail::set_rotation_metrics(m, hphi[1]);
 
   double work = 0.0;
   for (const Node& nd : nodes) work += nd.weight * nd.friction_power;
   m.friction_work = work / p;
-  const double total = time[0] + time[1] + time[2] + time[3];  // P up to round-off
-  m.stick_fraction = time[1] / total;
-  m.slip_positive_fraction = time[2] / total;
-  m.slip_negative_fraction = time[0] / total;
-  m.flight_fraction = time[3] / total;
+  detail::set_phase_fractions(m, time[1], time[2], time[0], time[3]);
   m.liftoffs_per_period = static_cast<double>(rec.lift_offs) / p;
   m.gap_max = std::max(gap.hi, 0.0);
   m.landing_velocity = rec.landing_speed;
-  m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
 
   m.area = curve_area(pieces);
   if (std::isnan(m.area)) m.area = extrapolated_area(pieces);

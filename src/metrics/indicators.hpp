@@ -1,11 +1,15 @@
 // indicators.hpp (internal): the compaction indicators that simulated steady states (Metrics)
-// and measured records (RecordMetrics) share, from their harmonics (docs/outputs.md).
+// and measured records (RecordMetrics) share, from their harmonics (docs/outputs.md): each is
+// computed here once, whichever source (dense steady state, samples, record fit) feeds it.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
+#include <utility>
+#include <variant>
 
 #include "oscidrum/metrics.hpp"
 
@@ -24,13 +28,18 @@ inline double ratio_to_fundamental(double a, const Spectrum& h) {
                                                        : std::numeric_limits<double>::quiet_NaN();
 }
 
-/// Harmonic ratios A_2/A_1, A_3/A_1 of x_M'' and z_M'', the CMV-type value 300 A_2/A_1 of z_M''
-/// and the THD of x_M'' from `ddx_overtones` = sum_{k>=2} A_k^2 of x_M'' [(m/s^2)^2]. The
-/// harmonics must reach n = 2; the A_3 ratios are NaN without n = 3. M is Metrics or
-/// RecordMetrics (OSCIDRUM_ACCELERATION_METRICS).
+/// Every metric that follows from the harmonics, set in one place for all three sources (the
+/// dense steady state, its samples, a measured record's fit): psi_xz, the harmonic ratios A_2/A_1,
+/// A_3/A_1 of x_M'' and z_M'', the CMV-type value 300 A_2/A_1 of z_M'', the THD of x_M'' from
+/// `ddx_overtones` = sum_{k>=2} A_k^2 of x_M'' [(m/s^2)^2], and the spectra themselves, truncated
+/// to n = n_max. hx, hz must reach n = 2 (psi needs the 2f harmonic); the A_3 ratios are NaN
+/// without n = 3. M is Metrics or RecordMetrics (OSCIDRUM_ACCELERATION_METRICS).
 template <class M>
-void set_acceleration_indicators(M& m, const Spectrum& hx, const Spectrum& hz,
-                                 double ddx_overtones) {
+void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, int n_max) {
+  // psi = theta_2(z_M'') - 2 theta_1(x_M'') (docs/model.md section 8): the lag of the 2f
+  // component of z_M'' against the square of the fundamental of x_M''; > 0: the 2f component
+  // leads (paper Fig. 12).
+  m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   m.ddx_A2_A1 = ratio_to_fundamental(hx[2].amplitude, hx);
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   m.ddx_A3_A1 = hx.size() > 3 ? ratio_to_fundamental(hx[3].amplitude, hx) : nan;
@@ -40,6 +49,44 @@ void set_acceleration_indicators(M& m, const Spectrum& hx, const Spectrum& hz,
   // here of the oscillation drum's vertical acceleration z_M''.
   m.cmv = 300.0 * m.ddz_A2_A1;
   m.ddx_thd = ratio_to_fundamental(std::sqrt(ddx_overtones), hx);
+  hx.resize(static_cast<std::size_t>(n_max) + 1);
+  hz.resize(static_cast<std::size_t>(n_max) + 1);
+  m.ddx_harmonics = std::move(hx);
+  m.ddz_harmonics = std::move(hz);
+}
+
+/// phi_amplitude and phi_lag from the fundamental of phi (its drift removed), against the
+/// excitation M0 sin(nu t) (phase 0). The lag is in (-2, 0] in units of pi, as paper Fig. 10
+/// plots it (-0.84 pi at G = 5, -> -pi without soil).
+inline void set_rotation_metrics(Metrics& m, const Harmonic& phi_1) {
+  m.phi_amplitude = phi_1.amplitude;
+  double lag = wrap_pi(phi_1.phase);
+  if (lag > 0.0) lag -= 2.0 * std::numbers::pi;
+  m.phi_lag = lag / std::numbers::pi;
+}
+
+/// The phase fractions from the time spent in each phase [s] (any common unit): stick, slip with
+/// v_rel > 0, slip with v_rel < 0, flight; slip_fraction is the two slips together.
+inline void set_phase_fractions(Metrics& m, double stick, double slip_positive,
+                                double slip_negative, double flight) {
+  const double total = slip_negative + stick + slip_positive + flight;  // the period, to round-off
+  m.stick_fraction = stick / total;
+  m.slip_positive_fraction = slip_positive / total;
+  m.slip_negative_fraction = slip_negative / total;
+  m.flight_fraction = flight / total;
+  m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
+}
+
+/// Every number of an output table's struct NaN and its spectra empty: the metrics of what is not
+/// a steady state or a window that failed (generated from the table, so a new metric cannot be
+/// forgotten and read 0).
+template <class Struct, class Table>
+Struct all_unavailable(const Table& outputs) {
+  Struct m;
+  for (const auto& o : outputs)
+    if (const auto* member = std::get_if<double Struct::*>(&o.member))
+      m.*(*member) = std::numeric_limits<double>::quiet_NaN();
+  return m;
 }
 
 }  // namespace oscidrum::detail

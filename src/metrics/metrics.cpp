@@ -33,14 +33,7 @@ void require_size(const std::vector<double>& v, std::size_t n, const char* name)
 
 }  // namespace
 
-Metrics Metrics::unavailable() {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  Metrics m;
-  // Every scalar of the output table; the spectra stay empty.
-  for (const MetricOutput& o : metric_outputs())
-    if (const auto* member = std::get_if<double Metrics::*>(&o.member)) m.*(*member) = nan;
-  return m;
-}
+Metrics Metrics::unavailable() { return detail::all_unavailable<Metrics>(metric_outputs()); }
 
 Metrics compute_metrics(const Result& result, int n_max) {
   const Samples& s = result.samples;
@@ -96,9 +89,6 @@ Metrics compute_metrics(const Result& result, int n_max) {
   const int n_compute = std::max(n_max, 3);
   std::vector<Harmonic> hx = harmonics(s.ddx_M, cycles, f, t0, n_compute);
   std::vector<Harmonic> hz = harmonics(s.ddz_M, cycles, f, t0, n_compute);
-  // psi = theta_z - 2 theta_x (docs/model.md section 8): the lag of the 2f component of z_M''
-  // against the square of the fundamental of x_M''; psi > 0 means the 2f component leads.
-  m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
   // THD: everything in x_M'' but its mean and fundamental is distortion. By Parseval the mean
   // square of the residual r = x_M'' - A_0 sin(theta_0) - A_1 sin(nu t + theta_1) over whole
   // periods is sum_{k>=2} A_k^2 / 2 (with any subharmonic content of a p-periodic state). The
@@ -111,12 +101,9 @@ Metrics compute_metrics(const Result& result, int n_max) {
                        hx[1].amplitude * std::sin(nu * s.t[j] + hx[1].phase);
       sum += r * r;
     }
-    detail::set_acceleration_indicators(m, hx, hz, 2.0 * sum / static_cast<double>(n));
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz),
+                                 2.0 * sum / static_cast<double>(n), n_max);
   }
-  hx.resize(static_cast<std::size_t>(n_max) + 1);
-  hz.resize(static_cast<std::size_t>(n_max) + 1);
-  m.ddx_harmonics = std::move(hx);
-  m.ddz_harmonics = std::move(hz);
 
   // phi need not be periodic: a driving torque makes the drum slip on by a net angle per period
   // (docs/model.md section 7). The mean of phi' over whole periods is that drift rate; removing the
@@ -127,11 +114,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
   std::vector<double> phi(n);
   for (std::size_t j = 0; j < n; ++j) phi[j] = s.phi[j] - rate * (s.t[j] - t0);
   const std::vector<Harmonic> hphi = harmonics(phi, cycles, f, t0, 1);
-  m.phi_amplitude = hphi[1].amplitude;
-  // Paper Fig. 10 plots the lag in (-2 pi, 0] (-0.84 pi at G = 5, -> -pi without soil).
-  double lag = wrap_pi(hphi[1].phase);
-  if (lag > 0.0) lag -= 2.0 * std::numbers::pi;
-  m.phi_lag = lag / std::numbers::pi;
+  detail::set_rotation_metrics(m, hphi[1]);
 
   // The area over one steady period: `multiplicity` excitation periods (one if none was found).
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
@@ -156,10 +139,8 @@ Metrics compute_metrics(const Result& result, int n_max) {
   const double total = result.stick_time + result.slip_positive_time + result.slip_negative_time +
                        result.flight_time;
   if (total > 0.0) {
-    m.stick_fraction = result.stick_time / total;
-    m.slip_positive_fraction = result.slip_positive_time / total;
-    m.slip_negative_fraction = result.slip_negative_time / total;
-    m.flight_fraction = result.flight_time / total;
+    detail::set_phase_fractions(m, result.stick_time, result.slip_positive_time,
+                                result.slip_negative_time, result.flight_time);
   } else {
     // No phase times recorded: count the samples (uniform in time, so counts are time shares).
     if (s.phase.size() != n) {
@@ -169,13 +150,9 @@ Metrics compute_metrics(const Result& result, int n_max) {
     const auto count = [&s](Phase ph) {
       return static_cast<double>(std::count(s.phase.begin(), s.phase.end(), ph));
     };
-    const double n_d = static_cast<double>(n);
-    m.stick_fraction = count(Phase::stick) / n_d;
-    m.slip_positive_fraction = count(Phase::slip_positive) / n_d;
-    m.slip_negative_fraction = count(Phase::slip_negative) / n_d;
-    m.flight_fraction = count(Phase::flight) / n_d;
+    detail::set_phase_fractions(m, count(Phase::stick), count(Phase::slip_positive),
+                                count(Phase::slip_negative), count(Phase::flight));
   }
-  m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
   // Flight (contact.unilateral): lift-offs and landings are events of the sampled window; the
   // largest gap is the samples' (the dense output's is compute_metrics(model, result)'s).
   long lift_offs = 0;

@@ -14,6 +14,7 @@
 
 #include "indicators.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/output_table.hpp"
 #include "util/format.hpp"
 
 namespace oscidrum {
@@ -179,15 +180,15 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   const HarmonicFit fit = fit_harmonics(t, ddx, ddz, f, n_max, 0.0);
   const Eigen::VectorXd& cx = fit.cx;
   const Eigen::VectorXd& cz = fit.cz;
-  m.ddx_harmonics = to_harmonics(cx, n_max);
-  m.ddz_harmonics = to_harmonics(cz, n_max);
   m.residual_x = relative_rms(t, ddx, cx, f, n_max);
   m.residual_z = relative_rms(t, ddz, cz, f, n_max);
-  m.psi_xz = wrap_pi(m.ddz_harmonics[2].phase - 2.0 * m.ddx_harmonics[1].phase);
-  // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
-  double overtones = 0.0;
-  for (int n = 2; n <= n_max; ++n) overtones += std::pow(m.ddx_harmonics[n].amplitude, 2);
-  detail::set_acceleration_indicators(m, m.ddx_harmonics, m.ddz_harmonics, overtones);
+  {
+    Spectrum hx = to_harmonics(cx, n_max), hz = to_harmonics(cz, n_max);
+    // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
+    double overtones = 0.0;
+    for (int n = 2; n <= n_max; ++n) overtones += std::pow(hx[n].amplitude, 2);
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), overtones, n_max);
+  }
 
   // The fitted periodic signals over one period, for the extremes and the area.
   constexpr int kSamples = 1024;
@@ -516,11 +517,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       f_track = w.f;
     } else {
       // Metrics that could not be made, or failed a gate, are not reported as valid.
-      RecordMetrics nan;
+      // Every number NaN (from the output table), then what the window did measure.
+      RecordMetrics nan = detail::all_unavailable<RecordMetrics>(record_outputs());
       nan.cycles = (w.t_end - w.t_start) * f_track;
       nan.residual_x = fitted ? w.metrics.residual_x : kNaN;
       nan.residual_z = fitted ? w.metrics.residual_z : kNaN;
-      nan.ddx_max = nan.ddx_min = nan.ddz_max = nan.ddz_min = nan.psi_xz = nan.area = kNaN;
       nan.ddx_harmonics.assign(static_cast<std::size_t>(o.n_max) + 1, Harmonic{kNaN, kNaN});
       nan.ddz_harmonics = nan.ddx_harmonics;
       w.metrics = nan;

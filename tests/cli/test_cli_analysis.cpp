@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -181,4 +182,29 @@ TEST(CliPaper, WritesTheReproductionOrTheValidationAlone) {
 }
 
 }  // namespace
+// The windowed CSV carries every number of a record's output table (the compaction indicators
+// included), one field per column in every row.
+TEST(CliAnalyze, WindowedCsvHasEveryRecordMetric) {
+  TempDir dir;
+  const Outcome r =
+      run({"run", "--quiet", "--csv", dir / "s.csv", "--set", "numerics.output_periods=6"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Outcome a =
+      run({"analyze", dir / "s.csv", "--f", "39", "--window", "2", "--format", "csv"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  std::istringstream lines(a.out);
+  std::string header, row;
+  ASSERT_TRUE(std::getline(lines, header));
+  for (const char* column : {"cycles[-]", "psi_xz[rad]", "area[m^2/s^4]", "ddx_A2_A1[-]",
+                             "ddz_A3_A1[-]", "cmv[-]", "ddx_thd[-]", "ddz_A10[m/s^2]"})
+    EXPECT_NE(header.find(std::string(",") + column), std::string::npos) << column;
+  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  int rows = 0;
+  while (std::getline(lines, row)) {
+    EXPECT_EQ(fields(row), fields(header)) << row;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);  // the samples span 6 periods less one step: windows at 0 and 2 periods
+}
+
 }  // namespace oscidrum::test

@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <tuple>
+#include <variant>
 #include <vector>
 
 #include "oscidrum/oscidrum.hpp"
@@ -169,6 +172,48 @@ TEST(Record, WindowsDoNotDependOnTheClockOrigin) {
         EXPECT_NEAR(ws[k].metrics.psi_xz, reference[k].metrics.psi_xz, tol);
         EXPECT_NEAR(ws[k].metrics.ddx_A3_A1, 2.0 / 12.0, tol);
       }
+    }
+  }
+}
+
+// A window that fails a gate reports no number as measured: every scalar of the output table is
+// NaN (generated from the table: before, the harmonic ratios, CMV and THD of such a window read 0),
+// and a valid window of the same record has them all finite.
+TEST(Record, FailedWindowHasEveryMetricUnavailable) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const int n = 4000;  // 8 periods
+  std::vector<double> t(n), x(n), z(n);
+  for (int i = 0; i < n; ++i) {
+    t[i] = i * 8.0 / f / (n - 1);
+    x[i] = 12.0 * std::sin(nu * t[i] + 0.2) + 2.0 * std::sin(3 * nu * t[i] - 0.7);
+    z[i] = 1.1 * std::sin(2 * nu * t[i] + 1.3) + 0.3 * std::sin(nu * t[i]);
+  }
+  WindowOptions o;
+  o.f = f;
+  o.n_max = 4;
+  o.window_periods = 4.0;
+  const std::vector<RecordWindow> good = analyze_windows(t, x, z, {}, o);
+  ASSERT_FALSE(good.empty());
+  ASSERT_TRUE(good.front().valid) << good.front().reason;
+  for (const RecordOutput& out : record_outputs()) {
+    if (std::holds_alternative<double RecordMetrics::*>(out.member)) {
+      EXPECT_TRUE(std::isfinite(scalar_value(good.front().metrics, out))) << out.name;
+    }
+  }
+  // The same record clipped at 10 m/s^2: every window fails the clipping gate.
+  for (double& v : x) v = std::clamp(v, -10.0, 10.0);
+  o.gates.clip_level = 10.0;
+  const std::vector<RecordWindow> clipped = analyze_windows(t, x, z, {}, o);
+  ASSERT_FALSE(clipped.empty());
+  for (const RecordWindow& w : clipped) {
+    ASSERT_FALSE(w.valid);
+    for (const RecordOutput& out : record_outputs()) {
+      if (!std::holds_alternative<double RecordMetrics::*>(out.member)) continue;
+      const std::string name = out.name;
+      // What the window spans is known, and the fit's residuals are what it measured (they say
+      // why a window failed the residual gate).
+      if (name == "cycles" || name == "residual_x" || name == "residual_z") continue;
+      EXPECT_TRUE(std::isnan(scalar_value(w.metrics, out))) << name << " of window " << w.index;
     }
   }
 }

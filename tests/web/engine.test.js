@@ -133,6 +133,8 @@ async function main() {
       assert.equal(web.status, native.status);
       assert.equal(web.diagnostics.multiplicity, native.diagnostics.multiplicity);
       const n = native.metrics, w = web.metrics;
+      // The page has every metric the native run reports (both come from the output table).
+      assert.deepEqual(Object.keys(w).sort(), Object.keys(n).sort());
       for (const key of METRICS) {
         worst = Math.max(worst, close(key, w[key], n[key], metricFloor(key, n)));
       }

@@ -177,23 +177,16 @@ val harmonics_of(const std::vector<oscidrum::Harmonic>& h) {
   return out;
 }
 
+// Every metric of the output table (oscidrum/outputs.hpp): numbers, and the spectra as
+// {amplitude, phase} arrays.
 val metrics_of(const oscidrum::Metrics& m) {
   val out = val::object();
-  out.set("ddx_max", m.ddx_max);  // [m/s^2]
-  out.set("ddx_min", m.ddx_min);
-  out.set("ddz_max", m.ddz_max);
-  out.set("ddz_min", m.ddz_min);
-  out.set("delta_max", m.delta_max);  // [rad]
-  out.set("delta_min", m.delta_min);
-  out.set("ddx_harmonics", harmonics_of(m.ddx_harmonics));
-  out.set("ddz_harmonics", harmonics_of(m.ddz_harmonics));
-  out.set("phi_lag", m.phi_lag);  // [pi rad]
-  out.set("phi_amplitude", m.phi_amplitude);
-  out.set("psi_xz", m.psi_xz);  // [rad]
-  out.set("area", m.area);      // [m^2/s^4]
-  out.set("stick_fraction", m.stick_fraction);
-  out.set("slip_positive_fraction", m.slip_positive_fraction);
-  out.set("slip_negative_fraction", m.slip_negative_fraction);
+  for (const oscidrum::MetricOutput& o : oscidrum::metric_outputs()) {
+    if (const auto* h = std::get_if<oscidrum::Spectrum oscidrum::Metrics::*>(&o.member))
+      out.set(o.name, harmonics_of(m.**h));
+    else
+      out.set(o.name, oscidrum::scalar_value(m, o));
+  }
   return out;
 }
 
