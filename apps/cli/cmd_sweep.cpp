@@ -132,54 +132,78 @@ void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study) {
        "the moment is meant");
 }
 
-int run(const SweepOptions& o) {
-  // Output names first: a sweep must not fail at its end, after every case ran.
+// Every option that can be checked without running a case: a sweep must not fail at its end,
+// after every case ran.
+void check_options(const SweepOptions& o) {
   if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out, false);
   if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
   if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
   if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
-  const bool sharded = o.shard_flag && o.shard_flag->count() > 0;
-  const io::Shard shard = sharded ? io::parse_shard(o.shard) : io::Shard{};
-  io::StudySpec spec = io::read_study_file(o.study);
-  apply(o.c, spec.base);
-  io::Study study = io::expand(spec);
-  if (o.no_continuation)
-    for (Case& c : study.cases) c.numerics.continuation = false;
-  const std::size_t total = study.cases.size();
-  warn_fixed_moment(spec, study);
-  const io::StudyColumns columns{study.keys, o.harmonics};
-  const std::string header = io::study_csv_header(columns);
-  const std::uint64_t study_fingerprint = io::fingerprint(study, header);
-  std::vector<bool> mine(total, true);  // the cases this run is for (all, or its shard's)
-  std::size_t n_mine = total;
-  if (sharded) {
-    n_mine = 0;
-    for (std::size_t i = 0; i < total; ++i) n_mine += (mine[i] = shard.holds(i));
-  }
+}
 
-  if (o.list) {
-    TextTable t;
-    t.header = {"case"};
-    for (const std::string& k : study.keys) t.header.push_back(k);
-    t.right.assign(t.header.size(), true);
-    for (std::size_t i = 0; i < total; ++i) {
-      if (!mine[i]) continue;
-      std::vector<std::string> row = {std::to_string(i)};
-      for (const io::Value& v : study.varied[i]) row.push_back(io::format_value(v));
-      t.rows.push_back(row);
-    }
-    std::cout << t.text() << n_mine << " cases";
-    if (sharded) std::cout << " (shard " << shard.text() << " of a study of " << total << ")";
-    std::cout << "\n";
-    return kExitOk;
+// The study expanded into cases, and the cases this run is for (all, or its shard's).
+struct SweepPlan {
+  io::StudySpec spec;
+  io::Study study;
+  bool sharded = false;
+  io::Shard shard;
+  io::StudyColumns columns;
+  std::string header;
+  std::uint64_t fingerprint = 0;
+  std::vector<bool> mine;
+  std::size_t total = 0, n_mine = 0;
+};
+
+SweepPlan plan_sweep(const SweepOptions& o) {
+  SweepPlan p;
+  p.sharded = o.shard_flag && o.shard_flag->count() > 0;
+  p.shard = p.sharded ? io::parse_shard(o.shard) : io::Shard{};
+  p.spec = io::read_study_file(o.study);
+  apply(o.c, p.spec.base);
+  p.study = io::expand(p.spec);
+  if (o.no_continuation)
+    for (Case& c : p.study.cases) c.numerics.continuation = false;
+  p.total = p.study.cases.size();
+  warn_fixed_moment(p.spec, p.study);
+  p.columns = io::StudyColumns{p.study.keys, o.harmonics};
+  p.header = io::study_csv_header(p.columns);
+  p.fingerprint = io::fingerprint(p.study, p.header);
+  p.mine.assign(p.total, true);
+  p.n_mine = p.total;
+  if (p.sharded) {
+    p.n_mine = 0;
+    for (std::size_t i = 0; i < p.total; ++i) p.n_mine += (p.mine[i] = p.shard.holds(i));
   }
+  return p;
+}
+
+// --list: the expanded cases, nothing run.
+int list_cases(const SweepPlan& p) {
+  TextTable t;
+  t.header = {"case"};
+  for (const std::string& k : p.study.keys) t.header.push_back(k);
+  t.right.assign(t.header.size(), true);
+  for (std::size_t i = 0; i < p.total; ++i) {
+    if (!p.mine[i]) continue;
+    std::vector<std::string> row = {std::to_string(i)};
+    for (const io::Value& v : p.study.varied[i]) row.push_back(io::format_value(v));
+    t.rows.push_back(row);
+  }
+  std::cout << t.text() << p.n_mine << " cases";
+  if (p.sharded) std::cout << " (shard " << p.shard.text() << " of a study of " << p.total << ")";
+  std::cout << "\n";
+  return kExitOk;
+}
+
+// The options that need the expanded study (or only matter when cases run).
+void check_run_options(const SweepOptions& o, const SweepPlan& p) {
   if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
   if ((o.resume || o.restart) && o.out.empty())
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
   if (!o.plot.empty() && o.out.empty())
     throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
-  for (const Case& c : study.cases)
+  for (const Case& c : p.study.cases)
     if (o.harmonics >= c.numerics.samples_per_period / 2)
       throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
                   std::to_string(c.numerics.samples_per_period / 2) + "; got " +
@@ -189,41 +213,58 @@ int run(const SweepOptions& o) {
     std::filesystem::create_directories(o.cases_dir, ec);
     if (ec) throw Error("cannot create --cases-dir " + o.cases_dir + ": " + ec.message());
   }
+}
 
+// Where the rows go while the cases run: the journal (for --resume) and the HDF5 file, and the
+// rows a resumed sweep already has.
+struct SweepOutputs {
   std::unique_ptr<io::Journal> journal;
-  std::vector<std::string> rows(total);
-  std::vector<bool> have(total, false);
+  std::unique_ptr<io::StudyHdf5Writer> hdf5;
+  std::vector<std::string> rows;
+  std::vector<bool> have;
+};
+
+SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
+  SweepOutputs out;
+  out.rows.resize(p.total);
+  out.have.assign(p.total, false);
   if (!o.out.empty()) {
     // A shard's journal is its own: resuming shard 2 never picks up the rows of shard 3.
     const std::uint64_t journal_fingerprint =
-        sharded ? io::fingerprint(study, header + "\nshard " + shard.text()) : study_fingerprint;
-    journal = std::make_unique<io::Journal>(o.out + ".journal", journal_fingerprint, total,
-                                            o.resume, o.restart);
+        p.sharded ? io::fingerprint(p.study, p.header + "\nshard " + p.shard.text())
+                  : p.fingerprint;
+    out.journal = std::make_unique<io::Journal>(o.out + ".journal", journal_fingerprint, p.total,
+                                                o.resume, o.restart);
   }
   // The steady states go into FILE.hdf5.partial as they come (kept for --resume).
-  std::unique_ptr<io::StudyHdf5Writer> hdf5;
   if (!o.hdf5.empty()) {
     if (o.restart) io::StudyHdf5Writer::discard_partial(o.hdf5);
-    hdf5 = std::make_unique<io::StudyHdf5Writer>(
-        o.hdf5, io::Hdf5StudyInfo{study_fingerprint, total, sharded, shard}, o.resume);
+    out.hdf5 = std::make_unique<io::StudyHdf5Writer>(
+        o.hdf5, io::Hdf5StudyInfo{p.fingerprint, p.total, p.sharded, p.shard}, o.resume);
   }
-  if (journal) {
-    for (const auto& [index, row] : journal->done()) {
-      const std::string file = o.cases_dir + "/" + case_file_name(index, total);
-      if (!mine[index]) continue;
+  if (out.journal) {
+    for (const auto& [index, row] : out.journal->done()) {
+      const std::string file = o.cases_dir + "/" + case_file_name(index, p.total);
+      if (!p.mine[index]) continue;
       if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
-      if (hdf5 && !hdf5->has_case(index)) continue;  // run again for its steady state
-      rows[index] = row;
-      have[index] = true;
+      if (out.hdf5 && !out.hdf5->has_case(index)) continue;  // run again for its steady state
+      out.rows[index] = row;
+      out.have[index] = true;
     }
   }
+  return out;
+}
+
+// Runs the cases this run still has to do, on all cores, with a progress line; each finished
+// case goes to the journal, the case files and the HDF5 file as it comes. Returns the seconds.
+double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
   std::vector<std::size_t> pending;
   std::vector<Case> cases;
-  for (std::size_t i = 0; i < total; ++i)
-    if (mine[i] && !have[i]) pending.push_back(i), cases.push_back(study.cases[i]);
-  const std::size_t already = n_mine - pending.size();
+  for (std::size_t i = 0; i < p.total; ++i)
+    if (p.mine[i] && !out.have[i]) pending.push_back(i), cases.push_back(p.study.cases[i]);
+  const std::size_t already = p.n_mine - pending.size();
   if (already > 0 && !o.quiet)
-    std::cerr << "oscidrum: resuming: " << already << " of " << n_mine << " cases already done\n";
+    std::cerr << "oscidrum: resuming: " << already << " of " << p.n_mine << " cases already done\n";
 
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
@@ -232,21 +273,21 @@ int run(const SweepOptions& o) {
   options.threads = o.threads;
   options.n_harmonics = o.harmonics;
   options.cancelled = [] { return interrupted(); };
-  options.previous = continuation_links(spec, study, pending);
+  options.previous = continuation_links(p.spec, p.study, pending);
   // The steady states' samples only for the files that hold them.
-  options.samples_in_callback = !o.cases_dir.empty() || hdf5 != nullptr;
+  options.samples_in_callback = !o.cases_dir.empty() || out.hdf5 != nullptr;
   options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
     const std::size_t g = pending[i];
-    const std::string row = io::study_csv_row(columns, g, study.varied[g], outcome);
+    const std::string row = io::study_csv_row(p.columns, g, p.study.varied[g], outcome);
     if (!o.cases_dir.empty() && outcome.result.samples.size() > 0) {
       std::ostringstream csv;
       io::write_steady_state_csv(csv, outcome.result);
-      io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, total), csv.str());
+      io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, p.total), csv.str());
     }
-    if (hdf5) hdf5->add_case(g, outcome);
-    if (journal) journal->append(g, row);
-    rows[g] = row;
-    have[g] = true;
+    if (out.hdf5) out.hdf5->add_case(g, outcome);
+    if (out.journal) out.journal->append(g, row);
+    out.rows[g] = row;
+    out.have[g] = true;
   };
   options.progress = [&](std::size_t done, std::size_t n) {
     const double elapsed =
@@ -254,71 +295,95 @@ int run(const SweepOptions& o) {
     const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
     const double eta = rate > 0 ? static_cast<double>(n - done) / rate : 0.0;
     line.update(
-        "oscidrum sweep: " + std::to_string(already + done) + "/" + std::to_string(n_mine) +
+        "oscidrum sweep: " + std::to_string(already + done) + "/" + std::to_string(p.n_mine) +
             " cases (" +
-            fmt(100.0 * static_cast<double>(already + done) / static_cast<double>(n_mine), 3) +
+            fmt(100.0 * static_cast<double>(already + done) / static_cast<double>(p.n_mine), 3) +
             " %), " + fmt(rate, 3) + " cases/s, ETA " + duration(eta),
         done == n);
   };
   run_study(cases, options);
   line.clear();
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  std::size_t finished = 0;
-  for (bool h : have) finished += h;
-  if (finished < n_mine) {  // interrupted (a signal after the last case changes nothing)
-    std::cerr << "oscidrum: interrupted: " << finished << " of " << n_mine << " cases done";
-    if (journal)
-      std::cerr << " (kept in " << journal->path() << "); run 'oscidrum sweep " << o.study
-                << (sharded ? " --shard " + shard.text() : std::string()) << " --out " << o.out
-                << " --resume' to finish\n";
-    else
-      std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
-    return kExitInterrupted;
-  }
+// An interrupted sweep: what is kept and how to finish it.
+int report_interrupted(const SweepOptions& o, const SweepPlan& p, const SweepOutputs& out,
+                       std::size_t finished) {
+  std::cerr << "oscidrum: interrupted: " << finished << " of " << p.n_mine << " cases done";
+  if (out.journal)
+    std::cerr << " (kept in " << out.journal->path() << "); run 'oscidrum sweep " << o.study
+              << (p.sharded ? " --shard " + p.shard.text() : std::string()) << " --out " << o.out
+              << " --resume' to finish\n";
+  else
+    std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
+  return kExitInterrupted;
+}
 
+// The finished study: the results CSV (atomically) and the HDF5 file; returns this run's rows in
+// case order.
+std::vector<std::string> write_results(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out,
+                                       std::string& text) {
   // A shard's CSV starts with a line that names the study and the slice (for oscidrum merge).
-  std::string text = sharded
-                         ? io::shard_line({study_fingerprint, total, shard}) + "\n" + header + "\n"
-                         : header + "\n";
+  text = p.sharded ? io::shard_line({p.fingerprint, p.total, p.shard}) + "\n" + p.header + "\n"
+                   : p.header + "\n";
   std::vector<std::string> done_rows;
-  for (std::size_t i = 0; i < total; ++i)
-    if (mine[i]) done_rows.push_back(rows[i]);
+  for (std::size_t i = 0; i < p.total; ++i)
+    if (p.mine[i]) done_rows.push_back(out.rows[i]);
   for (const std::string& row : done_rows) text += row + "\n";
-  if (hdf5) {
+  if (out.hdf5) {
     std::vector<std::size_t> indices;
-    for (std::size_t i = 0; i < total; ++i)
-      if (mine[i]) indices.push_back(i);
-    hdf5->finish(study, indices, header, done_rows);
+    for (std::size_t i = 0; i < p.total; ++i)
+      if (p.mine[i]) indices.push_back(i);
+    out.hdf5->finish(p.study, indices, p.header, done_rows);
   }
   if (!o.out.empty()) {
     io::write_file_atomic(o.out, text);
-    journal->remove();
+    out.journal->remove();
   }
-  std::string format = o.format;
-  if (format.empty()) format = o.out.empty() ? "csv" : "none";
-  if (format == "csv") std::cout << text;
-  if (format == "json") std::cout << io::study_json(header, done_rows);
-  if (format == "table") std::cout << rows_table(header, done_rows, study.keys.size());
-  std::cout.flush();
+  return done_rows;
+}
 
-  // Status counts, from the rows (resumed rows included).
+// The status counts on stderr (resumed rows included); true if every case is a steady state.
+bool report_statuses(const SweepOptions& o, const SweepPlan& p,
+                     const std::vector<std::string>& done_rows, double elapsed) {
   std::map<std::string, std::size_t> counts;
   for (const std::string& row : done_rows) {
     const std::vector<std::string> cells = io::csv_split(row);
-    counts[cells.size() > study.keys.size() + 1 ? cells[study.keys.size() + 1] : "?"]++;
+    counts[cells.size() > p.study.keys.size() + 1 ? cells[p.study.keys.size() + 1] : "?"]++;
   }
   if (!o.quiet) {
     std::string summary;
     for (const auto& [status, n] : counts)
       summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + status;
-    std::cerr << "oscidrum: " << n_mine << " cases"
-              << (sharded ? " of shard " + shard.text() : std::string()) << " (" << summary
+    std::cerr << "oscidrum: " << p.n_mine << " cases"
+              << (p.sharded ? " of shard " + p.shard.text() : std::string()) << " (" << summary
               << ") in " << duration(elapsed)
               << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
   }
-  const bool all_ok = counts.size() == 1 && counts.begin()->first == "steady_state";
+  return counts.size() == 1 && counts.begin()->first == "steady_state";
+}
+
+int run(const SweepOptions& o) {
+  check_options(o);
+  const SweepPlan p = plan_sweep(o);
+  if (o.list) return list_cases(p);
+  check_run_options(o, p);
+  SweepOutputs out = open_outputs(o, p);
+  const double elapsed = run_cases(o, p, out);
+  std::size_t finished = 0;
+  for (bool h : out.have) finished += h;
+  // Interrupted (a signal after the last case changes nothing).
+  if (finished < p.n_mine) return report_interrupted(o, p, out, finished);
+
+  std::string text;
+  const std::vector<std::string> done_rows = write_results(o, p, out, text);
+  std::string format = o.format;
+  if (format.empty()) format = o.out.empty() ? "csv" : "none";
+  if (format == "csv") std::cout << text;
+  if (format == "json") std::cout << io::study_json(p.header, done_rows);
+  if (format == "table") std::cout << rows_table(p.header, done_rows, p.study.keys.size());
+  std::cout.flush();
+  const bool all_ok = report_statuses(o, p, done_rows, elapsed);
   // --plot: a curve over one swept key, a heat map over two (oscidrum.plot.plot_study).
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},
