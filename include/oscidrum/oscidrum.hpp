@@ -1,6 +1,7 @@
 // oscidrum/oscidrum.hpp: the whole public API.
 #pragma once
 
+#include "oscidrum/branch.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/flow.hpp"

@@ -1,0 +1,172 @@
+// Tests of the continuation of periodic orbits (src/drivers/branch.cpp): the branch's orbits are
+// the steady states simulate() finds at the same parameter (with the same multipliers), the
+// tangent is the derivative of the branch, and every bifurcation it reports is confirmed by
+// simulations on either side of it that do not use the continuation: a phase that vanishes
+// (grazing), the gross-slip limit, and a Neimark-Sacker point (a complex pair leaving the unit
+// circle), beyond which the transient method finds no steady state.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include "oscidrum/oscidrum.hpp"
+
+namespace oscidrum {
+namespace {
+
+Case modulus_case() {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  c.numerics.method = SteadyMethod::shooting;
+  return c;
+}
+
+Result run_at(Case c, const std::string& key, double q) {
+  set_field(c, key, q);
+  return simulate(c);
+}
+
+// Every orbit of a branch in G is the steady state simulate() finds there: the same metrics and
+// the same largest Floquet multiplier; and the tangent's parameter component is the branch's
+// slope dq/ds (the secant between neighbours, to first order in the step).
+TEST(Branch, OrbitsAreTheSteadyStatesOfSimulate) {
+  const Case c = modulus_case();
+  BranchOptions o;
+  o.key = "soil.G";
+  o.from = 10e6;
+  o.to = 60e6;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
+  ASSERT_GT(b.points.size(), 20u);
+  EXPECT_EQ(b.key, "soil.G");
+  EXPECT_EQ(b.unit, "Pa");
+  for (std::size_t k = 0; k < b.points.size(); k += b.points.size() / 5) {
+    const BranchPoint& p = b.points[k];
+    SCOPED_TRACE("G = " + std::to_string(p.parameter));
+    Case ck = c;
+    set_field(ck, "soil.G", p.parameter);
+    const Model model(ck);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state);
+    const Metrics m = compute_metrics(model, r);
+    // Both are steady states to numerics.steady_tol = 1e-8 of the state's range; the metrics
+    // follow to ~1e-7 of their scale.
+    EXPECT_NEAR(p.metrics.area, m.area, 1e-6 * std::abs(m.area));
+    EXPECT_NEAR(p.metrics.ddx_max, m.ddx_max, 1e-6 * std::abs(m.ddx_max));
+    EXPECT_NEAR(p.metrics.psi_xz, m.psi_xz, 1e-6);
+    // The multipliers do not depend on the section, but their computation does: the variational
+    // equations run by classical Runge-Kutta on substeps of at most T/64 along the flow's steps
+    // (src/flow/monodromy.hpp), from another section (the branch moves it away from switches)
+    // than simulate's; the two agree to ~2e-5 (measured: 1.8e-5 at most over this branch).
+    EXPECT_NEAR(p.floquet.max_modulus, r.floquet.max_modulus, 1e-4);
+    EXPECT_TRUE(p.stable());
+  }
+  for (std::size_t k = 1; k + 1 < b.points.size(); ++k) {
+    const BranchPoint &a = b.points[k], &n = b.points[k + 1];
+    const double secant =
+        (n.parameter - a.parameter) / (o.to - o.from) / (n.arclength - a.arclength);
+    // dq/ds changes by O(ds) between neighbours: the secant lies between the two tangents up to
+    // the curvature's second-order term.
+    const double lo = std::min(a.dq_ds, n.dq_ds), hi = std::max(a.dq_ds, n.dq_ds);
+    EXPECT_GT(secant, lo - 0.05 * std::abs(hi)) << k;
+    EXPECT_LT(secant, hi + 0.05 * std::abs(hi)) << k;
+  }
+}
+
+// The driving torque makes the drum slip further each period: the slip+ phase vanishes (a
+// grazing of the stick-to-slip+ switch), then the stick phase (the gross-slip limit, where the
+// branch ends). Each located point is confirmed by simulate() just below and just above it.
+TEST(Branch, GrazingAndGrossSlipInTheDrivingTorque) {
+  Case c;
+  c.numerics.method = SteadyMethod::shooting;
+  BranchOptions o;
+  o.key = "MMd";
+  o.from = 0.0;
+  o.to = 14000.0;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::gross_slip) << b.message;
+  ASSERT_EQ(b.bifurcations.size(), 2u);
+  // Located to 1e-6 of the range (0.014 N m) where the corrector converges on both sides; at
+  // the gross-slip limit the orbits crowd (the stick interval shrinks to nothing) and the
+  // bisection stops at the bracket it reached, which it reports.
+  EXPECT_LE(b.bifurcations[0].tolerance, o.tolerance * 14000.0);
+  EXPECT_LE(b.bifurcations[1].tolerance, 1.0);
+  for (const Bifurcation& x : b.bifurcations) EXPECT_EQ(x.kind, BifurcationKind::grazing);
+  // The slip+ phase: 4 switches per period below the point, 2 above (slip- and stick).
+  const double q1 = b.bifurcations[0].parameter;
+  const Result below = run_at(c, "MMd", q1 - 20.0), above = run_at(c, "MMd", q1 + 20.0);
+  ASSERT_EQ(below.status, Status::steady_state);
+  ASSERT_EQ(above.status, Status::steady_state);
+  EXPECT_DOUBLE_EQ(below.diagnostics.switches_per_period, 4.0);
+  EXPECT_DOUBLE_EQ(above.diagnostics.switches_per_period, 2.0);
+  // The stick phase: a steady state below, gross slip above.
+  const double q2 = b.bifurcations[1].parameter;
+  EXPECT_NEAR(q2, b.points.back().parameter, 1.0);
+  EXPECT_EQ(run_at(c, "MMd", q2 - 20.0).status, Status::steady_state);
+  EXPECT_EQ(run_at(c, "MMd", q2 + 20.0).status, Status::gross_slip);
+}
+
+// In pure rolling at 58 Hz (the paper's roller with its unbalance, soil by Appendix B, contact
+// that can open) a complex
+// pair of multipliers leaves the unit circle as the soil stiffens and returns later: between the
+// two Neimark-Sacker points the transient method, which knows nothing of the continuation,
+// finds no steady state, and outside them it does.
+TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
+  Case c = modulus_case();
+  set_field_text(c, "contact.pure_rolling", "true");
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "roller.f", 58.0);
+  set_field_text(c, "contact.unilateral", "true");  // beyond the points the motion grows: N -> 0
+  BranchOptions o;
+  o.key = "soil.G";
+  o.from = 30e6;
+  o.to = 100e6;
+  o.metrics = false;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
+  ASSERT_EQ(b.bifurcations.size(), 2u);
+  for (const Bifurcation& x : b.bifurcations) {
+    EXPECT_EQ(x.kind, BifurcationKind::neimark_sacker);
+    // Located to the tolerance (1e-6 of the range), where the pair is on the unit circle.
+    EXPECT_LE(x.tolerance, 70.0);
+    EXPECT_NEAR(std::abs(x.multiplier), 1.0, 1e-3);
+    EXPECT_GT(x.multiplier.imag(), 0.1);
+  }
+  const double g1 = b.bifurcations[0].parameter, g2 = b.bifurcations[1].parameter;
+  EXPECT_LT(g1, g2);
+  for (const BranchPoint& p : b.points)
+    EXPECT_EQ(p.stable(), p.parameter < g1 || p.parameter > g2) << p.parameter;
+  c.numerics.method = SteadyMethod::transient;
+  c.numerics.max_periods = 3000;
+  EXPECT_EQ(run_at(c, "soil.G", 0.5 * (g1 + g2)).status, Status::max_periods_reached);
+  EXPECT_EQ(run_at(c, "soil.G", g2 + 5e6).status, Status::steady_state);
+}
+
+TEST(Branch, RefusesWhatCannotBeContinued) {
+  const Case c;
+  BranchOptions o;
+  o.key = "soil.g";
+  o.from = 1;
+  o.to = 2;
+  EXPECT_THROW(continue_branch(c, o), Error);  // unknown key
+  o.key = "numerics.rtol";
+  EXPECT_THROW(continue_branch(c, o), Error);  // a numerical setting
+  o.key = "soil.nu";
+  o.from = 0.2;
+  o.to = 0.3;
+  EXPECT_THROW(continue_branch(c, o), Error);  // no effect under soil.input = table2
+  o.key = "contact.mu";
+  o.from = 0.5;
+  o.to = 0.5;
+  EXPECT_THROW(continue_branch(c, o), Error);  // an empty range
+  o.to = -0.1;
+  EXPECT_THROW(continue_branch(c, o), Error);  // outside the key's rule
+  o.to = 0.3;
+  o.initial_step = 0.0;
+  EXPECT_THROW(continue_branch(c, o), Error);  // a step of 0
+}
+
+}  // namespace
+}  // namespace oscidrum
