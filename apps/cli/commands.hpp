@@ -37,5 +37,6 @@ void add_paper_command(CLI::App& app, Action& action);
 void add_analyze_command(CLI::App& app, Action& action);
 void add_outputs_command(CLI::App& app, Action& action);
 void add_identify_command(CLI::App& app, Action& action);
+void add_continue_command(CLI::App& app, Action& action);
 
 }  // namespace oscidrum::cli

@@ -86,6 +86,7 @@ _CORE_NAMES = (
     "analyze_record",
     "analyze_windows",
     "compute_metrics",
+    "continue_branch",
     "contact_forces",
     "drum_motion",
     "enclosed_area",

@@ -709,6 +709,70 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
     return plot_table(table, keys[0], metric, group=keys[1:], units=units, title=title, ax=ax)
 
 
+BIFURCATION_STYLE = {"fold": ("o", "tab:red"), "branch_point": ("D", "tab:purple"),
+                     "period_doubling": ("s", "tab:orange"), "neimark_sacker": ("^", "tab:green"),
+                     "grazing": ("x", "tab:gray")}
+
+
+def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
+                units: Optional[Mapping[str, str]] = None,
+                bifurcations: Optional[Sequence[Tuple[str, float]]] = None,
+                title: Optional[str] = None, ax: Any = None) -> Any:
+    """A branch of periodic orbits (``oscidrum continue --csv``): `metric` against the continued
+    parameter, stable orbits solid, unstable dashed; `bifurcations` (kind, parameter) marked on
+    the branch, each kind with its marker (``oscidrum continue --bifurcations``)."""
+    units = dict(units or {})
+    names = list(table)
+    if "arclength" not in names or names.index("arclength") < 1:
+        raise ValueError("not a branch CSV (oscidrum continue --csv): no parameter column before "
+                         "'arclength'")
+    key = names[names.index("arclength") - 1]
+    metric = resolve_column(table, metric)
+    q = np.asarray(table[key], dtype=float)
+    y = np.asarray(table[metric], dtype=float)
+    stable = np.asarray(table["stable"], dtype=float) > 0.5
+    xlabel, xf = axis_label(key, units.get(key, ""))
+    ylabel, yf = axis_label(metric, units.get(metric, ""))
+    fig = None
+    if ax is None:
+        fig, ax = new_figure(width=7.0, height=4.2)
+    # Runs of equal stability, each drawn to the next point so that the curve is unbroken.
+    start = 0
+    labelled = set()
+    for k in range(1, len(q) + 1):
+        if k == len(q) or stable[k] != stable[start]:
+            end = min(k + 1, len(q))
+            kind = "stable" if stable[start] else "unstable"
+            ax.plot(q[start:end] * xf, y[start:end] * yf, color="tab:blue",
+                    linestyle="-" if stable[start] else "--",
+                    label=None if kind in labelled else f"{kind} orbits")
+            labelled.add(kind)
+            start = k
+    for kind, at in bifurcations or []:
+        marker, color = BIFURCATION_STYLE.get(kind, ("*", "black"))
+        value = float(np.interp(at, q, y)) if q[0] <= q[-1] else float(np.interp(at, q[::-1], y[::-1]))
+        ax.plot([at * xf], [value * yf], marker=marker, color=color, linestyle="none",
+                markersize=8, label=None if kind in labelled else kind.replace("_", " "))
+        labelled.add(kind)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="small")
+    if title:
+        ax.set_title(title)
+    return fig if fig is not None else ax
+
+
+def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float]]:
+    """(kind, parameter) of every bifurcation in ``oscidrum continue --bifurcations FILE``."""
+    from .data import read_table
+    table, _ = read_table(path)
+    names = list(table)
+    if not names or names[0] != "kind":
+        raise ValueError(f"{path}: not a bifurcations CSV (oscidrum continue --bifurcations)")
+    return [(kind, float(value)) for kind, value in zip(table["kind"], table[names[1]])]
+
+
 def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: str = "",
               periods: float = 2) -> List[Path]:
     """Every single-case figure of a steady state into out_dir: accelerations, figure_eight,
@@ -766,6 +830,14 @@ def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     study.add_argument("--csv", required=True, help="study results CSV (oscidrum sweep)")
     study.add_argument("--metric", default="area", help="metric column (default area)")
     study.add_argument("--out", required=True, help="output file (.png or .svg)")
+    branch = sub.add_parser("branch", help="a branch of periodic orbits (oscidrum continue "
+                            "--plot): a metric against the parameter, stable solid, unstable "
+                            "dashed, bifurcations marked")
+    branch.add_argument("--csv", required=True, help="branch CSV (oscidrum continue --csv)")
+    branch.add_argument("--metric", default="area", help="metric column (default area)")
+    branch.add_argument("--bifurcations", help="bifurcations CSV (oscidrum continue "
+                        "--bifurcations); optional")
+    branch.add_argument("--out", required=True, help="output file (.png or .svg)")
     return parser.parse_args(argv)
 
 
@@ -798,6 +870,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         elif args.command == "map":
             table, units = read_csv_columns(args.csv)
             fig = plot_map(table, args.x, args.y, args.z, units=units, where=_where(args.where))
+            paths = [save(fig, args.out)]
+        elif args.command == "branch":
+            table, units = read_csv_columns(args.csv)
+            bifs = read_bifurcations(args.bifurcations) if args.bifurcations else None
+            fig = plot_branch(table, args.metric, units=units, bifurcations=bifs)
             paths = [save(fig, args.out)]
         else:
             table, units = read_csv_columns(args.csv)

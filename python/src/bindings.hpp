@@ -32,6 +32,7 @@ void bind_transmissibility(py::module_& m);
 void bind_record(py::module_& m);
 void bind_identify(py::module_& m);
 void bind_validation(py::module_& m);
+void bind_branch(py::module_& m);
 
 /// A float64 NumPy array argument (converted if needed, C-contiguous).
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;

@@ -252,3 +252,15 @@ def test_docstrings_are_numpydoc_and_their_examples_run():
         for test in finder.find(obj, "oscidrum", globs={"oscidrum": oscidrum}):
             runner.run(test)
         assert runner.failures == 0, obj
+
+
+def test_continue_branch_gives_the_branch_as_columns():
+    import pandas as pd
+    result = oscidrum.continue_branch(oscidrum.Case(), "MMd", 0.0, 14000.0, metrics=False)
+    assert result["end"] == "gross_slip" and result["key"] == "MMd" and result["unit"] == "N m"
+    points = pd.DataFrame(result["points"])
+    assert len(points) == len(result["multipliers"]) > 10
+    assert points["parameter"].iloc[0] == 0.0 and points["stable"].all()
+    assert [b["kind"] for b in result["bifurcations"]] == ["grazing", "grazing"]
+    with pytest.raises(oscidrum.Error, match="numerical setting"):
+        oscidrum.continue_branch(oscidrum.Case(), "numerics.rtol", 1e-8, 1e-7)

@@ -1,0 +1,263 @@
+// oscidrum continue: a branch of periodic orbits followed through a parameter (pseudo-arclength
+// continuation), with the Floquet multipliers and CCC metrics of every orbit and the bifurcations
+// on the branch (docs/bifurcations.md).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <variant>
+
+#include "case_options.hpp"
+#include "commands.hpp"
+#include "oscidrum/branch.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/output_table.hpp"
+#include "oscidrum_io/config.hpp"
+#include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/files.hpp"
+#include "output.hpp"
+#include "plot.hpp"
+#include "terminal.hpp"
+
+namespace oscidrum::cli {
+namespace {
+
+struct ContinueOptions {
+  std::string config;
+  CaseOptions c;
+  std::string key, csv, json, bifurcations, plot, plot_metric = "area", format = "table";
+  std::string from_text, to_text;
+  BranchOptions branch;
+  bool quiet = false;
+};
+
+std::string cell(double v) { return io::format_double_short(v); }
+
+// The value of --from/--to in the key's SI unit (the display unit's value times its scale: --from
+// 20 for soil.G means 20 MN/m^2, as everywhere people type G).
+double key_value(const Field& f, const std::string& flag, const std::string& text) {
+  const double shown = parse_field_text(f, text);
+  (void)flag;
+  return f.display_unit ? shown * f.display_scale : shown;
+}
+
+// One CSV row per point: the parameter, the orbit's stability and multipliers, every metric.
+std::string points_csv(const Branch& b) {
+  const std::size_t n_mu = b.points.empty() ? 0 : b.points.front().floquet.multipliers.size();
+  std::string out = "point[-]," + b.key + "[" + b.unit +
+                    "],arclength[-],multiplicity[-],stable[-],unstable[-],max_modulus[-],dq_ds[-],"
+                    "min_N[N],corrector_iterations[-],sequence[-]";
+  for (std::size_t i = 1; i <= n_mu; ++i)
+    out += ",mu" + std::to_string(i) + "_re[-],mu" + std::to_string(i) + "_im[-]";
+  for (const MetricOutput& o : metric_outputs())
+    if (std::holds_alternative<double Metrics::*>(o.member))
+      out += std::string(",") + o.name + "[" + o.unit + "]";
+  out += "\n";
+  for (std::size_t k = 0; k < b.points.size(); ++k) {
+    const BranchPoint& p = b.points[k];
+    out += std::to_string(k) + "," + cell(p.parameter) + "," + cell(p.arclength) + "," +
+           std::to_string(p.multiplicity) + "," + (p.stable() ? "1" : "0") + "," +
+           std::to_string(p.unstable) + "," + cell(p.floquet.max_modulus) + "," + cell(p.dq_ds) +
+           "," + cell(p.min_N) + "," + std::to_string(p.corrector_iterations) + "," +
+           io::csv_quote(p.sequence);
+    for (std::size_t i = 0; i < n_mu; ++i) {
+      const std::complex<double> m =
+          i < p.floquet.multipliers.size() ? p.floquet.multipliers[i] : NAN;
+      out.append(",").append(cell(m.real())).append(",").append(cell(m.imag()));
+    }
+    for (const MetricOutput& o : metric_outputs())
+      if (std::holds_alternative<double Metrics::*>(o.member))
+        out.append(",").append(cell(scalar_value(p.metrics, o)));
+    out += "\n";
+  }
+  return out;
+}
+
+std::string bifurcations_csv(const Branch& b) {
+  std::string out = "kind[-]," + b.key + "[" + b.unit + "],tolerance[" + b.unit +
+                    "],after_point[-],multiplier_re[-],multiplier_im[-],description[-]\n";
+  for (const Bifurcation& f : b.bifurcations)
+    out += std::string(to_string(f.kind)) + "," + cell(f.parameter) + "," + cell(f.tolerance) +
+           "," + std::to_string(f.after_point) + "," + cell(f.multiplier.real()) + "," +
+           cell(f.multiplier.imag()) + "," + io::csv_quote(f.description) + "\n";
+  return out;
+}
+
+nlohmann::ordered_json branch_json(const Branch& b) {
+  nlohmann::ordered_json j = {{"schema", "oscidrum-branch/1"},
+                              {"key", b.key},
+                              {"unit", b.unit},
+                              {"multiplicity", b.multiplicity},
+                              {"end", to_string(b.end)},
+                              {"message", b.message},
+                              {"period_maps", b.period_maps},
+                              {"seconds", b.seconds}};
+  nlohmann::ordered_json bifs = nlohmann::json::array();
+  for (const Bifurcation& f : b.bifurcations)
+    bifs.push_back({{"kind", to_string(f.kind)},
+                    {"parameter", f.parameter},
+                    {"tolerance", f.tolerance},
+                    {"after_point", f.after_point},
+                    {"multiplier", {f.multiplier.real(), f.multiplier.imag()}},
+                    {"description", f.description}});
+  j["bifurcations"] = bifs;
+  nlohmann::ordered_json points = nlohmann::json::array();
+  for (const BranchPoint& p : b.points) {
+    nlohmann::ordered_json mu = nlohmann::json::array();
+    for (const auto& m : p.floquet.multipliers) mu.push_back({m.real(), m.imag()});
+    nlohmann::ordered_json metrics;
+    for (const MetricOutput& o : metric_outputs())
+      if (std::holds_alternative<double Metrics::*>(o.member))
+        metrics[o.name] = scalar_value(p.metrics, o);
+    points.push_back({{"parameter", p.parameter},
+                      {"arclength", p.arclength},
+                      {"multiplicity", p.multiplicity},
+                      {"stable", p.stable()},
+                      {"unstable", p.unstable},
+                      {"multipliers", mu},
+                      {"dq_ds", p.dq_ds},
+                      {"min_N", p.min_N},
+                      {"sequence", p.sequence},
+                      {"metrics", metrics}});
+  }
+  j["points"] = points;
+  return j;
+}
+
+std::string table(const Branch& b, const Field& f) {
+  const double scale = f.display_unit ? f.display_scale : 1.0;
+  const std::string unit = f.display_unit ? f.display_unit : f.unit;
+  TextTable t;
+  t.header = {"point",          b.key + " [" + unit + "]", "stable",  "max |mu|",
+              "area [m^2/s^4]", "z_M'' max [m/s^2]",       "sequence"};
+  t.right = {true, true, false, true, true, true, false};
+  for (std::size_t k = 0; k < b.points.size(); ++k) {
+    const BranchPoint& p = b.points[k];
+    t.rows.push_back({std::to_string(k), fmt(p.parameter / scale, 6), p.stable() ? "yes" : "no",
+                      fmt(p.floquet.max_modulus, 5), fmt(p.metrics.area, 5),
+                      fmt(p.metrics.ddz_max, 5), p.sequence});
+  }
+  std::string out = t.text();
+  for (const Bifurcation& x : b.bifurcations)
+    out += std::string(to_string(x.kind)) + " at " + b.key + " = " + fmt(x.parameter / scale, 8) +
+           " +- " + fmt(x.tolerance / scale, 2) + " " + unit + ": " + x.description + "\n";
+  return out;
+}
+
+int run(ContinueOptions o) {
+  const Field* field = find_field(o.key);
+  if (!field) throw Error("--param: unknown key '" + o.key + "' (oscidrum fields lists them)");
+  o.branch.key = o.key;
+  o.branch.from = key_value(*field, "--from", o.from_text);
+  o.branch.to = key_value(*field, "--to", o.to_text);
+  if (!o.csv.empty()) check_output_file("--csv", o.csv);
+  if (!o.json.empty()) check_output_file("--json", o.json);
+  if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
+  if (!o.plot.empty()) {
+    check_output_file("--plot", o.plot, false);
+    if (o.csv.empty() || o.csv == "-")
+      throw Error("--plot " + o.plot + " needs --csv FILE (the plot is drawn from it)");
+  }
+  io::CaseSpec spec;
+  const Case c = resolve_case(o.config, o.c, spec);
+  install_interrupt_handlers();
+  ProgressLine line(stderr_is_terminal() && !o.quiet);
+  o.branch.cancelled = [] { return interrupted(); };
+  const double scale = field->display_unit ? field->display_scale : 1.0;
+  const std::string unit = field->display_unit ? field->display_unit : field->unit;
+  o.branch.on_point = [&](int n, double q) {
+    line.update("oscidrum continue: " + std::to_string(n) + " points, " + o.key + " = " +
+                    fmt(q / scale, 6) + " " + unit,
+                false);
+  };
+  const Branch b = continue_branch(c, o.branch);
+  line.clear();
+  if (b.end == BranchEnd::cancelled) {
+    std::cerr << "oscidrum: interrupted after " << b.points.size() << " points; nothing written\n";
+    return kExitInterrupted;
+  }
+  if (!o.csv.empty()) write_output(o.csv, points_csv(b));
+  if (!o.json.empty()) write_output(o.json, branch_json(b).dump(2) + "\n");
+  if (!o.bifurcations.empty()) write_output(o.bifurcations, bifurcations_csv(b));
+  if (o.format == "table") std::cout << table(b, *field);
+  if (o.format == "csv") std::cout << points_csv(b);
+  if (o.format == "json") std::cout << branch_json(b).dump(2) << "\n";
+  std::cout.flush();
+  if (!o.quiet)
+    std::cerr << "oscidrum: " << b.points.size() << " points, " << b.bifurcations.size()
+              << " bifurcations, " << b.period_maps << " period maps in " << fmt(b.seconds, 3)
+              << " s; " << to_string(b.end) << ": " << b.message << "\n";
+  if (!o.plot.empty()) {
+    std::vector<std::string> args = {"oscidrum.plot", "branch",      "--csv", o.csv,
+                                     "--metric",      o.plot_metric, "--out", o.plot};
+    if (!o.bifurcations.empty()) args.insert(args.end(), {"--bifurcations", o.bifurcations});
+    if (run_python(args, "the branch is in " + o.csv) != 0) return kExitCaseFailed;
+  }
+  const bool ok = b.end == BranchEnd::reached_end || b.end == BranchEnd::left_range ||
+                  b.end == BranchEnd::gross_slip;
+  return ok ? kExitOk : kExitCaseFailed;
+}
+
+}  // namespace
+
+void add_continue_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ContinueOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "continue",
+      "Follow a branch of periodic orbits through a parameter (pseudo-arclength continuation of "
+      "the shooting problem), stable and unstable alike, through folds; every orbit with its "
+      "Floquet multipliers and CCC metrics; the bifurcations on the branch (fold, period "
+      "doubling, Neimark-Sacker, branch point, and grazing: a stick, slip or flight phase "
+      "appearing or vanishing) detected and located. docs/bifurcations.md.");
+  sub->footer(
+      "Examples:\n"
+      "  oscidrum continue --param soil.G --from 10 --to 80 --set soil.input=modulus\n"
+      "  oscidrum continue case.toml --param contact.MMd --from 0 --to 9000 --csv b.csv "
+      "--bifurcations bif.csv --plot b.png\n"
+      "--from/--to are in the unit the key is typed in (MN/m^2 for soil.G, else SI).\n"
+      "Exit codes: 0 the branch reached --to (or turned back out of the range, or ended in gross "
+      "slip), 1 it ended otherwise (the message says why), 2 bad input, 130 interrupted.");
+  sub->add_option("case", o->config, "case file (TOML, see docs/config.md); default: none")
+      ->type_name("CASE.toml");
+  add_roller_flags(*sub, o->c);
+  add_soil_flags(*sub, o->c);
+  add_model_flags(*sub, o->c);
+  add_set_flag(*sub, o->c);
+  sub->add_option("--param", o->key, "the parameter to follow: a real key (oscidrum fields)")
+      ->required()
+      ->type_name("KEY");
+  sub->add_option("--from", o->from_text, "start of the range (the first orbit is found here)")
+      ->required();
+  sub->add_option("--to", o->to_text, "end of the range")->required();
+  sub->add_option("--step", o->branch.initial_step,
+                  "first arclength step as a fraction of |to - from| (default 0.02)");
+  sub->add_option("--max-step", o->branch.max_step,
+                  "largest arclength step as a fraction of |to - from| (default 0.05)");
+  sub->add_option("--tolerance", o->branch.tolerance,
+                  "bifurcations are located to this fraction of |to - from| (default 1e-6)");
+  sub->add_option("--max-points", o->branch.max_points, "points on the branch at most (2000)");
+  sub->add_option("--harmonics", o->branch.harmonics, "harmonics in the metrics (default 10)")
+      ->check(CLI::Range(2, 1000));
+  sub->add_option("--csv", o->csv, "write the points to FILE (one row per orbit)")
+      ->type_name("FILE");
+  sub->add_option("--bifurcations", o->bifurcations, "write the bifurcations to FILE (CSV)")
+      ->type_name("FILE");
+  sub->add_option("--json", o->json, "write the branch to FILE (schema oscidrum-branch/1)")
+      ->type_name("FILE");
+  sub->add_option("--plot", o->plot,
+                  "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "
+                  "stable solid, unstable dashed, bifurcations marked")
+      ->type_name("FILE");
+  sub->add_option("--plot-metric", o->plot_metric, "the metric --plot shows (default area)")
+      ->type_name("COLUMN");
+  sub->add_option("--format", o->format, "stdout: table (default), csv, json or none")
+      ->check(CLI::IsMember({"table", "csv", "json", "none"}));
+  sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
+  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+}
+
+}  // namespace oscidrum::cli

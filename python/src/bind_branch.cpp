@@ -1,0 +1,133 @@
+// Bindings of oscidrum/branch.hpp: continue_branch(case, key, from_, to, ...) -> dict. The
+// continuation runs with the GIL released; Ctrl-C cancels it and raises KeyboardInterrupt.
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <complex>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "bindings.hpp"
+#include "oscidrum/branch.hpp"
+#include "oscidrum/output_table.hpp"
+
+namespace oscidrum::python {
+namespace {
+
+py::array_t<double> column(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+// The points as columns (the CSV of `oscidrum continue --csv`, names without units), the
+// bifurcations as a list of dicts.
+py::dict branch_dict(const Branch& b) {
+  py::dict d;
+  d["key"] = b.key;
+  d["unit"] = b.unit;
+  d["multiplicity"] = b.multiplicity;
+  d["end"] = std::string(to_string(b.end));
+  d["message"] = b.message;
+  d["period_maps"] = b.period_maps;
+  d["seconds"] = b.seconds;
+  py::dict points;
+  const auto add = [&](const char* name, auto get) {
+    std::vector<double> v;
+    for (const BranchPoint& p : b.points) v.push_back(static_cast<double>(get(p)));
+    points[name] = column(v);
+  };
+  add("parameter", [](const BranchPoint& p) { return p.parameter; });
+  add("arclength", [](const BranchPoint& p) { return p.arclength; });
+  add("multiplicity", [](const BranchPoint& p) { return p.multiplicity; });
+  add("stable", [](const BranchPoint& p) { return p.stable() ? 1 : 0; });
+  add("unstable", [](const BranchPoint& p) { return p.unstable; });
+  add("max_modulus", [](const BranchPoint& p) { return p.floquet.max_modulus; });
+  add("dq_ds", [](const BranchPoint& p) { return p.dq_ds; });
+  add("min_N", [](const BranchPoint& p) { return p.min_N; });
+  for (const MetricOutput& o : metric_outputs()) {
+    if (!std::holds_alternative<double Metrics::*>(o.member)) continue;
+    std::vector<double> v;
+    for (const BranchPoint& p : b.points) v.push_back(scalar_value(p.metrics, o));
+    points[o.name] = column(v);
+  }
+  py::list sequence, multipliers;
+  for (const BranchPoint& p : b.points) {
+    sequence.append(p.sequence);
+    multipliers.append(p.floquet.multipliers);
+  }
+  points["sequence"] = sequence;
+  d["points"] = points;
+  d["multipliers"] = multipliers;
+  py::list bifs;
+  for (const Bifurcation& f : b.bifurcations) {
+    py::dict x;
+    x["kind"] = std::string(to_string(f.kind));
+    x["parameter"] = f.parameter;
+    x["tolerance"] = f.tolerance;
+    x["after_point"] = f.after_point;
+    x["multiplier"] = f.multiplier;
+    x["description"] = f.description;
+    bifs.append(x);
+  }
+  d["bifurcations"] = bifs;
+  return d;
+}
+
+py::dict continue_branch_py(const Case& c, const std::string& key, double from, double to,
+                            double initial_step, double max_step, double tolerance, int max_points,
+                            bool metrics, int harmonics) {
+  BranchOptions o;
+  o.key = key;
+  o.from = from;
+  o.to = to;
+  o.initial_step = initial_step;
+  o.max_step = max_step;
+  o.tolerance = tolerance;
+  o.max_points = max_points;
+  o.metrics = metrics;
+  o.harmonics = harmonics;
+  // Ctrl-C: polled with the GIL at most every 50 ms.
+  bool interrupted = false;
+  auto next_poll = std::chrono::steady_clock::now();
+  o.cancelled = [&]() -> bool {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_poll) return interrupted;
+    next_poll = now + std::chrono::milliseconds(50);
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) interrupted = true;
+    return interrupted;
+  };
+  Branch b;
+  {
+    py::gil_scoped_release release;
+    b = continue_branch(c, o);
+  }
+  if (interrupted) throw py::error_already_set();
+  return branch_dict(b);
+}
+
+}  // namespace
+
+void bind_branch(py::module_& m) {
+  m.def("continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
+        py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
+        py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,
+        py::arg("harmonics") = 10,
+        "Follow the periodic orbits of `case` through the parameter `key` from `from_` to `to` "
+        "(SI units) by pseudo-arclength continuation, stable and unstable alike, and locate the "
+        "bifurcations on the branch (docs/bifurcations.md).\n\n"
+        "Returns\n-------\ndict\n    key, unit, multiplicity, end ('reached_end', 'left_range', "
+        "'gross_slip', 'step_too_small', 'max_points', 'start_failed'), message, period_maps, "
+        "seconds; points: columns (NumPy arrays) parameter, arclength, multiplicity, stable, "
+        "unstable, max_modulus, dq_ds, min_N, every metric, and sequence (list of str); "
+        "multipliers: one list of complex per point; bifurcations: list of dicts (kind, "
+        "parameter, tolerance, after_point, multiplier, description). "
+        "pandas.DataFrame(result['points']) is the table of `oscidrum continue --csv`.\n\n"
+        "Raises\n------\noscidrum.Error\n    A key that cannot be continued, a range outside its "
+        "rule, bad options.");
+}
+
+}  // namespace oscidrum::python

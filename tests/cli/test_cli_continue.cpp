@@ -1,0 +1,66 @@
+// End-to-end tests of `oscidrum continue`: the branch's files, the exit codes, bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The driving torque up to the gross-slip limit: the CSV has a row per orbit with the parameter,
+// the multipliers and every metric; the bifurcations file and the JSON name the two grazings;
+// the branch ends in gross slip (exit 0: the end of the orbits, not a failure).
+TEST(CliContinue, BranchToTheGrossSlipLimitWritesItsFiles) {
+  TempDir dir;
+  const Outcome o = run({"continue", "--param", "MMd", "--from", "0", "--to", "14000", "--csv",
+                         dir / "b.csv", "--bifurcations", dir / "bif.csv", "--json", dir / "b.json",
+                         "--format", "none", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string csv = read(dir / "b.csv");
+  const std::string header = csv.substr(0, csv.find('\n'));
+  for (const char* column : {"point[-],MMd[N m],arclength[-]", ",stable[-],", ",mu1_re[-],",
+                             ",mu7_im[-],", ",area[m^2/s^4],", ",cmv[-],"})
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  const std::string bif = read(dir / "bif.csv");
+  EXPECT_EQ(bif.substr(0, bif.find('\n')),
+            "kind[-],MMd[N m],tolerance[N m],after_point[-],multiplier_re[-],multiplier_im[-],"
+            "description[-]");
+  const nlohmann::json j = nlohmann::json::parse(read(dir / "b.json"));
+  EXPECT_EQ(j["schema"], "oscidrum-branch/1");
+  EXPECT_EQ(j["end"], "gross_slip");
+  ASSERT_EQ(j["bifurcations"].size(), 2u);
+  EXPECT_EQ(j["bifurcations"][0]["kind"], "grazing");
+  EXPECT_EQ(j["points"].size(),
+            static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n') - 1));
+}
+
+TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"continue", "--param", "soil.gg", "--from", "1", "--to", "2"},
+           {"continue", "--param", "contact.mu", "--from", "0.5", "--to", "x"},
+           {"continue", "--param", "contact.mu", "--from", "0.5", "--to", "0.5"},
+           {"continue", "--param", "numerics.rtol", "--from", "1e-8", "--to", "1e-7"},
+           {"continue", "--param", "contact.mu", "--from", "0.5", "--to", "0.3", "--plot",
+            "x.png"}}) {
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << args[2] << ": " << o.err;
+    EXPECT_NE(o.err.find("error"), std::string::npos) << o.err;
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum::test
