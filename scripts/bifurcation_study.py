@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The bifurcation diagrams of docs/bifurcations.md: branches of the paper's roller followed by
 `oscidrum continue` in the driving torque MMd, in G (pure rolling at 58 Hz, where a Neimark-Sacker
-pair bounds a range without steady state) and in f. Writes docs/img/branch_*.png and prints the
-bifurcations and costs that the page quotes.
+pair bounds a range without steady state), on the log-spiral trough (a period doubling) and in f,
+and the motion between the Neimark-Sacker points. Writes docs/img/branch_*.png and prints the
+bifurcations, costs and verdicts that the page quotes.
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/bifurcation_study.py [--cli build/apps/cli/oscidrum]
 """
@@ -20,6 +21,10 @@ STUDIES = [
      ["--pure-rolling", "--unilateral", "--set", "soil.input=modulus",
       "--set", "roller.unbalance=0.22877", "--set", "roller.f=58"], "ddz_max",
      "G in pure rolling at 58 Hz (unbalance 0.22877 kg m^2, soil by Appendix B)"),
+    ("branch_G_log_spiral_25Hz", "soil.G", "100", "300",
+     ["--set", "trough.k=0.002", "--set", "trough.a=0.601", "--set", "contact.mu=0.7",
+      "--set", "roller.f=25", "--set", "roller.unbalance=0.22877", "--set", "soil.input=modulus"],
+     "ddx_max", "G on the log-spiral trough k = 0.002, a = 0.601 m at 25 Hz, mu = 0.7"),
     ("branch_f", "roller.f", "10", "60",
      ["--set", "roller.unbalance=0.22877", "--set", "soil.input=modulus",
       "--set", "soil.G=80e6"], "area",
@@ -52,6 +57,18 @@ def main() -> int:
                       f"{f['description']} (|multiplier| = "
                       f"{abs(complex(*f['multiplier'])):.6f})")
             print()
+    # Beyond the last periodic orbit: the transient method between the Neimark-Sacker points.
+    print("## the 58 Hz study between its Neimark-Sacker points (transient, max_periods 3000)")
+    for G in ("45e6", "50e6", "63e6", "80e6"):
+        run = subprocess.run([args.cli, "run", "--pure-rolling", "--unilateral", "--set",
+                              "soil.input=modulus", "--set", "roller.unbalance=0.22877", "--set",
+                              "roller.f=58", "--set", f"soil.G={G}", "--set",
+                              "numerics.method=transient", "--set", "numerics.max_periods=3000",
+                              "--format", "json"], capture_output=True, text=True)
+        j = json.loads(run.stdout)
+        d = j["diagnostics"]
+        print(f"- G = {float(G) / 1e6:g} MN/m^2: {j['status']}, motion {d['motion']}, "
+              f"lambda T = {d['lyapunov_exponent'] / 58.0:.3f}")
     return 0
 
 

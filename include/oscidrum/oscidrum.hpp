@@ -10,6 +10,7 @@
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
+#include "oscidrum/motion.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/outputs.hpp"
 #include "oscidrum/parameters.hpp"

@@ -26,7 +26,10 @@
   X(invalid_geometry, "the trough's curvature radius fell to the drum radius (f5 <= 0)")       \
   X(gross_slip, "the drum spins: the driving torque exceeds what friction can hold")           \
   X(budget_exceeded, "more steps in one period than numerics.max_steps_per_period")            \
-  X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")
+  X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")              \
+  X(aperiodic,                                                                                 \
+    "no periodic steady state: the motion, examined after numerics.max_periods, is "           \
+    "quasi-periodic or chaotic (diagnostics motion, lyapunov_exponent; docs/bifurcations.md)")
 
 // ------------------------------------------------------------------------------------------------
 // The sampled steady state (Samples, the steady-state CSV), one column per entry, in file order.
@@ -113,7 +116,14 @@
   X(int, warm_start, 0, "-", "warm start (continuation)",                                         \
     "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "     \
     "found from the neighbouring case's steady state, -1 that start failed and the case started " \
-    "from rest, 0 the case started from rest")
+    "from rest, 0 the case started from rest")                                                    \
+  X(std::string, motion, "", "-", "motion",                                                       \
+    "a run without a periodic steady state, examined over 400 further periods: quasi_periodic, "  \
+    "chaotic, periodic (its stroboscopic points recur: reached slowly), converging, undecided; "  \
+    "empty otherwise (docs/bifurcations.md)")                                                     \
+  X(double, lyapunov_exponent, 0.0, "1/s", "largest Lyapunov exponent",                           \
+    "of the motion examined for `motion` (Benettin's estimate from the variational equations; 0 " \
+    "when not examined)")
 
 // ------------------------------------------------------------------------------------------------
 // Metrics of the drum-centre accelerations, for simulated steady states (Metrics) and measured

@@ -108,12 +108,16 @@ class Diagnostics:
     """slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken [-]"""
     jacobian_evaluations: int
     """shooting: evaluations of the phase Jacobians (0 for the transient method) [-]"""
+    lyapunov_exponent: float
+    """of the motion examined for `motion` (Benettin's estimate from the variational equations; 0 when not examined) [1/s]"""
     max_slip_residual: float
     """largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = P0 (a force ratio), over the result's trajectory: the run from rest and the sampled periods (shooting: its short transient from rest and the sampled periods of the orbit, not Newton's iterates) [-]"""
     method: str
     """what produced the steady state: transient (integrated from rest until it repeats) or shooting (solved for by Newton's method on the period map, docs/periodic.md) [-]"""
     min_N: float
     """smallest normal force (26) at the step ends of the same trajectory [N]"""
+    motion: str
+    """a run without a periodic steady state, examined over 400 further periods: quasi_periodic, chaotic, periodic (its stroboscopic points recur: reached slowly), converging, undecided; empty otherwise (docs/bifurcations.md) [-]"""
     multiplicity: int
     """steady period in excitation periods (0: none found) [-]"""
     names: list
@@ -322,6 +326,27 @@ class Metrics:
     """share of the sampled time in stick [-]"""
     def to_dict(self: Metrics) -> dict: ...
     units: dict
+
+class MotionAnalysis:
+    def __init__(*args: Any, **kwargs: Any) -> Any: ...
+    contraction: float
+    """late over early step between consecutive stroboscopic points [-]"""
+    evidence: str
+    """the verdict with its numbers"""
+    kind: str
+    """quasi_periodic, chaotic, periodic, converging or undecided"""
+    lyapunov: float
+    """largest Lyapunov exponent [1/s]"""
+    lyapunov_first: float
+    """the same from the window's first half [1/s]"""
+    lyapunov_second: float
+    """... and from its second half [1/s]"""
+    periods: int
+    """excitation periods examined [-]"""
+    recurrence: int
+    """p > 0: the stroboscopic points repeat every p periods [-]"""
+    section: numpy.ndarray
+    """the stroboscopic points: the roller's state at t0 + k T, one row per period (the state's components in order: delta, phi, x_A, s_A and their rates; then the gap and its rate with contact.unilateral)"""
 
 class Model:
     Fz: float
@@ -679,6 +704,7 @@ class Status(enum.IntEnum):
     gross_slip = 6
     budget_exceeded = 7
     cancelled = 8
+    aperiodic = 9
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: Status, value: handle) -> None: ...
@@ -762,6 +788,7 @@ class ValidationRow:
 
 def accelerations(model: Model, t: float, state: State, phase: Phase, baumgarte: float = ...) -> Accelerations: ...
 def case_to_toml(case: Case) -> str: ...
+def analyze_motion(case: Case, result: Result, periods: int = ...) -> MotionAnalysis: ...
 def analyze_record(t: numpy.ndarray, ddx_M: numpy.ndarray, ddz_M: numpy.ndarray, f: float, n_max: int = ...) -> RecordMetrics: ...
 def analyze_windows(t: numpy.ndarray, ddx_M: numpy.ndarray, ddz_M: numpy.ndarray, position: Optional[numpy.ndarray] = ..., f: float = ..., window: float = ..., hop: float = ..., n_max: int = ..., max_residual: float = ..., max_drift: float = ..., clip_level: float = ..., max_gap: float = ...) -> list: ...
 def compute_metrics(result: Result, n_max: int = ..., case: Optional[Case] = ...) -> Metrics: ...

@@ -11,6 +11,8 @@
 
 #include "bindings.hpp"
 #include "oscidrum/branch.hpp"
+#include "oscidrum/model.hpp"
+#include "oscidrum/motion.hpp"
 #include "oscidrum/output_table.hpp"
 
 namespace oscidrum::python {
@@ -112,6 +114,53 @@ py::dict continue_branch_py(const Case& c, const std::string& key, double from, 
 }  // namespace
 
 void bind_branch(py::module_& m) {
+  py::class_<MotionAnalysis>(m, "MotionAnalysis",
+                             "What a motion without a periodic steady state is "
+                             "(docs/bifurcations.md, 'Beyond the last periodic orbit').")
+      .def_readonly("kind", &MotionAnalysis::kind,
+                    "quasi_periodic, chaotic, periodic, converging or undecided")
+      .def_readonly("lyapunov", &MotionAnalysis::lyapunov, "largest Lyapunov exponent [1/s]")
+      .def_readonly("lyapunov_first", &MotionAnalysis::lyapunov_first,
+                    "the same from the window's first half [1/s]")
+      .def_readonly("lyapunov_second", &MotionAnalysis::lyapunov_second,
+                    "... and from its second half [1/s]")
+      .def_readonly("periods", &MotionAnalysis::periods, "excitation periods examined [-]")
+      .def_readonly("recurrence", &MotionAnalysis::recurrence,
+                    "p > 0: the stroboscopic points repeat every p periods [-]")
+      .def_readonly("contraction", &MotionAnalysis::contraction,
+                    "late over early step between consecutive stroboscopic points [-]")
+      .def_property_readonly(
+          "section",
+          [](const MotionAnalysis& a) {
+            const std::size_t rows = a.section.size(),
+                              cols = rows > 0 ? a.section.front().size() : 0;
+            py::array_t<double> out({rows, cols});
+            auto w = out.mutable_unchecked<2>();
+            for (std::size_t i = 0; i < rows; ++i)
+              for (std::size_t j = 0; j < cols; ++j)
+                w(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = a.section[i][j];
+            return out;
+          },
+          "the stroboscopic points: the roller's state at t0 + k T, one row per period (the "
+          "state's components in order: delta, phi, x_A, s_A and their rates; then the gap and "
+          "its rate with contact.unilateral)")
+      .def_readonly("evidence", &MotionAnalysis::evidence, "the verdict with its numbers")
+      .def("__repr__", [](const MotionAnalysis& a) {
+        return "MotionAnalysis(kind='" + a.kind + "', lyapunov=" + std::to_string(a.lyapunov) +
+               " 1/s, periods=" + std::to_string(a.periods) + ")";
+      });
+  m.def(
+      "analyze_motion",
+      [](const Case& c, const Result& result, int periods) {
+        const Model model(c);
+        py::gil_scoped_release release;
+        return analyze_motion(model, result, periods);
+      },
+      py::arg("case"), py::arg("result"), py::arg("periods") = 400,
+      "Examine the motion of `result` (simulated from `case`) from its first sample over "
+      "`periods` further excitation periods: stroboscopic points, largest Lyapunov exponent, "
+      "recurrence, and a verdict (docs/bifurcations.md). simulate() does this itself for a run "
+      "without a steady state (Diagnostics.motion).");
   m.def("continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
         py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
         py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,

@@ -13,6 +13,7 @@
 #include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
 #include "oscidrum/flow.hpp"
+#include "oscidrum/motion.hpp"
 #include "roller/rollers.hpp"
 #include "util/format.hpp"
 
@@ -338,7 +339,8 @@ std::string contact_mode(const Result& r) {
     const auto k = static_cast<std::size_t>(std::floor((e.t - t0) * r.frequency));
     if (k < per_period.size()) ++per_period[k];
   }
-  if (r.status == Status::max_periods_reached) return lift_offs > 0 ? "aperiodic" : "";
+  if (r.status == Status::max_periods_reached || r.status == Status::aperiodic)
+    return lift_offs > 0 ? "aperiodic" : "";
   if (r.status != Status::steady_state) return "";
   if (lift_offs == 0) return "permanent contact";
   const bool every = std::all_of(per_period.begin(), per_period.end(), [](int n) { return n > 0; });
@@ -386,11 +388,36 @@ Result simulate_ramped(const Model& model, const ProgressCallback& progress,
   return again;
 }
 
+// No steady state within numerics.max_periods: what is the motion? (oscidrum/motion.hpp) A torus
+// or chaos is a verdict, status aperiodic; otherwise the status stands, with what was seen.
+constexpr int kMotionPeriods = 400;
+
+void examine_motion(const Model& model, Result& result, const std::function<bool()>& cancelled) {
+  const MotionAnalysis a = analyze_motion(model, result, kMotionPeriods, cancelled);
+  if (cancelled && cancelled()) return;  // the run's status stands; it was stopped
+  result.diagnostics.motion = a.kind;
+  result.diagnostics.lyapunov_exponent = a.lyapunov;
+  if (a.kind == "quasi_periodic" || a.kind == "chaotic") {
+    result.status = Status::aperiodic;
+    result.message = "no periodic steady state within numerics.max_periods; the motion is " +
+                     std::string(a.kind == "chaotic" ? "chaotic" : "quasi-periodic") + ": " +
+                     a.evidence;
+  } else {
+    result.message += "; examined over " + std::to_string(a.periods) +
+                      " further periods: " + a.kind + " (" + a.evidence + ")";
+  }
+}
+
 template <class R>
 Result simulate_roller(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
                        bool all_samples) {
   Result result = simulate_ramped<R>(model, progress, cancelled, warm, all_samples);
+  // Examined when the search had at least as many periods as the examination takes (a run cut
+  // short on purpose, numerics.max_periods = 3, is a transient, not a motion to judge).
+  if (result.status == Status::max_periods_reached && result.samples.size() > 0 &&
+      model.parameters().numerics.max_periods >= kMotionPeriods && !(cancelled && cancelled()))
+    examine_motion(model, result, cancelled);
   result.diagnostics.contact_mode = contact_mode(result);
   return result;
 }

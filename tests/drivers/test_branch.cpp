@@ -140,8 +140,41 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
     EXPECT_EQ(p.stable(), p.parameter < g1 || p.parameter > g2) << p.parameter;
   c.numerics.method = SteadyMethod::transient;
   c.numerics.max_periods = 3000;
-  EXPECT_EQ(run_at(c, "soil.G", 0.5 * (g1 + g2)).status, Status::max_periods_reached);
+  // ... and, examining the motion, finds it aperiodic (docs/bifurcations.md).
+  const Result mid = run_at(c, "soil.G", 0.5 * (g1 + g2));
+  EXPECT_EQ(mid.status, Status::aperiodic) << mid.message;
   EXPECT_EQ(run_at(c, "soil.G", g2 + 5e6).status, Status::steady_state);
+}
+
+// On the paper's log-spiral trough (k = 0.002, a = 0.601 m) at 25 Hz with mu = 0.7 a real
+// multiplier passes -1 as the soil stiffens: the continuation locates the period doubling, and
+// shooting, started from rest on either side, finds a period-1 orbit below it and a period-2
+// orbit above it.
+TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
+  Case c = modulus_case();
+  set_field(c, "trough.k", 0.002);
+  set_field(c, "trough.a", 0.601);
+  set_field(c, "contact.mu", 0.7);
+  set_field(c, "roller.f", 25.0);
+  set_field(c, "roller.unbalance", 0.22877);
+  BranchOptions o;
+  o.key = "soil.G";
+  o.from = 100e6;
+  o.to = 300e6;
+  o.metrics = false;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
+  ASSERT_EQ(b.bifurcations.size(), 1u);
+  const Bifurcation& pd = b.bifurcations[0];
+  EXPECT_EQ(pd.kind, BifurcationKind::period_doubling);
+  EXPECT_LE(pd.tolerance, 200.0);  // 1e-6 of the range
+  EXPECT_NEAR(pd.multiplier.real(), -1.0, 1e-3);
+  const Result below = run_at(c, "soil.G", pd.parameter - 3e6),
+               above = run_at(c, "soil.G", pd.parameter + 3e6);
+  ASSERT_EQ(below.status, Status::steady_state);
+  ASSERT_EQ(above.status, Status::steady_state);
+  EXPECT_EQ(below.diagnostics.multiplicity, 1);
+  EXPECT_EQ(above.diagnostics.multiplicity, 2);
 }
 
 TEST(Branch, RefusesWhatCannotBeContinued) {

@@ -264,3 +264,15 @@ def test_continue_branch_gives_the_branch_as_columns():
     assert [b["kind"] for b in result["bifurcations"]] == ["grazing", "grazing"]
     with pytest.raises(oscidrum.Error, match="numerical setting"):
         oscidrum.continue_branch(oscidrum.Case(), "numerics.rtol", 1e-8, 1e-7)
+
+
+def test_analyze_motion_of_a_periodic_orbit():
+    case = oscidrum.Case()
+    result = oscidrum.simulate(case)
+    motion = oscidrum.analyze_motion(case, result, periods=200)
+    assert motion.kind == "periodic" and motion.recurrence == 1
+    assert motion.section.shape == (201, 8)
+    # The largest Lyapunov exponent of a periodic orbit: ln |mu_max| / T (to the estimate's
+    # convergence over 200 periods, docs/bifurcations.md).
+    expected = np.log(max(abs(m) for m in result.floquet_multipliers)) * case.roller.f
+    assert abs(motion.lyapunov - expected) < 0.05 * abs(expected)
