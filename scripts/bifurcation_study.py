@@ -12,6 +12,7 @@ import json
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 STUDIES = [
@@ -46,12 +47,21 @@ def main() -> int:
                    "--csv", str(csv), "--bifurcations", str(bif), "--json", str(js),
                    "--plot", str(out / f"{name}.png"), "--plot-metric", metric,
                    "--format", "none", "--quiet"]
+            began = time.perf_counter()
+            subprocess.run(cmd[:-7] + ["--format", "none", "--quiet"], check=True,
+                           stdout=subprocess.DEVNULL)
+            wall = time.perf_counter() - began
             subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
             b = json.loads(js.read_text())
             print(f"## {what}\n`oscidrum continue --param {key} --from {lo} --to {hi} "
                   f"{' '.join(extra)}`".replace("  ", " "))
             print(f"{len(b['points'])} orbits, {b['period_maps']} period maps, "
-                  f"{b['seconds']:.2f} s; end: {b['end']} ({b['message']})")
+                  f"{b['seconds']:.2f} s; end: {b['end']} ({b['message']}); the command, "
+                  f"every branch included, without the plot: {wall:.2f} s")
+            for child in b.get("children", []):
+                print(f"  period-{child['multiplicity']} branch: {len(child['points'])} orbits, "
+                      f"end: {child['end']}; bifurcations: "
+                      f"{[(f['kind'], round(f['parameter'], 1)) for f in child['bifurcations']]}")
             for f in b["bifurcations"]:
                 print(f"- {f['kind']} at {key} = {f['parameter']:.6g} +- {f['tolerance']:.2g}: "
                       f"{f['description']} (|multiplier| = "

@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "case_options.hpp"
 #include "commands.hpp"
@@ -45,10 +47,22 @@ double key_value(const Field& f, const std::string& flag, const std::string& tex
   return f.display_unit ? shown * f.display_scale : shown;
 }
 
+// The branch and the period-2p branches switched onto at its period doublings, depth first:
+// (branch, index of its parent or -1). Index 0 is the branch followed from --from.
+std::vector<std::pair<const Branch*, int>> all_branches(const Branch& b) {
+  std::vector<std::pair<const Branch*, int>> out = {{&b, -1}};
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (const Branch& c : out[i].first->children) out.push_back({&c, static_cast<int>(i)});
+  return out;
+}
+
 // One CSV row per point: the parameter, the orbit's stability and multipliers, every metric.
-std::string points_csv(const Branch& b) {
-  const std::size_t n_mu = b.points.empty() ? 0 : b.points.front().floquet.multipliers.size();
-  std::string out = "point[-]," + b.key + "[" + b.unit +
+std::string points_csv(const Branch& root) {
+  const auto branches = all_branches(root);
+  std::size_t n_mu = 0;
+  for (const auto& [b, parent] : branches)
+    for (const BranchPoint& p : b->points) n_mu = std::max(n_mu, p.floquet.multipliers.size());
+  std::string out = "branch[-],point[-]," + root.key + "[" + root.unit +
                     "],arclength[-],multiplicity[-],stable[-],unstable[-],max_modulus[-],dq_ds[-],"
                     "min_N[N],corrector_iterations[-],sequence[-]";
   for (std::size_t i = 1; i <= n_mu; ++i)
@@ -57,33 +71,51 @@ std::string points_csv(const Branch& b) {
     if (std::holds_alternative<double Metrics::*>(o.member))
       out += std::string(",") + o.name + "[" + o.unit + "]";
   out += "\n";
-  for (std::size_t k = 0; k < b.points.size(); ++k) {
-    const BranchPoint& p = b.points[k];
-    out += std::to_string(k) + "," + cell(p.parameter) + "," + cell(p.arclength) + "," +
-           std::to_string(p.multiplicity) + "," + (p.stable() ? "1" : "0") + "," +
-           std::to_string(p.unstable) + "," + cell(p.floquet.max_modulus) + "," + cell(p.dq_ds) +
-           "," + cell(p.min_N) + "," + std::to_string(p.corrector_iterations) + "," +
-           io::csv_quote(p.sequence);
-    for (std::size_t i = 0; i < n_mu; ++i) {
-      const std::complex<double> m =
-          i < p.floquet.multipliers.size() ? p.floquet.multipliers[i] : NAN;
-      out.append(",").append(cell(m.real())).append(",").append(cell(m.imag()));
+  for (std::size_t index = 0; index < branches.size(); ++index) {
+    const Branch& b = *branches[index].first;
+    for (std::size_t k = 0; k < b.points.size(); ++k) {
+      const BranchPoint& p = b.points[k];
+      out += std::to_string(index) + "," + std::to_string(k) + "," + cell(p.parameter) + "," +
+             cell(p.arclength) + "," + std::to_string(p.multiplicity) + "," +
+             (p.stable() ? "1" : "0") + "," + std::to_string(p.unstable) + "," +
+             cell(p.floquet.max_modulus) + "," + cell(p.dq_ds) + "," + cell(p.min_N) + "," +
+             std::to_string(p.corrector_iterations) + "," + io::csv_quote(p.sequence);
+      for (std::size_t i = 0; i < n_mu; ++i) {
+        const std::complex<double> m =
+            i < p.floquet.multipliers.size() ? p.floquet.multipliers[i] : NAN;
+        out.append(",").append(cell(m.real())).append(",").append(cell(m.imag()));
+      }
+      for (const MetricOutput& o : metric_outputs())
+        if (std::holds_alternative<double Metrics::*>(o.member))
+          out.append(",").append(cell(scalar_value(p.metrics, o)));
+      out += "\n";
     }
-    for (const MetricOutput& o : metric_outputs())
-      if (std::holds_alternative<double Metrics::*>(o.member))
-        out.append(",").append(cell(scalar_value(p.metrics, o)));
-    out += "\n";
   }
   return out;
 }
 
-std::string bifurcations_csv(const Branch& b) {
-  std::string out = "kind[-]," + b.key + "[" + b.unit + "],tolerance[" + b.unit +
-                    "],after_point[-],multiplier_re[-],multiplier_im[-],description[-]\n";
-  for (const Bifurcation& f : b.bifurcations)
-    out += std::string(to_string(f.kind)) + "," + cell(f.parameter) + "," + cell(f.tolerance) +
-           "," + std::to_string(f.after_point) + "," + cell(f.multiplier.real()) + "," +
-           cell(f.multiplier.imag()) + "," + io::csv_quote(f.description) + "\n";
+std::string bifurcations_csv(const Branch& root) {
+  const auto branches = all_branches(root);
+  std::string out = "branch[-],kind[-]," + root.key + "[" + root.unit + "],tolerance[" + root.unit +
+                    "],after_point[-],multiplier_re[-],multiplier_im[-],child_branch[-],"
+                    "description[-]\n";
+  for (std::size_t index = 0; index < branches.size(); ++index) {
+    const auto& [b, parent] = branches[index];
+    // The children of branch `index` are numbered after it in all_branches' order.
+    std::size_t first_child = 0;
+    for (std::size_t j = 0; j < branches.size(); ++j)
+      if (branches[j].second == static_cast<int>(index)) {
+        first_child = j;
+        break;
+      }
+    for (const Bifurcation& f : b->bifurcations)
+      out += std::to_string(index) + "," + to_string(f.kind) + "," + cell(f.parameter) + "," +
+             cell(f.tolerance) + "," + std::to_string(f.after_point) + "," +
+             cell(f.multiplier.real()) + "," + cell(f.multiplier.imag()) + "," +
+             (f.child >= 0 ? std::to_string(first_child + static_cast<std::size_t>(f.child))
+                           : std::string("-1")) +
+             "," + io::csv_quote(f.description) + "\n";
+  }
   return out;
 }
 
@@ -103,6 +135,7 @@ nlohmann::ordered_json branch_json(const Branch& b) {
                     {"tolerance", f.tolerance},
                     {"after_point", f.after_point},
                     {"multiplier", {f.multiplier.real(), f.multiplier.imag()}},
+                    {"child", f.child},
                     {"description", f.description}});
   j["bifurcations"] = bifs;
   nlohmann::ordered_json points = nlohmann::json::array();
@@ -125,26 +158,39 @@ nlohmann::ordered_json branch_json(const Branch& b) {
                       {"metrics", metrics}});
   }
   j["points"] = points;
+  nlohmann::ordered_json children = nlohmann::json::array();
+  for (const Branch& c : b.children) children.push_back(branch_json(c));
+  j["children"] = children;
   return j;
 }
 
-std::string table(const Branch& b, const Field& f) {
+std::string table(const Branch& root, const Field& f) {
   const double scale = f.display_unit ? f.display_scale : 1.0;
   const std::string unit = f.display_unit ? f.display_unit : f.unit;
-  TextTable t;
-  t.header = {"point",          b.key + " [" + unit + "]", "stable",  "max |mu|",
-              "area [m^2/s^4]", "z_M'' max [m/s^2]",       "sequence"};
-  t.right = {true, true, false, true, true, true, false};
-  for (std::size_t k = 0; k < b.points.size(); ++k) {
-    const BranchPoint& p = b.points[k];
-    t.rows.push_back({std::to_string(k), fmt(p.parameter / scale, 6), p.stable() ? "yes" : "no",
-                      fmt(p.floquet.max_modulus, 5), fmt(p.metrics.area, 5),
-                      fmt(p.metrics.ddz_max, 5), p.sequence});
+  std::string out;
+  const auto branches = all_branches(root);
+  for (std::size_t index = 0; index < branches.size(); ++index) {
+    const auto& [b, parent] = branches[index];
+    if (index > 0)
+      out += "\nbranch " + std::to_string(index) + ": period " + std::to_string(b->multiplicity) +
+             " T, born at a period doubling of branch " + std::to_string(parent) + " (" +
+             to_string(b->end) + ": " + b->message + ")\n";
+    TextTable t;
+    t.header = {"point",          root.key + " [" + unit + "]", "stable",  "max |mu|",
+                "area [m^2/s^4]", "z_M'' max [m/s^2]",          "sequence"};
+    t.right = {true, true, false, true, true, true, false};
+    for (std::size_t k = 0; k < b->points.size(); ++k) {
+      const BranchPoint& p = b->points[k];
+      t.rows.push_back({std::to_string(k), fmt(p.parameter / scale, 6), p.stable() ? "yes" : "no",
+                        fmt(p.floquet.max_modulus, 5), fmt(p.metrics.area, 5),
+                        fmt(p.metrics.ddz_max, 5), p.sequence});
+    }
+    out += t.text();
+    for (const Bifurcation& x : b->bifurcations)
+      out += std::string(to_string(x.kind)) + " at " + root.key + " = " +
+             fmt(x.parameter / scale, 8) + " +- " + fmt(x.tolerance / scale, 2) + " " + unit +
+             ": " + x.description + "\n";
   }
-  std::string out = t.text();
-  for (const Bifurcation& x : b.bifurcations)
-    out += std::string(to_string(x.kind)) + " at " + b.key + " = " + fmt(x.parameter / scale, 8) +
-           " +- " + fmt(x.tolerance / scale, 2) + " " + unit + ": " + x.description + "\n";
   return out;
 }
 
@@ -190,7 +236,11 @@ int run(ContinueOptions o) {
   if (!o.quiet)
     std::cerr << "oscidrum: " << b.points.size() << " points, " << b.bifurcations.size()
               << " bifurcations, " << b.period_maps << " period maps in " << fmt(b.seconds, 3)
-              << " s; " << to_string(b.end) << ": " << b.message << "\n";
+              << " s; " << to_string(b.end) << ": " << b.message
+              << (b.children.empty() ? std::string()
+                                     : "; " + std::to_string(all_branches(b).size() - 1) +
+                                           " period-doubled branches")
+              << "\n";
   if (!o.plot.empty()) {
     std::vector<std::string> args = {"oscidrum.plot", "branch",      "--csv", o.csv,
                                      "--metric",      o.plot_metric, "--out", o.plot};
@@ -240,6 +290,10 @@ void add_continue_command(CLI::App& app, Action& action) {
   sub->add_option("--tolerance", o->branch.tolerance,
                   "bifurcations are located to this fraction of |to - from| (default 1e-6)");
   sub->add_option("--max-points", o->branch.max_points, "points on the branch at most (2000)");
+  sub->add_option("--switch-depth", o->branch.switch_depth,
+                  "follow the period-2p branch born at each period doubling, and onward, to this "
+                  "depth (default 1; 0: none)")
+      ->check(CLI::Range(0, 5));
   sub->add_option("--harmonics", o->branch.harmonics, "harmonics in the metrics (default 10)")
       ->check(CLI::Range(2, 1000));
   sub->add_option("--csv", o->csv, "write the points to FILE (one row per orbit)")

@@ -31,6 +31,9 @@ struct BranchOptions {
   int max_points = 2000;  ///< points on the branch, at most
   bool metrics = true;    ///< compute the CCC metrics of every point
   int harmonics = 10;     ///< harmonics n = 0 ... N in the metrics
+  /// Branch switching at period doublings: 0 none, 1 onto the period-2p branch, 2 also from
+  /// it onto 4p, ...
+  int switch_depth = 1;
   /// Polled during every period map; true stops the continuation (BranchEnd::cancelled).
   std::function<bool()> cancelled;
   /// Called after every accepted point (points so far, its parameter); for progress lines.
@@ -77,6 +80,9 @@ struct Bifurcation {
   /// part); 0 for grazing.
   std::complex<double> multiplier = 0.0;
   std::string description;  ///< what changes, in words
+  /// A period doubling: the index in Branch::children of the period-2p branch switched onto
+  /// here (-1: none, or not found).
+  int child = -1;
 };
 
 /// Why a branch ended.
@@ -104,6 +110,9 @@ struct Branch {
   std::string message;   ///< how it ended, in words
   long period_maps = 0;  ///< period maps integrated (with and without sensitivities)
   double seconds = 0.0;  ///< wall time [s]
+  /// The period-2p branches born at this branch's period doublings (Bifurcation::child), each
+  /// followed from its doubling to the end of the range on its side.
+  std::vector<Branch> children;
 };
 
 /// Follow the periodic orbits of `c` through `options.key` from `options.from` to `options.to`:

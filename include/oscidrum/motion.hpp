@@ -27,8 +27,11 @@ struct MotionAnalysis {
   double lyapunov_second = 0.0;  ///< ... and from its second half [1/s]
   int periods = 0;               ///< excitation periods examined [-]
   int recurrence = 0;            ///< p > 0: the points repeat every p periods [-]
-  /// The step between consecutive stroboscopic points in the window's last quarter over that in
-  /// its first (median, in units of the components' ranges): below 0.1 the motion converges [-].
+  /// p > 0: the distance between stroboscopic points p periods apart shrinks geometrically (ln of
+  /// it falls on a line, R^2 >= 0.9, over the second half; the p of the steepest fall): the
+  /// motion still converges [-]
+  int converging_period = 0;
+  /// That distance's shrink factor over the second half (1 if not converging) [-]
   double contraction = 1.0;
   /// The stroboscopic points: the roller's state at t0 + k T, k = 0 ... periods (every
   /// component, in the order of its state; docs/bifurcations.md).

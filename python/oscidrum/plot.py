@@ -716,11 +716,12 @@ BIFURCATION_STYLE = {"fold": ("o", "tab:red"), "branch_point": ("D", "tab:purple
 
 def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
                 units: Optional[Mapping[str, str]] = None,
-                bifurcations: Optional[Sequence[Tuple[str, float]]] = None,
+                bifurcations: Optional[Sequence[Tuple[Any, ...]]] = None,
                 title: Optional[str] = None, ax: Any = None) -> Any:
     """A branch of periodic orbits (``oscidrum continue --csv``): `metric` against the continued
-    parameter, stable orbits solid, unstable dashed; `bifurcations` (kind, parameter) marked on
-    the branch, each kind with its marker (``oscidrum continue --bifurcations``)."""
+    parameter, stable orbits solid, unstable dashed, one colour per branch (the period-2p branches
+    born at period doublings beside the first); `bifurcations` (kind, parameter[, branch]) marked
+    on their branch, each kind with its marker (``oscidrum continue --bifurcations``)."""
     units = dict(units or {})
     names = list(table)
     if "arclength" not in names or names.index("arclength") < 1:
@@ -728,27 +729,41 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
                          "'arclength'")
     key = names[names.index("arclength") - 1]
     metric = resolve_column(table, metric)
-    q = np.asarray(table[key], dtype=float)
-    y = np.asarray(table[metric], dtype=float)
-    stable = np.asarray(table["stable"], dtype=float) > 0.5
+    q_all = np.asarray(table[key], dtype=float)
+    y_all = np.asarray(table[metric], dtype=float)
+    stable_all = np.asarray(table["stable"], dtype=float) > 0.5
+    branch_all = (np.asarray(table["branch"], dtype=float) if "branch" in table
+                  else np.zeros(len(q_all)))
+    period_all = (np.asarray(table["multiplicity"], dtype=float) if "multiplicity" in table
+                  else np.ones(len(q_all)))
     xlabel, xf = axis_label(key, units.get(key, ""))
     ylabel, yf = axis_label(metric, units.get(metric, ""))
     fig = None
     if ax is None:
         fig, ax = new_figure(width=7.0, height=4.2)
-    # Runs of equal stability, each drawn to the next point so that the curve is unbroken.
-    start = 0
     labelled = set()
-    for k in range(1, len(q) + 1):
-        if k == len(q) or stable[k] != stable[start]:
-            end = min(k + 1, len(q))
-            kind = "stable" if stable[start] else "unstable"
-            ax.plot(q[start:end] * xf, y[start:end] * yf, color="tab:blue",
-                    linestyle="-" if stable[start] else "--",
-                    label=None if kind in labelled else f"{kind} orbits")
-            labelled.add(kind)
-            start = k
-    for kind, at in bifurcations or []:
+    for index in np.unique(branch_all):
+        rows = branch_all == index
+        q, y, stable = q_all[rows], y_all[rows], stable_all[rows]
+        p = int(period_all[rows][0]) if rows.any() else 1
+        color = COLORS[int(index) % len(COLORS)]
+        # Runs of equal stability, each drawn to the next point so that the curve is unbroken.
+        start = 0
+        for k in range(1, len(q) + 1):
+            if k == len(q) or stable[k] != stable[start]:
+                end = min(k + 1, len(q))
+                kind = f"period {p} T, {'stable' if stable[start] else 'unstable'}"
+                ax.plot(q[start:end] * xf, y[start:end] * yf, color=color,
+                        linestyle="-" if stable[start] else "--",
+                        label=None if kind in labelled else kind)
+                labelled.add(kind)
+                start = k
+    for item in bifurcations or []:
+        kind, at = item[0], item[1]
+        on = item[2] if len(item) > 2 else 0
+        q, y = q_all[branch_all == on], y_all[branch_all == on]
+        if len(q) == 0:
+            continue
         marker, color = BIFURCATION_STYLE.get(kind, ("*", "black"))
         value = float(np.interp(at, q, y)) if q[0] <= q[-1] else float(np.interp(at, q[::-1], y[::-1]))
         ax.plot([at * xf], [value * yf], marker=marker, color=color, linestyle="none",
@@ -763,14 +778,18 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
     return fig if fig is not None else ax
 
 
-def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float]]:
-    """(kind, parameter) of every bifurcation in ``oscidrum continue --bifurcations FILE``."""
+def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float, int]]:
+    """(kind, parameter, branch) of every bifurcation in ``oscidrum continue --bifurcations
+    FILE``."""
     from .data import read_table
     table, _ = read_table(path)
     names = list(table)
-    if not names or names[0] != "kind":
+    if "kind" not in names or names.index("kind") + 1 >= len(names):
         raise ValueError(f"{path}: not a bifurcations CSV (oscidrum continue --bifurcations)")
-    return [(kind, float(value)) for kind, value in zip(table["kind"], table[names[1]])]
+    parameter = names[names.index("kind") + 1]
+    branch = table.get("branch", ["0"] * len(table["kind"]))
+    return [(kind, float(value), int(float(b)))
+            for kind, value, b in zip(table["kind"], table[parameter], branch)]
 
 
 def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: str = "",

@@ -72,15 +72,19 @@ py::dict branch_dict(const Branch& b) {
     x["after_point"] = f.after_point;
     x["multiplier"] = f.multiplier;
     x["description"] = f.description;
+    x["child"] = f.child;
     bifs.append(x);
   }
   d["bifurcations"] = bifs;
+  py::list children;
+  for (const Branch& c : b.children) children.append(branch_dict(c));
+  d["children"] = children;
   return d;
 }
 
 py::dict continue_branch_py(const Case& c, const std::string& key, double from, double to,
                             double initial_step, double max_step, double tolerance, int max_points,
-                            bool metrics, int harmonics) {
+                            bool metrics, int harmonics, int switch_depth) {
   BranchOptions o;
   o.key = key;
   o.from = from;
@@ -91,6 +95,7 @@ py::dict continue_branch_py(const Case& c, const std::string& key, double from, 
   o.max_points = max_points;
   o.metrics = metrics;
   o.harmonics = harmonics;
+  o.switch_depth = switch_depth;
   // Ctrl-C: polled with the GIL at most every 50 ms.
   bool interrupted = false;
   auto next_poll = std::chrono::steady_clock::now();
@@ -127,8 +132,12 @@ void bind_branch(py::module_& m) {
       .def_readonly("periods", &MotionAnalysis::periods, "excitation periods examined [-]")
       .def_readonly("recurrence", &MotionAnalysis::recurrence,
                     "p > 0: the stroboscopic points repeat every p periods [-]")
+      .def_readonly("converging_period", &MotionAnalysis::converging_period,
+                    "p > 0: points p periods apart approach each other geometrically: the motion "
+                    "converges [-]")
       .def_readonly("contraction", &MotionAnalysis::contraction,
-                    "late over early step between consecutive stroboscopic points [-]")
+                    "shrink factor of the distance between points p periods apart over the "
+                    "window's second half [-]")
       .def_property_readonly(
           "section",
           [](const MotionAnalysis& a) {
@@ -164,7 +173,7 @@ void bind_branch(py::module_& m) {
   m.def("continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
         py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
         py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,
-        py::arg("harmonics") = 10,
+        py::arg("harmonics") = 10, py::arg("switch_depth") = 1,
         "Follow the periodic orbits of `case` through the parameter `key` from `from_` to `to` "
         "(SI units) by pseudo-arclength continuation, stable and unstable alike, and locate the "
         "bifurcations on the branch (docs/bifurcations.md).\n\n"
@@ -173,7 +182,8 @@ void bind_branch(py::module_& m) {
         "seconds; points: columns (NumPy arrays) parameter, arclength, multiplicity, stable, "
         "unstable, max_modulus, dq_ds, min_N, every metric, and sequence (list of str); "
         "multipliers: one list of complex per point; bifurcations: list of dicts (kind, "
-        "parameter, tolerance, after_point, multiplier, description). "
+        "parameter, tolerance, after_point, multiplier, description, child); children: the "
+        "period-2p branches born at period doublings (switch_depth levels), as dicts alike. "
         "pandas.DataFrame(result['points']) is the table of `oscidrum continue --csv`.\n\n"
         "Raises\n------\noscidrum.Error\n    A key that cannot be continued, a range outside its "
         "rule, bad options.");

@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -126,6 +128,22 @@ class Continuation {
 
   Branch run();
 
+  // A period doubling passed on the branch: where, the orbit there and the direction of the
+  // multiplier -1, and the side of it on which the period-p orbit is unstable.
+  struct Doubling {
+    double q = 0.0, section = 0.0;
+    Phase phase = Phase::stick;
+    Vector state{};
+    VectorXd direction;  // eigenvector of M for the multiplier nearest -1 (scaled components)
+    double unstable_side = 1.0;  // +1: beyond q in increasing q
+    int index = -1;              // of the bifurcation in the parent's list
+  };
+  const std::vector<Doubling>& doublings() const { return doublings_; }
+  // The period-2p branch born at `d`, followed to the end of the range on its side.
+  Branch switch_at(const Doubling& d, const std::array<double, P>& scale);
+  const std::array<double, P>& scale() const { return scale_; }
+  void set_multiplicity(int p) { p_ = p; }
+
  private:
   // One period map P^p from (y, q): the residual F = P^p(y) - y (scaled), and with
   // `sensitivities` the scaled Jacobian dF/dy (M - I); `ok` false when the flow failed, the phase
@@ -167,8 +185,8 @@ class Continuation {
                                   int* iterations, double reach);
   static constexpr double kMaxDrift = 0.5;
   BranchPoint point(const Solution& s, double arclength, int iterations);
-  void locate(Branch& branch, const Solution& a, double ds, const BranchPoint& pa,
-              const BranchPoint& pb);
+  void locate(Branch& branch, const Solution& a, const Solution& b, double ds,
+              const BranchPoint& pa, const BranchPoint& pb);
   bool resection(Solution& s);
   bool cancelled() const { return o_.cancelled && o_.cancelled(); }
 
@@ -185,6 +203,12 @@ class Continuation {
   std::array<double, P> scale_{};
   long maps_ = 0;
   std::string last_failure_;
+  std::vector<Doubling> doublings_;
+  // The continuation from an accepted first solution to the end of the range.
+  Branch follow(Branch branch, Solution cur, int iterations,
+                std::chrono::steady_clock::time_point start_time);
+  Branch finish(Branch& branch, BranchEnd end, std::string message,
+                std::chrono::steady_clock::time_point start_time) const;
 };
 
 template <class R>
@@ -395,8 +419,8 @@ BranchPoint Continuation<R>::point(const Solution& s, double arclength, int iter
 // bisect along the branch (corrector from a + s t_a on t_a's hyperplane) until the bracket in q
 // is below the tolerance, and report each change.
 template <class R>
-void Continuation<R>::locate(Branch& branch, const Solution& a, double ds, const BranchPoint& pa,
-                             const BranchPoint& pb) {
+void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& b, double ds,
+                             const BranchPoint& pa, const BranchPoint& pb) {
   const MultiplierCounts ca = count_multipliers(pa.floquet), cb = count_multipliers(pb.floquet);
   const bool fold = pa.dq_ds * pb.dq_ds < 0.0;
   struct Test {
@@ -433,6 +457,8 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, double ds, const
     double lo = 0.0, hi = ds;
     double q_lo = pa.parameter, q_hi = pb.parameter;
     BranchPoint last = pb;
+    const Solution* last_solution = &b;
+    std::optional<Solution> kept;
     for (int k = 0; k < 40 && std::abs(q_hi - q_lo) > q_tol; ++k) {
       const double mid = 0.5 * (lo + hi);
       int iterations = 0;
@@ -448,6 +474,8 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, double ds, const
         lo = mid, q_lo = pm.parameter;
       } else {
         hi = mid, q_hi = pm.parameter, last = pm;
+        kept = std::move(*s);
+        last_solution = &*kept;
       }
     }
     Bifurcation bif;
@@ -466,8 +494,29 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, double ds, const
         bif.multiplier = nearest(last.floquet, 1.0, false);
         bif.description = "a real multiplier crosses +1 without a turn (branch point)";
         break;
-      case BifurcationKind::period_doubling:
+      case BifurcationKind::period_doubling: {
         bif.multiplier = nearest(last.floquet, -1.0, false);
+        // For the switch onto the period-2p branch: the orbit beyond the point and the direction
+        // of its multiplier -1 (the eigenvector's real part, in scaled components).
+        Eigen::EigenSolver<MatrixXd> eig(last_solution->map.M, true);
+        int critical = 0;
+        for (int i = 1; i < P; ++i)
+          if (std::abs(eig.eigenvalues()[i] + 1.0) < std::abs(eig.eigenvalues()[critical] + 1.0))
+            critical = i;
+        VectorXd dir(P);
+        for (int i = 0; i < P; ++i) dir[i] = eig.eigenvectors()(i, critical).real() / scale_[i];
+        Doubling d;
+        d.q = last.parameter;
+        d.section = section_;
+        d.phase = phase_;
+        d.state = full_state(last_solution->v);
+        d.direction = dir.normalized();
+        d.unstable_side =
+            (cb.beyond_minus_one > ca.beyond_minus_one) == (pb.parameter > pa.parameter) ? 1.0
+                                                                                         : -1.0;
+        d.index = static_cast<int>(branch.bifurcations.size());
+        doublings_.push_back(d);
+      }
         bif.description = "a real multiplier crosses -1: an orbit of period " +
                           std::to_string(2 * p_) + " T branches off (flip)";
         break;
@@ -548,29 +597,35 @@ bool Continuation<R>::resection(Solution& s) {
 }
 
 template <class R>
+Branch Continuation<R>::finish(Branch& branch, BranchEnd end, std::string message,
+                               std::chrono::steady_clock::time_point start_time) const {
+  branch.end = end;
+  branch.message = std::move(message);
+  branch.period_maps = maps_;
+  branch.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return branch;
+}
+
+template <class R>
 Branch Continuation<R>::run() {
   const auto start_time = std::chrono::steady_clock::now();
   Branch branch;
   branch.key = field_.key;
   branch.unit = field_.unit;
-  auto finish = [&](BranchEnd end, std::string message) {
-    branch.end = end;
-    branch.message = std::move(message);
-    branch.period_maps = maps_;
-    branch.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-    return branch;
-  };
   // The first point: the steady state at `from`, found by shooting.
   Case c0 = case_at(o_.from);
   c0.numerics.method = SteadyMethod::shooting;
   const Model m0(c0);
   const Result r0 = simulate(m0, nullptr, o_.cancelled);
-  if (r0.status == Status::cancelled) return finish(BranchEnd::cancelled, "cancelled at the start");
+  if (r0.status == Status::cancelled)
+    return finish(branch, BranchEnd::cancelled, "cancelled at the start", start_time);
   if (!ok(r0.status) || r0.samples.size() == 0)
-    return finish(BranchEnd::start_failed, std::string("no steady state at ") + field_.key + " = " +
-                                               detail::shortest(o_.from) + " to start from: " +
-                                               to_string(r0.status) + " (" + r0.message + ")");
+    return finish(branch, BranchEnd::start_failed,
+                  std::string("no steady state at ") + field_.key + " = " +
+                      detail::shortest(o_.from) + " to start from: " + to_string(r0.status) + " (" +
+                      r0.message + ")",
+                  start_time);
   p_ = std::max(1, r0.diagnostics.multiplicity);
   branch.multiplicity = p_;
   section_ = r0.samples.t[0] / m0.period();
@@ -601,28 +656,86 @@ Branch Continuation<R>::run() {
   along[P] = o_.to > o_.from ? 1.0 : -1.0;
   std::optional<Solution> first = correct(v, along, &iterations, 1.0);  // q fixed at `from`
   if (!first)
-    return finish(BranchEnd::start_failed,
-                  "the steady state at the start does not solve the "
-                  "shooting problem: " +
-                      last_failure_);
-  Solution cur = std::move(*first);
-  {
-    const std::optional<VectorXd> t = tangent(cur.v, cur.map, along);
-    if (!t) return finish(BranchEnd::start_failed, "no tangent at the start");
-    cur.tangent = *t;
+    return finish(
+        branch, BranchEnd::start_failed,
+        "the steady state at the start does not solve the shooting problem: " + last_failure_,
+        start_time);
+  const std::optional<VectorXd> t = tangent(first->v, first->map, along);
+  if (!t) return finish(branch, BranchEnd::start_failed, "no tangent at the start", start_time);
+  first->tangent = *t;
+  return follow(std::move(branch), std::move(*first), iterations, start_time);
+}
+
+// The period-2p orbit born at a period doubling (supercritical: on the side where the period-p
+// orbit is unstable; subcritical: on the other) lies about sqrt(|q - q*|) from the period-p
+// orbit along the eigenvector of the multiplier -1 (Seydel 2010, branch switching). From
+// q* + 1e-3 of the range on either side, Newton on P^2p(z) = z starts from the period-p orbit
+// displaced along that eigenvector by a few sizes; a solution that is a fixed point of P^p
+// already is the period-p orbit, not the new one, and is refused.
+template <class R>
+Branch Continuation<R>::switch_at(const Doubling& d, const std::array<double, P>& scale) {
+  const auto start_time = std::chrono::steady_clock::now();
+  const int parent_p = p_;
+  Branch branch;
+  branch.key = field_.key;
+  branch.unit = field_.unit;
+  p_ = 2 * parent_p;
+  branch.multiplicity = p_;
+  section_ = d.section;
+  phase_ = d.phase;
+  reference_ = d.state;
+  scale_ = scale;
+  const double lo_q = std::min(o_.from, o_.to), hi_q = std::max(o_.from, o_.to);
+  for (const double side : {d.unstable_side, -d.unstable_side}) {
+    const double q = std::clamp(d.q + side * 1e-3 * sq_, lo_q, hi_q);
+    for (const double size : {0.05, 0.2, 0.01}) {
+      VectorXd v(P + 1);
+      for (int i = 0; i < P; ++i) v[i] = reference_[Dyn::kPeriodic[i]] / scale_[i];
+      v.head(P) += size * d.direction;
+      v[P] = q / sq_;
+      VectorXd along = VectorXd::Zero(P + 1);
+      along[P] = side;
+      int iterations = 0;
+      std::optional<Solution> first = correct(v, along, &iterations, 10.0);
+      if (!first) continue;
+      // Not the period-p orbit: one period map of it must not close.
+      p_ = parent_p;
+      const Map once = map(first->v, false);
+      p_ = 2 * parent_p;
+      if (once.ok && once.F.cwiseAbs().maxCoeff() < 1e-4) continue;
+      const std::optional<VectorXd> t = tangent(first->v, first->map, along);
+      if (!t) continue;
+      first->tangent = *t;
+      // Follow it to the end of the range on its side.
+      o_.from = d.q;
+      o_.to = side > 0 ? hi_q : lo_q;
+      return follow(std::move(branch), std::move(*first), iterations, start_time);
+    }
   }
+  return finish(branch, BranchEnd::start_failed,
+                "no period-" + std::to_string(2 * parent_p) +
+                    " orbit found beside the period "
+                    "doubling at " +
+                    std::string(field_.key) + " = " + detail::shortest(d.q) + ": " + last_failure_,
+                start_time);
+}
+
+template <class R>
+Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
+                               std::chrono::steady_clock::time_point start_time) {
   resection(cur);
   double s = 0.0;
   branch.points.push_back(point(cur, s, iterations));
-  if (o_.on_point) o_.on_point(1, branch.points.back().parameter);
-
+  if (o_.on_point)
+    o_.on_point(static_cast<int>(branch.points.size()), branch.points.back().parameter);
   double ds = o_.initial_step;
   const double lo_q = std::min(o_.from, o_.to), hi_q = std::max(o_.from, o_.to);
   while (true) {
-    if (cancelled()) return finish(BranchEnd::cancelled, "cancelled");
+    if (cancelled()) return finish(branch, BranchEnd::cancelled, "cancelled", start_time);
     if (static_cast<int>(branch.points.size()) >= o_.max_points)
-      return finish(BranchEnd::max_points,
-                    "stopped after " + std::to_string(o_.max_points) + " points (max_points)");
+      return finish(branch, BranchEnd::max_points,
+                    "stopped after " + std::to_string(o_.max_points) + " points (max_points)",
+                    start_time);
     std::optional<Solution> next = correct(cur.v + ds * cur.tangent, cur.tangent, &iterations, ds);
     if (next) {
       const std::optional<VectorXd> t = tangent(next->v, next->map, cur.tangent);
@@ -632,19 +745,20 @@ Branch Continuation<R>::run() {
         next->tangent = *t;
     }
     if (!next) {
-      if (cancelled()) return finish(BranchEnd::cancelled, "cancelled");
+      if (cancelled()) return finish(branch, BranchEnd::cancelled, "cancelled", start_time);
       ds *= 0.5;
       if (ds < o_.min_step)
-        return finish(BranchEnd::step_too_small,
+        return finish(branch, BranchEnd::step_too_small,
                       "the corrector failed down to the smallest step at " +
                           std::string(field_.key) + " = " +
-                          detail::shortest(branch.points.back().parameter) + ": " + last_failure_);
+                          detail::shortest(branch.points.back().parameter) + ": " + last_failure_,
+                      start_time);
       continue;
     }
     const double q = parameter(next->v);
     s += ds;
     BranchPoint pt = point(*next, s, iterations);
-    locate(branch, cur, ds, branch.points.back(), pt);
+    locate(branch, cur, *next, ds, branch.points.back(), pt);
     branch.points.push_back(std::move(pt));
     if (o_.on_point) o_.on_point(static_cast<int>(branch.points.size()), q);
     cur = std::move(*next);
@@ -653,18 +767,20 @@ Branch Continuation<R>::run() {
     // and beyond it phi' grows: no periodic orbit to follow.
     if (cur.map.switches.empty() &&
         (phase_ == Phase::slip_positive || phase_ == Phase::slip_negative)) {
-      return finish(BranchEnd::gross_slip,
+      return finish(branch, BranchEnd::gross_slip,
                     "at " + std::string(field_.key) + " = " + detail::shortest(q) +
                         " the drum slips throughout the period (gross slip): no periodic orbit "
-                        "beyond");
+                        "beyond",
+                    start_time);
     }
     resection(cur);
     if (q > hi_q || q < lo_q) {
       const bool at_end = o_.to > o_.from ? q > hi_q : q < lo_q;
-      return finish(at_end ? BranchEnd::reached_end : BranchEnd::left_range,
+      return finish(branch, at_end ? BranchEnd::reached_end : BranchEnd::left_range,
                     at_end ? "reached " + std::string(field_.key) + " = " + detail::shortest(o_.to)
                            : "the branch turned back and left the range at " +
-                                 std::string(field_.key) + " = " + detail::shortest(o_.from));
+                                 std::string(field_.key) + " = " + detail::shortest(o_.from),
+                    start_time);
     }
     if (iterations <= 3) ds = std::min(ds * 1.5, o_.max_step);
   }
@@ -694,7 +810,28 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
     throw Error("continue: tolerance must be in (0, 1); got " + detail::shortest(o.tolerance));
   if (o.max_points < 2) throw Error("continue: max_points must be >= 2");
   const Model model(c);  // validates the case
-  return detail::with_roller(model, [&]<class R>() { return Continuation<R>(c, o, *field).run(); });
+  return detail::with_roller(model, [&]<class R>() {
+    Continuation<R> primary(c, o, *field);
+    Branch branch = primary.run();
+    // Branch switching at each period doubling onto the period-2p branch, and onward from
+    // those (o.switch_depth levels); a branch's own children are grown before it is stored.
+    std::function<void(Branch&, const Continuation<R>&, int)> grow =
+        [&](Branch& parent, const Continuation<R>& from, int depth) {
+          if (depth > o.switch_depth) return;
+          for (const auto& d : from.doublings()) {
+            if (o.cancelled && o.cancelled()) return;
+            Continuation<R> child(c, o, *field);
+            child.set_multiplicity(parent.multiplicity);
+            Branch b = child.switch_at(d, from.scale());
+            grow(b, child, depth + 1);
+            parent.bifurcations[static_cast<std::size_t>(d.index)].child =
+                static_cast<int>(parent.children.size());
+            parent.children.push_back(std::move(b));
+          }
+        };
+    grow(branch, primary, 1);
+    return branch;
+  });
 }
 
 }  // namespace oscidrum

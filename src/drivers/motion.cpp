@@ -36,8 +36,6 @@ constexpr double kZeroPerPeriod = 0.02;
 // Stroboscopic points that agree to this fraction of the components' ranges recur.
 constexpr double kRecurrence = 1e-6;
 constexpr int kMaxRecurrence = 64;
-// A motion whose period-to-period step shrank below this fraction over the window converges.
-constexpr double kConverging = 0.1;
 
 template <class R>
 MotionAnalysis analyze(const Model& model, const Result& result, int periods,
@@ -130,28 +128,41 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
                               " 1/s (" + detail::shortest(per_period) + " per period; halves " +
                               detail::shortest(a) + ", " + detail::shortest(b) + ") over " +
                               std::to_string(periods) + " periods";
-  // How the step between consecutive points changes over the window: a motion that still
-  // converges shrinks it geometrically; a torus or chaos keeps it.
-  std::vector<double> step;
-  for (std::size_t k = 1; k < n; ++k) step.push_back(distance(k, k - 1));
-  const auto median = [](std::vector<double> w) {
-    std::nth_element(w.begin(), w.begin() + w.size() / 2, w.end());
-    return w[w.size() / 2];
-  };
-  const std::size_t quarter = step.size() / 4;
-  const double early = median({step.begin(), step.begin() + quarter}),
-               late = median({step.end() - quarter, step.end()});
-  out.contraction = early > 0.0 ? late / early : 1.0;
+  // Convergence to an orbit of period p: the distance between points p periods apart shrinks
+  // geometrically, ln d_p(k) falls along a straight line (a torus or chaos makes it wander).
+  // Over the second half, the least-squares line of ln d_p(k) against k for p = 1 ... 16: a
+  // negative slope with R^2 >= 0.9 is convergence (to the p with the steepest).
+  // `contraction` is d_p's shrink factor over that half for the p found (1 if none).
+  double steepest = 0.0;
+  for (int p = 1; p <= std::min(16, periods / 4); ++p) {
+    double sk = 0, sy = 0, skk = 0, sky = 0, syy = 0, m = 0;
+    for (std::size_t k = n / 2; k < n; ++k) {
+      const double d = distance(k, k - static_cast<std::size_t>(p));
+      if (!(d > 0.0)) continue;
+      const double y = std::log(d), kk = static_cast<double>(k);
+      sk += kk, sy += y, skk += kk * kk, sky += kk * y, syy += y * y, m += 1;
+    }
+    if (m < 10) continue;
+    const double sxx = skk - sk * sk / m, sxy = sky - sk * sy / m, s_yy = syy - sy * sy / m;
+    const double slope = sxy / sxx, r2 = s_yy > 0 ? sxy * sxy / (sxx * s_yy) : 0.0;
+    if (slope < steepest && r2 >= 0.9) {  // the steepest: a period-2 orbit's d_1 flattens
+      steepest = slope;
+      out.converging_period = p;
+      out.contraction = std::exp(slope * m);
+    }
+  }
   if (out.recurrence > 0) {
     out.kind = "periodic";
     out.evidence = "the stroboscopic points repeat every " + std::to_string(out.recurrence) +
                    " periods (to " + detail::shortest(kRecurrence) + " of their ranges); " +
                    numbers;
-  } else if (out.contraction < kConverging) {
+  } else if (out.converging_period > 0) {
     out.kind = "converging";
-    out.evidence = "the step between consecutive stroboscopic points shrank by " +
-                   detail::shortest(out.contraction) + " from the first to the last quarter; " +
-                   numbers + ": the motion still approaches an attractor";
+    out.evidence = "the distance between stroboscopic points " +
+                   std::to_string(out.converging_period) +
+                   " periods apart shrinks geometrically (by " + detail::shortest(out.contraction) +
+                   " over the last " + std::to_string(n / 2) +
+                   " periods): the motion still approaches an attractor; " + numbers;
   } else if (per_period > kZeroPerPeriod && per_period - spread > 0.0) {
     out.kind = "chaotic";
     out.evidence = "a positive " + numbers + ", and the stroboscopic points do not recur";

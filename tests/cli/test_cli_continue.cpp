@@ -32,13 +32,13 @@ TEST(CliContinue, BranchToTheGrossSlipLimitWritesItsFiles) {
   ASSERT_EQ(o.code, 0) << o.err;
   const std::string csv = read(dir / "b.csv");
   const std::string header = csv.substr(0, csv.find('\n'));
-  for (const char* column : {"point[-],MMd[N m],arclength[-]", ",stable[-],", ",mu1_re[-],",
-                             ",mu7_im[-],", ",area[m^2/s^4],", ",cmv[-],"})
+  for (const char* column : {"branch[-],point[-],MMd[N m],arclength[-]", ",stable[-],",
+                             ",mu1_re[-],", ",mu7_im[-],", ",area[m^2/s^4],", ",cmv[-],"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
   const std::string bif = read(dir / "bif.csv");
   EXPECT_EQ(bif.substr(0, bif.find('\n')),
-            "kind[-],MMd[N m],tolerance[N m],after_point[-],multiplier_re[-],multiplier_im[-],"
-            "description[-]");
+            "branch[-],kind[-],MMd[N m],tolerance[N m],after_point[-],multiplier_re[-],"
+            "multiplier_im[-],child_branch[-],description[-]");
   const nlohmann::json j = nlohmann::json::parse(read(dir / "b.json"));
   EXPECT_EQ(j["schema"], "oscidrum-branch/1");
   EXPECT_EQ(j["end"], "gross_slip");

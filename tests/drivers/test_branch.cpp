@@ -147,9 +147,9 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
 }
 
 // On the paper's log-spiral trough (k = 0.002, a = 0.601 m) at 25 Hz with mu = 0.7 a real
-// multiplier passes -1 as the soil stiffens: the continuation locates the period doubling, and
+// multiplier passes -1 as the soil stiffens: the continuation locates the period doubling,
 // shooting, started from rest on either side, finds a period-1 orbit below it and a period-2
-// orbit above it.
+// orbit above it, and the branch switched onto there is made of those period-2 orbits.
 TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
   Case c = modulus_case();
   set_field(c, "trough.k", 0.002);
@@ -161,7 +161,6 @@ TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
   o.key = "soil.G";
   o.from = 100e6;
   o.to = 300e6;
-  o.metrics = false;
   const Branch b = continue_branch(c, o);
   ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
   ASSERT_EQ(b.bifurcations.size(), 1u);
@@ -175,6 +174,31 @@ TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
   ASSERT_EQ(above.status, Status::steady_state);
   EXPECT_EQ(below.diagnostics.multiplicity, 1);
   EXPECT_EQ(above.diagnostics.multiplicity, 2);
+  // Branch switching: the period-2 branch born there, stable, followed to the end of the range;
+  // its orbits are the period-2 steady states shooting finds from rest.
+  ASSERT_EQ(pd.child, 0);
+  ASSERT_EQ(b.children.size(), 1u);
+  const Branch& p2 = b.children[0];
+  EXPECT_EQ(p2.multiplicity, 2);
+  EXPECT_EQ(p2.end, BranchEnd::reached_end) << p2.message;
+  ASSERT_GT(p2.points.size(), 10u);
+  EXPECT_NEAR(p2.points.front().parameter, pd.parameter, 2e-3 * 200e6);  // starts 1e-3 beyond
+  // (Away from the doubling: within about 1 MN/m^2 of it the orbits converge so slowly that
+  // shooting from rest falls back and the transient runs out of periods, which is what the
+  // continuation is for.)
+  for (const std::size_t k : {p2.points.size() / 4, p2.points.size() / 2}) {
+    const BranchPoint& p = p2.points[k];
+    EXPECT_TRUE(p.stable()) << p.parameter;
+    Case ck = c;
+    set_field(ck, "soil.G", p.parameter);
+    const Model model(ck);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state);
+    ASSERT_EQ(r.diagnostics.multiplicity, 2) << p.parameter;
+    const Metrics m = compute_metrics(model, r);
+    EXPECT_NEAR(p.metrics.ddx_max, m.ddx_max, 1e-6 * m.ddx_max) << p.parameter;
+    EXPECT_NEAR(p.metrics.area, m.area, 1e-6 * m.area) << p.parameter;
+  }
 }
 
 TEST(Branch, RefusesWhatCannotBeContinued) {

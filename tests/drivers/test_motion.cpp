@@ -49,6 +49,25 @@ TEST(Motion, ASlowTransientIsConverging) {
   EXPECT_LT(a.contraction, 0.1);
 }
 
+// Just past the period doubling on the log-spiral trough (docs/bifurcations.md) the period-2
+// orbit attracts so slowly (its multiplier 0.999) that the search runs out of periods; the
+// exponent is then near zero as on a torus, but the points close in on the orbit: converging,
+// not quasi-periodic, and the status stays max_periods_reached.
+TEST(Motion, ASlowApproachBesideABifurcationIsNotATorus) {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  set_field(c, "trough.k", 0.002);
+  set_field(c, "trough.a", 0.601);
+  set_field(c, "contact.mu", 0.7);
+  set_field(c, "roller.f", 25.0);
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "soil.G", 125.63e6);
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_EQ(r.diagnostics.motion, "converging") << r.message;
+  EXPECT_LT(std::abs(r.diagnostics.lyapunov_exponent / c.roller.f), 0.02);
+}
+
 Case torus_case(double G) {
   Case c;
   set_field_text(c, "soil.input", "modulus");
