@@ -224,7 +224,7 @@ int run(ContinueOptions o) {
   line.clear();
   if (b.end == BranchEnd::cancelled) {
     std::cerr << "oscidrum: interrupted after " << b.points.size() << " points; nothing written\n";
-    return kExitInterrupted;
+    return interrupted_exit_code();
   }
   if (!o.csv.empty()) write_output(o.csv, points_csv(b));
   if (!o.json.empty()) write_output(o.json, branch_json(b).dump(2) + "\n");

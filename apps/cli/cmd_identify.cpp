@@ -303,7 +303,7 @@ int run(const IdentifyCliOptions& o) {
     line.clear();
     if (interrupted()) {
       std::cerr << "oscidrum: interrupted after " << pass.size() << " windows; nothing written\n";
-      return kExitInterrupted;
+      return interrupted_exit_code();
     }
   }
   std::size_t valid = 0;
@@ -412,7 +412,7 @@ int run(const IdentifyCliOptions& o) {
     if (o.metrics_file.empty()) write_fit_files(o.plot_dir, rec, *chosen, 10);
     if (run_python({"oscidrum.identify", "plot", "--dir", o.plot_dir},
                    "the data are in " + o.plot_dir) != 0)
-      return kExitCaseFailed;
+      return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
   }
   if (valid == 0) {
     std::string reasons;

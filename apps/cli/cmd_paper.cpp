@@ -26,14 +26,22 @@ struct PaperOptions {
 };
 
 int run(const PaperOptions& o) {
-  install_interrupt_handlers();
-  std::filesystem::create_directories(o.out);
+  if (o.out.empty()) throw Error("--out needs a directory name; got an empty one");
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec || !std::filesystem::is_directory(o.out))
+    throw Error("--out " + o.out + ": cannot create the directory" +
+                (ec ? ": " + ec.message() : std::string(" (a file of that name exists)")));
   std::vector<std::string> args = {
       "oscidrum.paper",         "--out", o.out, "--format", o.format, "--threads",
       std::to_string(o.threads)};
   if (o.quiet) args.emplace_back("--quiet");
   // paper.py exits 0 when every claim agrees and 1 (with the report written) when one does not.
   const int status = run_python(args, "writing the validation table alone", {1});
+  if (interrupted()) {  // paper.py removed what it had started: nothing partial is left
+    std::cerr << "oscidrum: interrupted; nothing written\n";
+    return interrupted_exit_code();
+  }
   const bool reported = std::filesystem::exists(o.out + "/report.md");
   if (status == 0 || (status == 1 && reported)) {
     if (!o.quiet) std::cerr << "oscidrum paper: figures, data and report.md in " << o.out << "\n";
@@ -48,7 +56,7 @@ int run(const PaperOptions& o) {
   } catch (const Error&) {
     if (!interrupted()) throw;
     std::cerr << "oscidrum: interrupted\n";
-    return kExitInterrupted;
+    return interrupted_exit_code();
   }
   const std::vector<ValidationRow> rows = validate(results);
   io::write_file_atomic(o.out + "/validation.md",

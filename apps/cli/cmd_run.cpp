@@ -80,7 +80,7 @@ int run(const RunOptions& o) {
   if (interrupted()) {
     std::cerr << "oscidrum: interrupted after " << result.diagnostics.periods_simulated
               << " periods; nothing written\n";
-    return kExitInterrupted;
+    return interrupted_exit_code();
   }
 
   std::unique_ptr<Metrics> metrics;
@@ -118,7 +118,8 @@ int run(const RunOptions& o) {
   if (!ok(result.status) && !o.quiet)
     std::cerr << "oscidrum: case ended with status " << to_string(result.status) << ": "
               << result.message << "\n";
-  if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir)) return kExitCaseFailed;
+  if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir))
+    return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
   return ok(result.status) ? kExitOk : kExitCaseFailed;
 }
 

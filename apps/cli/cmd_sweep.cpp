@@ -316,7 +316,7 @@ int report_interrupted(const SweepOptions& o, const SweepPlan& p, const SweepOut
               << " --resume' to finish\n";
   else
     std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
-  return kExitInterrupted;
+  return interrupted_exit_code();
 }
 
 // The finished study: the results CSV (atomically) and the HDF5 file; returns this run's rows in
@@ -388,7 +388,7 @@ int run(const SweepOptions& o) {
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},
                                     "the results are in " + o.out) != 0)
-    return kExitCaseFailed;
+    return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
   return all_ok ? kExitOk : kExitCaseFailed;
 }
 

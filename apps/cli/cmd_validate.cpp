@@ -49,6 +49,9 @@ std::string csv_document(const std::vector<ValidationRow>& rows) {
 }
 
 int run(const ValidateOptions& o) {
+  // Output names first: the studies take seconds.
+  if (!o.markdown.empty()) check_output_file("--markdown", o.markdown, false);
+  if (!o.csv.empty()) check_output_file("--csv", o.csv, false);
   install_interrupt_handlers();
   ProgressLine progress(!o.quiet && stderr_is_terminal());
   PaperRunOptions po;
@@ -65,7 +68,7 @@ int run(const ValidateOptions& o) {
     if (!interrupted()) throw;
     progress.clear();
     std::cerr << "oscidrum: interrupted\n";
-    return kExitInterrupted;
+    return interrupted_exit_code();
   }
   const std::vector<ValidationRow> rows = validate(results);
   progress.clear();

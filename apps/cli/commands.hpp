@@ -18,7 +18,7 @@ inline constexpr int kExitOk = 0;          ///< success
 inline constexpr int kExitCaseFailed = 1;  ///< a case ended with a status other than steady_state
 inline constexpr int kExitUsage = 2;       ///< bad usage or input (message on stderr)
 inline constexpr int kExitInternal = 3;    ///< a bug: an unexpected exception
-inline constexpr int kExitInterrupted = 130;  ///< SIGINT or SIGTERM
+inline constexpr int kExitInterrupted = 130;  ///< SIGINT; 143 for SIGTERM (interrupted_exit_code)
 
 /// What a parsed command does; main runs it after parsing, and returns its exit code.
 using Action = std::function<int()>;

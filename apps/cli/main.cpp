@@ -8,8 +8,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum/version.hpp"
+#include "terminal.hpp"
 
 namespace {
 
@@ -37,12 +40,14 @@ class Formatter : public CLI::Formatter {
   }
 };
 
+// One line of printable UTF-8: line breaks become spaces, other control characters and bytes
+// that are not UTF-8 (a file name or a cell from a binary file) are escaped as \xNN.
 std::string one_line(std::string s) {
   if (s.size() > 2000) s = s.substr(0, 2000) + "... (cut)";  // never a megabyte of echo
   for (char& ch : s)
     if (ch == '\n' || ch == '\r') ch = ' ';
   while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
+  return oscidrum::printable(s);
 }
 
 int error(const std::string& message, int code) {
@@ -76,6 +81,7 @@ int run(int argc, char** argv) {
   Action action;
   std::string names;
   for (AddCommand add : kCommands) add(app, action);
+  strict_numbers(app);  // every numeric flag: decimal text only, before its own rule
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
     names += (names.empty() ? "" : ", ") + sub->get_name();
   try {
@@ -99,9 +105,13 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  install_interrupt_handlers();  // first: before any thread starts (terminal.hpp)
   try {
     return run(argc, argv);
   } catch (const oscidrum::Error& e) {
+    // A wait or a write cut short by the signal (a FIFO without a reader) ends as interrupted.
+    if (interrupted())
+      return error(std::string("interrupted (") + interrupt_name() + ")", interrupted_exit_code());
     return error(e.what(), kExitUsage);
   } catch (const std::exception& e) {
     return error(std::string("internal error: ") + e.what(), kExitInternal);

@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "oscidrum/error.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
 
@@ -120,7 +121,8 @@ void write_output(const std::string& path, const std::string& text) {
   }
 }
 
-void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout) {
+void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout,
+                       bool regular_only) {
   if (path.empty())
     throw Error(flag + " needs a file name; got an empty one" +
                 (allow_stdout ? std::string(" ('-' is stdout)") : std::string()));
@@ -129,15 +131,26 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
   if (std::filesystem::is_directory(path, ec))
     throw Error(flag + " " + path + " is a directory; give a file name (e.g. " +
                 (std::filesystem::path(path) / "results.csv").string() + ")");
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  io::OutputTarget target;
+  try {
+    target = io::output_target(path, regular_only);
+  } catch (const Error& e) {
+    throw Error(flag + ": " + e.what());
+  }
+  if (target.direct) return;  // a FIFO or device: written in place
+  // The file is written beside its target (through symbolic links) and renamed over it.
+  const std::filesystem::path parent = std::filesystem::path(target.path).parent_path();
+  const std::string shown = target.path == path ? path : path + " (-> " + target.path + ")";
   if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
-    throw Error(flag + " " + path + ": the directory " + parent.string() + " does not exist");
+    throw Error(flag + " " + shown + ": the directory " + parent.string() + " does not exist");
   if (::access(parent.empty() ? "." : parent.c_str(), W_OK) != 0)
-    throw Error(flag + " " + path + ": cannot write into " +
+    throw Error(flag + " " + shown + ": cannot write into " +
                 (parent.empty() ? std::string("the current directory") : parent.string()) + ": " +
                 std::strerror(errno));
 }
 
-void warn(const std::string& message) { std::cerr << "oscidrum: warning: " << message << "\n"; }
+void warn(const std::string& message) {
+  std::cerr << "oscidrum: warning: " << printable(message) << "\n";
+}
 
 }  // namespace oscidrum::cli

@@ -54,9 +54,12 @@ std::string output_text(const Struct& s, const Output<Struct, Types...>& out, in
 void write_output(const std::string& path, const std::string& text);
 
 /// Check, before any work is done, that an output file named by `flag` can be written: not an
-/// empty name, not a directory, in a directory that exists. "-" (stdout) passes when
-/// `allow_stdout`. Throws oscidrum::Error naming the flag.
-void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout = true);
+/// empty name, not a directory, a target (through symbolic links) that is a regular file or new,
+/// in a directory that exists, or a FIFO or character device (io::output_target; refused with
+/// `regular_only`, for HDF5). "-" (stdout) passes when `allow_stdout`. Throws oscidrum::Error
+/// naming the flag.
+void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout = true,
+                       bool regular_only = false);
 
 /// "oscidrum: warning: ..." on stderr.
 void warn(const std::string& message);

@@ -1,6 +1,7 @@
 // --plot and `oscidrum paper`: spawn a module of the Python package (posix_spawn, no shell).
 #include "plot.hpp"
 
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +14,8 @@
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include "terminal.hpp"
 
 extern char** environ;
 
@@ -70,9 +73,21 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+  // The child gets the signals back (they are blocked in this process: terminal.hpp).
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), envp.data());
+  const int rc = posix_spawn(&pid, python.c_str(), &actions, &attr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
   if (rc != 0) {
     std::cerr << "oscidrum: error: " << what << " could not start (" << std::strerror(rc)
               << "; set OSCIDRUM_PYTHON to the interpreter the oscidrum package is installed for, "
@@ -80,14 +95,28 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
               << data_note << "\n";
     return -1;
   }
+  // Wait, passing SIGINT or SIGTERM on to the child (it cleans up and exits; the modules exit
+  // 130 or 143 without a traceback).
+  set_child_process(pid);
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
+  bool passed_on = false;
+  while (true) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) {
+      set_child_process(0);
       std::cerr << "oscidrum: error: " << what << ": waitpid failed: " << std::strerror(errno)
                 << "\n";
       return -1;
     }
+    if (interrupted() && !passed_on) {
+      ::kill(pid, interrupted_exit_code() - 128);
+      passed_on = true;
+    }
+    ::usleep(5000);
   }
+  set_child_process(0);
+  if (interrupted()) return -1;  // the caller reports the interruption
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
   if (WIFEXITED(status) && std::find(quiet_status.begin(), quiet_status.end(),
                                      WEXITSTATUS(status)) != quiet_status.end())

@@ -79,6 +79,9 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
               : w < 0 ? "failed: started again from rest"
                       : "no: started from rest";
     }
+    // The examination of a motion without a steady state: its exponent only when it ran.
+    if (std::string_view(out.name) == "lyapunov_exponent" && result.diagnostics.motion.empty())
+      value.clear();
     if (!value.empty()) s.line(out.label, value);  // the fallback reason only when there is one
   }
   if (result.floquet.stability != Stability::unknown)

@@ -1,31 +1,72 @@
-// Signal flag and progress line.
+// The signal watcher and the progress line.
 #include "terminal.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
-#include <csignal>
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <ctime>
+#include <thread>
 
 namespace oscidrum::cli {
 namespace {
 
-// Set from the signal handler; read by the commands. A lock-free atomic is async-signal-safe.
-volatile std::sig_atomic_t g_interrupted = 0;
+// The signal that arrived (0: none yet), and the child to kill when the watcher ends the run.
+std::atomic<int> g_signal{0};
+std::atomic<pid_t> g_child{0};
 
-extern "C" void on_signal(int) { g_interrupted = 1; }
+// How long a command has after the signal to stop by itself.
+constexpr long kGraceNanoseconds = 800'000'000;
+
+// Waits for SIGINT or SIGTERM (blocked in every thread); after the first, gives the command the
+// grace period and then ends the process, unless it ended first. A second signal ends it at once.
+void watch(sigset_t set) {
+  int sig = 0;
+  while (sigwait(&set, &sig) != 0) {
+  }
+  g_signal.store(sig);
+  timespec left{0, kGraceNanoseconds};
+  timespec start{};
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  while (true) {
+    const int r = sigtimedwait(&set, nullptr, &left);
+    if (r > 0 || (r < 0 && errno == EAGAIN)) break;  // a second signal, or the time is up
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const long spent = (now.tv_sec - start.tv_sec) * 1'000'000'000L + (now.tv_nsec - start.tv_nsec);
+    if (spent >= kGraceNanoseconds) break;
+    left = {0, kGraceNanoseconds - spent};
+  }
+  if (const pid_t child = g_child.load(); child > 0) ::kill(child, SIGKILL);
+  static const char message[] = "\noscidrum: interrupted\n";
+  (void)!::write(STDERR_FILENO, message, sizeof message - 1);
+  ::_exit(128 + sig);
+}
 
 }  // namespace
 
 void install_interrupt_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;  // a second signal takes the default action (terminate)
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  static std::atomic<bool> installed{false};
+  if (installed.exchange(true)) return;
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  // Blocked here, before any other thread exists: every thread inherits the mask, so only the
+  // watcher receives the signals. (Children get their own mask back: plot.cpp.)
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread(watch, set).detach();
 }
 
-bool interrupted() { return g_interrupted != 0; }
+bool interrupted() { return g_signal.load(std::memory_order_relaxed) != 0; }
+
+int interrupted_exit_code() { return g_signal.load() == SIGTERM ? 128 + SIGTERM : 128 + SIGINT; }
+
+const char* interrupt_name() { return g_signal.load() == SIGTERM ? "SIGTERM" : "SIGINT"; }
+
+void set_child_process(pid_t pid) { g_child.store(pid); }
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
 

@@ -1,19 +1,35 @@
-// terminal.hpp: Ctrl-C handling and progress lines on stderr.
+// terminal.hpp: Ctrl-C (SIGINT) and SIGTERM, and progress lines on stderr.
 #pragma once
+
+#include <sys/types.h>
 
 #include <chrono>
 #include <string>
 
 namespace oscidrum::cli {
 
-/// Install handlers for SIGINT and SIGTERM that only set a flag (the one piece of global state of
-/// the CLI: a signal handler can do nothing else safely). Commands poll interrupted(), stop
-/// starting work, flush what is finished and exit with kExitInterrupted. The handlers reset to
-/// the default after the first signal, so a second Ctrl-C ends the process at once.
+/// Take over SIGINT and SIGTERM for the whole run (main calls it first, before any thread starts;
+/// later calls do nothing). The signals are blocked in every thread and received by one watcher
+/// thread, which sets the flag interrupted() reads (the one piece of global state of the CLI).
+/// Commands poll it, stop starting work, finish or discard what they write, and return
+/// interrupted_exit_code(). A command that has not ended 0.8 s after the signal, or a second
+/// signal, ends the process at once with that exit code and "oscidrum: interrupted" (killing a
+/// child process registered by set_child_process): every command stops within 1 s.
 void install_interrupt_handlers();
 
 /// True once SIGINT or SIGTERM arrived.
 bool interrupted();
+
+/// The exit code of a command that stopped because of the signal: 130 for SIGINT, 143 for
+/// SIGTERM (128 + the signal's number, as a shell reports a process killed by it).
+int interrupted_exit_code();
+
+/// "SIGINT" or "SIGTERM", for messages.
+const char* interrupt_name();
+
+/// The child process the CLI waits for (a Python module), or 0: the watcher kills it when it ends
+/// the process.
+void set_child_process(pid_t pid);
 
 /// True if stderr is a terminal (progress lines are shown only then).
 bool stderr_is_terminal();

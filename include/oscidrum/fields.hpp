@@ -48,9 +48,10 @@ double get_field(const Case& c, std::string_view key);
 void set_field(Case& c, std::string_view key, double value);
 
 /// The value of a field written as text (a --set or a flag), by the same rules as a config file:
-/// a number for a real field ("2.5e7"), digits only for an integer field (not "5.0" or "1e3"),
-/// exactly true or false for a boolean, a choice's name. The value is not checked against the
-/// field's range (check_field does that). Throws oscidrum::Error naming the key and the text.
+/// a decimal number for a real field ("2.5e7"; parse_number: no hex, inf or nan), digits only for
+/// an integer field (not "5.0" or "1e3"), exactly true or false for a boolean, a choice's name. The
+/// value is not checked against the field's range (check_field does that). Throws oscidrum::Error
+/// naming the key and the text.
 double parse_field_text(const Field& field, std::string_view text);
 
 /// Set a field from text (parse_field_text, then the field's rule).

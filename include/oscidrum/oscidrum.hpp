@@ -20,5 +20,6 @@
 #include "oscidrum/soil.hpp"
 #include "oscidrum/state.hpp"
 #include "oscidrum/study.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum/transmissibility.hpp"
 #include "oscidrum/version.hpp"

@@ -12,6 +12,7 @@ any ``name[unit]`` table such as the CLI's sweep results.
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 import os
@@ -21,6 +22,7 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ._files import write_file
 from . import _core
 
 #: Columns of docs/csv-columns.md: (attribute, unit), in file order, from the library's output
@@ -219,11 +221,10 @@ def write_case_csv(data: Any, path: str | os.PathLike) -> None:
     s = state.samples
     arrays = [np.asarray(getattr(s, name)) for name, _ in COLUMNS[:-1]]
     phase = np.asarray(s.phase).astype(int)
-    with open(path, "w", encoding="utf-8", newline="") as fh:
-        fh.write(HEADER + "\n")
-        for j in range(len(phase)):
-            fh.write(",".join(format_double(float(a[j])) for a in arrays))
-            fh.write(f",{phase[j]}\n")
+    lines = [HEADER + "\n"]
+    for j in range(len(phase)):
+        lines.append(",".join(format_double(float(a[j])) for a in arrays) + f",{phase[j]}\n")
+    write_file(path, "".join(lines))
 
 
 def write_table(path: str | os.PathLike, columns: Mapping[str, Sequence[Any]],
@@ -232,21 +233,22 @@ def write_table(path: str | os.PathLike, columns: Mapping[str, Sequence[Any]],
     units = units or {}
     names = list(columns)
     n = max((len(columns[c]) for c in names), default=0)
-    with open(path, "w", encoding="utf-8", newline="") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow([f"{c}[{units.get(c, '-')}]" for c in names])
-        for j in range(n):
-            row = []
-            for c in names:
-                values = columns[c]
-                v = values[j] if j < len(values) else ""
-                if isinstance(v, (bool, np.bool_)):
-                    row.append("true" if v else "false")
-                elif isinstance(v, (float, np.floating)):
-                    row.append(format_double(float(v)))
-                else:
-                    row.append(str(v))
-            writer.writerow(row)
+    fh = io.StringIO()
+    writer = csv.writer(fh, lineterminator="\n")
+    writer.writerow([f"{c}[{units.get(c, '-')}]" for c in names])
+    for j in range(n):
+        row = []
+        for c in names:
+            values = columns[c]
+            v = values[j] if j < len(values) else ""
+            if isinstance(v, (bool, np.bool_)):
+                row.append("true" if v else "false")
+            elif isinstance(v, (float, np.floating)):
+                row.append(format_double(float(v)))
+            else:
+                row.append(str(v))
+        writer.writerow(row)
+    write_file(path, fh.getvalue())
 
 
 def read_table(path: str | os.PathLike) -> Tuple[Dict[str, List[str]], Dict[str, str]]:

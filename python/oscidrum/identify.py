@@ -22,6 +22,8 @@ from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
+from ._files import output_path
+
 #: The unknowns, their display unit and factor from SI.
 _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6),
             "ksv": (r"$k_{sv}$", "MN/m", 1e-6), "mu": (r"$\mu$", "-", 1.0),
@@ -170,12 +172,14 @@ def plot_directory(directory: str | Path, fmt: str = "png") -> List[Path]:
             if name in cols and name + "_lo" in cols:
                 fig = plot_pass(d / "identify.csv", parameter=name)
                 path = d / f"pass_{name}.{fmt}"
-                fig.savefig(path, dpi=120)
+                with output_path(path) as target:
+                    fig.savefig(target, format=fmt, dpi=120)
                 written.append(path)
     if (d / "fit.json").exists() and (d / "fit_model.csv").exists():
         for name, fig in plot_fit(d):
             path = d / f"{name}.{fmt}"
-            fig.savefig(path, dpi=120)
+            with output_path(path) as target:
+                fig.savefig(target, format=fmt, dpi=120)
             written.append(path)
     return written
 
@@ -198,4 +202,6 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from ._interrupt import run_main
+
+    sys.exit(run_main(main, "oscidrum.identify"))

@@ -22,9 +22,12 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import os
 import re
+import shutil
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,6 +37,8 @@ import numpy as np
 
 from . import _core as core
 from . import plot
+from ._files import write_file
+from ._interrupt import run_main, signals_deferred
 from .data import from_result, write_table
 
 MN = 1e6
@@ -404,14 +409,14 @@ ROW_FIELDS = ("id", "figure", "claim", "paper", "oscidrum", "rule", "agrees", "c
 def write_validation(out: Path, rows: Sequence[Any]) -> None:
     """validation.md (the table of docs/validation.md) and validation.csv (one row per claim,
     the columns of ROW_FIELDS; the same file as `oscidrum validate --csv`)."""
-    (out / "validation.md").write_text(VALIDATION_TITLE + core.validation_markdown(rows),
-                                       encoding="utf-8")
-    with open(out / "validation.csv", "w", encoding="utf-8", newline="") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(ROW_FIELDS)
-        for r in rows:
-            writer.writerow([("true" if v else "false") if isinstance(v, bool) else v
-                             for v in (getattr(r, f) for f in ROW_FIELDS)])
+    write_file(out / "validation.md", VALIDATION_TITLE + core.validation_markdown(rows))
+    fh = io.StringIO()
+    writer = csv.writer(fh, lineterminator="\n")
+    writer.writerow(ROW_FIELDS)
+    for r in rows:
+        writer.writerow([("true" if v else "false") if isinstance(v, bool) else v
+                         for v in (getattr(r, f) for f in ROW_FIELDS)])
+    write_file(out / "validation.csv", fh.getvalue())
 
 
 def all_agree(rows: Sequence[Any]) -> bool:
@@ -479,7 +484,7 @@ def write_report(out: Path, writer: Writer, runs: Sequence[Run], rows: Sequence[
                       ""]
     lines += ["## Validation table", "", table]
     path = out / "report.md"
-    path.write_text("\n".join(lines), encoding="utf-8")
+    write_file(path, "\n".join(lines))
     return path
 
 
@@ -501,9 +506,25 @@ class Reproduction:
 def reproduce(out: str | os.PathLike, fmt: str = "png", threads: int = 0,
               progress: bool = False) -> Reproduction:
     """Run every study (oscidrum.run_paper_studies), validate it and write figures, data,
-    validation.md/.csv and report.md into `out` (created if needed)."""
+    validation.md/.csv and report.md into `out` (created if needed). Everything is written
+    into a temporary folder inside `out` first and moved into place at the end, so that an
+    interrupted or failed run leaves no partial output (the folder is removed)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=".partial-", dir=out))
+    try:
+        rep = _reproduce_into(staging, fmt, threads, progress)
+        with signals_deferred():  # all files or none
+            for item in sorted(staging.iterdir()):
+                if item.is_file():
+                    write_file(out / item.name, item.read_bytes())
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    rep.report = out / rep.report.name
+    return rep
+
+
+def _reproduce_into(out: Path, fmt: str, threads: int, progress: bool) -> Reproduction:
     tty = sys.stderr.isatty()
 
     def show(done: int, total: int) -> None:
@@ -540,7 +561,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parser.parse_args(argv)
     try:
         rep = reproduce(args.out, args.format, args.threads, progress=not args.quiet)
-    except core.Error as exc:
+    except (core.Error, OSError) as exc:
         print(f"oscidrum.paper: error: {exc}", file=sys.stderr)
         return 1
     print(rep.report)
@@ -552,4 +573,4 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run_main(main, "oscidrum.paper"))

@@ -36,6 +36,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
+from ._files import output_path
 from .data import (SteadyState, as_steady_state, from_result, harmonic_amplitudes, read_case,
                    read_csv_columns, resolve_column, split_header)
 
@@ -112,7 +113,8 @@ def save(fig: Figure, path: str | os.PathLike, fmt: Optional[str] = None) -> Pat
     if path.suffix.lower() != "." + fmt:
         path = path.with_suffix("." + fmt)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, format=fmt, dpi=150)
+    with output_path(path) as target:
+        fig.savefig(target, format=fmt, dpi=150)
     return path
 
 
@@ -908,4 +910,6 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    from ._interrupt import run_main
+
+    sys.exit(run_main(main, "oscidrum.plot"))

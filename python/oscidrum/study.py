@@ -16,6 +16,7 @@ import sys
 from typing import Any, Callable, Iterable, List, Optional, Sequence, Union
 
 from . import _core
+from ._files import output_path
 
 __all__ = ["run_study", "StudyResult", "Interrupted", "run_chunk"]
 
@@ -168,7 +169,8 @@ class StudyResult(list):
         ds = self.to_xarray(dims)
         ds["ok"] = ds["ok"].fillna(False).astype("int8")
         ds["ok"].attrs["units"] = "-"
-        ds.to_netcdf(os.fspath(path))
+        with output_path(path, regular_only=True) as target:  # netCDF seeks: a regular file
+            ds.to_netcdf(target)
         return path
 
 

@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/text.hpp"
 
 namespace oscidrum::python {
 
@@ -26,7 +27,9 @@ void bind_error(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
-      py::object error = py::reinterpret_borrow<py::object>(type)(e.what());
+      // A message that echoes bytes that are not UTF-8 (a file name, a cell of a binary file)
+      // has them escaped as \xNN instead of failing to decode.
+      py::object error = py::reinterpret_borrow<py::object>(type)(printable(e.what()));
       if (!e.key().empty()) error.attr("key") = py::str(e.key());
       if (!std::isnan(e.value())) error.attr("value") = py::float_(e.value());
       PyErr_SetObject(type.ptr(), error.ptr());

@@ -20,11 +20,6 @@
 namespace oscidrum::python {
 namespace {
 
-// 50 ms in steady_clock ticks.
-constexpr std::int64_t kPollTicks =
-    std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(50))
-        .count();
-
 // ---- pickling of CaseOutcome (for studies on executors: outcomes travel between processes) ----
 // A flat little-endian byte string of this build's structs, headed by a format tag and the sizes
 // of the fixed-size parts; only the same oscidrum build reads it back. The members of

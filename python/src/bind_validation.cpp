@@ -1,11 +1,13 @@
 // Bindings of oscidrum/validation.hpp: the paper's studies (paper_series, paper_case,
 // run_paper_studies) and the check of every result the paper states (validate,
 // validation_markdown). run_paper_studies releases the GIL while the cases run on C++ worker
-// threads; the progress callback re-acquires it. PaperRunOptions has no cancellation hook, so an
-// exception raised by the callback (or Ctrl-C, seen at the next progress call) is re-raised once
-// every case has run (a few seconds).
+// threads; the progress callback re-acquires it. Ctrl-C (or an exception raised by the callback)
+// cancels the run within a simulated period and is re-raised.
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -30,26 +32,45 @@ std::string join_G(const std::vector<double>& G) {
 
 std::vector<SeriesResult> run_paper_studies_py(int threads, bool keep_samples, int n_harmonics,
                                                const py::object& progress) {
-  std::exception_ptr error;  // written with the GIL held, so the GIL guards it
+  std::exception_ptr error;                // written with the GIL held, so the GIL guards it
+  std::atomic<bool> stop{false};           // set once `error` is: read without the GIL
+  std::atomic<std::int64_t> next_poll{0};  // steady_clock ticks of the next signal check
   PaperRunOptions options;
   options.threads = threads;
   options.keep_samples = keep_samples;
   options.n_harmonics = n_harmonics;
+  auto guarded = [&](auto&& call) {
+    py::gil_scoped_acquire gil;
+    if (error) return;
+    try {
+      call();
+    } catch (...) {
+      error = std::current_exception();
+      stop.store(true);
+    }
+  };
   if (!progress.is_none())
     options.progress = [&](std::size_t done, std::size_t total) {
-      py::gil_scoped_acquire gil;
-      if (error) return;
-      try {
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        progress(done, total);
-      } catch (...) {
-        error = std::current_exception();
-      }
+      guarded([&] { progress(done, total); });
     };
+  // Polled between cases and once per simulated period: Ctrl-C (or an exception of the progress
+  // callback) stops the run within a period, looked for at most every 50 ms.
+  options.cancelled = [&]() {
+    if (stop.load()) return true;
+    const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
+    std::int64_t due = next_poll.load();
+    if (now < due || !next_poll.compare_exchange_strong(due, now + kPollTicks)) return false;
+    guarded([] {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    });
+    return stop.load();
+  };
   std::vector<SeriesResult> results;
-  {
+  try {
     py::gil_scoped_release release;
     results = run_paper_studies(options);
+  } catch (const Error&) {
+    if (!error) throw;  // "cancelled" because of `error`: raise that instead
   }
   if (error) std::rethrow_exception(error);
   return results;

@@ -5,6 +5,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <chrono>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,6 +35,13 @@ void bind_record(py::module_& m);
 void bind_identify(py::module_& m);
 void bind_validation(py::module_& m);
 void bind_branch(py::module_& m);
+void bind_files(py::module_& m);
+
+/// How often a long computation looks for Ctrl-C (PyErr_CheckSignals): 50 ms in steady_clock
+/// ticks, so that worker threads do not queue for the GIL.
+inline constexpr std::int64_t kPollTicks =
+    std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(50))
+        .count();
 
 /// A float64 NumPy array argument (converted if needed, C-contiguous).
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;

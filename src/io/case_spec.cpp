@@ -8,11 +8,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/soil.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "util/text.hpp"
 
@@ -255,13 +257,14 @@ void assign_text(CaseSpec& spec, std::string_view key, std::string_view text,
   if (!f && !find_extra_key(key))
     throw Error("unknown parameter '" + clip(key) + "'" + suggest_key(key));
   if (!f) {  // the shorthands are numbers
-    const std::string s(text);
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) || end != s.c_str() + s.size())
-      throw Error(std::string(key) + " must be a number [" + key_unit(key) + "]; got '" +
-                  (s.size() > 40 ? s.substr(0, 40) + "..." : s) + "'");
-    return assign(spec, key, v, origin);
+    const std::optional<double> v = parse_number(text);
+    if (!v)
+      throw Error(std::string(key) + " must be " + number_rule() + " [" + key_unit(key) +
+                  "]; got '" +
+                  printable(text.size() > 40 ? std::string(text.substr(0, 40)) + "..."
+                                             : std::string(text)) +
+                  "'");
+    return assign(spec, key, *v, origin);
   }
   // One rule set, the field table's: the same text is accepted here and in Python.
   const double v = parse_field_text(*f, text);

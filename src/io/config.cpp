@@ -43,8 +43,25 @@ const char* node_kind(const toml::node& n) {
   }
 }
 
+// Numbers are decimal everywhere (oscidrum::parse_number for text): TOML's hexadecimal, octal
+// and binary integers (0x10, 0o20, 0b10000) are refused, as in flags.
+void require_decimal(const toml::node& n) {
+  const toml::value<std::int64_t>* i = n.as_integer();
+  if (!i) return;
+  const toml::value_flags flags = i->flags();
+  const char* base = !!(flags & toml::value_flags::format_as_hexadecimal) ? "hexadecimal"
+                     : !!(flags & toml::value_flags::format_as_octal)     ? "octal"
+                     : !!(flags & toml::value_flags::format_as_binary)    ? "binary"
+                                                                          : nullptr;
+  if (!base) return;
+  const std::string file = n.source().path ? *n.source().path : std::string("<input>");
+  throw Error(loc(file, n.source()) + ": numbers must be decimal; got a " + base + " integer (" +
+              std::to_string(i->get()) + ")");
+}
+
 // A scalar node as a Value; false if it is an array, table or date.
 bool to_value(const toml::node& n, Value* out) {
+  require_decimal(n);
   if (auto b = n.value_exact<bool>()) return *out = *b, true;
   if (auto i = n.value_exact<std::int64_t>()) return *out = *i, true;
   if (auto d = n.value_exact<double>()) return *out = *d, true;
@@ -254,6 +271,7 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
   auto number = [&](const char* part, bool* is_int) -> std::optional<double> {
     const toml::node* n = t.get(part);
     if (!n) return std::nullopt;
+    require_decimal(*n);
     if (auto i = n->value_exact<std::int64_t>()) return *is_int = *is_int && true, double(*i);
     if (auto d = n->value_exact<double>()) return *is_int = false, *d;
     throw Error(where + ": " + key + " range: " + part + " must be a number; got " + node_kind(*n));

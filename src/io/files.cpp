@@ -3,14 +3,18 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <streambuf>
+#include <vector>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum_io/config.hpp"
@@ -36,50 +40,177 @@ std::string journal_header(std::uint64_t fingerprint, std::size_t n_cases) {
 
 }  // namespace
 
-void write_file_atomic(const std::string& path, std::string_view text) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
-  try {
-    write_all(fd, text, path);
-    if (::fsync(fd) != 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
-  } catch (...) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  if (::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw Error("cannot write " + path + ": " + reason);
+OutputTarget output_target(const std::string& path, bool regular_only) {
+  if (path.empty()) throw Error("cannot write a file with an empty name");
+  std::string p = path;
+  for (int hops = 0;; ++hops) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0) {
+      if (errno == ENOENT) return {p, false};  // a new file (or a dangling link's target)
+      throw Error("cannot write " + path + ": " + std::strerror(errno));
+    }
+    if (S_ISLNK(st.st_mode)) {
+      if (hops >= 40) throw Error("cannot write " + path + ": too many levels of symbolic links");
+      std::string link(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 4096) + 1, '\0');
+      const ssize_t n = ::readlink(p.c_str(), link.data(), link.size());
+      if (n < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+      link.resize(static_cast<std::size_t>(n));
+      if (link.empty()) throw Error("cannot write " + path + ": an empty symbolic link");
+      const std::filesystem::path parent = std::filesystem::path(p).parent_path();
+      p = link.front() == '/' || parent.empty() ? link : (parent / link).string();
+      continue;
+    }
+    if (S_ISREG(st.st_mode)) return {p, false};
+    const char* kind = S_ISDIR(st.st_mode)    ? "a directory"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                                              : "not a regular file";
+    const bool stream = S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode);
+    if (stream && !regular_only) return {p, true};
+    const std::string shown = p == path ? path : path + " (-> " + p + ")";
+    throw Error("cannot write " + shown + ": it is " + kind + (stream ? " and" : ";") +
+                (regular_only ? " this output needs a regular file"
+                              : " oscidrum writes regular files, FIFOs and character devices"));
   }
 }
 
-void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  try {
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw Error("cannot write " + path + ": " + std::strerror(errno));
-      write(out);
-      out.flush();
-      if (!out) throw Error("cannot write " + path + ": " + std::strerror(errno));
+OutputFile::OutputFile(std::string path, bool regular_only)
+    : path_(std::move(path)), target_(output_target(path_, regular_only)) {
+  if (target_.direct) {
+    write_path_ = target_.path;
+    return;
+  }
+  // Reserve a fresh temporary name beside the target (O_EXCL: never through a planted link).
+  static std::atomic<unsigned> counter{0};
+  for (int attempt = 0;; ++attempt) {
+    write_path_ = target_.path + ".tmp." + std::to_string(::getpid()) + "." +
+                  std::to_string(counter.fetch_add(1));
+    const int fd = ::open(write_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      pending_ = true;
+      return;
     }
-    const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0 || ::fsync(fd) != 0) {
-      if (fd >= 0) ::close(fd);
-      throw Error("cannot write " + path + ": " + std::strerror(errno));
-    }
+    if (errno != EEXIST || attempt >= 100)
+      throw Error("cannot write " + path_ + ": " + std::strerror(errno));
+  }
+}
+
+OutputFile::~OutputFile() { discard(); }
+
+void OutputFile::discard() {
+  if (pending_) ::unlink(write_path_.c_str());
+  pending_ = false;
+}
+
+void OutputFile::commit() {
+  if (target_.direct) return;
+  if (!pending_) throw Error("cannot write " + path_ + ": the file was already committed");
+  auto fail = [&](int err) {
+    discard();
+    throw Error("cannot write " + path_ + ": " + std::strerror(err));
+  };
+  const int fd = ::open(write_path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(errno);
+  // The replaced file's permissions carry over (a new file keeps 0666 less the umask).
+  struct stat old {};
+  if (::stat(target_.path.c_str(), &old) == 0 && S_ISREG(old.st_mode))
+    (void)::fchmod(fd, old.st_mode & 07777);
+  if (::fsync(fd) != 0) {
+    const int err = errno;
     ::close(fd);
+    fail(err);
+  }
+  ::close(fd);
+  // Between the check and here the target may have become something else: rename only over a
+  // regular file (or nothing).
+  struct stat now {};
+  if (::lstat(target_.path.c_str(), &now) == 0 && !S_ISREG(now.st_mode)) {
+    discard();
+    throw Error("cannot write " + path_ + ": " + target_.path + " changed into " +
+                "something that is not a regular file while it was written");
+  }
+  if (std::rename(write_path_.c_str(), target_.path.c_str()) != 0) fail(errno);
+  pending_ = false;
+}
+
+namespace {
+
+// An output stream on a file descriptor (64 KB buffer, EINTR retried, errors kept for the
+// caller's one-line message).
+class FdBuf : public std::streambuf {
+ public:
+  FdBuf(int fd, std::string path) : fd_(fd), path_(std::move(path)), buf_(1 << 16) {
+    setp(buf_.data(), buf_.data() + buf_.size());
+  }
+  int error() const { return error_; }
+
+ protected:
+  int overflow(int ch) override {
+    if (!drain()) return traits_type::eof();
+    if (ch != traits_type::eof()) {
+      *pptr() = static_cast<char>(ch);
+      pbump(1);
+    }
+    return traits_type::not_eof(ch);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const char* p = pbase();
+    std::size_t left = static_cast<std::size_t>(pptr() - pbase());
+    while (left > 0 && error_ == 0) {
+      const ssize_t n = ::write(fd_, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        error_ = n < 0 ? errno : EIO;
+        break;
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
+    setp(buf_.data(), buf_.data() + buf_.size());
+    return error_ == 0;
+  }
+
+  int fd_;
+  std::string path_;
+  std::vector<char> buf_;
+  int error_ = 0;
+};
+
+}  // namespace
+
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  OutputFile file(path);
+  // A FIFO blocks here until it has a reader; a signal (Ctrl-C) ends the wait with EINTR.
+  const int fd =
+      ::open(file.write_path().c_str(), O_WRONLY | O_CLOEXEC | (file.direct() ? 0 : O_TRUNC));
+  if (fd < 0) throw Error("cannot write " + path + ": " + std::strerror(errno));
+  int err = 0;
+  try {
+    FdBuf buf(fd, path);
+    std::ostream out(&buf);
+    write(out);
+    out.flush();
+    err = buf.error();
+    if (err == 0 && !out) err = EIO;
   } catch (...) {
-    ::unlink(tmp.c_str());
+    ::close(fd);
     throw;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw Error("cannot write " + path + ": " + reason);
-  }
+  if (::close(fd) != 0 && err == 0 && !file.direct()) err = errno;
+  if (err != 0) throw Error("cannot write " + path + ": " + std::strerror(err));
+  file.commit();
+}
+
+void write_file_atomic(const std::string& path, std::string_view text) {
+  write_file_atomic(path, [text](std::ostream& out) {
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  });
 }
 
 void remove_file(const std::string& path) { ::unlink(path.c_str()); }
@@ -88,8 +219,18 @@ Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_case
                  bool restart)
     : path_(std::move(path)) {
   const std::string header = journal_header(fingerprint, n_cases);
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NONBLOCK: a FIFO in the journal's place must not block the open; it is refused below.
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
   if (fd_ < 0) throw Error("cannot write " + path_ + ": " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode) ||
+      ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw Error("cannot write the journal " + path_ +
+                ": it is not a regular file (a sweep's journal must be one; remove it or choose "
+                "another --out)");
+  }
   // One sweep per journal: a second process (two --resume at once) would run every remaining case
   // again and append them twice. The lock goes with the descriptor (also when killed).
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {

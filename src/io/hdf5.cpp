@@ -21,6 +21,7 @@
 #include "oscidrum/version.hpp"
 #include "oscidrum_io/case_spec.hpp"
 #include "oscidrum_io/csv.hpp"
+#include "oscidrum_io/files.hpp"
 
 namespace oscidrum::io {
 namespace {
@@ -342,8 +343,11 @@ StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bo
     : impl_(std::make_unique<Impl>()) {
   const QuietErrors quiet;
   impl_->path = std::move(path);
-  impl_->partial = impl_->path + ".partial";
+  // Beside the file the name leads to (through symbolic links); a FIFO or device is refused: an
+  // HDF5 file is written in place, with seeks.
+  impl_->partial = output_target(impl_->path, true).path + ".partial";
   const std::string& partial = impl_->partial;
+  (void)output_target(partial, true);
   std::error_code ec;
   if (resume && std::filesystem::exists(partial, ec)) {
     impl_->file = Id(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
@@ -473,7 +477,9 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
   }
   H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
   impl_->file.reset();
-  if (std::rename(file.c_str(), impl_->path.c_str()) != 0)
+  // Renamed only over a regular file (or nothing): the target is checked again.
+  const std::string target = output_target(impl_->path, true).path;
+  if (std::rename(file.c_str(), target.c_str()) != 0)
     throw Error("cannot write " + impl_->path + ": " + std::strerror(errno));
 }
 
@@ -535,8 +541,9 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
     }
   }
 
-  const std::string tmp = out + ".tmp." + std::to_string(::getpid());
-  try {
+  OutputFile output(out, true);
+  const std::string& tmp = output.write_path();
+  {
     Id dst(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
     if (!dst.ok()) throw Error("cannot write " + out);
     Hdf5StudyInfo info{infos.front().fingerprint, total, false, {}};
@@ -602,15 +609,8 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
           "cannot write " + out + ": " + name);
     }
     H5Fflush(dst, H5F_SCOPE_GLOBAL);
-  } catch (...) {
-    std::filesystem::remove(tmp);
-    throw;
   }
-  if (std::rename(tmp.c_str(), out.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::filesystem::remove(tmp);
-    throw Error("cannot write " + out + ": " + reason);
-  }
+  output.commit();
 }
 
 }  // namespace oscidrum::io

@@ -9,10 +9,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "oscidrum/error.hpp"
+#include "oscidrum/text.hpp"
 #include "util/format.hpp"
 #include "util/text.hpp"
 
@@ -340,7 +342,7 @@ void set_field(Case& c, std::string_view key, double value) {
 double parse_field_text(const Field& f, std::string_view text) {
   const std::string s(text);
   const std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
-  std::string shown = s.size() > 40 ? s.substr(0, 40) + "..." : s;
+  const std::string shown = printable(s.size() > 40 ? s.substr(0, 40) + "..." : s);
   switch (f.type) {
     case FieldType::boolean:
       if (text == "true") return 1.0;
@@ -367,11 +369,11 @@ double parse_field_text(const Field& f, std::string_view text) {
     case FieldType::real:
       break;
   }
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])) || end != s.c_str() + s.size())
-    throw Error(std::string(f.key) + " must be a number" + unit + "; got '" + shown + "'", f.key);
-  return v;
+  const std::optional<double> v = parse_number(s);
+  if (!v)
+    throw Error(std::string(f.key) + " must be " + number_rule() + unit + "; got '" + shown + "'",
+                f.key);
+  return *v;
 }
 
 void set_field_text(Case& c, std::string_view key, std::string_view text) {

@@ -47,9 +47,11 @@ bool wait_until_catching(pid_t pid, int signal, int timeout_ms) {
     std::ifstream in(status_file);
     if (!in) return false;  // the child is gone
     for (std::string line; std::getline(in, line);) {
-      if (line.rfind("SigCgt:", 0) != 0) continue;
-      const unsigned long long caught = std::stoull(line.substr(7), nullptr, 16);
-      if (caught & (1ULL << (signal - 1))) return true;
+      // Caught by a handler, or blocked for the watcher thread that takes it with sigwait
+      // (apps/cli/terminal.cpp): either way the command is ready for it.
+      if (line.rfind("SigCgt:", 0) != 0 && line.rfind("SigBlk:", 0) != 0) continue;
+      const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
+      if (mask & (1ULL << (signal - 1))) return true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }

@@ -104,7 +104,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"run", "--G"}, "--G"},
       {{"run", "--G", "abc"}, "abc"},
       {{"run", "--G", "0"}, "--G must be > 0 [MN/m^2]; got 0"},
-      {{"run", "--G", "nan"}, "--G must be > 0"},
+      {{"run", "--G", "nan"}, "--G: must be a decimal number; got 'nan'"},
       {{"run", "--G", "25", "--nu", "0.35"}, "add --soil-formula"},
       {{"run", "--G", "25", "--ksh", "1e7"}, "give the soil either by --G or by --ksh"},
       {{"run", "--mu", "-1"}, "--mu -1: contact.mu must be >= 0; got -1"},
@@ -113,7 +113,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"run", "--R", "0.5"}, "trough.a must be > roller.r"},
       {{"run", "--R", "0.7", "--k", "0.1"}, "either as a circle (--R) or as a log spiral"},
       {{"run", "--m", "-3"}, "roller.m must be > 0 [kg]; got -3"},
-      {{"run", "--f", "inf"}, "roller.f must be in [0.1, 1000] [Hz]; got inf"},
+      {{"run", "--f", "inf"}, "--f: must be a decimal number; got 'inf'"},
       {{"run", "--set", "x"}, "--set expects KEY=VALUE"},
       {{"run", "--set", "soil.g=5"}, "did you mean 'soil.G'?"},
       {{"run", "--set", "numerics.max_periods=1.5"}, "must be an integer"},
@@ -578,4 +578,44 @@ TEST(CliHelp, CitesOnlyDocumentsTheProjectHas) {
 }
 
 }  // namespace
+// Outputs are replaced atomically only where they are regular files: through a symbolic link the
+// target is written (the link stays), a FIFO is written directly (a reader gets the JSON), and
+// neither is replaced by a regular file (issue 24 point 1).
+TEST(CliFiles, OutputsThroughSymlinksAndFifos) {
+  TempDir dir;
+  { std::ofstream(dir / "target.csv") << "old\n"; }
+  std::filesystem::create_symlink("target.csv", dir / "link.csv");
+  ASSERT_EQ(::mkfifo((dir / "f.json").c_str(), 0600), 0);
+  std::string fifo_text;
+  std::thread reader([&] {
+    std::ifstream in(dir / "f.json");
+    std::stringstream s;
+    s << in.rdbuf();
+    fifo_text = s.str();
+  });
+  const Outcome o = run({"run", "--quiet", "--csv", dir / "link.csv", "--json", dir / "f.json"});
+  reader.join();
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(slurp(dir / "target.csv").rfind("t[s],delta[rad]", 0), 0u);
+  EXPECT_EQ(std::filesystem::status(dir / "f.json").type(), std::filesystem::file_type::fifo);
+  EXPECT_EQ(nlohmann::json::parse(fifo_text)["status"], "steady_state");
+}
+
+// Numbers on the command line are decimal text: empty, hexadecimal, inf and nan are refused with
+// the flag's name (issue 24 point 7); a number too large for the key names its range.
+TEST(CliFiles, MalformedNumbersAreRefused) {
+  for (const auto& [flag, text] : std::vector<std::pair<std::string, std::string>>{
+           {"--mu", ""}, {"--G", "0x10"}, {"--M0", "inf"}, {"--MMd", "nan"}, {"--r", ""}}) {
+    const Outcome o = run({"run", "--quiet", flag, text});
+    EXPECT_EQ(o.code, 2) << flag << " '" << text << "': " << o.err;
+    EXPECT_NE(o.err.find(flag + ": must be a decimal number; got '" + text + "'"),
+              std::string::npos)
+        << o.err;
+  }
+  const Outcome big = run({"run", "--quiet", "--G", "1e308"});
+  EXPECT_EQ(big.code, 2);
+  EXPECT_NE(big.err.find("--G must be in [0.01, 100000] [MN/m^2]"), std::string::npos) << big.err;
+}
+
 }  // namespace oscidrum::test

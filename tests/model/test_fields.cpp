@@ -446,7 +446,7 @@ TEST(Fields, TextRejectsGarbage) {
   for (const char* text : {"", "abc", "12abc", "1e", "0.5.5", "--1"}) {
     Case c;
     const std::string msg = error_of([&] { set_field_text(c, "soil.G", text); });
-    EXPECT_EQ(msg.rfind("soil.G must be a number", 0), 0u) << "'" << text << "': " << msg;
+    EXPECT_EQ(msg.rfind("soil.G must be a decimal number", 0), 0u) << "'" << text << "': " << msg;
     EXPECT_NE(msg.find(std::string("'") + text + "'"), std::string::npos) << msg;
     EXPECT_EQ(c.soil.G, defaults.soil.G);
   }

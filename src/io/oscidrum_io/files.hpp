@@ -12,13 +12,57 @@
 
 namespace oscidrum::io {
 
-/// Write `text` to `path` through a temporary file in the same directory (path.tmp.PID), flushed
-/// to disk and renamed over `path`: readers see the old file or the new one, never a part.
-/// Throws oscidrum::Error "cannot write PATH: reason".
+/// Where an output named `path` goes. `path` is followed through its symbolic links to the file
+/// they name (the link stays and keeps pointing there). A regular file, or a name that does not
+/// exist yet, is replaced atomically: written as a temporary file beside it and renamed over it.
+/// A FIFO or a character device (/dev/null, /dev/stdout, a terminal) is written directly: it is
+/// never renamed over. Anything else (a directory, a block device, a socket) is refused.
+struct OutputTarget {
+  std::string path;     ///< the file written: `path` with its symbolic links followed
+  bool direct = false;  ///< a FIFO or character device, written in place
+};
+
+/// The target of `path` (see OutputTarget). With `regular_only` (a file that must be seekable,
+/// such as HDF5) a FIFO or device is refused too. Throws oscidrum::Error
+/// "cannot write PATH: it is a directory" (a block device, a socket, a loop of links, ...).
+OutputTarget output_target(const std::string& path, bool regular_only = false);
+
+/// One output file being written, the single way oscidrum writes a file under a name the user
+/// gave (CSV, JSON, HDF5, plots, journals' outputs, sweep and merge outputs). The constructor
+/// resolves the target (output_target) and, for a regular target, reserves a temporary file beside
+/// it (TARGET.tmp.PID.N, created empty). The writer writes to write_path() (by name: HDF5 or
+/// matplotlib; or through write_file_atomic), then commit() flushes it to disk and renames it over
+/// the target, keeping the mode of the file it replaces. Destroyed uncommitted, the temporary file
+/// is deleted: an interrupted or failed write leaves the old file as it was.
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path, bool regular_only = false);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  const std::string& path() const { return path_; }  ///< the name given (for messages)
+  const std::string& write_path() const { return write_path_; }
+  bool direct() const { return target_.direct; }
+
+  /// fsync and rename the temporary file over the target (nothing to do for a FIFO or device).
+  /// Throws oscidrum::Error "cannot write PATH: reason".
+  void commit();
+  /// Delete the temporary file now (also done by the destructor unless committed).
+  void discard();
+
+ private:
+  std::string path_, write_path_;
+  OutputTarget target_;
+  bool pending_ = false;  ///< a temporary file exists and is not committed
+};
+
+/// Write `text` to `path` through an OutputFile: readers of a regular file see the old file or
+/// the new one, never a part. Throws oscidrum::Error "cannot write PATH: reason".
 void write_file_atomic(const std::string& path, std::string_view text);
 
-/// The same, streaming: `write` fills the temporary file, so a large output (a steady state of
-/// a million samples per period) is never held in memory whole.
+/// The same, streaming: `write` fills the file, so a large output (a steady state of a million
+/// samples per period) is never held in memory whole.
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 /// An append-only record of the finished cases of one sweep, kept beside its output
