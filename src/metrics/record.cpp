@@ -361,10 +361,36 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   if (o.n_max < 2)
     throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
                 std::to_string(o.n_max));
-  if (o.f < 0 || !std::isfinite(o.f)) throw Error("record: f must be >= 0 [Hz]; got " + num(o.f));
-  if (o.window_periods < 0 || o.hop_periods < 0)
-    throw Error("record: window and hop must be >= 0 [periods]; got " + num(o.window_periods) +
-                ", " + num(o.hop_periods));
+  if (!(o.f >= 0) || !std::isfinite(o.f))
+    throw Error("record: f (--f) must be >= 0 [Hz] (0: estimated); got " + num(o.f));
+  // Every size and gate is a finite number in its range (NaN would switch a check off).
+  const auto require = [](bool holds, const std::string& what, double value) {
+    if (!holds) throw Error("record: " + what + "; got " + num(value));
+  };
+  require(o.window_periods >= 0 && std::isfinite(o.window_periods),
+          "window (--window) must be >= 0 [periods] (0: the whole record)", o.window_periods);
+  require(o.hop_periods >= 0 && std::isfinite(o.hop_periods),
+          "hop (--hop) must be >= 0 [periods] (0: the window)", o.hop_periods);
+  require(o.gates.max_residual > 0 && std::isfinite(o.gates.max_residual),
+          "max_residual (--max-residual) must be > 0 [-]", o.gates.max_residual);
+  require(o.gates.max_drift >= 0 && std::isfinite(o.gates.max_drift),
+          "max_drift (--max-drift) must be >= 0 [-]", o.gates.max_drift);
+  require(o.gates.clip_level >= 0 && std::isfinite(o.gates.clip_level),
+          "clip_level (--clip-level) must be >= 0 [m/s^2] (0: detect plateaus)",
+          o.gates.clip_level);
+  require(o.gates.max_gap > 0 && std::isfinite(o.gates.max_gap),
+          "max_gap (--max-gap) must be > 0 [periods]", o.gates.max_gap);
+  require(o.gates.clip_run >= 2, "clip_run must be >= 2 [samples]", o.gates.clip_run);
+  // f: at most half the record's sampling rate (a harmonic fit needs 2 samples per period).
+  {
+    std::vector<double> steps(t.size() - 1);
+    for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    const double rate = 1.0 / steps[steps.size() / 2];
+    require(o.f <= 0.5 * rate,
+            "f (--f) must be at most half the record's sampling rate, " + num(0.5 * rate) + " Hz",
+            o.f);
+  }
   const bool windowed = o.window_periods > 0;
   // The record's frequency: given, or from its beginning (windows) or the whole (no windows).
   double f_rec = o.f;
@@ -373,6 +399,18 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     f_rec = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), o.search);
   }
   const double span = t.back() - t.front();
+  // More windows than the record has samples is no analysis (a window or hop of a tiny part of
+  // a period): refused with the smallest hop that makes sense.
+  if (windowed) {
+    const double hop = o.hop_periods > 0 ? o.hop_periods : o.window_periods;
+    const double count = std::floor((span * f_rec - o.window_periods) / hop) + 1.0;
+    if (count > static_cast<double>(t.size()))
+      throw Error(
+          "record: " + std::string(o.hop_periods > 0 ? "hop (--hop)" : "window (--window)") +
+          " of " + num(hop) + " periods gives " + num(count) + " windows, more than the record's " +
+          std::to_string(t.size()) + " samples; it must be at least " +
+          num((span * f_rec) / static_cast<double>(t.size())) + " periods");
+  }
   if (span * f_rec < std::max(1.0, o.window_periods))
     throw Error("record: must span at least " +
                 (windowed ? "one window (" + num(o.window_periods) + " periods"

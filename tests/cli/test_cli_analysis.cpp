@@ -156,9 +156,12 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
   // Columns chosen by flag.
   const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "time", "--x-col",
                          "ax", "--z-col", "az"});
-  // 2 samples over 3.9 periods: too few per period for 10 harmonics, a gate (docs/cli.md).
-  EXPECT_EQ(o.code, 1);
-  EXPECT_NE(o.err.find("too few samples per period"), std::string::npos) << o.err;
+  // 2 samples over 3.9 periods: f = 39 Hz is above half the record's sampling rate (10 Hz), so
+  // no harmonic of it can be measured: refused as input.
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("f (--f) must be at most half the record's sampling rate, 5 Hz"),
+            std::string::npos)
+      << o.err;
 }
 
 // With the Python package: figures, data and the report; without it (a build without Python):

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <tuple>
@@ -216,6 +217,52 @@ TEST(Record, FailedWindowHasEveryMetricUnavailable) {
       EXPECT_TRUE(std::isnan(scalar_value(w.metrics, out))) << name << " of window " << w.index;
     }
   }
+}
+
+// Sizes and gates are finite numbers in their ranges, and the windows' count is bounded by the
+// record's samples: a NaN no longer switches a gate off, and a window or hop of a tiny part of a
+// period (which once asked for billions of windows and gigabytes) is refused (issue 24).
+TEST(Record, RefusesNaNGatesAndAbsurdSizes) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const int n = 4000;  // 8 periods, 500 samples per period
+  std::vector<double> t(n), x(n), z(n);
+  for (int i = 0; i < n; ++i) {
+    t[i] = i * 8.0 / f / (n - 1);
+    x[i] = 12.0 * std::sin(nu * t[i]);
+    z[i] = 1.1 * std::sin(2 * nu * t[i]);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto error_of = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  const auto refused = [&](auto change, const char* what) {
+    WindowOptions o;
+    o.f = f;
+    o.window_periods = 2.0;
+    change(o);
+    const std::string msg = error_of([&] { analyze_windows(t, x, z, {}, o); });
+    EXPECT_NE(msg.find(what), std::string::npos) << msg;
+  };
+  refused([&](WindowOptions& o) { o.window_periods = nan; }, "window (--window) must be >= 0");
+  refused([&](WindowOptions& o) { o.hop_periods = nan; }, "hop (--hop) must be >= 0");
+  refused([&](WindowOptions& o) { o.gates.max_drift = nan; }, "max_drift");
+  refused([&](WindowOptions& o) { o.gates.max_residual = nan; }, "max_residual");
+  refused([&](WindowOptions& o) { o.gates.clip_level = nan; }, "clip_level");
+  refused([&](WindowOptions& o) { o.gates.max_gap = nan; }, "max_gap");
+  refused([&](WindowOptions& o) { o.f = 1e308; }, "at most half the record's sampling rate");
+  refused([&](WindowOptions& o) { o.window_periods = 1e-9; }, "more than the record's 4000");
+  refused([&](WindowOptions& o) { o.hop_periods = 1e-9; }, "more than the record's 4000");
+  // The bound is the record's: a hop of one sample's worth of periods is still accepted.
+  WindowOptions ok;
+  ok.f = f;
+  ok.window_periods = 2.0;
+  ok.hop_periods = 0.5;
+  EXPECT_EQ(analyze_windows(t, x, z, {}, ok).size(), 13u);
 }
 
 TEST(Record, RejectsBadRecords) {
