@@ -99,13 +99,18 @@ int run(const ValidateOptions& o) {
     std::cout << markdown_document(rows);
   } else {
     TextTable t;
-    t.header = {"agrees", "id", "claim", "paper", "oscidrum"};
+    // The rule beside the verdict: "yes" next to "min at 70" for a paper's "min at 20" is only
+    // read right with the rule that was applied ("local minimum at 20", ...).
+    t.header = {"agrees", "id", "claim", "paper", "oscidrum", "rule"};
+    const auto cut = [](const std::string& text, std::size_t width) {
+      return text.size() > width ? text.substr(0, width - 3) + "..." : text;
+    };
     for (const ValidationRow& r : rows) {
-      std::string ours = r.oscidrum.size() > 60 ? r.oscidrum.substr(0, 57) + "..." : r.oscidrum;
       t.rows.push_back({!r.checkable ? "n/a"
                         : r.agrees   ? "yes"
                                      : "NO",
-                        r.id, r.figure + ": " + r.claim, r.paper, ours});
+                        r.id, r.figure + ": " + r.claim, r.paper, cut(r.oscidrum, 60),
+                        cut(r.rule, 60)});
     }
     std::cout << t.text() << "\n"
               << (disagree == 0 ? "every checkable claim of the paper agrees"

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <string_view>
 
 #include "oscidrum/fields.hpp"
@@ -29,6 +31,38 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bo
     s += (n > 1 ? ", " : "") + (zero ? std::string("0") : fmt(h[n].amplitude, 4));
   }
   return s + " m/s^2";
+}
+
+// A harmonic ratio (A(nf)/A(f) of x_M'' or z_M'', the CMV-type value) in words where a number
+// would mislead: "n/a" with the reason when the fundamental is absent (the ratio is NaN), "0" when
+// the numerator is below the threshold at which the harmonics line prints 0 (e.g. A(2f) of x_M''
+// without a driving torque: zero by symmetry, 1e-10 of rounding).
+std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
+  struct Ratio {
+    std::string_view name;
+    const Spectrum Metrics::*spectrum;
+    std::size_t n;
+    const char* signal;
+  };
+  static constexpr Ratio kRatios[] = {
+      {"ddx_A2_A1", &Metrics::ddx_harmonics, 2, "x_M''"},
+      {"ddx_A3_A1", &Metrics::ddx_harmonics, 3, "x_M''"},
+      {"ddz_A2_A1", &Metrics::ddz_harmonics, 2, "z_M''"},
+      {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
+      {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
+  };
+  for (const Ratio& r : kRatios) {
+    if (r.name != name) continue;
+    const Spectrum& h = m.*r.spectrum;
+    if (h.size() <= r.n) return std::nullopt;
+    double largest = 0.0;
+    for (std::size_t k = 1; k < h.size(); ++k) largest = std::max(largest, h[k].amplitude);
+    if (h[1].amplitude < kHarmonicZeroFraction * largest)
+      return std::string("n/a (A(f) of ") + r.signal + " is 0, e.g. by symmetry without MMd)";
+    if (h[r.n].amplitude < kHarmonicZeroFraction * largest)
+      return std::string("0 (A(") + std::to_string(r.n) + "f) of " + r.signal + " is 0)";
+  }
+  return std::nullopt;
 }
 
 // Two values of fields in the unit people read them in (the field table's display unit).
@@ -71,19 +105,6 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
   s.section("result");
   s.line("status", to_string(result.status));
   if (!result.message.empty()) s.line("message", result.message);
-  for (const DiagnosticOutput& out : diagnostic_outputs()) {
-    std::string value = output_text(result.diagnostics, out);
-    if (std::string_view(out.name) == "warm_start") {  // a code in CSV and JSON; words here
-      const int w = result.diagnostics.warm_start;
-      value = w > 0   ? "yes: from the neighbouring case's steady state"
-              : w < 0 ? "failed: started again from rest"
-                      : "no: started from rest";
-    }
-    // The examination of a motion without a steady state: its exponent only when it ran.
-    if (std::string_view(out.name) == "lyapunov_exponent" && result.diagnostics.motion.empty())
-      value.clear();
-    if (!value.empty()) s.line(out.label, value);  // the fallback reason only when there is one
-  }
   if (result.floquet.stability != Stability::unknown)
     s.line("Floquet", std::string(to_string(result.floquet.stability)) + ", largest |multiplier| " +
                           fmt(result.floquet.max_modulus, 6));
@@ -101,7 +122,7 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       const MetricOutput& out = outputs[i];
       if (is_scalar(out)) {
-        s.line(out.label, output_text(m, out));
+        s.line(out.label, ratio_note(m, out.name).value_or(output_text(m, out)));
         continue;
       }
       const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
@@ -116,6 +137,21 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
         zeroed = false;
       }
     }
+  }
+  // How it was computed: after the results (people read the metrics first).
+  s.section("how it was computed");
+  for (const DiagnosticOutput& out : diagnostic_outputs()) {
+    std::string value = output_text(result.diagnostics, out);
+    if (std::string_view(out.name) == "warm_start") {  // a code in CSV and JSON; words here
+      const int w = result.diagnostics.warm_start;
+      value = w > 0   ? "yes: from the neighbouring case's steady state"
+              : w < 0 ? "failed: started again from rest"
+                      : "no: started from rest";
+    }
+    // The examination of a motion without a steady state: its exponent only when it ran.
+    if (std::string_view(out.name) == "lyapunov_exponent" && result.diagnostics.motion.empty())
+      value.clear();
+    if (!value.empty()) s.line(out.label, value);  // the fallback reason only when there is one
   }
   return s.text();
 }

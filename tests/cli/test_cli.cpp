@@ -618,4 +618,25 @@ TEST(CliFiles, MalformedNumbersAreRefused) {
   EXPECT_NE(big.err.find("--G must be in [0.01, 100000] [MN/m^2]"), std::string::npos) << big.err;
 }
 
+// The summary puts the result first and the solver's diagnostics after it, and never prints an
+// unexplained nan: ratios to a fundamental that vanishes by symmetry say so (issue 25 point 9).
+TEST(CliSummary, ResultFirstAndNoUnexplainedNaN) {
+  const Outcome o = run({"run"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::size_t metrics = o.out.find("\nsteady state ("),
+                    how = o.out.find("\nhow it was computed"),
+                    steps = o.out.find("integrator steps");
+  ASSERT_NE(metrics, std::string::npos) << o.out;
+  ASSERT_NE(how, std::string::npos) << o.out;
+  EXPECT_LT(metrics, how);
+  EXPECT_GT(steps, how);
+  EXPECT_EQ(o.out.find("nan"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("CMV-type value                  n/a (A(f) of z_M'' is 0"),
+            std::string::npos)
+      << o.out;
+  EXPECT_NE(o.out.find("x_M'' A(2f)/A(f)                0 (A(2f) of x_M'' is 0)"),
+            std::string::npos)
+      << o.out;
+}
+
 }  // namespace oscidrum::test

@@ -37,11 +37,16 @@ TEST(CliValidate, EveryClaimAgreesAndTheMarkdownIsWritten) {
       << "docs/validation.md is out of date: run 'oscidrum validate --markdown "
          "docs/validation.md'";
   EXPECT_EQ(md.find(std::string("MODEL") + ".md"), std::string::npos);
-  // The terminal table shows each claim's text beside its id.
+  // The terminal table shows each claim's text beside its id, and the rule applied (its first
+  // 57 characters).
   const Outcome table = run({"validate", "--quiet"});
   ASSERT_EQ(table.code, 0) << table.err;
-  for (const auto& row : j["rows"])
+  EXPECT_NE(table.out.substr(0, table.out.find('\n')).find(" rule"), std::string::npos);
+  for (const auto& row : j["rows"]) {
     EXPECT_NE(table.out.find(row["claim"].get<std::string>()), std::string::npos) << row["id"];
+    EXPECT_NE(table.out.find(row["rule"].get<std::string>().substr(0, 57)), std::string::npos)
+        << row["id"];
+  }
 }
 
 TEST(CliValidate, InterruptExits130WithoutWritingTheTable) {
