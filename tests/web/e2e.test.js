@@ -102,6 +102,15 @@ async function main() {
     assert.ok(Math.abs(shown.area - changed.metrics.area) <= AREA_RTOL * changed.metrics.area, `G 40 mu 0.3: area ${shown.area} vs native ${changed.metrics.area}`);
     assert.ok(Math.abs(shown.area - def.metrics.area) > 1e-3 * def.metrics.area, 'the area did not change');
     console.log(`ok   G 40, mu 0.3: ${shown.status}, area ${shown.area} (native ${changed.metrics.area})`);
+    // The metrics table shows each signal's three largest harmonics (by the native amplitudes).
+    const rowText = (name) => page.evaluate((n) => [...document.querySelectorAll('#metrics tbody tr')]
+      .map((tr) => tr.textContent).find((t) => t.includes(n)) || '', name);
+    for (const [signal, key] of [["x_M'' largest harmonics", 'ddx_harmonics'], ["z_M'' largest harmonics", 'ddz_harmonics']]) {
+      const amplitudes = changed.metrics[key].map((h) => h.amplitude);
+      const top = amplitudes.map((a, n) => [a, n]).slice(1).sort((p, q) => q[0] - p[0]).slice(0, 3).map(([, n]) => n);
+      const text = await rowText(signal);
+      for (const n of top) assert.ok(text.includes(`A${n} =`), `${signal}: A${n} missing in '${text}'`);
+    }
 
     // The exported TOML is a case file the native tool runs to the same result.
     const toml = await page.evaluate(() => window.explorer.caseToml());

@@ -579,22 +579,29 @@ function drawDrum(canvas, an, i) {
 
 // ---- metrics panel
 
+// The three largest harmonics n >= 1 of a spectrum, by amplitude, as "A_n = value" (a fixed set of
+// n hides the dominant ones: z's A1 with a driving torque, x's A2).
+function largestHarmonics(a) {
+  const n = [];
+  for (let k = 1; k < a.length; k++) n.push(k);
+  n.sort((i, j) => a[j] - a[i]);
+  return n.slice(0, 3).sort((i, j) => i - j).map((k) => `A${k} = ${fmt(a[k], 4)}`).join(', ');
+}
+
 function fillMetrics(r, m) {
-  const s = r.samples;
-  let required = 0;
-  for (let i = 0; i < s.N.length; i++) if (s.N[i] > 0) required = Math.max(required, Math.abs(s.T[i]) / s.N[i]);
   const hx = m.ddx_harmonics.amplitude, hz = m.ddz_harmonics.amplitude;
   const rows = [
     ['status', r.status, 'steady period ' + r.diagnostics.multiplicity + ' × 1/f, found after ' + r.diagnostics.periods_to_steady + ' periods'],
     ["x_M'' max / min", `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`, 'm/s²'],
     ["z_M'' max / min", `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`, 'm/s², z down'],
-    ["x_M'' A1, A3, A5", [1, 3, 5].map((k) => fmt(hx[k], 4)).join(', '), 'm/s² (A_n of n f)'],
-    ["z_M'' A2, A4, A6", [2, 4, 6].map((k) => fmt(hz[k], 4)).join(', '), 'm/s²'],
+    ["x_M'' largest harmonics", largestHarmonics(hx), 'm/s² (A_n of n f)'],
+    ["z_M'' largest harmonics", largestHarmonics(hz), 'm/s²'],
+    ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => (Number.isFinite(v) ? fmt(v, 4) : 'n/a')).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
     ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
     ["lag x_M''→z_M'' ψ", fmt(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x))'],
     ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
     ['stick / slip+ / slip−', [m.stick_fraction, m.slip_positive_fraction, m.slip_negative_fraction].map((v) => fmt(100 * v, 3) + ' %').join(' / '), 'of the time'],
-    ['required μ', fmt(required, 4), 'max |T| / N (pure rolling needs this friction)'],
+    ['required μ', fmt(m.mu_required, 4), 'max |T| / N (pure rolling needs this friction)'],
     ['δ max / min', `${fmt(m.delta_max, 4)} / ${fmt(m.delta_min, 4)}`, 'rad'],
   ];
   // The soil the model uses (its one conversion of the soil input), in the fields' display units.
