@@ -382,9 +382,14 @@ function drawTimePlot(r) {
   if (plots.time) plots.time.destroy();
   plots.time = new uPlot({
     width, height: 240,
-    scales: { x: { time: false } },
-    axes: [{ label: 't - t0 [ms]' }, { label: 'm/s²' }],
-    series: [{ label: 't [ms]' }, { label: "x_M''", stroke: COLORS.x, width: 1.5 }, { label: "z_M'' (down)", stroke: COLORS.z, width: 1.5 }],
+    // z_M'' (about +-1 m/s^2) on its own axis at the right: on the axis of x_M'' (+-12) it is a
+    // flat line.
+    scales: { x: { time: false }, ax: {}, az: {} },
+    axes: [{ label: 't - t0 [ms]' },
+      { label: "x_M'' [m/s²]", scale: 'ax', stroke: COLORS.x },
+      { label: "z_M'' (down) [m/s²]", scale: 'az', side: 1, stroke: COLORS.z, grid: { show: false } }],
+    series: [{ label: 't [ms]' }, { label: "x_M''", stroke: COLORS.x, width: 1.5, scale: 'ax' },
+      { label: "z_M'' (down)", stroke: COLORS.z, width: 1.5, scale: 'az' }],
     hooks: {
       drawClear: [(u) => {
         const ctx = u.ctx;
@@ -430,8 +435,8 @@ function niceTicks(lo, hi, count = 5) {
 }
 
 // Axes box for canvas plots: returns mapping functions.
-function frame(ctx, w, h, xr, yr, xlabel, ylabel) {
-  const box = { l: 52, r: w - 10, t: 10, b: h - 36 };
+function frame(ctx, w, h, xr, yr, xlabel, ylabel, top = 10) {
+  const box = { l: 52, r: w - 10, t: top, b: h - 36 };
   const X = (v) => box.l + ((v - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
   const Y = (v) => box.b - ((v - yr[0]) / (yr[1] - yr[0])) * (box.b - box.t);
   ctx.fillStyle = '#fff';
@@ -470,7 +475,8 @@ function drawFigure(canvas, r, m) {
   const n = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
   const x = s.ddx_M.subarray(0, n), z = s.ddz_M.subarray(0, n);
   const ctx = canvas.getContext('2d');
-  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(x), range(z), "x_M'' [m/s²]", "z_M'' (down) [m/s²]");
+  // A top margin for the caption: it must not cover the figure-eight.
+  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(x), range(z), "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
   // the figure coloured by the contact phase
   ctx.lineWidth = 1.8;
   for (let i = 0; i < n; i++) {
@@ -478,13 +484,15 @@ function drawFigure(canvas, r, m) {
     ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : ARROW.slip;
     ctx.beginPath(); ctx.moveTo(X(x[i]), Y(z[i])); ctx.lineTo(X(x[j]), Y(z[j])); ctx.stroke();
   }
-  ctx.fillStyle = '#222';
   ctx.textAlign = 'left';
-  ctx.fillText(`area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`, 60, 24);
+  const caption = `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
+  ctx.fillStyle = '#222';
+  ctx.fillText(caption, 60, 20);
+  const after = 60 + ctx.measureText(caption).width + 10;
   ctx.fillStyle = ARROW.stick;
-  ctx.fillText('stick', 60, 38);
+  ctx.fillText('stick', after, 20);
   ctx.fillStyle = ARROW.slip;
-  ctx.fillText('slip', 92, 38);
+  ctx.fillText('slip', after + 34, 20);
 }
 
 // ---- the drum in its trough (animated from the sampled steady state)
