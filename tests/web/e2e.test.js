@@ -102,6 +102,26 @@ async function main() {
     assert.ok(Math.abs(shown.area - changed.metrics.area) <= AREA_RTOL * changed.metrics.area, `G 40 mu 0.3: area ${shown.area} vs native ${changed.metrics.area}`);
     assert.ok(Math.abs(shown.area - def.metrics.area) > 1e-3 * def.metrics.area, 'the area did not change');
     console.log(`ok   G 40, mu 0.3: ${shown.status}, area ${shown.area} (native ${changed.metrics.area})`);
+    // A valid case without a steady state shows its status and message and draws its last
+    // periods (not "invalid input").
+    {
+      const page3 = await browser.newPage();
+      page3.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+      await page3.goto(url + '?soil=modulus&G=1&mu=0.8&MMd=0.3');
+      await page3.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 60000 });
+      const status = await page3.evaluate(() => document.getElementById('status').textContent);
+      let nat;  // exit code 1: not a steady state; its JSON is on stdout all the same
+      try {
+        nat = native(['--set', 'soil.input=modulus', '--set', 'soil.G=1e6', '--mu', '0.8', '--MMd-fraction', '0.3']);
+      } catch (e) {
+        nat = JSON.parse(String(e.stdout));
+      }
+      assert.notEqual(nat.status, 'steady_state');
+      assert.ok(status.startsWith(`${nat.status}: `), `status shown: '${status}' (native ${nat.status})`);
+      assert.ok(!status.includes('invalid input'), status);
+      await page3.close();
+      console.log(`ok   a case without a steady state: '${status.slice(0, 60)}...'`);
+    }
     // The metrics table shows each signal's three largest harmonics (by the native amplitudes).
     const rowText = (name) => page.evaluate((n) => [...document.querySelectorAll('#metrics tbody tr')]
       .map((tr) => tr.textContent).find((t) => t.includes(n)) || '', name);

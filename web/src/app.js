@@ -336,7 +336,20 @@ function render() {
   showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
   $('timing').textContent = `computed in ${ms.toFixed(0)} ms: ${r.diagnostics.periods_simulated} periods, ` +
     `${r.diagnostics.steps} steps, ${r.diagnostics.switches} stick/slip switches`;
-  if (!m) return;
+  if (!m) {
+    // Not a steady state: the last periods are drawn (as the CLI samples them), without metrics.
+    $('area-caption').textContent = '—';
+    $('area-caption').dataset.value = '';
+    if (r.samples && r.samples.t.length > 0) {
+      drawTimePlot(r);
+      startAnimation(r);
+    }
+    const body = $('metrics').tBodies[0];
+    body.innerHTML = '';
+    const tr = body.insertRow();
+    for (const text of ['status', r.status, `no metrics: ${r.message}`]) tr.insertCell().textContent = text;
+    return;
+  }
   $('area-caption').textContent = `${fmt(m.area, 5)} m²/s⁴`;
   $('area-caption').dataset.value = String(m.area);
   drawTimePlot(r);

@@ -284,7 +284,9 @@ val simulate(const val& values, int n_max) {
     out.set("slip_negative_time", r.slip_negative_time);
     out.set("flight_time", r.flight_time);
     out.set("samples", samples_of(r.samples));
-    if (r.samples.size() > 0) {
+    // Metrics only for a steady state; another status keeps its last periods' samples to draw
+    // (as the CLI does), with no numbers that look like a steady state's.
+    if (r.samples.size() > 0 && oscidrum::ok(r.status)) {
       out.set("metrics", metrics_of(oscidrum::compute_metrics(model, r, n_max)));
     } else {
       out.set("metrics", val::null());
