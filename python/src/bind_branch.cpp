@@ -18,12 +18,6 @@
 namespace oscidrum::python {
 namespace {
 
-py::array_t<double> column(const std::vector<double>& v) {
-  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-
 // The points as columns (the CSV of `oscidrum continue --csv`, names without units), the
 // bifurcations as a list of dicts.
 py::dict branch_dict(const Branch& b) {
@@ -39,7 +33,7 @@ py::dict branch_dict(const Branch& b) {
   const auto add = [&](const char* name, auto get) {
     std::vector<double> v;
     for (const BranchPoint& p : b.points) v.push_back(static_cast<double>(get(p)));
-    points[name] = column(v);
+    points[name] = to_array(v);
   };
   add("parameter", [](const BranchPoint& p) { return p.parameter; });
   add("arclength", [](const BranchPoint& p) { return p.arclength; });
@@ -53,7 +47,7 @@ py::dict branch_dict(const Branch& b) {
     if (!std::holds_alternative<double Metrics::*>(o.member)) continue;
     std::vector<double> v;
     for (const BranchPoint& p : b.points) v.push_back(scalar_value(p.metrics, o));
-    points[o.name] = column(v);
+    points[o.name] = to_array(v);
   }
   py::list sequence, multipliers;
   for (const BranchPoint& p : b.points) {
@@ -96,23 +90,14 @@ py::dict continue_branch_py(const Case& c, const std::string& key, double from, 
   o.metrics = metrics;
   o.harmonics = harmonics;
   o.switch_depth = switch_depth;
-  // Ctrl-C: polled with the GIL at most every 50 ms.
-  bool interrupted = false;
-  auto next_poll = std::chrono::steady_clock::now();
-  o.cancelled = [&]() -> bool {
-    const auto now = std::chrono::steady_clock::now();
-    if (now < next_poll) return interrupted;
-    next_poll = now + std::chrono::milliseconds(50);
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) interrupted = true;
-    return interrupted;
-  };
+  GuardedCalls calls;  // Ctrl-C, looked for at most every 50 ms
+  o.cancelled = [&]() { return calls.cancelled(); };
   Branch b;
   {
     py::gil_scoped_release release;
     b = continue_branch(c, o);
   }
-  if (interrupted) throw py::error_already_set();
+  calls.rethrow();
   return branch_dict(b);
 }
 

@@ -13,12 +13,6 @@
 namespace oscidrum::python {
 namespace {
 
-py::array_t<double> to_array(const std::vector<double>& v) {
-  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-
 py::dict window_dict(const RecordWindow& w) {
   py::dict d;
   d["window"] = w.index;

@@ -177,50 +177,28 @@ std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool
                                       int n_harmonics, const py::object& progress,
                                       const py::object& on_case_done, bool samples_in_callback) {
   const std::vector<Case> cases = to_cases(items);
-  std::exception_ptr error;                // written with the GIL held, so the GIL guards it
-  std::atomic<bool> stop{false};           // set once `error` is: read without the GIL
-  std::atomic<std::int64_t> next_poll{0};  // steady_clock ticks of the next signal check
+  GuardedCalls calls;
   StudyOptions options;
   options.threads = threads;
   options.keep_samples = keep_samples;
   options.samples_in_callback = samples_in_callback;
   options.n_harmonics = n_harmonics;
-  auto guarded = [&](auto&& call) {
-    py::gil_scoped_acquire gil;
-    if (error) return;
-    try {
-      call();
-    } catch (...) {
-      error = std::current_exception();
-      stop.store(true);
-    }
-  };
   if (!progress.is_none())
     options.progress = [&](std::size_t done, std::size_t total) {
-      guarded([&] { progress(done, total); });
+      calls.guarded([&] { progress(done, total); });
     };
   if (!on_case_done.is_none())
     options.on_case_done = [&](std::size_t index, const CaseOutcome& outcome) {
-      guarded([&] { on_case_done(index, outcome); });
+      calls.guarded([&] { on_case_done(index, outcome); });
     };
-  // Polled by the runner between cases and once per simulated period: look for Ctrl-C at most
-  // every 50 ms, so that the workers do not queue for the GIL.
-  options.cancelled = [&]() {
-    if (stop.load()) return true;
-    const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
-    std::int64_t due = next_poll.load();
-    if (now < due || !next_poll.compare_exchange_strong(due, now + kPollTicks)) return false;
-    guarded([] {
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    });
-    return stop.load();
-  };
+  // Polled by the runner between cases and once per simulated period.
+  options.cancelled = [&]() { return calls.cancelled(); };
   std::vector<CaseOutcome> outcomes;
   {
     py::gil_scoped_release release;
     outcomes = run_study(cases, options);
   }
-  if (error) std::rethrow_exception(error);
+  calls.rethrow();
   return outcomes;
 }
 

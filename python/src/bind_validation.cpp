@@ -32,47 +32,26 @@ std::string join_G(const std::vector<double>& G) {
 
 std::vector<SeriesResult> run_paper_studies_py(int threads, bool keep_samples, int n_harmonics,
                                                const py::object& progress) {
-  std::exception_ptr error;                // written with the GIL held, so the GIL guards it
-  std::atomic<bool> stop{false};           // set once `error` is: read without the GIL
-  std::atomic<std::int64_t> next_poll{0};  // steady_clock ticks of the next signal check
+  GuardedCalls calls;
   PaperRunOptions options;
   options.threads = threads;
   options.keep_samples = keep_samples;
   options.n_harmonics = n_harmonics;
-  auto guarded = [&](auto&& call) {
-    py::gil_scoped_acquire gil;
-    if (error) return;
-    try {
-      call();
-    } catch (...) {
-      error = std::current_exception();
-      stop.store(true);
-    }
-  };
   if (!progress.is_none())
     options.progress = [&](std::size_t done, std::size_t total) {
-      guarded([&] { progress(done, total); });
+      calls.guarded([&] { progress(done, total); });
     };
   // Polled between cases and once per simulated period: Ctrl-C (or an exception of the progress
-  // callback) stops the run within a period, looked for at most every 50 ms.
-  options.cancelled = [&]() {
-    if (stop.load()) return true;
-    const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
-    std::int64_t due = next_poll.load();
-    if (now < due || !next_poll.compare_exchange_strong(due, now + kPollTicks)) return false;
-    guarded([] {
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    });
-    return stop.load();
-  };
+  // callback) stops the run within a period.
+  options.cancelled = [&]() { return calls.cancelled(); };
   std::vector<SeriesResult> results;
   try {
     py::gil_scoped_release release;
     results = run_paper_studies(options);
   } catch (const Error&) {
-    if (!error) throw;  // "cancelled" because of `error`: raise that instead
+    if (!calls.failed()) throw;  // "cancelled" because of a kept exception: raise that instead
   }
-  if (error) std::rethrow_exception(error);
+  calls.rethrow();
   return results;
 }
 

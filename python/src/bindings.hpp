@@ -5,11 +5,15 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -42,6 +46,52 @@ void bind_files(py::module_& m);
 inline constexpr std::int64_t kPollTicks =
     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::milliseconds(50))
         .count();
+
+/// A NumPy array holding a copy of `v`.
+inline py::array_t<double> to_array(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+/// Python callbacks and Ctrl-C for a computation that runs with the GIL released (a study, the
+/// paper's studies, a branch), from any of its threads: guarded(call) runs `call` with the GIL
+/// and keeps the first exception it raises; cancelled() is true once there is one or Ctrl-C was
+/// seen (looked for at most every kPollTicks); rethrow() raises the kept exception once the GIL
+/// is back.
+class GuardedCalls {
+ public:
+  template <class F>
+  void guarded(F&& call) {
+    py::gil_scoped_acquire gil;
+    if (error_) return;
+    try {
+      call();
+    } catch (...) {
+      error_ = std::current_exception();  // written with the GIL held: the GIL guards it
+      stop_.store(true);
+    }
+  }
+  bool cancelled() {
+    if (stop_.load()) return true;
+    const std::int64_t now = std::chrono::steady_clock::now().time_since_epoch().count();
+    std::int64_t due = next_poll_.load();
+    if (now < due || !next_poll_.compare_exchange_strong(due, now + kPollTicks)) return false;
+    guarded([] {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    });
+    return stop_.load();
+  }
+  bool failed() const { return static_cast<bool>(error_); }
+  void rethrow() const {
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  std::exception_ptr error_;
+  std::atomic<bool> stop_{false};           // set once error_ is: read without the GIL
+  std::atomic<std::int64_t> next_poll_{0};  // steady_clock ticks of the next signal check
+};
 
 /// A float64 NumPy array argument (converted if needed, C-contiguous).
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
