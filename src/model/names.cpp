@@ -1,4 +1,5 @@
 // Names of the enumerations, used in CSV, JSON and messages.
+#include "oscidrum/branch.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/state.hpp"
@@ -71,6 +72,42 @@ const char* to_string(FlowStop stop) {
     case FlowStop::budget_exceeded:
       return "budget_exceeded";
     case FlowStop::cancelled:
+      return "cancelled";
+  }
+  return "?";
+}
+
+const char* to_string(BifurcationKind kind) {
+  switch (kind) {
+    case BifurcationKind::fold:
+      return "fold";
+    case BifurcationKind::branch_point:
+      return "branch_point";
+    case BifurcationKind::period_doubling:
+      return "period_doubling";
+    case BifurcationKind::neimark_sacker:
+      return "neimark_sacker";
+    case BifurcationKind::grazing:
+      return "grazing";
+  }
+  return "?";
+}
+
+const char* to_string(BranchEnd end) {
+  switch (end) {
+    case BranchEnd::reached_end:
+      return "reached_end";
+    case BranchEnd::left_range:
+      return "left_range";
+    case BranchEnd::max_points:
+      return "max_points";
+    case BranchEnd::step_too_small:
+      return "step_too_small";
+    case BranchEnd::gross_slip:
+      return "gross_slip";
+    case BranchEnd::start_failed:
+      return "start_failed";
+    case BranchEnd::cancelled:
       return "cancelled";
   }
   return "?";
