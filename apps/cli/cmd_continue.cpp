@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/output_table.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
@@ -42,9 +44,11 @@ std::string cell(double v) { return io::format_double_short(v); }
 // The value of --from/--to in the key's SI unit (the display unit's value times its scale: --from
 // 20 for soil.G means 20 MN/m^2, as everywhere people type G).
 double key_value(const Field& f, const std::string& flag, const std::string& text) {
-  const double shown = parse_field_text(f, text);
-  (void)flag;
-  return f.display_unit ? shown * f.display_scale : shown;
+  const std::optional<double> shown = parse_number(text);
+  if (!shown)
+    throw Error(flag + ": must be " + number_rule() + " [" +
+                (f.display_unit ? f.display_unit : f.unit) + "]; got '" + text + "'");
+  return f.display_unit ? *shown * f.display_scale : *shown;
 }
 
 // The branch and the period-2p branches switched onto at its period doublings, depth first:

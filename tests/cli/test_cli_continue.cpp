@@ -60,6 +60,11 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
     EXPECT_EQ(o.code, 2) << args[2] << ": " << o.err;
     EXPECT_NE(o.err.find("error"), std::string::npos) << o.err;
   }
+  // A malformed range value names its flag and the unit it is typed in.
+  const Outcome to = run({"continue", "--param", "soil.G", "--from", "10", "--to", "abc"});
+  EXPECT_EQ(to.code, 2);
+  EXPECT_NE(to.err.find("--to: must be a decimal number [MN/m^2]; got 'abc'"), std::string::npos)
+      << to.err;
 }
 
 }  // namespace
