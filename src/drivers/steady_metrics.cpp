@@ -26,6 +26,7 @@
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -193,7 +194,16 @@ struct Node {  // a Gauss-Legendre node of one piece
 double curve_area(const std::vector<Piece>& pieces);
 
 // The fallback: polygons through n points per piece of the interpolants, n doubled and
-// Richardson-extrapolated (error ~ n^-2) until two estimates agree to 1e-11 relative.
+// Richardson-extrapolated (error ~ n^-2) until two estimates agree to 1e-11 relative, or until the
+// sweep of the next polygon would cost more than kFallbackVisits (edge, slab) visits (area.hpp,
+// sweep_visits; always at least n = 8, one extrapolation). A period of thousands of pieces (10 000
+// at 0.1 Hz), or a curve that winds thousands of times around one place (a drum barely excited:
+// the accelerations ring down after each switch), must not be refined to 4096 points per piece
+// (millions of points, each slab crossed by thousands of edges: seconds to minutes). Then the last
+// extrapolation stands, with an error of the order of its difference from the one before (7e-9
+// relative for the paper's roller at 0.1 Hz, tests/drivers/test_steady_metrics.cpp).
+constexpr std::size_t kFallbackVisits = 30'000'000;
+
 double extrapolated_area(const std::vector<Piece>& pieces) {
   double previous = std::numeric_limits<double>::quiet_NaN(), coarse = 0.0, area = 0.0;
   std::vector<double> x, z;
@@ -207,6 +217,7 @@ double extrapolated_area(const std::vector<Piece>& pieces) {
         z.push_back(pc.f[kDdz](t));
       }
     }
+    if (n > 8 && detail::sweep_visits(x, z) > kFallbackVisits) break;
     const double fine = enclosed_area(x, z);
     if (n > 4) {
       area = (4.0 * fine - coarse) / 3.0;

@@ -25,7 +25,8 @@
 // enclosed by the curve differs from the polygon's by the segment between each such edge and its
 // arc, so the curve's area is the polygon's plus the sum of c times bulge (Green's theorem on the
 // region's boundary: bulge = integral of x dy along the arc minus along the chord).
-// polygon_crossings (area.hpp) reports the crossing edge pairs the sweep meets.
+// polygon_crossings (area.hpp) reports the crossing edge pairs the sweep meets; sweep_visits its
+// work, before it runs.
 #include "metrics/area.hpp"
 
 #include <algorithm>
@@ -305,6 +306,26 @@ std::vector<std::pair<std::size_t, std::size_t>> detail::polygon_crossings(
   ws.area = false;
   sweep(x, y, ws);
   return crossings;
+}
+
+std::size_t detail::sweep_visits(std::span<const double> x, std::span<const double> y) {
+  check_points("sweep_visits", x, y);
+  const std::size_t n = x.size();
+  if (n < 3) return 0;
+  std::vector<double> levels(y.begin(), y.end());
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  auto level = [&](double h) {
+    return static_cast<std::size_t>(std::lower_bound(levels.begin(), levels.end(), h) -
+                                    levels.begin());
+  };
+  std::size_t visits = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i + 1 == n) ? 0 : i + 1;
+    const std::size_t a = level(y[i]), b = level(y[k]);
+    visits += a > b ? a - b : b - a;
+  }
+  return visits;
 }
 
 }  // namespace oscidrum

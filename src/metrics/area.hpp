@@ -14,4 +14,10 @@ namespace oscidrum::detail {
 std::vector<std::pair<std::size_t, std::size_t>> polygon_crossings(std::span<const double> x,
                                                                    std::span<const double> y);
 
+/// The work of the area's slab sweep over the closed polygon (x, y): the number of (edge, slab)
+/// pairs it visits, the sum over the edges of the distinct point heights each spans (O(n log n)
+/// to count). The sweep's time is about proportional to it (plus its crossings): a caller that
+/// refines a polygon checks it before sweeping.
+std::size_t sweep_visits(std::span<const double> x, std::span<const double> y);
+
 }  // namespace oscidrum::detail

@@ -368,5 +368,29 @@ TEST(SteadyMetrics, DefaultRunAgreesWithATightRun) {
                       1e-8);
 }
 
+// At 0.1 Hz a period has about 10 000 pieces and its curve rings around the origin after every
+// switch; the exact area gives up on some crossings and the refined polygons of the fallback stop
+// at a bounded size (cost). The result must still be the curve's area: uniform samples of the
+// period (2^16, then 2^17 points) converge towards it, slowly (the accelerations jump at the
+// switches), so it lies beyond the finer polygon's area, in the direction of the change from the
+// coarser one, by no more than that change.
+TEST(SteadyMetrics, LowFrequencyAreaAgreesWithRefinedSamples) {
+  Case c = default_with(64);
+  c.roller.f = 0.1;
+  const Model model(c);
+  const Result res = simulate(model);
+  ASSERT_EQ(res.status, Status::steady_state) << res.message;
+  ASSERT_EQ(res.diagnostics.multiplicity, 1);
+  const Metrics exact = compute_metrics(model, res);
+  double area[2] = {0.0, 0.0};
+  for (int level = 0; level < 2; ++level) {
+    const Result b = brute_force_period(model, res, 1 << (16 + level));
+    area[level] = enclosed_area(b.samples.ddx_M, b.samples.ddz_M);
+  }
+  const double change = area[1] - area[0], beyond = exact.area - area[1];
+  EXPECT_GT(beyond * change, 0.0) << exact.area << " " << area[0] << " " << area[1];
+  EXPECT_LE(std::abs(beyond), std::abs(change)) << exact.area << " " << area[0] << " " << area[1];
+}
+
 }  // namespace
 }  // namespace oscidrum

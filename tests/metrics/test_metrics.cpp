@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "metrics/area.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/result.hpp"
@@ -287,6 +288,25 @@ TEST(EnclosedArea, DoublyTraversedCircleCountsOnce) {
   const std::vector<double> x1(x.begin(), x.begin() + n), y1(y.begin(), y.begin() + n);
   EXPECT_NEAR(enclosed_area(x, y), shoelace(x1, y1), kIdentity);
   EXPECT_NEAR(shoelace(x, y), 2.0 * shoelace(x1, y1), kIdentity);  // what a signed sum would give
+}
+
+// The sweep's work: every slab between two point heights of a convex polygon is crossed by two
+// edges, of the same circle run m times by 2 m; the count grows with the windings, not the area.
+TEST(EnclosedArea, SweepVisitsCountEdgesPerSlab) {
+  const int n = 90;
+  for (int m : {1, 3}) {
+    std::vector<double> x, y;
+    for (int j = 0; j < m * n; ++j) {
+      const double a = 2.0 * kPi * (j + 0.25) / n;  // no two points at one height within a turn
+      x.push_back(std::cos(a));
+      y.push_back(std::sin(a));
+    }
+    std::vector<double> levels(y.begin(), y.end());
+    std::sort(levels.begin(), levels.end());
+    levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+    EXPECT_EQ(detail::sweep_visits(x, y), 2 * static_cast<std::size_t>(m) * (levels.size() - 1));
+  }
+  EXPECT_EQ(detail::sweep_visits(std::vector<double>{0.0, 1.0}, std::vector<double>{0.0, 1.0}), 0u);
 }
 
 // One closed polygon: outer circle, a bridge to an inner circle, the inner circle, back over the
