@@ -523,6 +523,14 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
     throw Error(std::string("compute_metrics: the result has status ") + to_string(result.status) +
                 ", not a steady state: no metrics");
   if (n_max < 0) throw Error("compute_metrics: n_max must be >= 0; got " + std::to_string(n_max));
+  // The harmonics are integrals over the trajectory, but the spectrum a user compares them with is
+  // that of the samples: the same bound as for the sampled metrics (and the cost, n_max times
+  // the quadrature nodes, stays bounded).
+  const int spp = model.parameters().numerics.samples_per_period;
+  if (n_max >= spp / 2)
+    throw Error("compute_metrics: n_max must be < numerics.samples_per_period / 2 = " +
+                std::to_string(spp / 2) + " (the samples' Nyquist limit); got " +
+                std::to_string(n_max));
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
   const double f = result.frequency, P = p / f;
   const double t0 = s.t.front(), t1 = t0 + P;

@@ -212,6 +212,14 @@ std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptio
   if (options.n_harmonics < 0)
     throw Error("StudyOptions::n_harmonics must be >= 0; got " +
                 std::to_string(options.n_harmonics));
+  // Checked before the first case (compute_metrics would refuse each case alike).
+  for (const Case& c : cases) {
+    const int spp = c.numerics.samples_per_period;
+    if (options.n_harmonics >= spp / 2)
+      throw Error("StudyOptions::n_harmonics must be < numerics.samples_per_period / 2 = " +
+                  std::to_string(spp / 2) + " (the samples' Nyquist limit); got " +
+                  std::to_string(options.n_harmonics));
+  }
   std::vector<CaseOutcome> outcomes(cases.size());
   for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
   Pool pool(

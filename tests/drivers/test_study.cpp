@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "oscidrum/error.hpp"
 #include "oscidrum/soil.hpp"
 #include "oscidrum/study.hpp"
 
@@ -207,6 +208,30 @@ TEST(Study, InvalidCaseIsReportedNotThrown) {
   EXPECT_NE(out[1].error.find("trough.a"), std::string::npos);
   EXPECT_TRUE(out[2].valid);
   EXPECT_FALSE(run_case(cases[1]).valid);
+}
+
+// A harmonic count is bounded by the samples' Nyquist limit, before any case runs (10^7 harmonics
+// of the dense output once took minutes per case).
+TEST(Study, HarmonicsBeyondTheSamplesNyquistLimitAreRefused) {
+  std::vector<Case> cases = some_cases();
+  StudyOptions options;
+  options.n_harmonics = cases[0].numerics.samples_per_period / 2;
+  EXPECT_THROW(
+      {
+        try {
+          run_study(cases, options);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("n_harmonics must be <"), std::string::npos);
+          throw;
+        }
+      },
+      Error);
+  options.n_harmonics -= 1;
+  cases.resize(1);
+  EXPECT_TRUE(run_study(cases, options)[0].valid);
+  const CaseOutcome single = run_case(cases[0], false, 10'000'000);
+  EXPECT_FALSE(single.valid);
+  EXPECT_NE(single.error.find("n_max must be <"), std::string::npos);
 }
 
 TEST(Study, CallbackExceptionStopsTheStudyAndPropagates) {

@@ -242,3 +242,11 @@ def test_period_doubling_keeps_the_period_one_multipliers():
     plain = oscidrum.run_case(oscidrum.Case())
     assert plain.result.period1_stability == "unknown"
     assert plain.result.period1_floquet_multipliers == []
+
+
+def test_harmonics_bounded_by_the_samples_nyquist_limit():
+    # 10**7 harmonics once ran for minutes per case; the bound follows from the sampling.
+    with pytest.raises(oscidrum.Error, match=r"n_harmonics must be < numerics.samples_per_period / 2 = 512"):
+        oscidrum.run_study([oscidrum.Case()], n_harmonics=10**7)
+    outcome = oscidrum.run_case(oscidrum.Case(), n_harmonics=10**7)
+    assert not outcome.valid and "n_max must be <" in outcome.error
