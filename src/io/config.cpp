@@ -283,6 +283,10 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
     throw Error(where + ": " + key + " range must be {start, stop, step} or {start, stop, num}");
   if (!std::isfinite(*start) || !std::isfinite(*stop))
     throw Error(where + ": " + key + " range: start and stop must be finite");
+  // A range of one value sweeps nothing (docs/config.md: a fixed value belongs in the base case).
+  if (*start == *stop)
+    throw Error(where + ": " + key + " range: start and stop are both " + format_value(*start) +
+                "; a fixed value belongs in the base case");
   // Values as the user would write them: a range of written decimals gives values of those
   // decimals (0.2 ... 0.8 in 13 steps: 0.25, not 0.30000000000000004). The precision is the
   // fewest decimals that hold start, stop and the step; a step with no short decimal form
@@ -317,21 +321,20 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
     }
   } else {
     const double n = *num;
-    if (!(n >= 1) || n != std::floor(n) || n > static_cast<double>(kMaxStudyCases))
-      throw Error(where + ": " + key + " range: num must be an integer >= 1; got " +
-                  format_value(n));
-    if (n == 1) {
-      all_int = all_int && true;
-      push(*start);
-    } else {
-      all_int = false;
-      const long count = static_cast<long>(n);
-      for (long i = 0; i < count; ++i)
-        push(i + 1 == count ? *stop
-                            : *start + (*stop - *start) * static_cast<double>(i) /
-                                           static_cast<double>(count - 1));
-    }
+    if (!(n >= 2) || n != std::floor(n) || n > static_cast<double>(kMaxStudyCases))
+      throw Error(where + ": " + key + " range: num must be an integer in [2, " +
+                  std::to_string(kMaxStudyCases) + "]; got " + format_value(n) +
+                  (n == 1 ? " (a fixed value belongs in the base case)" : ""));
+    all_int = false;
+    const long count = static_cast<long>(n);
+    for (long i = 0; i < count; ++i)
+      push(i + 1 == count ? *stop
+                          : *start + (*stop - *start) * static_cast<double>(i) /
+                                         static_cast<double>(count - 1));
   }
+  if (out.size() < 2)
+    throw Error(where + ": " + key + " range gives one value (" + format_value(out.front()) +
+                "): the step is longer than stop - start; a fixed value belongs in the base case");
   return out;
 }
 
@@ -369,8 +372,10 @@ void collect_axes(const toml::node& node, const std::string& key, const toml::so
                     " must be numbers, booleans or strings; got " + node_kind(e));
       axis.values.push_back(std::move(v));
     }
-    if (axis.values.empty())
-      throw Error(where + ": sweep list " + key + " is empty; give at least one value");
+    if (axis.values.size() < 2)
+      throw Error(where + ": sweep list " + key +
+                  (axis.values.empty() ? std::string(" is empty") : std::string(" has one value")) +
+                  "; give at least two (a fixed value belongs in the base case)");
   } else if (auto s = node.value_exact<std::string>();
              s && key == "soil.table2_G" && (*s == "all" || *s == "table2")) {
     for (const Table2Row& row : table2()) axis.values.emplace_back(row.G);
@@ -404,6 +409,7 @@ void read_sweep(const toml::node& node, const std::string& name, const std::stri
   const toml::table* sweep = node.as_table();
   if (!sweep) throw Error(where + ": sweep must be a table ([sweep]); got " + node_kind(node));
   std::vector<Placed> placed;
+  std::string saw_group;  // where a [[sweep.group]] is (for the check against zip mode)
   for (auto&& [k, n] : *sweep) {
     const std::string key(k.str());
     const std::string at = loc(name, k.source());
@@ -419,6 +425,7 @@ void read_sweep(const toml::node& node, const std::string& name, const std::stri
       const toml::array* groups = n.as_array();
       if (!groups || !groups->is_array_of_tables())
         throw Error(at + ": sweep.group must be an array of tables ([[sweep.group]])");
+      saw_group = at;
       for (const toml::node& g : *groups) {
         placed.push_back(Placed{g.source().begin, {}});
         std::vector<Placed> axes;
@@ -437,6 +444,10 @@ void read_sweep(const toml::node& node, const std::string& name, const std::stri
       collect_axes(n, key, k.source(), name, placed, false);
     }
   }
+  if (study.mode == SweepMode::zip && !saw_group.empty())
+    throw Error(saw_group +
+                ": [[sweep.group]] zips keys inside a product; with mode = \"zip\" every key is "
+                "zipped already: put the group's keys in [sweep] itself");
   std::stable_sort(placed.begin(), placed.end(),
                    [](const Placed& a, const Placed& b) { return before(a.pos, b.pos); });
   for (Placed& p : placed) study.factors.push_back(std::move(p.factor));

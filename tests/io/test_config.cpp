@@ -205,6 +205,18 @@ TEST(Study, ErrorsNameTheLineOrTheCase) {
             "study.toml:2:1: unknown parameter 'soil.kh'; did you mean 'soil.ksh'?");
   EXPECT_NE(study_error("[sweep]\n\"roller.r\" = 0.5\n").find("must be a list"), std::string::npos);
   EXPECT_NE(study_error("[sweep]\n\"roller.r\" = []\n").find("is empty"), std::string::npos);
+  // One value sweeps nothing: as a list, a range of num = 1, start = stop or a step past stop.
+  EXPECT_NE(study_error("[sweep]\n\"roller.r\" = [0.5]\n").find("has one value"),
+            std::string::npos);
+  EXPECT_NE(study_error("[sweep]\n\"roller.r\" = {start = 0.5, stop = 0.55, num = 1}\n")
+                .find("num must be an integer in [2, "),
+            std::string::npos);
+  EXPECT_NE(study_error("[sweep]\n\"roller.r\" = {start = 0.5, stop = 0.5, step = 0.01}\n")
+                .find("start and stop are both 0.5"),
+            std::string::npos);
+  EXPECT_NE(study_error("[sweep]\n\"roller.r\" = {start = 0.5, stop = 0.51, step = 0.02}\n")
+                .find("range gives one value (0.5)"),
+            std::string::npos);
   EXPECT_NE(study_error("[sweep]\nmode = \"cartesian\"\n\"roller.r\" = [0.5]\n")
                 .find("sweep.mode must be \"product\" or \"zip\""),
             std::string::npos);
@@ -214,7 +226,7 @@ TEST(Study, ErrorsNameTheLineOrTheCase) {
   EXPECT_EQ(study_error("[sweep]\n\"trough.a\" = [0.62, 0.55]\n")
                 .rfind("case 1 (trough.a = 0.55): study.toml:2:1: trough.a must be > roller.r", 0),
             0u);
-  EXPECT_NE(study_error("[soil]\ninput = \"coefficients\"\n[sweep]\n\"soil.G\" = [5e6]\n")
+  EXPECT_NE(study_error("[soil]\ninput = \"coefficients\"\n[sweep]\n\"soil.G\" = [5e6, 6e6]\n")
                 .find("soil.G has no effect"),
             std::string::npos);
   // On the default Table 2 soil a swept G picks the row; a G it does not hold names its case.

@@ -49,8 +49,13 @@ TEST(Study, ZipAndGroups) {
   EXPECT_EQ(s.keys, (std::vector<std::string>{"MMd_fraction", "trough.k", "trough.a"}));
   EXPECT_EQ(get_field(s.cases[3], "trough.a"), 0.601);
   EXPECT_NE(study_error("[sweep]\nmode = \"zip\"\n\"trough.k\" = [0.0, 0.002]\n\"trough.a\" = "
-                        "[0.603]\n")
+                        "[0.603, 0.61, 0.62]\n")
                 .find("zipped sweep lists must have equal lengths"),
+            std::string::npos);
+  // A group zips keys inside a product; in zip mode it would be ignored or ambiguous.
+  EXPECT_NE(study_error("[sweep]\nmode = \"zip\"\n[[sweep.group]]\n\"trough.k\" = [0.0, 0.002]\n"
+                        "\"trough.a\" = [0.603, 0.601]\n")
+                .find("[[sweep.group]] zips keys inside a product"),
             std::string::npos);
 }
 
