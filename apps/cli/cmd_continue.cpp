@@ -208,7 +208,7 @@ int run(ContinueOptions o) {
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
   if (!o.plot.empty()) {
-    check_output_file("--plot", o.plot, false);
+    check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
       throw Error("--plot " + o.plot + " needs --csv FILE (the plot is drawn from it)");
   }

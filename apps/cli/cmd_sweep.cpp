@@ -203,11 +203,19 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
   if (!o.plot.empty() && o.out.empty())
     throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
-  for (const Case& c : p.study.cases)
-    if (o.harmonics >= c.numerics.samples_per_period / 2)
-      throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
-                  std::to_string(c.numerics.samples_per_period / 2) + "; got " +
-                  std::to_string(o.harmonics));
+  if (!o.plot.empty()) {
+    // Before the first case: a figure that cannot be drawn must not cost a whole sweep.
+    check_plot_file("--plot", o.plot);
+    // The columns after "status", by name without the unit: "area[m^2/s^4]" is "area".
+    std::vector<std::string> columns = io::csv_split(p.header);
+    for (std::string& c : columns) c = c.substr(0, c.find('['));
+    const auto status = std::find(columns.begin(), columns.end(), "status");
+    if (status == columns.end() ||
+        std::find(status + 1, columns.end(), o.plot_metric) == columns.end())
+      throw Error("--plot-metric " + o.plot_metric +
+                  ": not a column of the results (those after 'status', docs/outputs.md), e.g. "
+                  "area, ddx_max, ddz_max, psi_xz, ddx_A3_A1, cmv");
+  }
   if (!o.cases_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.cases_dir, ec);

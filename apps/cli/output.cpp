@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -119,6 +120,15 @@ void write_output(const std::string& path, const std::string& text) {
   } else {
     io::write_file_atomic(path, text);
   }
+}
+
+void check_plot_file(const std::string& flag, const std::string& path) {
+  check_output_file(flag, path, false);
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext != ".png" && ext != ".svg")
+    throw Error(flag + " " + path + ": the figure's format comes from its extension: .png or .svg" +
+                (ext.empty() ? std::string(" (none given)") : "; got " + ext));
 }
 
 void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout,

@@ -61,6 +61,10 @@ void write_output(const std::string& path, const std::string& text);
 void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout = true,
                        bool regular_only = false);
 
+/// check_output_file for a figure: also its format, from the extension (.png or .svg, as the
+/// plotting module writes; any case). Throws oscidrum::Error naming the flag.
+void check_plot_file(const std::string& flag, const std::string& path);
+
 /// "oscidrum: warning: ..." on stderr.
 void warn(const std::string& message);
 

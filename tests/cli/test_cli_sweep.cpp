@@ -313,5 +313,26 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   EXPECT_EQ(o.out, "");
 }
 
+// A figure that cannot be drawn (its format, its metric) is refused before the first case: no
+// journal, no results, exit code 2.
+TEST(CliSweep, PlotOptionsAreCheckedBeforeAnyCaseRuns) {
+  TempDir dir;
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  const std::string out = dir / "r.csv";
+  Outcome o = run({"sweep", study, "--out", out, "--plot", dir / "f.jpg"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--plot " + (dir / "f.jpg") + ": the figure's format"), std::string::npos)
+      << o.err;
+  o = run({"sweep", study, "--out", out, "--plot", dir / "f.png", "--plot-metric", "aera"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--plot-metric aera: not a column of the results"), std::string::npos)
+      << o.err;
+  o = run(
+      {"sweep", study, "--out", out, "--plot", dir / "f.png", "--plot-metric", "soil.table2_G"});
+  EXPECT_EQ(o.code, 2) << "a swept key is not a metric";
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_FALSE(std::filesystem::exists(out + ".journal"));
+}
+
 }  // namespace
 }  // namespace oscidrum::test
