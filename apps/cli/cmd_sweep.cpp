@@ -1,10 +1,16 @@
 // oscidrum sweep: a study file expanded into cases, run on all cores, one result row per case.
 // Finished rows go to a journal as they come, so --resume after Ctrl-C or a kill runs only the
 // missing cases; the final files are written atomically.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -162,8 +168,7 @@ SweepPlan plan_sweep(const SweepOptions& o) {
   p.spec = io::read_study_file(o.study);
   apply(o.c, p.spec.base);
   p.study = io::expand(p.spec);
-  if (o.no_continuation)
-    for (Case& c : p.study.cases) c.numerics.continuation = false;
+  if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
   p.total = p.study.cases.size();
   warn_fixed_moment(p.spec, p.study);
   p.columns = io::StudyColumns{p.study.keys, o.harmonics};
@@ -223,19 +228,81 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
   }
 }
 
-// Where the rows go while the cases run: the journal (for --resume) and the HDF5 file, and the
-// rows a resumed sweep already has.
+// The result rows as they come, in completion order, in an unlinked temporary file with an
+// index (16 bytes per case), read back in case order at the end: a sweep's memory does not grow
+// with its number of cases (a million rows of ~700 bytes stay on disk).
+class RowStore {
+ public:
+  RowStore(std::size_t total, const std::string& near) : where_(total, {0, kNone}) {
+    std::string dir = std::filesystem::path(near).parent_path().string();
+    if (near.empty() || near == "-") {
+      const char* tmp = std::getenv("TMPDIR");
+      dir = tmp != nullptr && *tmp != '\0' ? tmp : "/tmp";
+    }
+    std::string name = (dir.empty() ? std::string(".") : dir) + "/.oscidrum-rows-XXXXXX";
+    const int fd = ::mkstemp(name.data());
+    if (fd < 0)
+      throw Error("cannot create a temporary file for the result rows in " + name + ": " +
+                  std::strerror(errno));
+    ::unlink(name.c_str());  // gone with the process, whatever ends it
+    file_ = ::fdopen(fd, "w+b");
+    if (file_ == nullptr) {
+      ::close(fd);
+      throw Error(std::string("cannot open a temporary file for the result rows: ") +
+                  std::strerror(errno));
+    }
+  }
+  ~RowStore() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  RowStore(const RowStore&) = delete;
+  RowStore& operator=(const RowStore&) = delete;
+
+  void put(std::size_t i, const std::string& row) {
+    if (::fseeko(file_, 0, SEEK_END) != 0) fail();
+    const off_t at = ::ftello(file_);
+    if (at < 0 || std::fwrite(row.data(), 1, row.size(), file_) != row.size()) fail();
+    where_[i] = {static_cast<std::uint64_t>(at), static_cast<std::uint32_t>(row.size())};
+  }
+  bool has(std::size_t i) const { return where_[i].second != kNone; }
+  std::string get(std::size_t i) {
+    std::string row(where_[i].second, '\0');
+    if (::fseeko(file_, static_cast<off_t>(where_[i].first), SEEK_SET) != 0 ||
+        std::fread(row.data(), 1, row.size(), file_) != row.size())
+      fail();
+    return row;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  [[noreturn]] static void fail() {
+    throw Error(std::string("cannot keep the result rows in a temporary file: ") +
+                std::strerror(errno));
+  }
+  std::FILE* file_ = nullptr;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> where_;
+};
+
+// Where the rows go while the cases run: the journal (for --resume), the HDF5 file and the row
+// store (the rows a resumed sweep already has, and every new one); the status of each row counted
+// as it comes.
 struct SweepOutputs {
   std::unique_ptr<io::Journal> journal;
   std::unique_ptr<io::StudyHdf5Writer> hdf5;
-  std::vector<std::string> rows;
-  std::vector<bool> have;
+  std::unique_ptr<RowStore> rows;
+  std::map<std::string, std::size_t> statuses;
+  std::size_t finished = 0;  // rows of this run's cases (resumed ones included)
+  void add(std::size_t i, const std::string& row, std::size_t n_keys) {
+    rows->put(i, row);
+    const std::vector<std::string> cells = io::csv_split(row);
+    statuses[cells.size() > n_keys + 1 ? cells[n_keys + 1] : "?"]++;
+    ++finished;
+  }
 };
 
 SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   SweepOutputs out;
-  out.rows.resize(p.total);
-  out.have.assign(p.total, false);
+  out.rows = std::make_unique<RowStore>(p.total, o.out);
   if (!o.out.empty()) {
     // A shard's journal is its own: resuming shard 2 never picks up the rows of shard 3.
     const std::uint64_t journal_fingerprint =
@@ -253,11 +320,10 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   if (out.journal) {
     for (const auto& [index, row] : out.journal->done()) {
       const std::string file = o.cases_dir + "/" + case_file_name(index, p.total);
-      if (!p.mine[index]) continue;
+      if (!p.mine[index] || out.rows->has(index)) continue;
       if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
       if (out.hdf5 && !out.hdf5->has_case(index)) continue;  // run again for its steady state
-      out.rows[index] = row;
-      out.have[index] = true;
+      out.add(index, row, p.study.keys.size());
     }
   }
   return out;
@@ -267,9 +333,8 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
 // case goes to the journal, the case files and the HDF5 file as it comes. Returns the seconds.
 double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
   std::vector<std::size_t> pending;
-  std::vector<Case> cases;
   for (std::size_t i = 0; i < p.total; ++i)
-    if (p.mine[i] && !out.have[i]) pending.push_back(i), cases.push_back(p.study.cases[i]);
+    if (p.mine[i] && !out.rows->has(i)) pending.push_back(i);
   const std::size_t already = p.n_mine - pending.size();
   if (already > 0 && !o.quiet)
     std::cerr << "oscidrum: resuming: " << already << " of " << p.n_mine << " cases already done\n";
@@ -282,6 +347,7 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
   options.n_harmonics = o.harmonics;
   options.cancelled = [] { return interrupted(); };
   options.previous = continuation_links(p.spec, p.study, pending);
+  options.keep_outcomes = false;  // every outcome is used in on_case_done and dropped
   // The steady states' samples only for the files that hold them.
   options.samples_in_callback = !o.cases_dir.empty() || out.hdf5 != nullptr;
   options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
@@ -294,8 +360,7 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
     }
     if (out.hdf5) out.hdf5->add_case(g, outcome);
     if (out.journal) out.journal->append(g, row);
-    out.rows[g] = row;
-    out.have[g] = true;
+    out.add(g, row, p.study.keys.size());
   };
   options.progress = [&](std::size_t done, std::size_t n) {
     const double elapsed =
@@ -309,7 +374,8 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
             " %), " + fmt(rate, 3) + " cases/s, ETA " + duration(eta),
         done == n);
   };
-  run_study(cases, options);
+  run_study(
+      pending.size(), [&](std::size_t j) { return p.study.cases[pending[j]]; }, options);
   line.clear();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -327,38 +393,41 @@ int report_interrupted(const SweepOptions& o, const SweepPlan& p, const SweepOut
   return interrupted_exit_code();
 }
 
-// The finished study: the results CSV (atomically) and the HDF5 file; returns this run's rows in
-// case order.
-std::vector<std::string> write_results(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out,
-                                       std::string& text) {
-  // A shard's CSV starts with a line that names the study and the slice (for oscidrum merge).
-  text = p.sharded ? io::shard_line({p.fingerprint, p.total, p.shard}) + "\n" + p.header + "\n"
-                   : p.header + "\n";
-  std::vector<std::string> done_rows;
+// This run's rows in case order, from the row store.
+std::vector<std::string> all_rows(const SweepPlan& p, SweepOutputs& out) {
+  std::vector<std::string> rows;
   for (std::size_t i = 0; i < p.total; ++i)
-    if (p.mine[i]) done_rows.push_back(out.rows[i]);
-  for (const std::string& row : done_rows) text += row + "\n";
+    if (p.mine[i]) rows.push_back(out.rows->get(i));
+  return rows;
+}
+
+// The results CSV, streamed row by row: a shard's first line names the study and the slice (for
+// oscidrum merge), then the header and the rows in case order.
+void write_csv(std::ostream& os, const SweepPlan& p, SweepOutputs& out) {
+  if (p.sharded) os << io::shard_line({p.fingerprint, p.total, p.shard}) << "\n";
+  os << p.header << "\n";
+  for (std::size_t i = 0; i < p.total; ++i)
+    if (p.mine[i]) os << out.rows->get(i) << "\n";
+}
+
+// The finished study: the HDF5 file and the results CSV (atomically).
+void write_results(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
   if (out.hdf5) {
     std::vector<std::size_t> indices;
     for (std::size_t i = 0; i < p.total; ++i)
       if (p.mine[i]) indices.push_back(i);
-    out.hdf5->finish(p.study, indices, p.header, done_rows);
+    out.hdf5->finish(p.study, indices, p.header, all_rows(p, out));
   }
   if (!o.out.empty()) {
-    io::write_file_atomic(o.out, text);
+    io::write_file_atomic(o.out, [&](std::ostream& os) { write_csv(os, p, out); });
     out.journal->remove();
   }
-  return done_rows;
 }
 
 // The status counts on stderr (resumed rows included); true if every case is a steady state.
-bool report_statuses(const SweepOptions& o, const SweepPlan& p,
-                     const std::vector<std::string>& done_rows, double elapsed) {
-  std::map<std::string, std::size_t> counts;
-  for (const std::string& row : done_rows) {
-    const std::vector<std::string> cells = io::csv_split(row);
-    counts[cells.size() > p.study.keys.size() + 1 ? cells[p.study.keys.size() + 1] : "?"]++;
-  }
+bool report_statuses(const SweepOptions& o, const SweepPlan& p, const SweepOutputs& out,
+                     double elapsed) {
+  const std::map<std::string, std::size_t>& counts = out.statuses;
   if (!o.quiet) {
     std::string summary;
     for (const auto& [status, n] : counts)
@@ -378,20 +447,18 @@ int run(const SweepOptions& o) {
   check_run_options(o, p);
   SweepOutputs out = open_outputs(o, p);
   const double elapsed = run_cases(o, p, out);
-  std::size_t finished = 0;
-  for (bool h : out.have) finished += h;
   // Interrupted (a signal after the last case changes nothing).
-  if (finished < p.n_mine) return report_interrupted(o, p, out, finished);
+  if (out.finished < p.n_mine) return report_interrupted(o, p, out, out.finished);
 
-  std::string text;
-  const std::vector<std::string> done_rows = write_results(o, p, out, text);
+  write_results(o, p, out);
   std::string format = o.format;
   if (format.empty()) format = o.out.empty() ? "csv" : "none";
-  if (format == "csv") std::cout << text;
-  if (format == "json") std::cout << io::study_json(p.header, done_rows);
-  if (format == "table") std::cout << rows_table(p.header, done_rows, p.study.keys.size());
+  if (format == "csv") write_csv(std::cout, p, out);
+  // json and table hold every row (for studies that people read; csv streams).
+  if (format == "json") std::cout << io::study_json(p.header, all_rows(p, out));
+  if (format == "table") std::cout << rows_table(p.header, all_rows(p, out), p.study.keys.size());
   std::cout.flush();
-  const bool all_ok = report_statuses(o, p, done_rows, elapsed);
+  const bool all_ok = report_statuses(o, p, out, elapsed);
   // --plot: a curve over one swept key, a heat map over two (oscidrum.plot.plot_study).
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},

@@ -43,6 +43,9 @@ struct StudyOptions {
   /// for a start from rest. A case is the predecessor of at most one case. Empty: the chains of
   /// continuation_chains(cases). Links to a case that does not use continuation are ignored.
   std::vector<std::ptrdiff_t> previous;
+  /// False: run_study keeps no outcome (it returns an empty vector); each goes only to
+  /// on_case_done. A study's memory then does not grow with its number of cases.
+  bool keep_outcomes = true;
 };
 
 /// Longest chain of continuation: a chain is cut into pieces of at most this many cases (each
@@ -65,6 +68,16 @@ std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases);
 /// input case, in input order; cases not started because of cancellation have valid = false and
 /// error = "cancelled".
 std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptions& options = {});
+
+/// Case i of a study of `count` cases, built when it runs (a study need not hold its cases).
+using CaseSource = std::function<Case(std::size_t index)>;
+
+/// run_study over cases built on demand by `case_at` (called once per case from the worker
+/// threads, concurrently: it must be thread-safe, e.g. a pure function of the index), for
+/// studies too large to hold as a vector. StudyOptions::previous may be empty only when no case
+/// continues another (every case then starts from rest).
+std::vector<CaseOutcome> run_study(std::size_t count, const CaseSource& case_at,
+                                   const StudyOptions& options = {});
 
 /// One case, as run_study runs it (never throws for invalid parameters: see CaseOutcome::valid).
 CaseOutcome run_case(const Case& c, bool keep_samples = true, int n_harmonics = 10);

@@ -27,13 +27,14 @@ namespace {
 
 // Shared by the workers of one run_study call.
 struct Pool {
-  Pool(std::span<const Case> c, const StudyOptions& o, std::vector<CaseOutcome>& out,
+  Pool(std::size_t n, const CaseSource& c, const StudyOptions& o, std::vector<CaseOutcome>& out,
        std::vector<std::vector<std::size_t>> ch)
-      : cases(c), options(o), outcomes(out), chains(std::move(ch)) {}
+      : count(n), case_at(c), options(o), outcomes(out), chains(std::move(ch)) {}
 
-  std::span<const Case> cases;
+  std::size_t count;
+  const CaseSource& case_at;
   const StudyOptions& options;
-  std::vector<CaseOutcome>& outcomes;
+  std::vector<CaseOutcome>& outcomes;            // empty unless options.keep_outcomes
   std::vector<std::vector<std::size_t>> chains;  // case indices, each chain in order
   std::atomic<std::size_t> next{0};              // the next chain to run
   std::atomic<bool> stop{false};                 // cancelled, or a callback threw
@@ -109,7 +110,7 @@ void work(Pool& pool) {
       std::optional<detail::WarmStart> orbit;
       const bool samples =
           opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
-      CaseOutcome outcome = run_one(pool.cases[i], samples, opt.n_harmonics, cancelled, stop_now,
+      CaseOutcome outcome = run_one(pool.case_at(i), samples, opt.n_harmonics, cancelled, stop_now,
                                     &interrupted, warm ? &*warm : nullptr, &orbit);
       if (interrupted) return;  // stays "cancelled"; never reported as done
       warm = std::move(orbit);
@@ -117,13 +118,13 @@ void work(Pool& pool) {
       try {
         ++pool.done;
         if (opt.on_case_done) opt.on_case_done(i, outcome);
-        if (opt.progress) opt.progress(pool.done, pool.cases.size());
+        if (opt.progress) opt.progress(pool.done, pool.count);
       } catch (...) {
         if (!pool.error) pool.error = std::current_exception();
         pool.stop.store(true);
       }
       if (!opt.keep_samples) outcome.result.samples = Samples{};
-      pool.outcomes[i] = std::move(outcome);
+      if (opt.keep_outcomes) pool.outcomes[i] = std::move(outcome);
       if (pool.stop.load()) return;
     }
   }
@@ -134,9 +135,8 @@ bool continues(const Case& c) {
 }
 
 // The chains of `previous` (validated), cut at kMaxContinuationChain, ordered by their first case.
-std::vector<std::vector<std::size_t>> make_chains(std::span<const Case> cases,
+std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSource& case_at,
                                                   const std::vector<std::ptrdiff_t>& previous) {
-  const std::size_t n = cases.size();
   if (previous.size() != n)
     throw Error("StudyOptions::previous must have one entry per case (" + std::to_string(n) +
                 "); got " + std::to_string(previous.size()));
@@ -153,7 +153,7 @@ std::vector<std::vector<std::size_t>> make_chains(std::span<const Case> cases,
       throw Error("StudyOptions::previous: case " + std::to_string(p) +
                   " is the predecessor of two cases (" + std::to_string(next[p]) + " and " +
                   std::to_string(k) + "); a case continues at most one chain");
-    if (!continues(cases[k])) continue;
+    if (!continues(case_at(k))) continue;
     next[p] = static_cast<std::ptrdiff_t>(k);
     linked[k] = true;
   }
@@ -178,22 +178,28 @@ CaseOutcome run_case(const Case& c, bool keep_samples, int n_harmonics) {
   return run_one(c, keep_samples, n_harmonics, {}, {}, &interrupted);
 }
 
-std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases) {
-  std::vector<std::ptrdiff_t> previous(cases.size(), -1);
+namespace {
+
+// continuation_chains over cases built on demand (each built once, kept while it is the newest).
+std::vector<std::ptrdiff_t> chains_of(std::size_t n, const CaseSource& case_at) {
+  std::vector<std::ptrdiff_t> previous(n, -1);
   const std::span<const Field> all = fields();
   std::vector<bool> along;  // the fields in which the chain's first two cases differ
   std::size_t length = 0;   // of the current chain
-  auto differs = [&](std::size_t k, std::size_t f) {
-    const double a = all[f].get(cases[k - 1]), b = all[f].get(cases[k]);
-    return !(a == b || (std::isnan(a) && std::isnan(b)));
-  };
-  for (std::size_t k = 1; k < cases.size(); ++k) {
-    bool link = continues(cases[k - 1]) && continues(cases[k]);
+  if (n == 0) return previous;
+  Case before = case_at(0);
+  for (std::size_t k = 1; k < n; ++k) {
+    Case now = case_at(k);
+    auto differs = [&](std::size_t f) {
+      const double a = all[f].get(before), b = all[f].get(now);
+      return !(a == b || (std::isnan(a) && std::isnan(b)));
+    };
+    bool link = continues(before) && continues(now);
     if (link && length <= 1) {  // the chain's second case: its step sets the direction
       along.assign(all.size(), false);
-      for (std::size_t f = 0; f < all.size(); ++f) along[f] = differs(k, f);
+      for (std::size_t f = 0; f < all.size(); ++f) along[f] = differs(f);
     } else if (link) {
-      for (std::size_t f = 0; f < all.size() && link; ++f) link = along[f] || !differs(k, f);
+      for (std::size_t f = 0; f < all.size() && link; ++f) link = along[f] || !differs(f);
     }
     if (link) {
       previous[k] = static_cast<std::ptrdiff_t>(k - 1);
@@ -201,11 +207,24 @@ std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases) {
     } else {
       length = 1;
     }
+    before = std::move(now);
   }
   return previous;
 }
 
+}  // namespace
+
+std::vector<std::ptrdiff_t> continuation_chains(std::span<const Case> cases) {
+  return chains_of(cases.size(), [cases](std::size_t i) { return cases[i]; });
+}
+
 std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptions& options) {
+  return run_study(
+      cases.size(), [cases](std::size_t i) { return cases[i]; }, options);
+}
+
+std::vector<CaseOutcome> run_study(std::size_t count, const CaseSource& case_at,
+                                   const StudyOptions& options) {
   if (options.threads < 0)
     throw Error("StudyOptions::threads must be >= 0 (0: all cores); got " +
                 std::to_string(options.threads));
@@ -213,18 +232,18 @@ std::vector<CaseOutcome> run_study(std::span<const Case> cases, const StudyOptio
     throw Error("StudyOptions::n_harmonics must be >= 0; got " +
                 std::to_string(options.n_harmonics));
   // Checked before the first case (compute_metrics would refuse each case alike).
-  for (const Case& c : cases) {
-    const int spp = c.numerics.samples_per_period;
+  for (std::size_t i = 0; i < count; ++i) {
+    const int spp = case_at(i).numerics.samples_per_period;
     if (options.n_harmonics >= spp / 2)
       throw Error("StudyOptions::n_harmonics must be < numerics.samples_per_period / 2 = " +
                   std::to_string(spp / 2) + " (the samples' Nyquist limit); got " +
                   std::to_string(options.n_harmonics));
   }
-  std::vector<CaseOutcome> outcomes(cases.size());
+  std::vector<CaseOutcome> outcomes(options.keep_outcomes ? count : 0);
   for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
-  Pool pool(
-      cases, options, outcomes,
-      make_chains(cases, options.previous.empty() ? continuation_chains(cases) : options.previous));
+  Pool pool(count, case_at, options, outcomes,
+            make_chains(count, case_at,
+                        options.previous.empty() ? chains_of(count, case_at) : options.previous));
   std::size_t threads = options.threads > 0 ? static_cast<std::size_t>(options.threads)
                                             : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min(threads, pool.chains.size());

@@ -3,6 +3,10 @@
 
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -28,6 +32,64 @@ void mix(std::uint64_t& h, const void* data, std::size_t n) {
 }
 
 }  // namespace
+
+class Expansion {
+ public:
+  CaseSpec base;
+  std::vector<SweepFactor> factors;  // zip mode: one factor holding every axis
+  std::size_t total = 0;
+  std::function<void(Case&)> adjust;
+
+  // The factor indices of case n: an odometer, the last factor fastest.
+  std::vector<std::size_t> digits(std::size_t n) const {
+    std::vector<std::size_t> idx(factors.size(), 0);
+    for (std::size_t fi = factors.size(); fi-- > 0;) {
+      idx[fi] = n % factors[fi].size();
+      n /= factors[fi].size();
+    }
+    return idx;
+  }
+  std::vector<Value> values(std::size_t n) const {
+    const std::vector<std::size_t> idx = digits(n);
+    std::vector<Value> v;
+    for (std::size_t fi = 0; fi < factors.size(); ++fi)
+      for (const SweepAxis& a : factors[fi].axes) v.push_back(a.values[idx[fi]]);
+    return v;
+  }
+  // The finalised case n (validated with `check`).
+  Case build(std::size_t n, bool check) const {
+    CaseSpec s = base;
+    const std::vector<std::size_t> idx = digits(n);
+    for (std::size_t fi = 0; fi < factors.size(); ++fi)
+      for (const SweepAxis& a : factors[fi].axes) assign(s, a.key, a.values[idx[fi]], a.origin);
+    Case c = finalize(s);
+    if (check) validate(c, s);
+    if (adjust) adjust(c);
+    return c;
+  }
+};
+
+std::size_t StudyCases::size() const { return e_ ? e_->total : 0; }
+Case StudyCases::operator[](std::size_t i) const { return e_->build(i, false); }
+Case StudyCases::at(std::size_t i) const {
+  if (i >= size())
+    throw std::out_of_range("study case " + std::to_string(i) + " of " + std::to_string(size()));
+  return (*this)[i];
+}
+std::size_t StudyValues::size() const { return e_ ? e_->total : 0; }
+std::vector<Value> StudyValues::operator[](std::size_t i) const { return e_->values(i); }
+
+void Study::adjust(std::function<void(Case&)> f) {
+  auto e = std::make_shared<Expansion>(*expansion);
+  if (e->adjust) {
+    e->adjust = [g = e->adjust, f = std::move(f)](Case& c) { g(c), f(c); };
+  } else {
+    e->adjust = std::move(f);
+  }
+  expansion = e;
+  cases = StudyCases(e);
+  varied = StudyValues(e);
+}
 
 Study expand(const StudySpec& spec) {
   std::vector<SweepFactor> factors = spec.factors;
@@ -68,30 +130,21 @@ Study expand(const StudySpec& spec) {
                   " cases; split it");
     total *= f.size();
   }
-  std::vector<std::size_t> idx(factors.size(), 0);  // odometer, the last factor fastest
-  study.cases.reserve(total);
-  study.varied.reserve(total);
+  auto e = std::make_shared<Expansion>();
+  e->base = spec.base;
+  e->factors = std::move(factors);
+  e->total = total;
+  // Every case is built and validated now, before anything runs; then only its recipe is kept.
   for (std::size_t n = 0; n < total; ++n) {
-    CaseSpec s = spec.base;
-    std::vector<Value> values;
-    for (std::size_t fi = 0; fi < factors.size(); ++fi)
-      for (const SweepAxis& a : factors[fi].axes) values.push_back(a.values[idx[fi]]);
     try {
-      std::size_t v = 0;
-      for (std::size_t fi = 0; fi < factors.size(); ++fi)
-        for (const SweepAxis& a : factors[fi].axes) assign(s, a.key, values[v++], a.origin);
-      const Case c = finalize(s);
-      validate(c, s);
-      study.cases.push_back(c);
-    } catch (const Error& e) {
-      throw Error(describe_case(n, study.keys, values) + ": " + e.what());
-    }
-    study.varied.push_back(std::move(values));
-    for (std::size_t fi = factors.size(); fi-- > 0;) {
-      if (++idx[fi] < factors[fi].size()) break;
-      idx[fi] = 0;
+      (void)e->build(n, true);
+    } catch (const Error& err) {
+      throw Error(describe_case(n, study.keys, e->values(n)) + ": " + err.what());
     }
   }
+  study.expansion = e;
+  study.cases = StudyCases(e);
+  study.varied = StudyValues(e);
   return study;
 }
 

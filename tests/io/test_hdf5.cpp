@@ -77,7 +77,8 @@ StudyRun run_study_of(const std::string& text) {
   StudyOptions options;
   options.keep_samples = true;
   options.n_harmonics = kHarmonics;
-  r.outcomes = run_study(r.study.cases, options);
+  r.outcomes = run_study(
+      r.study.cases.size(), [&](std::size_t i) { return r.study.cases[i]; }, options);
   r.columns = StudyColumns{r.study.keys, kHarmonics};
   r.header = study_csv_header(r.columns);
   for (std::size_t i = 0; i < r.outcomes.size(); ++i)

@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,11 +37,61 @@ struct StudySpec {
   std::string source;                ///< the study file, for messages
 };
 
+class Expansion;  // the base case and the factors (sweep.cpp)
+
+/// The cases of a study, built on demand from the base case and the swept values: a study of
+/// a million cases holds its factors, not a million Case objects. Indexing builds (and
+/// finalises) case i; expand() has validated every one.
+class StudyCases {
+ public:
+  StudyCases() = default;
+  explicit StudyCases(std::shared_ptr<const Expansion> e) : e_(std::move(e)) {}
+  std::size_t size() const;
+  bool empty() const { return size() == 0; }
+  Case operator[](std::size_t i) const;
+  Case at(std::size_t i) const;  ///< throws std::out_of_range past the end
+  Case front() const { return at(0); }
+
+  class iterator {
+   public:
+    using value_type = Case;
+    using difference_type = std::ptrdiff_t;
+    iterator(const StudyCases* c, std::size_t i) : c_(c), i_(i) {}
+    Case operator*() const { return (*c_)[i_]; }
+    iterator& operator++() { return ++i_, *this; }
+    bool operator==(const iterator& o) const { return i_ == o.i_; }
+
+   private:
+    const StudyCases* c_;
+    std::size_t i_;
+  };
+  iterator begin() const { return {this, 0}; }
+  iterator end() const { return {this, size()}; }
+
+ private:
+  std::shared_ptr<const Expansion> e_;
+};
+
+/// The swept values of each case, one per key, also on demand.
+class StudyValues {
+ public:
+  StudyValues() = default;
+  explicit StudyValues(std::shared_ptr<const Expansion> e) : e_(std::move(e)) {}
+  std::size_t size() const;
+  std::vector<Value> operator[](std::size_t i) const;
+
+ private:
+  std::shared_ptr<const Expansion> e_;
+};
+
 /// The expanded study: one Case per combination, with the swept values that made it.
 struct Study {
-  std::vector<std::string> keys;           ///< swept keys, in column order
-  std::vector<Case> cases;                 ///< finalised and validated
-  std::vector<std::vector<Value>> varied;  ///< per case, one value per key
+  std::vector<std::string> keys;               ///< swept keys, in column order
+  StudyCases cases;                            ///< finalised and validated (built on demand)
+  StudyValues varied;                          ///< per case, one value per key
+  std::shared_ptr<const Expansion> expansion;  ///< what cases and varied build from
+  /// Apply `f` to every case as it is built (e.g. --no-continuation), after any earlier one.
+  void adjust(std::function<void(Case&)> f);
 };
 
 /// Largest study expand() accepts.
