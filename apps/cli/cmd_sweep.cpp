@@ -234,13 +234,21 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
 class RowStore {
  public:
   RowStore(std::size_t total, const std::string& near) : where_(total, {0, kNone}) {
-    std::string dir = std::filesystem::path(near).parent_path().string();
-    if (near.empty() || near == "-") {
-      const char* tmp = std::getenv("TMPDIR");
-      dir = tmp != nullptr && *tmp != '\0' ? tmp : "/tmp";
+    // Beside the output (a large study's rows belong on its disk), else in $TMPDIR or /tmp.
+    std::vector<std::string> dirs;
+    if (!near.empty() && near != "-" && !io::output_target(near).direct) {
+      const std::string parent = std::filesystem::path(near).parent_path().string();
+      dirs.push_back(parent.empty() ? "." : parent);
     }
-    std::string name = (dir.empty() ? std::string(".") : dir) + "/.oscidrum-rows-XXXXXX";
-    const int fd = ::mkstemp(name.data());
+    const char* tmp = std::getenv("TMPDIR");
+    dirs.push_back(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp");
+    int fd = -1;
+    std::string name;
+    for (const std::string& dir : dirs) {
+      name = dir + "/.oscidrum-rows-XXXXXX";
+      fd = ::mkstemp(name.data());
+      if (fd >= 0) break;
+    }
     if (fd < 0)
       throw Error("cannot create a temporary file for the result rows in " + name + ": " +
                   std::strerror(errno));
