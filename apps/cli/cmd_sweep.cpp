@@ -80,6 +80,10 @@ std::vector<std::ptrdiff_t> continuation_links(const io::StudySpec& spec, const 
   return previous;
 }
 
+std::string journal_path(const std::string& out) {
+  return io::output_target(out).path + ".journal";
+}
+
 std::string case_file_name(std::size_t index, std::size_t total) {
   std::string digits = std::to_string(total > 0 ? total - 1 : 0);
   std::string n = std::to_string(index);
@@ -204,6 +208,9 @@ int list_cases(const SweepPlan& p) {
 // The options that need the expanded study (or only matter when cases run).
 void check_run_options(const SweepOptions& o, const SweepPlan& p) {
   if (o.resume && o.restart) throw Error("give either --resume or --restart, not both");
+  if ((o.resume || o.restart) && !o.out.empty() && io::output_target(o.out).direct)
+    throw Error("--resume and --restart need --out to be a file: " + o.out +
+                " is a FIFO or a device, which keeps no journal");
   if ((o.resume || o.restart) && o.out.empty())
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
   if (!o.plot.empty() && o.out.empty())
@@ -311,12 +318,16 @@ struct SweepOutputs {
 SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   SweepOutputs out;
   out.rows = std::make_unique<RowStore>(p.total, o.out);
-  if (!o.out.empty()) {
+  // The journal lives beside a regular output file; a FIFO or a device (--out /dev/stdout) has no
+  // "beside" (no journal next to a device node): such a sweep is not resumable.
+  if (!o.out.empty() && !io::output_target(o.out).direct) {
     // A shard's journal is its own: resuming shard 2 never picks up the rows of shard 3.
     const std::uint64_t journal_fingerprint =
         p.sharded ? io::fingerprint(p.study, p.header + "\nshard " + p.shard.text())
                   : p.fingerprint;
-    out.journal = std::make_unique<io::Journal>(o.out + ".journal", journal_fingerprint, p.total,
+    // Beside the file --out names, through symbolic links (--out /dev/stdout redirected to a
+    // file: beside that file, never in /dev).
+    out.journal = std::make_unique<io::Journal>(journal_path(o.out), journal_fingerprint, p.total,
                                                 o.resume, o.restart);
   }
   // The steady states go into FILE.hdf5.partial as they come (kept for --resume).
@@ -428,7 +439,7 @@ void write_results(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out)
   }
   if (!o.out.empty()) {
     io::write_file_atomic(o.out, [&](std::ostream& os) { write_csv(os, p, out); });
-    out.journal->remove();
+    if (out.journal) out.journal->remove();
   }
 }
 

@@ -42,6 +42,15 @@ std::string journal_header(std::uint64_t fingerprint, std::size_t n_cases) {
 
 OutputTarget output_target(const std::string& path, bool regular_only) {
   if (path.empty()) throw Error("cannot write a file with an empty name");
+  // A FIFO or a character device reached through links that name no path (/dev/stdout ->
+  // /proc/self/fd/1 -> "pipe:[...]"): classified by following them, written by the name given.
+  if (struct stat followed{}; ::stat(path.c_str(), &followed) == 0 &&
+                              (S_ISFIFO(followed.st_mode) || S_ISCHR(followed.st_mode))) {
+    if (!regular_only) return {path, true};
+    throw Error("cannot write " + path + ": it is " +
+                (S_ISFIFO(followed.st_mode) ? "a FIFO" : "a character device") +
+                " and this output needs a regular file");
+  }
   std::string p = path;
   for (int hops = 0;; ++hops) {
     struct stat st {};

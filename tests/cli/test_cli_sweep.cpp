@@ -334,5 +334,16 @@ TEST(CliSweep, PlotOptionsAreCheckedBeforeAnyCaseRuns) {
   EXPECT_FALSE(std::filesystem::exists(out + ".journal"));
 }
 
+// --out /dev/stdout (a link to the pipe or file the test reads): written through, and the
+// journal, if any, beside that file, never beside the device node.
+TEST(CliSweep, OutToStdoutWritesThroughAndNoJournalInDev) {
+  const std::string study = kSource + "/examples/table2_sweep.toml";
+  const Outcome o = run({"sweep", study, "--out", "/dev/stdout", "--quiet"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.out.rfind("case[-],soil.table2_G[Pa]", 0), 0u) << o.out.substr(0, 200);
+  EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 57);
+  EXPECT_FALSE(std::filesystem::exists("/dev/stdout.journal"));
+}
+
 }  // namespace
 }  // namespace oscidrum::test
