@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -162,7 +163,9 @@ Id create_dataset(hid_t group, const std::string& name, hid_t file_type, std::si
     const hsize_t chunk[1] = {std::min<hsize_t>(n, 16384)};
     H5Pset_chunk(plist, 1, chunk);
     H5Pset_shuffle(plist);
-    H5Pset_deflate(plist, 4);
+    // Level 1: the same size as level 4 on steady states (2000 of them: 369 MB against 368 MB;
+    // 647 MB uncompressed) in a third of the time.
+    H5Pset_deflate(plist, 1);
   }
   return checked(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
                  H5Dclose, "cannot write " + file + ": dataset " + name);
@@ -337,6 +340,7 @@ bool is_hdf5_file(const std::string& path) { return signature(path); }
 struct StudyHdf5Writer::Impl {
   std::string path, partial;
   Id file;
+  std::chrono::steady_clock::time_point flushed = std::chrono::steady_clock::now();
 };
 
 StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bool resume)
@@ -410,7 +414,14 @@ void StudyHdf5Writer::add_case(std::size_t index, const CaseOutcome& outcome) {
     attr_string(d, "unit", "-", file);
     attr_string(d, "meaning", "-1 slip-, 0 stick, 1 slip+, 2 flight", file);
   }
-  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);  // a kill after this keeps the case for --resume
+  // A kill after a flush keeps the cases before it for --resume (a case the journal has but the
+  // file lacks is run again). Flushing after every case cost more than the cases; once a second
+  // loses at most a second of work.
+  const auto now = std::chrono::steady_clock::now();
+  if (now - impl_->flushed >= std::chrono::seconds(1)) {
+    H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+    impl_->flushed = now;
+  }
 }
 
 void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>& indices,
@@ -424,9 +435,17 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
   const Id params =
       checked(H5Gcreate2(impl_->file, "parameters", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
               H5Gclose, "cannot write " + file + ": group parameters");
-  for (const Field& f : fields()) {
-    std::vector<double> v;
-    for (std::size_t i : indices) v.push_back(f.get(study.cases[i]));
+  // Every case built once (the study builds them on demand), its fields into the columns.
+  const std::span<const Field> every = fields();
+  std::vector<std::vector<double>> columns(every.size());
+  for (std::vector<double>& c : columns) c.reserve(indices.size());
+  for (std::size_t i : indices) {
+    const Case c = study.cases[i];
+    for (std::size_t k = 0; k < every.size(); ++k) columns[k].push_back(every[k].get(c));
+  }
+  for (std::size_t k = 0; k < every.size(); ++k) {
+    const Field& f = every[k];
+    const std::vector<double>& v = columns[k];
     write_doubles(params, f.key, v, f.unit, false, file);
     const Id d(H5Dopen2(params, f.key, H5P_DEFAULT), H5Dclose);
     attr_string(d, "description", f.description, file);
