@@ -148,6 +148,13 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
               : w < 0 ? "failed: started again from rest"
                       : "no: started from rest";
     }
+    // The codes for "none" (-1 steady after, multiplicity 0) in words: a run that found no
+    // steady state must not show numbers that look like one.
+    if (std::string_view(out.name) == "periods_to_steady" &&
+        result.diagnostics.periods_to_steady < 0)
+      value = "never (no steady state)";
+    if (std::string_view(out.name) == "multiplicity" && result.diagnostics.multiplicity <= 0)
+      value = "none (no steady state)";
     // The examination of a motion without a steady state: its exponent only when it ran.
     if (std::string_view(out.name) == "lyapunov_exponent" && result.diagnostics.motion.empty())
       value.clear();

@@ -271,6 +271,9 @@ TEST(CliRun, ExitCodeOneWhenNotSteady) {
   EXPECT_EQ(o.code, 1) << o.err;
   EXPECT_NE(o.out.find("max_periods_reached"), std::string::npos);
   EXPECT_NE(o.err.find("status max_periods_reached"), std::string::npos);
+  // No number that looks like a steady state's: the "none" codes in words.
+  EXPECT_NE(o.out.find("never (no steady state)"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("none (no steady state)"), std::string::npos) << o.out;
 }
 
 TEST(CliRun, InterruptExits130) {
