@@ -89,6 +89,7 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
 
 int run(const AnalyzeOptions& o) {
   const RecordColumns rec = read_record(o.input);
+  report_reading(rec);
   const std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
   // analyze_windows refuses a record shorter than one window, so there is always a first window;
@@ -201,7 +202,8 @@ void add_analyze_command(CLI::App& app, Action& action) {
   sub->footer(
       "Columns are found by name, with or without a [unit] suffix (defaults: t, ddx_M, ddz_M, as "
       "in `oscidrum run --csv`), or by 1-based index. Output columns: docs/cli.md.\nExamples:\n"
-      "  oscidrum analyze field.csv --t-col time --x-col ax --z-col az --units g\n"
+      "  oscidrum analyze field.csv --z-positive up   (columns and units from the header)\n"
+      "  oscidrum analyze field.csv --t-col 1 --x-col 3 --z-col 4 --units g\n"
       "  oscidrum analyze pass.csv --window 40 --speed-col v --format csv > windows.csv\n"
       "  oscidrum run --csv steady.csv && oscidrum analyze steady.csv --f 39\n"
       "  cat record.txt | oscidrum analyze - --t-col 1 --x-col 2 --z-col 3");

@@ -293,6 +293,7 @@ int run(const IdentifyCliOptions& o) {
   } else {
     name = o.input.file == "-" ? "<stdin>" : o.input.file;
     rec = read_record(o.input);
+    report_reading(rec);
     ProgressLine line(stderr_is_terminal() && !o.quiet);
     pass = identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows, io,
                          [&](std::size_t k, std::size_t n) {

@@ -16,18 +16,27 @@ namespace oscidrum::cli {
 
 struct RecordInput {
   std::string file;  ///< path, or "-" for stdin
-  std::string t_col = "t", x_col = "ddx_M", z_col = "ddz_M";
-  std::string pos_col, speed_col;  ///< optional position [m] or speed [m/s] column
-  std::string units = "m/s2";      ///< m/s2 or g (the accelerations)
+  /// Column names or 1-based indices; empty: recognised from the header (t, time, ...; ddx_M,
+  /// ax, acc_x, ...; ddz_M, az, acc_z, ...: see read_record).
+  std::string t_col, x_col, z_col;
+  std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
+  std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
+  std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
+  std::string x_positive = "forward";  ///< forward (the model's x) or backward
+  std::string z_positive = "down";     ///< down (the model's z) or up
 };
 
-/// The columns of a record, accelerations in m/s^2.
+/// The columns of a record in the model's conventions: t in s, accelerations in m/s^2, x_M''
+/// positive forward (the direction of travel), z_M'' positive down.
 struct RecordColumns {
   std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
   std::string delimiter;  ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
+  std::vector<std::string> notes;
 };
 
-/// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units.
+/// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units,
+/// --t-units, --x-positive, --z-positive.
 void add_record_options(CLI::App& app, RecordInput& o, bool required = true);
 
 /// Read the record. Throws oscidrum::Error (exit 2) naming the file, line and column.
@@ -38,6 +47,10 @@ RecordColumns read_record(const RecordInput& o);
 /// defaults to 0, the number chosen from the sampling (identify).
 void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                         bool auto_harmonics = false);
+
+/// The notes of read_record on stderr ("oscidrum: record: x_M'': column 'acc_x [g]' x 9.80665 ->
+/// m/s^2 (positive forward)"), one per channel not read as the model writes it.
+void report_reading(const RecordColumns& rec);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);

@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <vector>
 
 #include "process.hpp"
 
@@ -136,10 +137,71 @@ TEST(CliAnalyze, RecordShiftedToNegativeTimesGivesTheSameHarmonics) {
   }
 }
 
+// A logger's file: a byte-order mark, semicolons and decimal commas, time in ms, accelerations
+// in g under their own names, x pointing backwards and z up, an extra channel. Read with
+// --x-positive backward --z-positive up it is the simulation's record again: the same numbers.
+TEST(CliAnalyze, LoggerConventionsAreReadBackToTheModels) {
+  TempDir dir;
+  const Outcome r = run({"run", "--quiet", "--csv", dir / "s.csv"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  {
+    std::ifstream in(dir / "s.csv");
+    std::ofstream out(dir / "field.csv");
+    std::string line;
+    std::getline(in, line);
+    out << "\xEF\xBB\xBF"
+        << "Temp (C);Time [ms];Acc X [g];Acc Z [g]\n";
+    while (std::getline(in, line)) {
+      std::vector<double> v;
+      std::stringstream cells(line);
+      for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+      std::ostringstream row;
+      row.precision(17);
+      // t, ..., ddx_M (column 12), ddz_M (13), 1-based
+      row << 20.5 << ";" << v[0] * 1000.0 << ";" << -v[11] / 9.80665 << ";" << -v[12] / 9.80665;
+      std::string text = row.str();
+      std::replace(text.begin(), text.end(), '.', ',');
+      out << text << "\n";
+    }
+  }
+  const Outcome a = run({"analyze", dir / "s.csv", "--f", "39", "--format", "json"});
+  const Outcome b = run({"analyze", dir / "field.csv", "--f", "39", "--format", "json",
+                         "--x-positive", "backward", "--z-positive", "up"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_NE(b.err.find("record: t: column 'Time [ms]' x 0.001 -> s"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("record: x_M'': column 'Acc X [g]' x -9.80665"), std::string::npos);
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  for (const char* s : {"ddx_harmonics", "ddz_harmonics"}) {
+    const double scale = ja[s][1]["amplitude"].get<double>() + ja[s][2]["amplitude"].get<double>();
+    for (std::size_t n = 1; n < ja[s].size(); ++n) {
+      EXPECT_NEAR(jb[s][n]["amplitude"].get<double>(), ja[s][n]["amplitude"].get<double>(),
+                  1e-9 * scale)
+          << s << " " << n;
+      // Phases of the harmonics that matter (a harmonic at 1e-6 of the signal has none).
+      if (ja[s][n]["amplitude"].get<double>() > 1e-3 * scale) {
+        EXPECT_NEAR(jb[s][n]["phase"].get<double>(), ja[s][n]["phase"].get<double>(), 1e-7)
+            << s << " " << n;
+      }
+    }
+  }
+  EXPECT_NEAR(jb["psi_xz"].get<double>(), ja["psi_xz"].get<double>(), 1e-9);
+  EXPECT_NEAR(jb["area"].get<double>(), ja["area"].get<double>(), 1e-9 * ja["area"].get<double>());
+  // Read as written (no axis flags) the lag moves: psi_xz is not sign-blind.
+  const Outcome c = run({"analyze", dir / "field.csv", "--f", "39", "--format", "json"});
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_GT(
+      std::abs(nlohmann::json::parse(c.out)["psi_xz"].get<double>() - ja["psi_xz"].get<double>()),
+      0.1);
+}
+
 TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
   TempDir dir;
   {
-    std::ofstream(dir / "cols.csv") << "time,ax,az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "cols.csv") << "zeitpunkt,kanal1,kanal2\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "two_x.csv") << "t,ax,acc_x,az\n0,1,1,2\n0.1,1,1,2\n";
+    std::ofstream(dir / "unit.csv") << "t [h],ax,az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "aunit.csv") << "t,ax [km],az\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "text.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.1,x,2\n";
     std::ofstream(dir / "short.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.001,1,2\n";
     std::ofstream(dir / "ragged.csv") << "t,ddx_M,ddz_M\n0,1\n";
@@ -148,8 +210,12 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     std::string file, message;
   };
   for (const Case& c :
-       {Case{"cols.csv", "no column '"}, Case{"text.csv", "must be a number"},
-        Case{"short.csv", "at least 8 samples"},
+       {Case{"cols.csv", "no column looks like the time; choose one with --t-col"},
+        Case{"two_x.csv",
+             "several columns look like the horizontal acceleration x_M'' (ax, acc_x)"},
+        Case{"unit.csv", "unit 'h' is not a time unit (s, ms, us); give --t-units"},
+        Case{"aunit.csv", "unit 'km' is not an acceleration unit (m/s^2, mm/s^2, g); give --units"},
+        Case{"text.csv", "must be a number"}, Case{"short.csv", "at least 8 samples"},
         Case{"ragged.csv", "2 cells, but the header has 3"}, Case{"missing.csv", "cannot open"}}) {
     SCOPED_TRACE(c.file);
     const Outcome o = run({"analyze", dir / c.file});
@@ -159,8 +225,8 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     EXPECT_NE(o.err.find(c.message), std::string::npos) << o.err;
   }
   // Columns chosen by flag.
-  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "time", "--x-col",
-                         "ax", "--z-col", "az"});
+  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "zeitpunkt",
+                         "--x-col", "kanal1", "--z-col", "3"});
   // 2 samples over 3.9 periods: f = 39 Hz is above half the record's sampling rate (10 Hz), so
   // no harmonic of it can be measured: refused as input.
   EXPECT_EQ(o.code, 2);
