@@ -125,6 +125,10 @@ struct IdentifyOptions {
   /// warn that the estimates are biased [-]. Fits of the right model give 0.3-1.2 on synthetic
   /// records; a mu 16 % off the truth, not fitted, gives 300-800.
   double max_reduced_chi2 = 4.0;
+  /// When the fit is poor (max_reduced_chi2), fit the record again with x_M'' and/or z_M''
+  /// negated and G on the other soil scale, and warn when one of them fits: the record's axis
+  /// conventions or soil scale are then likely wrong (a few more fits, only for a poor fit).
+  bool diagnose = true;
   /// How each window's harmonics are measured (identify_pass); measure.covariance is raised to
   /// `harmonics`.
   MeasureOptions measure;

@@ -31,8 +31,14 @@ _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6)
 
 
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
-             position: Optional[Sequence[float]] = None, **options: Any) -> List[Dict[str, Any]]:
-    """Identify the soil in each window of a record (t [s], ddx_M, ddz_M [m/s^2], z down).
+             position: Optional[Sequence[float]] = None, x_positive: str = "forward",
+             z_positive: str = "down", **options: Any) -> List[Dict[str, Any]]:
+    """Identify the soil in each window of a record (t [s], ddx_M, ddz_M [m/s^2]).
+
+    The model's axes: x_M'' positive forward (the direction of travel), z_M'' positive down.
+    A record whose axes point the other way gives ``x_positive='backward'`` or
+    ``z_positive='up'`` (most accelerometer mounts); the channel is negated. A poor fit that a
+    negated axis or the other soil scale would fix says so in ``warnings``.
 
     ``case`` (an :class:`oscidrum.Case`, default the paper's roller) gives everything not
     estimated. Options as :func:`oscidrum.identify_record`: f (0: estimated), window (periods,
@@ -41,8 +47,16 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     states by shooting, default; False: by the transient from rest). Returns one dict per window with
     the keys of the CLI's CSV columns (G, G_u, G_lo, G_hi in Pa, ..., valid, reason, warnings).
     """
-    from . import Case, identify_record
+    from . import Case, Error, identify_record
+    if x_positive not in ("forward", "backward"):
+        raise Error(f"x_positive must be 'forward' or 'backward'; got {x_positive!r}")
+    if z_positive not in ("down", "up"):
+        raise Error(f"z_positive must be 'down' or 'up'; got {z_positive!r}")
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
+    if x_positive == "backward":
+        arrays[1] = -arrays[1]
+    if z_positive == "up":
+        arrays[2] = -arrays[2]
     pos = None if position is None else np.asarray(position, dtype=float)
     return identify_record(case if case is not None else Case(), *arrays, position=pos,
                            **options)

@@ -5,8 +5,10 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "identify/problem.hpp"
@@ -96,6 +98,97 @@ std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o)
          "): the model does not reproduce the measured harmonics to their noise, and the "
          "estimates are biased by what it lacks (an unknown not fitted, such as mu or MMd, or "
          "a case that does not describe the roller)";
+}
+
+// The record read the other way round: x_M'' (or z_M'') negated, its harmonics, peaks and
+// trend with it (the area and the covariances do not change sign).
+MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
+  if (x) {
+    for (auto& c : d.ddx) c = -c;
+    for (double& c : d.trend_x) c = -c;
+    d.ddx_max = -std::exchange(d.ddx_min, -d.ddx_max);
+  }
+  if (z) {
+    for (auto& c : d.ddz) c = -c;
+    for (double& c : d.trend_z) c = -c;
+    d.ddz_max = -std::exchange(d.ddz_min, -d.ddz_max);
+  }
+  return d;
+}
+
+// A poor fit: is it a convention of the record (an axis read the other way round) or the scale
+// of G? Each alternative is fitted from the same coarse start (no profile); one that fits (a
+// reduced chi^2 within the limit, or ten times below the fit's) is named with what to change.
+// Empty when none does. Costs a few fits, only when the fit is poor.
+std::string diagnosis(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
+                      double s2) {
+  struct Alternative {
+    bool x, z, other_scale;
+  };
+  const Alternative alternatives[] = {
+      {false, true, false}, {true, false, false}, {true, true, false}, {false, false, true},
+      {false, true, true},  {true, false, true},  {true, true, true}};
+  auto describe = [&](const Alternative& a) {
+    std::string what, advice;
+    if (a.x && a.z) {
+      what = "x_M'' and z_M'' negated";
+      advice =
+          "both axes of the record point the other way: read it with --x-positive backward "
+          "--z-positive up (Python: x_positive='backward', z_positive='up')";
+    } else if (a.z) {
+      what = "z_M'' negated";
+      advice =
+          "the record's z axis points up: read it with --z-positive up (Python: "
+          "z_positive='up')";
+    } else if (a.x) {
+      what = "x_M'' negated";
+      advice =
+          "the record's x axis points backward: read it with --x-positive backward (Python: "
+          "x_positive='backward')";
+    }
+    if (a.other_scale) {
+      what += std::string(what.empty() ? "" : " and ") + "G on the other soil scale";
+      advice += std::string(advice.empty() ? "" : "; ") +
+                (o.soil_scale == SoilScale::formulas
+                     ? "the soil is a Table 2 soil (what run --G simulates): --soil-scale table2"
+                     : "the soil follows Appendix B's formulas: --soil-scale formulas");
+    }
+    return std::pair{what, advice};
+  };
+  double best = std::max(o.max_reduced_chi2, s2 / 10.0);
+  std::string found;
+  for (const Alternative& a : alternatives) {
+    if (a.other_scale && !o.modulus) continue;
+    IdentifyOptions o2 = o;
+    o2.profile = false;
+    if (a.other_scale)
+      o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
+    try {
+      Problem pr(base, flipped(data, a.x, a.z), o2);
+      const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
+      const std::vector<bool> all(pr.unknowns().size(), true);
+      const detail::Fit fit =
+          detail::levenberg_marquardt(pr, start_point(pr, o2, nullptr), all, o2.max_iterations);
+      const double chi2 = fit.S / dof;
+      // The alternatives come simplest first (one change, then two, three); a later one must fit
+      // clearly better (half the chi^2) to replace an earlier: with no driving torque, negating
+      // x_M'' is the same as shifting time by half a period, and x alone changes nothing.
+      if (std::isfinite(chi2) && chi2 < (found.empty() ? best : 0.5 * best)) {
+        best = chi2;
+        auto sig3 = [](double v) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%.3g", v);
+          return std::string(buf);
+        };
+        const auto [what, advice] = describe(a);
+        found = "the fit is far better with " + what + " (reduced chi^2 " + sig3(chi2) +
+                " against " + sig3(s2) + "): " + advice;
+      }
+    } catch (const Error&) {
+      // an alternative the model cannot fit says nothing
+    }
+  }
+  return found;
 }
 
 // The estimate of unknown j with its linearised uncertainty and its profile interval.
@@ -194,7 +287,13 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   id.simulated = pr.simulate_at(fit.p).metrics;
   residual_measures(pr, data, o, fit.p, phi, id);
   // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
-  if (s2 > o.max_reduced_chi2) id.warnings.push_back(poor_fit_warning(id, o));
+  if (s2 > o.max_reduced_chi2) {
+    id.warnings.push_back(poor_fit_warning(id, o));
+    if (o.diagnose) {
+      const std::string why = diagnosis(base, data, o, s2);
+      if (!why.empty()) id.warnings.push_back(why);
+    }
+  }
 
   // Covariance s^2 (J^T J)^-1, condition number and correlations of the column-scaled Jacobian.
   Eigen::MatrixXd J;
