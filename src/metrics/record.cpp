@@ -457,9 +457,18 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   // for a record ending before t = -1 s, no window fitted, and analyze read the empty list.
   const double t_scale = std::max(std::abs(t.front()), std::abs(t.back()));
   const double slack = 1e-12 * W + 16.0 * std::numeric_limits<double>::epsilon() * t_scale;
+  // The windows start every H from the first sample; the end of the record, where it is left over
+  // (a full period or more after the last window), gets a last window that ends with the record
+  // (overlapping the one before): the end of a record is never dropped silently.
+  bool end_window = false;
   for (int k = 0;; ++k) {
-    const double ts = t.front() + k * H;
-    if (k > 0 && ts + W > t.back() + slack) break;  // the first window fits: span >= W (above)
+    double ts = t.front() + k * H;
+    if (k > 0 && ts + W > t.back() + slack) {
+      if (!windowed || end_window || t.back() - out.back().t_end < 1.0 / f_track) break;
+      end_window = true;
+      ts = t.back() - W;
+      first = 0;
+    }
     while (first < t.size() && t[first] < ts - slack) ++first;
     std::size_t last = first;
     while (last + 1 < t.size() && t[last + 1] <= ts + W + slack) ++last;
@@ -565,7 +574,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       w.metrics = nan;
     }
     out.push_back(std::move(w));
-    if (!windowed) break;
+    if (!windowed || end_window) break;
   }
   return out;
 }

@@ -278,7 +278,9 @@ TEST(CliAnalyze, WindowedCsvHasEveryRecordMetric) {
     EXPECT_EQ(fields(row), fields(header)) << row;
     ++rows;
   }
-  EXPECT_EQ(rows, 2);  // the samples span 6 periods less one step: windows at 0 and 2 periods
+  // The samples span 6 periods less one step: windows at 0 and 2 periods, and one ending with the
+  // record (the 2 periods left are not dropped).
+  EXPECT_EQ(rows, 3);
 }
 
 }  // namespace oscidrum::test

@@ -411,7 +411,9 @@ std::vector<RecordWindow> windows(const RecordSamples& r, double f = 0.0) {
 TEST(Gates, ACleanPassIsValidEverywhere) {
   const RecordSamples r = noisy_record(truth(17.3e6, false, 0.0), 1.2, 1000);
   const std::vector<RecordWindow> ws = windows(r);
-  ASSERT_EQ(ws.size(), 2u);
+  // 1.2 s at 39.39 Hz: 47 periods, windows of 20 at 0 and 20 and one ending with the record.
+  ASSERT_EQ(ws.size(), 3u);
+  EXPECT_NEAR(ws[2].t_end, r.t.back(), 1e-12);
   for (const RecordWindow& w : ws) {
     EXPECT_TRUE(w.valid) << w.reason;
     EXPECT_NEAR(w.f / kF, 1.0, 1e-4);
@@ -471,10 +473,12 @@ TEST(Gates, GapsAreFlaggedOnlyWhereTheyAre) {
     g.ddz_M.push_back(r.ddz_M[i]);
   }
   const std::vector<RecordWindow> ws = windows(g, kF);
-  ASSERT_EQ(ws.size(), 2u);
+  ASSERT_EQ(ws.size(), 3u);  // the third ends with the record and holds the gap too
   EXPECT_TRUE(ws[0].valid) << ws[0].reason;
-  EXPECT_FALSE(ws[1].valid);
-  EXPECT_NE(ws[1].reason.find("gap"), std::string::npos) << ws[1].reason;
+  for (std::size_t k : {1u, 2u}) {
+    EXPECT_FALSE(ws[k].valid);
+    EXPECT_NE(ws[k].reason.find("gap"), std::string::npos) << ws[k].reason;
+  }
 }
 
 TEST(Gates, TooFewSamplesPerPeriodForTheHarmonics) {
