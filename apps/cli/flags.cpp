@@ -32,7 +32,9 @@ std::string strict(bool integer, const std::string& s) {
 
 void add_checks(CLI::App& app) {
   for (CLI::Option* opt : app.get_options()) {
-    const std::string type = opt->get_type_name();
+    // CLI11 appends its validators' descriptions: "FLOAT:POSITIVE", "INT:INT in [2 - 200]".
+    const std::string full = opt->get_type_name();
+    const std::string type = full.substr(0, full.find(':'));
     if (type != "FLOAT" && type != "INT" && type != "UINT") continue;
     const bool integer = type != "FLOAT";
     CLI::Validator* first = nullptr;
