@@ -435,7 +435,8 @@ void write_results(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out)
     std::vector<std::size_t> indices;
     for (std::size_t i = 0; i < p.total; ++i)
       if (p.mine[i]) indices.push_back(i);
-    out.hdf5->finish(p.study, indices, p.header, all_rows(p, out));
+    out.hdf5->finish(p.study, indices, p.header,
+                     [&](std::size_t k) { return out.rows->get(indices[k]); });
   }
   if (!o.out.empty()) {
     io::write_file_atomic(o.out, [&](std::ostream& os) { write_csv(os, p, out); });

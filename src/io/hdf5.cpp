@@ -13,7 +13,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <span>
 #include <utility>
 
 #include "oscidrum/error.hpp"
@@ -426,28 +428,52 @@ void StudyHdf5Writer::add_case(std::size_t index, const CaseOutcome& outcome) {
 
 void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>& indices,
                              const std::string& header, const std::vector<std::string>& rows) {
+  if (rows.size() != indices.size())
+    throw Error("cannot write " + impl_->path + ": " + std::to_string(rows.size()) +
+                " result rows for " + std::to_string(indices.size()) + " cases");
+  finish(study, indices, header, [&](std::size_t k) { return rows[k]; });
+}
+
+namespace {
+
+// Rows per block of the tables: their memory is bounded by this, not by the number of cases.
+constexpr std::size_t kBlockRows = 4096;
+
+// Write `count` values of memory type `type` from `data` at [offset, offset + count) of `d`.
+void write_block(hid_t d, hid_t type, std::size_t offset, std::size_t count, const void* data,
+                 const std::string& what) {
+  if (count == 0) return;
+  const Id file_space(H5Dget_space(d), H5Sclose);
+  const hsize_t start[1] = {offset};
+  const hsize_t n[1] = {count};
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, n, nullptr), what);
+  const Id memory_space = vector_space(count);
+  check(H5Dwrite(d, type, memory_space, file_space, H5P_DEFAULT, data), what);
+}
+
+}  // namespace
+
+void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>& indices,
+                             const std::string& header,
+                             const std::function<std::string(std::size_t)>& row) {
   const QuietErrors quiet;
   const std::string& file = impl_->partial;
+  const std::size_t n = indices.size();
   std::vector<std::int64_t> cases(indices.begin(), indices.end());
   write_ints(impl_->file, "case", cases, H5T_STD_I64LE, false, file);
   attr_strings(impl_->file, "swept_keys", study.keys, file);
 
+  // Every table's datasets are created at their full length first, then filled block by block:
+  // each case built once (the study builds them on demand), each result row parsed once.
   const Id params =
       checked(H5Gcreate2(impl_->file, "parameters", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
               H5Gclose, "cannot write " + file + ": group parameters");
-  // Every case built once (the study builds them on demand), its fields into the columns.
   const std::span<const Field> every = fields();
-  std::vector<std::vector<double>> columns(every.size());
-  for (std::vector<double>& c : columns) c.reserve(indices.size());
-  for (std::size_t i : indices) {
-    const Case c = study.cases[i];
-    for (std::size_t k = 0; k < every.size(); ++k) columns[k].push_back(every[k].get(c));
-  }
-  for (std::size_t k = 0; k < every.size(); ++k) {
-    const Field& f = every[k];
-    const std::vector<double>& v = columns[k];
-    write_doubles(params, f.key, v, f.unit, false, file);
-    const Id d(H5Dopen2(params, f.key, H5P_DEFAULT), H5Dclose);
+  std::vector<Id> param_sets;
+  for (const Field& f : every) {
+    param_sets.push_back(create_dataset(params, f.key, H5T_IEEE_F64LE, n, false, file));
+    const Id& d = param_sets.back();
+    if (*f.unit != '\0') attr_string(d, "unit", f.unit, file);
     attr_string(d, "description", f.description, file);
     attr_string(d, "rule", field_rule(f), file);
     if (f.type == FieldType::choice) {
@@ -470,28 +496,56 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
   std::vector<std::string> order;  // the CSV's column order (HDF5 lists members by name)
   for (std::size_t c = 1; c < labels.size(); ++c) order.push_back(split_label(labels[c]).first);
   attr_strings(results, "columns", order, file);
-  std::vector<std::vector<std::string>> cells;
-  for (const std::string& row : rows) cells.push_back(csv_split(row));
-  for (std::size_t c = 1; c < labels.size(); ++c) {  // column 0 is the case index: /case
+  const Id text_type = string_type();
+  std::vector<Id> result_sets(labels.size());  // column 0 is the case index: /case
+  std::vector<bool> text(labels.size(), false);
+  for (std::size_t c = 1; c < labels.size(); ++c) {
     const auto [name, unit] = split_label(labels[c]);
     const Field* f = find_field(name);
-    const bool text = oscidrum::is_text_column(name) ||
-                      (f && (f->type == FieldType::boolean || f->type == FieldType::choice));
-    if (text) {
-      std::vector<std::string> v;
-      for (const auto& row : cells) v.push_back(c < row.size() ? row[c] : std::string());
-      write_strings(results, name, v, file);
-      const Id d(H5Dopen2(results, name.c_str(), H5P_DEFAULT), H5Dclose);
-      attr_string(d, "unit", unit, file);
-    } else {
-      std::vector<double> v;
-      for (const auto& row : cells) {
-        const std::string cell = c < row.size() ? row[c] : std::string();
+    text[c] = oscidrum::is_text_column(name) ||
+              (f && (f->type == FieldType::boolean || f->type == FieldType::choice));
+    result_sets[c] =
+        create_dataset(results, name, text[c] ? text_type.get() : H5T_IEEE_F64LE, n, false, file);
+    if (text[c] || !unit.empty()) attr_string(result_sets[c], "unit", unit, file);
+  }
+
+  std::vector<std::vector<double>> numbers(std::max(every.size(), labels.size()));
+  std::vector<std::vector<std::string>> strings(labels.size());
+  for (std::size_t first = 0; first < n; first += kBlockRows) {
+    const std::size_t count = std::min(kBlockRows, n - first);
+    for (auto& v : numbers) v.clear();
+    for (std::size_t k = first; k < first + count; ++k) {
+      const Case c = study.cases[indices[k]];
+      for (std::size_t j = 0; j < every.size(); ++j) numbers[j].push_back(every[j].get(c));
+    }
+    for (std::size_t j = 0; j < every.size(); ++j)
+      write_block(param_sets[j], H5T_NATIVE_DOUBLE, first, count, numbers[j].data(),
+                  "cannot write " + file + ": dataset parameters/" + every[j].key);
+
+    for (auto& v : numbers) v.clear();
+    for (auto& v : strings) v.clear();
+    for (std::size_t k = first; k < first + count; ++k) {
+      const std::vector<std::string> cells = csv_split(row(k));
+      for (std::size_t c = 1; c < labels.size(); ++c) {
+        const std::string cell = c < cells.size() ? cells[c] : std::string();
+        if (text[c]) {
+          strings[c].push_back(cell);
+          continue;
+        }
         char* end = nullptr;
         const double x = std::strtod(cell.c_str(), &end);
-        v.push_back(cell.empty() || *end ? std::nan("") : x);
+        numbers[c].push_back(cell.empty() || *end ? std::nan("") : x);
       }
-      write_doubles(results, name, v, unit, false, file);
+    }
+    for (std::size_t c = 1; c < labels.size(); ++c) {
+      const std::string what = "cannot write " + file + ": dataset results/" + order[c - 1];
+      if (!text[c]) {
+        write_block(result_sets[c], H5T_NATIVE_DOUBLE, first, count, numbers[c].data(), what);
+        continue;
+      }
+      std::vector<const char*> p;
+      for (const std::string& v : strings[c]) p.push_back(v.c_str());
+      write_block(result_sets[c], text_type, first, count, p.data(), what);
     }
   }
   H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);

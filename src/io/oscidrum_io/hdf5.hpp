@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,6 +48,11 @@ class StudyHdf5Writer {
   /// them); then close and rename to PATH.
   void finish(const Study& study, const std::vector<std::size_t>& indices,
               const std::string& header, const std::vector<std::string>& rows);
+
+  /// The same with the rows fetched one at a time, `row(k)` for indices[k]: the tables are
+  /// written in blocks of rows, so that the memory does not grow with the number of cases.
+  void finish(const Study& study, const std::vector<std::size_t>& indices,
+              const std::string& header, const std::function<std::string(std::size_t)>& row);
 
   /// Delete PATH.partial (with --restart).
   static void discard_partial(const std::string& path);
