@@ -2,7 +2,9 @@
 #include "process.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -58,11 +60,27 @@ bool wait_until_catching(pid_t pid, int signal, int timeout_ms) {
   return false;
 }
 
-Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file) {
+Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file,
+               double limit_s) {
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error("waitpid failed");
+  rusage usage{};
   Outcome o;
+  const auto begin = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  };
+  while (true) {
+    const pid_t r = wait4(pid, &status, limit_s > 0 ? WNOHANG : 0, &usage);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) throw std::runtime_error("wait4 failed");
+    if (r == 0 && elapsed() > limit_s && !o.hung) {
+      o.hung = true;
+      ::kill(pid, SIGKILL);
+    }
+    if (r == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  o.seconds = elapsed();
+  o.max_rss_kb = usage.ru_maxrss;
   if (WIFEXITED(status)) o.code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
   o.out = slurp(out_file);

@@ -10,10 +10,13 @@ namespace oscidrum::test {
 
 /// How a child process ended, and what it printed.
 struct Outcome {
-  int code = -1;    ///< exit status; -1 if killed by a signal
-  int signal = 0;   ///< the signal that ended it, or 0
-  std::string out;  ///< stdout
-  std::string err;  ///< stderr
+  int code = -1;        ///< exit status; -1 if killed by a signal
+  int signal = 0;       ///< the signal that ended it, or 0
+  std::string out;      ///< stdout
+  std::string err;      ///< stderr
+  double seconds = 0;   ///< wall time from the call of finish() to the end of the child
+  long max_rss_kb = 0;  ///< the child's peak resident memory [KiB]
+  bool hung = false;    ///< killed by finish() at its time limit
 };
 
 /// Start `oscidrum args...` with stdout and stderr going to files (stdin: /dev/null).
@@ -26,8 +29,10 @@ pid_t start(const std::vector<std::string>& args, const std::string& out_file,
 /// or `timeout_ms` passed first.
 bool wait_until_catching(pid_t pid, int signal, int timeout_ms = 10000);
 
-/// Wait for a started child and collect its output files.
-Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file);
+/// Wait for a started child and collect its output files. With `limit_s` > 0, a child still
+/// running `limit_s` seconds after the call is killed (SIGKILL) and reported as hung.
+Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_file,
+               double limit_s = 0);
 
 /// Run `oscidrum args...` to completion.
 Outcome run(const std::vector<std::string>& args);

@@ -1,0 +1,483 @@
+// A seeded fuzz suite for the command-line tool: the classes of bad input and hostile use that the
+// reliability probes found (malformed and extreme numbers in every numeric flag of every command,
+// outputs that are not regular files, records with shifted clocks, interrupts at random moments,
+// random plausible cases). Each class draws its inputs from one seeded generator and checks what
+// must hold for every input: no crash, no hang, bounded memory, a refused value gives exit code 2
+// and one line naming the flag, a status that is not a steady state carries no metrics, nothing
+// but a regular file is ever replaced.
+//
+// Fast by default (a few dozen draws per class). Longer runs: scripts/fuzz.sh, or the variables
+//   OSCIDRUM_FUZZ_SEED   the seed (default: fixed, so a failure in CI reproduces)
+//   OSCIDRUM_FUZZ_SCALE  draws per class as a multiple of the default (default 1)
+// Every failure prints the seed and the command line to rerun.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+const std::string kSource = OSCIDRUM_SOURCE_DIR;
+
+unsigned seed() {
+  const char* s = std::getenv("OSCIDRUM_FUZZ_SEED");
+  return s != nullptr && *s != '\0' ? static_cast<unsigned>(std::strtoul(s, nullptr, 10))
+                                    : 20261126u;
+}
+
+int draws(int base) {
+  const char* s = std::getenv("OSCIDRUM_FUZZ_SCALE");
+  const double scale = s != nullptr && *s != '\0' ? std::strtod(s, nullptr) : 1.0;
+  return std::max(1, static_cast<int>(std::lround(base * scale)));
+}
+
+std::string joined(const std::vector<std::string>& args) {
+  std::string out = "oscidrum";
+  for (const std::string& a : args) {
+    const bool plain = !a.empty() && a.find_first_of(" '\"\\$`") == std::string::npos;
+    out += " " + (plain ? a : "'" + a + "'");
+  }
+  return out;
+}
+
+std::string reproduce(unsigned s, const std::vector<std::string>& args) {
+  return "seed " + std::to_string(s) + ": " + joined(args);
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// `oscidrum args` in `dir`'s files, killed as hung after `limit_s`.
+Outcome run_limited(const TempDir& dir, const std::vector<std::string>& args, double limit_s) {
+  static int counter = 0;
+  const std::string base = dir / ("p" + std::to_string(counter++));
+  return finish(start(args, base + ".out", base + ".err"), base + ".out", base + ".err", limit_s);
+}
+
+// Files whose name says they are an unfinished output (an atomic write's temporary).
+std::vector<std::string> leftovers(const std::string& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".tmp.") != std::string::npos || name.find(".partial") != std::string::npos)
+      found.push_back(e.path().string());
+  }
+  return found;
+}
+
+// A record of the default case: 48 periods at the CLI's sampling (t, ddx_M, ddz_M columns), long
+// enough for one identification window (40 periods).
+const std::string& default_record(const TempDir& dir) {
+  static std::map<std::string, std::string> made;
+  auto it = made.find(dir.path());
+  if (it != made.end()) return it->second;
+  const std::string path = dir / "record.csv";
+  const Outcome o = run({"run", "--quiet", "--set", "numerics.output_periods=48", "--csv", path});
+  EXPECT_EQ(o.code, 0) << o.err;
+  return made[dir.path()] = path;
+}
+
+// The numeric flags of a command, read from its --help (CLI11 types FLOAT, INT, UINT).
+std::vector<std::pair<std::string, std::string>> numeric_flags(const std::string& command) {
+  const Outcome help = run({command, "--help"});
+  EXPECT_EQ(help.code, 0) << command << ": " << help.err;
+  std::vector<std::pair<std::string, std::string>> flags;
+  for (const std::string& line : lines(help.out)) {
+    std::istringstream in(line);
+    std::string name, type;
+    in >> name >> type;
+    if (name.rfind("--", 0) != 0) continue;
+    if (const auto comma = name.find(','); comma != std::string::npos) name.resize(comma);
+    type = type.substr(0, type.find(':'));  // "FLOAT:POSITIVE", "INT:INT in [2 - 200]"
+    if (type == "FLOAT" || type == "INT" || type == "UINT") flags.emplace_back(name, type);
+  }
+  return flags;
+}
+
+// What a command needs besides the flag under test to get as far as reading it.
+std::vector<std::string> base_args(const std::string& command, const TempDir& dir) {
+  if (command == "analyze" || command == "identify") return {command, default_record(dir)};
+  if (command == "sweep") return {command, kSource + "/examples/table2_sweep.toml"};
+  return {command};
+}
+
+// Texts that are no number at all (or no finite one, or no integer for an integer flag): always
+// refused with exit code 2 and one line naming the flag.
+const std::vector<std::string> kNotNumbers = {
+    "",      " ",   "abc",   "0x10",     "0X1p3",    "nan",      "NaN",
+    "-nan",  "inf", "-inf",  "Infinity", "1e99999",  "-1e99999", "1,5",
+    "1.2.3", "1e",  "e5",    "+",        "-",        "--",       ".",
+    "5 ",    " 5",  "1_000", "\xd9\xa1", "\xff\xfe", "1e5x",     "0b101"};
+const std::vector<std::string> kNotIntegers = {"1.5", "1e3", "2.0", "0.1"};
+// Numbers at the edges: accepted or refused, but never a crash, a hang or gigabytes of memory.
+const std::vector<std::string> kExtremes = {"0",
+                                            "-0",
+                                            "-1",
+                                            "1e-300",
+                                            "1e-9",
+                                            "4.9e-324",
+                                            "1e9",
+                                            "1e308",
+                                            "-1e308",
+                                            "1.7976931348623157e308",
+                                            "2147483648",
+                                            "4294967297",
+                                            "18446744073709551617",
+                                            "0.999999999999",
+                                            "1"};
+
+constexpr double kRefusalSeconds = 10;  // a refusal is instant; this only catches hangs
+constexpr double kRunSeconds = 60;      // an accepted extreme value runs a case or a study
+constexpr long kMemoryKiB = 2L * 1024 * 1024;
+
+void check_refused(const Outcome& o, const std::string& flag, const std::string& repro) {
+  EXPECT_FALSE(o.hung) << "hung: " << repro;
+  EXPECT_EQ(o.signal, 0) << "crashed: " << repro << "\n" << o.err;
+  EXPECT_EQ(o.code, 2) << "accepted: " << repro << "\n" << o.err;
+  EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << repro << "\n" << o.err;
+  EXPECT_EQ(lines(o.err).size(), 1u) << repro << "\n" << o.err;
+  EXPECT_NE(o.err.find(flag), std::string::npos) << "the flag is not named: " << repro << "\n"
+                                                 << o.err;
+  // Raw bytes that are not UTF-8 are escaped in the message, never echoed.
+  for (unsigned char c : o.err) EXPECT_NE(c, 0xffu) << repro;
+}
+
+// Class 1 and 7: every numeric flag of every command refuses what is not a (finite, decimal)
+// number, with the flag's name.
+TEST(FuzzCli, MalformedNumbersInEveryNumericFlagAreRefused) {
+  const unsigned s = seed();
+  std::mt19937 rng(s);
+  TempDir dir;
+  std::vector<std::pair<std::string, std::pair<std::string, std::string>>> all;
+  for (const std::string command :
+       {"run", "sweep", "analyze", "identify", "soil", "transmissibility", "continue"})
+    for (const auto& flag : numeric_flags(command)) all.push_back({command, flag});
+  ASSERT_GT(all.size(), 40u) << "the numeric flags were not found in --help";
+  const int n = draws(60);
+  for (int i = 0; i < n; ++i) {
+    const auto& [command, flag] = all[rng() % all.size()];
+    const bool integer = flag.second != "FLOAT";
+    const bool use_integer_case = integer && rng() % 3 == 0;
+    const std::vector<std::string>& pool = use_integer_case ? kNotIntegers : kNotNumbers;
+    const std::string text = pool[rng() % pool.size()];
+    std::vector<std::string> args = base_args(command, dir);
+    args.push_back(flag.first);
+    args.push_back(text);
+    check_refused(run_limited(dir, args, kRefusalSeconds), flag.first, reproduce(s, args));
+  }
+}
+
+// Class 4: numbers at the edges of every numeric flag: accepted (and then the run ends in time
+// within bounded memory) or refused with one line; never a crash, a hang or gigabytes.
+TEST(FuzzCli, ExtremeNumbersEndInTimeWithBoundedMemory) {
+  const unsigned s = seed() + 1;
+  std::mt19937 rng(s);
+  TempDir dir;
+  std::vector<std::pair<std::string, std::string>> all;
+  for (const std::string command : {"run", "analyze", "identify", "soil", "transmissibility"})
+    for (const auto& flag : numeric_flags(command)) all.push_back({command, flag.first});
+  const int n = draws(40);
+  for (int i = 0; i < n; ++i) {
+    const auto& [command, flag] = all[rng() % all.size()];
+    const std::string text = kExtremes[rng() % kExtremes.size()];
+    std::vector<std::string> args = base_args(command, dir);
+    args.insert(args.end(), {flag, text});
+    // A case's own budget bounds an accepted value that makes it stiff (a suspension damping of
+    // 2e9 N s/m: 14 000 steps per period, 40 s for the default 5000 periods).
+    if (command == "run") args.insert(args.end(), {"--quiet", "--set", "numerics.max_periods=200"});
+    const std::string repro = reproduce(s, args);
+    const Outcome o = run_limited(dir, args, kRunSeconds);
+    if (std::getenv("OSCIDRUM_FUZZ_VERBOSE"))
+      std::cerr << o.seconds << " s, " << o.max_rss_kb / 1024 << " MB, exit " << o.code << ": "
+                << repro << "\n";
+    EXPECT_FALSE(o.hung) << "hung: " << repro;
+    EXPECT_EQ(o.signal, 0) << "crashed: " << repro << "\n" << o.err;
+    EXPECT_LT(o.max_rss_kb, kMemoryKiB) << "memory: " << repro;
+    EXPECT_TRUE(o.code == 0 || o.code == 1 || o.code == 2) << repro << "\n" << o.err;
+    if (o.code == 2) {
+      EXPECT_EQ(lines(o.err).size(), 1u) << repro << "\n" << o.err;
+      EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << repro << "\n" << o.err;
+    }
+  }
+}
+
+// Class 3: a record's clock may start anywhere (and run at any offset): the metrics of analyze do
+// not depend on it.
+TEST(FuzzCli, RecordsWithShiftedClocksGiveTheSameMetrics) {
+  const unsigned s = seed() + 2;
+  std::mt19937 rng(s);
+  TempDir dir;
+  const std::string& record = default_record(dir);
+  const Outcome reference = run({"analyze", record, "--format", "json"});
+  ASSERT_EQ(reference.code, 0) << reference.err;
+  const auto want = nlohmann::json::parse(reference.out);
+  std::ifstream in(record);
+  std::string header;
+  std::getline(in, header);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(in, line);) rows.push_back(line);
+  const int n = draws(8);
+  for (int i = 0; i < n; ++i) {
+    // Offsets from -1e5 s to 1e5 s, on a log scale, either sign.
+    const double offset = (rng() % 2 ? -1.0 : 1.0) *
+                          std::pow(10.0, std::uniform_real_distribution<double>(-3, 5)(rng));
+    const std::string shifted = dir / ("shifted" + std::to_string(i) + ".csv");
+    {
+      std::ofstream out(shifted);
+      out << header << '\n' << std::setprecision(17);
+      for (const std::string& row : rows) {
+        const auto comma = row.find(',');
+        out << std::stod(row.substr(0, comma)) + offset << row.substr(comma) << '\n';
+      }
+    }
+    const std::vector<std::string> args = {"analyze", shifted, "--format", "json"};
+    const std::string repro = reproduce(s, args) + " (t shifted by " + std::to_string(offset) + ")";
+    const Outcome o = run_limited(dir, args, kRefusalSeconds);
+    ASSERT_EQ(o.signal, 0) << "crashed: " << repro;
+    ASSERT_EQ(o.code, 0) << repro << "\n" << o.err;
+    const auto got = nlohmann::json::parse(o.out);
+    for (const char* key : {"f", "ddx_max", "ddz_min", "psi_xz", "area"}) {
+      ASSERT_TRUE(want.contains(key) && want[key].is_number()) << key;
+      ASSERT_TRUE(got.contains(key) && got[key].is_number()) << key << ": " << repro;
+      const double a = want[key].get<double>();
+      const double b = got[key].get<double>();
+      // The times are written with 17 digits: what moves is the fit's rounding (~1e-12 of the
+      // offset relative to the period), far below this.
+      EXPECT_NEAR(b, a, 1e-6 * std::abs(a)) << key << ": " << repro;
+    }
+  }
+}
+
+// Class 1: outputs that are not regular files are never replaced: a symbolic link is written
+// through (atomically at its target), a FIFO or character device is written directly, a
+// directory is refused with one line; nothing half-written is left behind.
+TEST(FuzzCli, OutputsThatAreNotRegularFilesAreNeverReplaced) {
+  const unsigned s = seed() + 3;
+  std::mt19937 rng(s);
+  const int n = draws(12);
+  for (int i = 0; i < n; ++i) {
+    TempDir dir;
+    const std::string& record = default_record(dir);
+    // A writer: (command..., flag)
+    const std::vector<std::pair<std::vector<std::string>, std::string>> writers = {
+        {{"run", "--quiet"}, "--csv"},
+        {{"run", "--quiet"}, "--json"},
+        {{"identify", record, "--quiet"}, "--csv"},
+        {{"identify", record, "--quiet"}, "--json"},
+        {{"sweep", kSource + "/examples/table2_sweep.toml", "--quiet"}, "--out"},
+    };
+    const auto& [command, flag] = writers[rng() % writers.size()];
+    enum Kind { link_to_file, dangling_link, link_chain, fifo, dev_null, directory, link_to_dir };
+    const Kind kind = static_cast<Kind>(rng() % 7);
+    std::string path = dir / "out.dat";
+    std::string target = dir / "target.dat";
+    switch (kind) {
+      case link_to_file:
+        std::ofstream(target) << "old\n";
+        std::filesystem::create_symlink("target.dat", path);
+        break;
+      case dangling_link:
+        std::filesystem::create_symlink("target.dat", path);
+        break;
+      case link_chain:
+        std::ofstream(target) << "old\n";
+        std::filesystem::create_symlink("target.dat", dir / "middle.dat");
+        std::filesystem::create_symlink("middle.dat", path);
+        break;
+      case fifo:
+        ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+        break;
+      case dev_null:
+        path = "/dev/null";
+        break;
+      case directory:
+        std::filesystem::create_directory(path);
+        break;
+      case link_to_dir:
+        std::filesystem::create_directory(target);
+        std::filesystem::create_symlink("target.dat", path);
+        break;
+    }
+    struct stat before {};
+    ASSERT_EQ(::lstat(path.c_str(), &before), 0);
+    std::vector<std::string> args = command;
+    args.insert(args.end(), {flag, path});
+    const std::string repro = reproduce(s, args) + " (output kind " + std::to_string(kind) + ")";
+    std::string fifo_text;
+    std::thread reader;
+    if (kind == fifo)
+      reader = std::thread([&] {
+        std::ifstream in(path);
+        std::stringstream text;
+        text << in.rdbuf();
+        fifo_text = text.str();
+      });
+    const Outcome o = run_limited(dir, args, kRunSeconds);
+    if (reader.joinable()) reader.join();
+    EXPECT_FALSE(o.hung) << repro;
+    EXPECT_EQ(o.signal, 0) << "crashed: " << repro << "\n" << o.err;
+    struct stat after {};
+    ASSERT_EQ(::lstat(path.c_str(), &after), 0) << repro;
+    EXPECT_EQ(before.st_mode & S_IFMT, after.st_mode & S_IFMT) << "replaced: " << repro;
+    if (kind == dev_null) {
+      EXPECT_EQ(before.st_rdev, after.st_rdev) << repro;
+    }
+    if (kind == directory || kind == link_to_dir) {
+      EXPECT_EQ(o.code, 2) << repro << "\n" << o.err;
+      EXPECT_EQ(lines(o.err).size(), 1u) << repro << "\n" << o.err;
+      EXPECT_NE(o.err.find("directory"), std::string::npos) << repro << "\n" << o.err;
+    } else {
+      // Written (exit 0, or 1 when a run or window is not steady / ok, which still writes).
+      EXPECT_TRUE(o.code == 0 || o.code == 1) << repro << "\n" << o.err;
+      if (kind == link_to_file || kind == dangling_link || kind == link_chain) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(target)) << repro;
+        EXPECT_NE(slurp(target), "old\n") << "not written through the link: " << repro;
+        EXPECT_GT(slurp(target).size(), 10u) << repro;
+      }
+      if (kind == fifo) {
+        EXPECT_GT(fifo_text.size(), 10u) << repro;
+      }
+    }
+    EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{}) << repro;
+  }
+}
+
+// Class 6 and 5: random plausible cases (soil, friction, driving torque, frequency, trough) end
+// with a status; a status that is not a steady state carries no metrics; a drum driven beyond
+// what friction can hold is reported as slipping through, not as an unfinished run.
+TEST(FuzzCli, RandomPlausibleCasesEndWithAnHonestStatus) {
+  const unsigned s = seed() + 4;
+  std::mt19937 rng(s);
+  TempDir dir;
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
+  auto text = [](double v) {
+    std::ostringstream out;
+    out << std::setprecision(6) << v;
+    return out.str();
+  };
+  const std::set<std::string> statuses = {"steady_state", "max_periods_reached", "contact_lost",
+                                          "chattering",   "non_finite",          "invalid_geometry",
+                                          "gross_slip",   "budget_exceeded"};
+  // The roller's static load W = P0 [N] and radius r [m], from its defaults.
+  const Outcome defaults = run({"run", "--quiet", "--format", "json"});
+  ASSERT_EQ(defaults.code, 0) << defaults.err;
+  const auto parameters = nlohmann::json::parse(defaults.out)["parameters"];
+  const double W = parameters["roller.P0"].get<double>();
+  const double r = parameters["roller.r"].get<double>();
+  const int n = draws(16);
+  for (int i = 0; i < n; ++i) {
+    const double G = std::exp(uniform(std::log(5.0), std::log(150.0)));
+    const bool pure_rolling = rng() % 4 == 0;
+    const double mu = uniform(0.2, 1.0);
+    // MMd as a multiple of mu W r: none, within what friction holds, or beyond it.
+    const double spin = rng() % 3 == 0 ? 0.0 : uniform(0.0, 1.5);
+    const double f = uniform(20.0, 60.0);
+    std::vector<std::string> args = {"run",      "--quiet",
+                                     "--format", "json",
+                                     "--set",    "soil.input=modulus",
+                                     "--set",    "soil.G=" + text(G * 1e6),
+                                     "--f",      text(f)};
+    if (pure_rolling)
+      args.push_back("--pure-rolling");
+    else
+      args.insert(args.end(), {"--mu", text(mu)});
+    if (!pure_rolling) args.insert(args.end(), {"--MMd", text(spin * mu * W * r)});
+    if (rng() % 2) args.insert(args.end(), {"--R", text(uniform(0.62, 1.5))});
+    const std::string repro = reproduce(s, args);
+    const Outcome o = run_limited(dir, args, kRunSeconds);
+    if (std::getenv("OSCIDRUM_FUZZ_VERBOSE"))
+      std::cerr << o.seconds << " s, exit " << o.code << ": " << repro << "\n";
+    ASSERT_FALSE(o.hung) << repro;
+    ASSERT_EQ(o.signal, 0) << "crashed: " << repro << "\n" << o.err;
+    ASSERT_TRUE(o.code == 0 || o.code == 1) << repro << "\n" << o.err;
+    const auto j = nlohmann::json::parse(o.out);
+    const std::string status = j["status"].get<std::string>();
+    EXPECT_TRUE(statuses.count(status)) << status << ": " << repro;
+    EXPECT_EQ(o.code == 0, status == "steady_state") << repro;
+    if (status != "steady_state") {
+      EXPECT_TRUE(j["metrics"].is_null()) << "metrics beside " << status << ": " << repro;
+    } else {
+      // (Ratios to a fundamental that vanishes by symmetry are null in a steady state too.)
+      for (const char* key : {"ddx_max", "ddx_min", "ddz_max", "ddz_min", "area", "delta_max",
+                              "stick_fraction", "slip_fraction"})
+        EXPECT_TRUE(j["metrics"][key].is_number()) << key << " in a steady state: " << repro;
+    }
+    // MMd beyond what friction can carry at the static load (mu W r, W = P0; the mean of N is
+    // at most W): the drum spins, reported as such and not as an unfinished run.
+    if (!pure_rolling && spin > 1.02) {
+      EXPECT_EQ(status, "gross_slip") << "MMd = " << spin << " mu W r: " << repro;
+    }
+  }
+}
+
+// Class 2: every command stops within 1 s of SIGINT or SIGTERM (exit 130 or 143), at a random
+// moment, and leaves no half-written output.
+TEST(FuzzCli, InterruptsAtRandomMomentsStopEveryCommandPromptly) {
+  const unsigned s = seed() + 5;
+  std::mt19937 rng(s);
+  const int n = draws(8);
+  for (int i = 0; i < n; ++i) {
+    TempDir dir;
+    const std::string& record = default_record(dir);
+    const std::vector<std::vector<std::string>> commands = {
+        {"run", "--set", "numerics.output_periods=1000", "--set",
+         "numerics.samples_per_period=10000", "--set", "numerics.max_multiplicity=1", "--csv",
+         dir / "s.csv", "--json", dir / "s.json"},
+        {"run", "--f", "0.1", "--csv", dir / "s.csv"},
+        {"sweep", kSource + "/bench/sweep/memory.toml", "--out", dir / "sweep.csv", "--threads",
+         "1"},
+        {"identify", record, "--window", "4", "--hop", "0.05", "--csv", dir / "id.csv"},
+        {"analyze", record, "--window", "1", "--hop", "0.001", "--format", "json"},
+    };
+    const std::vector<std::string>& args = commands[rng() % commands.size()];
+    const int sig = rng() % 2 ? SIGINT : SIGTERM;
+    const int delay_ms = static_cast<int>(20 + rng() % 400);
+    const std::string repro = reproduce(s, args) + " (signal " + std::to_string(sig) + " after " +
+                              std::to_string(delay_ms) + " ms)";
+    const pid_t pid = start(args, dir / "out", dir / "err");
+    ASSERT_TRUE(wait_until_catching(pid, sig)) << repro;
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    const bool sent = ::kill(pid, sig) == 0;
+    const Outcome o = finish(pid, dir / "out", dir / "err", 30);
+    ASSERT_FALSE(o.hung) << repro;
+    EXPECT_EQ(o.signal, 0) << repro;
+    if (o.code == 0 || o.code == 1) continue;  // it had finished before the signal
+    ASSERT_TRUE(sent) << repro;
+    EXPECT_EQ(o.code, 128 + sig) << repro << "\n" << o.err;
+#ifndef OSCIDRUM_SANITIZED  // the sanitizers' own exit work is not the command's
+    EXPECT_LT(o.seconds, 1.0) << "stopped " << o.seconds << " s after the signal: " << repro;
+#endif
+    EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{}) << repro;
+    for (const char* name : {"s.csv", "s.json"})
+      EXPECT_FALSE(std::filesystem::exists(dir / name)) << name << ": " << repro;
+  }
+}
+
+}  // namespace
+}  // namespace oscidrum::test
