@@ -189,17 +189,20 @@ SweepPlan plan_sweep(const SweepOptions& o) {
 
 // --list: the expanded cases, nothing run.
 int list_cases(const SweepPlan& p) {
-  TextTable t;
-  t.header = {"case"};
-  for (const std::string& k : p.study.keys) t.header.push_back(k);
-  t.right.assign(t.header.size(), true);
-  for (std::size_t i = 0; i < p.total; ++i) {
-    if (!p.mine[i]) continue;
-    std::vector<std::string> row = {std::to_string(i)};
-    for (const io::Value& v : p.study.varied[i]) row.push_back(io::format_value(v));
-    t.rows.push_back(row);
-  }
-  std::cout << t.text() << p.n_mine << " cases";
+  // Streamed: a million-case study is listed without holding its table.
+  std::vector<std::string> header = {"case"};
+  for (const std::string& k : p.study.keys) header.push_back(k);
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < p.total; ++i)
+    if (p.mine[i]) mine.push_back(i);
+  write_text_table(std::cout, header, std::vector<bool>(header.size(), true), mine.size(),
+                   [&](std::size_t k) {
+                     std::vector<std::string> row = {std::to_string(mine[k])};
+                     for (const io::Value& v : p.study.varied[mine[k]])
+                       row.push_back(io::format_value(v));
+                     return row;
+                   });
+  std::cout << p.n_mine << " cases";
   if (p.sharded) std::cout << " (shard " << p.shard.text() << " of a study of " << p.total << ")";
   std::cout << "\n";
   return kExitOk;
@@ -337,13 +340,15 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
         o.hdf5, io::Hdf5StudyInfo{p.fingerprint, p.total, p.sharded, p.shard}, o.resume);
   }
   if (out.journal) {
-    for (const auto& [index, row] : out.journal->done()) {
-      const std::string file = o.cases_dir + "/" + case_file_name(index, p.total);
-      if (!p.mine[index] || out.rows->has(index)) continue;
-      if (!o.cases_dir.empty() && !std::filesystem::exists(file)) continue;
-      if (out.hdf5 && !out.hdf5->has_case(index)) continue;  // run again for its steady state
+    // Streamed from the journal into the row store: a resumed million-case sweep holds no rows.
+    out.journal->for_each_done([&](std::size_t index, const std::string& row) {
+      if (!p.mine[index] || out.rows->has(index)) return;
+      if (!o.cases_dir.empty() &&
+          !std::filesystem::exists(o.cases_dir + "/" + case_file_name(index, p.total)))
+        return;
+      if (out.hdf5 && !out.hdf5->has_case(index)) return;  // run again for its steady state
       out.add(index, row, p.study.keys.size());
-    }
+    });
   }
   return out;
 }

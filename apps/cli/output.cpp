@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/text.hpp"
@@ -26,13 +27,17 @@ std::string fmt(double v, int digits) {
   return buf;
 }
 
-std::string TextTable::text() const {
+void write_text_table(std::ostream& os, const std::vector<std::string>& header,
+                      const std::vector<bool>& right, std::size_t n_rows,
+                      const std::function<std::vector<std::string>(std::size_t)>& row) {
   std::vector<std::size_t> width(header.size(), 0);
   for (std::size_t i = 0; i < header.size(); ++i) width[i] = header[i].size();
-  for (const auto& row : rows)
-    for (std::size_t i = 0; i < row.size() && i < width.size(); ++i)
-      width[i] = std::max(width[i], row[i].size());
-  auto emit = [&](const std::vector<std::string>& cells, std::string& out) {
+  for (std::size_t k = 0; k < n_rows; ++k) {
+    const std::vector<std::string> cells = row(k);
+    for (std::size_t i = 0; i < cells.size() && i < width.size(); ++i)
+      width[i] = std::max(width[i], cells[i].size());
+  }
+  auto emit = [&](const std::vector<std::string>& cells) {
     std::string line;
     for (std::size_t i = 0; i < width.size(); ++i) {
       const std::string cell = i < cells.size() ? cells[i] : std::string();
@@ -41,15 +46,19 @@ std::string TextTable::text() const {
       line += (i ? "  " : "") + (r ? pad + cell : cell + (i + 1 < width.size() ? pad : ""));
     }
     while (!line.empty() && line.back() == ' ') line.pop_back();
-    out += line + "\n";
+    os << line << '\n';
   };
-  std::string out;
-  emit(header, out);
+  emit(header);
   std::vector<std::string> rule;
   for (std::size_t w : width) rule.emplace_back(w, '-');
-  emit(rule, out);
-  for (const auto& row : rows) emit(row, out);
-  return out;
+  emit(rule);
+  for (std::size_t k = 0; k < n_rows; ++k) emit(row(k));
+}
+
+std::string TextTable::text() const {
+  std::ostringstream out;
+  write_text_table(out, header, right, rows.size(), [&](std::size_t k) { return rows[k]; });
+  return out.str();
 }
 
 std::string TextTable::csv() const {

@@ -2,6 +2,8 @@
 // progress, warnings and errors.
 #pragma once
 
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,12 @@ struct TextTable {
   std::string csv() const;
   std::string markdown() const;
 };
+
+/// The layout of TextTable::text() for `n_rows` rows fetched one at a time by `row(k)` (twice:
+/// once for the column widths, once to write), so that a long table needs no memory per row.
+void write_text_table(std::ostream& os, const std::vector<std::string>& header,
+                      const std::vector<bool>& right, std::size_t n_rows,
+                      const std::function<std::vector<std::string>(std::size_t)>& row);
 
 /// A summary for people: sections of (label, value) lines, values aligned.
 class Summary {

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cinttypes>
@@ -13,7 +14,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <streambuf>
+#include <utility>
 #include <vector>
 
 #include "oscidrum/error.hpp"
@@ -260,58 +264,100 @@ Journal::Journal(std::string path, std::uint64_t fingerprint, std::size_t n_case
   }
 }
 
+namespace {
+
+// The lines of the open file `fd` from offset 0, read in blocks (never the whole file at once):
+// `on_line(line, end)` for each complete line, `end` the offset just past its '\n'; returns the
+// bytes after the last complete line (a torn last line) as `tail`. Stops early when `on_line`
+// returns false.
+void read_lines(int fd, const std::string& path,
+                const std::function<bool(const std::string&, std::size_t)>& on_line,
+                std::size_t limit, std::string* tail) {
+  std::string pending;
+  std::size_t offset = 0;  // of the first byte of `pending`
+  std::vector<char> buf(1 << 16);
+  while (offset + pending.size() < limit) {
+    const std::size_t want = std::min(buf.size(), limit - offset - pending.size());
+    const ssize_t n = ::pread(fd, buf.data(), want, static_cast<off_t>(offset + pending.size()));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw Error("cannot read " + path + ": " + std::strerror(errno));
+    if (n == 0) break;
+    pending.append(buf.data(), static_cast<std::size_t>(n));
+    std::size_t start = 0;
+    for (std::size_t nl; (nl = pending.find('\n', start)) != std::string::npos; start = nl + 1)
+      if (!on_line(pending.substr(start, nl - start), offset + nl + 1)) return;
+    offset += start;
+    pending.erase(0, start);
+  }
+  if (tail) *tail = pending;
+}
+
+}  // namespace
+
 void Journal::open_locked(const std::string& header, std::size_t n_cases, bool resume,
                           bool restart) {
-  std::string text;
+  // Read line by line: a million-case journal is checked without holding it.
+  std::size_t good_bytes = 0, lines = 0;
+  bool same = false;
+  std::string tail;
   if (!restart) {
-    char buf[65536];
-    while (true) {
-      const ssize_t n = ::read(fd_, buf, sizeof buf);
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) throw Error("cannot read " + path_ + ": " + std::strerror(errno));
-      if (n == 0) break;
-      text.append(buf, static_cast<std::size_t>(n));
-    }
+    read_lines(
+        fd_, path_,
+        [&](const std::string& line, std::size_t end) {
+          if (lines++ == 0) {
+            same = line == header;
+            good_bytes = end;
+            return true;
+          }
+          if (!(resume && same)) return true;
+          char* stop = nullptr;
+          const unsigned long long index = std::strtoull(line.c_str(), &stop, 10);
+          if (stop == line.c_str() || *stop != ',' || index >= n_cases)
+            throw Error("the journal " + path_ + " is damaged (line: " + line.substr(0, 60) +
+                        "); run with --restart to discard it");
+          good_bytes = end;
+          return true;
+        },
+        std::numeric_limits<std::size_t>::max(), &tail);
   }
-  std::size_t good_bytes = 0;
   // An empty journal, or one whose header line was cut short (killed while it was being
   // written), holds no finished case: start it afresh.
-  const std::size_t pos = text.find('\n');
-  const bool no_cases = pos == std::string::npos && header.starts_with(text);
-  if (!text.empty() && !no_cases) {
-    std::size_t count = 0;
-    const bool same = pos != std::string::npos && text.compare(0, pos, header) == 0;
-    if (!resume || !same) {
-      for (char ch : text) count += (ch == '\n');
-      if (!resume)
-        throw Error("an unfinished sweep left the journal " + path_ + " (" +
-                    std::to_string(count ? count - 1 : 0) +
-                    " cases done); run again with --resume to finish it, or with --restart to "
-                    "discard it");
+  const bool no_cases = lines == 0 && header.starts_with(tail);
+  if (!restart && !no_cases && (lines > 0 || !tail.empty())) {
+    if (!resume)
+      throw Error("an unfinished sweep left the journal " + path_ + " (" +
+                  std::to_string(lines ? lines - 1 : 0) +
+                  " cases done); run again with --resume to finish it, or with --restart to "
+                  "discard it");
+    if (!same)
       throw Error("the journal " + path_ +
                   " belongs to a different study (its cases or output "
                   "columns changed); run with --restart to discard it and start over");
-    }
-    good_bytes = pos + 1;
-    while (true) {
-      const std::size_t end = text.find('\n', good_bytes);
-      if (end == std::string::npos) break;  // a torn last line (killed while writing): dropped
-      const std::string line = text.substr(good_bytes, end - good_bytes);
-      char* stop = nullptr;
-      const unsigned long long index = std::strtoull(line.c_str(), &stop, 10);
-      if (stop == line.c_str() || *stop != ',' || index >= n_cases)
-        throw Error("the journal " + path_ + " is damaged (line: " + line.substr(0, 60) +
-                    "); run with --restart to discard it");
-      done_.emplace(static_cast<std::size_t>(index), line);
-      good_bytes = end + 1;
-    }
+  } else {
+    good_bytes = 0;
   }
+  // A torn last line (killed while writing) is dropped.
+  good_bytes_ = good_bytes;
   if (::ftruncate(fd_, static_cast<off_t>(good_bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
     throw Error("cannot write " + path_ + ": " + std::strerror(errno));
   if (good_bytes == 0) {
     write_all(fd_, header + "\n", path_);
     ::fsync(fd_);
   }
+}
+
+void Journal::for_each_done(
+    const std::function<void(std::size_t index, const std::string& row)>& row) const {
+  if (good_bytes_ == 0 || fd_ < 0) return;
+  bool first = true;
+  read_lines(
+      fd_, path_,
+      [&](const std::string& line, std::size_t) {
+        if (std::exchange(first, false)) return true;  // the header
+        row(static_cast<std::size_t>(std::strtoull(line.c_str(), nullptr, 10)), line);
+        return true;
+      },
+      good_bytes_, nullptr);
 }
 
 Journal::~Journal() {

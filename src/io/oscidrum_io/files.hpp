@@ -84,8 +84,11 @@ class Journal {
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
-  /// Rows finished in earlier runs, by case index.
-  const std::map<std::size_t, std::string>& done() const { return done_; }
+  /// The rows finished in earlier runs, in the order they were written (a case run twice, as
+  /// after a kill between its row and the next flush, comes twice: the first one counts), read
+  /// from the file one at a time.
+  void for_each_done(
+      const std::function<void(std::size_t index, const std::string& row)>& row) const;
 
   /// Record a finished case (its row, without line break, starting with its index).
   void append(std::size_t index, const std::string& row);
@@ -100,7 +103,7 @@ class Journal {
 
   std::string path_;
   int fd_ = -1;
-  std::map<std::size_t, std::string> done_;
+  std::size_t good_bytes_ = 0;  // the header and the finished rows found when opened
 };
 
 /// Delete a file if it exists (no error if it does not).
