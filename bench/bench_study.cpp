@@ -4,6 +4,9 @@
 // second (per core: one thread).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "oscidrum/oscidrum.hpp"
 
 namespace {
@@ -48,6 +51,64 @@ void run(benchmark::State& state, bool continuation) {
   state.counters["warm_started"] = warm;
   state.counters["period_equivalents"] = equivalents / n;
 }
+
+// The study a user would write (the performance issue's measure): soil by Appendix B, G = 5 ... 100
+// MN/m^2 in 400 steps x mu in {0.4, 0.5, 0.6} x MMd_fraction in {0, 0.05} = 2400 cases, the first
+// key varying slowest (as a study file's product expands).
+std::vector<oscidrum::Case> product_sweep(bool continuation) {
+  std::vector<oscidrum::Case> cases;
+  for (int i = 0; i < 400; ++i)
+    for (double mu : {0.4, 0.5, 0.6})
+      for (double fraction : {0.0, 0.05}) {
+        oscidrum::Case c;
+        c.numerics.method = oscidrum::SteadyMethod::shooting;
+        c.numerics.continuation = continuation;
+        c.soil.input = oscidrum::SoilInput::modulus;
+        c.soil.G = 5e6 + (100e6 - 5e6) * i / 399.0;
+        c.contact.mu = mu;
+        c.MMd = fraction * c.roller.M0;
+        cases.push_back(c);
+      }
+  return cases;
+}
+
+void run_product(benchmark::State& state, bool continuation) {
+  const std::vector<oscidrum::Case> cases = product_sweep(continuation);
+  oscidrum::StudyOptions options;
+  options.threads = static_cast<int>(state.range(0));
+  std::vector<oscidrum::CaseOutcome> out;
+  for (auto _ : state) {
+    out = oscidrum::run_study(cases, options);
+    benchmark::DoNotOptimize(out.data());
+  }
+  std::vector<double> warm_work;
+  double warm = 0, steady = 0;
+  for (const oscidrum::CaseOutcome& o : out) {
+    steady += o.valid && o.result.status == oscidrum::Status::steady_state;
+    if (o.valid && o.result.diagnostics.warm_start == 1) {
+      ++warm;
+      warm_work.push_back(o.result.diagnostics.period_equivalents);
+    }
+  }
+  const double n = static_cast<double>(cases.size());
+  state.counters["cases_per_s"] =
+      benchmark::Counter(n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["steady"] = steady;
+  state.counters["warm_started"] = warm;
+  if (!warm_work.empty()) {
+    std::nth_element(warm_work.begin(), warm_work.begin() + warm_work.size() / 2, warm_work.end());
+    state.counters["warm_median_period_eq"] = warm_work[warm_work.size() / 2];
+  }
+}
+
+void BM_ProductSweep_Continuation(benchmark::State& s) { run_product(s, true); }
+void BM_ProductSweep_FromRest(benchmark::State& s) { run_product(s, false); }
+BENCHMARK(BM_ProductSweep_Continuation)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ProductSweep_FromRest)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Table2Sweep_Shooting_Continuation(benchmark::State& s) { run(s, true); }
 void BM_Table2Sweep_Shooting_FromRest(benchmark::State& s) { run(s, false); }
