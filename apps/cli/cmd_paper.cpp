@@ -28,6 +28,7 @@ struct PaperOptions {
 int run(const PaperOptions& o) {
   if (o.out.empty()) throw Error("--out needs a directory name; got an empty one");
   std::error_code ec;
+  const bool existed = std::filesystem::exists(o.out, ec);
   std::filesystem::create_directories(o.out, ec);
   if (ec || !std::filesystem::is_directory(o.out))
     throw Error("--out " + o.out + ": cannot create the directory" +
@@ -39,6 +40,8 @@ int run(const PaperOptions& o) {
   // paper.py exits 0 when every claim agrees and 1 (with the report written) when one does not.
   const int status = run_python(args, "writing the validation table alone", {1});
   if (interrupted()) {  // paper.py removed what it had started: nothing partial is left
+    // Nor the folder, when this run made it and it stayed empty.
+    if (!existed && std::filesystem::is_empty(o.out, ec)) std::filesystem::remove(o.out, ec);
     std::cerr << "oscidrum: interrupted; nothing written\n";
     return interrupted_exit_code();
   }

@@ -454,6 +454,9 @@ TEST(FuzzCli, InterruptsAtRandomMomentsStopEveryCommandPromptly) {
          "1"},
         {"identify", record, "--window", "4", "--hop", "0.05", "--csv", dir / "id.csv"},
         {"analyze", record, "--window", "1", "--hop", "0.001", "--format", "json"},
+#ifdef OSCIDRUM_WITH_PYTHON  // paper runs the Python package
+        {"paper", "--out", dir / "paper", "--threads", "1"},
+#endif
     };
     const std::vector<std::string>& args = commands[rng() % commands.size()];
     const int sig = rng() % 2 ? SIGINT : SIGTERM;
@@ -474,7 +477,7 @@ TEST(FuzzCli, InterruptsAtRandomMomentsStopEveryCommandPromptly) {
     EXPECT_LT(o.seconds, 1.0) << "stopped " << o.seconds << " s after the signal: " << repro;
 #endif
     EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{}) << repro;
-    for (const char* name : {"s.csv", "s.json"})
+    for (const char* name : {"s.csv", "s.json", "paper"})
       EXPECT_FALSE(std::filesystem::exists(dir / name)) << name << ": " << repro;
   }
 }
