@@ -209,7 +209,8 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   // they do not depend on where the grid falls on the waveform (on the record's clock): the grid
   // alone is off by up to about (pi / 1024)^2 / 2 of the curvature, ~1e-5 relative.
   const auto extreme = [&](const Eigen::VectorXd& c, int j) {
-    double tj = static_cast<double>(j) / (kSamples * f);
+    const double t_grid = static_cast<double>(j) / (kSamples * f);
+    double tj = t_grid;
     double value = 0.0;
     for (int iteration = 0; iteration < 8; ++iteration) {
       double s0 = c[0], s1 = 0.0, s2 = 0.0;
@@ -221,21 +222,32 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
         s2 -= w * w * (a * cs + b * sn);
       }
       value = s0;
-      // A step only where the series curves the right way and stays within half a grid cell.
+      // A step only while it stays within one grid cell of the grid's extremum: a discrete
+      // extremum (no neighbour beats it) brackets the true one between its two neighbours, which
+      // may lie anywhere there, also about half a cell away.
       if (!(s2 != 0.0)) break;
       const double step = -s1 / s2;
-      if (!(std::abs(step) < 0.5 / (kSamples * f))) break;
+      if (!(std::abs(tj + step - t_grid) <= 1.0 / (kSamples * f))) break;
       tj += step;
       if (std::abs(step) < 1e-15 / f) break;
     }
     return value;
   };
+  // Every local extremum of the grid is refined (a trigonometric polynomial of degree n_max has
+  // at most 2 n_max of them): two nearly equal peaks may swap places once refined.
   const auto pick = [&](const Eigen::VectorXd& c, const std::vector<double>& v, bool largest) {
-    const auto it =
-        largest ? std::max_element(v.begin(), v.end()) : std::min_element(v.begin(), v.end());
-    const double refined = extreme(c, static_cast<int>(it - v.begin()));
-    // Newton may only improve on the grid.
-    return largest ? std::max(*it, refined) : std::min(*it, refined);
+    const auto better = [largest](double a, double b) { return largest ? a > b : a < b; };
+    double best =
+        largest ? *std::max_element(v.begin(), v.end()) : *std::min_element(v.begin(), v.end());
+    for (int j = 0; j < kSamples; ++j) {
+      const double before = v[static_cast<std::size_t>((j + kSamples - 1) % kSamples)],
+                   after = v[static_cast<std::size_t>((j + 1) % kSamples)];
+      const double here = v[static_cast<std::size_t>(j)];
+      if (better(before, here) || better(after, here)) continue;
+      const double refined = extreme(c, j);
+      if (better(refined, best)) best = refined;  // Newton may only improve on the grid
+    }
+    return best;
   };
   m.ddx_min = pick(cx, x, false);
   m.ddx_max = pick(cx, x, true);
