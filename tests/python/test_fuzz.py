@@ -90,7 +90,7 @@ def test_size_like_arguments_are_bounded(record):
 def test_double_naming_is_refused():
     rng = random.Random(SEED + 2)
     aliases = oscidrum.Case.aliases()
-    pairs = list(aliases.items())
+    pairs = [(short, dotted) for short, dotted in aliases.items() if short != dotted]
     for _ in range(draws(10)):
         short, dotted = rng.choice(pairs)
         with pytest.raises(ValueError):
