@@ -76,6 +76,11 @@ void run_product(benchmark::State& state, bool continuation) {
   const std::vector<oscidrum::Case> cases = product_sweep(continuation);
   oscidrum::StudyOptions options;
   options.threads = static_cast<int>(state.range(0));
+  // Chained along G, the factor with the most values, as `oscidrum sweep` chains a study: each
+  // case starts from the case 6 rows before it (same mu and MMd_fraction, the previous G).
+  options.previous.assign(cases.size(), -1);
+  for (std::size_t k = 6; k < cases.size(); ++k)
+    options.previous[k] = static_cast<std::ptrdiff_t>(k - 6);
   std::vector<oscidrum::CaseOutcome> out;
   for (auto _ : state) {
     out = oscidrum::run_study(cases, options);

@@ -9,6 +9,7 @@ packages=(
   libtomlplusplus-dev           # config files
   nlohmann-json3-dev            # JSON output
   libhdf5-dev                   # sweep --hdf5 (HDF5 C library)
+  zlib1g-dev                    # sweep --hdf5: chunks deflated in the worker threads
   libcli11-dev                  # command-line parsing
   libeigen3-dev                 # independent linear solves in the tests
   libgtest-dev libgmock-dev     # unit tests

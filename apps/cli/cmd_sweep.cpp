@@ -15,6 +15,8 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -374,6 +376,11 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
   options.keep_outcomes = false;  // every outcome is used in on_case_done and dropped
   // The steady states' samples only for the files that hold them.
   options.samples_in_callback = !o.cases_dir.empty() || out.hdf5 != nullptr;
+  // Called by the workers concurrently: the row, the case file and the compression of the steady
+  // state for the HDF5 file are made in parallel; the HDF5 file, the journal and the row store
+  // (which are shared) one case at a time.
+  options.concurrent_on_case_done = true;
+  std::mutex shared;
   options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
     const std::size_t g = pending[i];
     const std::string row = io::study_csv_row(p.columns, g, p.study.varied[g], outcome);
@@ -382,7 +389,10 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
       io::write_steady_state_csv(csv, outcome.result);
       io::write_file_atomic(o.cases_dir + "/" + case_file_name(g, p.total), csv.str());
     }
-    if (out.hdf5) out.hdf5->add_case(g, outcome);
+    std::optional<io::StudyHdf5Writer::PreparedCase> prepared;
+    if (out.hdf5) prepared = io::StudyHdf5Writer::prepare(outcome);
+    const std::lock_guard lock(shared);
+    if (out.hdf5) out.hdf5->add_case(g, outcome, *prepared);
     if (out.journal) out.journal->append(g, row);
     out.add(g, row, p.study.keys.size());
   };

@@ -28,6 +28,10 @@ struct StudyOptions {
   /// Called from worker threads, serialised by the runner, after each case (index into the
   /// input, outcome). Use it to stream results to disk.
   std::function<void(std::size_t index, const CaseOutcome& outcome)> on_case_done;
+  /// True: on_case_done is called from the worker threads concurrently, not serialised (it
+  /// must be thread-safe and serialise what needs it itself), so that expensive work in it
+  /// (formatting, compressing a steady state) runs in parallel. progress stays serialised.
+  bool concurrent_on_case_done = false;
   /// Whether on_case_done receives each case's samples. False: a case's samples are not taken
   /// unless keep_samples (the periods are integrated all the same, so every number of the
   /// outcome is the same); a study that keeps only the metrics then runs faster.

@@ -114,10 +114,19 @@ void work(Pool& pool) {
                                     &interrupted, warm ? &*warm : nullptr, &orbit);
       if (interrupted) return;  // stays "cancelled"; never reported as done
       warm = std::move(orbit);
+      std::exception_ptr failed;
+      if (opt.on_case_done && opt.concurrent_on_case_done) {
+        try {
+          opt.on_case_done(i, outcome);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+      }
       std::lock_guard lock(pool.mutex);
       try {
+        if (failed) std::rethrow_exception(failed);
         ++pool.done;
-        if (opt.on_case_done) opt.on_case_done(i, outcome);
+        if (opt.on_case_done && !opt.concurrent_on_case_done) opt.on_case_done(i, outcome);
         if (opt.progress) opt.progress(pool.done, pool.count);
       } catch (...) {
         if (!pool.error) pool.error = std::current_exception();

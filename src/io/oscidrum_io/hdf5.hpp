@@ -40,8 +40,19 @@ class StudyHdf5Writer {
   /// True if the partial file already holds case `index` (from an earlier, interrupted run).
   bool has_case(std::size_t index) const;
 
+  /// A case's steady state made ready for the file without touching it: every sample column
+  /// shuffled and deflated into its chunks (the work of HDF5's shuffle and deflate filters).
+  /// Thread-safe (no HDF5 call): the workers of a sweep prepare their cases in parallel, and
+  /// only add_case, which writes the finished chunks, needs to be serialised.
+  struct PreparedCase {
+    std::vector<std::vector<std::vector<unsigned char>>> chunks;  ///< per column, per chunk
+  };
+  static PreparedCase prepare(const CaseOutcome& outcome);
+
   /// Store case `index`'s steady state (its samples; none for a case without them) and status.
   void add_case(std::size_t index, const CaseOutcome& outcome);
+  /// The same with its columns prepared already (prepare(outcome)).
+  void add_case(std::size_t index, const CaseOutcome& outcome, const PreparedCase& prepared);
 
   /// Write the tables: /case, /parameters/<key> for every field of every case in `indices`, and
   /// /results/<column> from the result CSV `header` and `rows` (one per index, as the CSV has
