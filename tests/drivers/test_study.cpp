@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -243,6 +244,46 @@ TEST(Study, CallbackExceptionStopsTheStudyAndPropagates) {
   };
   EXPECT_THROW(run_study(cases, options), std::runtime_error);
   EXPECT_TRUE(run_study({}, options).empty());
+}
+
+// concurrent_on_case_done: the callbacks of different workers may overlap (here they are made
+// to: each waits until another one has started or the study is nearly done), every case is
+// reported once, progress stays serialised and counts every case, and an exception still stops
+// the study and reaches the caller.
+TEST(Study, ConcurrentCallbacksOverlapAndCoverEveryCase) {
+  const std::vector<Case> cases = some_cases();
+  StudyOptions options;
+  options.threads = 2;
+  options.concurrent_on_case_done = true;
+  std::mutex m;
+  std::vector<int> seen(cases.size(), 0);
+  std::atomic<int> inside{0}, most{0};
+  options.on_case_done = [&](std::size_t i, const CaseOutcome& outcome) {
+    const int now = ++inside;
+    for (int seen_most = most.load(); seen_most < now;)
+      if (most.compare_exchange_weak(seen_most, now)) break;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+    while (inside.load() < 2 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+    {
+      const std::lock_guard lock(m);
+      ++seen.at(i);
+    }
+    EXPECT_GT(outcome.result.samples.size(), 0u);
+    --inside;
+  };
+  std::size_t last_done = 0;
+  options.progress = [&](std::size_t done, std::size_t) {
+    EXPECT_EQ(done, last_done + 1);
+    last_done = done;
+  };
+  run_study(cases, options);
+  EXPECT_EQ(most.load(), 2);
+  EXPECT_EQ(last_done, cases.size());
+  for (int n : seen) EXPECT_EQ(n, 1);
+  options.on_case_done = [](std::size_t, const CaseOutcome&) {
+    throw std::runtime_error("disk full");
+  };
+  EXPECT_THROW(run_study(cases, options), std::runtime_error);
 }
 
 }  // namespace
