@@ -42,6 +42,7 @@ nlohmann::ordered_json window_json(const RecordWindow& w) {
                               {"samples_per_period", w.samples_per_period},
                               {"f", w.f},
                               {"drift", w.drift},
+                              {"change", w.change},
                               {"valid", w.valid},
                               {"reason", w.reason}};
   // Every output of a record, from the output table (peaks, lag, area, compaction indicators,
@@ -62,7 +63,7 @@ std::string cell(double v) { return io::format_double_short(v); }
 std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
   std::string out =
       "window[-],t_start[s],t_end[s],t[s],position[m],samples[-],samples_per_period[-],f[Hz],"
-      "drift[-],valid[-],reason[-]";
+      "drift[-],change[-],valid[-],reason[-]";
   for (const RecordOutput& o : record_outputs())
     if (std::holds_alternative<double RecordMetrics::*>(o.member))
       out.append(",").append(o.name).append("[").append(o.unit).append("]");
@@ -75,7 +76,7 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
     out += std::to_string(w.index) + "," + cell(w.t_start) + "," + cell(w.t_end) + "," +
            cell(w.t_mid) + "," + cell(w.position) + "," + std::to_string(w.count) + "," +
            cell(w.samples_per_period) + "," + cell(w.f) + "," + cell(w.drift) + "," +
-           (w.valid ? "1" : "0") + "," + io::csv_quote(w.reason);
+           cell(w.change) + "," + (w.valid ? "1" : "0") + "," + io::csv_quote(w.reason);
     for (const RecordOutput& o : record_outputs())
       if (std::holds_alternative<double RecordMetrics::*>(o.member))
         out.append(",").append(cell(scalar_value(m, o)));
@@ -156,6 +157,7 @@ int run(const AnalyzeOptions& o) {
            fmt(w.f, 8) + (o.windows.f > 0 ? " (given)" : " (estimated from the record)"));
     s.line("excitation periods spanned", fmt(m.cycles, 4));
     s.line("frequency drift (halves)", fmt(w.drift, 3));
+    s.line("change of the response (halves)", fmt(w.change, 3) + " (relative RMS)");
     s.line("fit residual x_M'', z_M''",
            fmt(m.residual_x, 3) + ", " + fmt(m.residual_z, 3) + " (RMS relative to the signal)");
     s.line("quality", w.valid ? "ok" : "FAILED: " + w.reason);

@@ -271,6 +271,11 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                  "gate: a time step longer than this part of an excitation period is a gap "
                  "(default 0.5; a few lost samples are not)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-change", o.gates.max_change,
+                 "gate: largest change of the response within a window, |RMS(second half) - "
+                 "RMS(first half)| / RMS of the fitted x_M'' or z_M'', beyond the noise (default "
+                 "0.05; a window across a change of soil fits neither side)")
+      ->check(CLI::PositiveNumber);
 }
 
 void report_reading(const RecordColumns& rec) {

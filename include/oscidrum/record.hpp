@@ -61,6 +61,10 @@ struct RecordGates {
   double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
   int clip_run = 3;           ///< this many equal samples at a channel's extreme: clipped [-]
   double max_gap = 0.5;  ///< a time step longer than this part of an excitation period: gap [-]
+  /// Largest change of the response within a window: |RMS(second half) - RMS(first half)| /
+  /// RMS(window) of the fitted periodic x_M'' or z_M'' (beyond the noise) [-]. A window that
+  /// straddles a change of soil (or of the roller's settings) fits neither side.
+  double max_change = 0.05;
 };
 
 /// Windows along a record.
@@ -84,6 +88,10 @@ struct RecordWindow {
   std::size_t count = 0;  ///< samples in the window [-]
   double f = 0.0;         ///< excitation frequency of the window [Hz] (NaN if not fitted)
   double drift = 0.0;     ///< (f(second half) - f(first half)) / f [-] (NaN if not fitted)
+  /// (RMS(second half) - RMS(first half)) / RMS(window) of the fitted periodic signal, of
+  /// x_M'' or z_M'', whichever changes more [-] (NaN if not fitted or a half is shorter than
+  /// two periods); RecordGates::max_change bounds it.
+  double change = 0.0;
   double samples_per_period = 0.0;  ///< [-]
   bool valid = false;               ///< passed every gate
   std::string reason;               ///< why not valid (empty when valid); several joined by "; "

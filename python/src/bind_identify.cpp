@@ -24,6 +24,7 @@ py::dict window_dict(const RecordWindow& w) {
   d["samples_per_period"] = w.samples_per_period;
   d["f"] = w.f;
   d["drift"] = w.drift;
+  d["change"] = w.change;
   d["valid"] = w.valid;
   d["reason"] = w.reason;
   d["metrics"] = w.metrics;
@@ -31,7 +32,8 @@ py::dict window_dict(const RecordWindow& w) {
 }
 
 WindowOptions window_options(double f, double window, double hop, int n_max, double max_residual,
-                             double max_drift, double clip_level, double max_gap) {
+                             double max_drift, double clip_level, double max_gap,
+                             double max_change) {
   WindowOptions o;
   o.f = f;
   o.window_periods = window;
@@ -41,6 +43,7 @@ WindowOptions window_options(double f, double window, double hop, int n_max, dou
   o.gates.max_drift = max_drift;
   o.gates.clip_level = clip_level;
   o.gates.max_gap = max_gap;
+  o.gates.max_change = max_change;
   return o;
 }
 
@@ -67,9 +70,9 @@ void bind_identify(py::module_& m) {
       "analyze_windows",
       [](const Array& t, const Array& ddx, const Array& ddz, const std::optional<Array>& position,
          double f, double window, double hop, int n_max, double max_residual, double max_drift,
-         double clip_level, double max_gap) {
-        const WindowOptions o =
-            window_options(f, window, hop, n_max, max_residual, max_drift, clip_level, max_gap);
+         double clip_level, double max_gap, double max_change) {
+        const WindowOptions o = window_options(f, window, hop, n_max, max_residual, max_drift,
+                                               clip_level, max_gap, max_change);
         const std::vector<RecordWindow> ws =
             analyze_windows(span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"),
                             optional_span(position, "position"), o);
@@ -80,10 +83,10 @@ void bind_identify(py::module_& m) {
       py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"), py::arg("position") = py::none(),
       py::arg("f") = 0.0, py::arg("window") = 0.0, py::arg("hop") = 0.0, py::arg("n_max") = 10,
       py::arg("max_residual") = 0.5, py::arg("max_drift") = 0.002, py::arg("clip_level") = 0.0,
-      py::arg("max_gap") = 0.5,
+      py::arg("max_gap") = 0.5, py::arg("max_change") = 0.05,
       "The record in windows of `window` excitation periods (0: whole), each fitted and checked "
       "by the quality gates, as `oscidrum analyze`: a list of dicts (window, t_start, t_end, t, "
-      "position, samples, samples_per_period, f, drift, valid, reason, metrics). f = 0: "
+      "position, samples, samples_per_period, f, drift, change, valid, reason, metrics). f = 0: "
       "estimated.");
   m.def(
       "identify_record",
@@ -93,7 +96,7 @@ void bind_identify(py::module_& m) {
          bool use_area, bool profile, bool shooting, const std::string& soil_scale) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
-        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 0.5);
+        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 0.5, 0.05);
         IdentifyOptions io;
         io.modulus = estimate == "G";
         io.soil_scale = soil_scale_from(soil_scale);

@@ -392,6 +392,74 @@ std::vector<double> integrate_speed(std::span<const double> t, std::span<const d
   return x;
 }
 
+namespace {
+
+// RMS of a fitted periodic signal without its mean: sqrt(sum over n >= 1 of A_n^2 / 2).
+double periodic_rms(const std::vector<Harmonic>& h) {
+  double sum = 0.0;
+  for (std::size_t n = 1; n < h.size(); ++n) sum += 0.5 * h[n].amplitude * h[n].amplitude;
+  return std::sqrt(sum);
+}
+
+// Does the response change within the window? Each half is fitted at the window's f; the RMS of
+// the fitted periodic signal of each channel is compared between the halves, relative to the
+// window's. A change counts when it exceeds `max_change` and five times what the noise alone
+// makes of it. White noise of deviation sigma (from the residual of the better-fitting half) moves
+// each fitted coefficient by about sigma sqrt(2 / n_half), and the RMS R = sqrt(sum A_n^2 / 2)
+// by its projection on the signal, about sigma / sqrt(n_half) (the rest changes R only in the
+// second order); the difference of the two halves by sqrt(2) times that.
+void change_within(std::span<const double> t, std::span<const double> x, std::span<const double> z,
+                   double f, int n_max, RecordWindow& w, std::vector<std::string>& reasons,
+                   double max_change) {
+  const std::size_t half = t.size() / 2;
+  if (half < 2 || (t[half - 1] - t.front()) * f < 2.0 || (t.back() - t[half]) * f < 2.0) return;
+  RecordMetrics a, b;
+  try {
+    a = analyze_record(t.first(half), x.first(half), z.first(half), f, n_max);
+    b = analyze_record(t.subspan(half), x.subspan(half), z.subspan(half), f, n_max);
+  } catch (const Error&) {
+    return;  // a half that cannot be fitted says nothing about a change
+  }
+  const double n_half = static_cast<double>(half);
+  double worst = 0.0, worst_abs = -1.0;
+  bool significant = false;
+  const char* channel = "x_M''";
+  for (int c = 0; c < 2; ++c) {
+    const std::span<const double> y = c == 0 ? x : z;
+    const RecordMetrics& m = w.metrics;  // the fit of the whole window
+    const double whole = periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
+    if (!(whole > 0.0)) continue;
+    const double r1 = periodic_rms(c == 0 ? a.ddx_harmonics : a.ddz_harmonics);
+    const double r2 = periodic_rms(c == 0 ? b.ddx_harmonics : b.ddz_harmonics);
+    double mean_square = 0.0;
+    for (double v : y) mean_square += v * v;
+    mean_square /= static_cast<double>(y.size());
+    // The noise from the better-fitting half: a half that straddles the change fits worse, and
+    // so does the whole window, whose residual would take the change for noise.
+    const double residual =
+        c == 0 ? std::min(a.residual_x, b.residual_x) : std::min(a.residual_z, b.residual_z);
+    const double sigma = residual * std::sqrt(mean_square);
+    const double noise = std::sqrt(2.0) * sigma / std::sqrt(n_half);
+    const double change = (r2 - r1) / whole;
+    if (std::abs(change) > worst_abs) {
+      worst_abs = std::abs(change);
+      worst = change;
+      channel = c == 0 ? "x_M''" : "z_M''";
+      significant = std::abs(r2 - r1) > 5.0 * noise;
+    }
+  }
+  if (worst_abs < 0.0) return;
+  w.change = worst;
+  if (significant && worst_abs > max_change)
+    reasons.push_back("the response changes within the window: the RMS of " + std::string(channel) +
+                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) +
+                      " % from its first half to its second (> " + num(max_change * 100) +
+                      " %; --max-change): a change of soil or of the roller's settings within it; "
+                      "a shorter --window resolves it");
+}
+
+}  // namespace
+
 std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<const double> ddx,
                                           std::span<const double> ddz,
                                           std::span<const double> position,
@@ -422,6 +490,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           o.gates.clip_level);
   require(o.gates.max_gap > 0 && std::isfinite(o.gates.max_gap),
           "max_gap (--max-gap) must be > 0 [periods]", o.gates.max_gap);
+  require(o.gates.max_change > 0 && std::isfinite(o.gates.max_change),
+          "max_change (--max-change) must be > 0 [-]", o.gates.max_change);
   require(o.gates.clip_run >= 2, "clip_run must be >= 2 [samples]", o.gates.clip_run);
   // f: at most half the record's sampling rate (a harmonic fit needs 2 samples per period).
   {
@@ -534,6 +604,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     }
     w.f = kNaN;
     w.drift = kNaN;
+    w.change = kNaN;
     const auto tw = t.subspan(first, w.count), xw = ddx.subspan(first, w.count),
                zw = ddz.subspan(first, w.count);
     std::vector<std::string> reasons;
@@ -590,6 +661,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       } catch (const Error& e) {
         reasons.push_back(e.what());
       }
+      if (fitted) change_within(tw, xw, zw, fw, o.n_max, w, reasons, o.gates.max_change);
       if (fitted) {
         const double res = std::max(w.metrics.residual_x, w.metrics.residual_z);
         if (!(res <= o.gates.max_residual))

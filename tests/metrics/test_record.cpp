@@ -68,6 +68,60 @@ TEST(Record, ExtremesDoNotDependOnTheClock) {
   }
 }
 
+// A record of two soils, G = 10 then 25 MN/m^2 (Appendix B), 2 s each: the windows that straddle
+// the change are not valid (their fit belongs to neither soil; a G identified from them lay in
+// between), those on either side are; on a record of one soil with noise, drift and jitter no
+// window is taken for a change, whatever its (insignificant) difference between halves.
+TEST(Record, AWindowAcrossAChangeOfSoilIsNotValid) {
+  Case soft, stiff;
+  soft.soil.input = stiff.soil.input = SoilInput::modulus;
+  soft.soil.G = 10e6;
+  stiff.soil.G = 25e6;
+  SyntheticRecord options;
+  options.duration = 4.0;
+  options.sample_rate = 2000;
+  options.noise = 0.05;
+  options.seed = 3;
+  const RecordSamples two = synthetic_record({soft, stiff}, options);
+  WindowOptions w;
+  w.window_periods = 40;
+  w.hop_periods = 10;
+  const std::vector<RecordWindow> ws = analyze_windows(two.t, two.ddx_M, two.ddz_M, {}, w);
+  int straddling = 0;
+  for (const RecordWindow& win : ws) {
+    const bool across = win.t_start < 2.0 - 0.1 && win.t_end > 2.0 + 0.1;  // 4+ periods each side
+    const bool clear = win.t_end < 2.0 || win.t_start > 2.0;
+    if (across) {
+      ++straddling;
+      EXPECT_FALSE(win.valid) << win.t_start;
+      EXPECT_NE(win.reason.find("the response changes within the window"), std::string::npos)
+          << win.reason;
+      EXPECT_GT(std::abs(win.change), w.gates.max_change);
+    }
+    if (clear) {
+      EXPECT_TRUE(win.valid) << win.t_start << ": " << win.reason;
+      EXPECT_TRUE(std::isfinite(win.change)) << win.t_start;
+    }
+  }
+  EXPECT_GE(straddling, 3);
+  // One soil, noisy (20 % of the peak), drifting and jittered: no change found.
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    SyntheticRecord noisy;
+    noisy.duration = 4.0;
+    noisy.noise = 0.2;
+    noisy.drift = 0.05;
+    noisy.jitter = 0.1;
+    noisy.seed = seed;
+    const RecordSamples one = synthetic_record({stiff}, noisy);
+    WindowOptions v;
+    v.window_periods = 20;
+    for (const RecordWindow& win : analyze_windows(one.t, one.ddx_M, one.ddz_M, {}, v)) {
+      EXPECT_TRUE(std::isfinite(win.change));
+      EXPECT_EQ(win.reason.find("changes within"), std::string::npos) << seed << ": " << win.reason;
+    }
+  }
+}
+
 // A "measured" record: 3.37 periods, jittered sampling times, noise. The fit recovers the
 // harmonics to the noise level and reports the noise as the residual.
 TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {

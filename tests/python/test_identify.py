@@ -107,3 +107,21 @@ def test_a_record_with_z_up_is_diagnosed_and_read_with_z_positive_up():
     assert not any("far better" in w for w in right["warnings"])
     with pytest.raises(oscidrum.Error, match="z_positive must be 'down' or 'up'"):
         oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="upward")
+
+
+def test_a_window_across_a_change_of_soil_is_flagged():
+    # G = 10 then 25 MN/m^2: the windows across the change fail the change gate (key `change`),
+    # those on either side are valid; a looser gate lets them through.
+    cases = [oscidrum.Case(input="modulus", G=10e6), oscidrum.Case(input="modulus", G=25e6)]
+    r = oscidrum.synthetic_record(cases, duration=4.0, sample_rate=2000, noise=0.05, seed=3)
+    ws = oscidrum.analyze_windows(r["t"], r["ddx_M"], r["ddz_M"], window=40, hop=10)
+    across = [w for w in ws if w["t_start"] < 1.9 and w["t_end"] > 2.1]
+    clear = [w for w in ws if w["t_end"] < 2.0 or w["t_start"] > 2.0]
+    assert across and clear
+    assert all(not w["valid"] and "changes within the window" in w["reason"] for w in across)
+    assert all(w["valid"] for w in clear)
+    loose = oscidrum.analyze_windows(r["t"], r["ddx_M"], r["ddz_M"], window=40, hop=10,
+                                     max_change=10.0)
+    assert all("changes within" not in w["reason"] for w in loose)
+    with pytest.raises(ValueError):
+        oscidrum.analyze_windows(r["t"], r["ddx_M"], r["ddz_M"], window=40, max_change=float("nan"))
