@@ -31,6 +31,7 @@ struct ModelResponse {
   /// at least this large admits it (docs/identify.md, "mu of a drum that does not slip").
   double friction_ratio = 0.0;
   double switches_per_period = 0.0;  ///< stick/slip switches per period of the steady state [-]
+  long steps = 0;  ///< accepted integration steps the run took (its share of a budget) [-]
 };
 
 /// Simulate `c` to its steady state and return its metrics with n_max harmonics. `max_steps` > 0

@@ -23,6 +23,7 @@ ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps) {
   out.status = r.status;
   out.message = r.message;
   out.friction_ratio = std::numeric_limits<double>::quiet_NaN();
+  out.steps = r.diagnostics.steps;
   if (r.status == Status::cancelled && max_steps > 0 && steps > max_steps) {
     out.status = Status::budget_exceeded;
     out.message = "no steady state within " + std::to_string(max_steps) +

@@ -121,7 +121,7 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
 // reduced chi^2 within the limit, or ten times below the fit's) is named with what to change.
 // Empty when none does. Costs a few fits, only when the fit is poor.
 std::string diagnosis(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
-                      double s2) {
+                      double s2, long steps) {
   struct Alternative {
     bool x, z, other_scale;
   };
@@ -165,6 +165,7 @@ std::string diagnosis(const Case& base, const MeasuredResponse& data, const Iden
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
     try {
       Problem pr(base, flipped(data, a.x, a.z), o2);
+      pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
       const std::vector<bool> all(pr.unknowns().size(), true);
       const detail::Fit fit =
@@ -290,7 +291,7 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   if (s2 > o.max_reduced_chi2) {
     id.warnings.push_back(poor_fit_warning(id, o));
     if (o.diagnose) {
-      const std::string why = diagnosis(base, data, o, s2);
+      const std::string why = diagnosis(base, data, o, s2, pr.steps());
       if (!why.empty()) id.warnings.push_back(why);
     }
   }

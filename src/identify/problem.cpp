@@ -239,10 +239,28 @@ const Simulated& Problem::simulate_at(const Eigen::VectorXd& p) {
   return cache_.emplace(std::move(key), std::move(s)).first->second;
 }
 
-// One bounded model run (the constructor's numerics, kMaxStepsPerRun).
+// One bounded model run (the constructor's numerics, kMaxStepsPerRun), within what is left of
+// the identification's kMaxStepsPerWindow.
 ModelResponse Problem::run(const Case& c) {
+  long& steps = *steps_used_;
+  if (steps >= kMaxStepsPerWindow) {
+    ModelResponse out;
+    out.status = Status::budget_exceeded;
+    out.message = "the model runs of this identification took more than " +
+                  std::to_string(kMaxStepsPerWindow) +
+                  " integration steps in all without a fit (the model hardly settles for this "
+                  "roller: check its parameters)";
+    return out;
+  }
   ++simulations_;
-  return simulate_metrics(c, n_sim_, kMaxStepsPerRun);
+  ModelResponse r =
+      simulate_metrics(c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps));
+  steps += std::max(r.steps, 1L);
+  if (r.status == Status::budget_exceeded && steps >= kMaxStepsPerWindow)
+    r.message = "the model runs of this identification took more than " +
+                std::to_string(kMaxStepsPerWindow) + " integration steps in all (" + r.message +
+                ")";
+  return r;
 }
 
 // The run from rest of `c` (with slip) failed, which happens for large mu: the transient from

@@ -39,6 +39,11 @@ struct Simulated {
 /// Every model run of an identification is bounded: at most this many integration steps in all
 /// (about half a second).
 inline constexpr long kMaxStepsPerRun = 400000;
+/// ... and the runs of one identification (one window, with the refits of its diagnosis) at most
+/// this many in all (about 7 s): a window of the paper's roller takes tens of milliseconds, but a
+/// roller whose model hardly settles (a suspension of 1e9 N/m: every trial runs into its 1500
+/// periods) took minutes of such trials, the diagnosis's refits multiplying them.
+inline constexpr long kMaxStepsPerWindow = 8000000;
 
 class Problem : public LeastSquares {
  public:
@@ -54,6 +59,10 @@ class Problem : public LeastSquares {
 
   const std::vector<Unknown>& unknowns() const { return unknowns_; }
   int simulations() const { return simulations_; }
+  /// Integration steps of the model runs counted against kMaxStepsPerWindow so far.
+  long steps() const { return *steps_used_; }
+  /// Count the steps in `counter` instead (shared by the refits of one window's diagnosis).
+  void count_steps_in(long& counter) { steps_used_ = &counter; }
   double M0() const { return case_.roller.M0; }
   /// The base case at the record's f (M0 scaled by (f / roller.f)^2, (5)), with the numerics of
   /// the identification.
@@ -79,6 +88,8 @@ class Problem : public LeastSquares {
   // Whitening of the measured harmonics: W^T W = Cov^-1 of (Re C_1, Im C_1, ...) of each signal.
   Eigen::MatrixXd wx_, wz_;
   int n_sim_ = 10, rows_ = 0, simulations_ = 0;
+  long steps_ = 0;              // integration steps of this identification's model runs so far
+  long* steps_used_ = &steps_;  // where they are counted (steps_, or a shared counter)
   std::map<std::vector<double>, Simulated> cache_;
   std::map<std::vector<double>, ModelResponse> rolling_cache_;
 };
