@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "oscidrum/model.hpp"
+#include "oscidrum/parameters.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
 
@@ -18,11 +19,25 @@ namespace oscidrum::detail {
 struct WarmStart {
   std::vector<double> state;  ///< the roller's state components (Dynamics<R>::Vector)
   Phase phase = Phase::stick;
+  /// A second start (same phase) tried when Newton fails from `state`, before the cold start:
+  /// the neighbour's own state behind a predicted one (secant_start). Empty: none.
+  std::vector<double> then;
 };
 
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a
 /// start for a neighbouring case; empty unless `result` is a period-1 steady state with samples.
 std::optional<WarmStart> orbit_start(const Model& model, const Result& result);
+
+/// A secant predictor along a chain: the start for case c0 extrapolated from the steady states
+/// w2 (of case c2) and w1 (of c1, the predecessor): w1 + s (w1 - w2), s the step from c1 to c0
+/// over the step from c2 to c1 in the first parameter in which c0 and c1 differ. Empty when the
+/// two states are in different phases, the steps do not continue one another (s outside
+/// (0, kMaxSecantRatio]) or a value is not finite: the predecessor's state is then the start.
+/// The prediction keeps w1's state as its `then`: a prediction that misleads Newton costs its
+/// attempt, not a cold start.
+inline constexpr double kMaxSecantRatio = 1.5;
+std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, const Case& c2,
+                                      const Case& c1, const Case& c0);
 
 /// simulate(), but with numerics.method = shooting and `warm` given, Newton starts from `warm`
 /// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs

@@ -272,17 +272,21 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
   bool done = false;
   if (num.method == SteadyMethod::shooting && warm &&
       warm->state.size() == static_cast<std::size_t>(R::kStates)) {
-    // Continuation (docs/periodic.md): Newton from the neighbour's orbit; when it fails, the
-    // cold start below runs as if it had not been tried (only its cost remains).
-    detail::BasicShootingStart<R> start;
-    start.from_state = true;
-    typename detail::Dynamics<R>::Vector x{};
-    std::copy(warm->state.begin(), warm->state.end(), x.begin());
-    start.state = R::State::from_array(x);
-    // A phase the new case cannot be in (slip under pure rolling, stick without friction, stick
-    // or slip under a smooth law): its start phase instead.
-    start.phase = dynamics.flow_phase(warm->phase);
-    done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
+    // Continuation (docs/periodic.md): Newton from the neighbour's orbit (or from the state
+    // predicted along the chain, then from the neighbour's own); when it fails, the cold start
+    // below runs as if it had not been tried (only its cost remains).
+    for (const std::vector<double>* from : {&warm->state, &warm->then}) {
+      if (done || from->size() != static_cast<std::size_t>(R::kStates)) continue;
+      detail::BasicShootingStart<R> start;
+      start.from_state = true;
+      typename detail::Dynamics<R>::Vector x{};
+      std::copy(from->begin(), from->end(), x.begin());
+      start.state = R::State::from_array(x);
+      // A phase the new case cannot be in (slip under pure rolling, stick without friction,
+      // stick or slip under a smooth law): its start phase instead.
+      start.phase = dynamics.flow_phase(warm->phase);
+      done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
+    }
     result.diagnostics.warm_start = done ? 1 : -1;
     if (!done) {
       result.floquet = Floquet{};
@@ -429,7 +433,7 @@ std::optional<detail::WarmStart> orbit_start_of(const Result& result) {
   const auto x = detail::Dynamics<R>::sampled_state(s, 0);
   for (double v : x)
     if (!std::isfinite(v)) return {};
-  return detail::WarmStart{std::vector<double>(x.begin(), x.end()), s.phase[0]};
+  return detail::WarmStart{std::vector<double>(x.begin(), x.end()), s.phase[0], {}};
 }
 
 }  // namespace

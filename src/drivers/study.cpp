@@ -103,17 +103,27 @@ void work(Pool& pool) {
   while (!pool.stop.load()) {
     const std::size_t k = pool.next.fetch_add(1);
     if (k >= pool.chains.size()) break;
-    std::optional<detail::WarmStart> warm;  // the predecessor's steady state
+    // The predecessor's steady state and the one before it, with their cases: the start of the
+    // next case extrapolated along the chain (secant), or the predecessor's state.
+    std::optional<detail::WarmStart> warm, before;
+    std::optional<Case> warm_case, before_case;
     for (const std::size_t i : pool.chains[k]) {
       if (pool.cancelled()) return;
       bool interrupted = false;
-      std::optional<detail::WarmStart> orbit;
+      std::optional<detail::WarmStart> orbit, predicted;
+      const Case now = pool.case_at(i);
+      if (warm && before && warm_case && before_case)
+        predicted = detail::secant_start(*before, *warm, *before_case, *warm_case, now);
+      const detail::WarmStart* start = predicted ? &*predicted : (warm ? &*warm : nullptr);
       const bool samples =
           opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
-      CaseOutcome outcome = run_one(pool.case_at(i), samples, opt.n_harmonics, cancelled, stop_now,
-                                    &interrupted, warm ? &*warm : nullptr, &orbit);
+      CaseOutcome outcome =
+          run_one(now, samples, opt.n_harmonics, cancelled, stop_now, &interrupted, start, &orbit);
       if (interrupted) return;  // stays "cancelled"; never reported as done
+      before = std::move(warm);
+      before_case = std::move(warm_case);
       warm = std::move(orbit);
+      warm_case = now;
       std::exception_ptr failed;
       if (opt.on_case_done && opt.concurrent_on_case_done) {
         try {
@@ -181,6 +191,29 @@ std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSourc
 }
 
 }  // namespace
+
+namespace detail {
+
+std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, const Case& c2,
+                                      const Case& c1, const Case& c0) {
+  if (w1.phase != w2.phase || w1.state.size() != w2.state.size()) return {};
+  for (const Field& f : fields()) {
+    const double v0 = f.get(c0), v1 = f.get(c1), v2 = f.get(c2);
+    if (v0 == v1 || (std::isnan(v0) && std::isnan(v1))) continue;
+    const double s = (v0 - v1) / (v1 - v2);
+    if (!(s > 0.0 && s <= kMaxSecantRatio)) return {};
+    WarmStart out = w1;
+    out.then = w1.state;
+    for (std::size_t j = 0; j < out.state.size(); ++j) {
+      out.state[j] = w1.state[j] + s * (w1.state[j] - w2.state[j]);
+      if (!std::isfinite(out.state[j])) return {};
+    }
+    return out;
+  }
+  return {};
+}
+
+}  // namespace detail
 
 CaseOutcome run_case(const Case& c, bool keep_samples, int n_harmonics) {
   bool interrupted = false;

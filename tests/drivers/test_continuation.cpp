@@ -141,7 +141,7 @@ TEST(Continuation, AFailingWarmStartFallsBackToTheColdStart) {
   far_state.ddelta = 300.0;
   far_state.dphi = 30.0;
   const auto x = far_state.to_array();
-  const detail::WarmStart far{std::vector<double>(x.begin(), x.end()), Phase::slip_positive};
+  const detail::WarmStart far{std::vector<double>(x.begin(), x.end()), Phase::slip_positive, {}};
   const Result r = detail::simulate_from(model, {}, {}, &far);
   EXPECT_EQ(r.diagnostics.warm_start, -1);
   EXPECT_EQ(r.status, Status::steady_state) << r.message;
