@@ -2,6 +2,7 @@
 #include "oscidrum_io/hdf5.hpp"
 
 #include <hdf5.h>
+#include <hdf5_hl.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -245,6 +246,15 @@ void write_chunks(hid_t d, std::size_t n, const std::vector<std::vector<unsigned
   }
 }
 
+// Make `scale` a dimension scale named `name` and attach it as dimension 0 of each of `datasets`
+// (netCDF-4's dimensions: xarray opens the group with named dimensions and coordinates).
+void attach_scale(hid_t scale, const char* name, const std::vector<hid_t>& datasets,
+                  const std::string& file) {
+  check(H5DSset_scale(scale, name), "cannot write " + file + ": dimension scale " + name);
+  for (hid_t d : datasets)
+    check(H5DSattach_scale(d, scale, 0), "cannot write " + file + ": dimension scale " + name);
+}
+
 std::size_t dataset_size(hid_t d) {
   const Id space(H5Dget_space(d), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space);
@@ -297,6 +307,11 @@ void copy_attributes(hid_t src, hid_t dst, const std::string& file) {
     char name[256];
     H5Aget_name(attr, sizeof name, name);
     if (H5Aexists(dst, name) > 0) continue;
+    // A dimension scale's attributes hold references into their own file: the copy attaches
+    // its scales anew.
+    if (std::strcmp(name, "CLASS") == 0 || std::strcmp(name, "NAME") == 0 ||
+        std::strcmp(name, "REFERENCE_LIST") == 0 || std::strcmp(name, "DIMENSION_LIST") == 0)
+      continue;
     const Id type(H5Aget_type(attr), H5Tclose);
     const Id space(H5Aget_space(attr), H5Sclose);
     const hssize_t n = H5Sget_simple_extent_npoints(space);
@@ -592,6 +607,16 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
     if (text[c] || !unit.empty()) attr_string(result_sets[c], "unit", unit, file);
   }
 
+  // /case is the dimension of every table (netCDF-4: xarray opens /parameters and /results with
+  // a named dimension `case` and its coordinate).
+  {
+    const Id case_set(H5Dopen2(impl_->file, "case", H5P_DEFAULT), H5Dclose);
+    std::vector<hid_t> tables;
+    for (const Id& d : param_sets) tables.push_back(d);
+    for (std::size_t c = 1; c < labels.size(); ++c) tables.push_back(result_sets[c]);
+    attach_scale(case_set, "case", tables, file);
+  }
+
   std::vector<std::vector<double>> numbers(std::max(every.size(), labels.size()));
   std::vector<std::vector<std::string>> strings(labels.size());
   for (std::size_t first = 0; first < n; first += kBlockRows) {
@@ -749,6 +774,19 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
         const Id d(H5Dopen2(g, name.c_str(), H5P_DEFAULT), H5Dclose);
         copy_attributes(src.front(), d, paths.front());
       }
+    }
+    {  // /case, the tables' dimension, as in an unsharded file
+      const Id case_set(H5Dopen2(dst, "case", H5P_DEFAULT), H5Dclose);
+      std::vector<Id> open;
+      std::vector<hid_t> tables;
+      for (const char* group : {"parameters", "results"}) {
+        const Id g(H5Gopen2(dst, group, H5P_DEFAULT), H5Gclose);
+        for (const std::string& name : member_names(g)) {
+          open.emplace_back(H5Dopen2(g, name.c_str(), H5P_DEFAULT), H5Dclose);
+          tables.push_back(open.back());
+        }
+      }
+      attach_scale(case_set, "case", tables, out);
     }
     const Id cases = checked(H5Gcreate2(dst, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                              H5Gclose, "cannot write " + out);
