@@ -108,6 +108,7 @@ int run(const AnalyzeOptions& o) {
       j = {{"schema", "oscidrum-record/1"}, {"file", name}};
       j.update(window_json(ws.front()));
       j.erase("window");
+      j["reading"] = reading_json(o.input, rec);
     } else {
       nlohmann::ordered_json rows = nlohmann::json::array();
       for (const RecordWindow& w : ws) rows.push_back(window_json(w));
@@ -116,6 +117,7 @@ int run(const AnalyzeOptions& o) {
            {"window_periods", o.windows.window_periods},
            {"hop_periods",
             o.windows.hop_periods > 0 ? o.windows.hop_periods : o.windows.window_periods},
+           {"reading", reading_json(o.input, rec)},
            {"valid_windows", valid},
            {"windows", rows}};
     }

@@ -324,17 +324,20 @@ int run(const IdentifyCliOptions& o) {
     if (p.valid) r.update(identification_json(p.identification));
     rows.push_back(r);
   }
-  const nlohmann::ordered_json j = {{"schema", "oscidrum-identify/1"},
-                                    {"file", name},
-                                    {"estimate", o.estimate},
-                                    {"soil_scale", o.estimate == "G" ? o.soil_scale : ""},
-                                    {"fit_mu", o.fit_mu},
-                                    {"fit_MMd", o.fit_MMd},
-                                    {"compare_harmonics", o.compare},
-                                    {"model_method", o.transient ? "transient" : "shooting"},
-                                    {"window_periods", o.windows.window_periods},
-                                    {"valid_windows", valid},
-                                    {"windows", rows}};
+  const nlohmann::ordered_json j = {
+      {"schema", "oscidrum-identify/1"},
+      {"file", name},
+      {"estimate", o.estimate},
+      {"soil_scale", o.estimate == "G" ? o.soil_scale : ""},
+      {"fit_mu", o.fit_mu},
+      {"fit_MMd", o.fit_MMd},
+      {"compare_harmonics", o.compare},
+      {"model_method", o.transient ? "transient" : "shooting"},
+      {"window_periods", o.windows.window_periods},
+      {"reading",
+       o.metrics_file.empty() ? reading_json(o.input, rec) : nlohmann::ordered_json(nullptr)},
+      {"valid_windows", valid},
+      {"windows", rows}};
   std::string csv_path = o.csv;
   if (!o.plot_dir.empty()) {
     std::error_code ec;

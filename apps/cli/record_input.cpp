@@ -440,6 +440,12 @@ RecordColumns read_record(const RecordInput& o) {
     out.notes.push_back(std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] +
                         "' x " + format_factor(k) + " -> " + si);
   };
+  out.t_column = header[static_cast<std::size_t>(ct)];
+  out.x_column = header[static_cast<std::size_t>(cx)];
+  out.z_column = header[static_cast<std::size_t>(cz)];
+  out.t_factor = kt;
+  out.x_factor = kx;
+  out.z_factor = kz;
   note("t", ct, kt, "s");
   note("x_M''", cx, kx, "m/s^2 (positive forward)");
   note("z_M''", cz, kz, "m/s^2 (positive down)");
@@ -472,6 +478,22 @@ RecordColumns read_record(const RecordInput& o) {
     out.position = integrate_speed(out.t, speed);
   }
   return out;
+}
+
+}  // namespace oscidrum::cli
+
+namespace oscidrum::cli {
+
+nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec) {
+  const auto channel = [](const std::string& column, double factor, const char* unit) {
+    return nlohmann::ordered_json{{"column", column}, {"factor", factor}, {"unit", unit}};
+  };
+  return {{"delimiter", rec.delimiter},
+          {"x_positive", o.x_positive},
+          {"z_positive", o.z_positive},
+          {"t", channel(rec.t_column, rec.t_factor, "s")},
+          {"ddx_M", channel(rec.x_column, rec.x_factor, "m/s^2")},
+          {"ddz_M", channel(rec.z_column, rec.z_factor, "m/s^2")}};
 }
 
 }  // namespace oscidrum::cli

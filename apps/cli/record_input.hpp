@@ -3,6 +3,7 @@
 // line or none, columns by name or by 1-based index, accelerations in m/s^2 or g.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct RecordColumns {
   std::string delimiter;  ///< as detected: "comma", "semicolon", "tab", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
+  /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without
+  /// one) and the factor applied to reach the model's units and signs [s or m/s^2 per unit read].
+  std::string t_column, x_column, z_column;
+  double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
 };
 
 /// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units,
@@ -51,6 +56,10 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
 /// The notes of read_record on stderr ("oscidrum: record: x_M'': column 'acc_x [g]' x 9.80665 ->
 /// m/s^2 (positive forward)"), one per channel not read as the model writes it.
 void report_reading(const RecordColumns& rec);
+
+/// How the record was read, for the JSON outputs of analyze and identify: the columns taken, the
+/// factors applied, the axis conventions (x_positive, z_positive) and the delimiter.
+nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);

@@ -172,6 +172,18 @@ TEST(CliAnalyze, LoggerConventionsAreReadBackToTheModels) {
   EXPECT_NE(b.err.find("record: t: column 'Time [ms]' x 0.001 -> s"), std::string::npos) << b.err;
   EXPECT_NE(b.err.find("record: x_M'': column 'Acc X [g]' x -9.80665"), std::string::npos);
   const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  // The JSON says how the record was read: columns, factors, axis conventions.
+  const auto& reading = jb["reading"];
+  EXPECT_EQ(reading["x_positive"], "backward");
+  EXPECT_EQ(reading["z_positive"], "up");
+  EXPECT_EQ(reading["delimiter"], "semicolon");
+  EXPECT_EQ(reading["t"]["column"], "Time [ms]");
+  EXPECT_DOUBLE_EQ(reading["t"]["factor"].get<double>(), 0.001);
+  EXPECT_EQ(reading["ddx_M"]["column"], "Acc X [g]");
+  EXPECT_DOUBLE_EQ(reading["ddx_M"]["factor"].get<double>(), -9.80665);
+  EXPECT_DOUBLE_EQ(reading["ddz_M"]["factor"].get<double>(), -9.80665);
+  EXPECT_EQ(ja["reading"]["x_positive"], "forward");
+  EXPECT_DOUBLE_EQ(ja["reading"]["ddz_M"]["factor"].get<double>(), 1.0);
   for (const char* s : {"ddx_harmonics", "ddz_harmonics"}) {
     const double scale = ja[s][1]["amplitude"].get<double>() + ja[s][2]["amplitude"].get<double>();
     for (std::size_t n = 1; n < ja[s].size(); ++n) {
