@@ -38,7 +38,7 @@ struct IdentifyCliOptions {
   bool fit_mu = false, fit_MMd = false, use_peaks = false, use_area = false, no_profile = false;
   bool transient = false;
   int compare = 4;
-  std::string csv, json, plot_dir, format = "table";
+  std::string csv, json, geojson, plot_dir, format = "table";
   int plot_window = -1;
   bool quiet = false;
 };
@@ -203,6 +203,39 @@ std::string scale_text(SoilScale scale) {
              : "Appendix B (42)-(45) with the case's nu and rho (--soil-scale formulas)";
 }
 
+// The pass as GeoJSON (RFC 7946): a FeatureCollection with one Feature per window, its geometry
+// the Point [lon, lat] at the window's centre (null without GNSS columns), its properties the
+// window's place and time, valid, the reason or the warnings, and each estimate with its
+// interval (in its display unit: G in MN/m^2).
+nlohmann::ordered_json pass_geojson(const std::vector<PassEstimate>& pass, const RecordColumns& rec,
+                                    const std::string& name) {
+  nlohmann::ordered_json features = nlohmann::json::array();
+  for (const PassEstimate& p : pass) {
+    const RecordWindow& w = p.window;
+    const auto [lat, lon] = lat_lon_at(rec, w.t_mid);
+    nlohmann::ordered_json geometry = nullptr;
+    if (std::isfinite(lat) && std::isfinite(lon))
+      geometry = {{"type", "Point"}, {"coordinates", {lon, lat}}};
+    nlohmann::ordered_json props = {
+        {"window", w.index},      {"t", w.t_mid}, {"t_start", w.t_start}, {"t_end", w.t_end},
+        {"position", w.position}, {"f", w.f},     {"valid", p.valid},     {"reason", p.reason}};
+    nlohmann::ordered_json warnings = nlohmann::json::array();
+    if (p.valid) {
+      for (const Estimate& e : p.identification.estimates) {
+        const double k = 1.0 / shown_scale(e.name);
+        props[e.name] = e.value * k;
+        props[e.name + "_lower"] = e.lower * k;
+        props[e.name + "_upper"] = e.upper * k;
+        props[e.name + "_unit"] = unit_text(e);
+      }
+      for (const std::string& text : p.identification.warnings) warnings.push_back(text);
+    }
+    props["warnings"] = warnings;
+    features.push_back({{"type", "Feature"}, {"geometry", geometry}, {"properties", props}});
+  }
+  return {{"type", "FeatureCollection"}, {"name", name}, {"features", features}};
+}
+
 // Plot data of one window: measured and model over two periods, spectra, parameters. The model
 // is drawn in the record's time (fit_curves: shifted by tau, with the window's offsets and
 // drift), beside the samples and at them.
@@ -347,6 +380,7 @@ int run(const IdentifyCliOptions& o) {
   }
   if (!csv_path.empty()) write_output(csv_path, csv_text);
   if (!o.json.empty()) write_output(o.json, j.dump(2) + "\n");
+  if (!o.geojson.empty()) write_output(o.geojson, pass_geojson(pass, rec, name).dump(2) + "\n");
 
   if (o.format == "csv") {
     std::cout << csv_text;
@@ -503,6 +537,12 @@ void add_identify_command(CLI::App& app, Action& action) {
       ->type_name("FILE")
       ->group(out);
   sub->add_option("--json", o->json, "write the JSON of the identification to FILE")
+      ->type_name("FILE")
+      ->group(out);
+  sub->add_option("--geojson", o->geojson,
+                  "write the pass as a map to FILE (GeoJSON): one feature per window, a point at "
+                  "its centre from --lat-col/--lon-col (no geometry without them), with the "
+                  "estimates, their 95 % intervals, valid and the warnings")
       ->type_name("FILE")
       ->group(out);
   sub->add_option("--format", o->format, "stdout: table, csv or json")

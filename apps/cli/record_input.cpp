@@ -2,6 +2,7 @@
 #include "record_input.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -209,6 +210,10 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required) {
                  "position column [m] (optional): each window reports its position");
   app.add_option("--speed-col", o.speed_col,
                  "speed column [m/s] (optional): integrated to the position");
+  app.add_option("--lat-col", o.lat_col,
+                 "GNSS latitude column [deg, WGS 84] (optional, with --lon-col): each window "
+                 "gets the point at its centre (identify --geojson)");
+  app.add_option("--lon-col", o.lon_col, "GNSS longitude column [deg, WGS 84] (with --lat-col)");
   app.add_option("--units", o.units,
                  "units of the accelerations: auto (default: each column's unit from its header, "
                  "[m/s^2], [g], (mm/s2), az_g, ...; m/s^2 without one), m/s2 or g (9.80665 m/s^2)")
@@ -415,6 +420,12 @@ RecordColumns read_record(const RecordInput& o) {
                      : find(o.z_col, "--z-col");
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
+  if (o.lat_col.empty() != o.lon_col.empty())
+    throw Error(std::string("give both --lat-col and --lon-col (the point of each window); got "
+                            "only ") +
+                (o.lat_col.empty() ? "--lon-col" : "--lat-col"));
+  const int clat = o.lat_col.empty() ? -1 : find(o.lat_col, "--lat-col");
+  const int clon = o.lon_col.empty() ? -1 : find(o.lon_col, "--lon-col");
   // Units: a flag's, else the column's header, else SI.
   auto column_scale = [&](int c, bool time) {
     const Heading& h = headings[static_cast<std::size_t>(c)];
@@ -468,6 +479,16 @@ RecordColumns read_record(const RecordInput& o) {
     out.ddz_M.push_back(kz * get(cz));
     if (cp >= 0) out.position.push_back(get(cp));
     if (cs >= 0) speed.push_back(get(cs));
+    if (clat >= 0) {
+      const double lat = get(clat), lon = get(clon);
+      if (!(std::abs(lat) <= 90.0) || !(std::abs(lon) <= 180.0))
+        throw Error(name + ":" + std::to_string(line_no) +
+                    ": latitude, longitude must be in "
+                    "[-90, 90], [-180, 180] degrees (WGS 84); got " +
+                    format_factor(lat) + ", " + format_factor(lon));
+      out.lat.push_back(lat);
+      out.lon.push_back(lon);
+    }
   };
   if (!has_header) parse(first, first_no);
   while (next_line(line)) parse(line, no);
@@ -483,6 +504,17 @@ RecordColumns read_record(const RecordInput& o) {
 }  // namespace oscidrum::cli
 
 namespace oscidrum::cli {
+
+std::pair<double, double> lat_lon_at(const RecordColumns& rec, double t) {
+  if (rec.lat.empty() || rec.lat.size() != rec.t.size()) return {NAN, NAN};
+  const auto it = std::lower_bound(rec.t.begin(), rec.t.end(), t);
+  const std::size_t j = static_cast<std::size_t>(it - rec.t.begin());
+  if (j == 0) return {rec.lat.front(), rec.lon.front()};
+  if (j >= rec.t.size()) return {rec.lat.back(), rec.lon.back()};
+  const double u = (t - rec.t[j - 1]) / (rec.t[j] - rec.t[j - 1]);
+  return {rec.lat[j - 1] + u * (rec.lat[j] - rec.lat[j - 1]),
+          rec.lon[j - 1] + u * (rec.lon[j] - rec.lon[j - 1])};
+}
 
 nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec) {
   const auto channel = [](const std::string& column, double factor, const char* unit) {

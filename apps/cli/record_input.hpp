@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "oscidrum/record.hpp"
@@ -21,6 +22,7 @@ struct RecordInput {
   /// ax, acc_x, ...; ddz_M, az, acc_z, ...: see read_record).
   std::string t_col, x_col, z_col;
   std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
+  std::string lat_col, lon_col;        ///< optional GNSS latitude, longitude [deg, WGS 84]
   std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
   std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
   std::string x_positive = "forward";  ///< forward (the model's x) or backward
@@ -31,7 +33,8 @@ struct RecordInput {
 /// positive forward (the direction of travel), z_M'' positive down.
 struct RecordColumns {
   std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
-  std::string delimiter;  ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  std::vector<double> lat, lon;  ///< GNSS latitude, longitude [deg] (empty without the columns)
+  std::string delimiter;         ///< as detected: "comma", "semicolon", "tab", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
   /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without
@@ -60,6 +63,10 @@ void report_reading(const RecordColumns& rec);
 /// How the record was read, for the JSON outputs of analyze and identify: the columns taken, the
 /// factors applied, the axis conventions (x_positive, z_positive) and the delimiter.
 nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec);
+
+/// The record's latitude and longitude [deg] at time t (linear between samples; NaN without
+/// the columns).
+std::pair<double, double> lat_lon_at(const RecordColumns& rec, double t);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);

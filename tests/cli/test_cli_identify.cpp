@@ -115,6 +115,55 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
     EXPECT_TRUE(std::filesystem::exists(dir / ("plots/" + std::string(png)))) << png << o.err;
 }
 
+// The pass as a map: with GNSS columns, --geojson writes one feature per window, its point at the
+// window's centre (the columns interpolated in time) and G with its interval in MN/m^2.
+TEST(CliIdentify, GeoJsonPutsEachWindowOnTheMap) {
+  TempDir dir;
+  write_record(dir / "pass.csv", {truth(17.3e6)}, 1.6);
+  {  // the same record with latitude and longitude: moving north at 1e-5 deg/s
+    std::ifstream in(dir / "pass.csv");
+    std::ofstream out(dir / "gnss.csv");
+    std::string line;
+    std::getline(in, line);
+    out << "t,ddx_M,ddz_M,v,lat,lon\n";
+    char extra[64];
+    while (std::getline(in, line)) {
+      const double t = std::strtod(line.c_str(), nullptr);
+      std::snprintf(extra, sizeof extra, ",%.12f,16.37", 48.2 + 1e-5 * t);
+      out << line << extra << "\n";
+    }
+  }
+  const Outcome o = run({"identify", dir / "gnss.csv", "--window", "20", "--lat-col", "lat",
+                         "--lon-col", "lon", "--geojson", dir / "pass.geojson", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "pass.geojson"));
+  EXPECT_EQ(j["type"], "FeatureCollection");
+  ASSERT_GE(j["features"].size(), 2u);
+  for (const auto& f : j["features"]) {
+    EXPECT_EQ(f["type"], "Feature");
+    ASSERT_EQ(f["geometry"]["type"], "Point");
+    const auto& p = f["properties"];
+    const double t = p["t"].get<double>();
+    EXPECT_NEAR(f["geometry"]["coordinates"][0].get<double>(), 16.37, 1e-12);
+    EXPECT_NEAR(f["geometry"]["coordinates"][1].get<double>(), 48.2 + 1e-5 * t, 1e-10);
+    EXPECT_TRUE(p["valid"].get<bool>());
+    EXPECT_EQ(p["G_unit"], "MN/m^2");
+    EXPECT_NEAR(p["G"].get<double>(), 17.3, 0.03 * 17.3);
+    EXPECT_LE(p["G_lower"].get<double>(), p["G"].get<double>());
+    EXPECT_GE(p["G_upper"].get<double>(), p["G"].get<double>());
+    EXPECT_TRUE(p["warnings"].is_array());
+  }
+  // Without GNSS columns the features have no geometry; one of the two columns is an error.
+  const Outcome plain =
+      run({"identify", dir / "pass.csv", "--geojson", dir / "plain.geojson", "--quiet"});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_TRUE(
+      nlohmann::json::parse(slurp(dir / "plain.geojson"))["features"][0]["geometry"].is_null());
+  const Outcome half = run({"identify", dir / "gnss.csv", "--lat-col", "lat"});
+  EXPECT_EQ(half.code, 2);
+  EXPECT_NE(half.err.find("give both --lat-col and --lon-col"), std::string::npos) << half.err;
+}
+
 // The fit plots show the fit: on a record whose clock starts at 1.2345 s, the model drawn in
 // fit_model.csv and at the samples in fit_measured.csv differs from the samples by the noise
 // (5 % of the peak), as the fit's residual says, not by a curve shifted in time.
