@@ -62,6 +62,71 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
                            **options)
 
 
+def identify_frame(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
+                   position: Optional[Sequence[float]] = None, **options: Any):
+    """:func:`identify` as a pandas DataFrame: one row per window, the scalar columns of the
+    CLI's CSV (window, t_start, t_end, t [s], position [m], f [Hz], drift, change, valid, reason,
+    G, G_u, G_lo, G_hi [Pa] or the unknowns estimated, tau [s], the residuals, iterations,
+    simulations) and ``warnings`` (a list per window). :func:`to_geojson` maps it."""
+    import pandas as pd
+    rows = identify(t, ddx_M, ddz_M, case=case, position=position, **options)
+    keep = [{k: v for k, v in row.items() if k not in ("metrics", "fitted")} for row in rows]
+    return pd.DataFrame(keep)
+
+
+def _json_value(v: Any) -> Any:
+    """A table cell as JSON: numpy scalars as Python numbers, NaN and infinities as null."""
+    if isinstance(v, (list, tuple)):
+        return [_json_value(x) for x in v]
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        return float(v) if math.isfinite(v) else None
+    if v is None or isinstance(v, str):
+        return v
+    return str(v)
+
+
+def to_geojson(rows, t: Optional[Sequence[float]] = None, lat: Optional[Sequence[float]] = None,
+               lon: Optional[Sequence[float]] = None, path: Optional[str | Path] = None,
+               name: str = "") -> Dict[str, Any]:
+    """The pass as GeoJSON (RFC 7946), as ``oscidrum identify --geojson`` writes it: a
+    FeatureCollection with one Feature per window (``rows``: :func:`identify`'s list or
+    :func:`identify_frame`'s DataFrame). With the record's times ``t`` [s] and GNSS ``lat``,
+    ``lon`` [deg, WGS 84] (one per sample), each feature is the Point at its window's centre
+    (interpolated linearly in time); without them its geometry is null. The properties are the
+    window's scalar columns (G etc. in SI units, as the CSV; NaN as null) and ``warnings``.
+    ``path``: also write the file. Returns the GeoJSON as a dict."""
+    from . import Error
+    records = rows.to_dict("records") if hasattr(rows, "to_dict") else list(rows)
+    have_points = lat is not None or lon is not None
+    if have_points:
+        if t is None or lat is None or lon is None:
+            raise Error("to_geojson: give t, lat and lon together (one value per sample)")
+        t_arr, lat_arr, lon_arr = (np.asarray(a, dtype=float) for a in (t, lat, lon))
+        if not (t_arr.shape == lat_arr.shape == lon_arr.shape) or t_arr.ndim != 1:
+            raise Error("to_geojson: t, lat and lon must be 1-D arrays of one length")
+        if np.any(np.abs(lat_arr) > 90) or np.any(np.abs(lon_arr) > 180):
+            raise Error("to_geojson: lat and lon must be in [-90, 90] and [-180, 180] degrees")
+    features = []
+    for row in records:
+        props = {k: _json_value(v) for k, v in row.items() if k not in ("metrics", "fitted")}
+        geometry = None
+        if have_points and props.get("t") is not None:
+            centre = float(row["t"])
+            geometry = {"type": "Point",
+                        "coordinates": [float(np.interp(centre, t_arr, lon_arr)),
+                                        float(np.interp(centre, t_arr, lat_arr))]}
+        features.append({"type": "Feature", "geometry": geometry, "properties": props})
+    collection = {"type": "FeatureCollection", "name": name, "features": features}
+    if path is not None:
+        from ._files import write_file
+        write_file(path, json.dumps(collection, indent=2) + "\n")
+    return collection
+
+
 def _figure(width: float = 7.0, height: float = 4.0):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure

@@ -125,3 +125,30 @@ def test_a_window_across_a_change_of_soil_is_flagged():
     assert all("changes within" not in w["reason"] for w in loose)
     with pytest.raises(ValueError):
         oscidrum.analyze_windows(r["t"], r["ddx_M"], r["ddz_M"], window=40, max_change=float("nan"))
+
+
+def test_identify_frame_and_geojson(tmp_path):
+    pd = pytest.importorskip("pandas")
+    # A soil given by G on Appendix B's scale, the scale identify reports by default.
+    r = oscidrum.synthetic_record([oscidrum.Case(input="modulus", G=25e6)], duration=1.2,
+                                  sample_rate=1000, noise=0.02, seed=1)
+    frame = oscidrum.identify.identify_frame(r["t"], r["ddx_M"], r["ddz_M"], window=20)
+    assert isinstance(frame, pd.DataFrame)
+    assert {"t", "G", "G_lo", "G_hi", "valid", "warnings"} <= set(frame.columns)
+    assert len(frame) >= 2 and frame["valid"].all()
+    assert np.allclose(frame["G"], 25e6, rtol=0.03)
+    lat = 48.2 + 1e-5 * r["t"]
+    lon = np.full_like(r["t"], 16.37)
+    path = tmp_path / "pass.geojson"
+    gj = oscidrum.identify.to_geojson(frame, t=r["t"], lat=lat, lon=lon, path=path)
+    assert gj["type"] == "FeatureCollection" and len(gj["features"]) == len(frame)
+    import json
+    assert json.loads(path.read_text()) == gj  # plain JSON: no NaN, no numpy types
+    for f, (_, row) in zip(gj["features"], frame.iterrows()):
+        lon_f, lat_f = f["geometry"]["coordinates"]
+        assert lat_f == pytest.approx(48.2 + 1e-5 * row["t"], abs=1e-10)
+        assert f["properties"]["G"] == pytest.approx(row["G"])
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=20)
+    assert oscidrum.identify.to_geojson(rows)["features"][0]["geometry"] is None
+    with pytest.raises(ValueError):
+        oscidrum.identify.to_geojson(rows, lat=lat)
