@@ -219,6 +219,10 @@ nlohmann::ordered_json pass_geojson(const std::vector<PassEstimate>& pass, const
     nlohmann::ordered_json props = {
         {"window", w.index},      {"t", w.t_mid}, {"t_start", w.t_start}, {"t_end", w.t_end},
         {"position", w.position}, {"f", w.f},     {"valid", p.valid},     {"reason", p.reason}};
+    if (const auto [east, north] = east_north_at(rec, w.t_mid); std::isfinite(east)) {
+      props["easting"] = east;  // projected coordinates [m]: properties (GeoJSON is WGS 84)
+      props["northing"] = north;
+    }
     nlohmann::ordered_json warnings = nlohmann::json::array();
     if (p.valid) {
       for (const Estimate& e : p.identification.estimates) {

@@ -214,6 +214,11 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required) {
                  "GNSS latitude column [deg, WGS 84] (optional, with --lon-col): each window "
                  "gets the point at its centre (identify --geojson)");
   app.add_option("--lon-col", o.lon_col, "GNSS longitude column [deg, WGS 84] (with --lat-col)");
+  app.add_option("--east-col", o.east_col,
+                 "projected easting column [m] (optional, with --north-col): each window gets "
+                 "its easting and northing, and without --pos-col/--speed-col its position is "
+                 "the path length along them");
+  app.add_option("--north-col", o.north_col, "projected northing column [m] (with --east-col)");
   app.add_option("--units", o.units,
                  "units of the accelerations: auto (default: each column's unit from its header, "
                  "[m/s^2], [g], (mm/s2), az_g, ...; m/s^2 without one), m/s2 or g (9.80665 m/s^2)")
@@ -424,6 +429,11 @@ RecordColumns read_record(const RecordInput& o) {
     throw Error(std::string("give both --lat-col and --lon-col (the point of each window); got "
                             "only ") +
                 (o.lat_col.empty() ? "--lon-col" : "--lat-col"));
+  if (o.east_col.empty() != o.north_col.empty())
+    throw Error(std::string("give both --east-col and --north-col; got only ") +
+                (o.east_col.empty() ? "--north-col" : "--east-col"));
+  const int ceast = o.east_col.empty() ? -1 : find(o.east_col, "--east-col");
+  const int cnorth = o.north_col.empty() ? -1 : find(o.north_col, "--north-col");
   const int clat = o.lat_col.empty() ? -1 : find(o.lat_col, "--lat-col");
   const int clon = o.lon_col.empty() ? -1 : find(o.lon_col, "--lon-col");
   // Units: a flag's, else the column's header, else SI.
@@ -489,6 +499,10 @@ RecordColumns read_record(const RecordInput& o) {
       out.lat.push_back(lat);
       out.lon.push_back(lon);
     }
+    if (ceast >= 0) {
+      out.east.push_back(get(ceast));
+      out.north.push_back(get(cnorth));
+    }
   };
   if (!has_header) parse(first, first_no);
   while (next_line(line)) parse(line, no);
@@ -498,6 +512,13 @@ RecordColumns read_record(const RecordInput& o) {
       if (!(out.t[i] > out.t[i - 1])) return out;  // analyze_windows reports it
     out.position = integrate_speed(out.t, speed);
   }
+  if (ceast >= 0 && cp < 0 && cs < 0) {
+    // The path length along the track [m] (a GNSS fix repeated between updates adds nothing).
+    out.position.assign(out.t.size(), 0.0);
+    for (std::size_t i = 1; i < out.t.size(); ++i)
+      out.position[i] = out.position[i - 1] +
+                        std::hypot(out.east[i] - out.east[i - 1], out.north[i] - out.north[i - 1]);
+  }
   return out;
 }
 
@@ -505,15 +526,29 @@ RecordColumns read_record(const RecordInput& o) {
 
 namespace oscidrum::cli {
 
+namespace {
+
+// Two columns a, b of the record at time `at` (linear between samples; the first or last value
+// outside the record; NaN without the columns).
+std::pair<double, double> pair_at(const std::vector<double>& t, const std::vector<double>& a,
+                                  const std::vector<double>& b, double at) {
+  if (a.empty() || a.size() != t.size() || b.size() != t.size()) return {NAN, NAN};
+  const auto it = std::lower_bound(t.begin(), t.end(), at);
+  const std::size_t j = static_cast<std::size_t>(it - t.begin());
+  if (j == 0) return {a.front(), b.front()};
+  if (j >= t.size()) return {a.back(), b.back()};
+  const double u = (at - t[j - 1]) / (t[j] - t[j - 1]);
+  return {a[j - 1] + u * (a[j] - a[j - 1]), b[j - 1] + u * (b[j] - b[j - 1])};
+}
+
+}  // namespace
+
 std::pair<double, double> lat_lon_at(const RecordColumns& rec, double t) {
-  if (rec.lat.empty() || rec.lat.size() != rec.t.size()) return {NAN, NAN};
-  const auto it = std::lower_bound(rec.t.begin(), rec.t.end(), t);
-  const std::size_t j = static_cast<std::size_t>(it - rec.t.begin());
-  if (j == 0) return {rec.lat.front(), rec.lon.front()};
-  if (j >= rec.t.size()) return {rec.lat.back(), rec.lon.back()};
-  const double u = (t - rec.t[j - 1]) / (rec.t[j] - rec.t[j - 1]);
-  return {rec.lat[j - 1] + u * (rec.lat[j] - rec.lat[j - 1]),
-          rec.lon[j - 1] + u * (rec.lon[j] - rec.lon[j - 1])};
+  return pair_at(rec.t, rec.lat, rec.lon, t);
+}
+
+std::pair<double, double> east_north_at(const RecordColumns& rec, double t) {
+  return pair_at(rec.t, rec.east, rec.north, t);
 }
 
 nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec) {

@@ -23,6 +23,7 @@ struct RecordInput {
   std::string t_col, x_col, z_col;
   std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
   std::string lat_col, lon_col;        ///< optional GNSS latitude, longitude [deg, WGS 84]
+  std::string east_col, north_col;     ///< optional projected easting, northing [m]
   std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
   std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
   std::string x_positive = "forward";  ///< forward (the model's x) or backward
@@ -33,8 +34,9 @@ struct RecordInput {
 /// positive forward (the direction of travel), z_M'' positive down.
 struct RecordColumns {
   std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
-  std::vector<double> lat, lon;  ///< GNSS latitude, longitude [deg] (empty without the columns)
-  std::string delimiter;         ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
+  std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
+  std::string delimiter;            ///< as detected: "comma", "semicolon", "tab", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
   /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without
@@ -67,6 +69,8 @@ nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& r
 /// The record's latitude and longitude [deg] at time t (linear between samples; NaN without
 /// the columns).
 std::pair<double, double> lat_lon_at(const RecordColumns& rec, double t);
+/// The same for easting and northing [m].
+std::pair<double, double> east_north_at(const RecordColumns& rec, double t);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);

@@ -162,6 +162,33 @@ TEST(CliIdentify, GeoJsonPutsEachWindowOnTheMap) {
   const Outcome half = run({"identify", dir / "gnss.csv", "--lat-col", "lat"});
   EXPECT_EQ(half.code, 2);
   EXPECT_NE(half.err.find("give both --lat-col and --lon-col"), std::string::npos) << half.err;
+  // Projected coordinates [m]: easting and northing at each window's centre as properties, and
+  // the position the path length along them (0.3 m/s east and 0.4 m/s north: 0.5 m/s along the
+  // track).
+  {
+    std::ifstream in(dir / "pass.csv");
+    std::ofstream out(dir / "utm.csv");
+    std::string line;
+    std::getline(in, line);
+    out << "t,ddx_M,ddz_M,v,E,N\n";
+    char extra[96];
+    while (std::getline(in, line)) {
+      const double t = std::strtod(line.c_str(), nullptr);
+      std::snprintf(extra, sizeof extra, ",%.9f,%.9f", 600000.0 + 0.3 * t, 5340000.0 + 0.4 * t);
+      out << line << extra << "\n";
+    }
+  }
+  const Outcome utm = run({"identify", dir / "utm.csv", "--window", "20", "--east-col", "E",
+                           "--north-col", "N", "--geojson", dir / "utm.geojson", "--quiet"});
+  ASSERT_EQ(utm.code, 0) << utm.err;
+  for (const auto& f : nlohmann::json::parse(slurp(dir / "utm.geojson"))["features"]) {
+    const auto& p = f["properties"];
+    const double t = p["t"].get<double>();  // the record starts at t = 0
+    EXPECT_NEAR(p["easting"].get<double>(), 600000.0 + 0.3 * t, 1e-6);
+    EXPECT_NEAR(p["northing"].get<double>(), 5340000.0 + 0.4 * t, 1e-6);
+    EXPECT_NEAR(p["position"].get<double>(), 0.5 * t, 1e-6);
+    EXPECT_TRUE(f["geometry"].is_null());
+  }
 }
 
 // The fit plots show the fit: on a record whose clock starts at 1.2345 s, the model drawn in
