@@ -181,7 +181,8 @@ TEST(CliIdentify, GeoJsonPutsEachWindowOnTheMap) {
   const Outcome utm = run({"identify", dir / "utm.csv", "--window", "20", "--east-col", "E",
                            "--north-col", "N", "--geojson", dir / "utm.geojson", "--quiet"});
   ASSERT_EQ(utm.code, 0) << utm.err;
-  for (const auto& f : nlohmann::json::parse(slurp(dir / "utm.geojson"))["features"]) {
+  const auto projected = nlohmann::json::parse(slurp(dir / "utm.geojson"));  // kept alive
+  for (const auto& f : projected["features"]) {
     const auto& p = f["properties"];
     const double t = p["t"].get<double>();  // the record starts at t = 0
     EXPECT_NEAR(p["easting"].get<double>(), 600000.0 + 0.3 * t, 1e-6);
