@@ -523,7 +523,7 @@ void add_identify_command(CLI::App& app, Action& action) {
   sub->add_flag("--fit-MMd", o->fit_MMd, "estimate the driving torque MMd too")->group(fit);
   sub->add_option("--compare", o->compare,
                   "harmonics n = 1 ... N of x_M'' and z_M'' compared (default 4)")
-      ->check(CLI::Range(1, 50))
+      ->check(CLI::Range(1, kMaxComparedHarmonics))
       ->group(fit);
   sub->add_flag("--use-peaks", o->use_peaks, "compare the peaks of x_M'' and z_M'' too")
       ->group(fit);

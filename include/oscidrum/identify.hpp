@@ -221,6 +221,9 @@ struct SyntheticRecord {
   double dropped = 0.0;  ///< fraction of the samples lost at random [-], in [0, 1)
 };
 
+/// Most harmonics an identification compares (IdentifyOptions::harmonics, --compare).
+inline constexpr int kMaxComparedHarmonics = 50;
+
 /// Samples of a synthetic record: t [s], x_M'', z_M'' [m/s^2], position [m].
 struct RecordSamples {
   std::vector<double> t, ddx_M, ddz_M, position;

@@ -37,6 +37,17 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
                                         std::span<const double> position,
                                         const WindowOptions& windows, const IdentifyOptions& o,
                                         const PassProgress& progress) {
+  // Refused before any window (per window they would only fail each one): the harmonics
+  // compared, as the CLI's --compare allows them.
+  if (o.harmonics < 1 || o.harmonics > kMaxComparedHarmonics)
+    throw Error("identify: compare (--compare) must be in [1, " +
+                std::to_string(kMaxComparedHarmonics) + "] harmonics; got " +
+                std::to_string(o.harmonics));
+  if (windows.n_max > 0 && o.harmonics > windows.n_max)
+    throw Error(
+        "identify: compare (--compare) must be <= the harmonics fitted (n_max, "
+        "--harmonics) = " +
+        std::to_string(windows.n_max) + "; got " + std::to_string(o.harmonics));
   // The record's times from its first sample: phases of n 2 pi f t at t ~ 1e9 s would keep
   // only a few digits.
   const double t0 = t.empty() ? 0.0 : t.front();

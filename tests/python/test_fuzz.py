@@ -79,6 +79,10 @@ def test_size_like_arguments_are_bounded(record):
             oscidrum.identify_record(oscidrum.Case(), t, ax, az, **{name: value})
         except (ValueError, TypeError) as e:
             assert str(e), call
+    # The cases: compare=0 or 10**6 are refused before any window, not failed per window.
+    for compare in [0, -1, 10**6]:
+        with pytest.raises(ValueError):
+            oscidrum.identify_record(oscidrum.Case(), t, ax, az, compare=compare)
     for n in [0, -1, 10**7, 2**40]:
         with pytest.raises((ValueError, TypeError, OverflowError)):
             oscidrum.run_study([oscidrum.Case()], n_harmonics=n)
