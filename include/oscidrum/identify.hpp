@@ -104,6 +104,11 @@ enum class SoilScale {
 const char* to_string(SoilScale scale);  ///< "formulas", "table2"
 /// SoilScale from its name; throws oscidrum::Error naming `what` and the choices.
 SoilScale soil_scale_from(const std::string& name, const std::string& what = "soil_scale");
+/// The soil of shear modulus G [Pa] on `scale`: Appendix B's (soil.input = modulus, with nu and
+/// rho of `base`) or Table 2's coefficients interpolated at G (soil.input = coefficients). Throws
+/// oscidrum::Error when G is outside the scale's range (formulas: [1e5, 2e9] Pa, the
+/// identification's; table2: [kTable2InterpolatedMin, kTable2InterpolatedMax]).
+Soil soil_on_scale(double G, SoilScale scale, const Soil& base = {});
 
 /// What is estimated, and how.
 struct IdentifyOptions {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "oscidrum/branch.hpp"
+#include "oscidrum/calibrate.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/flow.hpp"

@@ -76,21 +76,6 @@ Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identif
   return best_p;
 }
 
-// The residual of the harmonics at the estimate: RMS and relative to the measured ones.
-void residual_measures(Problem& pr, const MeasuredResponse& data, const IdentifyOptions& o,
-                       const Eigen::VectorXd& p, double phi, Identification& id) {
-  const detail::Simulated& s = pr.simulate_at(p);
-  double num2 = 0, den2 = 0;
-  for (int n = 1; n <= o.harmonics; ++n) {
-    const std::complex<double> e = std::polar(1.0, n * phi);
-    num2 +=
-        std::norm(data.ddx[n - 1] - s.x[n - 1] * e) + std::norm(data.ddz[n - 1] - s.z[n - 1] * e);
-    den2 += std::norm(data.ddx[n - 1]) + std::norm(data.ddz[n - 1]);
-  }
-  id.rms_residual = std::sqrt(num2 / (2.0 * o.harmonics));
-  id.relative_residual = den2 > 0 ? std::sqrt(num2 / den2) : kNaN;
-}
-
 std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o) {
   return "poor fit: reduced chi^2 " + num(std::round(id.reduced_chi2 * 10) / 10) + " > " +
          num(o.max_reduced_chi2) + " (relative residual " +
@@ -252,6 +237,28 @@ SoilScale soil_scale_from(const std::string& name, const std::string& what) {
               what);
 }
 
+Soil soil_on_scale(double G, SoilScale scale, const Soil& base) {
+  const double lo = scale == SoilScale::table2 ? kTable2InterpolatedMin : 1e5;
+  const double hi = scale == SoilScale::table2 ? kTable2InterpolatedMax : 2e9;
+  if (!(G >= lo && G <= hi))
+    throw Error("G must be in [" + num(lo / 1e6) + ", " + num(hi / 1e6) + "] MN/m^2 on the " +
+                    to_string(scale) + " scale; got " + num(G / 1e6) + " MN/m^2",
+                "G", G);
+  Soil s = base;
+  s.G = G;
+  if (scale == SoilScale::table2) {
+    const SoilCoefficients k = table2_coefficients(G);
+    s.input = SoilInput::coefficients;
+    s.ksh = k.ksh;
+    s.ksv = k.ksv;
+    s.csh = k.csh;
+    s.csv = k.csv;
+  } else {
+    s.input = SoilInput::modulus;
+  }
+  return s;
+}
+
 Identification identify(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
                         const Identification* start) {
   check_input(data, o);
@@ -286,7 +293,10 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   id.reduced_chi2 = s2;
   id.fitted = pr.case_at(fit.p);
   id.simulated = pr.simulate_at(fit.p).metrics;
-  residual_measures(pr, data, o, fit.p, phi, id);
+  const detail::HarmonicMisfit misfit =
+      detail::harmonic_misfit(pr.simulate_at(fit.p), data, o.harmonics, phi);
+  id.rms_residual = misfit.rms;
+  id.relative_residual = misfit.relative;
   // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
   if (s2 > o.max_reduced_chi2) {
     id.warnings.push_back(poor_fit_warning(id, o));

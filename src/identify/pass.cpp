@@ -4,11 +4,12 @@
 #include <cmath>
 #include <utility>
 
+#include "identify/problem.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 
 namespace oscidrum {
-namespace {
+namespace detail {
 
 // The harmonics of the gates when not given: as many as the record's sampling resolves at its
 // frequency (2 N + 1 samples per period at the median step), at most analyze's default 10.
@@ -30,7 +31,7 @@ int gate_harmonics(std::span<const double> t, std::span<const double> ddx,
   return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
 }
 
-}  // namespace
+}  // namespace detail
 
 std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double> t,
                                         std::span<const double> ddx, std::span<const double> ddz,
@@ -54,7 +55,7 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   std::vector<double> local(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) local[i] = t[i] - t0;
   WindowOptions wo = windows;
-  if (wo.n_max == 0) wo.n_max = gate_harmonics(local, ddx, ddz, wo);
+  if (wo.n_max == 0) wo.n_max = detail::gate_harmonics(local, ddx, ddz, wo);
   std::vector<RecordWindow> ws = analyze_windows(local, ddx, ddz, position, wo);
   MeasureOptions mo = o.measure;
   mo.covariance = std::max(mo.covariance, o.harmonics);

@@ -82,6 +82,19 @@ double to_physical(Unknown k, double p, double M0) {
   return k == Unknown::MMd ? p * M0 : std::exp(p);
 }
 
+HarmonicMisfit harmonic_misfit(const Simulated& s, const MeasuredResponse& data, int harmonics,
+                               double phi) {
+  double num2 = 0, den2 = 0;
+  for (int n = 1; n <= harmonics; ++n) {
+    const std::complex<double> e = std::polar(1.0, n * phi);
+    num2 +=
+        std::norm(data.ddx[n - 1] - s.x[n - 1] * e) + std::norm(data.ddz[n - 1] - s.z[n - 1] * e);
+    den2 += std::norm(data.ddx[n - 1]) + std::norm(data.ddz[n - 1]);
+  }
+  return {std::sqrt(num2 / (2.0 * harmonics)),
+          den2 > 0 ? std::sqrt(num2 / den2) : std::numeric_limits<double>::quiet_NaN()};
+}
+
 Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o)
     : data_(data), o_(o) {
   case_ = base;

@@ -7,6 +7,7 @@
 #include <complex>
 #include <limits>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,22 @@ inline constexpr long kMaxStepsPerRun = 400000;
 /// roller whose model hardly settles (a suspension of 1e9 N/m: every trial runs into its 1500
 /// periods) took minutes of such trials, the diagnosis's refits multiplying them.
 inline constexpr long kMaxStepsPerWindow = 8000000;
+
+/// The misfit of the harmonics n = 1 ... harmonics of the model `s` turned by e^{i n phi}
+/// against the measured ones: the RMS of C_n(measured) - C_n(model) over n and both signals
+/// [m/s^2], and its norm relative to the measured harmonics' (NaN without any) [-].
+struct HarmonicMisfit {
+  double rms = 0.0;
+  double relative = 0.0;
+};
+HarmonicMisfit harmonic_misfit(const Simulated& s, const MeasuredResponse& data, int harmonics,
+                               double phi);
+
+/// The harmonics of a record's gates when not given (WindowOptions::n_max == 0): as many as the
+/// record's sampling resolves at its frequency (2 N + 1 samples per period at the median step),
+/// in [2, 10] (analyze's default 10).
+int gate_harmonics(std::span<const double> t, std::span<const double> ddx_M,
+                   std::span<const double> ddz_M, const WindowOptions& w);
 
 class Problem : public LeastSquares {
  public:
