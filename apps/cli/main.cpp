@@ -20,10 +20,13 @@ using namespace oscidrum::cli;
 
 // Every command, in the order of `oscidrum --help`.
 constexpr AddCommand kCommands[] = {
-    add_run_command,     add_sweep_command,    add_merge_command,
-    add_analyze_command, add_identify_command, add_validate_command,
-    add_paper_command,   add_soil_command,     add_transmissibility_command,
-    add_fields_command,  add_outputs_command,  add_continue_command,
+    add_run_command,      add_sweep_command,
+    add_merge_command,    add_analyze_command,
+    add_identify_command, add_calibrate_command,
+    add_validate_command, add_paper_command,
+    add_soil_command,     add_transmissibility_command,
+    add_fields_command,   add_outputs_command,
+    add_continue_command,
 };
 
 // Lists each command with the first sentence of its description only; `oscidrum CMD --help`

@@ -191,12 +191,14 @@ char acceleration_axis(const std::string& k) {
 
 }  // namespace
 
-void add_record_options(CLI::App& app, RecordInput& o, bool required) {
-  auto* record = app.add_option(
-      "record", o.file,
-      "CSV file of the record, or - for stdin (delimiter , ; tab or spaces and comment "
-      "lines #, %, // are detected; a header line is optional)");
-  if (required) record->required();
+void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_and_position) {
+  if (file_and_position) {
+    auto* record = app.add_option(
+        "record", o.file,
+        "CSV file of the record, or - for stdin (delimiter , ; tab or spaces and comment "
+        "lines #, %, // are detected; a header line is optional)");
+    if (required) record->required();
+  }
   app.add_option("--t-col", o.t_col,
                  "time column: a name or a 1-based index (default: recognised from the header: "
                  "t, time, zeit, timestamp, ...)");
@@ -206,19 +208,21 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required) {
   app.add_option("--z-col", o.z_col,
                  "vertical acceleration column z_M'': name or index (default: recognised: ddz_M, "
                  "az, a_z, acc_z, accel_z, z_acc, vertical, ...)");
-  app.add_option("--pos-col", o.pos_col,
-                 "position column [m] (optional): each window reports its position");
-  app.add_option("--speed-col", o.speed_col,
-                 "speed column [m/s] (optional): integrated to the position");
-  app.add_option("--lat-col", o.lat_col,
-                 "GNSS latitude column [deg, WGS 84] (optional, with --lon-col): each window "
-                 "gets the point at its centre (identify --geojson)");
-  app.add_option("--lon-col", o.lon_col, "GNSS longitude column [deg, WGS 84] (with --lat-col)");
-  app.add_option("--east-col", o.east_col,
-                 "projected easting column [m] (optional, with --north-col): each window gets "
-                 "its easting and northing, and without --pos-col/--speed-col its position is "
-                 "the path length along them");
-  app.add_option("--north-col", o.north_col, "projected northing column [m] (with --east-col)");
+  if (file_and_position) {
+    app.add_option("--pos-col", o.pos_col,
+                   "position column [m] (optional): each window reports its position");
+    app.add_option("--speed-col", o.speed_col,
+                   "speed column [m/s] (optional): integrated to the position");
+    app.add_option("--lat-col", o.lat_col,
+                   "GNSS latitude column [deg, WGS 84] (optional, with --lon-col): each window "
+                   "gets the point at its centre (identify --geojson)");
+    app.add_option("--lon-col", o.lon_col, "GNSS longitude column [deg, WGS 84] (with --lat-col)");
+    app.add_option("--east-col", o.east_col,
+                   "projected easting column [m] (optional, with --north-col): each window gets "
+                   "its easting and northing, and without --pos-col/--speed-col its position is "
+                   "the path length along them");
+    app.add_option("--north-col", o.north_col, "projected northing column [m] (with --east-col)");
+  }
   app.add_option("--units", o.units,
                  "units of the accelerations: auto (default: each column's unit from its header, "
                  "[m/s^2], [g], (mm/s2), az_g, ...; m/s^2 without one), m/s2 or g (9.80665 m/s^2)")

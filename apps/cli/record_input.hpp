@@ -46,8 +46,10 @@ struct RecordColumns {
 };
 
 /// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units,
-/// --t-units, --x-positive, --z-positive.
-void add_record_options(CLI::App& app, RecordInput& o, bool required = true);
+/// --t-units, --x-positive, --z-positive. `file_and_position` false: only how the columns are read
+/// (no record argument, no position or GNSS columns), for a command that takes several records.
+void add_record_options(CLI::App& app, RecordInput& o, bool required = true,
+                        bool file_and_position = true);
 
 /// Read the record. Throws oscidrum::Error (exit 2) naming the file, line and column.
 RecordColumns read_record(const RecordInput& o);

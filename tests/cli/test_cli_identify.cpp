@@ -364,5 +364,82 @@ TEST(CliAnalyze, EmptyStdinIsBadInput) {
   EXPECT_NE(o.err.find("<stdin>: no data"), std::string::npos) << o.err;
 }
 
+// Calibration on two references of known soil writes a case file; identify --case with it finds
+// the soil of a third record of the same (not the paper's) roller, which the paper's roller
+// misses. The references are written as a logger writes them: z up, in g.
+TEST(CliCalibrate, WritesTheCaseThatIdentifyThenUses) {
+  TempDir dir;
+  auto roller = [](double G) {
+    Case c = truth(G);
+    c.roller.M0 *= 1.15;
+    c.roller.P0 *= 1.2;
+    return c;
+  };
+  auto write_logger = [&](const std::string& path, double G, unsigned seed) {
+    SyntheticRecord so;
+    so.duration = 1.0;
+    so.noise = 0.03;
+    so.drift = 0.05;
+    so.jitter = 0.1;
+    so.seed = seed;
+    const RecordSamples r = synthetic_record({roller(G)}, so);
+    std::ofstream out(path);
+    out << "Time [s],acc_x,acc_z [g]\n";
+    char line[160];
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", r.t[i], r.ddx_M[i],
+                    -r.ddz_M[i] / 9.80665);
+      out << line;
+    }
+  };
+  write_logger(dir / "a.csv", 15e6, 1);
+  write_logger(dir / "b.csv", 60e6, 2);
+  write_logger(dir / "pass.csv", 32e6, 3);
+  const Outcome o =
+      run({"calibrate", dir / "a.csv@15", dir / "b.csv@60", "--z-positive", "up", "--fit",
+           "roller.M0,roller.P0", "--out", dir / "roller.toml", "--json", dir / "cal.json"});
+  ASSERT_EQ(o.code, 0) << o.err << o.out;
+  EXPECT_NE(o.out.find("roller.M0 [N m]"), std::string::npos) << o.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "cal.json"));
+  EXPECT_EQ(j["schema"], "oscidrum-calibrate/1");
+  const double truths[] = {Roller{}.M0 * 1.15, Roller{}.P0 * 1.2};
+  ASSERT_EQ(j["estimates"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json& e = j["estimates"][k];
+    EXPECT_NEAR(e["value"].get<double>() / truths[k], 1.0, 0.02) << e;
+    EXPECT_LE(e["lower"].get<double>(), truths[k]) << e;
+    EXPECT_GE(e["upper"].get<double>(), truths[k]) << e;
+  }
+  EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+  const std::string toml = slurp(dir / "roller.toml");
+  EXPECT_EQ(toml.rfind("# Calibrated by oscidrum", 0), 0u) << toml;
+
+  const Outcome id = run({"identify", dir / "pass.csv", "--z-positive", "up", "--window", "0",
+                          "--case", dir / "roller.toml", "--format", "json"});
+  ASSERT_EQ(id.code, 0) << id.err;
+  const nlohmann::json e = nlohmann::json::parse(id.out)["windows"][0]["estimates"][0];
+  EXPECT_NEAR(e["value"].get<double>() / 32e6, 1.0, 0.03) << e;
+  EXPECT_LE(e["lower"].get<double>(), 32e6) << e;
+  EXPECT_GE(e["upper"].get<double>(), 32e6) << e;
+  const Outcome naive = run(
+      {"identify", dir / "pass.csv", "--z-positive", "up", "--window", "0", "--format", "json"});
+  ASSERT_EQ(naive.code, 0) << naive.err;
+  const nlohmann::json n = nlohmann::json::parse(naive.out)["windows"][0];
+  EXPECT_GT(std::abs(n["estimates"][0]["value"].get<double>() / 32e6 - 1.0), 0.1) << n;
+
+  // Bad input: one line naming the value and the rule, exit 2.
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"calibrate", dir / "a.csv@15", "--fit", "soil.G"},
+        {"calibrate", dir / "a.csv@fifteen"},
+        {"calibrate", dir / "a.csv@0.001"},
+        {"calibrate", dir / "a.csv@15", "--fit", "roller.kdd"},
+        {"calibrate", dir / "a.csv@15", "--range", "1"},
+        {"calibrate", dir / "missing.csv@15"}}) {
+    const Outcome b = run(bad);
+    EXPECT_EQ(b.code, 2) << bad.back() << ": " << b.err;
+    EXPECT_NE(b.err.find("error"), std::string::npos) << b.err;
+  }
+}
+
 }  // namespace
 }  // namespace oscidrum::test
