@@ -74,6 +74,48 @@ def identify_frame(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[f
     return pd.DataFrame(keep)
 
 
+def calibrate(references: Sequence[Dict[str, Any]], case=None,
+              parameters: Sequence[str] = ("roller.M0",), soil_scale: str = "formulas",
+              x_positive: str = "forward", z_positive: str = "down",
+              **options: Any) -> Dict[str, Any]:
+    """Calibrate the roller on reference records of known soil (``oscidrum calibrate``).
+
+    Each reference is a dict with ``t`` [s], ``ddx_M``, ``ddz_M`` [m/s^2] (the whole record is
+    one window), the soil under it as ``G`` [Pa] on ``soil_scale`` ('formulas' or 'table2') or
+    as ``soil`` (an :class:`oscidrum.Soil`; neither: the case's soil), and optionally ``name``.
+    ``parameters`` are the case fields fitted (e.g. ``["roller.M0", "roller.P0"]``); ``case``
+    (default the paper's roller) gives their start values and everything else. The axes as in
+    :func:`identify`. Options: f (0: estimated per record), n_max (the gates' harmonics),
+    compare, range, profile, shooting. Returns a dict with ``estimates`` (name, unit, value,
+    standard_uncertainty, lower, upper, ...), ``references`` (how each fits), ``reduced_chi2``,
+    ``warnings`` and ``calibrated``, the :class:`oscidrum.Case` to pass to :func:`identify`
+    (``oscidrum.case_to_toml`` writes it as a case file)."""
+    from . import Case, Error, calibrate_records, soil_on_scale
+    if x_positive not in ("forward", "backward"):
+        raise Error(f"x_positive must be 'forward' or 'backward'; got {x_positive!r}")
+    if z_positive not in ("down", "up"):
+        raise Error(f"z_positive must be 'down' or 'up'; got {z_positive!r}")
+    base = case if case is not None else Case()
+    refs = []
+    for k, ref in enumerate(references):
+        missing = [key for key in ("t", "ddx_M", "ddz_M") if key not in ref]
+        if missing:
+            raise Error(f"reference {k} has no {', '.join(missing)}")
+        if "G" in ref and "soil" in ref:
+            raise Error(f"reference {k}: give G or soil, not both")
+        if "G" in ref:
+            soil = soil_on_scale(float(ref["G"]), soil_scale, base.soil)
+        else:
+            soil = ref.get("soil", base.soil)
+        x = np.asarray(ref["ddx_M"], dtype=float)
+        z = np.asarray(ref["ddz_M"], dtype=float)
+        refs.append({"name": str(ref.get("name", f"reference {k}")), "soil": soil,
+                     "t": np.asarray(ref["t"], dtype=float),
+                     "ddx_M": -x if x_positive == "backward" else x,
+                     "ddz_M": -z if z_positive == "up" else z})
+    return calibrate_records(base, refs, list(parameters), **options)
+
+
 def _json_value(v: Any) -> Any:
     """A table cell as JSON: numpy scalars as Python numbers, NaN and infinities as null."""
     if isinstance(v, (list, tuple)):

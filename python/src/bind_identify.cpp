@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "oscidrum/calibrate.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 
@@ -149,6 +150,94 @@ void bind_identify(py::module_& m) {
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "
       "not estimated; its M0 is scaled by (f / roller.f)^2 to the record's f.");
+  m.def(
+      "soil_on_scale",
+      [](double G, const std::string& scale, const Soil& base) {
+        return soil_on_scale(G, soil_scale_from(scale), base);
+      },
+      py::arg("G"), py::arg("scale") = "formulas", py::arg("base") = Soil{},
+      "The soil of shear modulus G [Pa] on a scale: 'formulas' (Appendix B (42)-(45) with nu and "
+      "rho of `base`) or 'table2' (the paper's Table 2 coefficients, interpolated at G).");
+  m.def(
+      "calibrate_records",
+      [](const Case& c, const py::list& references, const std::vector<std::string>& parameters,
+         double f, int n_max, int compare, double range, bool profile, bool shooting) {
+        WindowOptions wo;
+        wo.f = f;
+        wo.n_max = n_max;
+        std::vector<Reference> refs;
+        for (const py::handle& h : references) {
+          const py::dict d = py::cast<py::dict>(h);
+          Reference r;
+          r.name = d.contains("name") ? py::cast<std::string>(d["name"])
+                                      : "reference " + std::to_string(refs.size());
+          r.soil = py::cast<Soil>(d["soil"]);
+          const Array t = py::cast<Array>(d["t"]), x = py::cast<Array>(d["ddx_M"]),
+                      z = py::cast<Array>(d["ddz_M"]);
+          try {
+            r.data = measure_record(span_of(t, "t"), span_of(x, "ddx_M"), span_of(z, "ddz_M"), wo);
+          } catch (const Error& e) {
+            throw Error(r.name + ": " + e.what());
+          }
+          refs.push_back(std::move(r));
+        }
+        CalibrateOptions o;
+        o.parameters = parameters;
+        o.harmonics = compare;
+        o.range = range;
+        o.profile = profile;
+        o.shooting = shooting;
+        Calibration cal;
+        {
+          py::gil_scoped_release release;
+          cal = calibrate(c, refs, o);
+        }
+        py::list estimates, fits;
+        for (const Estimate& e : cal.estimates) {
+          py::dict d;
+          d["name"] = e.name;
+          d["unit"] = e.unit;
+          d["value"] = e.value;
+          d["standard_uncertainty"] = e.standard_uncertainty;
+          d["lower"] = e.lower;
+          d["upper"] = e.upper;
+          d["lower_open"] = e.lower_open;
+          d["upper_open"] = e.upper_open;
+          estimates.append(d);
+        }
+        for (const ReferenceFit& r : cal.references) {
+          py::dict d;
+          d["name"] = r.name;
+          d["f"] = r.f;
+          d["tau"] = r.time_shift;
+          d["rms_residual"] = r.rms_residual;
+          d["relative_residual"] = r.relative_residual;
+          d["reduced_chi2"] = r.reduced_chi2;
+          fits.append(d);
+        }
+        py::dict out;
+        out["estimates"] = estimates;
+        out["references"] = fits;
+        out["reduced_chi2"] = cal.reduced_chi2;
+        out["condition"] = cal.condition;
+        out["converged"] = cal.converged;
+        out["message"] = cal.message;
+        out["iterations"] = cal.iterations;
+        out["simulations"] = cal.simulations;
+        out["warnings"] = cal.warnings;
+        out["calibrated"] = cal.calibrated;
+        return out;
+      },
+      py::arg("case"), py::arg("references"), py::arg("parameters"), py::arg("f") = 0.0,
+      py::arg("n_max") = 0, py::arg("compare") = 4, py::arg("range") = 10.0,
+      py::arg("profile") = true, py::arg("shooting") = true,
+      "Calibrate fields of `case` (`parameters`, e.g. ['roller.M0', 'roller.P0']) on reference "
+      "records of known soil, as `oscidrum calibrate`: `references` is a list of dicts with t, "
+      "ddx_M, ddz_M (arrays in the model's conventions), soil (a Soil) and optionally name. "
+      "Returns a dict: estimates (name, unit, value, standard_uncertainty, lower, upper, "
+      "lower_open, upper_open), references (name, f, tau, residuals, reduced_chi2), "
+      "reduced_chi2, condition, converged, message, iterations, simulations, warnings and "
+      "calibrated (the Case to identify with).");
   m.def(
       "synthetic_record",
       [](const std::vector<Case>& cases, double duration, double sample_rate, double noise,

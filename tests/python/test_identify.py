@@ -152,3 +152,44 @@ def test_identify_frame_and_geojson(tmp_path):
     assert oscidrum.identify.to_geojson(rows)["features"][0]["geometry"] is None
     with pytest.raises(ValueError):
         oscidrum.identify.to_geojson(rows, lat=lat)
+
+
+def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
+    """A roller with 15 % more unbalance and 20 % more axle load than the paper's: calibrated on
+    two references of known G (z up, as a logger writes it), the calibrated case identifies a
+    third record's soil; it round-trips through a case file."""
+    def roller(G):
+        c = truth(G)
+        c.set("roller.M0", c.get("roller.M0") * 1.15)
+        c.set("roller.P0", 45224.0 * 1.2)
+        return c
+
+    def record(G, seed):
+        r = oscidrum.synthetic_record([roller(G)], duration=1.0, sample_rate=1000, noise=0.03,
+                                      drift=0.05, jitter=0.1, seed=seed)
+        return {"t": r["t"], "ddx_M": r["ddx_M"], "ddz_M": -r["ddz_M"], "G": G,
+                "name": f"G={G / 1e6:g}"}
+
+    cal = oscidrum.identify.calibrate([record(15e6, 1), record(60e6, 2)],
+                                      parameters=["roller.M0", "roller.P0"], z_positive="up")
+    truths = {"roller.M0": 54947.0 * 1.15, "roller.P0": 45224.0 * 1.2}
+    assert [e["name"] for e in cal["estimates"]] == list(truths)
+    for e in cal["estimates"]:
+        assert abs(e["value"] / truths[e["name"]] - 1) < 0.02, e
+        assert e["lower"] <= truths[e["name"]] <= e["upper"], e
+    assert cal["warnings"] == [] and cal["converged"]
+    assert [r["name"] for r in cal["references"]] == ["G=15", "G=60"]
+    path = tmp_path / "roller.toml"
+    path.write_text(oscidrum.case_to_toml(cal["calibrated"]))
+    case = oscidrum.load_case(str(path))
+    assert case.get("roller.M0") == pytest.approx(cal["estimates"][0]["value"], rel=1e-12)
+    r = oscidrum.synthetic_record([roller(32e6)], duration=1.0, sample_rate=1000, noise=0.03,
+                                  drift=0.05, seed=3)
+    row = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], case=case, window=0)[0]
+    assert abs(row["G"] / 32e6 - 1) < 0.03 and row["G_lo"] <= 32e6 <= row["G_hi"], row
+    with pytest.raises(oscidrum.Error, match="given by each reference"):
+        oscidrum.identify.calibrate([record(15e6, 1)], parameters=["soil.G"])
+    with pytest.raises(oscidrum.Error, match="G or soil"):
+        oscidrum.identify.calibrate([dict(record(15e6, 1), soil=oscidrum.Soil())])
+    with pytest.raises(oscidrum.Error, match="MN/m"):
+        oscidrum.identify.calibrate([dict(record(15e6, 1), G=1.0)])
