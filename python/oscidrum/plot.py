@@ -6,7 +6,10 @@ CSV, or the CSV's path), or a ``(result, oscidrum.Case)`` pair that also gives t
 parameters, and returns a :class:`matplotlib.figure.Figure`; :func:`save` writes it as PNG or
 SVG. With ``ax=`` (an Axes, or a sequence of Axes for the two-panel plots) a function draws into
 the caller's axes and returns them instead. Titles name the cases' key parameters (soil,
-contact, driving torque, trough, f); legends sit beside the axes, where they hide no data.
+contact, driving torque, trough, f). Every function that draws a legend takes ``legend=``
+(LEGEND_PLACES): by default it sits inside the axes where it hides no data, else beside them
+when the figure has a layout engine (the figures made here have one), else inside at the best
+place, so that in a user's figure it is never clipped.
 Figures are built with the object-oriented API (no pyplot state), so they are safe in scripts,
 tests and threads; in Jupyter, ``display(fig)`` shows them.
 
@@ -15,6 +18,7 @@ sweep --plot FILE`` the last; run it with the interpreter the package is install
 Debian ``/usr/bin/python3``)::
 
     /usr/bin/python3 -m oscidrum.plot case --csv FILE [--json FILE] --out DIR [--format png|svg]
+                                   [--spectra-units both|normalised|m/s^2]
     /usr/bin/python3 -m oscidrum.plot sweep --csv results.csv --x soil.G --y area [--y ddx_max]
                                    [--group MMd_fraction] [--where contact.pure_rolling=true]
                                    --out DIR [--format png|svg]
