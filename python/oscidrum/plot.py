@@ -424,8 +424,9 @@ def _draw_legend(ax: Any, handles: List[Any], place: str, under: Any,
 
 
 def _data_paths(fig: Figure, renderer: Any) -> Tuple[List[Any], List[Any]]:
-    """Display-space paths of every plotted line (runs between gaps) and boxes of every bar of
-    the figure's axes; reference lines (axhline, axvline) and shading spans are not data."""
+    """Display-space paths of every plotted line (runs between gaps) and filled area
+    (fill_between), and boxes of every bar, of the figure's axes: (paths as (path, filled),
+    boxes). Reference lines (axhline, axvline) and shading spans are not data."""
     from matplotlib.path import Path as MplPath
     paths, boxes = [], []
     for ax in fig.axes:
@@ -440,7 +441,11 @@ def _data_paths(fig: Figure, renderer: Any) -> Tuple[List[Any], List[Any]]:
             finite = np.isfinite(pts).all(axis=1)
             edges = np.diff(np.concatenate(([0], finite.astype(int), [0])))
             for start, end in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0]):
-                paths.append(MplPath(pts[start:end]))
+                paths.append((MplPath(pts[start:end]), False))
+        for collection in ax.collections:
+            if collection.get_transform() == ax.transData and collection.get_visible():
+                paths += [(ax.transData.transform_path(path), True)
+                          for path in collection.get_paths()]
         for patch in ax.patches:
             if patch.get_transform() == ax.transData and patch.get_visible():
                 boxes.append(patch.get_window_extent(renderer))
@@ -450,11 +455,11 @@ def _data_paths(fig: Figure, renderer: Any) -> Tuple[List[Any], List[Any]]:
 def _hides_data(legend: Any, paths: List[Any], boxes: List[Any], renderer: Any) -> bool:
     """Whether the legend's box covers a data point, crosses a curve or overlaps a bar."""
     box = legend.get_window_extent(renderer)
-    for path in paths:
+    for path, filled in paths:
         v = path.vertices
         if (((v[:, 0] > box.x0) & (v[:, 0] < box.x1) & (v[:, 1] > box.y0) &
              (v[:, 1] < box.y1)).any() or
-                (len(v) > 1 and path.intersects_bbox(box, filled=False))):
+                (len(v) > 1 and path.intersects_bbox(box, filled=filled))):
             return True
     return any(box.overlaps(b) for b in boxes)
 
