@@ -598,6 +598,7 @@ def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: flo
                           title, ax, legend=legend)
     axes = result.axes if isinstance(result, Figure) else list(result)
     axis = axes[1]
+    limits: List[Any] = []
     for i, state in enumerate(states):
         m = mu if mu is not None else state.parameters.get("contact.mu")
         pure = state.parameters.get("contact.pure_rolling")
@@ -606,9 +607,11 @@ def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: flo
         idx = _window(state, periods)
         limit = float(m) * np.asarray(state.samples.N)[idx] * 1e-3
         axis.plot(state.tau()[idx], limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8)
-        axis.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8,
-                  label=r"$\pm\mu N$" if i == 0 else None)
-    _legend(axis, legend=legend)
+        line, = axis.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":",
+                          lw=0.8, label=r"$\pm\mu N$")
+        limits = limits or [line]
+    # (b)'s legend says only what (a)'s does not: the friction limit.
+    _legend(axis, legend=legend, handles=limits)
     _place_legends(axis.figure, [axis])
     return result
 

@@ -565,3 +565,15 @@ def test_paper_fig7_title_names_G_once(tmp_path, monkeypatch):
     assert title.count("pure rolling") == 1 and "f = 39 Hz" in title, title
     for name in ("fig08a", "fig08b"):
         assert drawn[name]._suptitle.get_text().count("G = 5") == 1
+
+
+def test_forces_panel_b_legend_names_only_the_friction_limit(slip_result, slip_case):
+    pair = (slip_result, slip_case)
+    fig = plot.plot_forces([pair, pair], labels=["a", "b"])
+    top, bottom = fig.axes
+    assert [t.get_text() for t in top.get_legend().get_texts()] == ["a", "b"]
+    assert [t.get_text() for t in bottom.get_legend().get_texts()] == [r"$\pm\mu N$"]
+    rolling = oscidrum.Case(soil=oscidrum.table2_soil(5e6))
+    rolling.contact.pure_rolling = True
+    fig = plot.plot_forces((oscidrum.simulate(rolling), rolling))
+    assert fig.axes[1].get_legend() is None  # pure rolling: no friction limit to name
