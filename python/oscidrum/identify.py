@@ -193,10 +193,13 @@ def read_csv(path: str | Path) -> Dict[str, np.ndarray]:
     return out
 
 
-def plot_pass(rows, x: str = "auto", parameter: str = "G"):
+def plot_pass(rows, x: str = "auto", parameter: str = "G", legend: Any = "auto"):
     """G (or another unknown) with its 95 % band against time or position (x = 't',
     'position' or 'auto': position if the rows have it). ``rows``: the result of
-    :func:`identify` or the path of ``oscidrum identify --csv``. Returns a Figure."""
+    :func:`identify` or the path of ``oscidrum identify --csv``. legend: where the legend goes,
+    as in :mod:`oscidrum.plot` ("auto", "best"/"inside", "outside", "below", a matplotlib
+    location, None/False). Returns a Figure."""
+    from .plot import _legend, _place_legends
     cols = read_csv(rows) if isinstance(rows, (str, Path)) else {
         k: np.array([r.get(k, math.nan) for r in rows], dtype=float)
         for k in ("t", "position", parameter, parameter + "_lo", parameter + "_hi", "valid")}
@@ -217,15 +220,18 @@ def plot_pass(rows, x: str = "auto", parameter: str = "G"):
     ax.set_xlabel("position [m]" if x == "position" else "time [s]")
     ax.set_ylabel(f"{label} [{unit}]")
     ax.set_title(f"identified {label} along the pass (lumped model, docs/identify.md)")
-    ax.legend(loc="best", fontsize="small")
     ax.grid(alpha=0.3)
+    _legend(ax, legend=legend)
+    _place_legends(fig, [ax])
     return fig
 
 
-def plot_fit(directory: str | Path):
+def plot_fit(directory: str | Path, legend: Any = "auto"):
     """Measured against simulated for one window, from the files of ``identify --plot DIR``
     (fit_measured.csv, fit_model.csv, fit_spectrum.csv, fit.json): three Figures (time
-    histories over two periods, spectra, z_M''-x_M'' figure) with the estimates in the title."""
+    histories over two periods, spectra, z_M''-x_M'' figure) with the estimates in the title.
+    legend: as for plot_pass (one legend per figure)."""
+    from .plot import _legend, _place_legends
     d = Path(directory)
     meas = read_csv(d / "fit_measured.csv")
     model = read_csv(d / "fit_model.csv")
@@ -248,9 +254,10 @@ def plot_fit(directory: str | Path):
         ax.plot(model["t"] - t0, model[key], "-", color="tab:red", label="model, best fit")
         ax.set_ylabel(lab)
         ax.grid(alpha=0.3)
-    axes[0].legend(loc="upper right", fontsize="small")
     axes[1].set_xlabel(f"time from t = {t0:.4g} s [s]")
     fig.suptitle(title, fontsize="small")
+    _legend(axes[0], legend=legend, under=axes[1])
+    _place_legends(fig, [axes[0]])
     figs.append(("fit_accelerations", fig))
 
     fig = _figure(7.5, 4.0)
@@ -263,8 +270,9 @@ def plot_fit(directory: str | Path):
         ax.set_xlabel(r"harmonic $n$ ($n f$)")
         ax.set_ylabel(lab + r" amplitude $A_n$ [m/s$^2$]")
         ax.grid(alpha=0.3, axis="y")
-    axes[0].legend(fontsize="small")
     fig.suptitle(title, fontsize="small")
+    _legend(axes[0], legend=legend)
+    _place_legends(fig, [axes[0]])
     figs.append(("fit_spectra", fig))
 
     fig = _figure(5.5, 5.0)
@@ -276,8 +284,9 @@ def plot_fit(directory: str | Path):
     ax.set_xlabel(r"$\ddot{x}_M$ [m/s$^2$]")
     ax.set_ylabel(r"$\ddot{z}_M$ [m/s$^2$] (down +)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize="small")
     fig.suptitle(title, fontsize="small")
+    _legend(ax, legend=legend, beside="below")
+    _place_legends(fig, [ax])
     figs.append(("fit_figure", fig))
     return figs
 

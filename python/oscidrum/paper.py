@@ -212,14 +212,12 @@ class Writer:
         long_names = {CIRCLE: f"circle R = {circle.series.a:g} m",
                       SPIRAL: f"spiral k = {spiral.series.k:g}, a = {spiral.series.a:g} m"}
         states = self.states(runs, lambda r: long_names[r.series.id])
-        G = _g_label(circle.G)
-        f7 = self.save(plot.plot_accelerations(
-            states, title=f"Fig. 7: {G}, MMd = 0, pure rolling"), "fig07")
+        # The titles name the figure; the plots add what the cases share (G, pure rolling, MMd,
+        # f) from their parameters, the legend the troughs.
+        f7 = self.save(plot.plot_accelerations(states, title="Fig. 7"), "fig07")
         d7 = self.time_table("fig07", runs, ("ddx_M", "ddz_M"), lambda r: names[r.series.id])
-        f8a = self.save(plot.plot_delta_phi(states, title=f"Fig. 8a: {G}, pure rolling"),
-                        "fig08a")
-        f8b = self.save(plot.plot_figure_eight(states, title=f"Fig. 8b: {G}, pure rolling"),
-                        "fig08b")
+        f8a = self.save(plot.plot_delta_phi(states, title="Fig. 8a"), "fig08a")
+        f8b = self.save(plot.plot_figure_eight(states, title="Fig. 8b"), "fig08b")
         d8 = self.time_table("fig08", runs, ("delta", "ddx_M", "ddz_M"),
                              lambda r: names[r.series.id])
         self.add(7, "Time history of xM'' (a) and zM'' (b), G = 5 MN/m², MMd = 0, pure "
@@ -251,7 +249,7 @@ class Writer:
     def fig10(self) -> None:
         runs, soft = self.res.series(ROLLING), self.res.series(SOFT)
         fa = self.save(plot.plot_torque_phi(self.states(self.res.selected(ROLLING)),
-                                            title="Fig. 10a: pure rolling, MMd = 0"), "fig10a")
+                                            title="Fig. 10a"), "fig10a")
         lag, lag_soft = _metric(runs, "phi_lag"), _metric(soft, "phi_lag")
         fb = self.save(plot.plot_sweep(None, {"Table 2": (_G(runs), lag),
                                               "softer (Appendix B)": (_G(soft), lag_soft)},
@@ -269,9 +267,8 @@ class Writer:
 
     def accelerations(self, number: int, sid: str, caption: str) -> None:
         sel = self.res.selected(sid)
-        f = self.save(plot.plot_accelerations(
-            self.states(sel), title=f"Fig. {number}: {self.res.description(sid)}"),
-            f"fig{number}")
+        f = self.save(plot.plot_accelerations(self.states(sel), title=f"Fig. {number}"),
+                      f"fig{number}")
         d = self.time_table(f"fig{number}", sel, ("ddx_M", "ddz_M", "phase"),
                             lambda r: f"G{r.G / MN:g}")
         self.add(number, caption, [f], [d])
@@ -294,8 +291,7 @@ class Writer:
         for part, sid in zip("ab", parts):
             sel = self.res.selected(sid)
             files.append(self.save(plot.plot_figure_eight(
-                self.states(sel), title=f"Fig. {number}{part}: {self.res.description(sid)}"),
-                f"fig{number}{part}"))
+                self.states(sel), title=f"Fig. {number}{part}"), f"fig{number}{part}"))
             data.append(self.time_table(f"fig{number}{part}", sel, ("ddx_M", "ddz_M"),
                                         lambda r: f"G{r.G / MN:g}"))
         self.add(number, caption, files, data)
@@ -306,9 +302,8 @@ class Writer:
 
     def spectra(self, number: int, sid: str, caption: str) -> None:
         sel = self.res.selected(sid)
-        f = self.save(plot.plot_spectra(
-            self.states(sel), title=f"Fig. {number}: {self.res.description(sid)}"),
-            f"fig{number}")
+        f = self.save(plot.plot_spectra(self.states(sel), title=f"Fig. {number}"),
+                      f"fig{number}")
         d = self.spectra_table(f"fig{number}", sel)
         self.add(number, caption, [f], [d])
 

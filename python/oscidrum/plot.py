@@ -6,7 +6,10 @@ CSV, or the CSV's path), or a ``(result, oscidrum.Case)`` pair that also gives t
 parameters, and returns a :class:`matplotlib.figure.Figure`; :func:`save` writes it as PNG or
 SVG. With ``ax=`` (an Axes, or a sequence of Axes for the two-panel plots) a function draws into
 the caller's axes and returns them instead. Titles name the cases' key parameters (soil,
-contact, driving torque, trough, f); legends sit beside the axes, where they hide no data.
+contact, driving torque, trough, f). Every function that draws a legend takes ``legend=``
+(LEGEND_PLACES): by default it sits inside the axes where it hides no data, else beside them
+when the figure has a layout engine (the figures made here have one), else inside at the best
+place, so that in a user's figure it is never clipped.
 Figures are built with the object-oriented API (no pyplot state), so they are safe in scripts,
 tests and threads; in Jupyter, ``display(fig)`` shows them.
 
@@ -15,6 +18,7 @@ sweep --plot FILE`` the last; run it with the interpreter the package is install
 Debian ``/usr/bin/python3``)::
 
     /usr/bin/python3 -m oscidrum.plot case --csv FILE [--json FILE] --out DIR [--format png|svg]
+                                   [--spectra-units both|normalised|m/s^2]
     /usr/bin/python3 -m oscidrum.plot sweep --csv results.csv --x soil.G --y area [--y ddx_max]
                                    [--group MMd_fraction] [--where contact.pure_rolling=true]
                                    --out DIR [--format png|svg]
@@ -27,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
@@ -51,30 +56,53 @@ FORCE_LABEL = r"contact force [kN]"
 FREQ_LABEL = r"$f\,/\,f_{exc}$ [-]"
 AMP_LABEL = r"$A\,/\,A_{max}$ [-]"
 
-#: Display of swept keys and metrics: key -> (label, unit shown, factor from SI).
-DISPLAY: Dict[str, Tuple[str, str, float]] = {
-    "soil.G": (r"shear modulus $G$", r"MN/m$^2$", 1e-6),
-    "soil.table2_G": (r"shear modulus $G$", r"MN/m$^2$", 1e-6),
-    "trough.a": (r"trough radius $R$", "m", 1.0),
-    "trough.k": (r"spiral parameter $k$", "-", 1.0),
-    "MMd": (r"driving torque $M_{Md}$", "kN m", 1e-3),
-    "MMd_fraction": (r"$M_{Md}/M_0$", "-", 1.0),
-    "contact.mu": (r"friction coefficient $\mu$", "-", 1.0),
-    "roller.f": (r"excitation frequency $f$", "Hz", 1.0),
-    "roller.M0": (r"oscillation moment $M_0$", "kN m", 1e-3),
-    "roller.unbalance": (r"unbalance $m_u e_u e_w$", r"kg m$^2$", 1.0),
-    "area": (r"area inside $\ddot{z}_M$-$\ddot{x}_M$", r"m$^2$/s$^4$", 1.0),
-    "ddx_max": (r"peak $\ddot{x}_M$", r"m/s$^2$", 1.0),
-    "ddx_min": (r"min $\ddot{x}_M$", r"m/s$^2$", 1.0),
-    "ddz_max": (r"peak $\ddot{z}_M$", r"m/s$^2$", 1.0),
-    "ddz_min": (r"min $\ddot{z}_M$", r"m/s$^2$", 1.0),
-    "phi_lag": (r"phase lag $M_{Mu}$ to $\varphi$", r"$\pi$ rad", 1.0),
-    "phi_amplitude": (r"amplitude of $\varphi$", "rad", 1.0),
-    "psi_xz": (r"phase lag $\psi$ between $\ddot{x}_M$ and $\ddot{z}_M$", "rad", 1.0),
-    "stick_fraction": ("stick fraction", "-", 1.0),
-    "slip_positive_fraction": ("slip+ fraction", "-", 1.0),
-    "slip_negative_fraction": ("slip- fraction", "-", 1.0),
+#: Names and symbols (mathtext) of swept keys and metrics: key -> (name, symbol). Units and
+#: display scales are not repeated here: those of a Case parameter come from the parameter table
+#: (``oscidrum.find_field``: its display_unit and display_scale, e.g. MN/m^2 for soil.G), those
+#: of a metric from the results' units (the CSV header, else ``oscidrum.Metrics.units``). Keys
+#: not listed are named by the first words of their field's description.
+NAMES: Dict[str, Tuple[str, str]] = {
+    "soil.G": ("shear modulus", "$G$"),
+    "soil.nu": ("Poisson's ratio", r"$\nu$"),
+    "soil.rho": ("soil density", r"$\rho$"),
+    "soil.ksh": ("horizontal soil spring", "$k_{sh}$"),
+    "soil.ksv": ("vertical soil spring", "$k_{sv}$"),
+    "soil.csh": ("horizontal soil dashpot", "$c_{sh}$"),
+    "soil.csv": ("vertical soil dashpot", "$c_{sv}$"),
+    "trough.a": ("trough radius", "$R$"),
+    "trough.k": ("spiral parameter", "$k$"),
+    "MMd": ("driving torque", "$M_{Md}$"),
+    "MMd_fraction": ("driving torque", "$M_{Md}/M_0$"),
+    "contact.pure_rolling": ("pure rolling", ""),
+    "contact.unilateral": ("unilateral contact", ""),
+    "contact.mu": ("friction coefficient", r"$\mu$"),
+    "contact.mu_static": ("static friction coefficient", r"$\mu_s$"),
+    "contact.v_eps": ("regularisation velocity", r"$v_\varepsilon$"),
+    "roller.f": ("excitation frequency", "$f$"),
+    "roller.M0": ("oscillation moment", "$M_0$"),
+    "roller.unbalance": ("unbalance", "$m_u e_u e_w$"),
+    "roller.m": ("drum mass", "$m$"),
+    "roller.r": ("drum radius", "$r$"),
+    "roller.P0": ("static axle load", "$P_0$"),
+    "area": (r"area inside $\ddot{z}_M$-$\ddot{x}_M$", ""),
+    "ddx_max": (r"peak $\ddot{x}_M$", ""),
+    "ddx_min": (r"min $\ddot{x}_M$", ""),
+    "ddz_max": (r"peak $\ddot{z}_M$", ""),
+    "ddz_min": (r"min $\ddot{z}_M$", ""),
+    "phi_lag": (r"phase lag $M_{Mu}$ to $\varphi$", ""),
+    "phi_amplitude": (r"amplitude of $\varphi$", ""),
+    "psi_xz": (r"phase lag $\psi$ between $\ddot{x}_M$ and $\ddot{z}_M$", ""),
+    "stick_fraction": ("stick fraction", ""),
+    "slip_positive_fraction": ("slip+ fraction", ""),
+    "slip_negative_fraction": ("slip- fraction", ""),
 }
+
+#: Keys of the study files that are not Case parameters but stand for one (same unit and scale).
+ALIASES = {"soil.table2_G": "soil.G"}
+
+#: How a boolean parameter's values read in legends and panel titles: key -> (false, true).
+BOOLEAN_TEXT = {"contact.pure_rolling": ("stick-slip", "pure rolling"),
+                "contact.unilateral": ("permanent contact", "lift-off allowed")}
 
 #: Colours of up to four cases (the paper's figures show four soils) and of more.
 COLORS = ("black", "tab:red", "tab:blue", "tab:green", "tab:purple", "tab:orange", "tab:brown",
@@ -85,14 +113,72 @@ SLIP_COLORS = {1: ("tab:orange", "slip+ ($v_{rel} > 0$)"),
                2: ("tab:purple", "flight (no contact)")}
 
 
-def axis_label(key: str, unit: str = "") -> Tuple[str, float]:
-    """(axis label with unit, factor from SI) for a swept key or a metric name."""
+def _field(name: str) -> Any:
+    """The parameter table's field of a key (aliases resolved), or None (a metric)."""
+    try:
+        from . import _core
+        return _core.find_field(ALIASES.get(name, name))
+    except Exception:  # noqa: BLE001 - not a Case parameter
+        return None
+
+
+def unit_text(unit: str) -> str:
+    """A unit as mathtext: 'MN/m^2' -> 'MN/m$^2$', 'pi rad' -> '$\\pi$ rad'."""
+    unit = re.sub(r"\^(-?\d+)",
+                  lambda m: f"$^{m.group(1)}$" if len(m.group(1)) == 1 else f"$^{{{m.group(1)}}}$",
+                  unit)
+    return re.sub(r"\bpi\b", r"$\\pi$", unit)
+
+
+def key_display(key: str, unit: str = "") -> Tuple[str, str, str, float]:
+    """(name, symbol, unit shown, factor from SI) of a swept key or a metric (a CSV header such
+    as 'soil.G[Pa]' is accepted). A Case parameter is shown in its field's display unit (soil.G
+    in MN/m^2); a metric in `unit` (from the CSV), else in oscidrum.Metrics.units; the name and
+    symbol come from NAMES, else from the field's description."""
     name, csv_unit = split_header(key)
-    unit = unit or csv_unit
-    if name in DISPLAY:
-        label, shown, factor = DISPLAY[name]
-        return f"{label} [{shown}]", factor
-    return (f"{name} [{unit}]" if unit else name), 1.0
+    field = _field(name)
+    label, symbol = NAMES.get(name, NAMES.get(ALIASES.get(name, ""), ("", "")))
+    if field is not None:
+        if not label:
+            label = re.split(r"[(;:,]", field.description)[0].strip() or name
+        shown = field.display_unit or field.unit
+        factor = 1.0 / float(field.display_scale or 1.0)
+    else:
+        shown = unit or csv_unit
+        if not shown:
+            try:
+                from . import _core
+                shown = dict(_core.Metrics.units).get(name, "")
+            except Exception:  # noqa: BLE001 - no metric units: none shown
+                shown = ""
+        factor = 1.0
+    return label or name, symbol, shown, factor
+
+
+def axis_label(key: str, unit: str = "") -> Tuple[str, float]:
+    """(axis label with unit, factor from SI) for a swept key or a metric name, e.g.
+    ('shear modulus $G$ [MN/m$^2$]', 1e-6) for soil.G."""
+    label, symbol, shown, factor = key_display(key, unit)
+    text = f"{label} {symbol}".strip()
+    return (f"{text} [{unit_text(shown)}]" if shown else text), factor
+
+
+def value_label(key: str, value: float, unit: str = "") -> str:
+    """A swept key's value as people read it in a legend or a panel title: booleans as what
+    they mean ('pure rolling' / 'stick-slip' for contact.pure_rolling), choices by name, numbers
+    with their symbol and display unit ('$G$ = 25 MN/m$^2$', '$M_{Md}/M_0$ = 0.05')."""
+    name, _ = split_header(key)
+    field = _field(name)
+    label, symbol, shown, factor = key_display(key, unit)
+    if field is not None and field.type == "boolean":
+        off, on = BOOLEAN_TEXT.get(field.key, (f"{label}: no", f"{label}: yes"))
+        return on if float(value) != 0 else off
+    if field is not None and field.type == "choice" and field.choices:
+        index = int(value)
+        choice = field.choices[index] if 0 <= index < len(field.choices) else _value_text(value)
+        return f"{symbol or label} = {choice}"
+    text = f"{symbol or label} = {_value_text(float(value) * factor)}"
+    return f"{text} {unit_text(shown)}" if shown and shown != "-" else text
 
 
 def new_figure(nrows: int = 1, ncols: int = 1, width: float = 7.0,
@@ -227,12 +313,21 @@ def _labels_and_title(states: List[SteadyState], title: Optional[str]
     for i, (state, p) in enumerate(zip(states, parts)):
         differ = ", ".join(p[n] for n in names if n not in common and n in p)
         labels.append(state.label or differ or (f"case {i + 1}" if len(states) > 1 else ""))
-    caption = ", ".join(parts[0][n] for n in common if n in parts[0])
+    shared = [parts[0][n] for n in common if n in parts[0]]
     if title is None:
-        title = caption or None
-    elif caption and len(states) > 0 and caption not in title:
-        title = f"{title}\n{caption}"
+        title = ", ".join(shared) or None
+    else:  # an explicit title, with the shared parameters it does not state itself
+        said = _plain(title)
+        extra = [part for part in shared if _plain(part) not in said]
+        if extra and len(states) > 0:
+            title = f"{title}\n{', '.join(extra)}"
     return labels, title
+
+
+def _plain(text: str) -> str:
+    """Text without spaces and mathtext markup, to compare what two texts say
+    ('G = 5 MN/m$^2$' and 'G = 5 MN/m²' agree)."""
+    return re.sub(r"[\s${}\\]", "", text.replace("²", "^2")).lower()
 
 
 def _window(state: SteadyState, periods: Optional[float]) -> np.ndarray:
@@ -263,20 +358,149 @@ def shade_phases(ax: Any, tau: np.ndarray, phase: np.ndarray) -> List[Patch]:
     return handles
 
 
-def _legend(ax: Any, extra: Sequence[Any] = (), below: bool = False, **kwargs: Any) -> None:
-    """A legend outside the axes, where it hides no data: right of them, top-aligned, or below
-    them (below=True, under the x label)."""
-    handles, labels = ax.get_legend_handles_labels()
+#: The places of a legend (the ``legend=`` argument of every function that draws one):
+#: "auto" (the default): inside the axes at matplotlib's best place if it hides no data there,
+#: else beside the axes (right, or below for the square and twin-axis plots) when the figure
+#: has a layout engine that makes room for it (the figures made here have one; so has a user's
+#: figure made with layout="constrained"), else inside at the best place; "best" or "inside":
+#: inside at matplotlib's best place; "outside": right of the axes, top-aligned; "below": under
+#: the x axis' label; a matplotlib location inside the axes ("upper left", ...); None or False:
+#: no legend. Outside and below need room in the figure: a layout engine, or
+#: ``savefig(bbox_inches="tight")``.
+LEGEND_PLACES = ("auto", "best", "inside", "outside", "below")
+
+
+def _legend_place(legend: Any) -> Optional[str]:
+    """The place of a legend= argument (None: no legend); refuses unknown places."""
+    from matplotlib.legend import Legend
+    if legend is None or legend is False:
+        return None
+    if legend is True:
+        return "auto"
+    if isinstance(legend, str):
+        if legend == "inside":
+            return "best"
+        if legend in LEGEND_PLACES or legend in Legend.codes:
+            return legend
+    raise ValueError(f"legend must be one of {', '.join(LEGEND_PLACES)}, a matplotlib location "
+                     f"such as 'upper left', or None/False (no legend); got {legend!r}")
+
+
+def _legend(ax: Any, extra: Sequence[Any] = (), legend: Any = "auto", beside: str = "outside",
+            under: Any = None, handles: Optional[Sequence[Any]] = None, **kwargs: Any) -> Any:
+    """The legend of `ax` (its labelled artists and `extra` handles) at the place `legend`
+    (LEGEND_PLACES); `beside` ("outside" or "below") is where "auto" puts it when inside it would
+    hide data, `under` the Axes whose x label "below" goes under (default `ax`). The place is
+    settled by _place_legends once the figure is complete. `handles`: these instead of the
+    labelled artists of `ax`. Returns the Legend, or None."""
+    place = _legend_place(legend)
+    if handles is None:
+        handles, _ = ax.get_legend_handles_labels()
     handles = list(handles) + list(extra)
-    if not handles:
-        return
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    if place is None or not handles:
+        return None
+    kwargs.setdefault("fontsize", "small")
     kwargs.pop("loc", None)
-    if below:
-        ax.legend(handles=handles, fontsize="small", loc="upper center",
-                  bbox_to_anchor=(0.5, -0.13), borderaxespad=0.0, ncol=2, **kwargs)
-    else:
-        ax.legend(handles=handles, fontsize="small", loc="upper left",
-                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+    made = _draw_legend(ax, handles, "best" if place == "auto" else place, under or ax,
+                        dict(kwargs))
+    made._oscidrum_request = (place, beside, under or ax, handles, kwargs)
+    return made
+
+
+def _draw_legend(ax: Any, handles: List[Any], place: str, under: Any,
+                 kwargs: Dict[str, Any]) -> Any:
+    if place == "outside":
+        kwargs.pop("ncol", None)
+        return ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                         borderaxespad=0.0, **kwargs)
+    if place == "below":  # anchored under the x label by _place_legends
+        return ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                         bbox_transform=under.transAxes, borderaxespad=0.0,
+                         ncol=kwargs.pop("ncol", min(len(handles), 3)), **kwargs)
+    kwargs.pop("ncol", None)  # inside or beside: one column
+    return ax.legend(handles=handles, loc=place, **kwargs)
+
+
+def _data_paths(fig: Figure, renderer: Any) -> Tuple[List[Any], List[Any]]:
+    """Display-space paths of every plotted line (runs between gaps) and filled area
+    (fill_between), and boxes of every bar, of the figure's axes: (paths as (path, filled),
+    boxes). Reference lines (axhline, axvline) and shading spans are not data."""
+    from matplotlib.path import Path as MplPath
+    paths, boxes = [], []
+    for ax in fig.axes:
+        for line in ax.lines:
+            if line.get_transform() != ax.transData or not line.get_visible():
+                continue
+            xy = np.column_stack([np.asarray(line.get_xdata(), dtype=float),
+                                  np.asarray(line.get_ydata(), dtype=float)])
+            if len(xy) == 0:
+                continue
+            pts = ax.transData.transform(xy)
+            finite = np.isfinite(pts).all(axis=1)
+            edges = np.diff(np.concatenate(([0], finite.astype(int), [0])))
+            for start, end in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0]):
+                paths.append((MplPath(pts[start:end]), False))
+        for collection in ax.collections:
+            if collection.get_transform() == ax.transData and collection.get_visible():
+                paths += [(ax.transData.transform_path(path), True)
+                          for path in collection.get_paths()]
+        for patch in ax.patches:
+            if patch.get_transform() == ax.transData and patch.get_visible():
+                boxes.append(patch.get_window_extent(renderer))
+    return paths, boxes
+
+
+def _hides_data(legend: Any, paths: List[Any], boxes: List[Any], renderer: Any) -> bool:
+    """Whether the legend's box covers a data point, crosses a curve or overlaps a bar."""
+    box = legend.get_window_extent(renderer)
+    for path, filled in paths:
+        v = path.vertices
+        if (((v[:, 0] > box.x0) & (v[:, 0] < box.x1) & (v[:, 1] > box.y0) &
+             (v[:, 1] < box.y1)).any() or
+                (len(v) > 1 and path.intersects_bbox(box, filled=filled))):
+            return True
+    return any(box.overlaps(b) for b in boxes)
+
+
+def _layout_engine(fig: Figure) -> Any:
+    getter = getattr(fig, "get_layout_engine", None)
+    if getter is not None:
+        return getter()
+    return fig.get_constrained_layout() or fig.get_tight_layout() or None
+
+
+def _place_legends(fig: Figure, axes: Sequence[Any]) -> None:
+    """Settle the legends that _legend made on `axes` (and their twins): an "auto" legend that
+    hides data inside the axes goes beside them when the figure's layout engine makes room; a
+    "below" legend goes under its x axis' tick labels and label (an offset in points, so that it
+    stays there whatever the figure's size)."""
+    from matplotlib.transforms import ScaledTranslation
+    legends = [(ax, ax.get_legend()) for ax in axes]
+    legends = [(ax, leg) for ax, leg in legends
+               if leg is not None and hasattr(leg, "_oscidrum_request")]
+    if not any(leg._oscidrum_request[0] in ("auto", "below") for _, leg in legends):
+        return
+    fig.draw_without_rendering()
+    renderer = fig.canvas.get_renderer()
+    paths, boxes = _data_paths(fig, renderer)
+    for ax, leg in legends:
+        place, beside, under, handles, kwargs = leg._oscidrum_request
+        if place == "auto":
+            if not _hides_data(leg, paths, boxes, renderer) or _layout_engine(fig) is None:
+                continue
+            leg.remove()
+            leg = _draw_legend(ax, handles, beside, under, dict(kwargs))
+            leg._oscidrum_request = (beside, beside, under, handles, kwargs)
+            place = beside
+        if place == "below":
+            axis_box = under.get_window_extent(renderer)
+            tight = under.xaxis.get_tightbbox(renderer)
+            drop = max(0.0, axis_box.y0 - tight.y0) if tight is not None else 0.0
+            points = drop * 72.0 / fig.dpi + 4.0
+            leg.set_bbox_to_anchor((0.5, 0.0), transform=under.transAxes + ScaledTranslation(
+                0.0, -points / 72.0, fig.dpi_scale_trans))
 
 
 def _axes(ax: Any, n: int, **figure_kwargs: Any) -> Tuple[Figure, List[Any], bool]:
@@ -291,13 +515,16 @@ def _axes(ax: Any, n: int, **figure_kwargs: Any) -> Tuple[Figure, List[Any], boo
     return axes[0].figure, axes, False
 
 
-def _finish(fig: Figure, axes: List[Any], made: bool, title: Optional[str]) -> Any:
-    """Title, and the return value: the Figure when it was made here, else the caller's Axes."""
+def _finish(fig: Figure, axes: List[Any], made: bool, title: Optional[str],
+            legend_axes: Sequence[Any] = ()) -> Any:
+    """Title, the places of the legends on `axes` and `legend_axes` (twins), and the return
+    value: the Figure when it was made here, else the caller's Axes."""
     if title:
         if made:
             fig.suptitle(title, fontsize="medium")
         else:
             axes[0].set_title(title, fontsize="medium")
+    _place_legends(fig, list(axes) + list(legend_axes))
     if made:
         return fig
     return axes[0] if len(axes) == 1 else axes
@@ -305,7 +532,8 @@ def _finish(fig: Figure, axes: List[Any], made: bool, title: Optional[str]) -> A
 
 def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, float]],
                  periods: Optional[float], shade: Optional[bool], title: Optional[str],
-                 ax: Any = None, transform: Optional[Dict[str, Any]] = None) -> Any:
+                 ax: Any = None, transform: Optional[Dict[str, Any]] = None,
+                 legend: Any = "auto") -> Any:
     fig, axes, made = _axes(ax, len(panels), width=8.4, sharex=True)
     shade = (len(states) == 1) if shade is None else shade
     labels, title = _labels_and_title(states, title)
@@ -326,46 +554,51 @@ def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, flo
         axis.axhline(0.0, color="0.6", lw=0.5)
         axis.grid(alpha=0.3)
         if k == 0:  # one legend for the panels, which show the same cases
-            _legend(axis, handles)
+            _legend(axis, handles, legend, under=axes[-1])
     axes[-1].set_xlabel(TAU_LABEL)
     return _finish(fig, axes, made, title)
 
 
 def plot_accelerations(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
                        shade: Optional[bool] = None, title: Optional[str] = None,
-                       ax: Any = None) -> Any:
+                       ax: Any = None, legend: Any = "auto") -> Any:
     """x_M'' (a) and z_M'' (b) [m/s^2] over `periods` excitation periods against t/T (paper
     Figs. 7, 11, 17, 18). Slip phases are shaded when one case is shown (or shade=True: those
     of the first case). The title holds the parameters the cases share, the legend those that
-    differ. ax: two Axes to draw into (then they are returned instead of a new Figure)."""
+    differ. ax: two Axes to draw into (then they are returned instead of a new Figure).
+    legend: where the legend goes (LEGEND_PLACES: "auto" inside where it hides no data, else
+    beside the axes; "best"/"inside", "outside", "below", a matplotlib location; None: none)."""
     states = _cases(cases, labels)
     return _time_panels(states, [("ddx_M", DDX_LABEL, 1.0), ("ddz_M", DDZ_LABEL, 1.0)], periods,
-                        shade, title, ax)
+                        shade, title, ax, legend=legend)
 
 
 def plot_delta_phi(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
                    shade: Optional[bool] = None, title: Optional[str] = None,
-                   ax: Any = None) -> Any:
+                   ax: Any = None, legend: Any = "auto") -> Any:
     """Position angle delta (a) and drum rotation phi (b) [rad] against t/T (paper Figs. 8a,
     10a). phi is shown without its drift (the net slip per period, and its mean), so that its
-    oscillation is visible. ax: two Axes to draw into."""
+    oscillation is visible. ax: two Axes to draw into. legend: as for plot_accelerations."""
     states = _cases(cases, labels)
     return _time_panels(states, [("delta", DELTA_LABEL, 1.0),
                                  ("phi", PHI_LABEL + " (drift removed)", 1.0)],
-                        periods, shade, title, ax, transform={"phi": remove_drift})
+                        periods, shade, title, ax, transform={"phi": remove_drift},
+                        legend=legend)
 
 
 def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: float = 2,
                 mu: Optional[float] = None, shade: Optional[bool] = None,
-                title: Optional[str] = None, ax: Any = None) -> Any:
+                title: Optional[str] = None, ax: Any = None, legend: Any = "auto") -> Any:
     """Normal force N (a) and tangential force T (b) [kN] against t/T, with +-mu N on (b)
-    when mu is known (argument or the case's contact.mu). ax: two Axes to draw into."""
+    when mu is known (argument or the case's contact.mu). ax: two Axes to draw into. legend:
+    as for plot_accelerations (the cases' legend on (a), +-mu N on (b))."""
     states = _cases(cases, labels)
     result = _time_panels(states, [("N", "normal force $N$ [kN]", 1e-3),
                                    ("T", "tangential force $T$ [kN]", 1e-3)], periods, shade,
-                          title, ax)
+                          title, ax, legend=legend)
     axes = result.axes if isinstance(result, Figure) else list(result)
     axis = axes[1]
+    limits: List[Any] = []
     for i, state in enumerate(states):
         m = mu if mu is not None else state.parameters.get("contact.mu")
         pure = state.parameters.get("contact.pure_rolling")
@@ -374,11 +607,12 @@ def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: flo
         idx = _window(state, periods)
         limit = float(m) * np.asarray(state.samples.N)[idx] * 1e-3
         axis.plot(state.tau()[idx], limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8)
-        axis.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":", lw=0.8,
-                  label=r"$\pm\mu N$" if i == 0 else None)
-    if axis.get_legend() is not None:
-        axis.get_legend().remove()
-    _legend(axis)
+        line, = axis.plot(state.tau()[idx], -limit, color=COLORS[i % len(COLORS)], ls=":",
+                          lw=0.8, label=r"$\pm\mu N$")
+        limits = limits or [line]
+    # (b)'s legend says only what (a)'s does not: the friction limit.
+    _legend(axis, legend=legend, handles=limits)
+    _place_legends(axis.figure, [axis])
     return result
 
 
@@ -393,10 +627,12 @@ def remove_drift(state: SteadyState) -> np.ndarray:
 
 
 def plot_torque_phi(cases: Any, labels: Optional[Sequence[str]] = None,
-                    title: Optional[str] = None, ax: Any = None) -> Any:
+                    title: Optional[str] = None, ax: Any = None, legend: Any = "auto") -> Any:
     """One excitation period of the drum rotation phi [rad] (solid) with the excitation torque
     M_M(t) [kN m] (dashed, right axis), as paper Fig. 10a. phi's drift (net slip) is removed.
-    ax: the Axes to draw into (phi; the torque gets a twin axis)."""
+    ax: the Axes to draw into (phi; the torque gets a twin axis). legend: as for
+    plot_accelerations ("auto" goes below the plot, not beside the twin axis' labels, when
+    inside it would hide data)."""
     states = _cases(cases, labels)
     fig, axes, made = _axes(ax, 1, height=3.6)
     axis = axes[0]
@@ -416,12 +652,10 @@ def plot_torque_phi(cases: Any, labels: Optional[Sequence[str]] = None,
     axis.grid(alpha=0.3)
     handles, _ = axis.get_legend_handles_labels()
     right_handles, _ = right.get_legend_handles_labels()
-    if handles or right_handles:
-        # Beside the twin axis' labels: below the plot, where no data are.
-        axis.legend(handles=handles + right_handles, fontsize="small", loc="upper center",
-                    bbox_to_anchor=(0.5, -0.22), ncol=min(4, len(handles) + 1),
-                    borderaxespad=0.0)
-    return _finish(fig, axes, made, title)
+    # On the twin axes, which are drawn over `axis`; beside them: below the plot.
+    _legend(right, legend=legend, beside="below", under=axis, handles=handles + right_handles,
+            ncol=min(4, len(handles) + 1))
+    return _finish(fig, axes, made, title, legend_axes=[right])
 
 
 def _area(state: SteadyState, x: np.ndarray, z: np.ndarray) -> Optional[float]:
@@ -455,11 +689,12 @@ def _arrows(axis: Any, x: np.ndarray, z: np.ndarray, color: Any, count: int = 6)
 
 
 def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
-                      title: Optional[str] = None, ax: Any = None) -> Any:
+                      title: Optional[str] = None, ax: Any = None, legend: Any = "auto") -> Any:
     """z_M'' over x_M'' [m/s^2] (paper Figs. 8b, 13, 21): one steady period per case as a closed
     curve, with arrow heads in the direction of travel, the slip phases as a coloured band under
     the curve (slip+ orange, slip- cyan; stick: the bare line) and the enclosed area (non-zero
-    winding number, docs/model.md section 8) in the legend. ax: the Axes to draw into."""
+    winding number, docs/model.md section 8) in the legend. ax: the Axes to draw into. legend:
+    as for plot_accelerations ("auto" goes below the plot when inside it would hide data)."""
     states = _cases(cases, labels)
     fig, axes, made = _axes(ax, 1, width=6.4, height=6.0)
     axis = axes[0]
@@ -493,7 +728,7 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     axis.axhline(0.0, color="0.6", lw=0.5)
     axis.axvline(0.0, color="0.6", lw=0.5)
     axis.grid(alpha=0.3)
-    _legend(axis, handles, below=True)
+    _legend(axis, handles, legend, beside="below", ncol=2)
     return _finish(fig, axes, made, title)
 
 
@@ -514,26 +749,57 @@ def normalised_spectrum(state: SteadyState, column: str, n_max: int = 10) -> np.
     return amp / peak if peak > 0 else amp
 
 
+#: The units of plot_spectra: "normalised" (A_n / max A_n, the paper's), "m/s^2" (A_n), "both"
+#: (A_n on the left axis, A_n / max A_n on the right; one case only).
+SPECTRUM_UNITS = ("normalised", "m/s^2", "both")
+
+
 def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int = 10,
-                 title: Optional[str] = None, ax: Any = None) -> Any:
-    """Harmonic spectra of x_M'' (a) and z_M'' (b): amplitude / largest amplitude against
-    f / f_exc = 1 ... n_max, one bar group per harmonic (paper Figs. 14, 15, 19, 20).
-    ax: two Axes to draw into."""
+                 title: Optional[str] = None, ax: Any = None, units: str = "normalised",
+                 legend: Any = "auto") -> Any:
+    """Harmonic spectra of x_M'' (a) and z_M'' (b) against f / f_exc = 1 ... n_max, one bar
+    group per harmonic (paper Figs. 14, 15, 19, 20). units: "normalised" (the paper's: each
+    case's amplitudes / its largest, n >= 1), "m/s^2" (the amplitudes A_n, as in the metrics'
+    ddx_amplitude, ddz_amplitude) or "both" (one case: A_n [m/s^2] on the left axis, A_n /
+    max A_n on the right). ax: two Axes to draw into. legend: as for plot_accelerations (one
+    legend, on (a))."""
+    if units in ("m/s2", "m s^-2"):
+        units = "m/s^2"
+    if units not in SPECTRUM_UNITS:
+        raise ValueError(f"units must be one of {', '.join(SPECTRUM_UNITS)}; got {units!r}")
     states = _cases(cases, labels)
+    if units == "both" and len(states) != 1:
+        raise ValueError("units='both' shows one case (its own normalisation on the right "
+                         f"axis); got {len(states)} cases: use 'normalised' or 'm/s^2'")
     fig, axes, made = _axes(ax, 2, sharex=True)
     names, title = _labels_and_title(states, title)
     width = 0.8 / max(len(states), 1)
-    for axis, column, ylabel in zip(axes, ("ddx_M", "ddz_M"), (DDX_LABEL, DDZ_LABEL)):
+    for k, (axis, column, ylabel) in enumerate(zip(axes, ("ddx_M", "ddz_M"),
+                                                   (DDX_LABEL, DDZ_LABEL))):
+        peak = 0.0
         for i, state in enumerate(states):
-            amp = normalised_spectrum(state, column, n_max)
+            if units == "normalised":
+                amp = normalised_spectrum(state, column, n_max)
+            else:
+                amp = spectrum(state, column, n_max)[1:]
+            peak = max(peak, float(np.max(amp)) if len(amp) else 0.0)
             n = np.arange(1, len(amp) + 1)
             axis.bar(n - 0.4 + width * (i + 0.5), amp, width=width,
                      color=COLORS[i % len(COLORS)], label=names[i] or None)
         name = ylabel.split(" [")[0]
-        axis.set_ylabel(f"{AMP_LABEL} of {name}")
-        axis.set_ylim(0.0, 1.05)
+        if units == "normalised":
+            axis.set_ylabel(f"{AMP_LABEL} of {name}")
+            axis.set_ylim(0.0, 1.05)
+        else:
+            axis.set_ylabel(f"$A_n$ of {name} [m/s$^2$]")
+            axis.set_ylim(0.0, 1.05 * peak if peak > 0 else 1.0)
+            if units == "both" and peak > 0:
+                right = axis.secondary_yaxis(
+                    "right", functions=(lambda a, p=peak: a / p, lambda r, p=peak: r * p))
+                right.set_ylabel(AMP_LABEL)
         axis.grid(alpha=0.3, axis="y")
-        _legend(axis)
+        if k == 0:  # one legend for the panels, which show the same cases
+            _legend(axis, legend=legend, under=axes[-1])
     axes[-1].set_xlabel(FREQ_LABEL)
     axes[-1].set_xticks(np.arange(1, n_max + 1))
     return _finish(fig, axes, made, title)
@@ -543,24 +809,57 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
 COLORMAP_FROM = 6
 
 
+#: An "auto" y scale is logarithmic when the curves' typical values (medians) differ by more
+#: than this factor (and all values are positive), so that the small curves are not squashed.
+LOG_SCALE_FROM = 10.0
+
+
 def plot_sweep(x: Optional[Sequence[float]], curves: Mapping[str, Any], xkey: str = "soil.G",
                ykey: str = "area", title: Optional[str] = None, xunit: str = "",
                yunit: str = "", ax: Any = None, color_values: Optional[Sequence[float]] = None,
-               color_key: str = "", color_unit: str = "") -> Any:
+               color_key: str = "", color_unit: str = "", legend: Any = "auto",
+               yscale: str = "auto") -> Any:
     """Metric-versus-parameter curves (paper Figs. 9, 10b, 12, 16, 22).
 
     x: parameter values in SI units, shared by all curves; curves: {legend label: metric values}
     or {legend label: (x values, metric values)} for curves on their own x (then x may be None).
-    xkey / ykey name the parameter and the metric: labels, units and display scale come from
-    DISPLAY (e.g. soil.G is shown in MN/m^2). The first curve is black with '+' markers, the
-    second red with circles, as in the paper. color_values (one number per curve, SI, named by
-    color_key): the curves are coloured by a colour map with a colour bar instead of a legend,
-    for many curves. ax: the Axes to draw into (returned instead of a new Figure).
+    xkey / ykey name the parameter and the metric: the label comes from NAMES, the unit and
+    display scale from the parameter table (e.g. soil.G is shown in MN/m^2). The first curve is
+    black with '+' markers, the second red with circles, as in the paper. color_values (one
+    number per curve, SI, named by color_key): the curves are coloured by a colour map with a
+    colour bar instead of a legend, for many curves. yscale: "linear", "log", or "auto" (log
+    when the curves differ by more than LOG_SCALE_FROM and all values are positive). legend:
+    as for plot_accelerations. ax: the Axes to draw into (returned instead of a new Figure).
     """
-    xlabel, xf = axis_label(xkey, xunit)
-    ylabel, yf = axis_label(ykey, yunit)
     fig, axes, made = _axes(ax, 1, height=3.8)
-    axis = axes[0]
+    _draw_sweep(axes[0], x, curves, xkey, ykey, xunit, yunit, color_values, color_key,
+                color_unit, legend, yscale)
+    return _finish(fig, axes, made, title)
+
+
+def _auto_log(curves: Sequence[np.ndarray]) -> bool:
+    """Whether curves of positive values differ by more than LOG_SCALE_FROM (their medians)."""
+    values = [np.asarray(c, dtype=float) for c in curves]
+    values = [v[np.isfinite(v)] for v in values]
+    values = [v for v in values if len(v)]
+    if len(values) < 2 or any((v <= 0).any() for v in values):
+        return False
+    medians = [float(np.median(v)) for v in values]
+    return max(medians) > LOG_SCALE_FROM * min(medians)
+
+
+def _draw_sweep(axis: Any, x: Optional[Sequence[float]], curves: Mapping[str, Any], xkey: str,
+                ykey: str, xunit: str = "", yunit: str = "",
+                color_values: Optional[Sequence[float]] = None, color_key: str = "",
+                color_unit: str = "", legend: Any = "auto", yscale: str = "auto",
+                styles: Optional[Sequence[int]] = None, ylabel: bool = True) -> None:
+    """The curves of plot_sweep into `axis` (styles: the index of each curve's colour and
+    marker, so that panels of one study draw a curve alike)."""
+    if yscale not in ("auto", "linear", "log"):
+        raise ValueError(f"yscale must be auto, linear or log; got {yscale!r}")
+    xlabel, xf = axis_label(xkey, xunit)
+    ytext, yf = axis_label(ykey, yunit)
+    fig = axis.figure
     mappable = None
     if color_values is not None:
         from matplotlib.cm import ScalarMappable
@@ -569,26 +868,32 @@ def plot_sweep(x: Optional[Sequence[float]], curves: Mapping[str, Any], xkey: st
         cv = np.asarray(color_values, dtype=float) * cf
         norm = Normalize(vmin=float(np.nanmin(cv)), vmax=float(np.nanmax(cv)))
         mappable = ScalarMappable(norm=norm, cmap="viridis")
+    drawn = []
     for i, (label, values) in enumerate(curves.items()):
         if isinstance(values, tuple) and len(values) == 2:
             xs, ys = values
         else:
             xs, ys = x, values
+        j = styles[i] if styles is not None else i
         if mappable is not None:
             style = dict(color=mappable.to_rgba(cv[i]), marker="o", lw=1.2, ms=4)
         else:
-            style = dict(color=COLORS[i % len(COLORS)], marker=MARKERS[i % len(MARKERS)],
+            style = dict(color=COLORS[j % len(COLORS)], marker=MARKERS[j % len(MARKERS)],
                          lw=1.2, ms=6, mfc="none")
-        axis.plot(np.asarray(xs, dtype=float) * xf, np.asarray(ys, dtype=float) * yf,
+        y = np.asarray(ys, dtype=float) * yf
+        drawn.append(y)
+        axis.plot(np.asarray(xs, dtype=float) * xf, y,
                   label=(label or None) if mappable is None else None, **style)
+    if yscale == "log" or (yscale == "auto" and _auto_log(drawn)):
+        axis.set_yscale("log")
     axis.set_xlabel(xlabel)
-    axis.set_ylabel(ylabel)
+    if ylabel:
+        axis.set_ylabel(ytext)
     axis.grid(alpha=0.3)
     if mappable is not None:
         fig.colorbar(mappable, ax=axis, label=clabel)
     elif any(curves):
-        _legend(axis)
-    return _finish(fig, axes, made, title)
+        _legend(axis, legend=legend)
 
 
 def _value_text(v: float) -> str:
@@ -603,35 +908,87 @@ def _select(table: Mapping[str, np.ndarray], where: Optional[Mapping[str, float]
     return keep
 
 
+def _is_regime(column: str) -> bool:
+    """Whether a column is a boolean parameter (contact.pure_rolling: a regime of its own)."""
+    field = _field(split_header(column)[0])
+    return field is not None and field.type == "boolean"
+
+
 def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
                group: Optional[Sequence[str] | str] = None,
                units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
-               where: Optional[Mapping[str, float]] = None, ax: Any = None) -> Any:
+               where: Optional[Mapping[str, float]] = None, ax: Any = None,
+               panels: Optional[str] = "auto", legend: Any = "auto",
+               yscale: str = "auto") -> Any:
     """plot_sweep from a study table ({column: numeric values}, e.g. read_csv_columns of the
     CLI's sweep results): y against x, one curve per combination of the `group` columns, only
     rows whose `where` columns equal the given values (booleans as 1/0). Rows whose metric is
-    missing (invalid or failed cases) leave gaps. More than COLORMAP_FROM curves of one group
-    column are coloured by a colour map with a colour bar. ax: the Axes to draw into."""
+    missing (invalid or failed cases) leave gaps. Curves are labelled as people read the values
+    (value_label: '$M_{Md}/M_0$ = 0.05', 'pure rolling'). More than COLORMAP_FROM curves of one
+    group column are coloured by a colour map with a colour bar.
+
+    panels: a group column whose values get a panel each, side by side with their own y scale
+    (titled with the value); "auto" (the default): a boolean group column such as
+    contact.pure_rolling, whose regimes (pure rolling, stick-slip) differ by orders of magnitude
+    in most metrics, when it takes both values; None: one panel. yscale: as for plot_sweep, per
+    panel. legend: as for plot_accelerations (one legend, on the last panel). ax: the Axes to
+    draw into (one per panel)."""
     units = units or {}
     groups = [group] if isinstance(group, str) else list(group or [])
     xcol, ycol = resolve_column(table, x), resolve_column(table, y)
     xs, ys = np.asarray(table[xcol], dtype=float), np.asarray(table[ycol], dtype=float)
     keep = _select(table, where)
     gcols = [resolve_column(table, g) for g in groups]
-    keys = [tuple(float(table[c][i]) for c in gcols) for i in range(len(xs))]
-    curves: Dict[str, Any] = {}
+    n_axes = None if ax is None else (1 if hasattr(ax, "plot") else len(np.atleast_1d(
+        np.asarray(ax, dtype=object))))
+    pcol = None
+    if panels == "auto":
+        for c in gcols:
+            present = np.unique(np.asarray(table[c], dtype=float)[keep])
+            if _is_regime(c) and len(present) > 1 and n_axes in (None, len(present)):
+                pcol = c
+                break
+    elif panels is not None:
+        pcol = resolve_column(table, panels)
+        if pcol not in gcols:
+            raise ValueError(f"panels: {panels} is not a group column ({', '.join(gcols)})")
+    pvalues: List[Optional[float]] = [None]
+    if pcol is not None:
+        pv = np.asarray(table[pcol], dtype=float)
+        pvalues = list(dict.fromkeys(float(v) for v, ok in zip(pv, keep) if ok))
+    ccols = [c for c in gcols if c != pcol]
+    keys = [tuple(float(table[c][i]) for c in ccols) for i in range(len(xs))]
     combos = list(dict.fromkeys(k for k, ok in zip(keys, keep) if ok))
-    for combo in combos:
-        sel = keep & np.array([k == combo for k in keys])
-        order = np.argsort(xs[sel])
-        label = ", ".join(f"{c} = {_value_text(v)}" for c, v in zip(gcols, combo))
-        curves[label] = (xs[sel][order], ys[sel][order])
-    many = len(gcols) == 1 and len(combos) > COLORMAP_FROM
-    return plot_sweep(None, curves, xcol, ycol, title=title, xunit=units.get(xcol, ""),
-                      yunit=units.get(ycol, ""), ax=ax,
-                      color_values=[c[0] for c in combos] if many else None,
-                      color_key=gcols[0] if many else "",
-                      color_unit=units.get(gcols[0], "") if many else "")
+    many = len(ccols) == 1 and len(combos) > COLORMAP_FROM
+    if ax is None:
+        n = len(pvalues)
+        fig, axes = new_figure(1, n, width=7.0 if n == 1 else 3.9 * n + 0.4, height=3.8)
+        axes, made = list(np.atleast_1d(axes)), True
+    else:
+        fig, axes, made = _axes(ax, len(pvalues))
+    for p, (axis, value) in enumerate(zip(axes, pvalues)):
+        rows = keep if pcol is None else keep & (np.asarray(table[pcol], dtype=float) == value)
+        curves: Dict[str, Any] = {}
+        styles: List[int] = []
+        colours: List[float] = []
+        for j, combo in enumerate(combos):
+            sel = rows & np.array([k == combo for k in keys])
+            if not sel.any():
+                continue
+            order = np.argsort(xs[sel])
+            label = ", ".join(value_label(c, v, units.get(c, "")) for c, v in zip(ccols, combo))
+            curves[label] = (xs[sel][order], ys[sel][order])
+            styles.append(j)
+            colours.append(combo[0] if combo else 0.0)
+        _draw_sweep(axis, None, curves, xcol, ycol, units.get(xcol, ""), units.get(ycol, ""),
+                    color_values=colours if many else None,
+                    color_key=ccols[0] if many else "",
+                    color_unit=units.get(ccols[0], "") if many else "",
+                    legend=legend if p == len(pvalues) - 1 else None, yscale=yscale,
+                    styles=styles, ylabel=p == 0)
+        if pcol is not None:
+            axis.set_title(value_label(pcol, value, units.get(pcol, "")), fontsize="medium")
+    return _finish(fig, axes, made, title)
 
 
 def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
@@ -695,10 +1052,12 @@ def swept_columns(table: Mapping[str, Any]) -> List[str]:
 
 def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
                units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
-               ax: Any = None) -> Any:
+               ax: Any = None, legend: Any = "auto") -> Any:
     """The natural plot of a study's results (used by ``oscidrum sweep --plot``): one swept key:
-    the metric against it; two (each with several values): a heat map (plot_map) over them;
-    more: the metric against the first key, one curve per combination of the others."""
+    the metric against it; two numeric keys (each with several values): a heat map (plot_map)
+    over them; otherwise the metric against the first numeric key, one curve per combination
+    of the others, and a panel per regime when a boolean key (contact.pure_rolling) is swept
+    (plot_table). legend: as for plot_accelerations."""
     keys = [k for k in swept_columns(table)
             if np.isfinite(np.asarray(table[k], dtype=float)).any()]
     if not keys:
@@ -706,9 +1065,12 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
                          "(a results CSV of oscidrum sweep --out)")
     varying = [k for k in keys if len(np.unique(np.asarray(table[k], dtype=float))) > 1]
     keys = varying or keys
-    if len(keys) == 2:
+    numeric = [k for k in keys if not _is_regime(k)]
+    if len(keys) == 2 and len(numeric) == 2:
         return plot_map(table, keys[0], keys[1], metric, units=units, title=title, ax=ax)
-    return plot_table(table, keys[0], metric, group=keys[1:], units=units, title=title, ax=ax)
+    x = numeric[0] if numeric else keys[0]
+    return plot_table(table, x, metric, group=[k for k in keys if k != x], units=units,
+                      title=title, ax=ax, legend=legend)
 
 
 BIFURCATION_STYLE = {"fold": ("o", "tab:red"), "branch_point": ("D", "tab:purple"),
@@ -719,11 +1081,12 @@ BIFURCATION_STYLE = {"fold": ("o", "tab:red"), "branch_point": ("D", "tab:purple
 def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
                 units: Optional[Mapping[str, str]] = None,
                 bifurcations: Optional[Sequence[Tuple[Any, ...]]] = None,
-                title: Optional[str] = None, ax: Any = None) -> Any:
+                title: Optional[str] = None, ax: Any = None, legend: Any = "auto") -> Any:
     """A branch of periodic orbits (``oscidrum continue --csv``): `metric` against the continued
     parameter, stable orbits solid, unstable dashed, one colour per branch (the period-2p branches
     born at period doublings beside the first); `bifurcations` (kind, parameter[, branch]) marked
-    on their branch, each kind with its marker (``oscidrum continue --bifurcations``)."""
+    on their branch, each kind with its marker (``oscidrum continue --bifurcations``). legend:
+    as for plot_accelerations."""
     units = dict(units or {})
     names = list(table)
     if "arclength" not in names or names.index("arclength") < 1:
@@ -740,9 +1103,8 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
                   else np.ones(len(q_all)))
     xlabel, xf = axis_label(key, units.get(key, ""))
     ylabel, yf = axis_label(metric, units.get(metric, ""))
-    fig = None
-    if ax is None:
-        fig, ax = new_figure(width=7.0, height=4.2)
+    fig, axes, made = _axes(ax, 1, width=7.0, height=4.2)
+    ax = axes[0]
     labelled = set()
     for index in np.unique(branch_all):
         rows = branch_all == index
@@ -774,10 +1136,8 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
-    if title:
-        ax.set_title(title)
-    return fig if fig is not None else ax
+    _legend(ax, legend=legend)
+    return _finish(fig, axes, made, title)
 
 
 def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float, int]]:
@@ -795,17 +1155,18 @@ def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float, int]]:
 
 
 def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: str = "",
-              periods: float = 2) -> List[Path]:
+              periods: float = 2, spectra_units: str = "both") -> List[Path]:
     """Every single-case figure of a steady state into out_dir: accelerations, figure_eight,
-    spectra, delta_phi, forces (.png or .svg), titled with the case's key parameters. Returns
-    the paths written."""
+    spectra, delta_phi, forces (.png or .svg), titled with the case's key parameters. The
+    spectra in `spectra_units` (plot_spectra's units; "both": A_n in m/s^2 with A_n / max A_n
+    on the right axis). Returns the paths written."""
     state = as_steady_state(data, label=label)
     out = Path(out_dir)
     title = state.label or None
     figures = {
         "accelerations": plot_accelerations(state, periods=periods, title=title),
         "figure_eight": plot_figure_eight(state, title=title),
-        "spectra": plot_spectra(state, title=title),
+        "spectra": plot_spectra(state, title=title, units=spectra_units),
         "delta_phi": plot_delta_phi(state, periods=periods, title=title),
         "forces": plot_forces(state, periods=periods, title=title),
     }
@@ -826,6 +1187,9 @@ def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     case.add_argument("--format", choices=("png", "svg"), default="png")
     case.add_argument("--label", default="", help="title of the figures")
     case.add_argument("--periods", type=float, default=2, help="periods shown in time plots")
+    case.add_argument("--spectra-units", choices=SPECTRUM_UNITS, default="both",
+                      help="spectra.png: A_n / max A_n (normalised, the paper's), A_n in m/s^2, "
+                      "or both (m/s^2 on the left axis, normalised on the right; the default)")
     sweep = sub.add_parser("sweep", help="metric against parameter from a study's results CSV")
     sweep.add_argument("--csv", required=True, help="study results CSV (oscidrum sweep)")
     sweep.add_argument("--x", required=True, help="parameter column, e.g. soil.G")
@@ -879,7 +1243,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         if args.command == "case":
             state = read_case(args.csv, args.json, label=args.label)
-            paths = plot_case(state, args.out, args.format, periods=args.periods)
+            paths = plot_case(state, args.out, args.format, periods=args.periods,
+                              spectra_units=args.spectra_units)
         elif args.command == "sweep":
             table, units = read_csv_columns(args.csv)
             where = _where(args.where)

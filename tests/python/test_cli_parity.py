@@ -112,7 +112,8 @@ def test_cli_sweep_equals_run_study_and_plots(cli, root, tmp_path):
 
     fig = plot.plot_table(table, "soil.G", "area", group=["contact.pure_rolling", "MMd_fraction"],
                           units=units)
-    assert len(fig.axes[0].lines) == 4
+    # A panel per regime (pure rolling, stick-slip), a curve per MMd_fraction in each.
+    assert [len(ax.lines) for ax in fig.axes] == [2, 2]
 
 
 def test_cli_validate_equals_bound_validate(cli, paper_rows, tmp_path):

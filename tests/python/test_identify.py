@@ -193,3 +193,17 @@ def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
         oscidrum.identify.calibrate([dict(record(15e6, 1), soil=oscidrum.Soil())])
     with pytest.raises(oscidrum.Error, match="MN/m"):
         oscidrum.identify.calibrate([dict(record(15e6, 1), G=1.0)])
+def test_plot_pass_takes_legend_like_the_other_plots():
+    r = oscidrum.synthetic_record([truth(25e6)], duration=0.6, sample_rate=1000, noise=0.02,
+                                  seed=2)
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0.2)
+    fig = oscidrum.identify.plot_pass(rows, x="t", legend=None)
+    assert fig.axes[0].get_legend() is None
+    fig = oscidrum.identify.plot_pass(rows, x="t", legend="outside")
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    assert (ax.get_legend().get_window_extent(renderer).x0 >=
+            ax.get_window_extent(renderer).x1)
+    with pytest.raises(ValueError, match="legend must be one of"):
+        oscidrum.identify.plot_pass(rows, x="t", legend="left")

@@ -1,6 +1,7 @@
 """Plots: files written (PNG/SVG), axes and lines as expected, the CLI entry points."""
 
 import os
+import re
 import subprocess
 import sys
 
@@ -132,16 +133,18 @@ def test_module_entry_sweep(tmp_path):
 # ---- plots that explain themselves -----------------------------------------------------------
 
 def _data_boxes(ax):
-    """Display-space boxes of every line's data points (and bars) of an Axes."""
+    """Display-space points of every line (NaN at its gaps) with their box, and the boxes of
+    the bars, of an Axes."""
     from matplotlib.transforms import Bbox
     boxes = []
     for line in ax.lines:
         xy = np.column_stack([line.get_xdata(), line.get_ydata()]).astype(float)
-        xy = xy[np.isfinite(xy).all(axis=1)]
-        if len(xy) == 0 or line.get_transform() != ax.transData:
+        finite = np.isfinite(xy).all(axis=1)
+        if not finite.any() or line.get_transform() != ax.transData:
             continue  # axhline/axvline span the axes in axes coordinates: not data
         pts = ax.transData.transform(xy)
-        boxes.append((pts, Bbox.from_extents(*pts.min(axis=0), *pts.max(axis=0))))
+        ok = pts[finite]
+        boxes.append((pts, Bbox.from_extents(*ok.min(axis=0), *ok.max(axis=0))))
     for patch in ax.patches:
         if patch.get_transform() == ax.transData:  # bars, not the shading spans
             box = patch.get_window_extent()
@@ -150,8 +153,9 @@ def _data_boxes(ax):
 
 
 def assert_legends_hide_no_data(fig):
-    """No legend covers a data point: each legend's box against every plotted point (and
-    against the extent of the data: a legend beside the axes lies outside it)."""
+    """No legend covers data: each legend's box against every plotted point, every segment
+    between two points (a legend inside the axes sits where no curve passes) and every bar."""
+    from matplotlib.path import Path
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
@@ -166,7 +170,10 @@ def assert_legends_hide_no_data(fig):
                 inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) &
                           (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
                 assert not inside.any(), f"a legend covers {inside.sum()} data points"
-                assert not box.overlaps(extent), "a legend lies inside the data's extent"
+                crossing = [k for k in range(len(pts) - 1)
+                            if np.isfinite(pts[k:k + 2]).all() and
+                            Path(pts[k:k + 2]).intersects_bbox(box, filled=False)]
+                assert not crossing, f"a curve crosses a legend ({len(crossing)} segments)"
 
 
 def _four_soils(pure_rolling, MMd_fraction=0.0):
@@ -372,3 +379,201 @@ def test_cli_python_is_not_taken_from_path(cli, tmp_path):
                        capture_output=True, text=True, timeout=300, env=env)
     assert p.returncode == 1
     assert str(tmp_path / "no" / "python") in p.stderr and "OSCIDRUM_PYTHON" in p.stderr
+
+
+# ---- legends in the user's figure, legend=, study panels, spectra in m/s^2 (issue 25) ---------
+
+def _user_figure(n):
+    """A small figure of the user's own, without a layout engine (as plt.subplots makes)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(4.0, 3.0))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(n, 1, sharex=n > 1)
+    return fig, axes
+
+
+@pytest.mark.parametrize("name", ["plot_accelerations", "plot_delta_phi", "plot_forces",
+                                  "plot_spectra", "plot_figure_eight", "plot_torque_phi"])
+def test_legend_in_a_small_user_figure_is_not_clipped_nor_on_the_x_label(slip_result, slip_case,
+                                                                        tmp_path, name):
+    fn = getattr(plot, name)
+    fig, axes = _user_figure(1 if name in ("plot_figure_eight", "plot_torque_phi") else 2)
+    fn([(slip_result, slip_case), (slip_result, slip_case)], labels=["a", "b"], ax=axes)
+    fig.savefig(tmp_path / "user.png")  # default bbox: what lies outside the figure is lost
+    renderer = fig.canvas.get_renderer()
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+    assert legends
+    page = fig.bbox
+    for legend in legends:
+        box = legend.get_window_extent(renderer)
+        assert (box.x0 >= page.x0 and box.x1 <= page.x1 and box.y0 >= page.y0 and
+                box.y1 <= page.y1), (name, box, page)
+        for ax in fig.axes:
+            label = ax.xaxis.label
+            if label.get_text():
+                assert not box.overlaps(label.get_window_extent(renderer)), name
+
+
+def test_legend_argument_chooses_the_place(slip_result, slip_case):
+    pair = (slip_result, slip_case)
+    fig = plot.plot_accelerations(pair, legend=None)
+    assert all(ax.get_legend() is None for ax in fig.axes)
+    fig = plot.plot_figure_eight(pair, legend=False)
+    assert fig.axes[0].get_legend() is None
+    for place in ("outside", "below", "upper left", "best"):
+        fig = plot.plot_figure_eight(pair, legend=place)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        ax = fig.axes[0]
+        box = ax.get_legend().get_window_extent(renderer)
+        frame = ax.get_window_extent(renderer)
+        if place == "outside":
+            assert box.x0 >= frame.x1
+        elif place == "below":
+            assert box.y1 <= ax.xaxis.label.get_window_extent(renderer).y0
+        else:
+            assert frame.contains(box.x0, box.y0) and frame.contains(box.x1, box.y1)
+            if place == "upper left":
+                assert box.x0 - frame.x0 < 0.1 * frame.width
+                assert frame.y1 - box.y1 < 0.1 * frame.height
+    with pytest.raises(ValueError, match="legend must be one of"):
+        plot.plot_spectra(pair, legend="nowhere")
+
+
+def _paper_like_study():
+    """The table of examples/table2_sweep.toml in short: G x {pure rolling, mu = 0.5} x MMd/M0,
+    with areas of the paper's orders (pure rolling some hundreds, stick-slip some tens)."""
+    G = np.array([5e6, 25e6, 50e6, 70e6])
+    rows = {"case": [], "soil.table2_G": [], "contact.pure_rolling": [], "MMd_fraction": [],
+            "status": [], "area": []}
+    areas = {(1.0, 0.0): [309, 537, 271, 61], (1.0, 0.05): [315, 692, 729, 323],
+             (0.0, 0.0): [37, 23, 14, 9], (0.0, 0.05): [41, 42, 54, 38]}
+    for i, g in enumerate(G):
+        for pure in (1.0, 0.0):
+            for fraction in (0.0, 0.05):
+                rows["case"].append(len(rows["case"]))
+                rows["soil.table2_G"].append(g)
+                rows["contact.pure_rolling"].append(pure)
+                rows["MMd_fraction"].append(fraction)
+                rows["status"].append(np.nan)
+                rows["area"].append(areas[(pure, fraction)][i])
+    return {k: np.asarray(v, dtype=float) for k, v in rows.items()}
+
+
+def test_study_plot_has_human_labels_a_compact_legend_and_a_panel_per_regime():
+    table = _paper_like_study()
+    fig = plot.plot_study(table, "area")
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    panels = [ax for ax in fig.axes if ax.lines]
+    assert [ax.get_title() for ax in panels] == ["pure rolling", "stick-slip"]
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+    assert len(legends) == 1
+    texts = [t.get_text() for t in legends[0].get_texts()]
+    assert texts == ["$M_{Md}/M_0$ = 0", "$M_{Md}/M_0$ = 0.05"], texts
+    for text in texts:
+        assert not re.search(r"[A-Za-z]\.[A-Za-z]|_fraction|pure_rolling", text), text
+    assert legends[0].get_window_extent(renderer).width < 0.2 * fig.bbox.width
+    # Stick-slip is not squashed against pure rolling: its curves fill most of their panel.
+    for ax in panels:
+        lo, hi = ax.get_ylim()
+        ys = np.concatenate([line.get_ydata() for line in ax.lines])
+        assert np.ptp(ys) > 0.6 * (hi - lo), ax.get_title()
+    assert "shear modulus $G$ [MN/m$^2$]" == panels[0].get_xlabel()
+    # In one given Axes: no panels, the regime in the labels, a log scale for both.
+    one = plot.new_figure(1, 1)[1]
+    plot.plot_study(table, "area", ax=one)
+    labels = [t.get_text() for t in one.get_legend().get_texts()]
+    assert "pure rolling, $M_{Md}/M_0$ = 0.05" in labels and "stick-slip, $M_{Md}/M_0$ = 0" in labels
+    assert one.get_yscale() == "log"
+
+
+def test_value_labels_come_from_the_parameter_table():
+    assert plot.value_label("soil.table2_G[Pa]", 25e6) == "$G$ = 25 MN/m$^2$"
+    assert plot.value_label("contact.pure_rolling", 1.0) == "pure rolling"
+    assert plot.value_label("contact.pure_rolling", 0.0) == "stick-slip"
+    assert plot.value_label("roller.f", 39.0) == "$f$ = 39 Hz"
+    assert plot.value_label("soil.input", 1.0) == "how the soil is given = modulus"
+    field = oscidrum.find_field("soil.ksh")  # unit and scale from the table, not from plot.py
+    assert plot.axis_label("soil.ksh")[1] == 1.0 / field.display_scale
+    assert field.display_unit.replace("^", "") in plot.axis_label("soil.ksh")[0]
+
+
+def test_spectra_in_metres_per_second_squared_are_the_harmonic_amplitudes(slip_result):
+    metrics = oscidrum.compute_metrics(slip_result)
+    state = data.from_result(slip_result, metrics=metrics)
+    fig = plot.plot_spectra(state, units="m/s^2")
+    for ax, amplitudes in zip(fig.axes, (metrics.ddx_amplitude, metrics.ddz_amplitude)):
+        heights = [bar.get_height() for bar in ax.patches]
+        assert np.array_equal(heights, np.asarray(amplitudes)[1:11])
+        assert "m/s$^2$" in ax.get_ylabel() and "A_{max}" not in ax.get_ylabel()
+    # From the samples alone (the DFT): the same amplitudes.
+    fig = plot.plot_spectra(slip_result, units="m/s^2")
+    heights = [bar.get_height() for bar in fig.axes[0].patches]
+    assert np.allclose(heights, np.asarray(metrics.ddx_amplitude)[1:11],
+                       atol=1e-9 * metrics.ddx_amplitude[1])
+    # Both: A_n on the left, A_n / max A_n on the right.
+    fig = plot.plot_spectra(state, units="both")
+    ax = fig.axes[0]
+    right = [c for c in ax.get_children() if type(c).__name__ == "SecondaryAxis"]
+    assert len(right) == 1 and "A_{max}" in right[0].get_ylabel()
+    assert np.array_equal([b.get_height() for b in ax.patches],
+                          np.asarray(metrics.ddx_amplitude)[1:11])
+    with pytest.raises(ValueError, match="one case"):
+        plot.plot_spectra([state, state], units="both")
+    with pytest.raises(ValueError, match="units must be one of"):
+        plot.plot_spectra(state, units="dB")
+
+
+def test_module_entry_case_draws_spectra_in_chosen_units(slip_result, tmp_path):
+    csv = tmp_path / "case.csv"
+    data.write_case_csv(slip_result, csv)
+    for units in ("m/s^2", "normalised"):
+        out = tmp_path / units.replace("/", "_")
+        p = run_module("oscidrum.plot", "case", "--csv", str(csv), "--out", str(out),
+                       "--spectra-units", units)
+        assert p.returncode == 0, p.stderr
+        assert (out / "spectra.png").read_bytes().startswith(PNG)
+    p = run_module("oscidrum.plot", "case", "--csv", str(csv), "--out", str(tmp_path / "x"),
+                   "--spectra-units", "dB")
+    assert p.returncode == 2 and "spectra-units" in p.stderr
+
+
+def test_paper_fig7_title_names_G_once(tmp_path, monkeypatch):
+    from pathlib import Path
+    from oscidrum import paper
+    runs = []
+    for series in oscidrum.paper_series():
+        if series.id in (paper.CIRCLE, paper.SPIRAL):
+            case = oscidrum.paper_case(series, 5e6)
+            result = oscidrum.simulate(case)
+            runs.append(paper.Run(series, 5e6, "steady_state", oscidrum.compute_metrics(result),
+                                  None, result))
+    assert len(runs) == 2
+    drawn = {}
+    save = plot.save
+
+    def keep(fig, path, fmt=None):
+        drawn[Path(path).stem] = fig
+        return save(fig, path, fmt)
+
+    monkeypatch.setattr(plot, "save", keep)
+    paper.Writer(tmp_path, "png", paper.Results(runs)).fig07_08()
+    title = drawn["fig07"]._suptitle.get_text()
+    assert title.startswith("Fig. 7") and title.count("G = 5") == 1, title
+    assert title.count("pure rolling") == 1 and "f = 39 Hz" in title, title
+    for name in ("fig08a", "fig08b"):
+        assert drawn[name]._suptitle.get_text().count("G = 5") == 1
+
+
+def test_forces_panel_b_legend_names_only_the_friction_limit(slip_result, slip_case):
+    pair = (slip_result, slip_case)
+    fig = plot.plot_forces([pair, pair], labels=["a", "b"])
+    top, bottom = fig.axes
+    assert [t.get_text() for t in top.get_legend().get_texts()] == ["a", "b"]
+    assert [t.get_text() for t in bottom.get_legend().get_texts()] == [r"$\pm\mu N$"]
+    rolling = oscidrum.Case(soil=oscidrum.table2_soil(5e6))
+    rolling.contact.pure_rolling = True
+    fig = plot.plot_forces((oscidrum.simulate(rolling), rolling))
+    assert fig.axes[1].get_legend() is None  # pure rolling: no friction limit to name
