@@ -193,6 +193,8 @@ def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
         oscidrum.identify.calibrate([dict(record(15e6, 1), soil=oscidrum.Soil())])
     with pytest.raises(oscidrum.Error, match="MN/m"):
         oscidrum.identify.calibrate([dict(record(15e6, 1), G=1.0)])
+
+
 def test_plot_pass_takes_legend_like_the_other_plots():
     r = oscidrum.synthetic_record([truth(25e6)], duration=0.6, sample_rate=1000, noise=0.02,
                                   seed=2)
