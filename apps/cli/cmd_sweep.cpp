@@ -494,7 +494,8 @@ int run(const SweepOptions& o) {
   if (format == "table") std::cout << rows_table(p.header, all_rows(p, out), p.study.keys.size());
   std::cout.flush();
   const bool all_ok = report_statuses(o, p, out, elapsed);
-  // --plot: a curve over one swept key, a heat map over two (oscidrum.plot.plot_study).
+  // --plot: curves over the first swept key (a panel per contact regime), or a heat map over two
+  // numeric keys (oscidrum.plot.plot_study).
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},
                                     "the results are in " + o.out) != 0)
@@ -569,8 +570,9 @@ void add_sweep_command(CLI::App& app, Action& action) {
           ->type_name("I/N");
   sub->add_option("--plot", o->plot,
                   "also draw the study into FILE (.png or .svg; needs --out): the metric against "
-                  "the swept key, or a heat map over two swept keys (Python package, "
-                  "docs/python.md)")
+                  "the first swept key, one curve per value of the others and a panel per "
+                  "contact regime when contact.pure_rolling is swept, or a heat map over two "
+                  "numeric swept keys (Python package, docs/python.md)")
       ->type_name("FILE");
   sub->add_option("--plot-metric", o->plot_metric,
                   "the results column --plot shows (default area; e.g. ddx_max, psi_xz)")
