@@ -81,8 +81,10 @@ std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o)
          num(o.max_reduced_chi2) + " (relative residual " +
          num(std::round(id.relative_residual * 1000) / 1000) +
          "): the model does not reproduce the measured harmonics to their noise, and the "
-         "estimates are biased by what it lacks (an unknown not fitted, such as mu or MMd, or "
-         "a case that does not describe the roller)";
+         "estimates are biased by what it lacks" +
+         (o.diagnose ? std::string(" (the next warning names the likely cause)")
+                     : std::string(" (an unknown not fitted, such as mu or MMd, or a case that "
+                                   "does not describe the roller)"));
 }
 
 // The record read the other way round: x_M'' (or z_M'') negated, its harmonics, peaks and
@@ -101,18 +103,22 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
   return d;
 }
 
-// A poor fit: is it a convention of the record (an axis read the other way round) or the scale
-// of G? Each alternative is fitted from the same coarse start (no profile); one that fits (a
-// reduced chi^2 within the limit, or ten times below the fit's) is named with what to change.
-// Empty when none does. Costs a few fits, only when the fit is poor.
-std::string diagnosis(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
-                      double s2, long steps) {
+// A poor fit: what causes it? Each cause that can be checked is fitted from the same coarse start
+// (no profile): an axis read the other way round (x_M'', z_M'' or both negated), G on the other
+// scale, and mu and MMd fitted when they are not. One that fits (a reduced chi^2 within the limit,
+// or ten times below the fit's) is named with what to change; otherwise the warning lists what was
+// checked and what remains (the roller, the window's own fit). Costs a few fits, only when the fit
+// is poor.
+std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& data,
+                                   const IdentifyOptions& o, double s2, long steps) {
   struct Alternative {
-    bool x, z, other_scale;
+    bool x = false, z = false, other_scale = false, mu = false, MMd = false;
   };
-  const Alternative alternatives[] = {
+  std::vector<Alternative> alternatives = {
       {false, true, false}, {true, false, false}, {true, true, false}, {false, false, true},
       {false, true, true},  {true, false, true},  {true, true, true}};
+  if (!o.fit_mu) alternatives.push_back({false, false, false, true, false});
+  if (!o.fit_MMd) alternatives.push_back({false, false, false, false, true});
   auto describe = [&](const Alternative& a) {
     std::string what, advice;
     if (a.x && a.z) {
@@ -138,35 +144,54 @@ std::string diagnosis(const Case& base, const MeasuredResponse& data, const Iden
                      ? "the soil is a Table 2 soil (what run --G simulates): --soil-scale table2"
                      : "the soil follows Appendix B's formulas: --soil-scale formulas");
     }
+    if (a.mu) {
+      what = "mu fitted too";
+      advice = "the friction coefficient is not the case's mu = " + num(base.contact.mu) +
+               (base.contact.pure_rolling ? " (pure rolling)" : "") +
+               ": estimate it with --fit-mu (Python: fit_mu=True)";
+    }
+    if (a.MMd) {
+      what = "MMd fitted too";
+      advice = "the driving torque is not the case's MMd = " + num(base.MMd) +
+               " N m: estimate it with --fit-MMd (Python: fit_MMd=True)";
+    }
     return std::pair{what, advice};
+  };
+  auto sig3 = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return std::string(buf);
   };
   double best = std::max(o.max_reduced_chi2, s2 / 10.0);
   std::string found;
+  std::vector<std::pair<double, std::string>> checked;  // reduced chi^2, what was changed
   for (const Alternative& a : alternatives) {
     if (a.other_scale && !o.modulus) continue;
     IdentifyOptions o2 = o;
     o2.profile = false;
+    o2.fit_mu = o.fit_mu || a.mu;
+    o2.fit_MMd = o.fit_MMd || a.MMd;
     if (a.other_scale)
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
+    const auto [what, advice] = describe(a);
     try {
       Problem pr(base, flipped(data, a.x, a.z), o2);
       pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
+      if (dof < 1) continue;
       const std::vector<bool> all(pr.unknowns().size(), true);
       const detail::Fit fit =
           detail::levenberg_marquardt(pr, start_point(pr, o2, nullptr), all, o2.max_iterations);
       const double chi2 = fit.S / dof;
+      // The list of what was checked: each single change (x alone is a time shift, see below).
+      if (std::isfinite(chi2) && (a.x ? a.z && !a.other_scale : !(a.z && a.other_scale)))
+        checked.push_back({chi2, what});
       // The alternatives come simplest first (one change, then two, three); a later one must fit
       // clearly better (half the chi^2) to replace an earlier: with no driving torque, negating
-      // x_M'' is the same as shifting time by half a period, and x alone changes nothing.
+      // x_M'' is the same as shifting time by half a period, and x alone changes nothing. mu and
+      // MMd come last: an unknown more always fits a little better.
       if (std::isfinite(chi2) && chi2 < (found.empty() ? best : 0.5 * best)) {
         best = chi2;
-        auto sig3 = [](double v) {
-          char buf[32];
-          std::snprintf(buf, sizeof buf, "%.3g", v);
-          return std::string(buf);
-        };
-        const auto [what, advice] = describe(a);
         found = "the fit is far better with " + what + " (reduced chi^2 " + sig3(chi2) +
                 " against " + sig3(s2) + "): " + advice;
       }
@@ -174,7 +199,39 @@ std::string diagnosis(const Case& base, const MeasuredResponse& data, const Iden
       // an alternative the model cannot fit says nothing
     }
   }
-  return found;
+  // What was checked, most likely first (the lowest chi^2), and what remains.
+  std::sort(checked.begin(), checked.end());
+  std::string list;
+  for (const auto& [chi2, what] : checked)
+    list += (list.empty() ? "" : "; ") + what + ": " + sig3(chi2);
+  std::string remaining =
+      "a roller that differs from the case (its unbalance, axle load, buffers: calibrate it on "
+      "records of known soil with oscidrum calibrate)";
+  // The window's own fit: a residual that is a sizeable part of the signal means harmonics
+  // beyond those fitted, or a signal that is not periodic at f (a soil or a frequency that
+  // changes within the window).
+  double signal2 = 0;
+  for (const auto& c : data.ddx) signal2 += 0.5 * std::norm(c);
+  for (const auto& c : data.ddz) signal2 += 0.5 * std::norm(c);
+  const double noise2 = data.noise_x * data.noise_x + data.noise_z * data.noise_z;
+  if (signal2 > 0 && noise2 > 0) {
+    const double ratio = std::sqrt(noise2 / signal2);
+    remaining +=
+        "; the window's fit of " + std::to_string(data.ddx.size()) +
+        " harmonics leaves a residual of " + sig3(100 * ratio) + " % of the signal's RMS" +
+        (ratio > 0.1 ? " (a large part: more harmonics than fitted (--harmonics), or a soil or "
+                       "frequency that changes within the window: a shorter --window)"
+                     : " (small: the window's signal is periodic at f and well resolved)");
+  }
+  if (!found.empty() && best <= o.max_reduced_chi2) return {found};
+  if (!found.empty())
+    return {found + ", but it still fits poorly (reduced chi^2 " + sig3(best) + " > " +
+            num(o.max_reduced_chi2) + "): checked, best first: " + list +
+            ". Other causes: " + remaining};
+  return {
+      "none of the causes checked explains the poor fit (reduced chi^2 with each, best "
+      "first: " +
+      list + "). Remaining causes: " + remaining};
 }
 
 // The estimate of unknown j with its linearised uncertainty and its profile interval.
@@ -300,10 +357,9 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
   if (s2 > o.max_reduced_chi2) {
     id.warnings.push_back(poor_fit_warning(id, o));
-    if (o.diagnose) {
-      const std::string why = diagnosis(base, data, o, s2, pr.steps());
-      if (!why.empty()) id.warnings.push_back(why);
-    }
+    if (o.diagnose)
+      for (std::string& why : diagnosis(base, data, o, s2, pr.steps()))
+        id.warnings.push_back(std::move(why));
   }
 
   // Covariance s^2 (J^T J)^-1, condition number and correlations of the column-scaled Jacobian.

@@ -271,6 +271,38 @@ TEST(Identify, AWrongKnownParameterGivesAPoorFitWarning) {
   for (const std::string& w : fitted.warnings) EXPECT_NE(w.rfind("poor fit", 0), 0u) << w;
 }
 
+// The diagnosis of a poor fit names the cause it checked, with the flag that fixes it: mu or MMd
+// not fitted; and a cause it cannot check (a roller that is not the case's) as what remains after
+// listing what it checked, best first.
+TEST(Identify, APoorFitNamesTheCauseItChecked) {
+  auto warnings_of = [](const Case& t, const Case& b) {
+    const RecordSamples r = noisy_record(t, 0.6, 1000, 11);
+    IdentifyOptions o;
+    o.profile = false;
+    const Identification id = identify_whole(b, r, o);
+    EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
+    std::string all;
+    for (const std::string& w : id.warnings) all += w + "\n";
+    return all;
+  };
+  const std::string mu = warnings_of(truth(17.3e6, false, 0.0, 0.42), base(false, 0.0));
+  EXPECT_NE(mu.find("far better with mu fitted too"), std::string::npos) << mu;
+  EXPECT_NE(mu.find("--fit-mu"), std::string::npos) << mu;
+  EXPECT_EQ(mu.find("still fits poorly"), std::string::npos) << mu;
+  const std::string MMd = warnings_of(truth(17.3e6, false, 0.05), base(false, 0.0));
+  EXPECT_NE(MMd.find("far better with MMd fitted too"), std::string::npos) << MMd;
+  EXPECT_NE(MMd.find("--fit-MMd"), std::string::npos) << MMd;
+  Case heavy = truth(17.3e6, false, 0.0);
+  heavy.roller.P0 *= 1.3;
+  heavy.roller.M0 *= 0.85;
+  const std::string roller = warnings_of(heavy, base(false, 0.0));
+  EXPECT_NE(roller.find("oscidrum calibrate"), std::string::npos) << roller;
+  // Every single change checked is listed with its chi^2, best first.
+  for (const char* what : {"z_M'' negated: ", "x_M'' and z_M'' negated: ",
+                           "G on the other soil scale: ", "MMd fitted too: "})
+    EXPECT_NE(roller.find(what), std::string::npos) << what << " not in " << roller;
+}
+
 // A record of a Table 2 soil (what `oscidrum run --G 30` simulates) is identified on the Table 2
 // scale; on the formulas' scale the same record gives about 21 MN/m^2 with a poor fit (42) as
 // printed does not reproduce Table 2's stiffness). Between the rows (G = 27.3) the scale is
