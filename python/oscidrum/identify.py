@@ -200,9 +200,16 @@ def plot_pass(rows, x: str = "auto", parameter: str = "G", legend: Any = "auto")
     as in :mod:`oscidrum.plot` ("auto", "best"/"inside", "outside", "below", a matplotlib
     location, None/False). Returns a Figure."""
     from .plot import _legend, _place_legends
-    cols = read_csv(rows) if isinstance(rows, (str, Path)) else {
-        k: np.array([r.get(k, math.nan) for r in rows], dtype=float)
-        for k in ("t", "position", parameter, parameter + "_lo", parameter + "_hi", "valid")}
+    if isinstance(rows, (str, Path)):
+        cols = read_csv(rows)
+        reasons, warnings = _text_columns(rows, ("reason", "warnings"))
+    else:
+        cols = {k: np.array([r.get(k, math.nan) for r in rows], dtype=float)
+                for k in ("t", "position", parameter, parameter + "_lo", parameter + "_hi",
+                          "valid")}
+        reasons = [str(r.get("reason", "")) for r in rows]
+        warnings = ["; ".join(r.get("warnings", [])) if isinstance(r.get("warnings"), list)
+                    else str(r.get("warnings", "")) for r in rows]
     if x == "auto":
         x = "position" if np.isfinite(cols.get("position", np.array([np.nan]))).any() else "t"
     label, unit, k = _DISPLAY.get(parameter, (parameter, "", 1.0))
@@ -211,12 +218,24 @@ def plot_pass(rows, x: str = "auto", parameter: str = "G", legend: Any = "auto")
     xs = cols[x]
     v, lo, hi = (cols[parameter] * k, cols[parameter + "_lo"] * k, cols[parameter + "_hi"] * k)
     ax.fill_between(xs, lo, hi, color="tab:blue", alpha=0.25, lw=0, label="95 % interval")
-    ax.plot(xs, v, "o-", color="tab:blue", ms=3, label="estimate")
+    ax.plot(xs, v, "-", color="tab:blue", lw=1)
+    warned = np.array([bool(w) for w in warnings]) & np.isfinite(v)
+    ax.plot(xs[~warned], v[~warned], "o", color="tab:blue", ms=3, label="estimate")
+    if warned.any():
+        ax.plot(xs[warned], v[warned], "o", mfc="white", mec="tab:orange", ms=5, mew=1.2,
+                label="estimate with a warning (poor fit, ...)")
+    # Failed windows: those over a change of soil (the change gate) apart from the other gates.
     bad = ~np.isfinite(v)
-    if bad.any():
-        for xb in xs[bad]:
-            ax.axvline(xb, color="tab:red", alpha=0.3, lw=1)
-        ax.plot([], [], color="tab:red", alpha=0.5, label="window failed a gate")
+    changed = bad & np.array(["changes within the window" in r for r in reasons])
+    for mask, style, text in ((changed, dict(color="tab:purple", ls="--", alpha=0.6),
+                               "soil changes within the window"),
+                              (bad & ~changed, dict(color="tab:red", ls="-", alpha=0.3),
+                               "window failed a gate")):
+        if mask.any():
+            for xb in xs[mask]:
+                if np.isfinite(xb):
+                    ax.axvline(xb, lw=1.2, **style)
+            ax.plot([], [], lw=1.2, label=text, **style)
     ax.set_xlabel("position [m]" if x == "position" else "time [s]")
     ax.set_ylabel(f"{label} [{unit}]")
     ax.set_title(f"identified {label} along the pass (lumped model, docs/identify.md)")
@@ -224,6 +243,21 @@ def plot_pass(rows, x: str = "auto", parameter: str = "G", legend: Any = "auto")
     _legend(ax, legend=legend)
     _place_legends(fig, [ax])
     return fig
+
+
+def _text_columns(path, names):
+    """The text columns `names` of a CSV of ``identify --csv`` (quoted cells kept whole), as
+    lists of strings ('' for a missing column)."""
+    import csv
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = [h.split("[")[0] for h in next(reader)]
+        rows = list(reader)
+    out = []
+    for name in names:
+        j = header.index(name) if name in header else None
+        out.append([r[j] if j is not None and j < len(r) else "" for r in rows])
+    return out
 
 
 def plot_fit(directory: str | Path, legend: Any = "auto"):

@@ -127,6 +127,30 @@ def test_a_window_across_a_change_of_soil_is_flagged():
         oscidrum.analyze_windows(r["t"], r["ddx_M"], r["ddz_M"], window=40, max_change=float("nan"))
 
 
+@pytest.mark.skipif("OSCIDRUM_CLI" not in os.environ, reason="needs the CLI")
+def test_the_pass_plot_marks_windows_over_a_change_of_soil(tmp_path):
+    """The pass plot tells a window over a change of soil from one that failed another gate,
+    and an estimate with a warning from a clean one, from Python's rows and from the CLI's CSV."""
+    cases = [oscidrum.Case(input="modulus", G=10e6), oscidrum.Case(input="modulus", G=25e6)]
+    r = oscidrum.synthetic_record(cases, duration=4.0, sample_rate=2000, noise=0.05, seed=3)
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=40, hop=10,
+                                      profile=False)
+    assert any("changes within the window" in row["reason"] for row in rows)
+    rows[0]["warnings"] = ["poor fit: a warning for the test"]
+    text = "t,ddx_M,ddz_M\n" + "".join(
+        f"{t:.9g},{x:.9g},{z:.9g}\n" for t, x, z in zip(r["t"], r["ddx_M"], r["ddz_M"]))
+    (tmp_path / "pass.csv").write_text(text)
+    subprocess.run([os.environ["OSCIDRUM_CLI"], "identify", str(tmp_path / "pass.csv"),
+                    "--window", "40", "--hop", "10", "--no-profile", "--csv",
+                    str(tmp_path / "id.csv"), "--quiet"], capture_output=True, check=False)
+    for source, warned in ((rows, True), (tmp_path / "id.csv", False)):
+        fig = oscidrum.identify.plot_pass(source, x="t")
+        labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        assert "soil changes within the window" in labels, labels
+        assert ("estimate with a warning (poor fit, ...)" in labels) == warned, labels
+        assert "window failed a gate" not in labels, labels
+
+
 def test_identify_frame_and_geojson(tmp_path):
     pd = pytest.importorskip("pandas")
     # A soil given by G on Appendix B's scale, the scale identify reports by default.
