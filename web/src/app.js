@@ -43,6 +43,7 @@ let seq = 0;                // number of the latest request
 let busySince = 0;          // time the running request was sent (0: idle)
 let pending = null;         // the latest request not yet sent
 let last = null;            // the latest good result {result, values, ms}
+let inputErrors = {};       // the latest messages of the page's own parsing, by input name
 const plots = {};
 
 // ---------------------------------------------------------------- inputs
@@ -245,9 +246,9 @@ function startWorker() {
   };
 }
 
-function request(values) {
+function request(values, checkOnly = false) {
   seq += 1;
-  const msg = { type: 'run', seq, values, n_max: N_MAX };
+  const msg = { type: 'run', seq, values, n_max: N_MAX, checkOnly };
   if (busySince === 0) {
     send(msg);
   } else if (performance.now() - busySince > 1000) {
@@ -286,13 +287,17 @@ function onMessage(msg) {
   if (msg.seq !== seq) return;  // an answer to an outdated request
   for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.remove('stale');
   const { values } = readInputs();
-  for (const name of visibleInputs()) setError(name, '');
-  if (Object.keys(msg.errors).length) {
+  // Every invalid input at once: the page's own messages (empty, not a number) and the engine's
+  // rule of every other field.
+  for (const name of visibleInputs()) setError(name, inputErrors[name] || '');
+  if (Object.keys(msg.errors).length || !msg.result) {
     for (const [key, message] of Object.entries(msg.errors)) {
       const name = inputForKey(key);
-      if (name) setError(name, message);
+      if (name && !inputErrors[name]) setError(name, message);
     }
-    showStatus('invalid input: see the messages next to the inputs', false);
+    const count = document.querySelectorAll('.field.invalid').length;
+    showStatus(`invalid input (${count} ${count === 1 ? 'field' : 'fields'}): see the messages next to the inputs`, false);
+    markReady();
     return;
   }
   const r = msg.result;
@@ -301,10 +306,19 @@ function onMessage(msg) {
     const name = r.key ? inputForKey(r.key) : null;
     if (name && visibleInputs().includes(name)) setError(name, r.error);
     showStatus(`invalid input: ${r.error}`, false);
+    markReady();
     return;
   }
   last = { result: r, ms: msg.ms, inputs: values };
   render();
+  markReady();
+}
+
+// The ready marker (scripts/screenshot-web.sh, the tests): set once the first case is shown.
+function markReady() {
+  if (document.body.dataset.ready === 'true') return;
+  document.body.dataset.ready = 'true';
+  document.body.classList.add('ready');
 }
 
 function showStatus(text, ok, value = '') {
@@ -317,10 +331,14 @@ function showStatus(text, ok, value = '') {
 function onChange() {
   updateVisibility();
   const { values, errors } = readInputs();
+  inputErrors = errors;
   for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
   if (Object.keys(errors).length) {
-    seq += 1;  // a result still on its way is outdated
     showStatus('invalid input: see the messages next to the inputs', false);
+    // The other inputs are checked against their rules all the same (nothing is computed), so
+    // that every invalid input is flagged at once, not only the first.
+    const parsed = Object.fromEntries(Object.entries(caseValues(values)).filter(([, v]) => Number.isFinite(v)));
+    request(parsed, true);
     return;
   }
   saveUrl();
@@ -340,9 +358,13 @@ function render() {
     // Not a steady state: the last periods are drawn (as the CLI samples them), without metrics.
     $('area-caption').textContent = '—';
     $('area-caption').dataset.value = '';
+    // Nothing of an earlier case stays on screen: no figure, no spectra without a steady state.
+    clearPlots(['plot-spec-x', 'plot-spec-z'], ['plot-figure'], 'no steady state: no figure, no spectrum');
     if (r.samples && r.samples.t.length > 0) {
       drawTimePlot(r);
       startAnimation(r);
+    } else {
+      clearPlots(['time'], ['drum'], `no periods sampled: the run stopped with ${r.status}`);
     }
     const body = $('metrics').tBodies[0];
     body.innerHTML = '';
@@ -358,6 +380,20 @@ function render() {
   drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z);
   fillMetrics(r, m);
   startAnimation(r);
+}
+
+// Remove the uPlot plots `ids` and blank the canvases `canvasIds` with a note (what is not drawn).
+function clearPlots(ids, canvasIds, note) {
+  for (const id of ids) {
+    if (plots[id]) { plots[id].destroy(); delete plots[id]; }
+  }
+  if (canvasIds.includes('drum') && animation) cancelAnimationFrame(animation.frame);
+  for (const id of canvasIds) {
+    const c = $(id), ctx = c.getContext('2d');
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, c.width, c.height);
+    ctx.fillStyle = '#666'; ctx.font = '12px system-ui, sans-serif'; ctx.textAlign = 'center';
+    ctx.fillText(note, c.width / 2, c.height / 2);
+  }
 }
 
 function periodSlice(r) {
@@ -424,15 +460,17 @@ function drawSpectrum(id, amplitudes, color) {
   const top = Math.max(...a) || 1;
   const x = a.map((_, i) => i);
   const y = a.map((v) => v / top);
+  const series = [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }];
+  const data = [x, y];
   const el = $(id);
   if (plots[id]) plots[id].destroy();
   plots[id] = new uPlot({
     width: 420, height: 200,
     scales: { x: { time: false, range: [-0.5, a.length - 0.5] }, y: { range: [0, 1.05] } },
     axes: [{ label: 'n (harmonic n f)', splits: () => x }, { label: 'A_n / max' }],
-    series: [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }],
+    series,
     legend: { show: false },
-  }, [x, y], el);
+  }, data, el);
 }
 
 // ---- plain canvas plots (the z-x figure, the drum)
@@ -492,10 +530,12 @@ function drawFigure(canvas, r, m) {
   const { X, Y } = frame(ctx, canvas.width, canvas.height, range(x), range(z), "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
   // the figure coloured by the contact phase
   ctx.lineWidth = 1.8;
+  let curveTop = Infinity;
   for (let i = 0; i < n; i++) {
     const j = (i + 1) % n;
     ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : ARROW.slip;
     ctx.beginPath(); ctx.moveTo(X(x[i]), Y(z[i])); ctx.lineTo(X(x[j]), Y(z[j])); ctx.stroke();
+    curveTop = Math.min(curveTop, Y(z[i]));
   }
   ctx.textAlign = 'left';
   const caption = `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
@@ -506,6 +546,10 @@ function drawFigure(canvas, r, m) {
   ctx.fillText('stick', after, 20);
   ctx.fillStyle = ARROW.slip;
   ctx.fillText('slip', after + 34, 20);
+  // where the caption ends and the figure begins [px], for the tests: the caption is above it
+  const metrics = ctx.measureText(caption);
+  canvas.dataset.captionBottom = String(20 + (metrics.actualBoundingBoxDescent || 3));
+  canvas.dataset.curveTop = String(curveTop);
 }
 
 // ---- the drum in its trough (animated from the sampled steady state)
@@ -784,6 +828,10 @@ function init() {
 }
 
 // For tests and the console: the current case and exports.
-window.explorer = { caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null };
+window.explorer = {
+  caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null,
+  // the ranges of the time plot's two y axes (x_M'' and z_M'' each on its own)
+  timeScales: () => plots.time && { ax: [plots.time.scales.ax.min, plots.time.scales.ax.max], az: [plots.time.scales.az.min, plots.time.scales.az.max], points: plots.time.data[0].length },
+};
 
 startWorker();
