@@ -3,7 +3,8 @@
 // marker and the default case, change G and mu, check that the displayed area and status are
 // those of the native engine, that z_M'' has its own axis and the area caption stays off the
 // figure, that the largest harmonics are listed with their n, that a case without a steady state
-// shows its status and message, that scripts/screenshot-web.sh captures a case, that bad input (empty, NaN,
+// shows its status and message, that a measured record dropped onto the page is drawn and its
+// soil identified, that scripts/screenshot-web.sh captures a case, that bad input (empty, NaN,
 // out of range; several at once) shows a message next to each input without freezing the page,
 // that the exported TOML runs natively to the same area, that no console error occurred, and
 // save a screenshot.
@@ -41,6 +42,22 @@ const AREA_RTOL = 1e-9;
 
 function native(args) {
   return JSON.parse(execFileSync(cli, ['run', '--format', 'json', ...args], { encoding: 'utf8' }));
+}
+
+// A record of the soil G [Pa] (Appendix B) by the WebAssembly engine (synthetic_record), 1 % above
+// 39 Hz, 2 % noise, as a logger would write it: a UTF-8 byte-order mark, 'Time [s]', the
+// accelerations in g, z positive up.
+async function recordCsv(distDir, G) {
+  const createOscidrum = require(path.resolve(distDir, 'oscidrum.js'));
+  const engine = await createOscidrum({ wasmBinary: fs.readFileSync(path.join(distDir, 'oscidrum.wasm')) });
+  const f = 39 * 1.01;
+  const rec = engine.syntheticRecord({ 'soil.input': 'modulus', 'soil.G': G, 'roller.f': f, 'roller.M0': 54947 * (f / 39) ** 2 },
+    { duration: 1, sample_rate: 1000, noise: 0.02, seed: 3 });
+  assert.equal(rec.ok, true, rec.error);
+  const g = 9.80665;
+  const lines = ['\ufeffTime [s],acc_x [g],acc_z [g]'];
+  for (let i = 0; i < rec.t.length; i++) lines.push(`${rec.t[i].toPrecision(10)},${(rec.ddx_M[i] / g).toPrecision(10)},${(-rec.ddz_M[i] / g).toPrecision(10)}`);
+  return lines.join('\n') + '\n';
 }
 
 function startServer() {
@@ -152,6 +169,51 @@ async function main() {
       assert.ok(sc && sc.points > 100, `the last periods are not drawn: ${JSON.stringify(sc)}`);
       await page3.close();
       console.log(`ok   a case without a steady state: '${status.slice(0, 60)}...'`);
+    }
+    // A measured record (issue 25 point 4): a record of a known soil (G = 30 MN/m^2 by Appendix
+    // B, f 1 % above the case's, 2 % noise) made by the engine and written as a logger would (a
+    // byte-order mark, 'Time [s]', g, z positive up) is dropped onto the page: its fit is drawn
+    // over the model and G is identified with a 95 % interval that holds the truth; a broken file
+    // picked with the button shows the reader's message.
+    {
+      const G_TRUE = 30e6;
+      const csv = await recordCsv(dist, G_TRUE);
+      const page4 = await browser.newPage();
+      page4.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+      page4.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+      await page4.goto(url + '?soil=modulus');
+      await page4.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+      await page4.selectOption('#record-z', 'up');
+      await page4.evaluate((text) => {
+        const dt = new DataTransfer();
+        dt.items.add(new File([text], 'pass.csv', { type: 'text/csv' }));
+        document.getElementById('results').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      }, csv);
+      await page4.waitForFunction(() => { const r = window.explorer.record(); return r.identification && !r.busy; }, null, { timeout: 60000 });
+      const rec = await page4.evaluate(() => window.explorer.record());
+      assert.equal(rec.analysis.ok, true, rec.analysis.error);
+      assert.equal(rec.analysis.valid, true, rec.analysis.reason);
+      assert.equal(rec.analysis.reading.t_column, 'Time [s]');
+      assert.equal(rec.analysis.reading.z_factor, -9.80665);
+      assert.ok(Math.abs(rec.analysis.f - 39 * 1.01) < 1e-3, `f ${rec.analysis.f}`);
+      const id = rec.identification;
+      assert.equal(id.ok && id.valid, true, id.error || id.reason);
+      const G = id.estimates.find((e) => e.name === 'G');
+      assert.ok(G.lower <= G_TRUE && G_TRUE <= G.upper, `G ${G.value} [${G.lower}, ${G.upper}] misses ${G_TRUE}`);
+      assert.ok(G.upper - G.lower < 0.05 * G_TRUE, `the interval is not informative: [${G.lower}, ${G.upper}]`);
+      const table = await page4.textContent('#record-table');
+      assert.match(table, /identified G.*G = 30\.\d* ± [\d.]+ MN\/m²/);
+      assert.match(table, /95 % interval \[/);
+      const fig = await page4.evaluate(() => ({ ...document.getElementById('plot-figure').dataset }));
+      assert.ok(Number(fig.measuredPoints) > 100, `the measured figure is not drawn: ${JSON.stringify(fig)}`);
+      assert.equal(await page4.getAttribute('#record-status', 'data-value'), 'identified');
+      // The picker, and a file the reader refuses: its message, naming the file and the line.
+      await page4.setInputFiles('#record-file', { name: 'broken.csv', mimeType: 'text/csv', buffer: Buffer.from('t,ax,az\n0,1,2\n0.001,1,oops\n') });
+      await page4.waitForFunction(() => /cannot read/.test(document.getElementById('record-status').textContent), null, { timeout: 30000 });
+      assert.match(await page4.textContent('#record-status'), /broken\.csv:3: column 'az' must be a number; got 'oops'/);
+      assert.equal(await page4.evaluate(() => document.getElementById('plot-figure').dataset.measuredPoints), '0');
+      await page4.close();
+      console.log(`ok   record dropped: f ${rec.analysis.f.toFixed(4)} Hz, G ${(G.value / 1e6).toFixed(3)} [${(G.lower / 1e6).toFixed(3)}, ${(G.upper / 1e6).toFixed(3)}] MN/m^2 (truth 30) in ${id.simulations} simulations; its figure drawn; a broken file picked shows the reader's message`);
     }
     // The screenshot script (issue 25 point 5) waits for the ready marker: what it captures is a
     // case, not "loading the engine...".
