@@ -755,6 +755,8 @@ function analyseRecord() {
     recordState.worker.terminate();
     startRecordWorker();
   }
+  // the record's engine loads with the first record, not with the page (which it would slow)
+  if (!recordState.worker) startRecordWorker();
   recordState.seq += 1;
   recordState.analysis = null;
   recordState.identification = null;
@@ -878,7 +880,6 @@ function clearRecord() {
 }
 
 function initRecord() {
-  startRecordWorker();
   // A file dropped anywhere on the page is taken as a record (not opened by the browser).
   document.addEventListener('dragover', (ev) => { ev.preventDefault(); document.body.classList.add('dragging'); });
   document.addEventListener('dragleave', (ev) => { if (!ev.relatedTarget) document.body.classList.remove('dragging'); });
