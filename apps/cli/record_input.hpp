@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "oscidrum/record.hpp"
+#include "oscidrum/record_reader.hpp"
 
 namespace CLI {
 class App;
@@ -16,33 +17,9 @@ class App;
 
 namespace oscidrum::cli {
 
-struct RecordInput {
+/// The record file and how its text is read (oscidrum::RecordReading).
+struct RecordInput : RecordReading {
   std::string file;  ///< path, or "-" for stdin
-  /// Column names or 1-based indices; empty: recognised from the header (t, time, ...; ddx_M,
-  /// ax, acc_x, ...; ddz_M, az, acc_z, ...: see read_record).
-  std::string t_col, x_col, z_col;
-  std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
-  std::string lat_col, lon_col;        ///< optional GNSS latitude, longitude [deg, WGS 84]
-  std::string east_col, north_col;     ///< optional projected easting, northing [m]
-  std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
-  std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
-  std::string x_positive = "forward";  ///< forward (the model's x) or backward
-  std::string z_positive = "down";     ///< down (the model's z) or up
-};
-
-/// The columns of a record in the model's conventions: t in s, accelerations in m/s^2, x_M''
-/// positive forward (the direction of travel), z_M'' positive down.
-struct RecordColumns {
-  std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
-  std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
-  std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
-  std::string delimiter;            ///< as detected: "comma", "semicolon", "tab", "whitespace"
-  /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
-  std::vector<std::string> notes;
-  /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without
-  /// one) and the factor applied to reach the model's units and signs [s or m/s^2 per unit read].
-  std::string t_column, x_column, z_column;
-  double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
 };
 
 /// Adds the record argument and --t-col, --x-col, --z-col, --pos-col, --speed-col, --units,
@@ -76,8 +53,5 @@ std::pair<double, double> east_north_at(const RecordColumns& rec, double t);
 
 /// One line per window that failed, for the message of a record with nothing valid.
 std::string failure_reasons(const std::vector<RecordWindow>& windows);
-
-/// Standard gravity for --units g [m/s^2].
-inline constexpr double kStandardGravity = 9.80665;
 
 }  // namespace oscidrum::cli

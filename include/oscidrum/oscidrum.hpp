@@ -16,6 +16,7 @@
 #include "oscidrum/outputs.hpp"
 #include "oscidrum/parameters.hpp"
 #include "oscidrum/record.hpp"
+#include "oscidrum/record_reader.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"

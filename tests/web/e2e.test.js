@@ -1,9 +1,13 @@
 // End-to-end test of the explorer in headless Chromium (Debian's chromium, driven by
-// playwright-core): load the page from a local static server on 127.0.0.1, wait for the default
-// case, change G and mu, check that the displayed area and status are those of the native engine,
-// that bad input (empty, NaN, out of range) shows a message next to the input without freezing
-// the page, that the exported TOML runs natively to the same area, that no console error
-// occurred, and save a screenshot.
+// playwright-core): load the page from a local static server on 127.0.0.1, wait for its ready
+// marker and the default case, change G and mu, check that the displayed area and status are
+// those of the native engine, that z_M'' has its own axis and the area caption stays off the
+// figure, that the largest harmonics are listed with their n, that a case without a steady state
+// shows its status and message, that a measured record dropped onto the page is drawn and its
+// soil identified, that scripts/screenshot-web.sh captures a case, that bad input (empty, NaN,
+// out of range; several at once) shows a message next to each input without freezing the page,
+// that the exported TOML runs natively to the same area, that no console error occurred, and
+// save a screenshot.
 //
 // Usage: node e2e.test.js <path to the native oscidrum> <web/dist> <screenshot.png>
 // (OSCIDRUM_KEEP_EXPORTS=DIR keeps the downloaded exports in DIR.)
@@ -38,6 +42,22 @@ const AREA_RTOL = 1e-9;
 
 function native(args) {
   return JSON.parse(execFileSync(cli, ['run', '--format', 'json', ...args], { encoding: 'utf8' }));
+}
+
+// A record of the soil G [Pa] (Appendix B) by the WebAssembly engine (synthetic_record), 1 % above
+// 39 Hz, 2 % noise, as a logger would write it: a UTF-8 byte-order mark, 'Time [s]', the
+// accelerations in g, z positive up.
+async function recordCsv(distDir, G) {
+  const createOscidrum = require(path.resolve(distDir, 'oscidrum.js'));
+  const engine = await createOscidrum({ wasmBinary: fs.readFileSync(path.join(distDir, 'oscidrum.wasm')) });
+  const f = 39 * 1.01;
+  const rec = engine.syntheticRecord({ 'soil.input': 'modulus', 'soil.G': G, 'roller.f': f, 'roller.M0': 54947 * (f / 39) ** 2 },
+    { duration: 1, sample_rate: 1000, noise: 0.02, seed: 3 });
+  assert.equal(rec.ok, true, rec.error);
+  const g = 9.80665;
+  const lines = ['\ufeffTime [s],acc_x [g],acc_z [g]'];
+  for (let i = 0; i < rec.t.length; i++) lines.push(`${rec.t[i].toPrecision(10)},${(rec.ddx_M[i] / g).toPrecision(10)},${(-rec.ddz_M[i] / g).toPrecision(10)}`);
+  return lines.join('\n') + '\n';
 }
 
 function startServer() {
@@ -86,6 +106,9 @@ async function main() {
     const errorOf = (name) => page.textContent(`[id="err-${name}"]`);
 
     await page.goto(url);
+    // The ready marker (issue 25 point 5): set once the first case is shown, for screenshots.
+    await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+    assert.doesNotMatch(await page.textContent('#status'), /loading/);
     let shown = await settled();
     const def = native([]);
     assert.equal(shown.status, def.status);
@@ -102,6 +125,19 @@ async function main() {
     assert.ok(Math.abs(shown.area - changed.metrics.area) <= AREA_RTOL * changed.metrics.area, `G 40 mu 0.3: area ${shown.area} vs native ${changed.metrics.area}`);
     assert.ok(Math.abs(shown.area - def.metrics.area) > 1e-3 * def.metrics.area, 'the area did not change');
     console.log(`ok   G 40, mu 0.3: ${shown.status}, area ${shown.area} (native ${changed.metrics.area})`);
+    // z_M'' (about +-1 m/s^2) has its own axis in the time plot (issue 25 point 2): its scale
+    // spans its own values, not x_M'''s (about +-12), so it is not a flat line.
+    {
+      const sc = await page.evaluate(() => window.explorer.timeScales());
+      const zr = [changed.metrics.ddz_min, changed.metrics.ddz_max], xr = [changed.metrics.ddx_min, changed.metrics.ddx_max];
+      assert.ok(sc.az[0] <= zr[0] && zr[1] <= sc.az[1] && sc.ax[0] <= xr[0] && xr[1] <= sc.ax[1], JSON.stringify(sc));
+      assert.ok(zr[1] - zr[0] >= 0.5 * (sc.az[1] - sc.az[0]), `z_M'' fills less than half of its axis: ${JSON.stringify(sc)}`);
+      assert.ok(sc.az[1] - sc.az[0] < 0.5 * (sc.ax[1] - sc.ax[0]), `z_M'' on the axis of x_M'': ${JSON.stringify(sc)}`);
+      // The area caption sits above the figure-eight, not on it.
+      const fig = await page.evaluate(() => ({ ...document.getElementById('plot-figure').dataset }));
+      assert.ok(Number(fig.captionBottom) < Number(fig.curveTop), `the area caption covers the figure: ${JSON.stringify(fig)}`);
+      console.log(`ok   z_M'' on its own axis [${sc.az.map((v) => v.toFixed(2))}] beside x_M'' [${sc.ax.map((v) => v.toFixed(2))}]; the caption ends at ${fig.captionBottom} px, the figure starts at ${Number(fig.curveTop).toFixed(1)} px`);
+    }
     // A valid case without a steady state shows its status and message and draws its last
     // periods (not "invalid input").
     {
@@ -119,17 +155,104 @@ async function main() {
       assert.notEqual(nat.status, 'steady_state');
       assert.ok(status.startsWith(`${nat.status}: `), `status shown: '${status}' (native ${nat.status})`);
       assert.ok(!status.includes('invalid input'), status);
+      assert.ok(status.includes(nat.message.slice(0, 20)), `the message is not shown: '${status}' (native '${nat.message}')`);
+      // Its periods are drawn as the CLI samples them: none for a run that stops (the drum
+      // spins: gross slip), so no plot of an earlier case stays; the last periods for a run
+      // that reaches numerics.max_periods.
+      assert.equal(nat.status, 'gross_slip');
+      assert.equal(await page3.evaluate(() => window.explorer.timeScales()), undefined);
+      await page3.goto(url + '?numerics.max_periods=3');
+      await page3.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 60000 });
+      const status3 = await page3.evaluate(() => document.getElementById('status').textContent);
+      assert.match(status3, /^max_periods_reached: no steady state within numerics\.max_periods = 3 periods/);
+      const sc = await page3.evaluate(() => window.explorer.timeScales());
+      assert.ok(sc && sc.points > 100, `the last periods are not drawn: ${JSON.stringify(sc)}`);
       await page3.close();
       console.log(`ok   a case without a steady state: '${status.slice(0, 60)}...'`);
     }
-    // The metrics table shows each signal's three largest harmonics (by the native amplitudes).
+    // A measured record (issue 25 point 4): a record of a known soil (G = 30 MN/m^2 by Appendix
+    // B, f 1 % above the case's, 2 % noise) made by the engine and written as a logger would (a
+    // byte-order mark, 'Time [s]', g, z positive up) is dropped onto the page: its fit is drawn
+    // over the model and G is identified with a 95 % interval that holds the truth; a broken file
+    // picked with the button shows the reader's message.
+    {
+      const G_TRUE = 30e6;
+      const csv = await recordCsv(dist, G_TRUE);
+      const page4 = await browser.newPage();
+      page4.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+      page4.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+      await page4.goto(url + '?soil=modulus');
+      await page4.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+      await page4.selectOption('#record-z', 'up');
+      await page4.evaluate((text) => {
+        const dt = new DataTransfer();
+        dt.items.add(new File([text], 'pass.csv', { type: 'text/csv' }));
+        document.getElementById('results').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      }, csv);
+      await page4.waitForFunction(() => { const r = window.explorer.record(); return r.identification && !r.busy; }, null, { timeout: 60000 });
+      const rec = await page4.evaluate(() => window.explorer.record());
+      assert.equal(rec.analysis.ok, true, rec.analysis.error);
+      assert.equal(rec.analysis.valid, true, rec.analysis.reason);
+      assert.equal(rec.analysis.reading.t_column, 'Time [s]');
+      assert.equal(rec.analysis.reading.z_factor, -9.80665);
+      assert.ok(Math.abs(rec.analysis.f - 39 * 1.01) < 1e-3, `f ${rec.analysis.f}`);
+      const id = rec.identification;
+      assert.equal(id.ok && id.valid, true, id.error || id.reason);
+      const G = id.estimates.find((e) => e.name === 'G');
+      assert.ok(G.lower <= G_TRUE && G_TRUE <= G.upper, `G ${G.value} [${G.lower}, ${G.upper}] misses ${G_TRUE}`);
+      assert.ok(G.upper - G.lower < 0.05 * G_TRUE, `the interval is not informative: [${G.lower}, ${G.upper}]`);
+      const table = await page4.textContent('#record-table');
+      assert.match(table, /identified G.*G = 30\.\d* ± [\d.]+ MN\/m²/);
+      assert.match(table, /95 % interval \[/);
+      const fig = await page4.evaluate(() => ({ ...document.getElementById('plot-figure').dataset }));
+      assert.ok(Number(fig.measuredPoints) > 100, `the measured figure is not drawn: ${JSON.stringify(fig)}`);
+      assert.equal(await page4.getAttribute('#record-status', 'data-value'), 'identified');
+      // The picker, and a file the reader refuses: its message, naming the file and the line.
+      await page4.setInputFiles('#record-file', { name: 'broken.csv', mimeType: 'text/csv', buffer: Buffer.from('t,ax,az\n0,1,2\n0.001,1,oops\n') });
+      await page4.waitForFunction(() => /cannot read/.test(document.getElementById('record-status').textContent), null, { timeout: 30000 });
+      assert.match(await page4.textContent('#record-status'), /broken\.csv:3: column 'az' must be a number; got 'oops'/);
+      assert.equal(await page4.evaluate(() => document.getElementById('plot-figure').dataset.measuredPoints), '0');
+      await page4.close();
+      console.log(`ok   record dropped: f ${rec.analysis.f.toFixed(4)} Hz, G ${(G.value / 1e6).toFixed(3)} [${(G.lower / 1e6).toFixed(3)}, ${(G.upper / 1e6).toFixed(3)}] MN/m^2 (truth 30) in ${id.simulations} simulations; its figure drawn; a broken file picked shows the reader's message`);
+    }
+    // The screenshot script (issue 25 point 5) waits for the ready marker: what it captures is a
+    // case, not "loading the engine...".
+    {
+      const png = path.join(profile, 'shot.png');
+      const out = execFileSync('bash', [path.resolve(__dirname, '../../scripts/screenshot-web.sh'), 'G=40&mu=0.3', png],
+        { encoding: 'utf8', env: { ...process.env, OSCIDRUM_WEB_DIST: dist } });
+      assert.match(out, /steady state/, out);
+      const head = fs.readFileSync(png);
+      assert.equal(head.toString('latin1', 1, 4), 'PNG');
+      assert.equal(head.readUInt32BE(16), 1400);  // IHDR width: the whole page
+      console.log(`ok   scripts/screenshot-web.sh: ${out.trim()}`);
+    }
+    // The metrics table shows each signal's three largest harmonics with their n (issue 25
+    // point 1), by the native amplitudes; with the driving torque MMd = 0.05 M0 they are z's A1
+    // and x's A2, which fixed rows (x: A1, A3, A5; z: A2, A4, A6) hid.
     const rowText = (name) => page.evaluate((n) => [...document.querySelectorAll('#metrics tbody tr')]
       .map((tr) => tr.textContent).find((t) => t.includes(n)) || '', name);
-    for (const [signal, key] of [["x_M'' largest harmonics", 'ddx_harmonics'], ["z_M'' largest harmonics", 'ddz_harmonics']]) {
-      const amplitudes = changed.metrics[key].map((h) => h.amplitude);
-      const top = amplitudes.map((a, n) => [a, n]).slice(1).sort((p, q) => q[0] - p[0]).slice(0, 3).map(([, n]) => n);
-      const text = await rowText(signal);
-      for (const n of top) assert.ok(text.includes(`A${n} =`), `${signal}: A${n} missing in '${text}'`);
+    const checkHarmonics = async (nat) => {
+      const shownTop = {};
+      for (const [signal, key] of [["x_M'' largest harmonics", 'ddx_harmonics'], ["z_M'' largest harmonics", 'ddz_harmonics']]) {
+        const amplitudes = nat.metrics[key].map((h) => h.amplitude);
+        const top = amplitudes.map((a, n) => [a, n]).slice(1).sort((p, q) => q[0] - p[0]).slice(0, 3).map(([, n]) => n);
+        const text = await rowText(signal);
+        for (const n of top) assert.ok(text.includes(`A${n} = ${Number(amplitudes[n].toPrecision(4))}`), `${signal}: A${n} missing in '${text}'`);
+        shownTop[key] = top;
+      }
+      return shownTop;
+    };
+    await checkHarmonics(changed);
+    {
+      await setInput('MMd', '0.05');
+      await settled();
+      const driven = native(['--G', '40', '--mu', '0.3', '--MMd-fraction', '0.05']);
+      const top = await checkHarmonics(driven);
+      assert.ok(top.ddz_harmonics.includes(1) && top.ddx_harmonics.includes(2), JSON.stringify(top));
+      console.log(`ok   G 40, mu 0.3, MMd 0.05 M0: largest harmonics x ${top.ddx_harmonics}, z ${top.ddz_harmonics} shown with their n`);
+      await setInput('MMd', '0');
+      await settled();
     }
 
     // The exported TOML is a case file the native tool runs to the same result.
@@ -204,6 +327,28 @@ async function main() {
     }
     const after = await page.evaluate(() => window.explorer.last().result);
     assert.equal(after.metrics.area, before.metrics.area);
+    // Every invalid input at once (issue 25 point 3), not only the first: an empty G and a
+    // non-numeric f (the page's parsing) beside a negative mu and cd (the engine's rules).
+    {
+      const bad = { G: '', f: 'abc', mu: '-0.2', cd: '-1' };
+      const good = {};
+      for (const [name, text] of Object.entries(bad)) {
+        good[name] = await page.inputValue(`[id="in-${name}"]`);
+        await setInput(name, text);
+      }
+      await page.waitForFunction(() => document.getElementById('err-mu').textContent !== '' && document.getElementById('err-cd').textContent !== '', null, { timeout: 10000 });
+      const messages = {};
+      for (const name of Object.keys(bad)) messages[name] = await errorOf(name);
+      assert.match(messages.G, /enter a value/);
+      assert.match(messages.f, /not a number/);
+      assert.match(messages.mu, /contact\.mu must be >= 0/);
+      assert.match(messages.cd, /roller\.cd must be/);
+      assert.match(await page.textContent('#status'), /invalid input \(4 fields\)/);
+      for (const [name, text] of Object.entries(good)) await setInput(name, text);
+      await settled();
+      for (const name of Object.keys(bad)) assert.equal(await errorOf(name), '', name);
+      console.log(`ok   four invalid inputs flagged at once: ${JSON.stringify(messages)}`);
+    }
 
     // Pure rolling on the modulus soil (Appendix B): the exported TOML (soil.input = "modulus",
     // pure_rolling = true) is the case the native tool runs from the same flags.

@@ -119,6 +119,15 @@ function roundingBand(native, args) {
   return band;
 }
 
+// A record as a logger writes it: a UTF-8 byte-order mark, 'Time [s]', the accelerations in g and
+// z positive up (the model's z_M'' is positive down).
+function recordCsv(rec) {
+  const g = 9.80665;
+  const lines = ['\ufeffTime [s],acc_x [g],acc_z [g]'];
+  for (let i = 0; i < rec.t.length; i++) lines.push(`${rec.t[i].toPrecision(10)},${(rec.ddx_M[i] / g).toPrecision(10)},${(-rec.ddz_M[i] / g).toPrecision(10)}`);
+  return lines.join('\n') + '\n';
+}
+
 async function main() {
   const createOscidrum = require(path.resolve(dist, 'oscidrum.js'));
   const engine = await createOscidrum({ wasmBinary: fs.readFileSync(path.join(dist, 'oscidrum.wasm')) });
@@ -186,6 +195,51 @@ async function main() {
   assert.equal(engine.table2Soil(12e6).ok, false);
   assert.equal(engine.soilCoefficients(25e6, 0.6, 1900, {}).ok, false);
   console.log('ok   Table 2, Appendix B, field table, bad input');
+
+  // A measured record (issue 25 point 4): the engine's synthetic record of a known soil written as
+  // a logger would (a UTF-8 byte-order mark, 'Time [s]', accelerations in g, z positive up) is
+  // read, analysed and identified by the WebAssembly engine as the native `oscidrum analyze` and
+  // `oscidrum identify --window 0` do: one reader, one analysis, one identification.
+  {
+    const kF = 39 * 1.01;  // 1 % away from the case's f: M0 follows (5)
+    const truth = { 'soil.input': 'modulus', 'soil.G': 30e6, 'roller.f': kF, 'roller.M0': 54947 * (kF / 39) ** 2 };
+    const rec = engine.syntheticRecord(truth, { duration: 1, sample_rate: 1000, noise: 0.02, seed: 3 });
+    assert.equal(rec.ok, true, rec.error);
+    const csv = recordCsv(rec);
+    const file = path.join(fs.mkdtempSync(path.join(require('node:os').tmpdir(), 'oscidrum-record-')), 'record.csv');
+    fs.writeFileSync(file, csv);
+    const options = { z_positive: 'up' };
+    const a = engine.analyzeRecord(csv, 'record.csv', options);
+    assert.equal(a.ok, true, a.error);
+    const na = JSON.parse(execFileSync(cli, ['analyze', file, '--z-positive', 'up', '--format', 'json'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }));
+    assert.equal(a.valid, na.valid);
+    assert.equal(a.reading.t_column, 'Time [s]');  // the byte-order mark is not part of it
+    assert.equal(a.reading.z_factor, -9.80665);
+    assert.deepEqual([a.reading.t_column, a.reading.x_column, a.reading.z_column],
+      [na.reading.t.column, na.reading.ddx_M.column, na.reading.ddz_M.column]);
+    close('record f', a.f, na.f);
+    for (const key of ['area', 'ddx_max', 'ddz_min', 'residual_x', 'residual_z']) close(`record ${key}`, a.metrics[key], na[key], 1e-3);
+    na.ddz_harmonics.forEach((h, i) => close(`record ddz_harmonics[${i}]`, a.metrics.ddz_harmonics.amplitude[i], h.amplitude, 1e-3));
+    const id = engine.identifyRecord(csv, 'record.csv', options, { 'soil.input': 'modulus' }, 'formulas');
+    assert.equal(id.ok, true, id.error);
+    assert.equal(id.valid, true, id.reason);
+    const ni = JSON.parse(execFileSync(cli, ['identify', file, '--window', '0', '--z-positive', 'up', '--set', 'soil.input=modulus',
+      '--format', 'json', '--quiet'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] })).windows[0];
+    const G = id.estimates[0], nG = ni.estimates[0];
+    assert.equal(G.name, 'G');
+    // The identification iterates on simulations (model tolerance 1e-6): the two builds agree
+    // far below the estimate's own uncertainty.
+    for (const k of ['value', 'lower', 'upper']) assert.ok(Math.abs(G[k] - nG[k]) <= 1e-6 * nG[k], `G ${k}: ${G[k]} vs native ${nG[k]}`);
+    assert.ok(G.lower <= 30e6 && 30e6 <= G.upper, `G = ${G.value} [${G.lower}, ${G.upper}] misses the truth 30e6`);
+    // The conventions are options: the same record read with z positive down is another record.
+    const down = engine.analyzeRecord(csv, 'record.csv', { z_positive: 'down' });
+    assert.equal(down.reading.z_factor, 9.80665);
+    // Bad options and bad text: messages naming the option or the line, never an abort.
+    assert.match(engine.analyzeRecord(csv, 'record.csv', { units: 'furlongs' }).error, /record option units must be one of auto, m\/s2, g; got 'furlongs'/);
+    assert.match(engine.analyzeRecord('Time [s],acc_x [g],acc_z [g]\n0,1,x\n', 'bad.csv', {}).error, /bad\.csv:2: column 'acc_z \[g\]' must be a number; got 'x'/);
+    assert.match(engine.analyzeRecord('a,b,c\n0,1,2\n', 'bad.csv', {}).error, /no column looks like the time/);
+    console.log(`ok   record: f ${a.f} Hz, area ${a.metrics.area}, G ${G.value} [${G.lower}, ${G.upper}] (native ${nG.value}); bad records and options`);
+  }
   if (failures) process.exit(1);
 }
 

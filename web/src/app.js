@@ -4,7 +4,7 @@
 import uPlot from './vendor/uPlot.esm.js';
 
 const $ = (id) => document.getElementById(id);
-const COLORS = { x: '#1f5fa8', z: '#c23b22', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1', flight: '#ddd0f2' };
+const COLORS = { x: '#1f5fa8', z: '#c23b22', measured: '#111', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1', flight: '#ddd0f2' };
 const ARROW = { stick: '#1d7a1d', slip: '#d46a00' };
 const ROTATION_FACTOR = 100;     // the drum's rotation phi is drawn this many times larger
 const DISPLACEMENT_FACTOR = 50;  // the soil displacements x_A, s_A are drawn this many times larger
@@ -43,6 +43,7 @@ let seq = 0;                // number of the latest request
 let busySince = 0;          // time the running request was sent (0: idle)
 let pending = null;         // the latest request not yet sent
 let last = null;            // the latest good result {result, values, ms}
+let inputErrors = {};       // the latest messages of the page's own parsing, by input name
 const plots = {};
 
 // ---------------------------------------------------------------- inputs
@@ -245,9 +246,9 @@ function startWorker() {
   };
 }
 
-function request(values) {
+function request(values, checkOnly = false) {
   seq += 1;
-  const msg = { type: 'run', seq, values, n_max: N_MAX };
+  const msg = { type: 'run', seq, values, n_max: N_MAX, checkOnly };
   if (busySince === 0) {
     send(msg);
   } else if (performance.now() - busySince > 1000) {
@@ -286,13 +287,17 @@ function onMessage(msg) {
   if (msg.seq !== seq) return;  // an answer to an outdated request
   for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.remove('stale');
   const { values } = readInputs();
-  for (const name of visibleInputs()) setError(name, '');
-  if (Object.keys(msg.errors).length) {
+  // Every invalid input at once: the page's own messages (empty, not a number) and the engine's
+  // rule of every other field.
+  for (const name of visibleInputs()) setError(name, inputErrors[name] || '');
+  if (Object.keys(msg.errors).length || !msg.result) {
     for (const [key, message] of Object.entries(msg.errors)) {
       const name = inputForKey(key);
-      if (name) setError(name, message);
+      if (name && !inputErrors[name]) setError(name, message);
     }
-    showStatus('invalid input: see the messages next to the inputs', false);
+    const count = document.querySelectorAll('.field.invalid').length;
+    showStatus(`invalid input (${count} ${count === 1 ? 'field' : 'fields'}): see the messages next to the inputs`, false);
+    markReady();
     return;
   }
   const r = msg.result;
@@ -301,10 +306,19 @@ function onMessage(msg) {
     const name = r.key ? inputForKey(r.key) : null;
     if (name && visibleInputs().includes(name)) setError(name, r.error);
     showStatus(`invalid input: ${r.error}`, false);
+    markReady();
     return;
   }
   last = { result: r, ms: msg.ms, inputs: values };
   render();
+  markReady();
+}
+
+// The ready marker (scripts/screenshot-web.sh, the tests): set once the first case is shown.
+function markReady() {
+  if (document.body.dataset.ready === 'true') return;
+  document.body.dataset.ready = 'true';
+  document.body.classList.add('ready');
 }
 
 function showStatus(text, ok, value = '') {
@@ -317,10 +331,14 @@ function showStatus(text, ok, value = '') {
 function onChange() {
   updateVisibility();
   const { values, errors } = readInputs();
+  inputErrors = errors;
   for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
   if (Object.keys(errors).length) {
-    seq += 1;  // a result still on its way is outdated
     showStatus('invalid input: see the messages next to the inputs', false);
+    // The other inputs are checked against their rules all the same (nothing is computed), so
+    // that every invalid input is flagged at once, not only the first.
+    const parsed = Object.fromEntries(Object.entries(caseValues(values)).filter(([, v]) => Number.isFinite(v)));
+    request(parsed, true);
     return;
   }
   saveUrl();
@@ -340,9 +358,13 @@ function render() {
     // Not a steady state: the last periods are drawn (as the CLI samples them), without metrics.
     $('area-caption').textContent = '—';
     $('area-caption').dataset.value = '';
+    // Nothing of an earlier case stays on screen: no figure, no spectra without a steady state.
+    clearPlots(['plot-spec-x', 'plot-spec-z'], ['plot-figure'], 'no steady state: no figure, no spectrum');
     if (r.samples && r.samples.t.length > 0) {
       drawTimePlot(r);
       startAnimation(r);
+    } else {
+      clearPlots(['time'], ['drum'], `no periods sampled: the run stopped with ${r.status}`);
     }
     const body = $('metrics').tBodies[0];
     body.innerHTML = '';
@@ -354,10 +376,26 @@ function render() {
   $('area-caption').dataset.value = String(m.area);
   drawTimePlot(r);
   drawFigure($('plot-figure'), r, m);
-  drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x);
-  drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z);
+  const rec = recordState.analysis && recordState.analysis.ok && recordState.analysis.valid ? recordState.analysis.metrics : null;
+  drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x, rec && Array.from(rec.ddx_harmonics.amplitude));
+  drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z, rec && Array.from(rec.ddz_harmonics.amplitude));
   fillMetrics(r, m);
   startAnimation(r);
+}
+
+// Remove the uPlot plots `ids` and blank the canvases `canvasIds` with a note (what is not drawn).
+function clearPlots(ids, canvasIds, note) {
+  for (const id of ids) {
+    if (plots[id]) { plots[id].destroy(); delete plots[id]; }
+  }
+  if (canvasIds.includes('drum') && animation) cancelAnimationFrame(animation.frame);
+  for (const id of canvasIds) {
+    const c = $(id), ctx = c.getContext('2d');
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, c.width, c.height);
+    ctx.fillStyle = '#666'; ctx.font = '12px system-ui, sans-serif'; ctx.textAlign = 'center';
+    ctx.fillText(note, c.width / 2, c.height / 2);
+    c.dataset.measuredPoints = '0';
+  }
 }
 
 function periodSlice(r) {
@@ -419,20 +457,28 @@ function drawTimePlot(r) {
   }, data, el);
 }
 
-function drawSpectrum(id, amplitudes, color) {
+// The spectrum A_n / max A_n as bars; a measured record's (its own maximum) as dots over them.
+function drawSpectrum(id, amplitudes, color, measured = null) {
   const a = Array.from(amplitudes);
   const top = Math.max(...a) || 1;
   const x = a.map((_, i) => i);
   const y = a.map((v) => v / top);
+  const series = [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }];
+  const data = [x, y];
+  if (measured) {
+    const mt = Math.max(...measured) || 1;
+    data.push(x.map((i) => (i < measured.length ? measured[i] / mt : null)));
+    series.push({ label: 'measured', stroke: COLORS.measured, paths: () => null, points: { show: true, size: 7, fill: COLORS.measured } });
+  }
   const el = $(id);
   if (plots[id]) plots[id].destroy();
   plots[id] = new uPlot({
     width: 420, height: 200,
     scales: { x: { time: false, range: [-0.5, a.length - 0.5] }, y: { range: [0, 1.05] } },
     axes: [{ label: 'n (harmonic n f)', splits: () => x }, { label: 'A_n / max' }],
-    series: [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }],
+    series,
     legend: { show: false },
-  }, [x, y], el);
+  }, data, el);
 }
 
 // ---- plain canvas plots (the z-x figure, the drum)
@@ -487,15 +533,33 @@ function drawFigure(canvas, r, m) {
   const s = r.samples;
   const n = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
   const x = s.ddx_M.subarray(0, n), z = s.ddz_M.subarray(0, n);
+  // the measured record's figure (one period of its fit), drawn over the model's
+  const measured = recordState.analysis && recordState.analysis.ok && recordState.analysis.valid ? recordState.analysis.periodic : null;
+  const xs = measured ? [...x, ...measured.ddx_M] : x, zs = measured ? [...z, ...measured.ddz_M] : z;
   const ctx = canvas.getContext('2d');
   // A top margin for the caption: it must not cover the figure-eight.
-  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(x), range(z), "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
+  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(xs), range(zs), "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
   // the figure coloured by the contact phase
   ctx.lineWidth = 1.8;
+  let curveTop = Infinity;
   for (let i = 0; i < n; i++) {
     const j = (i + 1) % n;
     ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : ARROW.slip;
     ctx.beginPath(); ctx.moveTo(X(x[i]), Y(z[i])); ctx.lineTo(X(x[j]), Y(z[j])); ctx.stroke();
+    curveTop = Math.min(curveTop, Y(z[i]));
+  }
+  canvas.dataset.measuredPoints = '0';
+  if (measured) {
+    ctx.strokeStyle = COLORS.measured; ctx.lineWidth = 1.5; ctx.setLineDash([5, 3]);
+    const k = measured.ddx_M.length;
+    ctx.beginPath();
+    for (let i = 0; i <= k; i++) {
+      const px = X(measured.ddx_M[i % k]), py = Y(measured.ddz_M[i % k]);
+      if (i === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+      curveTop = Math.min(curveTop, py);
+    }
+    ctx.stroke(); ctx.setLineDash([]);
+    canvas.dataset.measuredPoints = String(k);
   }
   ctx.textAlign = 'left';
   const caption = `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
@@ -506,6 +570,14 @@ function drawFigure(canvas, r, m) {
   ctx.fillText('stick', after, 20);
   ctx.fillStyle = ARROW.slip;
   ctx.fillText('slip', after + 34, 20);
+  if (measured) {
+    ctx.fillStyle = COLORS.measured;
+    ctx.fillText('measured', after + 62, 20);
+  }
+  // where the caption ends and the figure begins [px], for the tests: the caption is above it
+  const metrics = ctx.measureText(caption);
+  canvas.dataset.captionBottom = String(20 + (metrics.actualBoundingBoxDescent || 3));
+  canvas.dataset.curveTop = String(curveTop);
 }
 
 // ---- the drum in its trough (animated from the sampled steady state)
@@ -648,6 +720,181 @@ function fillMetrics(r, m) {
   }
 }
 
+// ---------------------------------------------------------------- a measured record
+
+// A CSV record dropped onto the page (or picked): read, analysed and identified by the engine in
+// a second worker (seconds for the identification; the case's worker stays free). The text never
+// leaves the browser.
+const recordState = { file: null, seq: 0, analysis: null, identification: null, worker: null, ms: {} };
+
+function recordOptions() {
+  return { units: $('record-units').value, x_positive: $('record-x').value, z_positive: $('record-z').value };
+}
+
+function startRecordWorker() {
+  recordState.worker = new Worker('worker.js');
+  recordState.worker.onmessage = (ev) => onRecordMessage(ev.data);
+  recordState.worker.onerror = (ev) => {
+    recordState.busy = false;
+    showRecordStatus(`engine error: ${ev.message}`, false);
+  };
+}
+
+// Read and identify the record with the current options and the current case (its roller, and
+// G on the scale of the soil input: Table 2 or Appendix B).
+function analyseRecord() {
+  const file = recordState.file;
+  if (!file) return;
+  const { values, errors } = readInputs();
+  if (Object.keys(errors).length) {
+    showRecordStatus('fix the case inputs first: the record is compared with that case', false);
+    return;
+  }
+  if (recordState.busy) {
+    // an identification is running: abandon it
+    recordState.worker.terminate();
+    startRecordWorker();
+  }
+  // the record's engine loads with the first record, not with the page (which it would slow)
+  if (!recordState.worker) startRecordWorker();
+  recordState.seq += 1;
+  recordState.analysis = null;
+  recordState.identification = null;
+  recordState.busy = true;
+  const soilScale = $('soil_mode').value === 'modulus' ? 'formulas' : 'table2';
+  showRecordStatus(`reading ${file.name} ...`, true);
+  recordState.worker.postMessage({ type: 'record', seq: recordState.seq, text: file.text, name: file.name,
+    options: recordOptions(), values: caseValues(values), soilScale });
+  $('record-clear').disabled = false;
+  $('record-again').disabled = false;
+  fillRecordTable();
+}
+
+function onRecordMessage(msg) {
+  if (msg.type === 'ready' || msg.seq !== recordState.seq) return;
+  if (msg.type === 'record-analysis') {
+    recordState.analysis = msg.analysis;
+    recordState.ms.analysis = msg.ms;
+    const a = msg.analysis;
+    if (!a.ok) {
+      recordState.busy = false;
+      showRecordStatus(`cannot read the record: ${a.error}`, false);
+    } else if (!a.valid) {
+      showRecordStatus(`record read, but its fit fails a quality gate: ${a.reason}; identifying the soil ...`, false);
+    } else {
+      showRecordStatus(`record analysed in ${msg.ms.toFixed(0)} ms; identifying the soil ...`, true);
+    }
+    if (last) render();
+  } else if (msg.type === 'record-identification') {
+    recordState.busy = false;
+    recordState.identification = msg.identification;
+    recordState.ms.identification = msg.ms;
+    const id = msg.identification;
+    if (!id.ok) showRecordStatus(`identification failed: ${id.error}`, false);
+    else if (!id.valid) showRecordStatus(`no identification: ${id.reason}`, false);
+    else showRecordStatus(`soil identified in ${(msg.ms / 1000).toFixed(1)} s (${id.simulations} simulations)`, id.warnings.length === 0, 'identified');
+  }
+  fillRecordTable();
+}
+
+function showRecordStatus(text, ok, value = '') {
+  const el = $('record-status');
+  el.textContent = text;
+  el.className = ok ? 'ok' : 'bad';
+  el.dataset.value = value;
+}
+
+// An estimate as value +- u [lower, upper] in the field's display unit (MN/m^2 for G).
+function estimateText(e) {
+  const field = e.name === 'G' ? fieldByKey['soil.G'] : null;
+  const scale = field ? field.display_scale : 1;
+  const unit = prettyUnit(field ? field.display_unit : e.unit);
+  const v = (x) => (Number.isFinite(x) ? fmt(x / scale, 4) : '?');
+  const lo = `${e.lower_open ? '≤ ' : ''}${v(e.lower)}`, hi = `${e.upper_open ? '≥ ' : ''}${v(e.upper)}`;
+  return [`${e.name} = ${v(e.value)} ± ${v(e.u)} ${unit}`, `95 % interval [${lo}, ${hi}] ${unit}`];
+}
+
+function fillRecordTable() {
+  const body = $('record-table').tBodies[0];
+  body.innerHTML = '';
+  const row = (name, value, unit = '') => {
+    const tr = body.insertRow();
+    const th = document.createElement('th');
+    th.textContent = name;
+    tr.appendChild(th);
+    tr.insertCell().textContent = value;
+    const u = tr.insertCell();
+    u.textContent = unit;
+    u.style.textAlign = 'left';
+    tr.dataset.record = name;
+  };
+  const file = recordState.file;
+  if (!file) return;
+  const a = recordState.analysis;
+  row('file', file.name, `${file.text.length} bytes, read in this browser only`);
+  if (!a || !a.ok) return;
+  const rd = a.reading;
+  row('columns', `t: ${rd.t_column}, x_M'': ${rd.x_column}, z_M'': ${rd.z_column}`, `${rd.delimiter}; ${rd.samples} samples over ${fmt(rd.duration, 4)} s`);
+  for (const note of rd.notes) row('read as', note);
+  row('f', fmt(a.f, 7), 'Hz (estimated from the record)');
+  if (!a.valid) {
+    row('quality gates', a.reason);
+    return;
+  }
+  const m = a.metrics;
+  row('fit residual x, z', `${fmt(m.residual_x, 3)}, ${fmt(m.residual_z, 3)}`, 'RMS of record − fit / RMS');
+  row("x_M'' largest harmonics", largestHarmonics(m.ddx_harmonics.amplitude), 'm/s²');
+  row("z_M'' largest harmonics", largestHarmonics(m.ddz_harmonics.amplitude), 'm/s²');
+  row('area', fmt(m.area, 5), 'm²/s⁴');
+  const id = recordState.identification;
+  if (!id || !id.ok || !id.valid) return;
+  for (const e of id.estimates) {
+    const [value, interval] = estimateText(e);
+    row(`identified ${e.name}`, value, interval);
+  }
+  row('scale of G', id.soil_scale === 'table2' ? 'Table 2 (interpolated between its rows)' : 'Appendix B (42)-(45) with the case\'s ν, ρ');
+  row('relative residual, reduced χ²', `${fmt(id.relative_residual, 3)}, ${fmt(id.reduced_chi2, 3)}`, 'harmonics n = 1 ... 4');
+  for (const w of id.warnings) row('WARNING', w);
+}
+
+function setRecordFile(file) {
+  if (!file) return;
+  file.text().then((text) => {
+    recordState.file = { name: file.name, text };
+    analyseRecord();
+  });
+}
+
+function clearRecord() {
+  if (recordState.busy) { recordState.worker.terminate(); startRecordWorker(); recordState.busy = false; }
+  recordState.seq += 1;
+  recordState.file = null;
+  recordState.analysis = null;
+  recordState.identification = null;
+  $('record-file').value = '';
+  $('record-clear').disabled = true;
+  $('record-again').disabled = true;
+  showRecordStatus('no record', true);
+  fillRecordTable();
+  if (last) render();
+}
+
+function initRecord() {
+  // A file dropped anywhere on the page is taken as a record (not opened by the browser).
+  document.addEventListener('dragover', (ev) => { ev.preventDefault(); document.body.classList.add('dragging'); });
+  document.addEventListener('dragleave', (ev) => { if (!ev.relatedTarget) document.body.classList.remove('dragging'); });
+  document.addEventListener('drop', (ev) => {
+    ev.preventDefault();
+    document.body.classList.remove('dragging');
+    const file = ev.dataTransfer && ev.dataTransfer.files[0];
+    if (file) setRecordFile(file);
+  });
+  $('record-file').addEventListener('change', (ev) => setRecordFile(ev.target.files[0]));
+  for (const id of ['record-units', 'record-x', 'record-z']) $(id).addEventListener('change', analyseRecord);
+  $('record-again').addEventListener('click', analyseRecord);
+  $('record-clear').addEventListener('click', clearRecord);
+}
+
 // ---------------------------------------------------------------- exports
 
 function download(name, blob) {
@@ -780,10 +1027,17 @@ function init() {
   $('export-svg').addEventListener('click', () => download('oscidrum-plots.svg', new Blob([plotsSvg()], { type: 'image/svg+xml' })));
   $('copy-link').addEventListener('click', () => navigator.clipboard && navigator.clipboard.writeText(location.href));
   $('soil-note').textContent = 'Table 2: the paper\'s coefficients at G = 5, 10, ..., 70 MN/m² (ν = 0.3, ρ = 1900 kg/m³). Modulus: the coefficients from G, ν, ρ by Appendix B (42)-(45).';
+  initRecord();
   onChange();
 }
 
 // For tests and the console: the current case and exports.
-window.explorer = { caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null };
+window.explorer = {
+  caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null,
+  // the measured record: {analysis, identification} as the engine returned them, and whether busy
+  record: () => ({ analysis: recordState.analysis, identification: recordState.identification, busy: Boolean(recordState.busy) }),
+  // the ranges of the time plot's two y axes (x_M'' and z_M'' each on its own)
+  timeScales: () => plots.time && { ax: [plots.time.scales.ax.min, plots.time.scales.ax.max], az: [plots.time.scales.az.min, plots.time.scales.az.max], points: plots.time.data[0].length },
+};
 
 startWorker();

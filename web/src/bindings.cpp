@@ -6,19 +6,25 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
+#include <numbers>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/identify.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/parameters.hpp"
+#include "oscidrum/record.hpp"
+#include "oscidrum/record_reader.hpp"
 #include "oscidrum/result.hpp"
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"
@@ -351,6 +357,213 @@ val table2_soil(double G) {
   }
 }
 
+// ---- measured records: read, analysed and identified as `oscidrum analyze` and `identify` do
+
+// A text option of `options` (a JavaScript object) or its default; throws oscidrum::Error when
+// the value is not one of `allowed` ("a|b|c"), naming the option and the choices.
+std::string text_option(const val& options, const char* key, const std::string& fallback,
+                        const std::string& allowed) {
+  if (options.isUndefined() || options.isNull()) return fallback;
+  const val v = options[key];
+  if (v.isUndefined() || v.isNull()) return fallback;
+  const auto text = v.as<std::string>();
+  if (allowed.empty()) return text;
+  std::size_t begin = 0;
+  while (begin <= allowed.size()) {
+    const std::size_t end = std::min(allowed.find('|', begin), allowed.size());
+    if (allowed.substr(begin, end - begin) == text) return text;
+    begin = end + 1;
+  }
+  std::string choices;
+  for (char ch : allowed) choices += ch == '|' ? std::string(", ") : std::string(1, ch);
+  throw oscidrum::Error(std::string("record option ") + key + " must be one of " + choices +
+                        "; got '" + text + "'");
+}
+
+// How the record's text is read (oscidrum::RecordReading, the options of `oscidrum analyze`):
+// {units: "auto"|"m/s2"|"g", t_units: "auto"|"s"|"ms"|"us", x_positive: "forward"|"backward",
+// z_positive: "down"|"up", t_col, x_col, z_col: a name or 1-based index, empty: recognised}.
+oscidrum::RecordReading reading_from(const val& options) {
+  oscidrum::RecordReading o;
+  o.units = text_option(options, "units", "auto", "auto|m/s2|g");
+  o.t_units = text_option(options, "t_units", "auto", "auto|s|ms|us");
+  o.x_positive = text_option(options, "x_positive", "forward", "forward|backward");
+  o.z_positive = text_option(options, "z_positive", "down", "down|up");
+  o.t_col = text_option(options, "t_col", "", "");
+  o.x_col = text_option(options, "x_col", "", "");
+  o.z_col = text_option(options, "z_col", "", "");
+  return o;
+}
+
+oscidrum::RecordColumns record_of(const std::string& text, const std::string& name,
+                                  const val& options) {
+  std::istringstream in(text);
+  return oscidrum::read_record(in, name, reading_from(options));
+}
+
+// How the record was read: the columns taken, their factors and the notes (as the CLI reports
+// them), the delimiter and the number of samples.
+val reading_of(const oscidrum::RecordColumns& rec) {
+  val out = val::object();
+  out.set("delimiter", rec.delimiter);
+  out.set("t_column", rec.t_column);
+  out.set("x_column", rec.x_column);
+  out.set("z_column", rec.z_column);
+  out.set("t_factor", rec.t_factor);
+  out.set("x_factor", rec.x_factor);
+  out.set("z_factor", rec.z_factor);
+  val notes = val::array();
+  for (const std::string& n : rec.notes) notes.call<void>("push", n);
+  out.set("notes", notes);
+  out.set("samples", static_cast<double>(rec.t.size()));
+  out.set("duration", rec.t.empty() ? 0.0 : rec.t.back() - rec.t.front());
+  return out;
+}
+
+// One period of the fitted periodic signal y(t) = sum_n A_n sin(n 2 pi f t + theta_n) (the
+// harmonics' own definition, oscidrum/outputs.hpp), `points` samples from t = 0, for drawing the
+// measured z_M''(x_M'') figure.
+val periodic_of(const std::vector<oscidrum::Harmonic>& h, int points) {
+  std::vector<double> y(static_cast<std::size_t>(points), 0.0);
+  for (int j = 0; j < points; ++j) {
+    const double phase = 2.0 * std::numbers::pi * j / points;
+    for (std::size_t n = 0; n < h.size(); ++n)
+      y[static_cast<std::size_t>(j)] +=
+          h[n].amplitude * std::sin(static_cast<double>(n) * phase + h[n].phase);
+  }
+  return float64_array(y);
+}
+
+// Every metric of a record (the output table's record outputs, as `oscidrum analyze` writes
+// them): numbers, and the spectra as {amplitude, phase}.
+val record_metrics_of(const oscidrum::RecordMetrics& m) {
+  val out = val::object();
+  for (const oscidrum::RecordOutput& o : oscidrum::record_outputs()) {
+    if (const auto* h = std::get_if<oscidrum::Spectrum oscidrum::RecordMetrics::*>(&o.member))
+      out.set(o.name, harmonics_of(m.**h));
+    else
+      out.set(o.name, oscidrum::scalar_value(m, o));
+  }
+  return out;
+}
+
+// Read the record `text` and analyse it as one window (oscidrum::analyze_windows with the
+// defaults of `oscidrum analyze`: the whole record, f estimated, harmonics n = 0 ... 10, the
+// quality gates). Returns {ok: false, error} for a record that cannot be read, else {ok: true,
+// reading, valid, reason, f, metrics, periodic: {ddx_M, ddz_M} (one period of the fit)}.
+val analyze_record(const std::string& text, const std::string& name, const val& options) {
+  try {
+    const oscidrum::RecordColumns rec = record_of(text, name, options);
+    const std::vector<oscidrum::RecordWindow> ws =
+        oscidrum::analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, {});
+    if (ws.empty()) throw oscidrum::Error(name + ": no window fits in the record");
+    const oscidrum::RecordWindow& w = ws.front();
+    val out = val::object();
+    out.set("ok", true);
+    out.set("reading", reading_of(rec));
+    out.set("valid", w.valid);
+    out.set("reason", w.reason);
+    out.set("f", w.f);
+    out.set("samples_per_period", w.samples_per_period);
+    out.set("metrics", record_metrics_of(w.metrics));
+    val periodic = val::object();
+    periodic.set("ddx_M", periodic_of(w.metrics.ddx_harmonics, 512));
+    periodic.set("ddz_M", periodic_of(w.metrics.ddz_harmonics, 512));
+    out.set("periodic", periodic);
+    return out;
+  } catch (const oscidrum::Error& e) {
+    return error_object(e.what(), e.key());
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
+val estimate_of(const oscidrum::Estimate& e) {
+  val out = val::object();
+  out.set("name", e.name);
+  out.set("unit", e.unit);
+  out.set("value", e.value);
+  out.set("u", e.standard_uncertainty);
+  out.set("lower", e.lower);  // 95 % interval from the profile (NaN: none)
+  out.set("upper", e.upper);
+  out.set("lower_open", e.lower_open);
+  out.set("upper_open", e.upper_open);
+  return out;
+}
+
+// Identify the soil under the drum from the record `text` as `oscidrum identify RECORD --window
+// 0` does (oscidrum::identify_pass over one window of the whole record, its harmonics from the
+// sampling, n = 1 ... 4 compared, 95 % intervals from the profile), the roller and everything
+// not estimated from the case `values`; G on the scale `soil_scale` ("formulas": Appendix B
+// (42)-(45), "table2": the paper's Table 2 interpolated). Returns {ok: false, error} for bad
+// input, else {ok: true, valid, reason, f, estimates: [{name, unit, value, u, lower, upper}],
+// relative_residual, reduced_chi2, time_shift, warnings, iterations, simulations, message}.
+val identify_record(const std::string& text, const std::string& name, const val& options,
+                    const val& values, const std::string& soil_scale) {
+  try {
+    const oscidrum::RecordColumns rec = record_of(text, name, options);
+    const oscidrum::Case base = case_from(values);
+    oscidrum::WindowOptions windows;
+    windows.window_periods = 0.0;  // the whole record
+    windows.n_max = 0;             // harmonics from the sampling (identify's default)
+    oscidrum::IdentifyOptions io;
+    io.soil_scale = oscidrum::soil_scale_from(soil_scale, "soil_scale");
+    io.measure.harmonics = windows.n_max;
+    const std::vector<oscidrum::PassEstimate> pass =
+        oscidrum::identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, windows, io);
+    if (pass.empty()) throw oscidrum::Error(name + ": no window fits in the record");
+    const oscidrum::PassEstimate& p = pass.front();
+    const oscidrum::Identification& id = p.identification;
+    val out = val::object();
+    out.set("ok", true);
+    out.set("valid", p.valid);
+    out.set("reason", p.reason);
+    out.set("soil_scale", std::string(oscidrum::to_string(io.soil_scale)));
+    out.set("f", p.window.f);
+    val estimates = val::array();
+    if (p.valid)
+      for (const oscidrum::Estimate& e : id.estimates) estimates.call<void>("push", estimate_of(e));
+    out.set("estimates", estimates);
+    out.set("converged", id.converged);
+    out.set("message", id.message);
+    out.set("relative_residual", id.relative_residual);
+    out.set("reduced_chi2", id.reduced_chi2);
+    out.set("time_shift", id.time_shift);
+    out.set("iterations", id.iterations);
+    out.set("simulations", id.simulations);
+    val warnings = val::array();
+    for (const std::string& w : id.warnings) warnings.call<void>("push", w);
+    out.set("warnings", warnings);
+    return out;
+  } catch (const oscidrum::Error& e) {
+    return error_object(e.what(), e.key());
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
+// A synthetic record of the case `values` made by the engine (oscidrum::synthetic_record), for
+// tests: {duration [s], sample_rate [1/s], noise [-], seed} -> {t, ddx_M, ddz_M} in the model's
+// conventions.
+val synthetic_record(const val& values, const val& options) {
+  try {
+    oscidrum::SyntheticRecord o;
+    o.duration = options["duration"].as<double>();
+    o.sample_rate = options["sample_rate"].as<double>();
+    o.noise = options["noise"].as<double>();
+    o.seed = options["seed"].as<unsigned>();
+    const oscidrum::RecordSamples r = oscidrum::synthetic_record({case_from(values)}, o);
+    val out = val::object();
+    out.set("ok", true);
+    out.set("t", float64_array(r.t));
+    out.set("ddx_M", float64_array(r.ddx_M));
+    out.set("ddz_M", float64_array(r.ddz_M));
+    return out;
+  } catch (const std::exception& e) {
+    return error_object(e.what());
+  }
+}
+
 std::string version() { return oscidrum::version; }
 
 }  // namespace
@@ -363,5 +576,8 @@ EMSCRIPTEN_BINDINGS(oscidrum) {
   emscripten::function("soilCoefficients", &soil_coefficients);
   emscripten::function("table2", &table2);
   emscripten::function("table2Soil", &table2_soil);
+  emscripten::function("analyzeRecord", &analyze_record);
+  emscripten::function("identifyRecord", &identify_record);
+  emscripten::function("syntheticRecord", &synthetic_record);
   emscripten::function("version", &version);
 }

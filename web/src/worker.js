@@ -1,8 +1,13 @@
 // The engine runs here, off the page's thread: the page never freezes, whatever the case costs.
-// Messages in:  {type: 'run', seq, values, n_max}  (values: field key -> number, as in fields())
+// Messages in:  {type: 'run', seq, values, n_max, checkOnly}  (values: field key -> number, as in
+//               fields(); checkOnly: only check every value against its field's rule)
+//               {type: 'record', seq, text, name, options, values, soilScale}: a measured record
+//               (its CSV text; options: units, x_positive, z_positive as `oscidrum analyze`)
 // Messages out: {type: 'ready', fields, soilKeys, version}   (soilKeys: soil.input name -> the
 //               soil keys it reads, by the engine's key_in_effect)
 //               {type: 'result', seq, result, errors, ms}   (errors: key -> message)
+//               {type: 'record-analysis', seq, analysis, ms}   (the engine's analyzeRecord)
+//               {type: 'record-identification', seq, identification, ms}   (identifyRecord)
 'use strict';
 importScripts('oscidrum.js');
 
@@ -26,7 +31,7 @@ function run(msg) {
     const e = engine.checkField(key, value);
     if (e) errors[key] = e;
   }
-  if (Object.keys(errors).length) {
+  if (Object.keys(errors).length || msg.checkOnly) {
     postMessage({ type: 'result', seq: msg.seq, result: null, errors, ms: 0 });
     return;
   }
@@ -39,9 +44,23 @@ function run(msg) {
   postMessage({ type: 'result', seq: msg.seq, result, errors, ms }, transfer);
 }
 
+// A measured record: read and analysed (f, harmonics, figure, area) as `oscidrum analyze` does,
+// posted, then the soil identified from it as `oscidrum identify --window 0` does (seconds).
+// Nothing leaves the browser: the text came from a file the user dropped or picked.
+function record(msg) {
+  let t0 = performance.now();
+  const analysis = engine.analyzeRecord(msg.text, msg.name, msg.options);
+  postMessage({ type: 'record-analysis', seq: msg.seq, analysis, ms: performance.now() - t0 });
+  if (!analysis.ok) return;
+  t0 = performance.now();
+  const identification = engine.identifyRecord(msg.text, msg.name, msg.options, msg.values, msg.soilScale);
+  postMessage({ type: 'record-identification', seq: msg.seq, identification, ms: performance.now() - t0 });
+}
+
 onmessage = (ev) => {
   ready.then(() => {
     const msg = ev.data;
     if (msg.type === 'run') run(msg);
+    else if (msg.type === 'record') record(msg);
   });
 };

@@ -1,0 +1,53 @@
+// oscidrum/record_reader.hpp: the columns of a measured acceleration record from its text (CSV,
+// semicolon, tab or whitespace separated), in the model's conventions. Pure text: the caller
+// opens the file (the CLI's `analyze` and `identify`) or hands over the text (the browser
+// explorer); the reader neither opens nor writes files.
+#pragma once
+
+#include <istream>
+#include <string>
+#include <vector>
+
+namespace oscidrum {
+
+/// Standard gravity, the factor of accelerations given in g [m/s^2].
+inline constexpr double kStandardGravity = 9.80665;
+
+/// How a record's text is read: the columns (empty: recognised from the header), the units and
+/// the axis conventions (the options of `oscidrum analyze` and `identify`, docs/cli.md).
+struct RecordReading {
+  /// Column names or 1-based indices; empty: recognised from the header (t, time, ...; ddx_M,
+  /// ax, acc_x, ...; ddz_M, az, acc_z, ...: see read_record).
+  std::string t_col, x_col, z_col;
+  std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
+  std::string lat_col, lon_col;        ///< optional GNSS latitude, longitude [deg, WGS 84]
+  std::string east_col, north_col;     ///< optional projected easting, northing [m]
+  std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
+  std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
+  std::string x_positive = "forward";  ///< forward (the model's x) or backward
+  std::string z_positive = "down";     ///< down (the model's z) or up
+};
+
+/// The columns of a record in the model's conventions: t in s, accelerations in m/s^2, x_M''
+/// positive forward (the direction of travel), z_M'' positive down.
+struct RecordColumns {
+  std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
+  std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
+  std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
+  std::string delimiter;            ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
+  std::vector<std::string> notes;
+  /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without
+  /// one) and the factor applied to reach the model's units and signs [s or m/s^2 per unit read].
+  std::string t_column, x_column, z_column;
+  double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
+};
+
+/// Read a record from `in` (`name` names it in messages: the file, "<stdin>"): a UTF-8
+/// byte-order mark is dropped; comment lines (# % //) are skipped; the delimiter is the first of
+/// ; tab , on the first line, else whitespace (with ';' a decimal comma); the first line is a
+/// header unless all its cells are numbers. Streamed: memory holds the columns, not the text.
+/// Throws oscidrum::Error naming the record, line and column, or the option to give.
+RecordColumns read_record(std::istream& in, const std::string& name, const RecordReading& o);
+
+}  // namespace oscidrum

@@ -1,0 +1,416 @@
+// Reading the text of measured records (oscidrum/record_reader.hpp): delimiter, comments, header,
+// units and axis conventions, as `oscidrum analyze` and `identify` (and the browser explorer)
+// read them.
+#include "oscidrum/record_reader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "oscidrum/error.hpp"
+#include "oscidrum/record.hpp"
+
+namespace oscidrum {
+namespace {
+
+std::string trim(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+bool is_comment(const std::string& line) {
+  const std::string s = trim(line);
+  return s.empty() || s[0] == '#' || s[0] == '%' || s.rfind("//", 0) == 0;
+}
+
+std::vector<std::string> split(const std::string& line, char delim) {
+  std::vector<std::string> cells;
+  if (delim == ' ') {
+    std::istringstream in(line);
+    std::string cell;
+    while (in >> cell) cells.push_back(cell);
+    return cells;
+  }
+  std::string cell;
+  bool quoted = false;
+  for (char ch : line) {
+    if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == delim && !quoted) {
+      cells.push_back(trim(cell));
+      cell.clear();
+    } else {
+      cell += ch;
+    }
+  }
+  cells.push_back(trim(cell));
+  return cells;
+}
+
+// 1, 0.001, -9.80665: the factor a column was multiplied by, for the notes.
+std::string format_factor(double k) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", k);
+  return buf;
+}
+
+bool parse_number(std::string cell, bool decimal_comma, double& v) {
+  if (decimal_comma)
+    for (char& ch : cell)
+      if (ch == ',') ch = '.';
+  if (!cell.empty() && cell[0] == '+') cell.erase(0, 1);
+  const char* begin = cell.data();
+  const char* end = begin + cell.size();
+#ifdef __EMSCRIPTEN__
+  // Emscripten 3.1.6's libc++ has no floating-point std::from_chars: strtod reads the same text
+  // once what from_chars refuses is refused first (leading spaces, a sign after a '+', hexadecimal)
+  // and a value out of range fails as it does there.
+  if (cell.empty() || std::isspace(static_cast<unsigned char>(cell[0])) || cell[0] == '+' ||
+      cell.find_first_of("xX") != std::string::npos)
+    return false;
+  char* stop = nullptr;
+  errno = 0;
+  v = std::strtod(begin, &stop);
+  return stop == end && errno != ERANGE;
+#else
+  const auto r = std::from_chars(begin, end, v);
+  return !cell.empty() && r.ec == std::errc() && r.ptr == end;
+#endif
+}
+
+// A header cell split into its name and unit: "Time [ms]", "acc_z (g)", "az/g", "ax_mps2".
+struct Heading {
+  std::string name, unit;
+  std::string key;  // the name lower-case, letters and digits only: "acc_x" -> "accx"
+};
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+std::string key_of(const std::string& name) {
+  std::string k;
+  for (char ch : lower(name))
+    if (std::isalnum(static_cast<unsigned char>(ch))) k += ch;
+  return k;
+}
+
+double time_scale(const std::string& unit);
+double acceleration_scale(const std::string& unit);
+
+bool is_unit(const std::string& u) {
+  return !std::isnan(time_scale(u)) || !std::isnan(acceleration_scale(u));
+}
+
+Heading heading(const std::string& cell) {
+  Heading h{trim(cell), "", ""};
+  for (const auto& [open, close] :
+       {std::pair{'[', ']'}, std::pair{'(', ')'}, std::pair{'{', '}'}}) {
+    const std::size_t a = h.name.rfind(open);
+    if (a != std::string::npos && !h.name.empty() && h.name.back() == close) {
+      h.unit = trim(h.name.substr(a + 1, h.name.size() - a - 2));
+      h.name = trim(h.name.substr(0, a));
+      break;
+    }
+  }
+  if (h.unit.empty()) {
+    // A unit after the last space or '_' ("az m/s^2", "ax_g", "time_ms"), or a quantity over its
+    // unit ("az/g", "t/s").
+    const std::size_t sep = h.name.find_last_of("_ ");
+    const std::size_t slash = h.name.find('/');
+    if (sep != std::string::npos && sep > 0 && is_unit(h.name.substr(sep + 1))) {
+      h.unit = h.name.substr(sep + 1);
+      h.name = trim(h.name.substr(0, sep));
+    } else if (slash != std::string::npos && slash > 0 && is_unit(h.name.substr(slash + 1))) {
+      h.unit = trim(h.name.substr(slash + 1));
+      h.name = trim(h.name.substr(0, slash));
+    }
+  }
+  h.key = key_of(h.name);
+  return h;
+}
+
+// The factor from a column's unit to SI (s or m/s^2); NaN for a unit not of that kind.
+double time_scale(const std::string& unit) {
+  const std::string u = key_of(unit);
+  if (u == "s" || u == "sec" || u == "second" || u == "seconds") return 1.0;
+  if (u == "ms" || u == "msec" || u == "millisecond" || u == "milliseconds") return 1e-3;
+  if (u == "us" || u == "usec" || u == "microsecond" || u == "microseconds" || unit == "\xC2\xB5s")
+    return 1e-6;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double acceleration_scale(const std::string& unit) {
+  std::string u = lower(unit);
+  std::erase(u, ' ');
+  // m/s^2 written in its usual ways: m/s^2, m/s2, m/s\xC2\xB2, m s^-2, m*s^-2, mps2, ms-2.
+  auto per_s2 = [](const std::string& rest) {
+    return rest == "/s^2" || rest == "/s2" || rest == "/s\xC2\xB2" || rest == "s^-2" ||
+           rest == "*s^-2" || rest == "s-2" || rest == "ps2" || rest == "/s/s" || rest == "s2" ||
+           rest == "/sec^2" || rest == "/sec2";
+  };
+  if (u == "g" || u == "g0" || u == "gn") return 9.80665;
+  if (u.rfind("mm", 0) == 0 && per_s2(u.substr(2))) return 1e-3;
+  if (u.rfind("cm", 0) == 0 && per_s2(u.substr(2))) return 1e-2;
+  if (u.rfind("m", 0) == 0 && per_s2(u.substr(1))) return 1.0;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Names loggers give the three channels (keys: lower-case letters and digits).
+bool is_time_key(const std::string& k) {
+  static const char* const names[] = {"t",       "time",   "times",  "zeit",    "timestamp",
+                                      "ts",      "tsec",   "sec",    "elapsed", "elapsedtime",
+                                      "timesec", "timems", "seconds"};
+  for (const char* n : names)
+    if (k == n) return true;
+  return false;
+}
+
+// 'x' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x, acc_x,
+// accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, ...); 0 otherwise.
+char acceleration_axis(const std::string& k) {
+  if (k == "ddxm" || k == "ddx" || k == "xddot" || k == "ax" || k == "ah" ||
+      k.find("horiz") != std::string::npos)
+    return 'x';
+  if (k == "ddzm" || k == "ddz" || k == "zddot" || k == "az" || k == "av" ||
+      k.find("vert") != std::string::npos)
+    return 'z';
+  for (const char* stem : {"acceleration", "accel", "acc", "a"}) {
+    const std::string st = stem;
+    for (char axis : {'x', 'z'}) {
+      // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number)
+      if (k == st + axis || k == axis + st) return axis;
+      if (k.size() == st.size() + 2 && k.rfind(st + axis, 0) == 0 &&
+          std::isdigit(static_cast<unsigned char>(k.back())))
+        return axis;
+    }
+  }
+  // Longer names: acc... or accelerometer... ending in the axis (accelerometer_z, acc_drum_x),
+  // or the axis first (z_acceleration, xaccel).
+  for (char axis : {'x', 'z'}) {
+    const bool acc = k.find("acc") != std::string::npos;
+    if (acc && k.rfind("acc", 0) == 0 && k.back() == axis) return axis;
+    if (acc && k.front() == axis && k.find("acc") == 1) return axis;
+  }
+  return 0;
+}
+
+}  // namespace
+
+RecordColumns read_record(std::istream& in, const std::string& name, const RecordReading& o) {
+  // Streamed: the first non-comment line sets the delimiter and the header; every other line is
+  // parsed as it is read, so memory holds the columns, not the text (24 bytes per row).
+  std::string line, first;
+  std::size_t no = 0, first_no = 0;
+  auto next_line = [&](std::string& into) {
+    while (std::getline(in, into)) {
+      ++no;
+      if (!into.empty() && into.back() == '\r') into.pop_back();
+      if (!is_comment(into)) return true;
+    }
+    return false;
+  };
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first cell.
+  auto strip_bom = [](std::string& l) {
+    if (l.rfind("\xEF\xBB\xBF", 0) == 0) l.erase(0, 3);
+  };
+  {
+    bool got = false;
+    while (std::getline(in, first)) {
+      ++no;
+      if (no == 1) strip_bom(first);
+      if (!first.empty() && first.back() == '\r') first.pop_back();
+      if (!is_comment(first)) {
+        got = true;
+        break;
+      }
+    }
+    if (!got) throw Error(name + ": no data (the record is empty or all comments)");
+  }
+  first_no = no;
+  // Delimiter: the first of ; tab , that the first line holds, else whitespace.
+  char delim = ' ';
+  RecordColumns out;
+  out.delimiter = "whitespace";
+  if (first.find(';') != std::string::npos) {
+    delim = ';';
+    out.delimiter = "semicolon";
+  } else if (first.find('\t') != std::string::npos) {
+    delim = '\t';
+    out.delimiter = "tab";
+  } else if (first.find(',') != std::string::npos) {
+    delim = ',';
+    out.delimiter = "comma";
+  }
+  const bool decimal_comma = delim == ';';  // 1,5;2,25 (a European spreadsheet)
+  // Header: the first line unless all its cells are numbers.
+  std::vector<std::string> header = split(first, delim);
+  bool has_header = false;
+  for (const std::string& cell : header) {
+    double v = 0;
+    if (!parse_number(cell, decimal_comma, v)) has_header = true;
+  }
+  if (!has_header)
+    for (std::size_t c = 0; c < header.size(); ++c) header[c] = "column " + std::to_string(c + 1);
+  std::vector<Heading> headings;
+  for (const std::string& h : header) headings.push_back(heading(h));
+  auto names = [&] {
+    std::string all;
+    for (const std::string& h : header) all += (all.empty() ? "" : ", ") + h;
+    return all;
+  };
+  // A column given by its name (exactly, or without its unit) or by 1-based index.
+  auto find = [&](const std::string& col, const char* flag) -> int {
+    for (std::size_t c = 0; c < header.size(); ++c)
+      if (header[c] == col || headings[c].name == col) return static_cast<int>(c);
+    for (std::size_t c = 0; c < header.size(); ++c)
+      if (lower(headings[c].name) == lower(col)) return static_cast<int>(c);
+    int index = 0;
+    const auto r = std::from_chars(col.data(), col.data() + col.size(), index);
+    if (r.ec == std::errc() && r.ptr == col.data() + col.size()) {
+      if (index >= 1 && index <= static_cast<int>(header.size())) return index - 1;
+      throw Error(name + ": " + flag + " " + col + " is not a column index in [1, " +
+                  std::to_string(header.size()) + "]");
+    }
+    throw Error(name + ": no column '" + col + "' (choose one with " + flag +
+                ", by name or 1-based index); the header has: " + names());
+  };
+  // A column recognised by the names loggers give it; exactly one must match.
+  auto recognise = [&](const char* what, const char* flag, const char* model_name,
+                       auto matches) -> int {
+    // The model's own name (as `run --csv` writes it) first, exactly: t[s] beside T[N].
+    for (std::size_t c = 0; c < headings.size(); ++c)
+      if (headings[c].name == model_name) return static_cast<int>(c);
+    std::vector<int> hits;
+    for (std::size_t c = 0; c < headings.size(); ++c)
+      if (matches(headings[c].key)) hits.push_back(static_cast<int>(c));
+    if (hits.size() == 1) return hits.front();
+    if (!has_header)
+      throw Error(name + ": the record has no header line: give the " + std::string(what) +
+                  " column with " + flag + " (a 1-based index)");
+    std::string which;
+    for (int c : hits) which += (which.empty() ? "" : ", ") + header[static_cast<std::size_t>(c)];
+    throw Error(
+        name + ": " +
+        (hits.empty() ? "no column looks like the " + std::string(what)
+                      : "several columns look like the " + std::string(what) + " (" + which + ")") +
+        "; choose one with " + flag + " (a name or 1-based index); the header has: " + names());
+  };
+  const int ct =
+      o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key) : find(o.t_col, "--t-col");
+  const int cx = o.x_col.empty()
+                     ? recognise("horizontal acceleration x_M''", "--x-col", "ddx_M",
+                                 [](const std::string& k) { return acceleration_axis(k) == 'x'; })
+                     : find(o.x_col, "--x-col");
+  const int cz = o.z_col.empty()
+                     ? recognise("vertical acceleration z_M''", "--z-col", "ddz_M",
+                                 [](const std::string& k) { return acceleration_axis(k) == 'z'; })
+                     : find(o.z_col, "--z-col");
+  const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
+  const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
+  if (o.lat_col.empty() != o.lon_col.empty())
+    throw Error(std::string("give both --lat-col and --lon-col (the point of each window); got "
+                            "only ") +
+                (o.lat_col.empty() ? "--lon-col" : "--lat-col"));
+  if (o.east_col.empty() != o.north_col.empty())
+    throw Error(std::string("give both --east-col and --north-col; got only ") +
+                (o.east_col.empty() ? "--north-col" : "--east-col"));
+  const int ceast = o.east_col.empty() ? -1 : find(o.east_col, "--east-col");
+  const int cnorth = o.north_col.empty() ? -1 : find(o.north_col, "--north-col");
+  const int clat = o.lat_col.empty() ? -1 : find(o.lat_col, "--lat-col");
+  const int clon = o.lon_col.empty() ? -1 : find(o.lon_col, "--lon-col");
+  // Units: a flag's, else the column's header, else SI.
+  auto column_scale = [&](int c, bool time) {
+    const Heading& h = headings[static_cast<std::size_t>(c)];
+    if (time && o.t_units != "auto")
+      return o.t_units == "ms" ? 1e-3 : o.t_units == "us" ? 1e-6 : 1.0;
+    if (!time && o.units != "auto") return o.units == "g" ? kStandardGravity : 1.0;
+    if (h.unit.empty()) return 1.0;
+    const double k = time ? time_scale(h.unit) : acceleration_scale(h.unit);
+    if (std::isnan(k))
+      throw Error(name + ": column '" + header[static_cast<std::size_t>(c)] + "': unit '" + h.unit +
+                  "' is not " +
+                  (time ? "a time unit (s, ms, us); give --t-units"
+                        : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
+    return k;
+  };
+  const double kt = column_scale(ct, true);
+  const double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
+  const double kz = column_scale(cz, false) * (o.z_positive == "up" ? -1.0 : 1.0);
+  // A note for each channel not read as the model writes it (its name, unit 1, same sign).
+  auto note = [&](const char* channel, int c, double k, const char* si) {
+    const std::string& named = headings[static_cast<std::size_t>(c)].name;
+    if (k == 1.0 && (named == "t" || named == "ddx_M" || named == "ddz_M")) return;
+    out.notes.push_back(std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] +
+                        "' x " + format_factor(k) + " -> " + si);
+  };
+  out.t_column = header[static_cast<std::size_t>(ct)];
+  out.x_column = header[static_cast<std::size_t>(cx)];
+  out.z_column = header[static_cast<std::size_t>(cz)];
+  out.t_factor = kt;
+  out.x_factor = kx;
+  out.z_factor = kz;
+  note("t", ct, kt, "s");
+  note("x_M''", cx, kx, "m/s^2 (positive forward)");
+  note("z_M''", cz, kz, "m/s^2 (positive down)");
+  std::vector<double> speed;
+  auto parse = [&](const std::string& text, std::size_t line_no) {
+    const std::vector<std::string> cells = split(text, delim);
+    if (cells.size() != header.size())
+      throw Error(name + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                  " cells, but the header has " + std::to_string(header.size()));
+    auto get = [&](int c) {
+      double v = 0;
+      if (!parse_number(cells[static_cast<std::size_t>(c)], decimal_comma, v))
+        throw Error(name + ":" + std::to_string(line_no) + ": column '" +
+                    header[static_cast<std::size_t>(c)] + "' must be a number; got '" +
+                    cells[static_cast<std::size_t>(c)] + "'");
+      return v;
+    };
+    out.t.push_back(kt * get(ct));
+    out.ddx_M.push_back(kx * get(cx));
+    out.ddz_M.push_back(kz * get(cz));
+    if (cp >= 0) out.position.push_back(get(cp));
+    if (cs >= 0) speed.push_back(get(cs));
+    if (clat >= 0) {
+      const double lat = get(clat), lon = get(clon);
+      if (!(std::abs(lat) <= 90.0) || !(std::abs(lon) <= 180.0))
+        throw Error(name + ":" + std::to_string(line_no) +
+                    ": latitude, longitude must be in "
+                    "[-90, 90], [-180, 180] degrees (WGS 84); got " +
+                    format_factor(lat) + ", " + format_factor(lon));
+      out.lat.push_back(lat);
+      out.lon.push_back(lon);
+    }
+    if (ceast >= 0) {
+      out.east.push_back(get(ceast));
+      out.north.push_back(get(cnorth));
+    }
+  };
+  if (!has_header) parse(first, first_no);
+  while (next_line(line)) parse(line, no);
+  if (out.t.empty()) throw Error(name + ": no data rows after the header");
+  if (cs >= 0 && cp < 0) {
+    for (std::size_t i = 1; i < out.t.size(); ++i)
+      if (!(out.t[i] > out.t[i - 1])) return out;  // analyze_windows reports it
+    out.position = integrate_speed(out.t, speed);
+  }
+  if (ceast >= 0 && cp < 0 && cs < 0) {
+    // The path length along the track [m] (a GNSS fix repeated between updates adds nothing).
+    out.position.assign(out.t.size(), 0.0);
+    for (std::size_t i = 1; i < out.t.size(); ++i)
+      out.position[i] = out.position[i - 1] +
+                        std::hypot(out.east[i] - out.east[i - 1], out.north[i] - out.north[i - 1]);
+  }
+  return out;
+}
+
+}  // namespace oscidrum
