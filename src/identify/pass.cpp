@@ -2,6 +2,7 @@
 // started from the previous valid estimate.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "identify/problem.hpp"
@@ -60,7 +61,9 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   MeasureOptions mo = o.measure;
   mo.covariance = std::max(mo.covariance, o.harmonics);
   std::vector<PassEstimate> out;
-  const Identification* previous = nullptr;
+  out.reserve(ws.size());
+  // The previous valid window, by index: a pointer into `out` would dangle when it grows.
+  std::optional<std::size_t> previous;
   for (std::size_t k = 0; k < ws.size(); ++k) {
     PassEstimate pe;
     RecordWindow& w = ws[k];
@@ -75,7 +78,8 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
         d.t_ref += t0;
         d.t_first += t0;
         d.t_last += t0;
-        pe.identification = identify(base, d, o, previous);
+        pe.identification =
+            identify(base, d, o, previous ? &out[*previous].identification : nullptr);
         pe.valid = true;
       } catch (const Error& e) {
         pe.reason = e.what();
@@ -86,7 +90,7 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
     w.t_mid += t0;
     pe.window = std::move(w);
     out.push_back(std::move(pe));
-    if (out.back().valid) previous = &out.back().identification;
+    if (out.back().valid) previous = out.size() - 1;
     if (progress && !progress(k, ws.size())) break;
   }
   return out;

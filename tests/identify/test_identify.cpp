@@ -271,6 +271,47 @@ TEST(Identify, AWrongKnownParameterGivesAPoorFitWarning) {
   for (const std::string& w : fitted.warnings) EXPECT_NE(w.rfind("poor fit", 0), 0u) << w;
 }
 
+// Windows that fail a gate between valid ones (here: over a change of soil, G = 10 then 25
+// MN/m^2): each later window starts from the last valid estimate. That estimate was once held by
+// a pointer into the growing list of windows, which dangled when the list grew (the windows after
+// the change then started from freed memory: G = 1.3 instead of 25 depending on the heap; the
+// sanitizer build reports it).
+TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
+  std::vector<Case> segments;
+  for (const double G : {10e6, 25e6}) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = G;
+    segments.push_back(c);
+  }
+  SyntheticRecord so;
+  so.duration = 4.0;
+  so.sample_rate = 2000;
+  so.noise = 0.05;
+  so.seed = 3;
+  const RecordSamples r = synthetic_record(segments, so);
+  WindowOptions w;
+  w.window_periods = 40;
+  w.hop_periods = 10;
+  IdentifyOptions o;
+  o.profile = false;
+  const std::vector<PassEstimate> pass = identify_pass(Case{}, r.t, r.ddx_M, r.ddz_M, {}, w, o);
+  int failed_between = 0, after = 0;
+  bool seen_valid = false;
+  for (const PassEstimate& p : pass) {
+    if (!p.valid) {
+      failed_between += seen_valid ? 1 : 0;
+      continue;
+    }
+    seen_valid = true;
+    if (p.window.t_start < 2.0) continue;
+    ++after;
+    EXPECT_NEAR(p.identification.estimates.at(0).value / 25e6, 1.0, 0.03) << p.window.index;
+  }
+  EXPECT_GE(failed_between, 2);
+  EXPECT_GE(after, 3);
+}
+
 // The diagnosis of a poor fit names the cause it checked, with the flag that fixes it: mu or MMd
 // not fitted; and a cause it cannot check (a roller that is not the case's) as what remains after
 // listing what it checked, best first.
