@@ -51,6 +51,14 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
       {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
       {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
   };
+  // The RMV- and CCV-type values: ratios to A(f) (and A(f/2)) of z_M''.
+  if (name == "rmv" || name == "ccv") {
+    const double v = name == "rmv" ? m.rmv : m.ccv;
+    if (std::isnan(v)) return std::string("n/a (A(f) of z_M'' is 0, e.g. by symmetry without MMd)");
+    if (name == "rmv" && v == 0.0)
+      return std::string("0 (no f/2 component: the steady state repeats every period)");
+    return std::nullopt;
+  }
   for (const Ratio& r : kRatios) {
     if (r.name != name) continue;
     const Spectrum& h = m.*r.spectrum;

@@ -153,6 +153,12 @@
   X(double, cmv, "-", "CMV-type value",                                                            \
     "300 A_2/A_1 of z_M'': the compaction meter value's formula applied to the oscillation "       \
     "drum's vertical acceleration")                                                                \
+  X(double, rmv, "-", "RMV-type value",                                                            \
+    "A(f/2)/A(f) of z_M'': the resonance meter value's ratio (the subharmonic of a period-2 "      \
+    "motion, 0 for a period-1 one)")                                                               \
+  X(double, ccv, "-", "CCV-type value",                                                            \
+    "100 [A(f/2) + A(3f/2) + A(2f) + A(5f/2) + A(3f)] / [A(f/2) + A(f)] of z_M'': the compaction " \
+    "control value's ratio")                                                                       \
   X(double, ddx_thd, "-", "x_M'' THD",                                                             \
     "total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1")
 

@@ -493,6 +493,31 @@ Spectrum spectrum(const std::vector<Node>& nodes, double Node::*m, double P, dou
   return h;
 }
 
+// The subharmonics A(f/2), A(3f/2), A(5f/2) of z_M'' over the steady period P = p / f: a
+// p-periodic motion has frequencies k f / p only, so none for an odd p; for an even p the
+// quadrature sums of z_M'' against cos and sin of (2j + 1) nu tau / 2.
+detail::HalfHarmonics half_harmonics(const std::vector<Node>& nodes, double P, double f, int p) {
+  detail::HalfHarmonics h;
+  if (p % 2 != 0) return h;
+  const double half_nu = kPi * f;
+  std::array<double, 3> a{}, b{};
+  for (const Node& nd : nodes) {
+    const double y = nd.weight * nd.ddz;
+    double c = std::cos(half_nu * nd.tau), s = std::sin(half_nu * nd.tau);
+    for (std::size_t j = 0; j < 3; ++j) {  // (2j + 1) nu tau / 2: add nu tau each time
+      a[j] += y * c;
+      b[j] += y * s;
+      const double next = c * nd.cos1 - s * nd.sin1;
+      s = s * nd.cos1 + c * nd.sin1;
+      c = next;
+    }
+  }
+  h.a05 = std::hypot(a[0], b[0]) * 2.0 / P;
+  h.a15 = std::hypot(a[1], b[1]) * 2.0 / P;
+  h.a25 = std::hypot(a[2], b[2]) * 2.0 / P;
+  return h;
+}
+
 // One steady period integrated again from the first sample, recorded piece by piece.
 struct Recording {
   std::vector<Piece> pieces;
@@ -612,7 +637,8 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
       const double r = nd.ddx - mean - (nd.sin1 * a1_cos + nd.cos1 * a1_sin);
       sum += nd.weight * r * r;
     }
-    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), 2.0 * sum / P, n_max);
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), 2.0 * sum / P, n_max,
+                                 half_harmonics(nodes, P, f, p));
   }
 
   // phi: drift removed, the fundamental against M0 sin(nu t).

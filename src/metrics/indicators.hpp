@@ -28,14 +28,28 @@ inline double ratio_to_fundamental(double a, const Spectrum& h) {
                                                        : std::numeric_limits<double>::quiet_NaN();
 }
 
+/// The subharmonics A(f/2), A(3f/2), A(5f/2) of z_M'' [m/s^2] that the RMV- and CCV-type values
+/// read: a p-periodic steady state has them only for an even p (its frequencies are k f / p); 0
+/// for a period-1 state, NaN where they could not be measured.
+struct HalfHarmonics {
+  double a05 = 0.0, a15 = 0.0, a25 = 0.0;
+  /// A(f), A(2f), A(3f) of z_M'' from the same fit as the subharmonics (a record's joint fit, so
+  /// that the ratios do not mix two fits); NaN: those of the spectrum.
+  double a1 = std::numeric_limits<double>::quiet_NaN();
+  double a2 = std::numeric_limits<double>::quiet_NaN();
+  double a3 = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Every metric that follows from the harmonics, set in one place for all three sources (the
 /// dense steady state, its samples, a measured record's fit): psi_xz, the harmonic ratios A_2/A_1,
 /// A_3/A_1 of x_M'' and z_M'', the CMV-type value 300 A_2/A_1 of z_M'', the THD of x_M'' from
 /// `ddx_overtones` = sum_{k>=2} A_k^2 of x_M'' [(m/s^2)^2], and the spectra themselves, truncated
 /// to n = n_max. hx, hz must reach n = 2 (psi needs the 2f harmonic); the A_3 ratios are NaN
-/// without n = 3. M is Metrics or RecordMetrics (OSCIDRUM_ACCELERATION_METRICS).
+/// without n = 3. `z_half`: the subharmonics of z_M'', for the RMV- and CCV-type values. M is
+/// Metrics or RecordMetrics (OSCIDRUM_ACCELERATION_METRICS).
 template <class M>
-void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, int n_max) {
+void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, int n_max,
+                          const HalfHarmonics& z_half = {}) {
   // psi = theta_2(z_M'') - 2 theta_1(x_M'') (docs/model.md section 8): the lag of the 2f
   // component of z_M'' against the square of the fundamental of x_M''; > 0: the 2f component
   // leads (paper Fig. 12).
@@ -48,6 +62,22 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
   // The compaction meter value CMV = C A(2f)/A(f) with C = 300 (Thurner and Sandstroem 1980),
   // here of the oscillation drum's vertical acceleration z_M''.
   m.cmv = 300.0 * m.ddz_A2_A1;
+  // The resonance meter value RMV = A(Omega/2)/A(Omega) and the compaction control value
+  // CCV = 100 [A(Omega/2) + A(3 Omega/2) + A(2 Omega) + A(5 Omega/2) + A(3 Omega)] /
+  // [A(Omega/2) + A(Omega)] of vibratory rollers (docs/outputs.md, with their sources), of z_M''.
+  // Undefined (NaN) where a denominator is absent against the signal's largest component.
+  {
+    double largest = std::max({z_half.a05, z_half.a15, z_half.a25});
+    for (std::size_t n = 1; n < hz.size(); ++n) largest = std::max(largest, hz[n].amplitude);
+    const double a1 = std::isnan(z_half.a1) ? hz[1].amplitude : z_half.a1;
+    const double a2 = std::isnan(z_half.a2) ? hz[2].amplitude : z_half.a2;
+    const double a3 = std::isnan(z_half.a3) ? (hz.size() > 3 ? hz[3].amplitude : nan) : z_half.a3;
+    m.rmv = a1 > kAbsentFundamental * largest ? z_half.a05 / a1 : nan;
+    const double below = z_half.a05 + a1;
+    m.ccv = below > kAbsentFundamental * largest
+                ? 100.0 * (z_half.a05 + z_half.a15 + a2 + z_half.a25 + a3) / below
+                : nan;
+  }
   m.ddx_thd = ratio_to_fundamental(std::sqrt(ddx_overtones), hx);
   hx.resize(static_cast<std::size_t>(n_max) + 1);
   hz.resize(static_cast<std::size_t>(n_max) + 1);

@@ -5,6 +5,7 @@
 #include "oscidrum/metrics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -101,8 +102,29 @@ Metrics compute_metrics(const Result& result, int n_max) {
                        hx[1].amplitude * std::sin(nu * s.t[j] + hx[1].phase);
       sum += r * r;
     }
+    // z_M'''s subharmonics: none in a state of odd period p (frequencies k f / p); for an even p
+    // a DFT at (2j + 1) f / 2 over the samples, which span whole steady periods (NaN if not).
+    detail::HalfHarmonics half;
+    const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
+    if (p % 2 == 0) {
+      if (cycles % 2 != 0) {
+        half.a05 = half.a15 = half.a25 = std::numeric_limits<double>::quiet_NaN();
+      } else {
+        std::array<double, 3> a{}, b{};
+        for (std::size_t j = 0; j < n; ++j)
+          for (std::size_t k = 0; k < 3; ++k) {
+            const double w = std::numbers::pi * f * static_cast<double>(2 * k + 1) * (s.t[j] - t0);
+            a[k] += s.ddz_M[j] * std::cos(w);
+            b[k] += s.ddz_M[j] * std::sin(w);
+          }
+        const double scale = 2.0 / static_cast<double>(n);
+        half.a05 = std::hypot(a[0], b[0]) * scale;
+        half.a15 = std::hypot(a[1], b[1]) * scale;
+        half.a25 = std::hypot(a[2], b[2]) * scale;
+      }
+    }
     detail::set_spectral_metrics(m, std::move(hx), std::move(hz),
-                                 2.0 * sum / static_cast<double>(n), n_max);
+                                 2.0 * sum / static_cast<double>(n), n_max, half);
   }
 
   // phi need not be periodic: a driving torque makes the drum slip on by a net angle per period

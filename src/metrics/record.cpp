@@ -129,6 +129,49 @@ double relative_rms(std::span<const double> t, std::span<const double> y, const 
   return yy > 0 ? std::sqrt(rr / yy) : 0.0;
 }
 
+// The subharmonics A(f/2), A(3f/2), A(5f/2) of y [m/s^2], with A(f), A(2f), A(3f) of the same
+// fit: the least-squares fit of the record to the harmonics n f (n = 0 ... n_max) and the
+// half-harmonics (2j + 1) f / 2 (j = 0, 1, 2) together, so that neither leaks into the other over a
+// window that is not a whole number of periods. A
+// period-1 record gives noise-level amplitudes; NaN for a record shorter than two periods (f/2 is
+// then not resolved).
+detail::HalfHarmonics half_harmonics(std::span<const double> t, std::span<const double> y, double f,
+                                     int n_max, double cycles) {
+  if (cycles < 2.0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan, nan};
+  }
+  const int cols = 2 * n_max + 1 + 6;
+  Eigen::MatrixXd B(static_cast<Eigen::Index>(t.size()), cols);
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(t.size()));
+  std::vector<double> cm(n_max + 1), sm(n_max + 1);
+  const double nu = 2.0 * M_PI * f, t0 = t.front();
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const Eigen::Index r = static_cast<Eigen::Index>(i);
+    const double tau = t[i] - t0;  // the amplitudes do not depend on the time origin
+    harmonics_at(nu * tau, n_max, cm, sm);
+    B(r, 0) = 1.0;
+    for (int n = 1; n <= n_max; ++n) {
+      B(r, 2 * n - 1) = cm[n];
+      B(r, 2 * n) = sm[n];
+    }
+    for (int j = 0; j < 3; ++j) {
+      const double w = 0.5 * nu * (2 * j + 1) * tau;
+      B(r, 2 * n_max + 1 + 2 * j) = std::cos(w);
+      B(r, 2 * n_max + 2 + 2 * j) = std::sin(w);
+    }
+    rhs[r] = y[i];
+  }
+  const Eigen::VectorXd c = B.colPivHouseholderQr().solve(rhs);
+  const int h = 2 * n_max + 1;
+  detail::HalfHarmonics out{std::hypot(c[h], c[h + 1]), std::hypot(c[h + 2], c[h + 3]),
+                            std::hypot(c[h + 4], c[h + 5])};
+  out.a1 = std::hypot(c[1], c[2]);
+  out.a2 = std::hypot(c[3], c[4]);
+  if (n_max >= 3) out.a3 = std::hypot(c[5], c[6]);
+  return out;
+}
+
 std::vector<Harmonic> to_harmonics(const Eigen::VectorXd& c, int n_max) {
   // a cos + b sin = A sin(x + theta) with A sin theta = a, A cos theta = b.
   std::vector<Harmonic> h(n_max + 1);
@@ -187,7 +230,8 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
     // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
     double overtones = 0.0;
     for (int n = 2; n <= n_max; ++n) overtones += std::pow(hx[n].amplitude, 2);
-    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), overtones, n_max);
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), overtones, n_max,
+                                 half_harmonics(t, ddz, f, n_max, m.cycles));
   }
 
   // The fitted periodic signals over one period, for the extremes and the area.

@@ -70,6 +70,41 @@ TEST(SteadyMetrics, IndependentOfTheOutputSampling) {
   }
 }
 
+// The RMV- and CCV-type values read z_M'''s subharmonics A(f/2), A(3f/2), A(5f/2): none in a
+// period-1 state (RMV exactly 0, CCV from A_1, A_2, A_3 alone); in the stable period-2 orbit
+// after a period doubling the dense-output integrals and a DFT of fine samples agree.
+TEST(SteadyMetrics, SubharmonicIndicatorsOfAPeriodTwoOrbit) {
+  {
+    const Model model(default_with(256, 0.05));
+    const Result r = simulate(model);
+    ASSERT_EQ(r.diagnostics.multiplicity, 1);
+    const Metrics m = compute_metrics(model, r);
+    EXPECT_EQ(m.rmv, 0.0);
+    const Spectrum& h = m.ddz_harmonics;
+    EXPECT_NEAR(m.ccv, 100.0 * (h[2].amplitude + h[3].amplitude) / h[1].amplitude, 1e-12 * m.ccv);
+  }
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 150e6;
+  c.roller.unbalance = 0.22877;
+  c.roller.f = 25.0;
+  c.trough.shape = trough_shape(0.002, 0.601);
+  c.contact.mu = 0.7;
+  c.numerics.method = SteadyMethod::shooting;
+  c.numerics.samples_per_period = 8192;
+  const Model model(c);
+  const Result r = simulate(model);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  ASSERT_EQ(r.diagnostics.multiplicity, 2);
+  const Metrics dense = compute_metrics(model, r), sampled = compute_metrics(r);
+  EXPECT_GT(dense.rmv, 0.1);  // a period-2 motion: a sizeable f/2 component
+  EXPECT_NEAR(sampled.rmv / dense.rmv, 1.0, 1e-6);
+  EXPECT_NEAR(sampled.ccv / dense.ccv, 1.0, 1e-6);
+  EXPECT_GT(dense.ccv,
+            100.0 * dense.ddz_A2_A1 * dense.ddz_harmonics[1].amplitude /
+                (dense.ddz_harmonics[1].amplitude + dense.rmv * dense.ddz_harmonics[1].amplitude));
+}
+
 // Brute force: the re-integrated steady period sampled at 2^18 points; DFT harmonics and the
 // polygon area of those samples against the dense-output metrics; the sampled peaks can only
 // fall short of the exact ones, by at most the sampling's reach.

@@ -163,6 +163,43 @@ TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
 // jittered record with a large offset (1.2 periods, z about 9.81 as a vertical channel with
 // gravity), where the basis is furthest from orthogonal, its coefficients and residuals equal
 // those of an independent QR of the explicit basis to rounding.
+// A record with known subharmonics (a period-2 motion, as a jumping drum's): RMV = A(f/2)/A(f)
+// and CCV = 100 (A(f/2) + A(3f/2) + A(2f) + A(5f/2) + A(3f)) / (A(f/2) + A(f)) of z_M'', over a
+// window that is not a whole number of periods; a period-1 record has RMV at the noise level.
+TEST(Record, SubharmonicIndicatorsOfARecord) {
+  const double f = 30.0, nu = 2.0 * M_PI * f;
+  for (const double k : {1.0, 0.0}) {  // with subharmonics, and a period-1 record
+    const double a05 = 0.3 * k, a15 = 0.2 * k, a25 = 0.1 * k;
+    std::vector<double> t, x, z;
+    for (int i = 0; i < 2000 * 41.3 / f; ++i) {
+      const double ti = 1e-3 * i / 2.0 + 5.0;  // 2 kHz, a clock starting at 5 s
+      t.push_back(ti);
+      x.push_back(std::sin(nu * ti));
+      z.push_back(0.2 + 1.0 * std::sin(nu * ti) + a05 * std::sin(0.5 * nu * ti + 0.4) +
+                  a15 * std::sin(1.5 * nu * ti + 1.0) + 0.5 * std::sin(2.0 * nu * ti - 0.3) +
+                  a25 * std::sin(2.5 * nu * ti) + 0.05 * std::sin(3.0 * nu * ti + 2.0));
+    }
+    const RecordMetrics m = analyze_record(t, x, z, f, 10);
+    EXPECT_NEAR(m.rmv, a05, 1e-9);
+    EXPECT_NEAR(m.ccv, 100.0 * (a05 + a15 + 0.5 + a25 + 0.05) / (a05 + 1.0), 1e-7);
+    // The CMV-type value is the harmonic fit's (n f alone): exact without subharmonics, and
+    // leaked into by them over a window that is not a whole number of double periods.
+    if (k == 0.0) {
+      EXPECT_NEAR(m.cmv, 300.0 * 0.5, 1e-7);
+    }
+  }
+  // Shorter than two periods: f/2 is not resolved.
+  std::vector<double> t, x, z;
+  for (int i = 0; i < 60; ++i) {
+    t.push_back(1e-3 * i);
+    x.push_back(std::sin(2.0 * M_PI * 30.0 * t.back()));
+    z.push_back(std::sin(2.0 * M_PI * 30.0 * t.back()));
+  }
+  const RecordMetrics m = analyze_record(t, x, z, 30.0, 4);
+  EXPECT_TRUE(std::isnan(m.rmv));
+  EXPECT_TRUE(std::isnan(m.ccv));
+}
+
 TEST(Record, NormalEquationsFitEqualsTheQrOfTheBasis) {
   const double f = 39.0, nu = 2 * M_PI * f;
   const int n_max = 10;

@@ -89,6 +89,10 @@ class Checker {
       scale = s_.z / s_.A1z;
     } else if (name == "cmv") {
       scale = 300.0 * s_.z / s_.A1z;
+    } else if (name == "rmv") {  // A(f/2)/A(f) of z_M''
+      scale = s_.z / s_.A1z;
+    } else if (name == "ccv") {  // 100 (sum of A's) / (A(f/2) + A(f)) of z_M''
+      scale = 100.0 * s_.z / s_.A1z;
     } else if (name == "psi_xz") {
       diff = std::abs(wrap_pi(a - b)) * (s_.z > 0.0 ? s_.A2z / s_.z : 1.0);
       scale = pi;
