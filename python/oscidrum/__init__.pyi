@@ -261,6 +261,8 @@ class Metrics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     area: float
     """area enclosed by the z_M''-over-x_M'' figure over one steady period (non-zero winding: both lobes of a figure eight count; paper Figs. 16, 22) [m^2/s^4]"""
+    ccv: float
+    """100 [A(f/2) + A(3f/2) + A(2f) + A(5f/2) + A(3f)] / [A(f/2) + A(f)] of z_M'': the compaction control value's ratio [-]"""
     cmv: float
     """300 A_2/A_1 of z_M'': the compaction meter value's formula applied to the oscillation drum's vertical acceleration [-]"""
     ddx_A2_A1: float
@@ -315,6 +317,8 @@ class Metrics:
     """lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped to (-2, 0], in units of pi (paper Fig. 10) [pi rad]"""
     psi_xz: float
     """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12) [rad]"""
+    rmv: float
+    """A(f/2)/A(f) of z_M'': the resonance meter value's ratio (the subharmonic of a period-2 motion, 0 for a period-1 one) [-]"""
     scalar_names: list
     slip_fraction: float
     """share of the sampled time in slip (either sign) [-]"""
@@ -452,6 +456,8 @@ class RecordMetrics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     area: float
     """area enclosed by the z_M''-over-x_M'' figure over one steady period (non-zero winding: both lobes of a figure eight count; paper Figs. 16, 22) [m^2/s^4]"""
+    ccv: float
+    """100 [A(f/2) + A(3f/2) + A(2f) + A(5f/2) + A(3f)] / [A(f/2) + A(f)] of z_M'': the compaction control value's ratio [-]"""
     cmv: float
     """300 A_2/A_1 of z_M'': the compaction meter value's formula applied to the oscillation drum's vertical acceleration [-]"""
     cycles: float
@@ -492,6 +498,8 @@ class RecordMetrics:
     """RMS of record minus fit, relative to the RMS of x_M'' [-]"""
     residual_z: float
     """the same for z_M'' [-]"""
+    rmv: float
+    """A(f/2)/A(f) of z_M'': the resonance meter value's ratio (the subharmonic of a period-2 motion, 0 for a period-1 one) [-]"""
     scalar_names: list
     def to_dict(self: RecordMetrics) -> dict: ...
 
