@@ -24,6 +24,7 @@ import oscidrum  # noqa: E402
 from oscidrum.data import write_table  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")
+out.mkdir(parents=True, exist_ok=True)
 N_MAX = 8
 V_EPS = [0.1, 0.03, 0.01, 0.003, 0.001, 0.0001]  # [m/s]
 
