@@ -164,3 +164,27 @@ def test_hdf5_tables_have_the_named_dimension_case(tmp_path):
     ds = xr.open_dataset(out, group="results")
     assert "case" in ds.dims and ds.sizes["case"] == 3
     assert ds["area"].dims == ("case",)
+    # Each case's steady state: the dimension t, with t its coordinate; merged shards too.
+    with h5py.File(out, "r") as h5:
+        group = "steady_state/" + sorted(h5["steady_state"].keys())[1]
+        assert [list(d.keys()) for d in h5[group + "/ddx_M"].dims] == [["t"]]
+    st = xr.open_dataset(out, group=group)
+    assert list(st.sizes) == ["t"] and st["ddx_M"].dims == ("t",) and "t" in st.coords
+    assert np.array_equal(st["t"].values, h5py.File(out, "r")[group + "/t"][:])
+    shards = []
+    for i in (1, 2):
+        path = tmp_path / f"s{i}.h5"
+        done = subprocess.run([cli, "sweep", str(study), "--shard", f"{i}/2", "--out",
+                               str(tmp_path / f"s{i}.csv"), "--hdf5", str(path), "-q"],
+                              capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr
+        shards.append(str(path))
+    merged = tmp_path / "merged.h5"
+    done = subprocess.run([cli, "merge", *shards, "--out", str(merged)], capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    for k in range(3):
+        with h5py.File(merged, "r") as h5:
+            name = sorted(h5["steady_state"].keys())[k]
+        st = xr.open_dataset(merged, group="steady_state/" + name)
+        assert st["ddz_M"].dims == ("t",) and "t" in st.coords
