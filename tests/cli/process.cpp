@@ -81,6 +81,8 @@ Outcome finish(pid_t pid, const std::string& out_file, const std::string& err_fi
   }
   o.seconds = elapsed();
   o.max_rss_kb = usage.ru_maxrss;
+  o.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                  1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   if (WIFEXITED(status)) o.code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
   o.out = slurp(out_file);

@@ -10,13 +10,14 @@ namespace oscidrum::test {
 
 /// How a child process ended, and what it printed.
 struct Outcome {
-  int code = -1;        ///< exit status; -1 if killed by a signal
-  int signal = 0;       ///< the signal that ended it, or 0
-  std::string out;      ///< stdout
-  std::string err;      ///< stderr
-  double seconds = 0;   ///< wall time from the call of finish() to the end of the child
-  long max_rss_kb = 0;  ///< the child's peak resident memory [KiB]
-  bool hung = false;    ///< killed by finish() at its time limit
+  int code = -1;           ///< exit status; -1 if killed by a signal
+  int signal = 0;          ///< the signal that ended it, or 0
+  std::string out;         ///< stdout
+  std::string err;         ///< stderr
+  double seconds = 0;      ///< wall time from the call of finish() to the end of the child
+  long max_rss_kb = 0;     ///< the child's peak resident memory [KiB]
+  double cpu_seconds = 0;  ///< the child's CPU time, user and system [s]
+  bool hung = false;       ///< killed by finish() at its time limit
 };
 
 /// Start `oscidrum args...` with stdout and stderr going to files (stdin: /dev/null).
