@@ -28,12 +28,15 @@ oscidrum::RecordSamples record(double duration, bool pure_rolling) {
 oscidrum::Case base(const benchmark::State& state) {
   oscidrum::Case b;
   b.contact.pure_rolling = state.range(0) != 0;
+  // The model's method: shooting (argument 1) or the transient from rest (0). The case's own
+  // method is shooting by default, so the transient must be asked for.
+  if (state.range(1) == 0) b.numerics.method = oscidrum::SteadyMethod::transient;
   return b;
 }
 
 oscidrum::IdentifyOptions options(const benchmark::State& state) {
   oscidrum::IdentifyOptions o;
-  o.shooting = state.range(1) != 0;  // else the transient from rest (the case's method)
+  o.shooting = state.range(1) != 0;  // else the case's method: the transient (base)
   return o;
 }
 
