@@ -110,6 +110,17 @@ void add_model_flags(CLI::App& app, CaseOptions& o) {
   o.a_flag = app.add_option("--a", o.a, "log-spiral trough: a [m]")->group(group);
 }
 
+void add_record_case_flags(CLI::App& app, std::string& config, CaseOptions& o,
+                           const std::string& case_help) {
+  app.add_option("--case", config, case_help)->type_name("CASE.toml")->group("Model");
+  add_roller_flags(app, o,
+                   {"roller.r", "roller.b", "roller.m", "roller.I", "roller.P0", "roller.M0",
+                    "roller.kd", "roller.cd"});
+  add_soil_flags(app, o);
+  add_model_flags(app, o);
+  add_set_flag(app, o);
+}
+
 void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only) {
   o.set_keys = only;
   o.command = app.get_name();

@@ -53,6 +53,12 @@ void add_model_flags(CLI::App& app, CaseOptions& o);
 /// alone (a key the command does not use is an error: exit code 2, not a silent no-op).
 void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>& only = {});
 
+/// The case of a command that compares the model with measured records (identify, calibrate):
+/// --case FILE (`case_help`, group Model), the roller flags but the frequency (each record gives
+/// it), the soil, contact, torque and trough flags, and --set.
+void add_record_case_flags(CLI::App& app, std::string& config, CaseOptions& o,
+                           const std::string& case_help);
+
 /// Apply the flags that were given to `spec`. Throws oscidrum::Error (exit code 2).
 void apply(const CaseOptions& o, io::CaseSpec& spec);
 

@@ -214,16 +214,7 @@ void add_calibrate_command(CLI::App& app, Action& action) {
                   "many as the sampling resolves, at most 10")
       ->check(CLI::Range(0, 200))
       ->group(meas);
-  const char* model = "Model";
-  sub->add_option("--case", o->config, "case file (TOML) of the roller to calibrate")
-      ->type_name("CASE.toml")
-      ->group(model);
-  add_roller_flags(*sub, o->c,
-                   {"roller.r", "roller.b", "roller.m", "roller.I", "roller.P0", "roller.M0",
-                    "roller.kd", "roller.cd"});
-  add_soil_flags(*sub, o->c);
-  add_model_flags(*sub, o->c);
-  add_set_flag(*sub, o->c);
+  add_record_case_flags(*sub, o->config, o->c, "case file (TOML) of the roller to calibrate");
   const char* fit = "Calibration";
   sub->add_option("--fit", o->fit,
                   "the case fields fitted, comma-separated (default roller.M0): real roller, "

@@ -497,16 +497,8 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "identify from these metrics (the JSON of `oscidrum analyze --format json`) "
                   "instead of a record")
       ->type_name("FILE");
-  const char* model = "Model";
-  sub->add_option("--case", o->config, "case file (TOML) of the roller and the known parameters")
-      ->type_name("CASE.toml")
-      ->group(model);
-  add_roller_flags(*sub, o->c,
-                   {"roller.r", "roller.b", "roller.m", "roller.I", "roller.P0", "roller.M0",
-                    "roller.kd", "roller.cd"});
-  add_soil_flags(*sub, o->c);
-  add_model_flags(*sub, o->c);
-  add_set_flag(*sub, o->c);
+  add_record_case_flags(*sub, o->config, o->c,
+                        "case file (TOML) of the roller and the known parameters");
   const char* fit = "Identification";
   sub->add_option("--estimate", o->estimate,
                   "G (shear modulus through Appendix B with the case's nu and rho) or ks (ksh and "
