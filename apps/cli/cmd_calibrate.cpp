@@ -13,6 +13,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/calibrate.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -206,7 +207,7 @@ void add_calibrate_command(CLI::App& app, Action& action) {
   const char* meas = "Measurement";
   sub->add_option("--f", o->windows.f,
                   "excitation frequency [Hz]; default: estimated from each record")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->group(meas);
   o->windows.n_max = 0;
   sub->add_option("--harmonics", o->windows.n_max,

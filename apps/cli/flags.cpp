@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <string>
 
 #include "oscidrum/error.hpp"
@@ -58,6 +59,25 @@ void add_checks(CLI::App& app) {
 }
 
 }  // namespace
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        // The text is a decimal number: strict_numbers checked it first.
+        const double v = std::strtod(text.c_str(), nullptr);
+        return v > 0 ? std::string() : "must be > 0; got " + text;
+      },
+      "POSITIVE");
+}
+
+CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const double v = std::strtod(text.c_str(), nullptr);
+        return v >= 0 ? std::string() : "must be >= 0; got " + text;
+      },
+      "NONNEGATIVE");
+}
 
 void strict_numbers(CLI::App& app) { add_checks(app); }
 

@@ -4,6 +4,7 @@
 // checked after reading it, by check_flag.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 
 namespace CLI {
@@ -16,6 +17,11 @@ namespace oscidrum::cli {
 /// `app` and of its subcommands: "--G: must be a decimal number; got '0x10'", "--harmonics:
 /// must be an integer (digits only); got '1e3'". Call after every command was added.
 void strict_numbers(CLI::App& app);
+
+/// The rules "> 0" and ">= 0" with the project's messages ("--f: must be > 0; got -3"): CLI11's
+/// PositiveNumber and NonNegativeNumber print their range, 0 to 1.8e308, with all its digits.
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
 
 /// A flag's value against a rule known only after parsing (from the data): finite and in
 /// [lo, hi] (an open end with lo_open / hi_open). Throws oscidrum::Error

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <utility>
 
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/record.hpp"
 
@@ -71,11 +72,11 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
   app.add_option("--f", o.f,
                  "excitation frequency [Hz]; default: estimated from the record (spectral peak, "
                  "refined by least squares) and tracked from window to window")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--f-min", o.search.f_min, "lowest frequency searched [Hz] (default 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--f-max", o.search.f_max, "highest frequency searched [Hz] (default 100)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   if (auto_harmonics)
     app.add_option("--harmonics", o.n_max,
                    "harmonics n = 1 ... N fitted in each window beside a cubic trend; 0 (the "
@@ -88,30 +89,30 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
   app.add_option("--window", o.window_periods,
                  "window length in excitation periods; 0: the whole record (default " +
                      std::to_string(static_cast<int>(default_window)) + ")")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--hop", o.hop_periods,
                  "hop between window starts in periods (default: the window length)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--max-residual", o.gates.max_residual,
                  "gate: largest fit residual (RMS relative to the signal) (default 0.5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--max-drift", o.gates.max_drift,
                  "gate: largest relative change of f between the halves of a window (default "
                  "0.002)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--clip-level", o.gates.clip_level,
                  "gate: |a| at or above this is clipped [m/s^2, after --units]; default: "
                  "3 or more equal samples at a channel's extreme")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--max-gap", o.gates.max_gap,
                  "gate: a time step longer than this part of an excitation period is a gap "
                  "(default 0.5; a few lost samples are not)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--max-change", o.gates.max_change,
                  "gate: largest change of the response within a window, |RMS(second half) - "
                  "RMS(first half)| / RMS of the fitted x_M'' or z_M'', beyond the noise (default "
                  "0.05; a window across a change of soil fits neither side)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 }
 
 void report_reading(const RecordColumns& rec) {

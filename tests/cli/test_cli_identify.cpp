@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "oscidrum/oscidrum.hpp"
 #include "process.hpp"
@@ -438,6 +439,21 @@ TEST(CliCalibrate, WritesTheCaseThatIdentifyThenUses) {
     const Outcome b = run(bad);
     EXPECT_EQ(b.code, 2) << bad.back() << ": " << b.err;
     EXPECT_NE(b.err.find("error"), std::string::npos) << b.err;
+  }
+}
+
+// The sign rules of the window and gate flags say the rule, not CLI11's range of 0 to 1.8e308
+// printed with all its digits.
+TEST(CliAnalyze, SignRulesOfFlagsNameTheRule) {
+  for (const auto& [flag, value, rule] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--max-change", "-1", "must be > 0; got -1"},
+           {"--f", "0", "must be > 0; got 0"},
+           {"--hop", "-2", "must be >= 0; got -2"}}) {
+    const Outcome o = run({"analyze", "missing.csv", flag, value});
+    EXPECT_EQ(o.code, 2) << flag;
+    EXPECT_NE(o.err.find(flag + ": " + rule), std::string::npos) << o.err;
+    EXPECT_LT(o.err.size(), 200u) << o.err;
   }
 }
 
