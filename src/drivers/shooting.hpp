@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/sampling.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/floquet.hpp"
 #include "oscidrum/flow.hpp"
@@ -216,22 +217,7 @@ class PlainObserver : public BasicFlowObserver<R> {
 
 // Two observers of one flow.
 template <class R>
-class Tee : public BasicFlowObserver<R> {
- public:
-  using State = typename R::State;
-  Tee(BasicFlowObserver<R>& a, BasicFlowObserver<R>& b) : a_(a), b_(b) {}
-  bool on_step(const BasicStepView<R>& step) override {
-    const bool a = a_.on_step(step), b = b_.on_step(step);
-    return a && b;
-  }
-  bool on_event(const Event& event, const State& before, const State& after) override {
-    const bool a = a_.on_event(event, before, after), b = b_.on_event(event, before, after);
-    return a && b;
-  }
-
- private:
-  BasicFlowObserver<R>&a_, &b_;
-};
+using Tee = ObserverPair<R>;
 
 template <class R>
 struct PeriodMap {

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "drivers/continuation.hpp"
+#include "drivers/period_recording.hpp"
 #include "metrics/piece_interpolant.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/oscidrum.hpp"
@@ -68,6 +71,62 @@ TEST(SteadyMetrics, IndependentOfTheOutputSampling) {
     expect_same_metrics(compute_metrics(coarse_model, coarse), compute_metrics(fine_model, fine),
                         1e-9);
   }
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const Spectrum& a, const Spectrum& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t n = 0; n < a.size(); ++n)
+    if (!same_bits(a[n].amplitude, b[n].amplitude) || !same_bits(a[n].phase, b[n].phase))
+      return false;
+  return true;
+}
+
+void expect_same_bits(const Metrics& a, const Metrics& b) {
+#define OSCIDRUM_SAME(type, name, unit, label, description) \
+  EXPECT_TRUE(same_bits(a.name, b.name)) << #name;
+  OSCIDRUM_METRICS(OSCIDRUM_SAME)
+#undef OSCIDRUM_SAME
+}
+
+// A shooting orbit's sampling records its first period for the metrics on the way (a study's
+// cases then integrate it only once): the metrics from that recording are those of the period
+// integrated again, bit for bit; a recording of another trajectory is not used.
+TEST(SteadyMetrics, TheSamplingsRecordingGivesTheSameBits) {
+  Case stick_slip;  // Appendix B soil, MMd 0.05 M0
+  stick_slip.soil.input = SoilInput::modulus;
+  stick_slip.soil.G = 25e6;
+  stick_slip.MMd = 0.05 * stick_slip.roller.M0;
+  Case pure = stick_slip;
+  pure.contact.pure_rolling = true;
+  pure.MMd = 0.0;
+  for (const Case& c : {stick_slip, pure}) {
+    SCOPED_TRACE(c.contact.pure_rolling ? "pure rolling" : "stick-slip");
+    const Model model(c);
+    detail::recording::Recording period;
+    const Result r = detail::simulate_from(model, {}, {}, nullptr, true, &period);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    ASSERT_EQ(r.diagnostics.method, SteadyMethod::shooting);
+    ASSERT_FALSE(period.pieces.empty());
+    EXPECT_EQ(period.t_begin, r.samples.t.front());
+    expect_same_bits(detail::compute_metrics(model, r, 10, &period), compute_metrics(model, r));
+    // The recording is what the metrics read: a landing speed put into it comes out.
+    detail::recording::Recording marked = period;
+    marked.landing_speed = 123.0;
+    EXPECT_EQ(detail::compute_metrics(model, r, 10, &marked).landing_velocity, 123.0);
+    // Recorded from another start (the state a little off), it is not used.
+    marked.start[0] += 1e-9;
+    expect_same_bits(detail::compute_metrics(model, r, 10, &marked), compute_metrics(model, r));
+  }
+  // The transient method samples where its search stopped, without a restart: no recording.
+  Case transient = stick_slip;
+  transient.numerics.method = SteadyMethod::transient;
+  const Model model(transient);
+  detail::recording::Recording period;
+  const Result r = detail::simulate_from(model, {}, {}, nullptr, true, &period);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_TRUE(period.pieces.empty());
 }
 
 // Brute force: the re-integrated steady period sampled at 2^18 points; DFT harmonics and the
