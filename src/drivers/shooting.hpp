@@ -141,8 +141,8 @@ inline constexpr double kFreshMonodromy = 1e-3;
 // variational equations once, and its Floquet multipliers come from that monodromy, as a cold
 // start's come from its last fresh one (at an iterate whose residual was above kFreshMonodromy).
 // A map with the variational equations costs about two plain ones in CPU time: with 0.1 instead,
-// the Table 2 sweep's large steps in G took up to 7 slow chord steps and ran 10 % slower than
-// with fresh monodromies (bench/README.md).
+// the Table 2 sweep's large steps in G took up to 7 slow chord steps and ran about 15 % slower
+// than with fresh monodromies (bench/README.md).
 inline constexpr double kChordContraction = 1e-2;
 
 // The last step is taken without evaluating the period map at its result when the previous full
