@@ -61,6 +61,22 @@ using detail::recording::Recorder;
 using detail::recording::Recording;
 using enum detail::recording::Quantity;
 
+// T_j(x_i), j = 0 ... kDegree, at the abscissas x_i >= 0 of the 16-point Gauss-Legendre rule
+// (by the recurrence T_j+1 = 2 x T_j - T_j-1): the Chebyshev sums at the quadrature nodes.
+const std::vector<std::array<double, kDegree + 1>>& gauss_chebyshev() {
+  static const auto table = [] {
+    const auto& x = boost::math::quadrature::gauss<double, 16>::abscissa();
+    std::vector<std::array<double, kDegree + 1>> T(x.size());
+    for (std::size_t i = 0; i < T.size(); ++i) {
+      T[i][0] = 1.0;
+      T[i][1] = x[i];
+      for (int j = 1; j < kDegree; ++j) T[i][j + 1] = 2.0 * x[i] * T[i][j] - T[i][j - 1];
+    }
+    return T;
+  }();
+  return table;
+}
+
 // Largest and smallest value of a quantity: ends and interior extrema of every piece.
 struct Extremes {
   double hi = -std::numeric_limits<double>::infinity();
@@ -523,13 +539,25 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
     const double c_mid = std::cos(nu * (mid - t0)), s_mid = std::sin(nu * (mid - t0));
     const auto& x = rule.abscissa();
     const auto& w = rule.weights();
+    // The quantities at the nodes mid -+ half x_i from their Chebyshev coefficients, the even and
+    // odd parts of sum_j c_j T_j(x_i) apart (T_j(-x) = (-1)^j T_j(x)): both nodes of a pair from
+    // one table row (gauss_chebyshev) instead of a Clenshaw sum at each.
+    constexpr std::array<Quantity, 4> kNodeQuantities = {kDdx, kDdz, kPhi, kFrictionPower};
     for (std::size_t i = 0; i < x.size(); ++i) {
       const double c_off = std::cos(nu * half * x[i]), s_off = std::sin(nu * half * x[i]);
+      const auto& T = gauss_chebyshev()[i];
+      std::array<double, kNodeQuantities.size()> even{}, odd{};
+      for (std::size_t q = 0; q < kNodeQuantities.size(); ++q) {
+        const auto& c = pc.f[kNodeQuantities[q]].coefficients();
+        for (int j = 0; j <= kDegree; j += 2) even[q] += c[j] * T[j];
+        for (int j = 1; j <= kDegree; j += 2) odd[q] += c[j] * T[j];
+      }
       for (double sign : {-1.0, 1.0}) {
         if (x[i] == 0.0 && sign > 0) continue;
         const double t = mid + sign * half * x[i];
-        nodes.push_back({t - t0, half * w[i], pc.f[kDdx](t), pc.f[kDdz](t), pc.f[kPhi](t),
-                         std::abs(pc.f[kFrictionPower](t)), c_mid * c_off - sign * s_mid * s_off,
+        nodes.push_back({t - t0, half * w[i], even[0] + sign * odd[0], even[1] + sign * odd[1],
+                         even[2] + sign * odd[2], std::abs(even[3] + sign * odd[3]),
+                         c_mid * c_off - sign * s_mid * s_off,
                          s_mid * c_off + sign * c_mid * s_off});
       }
     }
