@@ -509,8 +509,10 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
 
   Metrics m;
   // Peaks: first the values at every node, then the interior extrema of only those pieces whose
-  // extremum could beat the values already found (most cannot: ChebyshevInterpolant::
-  // overshoot_bound). The peaks are the same as with every piece searched.
+  // extremum could beat the values already found by more than the interpolant's round-off (most
+  // cannot: ChebyshevInterpolant::overshoot_bound, roundoff_bound; a flat piece at the peak, T/N
+  // = -+mu in slip or the zero gap in contact, is not searched). The peaks are those of every
+  // piece searched, to that round-off (about 1e-14 relative).
   constexpr std::array<Quantity, 5> kPeakQuantities = {kDdx, kDdz, kDelta, kTraction, kGap};
   std::array<Extremes, kPeakQuantities.size()> peaks;
   for (const Piece& pc : pieces)
@@ -519,9 +521,11 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   for (const Piece& pc : pieces) {
     for (std::size_t q = 0; q < kPeakQuantities.size(); ++q) {
       const auto& values = pc.values[kPeakQuantities[q]];
-      const double bound = pc.f[kPeakQuantities[q]].overshoot_bound();
+      const Interpolant& fq = pc.f[kPeakQuantities[q]];
+      const double bound = fq.overshoot_bound(), resolved = 2.0 * fq.roundoff_bound();
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-      const bool want_max = *hi + bound >= peaks[q].hi, want_min = *lo - bound <= peaks[q].lo;
+      const bool want_max = *hi + bound - peaks[q].hi > resolved,
+                 want_min = peaks[q].lo - (*lo - bound) > resolved;
       if (want_max || want_min)
         add_extremes(pc.f[kPeakQuantities[q]], values, want_max, want_min, peaks[q]);
     }

@@ -333,6 +333,37 @@ std::array<double, 3> interpolant_error(const Model& model, const Result& res) {
 // minimum by Newton's method (the value exact to round-off), a bracket with two maxima and a
 // minimum between them (Newton with bisection ends at one of the maxima, never at the minimum),
 // and a bracket that starts beyond a maximum (Brent's method).
+// A flat piece (T/N = -+mu through a slip, the zero gap in contact): its interpolant stays within
+// its round-off bound of the value, so the peaks do not search it (steady_metrics.cpp skips a
+// piece that cannot beat the peak by more than twice roundoff_bound); a piece with a true turn
+// beyond its nodes is still searched.
+TEST(SteadyMetrics, AFlatPieceCannotBeatItsValuesBeyondRoundOff) {
+  using I = detail::ChebyshevInterpolant<10>;
+  for (const double level : {0.0, 0.5, -0.5, 12.3}) {
+    SCOPED_TRACE(level);
+    std::array<double, I::kNodes> v;
+    v.fill(level);
+    const I flat(2.0, 2.001, v);
+    // The curvature of the coefficients' round-off noise stays below the round-off bound: the
+    // piece's possible gain is within 2 roundoff_bound, so it is not searched.
+    EXPECT_LE(flat.overshoot_bound(), 2.0 * flat.roundoff_bound());
+    EXPECT_LE(flat.roundoff_bound(), 1e-13 * std::max(1.0, std::abs(level)));
+    // What a search would find: the interpolant between the nodes.
+    double worst = 0.0;
+    for (int i = 0; i <= 1000; ++i)
+      worst = std::max(worst, std::abs(flat(2.0 + 0.001 * i / 1000) - level));
+    EXPECT_LE(worst, 2.0 * flat.roundoff_bound());
+  }
+  // A turn between the nodes: its possible gain is far above the round-off.
+  std::array<double, I::kNodes> v;
+  for (int k = 0; k < I::kNodes; ++k) {
+    const double t = I::node(0.0, 1.0, k);
+    v[k] = std::sin(10.0 * t);
+  }
+  const I turning(0.0, 1.0, v);
+  EXPECT_GT(turning.overshoot_bound(), 1e6 * turning.roundoff_bound());
+}
+
 TEST(SteadyMetrics, ExtremumOfAnInterpolant) {
   using I = detail::ChebyshevInterpolant<10>;
   const auto interpolant = [](auto f, double a, double b) {
