@@ -14,6 +14,10 @@
 
 namespace oscidrum::detail {
 
+namespace recording {
+struct Recording;  // drivers/period_recording.hpp
+}  // namespace recording
+
 /// A neighbour's steady state at its section, as a start for shooting: the roller's state vector
 /// and the phase of the sample there (the roller maps it to a phase the new case can be in).
 struct WarmStart {
@@ -45,8 +49,11 @@ std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, 
 /// method ignores `warm` (it always integrates from rest).
 /// all_samples false: result.samples holds only the first sample (the steady state at its
 /// section, enough for compute_metrics and orbit_start); every other number is the same.
+/// `record` (may be null) receives the steady period recorded for the metrics when the sampling
+/// of a shooting orbit made it on the way (detail::compute_metrics with it integrates nothing
+/// again; the same numbers); else it is emptied.
 Result simulate_from(const Model& model, const ProgressCallback& progress,
                      const std::function<bool()>& cancelled, const WarmStart* warm,
-                     bool all_samples = true);
+                     bool all_samples = true, recording::Recording* record = nullptr);
 
 }  // namespace oscidrum::detail

@@ -5,11 +5,31 @@
 
 #include <algorithm>
 
+#include "drivers/period_recording.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/result.hpp"
 #include "roller/dynamics.hpp"
 
 namespace oscidrum::detail {
+
+/// Two observers of one flow.
+template <class R>
+class ObserverPair : public BasicFlowObserver<R> {
+ public:
+  using State = typename R::State;
+  ObserverPair(BasicFlowObserver<R>& a, BasicFlowObserver<R>& b) : a_(a), b_(b) {}
+  bool on_step(const BasicStepView<R>& step) override {
+    const bool a = a_.on_step(step), b = b_.on_step(step);
+    return a && b;
+  }
+  bool on_event(const Event& event, const State& before, const State& after) override {
+    const bool a = a_.on_event(event, before, after), b = b_.on_event(event, before, after);
+    return a && b;
+  }
+
+ private:
+  BasicFlowObserver<R>&a_, &b_;
+};
 
 namespace sampling {
 
@@ -94,14 +114,33 @@ class Sampler : public BasicFlowObserver<R> {
 /// With all_samples false only the first sample (j = 0: the state at t0, where the metrics and a
 /// neighbour's continuation start) is recorded; the integration, the events and the phase times
 /// are the same.
+/// `record` (may be null; only where the flow was just restarted at t0): the first
+/// `record_periods` periods, [t0, t0 + record_periods / f], are also recorded for the steady
+/// metrics (src/drivers/period_recording.hpp), on the same integration; cleared unless the
+/// flow reached the end.
 template <class R>
 FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period, Result& result,
-                        bool all_samples = true) {
+                        bool all_samples = true, recording::Recording* record = nullptr,
+                        int record_periods = 1) {
   const double t0 = flow.t();
   result.sample_periods = periods;
   result.samples_per_period = samples_per_period;
   sampling::Sampler<R> sampler(flow, t0, periods, samples_per_period, all_samples, result);
-  const FlowStop stop = flow.advance(t0 + periods * flow.model().period(), &sampler);
+  const double t_end = t0 + periods * flow.model().period();
+  FlowStop stop;
+  if (record != nullptr) {
+    // The span compute_metrics reads: t0 + p / f, p the multiplicity (the same expression).
+    recording::Recorder<R> recorder(flow.model(), flow.options().baumgarte, t0,
+                                    t0 + record_periods / result.frequency);
+    const auto x = flow.state().to_array();
+    recorder.out.start.assign(x.begin(), x.end());
+    recorder.out.phase = flow.phase();
+    ObserverPair<R> both(sampler, recorder);
+    stop = flow.advance(t_end, &both);
+    *record = stop == FlowStop::reached ? std::move(recorder.out) : recording::Recording{};
+  } else {
+    stop = flow.advance(t_end, &sampler);
+  }
   long switches = 0;
   for (const Event& e : result.events)
     if (e.kind != EventKind::contact_lost) ++switches;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/sampling.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/floquet.hpp"
 #include "oscidrum/flow.hpp"
@@ -132,6 +133,18 @@ inline constexpr double kNewtonTol = 1e-2;
 // Below this scaled residual, Newton steps reuse the last monodromy matrix (chord steps).
 inline constexpr double kFreshMonodromy = 1e-3;
 
+// A warm start (from a neighbouring case's orbit, continuation) is close to its orbit: after its
+// first map, with the variational equations, every Newton step is a chord step with that
+// monodromy, on a plain map, while each contracts the residual by at least this factor (about
+// 1e-6 per step on the performance issue's sweep). A step that does not gets a fresh monodromy
+// at the better iterate, and Newton goes on as from a cold start. The warm case integrates the
+// variational equations once, and its Floquet multipliers come from that monodromy, as a cold
+// start's come from its last fresh one (at an iterate whose residual was above kFreshMonodromy).
+// A map with the variational equations costs about two plain ones in CPU time: with 0.1 instead,
+// the Table 2 sweep's large steps in G took up to 7 slow chord steps and ran about 15 % slower
+// than with fresh monodromies (bench/README.md).
+inline constexpr double kChordContraction = 1e-2;
+
 // The last step is taken without evaluating the period map at its result when the previous full
 // step contracted the residual by at least kPredictContraction and the same contraction predicts
 // a residual below kPredictMargin times the convergence threshold: the plain integration of the
@@ -207,22 +220,7 @@ class PlainObserver : public BasicFlowObserver<R> {
 
 // Two observers of one flow.
 template <class R>
-class Tee : public BasicFlowObserver<R> {
- public:
-  using State = typename R::State;
-  Tee(BasicFlowObserver<R>& a, BasicFlowObserver<R>& b) : a_(a), b_(b) {}
-  bool on_step(const BasicStepView<R>& step) override {
-    const bool a = a_.on_step(step), b = b_.on_step(step);
-    return a && b;
-  }
-  bool on_event(const Event& event, const State& before, const State& after) override {
-    const bool a = a_.on_event(event, before, after), b = b_.on_event(event, before, after);
-    return a && b;
-  }
-
- private:
-  BasicFlowObserver<R>&a_, &b_;
-};
+using Tee = ObserverPair<R>;
 
 template <class R>
 struct PeriodMap {
@@ -327,6 +325,8 @@ class Shooter {
   std::array<double, Dyn::kStates> scale_{};
   int maps_ = 0, plain_maps_ = 0;
   int p_ = 1;  // periods of the map: P^p
+  // Newton's steps are chord steps with the first map's monodromy (kChordContraction).
+  bool chord_ = false;
   int budget_ = 0, used_ = 0;
   bool budget_hit_ = false;
 };
@@ -556,6 +556,40 @@ bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& 
       converged = true;
       break;
     }
+    if (chord_) {
+      // A chord step of a warm start (kChordContraction), with the full step only.
+      Vec y = z.to_array();
+      for (int i = 0; i < P; ++i) y[kPeriodic[i]] += dz[i] * s[i];
+      const State trial = consistent(State::from_array(y), phase);
+      PeriodMap next = period_map(trial, phase, false);
+      if (next.over_budget) {
+        out.message = budget_message();
+        break;
+      }
+      const bool decreased = next.stop == FlowStop::reached && std::isfinite(next.residual) &&
+                             next.residual < cur.residual;
+      if (decreased) {
+        if (!same_switching_sequence(next.switches, cur.switches)) ++sequence_changes;
+        contraction = next.residual / cur.residual;
+        z = trial;
+        ++out.newton_iterations;
+      }
+      if (decreased && contraction < kChordContraction) {
+        next.M = cur.M;
+        cur = std::move(next);
+      } else {
+        // A fresh monodromy at the better iterate (unless M is already its own), and Newton
+        // goes on from there with its halvings.
+        chord_ = false;
+        contraction = 1.0;
+        if (decreased || !cur.has_monodromy) cur = period_map(z, phase, true);
+      }
+      if (sequence_changes > kMaxSequenceChanges) {
+        out.message = "the switching sequence changed between Newton iterates";
+        break;
+      }
+      continue;
+    }
     bool accepted = false;
     double lambda = 1.0;
     for (int h = 0; h <= kMaxHalvings; ++h, lambda *= 0.5) {
@@ -600,6 +634,7 @@ bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& 
       break;
     }
   }
+  chord_ = false;
   out.final_change = cur.residual;
   return converged;
 }
@@ -764,6 +799,8 @@ bool Shooter<R>::begin(const ShootingStart& start, ShootingOutcome& out, State& 
       return false;
     }
     have_first_ = true;
+    // Its monodromy serves every Newton step that follows (kChordContraction).
+    chord_ = p_ == 1;
   } else if (!transient_start(out, z, phase)) {
     return false;
   }

@@ -91,9 +91,12 @@ void transient(const Model& model, BasicFlow<R>& flow, const ProgressCallback& p
 // transient method.
 // `warm`: start Newton from a neighbouring case's orbit (continuation in studies) instead of a
 // short transient from rest; a failed warm start returns false without ending the run.
+// `record` (may be null): the steady period recorded for the metrics when the orbit's sampling
+// starts from the flow's restart at the section (detail::sample_periods).
 template <class R>
 bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& progress,
               Result& result, long* sample_rhs, bool all_samples,
+              detail::recording::Recording* record,
               const detail::BasicShootingStart<R>& warm = {}) {
   const Numerics& num = model.parameters().numerics;
   Diagnostics& d = result.diagnostics;
@@ -160,12 +163,15 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // transient from rest and the sampled periods of the orbit (Newton's iterates are not on it).
   flow.reset_extremes();
   const long rhs_before = flow.counters().rhs_evaluations;
+  // The flow was restarted on the orbit at its section (shoot_periodic_orbit): the sampling's
+  // first p periods are the steady period compute_metrics would integrate again.
   const FlowStop stop =
-      detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples);
+      detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples, record, p);
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   // Confirm the orbit by the plain integration of the sampled periods.
   const double change = detail::scaled_change<R>(flow.state(), shot.orbit, shot.scale);
   const auto discard_samples = [&] {
+    if (record != nullptr) *record = {};
     result.samples = Samples{};
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
@@ -258,7 +264,8 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
 template <class R>
 Result simulate_once(const Model& model, const ProgressCallback& progress,
                      const std::function<bool()>& cancelled, const detail::WarmStart* warm,
-                     bool all_samples) {
+                     bool all_samples, detail::recording::Recording* record) {
+  if (record != nullptr) *record = {};
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
   BasicFlow<R> flow(model, options);
@@ -285,7 +292,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
       // A phase the new case cannot be in (slip under pure rolling, stick without friction,
       // stick or slip under a smooth law): its start phase instead.
       start.phase = dynamics.flow_phase(warm->phase);
-      done = shooting(model, flow, progress, result, &sample_rhs, all_samples, start);
+      done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record, start);
     }
     result.diagnostics.warm_start = done ? 1 : -1;
     if (!done) {
@@ -294,8 +301,12 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
     }
   }
   if (!done && num.method == SteadyMethod::shooting)
-    done = shooting(model, flow, progress, result, &sample_rhs, all_samples);
-  if (!done) transient(model, flow, progress, result, &sample_rhs, all_samples);
+    done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record);
+  if (!done) {
+    // The transient method's sampling continues its search: no restart, no recording.
+    if (record != nullptr) *record = {};
+    transient(model, flow, progress, result, &sample_rhs, all_samples);
+  }
   Diagnostics& d = result.diagnostics;
 
   const FlowCounters& c = flow.counters();
@@ -357,8 +368,8 @@ std::string contact_mode(const Result& r) {
 template <class R>
 Result simulate_ramped(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
-                       bool all_samples) {
-  Result first = simulate_once<R>(model, progress, cancelled, warm, all_samples);
+                       bool all_samples, detail::recording::Recording* record) {
+  Result first = simulate_once<R>(model, progress, cancelled, warm, all_samples, record);
   const Numerics& num = model.parameters().numerics;
   first.diagnostics.start_ramp_periods = num.start_ramp_periods;
   if (first.status != Status::contact_lost || first.diagnostics.periods_to_steady >= 0 ||
@@ -368,7 +379,7 @@ Result simulate_ramped(const Model& model, const ProgressCallback& progress,
   gentle.numerics.start_ramp_periods = kRampPeriods;
   gentle.numerics.max_periods = num.max_periods - first.diagnostics.periods_simulated;
   const Model ramped(gentle);
-  Result again = simulate_once<R>(ramped, progress, cancelled, nullptr, all_samples);
+  Result again = simulate_once<R>(ramped, progress, cancelled, nullptr, all_samples, record);
   Diagnostics& d = again.diagnostics;
   const Diagnostics& f = first.diagnostics;
   d.start_ramp_periods = kRampPeriods;
@@ -415,8 +426,8 @@ void examine_motion(const Model& model, Result& result, const std::function<bool
 template <class R>
 Result simulate_roller(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
-                       bool all_samples) {
-  Result result = simulate_ramped<R>(model, progress, cancelled, warm, all_samples);
+                       bool all_samples, detail::recording::Recording* record) {
+  Result result = simulate_ramped<R>(model, progress, cancelled, warm, all_samples, record);
   // Examined when the search had at least as many periods as the examination takes (a run cut
   // short on purpose, numerics.max_periods = 3, is a transient, not a motion to judge).
   if (result.status == Status::max_periods_reached && result.samples.size() > 0 &&
@@ -446,9 +457,9 @@ std::optional<WarmStart> orbit_start(const Model& model, const Result& result) {
 
 Result simulate_from(const Model& model, const ProgressCallback& progress,
                      const std::function<bool()>& cancelled, const WarmStart* warm,
-                     bool all_samples) {
+                     bool all_samples, recording::Recording* record) {
   return with_roller(model, [&]<class R>() {
-    return simulate_roller<R>(model, progress, cancelled, warm, all_samples);
+    return simulate_roller<R>(model, progress, cancelled, warm, all_samples, record);
   });
 }
 

@@ -1,7 +1,9 @@
 // steady_metrics.cpp: metrics of a steady state from the dense output of the flow (metrics.hpp,
 // compute_metrics(model, result)): one steady period is integrated again, once, from the first
 // sample, and every metric is evaluated on the trajectory itself rather than on the uniform
-// samples, so that it does not depend on numerics.samples_per_period.
+// samples, so that it does not depend on numerics.samples_per_period. (A study's case passes the
+// period its shooting orbit's sampling recorded on the way, src/drivers/period_recording.hpp:
+// the same pieces, integrated once.)
 // On each piece of the period (one integrator step in one phase) every quantity (x_M'', z_M''
 // from (18), delta, phi, T/N, the friction power) is an analytic function of t: the
 // Dormand-Prince interpolant (a polynomial) through the equations of motion. Each is replaced by
@@ -27,12 +29,14 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "drivers/period_recording.hpp"
 #include "equations/equations.hpp"
 #include "metrics/area.hpp"
 #include "metrics/indicators.hpp"
@@ -47,86 +51,31 @@ namespace oscidrum {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kDegree = 10;     // Chebyshev interpolant per piece: kDegree + 1 RHS evaluations
 constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
 
-using Interpolant = detail::ChebyshevInterpolant<kDegree>;
+using detail::recording::Interpolant;
+using detail::recording::kDegree;
+using detail::recording::Piece;
+using detail::recording::Quantity;
+using detail::recording::Recorder;
+using detail::recording::Recording;
+using enum detail::recording::Quantity;
 
-// The quantities interpolated on each piece.
-// The quantities interpolated on each piece, as the roller's Dynamics::quantities returns them.
-enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kGap, kQuantities };
-
-// One piece of the steady period (an integrator step in one phase, cut at the period's ends):
-// every quantity as its Chebyshev interpolant in t.
-struct Piece {
-  double a, b;  // [s]
-  Phase phase;
-  std::array<Interpolant, kQuantities> f;
-  std::array<std::array<double, Interpolant::kNodes>, kQuantities> values;  // at the nodes
-  Interpolant dx, dz;  // d/dt of x_M'' and z_M'' [m/s^3]
-};
-
-template <class R>
-class Recorder : public BasicFlowObserver<R> {
- public:
-  using Dyn = detail::Dynamics<R>;
-  Recorder(const Model& model, double baumgarte, double t_begin, double t_end)
-      : dynamics_(model, baumgarte), t_begin_(t_begin), t_end_(t_end) {
-    pieces.reserve(256);  // a steady period has some 50 to 200 (growing copies ~1.4 kB each)
-  }
-
-  bool on_event(const Event& event, const typename R::State&, const typename R::State&) override {
-    if (event.t < t_begin_ || event.t >= t_end_) return true;
-    if (event.kind == EventKind::lift_off) ++lift_offs;
-    if (event.kind == EventKind::landing) landing_speed = std::max(landing_speed, event.speed);
-    return true;
-  }
-
-  bool on_step(const BasicStepView<R>& step) override {
-    const double a = std::max(step.t0(), t_begin_), b = std::min(step.t1(), t_end_);
-    if (!(b > a)) return true;
-    Piece& piece = pieces.emplace_back();  // filled in place (a Piece is ~1.4 kB)
-    piece.a = a;
-    piece.b = b;
-    piece.phase = step.phase();
-    typename Dyn::Vector end_state{};
-    std::array<double, kQuantities> end_values{};
-    for (int k = 0; k < Interpolant::kNodes; ++k) {
-      // The end nodes exactly at a and b (the one-sided limits at a switch).
-      const double t = k == 0 ? b : k == kDegree ? a : Interpolant::node(a, b, k);
-      const typename Dyn::Vector q = step.state(t).to_array();
-      // A piece that continues the last one (no switch between them) starts where it ended:
-      // the same time, state and phase, so the same values.
-      const bool same =
-          k == kDegree && have_end_ && t == end_t_ && step.phase() == end_phase_ && q == end_state_;
-      const auto v = same ? end_values_ : dynamics_.quantities(t, q, step.phase());
-      for (int m = 0; m < kQuantities; ++m) piece.values[m][k] = v[m];
-      if (k == 0) end_state = q, end_values = v;
+// T_j(x_i), j = 0 ... kDegree, at the abscissas x_i >= 0 of the 16-point Gauss-Legendre rule
+// (by the recurrence T_j+1 = 2 x T_j - T_j-1): the Chebyshev sums at the quadrature nodes.
+const std::vector<std::array<double, kDegree + 1>>& gauss_chebyshev() {
+  static const auto table = [] {
+    const auto& x = boost::math::quadrature::gauss<double, 16>::abscissa();
+    std::vector<std::array<double, kDegree + 1>> T(x.size());
+    for (std::size_t i = 0; i < T.size(); ++i) {
+      T[i][0] = 1.0;
+      T[i][1] = x[i];
+      for (int j = 1; j < kDegree; ++j) T[i][j + 1] = 2.0 * x[i] * T[i][j] - T[i][j - 1];
     }
-    have_end_ = true;
-    end_t_ = b;
-    end_phase_ = step.phase();
-    end_state_ = end_state;
-    end_values_ = end_values;
-    for (int m = 0; m < kQuantities; ++m) piece.f[m] = Interpolant(a, b, piece.values[m]);
-    piece.dx = piece.f[kDdx].derivative_interpolant();
-    piece.dz = piece.f[kDdz].derivative_interpolant();
-    return true;
-  }
-  std::vector<Piece> pieces;
-  int lift_offs = 0;           // lift-offs in the period
-  double landing_speed = 0.0;  // the largest approach speed at a landing [m/s]
-
- private:
-  const Dyn dynamics_;
-  const double t_begin_, t_end_;
-  // The values at the end of the last piece (node 0).
-  bool have_end_ = false;
-  double end_t_ = 0.0;
-  Phase end_phase_ = Phase::stick;
-  typename Dyn::Vector end_state_{};
-  std::array<double, kQuantities> end_values_{};
-};
+    return T;
+  }();
+  return table;
+}
 
 // Largest and smallest value of a quantity: ends and interior extrema of every piece.
 struct Extremes {
@@ -519,12 +468,6 @@ detail::HalfHarmonics half_harmonics(const std::vector<Node>& nodes, double P, d
 }
 
 // One steady period integrated again from the first sample, recorded piece by piece.
-struct Recording {
-  std::vector<Piece> pieces;
-  int lift_offs = 0;           // lift-offs in the period
-  double landing_speed = 0.0;  // the largest approach speed at a landing [m/s]
-};
-
 template <class R>
 Recording record_period(const Model& model, const Samples& s, double t0, double t1) {
   using Dyn = detail::Dynamics<R>;
@@ -536,12 +479,31 @@ Recording record_period(const Model& model, const Samples& s, double t0, double 
   Recorder<R> rec(model, options.baumgarte, t0, t1);
   if (flow.advance(t1, &rec) != FlowStop::reached)
     throw Error("compute_metrics: the steady period did not integrate again: " + flow.message());
-  return {std::move(rec.pieces), rec.lift_offs, rec.landing_speed};
+  return std::move(rec.out);
+}
+
+// Whether `rec` is the period of `s` from t0 to t1 as record_period would record it: the same
+// span, from the same state and phase at a restart of the flow (so the same pieces, bit for bit).
+template <class R>
+bool is_the_period(const Recording& rec, const Model& model, const Samples& s, double t0,
+                   double t1) {
+  using Dyn = detail::Dynamics<R>;
+  const auto x = Dyn::sampled_state(s, 0);
+  const Dyn dynamics(model, FlowOptions::from(model).baumgarte);
+  return rec.t_begin == t0 && rec.t_end == t1 && !rec.pieces.empty() &&
+         rec.start.size() == x.size() &&
+         std::memcmp(rec.start.data(), x.data(), x.size() * sizeof(double)) == 0 &&
+         rec.phase == dynamics.flow_phase(s.phase.front());
 }
 
 }  // namespace
 
 Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
+  return detail::compute_metrics(model, result, n_max, nullptr);
+}
+
+Metrics detail::compute_metrics(const Model& model, const Result& result, int n_max,
+                                const recording::Recording* recorded) {
   const Samples& s = result.samples;
   if (s.size() == 0) throw Error("compute_metrics: the result holds no samples");
   if (!ok(result.status))
@@ -559,14 +521,23 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
   const double f = result.frequency, P = p / f;
   const double t0 = s.t.front(), t1 = t0 + P;
-  const Recording rec =
-      detail::with_roller(model, [&]<class R>() { return record_period<R>(model, s, t0, t1); });
+  // The sampling's own recording of the period when it has one; else the period integrated again.
+  const bool reuse = recorded != nullptr && detail::with_roller(model, [&]<class R>() {
+                       return is_the_period<R>(*recorded, model, s, t0, t1);
+                     });
+  Recording again;
+  if (!reuse)
+    again =
+        detail::with_roller(model, [&]<class R>() { return record_period<R>(model, s, t0, t1); });
+  const Recording& rec = reuse ? *recorded : again;
   const std::vector<Piece>& pieces = rec.pieces;
 
   Metrics m;
   // Peaks: first the values at every node, then the interior extrema of only those pieces whose
-  // extremum could beat the values already found (most cannot: ChebyshevInterpolant::
-  // overshoot_bound). The peaks are the same as with every piece searched.
+  // extremum could beat the values already found by more than the interpolant's round-off (most
+  // cannot: ChebyshevInterpolant::overshoot_bound, roundoff_bound; a flat piece at the peak, T/N
+  // = -+mu in slip or the zero gap in contact, is not searched). The peaks are those of every
+  // piece searched, to that round-off (about 1e-14 relative).
   constexpr std::array<Quantity, 5> kPeakQuantities = {kDdx, kDdz, kDelta, kTraction, kGap};
   std::array<Extremes, kPeakQuantities.size()> peaks;
   for (const Piece& pc : pieces)
@@ -575,9 +546,11 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   for (const Piece& pc : pieces) {
     for (std::size_t q = 0; q < kPeakQuantities.size(); ++q) {
       const auto& values = pc.values[kPeakQuantities[q]];
-      const double bound = pc.f[kPeakQuantities[q]].overshoot_bound();
+      const Interpolant& fq = pc.f[kPeakQuantities[q]];
+      const double bound = fq.overshoot_bound(), resolved = 2.0 * fq.roundoff_bound();
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-      const bool want_max = *hi + bound >= peaks[q].hi, want_min = *lo - bound <= peaks[q].lo;
+      const bool want_max = *hi + bound - peaks[q].hi > resolved,
+                 want_min = peaks[q].lo - (*lo - bound) > resolved;
       if (want_max || want_min)
         add_extremes(pc.f[kPeakQuantities[q]], values, want_max, want_min, peaks[q]);
     }
@@ -595,13 +568,25 @@ Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
     const double c_mid = std::cos(nu * (mid - t0)), s_mid = std::sin(nu * (mid - t0));
     const auto& x = rule.abscissa();
     const auto& w = rule.weights();
+    // The quantities at the nodes mid -+ half x_i from their Chebyshev coefficients, the even and
+    // odd parts of sum_j c_j T_j(x_i) apart (T_j(-x) = (-1)^j T_j(x)): both nodes of a pair from
+    // one table row (gauss_chebyshev) instead of a Clenshaw sum at each.
+    constexpr std::array<Quantity, 4> kNodeQuantities = {kDdx, kDdz, kPhi, kFrictionPower};
     for (std::size_t i = 0; i < x.size(); ++i) {
       const double c_off = std::cos(nu * half * x[i]), s_off = std::sin(nu * half * x[i]);
+      const auto& T = gauss_chebyshev()[i];
+      std::array<double, kNodeQuantities.size()> even{}, odd{};
+      for (std::size_t q = 0; q < kNodeQuantities.size(); ++q) {
+        const auto& c = pc.f[kNodeQuantities[q]].coefficients();
+        for (int j = 0; j <= kDegree; j += 2) even[q] += c[j] * T[j];
+        for (int j = 1; j <= kDegree; j += 2) odd[q] += c[j] * T[j];
+      }
       for (double sign : {-1.0, 1.0}) {
         if (x[i] == 0.0 && sign > 0) continue;
         const double t = mid + sign * half * x[i];
-        nodes.push_back({t - t0, half * w[i], pc.f[kDdx](t), pc.f[kDdz](t), pc.f[kPhi](t),
-                         std::abs(pc.f[kFrictionPower](t)), c_mid * c_off - sign * s_mid * s_off,
+        nodes.push_back({t - t0, half * w[i], even[0] + sign * odd[0], even[1] + sign * odd[1],
+                         even[2] + sign * odd[2], std::abs(even[3] + sign * odd[3]),
+                         c_mid * c_off - sign * s_mid * s_off,
                          s_mid * c_off + sign * c_mid * s_off});
       }
     }

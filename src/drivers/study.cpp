@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "drivers/continuation.hpp"
+#include "drivers/period_recording.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
@@ -66,14 +67,17 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
-    out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples);
+    // The steady period as the sampling recorded it: the metrics need not integrate it again.
+    detail::recording::Recording period;
+    out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples, &period);
     if (orbit) *orbit = detail::orbit_start(model, out.result);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
     }
-    out.metrics = ok(out.result.status) ? compute_metrics(model, out.result, n_harmonics)
-                                        : Metrics::unavailable();
+    out.metrics = ok(out.result.status)
+                      ? detail::compute_metrics(model, out.result, n_harmonics, &period)
+                      : Metrics::unavailable();
   } catch (const Error& e) {
     out.valid = false;
     out.error = e.what();

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "drivers/continuation.hpp"
@@ -157,6 +159,80 @@ TEST(Continuation, AFailingWarmStartFallsBackToTheColdStart) {
   const Result again = detail::simulate_from(model, {}, {}, &*own);
   EXPECT_EQ(again.diagnostics.warm_start, 1);
   EXPECT_EQ(again.diagnostics.newton_iterations, 0);
+}
+
+// A case of the performance issue's sweep (Appendix B soil, mu 0.5, MMd 0.05 M0) at G [Pa].
+Case appendix_b_case(double G) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = G;
+  c.MMd = 0.05 * c.roller.M0;
+  c.numerics.method = SteadyMethod::shooting;
+  c.numerics.samples_per_period = 256;
+  return c;
+}
+
+// Largest distance between two sets of Floquet multipliers (each sorted by decreasing modulus).
+double multiplier_distance(const Floquet& a, const Floquet& b) {
+  EXPECT_EQ(a.multipliers.size(), b.multipliers.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < std::min(a.multipliers.size(), b.multipliers.size()); ++i)
+    worst = std::max(worst, std::abs(a.multipliers[i] - b.multipliers[i]));
+  return worst;
+}
+
+TEST(Continuation, AWarmStartIntegratesTheVariationalEquationsOnce) {
+  // The case at G = 25 MN/m^2 warm-started from its neighbour one step of the sweep
+  // below (95/399 MN/m^2): Newton's steps after the first map are chord steps with the first
+  // map's monodromy (shooting::kChordContraction).
+  const Model model(appendix_b_case(25e6)), neighbour(appendix_b_case(25e6 - 95e6 / 399.0));
+  const Result cold = simulate(model);
+  const Result before = simulate(neighbour);
+  ASSERT_EQ(cold.status, Status::steady_state) << cold.message;
+  ASSERT_EQ(before.status, Status::steady_state) << before.message;
+  const std::optional<detail::WarmStart> from_neighbour = detail::orbit_start(neighbour, before);
+  const std::optional<detail::WarmStart> from_orbit = detail::orbit_start(model, cold);
+  ASSERT_TRUE(from_neighbour.has_value() && from_orbit.has_value());
+  const Result warm = detail::simulate_from(model, {}, {}, &*from_neighbour);
+  // From the orbit itself Newton stops at its first map: its monodromy is the orbit's own, and
+  // its Jacobians are those of one map with the variational equations.
+  const Result exact = detail::simulate_from(model, {}, {}, &*from_orbit);
+  ASSERT_EQ(warm.status, Status::steady_state) << warm.message;
+  ASSERT_EQ(exact.status, Status::steady_state) << exact.message;
+  EXPECT_EQ(warm.diagnostics.warm_start, 1);
+  EXPECT_EQ(exact.diagnostics.newton_iterations, 0);
+  EXPECT_GE(warm.diagnostics.newton_iterations, 1);  // it did iterate from the neighbour
+  // One map with the variational equations (about 400 Jacobians; two maps would be twice that).
+  EXPECT_LT(static_cast<double>(warm.diagnostics.jacobian_evaluations),
+            1.5 * static_cast<double>(exact.diagnostics.jacobian_evaluations));
+  // The same orbit as the cold start (each steady to steady_tol).
+  const double tol = model.parameters().numerics.steady_tol;
+  EXPECT_LE(scaled_difference(warm.samples, cold.samples), 2.0 * tol);
+  // The multipliers: the warm start's from the monodromy at its start, the cold start's from its
+  // last fresh one; both as close to the orbit's own as a Newton iterate with a residual above
+  // shooting::kFreshMonodromy allows.
+  EXPECT_EQ(warm.floquet.stability, exact.floquet.stability);
+  EXPECT_EQ(warm.floquet.multipliers.size(), 7u);
+  // Measured: 4.6e-4 (warm) and 8e-5 (cold) from the orbit's multipliers, whose largest
+  // modulus is 0.77 (before the chord steps a warm start took a second fresh monodromy, at the
+  // iterate after its first step).
+  EXPECT_LE(multiplier_distance(warm.floquet, exact.floquet), 1e-3);
+  EXPECT_LE(multiplier_distance(cold.floquet, exact.floquet), 1e-3);
+
+  // From a distant neighbour (G = 15 MN/m^2) the chord steps do not contract by
+  // kChordContraction: Newton takes a fresh monodromy and goes on as from a cold start.
+  const Model distant(appendix_b_case(15e6));
+  const Result far_case = simulate(distant);
+  ASSERT_EQ(far_case.status, Status::steady_state) << far_case.message;
+  const std::optional<detail::WarmStart> from_far = detail::orbit_start(distant, far_case);
+  ASSERT_TRUE(from_far.has_value());
+  const Result refreshed = detail::simulate_from(model, {}, {}, &*from_far);
+  ASSERT_EQ(refreshed.status, Status::steady_state) << refreshed.message;
+  EXPECT_EQ(refreshed.diagnostics.warm_start, 1);
+  EXPECT_GT(static_cast<double>(refreshed.diagnostics.jacobian_evaluations),
+            1.5 * static_cast<double>(exact.diagnostics.jacobian_evaluations));
+  EXPECT_LE(scaled_difference(refreshed.samples, cold.samples), 2.0 * tol);
+  EXPECT_LE(multiplier_distance(refreshed.floquet, exact.floquet), 1e-3);
 }
 
 TEST(Continuation, TheTransientMethodAlwaysStartsFromRest) {

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "drivers/continuation.hpp"
+#include "drivers/period_recording.hpp"
 #include "metrics/piece_interpolant.hpp"
 #include "oscidrum/flow.hpp"
 #include "oscidrum/oscidrum.hpp"
@@ -103,6 +106,62 @@ TEST(SteadyMetrics, SubharmonicIndicatorsOfAPeriodTwoOrbit) {
   EXPECT_GT(dense.ccv,
             100.0 * dense.ddz_A2_A1 * dense.ddz_harmonics[1].amplitude /
                 (dense.ddz_harmonics[1].amplitude + dense.rmv * dense.ddz_harmonics[1].amplitude));
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const Spectrum& a, const Spectrum& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t n = 0; n < a.size(); ++n)
+    if (!same_bits(a[n].amplitude, b[n].amplitude) || !same_bits(a[n].phase, b[n].phase))
+      return false;
+  return true;
+}
+
+void expect_same_bits(const Metrics& a, const Metrics& b) {
+#define OSCIDRUM_SAME(type, name, unit, label, description) \
+  EXPECT_TRUE(same_bits(a.name, b.name)) << #name;
+  OSCIDRUM_METRICS(OSCIDRUM_SAME)
+#undef OSCIDRUM_SAME
+}
+
+// A shooting orbit's sampling records its first period for the metrics on the way (a study's
+// cases then integrate it only once): the metrics from that recording are those of the period
+// integrated again, bit for bit; a recording of another trajectory is not used.
+TEST(SteadyMetrics, TheSamplingsRecordingGivesTheSameBits) {
+  Case stick_slip;  // Appendix B soil, MMd 0.05 M0
+  stick_slip.soil.input = SoilInput::modulus;
+  stick_slip.soil.G = 25e6;
+  stick_slip.MMd = 0.05 * stick_slip.roller.M0;
+  Case pure = stick_slip;
+  pure.contact.pure_rolling = true;
+  pure.MMd = 0.0;
+  for (const Case& c : {stick_slip, pure}) {
+    SCOPED_TRACE(c.contact.pure_rolling ? "pure rolling" : "stick-slip");
+    const Model model(c);
+    detail::recording::Recording period;
+    const Result r = detail::simulate_from(model, {}, {}, nullptr, true, &period);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    ASSERT_EQ(r.diagnostics.method, SteadyMethod::shooting);
+    ASSERT_FALSE(period.pieces.empty());
+    EXPECT_EQ(period.t_begin, r.samples.t.front());
+    expect_same_bits(detail::compute_metrics(model, r, 10, &period), compute_metrics(model, r));
+    // The recording is what the metrics read: a landing speed put into it comes out.
+    detail::recording::Recording marked = period;
+    marked.landing_speed = 123.0;
+    EXPECT_EQ(detail::compute_metrics(model, r, 10, &marked).landing_velocity, 123.0);
+    // Recorded from another start (the state a little off), it is not used.
+    marked.start[0] += 1e-9;
+    expect_same_bits(detail::compute_metrics(model, r, 10, &marked), compute_metrics(model, r));
+  }
+  // The transient method samples where its search stopped, without a restart: no recording.
+  Case transient = stick_slip;
+  transient.numerics.method = SteadyMethod::transient;
+  const Model model(transient);
+  detail::recording::Recording period;
+  const Result r = detail::simulate_from(model, {}, {}, nullptr, true, &period);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_TRUE(period.pieces.empty());
 }
 
 // Brute force: the re-integrated steady period sampled at 2^18 points; DFT harmonics and the
@@ -309,6 +368,37 @@ std::array<double, 3> interpolant_error(const Model& model, const Result& res) {
 // minimum by Newton's method (the value exact to round-off), a bracket with two maxima and a
 // minimum between them (Newton with bisection ends at one of the maxima, never at the minimum),
 // and a bracket that starts beyond a maximum (Brent's method).
+// A flat piece (T/N = -+mu through a slip, the zero gap in contact): its interpolant stays within
+// its round-off bound of the value, so the peaks do not search it (steady_metrics.cpp skips a
+// piece that cannot beat the peak by more than twice roundoff_bound); a piece with a true turn
+// beyond its nodes is still searched.
+TEST(SteadyMetrics, AFlatPieceCannotBeatItsValuesBeyondRoundOff) {
+  using I = detail::ChebyshevInterpolant<10>;
+  for (const double level : {0.0, 0.5, -0.5, 12.3}) {
+    SCOPED_TRACE(level);
+    std::array<double, I::kNodes> v;
+    v.fill(level);
+    const I flat(2.0, 2.001, v);
+    // The curvature of the coefficients' round-off noise stays below the round-off bound: the
+    // piece's possible gain is within 2 roundoff_bound, so it is not searched.
+    EXPECT_LE(flat.overshoot_bound(), 2.0 * flat.roundoff_bound());
+    EXPECT_LE(flat.roundoff_bound(), 1e-13 * std::max(1.0, std::abs(level)));
+    // What a search would find: the interpolant between the nodes.
+    double worst = 0.0;
+    for (int i = 0; i <= 1000; ++i)
+      worst = std::max(worst, std::abs(flat(2.0 + 0.001 * i / 1000) - level));
+    EXPECT_LE(worst, 2.0 * flat.roundoff_bound());
+  }
+  // A turn between the nodes: its possible gain is far above the round-off.
+  std::array<double, I::kNodes> v;
+  for (int k = 0; k < I::kNodes; ++k) {
+    const double t = I::node(0.0, 1.0, k);
+    v[k] = std::sin(10.0 * t);
+  }
+  const I turning(0.0, 1.0, v);
+  EXPECT_GT(turning.overshoot_bound(), 1e6 * turning.roundoff_bound());
+}
+
 TEST(SteadyMetrics, ExtremumOfAnInterpolant) {
   using I = detail::ChebyshevInterpolant<10>;
   const auto interpolant = [](auto f, double a, double b) {
