@@ -13,6 +13,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "estimate_json.hpp"
 #include "flags.hpp"
 #include "oscidrum/calibrate.hpp"
 #include "oscidrum/error.hpp"
@@ -85,15 +86,7 @@ std::string value_text(const Estimate& e) {
 
 nlohmann::ordered_json calibration_json(const Calibration& cal, const CalibrateCliOptions& o) {
   nlohmann::ordered_json est = nlohmann::json::array(), refs = nlohmann::json::array();
-  for (const Estimate& e : cal.estimates)
-    est.push_back({{"name", e.name},
-                   {"unit", e.unit},
-                   {"value", e.value},
-                   {"standard_uncertainty", e.standard_uncertainty},
-                   {"lower", e.lower},
-                   {"upper", e.upper},
-                   {"lower_open", e.lower_open},
-                   {"upper_open", e.upper_open}});
+  for (const Estimate& e : cal.estimates) est.push_back(estimate_json(e));
   for (const ReferenceFit& r : cal.references)
     refs.push_back({{"record", r.name},
                     {"f", r.f},

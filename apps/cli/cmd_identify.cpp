@@ -14,6 +14,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "estimate_json.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/identify.hpp"
@@ -151,15 +152,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
 
 nlohmann::ordered_json identification_json(const Identification& id) {
   nlohmann::ordered_json est = nlohmann::json::array();
-  for (const Estimate& e : id.estimates)
-    est.push_back({{"name", e.name},
-                   {"unit", e.unit},
-                   {"value", e.value},
-                   {"standard_uncertainty", e.standard_uncertainty},
-                   {"lower", e.lower},
-                   {"upper", e.upper},
-                   {"lower_open", e.lower_open},
-                   {"upper_open", e.upper_open}});
+  for (const Estimate& e : id.estimates) est.push_back(estimate_json(e));
   return {{"estimates", est},
           {"f", id.f},
           {"tau", id.time_shift},
