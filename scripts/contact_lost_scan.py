@@ -7,7 +7,8 @@ and what the same cases give with contact.unilateral (docs/lift-off.md).
 Draws N cases (default 1500): G 5-100 MN/m^2 (Appendix B), f 25-70 Hz with the paper's unbalance
 (M0 follows f^2), mu 0.2-1.0 or pure rolling (one case in four), MMd 0-0.2 M0, circular trough
 R 0.603-0.65 m. Prints the counts of the statuses with permanent contact, then, for the cases that
-lost contact, the statuses and contact modes with unilateral contact.
+lost contact, the statuses and contact modes with unilateral contact; for those that still stop
+in pure rolling, what a friction coefficient mu = 1 ... 10 makes of them.
 """
 
 import collections
@@ -56,3 +57,24 @@ if still:
     print("  still contact_lost:", dict(collections.Counter(
         "pure rolling" if "pure_rolling" in o.result.message else
         ("clearance" if "clearance" in o.result.message else "other") for o in still)))
+
+# The pure-rolling cases that still stop: are they lift-offs that a friction limit would let
+# happen? Run each again with a friction coefficient mu, with permanent and with unilateral contact.
+pure = [c for c, o in zip(lost, again)
+        if o.result.status.name == "contact_lost" and "pure_rolling" in o.result.message]
+if pure:
+    print(f"the {len(pure)} pure-rolling cases that stop, with a friction coefficient instead:")
+    for mu in (1.0, 2.0, 3.0, 4.0, 5.0, 10.0):
+        for unilateral in (False, True):
+            for c in pure:
+                c.set("contact.pure_rolling", False)
+                c.set("contact.mu", mu)
+                c.set("contact.unilateral", unilateral)
+            runs = oscidrum.run_study(pure, progress=False)
+            counts = dict(collections.Counter(
+                "contact_lost (singular slip)" if "slip equations became singular" in
+                o.result.message and o.result.status.name == "contact_lost"
+                else o.result.status.name for o in runs))
+            flying = sum(1 for o in runs if o.ok and o.metrics.flight_fraction > 0.0)
+            print(f"  mu = {mu:g}, {'unilateral' if unilateral else 'permanent '} contact: "
+                  f"{counts}; with flight: {flying}")

@@ -30,7 +30,7 @@ enum class EventKind {
   stick_to_slip,  ///< |T| reached mu N
   slip_to_stick,  ///< v_rel reached 0 and the stick solution stays in the friction cone
   slip_reversal,  ///< v_rel reached 0, stick not sustainable: slip on with the opposite sign
-  contact_lost,   ///< N reached 0 (permanent contact: the run stops)
+  contact_lost,   ///< N reached 0 (permanent contact: the run stops), or slip became singular
   lift_off,       ///< N reached 0 with contact.unilateral: the drum leaves the trough (flight)
   landing,        ///< the gap closed: contact resumes in stick or slip
 };

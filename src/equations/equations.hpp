@@ -11,6 +11,12 @@ Accelerations stick_accelerations(const Model& model, double t, const State& q,
 Accelerations slip_accelerations(const Model& model, double t, const State& q, int s,
                                  double baumgarte, const Kinematics& k);
 
+/// The slip system's determinant over its value at delta = 0, for the slip coefficient m:
+/// D = cos^2 + (csv/csh) sin^2 + m sin cos (csv/csh - 1). The system (34), (38), (53) has the
+/// determinant -m^3 r f5 D (with f3~ = 0, (37), and f1 fmu1 - f3 fmu2 = r f5, (33), (35)), so
+/// the slip accelerations grow as 1/D and do not exist at D = 0 (docs/model.md section 6).
+double slip_determinant(const Model& model, const Kinematics& k, double m);
+
 /// accelerations(), drum_motion(), contact_forces() and slip_velocity() (model.hpp) on kinematics
 /// evaluated once for q.delta (the sampling of the output reads all four at every sample).
 Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,

@@ -19,6 +19,11 @@ double slip_constraint_residual(const Model& model, const State& q, int s) {
          fmu2 * (model.csv() * q.ds_A + model.ksv() * q.s_A);  // (39)
 }
 
+double detail::slip_determinant(const Model& model, const Kinematics& k, double m) {
+  const double sn = k.sin_delta, cs = k.cos_delta, ratio = model.csv() / model.csh();
+  return cs * cs + ratio * sn * sn + m * sn * cs * (ratio - 1.0);
+}
+
 Accelerations slip_accelerations(const Model& model, double t, const State& q, int s,
                                  double baumgarte) {
   return detail::slip_accelerations(model, t, q, s, baumgarte,

@@ -284,7 +284,8 @@ FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
         return stop(FlowStop::non_finite, b, x1,
                     detail::format("non-finite state at t = %.9g s (the integration diverged)", b));
       std::string why;
-      if (dynamics.invalid(x1, b, &why)) return stop(FlowStop::invalid_geometry, b, x1, why);
+      FlowStop invalid = FlowStop::invalid_geometry;
+      if (dynamics.invalid(phase_, x1, b, &why, &invalid)) return stop(invalid, b, x1, why);
       const long n = static_cast<long>(std::floor(a / period));
       if (n != step_period) {
         step_period = n;

@@ -13,8 +13,9 @@
 //   flow        rhs(phase, t, x, dxdt); events(phase, x, &N) (scaled to O(1), an event when one
 //               falls through zero; N the normal force [N]); apply(phase, which, t, x) -> Switch
 //               (what the event does: its kind, the new phase, the state after, the functions
-//               that start at zero, a terminal stop); invalid(x, t, &why) (a state the equations
-//               are undefined at); track(phase, x, N, counters) (extremes at step ends);
+//               that start at zero, a terminal stop); invalid(phase, x, t, &why, &stop) (a
+//               state the equations are undefined at, and the stop it ends the run in);
+//               track(phase, x, N, counters) (extremes at step ends);
 //               initial_state(), initial_phase()
 //   variational jacobian(phase, t, x); jacobian_times(J, X) (J X, exploiting J's structure);
 //               saltation(event, before, after)

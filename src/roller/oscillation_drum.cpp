@@ -77,12 +77,35 @@ Dynamics<OscillationDrum>::Switch Dynamics<OscillationDrum>::apply(Phase phase, 
   return out;
 }
 
-bool Dynamics<OscillationDrum>::invalid(const Vector& x, double t, std::string* why) const {
-  if (!(kinematics(model_.geometry(), x[0]).f5 <= 0.0)) return false;
+bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, std::string* why,
+                                        FlowStop* stop) const {
+  const Kinematics k = kinematics(model_.geometry(), x[0]);
+  if (!(k.f5 > 0.0)) {
+    *stop = FlowStop::invalid_geometry;
+    *why = detail::format(
+        "at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
+        "to the drum radius (f5 <= 0): rolling is undefined there",
+        t, x[0]);
+    return true;
+  }
+  if (phase == Phase::stick) return false;
+  // In slip the accelerations grow as 1 / D (slip_determinant) and do not exist at D = 0: with
+  // a large friction coefficient and the drum high on the trough's flank the massless soil's
+  // slip equations have no solution (a Painleve-type singularity). Without this check the step
+  // size shrinks towards D = 0 until the step budget runs out, with N diverging.
+  const State q = State::from_array(x);
+  const double m = slip_coefficient(model_.friction(), slip_sign(phase),
+                                    detail::slip_velocity(model_, q, k))
+                       .m;
+  const double D = detail::slip_determinant(model_, k, m);
+  if (D > kSingularSlip) return false;
+  *stop = FlowStop::contact_lost;
   *why = detail::format(
-      "at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
-      "to the drum radius (f5 <= 0): rolling is undefined there",
-      t, x[0]);
+      "at t = %.9g s, delta = %.6g rad, the slip equations became singular (their determinant "
+      "fell to %.3g of its value at delta = 0, slip coefficient %.6g): the accelerations grow "
+      "without bound and the soil cannot keep the drum in contact (a Painleve-type singularity "
+      "of the massless soil with a large friction coefficient, docs/model.md section 6)",
+      t, x[0], D, m);
   return true;
 }
 

@@ -28,6 +28,8 @@ class Dynamics<OscillationDrum> {
   static constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};
   /// The component whose growth is a spin (gross slip): phi'.
   static constexpr int kSpin = 7;
+  /// The slip determinant (slip_determinant) below which a slip state counts as singular.
+  static constexpr double kSingularSlip = 1e-3;
   using Vector = std::array<double, kStates>;
   using Matrix = Mat8;
   using EventValues = oscidrum::EventValues;
@@ -59,8 +61,10 @@ class Dynamics<OscillationDrum> {
   }
   /// Event `which` of `phase` at time t, x the state just before it.
   Switch apply(Phase phase, int which, double t, const Vector& x) const;
-  /// The trough's curvature radius fell to the drum radius (f5 <= 0): rolling is undefined.
-  bool invalid(const Vector& x, double t, std::string* why) const;
+  /// A state the equations are undefined at, with the stop it ends the run in: the trough's
+  /// curvature radius fell to the drum radius (f5 <= 0, invalid_geometry), or in slip the slip
+  /// system became singular (contact_lost).
+  bool invalid(Phase phase, const Vector& x, double t, std::string* why, FlowStop* stop) const;
   /// min N and the largest slip residual (39) at a step's end.
   void track(Phase phase, const Vector& x, double N, FlowCounters& counters) const;
   Vector initial_state() const { return model_.initial_state().to_array(); }

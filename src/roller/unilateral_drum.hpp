@@ -51,8 +51,9 @@ class Dynamics<UnilateralDrum> {
   void rhs(Phase phase, double t, const Vector& x, Vector& dxdt) const;
   EventValues events(Phase phase, const Vector& x, double* N = nullptr) const;
   Switch apply(Phase phase, int which, double t, const Vector& x) const;
-  bool invalid(const Vector& x, double t, std::string* why) const {
-    return drum_.invalid(contact_part(x), t, why);
+  bool invalid(Phase phase, const Vector& x, double t, std::string* why, FlowStop* stop) const {
+    return drum_.invalid(phase == Phase::flight ? Phase::stick : phase, contact_part(x), t, why,
+                         stop);
   }
   void track(Phase phase, const Vector& x, double N, FlowCounters& counters) const {
     if (phase != Phase::flight) drum_.track(phase, contact_part(x), N, counters);

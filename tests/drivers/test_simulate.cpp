@@ -328,6 +328,34 @@ TEST(Simulate, ContactLossIsReported) {
   EXPECT_EQ(r.events.back().kind, EventKind::contact_lost);
 }
 
+// A large friction coefficient with a large driving torque climbs the drum up the trough's flank
+// in slip until the slip equations become singular (their accelerations grow as 1 / D,
+// docs/model.md section 6). The run stops there as contact_lost and says why, instead of
+// shrinking its steps until the step budget runs out with N diverging (a case of a random scan).
+// At mu = 4 only the violent start from rest gets there, and the start with the excitation ramped
+// in (which a contact loss from rest triggers) finds the steady state.
+TEST(Simulate, SingularSlipEquationsStopTheRunAsContactLost) {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  set_field(c, "soil.G", 60.044e6);
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "roller.f", 68.112);
+  set_field(c, "MMd", 25756.4);
+  set_field(c, "trough.a", 0.634273);
+  c.contact.mu = 4.0;
+  const Result ramped = simulate(c);
+  EXPECT_EQ(ramped.status, Status::steady_state) << ramped.message;
+  EXPECT_GT(ramped.diagnostics.start_ramp_periods, 0);
+  EXPECT_NE(ramped.message.find("slip equations became singular"), std::string::npos);
+  for (double mu : {5.0, 10.0}) {
+    c.contact.mu = mu;
+    const Result r = simulate(c);
+    EXPECT_EQ(r.status, Status::contact_lost) << "mu = " << mu << ": " << r.message;
+    EXPECT_NE(r.message.find("slip equations became singular"), std::string::npos) << r.message;
+    EXPECT_GT(r.diagnostics.min_N, 0.0) << "mu = " << mu;  // stopped before N diverged
+  }
+}
+
 TEST(Simulate, MaxPeriodsReachedStillSamples) {
   Case c = pure_rolling_case(25);
   c.numerics.max_periods = 10;

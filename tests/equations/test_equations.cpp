@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "equations/equations.hpp"
 #include "equations/slip_general.hpp"
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/model.hpp"
@@ -501,6 +502,51 @@ TEST(SlipPhase, AngularAccelerationIsContinuousAtTheFrictionCone) {
         EXPECT_NEAR(slip.phi, stick.phi, kBalanceResidual * scales(model).phi)
             << describe(cfg, s, p);
       }
+    }
+  }
+}
+
+// The slip equations (34), (38), (53) are singular where the determinant of their x_A'', s_A''
+// rows vanishes: cos fmu1 + (csv/csh) sin fmu2 = 0 with (35), written here from the matrix of
+// (38) and (53). With a large friction coefficient that happens on the trough's flank; the
+// accelerations grow as 1 / D there, and slip_determinant must be the D that does it.
+TEST(SlipPhase, AccelerationsDivergeWhereTheSlipDeterminantVanishes) {
+  std::mt19937 rng(41);
+  for (const Config& cfg : kConfigs) {
+    const Model model = make_model(cfg, 0.05, 10.0);
+    for (int s : {1, -1}) {
+      const auto D = [&](double delta) {
+        const FrictionFactors f = friction_factors(model, delta, s);
+        return std::cos(delta) * f.fmu1 + model.csv() / model.csh() * std::sin(delta) * f.fmu2;
+      };
+      // D(0) = 1; the root on the side where s mu sin(delta) (csv/csh - 1) < 0.
+      const double side = (model.csv() > model.csh() ? -1.0 : 1.0) * s;
+      const auto delta_at = [&](double value) {  // bisection of D(delta) = value on [0, 1] side
+        double lo = 0.0, hi = side * 1.0;
+        EXPECT_LT(D(hi), 0.0) << cfg.name;
+        for (int i = 0; i < 200; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (D(mid) > value ? lo : hi) = mid;
+        }
+        return 0.5 * (lo + hi);
+      };
+      Sample p = random_sample(rng, model, s, false);
+      for (double delta : {0.0, 0.2 * side, delta_at(0.0)}) {
+        EXPECT_NEAR(detail::slip_determinant(model, kinematics(model.geometry(), delta), s * 10.0),
+                    D(delta), 1e-14)
+            << cfg.name << ", delta = " << delta;
+      }
+      double previous = 0.0;
+      for (double value : {1e-2, 1e-3, 1e-4}) {
+        p.q.delta = delta_at(value);
+        const Accelerations a = slip_accelerations(model, p.t, p.q, s);
+        const double scaled = std::abs(a.x_A) * value;  // tends to a constant as D -> 0
+        if (previous != 0.0) {
+          EXPECT_NEAR(scaled / previous, 1.0, 0.05) << describe(cfg, s, p);
+        }
+        previous = scaled;
+      }
+      EXPECT_GT(previous, 0.0);
     }
   }
 }
