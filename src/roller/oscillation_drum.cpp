@@ -94,9 +94,8 @@ bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, 
   // slip equations have no solution (a Painleve-type singularity). Without this check the step
   // size shrinks towards D = 0 until the step budget runs out, with N diverging.
   const State q = State::from_array(x);
-  const double m = slip_coefficient(model_.friction(), slip_sign(phase),
-                                    detail::slip_velocity(model_, q, k))
-                       .m;
+  const double m =
+      slip_coefficient(model_.friction(), slip_sign(phase), detail::slip_velocity(model_, q, k)).m;
   const double D = detail::slip_determinant(model_, k, m);
   if (D > kSingularSlip) return false;
   *stop = FlowStop::contact_lost;
