@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include "drivers/period_recording.hpp"
+#include "identify/problem.hpp"
 #include "oscidrum/identify.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/simulate.hpp"
@@ -13,12 +15,20 @@
 namespace oscidrum {
 
 ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps) {
+  return detail::simulate_metrics_from(c, n_max, max_steps, nullptr, nullptr);
+}
+
+ModelResponse detail::simulate_metrics_from(const Case& c, int n_max, long max_steps,
+                                            const WarmStart* warm,
+                                            std::optional<WarmStart>* orbit) {
   const Model model(c);
   // The budget counts the flow's polls of `cancelled`: one per accepted integration step.
   long steps = 0;
   std::function<bool()> over_budget;
   if (max_steps > 0) over_budget = [&steps, max_steps] { return ++steps > max_steps; };
-  const Result r = simulate(model, {}, over_budget);
+  recording::Recording period;  // the steady period, as the sampling integrated it
+  const Result r = simulate_from(model, {}, over_budget, warm, true, &period);
+  if (orbit) *orbit = orbit_start(model, r);
   ModelResponse out;
   out.status = r.status;
   out.message = r.message;
@@ -34,7 +44,7 @@ ModelResponse simulate_metrics(const Case& c, int n_max, long max_steps) {
   // read off the samples, harmonics above half their number would alias onto the compared ones
   // (about 0.1 % of G at 64 samples per period, a bias comparable to the uncertainty of a
   // record at 5 kHz).
-  if (ok(r.status)) out.metrics = compute_metrics(model, r, n_max);
+  if (ok(r.status)) out.metrics = compute_metrics(model, r, n_max, &period);
   if (r.status == Status::steady_state) {
     double ratio = 0;
     for (std::size_t j = 0; j < r.samples.size(); ++j)

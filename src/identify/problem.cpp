@@ -137,6 +137,7 @@ Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyO
   if (o.fit_mu) {
     case_.contact.pure_rolling = false;
     unknowns_.push_back(Unknown::mu);
+    warm_starts_ = false;  // see run()
     bounds_.push_back({std::log(0.05), std::log(5.0)});
   }
   if (o.fit_MMd) {
@@ -229,7 +230,7 @@ const Simulated& Problem::simulate_at(const Eigen::VectorXd& p) {
   Simulated s;
   try {
     const Case c = case_at(p);
-    ModelResponse r = run(c);
+    ModelResponse r = run(c, p);
     if (!ok(r.status) && !c.contact.pure_rolling) r = rolling_instead(c, p, r);
     s.ok = ok(r.status);
     s.message = r.message;
@@ -254,7 +255,7 @@ const Simulated& Problem::simulate_at(const Eigen::VectorXd& p) {
 
 // One bounded model run (the constructor's numerics, kMaxStepsPerRun), within what is left of
 // the identification's kMaxStepsPerWindow.
-ModelResponse Problem::run(const Case& c) {
+ModelResponse Problem::run(const Case& c, const Eigen::VectorXd& p) {
   long& steps = *steps_used_;
   if (steps >= kMaxStepsPerWindow) {
     ModelResponse out;
@@ -266,8 +267,26 @@ ModelResponse Problem::run(const Case& c) {
     return out;
   }
   ++simulations_;
-  ModelResponse r =
-      simulate_metrics(c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps));
+  // Shooting starts from the last steady state when it was found at a neighbour of p no farther
+  // than a finite-difference step of the Jacobian (kWarmRadius) with the same friction model:
+  // there the two orbits lie on one branch. A farther trial (a step of the fit, a profile) starts
+  // from rest: from a distant orbit Newton could reach another steady state that coexists with
+  // the one from rest, and the model's response would depend on the fit's path. With mu among
+  // the unknowns not even a neighbour's orbit is safe: a trial mu can admit both a rolling orbit
+  // (the neighbour's, or the pure-rolling one that stands in for a failed run) and the
+  // stick-slip orbit the run from rest reaches (seen: a pure-rolling record's G off by 6 %).
+  const bool near = warm_starts_ && orbit_ && orbit_p_.size() == p.size() &&
+                    (p - orbit_p_).cwiseAbs().maxCoeff() <= kWarmRadius &&
+                    orbit_pure_rolling_ == c.contact.pure_rolling;
+  std::optional<WarmStart> orbit;
+  ModelResponse r = simulate_metrics_from(c, n_sim_,
+                                          std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps),
+                                          near ? &*orbit_ : nullptr, &orbit);
+  if (orbit) {
+    orbit_ = std::move(orbit);
+    orbit_p_ = p;
+    orbit_pure_rolling_ = c.contact.pure_rolling;
+  }
   steps += std::max(r.steps, 1L);
   if (r.status == Status::budget_exceeded && steps >= kMaxStepsPerWindow)
     r.message = "the model runs of this identification took more than " +
@@ -292,7 +311,7 @@ ModelResponse Problem::rolling_instead(const Case& c, const Eigen::VectorXd& p,
     Case roll = c;
     roll.contact.pure_rolling = true;
     if (rolling_cache_.size() > 1024) rolling_cache_.clear();
-    it = rolling_cache_.emplace(std::move(key), run(roll)).first;
+    it = rolling_cache_.emplace(std::move(key), run(roll, p)).first;
   }
   const ModelResponse& roll = it->second;
   const double cone = c.contact.mu_static >= 0 ? c.contact.mu_static : c.contact.mu;

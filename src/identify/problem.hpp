@@ -7,14 +7,22 @@
 #include <complex>
 #include <limits>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "drivers/continuation.hpp"
 #include "identify/solver.hpp"
 #include "oscidrum/identify.hpp"
 
 namespace oscidrum::detail {
+
+/// simulate_metrics (oscidrum/identify.hpp) with shooting started from `warm` (may be null) when
+/// the case's method is shooting (simulate_from); `orbit` (may be null) receives the run's steady
+/// state as a start for the next run. The metrics read the steady period the sampling recorded.
+ModelResponse simulate_metrics_from(const Case& c, int n_max, long max_steps,
+                                    const WarmStart* warm, std::optional<WarmStart>* orbit);
 
 /// The unknowns an identification can estimate.
 enum class Unknown { G, ksh, ksv, mu, MMd };
@@ -91,7 +99,8 @@ class Problem : public LeastSquares {
   const Simulated& simulate_at(const Eigen::VectorXd& p);
 
  private:
-  ModelResponse run(const Case& c);
+  /// One bounded model run of c, the case at the internal coordinates p.
+  ModelResponse run(const Case& c, const Eigen::VectorXd& p);
   ModelResponse rolling_instead(const Case& c, const Eigen::VectorXd& p, const ModelResponse& r);
   double best_phase(const Simulated& s) const;
   /// The weighted residual of the harmonics at phase phi, into r[0 ... 4 harmonics).
@@ -109,6 +118,13 @@ class Problem : public LeastSquares {
   long* steps_used_ = &steps_;  // where they are counted (steps_, or a shared counter)
   std::map<std::vector<double>, Simulated> cache_;
   std::map<std::vector<double>, ModelResponse> rolling_cache_;
+  // The steady state of the last model run that found one, at orbit_p_: a run within kWarmRadius
+  // of it starts shooting there (run()), as the cases of a study continue their neighbours.
+  static constexpr double kWarmRadius = 2.0 * kJacobianStep;
+  std::optional<WarmStart> orbit_;
+  Eigen::VectorXd orbit_p_;
+  bool orbit_pure_rolling_ = false;
+  bool warm_starts_ = true;  // false with mu among the unknowns (run())
 };
 
 }  // namespace oscidrum::detail

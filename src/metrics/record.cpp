@@ -388,11 +388,25 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
   demean(zs);
   const double df = 0.25 / span;
   double best_f = f_lo, best_p = -1.0;
-  for (double f = f_lo; f <= f_hi; f += df) {
+  // e^{-i 2 pi f (t_k - t_0)} of every sample, carried from one grid frequency to the next by
+  // the factor e^{-i 2 pi df (t_k - t_0)} (no sin and cos per sample and frequency; the record's
+  // times need not be uniform), and computed afresh every kFresh frequencies so that the
+  // rounding of the products (about 1e-16 each) cannot accumulate.
+  constexpr int kFresh = 64;
+  std::vector<std::complex<double>> phasor(n_seg), step(n_seg);
+  for (std::size_t k = 0; k < n_seg; ++k)
+    step[k] = std::polar(1.0, -2.0 * M_PI * df * (t[k] - t[0]));
+  int grid = 0;
+  for (double f = f_lo; f <= f_hi; f += df, ++grid) {
+    if (grid % kFresh == 0) {
+      for (std::size_t k = 0; k < n_seg; ++k)
+        phasor[k] = std::polar(1.0, -2.0 * M_PI * f * (t[k] - t[0]));
+    } else {
+      for (std::size_t k = 0; k < n_seg; ++k) phasor[k] *= step[k];
+    }
     std::complex<double> X[3] = {}, Z[3] = {};
     for (std::size_t k = 0; k < n_seg; ++k) {
-      const double w = 2.0 * M_PI * f * (t[k] - t[0]);
-      const std::complex<double> e1(std::cos(w), -std::sin(w));
+      const std::complex<double> e1 = phasor[k];
       std::complex<double> e = e1;
       for (int n = 0; n < 3; ++n) {
         X[n] += xs[k] * e;
