@@ -279,9 +279,9 @@ ModelResponse Problem::run(const Case& c, const Eigen::VectorXd& p) {
                     (p - orbit_p_).cwiseAbs().maxCoeff() <= kWarmRadius &&
                     orbit_pure_rolling_ == c.contact.pure_rolling;
   std::optional<WarmStart> orbit;
-  ModelResponse r = simulate_metrics_from(c, n_sim_,
-                                          std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps),
-                                          near ? &*orbit_ : nullptr, &orbit);
+  ModelResponse r =
+      simulate_metrics_from(c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps),
+                            near ? &*orbit_ : nullptr, &orbit);
   if (orbit) {
     orbit_ = std::move(orbit);
     orbit_p_ = p;
