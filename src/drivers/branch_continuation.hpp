@@ -283,7 +283,11 @@ typename Continuation<R>::Map Continuation<R>::map(const VectorXd& v, bool sensi
 
 // dF/dq by a forward difference in the scaled parameter (the step 1e-6 of the range: the period
 // maps are accurate to ~1e-9 of the scales, so the derivative to ~1e-3, ample for a predictor and
-// for the corrector's convergence, which only the residual decides).
+// for the corrector's convergence, which only the residual decides). When the map beside the
+// orbit has another cycle of phases (a switching boundary lies between q and q + h: a phase
+// appears there, e.g. lift-off as the smallest normal force reaches zero), the forward difference
+// measures the jump to the other side, not the derivative: a backward difference is taken instead
+// if it stays on the orbit's side.
 template <class R>
 std::optional<VectorXd> Continuation<R>::dF_dq(const VectorXd& v, const Map& at) {
   constexpr double h = 1e-6;
@@ -291,6 +295,11 @@ std::optional<VectorXd> Continuation<R>::dF_dq(const VectorXd& v, const Map& at)
   w[P] += h;
   const Map m = map(w, false);
   if (!m.ok) return std::nullopt;
+  if (m.sequence != at.sequence) {
+    w[P] = v[P] - h;
+    const Map b = map(w, false);
+    if (b.ok && b.sequence == at.sequence) return VectorXd((at.F - b.F) / h);
+  }
   return VectorXd((m.F - at.F) / h);
 }
 
