@@ -1,10 +1,11 @@
 // Internal: what a roller type supplies to the engine (docs/architecture.md, "The roller as a
 // component"). The flow (src/flow/hybrid_flow.hpp), the variational equations
 // (src/flow/monodromy.hpp), shooting (src/drivers/shooting.hpp), the transient steady-state search
-// (src/drivers/steady_state.hpp) and the sampling (src/drivers/sampling.hpp) are templates on a
-// roller type R (oscidrum/roller.hpp) and use only the members of Dynamics<R> listed below. A new
-// roller is a specialisation of Dynamics in its own files under src/roller/ and one line that
-// instantiates the engine for it (src/roller/engine.cpp).
+// (src/drivers/steady_state.hpp), the sampling (src/drivers/sampling.hpp) and the continuation of
+// branches (src/drivers/branch_continuation.hpp) are templates on a roller type R
+// (oscidrum/roller.hpp) and use only the members of Dynamics<R> listed below. A new roller is a
+// specialisation of Dynamics in its own files under src/roller/ and one line that instantiates
+// the engine for it (src/roller/engine.cpp).
 //
 //   constants   kStates (the state's size), kEvents (event functions), kPeriodic (the components
 //               that repeat on a periodic orbit: all but the cyclic ones, e.g. the drum angle)

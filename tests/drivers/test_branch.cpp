@@ -146,6 +146,33 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
   EXPECT_EQ(run_at(c, "soil.G", g2 + 5e6).status, Status::steady_state);
 }
 
+// In f, in pure rolling with the unbalance (G = 100 MN/m^2 by Appendix B, contact that can open),
+// the smallest normal force of the orbit falls to zero at 65.7266 Hz, where the drum would begin
+// to lift off: the branch ends there (the corrector fails beyond). It must not report a fold
+// there: the tangent's dq/ds did turn negative when dF/dq was a forward difference that reached
+// across lift-off (the map beside the orbit had a flight phase), and a fold was reported with
+// the critical multiplier 0.72 + 0.75i, nowhere near +1.
+TEST(Branch, NoFoldWhereTheBranchEndsAtLiftOff) {
+  Case c = modulus_case();
+  set_field_text(c, "contact.pure_rolling", "true");
+  set_field_text(c, "contact.unilateral", "true");
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "soil.G", 100e6);
+  BranchOptions o;
+  o.key = "roller.f";
+  o.from = 58.0;
+  o.to = 70.0;
+  o.metrics = false;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::step_too_small) << b.message;
+  const BranchPoint& last = b.points.back();
+  EXPECT_NEAR(last.parameter, 65.7266, 1e-3);
+  EXPECT_LT(last.min_N, 1e-3 * 45224.0);  // below 1e-3 of the static axle load P0
+  EXPECT_GT(last.dq_ds, 0.0);
+  for (const Bifurcation& x : b.bifurcations)
+    EXPECT_NE(x.kind, BifurcationKind::fold) << "at f = " << x.parameter;
+}
+
 // On the paper's log-spiral trough (k = 0.002, a = 0.601 m) at 25 Hz with mu = 0.7 a real
 // multiplier passes -1 as the soil stiffens: the continuation locates the period doubling,
 // shooting, started from rest on either side, finds a period-1 orbit below it and a period-2
