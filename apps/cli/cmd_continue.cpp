@@ -41,16 +41,6 @@ struct ContinueOptions {
 
 std::string cell(double v) { return io::format_double_short(v); }
 
-// The value of --from/--to in the key's SI unit (the display unit's value times its scale: --from
-// 20 for soil.G means 20 MN/m^2, as everywhere people type G).
-double key_value(const Field& f, const std::string& flag, const std::string& text) {
-  const std::optional<double> shown = parse_number(text);
-  if (!shown)
-    throw Error(flag + ": must be " + number_rule() + " [" +
-                (f.display_unit ? f.display_unit : f.unit) + "]; got '" + text + "'");
-  return f.display_unit ? *shown * f.display_scale : *shown;
-}
-
 // The branch and the period-2p branches switched onto at its period doublings, depth first:
 // (branch, index of its parent or -1). Index 0 is the branch followed from --from.
 std::vector<std::pair<const Branch*, int>> all_branches(const Branch& b) {
@@ -202,8 +192,8 @@ int run(ContinueOptions o) {
   const Field* field = find_field(o.key);
   if (!field) throw Error("--param: unknown key '" + o.key + "' (oscidrum fields lists them)");
   o.branch.key = o.key;
-  o.branch.from = key_value(*field, "--from", o.from_text);
-  o.branch.to = key_value(*field, "--to", o.to_text);
+  o.branch.from = key_flag_value(*field, "--from", o.from_text);
+  o.branch.to = key_flag_value(*field, "--to", o.to_text);
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);

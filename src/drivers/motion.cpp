@@ -55,6 +55,7 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   flow.reset(t0, R::State::from_array(x), phase);
   detail::MonodromyObserver<R> mono(model, fo.baumgarte, T / 64.0);
   out.section.push_back(std::vector<double>(x.begin(), x.end()));
+  out.section_phase.push_back(phase);
   std::vector<Eigen::MatrixXd> maps;  // Phi of each period on the periodic components
   for (int k = 1; k <= periods; ++k) {
     mono.reset();
@@ -75,6 +76,7 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     x = flow.state().to_array();
     phase = flow.phase();
     out.section.push_back(std::vector<double>(x.begin(), x.end()));
+    out.section_phase.push_back(phase);
   }
   out.periods = periods;
   // Scales: each periodic component's range over the sampled periods of `result` (the motion's

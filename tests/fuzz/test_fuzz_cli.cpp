@@ -175,8 +175,8 @@ TEST(FuzzCli, MalformedNumbersInEveryNumericFlagAreRefused) {
   std::mt19937 rng(s);
   TempDir dir;
   std::vector<std::pair<std::string, std::pair<std::string, std::string>>> all;
-  for (const std::string command :
-       {"run", "sweep", "analyze", "identify", "calibrate", "soil", "transmissibility", "continue"})
+  for (const std::string command : {"run", "sweep", "analyze", "identify", "calibrate", "soil",
+                                    "transmissibility", "continue", "diagram"})
     for (const auto& flag : numeric_flags(command)) all.push_back({command, flag});
   ASSERT_GT(all.size(), 40u) << "the numeric flags were not found in --help";
   const int n = draws(60);
