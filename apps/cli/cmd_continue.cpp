@@ -20,6 +20,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/text.hpp"
+#include "oscidrum_io/branch_hdf5.hpp"
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
@@ -33,7 +34,7 @@ namespace {
 struct ContinueOptions {
   std::string config;
   CaseOptions c;
-  std::string key, csv, json, bifurcations, plot, plot_metric = "area", format = "table";
+  std::string key, csv, json, hdf5, bifurcations, plot, plot_metric = "area", format = "table";
   std::string from_text, to_text;
   BranchOptions branch;
   bool quiet = false;
@@ -197,6 +198,7 @@ int run(ContinueOptions o) {
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
+  if (!o.hdf5.empty()) check_output_file("--hdf5", o.hdf5, false, true);
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
@@ -223,6 +225,7 @@ int run(ContinueOptions o) {
   if (!o.csv.empty()) write_output(o.csv, points_csv(b));
   if (!o.json.empty()) write_output(o.json, branch_json(b).dump(2) + "\n");
   if (!o.bifurcations.empty()) write_output(o.bifurcations, bifurcations_csv(b));
+  if (!o.hdf5.empty()) io::write_branch_hdf5(o.hdf5, b);
   if (o.format == "table") std::cout << table(b, *field);
   if (o.format == "csv") std::cout << points_csv(b);
   if (o.format == "json") std::cout << branch_json(b).dump(2) << "\n";
@@ -295,6 +298,10 @@ void add_continue_command(CLI::App& app, Action& action) {
   sub->add_option("--bifurcations", o->bifurcations, "write the bifurcations to FILE (CSV)")
       ->type_name("FILE");
   sub->add_option("--json", o->json, "write the branch to FILE (schema oscidrum-branch/1)")
+      ->type_name("FILE");
+  sub->add_option("--hdf5", o->hdf5,
+                  "write the branches and their bifurcations to FILE (HDF5, layout in "
+                  "docs/bifurcations.md)")
       ->type_name("FILE");
   sub->add_option("--plot", o->plot,
                   "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "
