@@ -3,6 +3,7 @@
 // stroboscopic points and its verdict at each value (docs/bifurcations.md).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -199,9 +200,14 @@ int run(DiagramCommandOptions o) {
   o.diagram.cancelled = [] { return interrupted(); };
   const double scale = field->display_unit ? field->display_scale : 1.0;
   const std::string unit = field->display_unit ? field->display_unit : field->unit;
+  const auto start = std::chrono::steady_clock::now();
   o.diagram.on_value = [&](int done, int total, double q) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
     line.update("oscidrum diagram: " + std::to_string(done) + "/" + std::to_string(total) +
-                    " values, " + o.key + " = " + fmt(q / scale, 6) + " " + unit,
+                    " values, " + o.key + " = " + fmt(q / scale, 6) + " " + unit + ", ETA " +
+                    duration(eta),
                 done == total);
   };
   const Diagram d = bifurcation_diagram(c, o.diagram);
