@@ -6,9 +6,9 @@ shear modulus on the paper's log-spiral trough, where the period doubles (docs/b
 The roller with its unbalance at 25 Hz, mu = 0.7, trough k = 0.002, a = 0.601 m, soil by
 Appendix B, G from 100 to 300 MN/m^2. oscidrum.continue_branch follows the period-1 orbit,
 stable or not, locates the period doubling and follows the period-2 branch born there. Beside
-the branches, the stroboscopic points of the motion at a few G (oscidrum.analyze_motion): one
-point per G where the period-1 orbit is stable, two where the period-2 orbit is (the brute-force
-view of the same diagram). Writes bifurcation_diagram.png into OUT_DIR (default: the current
+the branches, the brute-force diagram (oscidrum.bifurcation_diagram): the stroboscopic points of
+x_M'' at a row of G, one point per G where the period-1 orbit is stable, two where the period-2
+orbit is. Writes bifurcation_diagram.png into OUT_DIR (default: the current
 directory) and prints the bifurcations.
 """
 
@@ -45,22 +45,18 @@ for b, color in [(branch, "black"), *[(c, "tab:red") for c in branch["children"]
         ax.plot(G[k:k + 2], x[k:k + 2], color=color, linestyle="-" if stable[k] else "--")
     ax.plot([], [], color=color, label=f"period {b['multiplicity']} T (dashed: unstable)")
 
-# The brute-force view: where does the motion started from rest end up? Its stroboscopic points
-# (delta, the drum's position angle, once per excitation period) over 40 periods.
-G_points = np.linspace(110e6, 290e6, 7)
-for G in G_points:
-    c = oscidrum.Case(**{k: case.get(k) for k in ("trough.k", "trough.a", "contact.mu",
-                                                 "roller.f", "roller.unbalance")})
-    c.set("soil.input", "modulus")
-    c.set("soil.G", G)
-    r = oscidrum.simulate(c)
-    section = oscidrum.analyze_motion(c, r, periods=40).section
-    distinct = np.unique(np.round(section[-20:, 0], 6))
-    ax2 = ax.twinx() if G == G_points[0] else ax2
-    ax2.plot(np.full(len(distinct), G / 1e6), distinct, "o", color="tab:blue", markersize=4)
-ax2.set_ylabel("stroboscopic delta [rad] (blue points)")
+# The brute-force view (oscidrum.bifurcation_diagram, `oscidrum diagram`): the motion swept up
+# through G, each value started from the previous one's final state; its stroboscopic points of
+# x_M'' (one per period on the period-1 orbit, two on the period-2 one).
+diagram = oscidrum.bifurcation_diagram(case, "soil.G", 110e6, 290e6, steps=9)
+points = diagram["points"]
+ax.plot(np.asarray(points["parameter"]) / 1e6, points["ddx_M"], "o", color="tab:blue",
+        markersize=3, label="x_M'' at t0 + k T (oscidrum diagram)")
+for G, verdict, p in zip(diagram["values"]["parameter"], diagram["values"]["verdict"],
+                         diagram["values"]["period"]):
+    print(f"G = {G / 1e6:.0f} MN/m^2: {verdict}, period {int(p)}")
 ax.set_xlabel("shear modulus G [MN/m^2]")
-ax.set_ylabel("peak x_M'' [m/s^2]")
+ax.set_ylabel("peak x_M'' (lines), x_M'' at the section (points) [m/s^2]")
 ax.legend(fontsize="small", loc="upper left")
 ax.set_title("log-spiral trough k = 0.002, 25 Hz, mu = 0.7: a period doubling")
 out.mkdir(parents=True, exist_ok=True)

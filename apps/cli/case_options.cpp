@@ -4,10 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
+#include "oscidrum/text.hpp"
 #include "oscidrum_io/config.hpp"
 #include "output.hpp"
 
@@ -276,5 +278,17 @@ void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
 }
 
 }  // namespace
+
+}  // namespace oscidrum::cli
+
+namespace oscidrum::cli {
+
+double key_flag_value(const Field& f, const std::string& flag, const std::string& text) {
+  const std::optional<double> shown = parse_number(text);
+  if (!shown)
+    throw Error(flag + ": must be " + number_rule() + " [" +
+                (f.display_unit ? f.display_unit : f.unit) + "]; got '" + text + "'");
+  return f.display_unit ? *shown * f.display_scale : *shown;
+}
 
 }  // namespace oscidrum::cli

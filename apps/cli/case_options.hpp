@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "oscidrum/fields.hpp"
 #include "oscidrum_io/case_spec.hpp"
 
 namespace CLI {
@@ -66,6 +67,12 @@ void apply(const CaseOptions& o, io::CaseSpec& spec);
 /// (MN/m^2). Throws oscidrum::Error for a value outside soil.G's rule, and says "did you mean
 /// --G 30?" for one that is plainly in Pa (--G 30000000).
 double soil_G_flag(double value);
+
+/// The value of a flag that gives a value of the field `f` (--from/--to of continue and diagram)
+/// in its SI unit: the text is in the unit the key is typed in, the display unit where it has one
+/// (--from 20 for soil.G is 20 MN/m^2). Throws oscidrum::Error "FLAG: must be ..." for text that is
+/// not a decimal number.
+double key_flag_value(const Field& f, const std::string& flag, const std::string& text);
 
 /// The case a command runs: the case file `config` (if any), then the flags and --set of `o`,
 /// finalised with its warnings on stderr and validated. `spec` keeps where each key was set.

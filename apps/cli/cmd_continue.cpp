@@ -20,6 +20,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/text.hpp"
+#include "oscidrum_io/branch_hdf5.hpp"
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "oscidrum_io/files.hpp"
@@ -33,23 +34,13 @@ namespace {
 struct ContinueOptions {
   std::string config;
   CaseOptions c;
-  std::string key, csv, json, bifurcations, plot, plot_metric = "area", format = "table";
+  std::string key, csv, json, hdf5, bifurcations, plot, plot_metric = "area", format = "table";
   std::string from_text, to_text;
   BranchOptions branch;
   bool quiet = false;
 };
 
 std::string cell(double v) { return io::format_double_short(v); }
-
-// The value of --from/--to in the key's SI unit (the display unit's value times its scale: --from
-// 20 for soil.G means 20 MN/m^2, as everywhere people type G).
-double key_value(const Field& f, const std::string& flag, const std::string& text) {
-  const std::optional<double> shown = parse_number(text);
-  if (!shown)
-    throw Error(flag + ": must be " + number_rule() + " [" +
-                (f.display_unit ? f.display_unit : f.unit) + "]; got '" + text + "'");
-  return f.display_unit ? *shown * f.display_scale : *shown;
-}
 
 // The branch and the period-2p branches switched onto at its period doublings, depth first:
 // (branch, index of its parent or -1). Index 0 is the branch followed from --from.
@@ -202,11 +193,12 @@ int run(ContinueOptions o) {
   const Field* field = find_field(o.key);
   if (!field) throw Error("--param: unknown key '" + o.key + "' (oscidrum fields lists them)");
   o.branch.key = o.key;
-  o.branch.from = key_value(*field, "--from", o.from_text);
-  o.branch.to = key_value(*field, "--to", o.to_text);
+  o.branch.from = key_flag_value(*field, "--from", o.from_text);
+  o.branch.to = key_flag_value(*field, "--to", o.to_text);
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
+  if (!o.hdf5.empty()) check_output_file("--hdf5", o.hdf5, false, true);
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
@@ -233,6 +225,7 @@ int run(ContinueOptions o) {
   if (!o.csv.empty()) write_output(o.csv, points_csv(b));
   if (!o.json.empty()) write_output(o.json, branch_json(b).dump(2) + "\n");
   if (!o.bifurcations.empty()) write_output(o.bifurcations, bifurcations_csv(b));
+  if (!o.hdf5.empty()) io::write_branch_hdf5(o.hdf5, b);
   if (o.format == "table") std::cout << table(b, *field);
   if (o.format == "csv") std::cout << points_csv(b);
   if (o.format == "json") std::cout << branch_json(b).dump(2) << "\n";
@@ -305,6 +298,10 @@ void add_continue_command(CLI::App& app, Action& action) {
   sub->add_option("--bifurcations", o->bifurcations, "write the bifurcations to FILE (CSV)")
       ->type_name("FILE");
   sub->add_option("--json", o->json, "write the branch to FILE (schema oscidrum-branch/1)")
+      ->type_name("FILE");
+  sub->add_option("--hdf5", o->hdf5,
+                  "write the branches and their bifurcations to FILE (HDF5, layout in "
+                  "docs/bifurcations.md)")
       ->type_name("FILE");
   sub->add_option("--plot", o->plot,
                   "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "

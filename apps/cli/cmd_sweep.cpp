@@ -93,12 +93,6 @@ std::string case_file_name(std::size_t index, std::size_t total) {
   return "case_" + std::string(width - std::min(width, n.size()), '0') + n + ".csv";
 }
 
-std::string duration(double seconds) {
-  if (seconds < 60) return fmt(seconds, 2) + " s";
-  if (seconds < 3600) return fmt(seconds / 60, 2) + " min";
-  return fmt(seconds / 3600, 2) + " h";
-}
-
 // The table for people: the swept values, status and a few metrics.
 std::string rows_table(const std::string& header, const std::vector<std::string>& rows,
                        std::size_t n_keys) {

@@ -38,6 +38,7 @@ void add_analyze_command(CLI::App& app, Action& action);
 void add_outputs_command(CLI::App& app, Action& action);
 void add_identify_command(CLI::App& app, Action& action);
 void add_continue_command(CLI::App& app, Action& action);
+void add_diagram_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action);
 
 }  // namespace oscidrum::cli

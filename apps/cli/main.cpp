@@ -26,7 +26,7 @@ constexpr AddCommand kCommands[] = {
     add_validate_command, add_paper_command,
     add_soil_command,     add_transmissibility_command,
     add_fields_command,   add_outputs_command,
-    add_continue_command,
+    add_continue_command, add_diagram_command,
 };
 
 // Lists each command with the first sentence of its description only; `oscidrum CMD --help`

@@ -27,6 +27,12 @@ std::string fmt(double v, int digits) {
   return buf;
 }
 
+std::string duration(double seconds) {
+  if (seconds < 60) return fmt(seconds, 2) + " s";
+  if (seconds < 3600) return fmt(seconds / 60, 2) + " min";
+  return fmt(seconds / 3600, 2) + " h";
+}
+
 void write_text_table(std::ostream& os, const std::vector<std::string>& header,
                       const std::vector<bool>& right, std::size_t n_rows,
                       const std::function<std::vector<std::string>(std::size_t)>& row) {

@@ -14,6 +14,9 @@ namespace oscidrum::cli {
 /// %.6g (people) or %.17g (machines) formatting of a number.
 std::string fmt(double v, int digits = 6);
 
+/// A time for progress lines and summaries: "12 s", "3.5 min", "1.2 h".
+std::string duration(double seconds);
+
 /// A table of text cells with a header row, printable for people (aligned columns), as CSV or as
 /// a Markdown table.
 struct TextTable {

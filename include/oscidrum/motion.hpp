@@ -36,7 +36,8 @@ struct MotionAnalysis {
   /// The stroboscopic points: the roller's state at t0 + k T, k = 0 ... periods (every
   /// component, in the order of its state; docs/bifurcations.md).
   std::vector<std::vector<double>> section;
-  std::string evidence;  ///< the verdict with its numbers, in words
+  std::vector<Phase> section_phase;  ///< the flow's phase at each stroboscopic point
+  std::string evidence;              ///< the verdict with its numbers, in words
 };
 
 /// Examine the motion from the first sample of `result` (a period boundary; any status with

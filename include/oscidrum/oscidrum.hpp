@@ -3,6 +3,7 @@
 
 #include "oscidrum/branch.hpp"
 #include "oscidrum/calibrate.hpp"
+#include "oscidrum/diagram.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/flow.hpp"

@@ -87,6 +87,7 @@ _CORE_NAMES = (
     "analyze_motion",
     "analyze_record",
     "analyze_windows",
+    "bifurcation_diagram",
     "calibrate_records",
     "compute_metrics",
     "continue_branch",

@@ -1154,6 +1154,41 @@ def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float, int]]:
             for kind, value, b in zip(table["kind"], table[parameter], branch)]
 
 
+def plot_diagram(table: Mapping[str, Sequence[str]], quantity: str = "ddx_M",
+                 units: Optional[Mapping[str, str]] = None, title: Optional[str] = None,
+                 ax: Any = None, legend: Any = "auto") -> Any:
+    """A brute-force bifurcation diagram (``oscidrum diagram --csv``, read as text by
+    oscidrum.data.read_table): the stroboscopic points of `quantity` against the parameter, the
+    up sweep's in blue, the down sweep's in red (one point per period on a period-1 orbit, p
+    points on a period-p orbit, a cloud on a torus or chaos). legend: as for
+    plot_accelerations."""
+    units = dict(units or {})
+    names = list(table)
+    if "value" not in names or "point" not in names or names.index("point") < 2:
+        raise ValueError("not a diagram CSV (oscidrum diagram --csv): no parameter column between "
+                         "'value' and 'point'")
+    key = names[names.index("point") - 1]
+    if quantity not in table:
+        raise ValueError(f"no column '{quantity}' in the diagram CSV")
+    q_all = np.asarray([float(c) for c in table[key]])
+    y_all = np.asarray([float(c) if c else np.nan for c in table[quantity]])
+    sweep = np.asarray(table["sweep"]) if "sweep" in table else np.full(len(q_all), "up")
+    xlabel, xf = axis_label(key, units.get(key, ""))
+    ylabel, yf = axis_label(quantity, units.get(quantity, ""))
+    fig, axes, made = _axes(ax, 1, width=7.0, height=4.2)
+    ax = axes[0]
+    for direction, color, marker in (("up", "tab:blue", "."), ("down", "tab:red", "x")):
+        rows = sweep == direction
+        if rows.any():
+            ax.plot(q_all[rows] * xf, y_all[rows] * yf, linestyle="none", marker=marker,
+                    markersize=3, color=color, label=f"sweep {direction}")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"{ylabel} at t0 + k T")
+    ax.grid(True, alpha=0.3)
+    _legend(ax, legend=legend)
+    return _finish(fig, axes, made, title)
+
+
 def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: str = "",
               periods: float = 2, spectra_units: str = "both") -> List[Path]:
     """Every single-case figure of a steady state into out_dir: accelerations, figure_eight,
@@ -1223,6 +1258,11 @@ def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     branch.add_argument("--bifurcations", help="bifurcations CSV (oscidrum continue "
                         "--bifurcations); optional")
     branch.add_argument("--out", required=True, help="output file (.png or .svg)")
+    diagram = sub.add_parser("diagram", help="a brute-force bifurcation diagram (oscidrum "
+                             "diagram --plot): the stroboscopic points against the parameter")
+    diagram.add_argument("--csv", required=True, help="diagram CSV (oscidrum diagram --csv)")
+    diagram.add_argument("--quantity", default="ddx_M", help="output column (default ddx_M)")
+    diagram.add_argument("--out", required=True, help="output file (.png or .svg)")
     return parser.parse_args(argv)
 
 
@@ -1261,6 +1301,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             table, units = read_csv_columns(args.csv)
             bifs = read_bifurcations(args.bifurcations) if args.bifurcations else None
             fig = plot_branch(table, args.metric, units=units, bifurcations=bifs)
+            paths = [save(fig, args.out)]
+        elif args.command == "diagram":
+            from .data import read_table
+            text, units = read_table(args.csv)
+            fig = plot_diagram(text, args.quantity, units=units)
             paths = [save(fig, args.out)]
         else:
             table, units = read_csv_columns(args.csv)

@@ -39,6 +39,7 @@ void bind_record(py::module_& m);
 void bind_identify(py::module_& m);
 void bind_validation(py::module_& m);
 void bind_branch(py::module_& m);
+void bind_diagram(py::module_& m);
 void bind_files(py::module_& m);
 
 /// How often a long computation looks for Ctrl-C (PyErr_CheckSignals): 50 ms in steady_clock

@@ -62,6 +62,7 @@ PYBIND11_MODULE(_core, m) {
   op::bind_study(m);
   op::bind_validation(m);
   op::bind_branch(m);
+  op::bind_diagram(m);
   op::bind_files(m);
   namespace o = oscidrum;
   construct_on_new_all<o::TroughGeometry, o::Kinematics, o::Harmonic, o::Metrics, o::ContactForces,

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "drivers/branch_continuation.hpp"
+#include "drivers/varied_parameter.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
@@ -16,19 +17,7 @@
 namespace oscidrum {
 
 Branch continue_branch(const Case& c, const BranchOptions& o) {
-  const Field* field = find_field(o.key);
-  if (!field) throw Error("continue: unknown key '" + o.key + "' (oscidrum fields lists them)");
-  if (field->type != FieldType::real)
-    throw Error("continue: " + o.key + " is not a real-valued parameter");
-  if (o.key.rfind("numerics.", 0) == 0)
-    throw Error("continue: " + o.key + " is a numerical setting, not a parameter of the model");
-  if (!key_in_effect(c, o.key))
-    throw Error("continue: " + o.key +
-                " has no effect in this case: " + key_not_in_effect(c, o.key));
-  for (const auto& [name, value] : {std::pair{"--from", o.from}, std::pair{"--to", o.to}}) {
-    const std::string why = check_field(*field, value);
-    if (!why.empty()) throw Error(std::string("continue: ") + name + ": " + why);
-  }
+  const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue");
   if (!(o.from != o.to)) throw Error("continue: --from and --to must differ");
   if (!(o.initial_step > 0 && o.max_step >= o.initial_step && o.min_step > 0 &&
         o.min_step <= o.initial_step && o.max_step <= 1))

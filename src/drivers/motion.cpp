@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/sampling.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/flow.hpp"
@@ -36,6 +37,8 @@ constexpr double kZeroPerPeriod = 0.02;
 // Stroboscopic points that agree to this fraction of the components' ranges recur.
 constexpr double kRecurrence = 1e-6;
 constexpr int kMaxRecurrence = 64;
+// Samples of the period sampled for the scales when the result holds only its section state.
+constexpr int kScaleSamples = 64;
 
 template <class R>
 MotionAnalysis analyze(const Model& model, const Result& result, int periods,
@@ -55,10 +58,26 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   flow.reset(t0, R::State::from_array(x), phase);
   detail::MonodromyObserver<R> mono(model, fo.baumgarte, T / 64.0);
   out.section.push_back(std::vector<double>(x.begin(), x.end()));
+  out.section_phase.push_back(phase);
   std::vector<Eigen::MatrixXd> maps;  // Phi of each period on the periodic components
+  // The samples whose ranges scale the components: the result's, or, when it holds only the
+  // state at its section (a study keeps no more unless asked), the first examined period
+  // sampled on the way (without it the scales collapse to 1e-9 of the values, and the
+  // recurrence, the convergence and the exponent's alignment would judge noise).
+  Result sampled;
+  const Samples* ranges = &result.samples;
   for (int k = 1; k <= periods; ++k) {
     mono.reset();
-    const FlowStop stop = flow.advance(t0 + k * T, &mono);
+    FlowStop stop;
+    if (k == 1 && result.samples.size() < 2) {
+      sampled.frequency = result.frequency;
+      detail::sampling::Sampler<R> sampler(flow, t0, 1, kScaleSamples, true, sampled);
+      detail::ObserverPair<R> both(mono, sampler);
+      stop = flow.advance(t0 + T, &both);
+      ranges = &sampled.samples;
+    } else {
+      stop = flow.advance(t0 + k * T, &mono);
+    }
     if (stop != FlowStop::reached) {
       out.kind = "undecided";
       out.periods = k - 1;
@@ -75,15 +94,16 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     x = flow.state().to_array();
     phase = flow.phase();
     out.section.push_back(std::vector<double>(x.begin(), x.end()));
+    out.section_phase.push_back(phase);
   }
   out.periods = periods;
-  // Scales: each periodic component's range over the sampled periods of `result` (the motion's
+  // Scales: each periodic component's range over the sampled periods (`ranges`: the motion's
   // own size; its size if it does not move).
   Eigen::VectorXd scale(P);
   for (int i = 0; i < P; ++i) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo, size = 0.0;
-    for (std::size_t j = 0; j < result.samples.size(); ++j) {
-      const double v = Dyn::sampled_state(result.samples, j)[Dyn::kPeriodic[i]];
+    for (std::size_t j = 0; j < ranges->size(); ++j) {
+      const double v = Dyn::sampled_state(*ranges, j)[Dyn::kPeriodic[i]];
       lo = std::min(lo, v), hi = std::max(hi, v), size = std::max(size, std::abs(v));
     }
     scale[i] = std::max({hi - lo, 1e-9 * size, 1e-15});

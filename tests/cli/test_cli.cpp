@@ -449,7 +449,7 @@ TEST(CliRun, PeriodDoublingShowsBothOrbitsFloquetMultipliers) {
 
 TEST(CliHelp, EveryCommandExplainsItselfWithAnExample) {
   for (const char* command : {"run", "sweep", "analyze", "validate", "paper", "soil",
-                              "transmissibility", "fields", "outputs"}) {
+                              "transmissibility", "fields", "outputs", "continue", "diagram"}) {
     SCOPED_TRACE(command);
     const Outcome o = run({command, "--help"});
     EXPECT_EQ(o.code, 0);
@@ -568,8 +568,9 @@ void expect_only_project_documents(const std::string& text) {
 }
 
 TEST(CliHelp, CitesOnlyDocumentsTheProjectHas) {
-  for (const char* command : {"run", "sweep", "merge", "analyze", "identify", "validate", "paper",
-                              "soil", "transmissibility", "fields", "outputs"}) {
+  for (const char* command :
+       {"run", "sweep", "merge", "analyze", "identify", "validate", "paper", "soil",
+        "transmissibility", "fields", "outputs", "continue", "diagram"}) {
     SCOPED_TRACE(command);
     expect_only_project_documents(run({command, "--help"}).out);
   }

@@ -175,8 +175,8 @@ TEST(FuzzCli, MalformedNumbersInEveryNumericFlagAreRefused) {
   std::mt19937 rng(s);
   TempDir dir;
   std::vector<std::pair<std::string, std::pair<std::string, std::string>>> all;
-  for (const std::string command :
-       {"run", "sweep", "analyze", "identify", "calibrate", "soil", "transmissibility", "continue"})
+  for (const std::string command : {"run", "sweep", "analyze", "identify", "calibrate", "soil",
+                                    "transmissibility", "continue", "diagram"})
     for (const auto& flag : numeric_flags(command)) all.push_back({command, flag});
   ASSERT_GT(all.size(), 40u) << "the numeric flags were not found in --help";
   const int n = draws(60);
@@ -489,6 +489,8 @@ TEST(FuzzCli, InterruptsAtRandomMomentsStopEveryCommandPromptly) {
          "1"},
         {"identify", record, "--window", "4", "--hop", "0.05", "--csv", dir / "id.csv"},
         {"analyze", record, "--window", "1", "--hop", "0.001", "--format", "json"},
+        {"diagram", "--param", "MMd", "--from", "0", "--to", "2000", "--steps", "1000", "--csv",
+         dir / "d.csv"},
 #ifdef OSCIDRUM_WITH_PYTHON  // paper runs the Python package
         {"paper", "--out", dir / "paper", "--threads", "1"},
 #endif
@@ -512,7 +514,7 @@ TEST(FuzzCli, InterruptsAtRandomMomentsStopEveryCommandPromptly) {
     EXPECT_LT(o.seconds, 1.0) << "stopped " << o.seconds << " s after the signal: " << repro;
 #endif
     EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{}) << repro;
-    for (const char* name : {"s.csv", "s.json", "paper"})
+    for (const char* name : {"s.csv", "s.json", "d.csv", "paper"})
       EXPECT_FALSE(std::filesystem::exists(dir / name)) << name << ": " << repro;
   }
 }

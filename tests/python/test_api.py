@@ -266,6 +266,23 @@ def test_continue_branch_gives_the_branch_as_columns():
         oscidrum.continue_branch(oscidrum.Case(), "numerics.rtol", 1e-8, 1e-7)
 
 
+def test_bifurcation_diagram_gives_values_and_points_as_columns():
+    import pandas as pd
+    d = oscidrum.bifurcation_diagram(oscidrum.Case(), "MMd", 0.0, 2000.0, steps=1, sweep="both",
+                                     discard=20, periods=20)
+    assert d["key"] == "MMd" and d["unit"] == "N m"
+    assert list(d["values"]["parameter"]) == [0.0, 2000.0, 2000.0, 0.0]
+    assert list(d["values"]["direction"]) == [1, 1, -1, -1]
+    assert d["values"]["verdict"] == ["periodic"] * 4 and list(d["values"]["period"]) == [1] * 4
+    points = pd.DataFrame(d["points"])
+    assert len(points) == 4 * 20 and {"ddx_M", "ddz_M", "x_A", "s_A", "delta"} <= set(points)
+    # A period-1 orbit: every stroboscopic point of a value is the same.
+    spread = points.groupby("value")["ddx_M"].agg(lambda v: v.max() - v.min())
+    assert (spread < 1e-6 * points["ddx_M"].abs().max()).all()
+    with pytest.raises(oscidrum.Error, match="sweep"):
+        oscidrum.bifurcation_diagram(oscidrum.Case(), "MMd", 0.0, 1.0, sweep="sideways")
+
+
 def test_analyze_motion_of_a_periodic_orbit():
     case = oscidrum.Case()
     result = oscidrum.simulate(case)

@@ -188,3 +188,49 @@ def test_hdf5_tables_have_the_named_dimension_case(tmp_path):
             name = sorted(h5["steady_state"].keys())[k]
         st = xr.open_dataset(merged, group="steady_state/" + name)
         assert st["ddz_M"].dims == ("t",) and "t" in st.coords
+
+
+def test_continue_hdf5_holds_the_branches_of_the_csv_with_units(cli, tmp_path):
+    """`oscidrum continue --hdf5`: every branch (the period-2 one born at the doubling on the
+    log-spiral trough too) with its points, multipliers, metrics and bifurcations, as the CSVs
+    have them (docs/bifurcations.md, "Outputs")."""
+    done = subprocess.run(
+        [cli, "continue", "--param", "soil.G", "--from", "120", "--to", "130",
+         "--set", "soil.input=modulus", "--set", "trough.k=0.002", "--set", "trough.a=0.601",
+         "--set", "contact.mu=0.7", "--set", "roller.f=25", "--set", "roller.unbalance=0.22877",
+         "--csv", str(tmp_path / "b.csv"), "--bifurcations", str(tmp_path / "bif.csv"),
+         "--hdf5", str(tmp_path / "b.h5"), "--format", "none", "--quiet"],
+        capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with open(tmp_path / "b.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    with open(tmp_path / "bif.csv", newline="") as f:
+        bifs = list(csv.DictReader(f))
+    with h5py.File(tmp_path / "b.h5", "r") as h5:
+        assert h5.attrs["format"] == "oscidrum-branch" and h5.attrs["format_version"] == 1
+        assert h5.attrs["key"] == "soil.G" and h5.attrs["unit"] == "Pa"
+        assert h5.attrs["n_branches"] == 2 == len(h5["branches"])
+        for index, g in h5["branches"].items():
+            mine = [r for r in rows if r["branch[-]"] == index]
+            assert len(g["parameter"]) == len(mine) > 2
+            assert g["parameter"].attrs["unit"] == "Pa"
+            assert g["metrics"]["area"].attrs["unit"] == "m^2/s^4"
+            assert g["min_N"].attrs["unit"] == "N"
+            np.testing.assert_allclose(g["parameter"][:],
+                                       [float(r["soil.G[Pa]"]) for r in mine], rtol=1e-12)
+            np.testing.assert_allclose(g["metrics"]["ddx_max"][:],
+                                       [float(r["ddx_max[m/s^2]"]) for r in mine], rtol=1e-12)
+            assert g["multipliers_re"].shape[0] == len(mine)
+            np.testing.assert_allclose(g["multipliers_re"][:, 0],
+                                       [float(r["mu1_re[-]"]) for r in mine], rtol=1e-12)
+            assert [s.decode() for s in g["sequence"][:]] == [r["sequence[-]"] for r in mine]
+            assert g.attrs["end"] == "reached_end"
+        root, child = h5["branches"]["0"], h5["branches"]["1"]
+        assert child.attrs["multiplicity"] == 2 and child.attrs["parent"] == 0
+        kinds = [k.decode() for k in root["bifurcations"]["kind"][:]]
+        assert kinds == [b["kind[-]"] for b in bifs if b["branch[-]"] == "0"]
+        assert "period_doubling" in kinds
+        k = kinds.index("period_doubling")
+        assert root["bifurcations"]["child_branch"][k] == 1
+        assert abs(root["bifurcations"]["parameter"][k] - 125.004e6) < 0.01e6
+        assert root["bifurcations"]["parameter"].attrs["unit"] == "Pa"

@@ -577,3 +577,16 @@ def test_forces_panel_b_legend_names_only_the_friction_limit(slip_result, slip_c
     rolling.contact.pure_rolling = True
     fig = plot.plot_forces((oscidrum.simulate(rolling), rolling))
     assert fig.axes[1].get_legend() is None  # pure rolling: no friction limit to name
+
+
+def test_cli_diagram_plot_draws_the_stroboscopic_points(cli, tmp_path):
+    out = tmp_path / "d.png"
+    p = subprocess.run([cli, "diagram", "--param", "MMd", "--from", "0", "--to", "2000",
+                        "--steps", "1", "--discard", "20", "--periods", "20", "--quiet",
+                        "--format", "none", "--csv", str(tmp_path / "d.csv"), "--plot", str(out),
+                        "--plot-quantity", "ddz_M"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert out.stat().st_size > 1000
+    table, units = data.read_table(tmp_path / "d.csv")
+    fig = plot.plot_diagram(table, "ddz_M", units=units)
+    assert len(fig.axes[0].lines[0].get_xdata()) == 2 * 20  # every point of the up sweep

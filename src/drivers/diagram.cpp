@@ -1,0 +1,182 @@
+// The brute-force bifurcation diagram (oscidrum/diagram.hpp). At each value of the parameter the
+// motion starts from the state the previous value ended in. Its attractor is sought first as a
+// stable periodic orbit by shooting from that state (simulate_from, as a study's continuation:
+// near a bifurcation a multiplier near the unit circle makes the transient approach it over
+// thousands of periods); without one, the transient from that state is integrated over `discard`
+// periods and one period sampled (the components' ranges, which scale the verdict's distances).
+// Either way analyze_motion examines `periods` further periods; its stroboscopic points become
+// every output column by the roller's sampling.
+#include "oscidrum/diagram.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "drivers/continuation.hpp"
+#include "drivers/sampling.hpp"
+#include "drivers/varied_parameter.hpp"
+#include "oscidrum/error.hpp"
+#include "oscidrum/fields.hpp"
+#include "oscidrum/flow.hpp"
+#include "oscidrum/model.hpp"
+#include "roller/rollers.hpp"
+#include "util/format.hpp"
+
+namespace oscidrum {
+namespace {
+
+// Samples per period of the sampled period whose ranges scale the verdict (as simulate's default
+// output resolution does not matter here: only the ranges are read).
+constexpr int kScaleSamples = 64;
+
+// The periods simulate_from may spend on shooting at a value (numerics.max_periods): --discard,
+// at least 100 (shooting's short transient and Newton's period maps), below 400 (from 400 on
+// simulate examines a motion without a steady state itself, which the diagram does after its
+// own transient).
+constexpr int kMinShootingPeriods = 100;
+constexpr int kMaxShootingPeriods = 399;
+
+// Where the next value starts: the last stroboscopic state and its phase (empty: from rest).
+struct Start {
+  std::vector<double> state;
+  Phase phase = Phase::stick;
+};
+
+template <class R>
+DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
+                      const DiagramOptions& o, long& periods_integrated) {
+  using Dyn = detail::Dynamics<R>;
+  using Vector = typename Dyn::Vector;
+  DiagramValue v;
+  v.parameter = q;
+  Case ck = c;
+  set_field(ck, field.key, q);
+  // The attractor as a periodic orbit first: shooting from the previous value's last state (the
+  // first value: simulate's start), with a budget of periods below the one at which simulate
+  // examines a motion itself (the transient below does that here).
+  ck.numerics.method = SteadyMethod::shooting;
+  ck.numerics.max_periods = std::clamp(o.discard, kMinShootingPeriods, kMaxShootingPeriods);
+  const Model model(ck);
+  const double T = model.period();
+  v.excitation_period = T;
+  const bool first = start.state.empty();
+  const detail::WarmStart warm{start.state, start.phase, {}};
+  Result sampled = detail::simulate_from(model, {}, o.cancelled, first ? nullptr : &warm);
+  periods_integrated += sampled.diagnostics.periods_simulated;
+  const Dyn dyn(model, FlowOptions::from(model).baumgarte);
+  if (sampled.status == Status::steady_state) {
+    v.shooting = true;
+    v.from_rest = first || sampled.diagnostics.warm_start < 0;
+  } else {
+    if (sampled.status == Status::cancelled) return v;
+    // No stable periodic orbit found: the transient from the previous value's last state (or
+    // from rest), `discard` periods dropped, one sampled (the ranges that scale the verdict).
+    v.from_rest = first;
+    FlowOptions fo = FlowOptions::from(model);
+    fo.cancelled = o.cancelled;
+    BasicFlow<R> flow(model, fo);
+    if (first) {
+      flow.reset(0.0, R::State::from_array(dyn.initial_state()), dyn.initial_phase());
+    } else {
+      // A phase the new value cannot be in (as a study's warm start maps it), and the state
+      // made consistent with it (the constraints of stick depend on the parameters).
+      const Phase phase = dyn.flow_phase(start.phase);
+      Vector x{};
+      std::copy(start.state.begin(), start.state.end(), x.begin());
+      flow.reset(0.0, R::State::from_array(dyn.consistent(x, phase)), phase);
+    }
+    sampled = Result{};
+    sampled.frequency = ck.roller.f;
+    FlowStop stop = flow.advance(o.discard * T);
+    if (stop == FlowStop::reached) stop = detail::sample_periods(flow, 1, kScaleSamples, sampled);
+    periods_integrated += static_cast<long>(std::ceil(flow.t() / T - 1e-9));
+    if (stop != FlowStop::reached) {
+      start = {};  // the next value from rest
+      v.motion.kind = "undecided";
+      v.motion.evidence = std::string("the flow stopped (") + to_string(stop) + ") after " +
+                          std::to_string(static_cast<int>(flow.t() / T)) +
+                          " periods: " + flow.message();
+      return v;
+    }
+  }
+  v.motion = analyze_motion(model, sampled, o.periods, o.cancelled);
+  periods_integrated += v.motion.periods;
+  if (v.motion.kind == "periodic") v.period = v.motion.recurrence;
+  if (v.motion.kind == "converging") v.period = v.motion.converging_period;
+  const double t0 = sampled.samples.t.front();
+  for (std::size_t k = 1; k < v.motion.section.size(); ++k) {
+    Vector x{};
+    std::copy(v.motion.section[k].begin(), v.motion.section[k].end(), x.begin());
+    dyn.sample(t0 + static_cast<double>(k) * T, x, v.motion.section_phase[k], v.section);
+  }
+  // The next value starts where this one ended, unless the flow stopped early.
+  if (v.motion.periods == o.periods && !v.motion.section.empty())
+    start = {v.motion.section.back(), v.motion.section_phase.back()};
+  else
+    start = {};
+  v.motion.section.clear();
+  v.motion.section_phase.clear();
+  return v;
+}
+
+}  // namespace
+
+const char* to_string(DiagramSweep sweep) {
+  switch (sweep) {
+    case DiagramSweep::up:
+      return "up";
+    case DiagramSweep::down:
+      return "down";
+    case DiagramSweep::both:
+      return "both";
+  }
+  return "?";
+}
+
+Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
+  const Field& field = detail::varied_field(c, o.key, o.from, o.to, "diagram");
+  if (!(o.from < o.to))
+    throw Error("diagram: --to must be > --from; got " + detail::shortest(o.from) + " and " +
+                detail::shortest(o.to));
+  if (o.steps < 1 || o.steps > 100000)
+    throw Error("diagram: --steps must be in [1, 100000]; got " + std::to_string(o.steps));
+  if (o.discard < 0 || o.discard > 1000000)
+    throw Error("diagram: --discard must be in [0, 1000000]; got " + std::to_string(o.discard));
+  if (o.periods < 20 || o.periods > 100000)
+    throw Error("diagram: --periods must be in [20, 100000]; got " + std::to_string(o.periods));
+  const Model model(c);  // validates the case
+  const auto t_start = std::chrono::steady_clock::now();
+  Diagram d;
+  d.key = o.key;
+  d.unit = field.unit;
+  // The values in the order visited: (parameter, direction).
+  std::vector<std::pair<double, int>> order;
+  const auto value = [&](int i) {
+    return i == o.steps ? o.to : o.from + (o.to - o.from) * i / o.steps;
+  };
+  if (o.sweep != DiagramSweep::down)
+    for (int i = 0; i <= o.steps; ++i) order.push_back({value(i), 1});
+  if (o.sweep != DiagramSweep::up)
+    for (int i = o.steps; i >= 0; --i) order.push_back({value(i), -1});
+  Start start;
+  const int total = static_cast<int>(order.size());
+  detail::with_roller(model, [&]<class R>() {
+    for (const auto& [q, direction] : order) {
+      DiagramValue v = value_at<R>(c, field, q, start, o, d.periods_integrated);
+      v.direction = direction;
+      if (o.cancelled && o.cancelled()) {
+        d.cancelled = true;
+        break;
+      }
+      d.values.push_back(std::move(v));
+      if (o.on_value) o.on_value(static_cast<int>(d.values.size()), total, q);
+    }
+  });
+  d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return d;
+}
+
+}  // namespace oscidrum

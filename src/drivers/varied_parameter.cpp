@@ -1,0 +1,28 @@
+// The checks of a varied parameter (drivers/varied_parameter.hpp).
+#include "drivers/varied_parameter.hpp"
+
+#include <string>
+#include <utility>
+
+#include "oscidrum/error.hpp"
+
+namespace oscidrum::detail {
+
+const Field& varied_field(const Case& c, const std::string& key, double from, double to,
+                          const std::string& who) {
+  const Field* field = find_field(key);
+  if (!field) throw Error(who + ": unknown key '" + key + "' (oscidrum fields lists them)");
+  if (field->type != FieldType::real)
+    throw Error(who + ": " + key + " is not a real-valued parameter");
+  if (key.rfind("numerics.", 0) == 0)
+    throw Error(who + ": " + key + " is a numerical setting, not a parameter of the model");
+  if (!key_in_effect(c, key))
+    throw Error(who + ": " + key + " has no effect in this case: " + key_not_in_effect(c, key));
+  for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
+    const std::string why = check_field(*field, value);
+    if (!why.empty()) throw Error(who + ": " + name + ": " + why);
+  }
+  return *field;
+}
+
+}  // namespace oscidrum::detail

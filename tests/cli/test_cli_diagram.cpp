@@ -1,0 +1,93 @@
+// End-to-end tests of `oscidrum diagram`: the files, the table, bad input, Ctrl-C.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
+
+namespace oscidrum::test {
+namespace {
+
+// Three values of the driving torque, up and down: the CSV has a row per stroboscopic point
+// with the value's verdict and every output column; the JSON has a value per visit with its
+// points; the table a line per value.
+TEST(CliDiagram, WritesThePointsOfEveryValue) {
+  TempDir dir;
+  const Outcome o = run({"diagram",      "--param",   "MMd", "--from",  "0",           "--to",
+                         "2000",         "--steps",   "2",   "--sweep", "both",        "--discard",
+                         "20",           "--periods", "20",  "--csv",   dir / "d.csv", "--json",
+                         dir / "d.json", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string csv = slurp(dir / "d.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n'))
+                .rfind("sweep[-],value[-],MMd[N m],point[-],verdict[-],period[-],lyapunov[1/s],"
+                       "from_rest[-],shooting[-],t[s],delta[rad],phi[rad],x_A[m],s_A[m],",
+                       0),
+            0u)
+      << csv.substr(0, csv.find('\n'));
+  EXPECT_NE(csv.find(",ddx_M[m/s^2],ddz_M[m/s^2],"), std::string::npos);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 6 * 20);
+  EXPECT_NE(csv.find("\ndown,5,0,20,periodic,1,"), std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "d.json"));
+  EXPECT_EQ(j["schema"], "oscidrum-diagram/1");
+  EXPECT_EQ(j["sweep"], "both");
+  ASSERT_EQ(j["values"].size(), 6u);
+  EXPECT_EQ(j["values"][3]["direction"], "down");
+  EXPECT_EQ(j["values"][0]["verdict"], "periodic");
+  EXPECT_EQ(j["values"][0]["section"]["ddz_M"].size(), 20u);
+  // stdout: the table, one line per value after the header and its rule.
+  EXPECT_NE(o.out.find("periodic"), std::string::npos) << o.out;
+  EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 2 + 6) << o.out;
+}
+
+TEST(CliDiagram, BadInputIsRefusedWithOneLineNamingTheFlag) {
+  const std::vector<std::string> base = {"diagram", "--param", "contact.mu", "--from",
+                                         "0.3",     "--to",    "0.5"};
+  for (const auto& [extra, flag] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--steps", "0"}, "--steps"},
+           {{"--periods", "10"}, "--periods"},
+           {{"--discard", "-1"}, "--discard"},
+           {{"--sweep", "sideways"}, "--sweep"},
+           {{"--plot-quantity", "nope"}, "--plot-quantity"},
+           {{"--plot", "x.png"}, "--plot"},
+           {{"--format", "xml"}, "--format"}}) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << flag << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_NE(o.err.find(flag), std::string::npos) << o.err;
+  }
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"diagram", "--param", "soil.gg", "--from", "1", "--to", "2"},
+           {"diagram", "--param", "contact.mu", "--from", "0.5", "--to", "0.3"},
+           {"diagram", "--param", "numerics.rtol", "--from", "1e-8", "--to", "1e-7"},
+           {"diagram", "--param", "soil.G", "--from", "10", "--to", "abc"}}) {
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << args[2] << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  }
+  const Outcome range = run({"diagram", "--param", "contact.mu", "--from", "0.5", "--to", "0.3"});
+  EXPECT_NE(range.err.find("--to must be > --from"), std::string::npos) << range.err;
+}
+
+TEST(CliDiagram, InterruptExits130WithoutWritingFiles) {
+  TempDir dir;
+  const pid_t pid = start({"diagram", "--param", "MMd", "--from", "0", "--to", "2000", "--steps",
+                           "1000", "--csv", dir / "d.csv"},
+                          dir / "out", dir / "err");
+  ASSERT_TRUE(wait_until_catching(pid, SIGINT));
+  ::kill(pid, SIGINT);
+  const Outcome o = finish(pid, dir / "out", dir / "err", 60);
+  EXPECT_EQ(o.code, 130) << o.err;
+  EXPECT_NE(o.err.find("interrupted"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.csv"));
+}
+
+}  // namespace
+}  // namespace oscidrum::test

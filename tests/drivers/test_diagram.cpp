@@ -1,0 +1,175 @@
+// The brute-force bifurcation diagram (src/drivers/diagram.cpp): its stroboscopic points show the
+// period doubling that the continuation locates, the sweep carries the state from value to value,
+// and bad options are refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "oscidrum/oscidrum.hpp"
+
+namespace oscidrum {
+namespace {
+
+// The paper's log-spiral trough at 25 Hz with mu = 0.7 (docs/bifurcations.md): a period doubling
+// at G = 125.004 MN/m^2.
+Case log_spiral_case() {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  set_field(c, "trough.k", 0.002);
+  set_field(c, "trough.a", 0.601);
+  set_field(c, "contact.mu", 0.7);
+  set_field(c, "roller.f", 25.0);
+  set_field(c, "roller.unbalance", 0.22877);
+  return c;
+}
+
+// The distinct values of a column (apart by more than `tol` of the largest magnitude).
+std::vector<double> distinct(std::vector<double> v, double tol) {
+  std::sort(v.begin(), v.end());
+  double scale = 0.0;
+  for (const double x : v) scale = std::max(scale, std::abs(x));
+  std::vector<double> out;
+  for (const double x : v)
+    if (out.empty() || x - out.back() > tol * scale) out.push_back(x);
+  return out;
+}
+
+// Below the doubling the motion is the period-1 orbit: one stroboscopic point per value (every
+// point the same); above it the period-2 orbit: two points, alternating, each repeating every
+// two periods. The horizontal acceleration, the trough's displacements and delta all show it.
+TEST(Diagram, OnePointBelowThePeriodDoublingAndTwoAbove) {
+  DiagramOptions o;
+  o.key = "soil.G";
+  o.from = 120e6;
+  o.to = 130e6;  // the doubling at 125.004 MN/m^2 lies between
+  o.steps = 1;
+  o.discard = 300;
+  o.periods = 40;
+  const Diagram d = bifurcation_diagram(log_spiral_case(), o);
+  ASSERT_EQ(d.values.size(), 2u);
+  EXPECT_EQ(d.unit, "Pa");
+  const DiagramValue &below = d.values[0], &above = d.values[1];
+  EXPECT_TRUE(below.from_rest);
+  EXPECT_FALSE(above.from_rest);  // started from the state at 120 MN/m^2
+  EXPECT_EQ(below.parameter, 120e6);
+  EXPECT_EQ(above.parameter, 130e6);
+  ASSERT_EQ(below.section.size(), 40u);
+  ASSERT_EQ(above.section.size(), 40u);
+  EXPECT_EQ(below.period, 1) << below.motion.kind << ": " << below.motion.evidence;
+  EXPECT_EQ(above.period, 2) << above.motion.kind << ": " << above.motion.evidence;
+  for (const auto column :
+       {&Samples::ddx_M, &Samples::ddz_M, &Samples::x_A, &Samples::s_A, &Samples::delta}) {
+    EXPECT_EQ(distinct(below.section.*column, 1e-4).size(), 1u);
+    EXPECT_EQ(distinct(above.section.*column, 1e-4).size(), 2u);
+  }
+  // Each period-2 point recurs every second period and differs from its neighbour.
+  const std::vector<double>& x = above.section.ddx_M;
+  const double range =
+      *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
+  for (std::size_t k = x.size() / 2; k + 2 < x.size(); ++k) {
+    EXPECT_NEAR(x[k + 2], x[k], 1e-4 * range) << k;
+    EXPECT_GT(std::abs(x[k + 1] - x[k]), 0.5 * range) << k;
+  }
+  // The points are whole periods apart.
+  EXPECT_NEAR(below.section.t.back() - below.section.t.front(), 39 * 0.04, 1e-9);
+  // Both orbits were found by shooting (from rest, then from the orbit at 120 MN/m^2): by the
+  // transient, with a multiplier of -0.998 at 120 MN/m^2, they would take thousands of periods.
+  EXPECT_TRUE(below.shooting);
+  EXPECT_TRUE(above.shooting);
+}
+
+// The sweep down starts at the largest value and visits every value once per direction; both
+// visits the largest twice (up, then down from where the up sweep ended).
+TEST(Diagram, SweepsVisitTheValuesInOrder) {
+  DiagramOptions o;
+  o.key = "MMd";
+  o.from = 0.0;
+  o.to = 2000.0;
+  o.steps = 2;
+  o.discard = 20;
+  o.periods = 20;
+  o.sweep = DiagramSweep::both;
+  int calls = 0;
+  o.on_value = [&](int done, int total, double) {
+    ++calls;
+    EXPECT_EQ(done, calls);
+    EXPECT_EQ(total, 6);
+  };
+  const Diagram d = bifurcation_diagram(Case(), o);
+  ASSERT_EQ(d.values.size(), 6u);
+  const std::vector<double> want = {0, 1000, 2000, 2000, 1000, 0};
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(d.values[i].parameter, want[i]);
+    EXPECT_EQ(d.values[i].direction, i < 3 ? 1 : -1);
+    EXPECT_EQ(d.values[i].from_rest, i == 0);
+    // The default case settles on its period-1 orbit at each value.
+    EXPECT_EQ(d.values[i].period, 1)
+        << d.values[i].motion.kind << ": " << d.values[i].motion.evidence;
+  }
+  // A value started from its neighbour's state continues it: the down sweep's first value
+  // starts where the up sweep's last ended and ends on the same orbit.
+  EXPECT_NEAR(d.values[3].section.ddx_M.back(), d.values[2].section.ddx_M.back(),
+              1e-4 * std::abs(d.values[2].section.ddx_M.back()));
+  EXPECT_GE(d.periods_integrated, 6L * 20);
+  o.sweep = DiagramSweep::down;
+  o.on_value = {};
+  const Diagram down = bifurcation_diagram(Case(), o);
+  ASSERT_EQ(down.values.size(), 3u);
+  EXPECT_EQ(down.values[0].parameter, 2000.0);
+  EXPECT_EQ(down.values[2].parameter, 0.0);
+}
+
+TEST(Diagram, RefusesBadOptions) {
+  const Case c;
+  const auto refused = [&](DiagramOptions o, const std::string& says) {
+    try {
+      bifurcation_diagram(c, o);
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  DiagramOptions o;
+  o.key = "contact.mu";
+  o.from = 0.3;
+  o.to = 0.5;
+  DiagramOptions bad = o;
+  bad.key = "soil.gg";
+  refused(bad, "unknown key");
+  bad = o;
+  bad.key = "numerics.rtol";
+  refused(bad, "numerical setting");
+  bad = o;
+  bad.to = 0.3;
+  refused(bad, "--to must be > --from");
+  bad = o;
+  bad.steps = 0;
+  refused(bad, "--steps must be in [1, 100000]");
+  bad = o;
+  bad.periods = 19;
+  refused(bad, "--periods must be in [20, 100000]");
+  bad = o;
+  bad.discard = -1;
+  refused(bad, "--discard must be in [0, 1000000]");
+  bad = o;
+  bad.from = -1;
+  refused(bad, "--from");
+}
+
+TEST(Diagram, CancelledStopsPromptly) {
+  DiagramOptions o;
+  o.key = "MMd";
+  o.from = 0.0;
+  o.to = 2000.0;
+  o.steps = 10;
+  o.cancelled = [] { return true; };
+  const Diagram d = bifurcation_diagram(Case(), o);
+  EXPECT_TRUE(d.cancelled);
+  EXPECT_TRUE(d.values.empty());
+}
+
+}  // namespace
+}  // namespace oscidrum
