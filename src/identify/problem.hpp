@@ -21,8 +21,8 @@ namespace oscidrum::detail {
 /// simulate_metrics (oscidrum/identify.hpp) with shooting started from `warm` (may be null) when
 /// the case's method is shooting (simulate_from); `orbit` (may be null) receives the run's steady
 /// state as a start for the next run. The metrics read the steady period the sampling recorded.
-ModelResponse simulate_metrics_from(const Case& c, int n_max, long max_steps,
-                                    const WarmStart* warm, std::optional<WarmStart>* orbit);
+ModelResponse simulate_metrics_from(const Case& c, int n_max, long max_steps, const WarmStart* warm,
+                                    std::optional<WarmStart>* orbit);
 
 /// The unknowns an identification can estimate.
 enum class Unknown { G, ksh, ksv, mu, MMd };
