@@ -132,7 +132,7 @@ class Dynamics<SoftImpactOscillator> {
     s.speed = phase == kContact ? 0.0 : x[1];
     return s;
   }
-  bool invalid(const Vector&, double, std::string*) const { return false; }
+  bool invalid(Phase, const Vector&, double, std::string*, FlowStop*) const { return false; }
   void track(Phase, const Vector&, double N, FlowCounters& counters) const {
     counters.min_N = std::min(counters.min_N, N);
   }
