@@ -407,9 +407,19 @@ Result simulate_ramped(const Model& model, const ProgressCallback& progress,
 // or chaos is a verdict, status aperiodic; otherwise the status stands, with what was seen.
 constexpr int kMotionPeriods = 400;
 
+// A window that examined all its periods and still did not decide (the exponent's halves
+// disagree: the motion is still changing) is followed by one kLongerMotion times as long, from
+// the same start (a period-2 orbit approached over about a thousand periods decides there).
+constexpr int kLongerMotion = 4;
+
 void examine_motion(const Model& model, Result& result, const std::function<bool()>& cancelled) {
-  const MotionAnalysis a = analyze_motion(model, result, kMotionPeriods, cancelled);
+  MotionAnalysis a = analyze_motion(model, result, kMotionPeriods, cancelled);
   if (cancelled && cancelled()) return;  // the run's status stands; it was stopped
+  if (a.kind == "undecided" && a.periods == kMotionPeriods) {
+    a = analyze_motion(model, result, kLongerMotion * kMotionPeriods, cancelled);
+    if (cancelled && cancelled()) return;
+    a.evidence += " (" + std::to_string(kMotionPeriods) + " periods did not decide)";
+  }
   result.diagnostics.motion = a.kind;
   result.diagnostics.lyapunov_exponent = a.lyapunov;
   if (a.kind == "quasi_periodic" || a.kind == "chaotic") {

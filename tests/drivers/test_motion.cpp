@@ -167,5 +167,29 @@ TEST(Motion, AResultWithOnlyItsSectionStateGetsTheSameVerdict) {
   EXPECT_NEAR(alone.lyapunov, full.lyapunov, 0.1 * std::abs(full.lyapunov)) << alone.evidence;
 }
 
+// A window that examines all its 400 periods without deciding (here the exponent's halves were
+// -0.0006 and -0.0996 per period: the motion still changing) is followed by one four times as
+// long, which decides: this case of the random scan (scripts/aperiodic_scan.py) approaches a
+// period-2 orbit over about a thousand periods.
+TEST(Motion, AnUndecidedWindowIsFollowedByALongerOne) {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  set_field_text(c, "contact.pure_rolling", "true");
+  set_field_text(c, "contact.unilateral", "true");
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "soil.G", 48394967.37278324);
+  set_field(c, "roller.f", 62.85552485248849);
+  set_field(c, "MMd", 1157.5428498360343);
+  set_field(c, "trough.a", 0.6071288424050122);
+  c.numerics.max_periods = 1500;
+  const Model model(c);
+  const Result r = simulate(model);
+  ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_EQ(analyze_motion(model, r, 400).kind, "undecided");
+  EXPECT_EQ(r.diagnostics.motion, "periodic") << r.message;
+  EXPECT_NE(r.message.find("over 1600 further periods"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("every 2 periods"), std::string::npos) << r.message;
+}
+
 }  // namespace
 }  // namespace oscidrum
