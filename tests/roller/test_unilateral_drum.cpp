@@ -483,5 +483,39 @@ TEST(UnilateralDrum, StructuredProductIsTheFullOne) {
   }
 }
 
+// The pure-rolling cases of the random scan that stop with unilateral contact
+// (scripts/contact_lost_scan.py, docs/lift-off.md) are not lift-offs of a drum with a friction
+// limit: without one the contact would have to carry T as N falls to zero (neither flight nor
+// contact is consistent, the run stops saying so); with mu = 2 the same drum slips and keeps its
+// contact throughout, the same with permanent and with unilateral contact.
+TEST(UnilateralDrum, APureRollingStopIsNotALiftOffOfAFrictionLimitedDrum) {
+  Case c;
+  set_field_text(c, "soil.input", "modulus");
+  set_field(c, "soil.G", 60044266.47906289);
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "roller.f", 68.11199841103928);
+  set_field(c, "MMd", 25756.446723514764);
+  set_field(c, "trough.a", 0.6342729759975047);
+  c.contact.unilateral = true;
+  c.contact.pure_rolling = true;
+  const Result rolling = simulate(c);
+  EXPECT_EQ(rolling.status, Status::contact_lost) << rolling.message;
+  EXPECT_NE(rolling.message.find("give a friction coefficient instead"), std::string::npos)
+      << rolling.message;
+  c.contact.pure_rolling = false;
+  c.contact.mu = 2.0;
+  const Result unilateral = simulate(c);
+  ASSERT_EQ(unilateral.status, Status::steady_state) << unilateral.message;
+  EXPECT_EQ(unilateral.diagnostics.contact_mode, "permanent contact");
+  EXPECT_GT(unilateral.diagnostics.min_N, 0.0);
+  EXPECT_GT(unilateral.slip_positive_time + unilateral.slip_negative_time, 0.0);  // it slips
+  c.contact.unilateral = false;
+  const Result permanent = simulate(c);
+  ASSERT_EQ(permanent.status, Status::steady_state) << permanent.message;
+  const Metrics a = compute_metrics(unilateral), b = compute_metrics(permanent);
+  EXPECT_NEAR(a.ddx_max, b.ddx_max, 1e-6 * std::abs(b.ddx_max));
+  EXPECT_NEAR(a.area, b.area, 1e-6 * std::abs(b.area));
+}
+
 }  // namespace
 }  // namespace oscidrum::detail
