@@ -457,25 +457,25 @@ function drawTimePlot(r) {
   }, data, el);
 }
 
-// The spectrum A_n / max A_n as bars; a measured record's (its own maximum) as dots over them.
+// The spectrum A_n [m/s²] as bars; a measured record's as dots over them, on the same scale (the
+// identified model and the record side by side, as `oscidrum run --plot` draws them).
 function drawSpectrum(id, amplitudes, color, measured = null) {
   const a = Array.from(amplitudes);
-  const top = Math.max(...a) || 1;
   const x = a.map((_, i) => i);
-  const y = a.map((v) => v / top);
-  const series = [{ label: 'n' }, { label: 'A_n / max', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }];
-  const data = [x, y];
+  const series = [{ label: 'n' }, { label: 'A_n [m/s²]', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }];
+  const data = [x, a];
+  let top = Math.max(...a);
   if (measured) {
-    const mt = Math.max(...measured) || 1;
-    data.push(x.map((i) => (i < measured.length ? measured[i] / mt : null)));
+    data.push(x.map((i) => (i < measured.length ? measured[i] : null)));
+    top = Math.max(top, ...measured.slice(0, a.length));
     series.push({ label: 'measured', stroke: COLORS.measured, paths: () => null, points: { show: true, size: 7, fill: COLORS.measured } });
   }
   const el = $(id);
   if (plots[id]) plots[id].destroy();
   plots[id] = new uPlot({
     width: 420, height: 200,
-    scales: { x: { time: false, range: [-0.5, a.length - 0.5] }, y: { range: [0, 1.05] } },
-    axes: [{ label: 'n (harmonic n f)', splits: () => x }, { label: 'A_n / max' }],
+    scales: { x: { time: false, range: [-0.5, a.length - 0.5] }, y: { range: [0, 1.05 * (top || 1)] } },
+    axes: [{ label: 'n (harmonic n f)', splits: () => x }, { label: 'A_n [m/s²]', size: 60 }],
     series,
     legend: { show: false },
   }, data, el);
@@ -994,13 +994,13 @@ function plotsSvg() {
   const shading = phaseRuns(s.phase, n).map((run) => ({ x0: t[run.from], x1: t[Math.min(run.to, n - 1)], color: phaseColor(run.phase) }));
   const np = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
   const closed = (a) => [...a.subarray(0, np), a[0]];
-  const spec = (h, color) => { const a = Array.from(h.amplitude); const top = Math.max(...a) || 1; return [{ x: a.map((_, i) => i), y: a.map((v) => v / top), color, bars: true }]; };
+  const spec = (h, color) => { const a = Array.from(h.amplitude); return [{ x: a.map((_, i) => i), y: a, color, bars: true }]; };
   const body = [
     svgPlot(0, 0, 900, 280, "x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)", 't - t0 [ms]', 'm/s²',
       [{ x: t, y: s.ddx_M.subarray(0, n), color: COLORS.x }, { x: t, y: s.ddz_M.subarray(0, n), color: COLORS.z }], shading),
     svgPlot(0, 290, 440, 320, `z_M'' over x_M'', area ${fmt(m.area, 5)} m²/s⁴`, "x_M'' [m/s²]", "z_M'' [m/s²]", [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }]),
-    svgPlot(460, 290, 440, 155, "spectrum of x_M''", 'n', 'A_n / max', spec(m.ddx_harmonics, COLORS.x)),
-    svgPlot(460, 455, 440, 155, "spectrum of z_M''", 'n', 'A_n / max', spec(m.ddz_harmonics, COLORS.z)),
+    svgPlot(460, 290, 440, 155, "spectrum of x_M''", 'n', 'A_n [m/s²]', spec(m.ddx_harmonics, COLORS.x)),
+    svgPlot(460, 455, 440, 155, "spectrum of z_M''", 'n', 'A_n [m/s²]', spec(m.ddz_harmonics, COLORS.z)),
   ];
   return `<svg xmlns="http://www.w3.org/2000/svg" width="900" height="620" font-family="sans-serif">\n<rect width="900" height="620" fill="#fff"/>\n${body.join('\n')}\n</svg>\n`;
 }
