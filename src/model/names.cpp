@@ -89,6 +89,8 @@ const char* to_string(BifurcationKind kind) {
       return "neimark_sacker";
     case BifurcationKind::grazing:
       return "grazing";
+    case BifurcationKind::lift_off:
+      return "lift_off";
   }
   return "?";
 }
@@ -109,6 +111,8 @@ const char* to_string(BranchEnd end) {
       return "start_failed";
     case BranchEnd::cancelled:
       return "cancelled";
+    case BranchEnd::lift_off:
+      return "lift_off";
   }
   return "?";
 }
