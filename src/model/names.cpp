@@ -73,6 +73,8 @@ const char* to_string(FlowStop stop) {
       return "budget_exceeded";
     case FlowStop::cancelled:
       return "cancelled";
+    case FlowStop::inconsistent_state:
+      return "inconsistent_state";
   }
   return "?";
 }
