@@ -51,6 +51,9 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
       {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
       {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
   };
+  // The Kb-type stiffness: a ratio to the fundamental of z_M.
+  if (name == "kb" && std::isnan(m.kb))
+    return std::string("n/a (z_M has no fundamental, e.g. by symmetry without MMd)");
   // The RMV- and CCV-type values: ratios to A(f) (and A(f/2)) of z_M''.
   if (name == "rmv" || name == "ccv") {
     const double v = name == "rmv" ? m.rmv : m.ccv;

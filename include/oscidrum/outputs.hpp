@@ -191,7 +191,12 @@
   X(double, gap_max, "m", "largest gap",                                                        \
     "largest gap between drum and trough over the steady period (contact.unilateral)")          \
   X(double, landing_velocity, "m/s", "landing velocity",                                        \
-    "largest speed at which the gap closes at a landing, -g' (contact.unilateral)")
+    "largest speed at which the gap closes at a landing, -g' (contact.unilateral)")             \
+  X(double, kb, "N/m", "Kb-type soil stiffness",                                                \
+    "Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T "       \
+    "sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the "       \
+    "excitation frequency, over that displacement's amplitude (the k_s of Anderegg and "        \
+    "Kaufmann 2004 from the contact force itself; docs/outputs.md)")
 
 // Quantities of the least-squares fit of a measured record.
 #define OSCIDRUM_RECORD_FIT(X)                                                     \

@@ -305,6 +305,8 @@ class Metrics:
     """work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over the sampled window / its periods (13, 27) [J]"""
     gap_max: float
     """largest gap between drum and trough over the steady period (contact.unilateral) [m]"""
+    kb: float
+    """Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the excitation frequency, over that displacement's amplitude (the k_s of Anderegg and Kaufmann 2004 from the contact force itself; docs/outputs.md) [N/m]"""
     landing_velocity: float
     """largest speed at which the gap closes at a landing, -g' (contact.unilateral) [m/s]"""
     liftoffs_per_period: float

@@ -255,7 +255,7 @@ std::optional<U::Matrix> Dynamics<UnilateralDrum>::section_jacobian(const Vector
   return G;
 }
 
-std::array<double, 7> Dynamics<UnilateralDrum>::quantities(double t, const Vector& x,
+std::array<double, 9> Dynamics<UnilateralDrum>::quantities(double t, const Vector& x,
                                                            Phase phase) const {
   if (phase != Phase::flight) return drum_.quantities(t, contact_part(x), phase);
   const Model& m = model();
@@ -268,7 +268,9 @@ std::array<double, 7> Dynamics<UnilateralDrum>::quantities(double t, const Vecto
           x[kPhi],
           0.0,
           0.0,
-          x[kGap]};
+          x[kGap],
+          0.0,
+          M.z};
 }
 
 void Dynamics<UnilateralDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
