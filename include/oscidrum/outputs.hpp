@@ -109,6 +109,11 @@
     "how the steady state uses its contact: permanent contact, periodic lift-off (every "         \
     "period), lift-off every p periods (a subharmonic with periods of permanent contact); "       \
     "aperiodic for a run with lift-offs that reaches no steady state; empty otherwise")           \
+  X(std::string, operating_mode, "", "-", "operating mode",                                       \
+    "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "    \
+    "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), " \
+    "lift-off with period p (p > 2), aperiodic (chaotic or quasi-periodic); empty for the "       \
+    "oscillation drum and where contact_mode is empty")                                           \
   X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                      \
     "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or " \
     "20 when the start from rest lost contact before a steady state and the run was retried "     \

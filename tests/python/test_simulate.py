@@ -187,9 +187,9 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     # The table's diagnostics, the steady-state method's included (the method by its name).
     names = [x["name"] for x in table["diagnostics"]]
     assert list(d.to_dict()) == names
-    assert names[-11:] == ["method", "newton_iterations", "jacobian_evaluations",
+    assert names[-12:] == ["method", "newton_iterations", "jacobian_evaluations",
                            "period_equivalents", "phi_drift", "fallback", "contact_mode",
-                           "start_ramp_periods", "warm_start", "motion", "lyapunov_exponent"]
+                           "operating_mode", "start_ramp_periods", "warm_start", "motion", "lyapunov_exponent"]
     assert d.motion == "" and d.lyapunov_exponent == 0.0  # a steady state: nothing to examine
     assert d.contact_mode == "permanent contact"  # a steady state of the paper's drum
     assert d.start_ramp_periods == 0  # the paper's start: all at once

@@ -155,6 +155,10 @@ TEST(VibratoryDrum, ShootingAndTransientAgree) {
     EXPECT_EQ(shot.diagnostics.contact_mode, trans.diagnostics.contact_mode);
     EXPECT_EQ(shot.diagnostics.contact_mode,
               unilateral ? "periodic lift-off" : "permanent contact");
+    // The literature's names (docs/model.md section 14).
+    EXPECT_EQ(shot.diagnostics.operating_mode,
+              unilateral ? "partial uplift" : "continuous contact");
+    EXPECT_EQ(trans.diagnostics.operating_mode, shot.diagnostics.operating_mode);
     const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
     const double tol = 2e-7;  // the transient's distance from the orbit (steady_tol 1e-8)
     EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
@@ -267,6 +271,39 @@ TEST(VibratoryDrum, SoilStiffnessIsTheDrumEquationsEstimate) {
   EXPECT_LT(differences[0], 1e-3);
   EXPECT_LT(differences[1], differences[0] / 4.0) << differences[0] << " " << differences[1];
   EXPECT_LT(differences[1], 1e-4);
+}
+
+// The operating modes by the literature's names (docs/model.md section 14) along a sequence of
+// stiffening soils (Appendix B soil, G = 10, 50, 300 MN/m^2; m_u e_u = 1.5 kg m at 30 Hz,
+// unilateral contact): continuous contact, partial uplift (lift-off every period, period 1),
+// double jump (lift-off every period, period 2, with the f/2 subharmonic the RMV reads).
+TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
+  struct Expected {
+    double G, static_moment;
+    const char* mode;
+    int multiplicity;
+  };
+  for (const Expected& e :
+       {Expected{10e6, 0.9, "continuous contact", 1}, Expected{50e6, 1.5, "partial uplift", 1},
+        Expected{300e6, 1.5, "double jump", 2}}) {
+    Case c = vibratory_case(Exciter::circular);
+    c.contact.unilateral = true;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = e.G;
+    c.roller.static_moment = e.static_moment;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    EXPECT_EQ(r.diagnostics.operating_mode, e.mode) << e.G;
+    EXPECT_EQ(r.diagnostics.multiplicity, e.multiplicity) << e.G;
+    const Metrics m = compute_metrics(Model(c), r);
+    if (e.multiplicity == 2) {
+      EXPECT_GT(m.rmv, 0.01) << e.G;  // the f/2 subharmonic of a period-2 motion
+    } else {
+      EXPECT_EQ(m.rmv, 0.0) << e.G;
+    }
+  }
+  // The oscillation drum has no such name.
+  EXPECT_EQ(simulate(Case{}).diagnostics.operating_mode, "");
 }
 
 // The parameters: the static moment must be positive for a vibratory drum, and the keys of the
