@@ -129,7 +129,9 @@ void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study) {
   bool M0_given = spec.base.given("roller.M0");
   for (const std::string& k : study.keys) M0_given = M0_given || k == "roller.M0";
   std::size_t fixed = 0;
-  for (const Case& c : study.cases) fixed += c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f;
+  for (const Case& c : study.cases)  // the vibratory drum has no M0 (docs/model.md section 14)
+    fixed += c.roller.type == RollerType::oscillation && c.roller.unbalance == 0.0 &&
+             c.roller.f != Roller{}.f;
   if (fixed == 0 || M0_given) return;
   warn(std::to_string(fixed) + " of the " + std::to_string(study.cases.size()) +
        " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +

@@ -51,6 +51,9 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
       {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
       {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
   };
+  // The Kb-type stiffness: a ratio to the fundamental of z_M.
+  if (name == "kb" && std::isnan(m.kb))
+    return std::string("n/a (z_M has no fundamental, e.g. by symmetry without MMd)");
   // The RMV- and CCV-type values: ratios to A(f) (and A(f/2)) of z_M''.
   if (name == "rmv" || name == "ccv") {
     const double v = name == "rmv" ? m.rmv : m.ccv;
@@ -86,8 +89,10 @@ std::string pair_text(const char* key1, double v1, const char* key2, double v2) 
 std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Result& result,
                         const Metrics* metrics, const std::string& config) {
   Summary s;
+  const bool vibratory = c.roller.type == RollerType::vibratory;
   s.section(std::string("oscidrum ") + version +
-            ": oscillation drum on soil (Paulmichl, Adam & Adam 2019)");
+            (vibratory ? ": vibratory drum on soil (docs/model.md section 14)"
+                       : ": oscillation drum on soil (Paulmichl, Adam & Adam 2019)"));
   s.line("config", config.empty() ? "none (the paper's roller, HAMM HD+ 90 VO)" : config);
 
   s.section("case");
@@ -98,11 +103,20 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
   s.line("contact", c.contact.pure_rolling ? "pure rolling (no friction limit)"
                                            : "Coulomb friction, mu = " + fmt(c.contact.mu));
   s.line("trough", summary(c.trough.shape));
-  const double M0 = oscillation_moment(c.roller);
-  s.line("excitation", "f = " + fmt(c.roller.f) + " Hz, M0 = " + fmt(M0) + " N m" +
-                           (c.roller.unbalance > 0.0 ? " (4 m_u e_u e_w nu^2 (5), m_u e_u e_w = " +
-                                                           fmt(c.roller.unbalance) + " kg m^2)"
-                                                     : std::string()));
+  const double M0 = vibratory ? 0.0 : oscillation_moment(c.roller);
+  const double nu = 2.0 * M_PI * c.roller.f;
+  if (vibratory)
+    s.line("excitation", "f = " + fmt(c.roller.f) + " Hz, unbalance force F0 = m_u e_u nu^2 = " +
+                             fmt(c.roller.static_moment * nu * nu) +
+                             " N (m_u e_u = " + fmt(c.roller.static_moment) + " kg m), exciter " +
+                             format_field(c, *find_field("roller.exciter")));
+  else
+    s.line(
+        "excitation",
+        "f = " + fmt(c.roller.f) + " Hz, M0 = " + fmt(M0) + " N m" +
+            (c.roller.unbalance > 0.0
+                 ? " (4 m_u e_u e_w nu^2 (5), m_u e_u e_w = " + fmt(c.roller.unbalance) + " kg m^2)"
+                 : std::string()));
   s.line("driving torque MMd",
          fmt(c.MMd) + " N m" + (M0 != 0.0 ? " (" + fmt(c.MMd / M0, 4) + " M0)" : std::string()));
   const Transmissibility tr =

@@ -8,6 +8,14 @@
 
 namespace oscidrum {
 
+/// The external load on the drum centre M besides the buffers and the soil: the paper's static
+/// load W (19), (20) and, for the vibratory drum, the unbalance force F(t) (docs/model.md
+/// section 14). Every equation of motion reads it in place of W and of a zero horizontal force.
+struct CentreLoad {
+  double x = 0.0;  ///< horizontal force F_x(t) [N] (0 for the oscillation drum)
+  double z = 0.0;  ///< vertical force, downwards: W + F_z(t) [N] (W for the oscillation drum)
+};
+
 /// An immutable, validated model: the Case plus the constants derived from it. Construction
 /// checks every field and throws oscidrum::Error naming the field, the rule and the value.
 class Model {
@@ -43,6 +51,14 @@ class Model {
   /// (1 - cos(pi t / t_ramp)) / 2 for t < t_ramp = numerics.start_ramp_periods T.
   double torque(double t) const;
 
+  /// The load on M at time t (CentreLoad): W and 0 for the oscillation drum; for the vibratory
+  /// drum W + F_z(t) and F_x(t), F = m_u e_u nu^2 times the exciter's direction (Exciter), ramped
+  /// in as the torque is.
+  CentreLoad centre_load(double t) const;
+  /// The vibratory drum's unbalance force amplitude F0 = m_u e_u nu^2 [N] (0 for the oscillation
+  /// drum).
+  double F0() const { return F0_; }
+
   /// The initial state: at rest at the bottom of the trough, s_A = (W + kd z_ref)/(ksv + kd).
   State initial_state() const;
 
@@ -55,7 +71,8 @@ class Model {
   double ksh_, ksv_, csh_, csv_;
   double W_, Fz_, nu_, z_ref_;
   double ramp_end_;  ///< the end of the start ramp, numerics.start_ramp_periods T (0: none) [s]
-  double M0_;        ///< oscillation_moment(roller) (5) [N m]
+  double M0_;        ///< oscillation_moment(roller) (5); 0 for the vibratory drum [N m]
+  double F0_;        ///< m_u e_u nu^2 for the vibratory drum, else 0 [N]
 };
 
 /// Normal and tangential contact forces at C. The soil is massless, so both are functions of

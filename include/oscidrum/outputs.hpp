@@ -109,6 +109,11 @@
     "how the steady state uses its contact: permanent contact, periodic lift-off (every "         \
     "period), lift-off every p periods (a subharmonic with periods of permanent contact); "       \
     "aperiodic for a run with lift-offs that reaches no steady state; empty otherwise")           \
+  X(std::string, operating_mode, "", "-", "operating mode",                                       \
+    "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "    \
+    "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), " \
+    "lift-off with period p (p > 2), aperiodic (chaotic or quasi-periodic); empty for the "       \
+    "oscillation drum and where contact_mode is empty")                                           \
   X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                      \
     "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or " \
     "20 when the start from rest lost contact before a steady state and the run was retried "     \
@@ -191,7 +196,12 @@
   X(double, gap_max, "m", "largest gap",                                                        \
     "largest gap between drum and trough over the steady period (contact.unilateral)")          \
   X(double, landing_velocity, "m/s", "landing velocity",                                        \
-    "largest speed at which the gap closes at a landing, -g' (contact.unilateral)")
+    "largest speed at which the gap closes at a landing, -g' (contact.unilateral)")             \
+  X(double, kb, "N/m", "Kb-type soil stiffness",                                                \
+    "Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T "       \
+    "sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the "       \
+    "excitation frequency, over that displacement's amplitude (the k_s of Anderegg and "        \
+    "Kaufmann 2004 from the contact force itself; docs/outputs.md)")
 
 // Quantities of the least-squares fit of a measured record.
 #define OSCIDRUM_RECORD_FIT(X)                                                     \

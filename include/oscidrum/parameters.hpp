@@ -9,6 +9,20 @@
 
 namespace oscidrum {
 
+/// Which dynamic roller the drum is (docs/model.md section 14).
+enum class RollerType {
+  oscillation,  ///< the paper's oscillation drum: the moment M0 sin(nu t) (5) about M
+  vibratory,    ///< a vibratory drum: a rotating unbalance force of amplitude m_u e_u nu^2 on M
+};
+
+/// The direction of the vibratory drum's unbalance force F0 (cos, sin) in the (x, z) plane of the
+/// model (z downwards); all three have the same vertical component F0 sin(nu t).
+enum class Exciter {
+  circular,           ///< F = F0 (cos nu t, sin nu t): the unbalance turns from +x towards +z
+  circular_reversed,  ///< F = F0 (-cos nu t, sin nu t): the same unbalance turning the other way
+  vertical,           ///< F = F0 (0, sin nu t): a directed exciter (two counter-rotating shafts)
+};
+
 /// The drum and its suspension (paper Table 1).
 struct Roller {
   double r = 0.6;       ///< drum radius [m]
@@ -25,6 +39,11 @@ struct Roller {
   double cd = 3.0e3;    ///< drum/frame suspension damping, horizontal and vertical [N s/m]
   double g = 9.81;      ///< gravitational acceleration [m/s^2]
   double m_f = 2760.0;  ///< effective frame mass on the drum's axle, Appendix A only [kg]
+  RollerType type = RollerType::oscillation;  ///< oscillation (the paper) or vibratory drum
+  /// The vibratory drum's static moment m_u e_u [kg m]: the force on M has the amplitude
+  /// F0 = m_u e_u nu^2 (docs/model.md section 14). Read only when type = vibratory (> 0 there).
+  double static_moment = 0.0;
+  Exciter exciter = Exciter::circular;  ///< the vibratory drum's force direction
 };
 
 /// The amplitude of the oscillation moment [N m] the engine uses: 4 m_u e_u e_w nu^2 (5) with

@@ -24,7 +24,7 @@ class Accelerations:
     """x_A'' [m/s^2]"""
 
 class Case:
-    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., start_ramp_periods: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., unbalance: Any = ..., unilateral: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
+    def __init__(self, *, R: float = ..., G: Any = ..., I: Any = ..., M0: Any = ..., MMd: Any = ..., MMd_fraction: Any = ..., P0: Any = ..., a: Any = ..., atol: Any = ..., b: Any = ..., cd: Any = ..., continuation: Any = ..., csh: Any = ..., csv: Any = ..., exciter: Any = ..., f: Any = ..., g: Any = ..., input: Any = ..., k: Any = ..., kd: Any = ..., ksh: Any = ..., ksv: Any = ..., law: Any = ..., m: Any = ..., m_f: Any = ..., max_multiplicity: Any = ..., max_periods: Any = ..., max_steps_per_period: Any = ..., max_switches_per_period: Any = ..., method: Any = ..., mu: Any = ..., mu_static: Any = ..., nu: Any = ..., output_periods: Any = ..., pure_rolling: Any = ..., r: Any = ..., rho: Any = ..., rtol: Any = ..., samples_per_period: Any = ..., slip_constraint_rate: Any = ..., start_ramp_periods: Any = ..., static_moment: Any = ..., steady_tol: Any = ..., suspension_from_static: Any = ..., table2_G: Any = ..., type: Any = ..., unbalance: Any = ..., unilateral: Any = ..., v_eps: Any = ..., **dotted: Any) -> None: ...
     MMd: float
     """constant driving torque (6); the paper uses 0 and 0.05 M0 [N m]; finite; default 0."""
     def __getstate__(self: Case) -> dict: ...
@@ -123,6 +123,8 @@ class Diagnostics:
     names: list
     newton_iterations: int
     """shooting: Newton steps (0 for the transient method) [-]"""
+    operating_mode: str
+    """the vibratory drum's contact mode by the literature's names (docs/model.md section 14): continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), lift-off with period p (p > 2), aperiodic (chaotic or quasi-periodic); empty for the oscillation drum and where contact_mode is empty [-]"""
     period_equivalents: float
     """cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations weighted by their cost) / the right-hand-side evaluations of one sampled period [-]"""
     periods_simulated: int
@@ -305,6 +307,8 @@ class Metrics:
     """work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over the sampled window / its periods (13, 27) [J]"""
     gap_max: float
     """largest gap between drum and trough over the steady period (contact.unilateral) [m]"""
+    kb: float
+    """Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the excitation frequency, over that displacement's amplitude (the k_s of Anderegg and Kaufmann 2004 from the contact force itself; docs/outputs.md) [N/m]"""
     landing_velocity: float
     """largest speed at which the gap closes at a landing, -g' (contact.unilateral) [m/s]"""
     liftoffs_per_period: float
@@ -559,6 +563,8 @@ class Roller:
     """drum width (b0 = b/2 in Appendix B) [m]; > 0; default 1.68."""
     cd: float
     """drum/frame suspension damping [N s/m]; >= 0; default 3000."""
+    exciter: str
+    """direction of the vibratory drum's force (roller.type = vibratory), z downwards: circular F0 (cos nu t, sin nu t) (the unbalance turns from +x towards +z), circular_reversed F0 (-cos nu t, sin nu t) (turning the other way), vertical F0 (0, sin nu t) (a directed exciter) [-]; one of circular, circular_reversed, vertical; default circular."""
     f: float
     """excitation frequency (nu = 2 pi f); oscillation rollers run at about 20-70 Hz [Hz]; in [0.1, 1000]; default 39."""
     g: float
@@ -571,7 +577,11 @@ class Roller:
     """effective frame mass on the drum's axle (Appendix A transmissibility only) [kg]; > 0; default 2760."""
     r: float
     """drum radius [m]; > 0; default 0.6."""
+    static_moment: float
+    """static moment m_u e_u of the vibratory drum's unbalance (roller.type = vibratory, > 0 there): force amplitude F0 = m_u e_u nu^2 [kg m]; >= 0; default 0."""
     def to_dict(self: Roller, all: bool = ...) -> dict: ...
+    type: str
+    """which dynamic roller: oscillation (the paper's drum, the moment M0 sin(nu t) (5); the default) or vibratory (a rotating unbalance force roller.static_moment nu^2 on the drum centre, docs/model.md section 14) [-]; one of oscillation, vibratory; default oscillation."""
     unbalance: float
     """the unbalances' moment m_u e_u e_w; > 0: M0 = 4 m_u e_u e_w nu^2 (5) follows roller.f and replaces roller.M0 (the paper's roller: 0.22877); 0: roller.M0 as given [kg m^2]; >= 0; default 0."""
 

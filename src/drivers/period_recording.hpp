@@ -25,7 +25,19 @@ inline constexpr int kDegree = 10;  // Chebyshev interpolant per piece: kDegree 
 using Interpolant = ChebyshevInterpolant<kDegree>;
 
 // The quantities interpolated on each piece, as the roller's Dynamics::quantities returns them.
-enum Quantity { kDdx, kDdz, kDelta, kPhi, kTraction, kFrictionPower, kGap, kQuantities };
+// kVerticalForce: the soil's vertical force on the drum F_v (25); kZ: z_M (14).
+enum Quantity {
+  kDdx,
+  kDdz,
+  kDelta,
+  kPhi,
+  kTraction,
+  kFrictionPower,
+  kGap,
+  kVerticalForce,
+  kZ,
+  kQuantities
+};
 
 // One piece of the steady period (an integrator step in one phase, cut at the period's ends):
 // every quantity as its Chebyshev interpolant in t.

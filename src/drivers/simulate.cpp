@@ -365,6 +365,20 @@ std::string contact_mode(const Result& r) {
   return "lift-off every " + std::to_string(p) + " periods";
 }
 
+// Diagnostics::operating_mode: the vibratory drum's contact mode by the names of the literature
+// (docs/model.md section 14), from contact_mode and the multiplicity.
+std::string operating_mode(const Model& model, const Result& r) {
+  if (model.parameters().roller.type != RollerType::vibratory) return "";
+  const std::string& mode = r.diagnostics.contact_mode;
+  if (mode.empty()) return "";
+  if (mode == "permanent contact") return "continuous contact";
+  if (mode == "aperiodic") return "aperiodic (chaotic or quasi-periodic)";
+  const int p = std::max(1, r.diagnostics.multiplicity);
+  if (p == 1) return "partial uplift";
+  if (p == 2) return "double jump";
+  return "lift-off with period " + std::to_string(p);
+}
+
 template <class R>
 Result simulate_ramped(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
@@ -444,6 +458,7 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
       model.parameters().numerics.max_periods >= kMotionPeriods && !(cancelled && cancelled()))
     examine_motion(model, result, cancelled);
   result.diagnostics.contact_mode = contact_mode(result);
+  result.diagnostics.operating_mode = operating_mode(model, result);
   return result;
 }
 
@@ -451,6 +466,11 @@ template <class R>
 std::optional<detail::WarmStart> orbit_start_of(const Result& result) {
   const Samples& s = result.samples;
   if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
+  // A section in flight is no start for a neighbour: with the neighbour's soil the gap there may
+  // be closed (g <= 0), and a flow that starts in flight at a closed gap never sees the landing
+  // (g falling through 0); shooting from it has converged to a spurious orbit in flight at g = 0
+  // (docs/vibratory.md). The neighbour starts from rest instead.
+  if (s.phase[0] == Phase::flight) return {};
   const auto x = detail::Dynamics<R>::sampled_state(s, 0);
   for (double v : x)
     if (!std::isfinite(v)) return {};

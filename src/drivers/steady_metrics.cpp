@@ -130,7 +130,7 @@ void add_extremes(const Interpolant& f, const std::array<double, Interpolant::kN
 }
 
 struct Node {  // a Gauss-Legendre node of one piece
-  double tau, weight, ddx, ddz, phi, friction_power;
+  double tau, weight, ddx, ddz, phi, friction_power, vertical_force, z;
   double cos1, sin1;  // cos(nu tau), sin(nu tau)
 };
 
@@ -571,7 +571,8 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
     // The quantities at the nodes mid -+ half x_i from their Chebyshev coefficients, the even and
     // odd parts of sum_j c_j T_j(x_i) apart (T_j(-x) = (-1)^j T_j(x)): both nodes of a pair from
     // one table row (gauss_chebyshev) instead of a Clenshaw sum at each.
-    constexpr std::array<Quantity, 4> kNodeQuantities = {kDdx, kDdz, kPhi, kFrictionPower};
+    constexpr std::array<Quantity, 6> kNodeQuantities = {kDdx,           kDdz,           kPhi,
+                                                         kFrictionPower, kVerticalForce, kZ};
     for (std::size_t i = 0; i < x.size(); ++i) {
       const double c_off = std::cos(nu * half * x[i]), s_off = std::sin(nu * half * x[i]);
       const auto& T = gauss_chebyshev()[i];
@@ -586,6 +587,7 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
         const double t = mid + sign * half * x[i];
         nodes.push_back({t - t0, half * w[i], even[0] + sign * odd[0], even[1] + sign * odd[1],
                          even[2] + sign * odd[2], std::abs(even[3] + sign * odd[3]),
+                         even[4] + sign * odd[4], even[5] + sign * odd[5],
                          c_mid * c_off - sign * s_mid * s_off,
                          s_mid * c_off + sign * c_mid * s_off});
       }
@@ -640,6 +642,9 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   m.liftoffs_per_period = static_cast<double>(rec.lift_offs) / p;
   m.gap_max = std::max(gap.hi, 0.0);
   m.landing_velocity = rec.landing_speed;
+  // The Kb-type stiffness: the fundamentals of F_v and z_M integrated over the period.
+  m.kb = detail::soil_stiffness(spectrum(nodes, &Node::vertical_force, P, t0, f, p, 1)[1],
+                                spectrum(nodes, &Node::z, P, t0, f, p, 2));
 
   m.area = curve_area(pieces);
   if (std::isnan(m.area)) m.area = extrapolated_area(pieces);

@@ -56,8 +56,10 @@ std::array<T, 5> flight_accelerations(const Model& model, double t, const std::a
   const double m = model.m(), r = model.r(), kd = model.kd(), cd = model.cd();
   const FlightCentre<T> M = flight_centre(y, k, r);
   // The drum: (19), (20) with N = T = 0; the suspension from z_ref as in the contact phases.
-  const T ddx_M = (-cd * M.dx - kd * M.x) / m;
-  const T ddz_M = (model.W() - cd * M.dz - kd * (M.z - model.z_ref())) / m;
+  // The load on M: W + F_z(t), F_x(t) (docs/model.md section 14).
+  const CentreLoad L = model.centre_load(t);
+  const T ddx_M = (-cd * M.dx - kd * M.x + L.x) / m;
+  const T ddz_M = (L.z - cd * M.dz - kd * (M.z - model.z_ref())) / m;
   // The soil: (24), (25) with N = T = 0, differentiated.
   const T ddx_A = -(model.ksh() / model.csh()) * y[kDXA];
   const T dds_A = -(model.ksv() / model.csv()) * y[kDSA];

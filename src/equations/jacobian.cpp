@@ -37,7 +37,9 @@ enum : int { D = 0, XA = 1, SA = 2, PHI = 3, DD = 4, DXA = 5, DSA = 6, DPHI = 7 
 
 Mat8 stick_jacobian(const Model& model, double t, const State& q) {
   const double m = model.m(), I = model.I(), r = model.r();
-  const double kd = model.kd(), cd = model.cd(), W = model.W();
+  const double kd = model.kd(), cd = model.cd();
+  const CentreLoad L = model.centre_load(t);  // W + F_z(t), F_x(t) (docs/model.md section 14)
+  const double W = L.z;
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
   const Kinematics k = kinematics(model.geometry(), q.delta);
   const KinematicsRates kr = kinematics_rates(model.geometry(), q.delta);
@@ -69,7 +71,8 @@ Mat8 stick_jacobian(const Model& model, double t, const State& q) {
   dR(2, D) = (k.f6 * I / r + m * df1_bar) * a.delta - m * sn * a.x_A - m * cs * a.s_A +
              (df6 * I / (m * r) + df2_bar) * m * dd2 +
              cd * (df1_bar * dd - q.dx_A * sn - q.ds_A * cs) +
-             kd * (k.f1 * cs - (k.x_roll + q.x_A) * sn - k.f3 * sn - (zs + q.s_A) * cs) + W * cs;
+             kd * (k.f1 * cs - (k.x_roll + q.x_A) * sn - k.f3 * sn - (zs + q.s_A) * cs) + W * cs +
+             L.x * sn;
   dR(2, XA) = kd * cs;
   dR(2, SA) = -kd * sn;
   dR(2, DD) = 2.0 * (k.f6 * I / (m * r) + k.f2_bar) * m * dd + cd * k.f1_bar;
@@ -97,7 +100,9 @@ Mat8 stick_jacobian(const Model& model, double t, const State& q) {
 
 Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double beta) {
   const double m = model.m(), I = model.I(), r = model.r();
-  const double kd = model.kd(), cd = model.cd(), W = model.W();
+  const double kd = model.kd(), cd = model.cd();
+  const CentreLoad L = model.centre_load(t);  // W + F_z(t), F_x(t) (docs/model.md section 14)
+  const double W = L.z;
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
   const Kinematics k = kinematics(model.geometry(), q.delta);
   const KinematicsRates kr = kinematics_rates(model.geometry(), q.delta);
@@ -128,7 +133,7 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   // (34)
   dR(0, D) = m * dc34 * a.delta + m * dfmu1 * a.x_A - m * dfmu2 * a.s_A + de34 * m * dd2 +
              cd * (dc34 * dd + dfmu1 * q.dx_A - dfmu2 * q.ds_A) +
-             kd * (dfmu1 * xs + fmu1 * k.f1 - dfmu2 * zs - fmu2 * k.f3) + dfmu2 * W;
+             kd * (dfmu1 * xs + fmu1 * k.f1 - dfmu2 * zs - fmu2 * k.f3) + dfmu2 * W - dfmu1 * L.x;
   dR(0, XA) = kd * fmu1;
   dR(0, SA) = -kd * fmu2;
   dR(0, DD) = 2.0 * e34 * m * dd + cd * c34;
@@ -138,7 +143,7 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   dR(1, D) = m * df3_tilde * a.delta + m * cs * a.x_A - m * sn * a.s_A + cd * df3_tilde * dd +
              (csh + cd) * cs * q.dx_A - (csv + cd) * sn * q.ds_A + m * df4_tilde * dd2 +
              (ksh + kd) * cs * q.x_A - (ksv + kd) * sn * q.s_A +
-             kd * (k.f1 * sn + k.x_roll * cs + k.f3 * cs - zrs * sn) + W * sn;
+             kd * (k.f1 * sn + k.x_roll * cs + k.f3 * cs - zrs * sn) + W * sn - L.x * cs;
   dR(1, XA) = (ksh + kd) * sn;
   dR(1, SA) = (ksv + kd) * cs;
   dR(1, DD) = cd * k.f3_tilde + 2.0 * m * k.f4_tilde * dd;
@@ -154,10 +159,10 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   dR(2, DXA) = mc * (fmu1 * ksh - fmu2 * csh * dd) + beta * mc * fmu1 * csh;
   dR(2, DSA) = mc * (-fmu1 * csv * dd - fmu2 * ksv) - beta * mc * fmu2 * csv;
   // (36)
-  dR(3, D) =
-      smu * m * (df3_tilde * a.delta + cs * a.x_A - sn * a.s_A) -
-      smu * (-W * sn - m * df4_tilde * dd2 - df3_tilde * cd * dd -
-             cd * (cs * q.dx_A - sn * q.ds_A) - kd * (k.f1 * sn + xs * cs + k.f3 * cs - zs * sn));
+  dR(3, D) = smu * m * (df3_tilde * a.delta + cs * a.x_A - sn * a.s_A) -
+             smu * (-W * sn - m * df4_tilde * dd2 - df3_tilde * cd * dd -
+                    cd * (cs * q.dx_A - sn * q.ds_A) -
+                    kd * (k.f1 * sn + xs * cs + k.f3 * cs - zs * sn) + L.x * cs);
   dR(3, XA) = smu * kd * sn;
   dR(3, SA) = smu * kd * cs;
   dR(3, DD) = smu * (2.0 * m * k.f4_tilde * dd + k.f3_tilde * cd);

@@ -56,7 +56,10 @@ std::array<T, 4> general_slip_accelerations(const Model& model, double t, const 
                                             const KinematicsT<T>& k, const T& m, const T& m_v,
                                             double baumgarte) {
   const double M = model.m(), I = model.I(), r = model.r();
-  const double kd = model.kd(), cd = model.cd(), W = model.W();
+  const double kd = model.kd(), cd = model.cd();
+  // The load on M: W + F_z(t) in place of W, and F_x(t) with kd x_M (docs/model.md section 14).
+  const CentreLoad L = model.centre_load(t);
+  const double W = L.z;
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
   const T &XA = y[1], &SA = y[2], &dd = y[4], &DXA = y[5], &DSA = y[6];
   const T dd2 = dd * dd;
@@ -73,12 +76,13 @@ std::array<T, 4> general_slip_accelerations(const Model& model, double t, const 
   // (34): m (f1 fmu1 - f3 fmu2) delta'' + m fmu1 x_A'' - m fmu2 s_A'' + h1s = -fmu2 W
   const T c34 = k.f1 * fm1 - k.f3 * fm2;
   const T h1s = (k.f2 * fm1 - k.f4 * fm2) * M * dd2 + cd * (c34 * dd + fm1 * DXA - fm2 * DSA) +
-                kd * (fm1 * xs - fm2 * zs);
+                kd * (fm1 * xs - fm2 * zs) - fm1 * L.x;
   A[0] = {M * c34, M * fm1, -M * fm2, T(0.0)};
   b[0] = -fm2 * W - h1s;
   // (38): m f3~ delta'' + m sin x_A'' + m cos s_A'' + h3s = W cos
   const T h3s = cd * f3t * dd + (csh + cd) * sn * DXA + (csv + cd) * cs * DSA + M * f4t * dd2 +
-                (ksh + kd) * sn * XA + (ksv + kd) * cs * SA + kd * (k.x_roll * sn + zrs * cs);
+                (ksh + kd) * sn * XA + (ksv + kd) * cs * SA + kd * (k.x_roll * sn + zrs * cs) -
+                L.x * sn;
   A[1] = {M * f3t, M * sn, M * cs, T(0.0)};
   b[1] = W * cs - h3s;
   // (53) with the friction coefficient's rate: times m/csh, plus the Baumgarte term.
@@ -92,7 +96,7 @@ std::array<T, 4> general_slip_accelerations(const Model& model, double t, const 
   b[2] = -h4 + g * k.f6 * dd2;
   // (36): m M (f3~ delta'' + sin x_A'' + cos s_A'') + (I/r) phi'' + h2s = MM/r
   const T h2s = -m * (W * cs - M * f4t * dd2 - f3t * cd * dd - cd * (sn * DXA + cs * DSA) -
-                      kd * (xs * sn + zs * cs));
+                      kd * (xs * sn + zs * cs) + L.x * sn);
   A[3] = {m * M * f3t, m * M * sn, m * M * cs, T(I / r)};
   b[3] = model.torque(t) / r - h2s;
 

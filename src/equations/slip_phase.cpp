@@ -33,7 +33,10 @@ Accelerations slip_accelerations(const Model& model, double t, const State& q, i
 Accelerations detail::slip_accelerations(const Model& model, double t, const State& q, int s,
                                          double baumgarte, const Kinematics& k) {
   const double m = model.m(), I = model.I(), r = model.r();
-  const double kd = model.kd(), cd = model.cd(), W = model.W();
+  const double kd = model.kd(), cd = model.cd();
+  // The load on M: W + F_z(t) in place of W, and F_x(t) with kd x_M (docs/model.md section 14).
+  const CentreLoad L = model.centre_load(t);
+  const double W = L.z;
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
   const SlipCoefficient mu = slip_coefficient(model.friction(), s, slip_velocity(model, q, k));
   if (mu.dm_dv != 0.0) {  // a velocity-dependent coefficient: the full 4 x 4 system
@@ -52,11 +55,12 @@ Accelerations detail::slip_accelerations(const Model& model, double t, const Sta
   // (34): m (f1 fmu1 - f3 fmu2) delta'' + m fmu1 x_A'' - m fmu2 s_A'' + h1s = -fmu2 W
   const double c34 = k.f1 * fmu1 - k.f3 * fmu2;
   const double h1s = (k.f2 * fmu1 - k.f4 * fmu2) * m * dd2 +
-                     cd * (c34 * dd + fmu1 * q.dx_A - fmu2 * q.ds_A) + kd * (fmu1 * xs - fmu2 * zs);
+                     cd * (c34 * dd + fmu1 * q.dx_A - fmu2 * q.ds_A) +
+                     kd * (fmu1 * xs - fmu2 * zs) - fmu1 * L.x;
   // (38): m f3~ delta'' + m sin x_A'' + m cos s_A'' + h3s = W cos
   const double h3s = cd * k.f3_tilde * dd + (csh + cd) * sn * q.dx_A + (csv + cd) * cs * q.ds_A +
                      m * k.f4_tilde * dd2 + (ksh + kd) * sn * q.x_A + (ksv + kd) * cs * q.s_A +
-                     kd * (k.x_roll * sn + z_roll_s * cs);
+                     kd * (k.x_roll * sn + z_roll_s * cs) - L.x * sn;
   // (53): m fmu1 x_A'' - (csv/csh) m fmu2 s_A'' + h4 = 0, the time derivative of (39) times
   // m/csh; with Baumgarte stabilisation d(39)/dt + rate * (39) = 0 so that drift decays.
   const double Fh = csh * q.dx_A + ksh * q.x_A, Fv = csv * q.ds_A + ksv * q.s_A;
@@ -77,8 +81,9 @@ Accelerations detail::slip_accelerations(const Model& model, double t, const Sta
   a.s_A = (A11 * (A22 * b3 - b2 * A32) - A12 * (A21 * b3) + b1 * (A21 * A32)) / det;
 
   // (36): s mu m (f3~ delta'' + sin x_A'' + cos s_A'') + (I/r) phi'' + h2s = MM/r
-  const double h2s = -smu * (W * cs - m * k.f4_tilde * dd2 - k.f3_tilde * cd * dd -
-                             cd * (sn * q.dx_A + cs * q.ds_A) - kd * (xs * sn + zs * cs));
+  const double h2s =
+      -smu * (W * cs - m * k.f4_tilde * dd2 - k.f3_tilde * cd * dd -
+              cd * (sn * q.dx_A + cs * q.ds_A) - kd * (xs * sn + zs * cs) + L.x * sn);
   a.phi = (model.torque(t) / r - h2s - smu * m * (k.f3_tilde * a.delta + sn * a.x_A + cs * a.s_A)) *
           r / I;
   return a;

@@ -372,13 +372,20 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
     const std::string why = key_not_in_effect(c, key);
     if (!why.empty()) throw Error(where + ": " + why, key);
   }
-  if (warnings && c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f && !spec.given("roller.M0"))
+  const bool vibratory = c.roller.type == RollerType::vibratory;
+  if (warnings && !vibratory && c.roller.unbalance == 0.0 && c.roller.f != Roller{}.f &&
+      !spec.given("roller.M0"))
     warnings->push_back(spec.where("roller.f") + "roller.f = " + num(c.roller.f) +
                         " Hz with M0 fixed at " + num(c.roller.M0) +
                         " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w "
                         "nu^2 (5) grows with f^2: give roller.unbalance (the paper's: 0.22877 kg "
                         "m^2), or set roller.M0 to say the moment is meant");
   if (spec.MMd_fraction) {
+    if (vibratory)
+      throw Error(spec.where("MMd_fraction") +
+                      "MMd_fraction has no effect while roller.type = \"vibratory\" (MMd_fraction "
+                      "* M0, and the vibratory drum has no oscillation moment M0); give MMd [N m]",
+                  "MMd_fraction");
     if (spec.given("MMd"))
       throw Error(spec.where("MMd") + "MMd cannot be given together with MMd_fraction (" +
                   spec.origin.at("MMd_fraction") + "); remove one of them");

@@ -555,7 +555,8 @@ std::string case_to_toml(const Case& c) {
   const std::string input = format_field(c, *find_field("soil.input"));
   auto unused = [&](const std::string& key) -> std::string {
     // The roller is given by M0 or by its unbalance, not both (5).
-    if (key == "roller.M0" && !key_in_effect(c, key)) return "replaced by unbalance";
+    if (key == "roller.M0" && c.roller.type == RollerType::oscillation && !key_in_effect(c, key))
+      return "replaced by unbalance";
     if (key == "roller.unbalance" && c.roller.unbalance == 0.0) return "unused: M0 is given";
     if (key.starts_with("soil.") && !key_in_effect(c, key)) return "unused with input = " + input;
     if (!key_in_effect(c, key)) return "unused";

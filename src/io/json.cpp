@@ -96,13 +96,16 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   j["soil"] = soil_json(c);
 
   const Roller& R = c.roller;
-  j["derived"] = {
-      {"Fz", number(R.P0 - R.m * R.g)},
-      {"W", number(R.P0)},
-      {"nu", number(2.0 * M_PI * R.f)},
-      {"period", number(1.0 / R.f)},
-      {"M0", number(oscillation_moment(R))},
-      {"MMd_fraction", number(oscillation_moment(R) != 0.0 ? c.MMd / oscillation_moment(R) : NAN)}};
+  // The vibratory drum has no oscillation moment; its excitation is F0 = m_u e_u nu^2.
+  const bool vibratory = R.type == RollerType::vibratory;
+  const double nu = 2.0 * M_PI * R.f, M0 = vibratory ? 0.0 : oscillation_moment(R);
+  j["derived"] = {{"Fz", number(R.P0 - R.m * R.g)},
+                  {"W", number(R.P0)},
+                  {"nu", number(nu)},
+                  {"period", number(1.0 / R.f)},
+                  {"M0", number(M0)},
+                  {"MMd_fraction", number(M0 != 0.0 ? c.MMd / M0 : NAN)},
+                  {"F0", number(vibratory ? R.static_moment * nu * nu : 0.0)}};
   // The trough as its shape describes itself: its name and its parameters (given and derived).
   json trough = {{"shape", trough_name(c.trough.shape)}};
   for (const TroughParameter& p : parameters(c.trough.shape)) trough[p.symbol] = number(p.value);

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "oscidrum/metrics.hpp"
 
@@ -83,6 +84,32 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
   hz.resize(static_cast<std::size_t>(n_max) + 1);
   m.ddx_harmonics = std::move(hx);
   m.ddz_harmonics = std::move(hz);
+}
+
+/// The Kb-type soil stiffness [N/m] (docs/outputs.md): Re(F_v(f) / z_M(f)) from the fundamental
+/// of F_v = N cos(delta) + T sin(delta), the soil's vertical force on the drum (25), and the
+/// spectrum hz (n = 0 ... >= 2) of the drum centre's vertical displacement z_M. The soil is
+/// massless, so F_v is its Kelvin-Voigt force ksv s_A + csv s_A' and, where z_M moves with s_A,
+/// the stiffness is ksv. NaN when z_M's fundamental is absent (kAbsentFundamental against its
+/// 2f component: the oscillation drum without driving torque).
+inline double soil_stiffness(const Harmonic& Fv, const Spectrum& hz) {
+  const double z1 = hz[1].amplitude;
+  if (!(z1 > kAbsentFundamental * std::max(z1, hz[2].amplitude)))
+    return std::numeric_limits<double>::quiet_NaN();
+  return Fv.amplitude / z1 * std::cos(Fv.phase - hz[1].phase);
+}
+
+/// soil_stiffness from the uniformly sampled steady state (`cycles` whole periods of f from t0);
+/// NaN without the columns N, T, delta, z_M.
+inline double soil_stiffness(const Samples& s, int cycles, double f, double t0) {
+  const std::size_t n = s.t.size();
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (n == 0 || s.N.size() != n || s.T.size() != n || s.delta.size() != n || s.z_M.size() != n)
+    return nan;
+  std::vector<double> Fv(n);
+  for (std::size_t j = 0; j < n; ++j)
+    Fv[j] = s.N[j] * std::cos(s.delta[j]) + s.T[j] * std::sin(s.delta[j]);  // (25)
+  return soil_stiffness(harmonics(Fv, cycles, f, t0, 1)[1], harmonics(s.z_M, cycles, f, t0, 2));
 }
 
 /// phi_amplitude and phi_lag from the fundamental of phi (its drift removed), against the

@@ -187,6 +187,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.gap_max = 0.0;
   if (s.gap.size() == n)
     for (double g : s.gap) m.gap_max = std::max(m.gap_max, g);
+  m.kb = detail::soil_stiffness(s, cycles, f, t0);
   return m;
 }
 

@@ -71,6 +71,25 @@ const std::array kFields = {
     Field{"roller.m_f", FieldType::real, "kg",
           "effective frame mass on the drum's axle (Appendix A transmissibility only)", 0, inf,
           true, false, nullptr, OSCIDRUM_REAL(roller.m_f)},
+    Field{"roller.type", FieldType::choice, "-",
+          "which dynamic roller: oscillation (the paper's drum, the moment M0 sin(nu t) (5); the "
+          "default) or vibratory (a rotating unbalance force roller.static_moment nu^2 on the "
+          "drum centre, docs/model.md section 14)",
+          0, 1, false, false, "oscillation|vibratory",
+          [](const Case& c) { return static_cast<double>(c.roller.type); },
+          [](Case& c, double v) { c.roller.type = static_cast<RollerType>(static_cast<int>(v)); }},
+    Field{"roller.static_moment", FieldType::real, "kg m",
+          "static moment m_u e_u of the vibratory drum's unbalance (roller.type = vibratory, > 0 "
+          "there): force amplitude F0 = m_u e_u nu^2",
+          0, inf, false, false, nullptr, OSCIDRUM_REAL(roller.static_moment)},
+    Field{"roller.exciter", FieldType::choice, "-",
+          "direction of the vibratory drum's force (roller.type = vibratory), z downwards: "
+          "circular F0 (cos nu t, sin nu t) (the unbalance turns from +x towards +z), "
+          "circular_reversed F0 (-cos nu t, sin nu t) (turning the other way), vertical F0 (0, "
+          "sin nu t) (a directed exciter)",
+          0, 2, false, false, "circular|circular_reversed|vertical",
+          [](const Case& c) { return static_cast<double>(c.roller.exciter); },
+          [](Case& c, double v) { c.roller.exciter = static_cast<Exciter>(static_cast<int>(v)); }},
     // soil
     Field{"soil.input", FieldType::choice, "-",
           "how the soil is given: table2 (the row of paper Table 2 at G, the paper's soils; the "
@@ -451,6 +470,16 @@ std::string soil_key_not_in_effect(const Soil& soil, std::string_view key) {
 
 std::string key_not_in_effect(const Case& c, std::string_view key) {
   if (key.starts_with("soil.")) return soil_key_not_in_effect(c.soil, key);
+  const bool vibratory = c.roller.type == RollerType::vibratory;
+  if (vibratory && (key == "roller.M0" || key == "roller.unbalance"))
+    return std::string(key) +
+           " has no effect while roller.type = \"vibratory\" (its excitation is the unbalance "
+           "force roller.static_moment nu^2, no moment); remove it or set roller.type = "
+           "\"oscillation\"";
+  if (!vibratory && (key == "roller.static_moment" || key == "roller.exciter"))
+    return std::string(key) +
+           " has no effect while roller.type = \"oscillation\" (the paper's drum, excited by the "
+           "moment M0 sin(nu t)); remove it or set roller.type = \"vibratory\"";
   if (key == "roller.M0" && c.roller.unbalance > 0.0)
     return "roller.M0 has no effect while roller.unbalance > 0, which gives M0 = 4 m_u e_u e_w "
            "nu^2 (5); remove one of them";

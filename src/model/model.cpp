@@ -31,6 +31,12 @@ void validate(const Case& c) {
             num(R.P0) + " < m g = " + num(R.m * R.g),
         "roller.P0", R.P0);
   check_fit(c.trough.shape, R.r);
+  if (R.type == RollerType::vibratory && !(R.static_moment > 0.0))
+    throw Error(
+        "roller.static_moment must be > 0 [kg m] with roller.type = vibratory (the unbalance's "
+        "m_u e_u, force amplitude m_u e_u nu^2); got " +
+            num(R.static_moment),
+        "roller.static_moment", R.static_moment);
   if (c.contact.law == FrictionChoice::regularised && !c.contact.pure_rolling &&
       c.contact.mu_static != -1.0 && c.contact.mu_static != c.contact.mu)
     throw Error(
@@ -141,7 +147,10 @@ Model::Model(const Case& c) : case_(c) {
                 "(ksv + kd) = " + num(deflection) +
                 " m: a trough of the drum's own size makes the rolling relation (11) degenerate");
   nu_ = 2.0 * M_PI * R.f;
-  M0_ = oscillation_moment(R);
+  // The vibratory drum has no oscillation moment: its excitation is the unbalance force.
+  const bool vibratory = R.type == RollerType::vibratory;
+  M0_ = vibratory ? 0.0 : oscillation_moment(R);
+  F0_ = vibratory ? R.static_moment * nu_ * nu_ : 0.0;
   // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
   // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.
   z_ref_ = c.numerics.suspension_from_static ? W_ / ksv_ : 0.0;
@@ -153,6 +162,16 @@ double Model::torque(double t) const {
   if (!(t < ramp_end_)) return MM;
   // A gentler start from rest: the excitation ramped in (docs/periodic.md).
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
+}
+
+CentreLoad Model::centre_load(double t) const {
+  if (F0_ == 0.0) return {0.0, W_};
+  const double theta = nu_ * t;  // the unbalance's angle from +x towards +z
+  double scale = F0_;
+  if (t < ramp_end_) scale *= 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
+  const Exciter e = case_.roller.exciter;
+  const double Fx = e == Exciter::vertical ? 0.0 : std::cos(theta) * scale;
+  return {e == Exciter::circular_reversed ? -Fx : Fx, W_ + std::sin(theta) * scale};
 }
 
 State Model::initial_state() const {

@@ -175,7 +175,7 @@ void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, S
   s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
 }
 
-std::array<double, 7> Dynamics<OscillationDrum>::quantities(double t, const Vector& x,
+std::array<double, 9> Dynamics<OscillationDrum>::quantities(double t, const Vector& x,
                                                             Phase phase) const {
   const State q = State::from_array(x);
   const Kinematics k = kinematics(model_.geometry(), q.delta);  // once for all quantities
@@ -190,7 +190,8 @@ std::array<double, 7> Dynamics<OscillationDrum>::quantities(double t, const Vect
           // rolling condition (12); the flow integrates phi' there without reading it, so
           // slip_velocity would return its round-off drift (over a long transient from rest, up
           // to ~1e-6 of the work of a slipping case). In slip T v_rel keeps its sign.
-          phase == Phase::stick ? 0.0 : std::abs(f.T * detail::slip_velocity(model_, q, k)), 0.0};
+          phase == Phase::stick ? 0.0 : std::abs(f.T * detail::slip_velocity(model_, q, k)), 0.0,
+          f.N * k.cos_delta + f.T * k.sin_delta, d.z_M};
 }
 
 int Dynamics<OscillationDrum>::pushed_slip(Phase phase, const Vector& x, double* hold) const {

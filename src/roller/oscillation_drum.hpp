@@ -100,8 +100,9 @@ class Dynamics<OscillationDrum> {
     return apparent_phase(model_.friction(), phase, slip_velocity(model_, State::from_array(x)));
   }
   /// What the steady metrics read at a point of the trajectory (src/drivers/steady_metrics.cpp):
-  /// x_M'', z_M'' (18), delta, phi, T/N, the friction power |T v_rel| (0 in stick), the gap (0).
-  std::array<double, 7> quantities(double t, const Vector& x, Phase phase) const;
+  /// x_M'', z_M'' (18), delta, phi, T/N, the friction power |T v_rel| (0 in stick), the gap (0),
+  /// the soil's vertical force on the drum F_v = N cos(delta) + T sin(delta) (25) and z_M (14).
+  std::array<double, 9> quantities(double t, const Vector& x, Phase phase) const;
   static Vector sampled_state(const Samples& s, std::size_t j) {
     return {s.delta[j], s.x_A[j], s.s_A[j], s.phi[j], s.ddelta[j], s.dx_A[j], s.ds_A[j], s.dphi[j]};
   }

@@ -255,19 +255,22 @@ std::optional<U::Matrix> Dynamics<UnilateralDrum>::section_jacobian(const Vector
   return G;
 }
 
-std::array<double, 7> Dynamics<UnilateralDrum>::quantities(double t, const Vector& x,
+std::array<double, 9> Dynamics<UnilateralDrum>::quantities(double t, const Vector& x,
                                                            Phase phase) const {
   if (phase != Phase::flight) return drum_.quantities(t, contact_part(x), phase);
   const Model& m = model();
   const KinematicsT<double> k = kinematics_t(kinematics(m.geometry(), x[kDelta]));
   const FlightCentre<double> M = flight_centre(x, k, m.r());
-  return {(-m.cd() * M.dx - m.kd() * M.x) / m.m(),
-          (m.W() - m.cd() * M.dz - m.kd() * (M.z - m.z_ref())) / m.m(),
+  const CentreLoad L = m.centre_load(t);
+  return {(-m.cd() * M.dx - m.kd() * M.x + L.x) / m.m(),
+          (L.z - m.cd() * M.dz - m.kd() * (M.z - m.z_ref())) / m.m(),
           x[kDelta],
           x[kPhi],
           0.0,
           0.0,
-          x[kGap]};
+          x[kGap],
+          0.0,
+          M.z};
 }
 
 void Dynamics<UnilateralDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
@@ -287,8 +290,9 @@ void Dynamics<UnilateralDrum>::sample(double t, const Vector& x, Phase phase, Sa
   s.x_M.push_back(M.x);
   s.z_M.push_back(M.z);
   // (19), (20) with N = T = 0.
-  s.ddx_M.push_back((-m.cd() * M.dx - m.kd() * M.x) / m.m());
-  s.ddz_M.push_back((m.W() - m.cd() * M.dz - m.kd() * (M.z - m.z_ref())) / m.m());
+  const CentreLoad L = m.centre_load(t);
+  s.ddx_M.push_back((-m.cd() * M.dx - m.kd() * M.x + L.x) / m.m());
+  s.ddz_M.push_back((L.z - m.cd() * M.dz - m.kd() * (M.z - m.z_ref())) / m.m());
   s.N.push_back(0.0);
   s.T.push_back(0.0);
   s.v_rel.push_back(0.0);

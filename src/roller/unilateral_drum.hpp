@@ -90,8 +90,8 @@ class Dynamics<UnilateralDrum> {
     return phase == Phase::flight ? phase : drum_.apparent(phase, contact_part(x));
   }
   /// The drum's quantities in contact (gap 0); in flight x_M'', z_M'' from (19), (20) with
-  /// N = T = 0, delta, phi, T/N = 0, no friction power, and the gap.
-  std::array<double, 7> quantities(double t, const Vector& x, Phase phase) const;
+  /// N = T = 0, delta, phi, T/N = 0, no friction power, the gap, F_v = 0 and z_M.
+  std::array<double, 9> quantities(double t, const Vector& x, Phase phase) const;
   static Vector sampled_state(const Samples& s, std::size_t j) {
     return {s.delta[j],  s.x_A[j],  s.s_A[j],  s.phi[j],  s.gap[j],
             s.ddelta[j], s.dx_A[j], s.ds_A[j], s.dphi[j], s.dgap[j]};

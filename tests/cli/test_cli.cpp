@@ -240,6 +240,33 @@ TEST(CliRun, FilesFollowTheContracts) {
             slurp(dir / "s.json"));
 }
 
+// The vibratory drum's example (docs/model.md section 14): it runs to a steady state with lift-off,
+// says which roller it is, reports its force and no oscillation moment, and refuses the
+// oscillation drum's keys.
+TEST(CliRun, VibratoryExampleRunsAndRefusesTheOscillationKeys) {
+  const std::string file = kSource + "/examples/vibratory.toml";
+  Outcome o = run({"run", file});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("vibratory drum on soil"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("unbalance force F0 = m_u e_u nu^2 = 31977"), std::string::npos) << o.out;
+  EXPECT_EQ(o.err, "");  // no warning about M0 and f: the vibratory drum has no M0
+  o = run({"run", file, "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["status"], "steady_state");
+  EXPECT_EQ(j["derived"]["M0"].get<double>(), 0.0);
+  EXPECT_NEAR(j["derived"]["F0"].get<double>(), 0.9 * std::pow(2.0 * M_PI * 30.0, 2), 1e-6);
+  EXPECT_GT(j["metrics"]["flight_fraction"].get<double>(), 0.0);
+  o = run({"run", file, "--set", "roller.M0=50000"});
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.err.find("roller.M0 has no effect while roller.type = \"vibratory\""),
+            std::string::npos)
+      << o.err;
+  o = run({"run", "--set", "roller.type=vibratory"});
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.err.find("roller.static_moment must be > 0"), std::string::npos) << o.err;
+}
+
 TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
   TempDir dir;
   Outcome o = run({"run", kSource + "/examples/case.toml", "--G", "40", "--pure-rolling", "--MMd",

@@ -228,6 +228,26 @@ TEST(CliIdentify, TheFitPlotsModelLiesOnTheSamples) {
   EXPECT_NEAR(std::sqrt(s2 / n), j["windows"][0]["noise_x"].get<double>(), 0.3 * 0.05 * peak);
 }
 
+// The soil under a vibratory drum (docs/model.md section 14) from its record: 60 steady periods
+// of examples/vibratory.toml on the Table 2 soil of G = 40 MN/m^2 (partial uplift), identified
+// with the same roller on the Table 2 scale: G comes back (seen: 40.001 +- 0.002 MN/m^2).
+TEST(CliIdentify, TheSoilUnderAVibratoryDrum) {
+  TempDir dir;
+  const std::string vibratory = std::string(OSCIDRUM_SOURCE_DIR) + "/examples/vibratory.toml";
+  const Outcome r = run({"run", vibratory, "--set", "soil.table2_G=40e6", "--set",
+                         "numerics.output_periods=60", "--csv", dir / "r.csv", "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Outcome o = run({"identify", dir / "r.csv", "--case", vibratory, "--window", "0",
+                         "--soil-scale", "table2", "--format", "json", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  const nlohmann::json& e = j["windows"][0]["estimates"][0];
+  EXPECT_EQ(e["name"], "G");
+  EXPECT_NEAR(e["value"].get<double>() / 40e6, 1.0, 1e-3);
+  EXPECT_LE(e["lower"].get<double>(), 40e6 * (1.0 + 1e-4));
+  EXPECT_GE(e["upper"].get<double>(), 40e6 * (1.0 - 1e-4));
+}
+
 TEST(CliIdentify, FromTheMetricsOfAnalyze) {
   TempDir dir;
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6, 1500);

@@ -7,6 +7,8 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "equations/jacobian.hpp"
 #include "oscidrum/oscidrum.hpp"
@@ -98,10 +100,29 @@ TEST(Jacobian, ThirdDerivativesOfTheRollCurves) {
   }
 }
 
+// The vibratory drum (docs/model.md section 14): the same equations with the unbalance force on
+// M, F0 = m_u e_u nu^2 = 53 kN at 30 Hz, turning (circular) or directed (vertical).
+Case vibratory_case(bool spiral, Exciter exciter) {
+  Case c = trough_case(spiral);
+  c.roller.type = RollerType::vibratory;
+  c.roller.static_moment = 1.5;
+  c.roller.f = 30.0;
+  c.roller.exciter = exciter;
+  return c;
+}
+
 TEST(Jacobian, StickAndSlipRightHandSidesAgainstFiniteDifferences) {
   std::mt19937 rng(20190701);
+  std::vector<std::pair<std::string, Case>> cases;
   for (bool spiral : {false, true}) {
-    const Model model(trough_case(spiral));
+    const std::string shape = spiral ? "spiral " : "circle ";
+    cases.emplace_back(shape, trough_case(spiral));
+    cases.emplace_back(shape + "vibratory circular ", vibratory_case(spiral, Exciter::circular));
+    cases.emplace_back(shape + "vibratory reversed ",
+                       vibratory_case(spiral, Exciter::circular_reversed));
+  }
+  for (const auto& [name, c] : cases) {
+    const Model model(c);
     const double beta = 2.0 * model.nu();
     for (int i = 0; i < 20; ++i) {
       const State q = random_state(rng, model);
@@ -113,9 +134,9 @@ TEST(Jacobian, StickAndSlipRightHandSidesAgainstFiniteDifferences) {
           const Mat8 fd =
               fd_jacobian([&](const Vec8& y) { return phase_rhs(model, t, to_state(y), phase, b); },
                           to_vec8(q));
-          expect_jacobian_near(J, fd,
-                               std::string(spiral ? "spiral " : "circle ") + to_string(phase) +
-                                   (b != 0.0 ? " Baumgarte" : "") + " #" + std::to_string(i));
+          expect_jacobian_near(
+              J, fd,
+              name + to_string(phase) + (b != 0.0 ? " Baumgarte" : "") + " #" + std::to_string(i));
         }
       }
     }

@@ -695,6 +695,27 @@ TEST(ComputeMetrics, SyntheticSinusoids) {
   }
 }
 
+// The Kb-type soil stiffness Re(F_v(f) / z_M(f)), F_v = N cos(delta) + T sin(delta) (25), by hand:
+// z_M = 1e-3 sin(nu t + 0.2) + 0.5e-3 sin(2 nu t) (an overtone, which does not count), the drum
+// tilted by delta = 0.1 rad with N and T chosen so that F_v = 4e4 + 6e4 sin(nu t + 0.2 + 0.7)
+// (leading by 0.7 rad): kb = 6e4 / 1e-3 cos(0.7) = 6e7 cos(0.7) N/m. Without N, T or delta
+// (a record of accelerations) it is unavailable.
+TEST(ComputeMetrics, SoilStiffnessOfSyntheticForceAndDisplacement) {
+  Synthetic s;
+  Result r = make_result(s);
+  const double nu = 2.0 * kPi * s.f, d = 0.1;
+  EXPECT_TRUE(std::isnan(compute_metrics(r).kb));
+  for (double t : r.samples.t) {
+    const double Fv = 4e4 + 6e4 * std::sin(nu * t + 0.9), Fh = 1e4 * std::cos(3.0 * nu * t);
+    // F_v = N cos + T sin and the horizontal part N sin - T cos = Fh (24): solved for N, T.
+    r.samples.N.push_back(Fv * std::cos(d) + Fh * std::sin(d));
+    r.samples.T.push_back(Fv * std::sin(d) - Fh * std::cos(d));
+    r.samples.delta.push_back(d);
+    r.samples.z_M.push_back(1e-3 * std::sin(nu * t + 0.2) + 0.5e-3 * std::sin(2.0 * nu * t));
+  }
+  EXPECT_NEAR(compute_metrics(r).kb, 6e7 * std::cos(0.7), 6e7 * kIdentity);
+}
+
 // phi_lag lies in (-2, 0]: a fundamental with phase +0.16 pi (e.g. -1e-3 sin(nu t - 0.84 pi))
 // reads -1.84; phase pi reads -1 (the no-soil limit of paper Fig. 10).
 TEST(ComputeMetrics, PhiLagRange) {

@@ -72,7 +72,9 @@ TEST(Outputs, TheTableReadsTheStructMembers) {
   std::string texts;
   for (const DiagnosticOutput& o : diagnostic_outputs())
     if (is_text(o)) texts += std::string(o.name) + "=" + text_value(d, o) + ";";
-  EXPECT_EQ(texts, "method=shooting;fallback=Newton did not converge;contact_mode=;motion=;");
+  EXPECT_EQ(
+      texts,
+      "method=shooting;fallback=Newton did not converge;contact_mode=;operating_mode=;motion=;");
   EXPECT_TRUE(is_text_column("method") && is_text_column("fallback") && is_text_column("status"));
   EXPECT_TRUE(is_text_column("contact_mode"));
   EXPECT_FALSE(is_text_column("newton_iterations") || is_text_column("min_N"));

@@ -109,7 +109,7 @@ class Checker {
       scale = 1.0;
     } else if (name == "friction_work") {
       scale = std::max(std::abs(b), s_.work);
-    } else if (name == "area" || name == "phi_amplitude" || name == "mu_required") {
+    } else if (name == "area" || name == "phi_amplitude" || name == "mu_required" || name == "kb") {
       scale = std::abs(b);
     } else {
       ADD_FAILURE() << "no scale for the metric " << name << ": add it to the test";

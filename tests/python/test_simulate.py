@@ -187,9 +187,9 @@ def test_attributes_follow_the_output_table(slip_result, cli):
     # The table's diagnostics, the steady-state method's included (the method by its name).
     names = [x["name"] for x in table["diagnostics"]]
     assert list(d.to_dict()) == names
-    assert names[-11:] == ["method", "newton_iterations", "jacobian_evaluations",
+    assert names[-12:] == ["method", "newton_iterations", "jacobian_evaluations",
                            "period_equivalents", "phi_drift", "fallback", "contact_mode",
-                           "start_ramp_periods", "warm_start", "motion", "lyapunov_exponent"]
+                           "operating_mode", "start_ramp_periods", "warm_start", "motion", "lyapunov_exponent"]
     assert d.motion == "" and d.lyapunov_exponent == 0.0  # a steady state: nothing to examine
     assert d.contact_mode == "permanent contact"  # a steady state of the paper's drum
     assert d.start_ramp_periods == 0  # the paper's start: all at once
@@ -238,3 +238,16 @@ def test_study_with_shooting_continues_from_the_neighbour():
         c.numerics.continuation = False
     cold = oscidrum.run_study(cases, threads=2, progress=False)
     assert [o.result.diagnostics.warm_start for o in cold] == [0, 0, 0, 0]
+
+
+def test_vibratory_drum():
+    # The vibratory drum (docs/model.md section 14) from Python: the example's roller lifts off
+    # every period (partial uplift) and has a Kb-type stiffness below Table 2's ksv = 66.3 MN/m.
+    c = oscidrum.Case(type="vibratory", static_moment=0.9, f=30.0, unilateral=True)
+    r = oscidrum.simulate(c)
+    assert r.status == oscidrum.Status.steady_state
+    assert r.diagnostics.operating_mode == "partial uplift"
+    kb = oscidrum.compute_metrics(r).kb
+    assert 30e6 < kb < 66.3e6
+    with pytest.raises(oscidrum.Error, match="roller.static_moment must be > 0"):
+        oscidrum.simulate(oscidrum.Case(type="vibratory"))

@@ -1,0 +1,386 @@
+// The vibratory drum (roller.type = vibratory, docs/model.md section 14): the paper's drum
+// equations with a rotating unbalance force on the drum centre instead of the oscillation moment.
+// Checks that do not trust the implementation: the steady state of a directed (vertical) exciter
+// in permanent contact against the closed-form frequency response of the linear system it
+// reduces to; the flight Jacobian with the force against finite differences; shooting against
+// the transient method; the energy balance of a steady period; and the parameters' rules.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include "oscidrum/oscidrum.hpp"
+#include "roller/unilateral_drum.hpp"
+#include "tolerances.hpp"
+
+namespace oscidrum::detail {
+namespace {
+
+using U = Dynamics<UnilateralDrum>;
+
+// A vibratory drum of the paper's roller (m = 1851 kg, kd, cd, P0) with the static moment
+// m_u e_u = 1.5 kg m at 30 Hz (F0 = 53 kN, about 1.2 P0), on soil given by its coefficients.
+Case vibratory_case(Exciter exciter) {
+  Case c;
+  c.roller.type = RollerType::vibratory;
+  c.roller.exciter = exciter;
+  c.roller.static_moment = 1.5;
+  c.roller.f = 30.0;
+  c.soil.input = SoilInput::coefficients;
+  c.numerics.method = SteadyMethod::shooting;
+  return c;
+}
+
+// Directed vertical exciter, MMd = 0, permanent contact, linear (Kelvin-Voigt) soil. At
+// delta = 0 the trough's roll curve is at its bottom (x_roll = z_roll = 0, sin delta = 0), the
+// horizontal balance (30) has no load (F_x = 0) and stays at rest (x_A = 0), so the stick
+// equation (32) gives delta'' = 0: the drum never leaves delta = 0. What remains is (31) with
+// z_M = s_A (14): m s_A'' + (csv + cd) s_A' + (ksv + kd) s_A = W + F0 sin(nu t): the soil's and
+// the buffers' springs and dashpots act in parallel on the drum's vertical motion (the buffers
+// measured from z_ref = 0, the paper's). Its steady state is W / (ksv + kd) plus
+// Im(F0 e^{i nu t} / (ksv + kd - m nu^2 + i nu (csv + cd))).
+TEST(VibratoryDrum, DirectedExciterInPermanentContactIsTheLinearFrequencyResponse) {
+  for (double ksv : {40e6, 66.3e6, 150e6}) {
+    Case c = vibratory_case(Exciter::vertical);
+    // F0 = 18 kN: the soil's dynamic force (up to 29 kN) stays below its static 41-44 kN.
+    c.roller.static_moment = 0.5;
+    c.soil.ksv = ksv;
+    c.soil.csv = 263e3 * std::sqrt(ksv / 66.3e6);
+    c.numerics.rtol = 1e-12;
+    c.numerics.atol = 1e-15;
+    c.numerics.steady_tol = 1e-12;
+    const Model model(c);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    EXPECT_EQ(r.diagnostics.contact_mode, "permanent contact");
+    const double m = c.roller.m, nu = model.nu(), F0 = c.roller.static_moment * nu * nu;
+    const double K = ksv + c.roller.kd, C = c.soil.csv + c.roller.cd;
+    const std::complex<double> H = 1.0 / std::complex<double>(K - m * nu * nu, nu * C);
+    const double amplitude = F0 * std::abs(H);
+    double delta_max = 0.0, x_max = 0.0, err = 0.0, err_acc = 0.0;
+    for (std::size_t i = 0; i < r.samples.size(); ++i) {
+      const double t = r.samples.t[i];
+      const std::complex<double> e = F0 * H * std::exp(std::complex<double>(0.0, nu * t));
+      delta_max = std::max(delta_max, std::abs(r.samples.delta[i]));
+      x_max = std::max(x_max, std::abs(r.samples.x_A[i]));
+      err = std::max(err, std::abs(r.samples.s_A[i] - (model.W() / K + e.imag())));
+      err = std::max(err, std::abs(r.samples.z_M[i] - r.samples.s_A[i]));
+      err_acc = std::max(err_acc, std::abs(r.samples.ddz_M[i] + nu * nu * e.imag()));
+    }
+    // Zero in exact arithmetic; shooting's Newton steps leave round-off of the order of eps times
+    // the section's other components (seen: 4e-38), far below any motion.
+    EXPECT_LE(delta_max, 1e-14 * amplitude / c.roller.r) << "ksv " << ksv;
+    EXPECT_LE(x_max, 1e-14 * amplitude) << "ksv " << ksv;
+    // Seen: 1.4e-12 to 2.1e-12 of the amplitude (4.7e-12 for the acceleration) at rtol 1e-12.
+    EXPECT_LE(err, 1e-8 * amplitude) << "ksv " << ksv << ": amplitude " << amplitude;
+    EXPECT_LE(err_acc, 1e-8 * nu * nu * amplitude) << "ksv " << ksv;
+    EXPECT_GT(amplitude, 1e-4);  // a motion the comparison can see (0.1 mm and more)
+    // The Kb-type stiffness, the soil's vertical force in phase with the drum's displacement over
+    // that displacement (docs/outputs.md), is the soil spring: F_v = ksv s_A + csv s_A' with
+    // z_M = s_A. On the samples (a DFT of sinusoids: exact to round-off) and the dense output.
+    EXPECT_NEAR(compute_metrics(r).kb, ksv, 1e-9 * ksv);
+    EXPECT_NEAR(compute_metrics(model, r).kb, ksv, 1e-9 * ksv);
+  }
+}
+
+// The flight phase with the unbalance force, against finite differences (the contact phases'
+// Jacobians with the force: tests/equations/test_jacobian.cpp).
+TEST(VibratoryDrum, FlightJacobianAgainstFiniteDifferences) {
+  std::mt19937 rng(29);
+  for (Exciter e : {Exciter::circular, Exciter::circular_reversed, Exciter::vertical}) {
+    Case c = vibratory_case(e);
+    c.contact.unilateral = true;
+    const Model model(c);
+    const U u(model, 2.0 * model.nu());
+    std::uniform_real_distribution<double> v(-1.0, 1.0);
+    for (int i = 0; i < 10; ++i) {
+      const double d0 = model.W() / (model.ksv() + model.kd());
+      const U::Vector y = {0.05 * v(rng), 1e-4 * v(rng),         d0 * (1.0 + 0.5 * v(rng)),
+                           v(rng),        2e-4 * (1.0 + v(rng)), 5.0 * v(rng),
+                           0.1 * v(rng),  0.05 * v(rng),         5.0 * v(rng),
+                           0.1 * v(rng)};
+      const double t = 0.0031 * i;
+      const U::Matrix J = u.jacobian(Phase::flight, t, y);
+      // Central differences, compared row by row in scaled units (as for the paper's drum in
+      // tests/roller/test_unilateral_drum.cpp).
+      const std::array<double, 10> scale = {0.3, 1e-3, 1e-3, 1.0, 1e-4, 40.0, 0.1, 0.05, 40.0, 0.1};
+      U::Matrix fd;
+      for (int j = 0; j < 10; ++j) {
+        const double h = 1e-6 * scale[j];
+        U::Vector yp = y, ym = y, fp, fm;
+        yp[j] += h;
+        ym[j] -= h;
+        u.rhs(Phase::flight, t, yp, fp);
+        u.rhs(Phase::flight, t, ym, fm);
+        for (int k = 0; k < 10; ++k) fd(k, j) = (fp[k] - fm[k]) / (2.0 * h);
+      }
+      for (int k = 0; k < 10; ++k) {
+        double row = 0.0;
+        for (int j = 0; j < 10; ++j) row = std::max(row, std::abs(fd(k, j)) * scale[j]);
+        for (int j = 0; j < 10; ++j)
+          EXPECT_LE(std::abs(J(k, j) - fd(k, j)) * scale[j], 1e-6 * std::max(row, 1e-300))
+              << "exciter " << static_cast<int>(e) << " (" << k << ", " << j << ")";
+      }
+      // The force is in the flight equations: z_M'' (20) with N = 0 differs from the drum
+      // without it by F_z / m.
+      Case plain = c;
+      plain.roller.type = RollerType::oscillation;
+      const Model plain_model(plain);
+      const U paper_drum(plain_model, 2.0 * plain_model.nu());
+      EXPECT_NEAR(
+          u.quantities(t, y, Phase::flight)[1] - paper_drum.quantities(t, y, Phase::flight)[1],
+          (model.centre_load(t).z - model.W()) / model.m(), 1e-9 * model.F0() / model.m());
+      EXPECT_NEAR(
+          u.quantities(t, y, Phase::flight)[0] - paper_drum.quantities(t, y, Phase::flight)[0],
+          model.centre_load(t).x / model.m(), 1e-9 * model.F0() / model.m());
+    }
+  }
+}
+
+// Shooting and the paper's transient method find the same steady state of a circular exciter
+// (Coulomb friction mu = 0.5) in permanent contact, and with lift-off at a larger static moment.
+TEST(VibratoryDrum, ShootingAndTransientAgree) {
+  for (bool unilateral : {false, true}) {
+    Case c = vibratory_case(Exciter::circular);
+    c.contact.unilateral = unilateral;
+    if (!unilateral) c.roller.static_moment = 0.4;  // keeps contact
+    const Result shot = simulate(c);
+    c.numerics.method = SteadyMethod::transient;
+    const Result trans = simulate(c);
+    ASSERT_EQ(shot.status, Status::steady_state) << shot.message;
+    ASSERT_EQ(trans.status, Status::steady_state) << trans.message;
+    EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
+    EXPECT_EQ(shot.diagnostics.contact_mode, trans.diagnostics.contact_mode);
+    EXPECT_EQ(shot.diagnostics.contact_mode,
+              unilateral ? "periodic lift-off" : "permanent contact");
+    // The literature's names (docs/model.md section 14).
+    EXPECT_EQ(shot.diagnostics.operating_mode,
+              unilateral ? "partial uplift" : "continuous contact");
+    EXPECT_EQ(trans.diagnostics.operating_mode, shot.diagnostics.operating_mode);
+    const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
+    const double tol = 2e-7;  // the transient's distance from the orbit (steady_tol 1e-8)
+    EXPECT_NEAR(a.ddx_max, b.ddx_max, tol * std::abs(b.ddx_max));
+    EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
+    EXPECT_NEAR(a.area, b.area, tol * std::abs(b.area));
+    EXPECT_NEAR(a.flight_fraction, b.flight_fraction, tol);
+  }
+}
+
+// Energy over a steady period with lift-off (circular exciter, Coulomb friction): the unbalance
+// force's work on the drum centre, F . M' (the static load W does no net work over a period),
+// equals what the buffers' and the soil's dashpots dissipate plus the friction's work in slip, |T
+// v_rel| (13), (27). Integrated on the dense output by 8-point Gauss-Legendre quadrature on every
+// piece; the centre's velocity is the chart's, M' = A' + (r f5 - g) delta' t - g' n (section 13).
+TEST(VibratoryDrum, EnergyBalanceOverAPeriodWithLiftOff) {
+  Case c = vibratory_case(Exciter::circular);
+  c.contact.unilateral = true;
+  c.numerics.rtol = 1e-10;
+  const Model model(c);
+  const Result r = simulate(model);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  ASSERT_GT(compute_metrics(model, r).flight_fraction, 0.01);
+  const FlowOptions options = FlowOptions::from(model);
+  const U u(model, options.baumgarte);
+  const double t0 = r.samples.t.front(), t1 = t0 + model.period();
+  const Phase phase = u.flow_phase(r.samples.phase.front());
+  struct Energy : BasicFlowObserver<UnilateralDrum> {
+    const Model& model;
+    double in = 0.0, out = 0.0, friction = 0.0;
+    explicit Energy(const Model& m) : model(m) {}
+    bool on_step(const BasicStepView<UnilateralDrum>& s) override {
+      static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                      0.9602898564975363};
+      static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                      0.1012285362903763};
+      const double h = 0.5 * (s.t1() - s.t0()), mid = 0.5 * (s.t1() + s.t0());
+      for (int i = 0; i < 4; ++i) {
+        for (double sign : {-1.0, 1.0}) {
+          const double t = mid + sign * h * x[i];
+          const UnilateralState q = s.state(t);
+          const Kinematics k = kinematics(model.geometry(), q.delta);
+          const double rho = model.r() * k.f5 - q.gap;
+          const double dx_M = q.dx_A + rho * q.ddelta * k.cos_delta - q.dgap * k.sin_delta;
+          const double dz_M = q.ds_A - rho * q.ddelta * k.sin_delta - q.dgap * k.cos_delta;
+          const CentreLoad L = model.centre_load(t);
+          const double dphi = s.phase() == Phase::stick ? k.f5 * q.ddelta : q.dphi;
+          const double p_in =
+              L.x * dx_M + (L.z - model.W()) * dz_M + model.torque(t) * dphi;  // MMd = 0
+          double p_friction = 0.0;
+          if (s.phase() == Phase::slip_positive || s.phase() == Phase::slip_negative) {
+            const ContactForces f = contact_forces(model, q.contact());
+            p_friction = std::abs(f.T * slip_velocity(model, q.contact()));
+          }
+          const double p_out = model.cd() * (dx_M * dx_M + dz_M * dz_M) +
+                               model.csh() * q.dx_A * q.dx_A + model.csv() * q.ds_A * q.ds_A +
+                               p_friction;
+          in += w[i] * h * p_in;
+          out += w[i] * h * p_out;
+          friction += w[i] * h * p_friction;
+        }
+      }
+      return true;
+    }
+  } energy(model);
+  UnilateralFlow flow(model, options);
+  flow.reset(t0, UnilateralState::from_array(u.consistent(U::sampled_state(r.samples, 0), phase)),
+             phase);
+  ASSERT_EQ(flow.advance(t1, &energy), FlowStop::reached);
+  EXPECT_GT(energy.in, 0.0);
+  EXPECT_GT(energy.friction, 0.0);  // the drum slips (seen: 1.7 J of 226 J, balance to 4e-11)
+  // The orbit repeats to steady_tol and the quadrature is exact to ~1e-12 on smooth pieces (as
+  // for the oscillation drum with flight, tests/roller/test_unilateral_drum.cpp).
+  EXPECT_NEAR(energy.out / energy.in, 1.0, 1e-6)
+      << "in " << energy.in << " J against " << energy.out << " J (friction " << energy.friction
+      << " J)";
+}
+
+// The Kb-type stiffness (docs/outputs.md) is what the soil stiffness formula of vibratory rollers'
+// compaction control estimates from the drum's motion alone: by (20) at the fundamental,
+// kb = nu^2 (m + m_u e_u cos(phi) / A) - kd, A the amplitude of z_M's fundamental and phi its lag
+// behind the unbalance force F0 sin(nu t). On a steady state with lift-off (the contact force is 0
+// for a third of the period). The identity is exact pointwise; kb is the DFT of the sampled contact
+// force, which jumps at landing (the massless soil's velocities jump), so its fundamental carries
+// the aliasing of a jump, O(1 / samples per period): the difference shrinks as the sampling
+// refines (seen: 2.0e-4 at 1024, 1.4e-5 at 8192 samples per period).
+TEST(VibratoryDrum, SoilStiffnessIsTheDrumEquationsEstimate) {
+  std::vector<double> differences;
+  for (int samples : {1024, 8192}) {
+    Case c = vibratory_case(Exciter::circular);
+    c.contact.unilateral = true;
+    c.numerics.samples_per_period = samples;
+    const Model model(c);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    const Metrics m = compute_metrics(r);
+    ASSERT_GT(m.flight_fraction, 0.1);
+    const std::vector<Harmonic> z =
+        harmonics(r.samples.z_M, r.sample_periods, r.frequency, r.samples.t.front(), 1);
+    const double nu = model.nu();
+    const double estimate =
+        nu * nu * (c.roller.m + c.roller.static_moment * std::cos(z[1].phase) / z[1].amplitude) -
+        c.roller.kd;
+    EXPECT_GT(m.kb, 0.0);
+    differences.push_back(std::abs(m.kb - estimate) / m.kb);
+    // run's kb integrates F_v over the dense output (no aliasing); z_M, smooth up to its
+    // acceleration's jump, aliases at O(samples^-3): the identity holds to 1e-8 (seen 4e-10).
+    const double dense = compute_metrics(model, r).kb;
+    EXPECT_NEAR(dense, estimate, 1e-8 * dense) << samples;
+  }
+  EXPECT_LT(differences[0], 1e-3);
+  EXPECT_LT(differences[1], differences[0] / 4.0) << differences[0] << " " << differences[1];
+  EXPECT_LT(differences[1], 1e-4);
+}
+
+// The operating modes by the literature's names (docs/model.md section 14) along a sequence of
+// stiffening soils (Appendix B soil, G = 10, 50, 300 MN/m^2; m_u e_u = 1.5 kg m at 30 Hz,
+// unilateral contact): continuous contact, partial uplift (lift-off every period, period 1),
+// double jump (lift-off every period, period 2, with the f/2 subharmonic the RMV reads).
+TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
+  struct Expected {
+    double G, static_moment;
+    const char* mode;
+    int multiplicity;
+  };
+  for (const Expected& e :
+       {Expected{10e6, 0.9, "continuous contact", 1}, Expected{50e6, 1.5, "partial uplift", 1},
+        Expected{300e6, 1.5, "double jump", 2}}) {
+    Case c = vibratory_case(Exciter::circular);
+    c.contact.unilateral = true;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = e.G;
+    c.roller.static_moment = e.static_moment;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    EXPECT_EQ(r.diagnostics.operating_mode, e.mode) << e.G;
+    EXPECT_EQ(r.diagnostics.multiplicity, e.multiplicity) << e.G;
+    const Metrics m = compute_metrics(Model(c), r);
+    if (e.multiplicity == 2) {
+      EXPECT_GT(m.rmv, 0.01) << e.G;  // the f/2 subharmonic of a period-2 motion
+    } else {
+      EXPECT_EQ(m.rmv, 0.0) << e.G;
+    }
+  }
+  // The oscillation drum has no such name.
+  EXPECT_EQ(simulate(Case{}).diagnostics.operating_mode, "");
+}
+
+// A study with continuation finds what each case finds from rest (Table 2 soils, G = 40 ... 70
+// MN/m^2, the example's roller, partial uplift throughout). A neighbour's section in flight is no
+// warm start: before that rule, shooting from it converged on G >= 55 to a spurious orbit in
+// flight for the whole period at a zero gap (docs/vibratory.md).
+TEST(VibratoryDrum, ContinuationAlongTheSoilsAgreesWithTheStartFromRest) {
+  std::vector<Case> cases;
+  for (double G = 40e6; G <= 70e6; G += 5e6) {
+    Case c = vibratory_case(Exciter::circular);
+    c.roller.static_moment = 0.9;
+    c.soil.input = SoilInput::table2;
+    c.soil.G = G;
+    c.contact.unilateral = true;
+    cases.push_back(c);
+  }
+  StudyOptions options;
+  options.threads = 1;
+  const std::vector<CaseOutcome> out = run_study(cases, options);
+  ASSERT_EQ(out.size(), cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    ASSERT_EQ(out[i].result.status, Status::steady_state) << out[i].result.message;
+    const Result alone = simulate(cases[i]);
+    ASSERT_EQ(alone.status, Status::steady_state) << alone.message;
+    EXPECT_EQ(out[i].result.diagnostics.operating_mode, "partial uplift") << cases[i].soil.G;
+    EXPECT_EQ(alone.diagnostics.operating_mode, "partial uplift") << cases[i].soil.G;
+    const Metrics a = compute_metrics(Model(cases[i]), alone);
+    EXPECT_LT(out[i].metrics.flight_fraction, 0.5) << cases[i].soil.G;
+    EXPECT_NEAR(out[i].metrics.flight_fraction, a.flight_fraction, 1e-6) << cases[i].soil.G;
+    EXPECT_NEAR(out[i].metrics.kb, a.kb, 1e-6 * a.kb) << cases[i].soil.G;
+  }
+}
+
+// The parameters: the static moment must be positive for a vibratory drum, and the keys of the
+// other roller have no effect.
+TEST(VibratoryDrum, ParametersAndTheirRules) {
+  Case c;
+  EXPECT_THROW(set_field(c, "roller.static_moment", -1.0), Error);
+  c.roller.type = RollerType::vibratory;
+  try {
+    (void)Model(c);
+    ADD_FAILURE() << "a vibratory drum without a static moment was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.key(), "roller.static_moment");
+  }
+  c.roller.static_moment = 1.5;
+  EXPECT_NO_THROW((void)Model(c));
+  EXPECT_FALSE(key_in_effect(c, "roller.M0"));
+  EXPECT_FALSE(key_in_effect(c, "roller.unbalance"));
+  EXPECT_TRUE(key_in_effect(c, "roller.static_moment"));
+  EXPECT_TRUE(key_in_effect(c, "roller.exciter"));
+  EXPECT_FALSE(key_in_effect(Case{}, "roller.static_moment"));
+  EXPECT_FALSE(key_in_effect(Case{}, "roller.exciter"));
+  set_field_text(c, "roller.exciter", "vertical");
+  EXPECT_EQ(c.roller.exciter, Exciter::vertical);
+  set_field_text(c, "roller.type", "oscillation");
+  EXPECT_EQ(c.roller.type, RollerType::oscillation);
+  // The load on the centre: F0 = m_u e_u nu^2 in the exciter's direction, W added below; no
+  // moment (MMd only).
+  c = vibratory_case(Exciter::circular);
+  c.MMd = 100.0;
+  const Model model(c);
+  const double nu = model.nu(), F0 = 1.5 * nu * nu, t = 0.0123;
+  EXPECT_NEAR(model.F0(), F0, test::kIdentity * F0);
+  EXPECT_NEAR(model.centre_load(t).x, F0 * std::cos(nu * t), test::kIdentity * F0);
+  EXPECT_NEAR(model.centre_load(t).z, model.W() + F0 * std::sin(nu * t), test::kIdentity * F0);
+  EXPECT_EQ(model.torque(t), 100.0);
+  c.roller.exciter = Exciter::circular_reversed;
+  EXPECT_NEAR(Model(c).centre_load(t).x, -F0 * std::cos(nu * t), test::kIdentity * F0);
+  c.roller.exciter = Exciter::vertical;
+  EXPECT_EQ(Model(c).centre_load(t).x, 0.0);
+  // The oscillation drum: the paper's W, no force.
+  const Model paper{Case{}};
+  EXPECT_EQ(paper.centre_load(t).x, 0.0);
+  EXPECT_EQ(paper.centre_load(t).z, paper.W());
+  EXPECT_EQ(paper.F0(), 0.0);
+}
+
+}  // namespace
+}  // namespace oscidrum::detail
