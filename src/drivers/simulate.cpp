@@ -466,11 +466,6 @@ template <class R>
 std::optional<detail::WarmStart> orbit_start_of(const Result& result) {
   const Samples& s = result.samples;
   if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
-  // A section in flight is no start for a neighbour: with the neighbour's soil the gap there may
-  // be closed (g <= 0), and a flow that starts in flight at a closed gap never sees the landing
-  // (g falling through 0); shooting from it has converged to a spurious orbit in flight at g = 0
-  // (docs/vibratory.md). The neighbour starts from rest instead.
-  if (s.phase[0] == Phase::flight) return {};
   const auto x = detail::Dynamics<R>::sampled_state(s, 0);
   for (double v : x)
     if (!std::isfinite(v)) return {};

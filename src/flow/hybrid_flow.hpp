@@ -368,7 +368,11 @@ void BasicFlow<R>::reset(double t, const State& q, Phase phase) {
   // round-off at a switch.
   constexpr double kWrongSide = 1e-6;
   s.inconsistent.clear();
-  for (int i = 0; i < Impl::Dyn::kEvents; ++i)
+  for (int i = 0; i < Impl::Dyn::kEvents; ++i) {
+    // On the surface itself (within round-off): the function counts as fresh, so that a switch
+    // it makes at once (a landing from g = 0 with g' < 0) is taken at the start, where a function
+    // that only touches zero from above would never fire.
+    if (s.e_prev[i] <= 0.0 && s.e_prev[i] >= -kWrongSide) s.e_fresh[i] = true;
     if (s.e_prev[i] < -kWrongSide) {
       s.inconsistent = detail::format(
           "the state at t = %.9g s is not one of its phase: its event function %.0f is %.3g < 0 "
@@ -377,6 +381,7 @@ void BasicFlow<R>::reset(double t, const State& q, Phase phase) {
       s.inconsistent += std::string(" in ") + to_string(phase);
       break;
     }
+  }
   s.have_step = false;
   s.t_now = t;
   s.x_now = x;

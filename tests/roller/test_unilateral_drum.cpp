@@ -60,6 +60,22 @@ TEST(UnilateralDrum, AFlightStateInsideTheTroughIsRefused) {
   flow.reset(0.0, q, Phase::flight);
   EXPECT_EQ(flow.advance(model.period()), FlowStop::reached);
   EXPECT_GT(flow.counters().events, 0);
+  // On the trough and closing (g = 0, g' < 0): it lands at once, at the start, where a gap that
+  // only touched zero from above would never have fired its landing.
+  struct First : BasicFlowObserver<UnilateralDrum> {
+    double t = -1.0;
+    EventKind kind = EventKind::lift_off;
+    bool on_event(const Event& e, const UnilateralState&, const UnilateralState&) override {
+      if (t < 0.0) t = e.t, kind = e.kind;
+      return true;
+    }
+  } first;
+  q.gap = 0.0;
+  q.dgap = -0.01;
+  flow.reset(0.0, q, Phase::flight);
+  EXPECT_EQ(flow.advance(model.period(), &first), FlowStop::reached);
+  EXPECT_EQ(first.kind, EventKind::landing);
+  EXPECT_LT(first.t, 1e-6 * model.period());
 }
 
 // The chart M = A + roll(delta) - g n(delta) is the trough shape's gap: each shape finds delta

@@ -307,9 +307,11 @@ TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
 }
 
 // A study with continuation finds what each case finds from rest (Table 2 soils, G = 40 ... 70
-// MN/m^2, the example's roller, partial uplift throughout). A neighbour's section in flight is no
-// warm start: before that rule, shooting from it converged on G >= 55 to a spurious orbit in
-// flight for the whole period at a zero gap (docs/vibratory.md).
+// MN/m^2, the example's roller, partial uplift throughout), with warm starts from neighbours'
+// sections in flight. Shooting from them once converged on G >= 55 to a spurious orbit in flight
+// for the whole period: a flight state at or inside the trough never fired its landing. The flow
+// now refuses a state inside the trough and lands one on it at once (FlowStop::
+// inconsistent_state, docs/vibratory.md), so Newton's iterates cannot close into such an orbit.
 TEST(VibratoryDrum, ContinuationAlongTheSoilsAgreesWithTheStartFromRest) {
   std::vector<Case> cases;
   for (double G = 40e6; G <= 70e6; G += 5e6) {
@@ -324,6 +326,7 @@ TEST(VibratoryDrum, ContinuationAlongTheSoilsAgreesWithTheStartFromRest) {
   options.threads = 1;
   const std::vector<CaseOutcome> out = run_study(cases, options);
   ASSERT_EQ(out.size(), cases.size());
+  int warm = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     ASSERT_EQ(out[i].result.status, Status::steady_state) << out[i].result.message;
     const Result alone = simulate(cases[i]);
@@ -334,7 +337,9 @@ TEST(VibratoryDrum, ContinuationAlongTheSoilsAgreesWithTheStartFromRest) {
     EXPECT_LT(out[i].metrics.flight_fraction, 0.5) << cases[i].soil.G;
     EXPECT_NEAR(out[i].metrics.flight_fraction, a.flight_fraction, 1e-6) << cases[i].soil.G;
     EXPECT_NEAR(out[i].metrics.kb, a.kb, 1e-6 * a.kb) << cases[i].soil.G;
+    warm += out[i].result.diagnostics.warm_start == 1;
   }
+  EXPECT_GE(warm, 3);  // most cases continue their neighbour (4 of the 6 that can)
 }
 
 // The parameters: the static moment must be positive for a vibratory drum, and the keys of the
