@@ -25,23 +25,14 @@ import time
 import numpy as np
 
 import oscidrum
+from random_cases import draw_case
 
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 3000
 seed = int(sys.argv[2]) if len(sys.argv) > 2 else 20261124
 rng = np.random.default_rng(seed)
 cases = []
 for _ in range(n):
-    c = oscidrum.Case()
-    c.set("soil.input", "modulus")
-    c.set("soil.G", rng.uniform(5e6, 100e6))
-    f = rng.uniform(25.0, 70.0)
-    c.set("roller.f", f)
-    c.set("roller.unbalance", 0.22877)
-    if rng.uniform() < 0.25:
-        c.set("contact.pure_rolling", True)
-    else:
-        c.set("contact.mu", rng.uniform(0.2, 1.0))
-    c.set("MMd", rng.uniform(0.0, 0.1) * 4 * 0.22877 * (2 * np.pi * f) ** 2)
+    c = draw_case(rng, 0.1)
     if rng.uniform() < 1 / 3:
         c.set("trough.k", rng.uniform(0.0, 0.003))
         c.set("trough.a", 0.601)

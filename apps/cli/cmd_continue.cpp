@@ -245,7 +245,7 @@ int run(ContinueOptions o) {
     if (run_python(args, "the branch is in " + o.csv) != 0) return kExitCaseFailed;
   }
   const bool ok = b.end == BranchEnd::reached_end || b.end == BranchEnd::left_range ||
-                  b.end == BranchEnd::gross_slip;
+                  b.end == BranchEnd::gross_slip || b.end == BranchEnd::lift_off;
   return ok ? kExitOk : kExitCaseFailed;
 }
 
@@ -258,7 +258,8 @@ void add_continue_command(CLI::App& app, Action& action) {
       "Follow a branch of periodic orbits through a parameter (pseudo-arclength continuation of "
       "the shooting problem), stable and unstable alike, through folds; every orbit with its "
       "Floquet multipliers and CCC metrics; the bifurcations on the branch (fold, period "
-      "doubling, Neimark-Sacker, branch point, and grazing: a stick, slip or flight phase "
+      "doubling, Neimark-Sacker, branch point, lift-off, and grazing: a stick, slip or flight "
+      "phase "
       "appearing or vanishing) detected and located. docs/bifurcations.md.");
   sub->footer(
       "Examples:\n"

@@ -47,8 +47,11 @@ struct BranchPoint {
   int multiplicity = 1;        ///< p: the orbit repeats every p excitation periods
   Phase phase = Phase::stick;  ///< the phase at the section t0
   std::vector<double> state;   ///< the roller's state at the section (its components)
-  Floquet floquet;             ///< the multipliers of P^p at the orbit
-  int unstable = 0;            ///< multipliers outside the unit circle (by more than 1e-6) [-]
+  /// The section's time t0 [s]: the orbit passes through `state` at t0 (the excitation's phase
+  /// there is nu t0); with `state` and `phase` the orbit's initial condition.
+  double section_time = 0.0;
+  Floquet floquet;       ///< the multipliers of P^p at the orbit
+  int unstable = 0;      ///< multipliers outside the unit circle (by more than 1e-6) [-]
   double dq_ds = 0.0;    ///< the tangent's parameter component (its sign changes at a fold) [-]
   double min_N = 0.0;    ///< smallest normal force at the step ends of one period [N]
   std::string sequence;  ///< the switches of one period in time order from the section
@@ -65,9 +68,14 @@ enum class BifurcationKind {
   period_doubling,  ///< a real multiplier through -1 (flip): a period-2p orbit emanates
   neimark_sacker,   ///< a complex pair leaves the unit circle (torus)
   grazing,  ///< the switching sequence changes: a stick, slip or flight phase appears or vanishes
+  /// Unilateral contact: the smallest normal force of the orbit reaches zero and the branch in
+  /// contact ends there, no orbit near it continuing it (in pure rolling the orbit that lifts off
+  /// is another one, docs/lift-off.md); the branch ends with BranchEnd::lift_off. (A flight phase
+  /// that appears continuously along a branch is a grazing.)
+  lift_off,
 };
 
-/// "fold", "branch_point", "period_doubling", "neimark_sacker", "grazing".
+/// "fold", "branch_point", "period_doubling", "neimark_sacker", "grazing", "lift_off".
 const char* to_string(BifurcationKind kind);
 
 struct Bifurcation {
@@ -94,10 +102,13 @@ enum class BranchEnd {
   gross_slip,      ///< the stick phase vanished: the drum slips throughout, no orbit beyond
   start_failed,    ///< no periodic orbit to start from (message says why)
   cancelled,       ///< BranchOptions::cancelled returned true
+  /// Unilateral contact: the orbit's smallest normal force reached zero and the corrector found
+  /// no orbit beyond (the last bifurcation, lift_off, locates the point; message says where)
+  lift_off,
 };
 
 /// "reached_end", "left_range", "max_points", "step_too_small", "gross_slip", "start_failed",
-/// "cancelled".
+/// "cancelled", "lift_off".
 const char* to_string(BranchEnd end);
 
 struct Branch {

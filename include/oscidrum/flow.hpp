@@ -44,6 +44,12 @@ enum class FlowStop {
   invalid_geometry,  ///< the trough's curvature radius fell to the drum radius (f5 <= 0)
   budget_exceeded,   ///< more steps in one excitation period than FlowOptions allows
   cancelled,         ///< FlowOptions::cancelled returned true
+  /// The state given to Flow::reset lies on the wrong side of a switching surface of its phase
+  /// (an event function below zero: a cone violated in stick, N < 0 in contact, a gap < 0 in
+  /// flight), so it is no state of that phase and its switch could never be detected. Only a
+  /// state from outside the flow can be so (a shooting iterate, a neighbour's orbit, a user's);
+  /// reported as Status::contact_lost (no consistent state of the model).
+  inconsistent_state,
 };
 const char* to_string(FlowStop stop);
 

@@ -1075,7 +1075,7 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
 
 BIFURCATION_STYLE = {"fold": ("o", "tab:red"), "branch_point": ("D", "tab:purple"),
                      "period_doubling": ("s", "tab:orange"), "neimark_sacker": ("^", "tab:green"),
-                     "grazing": ("x", "tab:gray")}
+                     "grazing": ("x", "tab:gray"), "lift_off": ("v", "tab:brown")}
 
 
 def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",

@@ -174,6 +174,14 @@ class Continuation {
   void locate(Branch& branch, const Solution& a, const Solution& b, double ds,
               const BranchPoint& pa, const BranchPoint& pb);
   bool resection(Solution& s);
+  static bool has_flight(const std::string& sequence) {
+    return sequence.find(to_string(Phase::flight)) != std::string::npos;
+  }
+  // The corrector failed down to the smallest step beyond `cur` (the prediction reached q_fail):
+  // when the contact is unilateral and the orbit's smallest normal force is what ends it, locate
+  // the point where it reaches zero and end the branch there as lift_off.
+  std::optional<Branch> end_at_lift_off(Branch& branch, const Solution& cur, double q_fail,
+                                        std::chrono::steady_clock::time_point start_time);
   bool cancelled() const { return o_.cancelled && o_.cancelled(); }
 
   Case base_;
@@ -380,6 +388,7 @@ BranchPoint Continuation<R>::point(const Solution& s, double arclength, int iter
   pt.phase = phase_;
   const Vector x = full_state(s.v);
   pt.state.assign(x.begin(), x.end());
+  pt.section_time = section_ * Model(case_at(pt.parameter)).period();
   Eigen::EigenSolver<MatrixXd> eig(s.map.M, false);
   std::vector<std::complex<double>> mu(eig.eigenvalues().begin(), eig.eigenvalues().end());
   pt.floquet = classify_multipliers(std::move(mu));
@@ -452,6 +461,7 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
         case BifurcationKind::neimark_sacker:
           return count_multipliers(p.floquet).complex_outside;
         case BifurcationKind::grazing:
+        case BifurcationKind::lift_off:
           return static_cast<long>(std::hash<std::string>{}(s.map.sequence));
       }
       return 0;
@@ -529,6 +539,8 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
         break;
       case BifurcationKind::grazing:
         bif.description = "the switching sequence changes: " + pa.sequence + " -> " + pb.sequence;
+        break;
+      case BifurcationKind::lift_off:  // not a test between points (see end_at_lift_off)
         break;
     }
     branch.bifurcations.push_back(bif);
@@ -744,6 +756,59 @@ Branch Continuation<R>::switch_at(const Doubling& d, const std::array<double, P>
                 start_time);
 }
 
+// Where a branch in contact ends because the drum lifts off: its orbits' smallest normal force
+// falls to zero, and the corrector fails down to the smallest step there (its iterates and the
+// difference quotients reach across lift-off, where the orbit that lifts off is another one: in
+// pure rolling the release of the tangential force at lift-off makes the change finite,
+// docs/lift-off.md). min N of an orbit is a smooth function of q near the point (the minimum in
+// time of a smooth N(t, q), dN/dt = 0 there), so its zero is found by the secant through the last
+// two orbits: q* = q_n + N_n (q_n - q_{n-1}) / (N_{n-1} - N_n). The point lies between the last
+// orbit in contact and q* (reported as q* with that distance as its tolerance). It is taken to be
+// the end only when q* lies within the located tolerance (or a few failed steps) of the last orbit
+// and the period map from the last orbit at a q as far beyond q* lifts off (a flight phase
+// appears); otherwise (the contact cannot open, min N is not falling to zero there, the map beyond
+// keeps contact) nothing: the failure has another cause.
+template <class R>
+std::optional<Branch> Continuation<R>::end_at_lift_off(
+    Branch& branch, const Solution& cur, double q_fail,
+    std::chrono::steady_clock::time_point start_time) {
+  if (!base_.contact.unilateral || has_flight(cur.map.sequence) || branch.points.size() < 2)
+    return std::nullopt;
+  const BranchPoint& last = branch.points.back();
+  const BranchPoint& before = branch.points[branch.points.size() - 2];
+  const double dN = before.min_N - last.min_N;
+  if (!(last.min_N >= 0.0) || !(dN > 0.0)) return std::nullopt;
+  const double q_star = last.parameter + last.min_N * (last.parameter - before.parameter) / dN;
+  const double reach = std::abs(q_star - last.parameter);
+  const double q_tol = o_.tolerance * sq_;
+  if (!(reach <= std::max(q_tol, 10.0 * std::abs(q_fail - last.parameter)))) return std::nullopt;
+  VectorXd beyond = cur.v;
+  beyond[P] =
+      (q_star + (q_star - last.parameter) + (q_star >= last.parameter ? 1.0 : -1.0) * q_tol) / sq_;
+  const std::string failure = last_failure_;
+  const Map probe = map(beyond, false);
+  if (!probe.ok || !has_flight(probe.sequence)) {
+    last_failure_ = failure;
+    return std::nullopt;
+  }
+  Bifurcation bif;
+  bif.kind = BifurcationKind::lift_off;
+  bif.after_point = static_cast<int>(branch.points.size()) - 1;
+  bif.parameter = q_star;
+  bif.tolerance = reach;
+  bif.description =
+      detail::format("the smallest normal force reaches zero (%.3g N at ", last.min_N) +
+      std::string(field_.key) + " = " + detail::format("%.9g", last.parameter) +
+      "): the drum lifts off, and no orbit in contact continues the branch beyond";
+  branch.bifurcations.push_back(bif);
+  return finish(branch, BranchEnd::lift_off,
+                "at " + std::string(field_.key) + " = " + detail::format("%.9g", q_star) +
+                    " the drum lifts off (the orbit's smallest normal force reaches zero); the "
+                    "orbit beyond, with flight, is not on this branch (oscidrum diagram or run "
+                    "show the motion there)",
+                start_time);
+}
+
 template <class R>
 Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
                                std::chrono::steady_clock::time_point start_time) {
@@ -771,12 +836,16 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
     if (!next) {
       if (cancelled()) return finish(branch, BranchEnd::cancelled, "cancelled", start_time);
       ds *= 0.5;
-      if (ds < o_.min_step)
+      if (ds < o_.min_step) {
+        if (std::optional<Branch> lifted =
+                end_at_lift_off(branch, cur, parameter(cur.v + 2.0 * ds * cur.tangent), start_time))
+          return *lifted;
         return finish(branch, BranchEnd::step_too_small,
                       "the corrector failed down to the smallest step at " +
                           std::string(field_.key) + " = " +
                           detail::shortest(branch.points.back().parameter) + ": " + last_failure_,
                       start_time);
+      }
       continue;
     }
     const double q = parameter(next->v);

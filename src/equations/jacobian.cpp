@@ -350,20 +350,6 @@ Mat8 jump_jacobian(const Model& model, const State& q, bool reset_phi, int coupl
   return G;
 }
 
-Saltation saltation(const Mat8& G, const Vec8& f_minus, const Vec8& f_plus, const Vec8& dh,
-                    double dh_dt, double grazing_tol) {
-  Saltation out;
-  const double denominator = dh.dot(f_minus) + dh_dt;
-  const double scale = dh.norm() * f_minus.norm() + std::abs(dh_dt);
-  if (!(std::abs(denominator) > grazing_tol * scale)) {
-    out.grazing = true;
-    out.S = G;
-    return out;
-  }
-  out.S = G + (f_plus - G * f_minus) * dh.transpose() / denominator;
-  return out;
-}
-
 Saltation switch_saltation(const Model& model, double t, const State& q, Phase from, Phase to,
                            double baumgarte, bool jumped, double grazing_tol) {
   const Vec8 f_minus = phase_rhs(model, t, q, from, baumgarte);

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "equations/saltation.hpp"
 #include "oscidrum/model.hpp"
 
 namespace oscidrum::detail {
@@ -53,16 +54,13 @@ Vec8 event_gradient(const Model& model, const State& q, EventFunction h);
 State jump_map(const Model& model, const State& q, bool reset_phi, int coupling_sign);
 Mat8 jump_jacobian(const Model& model, const State& q, bool reset_phi, int coupling_sign);
 
-/// Saltation matrix S = G + (f+ - G f-) dh^T / (dh . f- + dh/dt) mapping a perturbation just
-/// before a switch to one just after it (f- at y-, f+ at g(y-)). `grazing` is set when the
-/// denominator is below `grazing_tol` times |dh| |f-| (the flow meets the switching surface
-/// tangentially: the linearisation does not exist).
-struct Saltation {
-  Mat8 S = Mat8::Identity();
-  bool grazing = false;
-};
-Saltation saltation(const Mat8& G, const Vec8& f_minus, const Vec8& f_plus, const Vec8& dh,
-                    double dh_dt = 0.0, double grazing_tol = 1e-9);
+/// Saltation matrix S = G + (f+ - G f-) dh^T / (dh . f- + dh/dt) of the drum's 8 components
+/// (saltation_matrix, src/equations/saltation.hpp).
+using Saltation = SaltationMatrix<8>;
+inline Saltation saltation(const Mat8& G, const Vec8& f_minus, const Vec8& f_plus, const Vec8& dh,
+                           double dh_dt = 0.0, double grazing_tol = 1e-9) {
+  return saltation_matrix<8>(G, f_minus, f_plus, dh, dh_dt, grazing_tol);
+}
 
 /// The saltation matrix of a switch of the hybrid flow at state q (the state before the switch,
 /// on the surface) and time t, from phase `from` to phase `to`. `jumped`: the soil's velocities

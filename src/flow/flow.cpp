@@ -8,6 +8,7 @@ namespace oscidrum {
 Status status_of(FlowStop stop) {
   switch (stop) {
     case FlowStop::contact_lost:
+    case FlowStop::inconsistent_state:
       return Status::contact_lost;
     case FlowStop::chattering:
       return Status::chattering;

@@ -117,6 +117,9 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
   // Event function values at the start of the current step, and which of them started at zero
   // by construction (the function that just caused a switch): those must move positive.
   EventValues e_prev{};
+  // Set by reset when the state given lies on the wrong side of one of its phase's switching
+  // surfaces (FlowStop::inconsistent_state): the next advance stops with this message.
+  std::string inconsistent;
   std::array<bool, Dyn::kEvents> e_fresh{};
   // The event functions at the end of the current step and the normal force there, as
   // find_event evaluated them (the start of the next step when no event cuts it).
@@ -271,6 +274,7 @@ template <class R>
 FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
   message.clear();
   if (!(t_end > t_now)) return FlowStop::reached;
+  if (!inconsistent.empty()) return stop(FlowStop::inconsistent_state, t_now, x_now, inconsistent);
   while (true) {
     if (!have_step) {
       if (options.cancelled && options.cancelled())
@@ -357,6 +361,22 @@ void BasicFlow<R>::reset(double t, const State& q, Phase phase) {
   s.stepper.initialize(x, t, std::min(s.period / 100.0, s.options.max_step));
   ++s.counters.restarts;
   s.e_prev = s.values(x);
+  // An event fires when its function falls through zero from above: a function that starts below
+  // zero never fires, and the flow would follow the phase's equations where they do not hold
+  // (a shooting iterate in flight with the drum inside the trough closed into a spurious orbit
+  // in flight throughout). Event functions are scaled to O(1); below -kWrongSide is not
+  // round-off at a switch.
+  constexpr double kWrongSide = 1e-6;
+  s.inconsistent.clear();
+  for (int i = 0; i < Impl::Dyn::kEvents; ++i)
+    if (s.e_prev[i] < -kWrongSide) {
+      s.inconsistent = detail::format(
+          "the state at t = %.9g s is not one of its phase: its event function %.0f is %.3g < 0 "
+          "(on the wrong side of the switch it detects)",
+          t, i, s.e_prev[i]);
+      s.inconsistent += std::string(" in ") + to_string(phase);
+      break;
+    }
   s.have_step = false;
   s.t_now = t;
   s.x_now = x;

@@ -66,6 +66,55 @@ void validate(const Case& c) {
                 "soil.csh", c.soil.csh);
 }
 
+// The drum's fastest linear rate on its supports, against the excitation: the damping rates
+// (cd + csh) / m, (cd + csv) / m and the circular frequencies sqrt((kd + ksh) / m),
+// sqrt((kd + ksv) / m) [1/s], each times the period T. An explicit integrator (Dormand-Prince)
+// needs about that many steps per period over its stability bound of about 3.3, so a case far
+// beyond any roller (the paper's on G = 25 MN/m^2: 3.7; the stiffest soil the fields admit,
+// G = 1e11 Pa through Appendix B, a few hundred) takes minutes or fails: it is refused, naming
+// the field that makes it so stiff. roller.cd = 1e9 N s/m (330 000 times the paper's buffers,
+// 1.4e4) still runs in about a second; 2e9 (2.8e4) ran 44 s into numerics.max_periods.
+constexpr double kMaxRatePerPeriod = 2e4;
+
+void check_time_scales(const Case& c, const SoilCoefficients& s) {
+  const Roller& R = c.roller;
+  const double T = 1.0 / R.f;
+  struct Rate {
+    double value;      // [1/s]
+    const char* what;  // the formula
+    const char* key;   // the field that dominates it
+  };
+  const bool soil_given = c.soil.input == SoilInput::coefficients;
+  const auto dominant = [&](double roller_part, const char* roller_key, double soil_part,
+                            const char* soil_key) {
+    return roller_part >= soil_part || !soil_given ? roller_key : soil_key;
+  };
+  const Rate rates[] = {
+      {(R.cd + s.csh) / R.m, "(roller.cd + csh) / roller.m",
+       dominant(R.cd, "roller.cd", s.csh, "soil.csh")},
+      {(R.cd + s.csv) / R.m, "(roller.cd + csv) / roller.m",
+       dominant(R.cd, "roller.cd", s.csv, "soil.csv")},
+      {std::sqrt((R.kd + s.ksh) / R.m), "sqrt((roller.kd + ksh) / roller.m)",
+       dominant(R.kd, "roller.kd", s.ksh, "soil.ksh")},
+      {std::sqrt((R.kd + s.ksv) / R.m), "sqrt((roller.kd + ksv) / roller.m)",
+       dominant(R.kd, "roller.kd", s.ksv, "soil.ksv")},
+  };
+  for (const Rate& r : rates) {
+    if (!(r.value * T > kMaxRatePerPeriod)) continue;
+    // A tiny drum mass makes every rate fast: then the mass is the field to name.
+    const bool mass = R.m < 1.0;
+    const std::string key = mass ? "roller.m" : r.key;
+    const double value = find_field(key)->get(c);
+    throw Error(std::string("the case is too stiff to integrate: ") + r.what +
+                    detail::format(" = %.3g 1/s is %.3g times roller.f, which must be at most "
+                                   "%.3g (the paper's roller: 3.7; an explicit integrator needs "
+                                   "about %.0f steps per period); ",
+                                   r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3) +
+                    key + " = " + num(value) + " makes it so: give a plausible value",
+                key, value);
+  }
+}
+
 }  // namespace
 
 Model::Model(const Case& c) : case_(c) {
@@ -77,6 +126,7 @@ Model::Model(const Case& c) : case_(c) {
   phases_ = oscidrum::friction_phases(friction_);
   // The one conversion of the soil input (Table 2, Appendix B or as given) into the coefficients.
   SoilCoefficients s = soil_coefficients(c.soil, R);
+  check_time_scales(c, s);
   ksh_ = s.ksh;
   ksv_ = s.ksv;
   csh_ = s.csh;

@@ -73,6 +73,8 @@ const char* to_string(FlowStop stop) {
       return "budget_exceeded";
     case FlowStop::cancelled:
       return "cancelled";
+    case FlowStop::inconsistent_state:
+      return "inconsistent_state";
   }
   return "?";
 }
@@ -89,6 +91,8 @@ const char* to_string(BifurcationKind kind) {
       return "neimark_sacker";
     case BifurcationKind::grazing:
       return "grazing";
+    case BifurcationKind::lift_off:
+      return "lift_off";
   }
   return "?";
 }
@@ -109,6 +113,8 @@ const char* to_string(BranchEnd end) {
       return "start_failed";
     case BranchEnd::cancelled:
       return "cancelled";
+    case BranchEnd::lift_off:
+      return "lift_off";
   }
   return "?";
 }

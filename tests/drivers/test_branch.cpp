@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <string>
@@ -147,12 +148,13 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
 }
 
 // In f, in pure rolling with the unbalance (G = 100 MN/m^2 by Appendix B, contact that can open),
-// the smallest normal force of the orbit falls to zero at 65.7266 Hz, where the drum would begin
-// to lift off: the branch ends there (the corrector fails beyond). It must not report a fold
-// there: the tangent's dq/ds did turn negative when dF/dq was a forward difference that reached
-// across lift-off (the map beside the orbit had a flight phase), and a fold was reported with
-// the critical multiplier 0.72 + 0.75i, nowhere near +1.
-TEST(Branch, NoFoldWhereTheBranchEndsAtLiftOff) {
+// the smallest normal force of the orbit falls to zero at 65.7266 Hz, where the drum lifts off:
+// beyond it no orbit in contact continues the branch (the corrector fails there), and the branch
+// ends as lift_off with a lift_off bifurcation located at the zero of min N. It must not report a
+// fold there: the tangent's dq/ds did turn negative when dF/dq was a forward difference that
+// reached across lift-off (the map beside the orbit had a flight phase), and a fold was reported
+// with the critical multiplier 0.72 + 0.75i, nowhere near +1.
+TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
   Case c = modulus_case();
   set_field_text(c, "contact.pure_rolling", "true");
   set_field_text(c, "contact.unilateral", "true");
@@ -164,13 +166,49 @@ TEST(Branch, NoFoldWhereTheBranchEndsAtLiftOff) {
   o.to = 70.0;
   o.metrics = false;
   const Branch b = continue_branch(c, o);
-  ASSERT_EQ(b.end, BranchEnd::step_too_small) << b.message;
+  ASSERT_EQ(b.end, BranchEnd::lift_off) << b.message;
   const BranchPoint& last = b.points.back();
   EXPECT_NEAR(last.parameter, 65.7266, 1e-3);
   EXPECT_LT(last.min_N, 1e-3 * 45224.0);  // below 1e-3 of the static axle load P0
   EXPECT_GT(last.dq_ds, 0.0);
   for (const Bifurcation& x : b.bifurcations)
     EXPECT_NE(x.kind, BifurcationKind::fold) << "at f = " << x.parameter;
+  ASSERT_FALSE(b.bifurcations.empty());
+  const Bifurcation& lift = b.bifurcations.back();
+  ASSERT_EQ(lift.kind, BifurcationKind::lift_off);
+  EXPECT_EQ(lift.after_point, static_cast<int>(b.points.size()) - 1);
+  EXPECT_GE(lift.parameter, last.parameter);
+  EXPECT_LE(lift.tolerance, o.tolerance * (o.to - o.from));  // located to the tolerance asked
+
+  // Independently of the continuation and of the unilateral drum's equations: the paper's drum
+  // in permanent contact, integrated over one period from the last orbit (its section state and
+  // time), keeps N > 0 a little below the reported point and drives N below zero a little above
+  // it (the flow of permanent contact then stops as contact_lost).
+  UnilateralState z;
+  {
+    std::array<double, 10> q{};
+    std::copy(last.state.begin(), last.state.end(), q.begin());
+    z = UnilateralState::from_array(q);
+  }
+  ASSERT_EQ(z.gap, 0.0);
+  auto smallest_N = [&](double f) {
+    Case p = c;
+    set_field_text(p, "contact.unilateral", "false");
+    set_field(p, "roller.f", f);
+    const Model model(p);
+    Flow flow(model);
+    const double t0 = last.section_time * last.parameter / f;  // the same excitation phase
+    flow.reset(t0, z.contact(), last.phase);
+    const FlowStop stop = flow.advance(t0 + model.period());
+    return std::pair{stop, flow.counters().min_N};
+  };
+  const double df = 2e-4;  // [Hz]: min N moves about 6000 N/Hz here, so by about 1.2 N
+  const auto [stop_below, N_below] = smallest_N(lift.parameter - df);
+  EXPECT_EQ(stop_below, FlowStop::reached);
+  EXPECT_GT(N_below, 0.0);
+  const auto [stop_above, N_above] = smallest_N(lift.parameter + df);
+  EXPECT_TRUE(stop_above == FlowStop::contact_lost || N_above < 0.0)
+      << to_string(stop_above) << ", min N " << N_above;
 }
 
 // On the paper's log-spiral trough (k = 0.002, a = 0.601 m) at 25 Hz with mu = 0.7 a real

@@ -103,6 +103,47 @@ TEST(Flow, AtAStickToSlipSwitchTheFrictionLimitIsReached) {
   EXPECT_GT(checked, 0);
 }
 
+// A state on the wrong side of a switching surface of its phase is refused at once
+// (FlowStop::inconsistent_state): an event fires only when its function falls through zero, so
+// from such a state the flow would follow equations that do not hold without ever switching
+// (in stick beyond the friction cone; in contact with N < 0). The same state in its right phase,
+// and a state on the surface itself, run.
+TEST(Flow, RefusesAStateOnTheWrongSideOfItsSwitches) {
+  const Model model(stick_slip(25, 0.05));
+  const double T = model.period();
+  // The soil under the drum pushed 1 mm sideways: its spring's T = ksh x_A (24) is far beyond
+  // mu N, and the drum turning.
+  State q = model.initial_state();
+  q.x_A = 1e-3;
+  q.dphi = 50.0;
+  const ContactForces f = contact_forces(model, q);
+  ASSERT_LT(model.cone() * f.N - std::abs(f.T), 0.0);
+  {
+    Flow flow(model);
+    flow.reset(0.0, q, Phase::stick);
+    EXPECT_EQ(flow.advance(T), FlowStop::inconsistent_state);
+    EXPECT_EQ(flow.counters().steps, 0);
+    EXPECT_EQ(flow.t(), 0.0);
+    EXPECT_NE(flow.message().find("not one of its phase"), std::string::npos) << flow.message();
+    EXPECT_EQ(status_of(FlowStop::inconsistent_state), Status::contact_lost);
+    // It stays refused until the next reset.
+    EXPECT_EQ(flow.advance(T), FlowStop::inconsistent_state);
+  }
+  {  // The same state slipping: consistent.
+    Flow flow(model);
+    flow.reset(0.0, q, slip_velocity(model, q) > 0 ? Phase::slip_positive : Phase::slip_negative);
+    EXPECT_EQ(flow.advance(0.1 * T), FlowStop::reached);
+  }
+  {  // The drum pulled off the soil (s_A far above its rest): N < 0 in contact.
+    State up = model.initial_state();
+    up.s_A = -0.05;
+    ASSERT_LT(contact_forces(model, up).N, 0.0);
+    Flow flow(model);
+    flow.reset(0.0, up, Phase::stick);
+    EXPECT_EQ(flow.advance(T), FlowStop::inconsistent_state);
+  }
+}
+
 TEST(Flow, StopsWhereItSays) {
   const Model model(stick_slip(25, 0.05));
   const double T = model.period();

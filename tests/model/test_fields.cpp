@@ -557,6 +557,34 @@ TEST(ModelValidation, RejectsAxleLoadBelowDrumWeight) {
   EXPECT_NO_THROW(Model{c});
 }
 
+// A case far stiffer than any roller (its fastest rate on the supports over 2e4 times roller.f)
+// would take minutes or fail (roller.cd = 2e9 N s/m ran 44 s into max_periods_reached): refused,
+// naming the field that makes it stiff; just below the bound it is accepted (and runs).
+TEST(ModelValidation, RejectsACaseTooStiffToIntegrate) {
+  Case c;
+  c.roller.cd = 2e9;  // (cd + csh) / m = 1.08e6 1/s = 2.8e4 f
+  expect_model_rejects(c, {"roller.cd", "too stiff", "2e+09", "(roller.cd + csh) / roller.m"});
+  c.roller.cd = 1e9;  // 1.4e4 f
+  EXPECT_NO_THROW(Model{c});
+  c = Case{};
+  c.roller.kd = 1e15;  // sqrt((kd + ksv) / m) = 7.4e5 1/s = 1.9e4 f: accepted
+  EXPECT_NO_THROW(Model{c});
+  c.roller.kd = 2e15;  // 2.7e4 f
+  expect_model_rejects(c, {"roller.kd", "sqrt((roller.kd + ks"});
+  c = Case{};
+  c.soil.input = SoilInput::coefficients;
+  c.soil.csv = 5e9;  // the soil's dashpot dominates
+  expect_model_rejects(c, {"soil.csv", "(roller.cd + csv) / roller.m"});
+  c = Case{};
+  c.roller.m = 0.2;  // a drum of 200 g: every rate is fast (3.4e4 f), the mass is named
+  expect_model_rejects(c, {"roller.m = 0.2"});
+  // The stiffest soil the fields admit, through Appendix B, is far inside the bound.
+  c = Case{};
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 1e11;
+  EXPECT_NO_THROW(Model{c});
+}
+
 TEST(ModelValidation, RejectsNaNInEveryRealField) {
   for (const Field& f : fields()) {
     if (f.type != FieldType::real) continue;

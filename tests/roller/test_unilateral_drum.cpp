@@ -44,6 +44,24 @@ U::Vector random_flight_state(std::mt19937& rng, const Model& model) {
           0.1 * u(rng)};
 }
 
+// A state in flight with the drum inside the trough (gap < 0) is no state of the flight phase:
+// its landing (the gap falling through zero) could never be detected, and shooting closed such
+// iterates into a spurious orbit in flight throughout (a vibratory drum's sweep, warm-started,
+// reported flight fraction 1 and "permanent contact"). The flow refuses it at once.
+TEST(UnilateralDrum, AFlightStateInsideTheTroughIsRefused) {
+  const Model model(flying_case());
+  BasicFlow<UnilateralDrum> flow(model);
+  UnilateralState q = UnilateralState::from_array(U(model, 0.0).initial_state());
+  q.gap = -1e-3;  // the drum 1 mm inside the trough
+  flow.reset(0.0, q, Phase::flight);
+  EXPECT_EQ(flow.advance(model.period()), FlowStop::inconsistent_state);
+  EXPECT_NE(flow.message().find("flight"), std::string::npos) << flow.message();
+  q.gap = 1e-5;  // 10 um above it: a flight that lands
+  flow.reset(0.0, q, Phase::flight);
+  EXPECT_EQ(flow.advance(model.period()), FlowStop::reached);
+  EXPECT_GT(flow.counters().events, 0);
+}
+
 // The chart M = A + roll(delta) - g n(delta) is the trough shape's gap: each shape finds delta
 // and g back from the drum centre (circle in closed form, spiral by Newton's method).
 TEST(UnilateralDrum, FlightChartIsTheShapesGap) {
