@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""The two rollers on the same soils (docs/rollers.md): the paper's oscillation drum and the
+"""The two rollers on the same soils (docs/vibratory.md, "Over a wider range of soils"): the paper's oscillation drum and the
 vibratory drum (roller.type = vibratory, docs/model.md section 14), each at its operating point,
 on the same Appendix B soils; their accelerations at one soil and how their CCC indicators follow
-G. Writes docs/img/roller_comparison.png and prints the Markdown tables of docs/rollers.md.
+G. Writes docs/img/roller_comparison.png and prints the Markdown tables of docs/vibratory.md.
 
     PYTHONPATH=build/python /usr/bin/python3 scripts/roller_comparison.py [OUT_DIR]
 
@@ -83,12 +83,15 @@ for roller in ROLLERS:
         "x": peak(outcomes, "ddx"),
         "z": peak(outcomes, "ddz"),
         "cmv": column(outcomes, "cmv"),
+        "kb": column(outcomes, "kb"),
         "area": column(outcomes, "area"),
         "x1": np.array([o.metrics.ddx_amplitude[1] if o.ok else np.nan for o in outcomes]),
         "z1": np.array([o.metrics.ddz_amplitude[1] if o.ok else np.nan for o in outcomes]),
         "flight": column(outcomes, "flight_fraction"),
-        "modes": [o.result.diagnostics.contact_mode if o.ok else o.result.status.name
-                  for o in outcomes],
+        # The vibratory drum's mode by the literature's names (continuous contact, partial
+        # uplift, double jump, ...), the oscillation drum's contact mode.
+        "modes": [(o.result.diagnostics.operating_mode or o.result.diagnostics.contact_mode)
+                  if o.ok else o.result.status.name for o in outcomes],
     }
 
 # The time series at one soil.
@@ -119,6 +122,7 @@ i25 = int(np.argmin(np.abs(G_VALUES - G_SHOWN)))
 for roller, name, label, style in (
         ("vibratory", "cmv", "vibratory: CMV-type 300 A(2f)/A(f) of z_M''", "-"),
         ("vibratory", "z1", "vibratory: A(f) of z_M''", ":"),
+        ("vibratory", "kb", "vibratory: Kb-type soil stiffness kb", "--"),
         ("oscillation", "area", "oscillation: area of z_M''(x_M'')", "-"),
         ("oscillation", "z", "oscillation: max |z_M''|", ":")):
     v = results[roller][name]
@@ -149,26 +153,27 @@ print(f"{len(G_VALUES)} soils x 2 rollers; oscillation {results['oscillation']['
       f"{results['oscillation']['statuses']}, {results['vibratory']['statuses']}")
 print()
 print("| G [MN/m^2] | roller | contact mode | max abs x_M'' [m/s^2] | max abs z_M'' [m/s^2] | "
-      "A_1 of z_M'' [m/s^2] | CMV-type [-] | area [m^2/s^4] | flight fraction |")
-print("|---|---|---|---|---|---|---|---|---|")
+      "A_1 of z_M'' [m/s^2] | CMV-type [-] | kb [MN/m] | area [m^2/s^4] | flight fraction |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for G in (10.0, 25.0, 50.0, 75.0, 100.0):
     i = int(np.argmin(np.abs(G_VALUES - G)))
     for roller in ROLLERS:
         res = results[roller]
-        # The oscillation drum's z_M'' has no component at f (docs/rollers.md): '-'.
+        # The oscillation drum's z_M'' has no component at f (docs/vibratory.md): '-'.
         at_f = roller == "vibratory"
         z1 = f"{res['z1'][i]:.1f}" if at_f else "-"
         cmv = f"{res['cmv'][i]:.1f}" if at_f else "-"
+        kb = f"{res['kb'][i] / 1e6:.1f}" if at_f else "-"
         print(f"| {G_VALUES[i]:g} | {roller} | {res['modes'][i]} | {res['x'][i]:.1f} | "
-              f"{res['z'][i]:.1f} | {z1} | {cmv} | {res['area'][i]:.0f} | "
+              f"{res['z'][i]:.1f} | {z1} | {cmv} | {kb} | {res['area'][i]:.0f} | "
               f"{res['flight'][i]:.3f} |")
 print()
 print("| indicator | roller | d ln / d ln G at 10 | at 25 | at 50 | at 90 MN/m^2 |")
 print("|---|---|---|---|---|---|")
 for name, label in (("x", "max abs x_M''"), ("z", "max abs z_M''"), ("z1", "A_1 of z_M''"),
-                    ("cmv", "CMV-type"), ("area", "area")):
+                    ("cmv", "CMV-type"), ("kb", "kb"), ("area", "area")):
     for roller in ROLLERS:
-        if roller == "oscillation" and name in ("z1", "cmv"):
+        if roller == "oscillation" and name in ("z1", "cmv", "kb"):
             continue  # no component at f
         v = results[roller][name]
         cells = " | ".join(f"{sensitivity(v, G):+.2f}" for G in (10.0, 25.0, 50.0, 90.0))
