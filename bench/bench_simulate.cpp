@@ -205,6 +205,23 @@ BENCHMARK(BM_Unilateral_WithFlight_G80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Unilateral_NoFlight_G40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Permanent_NoFlight_G40)->Unit(benchmark::kMillisecond);
 
+// The vibratory drum (issue 28: a case from rest at most 1 ms): examples/vibratory.toml (the
+// paper's drum, circular exciter m_u e_u = 0.9 kg m at 30 Hz, mu = 0.5, unilateral contact) on
+// Table 2 soil, G = 10 MN/m^2 in continuous contact and G = 25 MN/m^2 in partial uplift.
+oscidrum::Case vibratory_case(double G) {
+  oscidrum::Case c;
+  oscidrum::set_field_text(c, "roller.type", "vibratory");
+  c.roller.static_moment = 0.9;
+  c.roller.f = 30.0;
+  c.contact.unilateral = true;
+  c.soil.G = G;
+  return c;
+}
+void BM_Vibratory_ContinuousContact_G10(benchmark::State& s) { run(s, vibratory_case(10e6)); }
+void BM_Vibratory_PartialUplift_G25(benchmark::State& s) { run(s, vibratory_case(25e6)); }
+BENCHMARK(BM_Vibratory_ContinuousContact_G10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Vibratory_PartialUplift_G25)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
