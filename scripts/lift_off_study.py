@@ -56,7 +56,7 @@ def mode_code(o):
     status = o.result.status.name
     if status == "steady_state":
         return MODES.get(mode, 4 if "lift-off" in mode else 0)
-    if status == "max_periods_reached":
+    if status in ("max_periods_reached", "aperiodic"):
         return 5  # aperiodic
     if status == "gross_slip":
         return 6
