@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "identify/synthetic_records.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
@@ -30,31 +31,12 @@ Case truth(double G, bool pure_rolling, double MMd_fraction, double mu = 0.5) {
   return c;
 }
 
-RecordSamples noisy_record(const Case& c, double duration, double rate, unsigned seed = 7) {
-  SyntheticRecord o;
-  o.duration = duration;
-  o.sample_rate = rate;
-  o.noise = 0.05;
-  o.drift = 0.05;
-  o.jitter = 0.1;
-  o.seed = seed;
-  return synthetic_record({c}, o);
-}
-
 // The base case the identification starts from: the paper's roller at 39 Hz.
 Case base(bool pure_rolling, double MMd_fraction) {
   Case c;
   c.contact.pure_rolling = pure_rolling;
   c.MMd = MMd_fraction * c.roller.M0;
   return c;
-}
-
-Identification identify_whole(const Case& b, const RecordSamples& r, const IdentifyOptions& o) {
-  WindowOptions wo;
-  const std::vector<PassEstimate> pass = identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, wo, o);
-  EXPECT_EQ(pass.size(), 1u);
-  EXPECT_TRUE(pass.front().valid) << pass.front().reason;
-  return pass.front().identification;
 }
 
 void expect_recovered(const Estimate& e, double value, double tolerance) {

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "identify/synthetic_records.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
@@ -29,25 +30,6 @@ Case vibratory(double G, double f) {
   return c;
 }
 
-RecordSamples noisy_record(const Case& c, double duration, double rate, unsigned seed) {
-  SyntheticRecord o;
-  o.duration = duration;
-  o.sample_rate = rate;
-  o.noise = 0.05;
-  o.drift = 0.05;
-  o.jitter = 0.1;
-  o.seed = seed;
-  return synthetic_record({c}, o);
-}
-
-Identification identify_whole(const Case& b, const RecordSamples& r) {
-  WindowOptions wo;
-  const std::vector<PassEstimate> pass = identify_pass(b, r.t, r.ddx_M, r.ddz_M, {}, wo, {});
-  EXPECT_EQ(pass.size(), 1u);
-  EXPECT_TRUE(pass.front().valid) << pass.front().reason;
-  return pass.front().identification;
-}
-
 // In contact throughout and with lift-off in every period: G is recovered within 3 % from the
 // noisy record, its 95 % interval holds the truth, and the fit is good.
 TEST(IdentifyVibratory, TheSoilOfAVibratoryRecordIsRecovered) {
@@ -57,7 +39,7 @@ TEST(IdentifyVibratory, TheSoilOfAVibratoryRecordIsRecovered) {
     const Result steady = simulate(Model(truth));
     ASSERT_EQ(steady.status, Status::steady_state) << steady.message;
     const RecordSamples r = noisy_record(truth, 1.5, 1500, 5);
-    const Identification id = identify_whole(vibratory(25e6, kNominal), r);
+    const Identification id = identify_whole(vibratory(25e6, kNominal), r, {});
     ASSERT_EQ(id.estimates.size(), 1u);
     const Estimate& e = id.estimates[0];
     EXPECT_NEAR(e.value / G, 1.0, 0.03);

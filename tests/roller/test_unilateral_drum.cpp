@@ -12,7 +12,7 @@
 #include "drivers/shooting.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/oscidrum.hpp"
-#include "roller/energy_balance.hpp"
+#include "roller/unilateral_checks.hpp"
 #include "roller/unilateral_drum.hpp"
 #include "tolerances.hpp"
 
@@ -132,28 +132,6 @@ TEST(UnilateralDrum, InContactItIsThePapersDrum) {
   EXPECT_NEAR(b.area, a.area, 1e-9 * std::abs(a.area));
   EXPECT_EQ(b.flight_fraction, 0.0);
   EXPECT_EQ(b.gap_max, 0.0);
-}
-
-// Central differences of a map R^10 -> R^10, compared row by row in scaled units.
-template <class F>
-void expect_jacobian(const U::Matrix& J, const U::Vector& y, F&& map, const std::string& what) {
-  const std::array<double, 10> scale = {0.3, 1e-3, 1e-3, 1.0, 1e-4, 40.0, 0.1, 0.05, 40.0, 0.1};
-  U::Matrix fd;
-  for (int j = 0; j < 10; ++j) {
-    const double h = 1e-6 * scale[j];
-    U::Vector a = y, b = y;
-    a[j] += h;
-    b[j] -= h;
-    const U::Vector fa = map(a), fb = map(b);
-    for (int i = 0; i < 10; ++i) fd(i, j) = (fa[i] - fb[i]) / (2 * h);
-  }
-  for (int i = 0; i < 10; ++i) {
-    double row = 0.0;
-    for (int j = 0; j < 10; ++j) row = std::max(row, std::abs(fd(i, j)) * scale[j]);
-    for (int j = 0; j < 10; ++j)
-      EXPECT_LE(std::abs(J(i, j) - fd(i, j)) * scale[j], 1e-6 * std::max(row, 1e-300))
-          << what << " (" << i << ", " << j << "): " << J(i, j) << " against " << fd(i, j);
-  }
 }
 
 TEST(UnilateralDrum, FlightJacobianAgainstFiniteDifferences) {

@@ -1,18 +1,51 @@
-// The energy of one steady period of the drum with unilateral contact (tests only), for the
-// energy-balance checks of the oscillation drum with flight (test_unilateral_drum.cpp) and of the
-// vibratory drum (test_vibratory_drum.cpp): the work of the excitation against what the buffers'
-// and the soil's dashpots dissipate and what friction does in slip, integrated on the flow's dense
-// output by 8-point Gauss-Legendre quadrature on every piece. The drum centre's velocity is the
-// chart's, M' = A' + (r f5 - g) delta' t - g' n (docs/model.md section 13; in contact g = g' = 0:
-// (17)); landing on massless soil costs no energy.
+// Checks of the drum with unilateral contact shared by its tests and the vibratory drum's (tests
+// only): the finite-difference check of a 10 x 10 Jacobian, and the energy of one steady period.
+//
+// The energy of one steady period, for the energy-balance checks of the oscillation drum with
+// flight (test_unilateral_drum.cpp) and of the vibratory drum (test_vibratory_drum.cpp): the work
+// of the excitation against what the buffers' and the soil's dashpots dissipate and what friction
+// does in slip, integrated on the flow's dense output by 8-point Gauss-Legendre quadrature on every
+// piece. The drum centre's velocity is the chart's, M' = A' + (r f5 - g) delta' t - g' n
+// (docs/model.md section 13; in contact g = g' = 0: (17)); landing on massless soil costs no
+// energy.
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 
 #include "oscidrum/oscidrum.hpp"
 #include "roller/unilateral_drum.hpp"
 
 namespace oscidrum::detail {
+
+/// Central differences of a map R^10 -> R^10 (the unilateral drum's state), compared with J row
+/// by row in scaled units: each entry to 1e-6 of its row's largest scaled derivative.
+template <class F>
+void expect_jacobian(const Dynamics<UnilateralDrum>::Matrix& J,
+                     const Dynamics<UnilateralDrum>::Vector& y, F&& map, const std::string& what) {
+  using U = Dynamics<UnilateralDrum>;
+  const std::array<double, 10> scale = {0.3, 1e-3, 1e-3, 1.0, 1e-4, 40.0, 0.1, 0.05, 40.0, 0.1};
+  U::Matrix fd;
+  for (int j = 0; j < 10; ++j) {
+    const double h = 1e-6 * scale[j];
+    U::Vector a = y, b = y;
+    a[j] += h;
+    b[j] -= h;
+    const U::Vector fa = map(a), fb = map(b);
+    for (int i = 0; i < 10; ++i) fd(i, j) = (fa[i] - fb[i]) / (2 * h);
+  }
+  for (int i = 0; i < 10; ++i) {
+    double row = 0.0;
+    for (int j = 0; j < 10; ++j) row = std::max(row, std::abs(fd(i, j)) * scale[j]);
+    for (int j = 0; j < 10; ++j)
+      EXPECT_LE(std::abs(J(i, j) - fd(i, j)) * scale[j], 1e-6 * std::max(row, 1e-300))
+          << what << " (" << i << ", " << j << "): " << J(i, j) << " against " << fd(i, j);
+  }
+}
 
 struct PeriodEnergy {
   bool reached = false;     ///< the period was integrated to its end
