@@ -90,12 +90,15 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
 /// of F_v = N cos(delta) + T sin(delta), the soil's vertical force on the drum (25), and the
 /// spectrum hz (n = 0 ... >= 2) of the drum centre's vertical displacement z_M. The soil is
 /// massless, so F_v is its Kelvin-Voigt force ksv s_A + csv s_A' and, where z_M moves with s_A,
-/// the stiffness is ksv. NaN when z_M's fundamental is absent (kAbsentFundamental against its
-/// 2f component: the oscillation drum without driving torque).
+/// the stiffness is ksv. NaN when z_M's fundamental is absent (kAbsentFundamental against the
+/// largest of z_M's mean and other harmonics in hz: the oscillation drum without driving torque,
+/// whose z_M has even harmonics only; a test against the 2f component alone let through the
+/// round-off fundamental where that component passes zero, as a number).
 inline double soil_stiffness(const Harmonic& Fv, const Spectrum& hz) {
   const double z1 = hz[1].amplitude;
-  if (!(z1 > kAbsentFundamental * std::max(z1, hz[2].amplitude)))
-    return std::numeric_limits<double>::quiet_NaN();
+  double size = 0.0;
+  for (const Harmonic& h : hz) size = std::max(size, h.amplitude);
+  if (!(z1 > kAbsentFundamental * size)) return std::numeric_limits<double>::quiet_NaN();
   return Fv.amplitude / z1 * std::cos(Fv.phase - hz[1].phase);
 }
 

@@ -716,6 +716,28 @@ TEST(ComputeMetrics, SoilStiffnessOfSyntheticForceAndDisplacement) {
   EXPECT_NEAR(compute_metrics(r).kb, 6e7 * std::cos(0.7), 6e7 * kIdentity);
 }
 
+// Without a fundamental in z_M (the oscillation drum without driving torque: even harmonics only)
+// kb is unavailable, also where z_M's 2f component passes zero: a z_M of its static mean, a
+// round-off fundamental (1e-13 m) and no 2f component gave F_v(f) / 1e-13, a number of pure
+// round-off, when the test compared the fundamental with the 2f component alone.
+TEST(ComputeMetrics, SoilStiffnessWithoutAFundamentalIsUnavailable) {
+  Synthetic s;
+  Result r = make_result(s);
+  const double nu = 2.0 * kPi * s.f, d = 0.1;
+  for (double t : r.samples.t) {
+    const double Fv = 4e4 + 6e4 * std::sin(nu * t + 0.9);
+    r.samples.N.push_back(Fv * std::cos(d));
+    r.samples.T.push_back(Fv * std::sin(d));
+    r.samples.delta.push_back(d);
+    r.samples.z_M.push_back(-2e-3 + 1e-13 * std::sin(nu * t) + 1e-4 * std::sin(4.0 * nu * t));
+  }
+  EXPECT_TRUE(std::isnan(compute_metrics(r).kb));
+  // A fundamental of 1e-6 of the mean is one: kb from it.
+  for (std::size_t j = 0; j < r.samples.t.size(); ++j)
+    r.samples.z_M[j] += 1e-8 * std::sin(nu * r.samples.t[j] + 0.2);
+  EXPECT_TRUE(std::isfinite(compute_metrics(r).kb));
+}
+
 // phi_lag lies in (-2, 0]: a fundamental with phase +0.16 pi (e.g. -1e-3 sin(nu t - 0.84 pi))
 // reads -1.84; phase pi reads -1 (the no-soil limit of paper Fig. 10).
 TEST(ComputeMetrics, PhiLagRange) {
