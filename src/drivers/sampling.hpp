@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 
 #include "drivers/period_recording.hpp"
 #include "oscidrum/flow.hpp"
@@ -118,10 +119,13 @@ class Sampler : public BasicFlowObserver<R> {
 /// `record_periods` periods, [t0, t0 + record_periods / f], are also recorded for the steady
 /// metrics (src/drivers/period_recording.hpp), on the same integration; cleared unless the
 /// flow reached the end.
+/// `confirm` (may be empty): called when the flow has integrated the first `record_periods`
+/// periods (the flow stands there); when it returns false the sampling stops there and returns
+/// FlowStop::observer (what was sampled so far is left in `result`, the recording cleared).
 template <class R>
 FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period, Result& result,
                         bool all_samples = true, recording::Recording* record = nullptr,
-                        int record_periods = 1) {
+                        int record_periods = 1, const std::function<bool()>& confirm = {}) {
   const double t0 = flow.t();
   result.sample_periods = periods;
   result.samples_per_period = samples_per_period;
@@ -136,10 +140,16 @@ FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period,
     recorder.out.start.assign(x.begin(), x.end());
     recorder.out.phase = flow.phase();
     ObserverPair<R> both(sampler, recorder);
-    stop = flow.advance(t_end, &both);
+    // Ending an advance inside a step leaves the step pending (the integration goes on with the
+    // same steps): stopping at the recording's end changes nothing that follows.
+    stop = flow.advance(confirm ? t0 + record_periods / result.frequency : t_end, &both);
+    if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;
+    if (stop == FlowStop::reached) stop = flow.advance(t_end, &sampler);
     *record = stop == FlowStop::reached ? std::move(recorder.out) : recording::Recording{};
   } else {
-    stop = flow.advance(t_end, &sampler);
+    stop = flow.advance(confirm ? t0 + record_periods * flow.model().period() : t_end, &sampler);
+    if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;
+    if (stop == FlowStop::reached) stop = flow.advance(t_end, &sampler);
   }
   long switches = 0;
   for (const Event& e : result.events)

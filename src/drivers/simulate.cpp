@@ -24,6 +24,10 @@ namespace {
 // Periods a shooting orbit may be integrated on plainly to settle (see shooting()), at most.
 constexpr int kSettlePeriods = 32;
 
+// A warm start's predicted step (shooting::BasicShootingOutcome::warm_prediction): further chord
+// steps confirmed on the sampled period, at most.
+constexpr int kWarmChordSteps = 4;
+
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
 // of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
 // Diagnostics::period_equivalents: measured as the CPU time of the side-by-side benchmarks
@@ -156,20 +160,35 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     return false;
   }
   // A steady state repeating every p excitation periods is sampled over output_periods * p
-  // periods, as the transient method samples one.
+  // periods, as the transient method samples one; a study's case that keeps no samples samples
+  // the steady period alone (its metrics read nothing else).
   const int p = shot.multiplicity;
-  const int periods = num.output_periods * p;
+  const int periods = all_samples ? num.output_periods * p : p;
   // Diagnostics::max_slip_residual and min_N: over the trajectory of the result, the short
   // transient from rest and the sampled periods of the orbit (Newton's iterates are not on it).
   flow.reset_extremes();
-  const long rhs_before = flow.counters().rhs_evaluations;
   // The flow was restarted on the orbit at its section (shoot_periodic_orbit): the sampling's
-  // first p periods are the steady period compute_metrics would integrate again.
-  const FlowStop stop =
-      detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples, record, p);
-  *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
-  // Confirm the orbit by the plain integration of the sampled periods.
-  const double change = detail::scaled_change<R>(flow.state(), shot.orbit, shot.scale);
+  // first p periods are the period map P^p at the orbit (the same integration, so the same
+  // steps: `change` is its residual |P^p(z) - z|, scaled), and the steady period
+  // compute_metrics would integrate again. The orbit is confirmed on them, and the rest of the
+  // sampled periods integrated only then. A warm start's predicted step (warm_prediction) is
+  // accepted when its residual meets Newton's own convergence test (kNewtonTol steady_tol, so
+  // that a warm case's orbit is as converged as a cold one's); until then each sampled period's
+  // end gives the next chord step with the first map's monodromy, as long as each contracts the
+  // residual kChordContraction-fold (else the warm start has failed).
+  auto orbit = shot.orbit;
+  double change = std::numeric_limits<double>::infinity();
+  double previous = shot.final_change;  // the residual the last step was taken from
+  const auto accepted = [&] {
+    if (!shot.warm_prediction) return change < num.steady_tol;
+    // Newton's tests: converged, or below steady_tol and no longer halving (the noise floor).
+    return change < detail::shooting::kNewtonTol * num.steady_tol ||
+           (change < num.steady_tol && change > 0.5 * previous);
+  };
+  const auto confirm = [&] {
+    change = detail::scaled_change<R>(flow.state(), orbit, shot.scale);
+    return accepted();
+  };
   const auto discard_samples = [&] {
     if (record != nullptr) *record = {};
     result.samples = Samples{};
@@ -178,20 +197,56 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     result.flight_time = 0.0;
     *sample_rhs = 0;
   };
+  long rhs_before = flow.counters().rhs_evaluations;
+  FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
+                                         record, p, confirm);
+  for (int chord_steps = 0;
+       shot.warm_prediction && stop == FlowStop::observer && std::isfinite(change) &&
+       change < detail::shooting::kChordContraction * previous && chord_steps < kWarmChordSteps &&
+       d.periods_simulated + p <= num.max_periods;
+       ++chord_steps) {
+    // Not yet converged: the chord step from this period's end, and its period.
+    const auto step = detail::shooting::newton_step<R>(shot.M, shot.scale, orbit, flow.state());
+    if (!step.finite()) break;
+    orbit = step.apply(dynamics, orbit, shot.phase);
+    previous = change;
+    ++d.newton_iterations;
+    d.periods_simulated += p;  // the period that did not confirm
+    discard_samples();
+    flow.reset(shot.t0, orbit, shot.phase);
+    rhs_before = flow.counters().rhs_evaluations;
+    stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
+                                  record, p, confirm);
+  }
+  // The flow reached the end of the period that did not confirm the orbit.
+  const bool unconfirmed = stop == FlowStop::observer;
+  if (unconfirmed) stop = FlowStop::reached;
+  *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
+  if (shot.warm_prediction && !(stop == FlowStop::reached && accepted())) {
+    // The chord steps did not converge (a large step from the neighbour, where the first map's
+    // monodromy is too far from the orbit's): Newton goes on from the last iterate with a fresh
+    // monodromy, mapping every step, as a warm start from there; when that fails too, the cold
+    // start follows.
+    discard_samples();
+    d.periods_simulated += p;
+    if (!unconfirmed || !(change < previous)) return false;
+    detail::BasicShootingStart<R> again = warm;
+    again.state = orbit;
+    again.phase = shot.phase;
+    again.predict_first = false;
+    return shooting(model, flow, progress, result, sample_rhs, all_samples, record, again);
+  }
   // Settled: the orbit moved a little under plain integration and the transient method's own
   // test, run on from there, found it steady (sampled again after it).
   std::optional<detail::SearchOutcome> settled;
   double section = shot.t0;                                // where the samples start
   typename detail::Dynamics<R>::Vector settled_section{};  // the state there, once settled
-  if (stop == FlowStop::reached && !(change < num.steady_tol) && p == 1) {
-    // Newton's orbit is the fixed point of the period map as the map integrates it, each period
-    // from a restart of the integrator; integrated on without restarts, the integrator's other
-    // steps put the fixed point a little elsewhere (a few steady_tol on soft soil), and the
-    // sampled periods move towards it (their period-to-period change falls by orders of magnitude
-    // within a few periods). The transient method's test, run on from there for at most
-    // kSettlePeriods periods, accepts it; otherwise the run falls back.
+  if (stop == FlowStop::reached && !accepted() && p == 1) {
+    // A predicted last step whose period did not confirm it: the transient method's test, run
+    // on from there for at most kSettlePeriods periods, accepts the orbit; otherwise the run
+    // falls back.
     discard_samples();
-    d.periods_simulated += periods;  // integrated, and counted against the budget
+    d.periods_simulated += p;  // integrated, and counted against the budget
     const int budget = std::min(kSettlePeriods, num.max_periods - d.periods_simulated);
     if (budget > 0) {
       const detail::SearchOutcome search = detail::find_steady_state(flow, progress, budget);
@@ -214,12 +269,12 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
       if (!warm.from_state)
         d.fallback =
             "the orbit did not repeat under plain integration (its change over the "
-            "sampled periods was " +
+            "sampled period was " +
             detail::format("%.3g", change) + ") and did not settle within " +
             std::to_string(kSettlePeriods) + " more periods";
       return false;
     }
-  } else if (stop != FlowStop::reached || !(change < num.steady_tol)) {
+  } else if (stop != FlowStop::reached || !accepted()) {
     if (!warm.from_state)
       d.fallback = stop != FlowStop::reached
                        ? "the orbit did not survive its sampling: " + flow.message()

@@ -282,21 +282,24 @@ void check_steady(const std::vector<SeriesResult>& results, Rows& rows) {
            failed == 0);
 }
 
-// Sect. 3.4: every slip phase ends in stick.
+// Sect. 3.4: every slip phase ends in stick. The irregular ends are counted over the whole runs,
+// the switches over one steady period of each case (the runs' own lengths depend on whether
+// samples are kept: a study that keeps none integrates its steady period alone).
 void check_slip_ends(const std::vector<SeriesResult>& results, Rows& rows) {
-  long odd = 0, switches = 0;
+  long odd = 0;
+  double switches = 0.0;
   for (const SeriesResult& s : results)
     for (const Diagnostics& d : s.diagnostics) {
       odd += d.reversals + d.inconsistent_slip_ends;
-      switches += d.switches;
+      switches += d.switches_per_period * std::max(1, d.multiplicity);
     }
-  rows.add(
-      "all.slip_ends", "Sect. 3.4",
-      "every slip phase ends in stick (no reversal, no slip end "
-      "without a consistent continuation; docs/model.md section 6)",
-      "stick-slip alternation",
-      std::to_string(odd) + " irregular slip ends among " + std::to_string(switches) + " switches",
-      "0", odd == 0);
+  rows.add("all.slip_ends", "Sect. 3.4",
+           "every slip phase ends in stick (no reversal, no slip end "
+           "without a consistent continuation; docs/model.md section 6)",
+           "stick-slip alternation",
+           std::to_string(odd) + " irregular slip ends in the runs (their steady periods switch " +
+               std::to_string(std::lround(switches)) + " times)",
+           "0", odd == 0);
 }
 
 // Fig. 9a: peak horizontal acceleration, pure rolling.
