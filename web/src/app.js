@@ -910,8 +910,11 @@ function fillMetrics(r, m) {
   if (unilateral) {
     rows.push(['lift-offs, largest gap', `${fmt(m.liftoffs_per_period, 3)}, ${fmt(m.gap_max * 1e3, 4)}`, 'per period, mm']);
   }
+  // With lift-off N falls to 0 at every lift-off, where max |T| / N has no bound (its value
+  // depends on where the samples or steps fall): not a friction any rolling needs.
+  const liftoff = m.flight_fraction > 0;
   rows.push(
-    ['required μ', fmt(m.mu_required, 4), 'max |T| / N (pure rolling needs this friction)'],
+    ['required μ', liftoff ? 'n/a' : fmt(m.mu_required, 4), liftoff ? 'the drum lifts off: N reaches 0, where |T| / N has no bound' : 'max |T| / N (pure rolling needs this friction)'],
     ['δ max / min', `${fmt(m.delta_max, 4)} / ${fmt(m.delta_min, 4)}`, 'rad'],
   );
   // The soil the model uses (its one conversion of the soil input), in the fields' display units.
