@@ -9,7 +9,7 @@
 # default_accelerations.png, default_figure_eight.png  oscidrum run --plot (the default case)
 # paper_fig22.png                                      oscidrum paper (Fig. 22)
 # regularised_friction.png                             examples/regularised_friction.py
-# explorer.png                                         scripts/screenshot-web.sh
+# explorer.png, explorer_vibratory.png                 scripts/screenshot-web.sh
 # branch_*.png                                         scripts/bifurcation_study.py
 # lift_off_maps.png                                    scripts/lift_off_study.py
 set -euo pipefail
@@ -36,8 +36,9 @@ cp "$tmp/friction/regularised_friction.png" "$img/regularised_friction.png"
 
 if [ -f web/dist/index.html ]; then
   scripts/screenshot-web.sh "" "$img/explorer.png"
+  scripts/screenshot-web.sh "roller.type=vibratory" "$img/explorer_vibratory.png"
 else
-  echo "docs-images: web/dist missing (scripts/build-web.sh): explorer.png left as it is" >&2
+  echo "docs-images: web/dist missing (scripts/build-web.sh): explorer*.png left as they are" >&2
 fi
 
 if [ "$quick" = 0 ]; then

@@ -6,8 +6,10 @@
 // shows its status and message, that a measured record dropped onto the page is drawn and its
 // soil identified, that scripts/screenshot-web.sh captures a case, that bad input (empty, NaN,
 // out of range; several at once) shows a message next to each input without freezing the page,
-// that the exported TOML runs natively to the same area, that no console error occurred, and
-// save a screenshot.
+// that the exported TOML runs natively to the same area, that the roller selector runs the
+// vibratory drum of examples/vibratory.toml as the native engine does (with its own inputs and
+// rows, none of the oscillation drum's) and restores the oscillation drum's default case, that
+// no console error occurred, and save a screenshot.
 //
 // Usage: node e2e.test.js <path to the native oscidrum> <web/dist> <screenshot.png>
 // (OSCIDRUM_KEEP_EXPORTS=DIR keeps the downloaded exports in DIR.)
@@ -404,31 +406,6 @@ async function main() {
     await page.click('summary');
     console.log(`ok   the page stayed responsive ${sawBusy ? 'while the engine was busy with a slow case' : '(the slow case finished within a second)'}; the next change shows the new case`);
 
-    // The vibratory drum (issue 28), chosen among the 'more parameters' (roller.type, its static
-    // moment, contact that can open) at 30 Hz on G = 25 MN/m^2: the page shows what the native
-    // engine gives.
-    {
-      await page.click('summary');
-      await page.selectOption('[id="in-x:roller.type"]', { label: 'vibratory' });
-      await setInput('x:roller.static_moment', '0.9');
-      await page.check('[id="in-x:contact.unilateral"]');
-      await setInput('f', '30');
-      await setInput('G', '25');
-      await page.selectOption('#trough_mode', 'circle');
-      await setInput('mu', '0.5');
-      await page.waitForFunction(() => location.search.includes('roller.type=') && location.search.includes('f=30'));
-      shown = await settled();
-      const vib = native(['--set', 'roller.type=vibratory', '--set', 'roller.static_moment=0.9', '--unilateral', '--f', '30', '--G', '25', '--mu', '0.5']);
-      assert.equal(shown.status, vib.status);
-      assert.ok(Math.abs(shown.area - vib.metrics.area) <= AREA_RTOL * vib.metrics.area, `vibratory: area ${shown.area} vs native ${vib.metrics.area}`);
-      console.log(`ok   vibratory drum (roller.type under more parameters): ${shown.status}, area ${shown.area} (native ${vib.metrics.area})`);
-      await page.selectOption('[id="in-x:roller.type"]', { label: 'oscillation' });
-      await setInput('x:roller.static_moment', '0');
-      await page.uncheck('[id="in-x:contact.unilateral"]');
-      await setInput('f', '39');
-      await page.click('summary');
-    }
-
     // Back to the default case (for the screenshot).
     await page.selectOption('#trough_mode', 'circle');
     await setInput('G', '25');
@@ -436,6 +413,134 @@ async function main() {
     shown = await settled();
     console.log(`ok   ${await page.textContent('#timing')}`);
     assert.ok(Math.abs(shown.area - def.metrics.area) <= AREA_RTOL * def.metrics.area);
+
+    // The roller selector at the top (issue 28, point 4). The vibratory drum starts as
+    // examples/vibratory.toml (0.9 kg m at 30 Hz, circular exciter, contact that can open) on the
+    // page's soil and trough (here the defaults, the file's): the page runs that file's case, key
+    // by key, and shows the native engine's numbers for it; the oscillation drum's inputs and rows
+    // are gone and the vibratory drum's are there; a link, and a query with only roller.type,
+    // restore it; bad static moments are named with their rule; switching back restores the
+    // oscillation drum's default case.
+    {
+      const metricRow = (name) => page.evaluate((n) => { const tr = [...document.querySelectorAll('#metrics tbody tr')].find((t) => t.dataset.metric === n); return tr ? tr.textContent : ''; }, name);
+      const rowNames = () => page.evaluate(() => [...document.querySelectorAll('#metrics tbody tr')].map((tr) => tr.dataset.metric));
+      const visible = (name) => page.isVisible(`[id="in-${name}"]`);
+      const OSCILLATION_ONLY = { inputs: ['M0', 'MMd', 'x:roller.unbalance'], rows: ['lag of φ behind the torque', "lag x_M''→z_M'' ψ", 'M0, MMd'] };
+      const VIBRATORY_ONLY = { inputs: ['static_moment', 'exciter', 'torque'], rows: ['operating mode', 'kb', 'CMV-type, RMV-type', 'm_u e_u, F0, exciter'] };
+      const checkRoller = async (own, other) => {
+        await page.click('summary');  // 'more parameters' open: its roller keys are shown or hidden too
+        for (const name of own.inputs) assert.ok(await visible(name), `input ${name} is not shown`);
+        for (const name of other.inputs) assert.ok(!(await visible(name)), `input ${name} of the other roller is shown`);
+        await page.click('summary');
+        const rows = await rowNames();
+        for (const name of own.rows) assert.ok(rows.includes(name), `row '${name}' missing: ${rows}`);
+        for (const name of other.rows) assert.ok(!rows.includes(name), `row '${name}' of the other roller: ${rows}`);
+      };
+      await checkRoller(OSCILLATION_ONLY, VIBRATORY_ONLY);
+      assert.ok(await page.isVisible('#M0_scale'));
+      assert.match(await page.textContent('h1'), /oscillation drum/);
+
+      await page.selectOption('#roller_type', 'vibratory');
+      await page.waitForFunction(() => location.search.includes('roller.type=vibratory'));
+      shown = await settled();
+      const vibFile = path.resolve(__dirname, '../../examples/vibratory.toml');
+      const vib = native([vibFile]);
+      // The case the page ran is the file's, key by key (choices by name, booleans as 0/1).
+      const ran = await page.evaluate(() => window.explorer.last().result.case);
+      const pageFields = await page.evaluate(() => window.explorer.fields());
+      for (const f of pageFields) {
+        const want = vib.parameters[f.key];
+        const got = f.type === 'choice' ? f.choices[ran[f.key]] : f.type === 'boolean' ? ran[f.key] === 1 : ran[f.key];
+        assert.ok(got === want || (f.type === 'real' && Math.abs(got - want) <= 1e-15 * Math.abs(want)), `${f.key}: page ${got}, examples/vibratory.toml ${want}`);
+      }
+      assert.equal(shown.status, vib.status);
+      const m = await page.evaluate(() => window.explorer.last().result.metrics);
+      for (const key of ['area', 'kb', 'cmv', 'flight_fraction', 'ddz_max', 'ddx_max', 'liftoffs_per_period']) {
+        assert.ok(Math.abs(m[key] - vib.metrics[key]) <= AREA_RTOL * Math.abs(vib.metrics[key]), `vibratory ${key}: page ${m[key]}, native ${vib.metrics[key]}`);
+      }
+      assert.ok(vib.metrics.flight_fraction > 0.1, `the example should lift off: ${vib.metrics.flight_fraction}`);
+      // What the table shows: the native operating mode, kb in MN/m and the flight share.
+      const mode = vib.diagnostics.operating_mode;
+      assert.equal(mode, 'partial uplift');
+      assert.match(await metricRow('operating mode'), new RegExp(mode));
+      assert.ok((await metricRow('kb')).includes(String(Number((vib.metrics.kb / 1e6).toPrecision(5)))), await metricRow('kb'));
+      assert.ok((await metricRow('stick / slip+ / slip− / flight')).includes(`${Number((100 * vib.metrics.flight_fraction).toPrecision(3))} %`), await metricRow('stick / slip'));
+      // max |T| / N is unbounded where N falls to 0 at a lift-off: no number is shown for it
+      assert.match(await metricRow('required μ'), /n\/a/);
+      await checkRoller(VIBRATORY_ONLY, OSCILLATION_ONLY);
+      assert.match(await page.textContent('h1'), /vibratory drum/);
+      assert.doesNotMatch(await page.textContent('h1'), /oscillation/);
+      assert.match(await page.title(), /vibratory drum/);
+      assert.ok(await page.isVisible('#flight-key'));
+      assert.ok(!(await page.isVisible('#M0_scale')));
+      // Its exported case file runs natively to the same case.
+      fs.writeFileSync(tomlFile, await page.evaluate(() => window.explorer.caseToml()));
+      assert.match(fs.readFileSync(tomlFile, 'utf8'), /type = "vibratory"/);
+      assert.equal(native([tomlFile]).metrics.area, vib.metrics.area);
+      console.log(`ok   roller selector: vibratory drum ${shown.status}, ${mode}, area ${shown.area}, kb ${(m.kb / 1e6).toFixed(2)} MN/m, flight ${vib.metrics.flight_fraction.toFixed(3)} (native examples/vibratory.toml: the same); no M0, MMd, phi lag; its TOML runs natively to the same area`);
+
+      // The exciter is the vibratory drum's own input: turning the other way mirrors x_M''.
+      await page.selectOption('[id="in-exciter"]', { label: 'circular_reversed' });
+      await page.waitForFunction(() => location.search.includes('roller.exciter=circular_reversed'));
+      shown = await settled();
+      const reversed = native([vibFile, '--set', 'roller.exciter=circular_reversed']);
+      const mr = await page.evaluate(() => window.explorer.last().result.metrics);
+      for (const key of ['area', 'ddx_max', 'ddx_min']) {
+        assert.ok(Math.abs(mr[key] - reversed.metrics[key]) <= AREA_RTOL * Math.abs(reversed.metrics[key]), `reversed exciter ${key}: page ${mr[key]}, native ${reversed.metrics[key]}`);
+      }
+      assert.ok(Math.abs(reversed.metrics.ddx_max - vib.metrics.ddx_max) > 1e-2 * vib.metrics.ddx_max, 'the exciter changed nothing');
+      console.log(`ok   circular_reversed exciter: x_M'' max ${mr.ddx_max} (native ${reversed.metrics.ddx_max}; circular ${vib.metrics.ddx_max})`);
+
+      // A link restores the vibratory drum; so does a query naming only the roller (its defaults).
+      for (const [query, want] of [[new URL(page.url()).search, reversed], ['?roller.type=vibratory', vib]]) {
+        const p2 = await browser.newPage();
+        p2.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+        await p2.goto(url + query);
+        await p2.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 30000 });
+        assert.equal(await p2.inputValue('#roller_type'), 'vibratory', query);
+        const area = Number(await p2.getAttribute('#area-caption', 'data-value'));
+        assert.ok(Math.abs(area - want.metrics.area) <= AREA_RTOL * want.metrics.area, `${query}: area ${area} vs native ${want.metrics.area}`);
+        const ddx = await p2.evaluate(() => window.explorer.last().result.metrics.ddx_max);
+        assert.ok(Math.abs(ddx - want.metrics.ddx_max) <= AREA_RTOL * want.metrics.ddx_max, `${query}: x_M'' max ${ddx} vs native ${want.metrics.ddx_max}`);
+        assert.ok(!(await p2.isVisible('#in-M0')), query);
+        await p2.close();
+        console.log(`ok   ${query.slice(0, 60)}...: the vibratory drum, area ${area}`);
+      }
+      await page.selectOption('[id="in-exciter"]', { label: 'circular' });
+      await settled();
+
+      // Bad static moments: a message next to the input naming the key and its rule.
+      for (const [text, pattern] of [
+        ['-0.5', /roller\.static_moment must be >= 0 \[kg m\]; got -0\.5/],
+        ['0', /roller\.static_moment must be > 0 \[kg m\] with roller\.type = vibratory/],
+        ['', /enter a value: roller\.static_moment \(rule: >= 0 kg m\)/],
+        ['heavy', /not a number: 'heavy'; roller\.static_moment \(rule: >= 0 kg m\)/],
+      ]) {
+        await setInput('static_moment', text);
+        await page.waitForFunction(() => document.getElementById('err-static_moment').textContent !== '', null, { timeout: 10000 });
+        const msg = await errorOf('static_moment');
+        assert.match(msg, pattern, `static moment '${text}'`);
+        assert.equal(await page.evaluate(() => document.getElementById('status').className), 'bad');
+        console.log(`ok   static moment '${text}': "${msg}"`);
+      }
+      await setInput('static_moment', '0.9');
+      await page.waitForFunction(() => document.getElementById('err-static_moment').textContent === '');
+      shown = await settled();
+      assert.ok(Math.abs(shown.area - vib.metrics.area) <= AREA_RTOL * vib.metrics.area);
+
+      // Back to the oscillation drum: its default case, inputs and rows.
+      await page.selectOption('#roller_type', 'oscillation');
+      await page.waitForFunction(() => location.search.includes('roller.type=oscillation'));
+      shown = await settled();
+      assert.equal(shown.status, def.status);
+      assert.ok(Math.abs(shown.area - def.metrics.area) <= AREA_RTOL * def.metrics.area, `back to the oscillation drum: area ${shown.area} vs native default ${def.metrics.area}`);
+      assert.equal(await page.inputValue('#in-f'), '39');
+      assert.equal(await page.isChecked('[id="in-x:contact.unilateral"]'), false);
+      await checkRoller(OSCILLATION_ONLY, VIBRATORY_ONLY);
+      assert.match(await page.textContent('h1'), /oscillation drum/);
+      assert.ok(!(await page.isVisible('#flight-key')));
+      console.log(`ok   back to the oscillation drum: the default case (area ${shown.area}, native ${def.metrics.area})`);
+    }
 
     if (screenshot) {
       await page.waitForTimeout(700);  // a frame of the animation

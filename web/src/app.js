@@ -5,7 +5,7 @@ import uPlot from './vendor/uPlot.esm.js';
 
 const $ = (id) => document.getElementById(id);
 const COLORS = { x: '#1f5fa8', z: '#c23b22', measured: '#111', stick: '#cdeccd', slipp: '#ffd9a8', slipn: '#f7c1c1', flight: '#ddd0f2' };
-const ARROW = { stick: '#1d7a1d', slip: '#d46a00' };
+const ARROW = { stick: '#1d7a1d', slip: '#d46a00', flight: '#7a5cc4' };
 const ROTATION_FACTOR = 100;     // the drum's rotation phi is drawn this many times larger
 const DISPLACEMENT_FACTOR = 50;  // the soil displacements x_A, s_A are drawn this many times larger
 const N_MAX = 10;                // harmonics n = 0 ... N_MAX
@@ -21,7 +21,12 @@ const INPUTS = {
   mu: { key: 'contact.mu', label: 'μ', unit: '-', scale: 1 },
   f: { key: 'roller.f', label: 'f', unit: 'Hz', scale: 1 },
   M0: { key: 'roller.M0', label: 'M0', unit: 'N m', scale: 1 },
-  MMd: { key: null, label: 'MMd', unit: '× M0', scale: 1, hint: 'driving torque (6), a fraction of M0; the paper uses 0 and 0.05' },
+  // the driving torque as a fraction of M0 (shown where roller.M0 takes effect: the oscillation
+  // drum), and in N m where it does not (the vibratory drum, whose excitation is a force)
+  MMd: { key: null, ref: 'roller.M0', label: 'MMd', unit: '× M0', scale: 1, hint: 'driving torque (6), a fraction of M0; the paper uses 0 and 0.05' },
+  static_moment: { key: 'roller.static_moment', label: 'm<sub>u</sub>e<sub>u</sub>', param: 'roller.static_moment' },
+  exciter: { key: 'roller.exciter', label: 'exciter', param: 'roller.exciter' },
+  torque: { key: 'MMd', unlessRef: 'roller.M0', label: 'MMd', unit: 'N m', scale: 1, hint: 'constant driving torque (6)' },
   R: { key: 'trough.a', label: 'R', unit: 'm', scale: 1, hint: 'trough radius (must exceed the drum radius r)' },
   k: { key: 'trough.k', label: 'k', unit: '-', scale: 1 },
   a: { key: 'trough.a', label: 'a', unit: 'm', scale: 1 },
@@ -29,15 +34,49 @@ const INPUTS = {
   cd: { key: 'roller.cd', label: 'cd', unit: 'N s/m', scale: 1 },
 };
 
+// The rollers of the field roller.type, in words: the selector's options, the page's title and
+// introduction, a note under the selector. Which inputs each roller takes is the engine's
+// key_in_effect (rollerKeys, from the worker), not written here. `preset`: the inputs a roller
+// starts with when it is chosen, where they differ from the page's defaults (the field table's);
+// the vibratory drum's are those of examples/vibratory.toml (the e2e test runs that file).
+const ROLLERS = {
+  oscillation: {
+    option: "oscillation drum (the paper's HAMM HD+ 90 VO)",
+    title: 'the oscillation drum',
+    intro: 'The oscillation roller drum on soil of Paulmichl, Adam &amp; Adam, <i>Analytical modeling of the ' +
+      'stick-slip motion of an oscillation drum</i>, Acta Mechanica 230 (2019)',
+    note: 'Two counter-rotating unbalances turn the drum to and fro with the moment M0 sin(ν t) (5): the paper\'s roller (Table 1).',
+    preset: {},
+  },
+  vibratory: {
+    option: 'vibratory drum (a rotating unbalance)',
+    title: 'the vibratory drum',
+    intro: 'A vibratory roller drum: the drum of Paulmichl, Adam &amp; Adam (Acta Mechanica 230, 2019) with one ' +
+      'unbalance turning on its axis, whose force m_u e_u ν² pulls on the drum centre (oscidrum docs/model.md section 14), ' +
+      'on the same buffers, soils and trough',
+    note: 'An unbalance turning on the axis of the paper\'s drum pulls on its centre with the force F0 = m_u e_u ν², ' +
+      'in the direction the exciter gives (docs/vibratory.md). It starts as examples/vibratory.toml: 0.9 kg m at 30 Hz, ' +
+      'circular, with contact that can open (contact.unilateral, under more parameters).',
+    preset: { f: '30', 'contact.unilateral': true },
+  },
+};
+// The page's defaults of inputs whose field default is not one: no driving torque (MMd given as a
+// fraction of M0), and the vibratory drum's static moment of examples/vibratory.toml (the field's
+// default 0 is refused with roller.type = vibratory).
+const PAGE_DEFAULTS = { MMd: '0', torque: '0', static_moment: '0.9' };
+// The inputs of the roller's excitation: set to the roller's defaults when the roller is chosen.
+const ROLLER_INPUTS = ['f', 'M0', 'MMd', 'static_moment', 'exciter', 'torque'];
+
 let fields = [];            // the engine's field table
 let extras = [];            // the fields without an input above ('more parameters'), by key
 // The keys the inputs above set (the rest of the field table is under 'more parameters').
 const COVERED = new Set(['soil.input', 'soil.G', 'soil.nu', 'soil.rho', 'soil.ksh', 'soil.ksv', 'soil.csh',
   'soil.csv', 'contact.mu', 'contact.pure_rolling', 'roller.f', 'roller.M0', 'MMd', 'trough.k', 'trough.a',
-  'roller.kd', 'roller.cd']);
+  'roller.kd', 'roller.cd', 'roller.type', 'roller.static_moment', 'roller.exciter']);
 const extraName = (key) => `x:${key}`;
 let fieldByKey = {};
 let soilKeys = {};          // soil.input name -> the soil keys it reads (the engine's key_in_effect)
+let rollerKeys = {};        // roller.type name -> the keys of that roller only (key_in_effect)
 let worker = null;
 let seq = 0;                // number of the latest request
 let busySince = 0;          // time the running request was sent (0: idle)
@@ -64,18 +103,23 @@ function buildInputs() {
       spec.scale = field.display_scale;
     }
   }
+  // the roller selector: the choices of roller.type
+  $('roller_type').innerHTML = fieldByKey['roller.type'].choices
+    .map((c) => `<option value="${c}">${(ROLLERS[c] || { option: c }).option}</option>`).join('');
   for (const div of document.querySelectorAll('.field[data-input]')) {
     const name = div.dataset.input;
     const spec = INPUTS[name];
     const field = spec.key ? fieldByKey[spec.key] : null;
     const desc = spec.hint || (field ? field.description : '');
-    const rule = field ? `rule: ${field.rule}${field.unit !== '-' ? ' ' + field.unit : ''}` : 'any finite number';
-    div.innerHTML = `<label><span class="name">${spec.label}</span>` +
-      `<input type="text" inputmode="decimal" id="in-${name}" name="${name}" aria-describedby="err-${name}">` +
-      `<span class="unit">${spec.unit}</span></label>` +
+    const rule = field ? `rule: ${ruleText(field)}` : 'any finite number';
+    const control = field && field.type === 'choice'
+      ? `<select id="in-${name}" name="${name}">${field.choices.map((c, i) => `<option value="${i}">${c}</option>`).join('')}</select>`
+      : `<input type="text" inputmode="decimal" id="in-${name}" name="${name}" aria-describedby="err-${name}">`;
+    div.innerHTML = `<label><span class="name">${spec.label}</span>${control}` +
+      `<span class="unit">${spec.unit === '-' ? '' : spec.unit}</span></label>` +
       `<span class="hint">${desc}${field ? ' (' + field.key + '; ' + rule + ')' : ''}</span>` +
       `<span class="error" id="err-${name}" role="alert"></span>`;
-    $(`in-${name}`).value = defaultText(name);
+    setInputText(name, defaultText(name));
   }
   // every other field of the table, with its default, unit and rule
   extras = fields.filter((f) => !COVERED.has(f.key));
@@ -96,26 +140,128 @@ function buildInputs() {
   }
 }
 
+// A field's rule with its unit, e.g. '>= 0 kg m'.
+const ruleText = (field) => `${field.rule}${field.unit !== '-' ? ' ' + field.unit : ''}`;
+
+// The index of a choice given by its name or its index ('vibratory' or '1'), or -1.
+function choiceIndex(field, text) {
+  const i = field.choices.indexOf(String(text));
+  if (i >= 0) return i;
+  return /^\d+$/.test(String(text)) && Number(text) < field.choices.length ? Number(text) : -1;
+}
+
+// Set an extra field's control from a value or text (a choice by its name or index, a boolean as
+// true/false).
 function setExtra(f, value) {
   const el = $(`in-${extraName(f.key)}`);
-  if (f.type === 'boolean') el.checked = Boolean(value);
+  if (f.type === 'boolean') el.checked = value === true || value === 1 || value === 'true';
+  else if (f.type === 'choice') el.value = String(Math.max(0, choiceIndex(f, value)));
   else el.value = String(value);
 }
 
-// The text of an extra field's control ('true'/'false' for booleans).
+// The text of an extra field's control ('true'/'false' for booleans, a choice's name).
 function extraText(f) {
   const el = $(`in-${extraName(f.key)}`);
-  return f.type === 'boolean' ? String(el.checked) : el.value.trim();
+  if (f.type === 'boolean') return String(el.checked);
+  if (f.type === 'choice') return f.choices[Number(el.value)] ?? el.value;
+  return el.value.trim();
 }
 
-function extraDefaultText(f) {
-  return f.type === 'boolean' ? String(Boolean(f.default)) : String(f.default);
+// The default of an extra field with the roller `roller` (its preset, else the field table's).
+function extraDefault(f, roller = currentRoller()) {
+  const preset = (ROLLERS[roller] || { preset: {} }).preset;
+  return f.key in preset ? preset[f.key] : f.default;
 }
 
-function defaultText(name) {
-  if (name === 'MMd') return '0';
+function extraDefaultText(f, roller = currentRoller()) {
+  const v = extraDefault(f, roller);
+  if (f.type === 'boolean') return String(v === true || v === 1);
+  if (f.type === 'choice') return f.choices[v] ?? String(v);
+  return String(v);
+}
+
+// The default text of an input with the roller `roller`: its preset, the page's default, the
+// field table's (a choice by its name).
+function defaultText(name, roller = currentRoller()) {
+  const preset = (ROLLERS[roller] || { preset: {} }).preset;
+  if (name in preset) return preset[name];
+  if (name in PAGE_DEFAULTS) return PAGE_DEFAULTS[name];
   const spec = INPUTS[name];
-  return fmt(fieldByKey[spec.key].default / spec.scale, 10);
+  const field = fieldByKey[spec.key];
+  if (field.type === 'choice') return field.choices[field.default];
+  return fmt(field.default / spec.scale, 10);
+}
+
+// The text of an input (a choice by its name), and setting it from such a text.
+function inputText(name) {
+  const el = $(`in-${name}`);
+  const field = INPUTS[name].key ? fieldByKey[INPUTS[name].key] : null;
+  if (field && field.type === 'choice') return field.choices[Number(el.value)] ?? el.value;
+  return el.value.trim();
+}
+
+function setInputText(name, text) {
+  const el = $(`in-${name}`);
+  const field = INPUTS[name].key ? fieldByKey[INPUTS[name].key] : null;
+  if (field && field.type === 'choice') el.value = String(Math.max(0, choiceIndex(field, text)));
+  else el.value = text;
+}
+
+// ---- the roller
+
+// The chosen roller (a name of roller.type's choices).
+const currentRoller = () => $('roller_type').value || fieldByKey['roller.type'].choices[0];
+
+// Whether the key takes effect with the chosen roller: the keys of one roller only (rollerKeys,
+// the engine's key_in_effect) with that roller; every other key.
+function rollerKeyInEffect(key, roller = currentRoller()) {
+  const own = Object.values(rollerKeys).some((keys) => keys.includes(key));
+  return !own || (rollerKeys[roller] || []).includes(key);
+}
+
+// Whether an input applies to the chosen roller: by the key it sets (or is a fraction of: MMd of
+// roller.M0), or, for the driving torque in N m, where the fraction of M0 does not.
+function rollerInput(name) {
+  const spec = INPUTS[name];
+  if (spec.unlessRef) return !rollerKeyInEffect(spec.unlessRef);
+  const key = spec.ref || spec.key;
+  return !key || rollerKeyInEffect(key);
+}
+
+// Choosing a roller starts it from its defaults: the inputs of its excitation (f, M0, MMd; the
+// static moment, the exciter) and its preset (the vibratory drum: 30 Hz, contact that can open);
+// the soil, the contact's mu, the trough and the suspension stay as they are.
+let appliedRoller = null;
+function applyRoller(roller) {
+  if (roller === appliedRoller) return;
+  appliedRoller = roller;
+  for (const name of ROLLER_INPUTS) setInputText(name, defaultText(name, roller));
+  $('M0_scale').checked = false;
+  // the extra fields some roller presets (contact.unilateral) or only one roller takes
+  const preset = (key) => Object.values(ROLLERS).some((r) => key in r.preset);
+  for (const f of extras) {
+    if (preset(f.key) || Object.values(rollerKeys).some((keys) => keys.includes(f.key))) setExtra(f, extraDefault(f, roller));
+  }
+}
+
+// The title, introduction and notes of the chosen roller.
+let shownRoller = null;
+function showRoller() {
+  const roller = currentRoller();
+  if (roller === shownRoller) return;
+  shownRoller = roller;
+  const words = ROLLERS[roller] || { title: `the ${roller} drum`, intro: `The ${roller} drum`, note: '' };
+  $('roller-title').textContent = words.title;
+  $('roller-intro').innerHTML = words.intro;
+  $('roller-note').textContent = words.note;
+  document.title = `oscidrum explorer: ${words.title.replace(/^the /, '')} on soil`;
+  $('metrics-note').innerHTML = roller === 'vibratory'
+    ? 'Definitions (peaks, harmonics A<sub>n</sub> sin(n 2&pi;f t + &theta;<sub>n</sub>), the CMV-type value 300 A<sub>2</sub>/A<sub>1</sub> ' +
+      'and the RMV-type value A(f/2)/A(f) of z<sub>M</sub>\'\', the Kb-type soil stiffness kb, the operating modes, the area) are those of ' +
+      'the oscidrum command-line tool; see docs/outputs.md and docs/model.md section 14. Required mu is the largest |T| / N of the steady state.'
+    : 'Definitions (peaks, harmonics A<sub>n</sub> sin(n 2&pi;f t + &theta;<sub>n</sub>), the lag of &phi; behind the torque, the ' +
+      'x<sub>M</sub>\'\'-to-z<sub>M</sub>\'\' lag, the area counting both lobes of a figure-eight) are those of the oscidrum command-line ' +
+      'tool; see docs/model.md. Required mu is the largest |T| / N of the steady state.';
 }
 
 function setError(name, message) {
@@ -130,24 +276,34 @@ function soilInputInEffect(name) {
   return (soilKeys[$('soil_mode').value] || []).includes(INPUTS[name].key);
 }
 
+// The extra fields ('more parameters') that apply to the chosen roller.
+const rollerExtras = () => extras.filter((f) => rollerKeyInEffect(f.key));
+
 function visibleInputs() {
   const spiral = $('trough_mode').value === 'spiral';
-  const names = ['mu', 'f', 'M0', 'MMd', 'kd', 'cd'];
+  const names = ['mu', ...ROLLER_INPUTS.filter(rollerInput), 'kd', 'cd'];
   names.unshift(...SOIL_INPUTS.filter(soilInputInEffect));
   names.push(...(spiral ? ['k', 'a'] : ['R']));
   if ($('rolling').checked) names.splice(names.indexOf('mu'), 1);
-  for (const f of extras) names.push(extraName(f.key));
+  for (const f of rollerExtras()) names.push(extraName(f.key));
   return names;
 }
 
 function updateVisibility() {
+  showRoller();
   const spiral = $('trough_mode').value === 'spiral';
   for (const name of SOIL_INPUTS) document.querySelector(`.field[data-input="${name}"]`).hidden = !soilInputInEffect(name);
   for (const el of document.querySelectorAll('.spiral-only')) el.hidden = !spiral;
   for (const el of document.querySelectorAll('.circle-only')) el.hidden = spiral;
+  // the inputs of the other roller are hidden (and not sent to the engine)
+  for (const name of ROLLER_INPUTS) document.querySelector(`.field[data-input="${name}"]`).hidden = !rollerInput(name);
+  $('M0_scale_box').hidden = !rollerInput('M0');
+  for (const f of extras) document.querySelector(`.field[data-input="${extraName(f.key)}"]`).hidden = !rollerKeyInEffect(f.key);
   $('in-mu').disabled = $('rolling').checked;
   const scaled = $('M0_scale').checked;
   document.querySelector('.field[data-input="M0"] .name').textContent = scaled ? 'M0(39 Hz)' : 'M0';
+  const unilateral = $(`in-${extraName('contact.unilateral')}`);
+  $('flight-key').hidden = !(unilateral && unilateral.checked);
 }
 
 // Parse the visible inputs. Returns {values, errors}: values (display units) by input name,
@@ -163,13 +319,18 @@ function readInputs() {
       continue;
     }
     const text = $(`in-${name}`).value.trim();
+    // The message names the field and its rule (the unit the input is read in where it differs).
+    const field = f || (INPUTS[name] && INPUTS[name].key ? fieldByKey[INPUTS[name].key] : null);
+    const spec = INPUTS[name];
+    const shownIn = spec && spec.unit && field && prettyUnit(field.unit) !== spec.unit && spec.unit !== '-' ? `, entered in ${spec.unit}` : '';
+    const about = field ? `${field.key} (rule: ${ruleText(field)}${shownIn})` : `${spec.label} (any finite number${spec.unit ? ', ' + spec.unit : ''})`;
     if (text === '') {
-      errors[name] = 'enter a value';
+      errors[name] = `enter a value: ${about}`;
       continue;
     }
     const v = Number(text);
-    if (Number.isNaN(v)) errors[name] = `not a number: '${text}'`;
-    else if (!Number.isFinite(v)) errors[name] = 'must be finite';
+    if (Number.isNaN(v)) errors[name] = `not a number: '${text}'; ${about}`;
+    else if (!Number.isFinite(v)) errors[name] = `must be finite; ${about}`;
     else values[name] = v;
   }
   return { values, errors };
@@ -177,15 +338,23 @@ function readInputs() {
 
 // The engine's case (field key -> SI number) from the parsed inputs.
 function caseValues(v) {
-  // The soil: its input (the engine converts it, Table 2 or Appendix B) and the keys it reads.
-  const c = { 'soil.input': fieldByKey['soil.input'].choices.indexOf($('soil_mode').value) };
+  const shown = new Set(visibleInputs());
+  // The roller; the soil: its input (the engine converts it, Table 2 or Appendix B) and the keys
+  // it reads.
+  const c = { 'roller.type': fieldByKey['roller.type'].choices.indexOf(currentRoller()) };
+  c['soil.input'] = fieldByKey['soil.input'].choices.indexOf($('soil_mode').value);
   for (const name of SOIL_INPUTS.filter(soilInputInEffect)) c[INPUTS[name].key] = v[name] * INPUTS[name].scale;
   if ($('rolling').checked) c['contact.pure_rolling'] = 1;
   else c['contact.mu'] = v.mu;
   c['roller.f'] = v.f;
-  // M0 = 4 m_u e_u e_w nu^2 grows with f^2 (5)
-  c['roller.M0'] = $('M0_scale').checked ? v.M0 * (v.f / F_REF) ** 2 : v.M0;
-  c.MMd = v.MMd * c['roller.M0'];
+  // The excitation of the chosen roller (the other roller's inputs are not sent): the oscillation
+  // drum's M0 (M0 = 4 m_u e_u e_w nu^2 grows with f^2 (5)) and MMd as its fraction; the vibratory
+  // drum's static moment, exciter and MMd in N m.
+  if (shown.has('M0')) c['roller.M0'] = $('M0_scale').checked ? v.M0 * (v.f / F_REF) ** 2 : v.M0;
+  if (shown.has('MMd')) c.MMd = v.MMd * c['roller.M0'];
+  if (shown.has('static_moment')) c['roller.static_moment'] = v.static_moment;
+  if (shown.has('exciter')) c['roller.exciter'] = v.exciter;
+  if (shown.has('torque')) c.MMd = v.torque;
   if ($('trough_mode').value === 'spiral') {
     c['trough.k'] = v.k;
     c['trough.a'] = v.a;
@@ -195,13 +364,13 @@ function caseValues(v) {
   }
   c['roller.kd'] = v.kd;
   c['roller.cd'] = v.cd;
-  for (const f of extras) c[f.key] = v[extraName(f.key)];
+  for (const f of rollerExtras()) c[f.key] = v[extraName(f.key)];
   return c;
 }
 
 // The input that shows an engine message about field `key` (or a message naming it).
 function inputForKey(key) {
-  if (key === 'MMd') return 'MMd';
+  if (key === 'MMd') return rollerInput('MMd') ? 'MMd' : 'torque';
   if (extras.some((f) => f.key === key)) return extraName(key);
   if (key === 'trough.a') return $('trough_mode').value === 'spiral' ? 'a' : 'R';
   for (const [name, spec] of Object.entries(INPUTS)) if (spec.key === key && name !== 'R' && name !== 'a') return name;
@@ -211,28 +380,36 @@ function inputForKey(key) {
 
 // ---------------------------------------------------------------- URL state
 
-const URL_INPUTS = Object.keys(INPUTS);
+// An input's name in the URL: its own, or its field key (roller.static_moment, roller.exciter).
+const urlName = (name) => INPUTS[name].param || name;
 
 function saveUrl() {
   const p = new URLSearchParams();
+  p.set('roller.type', currentRoller());
   p.set('soil', $('soil_mode').value);
   p.set('trough', $('trough_mode').value);
   if ($('rolling').checked) p.set('rolling', '1');
   if ($('M0_scale').checked) p.set('M0f2', '1');
-  for (const name of visibleInputs()) if (!name.startsWith('x:')) p.set(name, $(`in-${name}`).value.trim());
-  // the other fields only when they differ from their defaults, by their keys
-  for (const f of extras) if (extraText(f) !== extraDefaultText(f)) p.set(f.key, extraText(f));
+  for (const name of visibleInputs()) if (!name.startsWith('x:')) p.set(urlName(name), inputText(name));
+  // the other fields of the roller only when they differ from its defaults, by their keys
+  for (const f of rollerExtras()) if (extraText(f) !== extraDefaultText(f)) p.set(f.key, extraText(f));
   history.replaceState(null, '', `${location.pathname}?${p}`);
 }
 
 function loadUrl() {
   const p = new URLSearchParams(location.search);
+  // The roller first (by its name, or its index as older links wrote it), with its defaults; the
+  // URL's inputs then override them.
+  const rollerField = fieldByKey['roller.type'];
+  const roller = rollerField.choices[Math.max(0, choiceIndex(rollerField, p.get('roller.type') ?? ''))];
+  $('roller_type').value = roller;
+  applyRoller(roller);
   if (p.get('soil') === 'modulus') $('soil_mode').value = 'modulus';
   if (p.get('trough') === 'spiral') $('trough_mode').value = 'spiral';
   $('rolling').checked = p.get('rolling') === '1';
   $('M0_scale').checked = p.get('M0f2') === '1';
-  for (const name of URL_INPUTS) if (p.has(name)) $(`in-${name}`).value = p.get(name);
-  for (const f of extras) if (p.has(f.key)) setExtra(f, f.type === 'boolean' ? p.get(f.key) === 'true' : p.get(f.key));
+  for (const name of Object.keys(INPUTS)) if (p.has(urlName(name))) setInputText(name, p.get(urlName(name)));
+  for (const f of extras) if (p.has(f.key)) setExtra(f, p.get(f.key));
 }
 
 // ---------------------------------------------------------------- the worker
@@ -275,6 +452,7 @@ function onMessage(msg) {
     fields = msg.fields;
     fieldByKey = Object.fromEntries(fields.map((f) => [f.key, f]));
     soilKeys = msg.soilKeys;
+    rollerKeys = msg.rollerKeys;
     $('engine-version').textContent = `Engine: oscidrum ${msg.version} (WebAssembly).`;
     init();
     return;
@@ -542,9 +720,11 @@ function drawFigure(canvas, r, m) {
   // the figure coloured by the contact phase
   ctx.lineWidth = 1.8;
   let curveTop = Infinity;
+  let flight = false;
   for (let i = 0; i < n; i++) {
     const j = (i + 1) % n;
-    ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : ARROW.slip;
+    ctx.strokeStyle = s.phase[i] === 0 ? ARROW.stick : s.phase[i] === 2 ? ARROW.flight : ARROW.slip;
+    if (s.phase[i] === 2) flight = true;
     ctx.beginPath(); ctx.moveTo(X(x[i]), Y(z[i])); ctx.lineTo(X(x[j]), Y(z[j])); ctx.stroke();
     curveTop = Math.min(curveTop, Y(z[i]));
   }
@@ -570,9 +750,15 @@ function drawFigure(canvas, r, m) {
   ctx.fillText('stick', after, 20);
   ctx.fillStyle = ARROW.slip;
   ctx.fillText('slip', after + 34, 20);
+  let next = after + 62;
+  if (flight) {
+    ctx.fillStyle = ARROW.flight;
+    ctx.fillText('flight', next, 20);
+    next += 38;
+  }
   if (measured) {
     ctx.fillStyle = COLORS.measured;
-    ctx.fillText('measured', after + 62, 20);
+    ctx.fillText('measured', next, 20);
   }
   // where the caption ends and the figure begins [px], for the tests: the caption is above it
   const metrics = ctx.measureText(caption);
@@ -681,22 +867,56 @@ function largestHarmonics(a) {
   return n.slice(0, 3).sort((i, j) => i - j).map((k) => `A${k} = ${fmt(a[k], 4)}`).join(', ');
 }
 
+// The name of a choice field's value in the case of a result ('vibratory').
+const choiceOf = (r, key) => fieldByKey[key].choices[r.case[key]];
+
 function fillMetrics(r, m) {
   const hx = m.ddx_harmonics.amplitude, hz = m.ddz_harmonics.amplitude;
+  const num = (v, digits = 4) => (Number.isFinite(v) ? fmt(v, digits) : 'n/a');
+  // The rows of each roller: the oscillation drum's phase lags of phi (the torque's response) and
+  // of z_M'' at 2f; the vibratory drum's indicators (kb, the CMV- and RMV-type values) and its
+  // operating mode; the contact's opening where it may open.
+  const vibratory = choiceOf(r, 'roller.type') === 'vibratory';
+  const unilateral = r.case['contact.unilateral'] === 1;
+  const ksv = fieldByKey['soil.ksv'];
   const rows = [
     ['status', r.status, 'steady period ' + r.diagnostics.multiplicity + ' × 1/f, found after ' + r.diagnostics.periods_to_steady + ' periods'],
+  ];
+  if (vibratory) rows.push(['operating mode', r.diagnostics.operating_mode, 'the literature\'s names (docs/model.md section 14)']);
+  else if (unilateral) rows.push(['contact mode', r.diagnostics.contact_mode, '']);
+  rows.push(
     ["x_M'' max / min", `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`, 'm/s²'],
     ["z_M'' max / min", `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`, 'm/s², z down'],
     ["x_M'' largest harmonics", largestHarmonics(hx), 'm/s² (A_n of n f)'],
     ["z_M'' largest harmonics", largestHarmonics(hz), 'm/s²'],
-    ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => (Number.isFinite(v) ? fmt(v, 4) : 'n/a')).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
-    ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
-    ["lag x_M''→z_M'' ψ", fmt(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x))'],
-    ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
-    ['stick / slip+ / slip−', [m.stick_fraction, m.slip_positive_fraction, m.slip_negative_fraction].map((v) => fmt(100 * v, 3) + ' %').join(' / '), 'of the time'],
-    ['required μ', fmt(m.mu_required, 4), 'max |T| / N (pure rolling needs this friction)'],
+  );
+  if (vibratory) {
+    rows.push(
+      ['kb', num(m.kb / ksv.display_scale, 5), `${ksv.display_unit}: the soil's vertical force in phase with z_M at f, over z_M's amplitude (Kb-type stiffness)`],
+      ['CMV-type, RMV-type', [m.cmv, m.rmv].map((v) => num(v)).join(', '), '300 A2/A1 and A(f/2)/A(f) of z_M\'\''],
+      ['x THD', num(m.ddx_thd), 'overtones of x_M\'\''],
+      ['area', fmt(m.area, 6), 'm²/s⁴'],
+    );
+  } else {
+    rows.push(
+      ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => num(v)).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
+      ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
+      ["lag x_M''→z_M'' ψ", fmt(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x))'],
+      ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
+    );
+  }
+  const shares = [m.stick_fraction, m.slip_positive_fraction, m.slip_negative_fraction, ...(unilateral ? [m.flight_fraction] : [])];
+  rows.push([`stick / slip+ / slip−${unilateral ? ' / flight' : ''}`, shares.map((v) => fmt(100 * v, 3) + ' %').join(' / '), 'of the time']);
+  if (unilateral) {
+    rows.push(['lift-offs, largest gap', `${fmt(m.liftoffs_per_period, 3)}, ${fmt(m.gap_max * 1e3, 4)}`, 'per period, mm']);
+  }
+  // With lift-off N falls to 0 at every lift-off, where max |T| / N has no bound (its value
+  // depends on where the samples or steps fall): not a friction any rolling needs.
+  const liftoff = m.flight_fraction > 0;
+  rows.push(
+    ['required μ', liftoff ? 'n/a' : fmt(m.mu_required, 4), liftoff ? 'the drum lifts off: N reaches 0, where |T| / N has no bound' : 'max |T| / N (pure rolling needs this friction)'],
     ['δ max / min', `${fmt(m.delta_max, 4)} / ${fmt(m.delta_min, 4)}`, 'rad'],
-  ];
+  );
   // The soil the model uses (its one conversion of the soil input), in the fields' display units.
   const soil = r.soil;
   const shown = (key) => `${fmt(soil[key.slice(5)] / fieldByKey[key].display_scale, 4)}`;
@@ -704,7 +924,14 @@ function fillMetrics(r, m) {
   rows.push(['soil', `${soil.summary}:${soil.a0 ? ` a0 ${fmt(soil.a0, 4)} m;` : ''} ksh ${shown('soil.ksh')}, ksv ${shown('soil.ksv')} ${unit('soil.ksv')}; ` +
     `csh ${shown('soil.csh')}, csv ${shown('soil.csv')} ${unit('soil.csv')}`, '']);
   rows.push(['trough', r.trough.summary, '']);
-  rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
+  if (vibratory) {
+    // F0 = m_u e_u nu^2 (docs/model.md section 14)
+    const F0 = r.case['roller.static_moment'] * (2 * Math.PI * r.case['roller.f']) ** 2;
+    rows.push(['m_u e_u, F0, exciter', `${fmt(r.case['roller.static_moment'], 6)} kg m, ${fmt(F0 / 1e3, 5)} kN, ${choiceOf(r, 'roller.exciter')}`, 'F0 = m_u e_u ν²']);
+    rows.push(['MMd', fmt(r.case.MMd, 6), 'N m']);
+  } else {
+    rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
+  }
   const body = $('metrics').tBodies[0];
   body.innerHTML = '';
   for (const [name, value, unit] of rows) {
@@ -996,7 +1223,7 @@ function plotsSvg() {
   const closed = (a) => [...a.subarray(0, np), a[0]];
   const spec = (h, color) => { const a = Array.from(h.amplitude); return [{ x: a.map((_, i) => i), y: a, color, bars: true }]; };
   const body = [
-    svgPlot(0, 0, 900, 280, "x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)", 't - t0 [ms]', 'm/s²',
+    svgPlot(0, 0, 900, 280, `x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)${r.case['contact.unilateral'] === 1 ? ', flight (violet)' : ''}`, 't - t0 [ms]', 'm/s²',
       [{ x: t, y: s.ddx_M.subarray(0, n), color: COLORS.x }, { x: t, y: s.ddz_M.subarray(0, n), color: COLORS.z }], shading),
     svgPlot(0, 290, 440, 320, `z_M'' over x_M'', area ${fmt(m.area, 5)} m²/s⁴`, "x_M'' [m/s²]", "z_M'' [m/s²]", [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }]),
     svgPlot(460, 290, 440, 155, "spectrum of x_M''", 'n', 'A_n [m/s²]', spec(m.ddx_harmonics, COLORS.x)),
@@ -1012,13 +1239,18 @@ function init() {
   loadUrl();
   $('rot-factor').textContent = String(ROTATION_FACTOR);
   $('disp-factor').textContent = String(DISPLACEMENT_FACTOR);
+  // A roller chosen starts from its defaults (before the form's listeners read the inputs).
+  for (const type of ['input', 'change']) $('roller_type').addEventListener(type, () => applyRoller(currentRoller()));
   $('case-form').addEventListener('input', onChange);
   $('case-form').addEventListener('change', onChange);
   $('reset').addEventListener('click', () => {
+    $('roller_type').value = fieldByKey['roller.type'].choices[fieldByKey['roller.type'].default];
     $('soil_mode').value = 'table2'; $('trough_mode').value = 'circle';
     $('rolling').checked = false; $('M0_scale').checked = false;
-    for (const name of Object.keys(INPUTS)) $(`in-${name}`).value = defaultText(name);
-    for (const f of extras) setExtra(f, f.default);
+    appliedRoller = null;
+    applyRoller(currentRoller());
+    for (const name of Object.keys(INPUTS)) setInputText(name, defaultText(name));
+    for (const f of extras) setExtra(f, extraDefault(f));
     onChange();
   });
   $('export-toml').addEventListener('click', () => download('case.toml', new Blob([caseToml()], { type: 'application/toml' })));
@@ -1034,6 +1266,8 @@ function init() {
 // For tests and the console: the current case and exports.
 window.explorer = {
   caseToml, steadyCsv, plotsSvg, last: () => last, busy: () => busySince !== 0 || pending !== null,
+  // the engine's field table (keys, types, choices) the page was built from
+  fields: () => fields,
   // the measured record: {analysis, identification} as the engine returned them, and whether busy
   record: () => ({ analysis: recordState.analysis, identification: recordState.identification, busy: Boolean(recordState.busy) }),
   // the ranges of the time plot's two y axes (x_M'' and z_M'' each on its own)

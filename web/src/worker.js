@@ -3,8 +3,11 @@
 //               fields(); checkOnly: only check every value against its field's rule)
 //               {type: 'record', seq, text, name, options, values, soilScale}: a measured record
 //               (its CSV text; options: units, x_positive, z_positive as `oscidrum analyze`)
-// Messages out: {type: 'ready', fields, soilKeys, version}   (soilKeys: soil.input name -> the
-//               soil keys it reads, by the engine's key_in_effect)
+// Messages out: {type: 'ready', fields, soilKeys, rollerKeys, version}   (soilKeys: soil.input
+//               name -> the soil keys it reads; rollerKeys: roller.type name -> the keys that
+//               take effect with that roller and not with every roller (roller.M0 for the
+//               oscillation drum, roller.static_moment for the vibratory one); both by the
+//               engine's key_in_effect)
 //               {type: 'result', seq, result, errors, ms}   (errors: key -> message)
 //               {type: 'record-analysis', seq, analysis, ms}   (the engine's analyzeRecord)
 //               {type: 'record-identification', seq, identification, ms}   (identifyRecord)
@@ -22,7 +25,15 @@ const ready = createOscidrum().then((m) => {
     soilKeys[choice] = fields.filter((f) => f.key.startsWith('soil.') && f.key !== 'soil.input' &&
                                             m.keyInEffect({ 'soil.input': choice }, f.key)).map((f) => f.key);
   }
-  postMessage({ type: 'ready', fields, soilKeys, version: m.version() });
+  // The keys of one roller only: in effect with some roller.type and not with another.
+  const rollers = fields.find((f) => f.key === 'roller.type').choices;
+  const inEffect = Object.fromEntries(rollers.map((choice) => [choice,
+    new Set(fields.filter((f) => m.keyInEffect({ 'roller.type': choice }, f.key)).map((f) => f.key))]));
+  const rollerKeys = {};
+  for (const choice of rollers) {
+    rollerKeys[choice] = [...inEffect[choice]].filter((key) => rollers.some((other) => !inEffect[other].has(key)));
+  }
+  postMessage({ type: 'ready', fields, soilKeys, rollerKeys, version: m.version() });
 });
 
 function run(msg) {
