@@ -197,6 +197,41 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     result.flight_time = 0.0;
     *sample_rhs = 0;
   };
+  // Newton goes on from the last iterate with a fresh monodromy, mapping every step, as a warm
+  // start from there (when the chord steps contract too little: a large step from the
+  // neighbour, where the first map's monodromy is too far from the orbit's).
+  const auto start_again = [&] {
+    detail::BasicShootingStart<R> again = warm;
+    again.state = orbit;
+    again.phase = shot.phase;
+    again.predict_first = false;
+    return shooting(model, flow, progress, result, sample_rhs, all_samples, record, again);
+  };
+  if (shot.warm_prediction) {
+    // Plain period maps (no sampling, no recording: a recorded period costs about three plain
+    // ones) confirm the predicted step or give the next chord step, until the last contraction
+    // predicts a residual below Newton's test; the sampled period then confirms the last step.
+    double predicted = std::numeric_limits<double>::infinity();  // no contraction known yet
+    for (int chord_steps = 0; !(predicted < detail::shooting::kNewtonTol * num.steady_tol);
+         ++chord_steps) {
+      if (chord_steps >= kWarmChordSteps || d.periods_simulated + p > num.max_periods) return false;
+      flow.reset(shot.t0, orbit, shot.phase);
+      const FlowStop mapped = flow.advance(shot.t0 + p * model.period());
+      d.periods_simulated += p;
+      if (mapped != FlowStop::reached) return false;
+      change = detail::scaled_change<R>(flow.state(), orbit, shot.scale);
+      if (accepted()) break;
+      if (!(change < detail::shooting::kChordContraction * previous))
+        return change < previous ? start_again() : false;
+      const auto step = detail::shooting::newton_step<R>(shot.M, shot.scale, orbit, flow.state());
+      if (!step.finite()) return false;
+      orbit = step.apply(dynamics, orbit, shot.phase);
+      ++d.newton_iterations;
+      predicted = change * (change / previous);
+      previous = change;
+    }
+    flow.reset(shot.t0, orbit, shot.phase);
+  }
   long rhs_before = flow.counters().rhs_evaluations;
   FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
                                          record, p, confirm);
@@ -230,11 +265,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     discard_samples();
     d.periods_simulated += p;
     if (!unconfirmed || !(change < previous)) return false;
-    detail::BasicShootingStart<R> again = warm;
-    again.state = orbit;
-    again.phase = shot.phase;
-    again.predict_first = false;
-    return shooting(model, flow, progress, result, sample_rhs, all_samples, record, again);
+    return start_again();
   }
   // Settled: the orbit moved a little under plain integration and the transient method's own
   // test, run on from there, found it steady (sampled again after it).
