@@ -84,6 +84,7 @@ for roller in ROLLERS:
         "z": peak(outcomes, "ddz"),
         "cmv": column(outcomes, "cmv"),
         "kb": column(outcomes, "kb"),
+        "evib": column(outcomes, "evib"),
         "area": column(outcomes, "area"),
         "x1": np.array([o.metrics.ddx_amplitude[1] if o.ok else np.nan for o in outcomes]),
         "z1": np.array([o.metrics.ddz_amplitude[1] if o.ok else np.nan for o in outcomes]),
@@ -123,6 +124,7 @@ for roller, name, label, style in (
         ("vibratory", "cmv", "vibratory: CMV-type 300 A(2f)/A(f) of z_M''", "-"),
         ("vibratory", "z1", "vibratory: A(f) of z_M''", ":"),
         ("vibratory", "kb", "vibratory: Kb-type soil stiffness kb", "--"),
+        ("vibratory", "evib", "vibratory: Evib-type modulus evib", "-."),
         ("oscillation", "area", "oscillation: area of z_M''(x_M'')", "-"),
         ("oscillation", "z", "oscillation: max |z_M''|", ":")):
     v = results[roller][name]
@@ -153,8 +155,9 @@ print(f"{len(G_VALUES)} soils x 2 rollers; oscillation {results['oscillation']['
       f"{results['oscillation']['statuses']}, {results['vibratory']['statuses']}")
 print()
 print("| G [MN/m^2] | roller | contact mode | max abs x_M'' [m/s^2] | max abs z_M'' [m/s^2] | "
-      "A_1 of z_M'' [m/s^2] | CMV-type [-] | kb [MN/m] | area [m^2/s^4] | flight fraction |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+      "A_1 of z_M'' [m/s^2] | CMV-type [-] | kb [MN/m] | evib [MN/m^2] | area [m^2/s^4] | "
+      "flight fraction |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for G in (10.0, 25.0, 50.0, 75.0, 100.0):
     i = int(np.argmin(np.abs(G_VALUES - G)))
     for roller in ROLLERS:
@@ -164,16 +167,17 @@ for G in (10.0, 25.0, 50.0, 75.0, 100.0):
         z1 = f"{res['z1'][i]:.1f}" if at_f else "-"
         cmv = f"{res['cmv'][i]:.1f}" if at_f else "-"
         kb = f"{res['kb'][i] / 1e6:.1f}" if at_f else "-"
+        evib = f"{res['evib'][i] / 1e6:.1f}" if at_f else "-"  # vibratory drum only
         print(f"| {G_VALUES[i]:g} | {roller} | {res['modes'][i]} | {res['x'][i]:.1f} | "
-              f"{res['z'][i]:.1f} | {z1} | {cmv} | {kb} | {res['area'][i]:.0f} | "
+              f"{res['z'][i]:.1f} | {z1} | {cmv} | {kb} | {evib} | {res['area'][i]:.0f} | "
               f"{res['flight'][i]:.3f} |")
 print()
 print("| indicator | roller | d ln / d ln G at 10 | at 25 | at 50 | at 90 MN/m^2 |")
 print("|---|---|---|---|---|---|")
 for name, label in (("x", "max abs x_M''"), ("z", "max abs z_M''"), ("z1", "A_1 of z_M''"),
-                    ("cmv", "CMV-type"), ("kb", "kb"), ("area", "area")):
+                    ("cmv", "CMV-type"), ("kb", "kb"), ("evib", "evib"), ("area", "area")):
     for roller in ROLLERS:
-        if roller == "oscillation" and name in ("z1", "cmv", "kb"):
+        if roller == "oscillation" and name in ("z1", "cmv", "kb", "evib"):
             continue  # no component at f
         v = results[roller][name]
         cells = " | ".join(f"{sensitivity(v, G):+.2f}" for G in (10.0, 25.0, 50.0, 90.0))

@@ -6,8 +6,10 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
+#include "case_options.hpp"
 #include "commands.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
@@ -21,6 +23,7 @@ namespace {
 
 struct AnalyzeOptions {
   RecordInput input;
+  std::string case_file;  // the vibratory drum's case, for kb (optional)
   WindowOptions windows;
   std::string format = "table";
 };
@@ -91,8 +94,16 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
 int run(const AnalyzeOptions& o) {
   const RecordColumns rec = read_record(o.input);
   report_reading(rec);
-  const std::vector<RecordWindow> ws =
+  std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
+  // kb from the drum's vertical balance: the case's roller and the record's unbalance angle.
+  std::optional<Case> roller;
+  if (!o.case_file.empty()) {
+    io::CaseSpec spec;
+    roller = resolve_case(o.case_file, CaseOptions{}, spec);
+  }
+  const std::string kb_note =
+      record_kb(ws, rec.t, rec.unbalance_angle, roller ? &*roller : nullptr);
   // analyze_windows refuses a record shorter than one window, so there is always a first window;
   // should that ever fail, say so instead of reading an empty list.
   if (ws.empty()) throw oscidrum::Error("analyze: no window fits in the record " + o.input.file);
@@ -109,6 +120,7 @@ int run(const AnalyzeOptions& o) {
       j.update(window_json(ws.front()));
       j.erase("window");
       j["reading"] = reading_json(o.input, rec);
+      if (!kb_note.empty()) j["kb_note"] = kb_note;
     } else {
       nlohmann::ordered_json rows = nlohmann::json::array();
       for (const RecordWindow& w : ws) rows.push_back(window_json(w));
@@ -120,6 +132,7 @@ int run(const AnalyzeOptions& o) {
            {"reading", reading_json(o.input, rec)},
            {"valid_windows", valid},
            {"windows", rows}};
+      if (!kb_note.empty()) j["kb_note"] = kb_note;
     }
     std::cout << j.dump(2) << "\n";
   } else if (!single || o.format == "csv") {
@@ -168,6 +181,7 @@ int run(const AnalyzeOptions& o) {
     s.line("z_M'' max / min [m/s^2]", fmt(m.ddz_max, 5) + " / " + fmt(m.ddz_min, 5));
     s.line("psi (x_M'' -> z_M'') [rad]", fmt(m.psi_xz, 5));
     s.line("area z_M''(x_M'') [m^2/s^4]", fmt(m.area, 5));
+    s.line("Kb-type stiffness kb [N/m]", kb_note.empty() ? fmt(m.kb, 6) : "n/a (" + kb_note + ")");
     TextTable t;
     t.header = {"n", "f [Hz]", "A(x_M'') [m/s^2]", "A(z_M'') [m/s^2]", "x / max", "z / max"};
     t.right = {true, true, true, true, true, true};
@@ -212,6 +226,13 @@ void add_analyze_command(CLI::App& app, Action& action) {
       "  oscidrum run --csv steady.csv && oscidrum analyze steady.csv --f 39\n"
       "  cat record.txt | oscidrum analyze - --t-col 1 --x-col 2 --z-col 3");
   add_record_options(*sub, o->input);
+  sub->add_option("--case", o->case_file,
+                  "the vibratory drum's case file (roller.type = vibratory: roller.m, roller.kd, "
+                  "roller.static_moment), for the Kb-type stiffness kb (with --unbalance-col)");
+  sub->add_option("--unbalance-col", o->input.unbalance_col,
+                  "column of the unbalance's angle alpha [rad] (the unbalance force's downward "
+                  "component F0 sin(alpha); oscidrum's own exciters: alpha = 2 pi f t): name or "
+                  "index; with --case gives kb, without it kb is NaN with the reason");
   add_window_options(*sub, o->windows, 0.0);
   sub->add_option("--format", o->format,
                   "table, csv (the spectrum; with --window one row per window) or json")

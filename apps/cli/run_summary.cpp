@@ -54,6 +54,11 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
   // The Kb-type stiffness: a ratio to the fundamental of z_M.
   if (name == "kb" && std::isnan(m.kb))
     return std::string("n/a (z_M has no fundamental, e.g. by symmetry without MMd)");
+  // The Evib-type modulus: Lundberg's cylinder needs the soil's Poisson's ratio.
+  if (name == "evib" && std::isnan(m.evib))
+    return std::string(
+        "n/a (vibratory drum on a soil with a Poisson's ratio only: soil.input = modulus or "
+        "table2)");
   // The RMV- and CCV-type values: ratios to A(f) (and A(f/2)) of z_M''.
   if (name == "rmv" || name == "ccv") {
     const double v = name == "rmv" ? m.rmv : m.ccv;

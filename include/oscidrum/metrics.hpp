@@ -74,4 +74,29 @@ Metrics compute_metrics(const Result& result, int n_max = 10);
 /// oscidrum::Error as compute_metrics(result) does.
 Metrics compute_metrics(const Model& model, const Result& result, int n_max = 10);
 
+/// Lundberg's (1939) settlement [m] of a rigid cylinder of radius R [m] and length L [m] pressed
+/// by the force F >= 0 [N] into an elastic half-space of Young's modulus E > 0 [Pa] and Poisson's
+/// ratio nu in [0, 0.5), as the Evib evaluation uses it (docs/outputs.md):
+///   z = (1 - nu^2) / E * F / L * (2 / pi) * (1.8864 + ln(L / b)),
+///   b = sqrt(16 R (1 - nu^2) F / (pi L E))   (the half-width of the contact strip).
+/// Throws oscidrum::Error naming the argument out of its range.
+double lundberg_displacement(double F, double E, double R, double L, double nu);
+
+/// The E [Pa] for which Lundberg's relation rises by z2 - z1 between the forces F1 and F2:
+/// lundberg_displacement(F2, E) - lundberg_displacement(F1, E) = z2 - z1 (0 <= F1 < F2,
+/// z1 < z2). NaN when there is no such E with a contact strip narrower than about 1.5 L
+/// (docs/outputs.md). Throws oscidrum::Error for R, L, nu out of range.
+double lundberg_modulus(double F1, double z1, double F2, double z2, double R, double L, double nu);
+
+/// The Evib-type vibration modulus [Pa] of a closed force-displacement loop: z [m] the drum
+/// centre's vertical displacement (downwards) and F [N] the soil's vertical force on the drum at
+/// the same instants, in time order over one steady period. The loading branch runs from the
+/// loop's least z forward to its largest; its end point is the branch's largest F, its start the
+/// landing (the point where F rises from 0, interpolated linearly) after a flight, else the
+/// branch's first point; the result is lundberg_modulus between the two. NaN for a degenerate
+/// branch (no positive force, no rise in force or in z). docs/outputs.md gives the source and
+/// the choices.
+double vibration_modulus(std::span<const double> z, std::span<const double> F, double R, double L,
+                         double nu);
+
 }  // namespace oscidrum

@@ -201,7 +201,12 @@
     "Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T "       \
     "sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the "       \
     "excitation frequency, over that displacement's amplitude (the k_s of Anderegg and "        \
-    "Kaufmann 2004 from the contact force itself; docs/outputs.md)")
+    "Kaufmann 2004 from the contact force itself; docs/outputs.md)")                            \
+  X(double, evib, "Pa", "Evib-type vibration modulus",                                          \
+    "the Young's modulus under which Lundberg's rigid cylinder (radius roller.r, length "       \
+    "roller.b, the soil's Poisson's ratio) settles as the drum does on the loading branch of "  \
+    "F_v over z_M (Kroeber, Floss and Wallrath 2001, BOMAG's Evib; vibratory drum only; "       \
+    "docs/outputs.md)")
 
 // Quantities of the least-squares fit of a measured record.
 #define OSCIDRUM_RECORD_FIT(X)                                                     \
@@ -209,6 +214,16 @@
   X(double, residual_x, "-", "fit residual x_M''",                                 \
     "RMS of record minus fit, relative to the RMS of x_M''")                       \
   X(double, residual_z, "-", "fit residual z_M''", "the same for z_M''")
+
+// What a record gives with the roller's case and its unbalance angle (`analyze --case
+// --unbalance-col`): the drum's vertical balance (20) in place of the contact force.
+#define OSCIDRUM_RECORD_DRUM(X)                                                                   \
+  X(double, kb, "N/m", "Kb-type soil stiffness",                                                  \
+    "Re(F_v(f) / z_M(f)) as for a simulated state, with F_v(f) = F0 e^{i phi_u} + (m nu^2 - kd "  \
+    "- i nu cd) z_M(f) from the drum's vertical balance (20), z_M(f) = -z_M''(f) / nu^2: kb = m " \
+    "nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 with A_1, theta_1 of z_M'' and phi_u the "    \
+    "unbalance's phase (vibratory drum: m, kd, F0 = m_u e_u nu^2 from the case; NaN without "     \
+    "the case or the unbalance angle; docs/outputs.md)")
 
 // Metrics of a simulated steady state (Metrics), in output order.
 #define OSCIDRUM_METRICS(X)        \
@@ -218,4 +233,5 @@
 // Metrics of a measured record (RecordMetrics), in output order.
 #define OSCIDRUM_RECORD_METRICS(X) \
   OSCIDRUM_RECORD_FIT(X)           \
-  OSCIDRUM_ACCELERATION_METRICS(X)
+  OSCIDRUM_ACCELERATION_METRICS(X) \
+  OSCIDRUM_RECORD_DRUM(X)

@@ -109,6 +109,26 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                           std::span<const double> position,
                                           const WindowOptions& options = {});
 
+/// The phase phi_u [rad] of a vibratory drum's unbalance over the samples t [s] of a record:
+/// its angle alpha [rad] (RecordReading::unbalance_col: the unbalance force's downward
+/// component is F0 sin(alpha)) written as alpha = 2 pi f t + phi_u, phi_u the circular mean of
+/// alpha - 2 pi f t, in (-pi, pi]. Throws oscidrum::Error on sizes that differ or no samples.
+double unbalance_phase(std::span<const double> t, std::span<const double> alpha, double f);
+
+/// The Kb-type stiffness [N/m] of a record (docs/outputs.md, RecordMetrics::kb): from the
+/// fundamental ddz_1 of z_M'' (absolute-time phase, record.hpp), the excitation frequency f [Hz],
+/// the unbalance's phase phi_u [rad] and the vibratory drum of the case c (roller.m, roller.kd,
+/// roller.static_moment): m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 with
+/// F0 = m_u e_u nu^2. The same number as Metrics::kb of the steady state the record shows.
+/// Throws oscidrum::Error when c's roller is not vibratory; NaN when A_1 is not positive.
+double record_soil_stiffness(const Case& c, const Harmonic& ddz_1, double f, double phi_u);
+
+/// kb of every valid window of a record (RecordWindow::metrics.kb) from the case c and the
+/// unbalance's angle alpha (one per sample of t, or empty): "" when filled, else why kb is NaN
+/// (no case, not a vibratory drum, no angle), in one line, and every window's kb NaN.
+std::string record_kb(std::vector<RecordWindow>& windows, std::span<const double> t,
+                      std::span<const double> alpha, const Case* c);
+
 /// Position [m] from a speed column [m/s] by the trapezoidal rule, 0 at the first sample.
 std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed);
 

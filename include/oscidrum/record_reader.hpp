@@ -19,9 +19,13 @@ struct RecordReading {
   /// Column names or 1-based indices; empty: recognised from the header (t, time, ...; ddx_M,
   /// ax, acc_x, ...; ddz_M, az, acc_z, ...: see read_record).
   std::string t_col, x_col, z_col;
-  std::string pos_col, speed_col;      ///< optional position [m] or speed [m/s] column
-  std::string lat_col, lon_col;        ///< optional GNSS latitude, longitude [deg, WGS 84]
-  std::string east_col, north_col;     ///< optional projected easting, northing [m]
+  std::string pos_col, speed_col;   ///< optional position [m] or speed [m/s] column
+  std::string lat_col, lon_col;     ///< optional GNSS latitude, longitude [deg, WGS 84]
+  std::string east_col, north_col;  ///< optional projected easting, northing [m]
+  /// Optional angle of the vibratory drum's unbalance [rad]: alpha with the unbalance force's
+  /// downward component F0 sin(alpha) (z down), so alpha = nu t for oscidrum's own exciters
+  /// (docs/model.md section 14); kb of a record needs it (docs/outputs.md).
+  std::string unbalance_col;
   std::string units = "auto";          ///< the accelerations: auto (the header's), m/s2 or g
   std::string t_units = "auto";        ///< the time column: auto (the header's, else s), s, ms, us
   std::string x_positive = "forward";  ///< forward (the model's x) or backward
@@ -34,7 +38,8 @@ struct RecordColumns {
   std::vector<double> t, ddx_M, ddz_M, position;  ///< position empty without a column
   std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
   std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
-  std::string delimiter;            ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  std::vector<double> unbalance_angle;  ///< the unbalance's angle [rad] (empty without a column)
+  std::string delimiter;                ///< as detected: "comma", "semicolon", "tab", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
   /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without

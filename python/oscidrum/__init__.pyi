@@ -301,6 +301,8 @@ class Metrics:
     """largest position angle delta (paper Fig. 8a) [rad]"""
     delta_min: float
     """smallest position angle delta [rad]"""
+    evib: float
+    """the Young's modulus under which Lundberg's rigid cylinder (radius roller.r, length roller.b, the soil's Poisson's ratio) settles as the drum does on the loading branch of F_v over z_M (Kroeber, Floss and Wallrath 2001, BOMAG's Evib; vibratory drum only; docs/outputs.md) [Pa]"""
     flight_fraction: float
     """share of the time in flight, the drum off the trough (contact.unilateral; 0 with permanent contact) [-]"""
     friction_work: float
@@ -496,6 +498,8 @@ class RecordMetrics:
     """smallest z_M'' [m/s^2]"""
     ddz_phase: numpy.ndarray
     """theta_n of z_M'' [rad]"""
+    kb: float
+    """Re(F_v(f) / z_M(f)) as for a simulated state, with F_v(f) = F0 e^{i phi_u} + (m nu^2 - kd - i nu cd) z_M(f) from the drum's vertical balance (20), z_M(f) = -z_M''(f) / nu^2: kb = m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 with A_1, theta_1 of z_M'' and phi_u the unbalance's phase (vibratory drum: m, kd, F0 = m_u e_u nu^2 from the case; NaN without the case or the unbalance angle; docs/outputs.md) [N/m]"""
     psi_xz: float
     """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12) [rad]"""
     residual_x: float

@@ -646,6 +646,25 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   m.kb = detail::soil_stiffness(spectrum(nodes, &Node::vertical_force, P, t0, f, p, 1)[1],
                                 spectrum(nodes, &Node::z, P, t0, f, p, 2));
 
+  // The Evib-type modulus: the loop F_v(z_M) through kEvibPoints + 1 points of each piece, both
+  // ends included (a landing's two one-sided values of F_v at the same z_M).
+  m.evib = std::numeric_limits<double>::quiet_NaN();
+  const Case& c = model.parameters();
+  const double nu_soil = detail::evib_poisson_ratio(c);
+  if (c.roller.type == RollerType::vibratory && !std::isnan(nu_soil)) {
+    constexpr int kEvibPoints = 32;
+    std::vector<double> z, Fv;
+    z.reserve(pieces.size() * (kEvibPoints + 1));
+    Fv.reserve(z.capacity());
+    for (const Piece& pc : pieces)
+      for (int k = 0; k <= kEvibPoints; ++k) {
+        const double t = k == kEvibPoints ? pc.b : pc.a + (pc.b - pc.a) * k / kEvibPoints;
+        z.push_back(pc.f[kZ](t));
+        Fv.push_back(pc.f[kVerticalForce](t));
+      }
+    m.evib = vibration_modulus(z, Fv, c.roller.r, c.roller.b, nu_soil);
+  }
+
   m.area = curve_area(pieces);
   if (std::isnan(m.area)) m.area = extrapolated_area(pieces);
   return m;

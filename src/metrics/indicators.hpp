@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "oscidrum/metrics.hpp"
+#include "oscidrum/parameters.hpp"
+#include "oscidrum/soil.hpp"
 
 namespace oscidrum::detail {
 
@@ -100,6 +102,21 @@ inline double soil_stiffness(const Harmonic& Fv, const Spectrum& hz) {
   for (const Harmonic& h : hz) size = std::max(size, h.amplitude);
   if (!(z1 > kAbsentFundamental * size)) return std::numeric_limits<double>::quiet_NaN();
   return Fv.amplitude / z1 * std::cos(Fv.phase - hz[1].phase);
+}
+
+/// The soil's Poisson's ratio the Evib-type modulus is evaluated with (docs/outputs.md): soil.nu
+/// for soil.input = modulus, Table 2's nu = 0.3 for table2, NaN for a soil given by its
+/// coefficients (it has no Poisson's ratio, so no Evib).
+inline double evib_poisson_ratio(const Case& c) {
+  switch (c.soil.input) {
+    case SoilInput::modulus:
+      return c.soil.nu;
+    case SoilInput::table2:
+      return kTable2Nu;
+    case SoilInput::coefficients:
+      break;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 /// soil_stiffness from the uniformly sampled steady state (`cycles` whole periods of f from t0);

@@ -188,6 +188,9 @@ Metrics compute_metrics(const Result& result, int n_max) {
   if (s.gap.size() == n)
     for (double g : s.gap) m.gap_max = std::max(m.gap_max, g);
   m.kb = detail::soil_stiffness(s, cycles, f, t0);
+  // The Evib-type modulus needs the drum's radius and length and the soil's Poisson's ratio,
+  // which a Result does not hold: compute_metrics(model, result) computes it.
+  m.evib = std::numeric_limits<double>::quiet_NaN();
   return m;
 }
 

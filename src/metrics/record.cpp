@@ -210,6 +210,8 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
                 std::to_string(n_max));
   check_record(t, ddx, ddz);
   RecordMetrics m;
+  m.kb = std::numeric_limits<double>::quiet_NaN();  // needs the case and the unbalance's angle:
+                                                    // record_kb
   m.cycles = t.empty() ? 0.0 : (t.back() - t.front()) * f;
   if (t.size() < 2 || m.cycles < 1.0)
     throw Error("record: must span at least one excitation period (1/f = " + num(1.0 / f) +
@@ -749,6 +751,66 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     if (!windowed || end_window) break;
   }
   return out;
+}
+
+double unbalance_phase(std::span<const double> t, std::span<const double> alpha, double f) {
+  if (t.size() != alpha.size() || t.empty())
+    throw Error("unbalance_phase: t has " + std::to_string(t.size()) +
+                " samples and the unbalance angle " + std::to_string(alpha.size()) +
+                "; expected the same number, at least 1");
+  // The circular mean of alpha - nu t: a sum of unit vectors, immune to the 2 pi wraps of alpha.
+  const double nu = 2.0 * M_PI * f;
+  double c = 0.0, s = 0.0;
+  for (std::size_t j = 0; j < t.size(); ++j) {
+    const double d = alpha[j] - nu * t[j];
+    c += std::cos(d);
+    s += std::sin(d);
+  }
+  return std::atan2(s, c);
+}
+
+double record_soil_stiffness(const Case& c, const Harmonic& ddz_1, double f, double phi_u) {
+  if (c.roller.type != RollerType::vibratory)
+    throw Error(
+        "record_soil_stiffness: roller.type must be \"vibratory\" (the unbalance force "
+        "F0 sin(alpha) on the drum's centre); got the oscillation drum");
+  // The drum's vertical balance (20) with the unbalance force: F_v = W + F_z - cd z_M' - kd z_M
+  // - m z_M''. At f, as phasors of e^{i nu t} (y = A sin(nu t + theta) <-> A e^{i theta}):
+  // F_z(f) = F0 e^{i phi_u}, z_M(f) = -A_1 e^{i theta_1} / nu^2, so
+  // Re(F_v(f) / z_M(f)) = m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 (the cd term is
+  // imaginary). The same identity as VibratoryDrum.SoilStiffnessIsTheDrumEquationsEstimate's.
+  if (!(ddz_1.amplitude > 0.0)) return kNaN;
+  const double nu = 2.0 * M_PI * f, F0 = c.roller.static_moment * nu * nu;
+  return c.roller.m * nu * nu - c.roller.kd -
+         F0 * nu * nu * std::cos(phi_u - ddz_1.phase) / ddz_1.amplitude;
+}
+
+std::string record_kb(std::vector<RecordWindow>& windows, std::span<const double> t,
+                      std::span<const double> alpha, const Case* c) {
+  std::string why;
+  if (c == nullptr)
+    why =
+        "no roller: give the vibratory drum's case (--case) for its mass, buffers and static "
+        "moment";
+  else if (c->roller.type != RollerType::vibratory)
+    why =
+        "the case's roller is the oscillation drum: kb reads the unbalance force of "
+        "roller.type = \"vibratory\"";
+  else if (alpha.empty())
+    why =
+        "the record has no unbalance angle (--unbalance-col): without the exciter's phase the "
+        "contact force is unknown";
+  else if (alpha.size() != t.size())
+    throw Error("record_kb: the unbalance angle has " + std::to_string(alpha.size()) +
+                " samples and t " + std::to_string(t.size()) + "; expected the same number");
+  for (RecordWindow& w : windows) {
+    w.metrics.kb = kNaN;
+    if (!why.empty() || !w.valid || w.metrics.ddz_harmonics.size() < 2) continue;
+    const double phi_u =
+        unbalance_phase(t.subspan(w.first, w.count), alpha.subspan(w.first, w.count), w.f);
+    w.metrics.kb = record_soil_stiffness(*c, w.metrics.ddz_harmonics[1], w.f, phi_u);
+  }
+  return why;
 }
 
 }  // namespace oscidrum

@@ -316,6 +316,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                      : find(o.z_col, "--z-col");
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
+  const int cu = o.unbalance_col.empty() ? -1 : find(o.unbalance_col, "--unbalance-col");
   if (o.lat_col.empty() != o.lon_col.empty())
     throw Error(std::string("give both --lat-col and --lon-col (the point of each window); got "
                             "only ") +
@@ -380,6 +381,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     out.ddz_M.push_back(kz * get(cz));
     if (cp >= 0) out.position.push_back(get(cp));
     if (cs >= 0) speed.push_back(get(cs));
+    if (cu >= 0) out.unbalance_angle.push_back(get(cu));
     if (clat >= 0) {
       const double lat = get(clat), lon = get(clon);
       if (!(std::abs(lat) <= 90.0) || !(std::abs(lon) <= 180.0))

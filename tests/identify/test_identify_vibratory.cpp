@@ -5,6 +5,8 @@
 // force amplitude F0 = m_u e_u nu^2 follows the record's f by itself.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
 #include <vector>
 
 #include "identify/synthetic_records.hpp"
@@ -50,6 +52,57 @@ TEST(IdentifyVibratory, TheSoilOfAVibratoryRecordIsRecovered) {
     // The model at the estimate is the vibratory drum at the record's f.
     EXPECT_NEAR(id.fitted.roller.f / kF, 1.0, 1e-4);
     EXPECT_EQ(get_field(id.fitted, "roller.static_moment"), kStaticMoment);
+  }
+}
+
+// kb of a record (docs/outputs.md, `analyze --case --unbalance-col`): a noise-free record that
+// oscidrum writes of a vibratory steady state (record time = model time modulo the period, so
+// the unbalance's angle is alpha = 2 pi f t, the documented convention), sampled at 2000 points
+// per period over 6 periods, gives the kb of the simulated steady state (the dense integral of
+// the contact force): in continuous contact to the interpolation of the record (1e-6), with
+// lift-off to the aliasing of the jump of z_M'' at the landing in 2000 samples per period
+// (O(1/2000): 2e-3). Without the angle, the case or a vibratory roller: NaN and the reason.
+TEST(IdentifyVibratory, KbOfARecordIsTheSimulatedKb) {
+  struct Expected {
+    double G, tolerance;
+    bool lift_off;
+  };
+  for (const Expected e : {Expected{12e6, 1e-6, false}, Expected{60e6, 2e-3, true}}) {
+    SCOPED_TRACE("G = " + std::to_string(e.G));
+    const Case truth = vibratory(e.G, kNominal);
+    const Model model(truth);
+    const Result steady = simulate(model);
+    ASSERT_EQ(steady.status, Status::steady_state) << steady.message;
+    const Metrics sim = compute_metrics(model, steady);
+    EXPECT_EQ(sim.flight_fraction > 0.0, e.lift_off);
+    SyntheticRecord o;
+    o.duration = 6.0 / kNominal;
+    o.sample_rate = 2000.0 * kNominal;
+    const RecordSamples r = synthetic_record({truth}, o);
+    std::vector<double> alpha(r.t.size());
+    for (std::size_t j = 0; j < r.t.size(); ++j) alpha[j] = 2.0 * M_PI * kNominal * r.t[j];
+    WindowOptions wo;
+    wo.f = kNominal;
+    std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, wo);
+    ASSERT_EQ(ws.size(), 1u);
+    ASSERT_TRUE(ws[0].valid) << ws[0].reason;
+    EXPECT_TRUE(std::isnan(ws[0].metrics.kb));  // before record_kb
+    EXPECT_EQ(record_kb(ws, r.t, alpha, &truth), "");
+    EXPECT_NEAR(ws[0].metrics.kb, sim.kb, e.tolerance * sim.kb);
+    // The phase matters: the angle a quarter turn off gives another number.
+    std::vector<double> off = alpha;
+    for (double& a : off) a += M_PI / 2.0;
+    std::vector<RecordWindow> shifted = ws;
+    EXPECT_EQ(record_kb(shifted, r.t, off, &truth), "");
+    EXPECT_GT(std::abs(shifted[0].metrics.kb - sim.kb), 0.1 * sim.kb);
+    // Without the angle, the case, or with the oscillation drum: NaN and one line why.
+    EXPECT_NE(record_kb(ws, r.t, {}, &truth).find("no unbalance angle"), std::string::npos);
+    EXPECT_TRUE(std::isnan(ws[0].metrics.kb));
+    EXPECT_NE(record_kb(ws, r.t, alpha, nullptr).find("--case"), std::string::npos);
+    EXPECT_TRUE(std::isnan(ws[0].metrics.kb));
+    const Case paper;
+    EXPECT_NE(record_kb(ws, r.t, alpha, &paper).find("oscillation drum"), std::string::npos);
+    EXPECT_TRUE(std::isnan(ws[0].metrics.kb));
   }
 }
 

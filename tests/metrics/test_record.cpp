@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <variant>
 #include <vector>
@@ -316,6 +317,11 @@ TEST(Record, FailedWindowHasEveryMetricUnavailable) {
   ASSERT_FALSE(good.empty());
   ASSERT_TRUE(good.front().valid) << good.front().reason;
   for (const RecordOutput& out : record_outputs()) {
+    // kb needs the roller's case and the unbalance's angle (record_kb): NaN from the fit alone.
+    if (out.name == std::string_view("kb")) {
+      EXPECT_TRUE(std::isnan(good.front().metrics.kb));
+      continue;
+    }
     if (std::holds_alternative<double RecordMetrics::*>(out.member)) {
       EXPECT_TRUE(std::isfinite(scalar_value(good.front().metrics, out))) << out.name;
     }

@@ -332,5 +332,36 @@ TEST(VibratoryDrum, ParametersAndTheirRules) {
   EXPECT_EQ(paper.F0(), 0.0);
 }
 
+// The Evib-type modulus (docs/outputs.md) of the vibratory drum of examples/vibratory.toml
+// (m_u e_u = 0.9 kg m at 30 Hz, mu = 0.5, unilateral contact) on Appendix B soils of increasing
+// G, through continuous contact and partial uplift: finite, positive and increasing with G. Not
+// E = 2 G (1 + nu) of the soil: the soil is a Kelvin-Voigt pair, not Lundberg's half-space (the
+// values are in docs/vibratory.md). NaN for a soil given by its coefficients (no Poisson's
+// ratio), for the oscillation drum, and from compute_metrics(result), which has no drum geometry.
+TEST(VibratoryDrum, VibrationModulusGrowsWithTheSoil) {
+  Case c = vibratory_case(Exciter::circular);
+  c.roller.static_moment = 0.9;
+  c.contact.unilateral = true;
+  c.soil.input = SoilInput::modulus;
+  double previous = 0.0;
+  for (double G : {10e6, 25e6, 50e6, 100e6}) {
+    c.soil.G = G;
+    const Model model(c);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state) << G << ": " << r.message;
+    const Metrics m = compute_metrics(model, r);
+    EXPECT_TRUE(std::isfinite(m.evib)) << G;
+    EXPECT_GT(m.evib, previous) << G << " (" << r.diagnostics.contact_mode << ")";
+    previous = m.evib;
+    EXPECT_TRUE(std::isnan(compute_metrics(r).evib));
+  }
+  c.soil = Soil{};  // Table 2 at 25 MN/m^2: nu = 0.3
+  EXPECT_GT(compute_metrics(Model(c), simulate(Model(c))).evib, 0.0);
+  c.soil.input = SoilInput::coefficients;
+  EXPECT_TRUE(std::isnan(compute_metrics(Model(c), simulate(Model(c))).evib));
+  const Case paper;
+  EXPECT_TRUE(std::isnan(compute_metrics(Model(paper), simulate(Model(paper))).evib));
+}
+
 }  // namespace
 }  // namespace oscidrum::detail
