@@ -54,8 +54,7 @@ double lundberg_displacement(double F, double E, double R, double L, double nu) 
          (kLundbergConstant + std::log(L / b));
 }
 
-double lundberg_modulus(double F1, double z1, double F2, double z2, double R, double L,
-                        double nu) {
+double lundberg_modulus(double F1, double z1, double F2, double z2, double R, double L, double nu) {
   require_geometry(R, L, nu, "lundberg_modulus");
   if (!(F1 >= 0.0) || !(F2 > F1) || !(z2 > z1) || !std::isfinite(F2) || !std::isfinite(z1) ||
       !std::isfinite(z2))
@@ -84,8 +83,8 @@ double lundberg_modulus(double F1, double z1, double F2, double z2, double R, do
   return std::exp(u);
 }
 
-double vibration_modulus(std::span<const double> z, std::span<const double> F, double R,
-                         double L, double nu) {
+double vibration_modulus(std::span<const double> z, std::span<const double> F, double R, double L,
+                         double nu) {
   require_geometry(R, L, nu, "vibration_modulus");
   const std::size_t n = z.size();
   if (F.size() != n)

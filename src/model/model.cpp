@@ -158,7 +158,8 @@ Model::Model(const Case& c) : case_(c) {
 }
 
 double Model::torque(double t) const {
-  const double MM = M0_ * std::sin(nu_ * t) + case_.MMd;  // (5), (6)
+  // (5), (6); without an oscillating torque (the vibratory drum: M0 = 0) no sine to evaluate.
+  const double MM = (M0_ == 0.0 ? 0.0 : M0_ * std::sin(nu_ * t)) + case_.MMd;
   if (!(t < ramp_end_)) return MM;
   // A gentler start from rest: the excitation ramped in (docs/periodic.md).
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
@@ -170,8 +171,9 @@ CentreLoad Model::centre_load(double t) const {
   double scale = F0_;
   if (t < ramp_end_) scale *= 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
   const Exciter e = case_.roller.exciter;
-  const double Fx = e == Exciter::vertical ? 0.0 : std::cos(theta) * scale;
-  return {e == Exciter::circular_reversed ? -Fx : Fx, W_ + std::sin(theta) * scale};
+  const double s = std::sin(theta), c = std::cos(theta);  // one sincos
+  const double Fx = e == Exciter::vertical ? 0.0 : c * scale;
+  return {e == Exciter::circular_reversed ? -Fx : Fx, W_ + s * scale};
 }
 
 State Model::initial_state() const {
