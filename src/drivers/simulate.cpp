@@ -24,8 +24,8 @@ namespace {
 // Periods a shooting orbit may be integrated on plainly to settle (see shooting()), at most.
 constexpr int kSettlePeriods = 32;
 
-// A warm start's predicted step (shooting::BasicShootingOutcome::warm_prediction): further chord
-// steps confirmed on the sampled period, at most.
+// A warm start's predicted step (shooting::BasicShootingOutcome::warm_prediction): chord steps
+// (each confirmed on a period map), at most.
 constexpr int kWarmChordSteps = 4;
 
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
@@ -173,9 +173,9 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // compute_metrics would integrate again. The orbit is confirmed on them, and the rest of the
   // sampled periods integrated only then. A warm start's predicted step (warm_prediction) is
   // accepted when its residual meets Newton's own convergence test (kNewtonTol steady_tol, so
-  // that a warm case's orbit is as converged as a cold one's); until then each sampled period's
-  // end gives the next chord step with the first map's monodromy, as long as each contracts the
-  // residual kChordContraction-fold (else the warm start has failed).
+  // that a warm case's orbit is as converged as a cold one's); until then period maps give the
+  // next chord steps with the first map's monodromy, as long as each contracts the residual
+  // kChordContraction-fold (below).
   auto orbit = shot.orbit;
   double change = std::numeric_limits<double>::infinity();
   double previous = shot.final_change;  // the residual the last step was taken from
@@ -207,64 +207,62 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     again.predict_first = false;
     return shooting(model, flow, progress, result, sample_rhs, all_samples, record, again);
   };
-  if (shot.warm_prediction) {
-    // Plain period maps (no sampling, no recording: a recorded period costs about three plain
-    // ones) confirm the predicted step or give the next chord step, until the last contraction
-    // predicts a residual below Newton's test; the sampled period then confirms the last step.
-    double predicted = std::numeric_limits<double>::infinity();  // no contraction known yet
-    for (int chord_steps = 0; !(predicted < detail::shooting::kNewtonTol * num.steady_tol);
-         ++chord_steps) {
-      if (chord_steps >= kWarmChordSteps || d.periods_simulated + p > num.max_periods) return false;
-      flow.reset(shot.t0, orbit, shot.phase);
+  // The sampled (and recorded) period confirms the orbit. A warm start's predicted step is first
+  // confirmed on plain period maps (no sampling, no recording: a recorded period costs about
+  // three plain ones), each giving the next chord step, until the last contraction predicts a
+  // residual well below Newton's test; a recorded period that does not confirm gives a chord
+  // step too.
+  double predicted = std::numeric_limits<double>::infinity();  // no contraction known yet
+  long rhs_before = flow.counters().rhs_evaluations;
+  FlowStop stop = FlowStop::reached;
+  bool unconfirmed = false;
+  for (int chord_steps = 0;; ++chord_steps) {
+    const bool record_now = !shot.warm_prediction || predicted < detail::shooting::kPredictMargin *
+                                                                     detail::shooting::kNewtonTol *
+                                                                     num.steady_tol;
+    if (chord_steps > 0) flow.reset(shot.t0, orbit, shot.phase);
+    if (record_now) {
+      discard_samples();
+      rhs_before = flow.counters().rhs_evaluations;
+      stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
+                                    record, p, confirm);
+      // FlowStop::observer: the flow reached the end of a period that did not confirm the orbit.
+      unconfirmed = stop == FlowStop::observer;
+      if (!unconfirmed || !shot.warm_prediction) break;
+      d.periods_simulated += p;  // the recorded period that did not confirm the step
+    } else {
       const FlowStop mapped = flow.advance(shot.t0 + p * model.period());
       d.periods_simulated += p;
-      if (mapped != FlowStop::reached) return false;
+      if (mapped != FlowStop::reached) {
+        stop = mapped;
+        break;
+      }
       change = detail::scaled_change<R>(flow.state(), orbit, shot.scale);
-      if (accepted()) break;
-      if (!(change < detail::shooting::kChordContraction * previous))
-        return change < previous ? start_again() : false;
-      const auto step = detail::shooting::newton_step<R>(shot.M, shot.scale, orbit, flow.state());
-      if (!step.finite()) return false;
-      orbit = step.apply(dynamics, orbit, shot.phase);
-      ++d.newton_iterations;
-      predicted = change * (change / previous);
-      previous = change;
+      if (accepted()) {
+        predicted = 0.0;  // confirmed: its recorded period follows, from the same state
+        continue;
+      }
     }
-    flow.reset(shot.t0, orbit, shot.phase);
-  }
-  long rhs_before = flow.counters().rhs_evaluations;
-  FlowStop stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
-                                         record, p, confirm);
-  for (int chord_steps = 0;
-       shot.warm_prediction && stop == FlowStop::observer && std::isfinite(change) &&
-       change < detail::shooting::kChordContraction * previous && chord_steps < kWarmChordSteps &&
-       d.periods_simulated + p <= num.max_periods;
-       ++chord_steps) {
-    // Not yet converged: the chord step from this period's end, and its period.
+    if (!(change < detail::shooting::kChordContraction * previous) ||
+        chord_steps + 1 >= kWarmChordSteps || d.periods_simulated + p > num.max_periods)
+      break;
     const auto step = detail::shooting::newton_step<R>(shot.M, shot.scale, orbit, flow.state());
     if (!step.finite()) break;
     orbit = step.apply(dynamics, orbit, shot.phase);
-    previous = change;
     ++d.newton_iterations;
-    d.periods_simulated += p;  // the period that did not confirm
-    discard_samples();
-    flow.reset(shot.t0, orbit, shot.phase);
-    rhs_before = flow.counters().rhs_evaluations;
-    stop = detail::sample_periods(flow, periods, num.samples_per_period, result, all_samples,
-                                  record, p, confirm);
+    predicted = change * (change / previous);
+    previous = change;
+    unconfirmed = false;
   }
-  // The flow reached the end of the period that did not confirm the orbit.
-  const bool unconfirmed = stop == FlowStop::observer;
   if (unconfirmed) stop = FlowStop::reached;
   *sample_rhs = (flow.counters().rhs_evaluations - rhs_before) / std::max(1, periods);
   if (shot.warm_prediction && !(stop == FlowStop::reached && accepted())) {
-    // The chord steps did not converge (a large step from the neighbour, where the first map's
-    // monodromy is too far from the orbit's): Newton goes on from the last iterate with a fresh
-    // monodromy, mapping every step, as a warm start from there; when that fails too, the cold
-    // start follows.
+    // The chord steps did not converge (they contract too little: a large step from the
+    // neighbour, where the first map's monodromy is too far from the orbit's): Newton goes on
+    // from the last iterate with a fresh monodromy (start_again) while the residual decreased;
+    // else, and when that fails too, the cold start follows.
     discard_samples();
-    d.periods_simulated += p;
-    if (!unconfirmed || !(change < previous)) return false;
+    if (stop != FlowStop::reached || !(change < previous)) return false;
     return start_again();
   }
   // Settled: the orbit moved a little under plain integration and the transient method's own
