@@ -51,6 +51,8 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
       {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
       {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
   };
+  if (name == "mu_required" && std::isnan(m.mu_required))
+    return std::string("n/a (the drum lifts off: N reaches 0, where |T|/N has no bound)");
   // The Kb-type stiffness: a ratio to the fundamental of z_M.
   if (name == "kb" && std::isnan(m.kb))
     return std::string("n/a (z_M has no fundamental, e.g. by symmetry without MMd)");

@@ -184,7 +184,7 @@
     "share of the sampled time in slip (either sign)")                                          \
   X(double, mu_required, "-", "mu required",                                                    \
     "max |T|/N over the steady period: the friction coefficient rolling without slip needs "    \
-    "(equals mu when the drum slips) (24-26)")                                                  \
+    "(equals mu when the drum slips; NaN with lift-off, where N reaches 0) (24-26)")            \
   X(double, friction_work, "J", "friction work per period",                                     \
     "work dissipated by sliding friction per excitation period: integral of |T v_rel| dt over " \
     "the sampled window / its periods (13, 27)")                                                \

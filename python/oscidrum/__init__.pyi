@@ -316,7 +316,7 @@ class Metrics:
     liftoffs_per_period: float
     """lift-offs per excitation period on the steady state (contact.unilateral) [-]"""
     mu_required: float
-    """max |T|/N over the steady period: the friction coefficient rolling without slip needs (equals mu when the drum slips) (24-26) [-]"""
+    """max |T|/N over the steady period: the friction coefficient rolling without slip needs (equals mu when the drum slips; NaN with lift-off, where N reaches 0) (24-26) [-]"""
     phi_amplitude: float
     """amplitude A_1 of phi (drift removed) [rad]"""
     phi_lag: float

@@ -639,6 +639,7 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   for (const Node& nd : nodes) work += nd.weight * nd.friction_power;
   m.friction_work = work / p;
   detail::set_phase_fractions(m, time[1], time[2], time[0], time[3]);
+  detail::no_required_mu_with_flight(m);
   m.liftoffs_per_period = static_cast<double>(rec.lift_offs) / p;
   m.gap_max = std::max(gap.hi, 0.0);
   m.landing_velocity = rec.landing_speed;

@@ -154,6 +154,13 @@ inline void set_phase_fractions(Metrics& m, double stick, double slip_positive,
   m.slip_fraction = m.slip_positive_fraction + m.slip_negative_fraction;
 }
 
+/// mu_required = max |T| / N has no bound where the drum lifts off (N falls to 0 while T need not,
+/// and the value found depends on how close a sample or a node comes to the lift-off): NaN when
+/// the steady state has flight (after set_phase_fractions).
+inline void no_required_mu_with_flight(Metrics& m) {
+  if (m.flight_fraction > 0.0) m.mu_required = std::numeric_limits<double>::quiet_NaN();
+}
+
 /// Every number of an output table's struct NaN and its spectra empty: the metrics of what is not
 /// a steady state or a window that failed (generated from the table, so a new metric cannot be
 /// forgotten and read 0).

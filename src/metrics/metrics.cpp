@@ -175,6 +175,7 @@ Metrics compute_metrics(const Result& result, int n_max) {
     detail::set_phase_fractions(m, count(Phase::stick), count(Phase::slip_positive),
                                 count(Phase::slip_negative), count(Phase::flight));
   }
+  detail::no_required_mu_with_flight(m);
   // Flight (contact.unilateral): lift-offs and landings are events of the sampled window; the
   // largest gap is the samples' (the dense output's is compute_metrics(model, result)'s).
   long lift_offs = 0;
