@@ -15,15 +15,8 @@
 //     on pieces where a bound on the curvature lets an extremum beat the nodes' values);
 //   harmonics, phase lags, THD, friction work, phase fractions: integrals over each piece by
 //     16-point Gauss-Legendre quadrature;
-//   area: exact for the piecewise curve (enclosed_area with bulges): a polygon through 5 points
-//     per piece, every self-intersection of the curve located by Newton on the interpolants and
-//     made a point of both branches, and each edge corrected by the area between its arc and its
-//     chord. The polygon's points where two pieces join are the exact node values, the same bits
-//     on both sides (an ulp apart, the chords beside a turning point of the curve crossed at the
-//     joint: 5 of the 112 cases of a Table 2 sweep). Where Newton cannot place a crossing of two
-//     chords on the arcs (a sharp corner where two pieces join), polygons of the interpolants, n
-//     points per piece doubled and Richardson-extrapolated to 1e-11, instead (the two agree
-//     to 1.7e-12 on every regression profile).
+//   area: exact for the piecewise curve (src/drivers/curve_area.cpp): Green's theorem on the
+//     arcs between its self-intersections, each located by Newton on the interpolants.
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
@@ -36,6 +29,7 @@
 #include <tuple>
 #include <vector>
 
+#include "drivers/curve_area.hpp"
 #include "drivers/period_recording.hpp"
 #include "equations/equations.hpp"
 #include "metrics/area.hpp"
@@ -51,7 +45,6 @@ namespace oscidrum {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
 
 using detail::recording::Interpolant;
 using detail::recording::kDegree;
@@ -133,281 +126,6 @@ struct Node {  // a Gauss-Legendre node of one piece
   double tau, weight, ddx, ddz, phi, friction_power, vertical_force, z;
   double cos1, sin1;  // cos(nu tau), sin(nu tau)
 };
-
-// The area of the z_M''-x_M'' curve of the pieces: a polygon through kAreaPoints + 1 points per
-// piece (the jumps of the accelerations at switches are straight edges between pieces), with
-// every self-intersection of the curve located on the interpolants (Newton) and inserted as a
-// point of both branches, and each polygon edge inside a piece corrected by the exact area
-// between the arc and its chord (enclosed_area with bulges).
-// NaN when a self-intersection could not be located.
-double curve_area(const std::vector<Piece>& pieces);
-
-// The fallback: polygons through n points per piece of the interpolants, n doubled and
-// Richardson-extrapolated (error ~ n^-2) until two estimates agree to 1e-11 relative, or until the
-// sweep of the next polygon would cost more than kFallbackVisits (edge, slab) visits (area.hpp,
-// sweep_visits; always at least n = 8, one extrapolation). A period of thousands of pieces (10 000
-// at 0.1 Hz), or a curve that winds thousands of times around one place (a drum barely excited:
-// the accelerations ring down after each switch), must not be refined to 4096 points per piece
-// (millions of points, each slab crossed by thousands of edges: seconds to minutes). Then the last
-// extrapolation stands, with an error of the order of its difference from the one before (7e-9
-// relative for the paper's roller at 0.1 Hz, tests/drivers/test_steady_metrics.cpp).
-constexpr std::size_t kFallbackVisits = 30'000'000;
-
-double extrapolated_area(const std::vector<Piece>& pieces) {
-  double previous = std::numeric_limits<double>::quiet_NaN(), coarse = 0.0, area = 0.0;
-  std::vector<double> x, z;
-  for (int n = 4; n <= (1 << 12); n *= 2) {
-    x.clear();
-    z.clear();
-    for (const Piece& pc : pieces) {
-      for (int k = 0; k <= n; ++k) {
-        const double t = k == n ? pc.b : pc.a + (pc.b - pc.a) * k / n;
-        x.push_back(pc.f[kDdx](t));
-        z.push_back(pc.f[kDdz](t));
-      }
-    }
-    if (n > 8 && detail::sweep_visits(x, z) > kFallbackVisits) break;
-    const double fine = enclosed_area(x, z);
-    if (n > 4) {
-      area = (4.0 * fine - coarse) / 3.0;
-      if (std::abs(area - previous) <= 1e-11 * std::abs(area)) break;
-      previous = area;
-    }
-    coarse = fine;
-  }
-  return area;
-}
-// A polygon vertex on the curve: the point of piece `piece` at time t (or, for a crossing, the
-// point shared by both branches).
-struct Vertex {
-  int piece;
-  double t;       // [s]
-  double x, z;    // x_M'', z_M'' [m/s^2]
-  bool crossing;  // a self-intersection (x, z shared with the other branch)
-};
-
-// A point of an edge as a function of its parameter: an arc edge (both ends in one piece) by its
-// time, a straight edge between pieces by s in [0, 1].
-struct EdgeCurve {
-  const Piece* piece;  // null: straight
-  double u0, u1;       // parameter range of the edge (t, or 0 and 1)
-  double x0, z0, x1, z1;
-  std::array<double, 2> at(double u) const {
-    if (piece != nullptr) return {piece->f[kDdx](u), piece->f[kDdz](u)};
-    return {x0 + u * (x1 - x0), z0 + u * (z1 - z0)};
-  }
-  std::array<double, 2> tangent(double u) const {
-    if (piece != nullptr) return {piece->dx(u), piece->dz(u)};
-    return {x1 - x0, z1 - z0};
-  }
-  // Newton may move into the neighbouring edges of the same piece (the interpolant holds on the
-  // whole piece) and a little past its ends: a crossing at the point where two pieces join (the
-  // end of one, the start of the next, one point when no switch lies between them) lies there up
-  // to round-off. A straight edge only slightly past its ends.
-  bool admissible(double u) const {
-    if (piece != nullptr) {
-      const double slack = 1e-5 * (piece->b - piece->a);
-      return u >= piece->a - slack && u <= piece->b + slack;
-    }
-    return u >= -1e-9 && u <= 1.0 + 1e-9;
-  }
-  double clamp(double u) const {
-    return piece != nullptr ? std::clamp(u, piece->a, piece->b) : std::clamp(u, 0.0, 1.0);
-  }
-};
-
-EdgeCurve edge_curve(const std::vector<Piece>& pieces, const std::vector<Vertex>& v,
-                     std::size_t i) {
-  const Vertex& p = v[i];
-  const Vertex& q = v[(i + 1) % v.size()];
-  if (p.piece == q.piece && q.t > p.t) return {&pieces[p.piece], p.t, q.t, p.x, p.z, q.x, q.z};
-  return {nullptr, 0.0, 1.0, p.x, p.z, q.x, q.z};
-}
-
-// The crossing of the curve near the crossing chords e and g: Newton on e(u) = g(w) from the
-// chords' crossing. False if it does not converge inside the edges' pieces.
-bool locate_crossing(const EdgeCurve& e, const EdgeCurve& g, double& u, double& w) {
-  // The chords' crossing: fractions along each chord.
-  const double ax = e.x1 - e.x0, az = e.z1 - e.z0, bx = g.x1 - g.x0, bz = g.z1 - g.z0;
-  const double det = ax * (-bz) - az * (-bx);
-  if (det == 0.0) return false;
-  const double rx = g.x0 - e.x0, rz = g.z0 - e.z0;
-  const double se = (rx * (-bz) - rz * (-bx)) / det, sg = (ax * rz - az * rx) / det;
-  u = e.u0 + se * (e.u1 - e.u0);
-  w = g.u0 + sg * (g.u1 - g.u0);
-  for (int it = 0; it < 30; ++it) {
-    const auto pe = e.at(u), pg = g.at(w), te = e.tangent(u), tg = g.tangent(w);
-    const double fx = pe[0] - pg[0], fz = pe[1] - pg[1];
-    const double d = te[0] * (-tg[1]) - te[1] * (-tg[0]);
-    if (d == 0.0 || !std::isfinite(d)) return false;
-    const double du = -(fx * (-tg[1]) - fz * (-tg[0])) / d;
-    const double dw = -(te[0] * fz - te[1] * fx) / d;
-    u += du;
-    w += dw;
-    if (!e.admissible(u) || !g.admissible(w)) return false;
-    const double scale_u = e.piece != nullptr ? e.piece->b - e.piece->a : 1.0;
-    const double scale_w = g.piece != nullptr ? g.piece->b - g.piece->a : 1.0;
-    // Quadratic convergence: a step of 1e-10 leaves ~1e-20, below the round-off of the points.
-    if (std::abs(du) <= 1e-10 * scale_u && std::abs(dw) <= 1e-10 * scale_w) return true;
-  }
-  return false;
-}
-
-// The integral of (x - c) dz/dt over t on one piece, x = x_M'' and z = z_M'' its interpolants and
-// c the mean coefficient of x (so that the integrand is of the size of the piece's variation): the
-// product of the Chebyshev series of x - c (degree kDegree) and dz/dt (kDegree - 1),
-// T_i T_j = (T_(i+j) + T_|i-j|) / 2, and its antiderivative G in u = (2 t - a - b) / (b - a)
-// (integral of T_k = T_(k+1) / (2 (k + 1)) - T_(k-1) / (2 (k - 1))), exact up to round-off.
-class BulgeSeries {
- public:
-  static constexpr int kG = 2 * kDegree;  // degree of G
-  BulgeSeries() = default;
-  explicit BulgeSeries(const Piece& pc) : a_(pc.a), b_(pc.b) {
-    const auto& c = pc.f[kDdx].coefficients();
-    const auto& d = pc.dz.coefficients();
-    x_offset_ = c[0];
-    std::array<double, kG> product{};  // degree 2 kDegree - 1
-    for (int i = 1; i <= kDegree; ++i) {
-      for (int j = 0; j < kDegree; ++j) {
-        const double h = 0.5 * c[i] * d[j];
-        product[i + j] += h;
-        product[std::abs(i - j)] += h;
-      }
-    }
-    g_[0] = 0.0;  // the constant cancels in differences
-    for (int k = 1; k <= kG; ++k) {
-      const double below = k == 1 ? 2.0 * product[0] : product[k - 1];
-      const double above = k + 1 < kG ? product[k + 1] : 0.0;
-      g_[k] = (below - above) / (2.0 * k);
-    }
-  }
-  double x_offset() const { return x_offset_; }
-  // The integral from t0 to t1 (both in the piece), from G(t0) and G(t1).
-  double integral(double G0, double G1) const { return 0.5 * (b_ - a_) * (G1 - G0); }
-  // The antiderivative at t (in u; times (b - a) / 2 it is in t).
-  double G(double t) const { return detail::chebyshev_sum(g_, (2.0 * t - a_ - b_) / (b_ - a_)); }
-
- private:
-  double a_ = 0.0, b_ = 1.0, x_offset_ = 0.0;
-  std::array<double, kG + 1> g_{};
-};
-
-double curve_area(const std::vector<Piece>& pieces) {
-  // The polygon: kAreaPoints + 1 points per piece.
-  std::vector<Vertex> v;
-  v.reserve(pieces.size() * (kAreaPoints + 1));
-  for (std::size_t p = 0; p < pieces.size(); ++p) {
-    const Piece& pc = pieces[p];
-    for (int k = 0; k <= kAreaPoints; ++k) {
-      const double t = k == kAreaPoints ? pc.b : pc.a + (pc.b - pc.a) * k / kAreaPoints;
-      // The ends from the exact node values, not the interpolant (which reproduces them only to
-      // an ulp): where two pieces join without a switch both evaluate the same state, and the
-      // shared point must be the same bit for bit. One ulp apart, the chords on either side of a
-      // turning point of the curve would cross at the joint, a crossing that is not one.
-      const int node = k == 0 ? kDegree : k == kAreaPoints ? 0 : -1;
-      const double x = node >= 0 ? pc.values[kDdx][node] : pc.f[kDdx](t);
-      const double z = node >= 0 ? pc.values[kDdz][node] : pc.f[kDdz](t);
-      v.push_back({static_cast<int>(p), t, x, z, false});
-    }
-  }
-  auto coordinates = [&](std::vector<double>& x, std::vector<double>& z) {
-    x.resize(v.size());
-    z.resize(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) x[i] = v[i].x, z[i] = v[i].z;
-  };
-  std::vector<double> x, z;
-  coordinates(x, z);
-
-  // Self-intersections: each crossing of two chords refined to the crossing of the arcs, then
-  // inserted into both branches as one shared point (a straight edge between pieces takes it as
-  // a new point in its piece-less position: after the end of its first piece).
-  struct Insert {
-    std::size_t edge;  // inserted after vertex `edge`
-    double key;        // t (arc) or s (straight), for the order inside the edge
-    Vertex vertex;
-  };
-  std::vector<Insert> inserts;
-  for (const auto& [i, j] : detail::polygon_crossings(x, z)) {
-    const EdgeCurve e = edge_curve(pieces, v, i), g = edge_curve(pieces, v, j);
-    double u = 0.0, w = 0.0;
-    // A crossing of the chords that Newton cannot place on the arcs of their pieces (a crossing
-    // at a piece's end, or a near-tangency): no exact area; the caller falls back.
-    if (!locate_crossing(e, g, u, w)) return std::numeric_limits<double>::quiet_NaN();
-    const auto pe = e.at(u), pg = g.at(w);
-    u = e.clamp(u);
-    w = g.clamp(w);
-    const double cx = 0.5 * (pe[0] + pg[0]), cz = 0.5 * (pe[1] + pg[1]);
-    for (const auto& [edge, curve, par] : {std::tuple{i, e, u}, std::tuple{j, g, w}}) {
-      // The edge of the polygon that holds the parameter (Newton may have moved to a
-      // neighbouring edge of the same piece).
-      std::size_t k = edge;
-      if (curve.piece != nullptr) {
-        while (k > 0 && v[k].piece == v[edge].piece && v[k].t > par) --k;
-        while (k + 1 < v.size() && v[k + 1].piece == v[edge].piece && v[k + 1].t < par) ++k;
-      }
-      inserts.push_back({k, par, {curve.piece != nullptr ? v[edge].piece : -1, par, cx, cz, true}});
-    }
-  }
-  if (!inserts.empty()) {
-    std::sort(inserts.begin(), inserts.end(), [](const Insert& a, const Insert& b) {
-      return a.edge != b.edge ? a.edge < b.edge : a.key < b.key;
-    });
-    std::vector<Vertex> merged;
-    merged.reserve(v.size() + inserts.size());
-    std::size_t next = 0;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      merged.push_back(v[i]);
-      while (next < inserts.size() && inserts[next].edge == i) {
-        const Vertex& c = inserts[next++].vertex;
-        const Vertex& last = merged.back();
-        // The same crossing found twice, or at an existing point: keep one, shared.
-        if (c.piece >= 0 && last.piece == c.piece &&
-            std::abs(c.t - last.t) <= 1e-12 * (pieces[c.piece].b - pieces[c.piece].a)) {
-          merged.back().x = c.x, merged.back().z = c.z, merged.back().crossing = true;
-          continue;
-        }
-        if (c.piece < 0 && last.crossing && last.x == c.x && last.z == c.z) continue;
-        if (c.piece < 0) {
-          // On a straight edge between pieces: a point of no piece (its arc edges are straight).
-          merged.push_back({-1, 0.0, c.x, c.z, true});
-        } else {
-          merged.push_back(c);
-        }
-      }
-    }
-    v = std::move(merged);
-    coordinates(x, z);
-  }
-
-  // Bulges: for an edge inside a piece, the area between the arc and its chord, the integral of
-  // (x - x_mean) dz along the arc (minus the chord's, which is zero for x_mean the mean of its
-  // ends), exact from the antiderivative of the polynomial integrand (BulgeSeries).
-  std::vector<double> bulge(v.size(), 0.0);
-  BulgeSeries series;
-  int series_piece = -1;
-  // G and z at the end of the last edge: the start of the next one in the same piece.
-  double last_t = std::numeric_limits<double>::quiet_NaN(), last_G = 0.0, last_z = 0.0;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vertex& p = v[i];
-    const Vertex& q = v[(i + 1) % v.size()];
-    if (p.piece < 0 || p.piece != q.piece || !(q.t > p.t)) continue;
-    const Piece& pc = pieces[p.piece];
-    if (series_piece != p.piece) {
-      series = BulgeSeries(pc);
-      series_piece = p.piece;
-      last_t = std::numeric_limits<double>::quiet_NaN();
-    }
-    const double G_p = p.t == last_t ? last_G : series.G(p.t);
-    const double z_p = p.t == last_t ? last_z : pc.f[kDdz](p.t);
-    const double G_q = series.G(q.t), z_q = pc.f[kDdz](q.t);
-    last_t = q.t, last_G = G_q, last_z = z_q;
-    // The arc's ends may differ from the (shared) crossing points by round-off: the chord's
-    // integral of (x - x_mean) dz is zero.
-    const double x_mean = 0.5 * (p.x + q.x);
-    bulge[i] = series.integral(G_p, G_q) - (x_mean - series.x_offset()) * (z_q - z_p);
-  }
-  return enclosed_area(x, z, bulge);
-}
 
 Spectrum spectrum(const std::vector<Node>& nodes, double Node::*m, double P, double t0, double f,
                   int cycles, int n_max) {
@@ -666,8 +384,7 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
     m.evib = vibration_modulus(z, Fv, c.roller.r, c.roller.b, nu_soil);
   }
 
-  m.area = curve_area(pieces);
-  if (std::isnan(m.area)) m.area = extrapolated_area(pieces);
+  m.area = detail::curve_area(pieces);
   return m;
 }
 
