@@ -5,6 +5,7 @@
 
 #include "equations/equations.hpp"
 #include "oscidrum/model.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 
@@ -23,7 +24,8 @@ ContactForces detail::contact_forces(const Model& model, const State& q, const K
 }
 
 ContactForces contact_forces(const Model& model, const State& q) {
-  return soil_contact_forces(model, q, std::sin(q.delta), std::cos(q.delta));
+  const auto [s, c] = detail::sincos_small(q.delta);
+  return soil_contact_forces(model, q, s, c);
 }
 
 double detail::slip_velocity(const Model& model, const State& q, const Kinematics& k) {

@@ -3,11 +3,14 @@
 
 #include <cmath>
 
+#include "util/small_angle.hpp"
+
 namespace oscidrum {
 
 double stick_margin_rate(const Model& model, double t, const State& q, int sign_T) {
   const Accelerations a = stick_accelerations(model, t, q);
-  const double sn = std::sin(q.delta), cs = std::cos(q.delta), dd = q.ddelta;
+  const auto [sn, cs] = detail::sincos_small(q.delta);
+  const double dd = q.ddelta;
   const double Fh = model.ksh() * q.x_A + model.csh() * q.dx_A;  // right side of (24)
   const double Fv = model.ksv() * q.s_A + model.csv() * q.ds_A;  // right side of (25)
   const double dFh = model.ksh() * q.dx_A + model.csh() * a.x_A;

@@ -7,6 +7,7 @@
 
 #include "equations/equations.hpp"
 #include "equations/slip_general.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum::detail {
 
@@ -247,7 +248,7 @@ double event_value(const Model& model, const State& q, EventFunction h) {
 }
 
 Vec8 event_gradient(const Model& model, const State& q, EventFunction h) {
-  const double sn = std::sin(q.delta), cs = std::cos(q.delta);
+  const auto [sn, cs] = detail::sincos_small(q.delta);
   const double ksh = model.ksh(), ksv = model.ksv(), csh = model.csh(), csv = model.csv();
   const double Fh = ksh * q.x_A + csh * q.dx_A, Fv = ksv * q.s_A + csv * q.ds_A;
   // N = Fh sin + Fv cos (26), T = Fv sin - Fh cos (24)-(25).

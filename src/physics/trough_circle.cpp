@@ -7,6 +7,7 @@
 
 #include "physics/trough_shapes.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 
@@ -40,7 +41,7 @@ FitProblem fit_problem(const CircleTrough& s, double r) {
 Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
   Kinematics q;
   const double R = trough.R;
-  const double s = std::sin(delta), c = std::cos(delta);
+  const auto [s, c] = detail::sincos_small(delta);
   q.sin_delta = s;
   q.cos_delta = c;
   q.x_roll = R * s - r * s;            // (15): (R - r) sin delta
@@ -58,8 +59,9 @@ Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
 KinematicsRates kinematics_rates(const CircleTrough& trough, double r, double delta) {
   const double R = trough.R;
   KinematicsRates d;
-  d.df2 = -R * std::cos(delta) + r * std::cos(delta);
-  d.df4 = R * std::sin(delta) - r * std::sin(delta);
+  const auto [s, c] = detail::sincos_small(delta);
+  d.df2 = -R * c + r * c;
+  d.df4 = R * s - r * s;
   d.df6 = 0.0;
   return d;
 }

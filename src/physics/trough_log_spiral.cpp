@@ -5,6 +5,7 @@
 
 #include "physics/trough_shapes.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 
@@ -55,7 +56,7 @@ Kinematics kinematics(const LogSpiralTrough& g, double r, double delta) {
   Kinematics q;
   const double k = g.k();
   const double E = std::exp(-k * delta);
-  const double s = std::sin(delta), c = std::cos(delta);
+  const auto [s, c] = detail::sincos_small(delta);
   // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
   const double sa = g.sin_alpha(), ca = g.cos_alpha();
   const double sad = sa * c + ca * s, cad = ca * c - sa * s;
@@ -80,7 +81,7 @@ KinematicsRates kinematics_rates(const LogSpiralTrough& g, double r, double delt
   // d exp(-k delta) / d delta = -k exp(-k delta).
   const double k = g.k();
   const double E = std::exp(-k * delta);
-  const double s = std::sin(delta), c = std::cos(delta);
+  const auto [s, c] = detail::sincos_small(delta);
   const double su = g.sin_alpha() * c + g.cos_alpha() * s;
   const double cu = g.cos_alpha() * c - g.sin_alpha() * s;
   const double RE = g.R0() * E;
