@@ -489,10 +489,25 @@ double green_area(const std::vector<Piece>& pieces) {
     }
     return false;
   };
-  for (const auto& [i, j] : polygon_crossings(x, z)) {
-    const EdgeCurve e = edge_curve(pieces, v, i), g = edge_curve(pieces, v, j);
+  // The crossing of the arcs near chords i and j crossing: Newton from the chords' crossing; where
+  // it leaves the chords' pieces (the arcs cross just beyond a joint of two pieces, while their
+  // chords cross before it), from the neighbouring edges' chords, up to two edges away.
+  const auto locate = [&](std::size_t i, std::size_t j, std::size_t& ei, std::size_t& ej, double& u,
+                          double& w) {
+    for (const int di : {0, -1, 1, -2, 2})
+      for (const int dj : {0, -1, 1, -2, 2}) {
+        ei = (i + n + static_cast<std::size_t>(di + 2) - 2) % n;
+        ej = (j + n + static_cast<std::size_t>(dj + 2) - 2) % n;
+        if (locate_crossing(edge_curve(pieces, v, ei), edge_curve(pieces, v, ej), u, w))
+          return true;
+      }
+    return false;
+  };
+  for (const auto& [i0, j0] : polygon_crossings(x, z)) {
+    std::size_t i = i0, j = j0;
     double u = 0.0, w = 0.0;
-    if (!locate_crossing(e, g, u, w)) return kNaN;
+    if (!locate(i0, j0, i, j, u, w)) return kNaN;
+    const EdgeCurve e = edge_curve(pieces, v, i), g = edge_curve(pieces, v, j);
     auto a = place_of(i, e, e.clamp(u)), b = place_of(j, g, g.clamp(w));
     if (!a || !b) return kNaN;
     a = canonical(*a), b = canonical(*b);

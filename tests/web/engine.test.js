@@ -50,13 +50,18 @@ const cases = [
 // |a - b| <= RTOL * scale, scale = max(|a|, |b|, floor): the floor is the size of the quantity
 // the value belongs to (e.g. the largest harmonic of a signal), so numerical noise in a harmonic
 // that is zero by symmetry is compared on the scale of the signal, not on its own.
+// The tolerance of a case: RTOL, or twice the native build's rounding band where the case is that
+// sensitive to a last-bit change (pure rolling at rtol 1e-12 moves by 1e-12 natively: the two
+// C libraries' last bits move it as much).
+let tolerance = RTOL;
+
 function close(what, a, b, floor = 0) {
   const scale = Math.max(Math.abs(a), Math.abs(b), floor);
   const diff = Math.abs(a - b);
   const rel = scale > 0 ? diff / scale : 0;
-  if (!(diff <= RTOL * scale)) {
+  if (!(diff <= tolerance * scale)) {
     throw new assert.AssertionError({
-      message: `${what}: WebAssembly ${a} vs native ${b} (relative ${rel.toExponential(2)} > ${RTOL.toExponential(2)})`,
+      message: `${what}: WebAssembly ${a} vs native ${b} (relative ${rel.toExponential(2)} > ${tolerance.toExponential(2)})`,
     });
   }
   return rel;
@@ -139,6 +144,7 @@ async function main() {
   for (const c of cases) {
     const native = runNative(c.args);
     const band = roundingBand(native, c.args, c.band);
+    tolerance = Math.max(RTOL, 2 * band);
     const web = engine.simulate(native.parameters, native.metrics.ddx_harmonics.length - 1);
     let worst = 0;
     try {
@@ -170,6 +176,7 @@ async function main() {
       console.log(`FAIL ${c.name}: ${e.message} (native rounding band ${band.toExponential(2)})`);
     }
   }
+  tolerance = RTOL;
   // Bad input is an error object with the library's message, never an abort.
   const bad = engine.simulate({ 'soil.G': -5e6, 'soil.input': 'modulus' }, 10);
   assert.equal(bad.ok, false);
