@@ -7,9 +7,9 @@
 // On each piece of the period (one integrator step in one phase) every quantity (x_M'', z_M''
 // from (18), delta, phi, T/N, the friction power) is an analytic function of t: the
 // Dormand-Prince interpolant (a polynomial) through the equations of motion. Each is replaced by
-// its degree-10 Chebyshev interpolant through 11 right-hand-side evaluations (both ends among
-// them), accurate to round-off (tests/drivers/test_steady_metrics.cpp), and everything below reads
-// the interpolants:
+// its Chebyshev interpolant of degree kDegree (8) through 9 right-hand-side evaluations (both ends
+// among them), accurate to round-off (tests/drivers/test_steady_metrics.cpp), and everything below
+// reads the interpolants:
 //   peaks: at both ends of every piece (the one-sided limits at each switch instant) and at every
 //     interior extremum, located by Newton's method on the derivative of the interpolant (only
 //     on pieces where a bound on the curvature lets an extremum beat the nodes' values);
