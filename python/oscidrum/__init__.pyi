@@ -596,6 +596,8 @@ class Samples:
     """steady-state samples, column T[N] of docs/csv-columns.md: tangential contact force (24, 25) (read-only NumPy view)"""
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     def __len__(self: Samples) -> int: ...
+    alpha: numpy.ndarray
+    """steady-state samples, column alpha[rad] of docs/csv-columns.md: angle of the excitation, nu t wrapped to [0, 2 pi): the vibratory drum's unbalance force has the downward component F0 sin(alpha) (every roller.exciter; alpha is the angle of a circular exciter's unbalance from +x towards +z), the oscillation drum's moment is M0 sin(alpha) (5); `analyze --unbalance-col alpha` reads it for kb (read-only NumPy view)"""
     columns: list
     ddelta: numpy.ndarray
     """steady-state samples, column ddelta[rad/s] of docs/csv-columns.md: delta' (read-only NumPy view)"""
