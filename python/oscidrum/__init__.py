@@ -119,6 +119,7 @@ _CORE_NAMES = (
     "transmissibility",
     "validate",
     "validation_markdown",
+    "vibration_modulus",
     "wrap_pi",
 )
 
