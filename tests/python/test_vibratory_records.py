@@ -1,8 +1,10 @@
 """The vibratory drum's indicators from Python: the excitation's angle alpha that `run --csv` and
-Result.samples carry, and vibration_modulus (the Evib-type modulus of a force-displacement loop).
-Checked against what the bindings do not compute: Lundberg's relation written out below and the
-simulated steady state's own evib (from the contact force)."""
+Result.samples carry, vibration_modulus (the Evib-type modulus of a force-displacement loop) and
+record_kb (kb of a record with its unbalance's angle). Checked against what the bindings do not
+compute: Lundberg's relation written out below, the simulated steady state's own kb and evib
+(from the contact force), and the CLI's `analyze --case --unbalance-col`."""
 
+import json
 import math
 import subprocess
 
@@ -145,3 +147,136 @@ def test_vibration_modulus_refuses_bad_input_naming_the_argument():
     with pytest.raises(oscidrum.Error, match=r"vibration_modulus"):
         oscidrum.vibration_modulus(z, "force", R, L, NU)
     assert issubclass(oscidrum.Error, ValueError)
+
+
+# --- record_kb ----------------------------------------------------------------------------------
+
+def vibratory(G, f=F_VIB):
+    """The paper's drum with the rotating unbalance of examples/vibratory.toml on Appendix B soil
+    of shear modulus G, contact that may open, as tests/identify/test_identify_vibratory.cpp."""
+    c = oscidrum.Case()
+    c.set("roller.type", "vibratory")
+    c.set("roller.static_moment", 0.9)
+    c.set("roller.f", f)
+    c.set("contact.unilateral", True)
+    c.set("soil.input", "modulus")
+    c.set("soil.G", G)
+    return c
+
+
+@pytest.mark.parametrize("G, tolerance, lift_off", [(12e6, 1e-6, False), (60e6, 2e-3, True)])
+def test_record_kb_of_a_simulated_record_is_the_simulated_kb(G, tolerance, lift_off):
+    """As IdentifyVibratory.KbOfARecordIsTheSimulatedKb: a noise-free record of the steady state
+    (record time = model time modulo the period, so alpha = 2 pi f t) at 2000 samples per period
+    over 6 periods gives the kb that the steady state's contact force gives, in continuous
+    contact to 1e-6, with lift-off to the aliasing of z_M'''s jump at the landing (2e-3)."""
+    case = vibratory(G)
+    result = oscidrum.simulate(case)
+    assert result.status == oscidrum.Status.steady_state, result.message
+    sim = oscidrum.compute_metrics(result, case=case)
+    assert (sim.flight_fraction > 0) == lift_off
+    r = oscidrum.synthetic_record([case], duration=6.0 / F_VIB, sample_rate=2000.0 * F_VIB)
+    t = r["t"]
+    alpha = 2.0 * math.pi * F_VIB * t
+    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    assert len(windows) == 1 and windows[0]["valid"], windows[0]["reason"]
+    before = windows[0]["metrics"].to_dict()
+    assert math.isnan(before["kb"])  # before record_kb
+    assert oscidrum.record_kb(windows, t, alpha, case) == ""
+    kb = windows[0]["metrics"].kb
+    assert kb == pytest.approx(sim.kb, rel=tolerance)
+    # The window's other metrics are kept.
+    after = windows[0]["metrics"].to_dict()
+    assert {k: v for k, v in after.items() if k != "kb"} == {
+        k: v for k, v in before.items() if k != "kb"}
+    # An angle read as a sensor gives it, wrapped to [0, 2 pi) or (-pi, pi]: the same kb.
+    for wrapped in (np.mod(alpha, 2 * math.pi), np.angle(np.exp(1j * alpha))):
+        again = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+        assert oscidrum.record_kb(again, t, wrapped, case) == ""
+        assert again[0]["metrics"].kb == pytest.approx(kb, rel=1e-9)
+    # The phase matters: a quarter turn off gives another number.
+    shifted = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    assert oscidrum.record_kb(shifted, t, alpha + math.pi / 2, case) == ""
+    assert abs(shifted[0]["metrics"].kb - sim.kb) > 0.1 * sim.kb
+
+
+def test_record_kb_reads_each_windows_own_angles():
+    """Three windows of two periods: an angle a quarter turn off in the first window's samples
+    only changes that window's kb; the others give the simulated kb (continuous contact: 1e-6)."""
+    case = vibratory(12e6)
+    sim = oscidrum.compute_metrics(oscidrum.simulate(case), case=case)
+    r = oscidrum.synthetic_record([case], duration=6.0 / F_VIB, sample_rate=2000.0 * F_VIB)
+    t = r["t"]
+    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB, window=2)
+    assert len(windows) == 3 and all(w["valid"] for w in windows)
+    alpha = 2.0 * math.pi * F_VIB * t + np.where(t < windows[1]["t_start"], math.pi / 2, 0.0)
+    assert oscidrum.record_kb(windows, t, alpha, case) == ""
+    kb = [w["metrics"].kb for w in windows]
+    assert abs(kb[0] - sim.kb) > 0.1 * sim.kb
+    assert kb[1] == pytest.approx(sim.kb, rel=1e-6) and kb[2] == pytest.approx(sim.kb, rel=1e-6)
+
+
+def test_record_kb_says_why_kb_is_nan():
+    case = vibratory(12e6)
+    r = oscidrum.synthetic_record([case], duration=2.0 / F_VIB, sample_rate=1000.0 * F_VIB)
+    t = r["t"]
+    alpha = 2.0 * math.pi * F_VIB * t
+    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    for a, c, why in ((None, case, "no unbalance angle"), (alpha, None, "--case"),
+                      (alpha, oscidrum.Case(), "oscillation drum")):
+        assert why in oscidrum.record_kb(windows, t, a, c)
+        assert math.isnan(windows[0]["metrics"].kb)
+    # An invalid window keeps kb NaN too (NaN metrics, no fundamental).
+    bad = dict(windows[0], valid=False)
+    assert oscidrum.record_kb([bad], t, alpha, case) == ""
+    assert math.isnan(bad["metrics"].kb)
+
+
+def test_record_kb_refuses_bad_input_naming_the_argument():
+    case = vibratory(12e6)
+    r = oscidrum.synthetic_record([case], duration=2.0 / F_VIB, sample_rate=1000.0 * F_VIB)
+    t = r["t"]
+    alpha = 2.0 * math.pi * F_VIB * t
+    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    with pytest.raises(oscidrum.Error, match=r"record_kb: alpha has \d+ samples and t \d+"):
+        oscidrum.record_kb(windows, t, alpha[:-1], case)
+    with pytest.raises(oscidrum.Error, match=r"^alpha must be a 1-D array"):
+        oscidrum.record_kb(windows, t, alpha.reshape(-1, 1), case)
+    with pytest.raises(oscidrum.Error, match=r"^t must be a 1-D array"):
+        oscidrum.record_kb(windows, t.reshape(1, -1), alpha, case)
+    with pytest.raises(oscidrum.Error, match=r"windows\[0\] must be a dict of analyze_windows"):
+        oscidrum.record_kb([1.0], t, alpha, case)
+    with pytest.raises(oscidrum.Error, match=r"windows\[0\] has no key 'metrics'"):
+        oscidrum.record_kb([{k: v for k, v in windows[0].items() if k != "metrics"}], t, alpha,
+                           case)
+    with pytest.raises(oscidrum.Error, match=r"windows\[0\]: its t_start = .* is no sample of t"):
+        oscidrum.record_kb(windows, t + 1e-3, alpha, case)
+    with pytest.raises(oscidrum.Error, match=r"windows\[0\]: .* run past the end of t"):
+        oscidrum.record_kb(windows, t[: len(t) // 2], alpha[: len(t) // 2], case)
+    with pytest.raises(oscidrum.Error, match=r"windows\[0\]: t_start, samples, f, valid or "):
+        oscidrum.record_kb([dict(windows[0], metrics="kb")], t, alpha, case)
+    with pytest.raises(oscidrum.Error, match=r"record_kb"):
+        oscidrum.record_kb(windows, t, alpha, "examples/vibratory.toml")
+
+
+def test_run_csv_alpha_gives_the_clis_and_the_runs_kb(cli, root, tmp_path):
+    """`run --csv` of examples/vibratory.toml read in Python with its own column alpha: record_kb
+    gives what `analyze --case --unbalance-col alpha` prints for the same file (the same
+    computation: 1e-12) and the run's kb (the contact force's: 1e-3, as the CLI's test)."""
+    example = root / "examples" / "vibratory.toml"
+    csv, summary = tmp_path / "s.csv", tmp_path / "s.json"
+    subprocess.run([cli, "run", str(example), "--quiet", "--csv", str(csv), "--json",
+                    str(summary)], check=True, capture_output=True)
+    out = subprocess.run([cli, "analyze", str(csv), "--f", "30", "--case", str(example),
+                          "--unbalance-col", "alpha", "--format", "json"], check=True,
+                         capture_output=True, text=True).stdout
+    cli_kb = json.loads(out)["kb"]
+    run_kb = json.loads(summary.read_text())["metrics"]["kb"]
+    columns, units = data.read_csv_columns(csv)
+    assert units["alpha"] == "rad"
+    windows = oscidrum.analyze_windows(columns["t"], columns["ddx_M"], columns["ddz_M"], f=30.0)
+    assert oscidrum.record_kb(windows, columns["t"], columns["alpha"],
+                              oscidrum.load_case(example)) == ""
+    kb = windows[0]["metrics"].kb
+    assert kb == pytest.approx(cli_kb, rel=1e-12)
+    assert kb == pytest.approx(run_kb, rel=1e-3)
