@@ -224,6 +224,8 @@ void add_analyze_command(CLI::App& app, Action& action) {
       "  oscidrum analyze field.csv --t-col 1 --x-col 3 --z-col 4 --units g\n"
       "  oscidrum analyze pass.csv --window 40 --speed-col v --format csv > windows.csv\n"
       "  oscidrum run --csv steady.csv && oscidrum analyze steady.csv --f 39\n"
+      "  oscidrum run vibratory.toml --csv v.csv   (its column alpha: the unbalance's angle)\n"
+      "  oscidrum analyze v.csv --f 30 --case vibratory.toml --unbalance-col alpha   (kb)\n"
       "  cat record.txt | oscidrum analyze - --t-col 1 --x-col 2 --z-col 3");
   add_record_options(*sub, o->input);
   sub->add_option("--case", o->case_file,
@@ -231,8 +233,8 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "roller.static_moment), for the Kb-type stiffness kb (with --unbalance-col)");
   sub->add_option("--unbalance-col", o->input.unbalance_col,
                   "column of the unbalance's angle alpha [rad] (the unbalance force's downward "
-                  "component F0 sin(alpha); oscidrum's own exciters: alpha = 2 pi f t): name or "
-                  "index; with --case gives kb, without it kb is NaN with the reason");
+                  "component F0 sin(alpha); `oscidrum run --csv` writes it as the column alpha): "
+                  "name or index; with --case gives kb, without it kb is NaN with the reason");
   add_window_options(*sub, o->windows, 0.0);
   sub->add_option("--format", o->format,
                   "table, csv (the spectrum; with --window one row per window) or json")

@@ -51,6 +51,12 @@ class Model {
   /// (1 - cos(pi t / t_ramp)) / 2 for t < t_ramp = numerics.start_ramp_periods T.
   double torque(double t) const;
 
+  /// The angle of the excitation at time t, nu t wrapped to [0, 2 pi) [rad]: the oscillation
+  /// moment is M0 sin(angle) (5), the vibratory drum's vertical unbalance force F0 sin(angle)
+  /// (every Exciter), the angle `analyze --unbalance-col` expects (oscidrum/record.hpp). Not
+  /// ramped: the start ramp scales the amplitudes only.
+  double excitation_angle(double t) const;
+
   /// The load on M at time t (CentreLoad): W and 0 for the oscillation drum; for the vibratory
   /// drum W + F_z(t) and F_x(t), F = m_u e_u nu^2 times the exciter's direction (Exciter), ramped
   /// in as the torque is.

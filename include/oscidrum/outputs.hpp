@@ -57,6 +57,11 @@
     "unilateral; 0 in contact)")                                                                   \
   X(SampleValues, dgap, "m/s", "gap'", "rate of the gap (0 in contact)")                           \
   X(SampleValues, torque, "N m", "MM", "excitation MM(t) = M0 sin(nu t) + MMd (5, 6)")             \
+  X(SampleValues, alpha, "rad", "alpha",                                                           \
+    "angle of the excitation, nu t wrapped to [0, 2 pi): the vibratory drum's unbalance force "    \
+    "has the downward component F0 sin(alpha) (every roller.exciter; alpha is the angle of a "     \
+    "circular exciter's unbalance from +x towards +z), the oscillation drum's moment is M0 "       \
+    "sin(alpha) (5); `analyze --unbalance-col alpha` reads it for kb")                             \
   X(SamplePhases, phase, "-", "phase",                                                             \
     "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised "          \
     "friction: the apparent phase, stick while |v_rel| <= 4 v_eps)")

@@ -106,6 +106,7 @@ _CORE_NAMES = (
     "paper_case",
     "paper_series",
     "phi_rolling",
+    "record_kb",
     "run_case",
     "run_paper_studies",
     "simulate",
@@ -119,6 +120,7 @@ _CORE_NAMES = (
     "transmissibility",
     "validate",
     "validation_markdown",
+    "vibration_modulus",
     "wrap_pi",
 )
 

@@ -30,6 +30,9 @@ from . import _core
 COLUMNS: Tuple[Tuple[str, str], ...] = tuple(
     (name, unit) for name, unit in _core.sample_columns())
 
+#: Columns that files written before they existed lack; read_case computes them (alpha = nu t).
+_LATER_COLUMNS = ("alpha",)
+
 #: The CSV header line of docs/csv-columns.md (without line break).
 HEADER = ",".join(f"{name}[{unit}]" for name, unit in COLUMNS)
 
@@ -185,11 +188,11 @@ def read_case(csv_path: str | os.PathLike, json_path: str | os.PathLike | None =
     are recovered exactly from the torque column (a whole number of periods is sampled).
     """
     columns, _ = read_csv_columns(csv_path)
-    missing = [name for name, _ in COLUMNS if name not in columns]
+    missing = [name for name, _ in COLUMNS if name not in columns and name not in _LATER_COLUMNS]
     if missing:
         raise ValueError(f"{csv_path}: missing steady-state columns {missing} "
                          "(see docs/csv-columns.md)")
-    ns = SimpleNamespace(**{name: columns[name] for name, _ in COLUMNS})
+    ns = SimpleNamespace(**{name: columns[name] for name, _ in COLUMNS if name in columns})
     ns.phase = np.rint(columns["phase"]).astype(np.int8)
     summary: Dict[str, Any] = {}
     if json_path is not None and os.path.exists(json_path):
@@ -199,6 +202,8 @@ def read_case(csv_path: str | os.PathLike, json_path: str | os.PathLike | None =
     periods = _find(summary, "sampling", "sample_periods")
     if not frequency or not periods:
         frequency, periods = _infer_window(ns.t, ns.torque, (ns.ddx_M, ns.ddz_M))
+    if "alpha" not in columns:  # a file of an oscidrum before the column: nu t, as run writes it
+        ns.alpha = np.mod(2.0 * np.pi * float(frequency) * ns.t, 2.0 * np.pi)
     status = summary.get("status", "steady_state") if summary else "steady_state"
     return SteadyState(samples=ns, frequency=float(frequency), sample_periods=int(periods),
                        label=label, status=str(status), metrics=_summary_metrics(summary),

@@ -3,13 +3,19 @@
 // columns (without units), so that they read like `oscidrum identify --csv`.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "bindings.hpp"
 #include "oscidrum/calibrate.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
+#include "oscidrum/record.hpp"
 
 namespace oscidrum::python {
 namespace {
@@ -52,6 +58,41 @@ std::span<const double> optional_span(const std::optional<Array>& a, const char*
   return a ? span_of(*a, name) : std::span<const double>();
 }
 
+// A window of analyze_windows (window_dict) back as the RecordWindow it was made from, with what
+// record_kb reads: its samples of t (from t_start and samples), f, valid and metrics.
+RecordWindow window_of(py::handle item, std::size_t i, std::span<const double> t) {
+  const std::string where = "record_kb: windows[" + std::to_string(i) + "]";
+  if (!py::isinstance<py::dict>(item))
+    throw Error(where + " must be a dict of analyze_windows; got " +
+                py::str(item.get_type().attr("__name__")).cast<std::string>());
+  const py::dict d = py::reinterpret_borrow<py::dict>(item);
+  for (const char* key : {"t_start", "samples", "f", "valid", "metrics"})
+    if (!d.contains(key))
+      throw Error(where + " has no key '" + key + "': pass the dicts analyze_windows returns");
+  RecordWindow w;
+  try {
+    w.t_start = d["t_start"].cast<double>();
+    w.count = d["samples"].cast<std::size_t>();
+    w.f = d["f"].cast<double>();
+    w.valid = d["valid"].cast<bool>();
+    w.metrics = d["metrics"].cast<RecordMetrics>();
+  } catch (const py::cast_error&) {
+    throw Error(where +
+                ": t_start, samples, f, valid or metrics is not of the type "
+                "analyze_windows gives (float, int, float, bool, RecordMetrics)");
+  }
+  const auto first = std::lower_bound(t.begin(), t.end(), w.t_start);
+  if (first == t.end() || *first != w.t_start)
+    throw Error(where + ": its t_start = " + std::to_string(w.t_start) +
+                " s is no sample of t: pass the t the windows were analyzed from");
+  w.first = static_cast<std::size_t>(first - t.begin());
+  if (w.count == 0 || w.count > t.size() - w.first)
+    throw Error(where + ": its " + std::to_string(w.count) +
+                " samples from t_start run past "
+                "the end of t: pass the t the windows were analyzed from");
+  return w;
+}
+
 }  // namespace
 
 void bind_identify(py::module_& m) {
@@ -89,6 +130,46 @@ void bind_identify(py::module_& m) {
       "by the quality gates, as `oscidrum analyze`: a list of dicts (window, t_start, t_end, t, "
       "position, samples, samples_per_period, f, drift, change, valid, reason, metrics). f = 0: "
       "estimated.");
+  m.def(
+      "record_kb",
+      [](const py::list& windows, const Array& t, const std::optional<Array>& alpha,
+         const std::optional<Case>& c) {
+        const std::span<const double> ts = span_of(t, "t");
+        const std::span<const double> as = optional_span(alpha, "alpha");
+        if (alpha && as.size() != ts.size())
+          throw Error("record_kb: alpha has " + std::to_string(as.size()) + " samples and t " +
+                      std::to_string(ts.size()) + "; expected one angle per time of t");
+        std::vector<RecordWindow> ws;
+        ws.reserve(windows.size());
+        for (std::size_t i = 0; i < windows.size(); ++i) ws.push_back(window_of(windows[i], i, ts));
+        const std::string note = record_kb(ws, ts, as, c ? &*c : nullptr);
+        for (std::size_t i = 0; i < ws.size(); ++i) {
+          py::dict d = windows[i];
+          d["metrics"] = py::cast(ws[i].metrics);
+        }
+        return note;
+      },
+      py::arg("windows"), py::arg("t"), py::arg("alpha"), py::arg("case"),
+      "kb, the Kb-type soil stiffness [N/m], of every valid window of a vibratory drum's record, "
+      "as `oscidrum analyze --case CASE --unbalance-col ALPHA` (RecordMetrics.kb; "
+      "docs/outputs.md): kb = m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 from the drum's "
+      "vertical balance, with A_1, theta_1 the window's fitted fundamental of z_M'', phi_u the "
+      "unbalance's phase over the window and m, kd, F0 = m_u e_u nu^2 the case's roller.\n\n"
+      "Parameters\n----------\nwindows : list of dict\n    The windows analyze_windows "
+      "returned for the record (t, ddx_M, ddz_M). Each dict's 'metrics' is replaced by a "
+      "RecordMetrics with kb filled in (NaN for an invalid window).\n"
+      "t : array of float\n    The record's times [s], the t given to analyze_windows.\n"
+      "alpha : array of float or None\n    The unbalance's angle [rad] at each time of t: the "
+      "unbalance force's downward component is F0 sin(alpha), alpha increasing as 2 pi f t (the "
+      "column alpha of `oscidrum run --csv`, any multiple of 2 pi added). None: kb is NaN.\n"
+      "case : Case or None\n    The vibratory drum's case (roller.type = 'vibratory': "
+      "roller.m, roller.kd, roller.static_moment). None or the oscillation drum: kb is NaN.\n\n"
+      "Returns\n-------\nstr\n    '' when kb was filled in, else in one line why every "
+      "window's kb is NaN (no case, not a vibratory drum, no angle), as `analyze` reports it "
+      "(kb_note).\n\n"
+      "Raises\n------\noscidrum.Error\n    If t or alpha is not 1-D, alpha and t differ in "
+      "length, or a window is not a dict of analyze_windows for this t (the message names the "
+      "argument).");
   m.def(
       "identify_record",
       [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,

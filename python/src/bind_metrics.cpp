@@ -138,6 +138,28 @@ void bind_metrics(py::module_& m) {
       "of a figure-eight count) [unit x * unit y].");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
   m.def(
+      "vibration_modulus",
+      [](const Array& z, const Array& F, double R, double L, double nu) {
+        return vibration_modulus(span_of(z, "z"), span_of(F, "F"), R, L, nu);
+      },
+      py::arg("z"), py::arg("F"), py::arg("R"), py::arg("L"), py::arg("nu"),
+      "The Evib-type vibration modulus [Pa] of a closed force-displacement loop: the Young's "
+      "modulus under which Lundberg's rigid cylinder settles as the drum does on the loop's "
+      "loading branch (Metrics.evib; docs/outputs.md).\n\n"
+      "Parameters\n----------\nz : array of float\n    The drum centre's vertical displacement "
+      "[m], downwards, in time order over one steady period (the last point joins the first).\n"
+      "F : array of float\n    The soil's vertical force on the drum [N] at the same instants "
+      "(0 in flight).\nR : float\n    Drum radius [m], > 0 (oscidrum's drum: "
+      "roller.r).\nL : float\n    Drum length [m], > 0 (roller.b).\nnu : float\n    The soil's "
+      "Poisson's ratio [-], in [0, 0.5).\n\n"
+      "Returns\n-------\nfloat\n    E [Pa] from the loading branch, from the loop's least z "
+      "forward to its largest: its end the branch's largest F, its start the landing (where F "
+      "rises from 0, interpolated linearly) after a flight, else the branch's first point. NaN "
+      "for a degenerate loop (no positive force, no rise in force or in z, fewer than 3 points, "
+      "a non-finite value).\n\n"
+      "Raises\n------\noscidrum.Error\n    If z or F is not 1-D, their lengths differ, or R, "
+      "L, nu are out of range (the message names the argument).");
+  m.def(
       "compute_metrics",
       [](const Result& result, int n_max, const std::optional<Case>& c) {
         if (!c) return compute_metrics(result, n_max);

@@ -165,6 +165,12 @@ double Model::torque(double t) const {
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
 }
 
+double Model::excitation_angle(double t) const {
+  // fmod is exact: only nu t and 2 pi are rounded (about 1e-13 rad after a thousand periods).
+  const double angle = std::fmod(nu_ * t, 2.0 * M_PI);
+  return angle < 0.0 ? angle + 2.0 * M_PI : angle;
+}
+
 CentreLoad Model::centre_load(double t) const {
   if (F0_ == 0.0) return {0.0, W_};
   const double theta = nu_ * t;  // the unbalance's angle from +x towards +z

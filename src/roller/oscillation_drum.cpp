@@ -171,6 +171,7 @@ void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, S
   s.gap.push_back(0.0);  // permanent contact
   s.dgap.push_back(0.0);
   s.torque.push_back(model_.torque(t));
+  s.alpha.push_back(model_.excitation_angle(t));
   // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
   s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
 }

@@ -299,6 +299,7 @@ void Dynamics<UnilateralDrum>::sample(double t, const Vector& x, Phase phase, Sa
   s.gap.push_back(x[kGap]);
   s.dgap.push_back(x[kDGap]);
   s.torque.push_back(m.torque(t));
+  s.alpha.push_back(m.excitation_angle(t));
   s.phase.push_back(Phase::flight);
 }
 

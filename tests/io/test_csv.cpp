@@ -56,7 +56,7 @@ TEST(Csv, SteadyStateHeaderIsTheContract) {
   EXPECT_EQ(out.str(),
             "t[s],delta[rad],phi[rad],x_A[m],s_A[m],ddelta[rad/s],dphi[rad/s],dx_A[m/s],ds_A[m/s],"
             "x_M[m],z_M[m],ddx_M[m/s^2],ddz_M[m/s^2],N[N],T[N],v_rel[m/s],gap[m],dgap[m/"
-            "s],torque[N m],phase[-]\n");
+            "s],torque[N m],alpha[rad],phase[-]\n");
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ TEST(Outputs, EveryOutputHasAUniqueNameAUnitAndADescription) {
   expect_described(record_outputs(), record);
   // Diagnostics and metrics share the sweep CSV: no name may appear in both.
   for (const std::string& d : diagnostics) EXPECT_EQ(metrics.count(d), 0u) << d;
-  EXPECT_EQ(sample_outputs().size(), 20u);
+  EXPECT_EQ(sample_outputs().size(), 21u);
   EXPECT_EQ(sample_outputs().front().name, std::string("t"));
   EXPECT_EQ(sample_outputs().back().name, std::string("phase"));
 }

@@ -160,6 +160,13 @@ TEST(OscillationDrum, SamplesGiveBackTheState) {
   EXPECT_EQ(Dyn::sampled_state(s, 1), rolled.to_array());
   EXPECT_EQ(s.v_rel[1], 0.0);
   EXPECT_EQ(s.torque[1], model.torque(0.02));
+  // The excitation's angle: the moment is M0 sin(alpha) + MMd (5, 6), alpha = nu t in [0, 2 pi).
+  const double M0 = oscillation_moment(model.parameters().roller);
+  for (std::size_t j = 0; j < 2; ++j) {
+    EXPECT_GE(s.alpha[j], 0.0);
+    EXPECT_LT(s.alpha[j], 2.0 * M_PI);
+    EXPECT_NEAR(s.torque[j], M0 * std::sin(s.alpha[j]) + model.parameters().MMd, 1e-9 * M0);
+  }
 }
 
 // Gross slip: only a slip in the direction the driving torque pushes counts; how fast it spins

@@ -6,6 +6,7 @@
 // the transient method; the energy balance of a steady period; and the parameters' rules.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -179,6 +180,38 @@ TEST(VibratoryDrum, EnergyBalanceOverAPeriodWithLiftOff) {
   EXPECT_NEAR(energy.out / energy.in, 1.0, 1e-6)
       << "in " << energy.in << " J against " << energy.out << " J (friction " << energy.friction
       << " J)";
+}
+
+// The samples' column alpha (outputs.hpp) is the angle of the force the model applies: at every
+// sample of a steady state, for each exciter, the centre load's vertical part is
+// W + F0 sin(alpha) and its horizontal part F0 cos(alpha) (circular), -F0 cos(alpha)
+// (circular_reversed) or 0 (vertical), with alpha in [0, 2 pi) and alpha - nu t a multiple of
+// 2 pi: the convention `analyze --unbalance-col` reads (record.hpp, unbalance_phase).
+TEST(VibratoryDrum, TheSampledExcitationAngleIsTheUnbalanceForcesAngle) {
+  for (Exciter e : {Exciter::circular, Exciter::circular_reversed, Exciter::vertical}) {
+    SCOPED_TRACE("exciter " + std::to_string(static_cast<int>(e)));
+    Case c = vibratory_case(e);
+    c.contact.unilateral = true;  // F0 = 1.2 P0 lifts the drum off: samples in flight and contact
+    const Model model(c);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    const Samples& s = r.samples;
+    ASSERT_TRUE(std::count(s.phase.begin(), s.phase.end(), Phase::flight) > 0);
+    ASSERT_EQ(s.alpha.size(), s.t.size());
+    const double F0 = c.roller.static_moment * model.nu() * model.nu();
+    const double sign = e == Exciter::circular ? 1.0 : e == Exciter::circular_reversed ? -1.0 : 0.0;
+    for (std::size_t j = 0; j < s.size(); ++j) {
+      const double a = s.alpha[j];
+      ASSERT_GE(a, 0.0);
+      ASSERT_LT(a, 2.0 * M_PI);
+      const double turns = (model.nu() * s.t[j] - a) / (2.0 * M_PI);
+      // ASSERT: the first sample that breaks it is enough to see.
+      ASSERT_NEAR(turns, std::round(turns), 1e-11) << j;
+      const CentreLoad L = model.centre_load(s.t[j]);
+      ASSERT_NEAR(L.z - model.W(), F0 * std::sin(a), 1e-9 * F0) << j;
+      ASSERT_NEAR(L.x, sign * F0 * std::cos(a), 1e-9 * F0) << j;
+    }
+  }
 }
 
 // The Kb-type stiffness (docs/outputs.md) is what the soil stiffness formula of vibratory rollers'
