@@ -434,7 +434,12 @@ template <class R>
 void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& b, double ds,
                              const BranchPoint& pa, const BranchPoint& pb) {
   const MultiplierCounts ca = count_multipliers(pa.floquet), cb = count_multipliers(pb.floquet);
-  const bool fold = pa.dq_ds * pb.dq_ds < 0.0;
+  // A fold: the unit tangent's parameter component changes sign. One of round-off size (1e-19 at
+  // the gross-slip limit, where the branch ends with the stick interval shrinking to nothing)
+  // has no sign: its sign flipped with a last-bit change of the excitation's sine.
+  constexpr double kNoSign = 1e-9;
+  const bool fold =
+      pa.dq_ds * pb.dq_ds < 0.0 && std::abs(pa.dq_ds) > kNoSign && std::abs(pb.dq_ds) > kNoSign;
   struct Test {
     BifurcationKind kind;
     bool changed;

@@ -9,6 +9,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 namespace {
@@ -159,7 +160,9 @@ Model::Model(const Case& c) : case_(c) {
 
 double Model::torque(double t) const {
   // (5), (6); without an oscillating torque (the vibratory drum: M0 = 0) no sine to evaluate.
-  const double MM = (M0_ == 0.0 ? 0.0 : M0_ * std::sin(nu_ * t)) + case_.MMd;
+  // sin(nu t) with the phase in turns, f t (util/small_angle.hpp).
+  const double MM =
+      (M0_ == 0.0 ? 0.0 : M0_ * detail::sincos_turns(case_.roller.f * t).sin) + case_.MMd;
   if (!(t < ramp_end_)) return MM;
   // A gentler start from rest: the excitation ramped in (docs/periodic.md).
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
@@ -173,11 +176,11 @@ double Model::excitation_angle(double t) const {
 
 CentreLoad Model::centre_load(double t) const {
   if (F0_ == 0.0) return {0.0, W_};
-  const double theta = nu_ * t;  // the unbalance's angle from +x towards +z
   double scale = F0_;
   if (t < ramp_end_) scale *= 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
   const Exciter e = case_.roller.exciter;
-  const double s = std::sin(theta), c = std::cos(theta);  // one sincos
+  // The unbalance's angle nu t from +x towards +z, in turns.
+  const auto [s, c] = detail::sincos_turns(case_.roller.f * t);
   const double Fx = e == Exciter::vertical ? 0.0 : c * scale;
   return {e == Exciter::circular_reversed ? -Fx : Fx, W_ + s * scale};
 }

@@ -43,5 +43,37 @@ TEST(SmallAngle, LibmBeyondTheSeriesRange) {
   EXPECT_TRUE(std::isnan(detail::sincos_small(std::numeric_limits<double>::quiet_NaN()).sin));
 }
 
+// sin and cos of 2 pi c by the reduction in turns: against libm where 2 pi c is computed without
+// rounding that matters (|c| < 1: within two ulps of the value, plus the ulp of the angle times
+// the derivative), exact at the quarter turns, and periodic to the last bit where c + k is exact.
+TEST(SmallAngle, TurnsAgreeWithLibmAndArePeriodic) {
+  const double pi = 3.14159265358979323846;
+  double worst = 0.0;
+  for (int i = -100000; i <= 100000; ++i) {
+    const double c = 0.99999 * i / 100000.0;
+    const auto [s, co] = detail::sincos_turns(c);
+    const double angle = 2.0 * pi * c;
+    const double slack = std::abs(angle) * 2.3e-16;  // the rounding of 2 pi c for libm
+    const double ulp_s = std::nextafter(std::abs(std::sin(angle)), 2.0) - std::abs(std::sin(angle));
+    const double ulp_c = std::nextafter(std::abs(std::cos(angle)), 2.0) - std::abs(std::cos(angle));
+    worst = std::max(worst, std::abs(s - std::sin(angle)) / (2.0 * ulp_s + slack));
+    worst = std::max(worst, std::abs(co - std::cos(angle)) / (2.0 * ulp_c + slack));
+  }
+  EXPECT_LE(worst, 1.0);
+  // Quarter turns exactly; an eighth turn as sqrt(1/2).
+  EXPECT_EQ(detail::sincos_turns(0.25).sin, 1.0);
+  EXPECT_EQ(detail::sincos_turns(0.25).cos, 0.0);
+  EXPECT_EQ(detail::sincos_turns(-0.25).sin, -1.0);
+  EXPECT_EQ(detail::sincos_turns(0.5).cos, -1.0);
+  EXPECT_EQ(detail::sincos_turns(0.0).sin, 0.0);
+  EXPECT_NEAR(detail::sincos_turns(0.125).sin, std::sqrt(0.5), 1.2e-16);
+  // Periodic: c + k exact (c a short binary fraction).
+  for (const double c : {0.1875, -0.40625, 0.015625, 0.3671875})
+    for (const double k : {1.0, -3.0, 1000.0, 123456.0}) {
+      EXPECT_EQ(detail::sincos_turns(c + k).sin, detail::sincos_turns(c).sin);
+      EXPECT_EQ(detail::sincos_turns(c + k).cos, detail::sincos_turns(c).cos);
+    }
+}
+
 }  // namespace
 }  // namespace oscidrum
