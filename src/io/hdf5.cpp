@@ -252,11 +252,16 @@ std::vector<SampleColumn> sample_columns() {
 // A case's steady state as netCDF-4 dimensions: its column t the dimension scale "t" of every
 // column (xarray opens the group with the dimension t and t as its coordinate). A group copied
 // from another file (merge) first loses the copied scale attributes, whose references point into
-// that file.
+// that file; it may lack a column added since its file was written (alpha, the excitation's angle:
+// a shard of an older oscidrum), which the merged file then lacks for that case too.
 void attach_time_scale(hid_t group, const std::string& file, bool copied) {
   std::vector<std::string> names;
   for (const SampleColumn& c : sample_columns()) names.emplace_back(c.name);
   names.emplace_back("phase");
+  if (copied)
+    std::erase_if(names, [&](const std::string& name) {
+      return name == "alpha" && H5Lexists(group, name.c_str(), H5P_DEFAULT) <= 0;
+    });
   std::vector<Id> open;
   for (const std::string& name : names) {
     open.emplace_back(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
