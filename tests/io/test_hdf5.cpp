@@ -175,18 +175,17 @@ TEST(Hdf5, PartialFileResumesItsOwnStudyOnly) {
 
 // The shards' files merge into the file of the whole study (rows in case order); a set with a
 // shard missing is refused.
-TEST(Hdf5, ShardsMergeIntoTheWholeStudy) {
-  TempDir dir;
-  const StudyRun r = run_study_of("[sweep]\n\"contact.mu\" = [0.3, 0.4, 0.5]\n");
-  ASSERT_EQ(r.outcomes.size(), 3u);
+// The study's HDF5 files of two shards, shard1.h5 and shard2.h5 in `dir`.
+std::vector<std::string> write_two_shards(const TempDir& dir, const StudyRun& r) {
+  const std::size_t n = r.outcomes.size();
   std::vector<std::string> paths;
   for (std::size_t k : {1u, 2u}) {
     const Shard shard{k, 2};
     std::vector<std::size_t> mine;
     std::vector<std::string> rows;
     const std::string path = dir.file("shard" + std::to_string(k) + ".h5");
-    StudyHdf5Writer w(path, {7, 3, true, shard}, false);
-    for (std::size_t i = 0; i < 3; ++i) {
+    StudyHdf5Writer w(path, {7, n, true, shard}, false);
+    for (std::size_t i = 0; i < n; ++i) {
       if (!shard.holds(i)) continue;
       w.add_case(i, r.outcomes[i]);
       mine.push_back(i);
@@ -195,6 +194,14 @@ TEST(Hdf5, ShardsMergeIntoTheWholeStudy) {
     w.finish(r.study, mine, r.header, rows);
     paths.push_back(path);
   }
+  return paths;
+}
+
+TEST(Hdf5, ShardsMergeIntoTheWholeStudy) {
+  TempDir dir;
+  const StudyRun r = run_study_of("[sweep]\n\"contact.mu\" = [0.3, 0.4, 0.5]\n");
+  ASSERT_EQ(r.outcomes.size(), 3u);
+  const std::vector<std::string> paths = write_two_shards(dir, r);
   EXPECT_NE(error_of([&] { merge_hdf5_shards({paths[0]}, dir.file("bad.h5")); }).find("missing"),
             std::string::npos);
   const std::string merged = dir.file("merged.h5");
@@ -214,22 +221,7 @@ TEST(Hdf5, AShardWithoutTheLaterAlphaColumnMerges) {
   TempDir dir;
   const StudyRun r = run_study_of("[sweep]\n\"contact.mu\" = [0.3, 0.4]\n");
   ASSERT_EQ(r.outcomes.size(), 2u);
-  std::vector<std::string> paths;
-  for (std::size_t k : {1u, 2u}) {
-    const Shard shard{k, 2};
-    std::vector<std::size_t> mine;
-    std::vector<std::string> rows;
-    const std::string path = dir.file("shard" + std::to_string(k) + ".h5");
-    StudyHdf5Writer w(path, {7, 2, true, shard}, false);
-    for (std::size_t i = 0; i < 2; ++i) {
-      if (!shard.holds(i)) continue;
-      w.add_case(i, r.outcomes[i]);
-      mine.push_back(i);
-      rows.push_back(r.rows[i]);
-    }
-    w.finish(r.study, mine, r.header, rows);
-    paths.push_back(path);
-  }
+  const std::vector<std::string> paths = write_two_shards(dir, r);
   {  // the older shard: case 0 without alpha
     const hid_t f = H5Fopen(paths[0].c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     ASSERT_GE(f, 0);

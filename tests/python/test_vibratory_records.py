@@ -216,12 +216,18 @@ def test_record_kb_reads_each_windows_own_angles():
     assert kb[1] == pytest.approx(sim.kb, rel=1e-6) and kb[2] == pytest.approx(sim.kb, rel=1e-6)
 
 
-def test_record_kb_says_why_kb_is_nan():
+def two_period_record():
+    """A synthetic record of two periods of the vibratory drum at G = 12 MN/m^2: the case, t, the
+    unbalance angle nu t and its analyze_windows."""
     case = vibratory(12e6)
     r = oscidrum.synthetic_record([case], duration=2.0 / F_VIB, sample_rate=1000.0 * F_VIB)
     t = r["t"]
     alpha = 2.0 * math.pi * F_VIB * t
-    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    return case, t, alpha, oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+
+
+def test_record_kb_says_why_kb_is_nan():
+    case, t, alpha, windows = two_period_record()
     for a, c, why in ((None, case, "no unbalance angle"), (alpha, None, "--case"),
                       (alpha, oscidrum.Case(), "oscillation drum")):
         assert why in oscidrum.record_kb(windows, t, a, c)
@@ -233,11 +239,7 @@ def test_record_kb_says_why_kb_is_nan():
 
 
 def test_record_kb_refuses_bad_input_naming_the_argument():
-    case = vibratory(12e6)
-    r = oscidrum.synthetic_record([case], duration=2.0 / F_VIB, sample_rate=1000.0 * F_VIB)
-    t = r["t"]
-    alpha = 2.0 * math.pi * F_VIB * t
-    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB)
+    case, t, alpha, windows = two_period_record()
     with pytest.raises(oscidrum.Error, match=r"record_kb: alpha has \d+ samples and t \d+"):
         oscidrum.record_kb(windows, t, alpha[:-1], case)
     with pytest.raises(oscidrum.Error, match=r"^alpha must be a 1-D array"):
