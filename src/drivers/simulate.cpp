@@ -30,10 +30,10 @@ constexpr int kWarmChordSteps = 4;
 
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
 // of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
-// Diagnostics::period_equivalents: measured as the CPU time of the side-by-side benchmarks
-// (bench/README.md) against the transient's time per right-hand side, 8.5 (stick-slip) to 14
-// (pure rolling, whose right-hand side is cheaper), about 10.
-constexpr double kJacobianCost = 10.0;
+// Diagnostics::period_equivalents: measured by bench/bench_monodromy.cpp (one period at a steady
+// orbit, plainly and with the variational equations, CPU time): 3.0 (pure rolling) to 3.4
+// (stick-slip) on the paper's roller and the performance issue's sweep (bench/README.md).
+constexpr double kJacobianCost = 3.3;
 
 // The transient search from rest and the sampling of what it found. It may integrate what is left
 // of numerics.max_periods after the periods shooting spent before falling back.
