@@ -52,9 +52,17 @@ struct StudyOptions {
   bool keep_outcomes = true;
 };
 
-/// Longest chain of continuation: a chain is cut into pieces of at most this many cases (each
-/// piece starts from rest), so that a long one-parameter study still spreads over the threads.
-inline constexpr std::size_t kMaxContinuationChain = 16;
+/// Chains of continuation are cut into pieces (each piece starts from rest), so that a long
+/// one-parameter study still spreads over the threads: pieces of at most
+/// max_continuation_piece(n) cases in a study of n cases, at least kMinContinuationPiece, and long
+/// enough that the study has about kContinuationPieces of them when its chains are long. The cut
+/// depends only on the study, never on the threads (the outcomes do not either).
+inline constexpr std::size_t kMinContinuationPiece = 16;
+inline constexpr std::size_t kContinuationPieces = 64;
+inline constexpr std::size_t max_continuation_piece(std::size_t n) {
+  const std::size_t even = (n + kContinuationPieces - 1) / kContinuationPieces;
+  return even > kMinContinuationPiece ? even : kMinContinuationPiece;
+}
 
 /// Chains of continuation inferred from the input order, as StudyOptions::previous: case k
 /// continues case k - 1 when the parameters in which they differ are among those in which the

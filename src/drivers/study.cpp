@@ -157,7 +157,8 @@ bool continues(const Case& c) {
   return c.numerics.method == SteadyMethod::shooting && c.numerics.continuation;
 }
 
-// The chains of `previous` (validated), cut at kMaxContinuationChain, ordered by their first case.
+// The chains of `previous` (validated), cut into pieces of at most max_continuation_piece(n),
+// ordered by their first case.
 std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSource& case_at,
                                                   const std::vector<std::ptrdiff_t>& previous) {
   if (previous.size() != n)
@@ -181,11 +182,12 @@ std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSourc
     linked[k] = true;
   }
   std::vector<std::vector<std::size_t>> chains;
+  const std::size_t piece = max_continuation_piece(n);
   for (std::size_t k = 0; k < n; ++k) {
     if (linked[k]) continue;  // inside a chain
     chains.emplace_back();
     for (std::ptrdiff_t i = static_cast<std::ptrdiff_t>(k); i != -1; i = next[i]) {
-      if (chains.back().size() == kMaxContinuationChain) chains.emplace_back();
+      if (chains.back().size() == piece) chains.emplace_back();
       chains.back().push_back(static_cast<std::size_t>(i));
     }
   }
