@@ -26,6 +26,10 @@ struct WarmStart {
   /// A second start (same phase) tried when Newton fails from `state`, before the cold start:
   /// the neighbour's own state behind a predicted one (secant_start). Empty: none.
   std::vector<double> then;
+  /// The contraction of the residual by the neighbour's first chord step, when it had one
+  /// (negative: unknown). Predicts this case's: when that predicts convergence, the step is
+  /// confirmed on the recorded period directly, without a plain period map first.
+  double contraction = -1.0;
 };
 
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a
@@ -41,7 +45,8 @@ std::optional<WarmStart> orbit_start(const Model& model, const Result& result);
 /// attempt, not a cold start.
 inline constexpr double kMaxSecantRatio = 1.5;
 std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, const Case& c2,
-                                      const Case& c1, const Case& c0);
+                                      const Case& c1, const Case& c0, const WarmStart* w3 = nullptr,
+                                      const Case* c3 = nullptr);
 
 /// simulate(), but with numerics.method = shooting and `warm` given, Newton starts from `warm`
 /// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs

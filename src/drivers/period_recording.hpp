@@ -61,6 +61,9 @@ struct Recording {
   double t_begin = 0.0, t_end = 0.0;  // [s]
   std::vector<double> start;          // the state at t_begin (Dynamics<R>::Vector)
   Phase phase = Phase::stick;         // the flow's phase there
+  // Not of the period: how shooting got there. The contraction of the residual by a warm start's
+  // first chord step (WarmStart::contraction, for the next case of a chain; negative: none).
+  double chord_contraction = -1.0;
 };
 
 // Records the pieces of [t_begin, t_end] (the caller sets the Recording's start and phase).

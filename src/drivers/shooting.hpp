@@ -99,6 +99,9 @@ struct BasicShootingStart {
   /// A supplied state's first Newton step is taken without a map at its result, to be confirmed
   /// by the caller (BasicShootingOutcome::warm_prediction). False: Newton maps every step.
   bool predict_first = true;
+  /// The contraction of the residual by the first chord step of the neighbour this start comes
+  /// from (WarmStart::contraction; negative: unknown).
+  double contraction = -1.0;
 };
 
 using ShootingOutcome = BasicShootingOutcome<OscillationDrum>;

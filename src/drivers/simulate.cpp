@@ -212,7 +212,16 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // three plain ones), each giving the next chord step, until the last contraction predicts a
   // residual well below Newton's test; a recorded period that does not confirm gives a chord
   // step too.
-  double predicted = std::numeric_limits<double>::infinity();  // no contraction known yet
+  // No contraction known yet, unless the neighbour's first chord step gives one (its orbit's
+  // monodromy was as accurate as this one's: on the performance issue's sweep the contraction
+  // varies by a factor of about 3 from case to case, well inside kPredictMargin).
+  double predicted = std::numeric_limits<double>::infinity();
+  if (shot.warm_prediction && warm.contraction >= 0.0) predicted = previous * warm.contraction;
+  double first_contraction = -1.0;  // of this case's first chord step (-1: none)
+  const auto note_contraction = [&] {
+    if (shot.warm_prediction && previous > 0.0 && std::isfinite(change))
+      first_contraction = change / previous;
+  };
   long rhs_before = flow.counters().rhs_evaluations;
   FlowStop stop = FlowStop::reached;
   bool unconfirmed = false;
@@ -228,16 +237,16 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
                                     record, p, confirm);
       // FlowStop::observer: the flow reached the end of a period that did not confirm the orbit.
       unconfirmed = stop == FlowStop::observer;
+      if (chord_steps == 0) note_contraction();
       if (!unconfirmed || !shot.warm_prediction) break;
       d.periods_simulated += p;  // the recorded period that did not confirm the step
     } else {
-      const FlowStop mapped = flow.advance(shot.t0 + p * model.period());
+      // (stop may still hold FlowStop::observer of a recorded period that did not confirm.)
+      stop = flow.advance(shot.t0 + p * model.period());
       d.periods_simulated += p;
-      if (mapped != FlowStop::reached) {
-        stop = mapped;
-        break;
-      }
+      if (stop != FlowStop::reached) break;
       change = detail::scaled_change<R>(flow.state(), orbit, shot.scale);
+      if (chord_steps == 0) note_contraction();
       if (accepted()) {
         predicted = 0.0;  // confirmed: its recorded period follows, from the same state
         continue;
@@ -342,6 +351,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   d.min_N =
       std::min(flow.counters().min_N,
                warm.from_state ? std::numeric_limits<double>::infinity() : shot.transient_min_N);
+  if (record != nullptr && !settled) record->chord_contraction = first_contraction;
   return true;
 }
 
@@ -376,6 +386,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
       // A phase the new case cannot be in (slip under pure rolling, stick without friction,
       // stick or slip under a smooth law): its start phase instead.
       start.phase = dynamics.flow_phase(warm->phase);
+      start.contraction = warm->contraction;
       done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record, start);
     }
     result.diagnostics.warm_start = done ? 1 : -1;

@@ -70,7 +70,10 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     // The steady period as the sampling recorded it: the metrics need not integrate it again.
     detail::recording::Recording period;
     out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples, &period);
-    if (orbit) *orbit = detail::orbit_start(model, out.result);
+    if (orbit) {
+      *orbit = detail::orbit_start(model, out.result);
+      if (*orbit) (*orbit)->contraction = period.chord_contraction;
+    }
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
@@ -109,21 +112,25 @@ void work(Pool& pool) {
     if (k >= pool.chains.size()) break;
     // The predecessor's steady state and the one before it, with their cases: the start of the
     // next case extrapolated along the chain (secant), or the predecessor's state.
-    std::optional<detail::WarmStart> warm, before;
-    std::optional<Case> warm_case, before_case;
+    std::optional<detail::WarmStart> warm, before, earlier;
+    std::optional<Case> warm_case, before_case, earlier_case;
     for (const std::size_t i : pool.chains[k]) {
       if (pool.cancelled()) return;
       bool interrupted = false;
       std::optional<detail::WarmStart> orbit, predicted;
       const Case now = pool.case_at(i);
       if (warm && before && warm_case && before_case)
-        predicted = detail::secant_start(*before, *warm, *before_case, *warm_case, now);
+        predicted = detail::secant_start(*before, *warm, *before_case, *warm_case, now,
+                                         earlier ? &*earlier : nullptr,
+                                         earlier_case ? &*earlier_case : nullptr);
       const detail::WarmStart* start = predicted ? &*predicted : (warm ? &*warm : nullptr);
       const bool samples =
           opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
       CaseOutcome outcome =
           run_one(now, samples, opt.n_harmonics, cancelled, stop_now, &interrupted, start, &orbit);
       if (interrupted) return;  // stays "cancelled"; never reported as done
+      earlier = std::move(before);
+      earlier_case = std::move(before_case);
       before = std::move(warm);
       before_case = std::move(warm_case);
       warm = std::move(orbit);
@@ -201,17 +208,34 @@ std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSourc
 namespace detail {
 
 std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, const Case& c2,
-                                      const Case& c1, const Case& c0) {
+                                      const Case& c1, const Case& c0, const WarmStart* w3,
+                                      const Case* c3) {
   if (w1.phase != w2.phase || w1.state.size() != w2.state.size()) return {};
   for (const Field& f : fields()) {
-    const double v0 = f.get(c0), v1 = f.get(c1), v2 = f.get(c2);
-    if (v0 == v1 || (std::isnan(v0) && std::isnan(v1))) continue;
-    const double s = (v0 - v1) / (v1 - v2);
+    const double u0 = f.get(c0), u1 = f.get(c1), u2 = f.get(c2);
+    if (u0 == u1 || (std::isnan(u0) && std::isnan(u1))) continue;
+    const double s = (u0 - u1) / (u1 - u2);
     if (!(s > 0.0 && s <= kMaxSecantRatio)) return {};
     WarmStart out = w1;
     out.then = w1.state;
+    // Through three states when the step before continues this one too (same phase, a ratio of
+    // steps in (0, kMaxSecantRatio]): the Lagrange polynomial of degree 2 in the parameter.
+    bool quadratic = w3 != nullptr && c3 != nullptr && w3->phase == w1.phase &&
+                     w3->state.size() == w1.state.size();
+    double l1 = 1.0 + s, l2 = -s, l3 = 0.0;  // the secant: w1 + s (w1 - w2)
+    if (quadratic) {
+      const double u3 = f.get(*c3);
+      const double s3 = (u1 - u2) / (u2 - u3);
+      quadratic = s3 > 0.0 && s3 <= kMaxSecantRatio;
+      if (quadratic) {
+        l1 = (u0 - u2) * (u0 - u3) / ((u1 - u2) * (u1 - u3));
+        l2 = (u0 - u1) * (u0 - u3) / ((u2 - u1) * (u2 - u3));
+        l3 = (u0 - u1) * (u0 - u2) / ((u3 - u1) * (u3 - u2));
+      }
+    }
     for (std::size_t j = 0; j < out.state.size(); ++j) {
-      out.state[j] = w1.state[j] + s * (w1.state[j] - w2.state[j]);
+      out.state[j] = l1 * w1.state[j] + l2 * w2.state[j];
+      if (quadratic) out.state[j] += l3 * w3->state[j];
       if (!std::isfinite(out.state[j])) return {};
     }
     return out;

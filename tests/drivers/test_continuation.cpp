@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "drivers/continuation.hpp"
+#include "drivers/period_recording.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
@@ -235,6 +237,121 @@ TEST(Continuation, AWarmStartIntegratesTheVariationalEquationsOnce) {
             1.5 * static_cast<double>(exact.diagnostics.jacobian_evaluations));
   EXPECT_LE(scaled_difference(refreshed.samples, cold.samples), 2.0 * tol);
   EXPECT_LE(multiplier_distance(refreshed.floquet, exact.floquet), 1e-3);
+}
+
+TEST(Continuation, TheNeighboursContractionSkipsThePlainMap) {
+  // Without a contraction known, the first chord step is confirmed on a plain period map before
+  // the recorded period; with the neighbour's, when it predicts convergence, on the recorded
+  // period directly: one period less, the same orbit.
+  // The start predicted from the two cases before, a quarter of a step of the sweep apart
+  // (a full step: contraction 6.6e-7, too little to predict convergence, and the plain map
+  // follows as without the neighbour's contraction).
+  const double h = 95e6 / 399.0 / 4.0;
+  const Case c0 = appendix_b_case(25e6), c1 = appendix_b_case(25e6 - h),
+             c2 = appendix_b_case(25e6 - 2.0 * h);
+  const Model model(c0), m1(c1), m2(c2);
+  const Result cold = simulate(model), r1 = simulate(m1), r2 = simulate(m2);
+  ASSERT_EQ(cold.status, Status::steady_state) << cold.message;
+  const std::optional<detail::WarmStart> w1 = detail::orbit_start(m1, r1),
+                                         w2 = detail::orbit_start(m2, r2);
+  ASSERT_TRUE(w1.has_value() && w2.has_value());
+  std::optional<detail::WarmStart> start = detail::secant_start(*w2, *w1, c2, c1, c0);
+  ASSERT_TRUE(start.has_value());
+  EXPECT_LT(start->contraction, 0.0);  // unknown unless a study sets it
+  detail::recording::Recording rec;
+  const Result plain = detail::simulate_from(model, {}, {}, &*start, true, &rec);
+  ASSERT_EQ(plain.status, Status::steady_state) << plain.message;
+  // The contraction of the first chord step, for the next case (seen: 4.2e-8).
+  EXPECT_GT(rec.chord_contraction, 0.0);
+  EXPECT_LT(rec.chord_contraction, 1e-5);
+
+  start->contraction = rec.chord_contraction;
+  const Result direct = detail::simulate_from(model, {}, {}, &*start, true, &rec);
+  ASSERT_EQ(direct.status, Status::steady_state) << direct.message;
+  EXPECT_EQ(direct.diagnostics.warm_start, 1);
+  EXPECT_EQ(direct.diagnostics.periods_simulated, plain.diagnostics.periods_simulated - 1);
+  EXPECT_EQ(direct.diagnostics.jacobian_evaluations, plain.diagnostics.jacobian_evaluations);
+  const double tol = model.parameters().numerics.steady_tol;
+  EXPECT_LE(scaled_difference(direct.samples, cold.samples), 2.0 * tol);
+  EXPECT_LE(scaled_difference(direct.samples, plain.samples), 0.1 * tol);
+
+  // A contraction that misleads (0: every step predicted exact) from a distant neighbour: the
+  // recorded period does not confirm the step, and the case still converges to the orbit.
+  const Model distant(appendix_b_case(15e6));
+  const Result far_case = simulate(distant);
+  ASSERT_EQ(far_case.status, Status::steady_state) << far_case.message;
+  std::optional<detail::WarmStart> from_far = detail::orbit_start(distant, far_case);
+  ASSERT_TRUE(from_far.has_value());
+  from_far->contraction = 0.0;
+  const Result misled = detail::simulate_from(model, {}, {}, &*from_far);
+  ASSERT_EQ(misled.status, Status::steady_state) << misled.message;
+  EXPECT_EQ(misled.diagnostics.warm_start, 1)
+      << misled.message << " / " << misled.diagnostics.fallback;
+  EXPECT_LE(scaled_difference(misled.samples, cold.samples), 2.0 * tol);
+}
+
+TEST(Continuation, ThePredictorIsExactOnAQuadraticChain) {
+  // States quadratic in mu at unequal steps: three of them predict the fourth exactly (to
+  // rounding); two predict it by the secant; a third in another phase, or a step that does not
+  // continue the one before it (ratio above kMaxSecantRatio), leaves the secant.
+  const auto state = [](double mu) {
+    const double u = 10.0 * mu;
+    return std::vector<double>{1.0 + u * u, -2.0 * u + 0.5 * u * u, 3.0, u * u * u / 10.0};
+  };
+  const std::array<double, 4> mu = {0.40, 0.44, 0.472, 0.516};  // c3, c2, c1, c0
+  std::array<Case, 4> c;
+  std::array<detail::WarmStart, 4> w;
+  for (std::size_t k = 0; k < 4; ++k) {
+    c[k] = shooting_case(25e6, false);
+    c[k].contact.mu = mu[k];
+    w[k] = detail::WarmStart{state(mu[k]), Phase::stick, {}};
+  }
+  const auto quadratic = detail::secant_start(w[1], w[2], c[1], c[2], c[3], &w[0], &c[0]);
+  ASSERT_TRUE(quadratic.has_value());
+  EXPECT_EQ(quadratic->then, w[2].state);
+  const std::vector<double> exact = state(mu[3]);
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_NEAR(quadratic->state[j], exact[j], 1e-12);
+  // The cubic component is not reproduced: a quadratic through three points misses u^3 / 10 by
+  // (u0 - u1)(u0 - u2)(u0 - u3) / 10.
+  EXPECT_NEAR(quadratic->state[3], exact[3] - 0.44 * 0.76 * 1.16 / 10.0, 1e-12);
+
+  const auto secant = detail::secant_start(w[1], w[2], c[1], c[2], c[3]);
+  ASSERT_TRUE(secant.has_value());
+  const double s = (mu[3] - mu[2]) / (mu[2] - mu[1]);
+  for (std::size_t j = 0; j < 4; ++j)
+    EXPECT_DOUBLE_EQ(secant->state[j], w[2].state[j] + s * (w[2].state[j] - w[1].state[j]));
+  EXPECT_GT(std::abs(secant->state[0] - exact[0]), 1e-3);  // the quadratic did better
+  detail::WarmStart other = w[0];
+  other.phase = Phase::slip_positive;
+  const auto mixed = detail::secant_start(w[1], w[2], c[1], c[2], c[3], &other, &c[0]);
+  ASSERT_TRUE(mixed.has_value());
+  EXPECT_EQ(mixed->state, secant->state);
+  Case near = c[0];
+  near.contact.mu = 0.42;  // the step c3 -> c2 (0.02) is too short for the next (0.032)
+  ASSERT_GT((mu[2] - mu[1]) / (mu[1] - 0.42), detail::kMaxSecantRatio);
+  const auto uneven = detail::secant_start(w[1], w[2], c[1], c[2], c[3], &w[0], &near);
+  ASSERT_TRUE(uneven.has_value());
+  EXPECT_EQ(uneven->state, secant->state);
+}
+
+TEST(Continuation, ChainsAreCutIntoPiecesThatDependOnlyOnTheStudy) {
+  EXPECT_EQ(max_continuation_piece(1), kMinContinuationPiece);
+  EXPECT_EQ(max_continuation_piece(400), 16u);
+  EXPECT_EQ(max_continuation_piece(2400), 38u);  // the performance issue's sweep: 66 pieces
+  EXPECT_EQ(max_continuation_piece(64 * 100), 100u);
+  // One chain of 40 cases: pieces of 16, 16 and 8, each starting from rest.
+  std::vector<Case> cases;
+  for (int k = 0; k < 40; ++k) cases.push_back(appendix_b_case(20e6 + 0.25e6 * k));
+  StudyOptions o;
+  o.threads = 2;
+  o.keep_samples = false;
+  const std::vector<CaseOutcome> out = run_study(cases, o);
+  ASSERT_EQ(out.size(), 40u);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    ASSERT_EQ(out[i].result.status, Status::steady_state) << out[i].result.message;
+    EXPECT_EQ(out[i].result.diagnostics.warm_start, i % 16 == 0 ? 0 : 1);
+  }
 }
 
 TEST(Continuation, TheTransientMethodAlwaysStartsFromRest) {
