@@ -33,14 +33,24 @@ void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::stri
     const std::string key = f.key;
     if (!key.starts_with("roller.") || key == "roller.g") continue;
     if (!only.empty() && std::find(only.begin(), only.end(), key) == only.end()) continue;
-    double& slot = o.roller[key];
-    slot = f.get(Case{});
     // roller.m_f is --mf (Appendix A's symbol); the others are the key's last part.
     const std::string flag = key == "roller.m_f" ? "--mf" : "--" + key.substr(7);
-    o.roller_flags[key] = app.add_option(flag, slot,
-                                         std::string(f.description) + " [" + f.unit +
-                                             "] (default " + format_field(Case{}, f) + ")")
-                              ->group("Roller (paper Table 1)");
+    const std::string help =
+        std::string(f.description) + " [" + f.unit + "] (default " + format_field(Case{}, f) + ")";
+    if (f.type == FieldType::choice) {
+      // By name (--type vibratory), checked by the case's own rule when applied.
+      std::string& name = o.roller_choice[key];
+      name = format_field(Case{}, f);
+      std::string names = f.choices;
+      std::replace(names.begin(), names.end(), '|', ',');
+      o.roller_flags[key] = app.add_option(flag, name, help)
+                                ->type_name("{" + names + "}")
+                                ->group("Roller (paper Table 1)");
+      continue;
+    }
+    double& slot = o.roller[key];
+    slot = f.get(Case{});
+    o.roller_flags[key] = app.add_option(flag, slot, help)->group("Roller (paper Table 1)");
   }
 }
 
@@ -205,8 +215,13 @@ void put(io::CaseSpec& spec, const std::string& key, const io::Value& value,
 }
 
 void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
-  for (const auto& [key, flag] : o.roller_flags)
-    if (given(flag)) put(spec, key, o.roller.at(key), origin(flag->get_name(), o.roller.at(key)));
+  for (const auto& [key, flag] : o.roller_flags) {
+    if (!given(flag)) continue;
+    if (const auto choice = o.roller_choice.find(key); choice != o.roller_choice.end())
+      put(spec, key, choice->second, flag->get_name() + " " + choice->second);
+    else
+      put(spec, key, o.roller.at(key), origin(flag->get_name(), o.roller.at(key)));
+  }
 
   // Soil.
   const bool coefficient_flags =

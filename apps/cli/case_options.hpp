@@ -20,6 +20,8 @@ namespace oscidrum::cli {
 struct CaseOptions {
   // Roller flags, generated from the field table (roller.*): key -> value, and the option.
   std::map<std::string, double> roller;
+  // A choice (roller.type, roller.exciter) is given by its name: key -> name.
+  std::map<std::string, std::string> roller_choice;
   std::map<std::string, CLI::Option*> roller_flags;
 
   double G = 0, nu = 0, rho = 0;  // --G [MN/m^2], --nu, --rho

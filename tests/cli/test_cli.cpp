@@ -267,6 +267,27 @@ TEST(CliRun, VibratoryExampleRunsAndRefusesTheOscillationKeys) {
   EXPECT_NE(o.err.find("roller.static_moment must be > 0"), std::string::npos) << o.err;
 }
 
+TEST(CliRun, ChoiceFlagsTakeTheChoicesNames) {
+  // --type and --exciter were generated as number flags and refused every name their help
+  // offered ("--type: must be a decimal number; got 'vibratory'").
+  Outcome o = run({"run", "--help"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("--type {oscillation,vibratory}"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("--exciter {circular,circular_reversed,vertical}"), std::string::npos);
+  o = run({"run", "--type", "vibratory", "--static_moment", "0.9", "--f", "30", "--G", "40",
+           "--exciter", "vertical", "--unilateral", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["parameters"]["roller.type"], "vibratory") << o.out;
+  EXPECT_EQ(j["origins"]["roller.type"], "--type vibratory") << o.out;
+  EXPECT_EQ(j["parameters"]["roller.exciter"], "vertical") << o.out;
+  o = run({"run", "--type", "vibrating"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--type vibrating: roller.type must be one of oscillation, vibratory"),
+            std::string::npos)
+      << o.err;
+}
+
 TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
   TempDir dir;
   Outcome o = run({"run", kSource + "/examples/case.toml", "--G", "40", "--pure-rolling", "--MMd",
