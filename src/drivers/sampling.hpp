@@ -135,7 +135,8 @@ FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period,
   if (record != nullptr) {
     // The span compute_metrics reads: t0 + p / f, p the multiplicity (the same expression).
     recording::Recorder<R> recorder(flow.model(), flow.options().baumgarte, t0,
-                                    t0 + record_periods / result.frequency);
+                                    t0 + record_periods / result.frequency,
+                                    std::move(record->pieces));
     const auto x = flow.state().to_array();
     recorder.out.start.assign(x.begin(), x.end());
     recorder.out.phase = flow.phase();
@@ -145,7 +146,8 @@ FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period,
     stop = flow.advance(confirm ? t0 + record_periods / result.frequency : t_end, &both);
     if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;
     if (stop == FlowStop::reached) stop = flow.advance(t_end, &sampler);
-    *record = stop == FlowStop::reached ? std::move(recorder.out) : recording::Recording{};
+    *record = std::move(recorder.out);
+    if (stop != FlowStop::reached) recording::clear(*record);
   } else {
     stop = flow.advance(confirm ? t0 + record_periods * flow.model().period() : t_end, &sampler);
     if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;

@@ -190,7 +190,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     return accepted();
   };
   const auto discard_samples = [&] {
-    if (record != nullptr) *record = {};
+    if (record != nullptr) detail::recording::clear(*record);
     result.samples = Samples{};
     result.events.clear();
     result.stick_time = result.slip_positive_time = result.slip_negative_time = 0.0;
@@ -359,7 +359,7 @@ template <class R>
 Result simulate_once(const Model& model, const ProgressCallback& progress,
                      const std::function<bool()>& cancelled, const detail::WarmStart* warm,
                      bool all_samples, detail::recording::Recording* record) {
-  if (record != nullptr) *record = {};
+  if (record != nullptr) detail::recording::clear(*record);
   FlowOptions options = FlowOptions::from(model);
   options.cancelled = cancelled;
   BasicFlow<R> flow(model, options);
@@ -399,7 +399,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
     done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record);
   if (!done) {
     // The transient method's sampling continues its search: no restart, no recording.
-    if (record != nullptr) *record = {};
+    if (record != nullptr) detail::recording::clear(*record);
     transient(model, flow, progress, result, &sample_rhs, all_samples);
   }
   Diagnostics& d = result.diagnostics;

@@ -61,14 +61,17 @@ struct Pool {
 CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
                     const std::function<bool()>& cancelled, const std::function<bool()>& stop_now,
                     bool* interrupted, const detail::WarmStart* warm = nullptr,
-                    std::optional<detail::WarmStart>* orbit = nullptr) {
+                    std::optional<detail::WarmStart>* orbit = nullptr,
+                    detail::recording::Recording* reused = nullptr) {
   CaseOutcome out;
   try {
     const Model model(c);
     ProgressCallback progress;
     if (cancelled) progress = [&](int, double) { return !cancelled(); };
-    // The steady period as the sampling recorded it: the metrics need not integrate it again.
-    detail::recording::Recording period;
+    // The steady period as the sampling recorded it: the metrics need not integrate it again
+    // (`reused`: a thread's recording, whose storage the cases share).
+    detail::recording::Recording own;
+    detail::recording::Recording& period = reused != nullptr ? *reused : own;
     out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples, &period);
     if (orbit) {
       *orbit = detail::orbit_start(model, out.result);
@@ -107,6 +110,7 @@ void work(Pool& pool) {
       return pool.cancelled();
     };
   }
+  detail::recording::Recording period;  // every case of this thread records into its storage
   while (!pool.stop.load()) {
     const std::size_t k = pool.next.fetch_add(1);
     if (k >= pool.chains.size()) break;
@@ -126,8 +130,8 @@ void work(Pool& pool) {
       const detail::WarmStart* start = predicted ? &*predicted : (warm ? &*warm : nullptr);
       const bool samples =
           opt.keep_samples || (static_cast<bool>(opt.on_case_done) && opt.samples_in_callback);
-      CaseOutcome outcome =
-          run_one(now, samples, opt.n_harmonics, cancelled, stop_now, &interrupted, start, &orbit);
+      CaseOutcome outcome = run_one(now, samples, opt.n_harmonics, cancelled, stop_now,
+                                    &interrupted, start, &orbit, &period);
       if (interrupted) return;  // stays "cancelled"; never reported as done
       earlier = std::move(before);
       earlier_case = std::move(before_case);
