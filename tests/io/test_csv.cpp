@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,6 +33,52 @@ TEST(Csv, QuoteSplitAndNumbersRoundTrip) {
   }
   EXPECT_EQ(format_double_short(0.05), "0.05");
   EXPECT_EQ(format_double(std::nan("")), "nan");
+}
+
+// The text format_double_short wrote before it started its search at the length of the
+// shortest round-trip digits: the first %.*g, precision 1, 2, ..., that reads back.
+std::string shortest_by_search(double v) {
+  char buf[64];
+  if (v == std::trunc(v) && std::abs(v) < 1e15) {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+    return std::string(buf) == "-0" ? "0" : buf;
+  }
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+TEST(Csv, ShortNumbersAreTheShortestPrintfTextThatReadsBack) {
+  // Random bit patterns (every exponent, subnormals included), random values of a sweep's
+  // magnitudes, and the edges: powers of two (asymmetric rounding intervals), 17-digit values.
+  std::mt19937_64 rng(20261127);
+  std::vector<double> values = {0.1 + 0.2,
+                                1.0 / 3.0,
+                                5e-324,
+                                2.2250738585072014e-308,
+                                0.5,
+                                std::ldexp(1.0, -60),
+                                std::ldexp(1.0, 70),
+                                1e15 + 0.5,
+                                9007199254740993.0,
+                                -0.0,
+                                123456.78901234567};
+  for (int i = 0; i < 20000; ++i) {
+    double v;
+    const std::uint64_t bits = rng();
+    std::memcpy(&v, &bits, sizeof v);
+    if (std::isfinite(v)) values.push_back(v);
+    values.push_back(std::ldexp(std::uniform_real_distribution<double>(0.5, 1.0)(rng),
+                                static_cast<int>(rng() % 80) - 40));
+  }
+  for (int e = -1074; e <= 1023; ++e) values.push_back(std::ldexp(1.0, e));
+  for (const double v : values) {
+    SCOPED_TRACE(shortest_by_search(v));
+    EXPECT_EQ(format_double_short(v), shortest_by_search(v));
+    EXPECT_EQ(std::strtod(format_double_short(v).c_str(), nullptr), v);
+  }
 }
 
 TEST(Csv, StudyRowHasAsManyCellsAsTheHeader) {
