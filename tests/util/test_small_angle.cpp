@@ -75,5 +75,24 @@ TEST(SmallAngle, TurnsAgreeWithLibmAndArePeriodic) {
     }
 }
 
+TEST(SmallAngle, RoundingToAnIntegerIsNearbyint) {
+  // Ties to even, both signs, the halves, values beyond 2^51 and the largest; only a zero's sign
+  // may differ (nearbyint(-0.3) = -0, here +0).
+  const double big = 2251799813685248.0;  // 2^51
+  for (const double x :
+       {0.5, 1.5, 2.5, -0.5, -1.5, -2.5, 0.49999999999999994, 1e6 + 0.5, 1e6 + 1.5, -7.25, 3.75,
+        big - 0.5, big, big + 1.0, -big + 0.5, 1e300, -1e300, std::numeric_limits<double>::max()}) {
+    EXPECT_EQ(detail::round_to_integer(x), std::nearbyint(x)) << x;
+  }
+  for (int i = -400000; i <= 400000; ++i) {
+    const double x = i / 1024.0 + (i % 7) * 1e-12;
+    const double r = detail::round_to_integer(x), n = std::nearbyint(x);
+    ASSERT_EQ(r, n) << x;  // == ignores the sign of zero
+  }
+  EXPECT_TRUE(std::isnan(detail::round_to_integer(std::nan(""))));
+  EXPECT_EQ(detail::round_to_integer(std::numeric_limits<double>::infinity()),
+            std::numeric_limits<double>::infinity());
+}
+
 }  // namespace
 }  // namespace oscidrum
