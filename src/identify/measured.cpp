@@ -10,6 +10,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 namespace {
@@ -23,15 +24,9 @@ void legendre(double u, int d, std::vector<double>& P) {
   for (int k = 1; k < d; ++k) P[k + 1] = ((2 * k + 1) * u * P[k] - k * P[k - 1]) / (k + 1);
 }
 
-// cos(k w), sin(k w), k = 0 ... m, by angle addition.
-void harmonics_at(double w, int m, std::vector<double>& c, std::vector<double>& s) {
-  const double c1 = std::cos(w), s1 = std::sin(w);
-  c[0] = 1.0;
-  s[0] = 0.0;
-  for (int k = 1; k <= m; ++k) {
-    c[k] = c[k - 1] * c1 - s[k - 1] * s1;
-    s[k] = s[k - 1] * c1 + c[k - 1] * s1;
-  }
+// cos(k w), sin(k w), k = 0 ... m, w the phase 2 pi `turns` (detail::harmonics_turns).
+void harmonics_at(double turns, int m, std::vector<double>& c, std::vector<double>& s) {
+  detail::harmonics_turns(turns, m, c.data(), s.data());
 }
 
 double median_step(std::span<const double> t) {
@@ -45,16 +40,15 @@ double median_step(std::span<const double> t) {
 void signal_shape(const std::vector<std::complex<double>>& cx,
                   const std::vector<std::complex<double>>& cz, MeasuredResponse& d) {
   constexpr int kSamples = 1024;
-  std::vector<double> x(kSamples), z(kSamples);
+  const int N = static_cast<int>(cx.size());
+  std::vector<double> x(kSamples), z(kSamples), cn(N + 1), sn(N + 1);
   for (int j = 0; j < kSamples; ++j) {
-    const double w = 2.0 * M_PI * j / kSamples;
+    harmonics_at(static_cast<double>(j) / kSamples, N, cn, sn);  // w = 2 pi j / 1024
     double sx = 0, sz = 0;
-    for (std::size_t n = 1; n <= cx.size(); ++n) {
+    for (int n = 1; n <= N; ++n) {
       // A sin(n w + theta) = Re C sin(n w) + Im C cos(n w).
-      const double c = std::cos(static_cast<double>(n) * w),
-                   s = std::sin(static_cast<double>(n) * w);
-      sx += cx[n - 1].real() * s + cx[n - 1].imag() * c;
-      sz += cz[n - 1].real() * s + cz[n - 1].imag() * c;
+      sx += cx[n - 1].real() * sn[n] + cx[n - 1].imag() * cn[n];
+      sz += cz[n - 1].real() * sn[n] + cz[n - 1].imag() * cn[n];
     }
     x[j] = sx;
     z[j] = sz;
@@ -161,14 +155,14 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
 
   // Normal equations from sums: products of harmonics are harmonics (sums of cos, sin of k w,
   // k <= 2N), the rest accumulated per sample. O(M N d) work, O(p^2) memory.
-  const double nu = 2.0 * M_PI * f, mid = 0.5 * (t.front() + t.back());
+  const double mid = 0.5 * (t.front() + t.back());
   std::vector<double> P(np), cm(2 * N + 1), sm(2 * N + 1), sc(2 * N + 1, 0.0), ss(2 * N + 1, 0.0);
   Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, N + 1), ps = Eigen::MatrixXd::Zero(np, N + 1),
                   pp = Eigen::MatrixXd::Zero(np, np);
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
   for (std::size_t i = 0; i < M; ++i) {
     legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(nu * (t[i] - out.t_ref), 2 * N, cm, sm);
+    harmonics_at(f * (t[i] - out.t_ref), 2 * N, cm, sm);
     const double yx = ddx[i] - mean_x, yz = ddz[i] - mean_z;
     for (int k = 0; k <= 2 * N; ++k) {
       sc[k] += cm[k];
@@ -218,7 +212,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   double rss_x = 0, rss_z = 0;
   for (std::size_t i = 0; i < M; ++i) {
     legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(nu * (t[i] - out.t_ref), N, cm, sm);
+    harmonics_at(f * (t[i] - out.t_ref), N, cm, sm);
     double fx = 0, fz = 0;
     for (int j = 0; j < np; ++j) {
       fx += cx[j] * P[j];

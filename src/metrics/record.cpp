@@ -16,6 +16,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum {
 namespace {
@@ -38,15 +39,10 @@ struct HarmonicFit {
   double z_var = 0.0;      ///< sum of (z - mean)^2
 };
 
-// Column j of the basis is cos(k w) (j = 2k - 1, or j = 0 with k = 0) or sin(k w) (j = 2k).
-void harmonics_at(double w, int m_max, std::vector<double>& cm, std::vector<double>& sm) {
-  const double c1 = std::cos(w), s1 = std::sin(w);
-  cm[0] = 1.0;
-  sm[0] = 0.0;
-  for (int m = 1; m <= m_max; ++m) {  // angle addition: cos, sin of m w
-    cm[m] = cm[m - 1] * c1 - sm[m - 1] * s1;
-    sm[m] = sm[m - 1] * c1 + cm[m - 1] * s1;
-  }
+// Column j of the basis is cos(k w) (j = 2k - 1, or j = 0 with k = 0) or sin(k w) (j = 2k), w the
+// phase 2 pi `turns` (detail::harmonics_turns).
+void harmonics_at(double turns, int m_max, std::vector<double>& cm, std::vector<double>& sm) {
+  detail::harmonics_turns(turns, m_max, cm.data(), sm.data());
 }
 
 HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
@@ -64,9 +60,8 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(cols), bz = Eigen::VectorXd::Zero(cols);  // B^T y
   std::vector<double> cm(m_max + 1), sm(m_max + 1);
   HarmonicFit fit;
-  const double nu = 2.0 * M_PI * f;
   for (std::size_t i = 0; i < rows; ++i) {
-    harmonics_at(nu * (t[i] - t_ref), m_max, cm, sm);
+    harmonics_at(f * (t[i] - t_ref), m_max, cm, sm);
     for (int m = 0; m <= m_max; ++m) {
       sc[m] += cm[m];
       ss[m] += sm[m];
@@ -117,10 +112,9 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
 double relative_rms(std::span<const double> t, std::span<const double> y, const Eigen::VectorXd& c,
                     double f, int n_max) {
   std::vector<double> cm(2 * n_max + 1), sm(2 * n_max + 1);
-  const double nu = 2.0 * M_PI * f;
   double yy = 0.0, rr = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    harmonics_at(nu * t[i], n_max, cm, sm);
+    harmonics_at(f * t[i], n_max, cm, sm);
     double fitted = c[0];
     for (int n = 1; n <= n_max; ++n) fitted += c[2 * n - 1] * cm[n] + c[2 * n] * sm[n];
     yy += y[i] * y[i];
@@ -144,21 +138,22 @@ detail::HalfHarmonics half_harmonics(std::span<const double> t, std::span<const 
   const int cols = 2 * n_max + 1 + 6;
   Eigen::MatrixXd B(static_cast<Eigen::Index>(t.size()), cols);
   Eigen::VectorXd rhs(static_cast<Eigen::Index>(t.size()));
-  std::vector<double> cm(n_max + 1), sm(n_max + 1);
-  const double nu = 2.0 * M_PI * f, t0 = t.front();
+  std::vector<double> cm(n_max + 1), sm(n_max + 1), ch(6), sh(6);
+  const double t0 = t.front();
   for (std::size_t i = 0; i < t.size(); ++i) {
     const Eigen::Index r = static_cast<Eigen::Index>(i);
     const double tau = t[i] - t0;  // the amplitudes do not depend on the time origin
-    harmonics_at(nu * tau, n_max, cm, sm);
+    harmonics_at(f * tau, n_max, cm, sm);
     B(r, 0) = 1.0;
     for (int n = 1; n <= n_max; ++n) {
       B(r, 2 * n - 1) = cm[n];
       B(r, 2 * n) = sm[n];
     }
+    // f/2, 3f/2, 5f/2: the multiples 1, 3, 5 of f/2.
+    harmonics_at(0.5 * f * tau, 5, ch, sh);
     for (int j = 0; j < 3; ++j) {
-      const double w = 0.5 * nu * (2 * j + 1) * tau;
-      B(r, 2 * n_max + 1 + 2 * j) = std::cos(w);
-      B(r, 2 * n_max + 2 + 2 * j) = std::sin(w);
+      B(r, 2 * n_max + 1 + 2 * j) = ch[2 * j + 1];
+      B(r, 2 * n_max + 2 + 2 * j) = sh[2 * j + 1];
     }
     rhs[r] = y[i];
   }
@@ -239,14 +234,13 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   // The fitted periodic signals over one period, for the extremes and the area.
   constexpr int kSamples = 1024;
   const double nu = 2.0 * M_PI * f;
-  std::vector<double> x(kSamples), z(kSamples);
+  std::vector<double> x(kSamples), z(kSamples), cj(n_max + 1), sj(n_max + 1);
   for (int j = 0; j < kSamples; ++j) {
-    const double tj = static_cast<double>(j) / (kSamples * f);
+    harmonics_at(static_cast<double>(j) / kSamples, n_max, cj, sj);  // n nu t_j = 2 pi n j / 1024
     double sx = cx[0], sz = cz[0];
     for (int n = 1; n <= n_max; ++n) {
-      const double c = std::cos(n * nu * tj), s = std::sin(n * nu * tj);
-      sx += cx[2 * n - 1] * c + cx[2 * n] * s;
-      sz += cz[2 * n - 1] * c + cz[2 * n] * s;
+      sx += cx[2 * n - 1] * cj[n] + cx[2 * n] * sj[n];
+      sz += cz[2 * n - 1] * cj[n] + cz[2 * n] * sj[n];
     }
     x[j] = sx;
     z[j] = sz;

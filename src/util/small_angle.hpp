@@ -77,4 +77,19 @@ inline SinCos sincos_turns(double turns) {
   }
 }
 
+/// cos(2 pi k turns) and sin(2 pi k turns), k = 0 ... m, into c[0 ... m] and s[0 ... m]: the
+/// fundamental by sincos_turns, its multiples by angle addition (the rounding grows about linearly
+/// with k, some 1e-15 at k = 20). The harmonic fits of records and their fitted waveforms; the
+/// phase in turns (f t) needs no range reduction of a large angle (libm's sincos of nu t was a
+/// seventh of an identification window).
+inline void harmonics_turns(double turns, int m, double* c, double* s) {
+  const SinCos one = sincos_turns(turns);
+  c[0] = 1.0;
+  s[0] = 0.0;
+  for (int k = 1; k <= m; ++k) {
+    c[k] = c[k - 1] * one.cos - s[k - 1] * one.sin;
+    s[k] = s[k - 1] * one.cos + c[k - 1] * one.sin;
+  }
+}
+
 }  // namespace oscidrum::detail
