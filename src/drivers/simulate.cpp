@@ -31,7 +31,7 @@ constexpr int kWarmChordSteps = 4;
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
 // of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
 // Diagnostics::period_equivalents: measured by bench/bench_monodromy.cpp (one period at a steady
-// orbit, plainly and with the variational equations, CPU time): 3.0 (pure rolling) to 3.4
+// orbit, plainly and with the variational equations, CPU time): 3.1 (pure rolling) to 3.5
 // (stick-slip) on the paper's roller and the performance issue's sweep (bench/README.md).
 constexpr double kJacobianCost = 3.3;
 
