@@ -11,6 +11,7 @@
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
+#include "util/small_angle.hpp"
 
 namespace oscidrum::detail {
 namespace {
@@ -23,14 +24,24 @@ std::complex<double> coefficient(const Harmonic& h) { return std::polar(h.amplit
 void signal_shape(const std::vector<Harmonic>& hx, const std::vector<Harmonic>& hz, int n,
                   double& xmax, double& xmin, double& zmax, double& zmin, double& area) {
   constexpr int kSamples = 512;
-  std::vector<double> x(kSamples), z(kSamples);
+  // n >= 1: the mean is an offset in a record, and left out of both. A sin(k w + theta) =
+  // A cos(theta) sin(k w) + A sin(theta) cos(k w), the harmonics of w = 2 pi j / 512 by
+  // harmonics_turns (a sine per sample and harmonic was a twentieth of an identification window).
+  const int N = std::min(n, static_cast<int>(hx.size()) - 1);
+  std::vector<double> x(kSamples), z(kSamples), ax(N + 1), bx(N + 1), az(N + 1), bz(N + 1),
+      ck(N + 1), sk(N + 1);
+  for (int k = 1; k <= N; ++k) {
+    ax[k] = hx[k].amplitude * std::cos(hx[k].phase);
+    bx[k] = hx[k].amplitude * std::sin(hx[k].phase);
+    az[k] = hz[k].amplitude * std::cos(hz[k].phase);
+    bz[k] = hz[k].amplitude * std::sin(hz[k].phase);
+  }
   for (int j = 0; j < kSamples; ++j) {
-    const double w = 2.0 * M_PI * j / kSamples;
+    harmonics_turns(static_cast<double>(j) / kSamples, std::max(N, 0), ck.data(), sk.data());
     double sx = 0, sz = 0;
-    // n >= 1: the mean is an offset in a record, and left out of both.
-    for (int k = 1; k <= n && k < static_cast<int>(hx.size()); ++k) {
-      sx += hx[k].amplitude * std::sin(k * w + hx[k].phase);
-      sz += hz[k].amplitude * std::sin(k * w + hz[k].phase);
+    for (int k = 1; k <= N; ++k) {
+      sx += ax[k] * sk[k] + bx[k] * ck[k];
+      sz += az[k] * sk[k] + bz[k] * ck[k];
     }
     x[j] = sx;
     z[j] = sz;

@@ -60,7 +60,44 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(cols), bz = Eigen::VectorXd::Zero(cols);  // B^T y
   std::vector<double> cm(m_max + 1), sm(m_max + 1);
   HarmonicFit fit;
-  for (std::size_t i = 0; i < rows; ++i) {
+  // Four samples at a time: their angle-addition recurrences are independent chains, which the
+  // processor overlaps (one sample's chain of 2 n_max dependent steps left it waiting); each
+  // sample's cos and sin are those of harmonics_turns, the sums only grouped differently.
+  constexpr std::size_t kLanes = 4;
+  std::size_t row = 0;
+  for (; row + kLanes <= rows; row += kLanes) {
+    double c1[kLanes], s1[kLanes], c[kLanes], s[kLanes], xi[kLanes], zi[kLanes];
+    for (std::size_t b = 0; b < kLanes; ++b) {
+      const detail::SinCos one = detail::sincos_turns(f * (t[row + b] - t_ref));
+      c1[b] = c[b] = one.cos;
+      s1[b] = s[b] = one.sin;
+      xi[b] = x[row + b] - x_mean;
+      zi[b] = z[row + b] - z_mean;
+    }
+    sc[0] += static_cast<double>(kLanes);
+    bx[0] += (xi[0] + xi[1]) + (xi[2] + xi[3]);
+    bz[0] += (zi[0] + zi[1]) + (zi[2] + zi[3]);
+    fit.x_var += (xi[0] * xi[0] + xi[1] * xi[1]) + (xi[2] * xi[2] + xi[3] * xi[3]);
+    fit.z_var += (zi[0] * zi[0] + zi[1] * zi[1]) + (zi[2] * zi[2] + zi[3] * zi[3]);
+    for (int m = 1; m <= m_max; ++m) {
+      if (m > 1) {
+        for (std::size_t b = 0; b < kLanes; ++b) {
+          const double cn = c[b] * c1[b] - s[b] * s1[b];
+          s[b] = s[b] * c1[b] + c[b] * s1[b];
+          c[b] = cn;
+        }
+      }
+      sc[m] += (c[0] + c[1]) + (c[2] + c[3]);
+      ss[m] += (s[0] + s[1]) + (s[2] + s[3]);
+      if (m <= n_max) {
+        bx[2 * m - 1] += (xi[0] * c[0] + xi[1] * c[1]) + (xi[2] * c[2] + xi[3] * c[3]);
+        bx[2 * m] += (xi[0] * s[0] + xi[1] * s[1]) + (xi[2] * s[2] + xi[3] * s[3]);
+        bz[2 * m - 1] += (zi[0] * c[0] + zi[1] * c[1]) + (zi[2] * c[2] + zi[3] * c[3]);
+        bz[2 * m] += (zi[0] * s[0] + zi[1] * s[1]) + (zi[2] * s[2] + zi[3] * s[3]);
+      }
+    }
+  }
+  for (std::size_t i = row; i < rows; ++i) {
     harmonics_at(f * (t[i] - t_ref), m_max, cm, sm);
     for (int m = 0; m <= m_max; ++m) {
       sc[m] += cm[m];
@@ -388,27 +425,49 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
   // the factor e^{-i 2 pi df (t_k - t_0)} (no sin and cos per sample and frequency; the record's
   // times need not be uniform), and computed afresh every kFresh frequencies so that the
   // rounding of the products (about 1e-16 each) cannot accumulate.
+  // Complex arithmetic written out on separate real and imaginary parts: std::complex's product
+  // checks every result for NaN (Annex G), which this loop over every sample and frequency of the
+  // grid does not need (the same values otherwise).
   constexpr int kFresh = 64;
-  std::vector<std::complex<double>> phasor(n_seg), step(n_seg);
-  for (std::size_t k = 0; k < n_seg; ++k)
-    step[k] = std::polar(1.0, -2.0 * M_PI * df * (t[k] - t[0]));
+  std::vector<double> pr(n_seg), pim(n_seg), sr(n_seg), sim(n_seg);
+  for (std::size_t k = 0; k < n_seg; ++k) {
+    const std::complex<double> e = std::polar(1.0, -2.0 * M_PI * df * (t[k] - t[0]));
+    sr[k] = e.real();
+    sim[k] = e.imag();
+  }
   int grid = 0;
   for (double f = f_lo; f <= f_hi; f += df, ++grid) {
     if (grid % kFresh == 0) {
-      for (std::size_t k = 0; k < n_seg; ++k)
-        phasor[k] = std::polar(1.0, -2.0 * M_PI * f * (t[k] - t[0]));
-    } else {
-      for (std::size_t k = 0; k < n_seg; ++k) phasor[k] *= step[k];
-    }
-    std::complex<double> X[3] = {}, Z[3] = {};
-    for (std::size_t k = 0; k < n_seg; ++k) {
-      const std::complex<double> e1 = phasor[k];
-      std::complex<double> e = e1;
-      for (int n = 0; n < 3; ++n) {
-        X[n] += xs[k] * e;
-        Z[n] += zs[k] * e;
-        e *= e1;
+      for (std::size_t k = 0; k < n_seg; ++k) {
+        const std::complex<double> e = std::polar(1.0, -2.0 * M_PI * f * (t[k] - t[0]));
+        pr[k] = e.real();
+        pim[k] = e.imag();
       }
+    } else {
+      for (std::size_t k = 0; k < n_seg; ++k) {
+        const double a = pr[k], b = pim[k];
+        pr[k] = a * sr[k] - b * sim[k];
+        pim[k] = a * sim[k] + b * sr[k];
+      }
+    }
+    double Xr[3] = {}, Xi[3] = {}, Zr[3] = {}, Zi[3] = {};
+    for (std::size_t k = 0; k < n_seg; ++k) {
+      const double c1 = pr[k], s1 = pim[k];
+      double c = c1, s = s1;
+      for (int n = 0; n < 3; ++n) {
+        Xr[n] += xs[k] * c;
+        Xi[n] += xs[k] * s;
+        Zr[n] += zs[k] * c;
+        Zi[n] += zs[k] * s;
+        const double cn = c * c1 - s * s1;
+        s = c * s1 + s * c1;
+        c = cn;
+      }
+    }
+    std::complex<double> X[3], Z[3];
+    for (int n = 0; n < 3; ++n) {
+      X[n] = {Xr[n], Xi[n]};
+      Z[n] = {Zr[n], Zi[n]};
     }
     double p = 0;
     for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
