@@ -124,7 +124,7 @@ class Diagnostics:
     newton_iterations: int
     """shooting: Newton steps (0 for the transient method) [-]"""
     operating_mode: str
-    """the vibratory drum's contact mode by the literature's names (docs/model.md section 14): continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), lift-off with period p (p > 2), aperiodic (chaotic or quasi-periodic); empty for the oscillation drum and where contact_mode is empty [-]"""
+    """the vibratory drum's contact mode by the literature's names (docs/model.md section 14): continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), lift-off with period p (p > 2), chaotic or quasi-periodic (no periodic steady state, by the examined motion); empty for the oscillation drum, where contact_mode is empty and where the motion got no verdict [-]"""
     period_equivalents: float
     """cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations weighted by their cost) / the right-hand-side evaluations of one sampled period [-]"""
     periods_simulated: int

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "drivers/continuation.hpp"
+#include "drivers/modes.hpp"
 #include "drivers/sampling.hpp"
 #include "drivers/shooting.hpp"
 #include "drivers/steady_state.hpp"
@@ -460,20 +461,6 @@ std::string contact_mode(const Result& r) {
   return "lift-off every " + std::to_string(p) + " periods";
 }
 
-// Diagnostics::operating_mode: the vibratory drum's contact mode by the names of the literature
-// (docs/model.md section 14), from contact_mode and the multiplicity.
-std::string operating_mode(const Model& model, const Result& r) {
-  if (model.parameters().roller.type != RollerType::vibratory) return "";
-  const std::string& mode = r.diagnostics.contact_mode;
-  if (mode.empty()) return "";
-  if (mode == "permanent contact") return "continuous contact";
-  if (mode == "aperiodic") return "aperiodic (chaotic or quasi-periodic)";
-  const int p = std::max(1, r.diagnostics.multiplicity);
-  if (p == 1) return "partial uplift";
-  if (p == 2) return "double jump";
-  return "lift-off with period " + std::to_string(p);
-}
-
 template <class R>
 Result simulate_ramped(const Model& model, const ProgressCallback& progress,
                        const std::function<bool()>& cancelled, const detail::WarmStart* warm,
@@ -553,7 +540,8 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
       model.parameters().numerics.max_periods >= kMotionPeriods && !(cancelled && cancelled()))
     examine_motion(model, result, cancelled);
   result.diagnostics.contact_mode = contact_mode(result);
-  result.diagnostics.operating_mode = operating_mode(model, result);
+  result.diagnostics.operating_mode =
+      detail::operating_mode(model.parameters().roller.type, result.diagnostics);
   return result;
 }
 

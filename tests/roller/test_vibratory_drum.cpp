@@ -12,6 +12,7 @@
 #include <complex>
 #include <random>
 
+#include "drivers/modes.hpp"
 #include "oscidrum/oscidrum.hpp"
 #include "roller/unilateral_checks.hpp"
 #include "roller/unilateral_drum.hpp"
@@ -306,6 +307,31 @@ TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
   }
   // The oscillation drum has no such name.
   EXPECT_EQ(simulate(Case{}).diagnostics.operating_mode, "");
+}
+
+TEST(VibratoryDrum, OperatingModeNamesFromTheRunsDiagnostics) {
+  // The table of docs/model.md section 14: from contact_mode, the multiplicity and, without a
+  // periodic steady state, the motion examined after numerics.max_periods. "Chaotic" only where
+  // that examination found a positive largest Lyapunov exponent.
+  const auto name = [](const char* contact, int p, const char* motion) {
+    Diagnostics d;
+    d.contact_mode = contact;
+    d.multiplicity = p;
+    d.motion = motion;
+    return detail::operating_mode(RollerType::vibratory, d);
+  };
+  EXPECT_EQ(name("permanent contact", 1, ""), "continuous contact");
+  EXPECT_EQ(name("periodic lift-off", 1, ""), "partial uplift");
+  EXPECT_EQ(name("lift-off every 2 periods", 2, ""), "double jump");
+  EXPECT_EQ(name("lift-off every 3 periods", 3, ""), "lift-off with period 3");
+  EXPECT_EQ(name("aperiodic", 0, "chaotic"), "chaotic");
+  EXPECT_EQ(name("aperiodic", 0, "quasi_periodic"), "quasi-periodic");
+  EXPECT_EQ(name("aperiodic", 0, "converging"), "");  // no steady state found, and no verdict
+  EXPECT_EQ(name("aperiodic", 0, "undecided"), "");
+  EXPECT_EQ(name("", 0, ""), "");
+  Diagnostics d;
+  d.contact_mode = "periodic lift-off";
+  EXPECT_EQ(detail::operating_mode(RollerType::oscillation, d), "");
 }
 
 // A study with continuation finds what each case finds from rest (Table 2 soils, G = 40 ... 70
