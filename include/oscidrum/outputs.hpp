@@ -68,72 +68,72 @@
 
 // ------------------------------------------------------------------------------------------------
 // Counters of a run (Diagnostics), in output order.
-#define OSCIDRUM_DIAGNOSTICS(X)                                                                    \
-  X(int, periods_simulated, 0, "-", "periods simulated",                                           \
-    "excitation periods integrated, the sampled ones included (shooting: every period map, P^p "   \
-    "counting p); all but the sampled ones count against numerics.max_periods")                    \
-  X(int, periods_to_steady, -1, "-", "steady after (periods)",                                     \
-    "period index at which the steady state was found (-1: never)")                                \
-  X(int, multiplicity, 0, "-", "multiplicity",                                                     \
-    "steady period in excitation periods (0: none found)")                                         \
-  X(double, final_change, 0.0, "-", "final change",                                                \
-    "last period-to-period change of the state, scaled by its range over a period (see "           \
-    "numerics.steady_tol)")                                                                        \
-  X(long, steps, 0, "-", "integrator steps", "accepted integrator steps")                          \
-  X(long, rejected_steps, 0, "-", "rejected steps", "rejected trial steps")                        \
-  X(long, rhs_evaluations, 0, "-", "RHS evaluations", "right-hand-side evaluations")               \
-  X(long, events, 0, "-", "events", "located events")                                              \
-  X(long, switches, 0, "-", "switches", "stick/slip phase changes")                                \
-  X(long, reversals, 0, "-", "slip reversals", "slip -> slip reversals (docs/model.md)")           \
-  X(long, inconsistent_slip_ends, 0, "-", "inconsistent slip ends",                                \
-    "slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken")  \
-  X(double, switches_per_period, 0.0, "-", "switches per period",                                  \
-    "stick/slip switches per excitation period in the sampled window")                             \
-  X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                 \
-    "largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = "   \
-    "P0 (a force ratio), over the result's trajectory: the run from rest and the sampled "         \
-    "periods (shooting: its short transient from rest and the sampled periods of the orbit, "      \
-    "not Newton's iterates)")                                                                      \
-  X(double, min_N, 0.0, "N", "min N",                                                              \
-    "smallest normal force (26) at the step ends of the same trajectory")                          \
-  X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                  \
-    "what produced the steady state: transient (integrated from rest until it repeats) or "        \
-    "shooting (solved for by Newton's method on the period map, docs/periodic.md)")                \
-  X(int, newton_iterations, 0, "-", "Newton iterations",                                           \
-    "shooting: Newton steps (0 for the transient method)")                                         \
-  X(long, jacobian_evaluations, 0, "-", "Jacobian evaluations",                                    \
-    "shooting: evaluations of the phase Jacobians (0 for the transient method)")                   \
-  X(double, period_equivalents, 0.0, "-", "period-equivalents",                                    \
-    "cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations "   \
-    "weighted by their cost) / the right-hand-side evaluations of one sampled period")             \
-  X(double, phi_drift, 0.0, "rad", "phi drift per period",                                         \
-    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                   \
-  X(std::string, fallback, "", "-", "shooting fell back",                                          \
-    "why shooting fell back to the transient method (empty if it did not)")                        \
-  X(std::string, contact_mode, "", "-", "contact mode",                                            \
-    "how the steady state uses its contact: permanent contact, periodic lift-off (every "          \
-    "period), lift-off every p periods (a subharmonic with periods of permanent contact); "        \
-    "aperiodic for a run with lift-offs that reaches no steady state; empty otherwise")            \
-  X(std::string, operating_mode, "", "-", "operating mode",                                        \
-    "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "     \
-    "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), "  \
-    "lift-off with period p (p > 2), chaotic or quasi-periodic (no periodic steady state, by the " \
-    "examined motion); empty for the oscillation drum, where contact_mode is empty and where "     \
-    "the motion got no verdict")                                                                   \
-  X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                       \
-    "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or "  \
-    "20 when the start from rest lost contact before a steady state and the run was retried "      \
-    "with a ramp (0: the paper's start)")                                                          \
-  X(int, warm_start, 0, "-", "warm start (continuation)",                                          \
-    "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "      \
-    "found from the neighbouring case's steady state, -1 that start failed and the case started "  \
-    "from rest, 0 the case started from rest")                                                     \
-  X(std::string, motion, "", "-", "motion",                                                        \
-    "a run without a periodic steady state, examined over 400 further periods: quasi_periodic, "   \
-    "chaotic, periodic (its stroboscopic points recur: reached slowly), converging, undecided; "   \
-    "empty otherwise (docs/bifurcations.md)")                                                      \
-  X(double, lyapunov_exponent, 0.0, "1/s", "largest Lyapunov exponent",                            \
-    "of the motion examined for `motion` (Benettin's estimate from the variational equations; 0 "  \
+#define OSCIDRUM_DIAGNOSTICS(X)                                                                   \
+  X(int, periods_simulated, 0, "-", "periods simulated",                                          \
+    "excitation periods integrated, the sampled ones included (shooting: every period map, P^p "  \
+    "counting p); all but the sampled ones count against numerics.max_periods")                   \
+  X(int, periods_to_steady, -1, "-", "steady after (periods)",                                    \
+    "period index at which the steady state was found (-1: never)")                               \
+  X(int, multiplicity, 0, "-", "multiplicity",                                                    \
+    "steady period in excitation periods (0: none found)")                                        \
+  X(double, final_change, 0.0, "-", "final change",                                               \
+    "last period-to-period change of the state, scaled by its range over a period (see "          \
+    "numerics.steady_tol)")                                                                       \
+  X(long, steps, 0, "-", "integrator steps", "accepted integrator steps")                         \
+  X(long, rejected_steps, 0, "-", "rejected steps", "rejected trial steps")                       \
+  X(long, rhs_evaluations, 0, "-", "RHS evaluations", "right-hand-side evaluations")              \
+  X(long, events, 0, "-", "events", "located events")                                             \
+  X(long, switches, 0, "-", "switches", "stick/slip phase changes")                               \
+  X(long, reversals, 0, "-", "slip reversals", "slip -> slip reversals (docs/model.md)")          \
+  X(long, inconsistent_slip_ends, 0, "-", "inconsistent slip ends",                               \
+    "slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken") \
+  X(double, switches_per_period, 0.0, "-", "switches per period",                                 \
+    "stick/slip switches per excitation period in the sampled window")                            \
+  X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                \
+    "largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = "  \
+    "P0 (a force ratio), over the result's trajectory: the run from rest and the sampled "        \
+    "periods (shooting: its short transient from rest and the sampled periods of the orbit, "     \
+    "not Newton's iterates)")                                                                     \
+  X(double, min_N, 0.0, "N", "min N",                                                             \
+    "smallest normal force (26) at the step ends of the same trajectory")                         \
+  X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
+    "what produced the steady state: transient (integrated from rest until it repeats) or "       \
+    "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \
+  X(int, newton_iterations, 0, "-", "Newton iterations",                                          \
+    "shooting: Newton steps (0 for the transient method)")                                        \
+  X(long, jacobian_evaluations, 0, "-", "Jacobian evaluations",                                   \
+    "shooting: evaluations of the phase Jacobians (0 for the transient method)")                  \
+  X(double, period_equivalents, 0.0, "-", "period-equivalents",                                   \
+    "cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations "  \
+    "weighted by their cost) / the right-hand-side evaluations of one sampled period")            \
+  X(double, phi_drift, 0.0, "rad", "phi drift per period",                                        \
+    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
+  X(std::string, fallback, "", "-", "shooting fell back",                                         \
+    "why shooting fell back to the transient method (empty if it did not)")                       \
+  X(std::string, contact_mode, "", "-", "contact mode",                                           \
+    "how the steady state uses its contact: permanent contact, periodic lift-off (every "         \
+    "period), lift-off every p periods (a subharmonic with periods of permanent contact); "       \
+    "aperiodic for a run with lift-offs that reaches no steady state; empty otherwise")           \
+  X(std::string, operating_mode, "", "-", "operating mode",                                       \
+    "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "    \
+    "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), " \
+    "lift-off with period p (p > 2), chaotic or quasi-periodic (no periodic steady state, by "    \
+    "the examined motion); empty for the oscillation drum, where contact_mode is empty and "      \
+    "where the motion got no verdict")                                                            \
+  X(int, start_ramp_periods, 0, "-", "start ramp (periods)",                                      \
+    "periods over which the excitation was ramped in from rest: numerics.start_ramp_periods, or " \
+    "20 when the start from rest lost contact before a steady state and the run was retried "     \
+    "with a ramp (0: the paper's start)")                                                         \
+  X(int, warm_start, 0, "-", "warm start (continuation)",                                         \
+    "continuation in a study (numerics.continuation, shooting only): 1 the steady state was "     \
+    "found from the neighbouring case's steady state, -1 that start failed and the case started " \
+    "from rest, 0 the case started from rest")                                                    \
+  X(std::string, motion, "", "-", "motion",                                                       \
+    "a run without a periodic steady state, examined over 400 further periods: quasi_periodic, "  \
+    "chaotic, periodic (its stroboscopic points recur: reached slowly), converging, undecided; "  \
+    "empty otherwise (docs/bifurcations.md)")                                                     \
+  X(double, lyapunov_exponent, 0.0, "1/s", "largest Lyapunov exponent",                           \
+    "of the motion examined for `motion` (Benettin's estimate from the variational equations; 0 " \
     "when not examined)")
 
 // ------------------------------------------------------------------------------------------------
