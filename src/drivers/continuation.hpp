@@ -35,6 +35,10 @@ struct WarmStart {
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a
 /// start for a neighbouring case; empty unless `result` is a period-1 steady state with samples.
 std::optional<WarmStart> orbit_start(const Model& model, const Result& result);
+/// The same, with the contraction of the warm start `record` was recorded after
+/// (recording::Recording::chord_contraction: simulate_from's record of `result`).
+std::optional<WarmStart> orbit_start(const Model& model, const Result& result,
+                                     const recording::Recording& record);
 
 /// A secant predictor along a chain: the start for case c0 extrapolated from the steady states
 /// w2 (of case c2) and w1 (of c1, the predecessor): w1 + s (w1 - w2), s the step from c1 to c0

@@ -563,6 +563,13 @@ std::optional<WarmStart> orbit_start(const Model& model, const Result& result) {
   return with_roller(model, [&]<class R>() { return orbit_start_of<R>(result); });
 }
 
+std::optional<WarmStart> orbit_start(const Model& model, const Result& result,
+                                     const recording::Recording& record) {
+  std::optional<WarmStart> start = orbit_start(model, result);
+  if (start) start->contraction = record.chord_contraction;
+  return start;
+}
+
 Result simulate_from(const Model& model, const ProgressCallback& progress,
                      const std::function<bool()>& cancelled, const WarmStart* warm,
                      bool all_samples, recording::Recording* record) {

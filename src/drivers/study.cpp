@@ -73,10 +73,7 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     detail::recording::Recording own;
     detail::recording::Recording& period = reused != nullptr ? *reused : own;
     out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples, &period);
-    if (orbit) {
-      *orbit = detail::orbit_start(model, out.result);
-      if (*orbit) (*orbit)->contraction = period.chord_contraction;
-    }
+    if (orbit) *orbit = detail::orbit_start(model, out.result, period);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
       return out;
@@ -114,8 +111,8 @@ void work(Pool& pool) {
   while (!pool.stop.load()) {
     const std::size_t k = pool.next.fetch_add(1);
     if (k >= pool.chains.size()) break;
-    // The predecessor's steady state and the one before it, with their cases: the start of the
-    // next case extrapolated along the chain (secant), or the predecessor's state.
+    // The predecessor's steady state and the two before it, with their cases: the start of the
+    // next case extrapolated along the chain (secant_start), or the predecessor's state.
     std::optional<detail::WarmStart> warm, before, earlier;
     std::optional<Case> warm_case, before_case, earlier_case;
     for (const std::size_t i : pool.chains[k]) {

@@ -28,10 +28,7 @@ ModelResponse detail::simulate_metrics_from(const Case& c, int n_max, long max_s
   if (max_steps > 0) over_budget = [&steps, max_steps] { return ++steps > max_steps; };
   recording::Recording period;  // the steady period, as the sampling integrated it
   const Result r = simulate_from(model, {}, over_budget, warm, true, &period);
-  if (orbit) {
-    *orbit = orbit_start(model, r);
-    if (*orbit) (*orbit)->contraction = period.chord_contraction;
-  }
+  if (orbit) *orbit = orbit_start(model, r, period);
   ModelResponse out;
   out.status = r.status;
   out.message = r.message;
