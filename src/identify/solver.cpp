@@ -28,7 +28,8 @@ bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::Vect
 }
 
 Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
-                        const std::vector<bool>& free, int max_iterations) {
+                        const std::vector<bool>& free, int max_iterations,
+                        const Eigen::MatrixXd* first_jacobian) {
   Fit fit;
   fit.p = p;
   if (!problem.residual(p, fit.r)) {
@@ -40,7 +41,13 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
   Eigen::MatrixXd J;
   for (int it = 0; it < max_iterations; ++it) {
     fit.iterations = it + 1;
-    if (!jacobian(problem, fit.p, fit.r, free, J)) {
+    const bool given = it == 0 && first_jacobian != nullptr &&
+                       first_jacobian->rows() == fit.r.size() && first_jacobian->cols() == p.size();
+    if (given) {
+      J = *first_jacobian;
+      for (Eigen::Index j = 0; j < p.size(); ++j)
+        if (!free[static_cast<std::size_t>(j)]) J.col(j).setZero();
+    } else if (!jacobian(problem, fit.p, fit.r, free, J)) {
       fit.message = "the model fails next to the estimate";
       return fit;
     }

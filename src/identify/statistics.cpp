@@ -73,15 +73,35 @@ ProfileLimit profile_limit(LeastSquares& problem, const Fit& fit, std::size_t j,
   double step = std::isfinite(se_j) && se_j > 0 ? c * se_j : 0.05;
   step = std::min(step, std::abs(bound - pj));
   double lo_step = 0, lo_delta = 0, hi_step = kNaN, hi_delta = kNaN;
+  // Where the others go as p_j moves by d, in the problem linearised at the fit: by d times the
+  // least-squares solution of J_others slope = -J_j (the conditional minimiser). Each inner fit
+  // starts there from the last one, with the fit's Jacobian for its first step, so that it
+  // usually needs no finite differences of its own.
+  const bool have_J = fit.J.rows() > 0 && fit.J.cols() == fit.p.size();
+  Eigen::VectorXd slope = Eigen::VectorXd::Zero(fit.p.size());
+  if (q > 1 && have_J) {
+    Eigen::MatrixXd Jo(fit.J.rows(), static_cast<Eigen::Index>(q) - 1);
+    for (Eigen::Index k = 0, col = 0; k < fit.p.size(); ++k)
+      if (k != J_) Jo.col(col++) = fit.J.col(k);
+    const Eigen::VectorXd so = Jo.colPivHouseholderQr().solve(-fit.J.col(J_));
+    if (so.allFinite())
+      for (Eigen::Index k = 0, col = 0; k < fit.p.size(); ++k)
+        if (k != J_) slope[k] = so[col++];
+  }
   Eigen::VectorXd warm = fit.p;
   bool found = false, open = false;
   std::string failure;  // why the model failed at hi_step (when hi_delta is infinite)
   for (int k = 0; k < 7 && step > 0; ++k) {
-    Eigen::VectorXd p = warm;
+    Eigen::VectorXd p = warm + (pj + side * step - warm[J_]) * slope;
     p[J_] = pj + side * step;
+    for (std::size_t i = 0; i < q; ++i) {
+      const Bounds& b = problem.bounds()[i];
+      const auto I = static_cast<Eigen::Index>(i);
+      p[I] = std::clamp(p[I], b.lo, b.hi);
+    }
     double S = kNaN;
     if (q > 1) {
-      const Fit inner = levenberg_marquardt(problem, p, others, 5);
+      const Fit inner = levenberg_marquardt(problem, p, others, 5, have_J ? &fit.J : nullptr);
       if (std::isfinite(inner.S)) {
         S = inner.S;
         warm = inner.p;

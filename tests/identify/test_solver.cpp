@@ -49,6 +49,30 @@ TEST(LevenbergMarquardt, FindsTheExactMinimumFromAFarStart) {
   EXPECT_LT(fit.S, 1e-8);
 }
 
+TEST(LevenbergMarquardt, AGivenFirstJacobianStandsInForItsFiniteDifferences) {
+  // From near the minimum with the Jacobian there: the same minimum, and the first iteration
+  // makes no finite differences (one model run per free parameter fewer). The Jacobian given has
+  // a non-zero column for the fixed parameter, which must be ignored (it must not move).
+  Decay d(2.0, 1.5);
+  const Fit exact = levenberg_marquardt(d, Eigen::Vector2d(0.0, 0.0), {true, true}, 100);
+  ASSERT_TRUE(exact.converged) << exact.message;
+  const Eigen::Vector2d start = exact.p + Eigen::Vector2d(0.01, 0.0);
+  Decay plain(2.0, 1.5), given(2.0, 1.5);
+  const Fit a = levenberg_marquardt(plain, start, {true, false}, 100);
+  const Fit b = levenberg_marquardt(given, start, {true, false}, 100, &exact.J);
+  ASSERT_TRUE(a.converged && b.converged) << a.message << " / " << b.message;
+  EXPECT_NEAR(b.p[0], exact.p[0], 1e-6);
+  EXPECT_NEAR(a.p[0], b.p[0], 1e-6);
+  EXPECT_EQ(b.p[1], start[1]);
+  EXPECT_EQ(given.calls, plain.calls - 1);
+  // A Jacobian of the wrong shape is not used.
+  Decay wrong(2.0, 1.5);
+  const Eigen::MatrixXd small = Eigen::MatrixXd::Ones(3, 2);
+  const Fit c = levenberg_marquardt(wrong, start, {true, false}, 100, &small);
+  EXPECT_EQ(wrong.calls, plain.calls);
+  EXPECT_EQ(c.p, a.p);
+}
+
 TEST(LevenbergMarquardt, AFixedParameterDoesNotMove) {
   Decay d(2.0, 1.5);
   const Fit fit =

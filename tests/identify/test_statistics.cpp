@@ -27,6 +27,7 @@ class Line : public LeastSquares {
   int rows() const override { return static_cast<int>(x_.size()); }
   const std::vector<Bounds>& bounds() const override { return bounds_; }
   bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override {
+    ++calls;
     r.resize(rows());
     for (int i = 0; i < rows(); ++i) r[i] = y_[i] - p[0] - p[1] * x_[i];
     return true;
@@ -37,8 +38,33 @@ class Line : public LeastSquares {
     return X;
   }
   std::vector<Bounds> bounds_;
+  int calls = 0;
 
  private:
+  std::vector<double> x_, y_;
+};
+
+// y_i = a exp(b x_i) + noise, p = (a, b): a profile that is not a straight line's.
+class Growth : public LeastSquares {
+ public:
+  Growth() {
+    std::mt19937 rng(11);
+    std::normal_distribution<double> g(0.0, 0.05);
+    for (int i = 0; i < 25; ++i) {
+      x_.push_back(0.1 * i);
+      y_.push_back(1.5 * std::exp(0.8 * x_.back()) + g(rng));
+    }
+  }
+  int rows() const override { return static_cast<int>(x_.size()); }
+  const std::vector<Bounds>& bounds() const override { return bounds_; }
+  bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override {
+    r.resize(rows());
+    for (int i = 0; i < rows(); ++i) r[i] = y_[i] - p[0] * std::exp(p[1] * x_[i]);
+    return true;
+  }
+
+ private:
+  std::vector<Bounds> bounds_{{-100, 100}, {-10, 10}};
   std::vector<double> x_, y_;
 };
 
@@ -80,6 +106,48 @@ TEST(ProfileLimit, IsTheTIntervalOfALinearModel) {
       // The search stops within 3 % of the level: the profile of a linear model is exact.
       const double half = side * (limit.at - fit.p[static_cast<Eigen::Index>(j)]);
       EXPECT_NEAR(half / (c * u.se[j]), 1.0, 0.03) << "parameter " << j << " side " << side;
+    }
+}
+
+TEST(ProfileLimit, TheInnerFitsStartWhereTheLinearisedProblemPutsTheOthers) {
+  // On a straight line the others' conditional minimiser is exactly where the fit's Jacobian
+  // puts them: each probe's inner fit starts at its minimum and needs no finite differences, so
+  // that a limit costs one model run per probe (it was 1 + 1 finite difference + its trials).
+  Line line(1.0, 2.0, 0.1, 5);
+  const Fit fit = levenberg_marquardt(line, Eigen::Vector2d(0, 0), {true, true}, 50);
+  const int dof = line.rows() - 2;
+  const double s2 = fit.S / dof, c = t_quantile(dof);
+  const LinearisedUncertainty u = linearised_uncertainty(fit.J, s2, {"a", "b"}, 1e6, 0.99);
+  for (std::size_t j = 0; j < 2; ++j)
+    for (const int side : {-1, 1}) {
+      line.calls = 0;
+      const ProfileLimit limit = profile_limit(line, fit, j, side, u.se[j], c, s2);
+      ASSERT_TRUE(std::isfinite(limit.at));
+      EXPECT_EQ(line.calls, 1) << "parameter " << j << " side " << side;
+    }
+}
+
+TEST(ProfileLimit, ItsLevelIsTheIndependentlyMinimisedObjectivesOnACurvedModel) {
+  // At each limit, the objective minimised over the other parameter from scratch (a fit of 100
+  // iterations from the estimate, nothing carried over from the profile's search) must be at
+  // the profile's level S + s2 c^2 to the search's tolerance (3 % of c).
+  Growth model;
+  const Fit fit = levenberg_marquardt(model, Eigen::Vector2d(1, 1), {true, true}, 100);
+  ASSERT_TRUE(fit.converged) << fit.message;
+  const int dof = model.rows() - 2;
+  const double s2 = fit.S / dof, c = t_quantile(dof);
+  const LinearisedUncertainty u = linearised_uncertainty(fit.J, s2, {"a", "b"}, 1e6, 0.99);
+  for (std::size_t j = 0; j < 2; ++j)
+    for (const int side : {-1, 1}) {
+      const ProfileLimit limit = profile_limit(model, fit, j, side, u.se[j], c, s2);
+      ASSERT_TRUE(std::isfinite(limit.at));
+      Eigen::VectorXd p = fit.p;
+      p[static_cast<Eigen::Index>(j)] = limit.at;
+      std::vector<bool> others(2, true);
+      others[j] = false;
+      const Fit inner = levenberg_marquardt(model, p, others, 100);
+      const double delta = std::sqrt((inner.S - fit.S) / s2);
+      EXPECT_NEAR(delta / c, 1.0, 0.03) << "parameter " << j << " side " << side;
     }
 }
 
