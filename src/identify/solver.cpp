@@ -55,7 +55,7 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
     fit.last_step = 1.0;
     const Eigen::MatrixXd A = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * fit.r;
-    bool accepted = false;
+    bool accepted = false, predicted_nothing = false;
     double step_norm = 0, gain = 0;
     while (lambda < 1e12) {
       Eigen::MatrixXd M = A;
@@ -73,6 +73,15 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
         const Bounds& b = problem.bounds()[static_cast<std::size_t>(j)];
         q[j] = std::clamp(q[j], b.lo, b.hi);
       }
+      // The decrease the linearised problem predicts for this step, |r|^2 - |r + J d|^2: below
+      // the convergence test's 1e-8 S no step of this iteration can count (a fit started at its
+      // minimum, as a profile's inner fits are, would otherwise try steps with ever larger lambda
+      // until they shrink to nothing, a model run each).
+      const Eigen::VectorXd d = q - fit.p;
+      if (-(2.0 * g.dot(d) + d.dot(A * d)) < 1e-8 * fit.S) {
+        predicted_nothing = true;
+        break;
+      }
       Eigen::VectorXd rq;
       if (problem.residual(q, rq) && rq.squaredNorm() < fit.S) {
         gain = fit.S - rq.squaredNorm();
@@ -89,7 +98,8 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
     }
     if (!accepted) {
       fit.converged = true;  // no step lowers the objective: a minimum (to the FD precision)
-      fit.message = "no step lowers the objective";
+      fit.message = predicted_nothing ? "converged (no step predicts a decrease of 1e-8 S)"
+                                      : "no step lowers the objective";
       return fit;
     }
     // 1e-4 in ln G is 0.01 % of G, far below any uncertainty the data allow.

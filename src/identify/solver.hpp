@@ -51,7 +51,8 @@ bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::Vect
 
 /// Levenberg-Marquardt from p over the free parameters, steps clamped to the bounds and limited
 /// to 0.7 in any internal coordinate (a factor 2 in a parameter on a log scale). Converged when
-/// no step lowers S, a step is below 1e-4 or the decrease below 1e-8 S. S is infinite (and
+/// no step lowers S, a step is below 1e-4 or the decrease below 1e-8 S (also the decrease the
+/// linearised problem predicts: such a step is not tried). S is infinite (and
 /// `message` says why) when the problem fails at the start or next to it. `first_jacobian`
 /// (optional; its fixed parameters' columns are ignored) stands in for the finite differences of
 /// the first iteration: a Jacobian known near p (a fit's, for the fits of its profile) saves one

@@ -73,6 +73,35 @@ TEST(LevenbergMarquardt, AGivenFirstJacobianStandsInForItsFiniteDifferences) {
   EXPECT_EQ(c.p, a.p);
 }
 
+TEST(LevenbergMarquardt, AtTheMinimumItTriesNoStepThatCannotCount) {
+  // Started at the minimum, the linearised problem predicts no decrease of 1e-8 S for any step:
+  // converged after the start and its finite differences, without a trial step (before: trial
+  // steps with lambda raised eightfold until they shrank below 1e-7, a model run each).
+  Decay d(2.0, 1.5);
+  const Fit exact = levenberg_marquardt(d, Eigen::Vector2d(0.0, 0.0), {true, true}, 100);
+  ASSERT_TRUE(exact.converged) << exact.message;
+  // Noise of the size of the signal (S about 2 at the minimum): the finite differences then
+  // tilt the step enough that trial steps used to be tried.
+  class Noisy : public Decay {
+   public:
+    Noisy() : Decay(2.0, 1.5) {}
+    bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override {
+      if (!Decay::residual(p, r)) return false;
+      for (Eigen::Index i = 0; i < r.size(); ++i) r[i] += (i % 2 == 0 ? 0.3 : -0.3);
+      return true;
+    }
+  } noisy;
+  const Fit fit = levenberg_marquardt(noisy, exact.p, {true, true}, 100);
+  const Fit again = levenberg_marquardt(noisy, fit.p, {true, true}, 100);
+  EXPECT_TRUE(again.converged);
+  EXPECT_NE(again.message.find("no step predicts"), std::string::npos) << again.message;
+  EXPECT_EQ(again.p, fit.p);
+  EXPECT_EQ(again.iterations, 1);
+  noisy.calls = 0;
+  levenberg_marquardt(noisy, fit.p, {true, true}, 100);
+  EXPECT_EQ(noisy.calls, 3);  // the start and two finite differences
+}
+
 TEST(LevenbergMarquardt, AFixedParameterDoesNotMove) {
   Decay d(2.0, 1.5);
   const Fit fit =
