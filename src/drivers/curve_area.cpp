@@ -281,8 +281,9 @@ std::vector<Vertex> polygon(const std::vector<Piece>& pieces) {
 // The pairs (i < j) of polygon edges that do not join (|i - j| > 1 around the polygon) and whose
 // chords come closer than the sum of their arcs' deviation bounds: where the arcs may cross
 // although the chords do not (a shallow crossing of arcs that stray from their chords by more
-// than the chords' distance, as in a small loop of the curve drawn by few pieces). Boxes of the
-// chords widened by the bounds, swept in z.
+// than the chords' distance, as in a small loop of the curve drawn by few pieces). `v` is the
+// polygon of `polygon(pieces)` (kAreaPoints + 1 vertices per piece); the boxes of the chords,
+// widened by the bounds, are compared piece by piece where the pieces' boxes overlap.
 std::vector<std::pair<std::size_t, std::size_t>> near_pairs(const std::vector<Piece>& pieces,
                                                             const std::vector<Vertex>& v,
                                                             double tiny) {
@@ -291,6 +292,7 @@ std::vector<std::pair<std::size_t, std::size_t>> near_pairs(const std::vector<Pi
     std::size_t edge;
   };
   const std::size_t n = v.size();
+  if (n < kAreaPoints + 1 || n % (kAreaPoints + 1) != 0) return {};
   // A bound on how far a piece's arcs stray from the chords of its polygon edges (a quarter of
   // the piece each): |f - chord| <= (h^2 / 8) max |f''| with h = 1/2 in the Chebyshev variable
   // s in [-1, 1], and max |T_j''| = j^2 (j^2 - 1) / 3 (at s = +-1).
@@ -361,7 +363,7 @@ std::vector<std::pair<std::size_t, std::size_t>> near_pairs(const std::vector<Pi
   };
   for (std::size_t g = 0; g < G; ++g) {
     edges_of(g, g);
-    if (G > 1) edges_of(g, (g + 1) % G);
+    if (G > 2 || (G == 2 && g == 0)) edges_of(g, (g + 1) % G);
   }
   // The groups in buckets of their lowest z (a counting sort, G buckets): a group leaves the
   // sweep once it ends below the bucket being swept.
@@ -393,6 +395,7 @@ std::vector<std::pair<std::size_t, std::size_t>> near_pairs(const std::vector<Pi
     }
   }
   std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

@@ -131,6 +131,13 @@ TEST(CurveArea, ArcsThatCrossWhereTheirChordsDoNot) {
     }
 }
 
+TEST(CurveArea, NoPiecesNoArea) {
+  const std::vector<Piece> none;
+  EXPECT_EQ(detail::curve_area(none), 0.0);
+  EXPECT_EQ(detail::green_curve_area(none), 0.0);
+  EXPECT_EQ(detail::swept_curve_area(none), 0.0);
+}
+
 // A steady period whose chords cross on one side of the joint of two pieces while the arcs cross
 // on the other (found here by a scan of random cases): Newton from the crossing chords leaves
 // their piece, and the crossing is found from the neighbouring edges' chords. Green's theorem
