@@ -181,6 +181,13 @@ inline constexpr double kSubharmonicGap = 1e-4;
 // eigenvector by these multiples of the components' ranges (both sides), before the search above.
 inline constexpr std::array<double, 6> kFlipKicks = {0.03, -0.03, 0.1, -0.1, 0.3, -0.3};
 
+// The multipliers of a monodromy taken at an iterate at scaled residual r differ from those at
+// the orbit by up to about 0.04 r (the warm and cold starts of the product sweep and of a
+// diagram near a Neimark-Sacker point: at most 1.3 r where r is tiny); a largest modulus within
+// kMultiplierDrift r of 1 (at most kMultiplierMargin) is taken again at the orbit.
+inline constexpr double kMultiplierDrift = 2.0;
+inline constexpr double kMultiplierMargin = 0.05;
+
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
 inline constexpr double kSubstepsPerPeriod = 64.0;
 
@@ -255,6 +262,9 @@ struct PeriodMap {
   bool has_monodromy = false;  // M was computed at this state (else: carried over)
   bool over_budget = false;    // not integrated: it would exceed the budget of periods
   double residual = std::numeric_limits<double>::infinity();  // scaled |P(z) - z|
+  // The scaled residual of the iterate M was computed at (carried over with M): how far from
+  // the orbit its multipliers were taken (see kMultiplierDrift).
+  double monodromy_residual = std::numeric_limits<double>::infinity();
 };
 
 // Newton's step on the reduced state: (M - I) dz = -(end - z), with end = P^p(z), solved in
@@ -547,6 +557,7 @@ PeriodMap<R> Shooter<R>::period_map(const State& z, Phase phase, bool sensitivit
   for (int i = 0; i < P; ++i)
     for (int j = 0; j < P; ++j) p.M(i, j) = phi(kPeriodic[i], kPeriodic[j]);
   p.has_monodromy = true;
+  p.monodromy_residual = p.residual;
   return p;
 }
 
@@ -624,6 +635,7 @@ bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& 
       }
       if (decreased && contraction < kChordContraction) {
         next.M = cur.M;
+        next.monodromy_residual = cur.monodromy_residual;
         cur = std::move(next);
       } else {
         // A fresh monodromy at the better iterate (unless M is already its own), and Newton
@@ -647,7 +659,10 @@ bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& 
       PeriodMap next = period_map(trial, phase, cur.residual > kFreshMonodromy);
       if (next.over_budget) break;
       if (next.stop != FlowStop::reached || !std::isfinite(next.residual)) continue;
-      if (!next.has_monodromy) next.M = cur.M;
+      if (!next.has_monodromy) {
+        next.M = cur.M;
+        next.monodromy_residual = cur.monodromy_residual;
+      }
       // Accept a decrease; near the noise floor (below the steady tolerance) a full step that
       // does not halve the residual ends the iteration as converged.
       if (next.residual < (1.0 - 0.1 * lambda) * cur.residual) {
@@ -915,8 +930,23 @@ std::optional<bool> Shooter<R>::retry_after_a_longer_transient(
 // orbit of P^p when one is found (subharmonic). Returns whether a stable orbit stands.
 template <class R>
 bool Shooter<R>::stable_orbit(ShootingOutcome& out, State& z, Phase phase, PeriodMap& cur) {
-  // Floquet multipliers: eigenvalues of the monodromy at the orbit.
+  // Floquet multipliers: eigenvalues of the monodromy at the orbit. Newton's last monodromy was
+  // taken at an iterate some way from it (a warm start's first map, from a neighbour's orbit;
+  // a cold start's last fresh one, above kFreshMonodromy): where the largest modulus lies so
+  // close to 1 that this distance could move it across, the monodromy is taken again at the
+  // orbit (a warm start from a neighbour 5 MN/m^2 away, near a Neimark-Sacker point, read 1.00003
+  // at its first map and 0.99555 at the orbit: an unstable verdict, a futile search for a
+  // subharmonic and a start from rest).
   out.floquet = multipliers_of(cur.M);
+  if (std::abs(out.floquet.max_modulus - 1.0) <
+      std::min(kMultiplierMargin, kMultiplierDrift * cur.monodromy_residual)) {
+    PeriodMap fresh = period_map(z, phase, true);
+    if (fresh.stop == FlowStop::reached && fresh.phase == phase && !fresh.grazing) {
+      cur = std::move(fresh);
+      out.M = cur.M;
+      out.floquet = multipliers_of(cur.M);
+    }
+  }
   if (out.floquet.stability == Stability::stable) return true;
   if (p_ != 1) {
     out.message = fmt("the orbit of P^%.0f is unstable (largest Floquet multiplier modulus %.6g)",

@@ -397,6 +397,42 @@ TEST(Continuation, ChainsFollowTheInnermostLoopOfAProduct) {
   EXPECT_EQ(off[5], 4);
 }
 
+TEST(Continuation, NearTheUnitCircleTheMultipliersAreTakenAtTheOrbit) {
+  // Pure rolling at 58 Hz with contact that can open (the Neimark-Sacker study of
+  // docs/bifurcations.md, first point at 42.51 MN/m^2): at G = 40 MN/m^2 the period-1 orbit is
+  // stable, largest multiplier modulus 0.9956. Warm-started from the orbit at 35 MN/m^2, the
+  // monodromy of the first map (scaled residual 0.17) gave 1.00003: an unstable verdict, a futile
+  // search for a subharmonic and a start from rest (the brute-force diagram called the orbit
+  // quasi-periodic). Within kMultiplierDrift times that residual of 1 the monodromy is taken
+  // again at the orbit.
+  const auto case_at = [](double G) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = G;
+    c.roller.f = 58.0;
+    set_field(c, "roller.unbalance", 0.22877);
+    c.contact.pure_rolling = true;
+    c.contact.unilateral = true;
+    return c;
+  };
+  const Model model(case_at(40e6)), neighbour(case_at(35e6));
+  const Result cold = simulate(model);
+  const Result before = simulate(neighbour);
+  ASSERT_EQ(cold.status, Status::steady_state) << cold.message;
+  ASSERT_EQ(before.status, Status::steady_state) << before.message;
+  ASSERT_EQ(cold.floquet.stability, Stability::stable);
+  ASSERT_GT(cold.floquet.max_modulus, 0.99);
+  const std::optional<detail::WarmStart> from_neighbour = detail::orbit_start(neighbour, before);
+  ASSERT_TRUE(from_neighbour.has_value());
+  const Result warm = detail::simulate_from(model, {}, {}, &*from_neighbour);
+  ASSERT_EQ(warm.status, Status::steady_state) << warm.message;
+  EXPECT_EQ(warm.diagnostics.warm_start, 1) << warm.diagnostics.fallback;
+  EXPECT_EQ(warm.floquet.stability, Stability::stable);
+  EXPECT_NEAR(warm.floquet.max_modulus, cold.floquet.max_modulus, 1e-4);
+  EXPECT_LE(scaled_difference(warm.samples, cold.samples),
+            2.0 * model.parameters().numerics.steady_tol);
+}
+
 TEST(Continuation, LinksAreChecked) {
   const std::vector<Case> cases(3, shooting_case(25e6, true));
   StudyOptions o;
