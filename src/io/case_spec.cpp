@@ -197,6 +197,14 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
                                     : " (for other G use soil.input = \"modulus\" and soil.G)";
         throw Error(msg, e->key, v);
       }
+      // soil.table2_G sets soil.G: a soil.G given before it (the same file, or a --set under a
+      // sweep over soil.table2_G) would be dropped without a word. A soil.G given after it
+      // overrides it (a sweep over soil.G on a Table 2 base case).
+      const auto g = spec.origin.find("soil.G"), t = spec.origin.find("soil.table2_G");
+      if (g != spec.origin.end() && (t == spec.origin.end() || t->second != g->second))
+        throw Error("soil.table2_G cannot be set together with soil.G (" + g->second +
+                        "): soil.table2_G sets soil.G itself; remove one of them",
+                    e->key, v);
       spec.values.soil.input = SoilInput::table2;
       spec.values.soil.G = v;
       spec.origin["soil.G"] = origin;

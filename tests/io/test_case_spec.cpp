@@ -68,6 +68,23 @@ TEST(CaseFile, Table2ShorthandTakesTheTableRow) {
   read_case_text("[soil]\ntable2_G = 40e6\n", "case.toml", spec);
   assign(spec, "soil.G", 10e6, "sweep");
   EXPECT_EQ(Model(finalize(spec)).ksh(), table2_soil(10e6).ksh);
+  // A soil.G given before soil.table2_G would be dropped: refused, naming both (in one file, in
+  // either order, and a --set soil.G under a sweep over soil.table2_G).
+  for (const char* text : {"[soil]\nG = 25e6\ntable2_G = 30e6\n",
+                           "[soil]\ntable2_G = 30e6\nG = 25e6\n"}) {
+    const std::string error = case_error(text);
+    EXPECT_NE(error.find("soil.table2_G cannot be set together with soil.G (case.toml:"),
+              std::string::npos)
+        << error;
+  }
+  CaseSpec set_first;
+  assign(set_first, "soil.G", 30e6, "--set soil.G=30e6");
+  EXPECT_THROW(assign(set_first, "soil.table2_G", 5e6, "sweep"), Error);
+  // The same soil.table2_G again (a sweep over it on a base case that has it) is no conflict.
+  CaseSpec again;
+  read_case_text("[soil]\ntable2_G = 40e6\n", "case.toml", again);
+  assign(again, "soil.table2_G", 10e6, "sweep");
+  EXPECT_EQ(finalize(again).soil.G, 10e6);
 }
 
 // Coefficients given while soil.input is left at its default (Table 2) give the soil by its
