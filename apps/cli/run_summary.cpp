@@ -126,10 +126,14 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
                  : std::string()));
   s.line("driving torque MMd",
          fmt(c.MMd) + " N m" + (M0 != 0.0 ? " (" + fmt(c.MMd / M0, 4) + " M0)" : std::string()));
-  const Transmissibility tr =
-      transmissibility(c.roller.kd, c.roller.cd, c.roller.m_f, 2.0 * M_PI * c.roller.f);
-  s.line("frame transmissibility",
-         "Tp = " + fmt(tr.Tp, 3) + " (Appendix A, m_f = " + fmt(c.roller.m_f) + " kg)");
+  if (c.roller.kd > 0.0) {
+    const Transmissibility tr =
+        transmissibility(c.roller.kd, c.roller.cd, c.roller.m_f, 2.0 * M_PI * c.roller.f);
+    s.line("frame transmissibility",
+           "Tp = " + fmt(tr.Tp, 3) + " (Appendix A, m_f = " + fmt(c.roller.m_f) + " kg)");
+  } else {
+    s.line("frame transmissibility", "n/a (roller.kd = 0: no suspension spring, Appendix A)");
+  }
 
   s.section("result");
   s.line("status", to_string(result.status));

@@ -111,13 +111,18 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   for (const TroughParameter& p : parameters(c.trough.shape)) trough[p.symbol] = number(p.value);
   trough["curvature_radius"] = number(curvature_radius_at_bottom(c.trough.shape));
   j["derived"]["trough"] = trough;
-  // Appendix A: how much of the drum's oscillation reaches the frame (40).
-  const Transmissibility tr = transmissibility(R.kd, R.cd, R.m_f, 2.0 * M_PI * R.f);
-  j["derived"]["transmissibility"] = {{"m_f", number(R.m_f)},
-                                      {"omega", number(tr.omega)},
-                                      {"zeta", number(tr.zeta)},
-                                      {"ratio", number(tr.ratio)},
-                                      {"Tp", number(tr.Tp)}};
+  // Appendix A: how much of the drum's oscillation reaches the frame (40); null without a
+  // suspension spring (roller.kd = 0, a valid case: the frame has no natural frequency).
+  if (R.kd > 0.0) {
+    const Transmissibility tr = transmissibility(R.kd, R.cd, R.m_f, 2.0 * M_PI * R.f);
+    j["derived"]["transmissibility"] = {{"m_f", number(R.m_f)},
+                                        {"omega", number(tr.omega)},
+                                        {"zeta", number(tr.zeta)},
+                                        {"ratio", number(tr.ratio)},
+                                        {"Tp", number(tr.Tp)}};
+  } else {
+    j["derived"]["transmissibility"] = nullptr;
+  }
 
   json diagnostics = json::object();
   for (const DiagnosticOutput& d : diagnostic_outputs()) {

@@ -378,6 +378,17 @@ TEST(CliTransmissibility, AppendixA) {
   EXPECT_NEAR(j["Tp"].get<double>(), 0.025, 0.0005);
   o = run({"transmissibility", "--format", "csv", "--mf", "3000"});
   EXPECT_EQ(lines(o.out).at(0), "quantity,value,unit,meaning");
+  // roller.kd = 0 is a valid case (the field's rule is >= 0): run simulates it and reports no
+  // transmissibility; the calculator, which needs a natural frequency, names the field.
+  o = run({"run", "--kd", "0", "--format", "json", "-q"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_TRUE(nlohmann::json::parse(o.out)["derived"]["transmissibility"].is_null());
+  o = run({"run", "--kd", "0", "-q"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("n/a (roller.kd = 0"), std::string::npos) << o.out;
+  o = run({"transmissibility", "--kd", "0"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("roller.kd must be > 0 [N/m]; got 0"), std::string::npos) << o.err;
 }
 
 // A key a command does not use would be silently ignored: it is an error instead (exit code 2),
