@@ -78,6 +78,9 @@ double rel(double formula, double table) { return (formula - table) / table; }
 
 int run(const SoilOptions& o) {
   io::CaseSpec spec;
+  // The calculator is Appendix B: the roller's keys it reads (roller.b, roller.r, roller.P0, ...)
+  // take effect as under soil.input = "modulus".
+  spec.values.soil.input = SoilInput::modulus;
   apply(o.c, spec);
   const Roller roller = io::finalize(spec).roller;
   std::vector<double> Gs;

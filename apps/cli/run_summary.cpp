@@ -59,8 +59,8 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
   // The Evib-type modulus: Lundberg's cylinder needs the soil's Poisson's ratio.
   if (name == "evib" && std::isnan(m.evib))
     return std::string(
-        "n/a (vibratory drum on a soil with a Poisson's ratio only: soil.input = modulus or "
-        "table2)");
+        "n/a (computed for the vibratory drum, roller.type = vibratory, on a soil with a "
+        "Poisson's ratio, soil.input = modulus or table2)");
   // The RMV- and CCV-type values: ratios to A(f) (and A(f/2)) of z_M''.
   if (name == "rmv" || name == "ccv") {
     const double v = name == "rmv" ? m.rmv : m.ccv;

@@ -487,6 +487,15 @@ std::string key_not_in_effect(const Case& c, std::string_view key) {
       (c.contact.law != FrictionChoice::regularised || c.contact.pure_rolling))
     return "contact.v_eps has no effect unless contact.law = \"regularised\" (and not "
            "contact.pure_rolling); remove it or set contact.law = \"regularised\"";
+  // The drum width enters Appendix B (42)-(45) and the vibratory drum's Evib-type modulus (on a
+  // soil with a Poisson's ratio), nothing else: the paper's drum is planar.
+  if (key == "roller.b" && c.soil.input != SoilInput::modulus &&
+      !(vibratory && c.soil.input == SoilInput::table2))
+    return std::string("roller.b has no effect while soil.input = \"") + input_name(c.soil.input) +
+           "\"" + (vibratory ? "" : " and roller.type = \"oscillation\"") +
+           " (the drum width enters Appendix B, soil.input = \"modulus\"" +
+           (vibratory ? "" : ", and the vibratory drum's Evib-type modulus") +
+           "; the model itself is planar); remove it or set soil.input = \"modulus\"";
   if (key.starts_with("trough.") && std::isnan(key_value(c.trough.shape, key)))
     return std::string(key) + " has no effect on a " + trough_name(c.trough.shape) + " trough";
   return "";

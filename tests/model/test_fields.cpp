@@ -296,12 +296,29 @@ TEST(Fields, KeyInEffectFollowsTheSoilInputTheUnbalanceAndTheShape) {
   c.trough.shape = LogSpiralTrough(0.002, 0.601);
   EXPECT_TRUE(key_in_effect(c, "trough.k"));
   EXPECT_TRUE(key_in_effect(Case{}, "trough.a"));
+  // The drum width: Appendix B (soil.input = modulus) and the vibratory drum's Evib-type modulus
+  // (on a soil with a Poisson's ratio) read it; nothing else does.
+  EXPECT_FALSE(key_in_effect(c, "roller.b"));  // the soil by its coefficients here
+  {
+    Case table2_case;  // Table 2: roller.b in no formula the paper's drum reads
+    EXPECT_FALSE(key_in_effect(table2_case, "roller.b"));
+    EXPECT_NE(key_not_in_effect(table2_case, "roller.b").find("enters Appendix B"),
+              std::string::npos);
+    Case m = c;
+    m.soil.input = SoilInput::modulus;
+    EXPECT_TRUE(key_in_effect(m, "roller.b"));
+    Case v = table2_case;
+    v.roller.type = RollerType::vibratory;
+    EXPECT_TRUE(key_in_effect(v, "roller.b"));
+    v.soil.input = SoilInput::coefficients;
+    EXPECT_FALSE(key_in_effect(v, "roller.b"));
+  }
   for (const Field& f : fields()) {
     const std::string key = f.key;
     // The vibratory drum's keys take effect with roller.type = vibratory only
     // (tests/roller/test_vibratory_drum.cpp).
     if (!key.starts_with("soil.") && key != "roller.M0" && key != "contact.v_eps" &&
-        key != "roller.static_moment" && key != "roller.exciter") {
+        key != "roller.static_moment" && key != "roller.exciter" && key != "roller.b") {
       EXPECT_TRUE(key_in_effect(c, key)) << key;
     }
     EXPECT_EQ(key_in_effect(c, key), key_not_in_effect(c, key).empty()) << key;
