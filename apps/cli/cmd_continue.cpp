@@ -264,7 +264,7 @@ void add_continue_command(CLI::App& app, Action& action) {
   sub->footer(
       "Examples:\n"
       "  oscidrum continue --param soil.G --from 10 --to 80 --set soil.input=modulus\n"
-      "  oscidrum continue case.toml --param contact.MMd --from 0 --to 9000 --csv b.csv "
+      "  oscidrum continue case.toml --param MMd --from 0 --to 9000 --csv b.csv "
       "--bifurcations bif.csv --plot b.png\n"
       "--from/--to are in the unit the key is typed in (MN/m^2 for soil.G, else SI).\n"
       "Exit codes: 0 the branch reached --to (or turned back out of the range, or ended in gross "

@@ -1,6 +1,9 @@
 // oscidrum: the command-line tool. Parses the command line with CLI11, runs the selected
 // command, and turns every error into a one-line message and an exit code (commands.hpp).
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -80,7 +83,7 @@ int run(int argc, char** argv) {
       "  oscidrum soil --table2                Appendix B against paper Table 2\n"
       "  oscidrum fields                       every config key with unit, default and rule\n"
       "Exit codes: 0 ok, 1 a case did not reach its steady state, 2 bad usage or input, "
-      "130 interrupted.\nDocs: docs/cli.md, docs/config.md, docs/outputs.md");
+      "3 internal error, 130 interrupted.\nDocs: docs/cli.md, docs/config.md, docs/outputs.md");
   Action action;
   std::string names;
   for (AddCommand add : kCommands) add(app, action);
@@ -102,7 +105,16 @@ int run(int argc, char** argv) {
   }
   if (!action)
     return error("a command is required: " + names + " (see 'oscidrum --help')", kExitUsage);
-  return action();
+  const int code = action();
+  // Results written to a standard output that cannot take them (a full disk, /dev/full, a closed
+  // pipe) are lost: that is an error, not success.
+  std::cout.flush();
+  const bool c_failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  if (!std::cout || c_failed)
+    return error(std::string("writing to standard output failed (") + std::strerror(errno) +
+                     "): the results are lost",
+                 kExitUsage);
+  return code;
 }
 
 }  // namespace

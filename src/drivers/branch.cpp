@@ -19,6 +19,13 @@ namespace oscidrum {
 Branch continue_branch(const Case& c, const BranchOptions& o) {
   const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue");
   if (!(o.from != o.to)) throw Error("continue: --from and --to must differ");
+  // The branch moves G continuously; Table 2 holds 14 values of it.
+  if (o.key == "soil.G" && c.soil.input == SoilInput::table2)
+    throw Error(
+        "continue: soil.G varies continuously along a branch, but soil.input = \"table2\" holds "
+        "only the G of paper Table 2 (5e6, 10e6, ..., 70e6 Pa); set soil.input = \"modulus\" "
+        "(Appendix B, --set soil.input=modulus)",
+        "soil.G");
   if (!(o.initial_step > 0 && o.max_step >= o.initial_step && o.min_step > 0 &&
         o.min_step <= o.initial_step && o.max_step <= 1))
     throw Error("continue: steps must satisfy 0 < min_step <= initial_step <= max_step <= 1");

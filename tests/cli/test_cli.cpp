@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -350,6 +351,22 @@ TEST(CliRun, PlotFailsCleanly) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "plots/steady_state.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "plots/summary.json"));
+}
+
+// Results written to a standard output that cannot take them are lost: exit code 2, not 0.
+TEST(CliRun, AStandardOutputThatCannotBeWrittenIsAnError) {
+  TempDir dir;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "-q"}, {"run", "-q", "--format", "csv"},
+        {"fields"}}) {
+    const pid_t pid = start(args, "/dev/full", dir / "err");
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2) << args.back();
+    EXPECT_NE(slurp(dir / "err").find("writing to standard output failed"), std::string::npos)
+        << slurp(dir / "err");
+  }
 }
 
 TEST(CliSoil, CalculatorAndTable2) {

@@ -65,6 +65,11 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
   EXPECT_EQ(to.code, 2);
   EXPECT_NE(to.err.find("--to: must be a decimal number [MN/m^2]; got 'abc'"), std::string::npos)
       << to.err;
+  // soil.G along a branch on the default soil (Table 2 holds 14 values of G): said before any
+  // integration, not as a failed start (exit 1, "no tangent at the start").
+  const Outcome table2 = run({"continue", "--param", "soil.G", "--from", "20", "--to", "30"});
+  EXPECT_EQ(table2.code, 2) << table2.err;
+  EXPECT_NE(table2.err.find("set soil.input = \"modulus\""), std::string::npos) << table2.err;
 }
 
 }  // namespace
