@@ -29,7 +29,7 @@ struct RunOptions {
   std::string csv, json, events, plot_dir, format = "table";
   // Given-but-empty names are errors (an empty --csv '' was silently ignored).
   CLI::Option *config_flag = nullptr, *csv_flag = nullptr, *json_flag = nullptr,
-              *events_flag = nullptr, *plot_flag = nullptr;
+              *events_flag = nullptr, *plot_flag = nullptr, *format_flag = nullptr;
   int harmonics = 10;
   bool quiet = false, print_config = false;
 };
@@ -53,6 +53,18 @@ int run(const RunOptions& o) {
   if (given(o.events_flag)) check_output_file("--events", o.events);
   if (given(o.plot_flag) && o.plot_dir.empty())
     throw Error("--plot needs a directory name; got an empty one");
+  // Standard output carries one thing: a file named - replaces the --format output; two of them
+  // (or one and an explicit --format) would interleave into something no reader can parse.
+  std::vector<std::string> to_stdout;
+  for (const auto& [flag, path] : {std::pair{"--csv", &o.csv}, std::pair{"--json", &o.json},
+                                   std::pair{"--events", &o.events}})
+    if (*path == "-" && o.plot_dir.empty()) to_stdout.emplace_back(std::string(flag) + " -");
+  if (given(o.format_flag) && !to_stdout.empty())
+    to_stdout.push_back("--format " + o.format);
+  if (to_stdout.size() > 1)
+    throw Error(to_stdout[0] + " and " + to_stdout[1] +
+                " would both write to standard output; send one of them to a file");
+  const bool stdout_taken = !to_stdout.empty();
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
   if (o.print_config) {
@@ -107,7 +119,9 @@ int run(const RunOptions& o) {
     io::write_events_csv(ev, result);
     write_output(o.events, ev.str());
   }
-  if (o.format == "table")
+  if (stdout_taken)
+    ;  // the file named - was written there
+  else if (o.format == "table")
     std::cout << run_summary(spec, c, result, metrics.get(), o.config);
   else if (o.format == "json")
     std::cout << json_text;
@@ -170,11 +184,12 @@ void add_run_command(CLI::App& app, Action& action) {
       sub->add_option("--events", o->events, "write the event list (t[s],kind,from,to) to FILE")
           ->type_name("FILE")
           ->group(out);
-  sub->add_option("--format", o->format,
-                  "what to print on stdout: table (a summary), csv (the "
-                  "steady state) or json (the summary)")
-      ->check(CLI::IsMember({"table", "csv", "json"}))
-      ->group(out);
+  o->format_flag = sub->add_option("--format", o->format,
+                                   "what to print on stdout: table (a summary), csv (the "
+                                   "steady state) or json (the summary); nothing when --csv, "
+                                   "--json or --events is - (standard output)")
+                       ->check(CLI::IsMember({"table", "csv", "json"}))
+                       ->group(out);
   sub->add_option("--harmonics", o->harmonics, "harmonics n = 0 ... N in the metrics (default 10)")
       ->check(CLI::Range(0, 100000))
       ->group(out);

@@ -369,6 +369,24 @@ TEST(CliRun, AStandardOutputThatCannotBeWrittenIsAnError) {
   }
 }
 
+// Standard output carries one thing: --csv - replaces the summary table; two claims are refused.
+TEST(CliRun, StandardOutputCarriesOneThing) {
+  Outcome o = run({"run", "-q", "--csv", "-"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> l = lines(o.out);
+  ASSERT_GT(l.size(), 2u);
+  EXPECT_EQ(l.front().rfind("t[s],", 0), 0u);
+  EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 1 + 2 * 1024);  // header + samples
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "--csv", "-", "--format", "csv"},
+        {"run", "--csv", "-", "--json", "-"},
+        {"run", "--events", "-", "--format", "table"}}) {
+    o = run(args);
+    EXPECT_EQ(o.code, 2) << args[1] << " " << args[3];
+    EXPECT_NE(o.err.find("would both write to standard output"), std::string::npos) << o.err;
+  }
+}
+
 TEST(CliSoil, CalculatorAndTable2) {
   Outcome o = run({"soil", "--G", "25"});
   ASSERT_EQ(o.code, 0) << o.err;
