@@ -1,6 +1,7 @@
 // oscidrum merge: join the outputs of the shards of one study (oscidrum sweep --shard I/N) into
 // the output of the whole study, exactly what one unsharded sweep writes.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -26,6 +27,13 @@ int run(const MergeOptions& o) {
   std::size_t n_hdf5 = 0;
   for (const std::string& path : o.shards) {
     if (path.empty()) throw Error("merge: a shard file name is empty");
+    // The output replacing one of its inputs would lose that shard if the merge failed later
+    // (and a rerun would find it merged, not a shard).
+    std::error_code ec;
+    if (!o.out.empty() && o.out != "-" && std::filesystem::exists(o.out, ec) &&
+        std::filesystem::equivalent(o.out, path, ec))
+      throw Error("merge: --out " + o.out + " is the shard " + path +
+                  ": write the merged study to another file");
     n_hdf5 += io::is_hdf5_file(path);
   }
   if (n_hdf5 > 0) {  // the HDF5 files of the shards (sweep --shard I/N --hdf5 FILE)

@@ -463,12 +463,14 @@ bool report_statuses(const SweepOptions& o, const SweepPlan& p, const SweepOutpu
     std::string summary;
     for (const auto& [status, n] : counts)
       summary += (summary.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+    if (summary.empty()) summary = "the shard holds none of the study's cases";
     std::cerr << "oscidrum: " << p.n_mine << " cases"
               << (p.sharded ? " of shard " + p.shard.text() : std::string()) << " (" << summary
               << ") in " << duration(elapsed)
               << (o.out.empty() ? std::string() : "; wrote " + o.out) << "\n";
   }
-  return counts.size() == 1 && counts.begin()->first == "steady_state";
+  // Every case a steady state; a shard that holds no case (more shards than cases) failed none.
+  return counts.empty() || (counts.size() == 1 && counts.begin()->first == "steady_state");
 }
 
 int run(const SweepOptions& o) {

@@ -238,6 +238,14 @@ TEST(CliSweep, FourShardsMergeToTheUnshardedResult) {
   o = run({"sweep", study, "--shard", "5/4"});
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("1 <= I <= N"), std::string::npos) << o.err;
+  // The merged study written over one of its shards would lose that shard: refused, the shard
+  // left as it was.
+  const std::string s1 = slurp(dir / "s1.csv");
+  o = run({"merge", dir / "s1.csv", dir / "s2.csv", dir / "s3.csv", dir / "s4.csv", "--out",
+           dir / "s1.csv"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("is the shard"), std::string::npos) << o.err;
+  EXPECT_EQ(slurp(dir / "s1.csv"), s1);
 }
 
 std::vector<std::string> column(const std::string& csv, const std::string& name) {
@@ -264,6 +272,23 @@ std::vector<std::string> column(const std::string& csv, const std::string& name)
     out.push_back(index < cells.size() ? cells[index] : "");
   }
   return out;
+}
+
+// More shards than cases: a shard that holds none failed none (exit 0, a CSV with its header),
+// and the merge of all the shards is the study.
+TEST(CliSweep, AShardWithoutCasesSucceeds) {
+  TempDir dir;
+  const std::string study = dir / "two.toml";
+  std::ofstream(study) << "[sweep]\n\"soil.table2_G\" = [5e6, 10e6]\n";
+  for (const std::string n : {"1", "2", "3"}) {
+    const Outcome o =
+        run({"sweep", study, "--shard", n + "/3", "--out", dir / ("s" + n + ".csv"), "-q"});
+    EXPECT_EQ(o.code, 0) << n << ": " << o.err;
+  }
+  const Outcome o =
+      run({"merge", dir / "s1.csv", dir / "s2.csv", dir / "s3.csv", "--out", dir / "all.csv"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(column(slurp(dir / "all.csv"), "status[-]").size(), 2u);
 }
 
 // Issue 7 (3): with shooting, the cases of examples/table2_sweep.toml (14 G slowest x 2 contacts
