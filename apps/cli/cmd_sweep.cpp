@@ -216,6 +216,14 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
   if (!o.plot.empty() && o.out.empty())
     throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
+  // As run says it (the library would name its option, StudyOptions::n_harmonics).
+  for (std::size_t i = 0; i < p.total; ++i) {
+    const int spp = p.study.cases[i].numerics.samples_per_period;
+    if (p.mine[i] && o.harmonics >= spp / 2)
+      throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
+                  std::to_string(spp / 2) + " (the samples' Nyquist limit; case " +
+                  std::to_string(i) + "); got " + std::to_string(o.harmonics));
+  }
   if (!o.plot.empty()) {
     // Before the first case: a figure that cannot be drawn must not cost a whole sweep.
     check_plot_file("--plot", o.plot);

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <utility>
@@ -138,8 +139,13 @@ RecordColumns read_record(const RecordInput& o) {
   const std::string name = o.file == "-" ? std::string("<stdin>") : o.file;
   std::ifstream file;
   if (o.file != "-") {
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.file, ec))
+      throw Error(name + ": is a directory, not a record file");
     file.open(o.file, std::ios::binary);
-    if (!file) throw Error(name + ": cannot open the file");
+    if (!file)
+      throw Error(name + ": cannot open the file (" +
+                  (std::filesystem::exists(o.file, ec) ? "not readable" : "no such file") + ")");
   }
   return oscidrum::read_record(o.file == "-" ? std::cin : file, name, o);
 }

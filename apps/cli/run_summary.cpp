@@ -159,6 +159,10 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
         continue;
       }
       const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
+      if (h.size() < 2) {  // --harmonics 0: the mean only
+        s.line(out.label, "none asked (--harmonics 0)");
+        continue;
+      }
       const std::size_t shown = std::min<std::size_t>(6, h.size());
       s.line(std::string(out.label) + " A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
              harmonics_text(h, shown - 1, zeroed));
