@@ -290,7 +290,9 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
         Case{"unit.csv", "unit 'h' is not a time unit (s, ms, us); give --t-units"},
         Case{"aunit.csv", "unit 'km' is not an acceleration unit (m/s^2, mm/s^2, g); give --units"},
         Case{"text.csv", "must be a number"}, Case{"short.csv", "at least 8 samples"},
-        Case{"ragged.csv", "2 cells, but the header has 3"}, Case{"missing.csv", "cannot open"}}) {
+        Case{"ragged.csv", "2 cells, but the header has 3"},
+        Case{"missing.csv", "cannot open the file (no such file)"},
+        Case{".", "is a directory, not a record file"}}) {
     SCOPED_TRACE(c.file);
     const Outcome o = run({"analyze", dir / c.file});
     EXPECT_EQ(o.code, 2) << o.err;
@@ -307,6 +309,18 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
   EXPECT_NE(o.err.find("f (--f) must be at most half the record's sampling rate, 5 Hz"),
             std::string::npos)
       << o.err;
+  // Too few samples per period for the harmonics asked (200 per period, 200 harmonics need 401):
+  // the flags against the record's sampling, exit 2 as for any input the record cannot serve.
+  const Outcome rec = run({"run", "-q", "--csv", dir / "rec.csv", "--set",
+                           "numerics.samples_per_period=200", "--set", "numerics.output_periods=4"});
+  ASSERT_EQ(rec.code, 0) << rec.err;
+  const Outcome dense = run({"analyze", dir / "rec.csv", "--f", "39", "--harmonics", "200"});
+  EXPECT_EQ(dense.code, 2) << dense.err;
+  EXPECT_NE(dense.err.find("too few samples per period"), std::string::npos) << dense.err;
+  // An empty output name is refused, as run refuses it.
+  const Outcome empty = run({"validate", "--csv", ""});
+  EXPECT_EQ(empty.code, 2);
+  EXPECT_NE(empty.err.find("--csv needs a file name"), std::string::npos) << empty.err;
 }
 
 // With the Python package: figures, data and the report; without it (a build without Python):

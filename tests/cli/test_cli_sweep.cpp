@@ -336,6 +336,12 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("--out needs a file name"), std::string::npos) << o.err;
   EXPECT_EQ(o.out, "");
+  // Harmonics beyond the samples' Nyquist limit: named as the flag, not the library's option.
+  o = run({"sweep", study, "--harmonics", "600", "-q"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--harmonics must be < numerics.samples_per_period / 2"),
+            std::string::npos)
+      << o.err;
 }
 
 // A figure that cannot be drawn (its format, its metric) is refused before the first case: no
