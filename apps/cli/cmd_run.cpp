@@ -56,11 +56,10 @@ int run(const RunOptions& o) {
   // Standard output carries one thing: a file named - replaces the --format output; two of them
   // (or one and an explicit --format) would interleave into something no reader can parse.
   std::vector<std::string> to_stdout;
-  for (const auto& [flag, path] : {std::pair{"--csv", &o.csv}, std::pair{"--json", &o.json},
-                                   std::pair{"--events", &o.events}})
+  for (const auto& [flag, path] :
+       {std::pair{"--csv", &o.csv}, std::pair{"--json", &o.json}, std::pair{"--events", &o.events}})
     if (*path == "-" && o.plot_dir.empty()) to_stdout.emplace_back(std::string(flag) + " -");
-  if (given(o.format_flag) && !to_stdout.empty())
-    to_stdout.push_back("--format " + o.format);
+  if (given(o.format_flag) && !to_stdout.empty()) to_stdout.push_back("--format " + o.format);
   if (to_stdout.size() > 1)
     throw Error(to_stdout[0] + " and " + to_stdout[1] +
                 " would both write to standard output; send one of them to a file");

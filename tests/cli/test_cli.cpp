@@ -357,8 +357,7 @@ TEST(CliRun, PlotFailsCleanly) {
 TEST(CliRun, AStandardOutputThatCannotBeWrittenIsAnError) {
   TempDir dir;
   for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"run", "-q"}, {"run", "-q", "--format", "csv"},
-        {"fields"}}) {
+       {std::vector<std::string>{"run", "-q"}, {"run", "-q", "--format", "csv"}, {"fields"}}) {
     const pid_t pid = start(args, "/dev/full", dir / "err");
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);

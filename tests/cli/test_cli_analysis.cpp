@@ -311,8 +311,9 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
       << o.err;
   // Too few samples per period for the harmonics asked (200 per period, 200 harmonics need 401):
   // the flags against the record's sampling, exit 2 as for any input the record cannot serve.
-  const Outcome rec = run({"run", "-q", "--csv", dir / "rec.csv", "--set",
-                           "numerics.samples_per_period=200", "--set", "numerics.output_periods=4"});
+  const Outcome rec =
+      run({"run", "-q", "--csv", dir / "rec.csv", "--set", "numerics.samples_per_period=200",
+           "--set", "numerics.output_periods=4"});
   ASSERT_EQ(rec.code, 0) << rec.err;
   const Outcome dense = run({"analyze", dir / "rec.csv", "--f", "39", "--harmonics", "200"});
   EXPECT_EQ(dense.code, 2) << dense.err;

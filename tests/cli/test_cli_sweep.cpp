@@ -339,8 +339,7 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   // Harmonics beyond the samples' Nyquist limit: named as the flag, not the library's option.
   o = run({"sweep", study, "--harmonics", "600", "-q"});
   EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.err.find("--harmonics must be < numerics.samples_per_period / 2"),
-            std::string::npos)
+  EXPECT_NE(o.err.find("--harmonics must be < numerics.samples_per_period / 2"), std::string::npos)
       << o.err;
 }
 

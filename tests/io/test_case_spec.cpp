@@ -70,8 +70,8 @@ TEST(CaseFile, Table2ShorthandTakesTheTableRow) {
   EXPECT_EQ(Model(finalize(spec)).ksh(), table2_soil(10e6).ksh);
   // A soil.G given before soil.table2_G would be dropped: refused, naming both (in one file, in
   // either order, and a --set soil.G under a sweep over soil.table2_G).
-  for (const char* text : {"[soil]\nG = 25e6\ntable2_G = 30e6\n",
-                           "[soil]\ntable2_G = 30e6\nG = 25e6\n"}) {
+  for (const char* text :
+       {"[soil]\nG = 25e6\ntable2_G = 30e6\n", "[soil]\ntable2_G = 30e6\nG = 25e6\n"}) {
     const std::string error = case_error(text);
     EXPECT_NE(error.find("soil.table2_G cannot be set together with soil.G (case.toml:"),
               std::string::npos)
