@@ -163,7 +163,22 @@ toml::table parse(std::string_view text, const std::string& name) {
   try {
     return toml::parse(text, name);
   } catch (const toml::parse_error& e) {
-    throw Error(loc(name, e.source()) + ": invalid TOML: " + std::string(e.description()));
+    const std::string description(e.description());
+    // A key given twice: the parser's message repeats a quoted key garbled ('"roroller.f" '), so
+    // the key is taken from the line itself (the text before its '=').
+    if (description.find("cannot redefine existing") != std::string::npos) {
+      std::size_t line = 1, begin = 0;
+      for (std::size_t i = 0; i < text.size() && line < e.source().begin.line; ++i)
+        if (text[i] == '\n') ++line, begin = i + 1;
+      std::string_view row = text.substr(begin, text.find('\n', begin) - begin);
+      row = row.substr(0, row.find('='));
+      while (!row.empty() && (row.back() == ' ' || row.back() == '\t')) row.remove_suffix(1);
+      while (!row.empty() && (row.front() == ' ' || row.front() == '\t')) row.remove_prefix(1);
+      if (!row.empty() && row.find('[') == std::string_view::npos)
+        throw Error(loc(name, e.source()) + ": invalid TOML: the key " + std::string(row) +
+                    " is given twice in its table (each key once)");
+    }
+    throw Error(loc(name, e.source()) + ": invalid TOML: " + description);
   }
 }
 
