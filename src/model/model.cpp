@@ -109,7 +109,7 @@ void check_time_scales(const Case& c, const SoilCoefficients& s) {
     throw Error(std::string("the case is too stiff to integrate: ") + r.what +
                     detail::format(" = %.3g 1/s is %.3g times roller.f, which must be at most "
                                    "%.3g (the paper's roller: 3.7; an explicit integrator needs "
-                                   "about %.0f steps per period); ",
+                                   "about %.3g steps per period); ",
                                    r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3) +
                     key + " = " + num(value) + " makes it so: give a plausible value",
                 key, value);
