@@ -607,11 +607,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           "max_change (--max-change) must be > 0 [-]", o.gates.max_change);
   require(o.gates.clip_run >= 2, "clip_run must be >= 2 [samples]", o.gates.clip_run);
   // f: at most half the record's sampling rate (a harmonic fit needs 2 samples per period).
+  double sample_step = 0.0;  // the median time step [s]
   {
     std::vector<double> steps(t.size() - 1);
     for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
     std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-    const double rate = 1.0 / steps[steps.size() / 2];
+    sample_step = steps[steps.size() / 2];
+    const double rate = 1.0 / sample_step;
     require(o.f <= 0.5 * rate,
             "f (--f) must be at most half the record's sampling rate, " + num(0.5 * rate) + " Hz",
             o.f);
@@ -636,12 +638,16 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           std::to_string(t.size()) + " samples; it must be at least " +
           num((span * f_rec) / static_cast<double>(t.size())) + " periods");
   }
-  if (span * f_rec < std::max(1.0, o.window_periods))
+  // n samples at the step dt cover n dt: a record of N periods sampled uniformly (its last
+  // sample one step before the end of the N-th period, as oscidrum run writes it) holds N periods,
+  // up to the error of the estimated f (a window may reach half a step beyond the last sample).
+  const double covered = span + sample_step;
+  if ((covered + 0.5 * sample_step) * f_rec < std::max(1.0, o.window_periods))
     throw Error("record: must span at least " +
                 (windowed ? "one window (" + num(o.window_periods) + " periods"
                           : std::string("one excitation period (1/f")) +
                 " = " + num(std::max(1.0, o.window_periods) / f_rec) + " s at f = " + num(f_rec) +
-                " Hz); it spans " + num(span) + " s");
+                " Hz); its samples cover " + num(covered) + " s");
 
   // Time steps (gaps), and the samples at a channel's extreme (plateaus: clipping).
   std::vector<double> dt(t.size() - 1);

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -298,6 +299,37 @@ TEST(Record, WindowsDoNotDependOnTheClockOrigin) {
         EXPECT_NEAR(ws[k].metrics.ddx_A3_A1, 2.0 / 12.0, tol);
       }
     }
+  }
+}
+
+// A record of N periods sampled uniformly (its last sample a step before the end of the N-th
+// period, as oscidrum run writes it) holds one window of N periods, also when f is estimated (a
+// little off); one sample fewer than N periods minus a step does not.
+TEST(Record, ARecordOfNPeriodsHoldsAWindowOfNPeriods) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const int per_period = 64, periods = 40;
+  auto record = [&](int n) {
+    std::vector<double> t(n), x(n), z(n);
+    for (int i = 0; i < n; ++i) {
+      t[i] = i / (f * per_period);
+      x[i] = 12.0 * std::sin(nu * t[i] + 0.2) + 2.0 * std::sin(3 * nu * t[i] - 0.7);
+      z[i] = 0.4 + 1.1 * std::sin(2 * nu * t[i] + 1.3);
+    }
+    return std::array{t, x, z};
+  };
+  for (const double given_f : {f, 0.0}) {  // given, and estimated from the record
+    SCOPED_TRACE(given_f);
+    WindowOptions o;
+    o.f = given_f;
+    o.n_max = 6;
+    o.window_periods = periods;
+    const auto [t, x, z] = record(periods * per_period);
+    const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, o);
+    ASSERT_EQ(ws.size(), 1u);
+    EXPECT_TRUE(ws[0].valid) << ws[0].reason;
+    EXPECT_EQ(ws[0].count, static_cast<std::size_t>(periods * per_period));
+    const auto [ts, xs, zs] = record(periods * per_period - 2);
+    EXPECT_THROW(analyze_windows(ts, xs, zs, {}, o), Error);
   }
 }
 
