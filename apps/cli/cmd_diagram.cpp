@@ -295,8 +295,8 @@ void add_diagram_command(CLI::App& app, Action& action) {
                   "FILE (.png or .svg; needs --csv)")
       ->type_name("FILE");
   sub->add_option("--plot-quantity", o->plot_quantity,
-                  "the output column --plot shows and the table summarises (default ddx_M; "
-                  "oscidrum outputs lists them)")
+                  "the numeric output column --plot shows and the table summarises (default "
+                  "ddx_M; oscidrum outputs lists them; not phase, which is a category)")
       ->type_name("COLUMN");
   sub->add_option("--format", o->format, "stdout: table (default), csv, json or none")
       ->check(CLI::IsMember({"table", "csv", "json", "none"}));
