@@ -399,6 +399,11 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
   if (t.size() < 8)
     throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
                 std::to_string(t.size()));
+  if (!(search.f_min < search.f_max))
+    throw Error("record: the frequency search's lower limit f_min (--f-min) must be below its "
+                "upper limit f_max (--f-max); got [" +
+                    num(search.f_min) + ", " + num(search.f_max) + "] Hz",
+                "f_min", search.f_min);
   const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
   const double span = t[n_seg - 1] - t[0];
   const double fs = static_cast<double>(n_seg - 1) / span;

@@ -456,6 +456,14 @@ TEST(Record, RejectsBadRecords) {
               analyze_record(coarse_t, coarse_y, coarse_y, 1.0, 10);
             }).find("too few for n_max = 10"),
             std::string::npos);
+  {
+    FrequencySearch swapped;
+    swapped.f_min = 100.0;
+    swapped.f_max = 10.0;
+    EXPECT_NE(message([&] { estimate_frequency(coarse_t, coarse_y, coarse_y, swapped); })
+                  .find("lower limit f_min (--f-min) must be below its upper limit"),
+              std::string::npos);
+  }
   EXPECT_NE(message([&] { analyze_record(t, y, y, -1.0); }).find("f must be > 0"),
             std::string::npos);
 }
