@@ -59,7 +59,8 @@ struct RecordGates {
   double max_residual = 0.5;  ///< largest fit residual (relative RMS) of x_M'' or z_M'' [-]
   double max_drift = 0.002;   ///< largest |f(second half) - f(first half)| / f in a window [-]
   double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
-  int clip_run = 3;           ///< this many equal samples at a channel's extreme: clipped [-]
+  int clip_run = 3;  ///< this many equal samples running in the outer quarter of a channel's range
+                     ///< in the window: clipped [-]
   double max_gap = 0.5;  ///< a time step longer than this part of an excitation period: gap [-]
   /// Largest change of the response within a window: |RMS(second half) - RMS(first half)| /
   /// RMS(window) of the fitted periodic x_M'' or z_M'' (beyond the noise) [-]. A window that
