@@ -97,19 +97,6 @@ const Estimate* find_estimate(const Identification& id, const std::string& name)
   return nullptr;
 }
 
-std::vector<std::pair<std::string, std::string>> unknowns(const IdentifyOptions& io) {
-  std::vector<std::pair<std::string, std::string>> u;
-  if (io.modulus) {
-    u.push_back({"G", "Pa"});
-  } else {
-    u.push_back({"ksh", "N/m"});
-    u.push_back({"ksv", "N/m"});
-  }
-  if (io.fit_mu) u.push_back({"mu", "-"});
-  if (io.fit_MMd) u.push_back({"MMd", "N m"});
-  return u;
-}
-
 std::string join(const std::vector<std::string>& v) {
   std::string out;
   for (const std::string& s : v) out += (out.empty() ? "" : "; ") + s;
@@ -120,7 +107,7 @@ std::string join(const std::vector<std::string>& v) {
 std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOptions& io) {
   std::ostringstream out;
   out << "window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-]";
-  for (const auto& [name, unit] : unknowns(io))
+  for (const auto& [name, unit] : identified_unknowns(io))
     for (const char* suffix : {"", "_u", "_lo", "_hi"})
       out << "," << name << suffix << "[" << unit << "]";
   if (io.modulus) out << ",soil_scale[-]";
@@ -132,7 +119,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
     out << w.index << "," << cell(w.t_start) << "," << cell(w.t_end) << "," << cell(w.t_mid) << ","
         << cell(w.position) << "," << cell(w.f) << "," << (p.valid ? 1 : 0) << ","
         << io::csv_quote(p.reason);
-    for (const auto& [name, unit] : unknowns(io)) {
+    for (const auto& [name, unit] : identified_unknowns(io)) {
       const Estimate* e = p.valid ? find_estimate(id, name) : nullptr;
       for (double v : {e ? e->value : NAN, e ? e->standard_uncertainty : NAN, e ? e->lower : NAN,
                        e ? e->upper : NAN})
@@ -403,7 +390,7 @@ int run(const IdentifyCliOptions& o) {
   } else {
     TextTable t;
     t.header = {"window", "t [s]", "position [m]", "f [Hz]"};
-    for (const auto& [n, u] : unknowns(io)) {
+    for (const auto& [n, u] : identified_unknowns(io)) {
       const std::string unit = shown_unit(n, u);
       t.header.push_back(n + " [" + unit + "]  +- u  [95 %]");
     }
@@ -415,7 +402,7 @@ int run(const IdentifyCliOptions& o) {
       std::vector<std::string> row = {
           std::to_string(p.window.index), fmt(p.window.t_mid, 5),
           std::isfinite(p.window.position) ? fmt(p.window.position, 5) : "", fmt(p.window.f, 6)};
-      for (const auto& [n, u] : unknowns(io)) {
+      for (const auto& [n, u] : identified_unknowns(io)) {
         const Estimate* e = p.valid ? find_estimate(p.identification, n) : nullptr;
         row.push_back(e ? value_text(*e) : "");
       }

@@ -174,6 +174,15 @@ struct Identification {
   MeasuredResponse measured;          ///< what the model was fitted to
 };
 
+/// The unknowns `options` estimate, in the order of Identification::estimates, with their SI
+/// units: G [Pa] (or ksh, ksv [N/m]), then mu [-] and MMd [N m] where fitted. A window that
+/// failed has none: its outputs give these names NaN.
+struct IdentifiedUnknown {
+  std::string name;
+  std::string unit;
+};
+std::vector<IdentifiedUnknown> identified_unknowns(const IdentifyOptions& options);
+
 /// Estimate the soil (and optionally mu, MMd) so that the model's harmonics match `data`. The
 /// case `base` gives everything else; its roller.f is set to data.f and roller.M0 scaled by
 /// (data.f / base.roller.f)^2 (5). `start` (optional) is a previous identification to start

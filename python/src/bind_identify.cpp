@@ -202,12 +202,16 @@ void bind_identify(py::module_& m) {
           d["valid"] = p.valid;
           d["reason"] = p.reason;
           const Identification& id = p.identification;
+          // Every unknown's keys in every window, NaN where it failed (as the CLI's CSV).
+          for (const IdentifiedUnknown& u : identified_unknowns(io))
+            for (const char* suffix : {"", "_u", "_lo", "_hi"}) d[py::str(u.name + suffix)] = NAN;
           for (const Estimate& e : id.estimates) {
             d[py::str(e.name)] = e.value;
             d[py::str(e.name + "_u")] = e.standard_uncertainty;
             d[py::str(e.name + "_lo")] = e.lower;
             d[py::str(e.name + "_hi")] = e.upper;
           }
+          if (io.modulus) d["soil_scale"] = soil_scale;
           d["tau"] = p.valid ? id.time_shift : NAN;
           d["rms_residual"] = p.valid ? id.rms_residual : NAN;
           d["relative_residual"] = p.valid ? id.relative_residual : NAN;

@@ -401,4 +401,18 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   return id;
 }
 
+std::vector<IdentifiedUnknown> identified_unknowns(const IdentifyOptions& options) {
+  std::vector<Unknown> kinds;
+  if (options.modulus) {
+    kinds = {Unknown::G};
+  } else {
+    kinds = {Unknown::ksh, Unknown::ksv};
+  }
+  if (options.fit_mu) kinds.push_back(Unknown::mu);
+  if (options.fit_MMd) kinds.push_back(Unknown::MMd);
+  std::vector<IdentifiedUnknown> out;
+  for (Unknown k : kinds) out.push_back({detail::name_of(k), detail::unit_of(k)});
+  return out;
+}
+
 }  // namespace oscidrum

@@ -33,6 +33,18 @@ def test_identify_recovers_G_with_an_interval_that_covers_it():
     assert row["fitted"].get("soil.G") == pytest.approx(row["G"])
 
 
+def test_failed_windows_carry_every_estimate_key_as_nan():
+    # Windows of half a period fail their gates: the docs' frame example must still find G, G_lo,
+    # G_hi (NaN), as the CLI's CSV has the columns; soil_scale is in every row.
+    r = oscidrum.synthetic_record([truth(17.3e6)], duration=0.3, sample_rate=1500, seed=3)
+    frame = oscidrum.identify.identify_frame(r["t"], r["ddx_M"], r["ddz_M"], window=0.5,
+                                             fit_mu=True)
+    assert len(frame) > 0 and not frame["valid"].any()
+    for key in ("G", "G_u", "G_lo", "G_hi", "mu", "mu_lo", "mu_hi"):
+        assert frame[key].isna().all(), key
+    assert (frame["soil_scale"] == "formulas").all()
+
+
 def test_mu_of_a_rolling_drum_is_not_identifiable_with_either_method():
     c = truth(25.3e6)
     c.set("contact.pure_rolling", True)
