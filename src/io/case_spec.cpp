@@ -388,6 +388,14 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
                         " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w "
                         "nu^2 (5) grows with f^2: give roller.unbalance (the paper's: 0.22877 kg "
                         "m^2), or set roller.M0 to say the moment is meant");
+  // Pure rolling has no friction limit: a friction coefficient given with it changes nothing (a
+  // warning, not an error: a study may sweep contact.pure_rolling over a base case with mu).
+  if (warnings && c.contact.pure_rolling)
+    for (const char* key : {"contact.mu", "contact.mu_static"})
+      if (spec.given(key))
+        warnings->push_back(spec.where(key) + key + " has no effect while contact.pure_rolling = "
+                            "true (rolling without a friction limit); it applies with "
+                            "contact.pure_rolling = false");
   if (spec.MMd_fraction) {
     if (vibratory)
       throw Error(spec.where("MMd_fraction") +

@@ -191,6 +191,12 @@ TEST(CliRun, FrequencyWithFixedM0Warns) {
   o = run({"run", "--M0", "40000", "--unbalance", "0.2"});
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("cannot be given together with roller.M0"), std::string::npos) << o.err;
+  // A friction coefficient from a case file under --pure-rolling changes nothing: said.
+  o = run({"run", kSource + "/examples/case.toml", "--pure-rolling", "-q", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("contact.mu has no effect while contact.pure_rolling = true"),
+            std::string::npos)
+      << o.err;
 }
 
 // The column names of docs/csv-columns.md, in order.
