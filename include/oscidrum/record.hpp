@@ -76,6 +76,9 @@ struct WindowOptions {
   double hop_periods = 0.0;     ///< hop between window starts [periods]; 0: window_periods
   int n_max = 10;               ///< harmonics fitted [-]
   RecordGates gates;
+  /// Added to the times the reasons quote [s]: a caller that analyses the times less an origin
+  /// (for their precision) gives it, so that a gap is reported at the record's own time.
+  double time_origin = 0.0;
 };
 
 /// One window of a record.

@@ -761,7 +761,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
     const double max_gap = o.gates.max_gap / f_track;
     if (gap > max_gap)
-      reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at) + " s (" +
+      reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at + o.time_origin) + " s (" +
                         num(std::round(gap * f_track * 100) / 100) + " excitation periods > " +
                         num(o.gates.max_gap) + "; a harmonic fit does not bridge it)");
     std::size_t n_clipped = 0;

@@ -258,6 +258,32 @@ TEST(Identify, AWrongKnownParameterGivesAPoorFitWarning) {
 // a pointer into the growing list of windows, which dangled when the list grew (the windows after
 // the change then started from freed memory: G = 1.3 instead of 25 depending on the heap; the
 // sanitizer build reports it).
+// A pass works on the record's times less its first (their precision), but its reasons quote the
+// record's own times: a gap on a clock at 1000 s is reported at 1000.5 s, as analyze reports it
+// (it said 0.5 s).
+TEST(IdentifyPass, ReasonsQuoteTheRecordsOwnTimes) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  std::vector<double> t, x, z;
+  for (int i = 0; i < 2000; ++i) {
+    const double u = i * 1e-3 + (i >= 500 ? 0.02 : 0.0);  // a 21 ms gap after 0.5 s
+    t.push_back(1000.0 + u);
+    x.push_back(12.0 * std::sin(nu * u));
+    z.push_back(1.1 * std::sin(2 * nu * u));
+  }
+  WindowOptions wo;
+  wo.f = f;
+  wo.window_periods = 20.0;
+  wo.window_periods = 30.0;  // 0.77 s: the first window holds the gap
+  const std::vector<PassEstimate> pass = identify_pass(Case{}, t, x, z, {}, wo);
+  ASSERT_FALSE(pass.empty());
+  ASSERT_FALSE(pass.front().valid);
+  EXPECT_NE(pass.front().reason.find(" s at t = 1000.499 s"), std::string::npos)
+      << pass.front().reason;
+  // analyze_windows on the same record says the same.
+  const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, wo);
+  EXPECT_NE(ws.front().reason.find(" s at t = 1000.499 s"), std::string::npos) << ws.front().reason;
+}
+
 TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
   std::vector<Case> segments;
   for (const double G : {10e6, 25e6}) {
