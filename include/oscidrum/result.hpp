@@ -79,7 +79,7 @@ struct Result {
   int samples_per_period = 0;  ///< [-]
   Samples samples;
   std::vector<Event> events;        ///< every event of the run (time order)
-  double stick_time = 0.0;          ///< time in stick within the sampled window [s]
+  double stick_time = 0.0;          ///< time in stick within the sampled window [s] (NaN: none)
   double slip_positive_time = 0.0;  ///< time in slip+ within the sampled window [s]
   double slip_negative_time = 0.0;  ///< time in slip- within the sampled window [s]
   double flight_time = 0.0;         ///< time in flight within the sampled window [s]

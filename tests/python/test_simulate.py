@@ -1,5 +1,6 @@
 """simulate, metrics and studies through the bindings."""
 
+import math
 import threading
 
 import numpy as np
@@ -251,3 +252,13 @@ def test_vibratory_drum():
     assert 30e6 < kb < 66.3e6
     with pytest.raises(oscidrum.Error, match="roller.static_moment must be > 0"):
         oscidrum.simulate(oscidrum.Case(type="vibratory"))
+
+
+def test_a_run_without_a_sampled_window_has_no_phase_times():
+    # A spinning drum (gross slip) ends before its sampling: its phase times are unknown (NaN),
+    # not 0 (which read as a drum that never slipped), and the JSON has null.
+    r = oscidrum.simulate(oscidrum.Case(MMd_fraction=1.0))
+    assert r.status == oscidrum.Status.gross_slip
+    assert len(r.samples.t) == 0
+    for value in (r.stick_time, r.slip_positive_time, r.slip_negative_time, r.flight_time):
+        assert math.isnan(value)
