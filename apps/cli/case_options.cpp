@@ -308,9 +308,9 @@ double key_flag_value(const Field& f, const std::string& flag, const std::string
   // A value typed in SI where the flag takes the display unit (--from 20e6 for soil.G, meant as
   // 20 MN/m^2): out of the field's range as typed, within it as SI. Said with what was meant.
   if (!check_field(f, value).empty() && check_field(f, *shown).empty())
-    throw Error(flag + ": " + f.key + " is given in " + f.display_unit + " here, not in " +
-                    f.unit + "; got " + text + " " + f.display_unit + " = " + fmt(value, 10) + " " +
-                    f.unit + ", outside its range: did you mean " + flag + " " +
+    throw Error(flag + ": " + f.key + " is given in " + f.display_unit + " here, not in " + f.unit +
+                    "; got " + text + " " + f.display_unit + " = " + fmt(value, 10) + " " + f.unit +
+                    ", outside its range: did you mean " + flag + " " +
                     fmt(*shown / f.display_scale, 10) + "?",
                 f.key, value);
   return value;

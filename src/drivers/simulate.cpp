@@ -545,8 +545,8 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
   // Without a sampled window (a run that ended before sampling: gross slip, contact lost, ...)
   // no time was spent in any phase of it: unknown, not 0 (a spinning drum with zero slip time).
   if (result.samples.size() == 0)
-    result.stick_time = result.slip_positive_time = result.slip_negative_time =
-        result.flight_time = std::numeric_limits<double>::quiet_NaN();
+    result.stick_time = result.slip_positive_time = result.slip_negative_time = result.flight_time =
+        std::numeric_limits<double>::quiet_NaN();
   return result;
 }
 

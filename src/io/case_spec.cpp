@@ -393,7 +393,8 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
   if (warnings && c.contact.pure_rolling)
     for (const char* key : {"contact.mu", "contact.mu_static"})
       if (spec.given(key))
-        warnings->push_back(spec.where(key) + key + " has no effect while contact.pure_rolling = "
+        warnings->push_back(spec.where(key) + key +
+                            " has no effect while contact.pure_rolling = "
                             "true (rolling without a friction limit); it applies with "
                             "contact.pure_rolling = false");
   if (spec.MMd_fraction) {

@@ -71,8 +71,8 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
   EXPECT_EQ(table2.code, 2) << table2.err;
   EXPECT_NE(table2.err.find("set soil.input = \"modulus\""), std::string::npos) << table2.err;
   // G typed in Pa where the flag takes MN/m^2: said with what was meant.
-  const Outcome pa = run({"continue", "--param", "soil.G", "--from", "20e6", "--to", "30",
-                          "--set", "soil.input=modulus"});
+  const Outcome pa = run({"continue", "--param", "soil.G", "--from", "20e6", "--to", "30", "--set",
+                          "soil.input=modulus"});
   EXPECT_EQ(pa.code, 2);
   EXPECT_NE(pa.err.find("did you mean --from 20?"), std::string::npos) << pa.err;
 }
