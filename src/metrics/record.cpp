@@ -677,13 +677,12 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     std::size_t n = 0;
     std::vector<char> on(last - first + 1, 0);
     for (const std::span<const double> y : {ddx, ddz}) {
-      const auto [lo, hi] = std::minmax_element(y.begin() + static_cast<std::ptrdiff_t>(first),
+      const auto extremes = std::minmax_element(y.begin() + static_cast<std::ptrdiff_t>(first),
                                                 y.begin() + static_cast<std::ptrdiff_t>(last) + 1);
-      if (*lo == *hi) continue;  // constant: no extreme to stick to
-      const double range = *hi - *lo, tol = 1e-9 * range;
-      const auto outer = [&](double v) {
-        return v >= *hi - 0.25 * range || v <= *lo + 0.25 * range;
-      };
+      const double lo = *extremes.first, hi = *extremes.second;
+      if (lo == hi) continue;  // constant: no extreme to stick to
+      const double range = hi - lo, tol = 1e-9 * range;
+      const auto outer = [&](double v) { return v >= hi - 0.25 * range || v <= lo + 0.25 * range; };
       std::size_t run = 1;
       for (std::size_t i = first + 1; i <= last + 1; ++i) {
         if (i <= last && std::abs(y[i] - y[i - 1]) <= tol && outer(y[i])) {
