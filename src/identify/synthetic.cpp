@@ -5,10 +5,12 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 #include "oscidrum/simulate.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum {
 
@@ -16,6 +18,23 @@ RecordSamples synthetic_record(const std::vector<Case>& segments, const Syntheti
   if (segments.empty()) throw Error("synthetic_record: no case given");
   if (!(o.duration > 0 && o.sample_rate > 0))
     throw Error("synthetic_record: duration and sample_rate must be > 0");
+  // At most 1e8 samples (2.4 GB of columns): a sample rate of 1e12/s asked for more memory than
+  // any machine has and ended in std::bad_alloc.
+  if (!(o.duration * o.sample_rate <= 1e8))
+    throw Error("synthetic_record: duration * sample_rate must be <= 1e8 samples; got " +
+                    detail::shortest(o.duration * o.sample_rate),
+                "sample_rate", o.sample_rate);
+  for (const auto& [name, value] :
+       {std::pair{"noise", o.noise}, std::pair{"drift", o.drift}, std::pair{"jitter", o.jitter}})
+    if (!(std::isfinite(value) && value >= 0))
+      throw Error(std::string("synthetic_record: ") + name + " must be finite and >= 0; got " +
+                      detail::shortest(value),
+                  name, value);
+  for (const auto& [name, value] : {std::pair{"start", o.start}, std::pair{"speed", o.speed}})
+    if (!std::isfinite(value))
+      throw Error(std::string("synthetic_record: ") + name + " must be finite; got " +
+                      detail::shortest(value),
+                  name, value);
   std::size_t n = static_cast<std::size_t>(std::floor(o.duration * o.sample_rate)) + 1;
   RecordSamples rec;
   rec.t.resize(n);

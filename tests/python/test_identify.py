@@ -245,3 +245,12 @@ def test_plot_pass_takes_legend_like_the_other_plots():
             ax.get_window_extent(renderer).x1)
     with pytest.raises(ValueError, match="legend must be one of"):
         oscidrum.identify.plot_pass(rows, x="t", legend="left")
+
+
+def test_synthetic_record_refuses_sizes_and_noise_it_cannot_make():
+    # A sample rate of 1e12/s ended in MemoryError (std::bad_alloc); negative noise was taken.
+    for kw, key in ((dict(sample_rate=1e12), "sample_rate"), (dict(noise=-1.0), "noise"),
+                    (dict(drift=float("nan")), "drift")):
+        with pytest.raises(oscidrum.Error) as e:
+            oscidrum.synthetic_record([oscidrum.Case()], **kw)
+        assert e.value.key == key
