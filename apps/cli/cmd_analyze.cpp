@@ -170,7 +170,8 @@ int run(const AnalyzeOptions& o) {
     s.section("Record");
     s.line("file", name);
     s.line("excitation frequency f [Hz]",
-           fmt(w.f, 8) + (o.windows.f > 0 ? " (given)" : " (estimated from the record)"));
+           fmt(o.windows.f > 0 ? o.windows.f : w.f, 8) +
+               (o.windows.f > 0 ? " (given)" : " (estimated from the record)"));
     s.line("excitation periods spanned", fmt(m.cycles, 4));
     s.line("frequency drift (halves)", fmt(w.drift, 3));
     s.line("change of the response (halves)", fmt(w.change, 3) + " (relative RMS)");
