@@ -333,18 +333,30 @@ TEST(Record, ARecordOfNPeriodsHoldsAWindowOfNPeriods) {
   }
 }
 
+// A record of the kind the gate tests read: x_M'' with f and 3f, z_M'' with 2f and f, at f =
+// 39 Hz, n samples dt apart from t = 0.
+struct TwoChannels {
+  std::vector<double> t, x, z;
+};
+TwoChannels two_channel_record(int n, double dt) {
+  const double nu = 2 * M_PI * 39.0;
+  TwoChannels r{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    const double t = static_cast<double>(i) * dt;
+    r.t[i] = t;
+    r.x[i] = 12.0 * std::sin(nu * t + 0.2) + 2.0 * std::sin(3 * nu * t - 0.7);
+    r.z[i] = 1.1 * std::sin(2 * nu * t + 1.3) + 0.3 * std::sin(nu * t);
+  }
+  return r;
+}
+
 // A window that fails a gate reports no number as measured: every scalar of the output table is
 // NaN (generated from the table: before, the harmonic ratios, CMV and THD of such a window read 0),
 // and a valid window of the same record has them all finite.
 TEST(Record, FailedWindowHasEveryMetricUnavailable) {
-  const double f = 39.0, nu = 2 * M_PI * f;
+  const double f = 39.0;
   const int n = 4000;  // 8 periods
-  std::vector<double> t(n), x(n), z(n);
-  for (int i = 0; i < n; ++i) {
-    t[i] = i * 8.0 / f / (n - 1);
-    x[i] = 12.0 * std::sin(nu * t[i] + 0.2) + 2.0 * std::sin(3 * nu * t[i] - 0.7);
-    z[i] = 1.1 * std::sin(2 * nu * t[i] + 1.3) + 0.3 * std::sin(nu * t[i]);
-  }
+  auto [t, x, z] = two_channel_record(n, 8.0 / f / (n - 1));
   WindowOptions o;
   o.f = f;
   o.n_max = 4;
@@ -386,14 +398,9 @@ TEST(Record, FailedWindowHasEveryMetricUnavailable) {
 // were sought at the record's extremes only, every window passed and an identification from the
 // record gave G 4 % off without a word. The unclipped windows, and a clean record, pass.
 TEST(Record, PlateausAreClippingInEveryWindow) {
-  const double f = 39.0, nu = 2 * M_PI * f;
+  const double f = 39.0;
   const int per_period = 128, periods = 8, n = per_period * periods;
-  std::vector<double> t(n), x(n), z(n);
-  for (int i = 0; i < n; ++i) {
-    t[i] = i / (f * per_period);
-    x[i] = 12.0 * std::sin(nu * t[i] + 0.2) + 2.0 * std::sin(3 * nu * t[i] - 0.7);
-    z[i] = 1.1 * std::sin(2 * nu * t[i] + 1.3) + 0.3 * std::sin(nu * t[i]);
-  }
+  const auto [t, x, z] = two_channel_record(n, 1.0 / (f * per_period));
   WindowOptions o;
   o.f = f;
   o.n_max = 4;
