@@ -28,9 +28,10 @@
 // round-off (tests/drivers/test_curve_area.cpp).
 //
 // Crossings are found where two chords of the polygon cross, and also where two chords that do
-// not cross come closer than a bound on how far their arcs stray from them (near_pairs: a small
-// loop, or a shallow crossing drawn by long pieces, can cross on the arcs between chords that pass
-// each other; Newton from several starts, as two arcs that bulge past each other cross twice).
+// not cross come closer than a bound on how far their arcs stray from them (a small loop, or a
+// shallow crossing drawn by long pieces, can cross on the arcs between chords that pass each
+// other; Newton from several starts, as two arcs that bulge past each other cross twice). Both
+// kinds come from one broad phase, near_pairs (boxes of the pieces' edges, swept in z).
 // Not found: a loop made within two consecutive polygon edges (a quarter of a piece each, or the
 // two sides of a switch where the accelerations are continuous); its area, a few 1e-9 of the
 // figure's where seen on steady periods, is then missing.
@@ -767,15 +768,20 @@ double green_area(const std::vector<Piece>& pieces) {
     }
     return true;
   };
-  for (const auto& [i0, j0] : polygon_crossings(x, z)) {
+  // The chords that come within their arcs' deviation bounds of each other (near_pairs): those
+  // that cross among them (crossing chords come as near as chords can), and those whose arcs may
+  // cross although the chords do not. (One broad phase for both: the slab sweep of the polygon,
+  // polygon_crossings, found the crossing chords again at about the cost of the rest of the area.)
+  const auto near = near_pairs(pieces, v, 1e-9 * scale);
+  for (const auto& [i0, j0] : near) {
+    if (!detail::chords_cross(x, z, i0, j0)) continue;
     std::size_t i = i0, j = j0;
     double u = 0.0, w = 0.0;
     if (!locate(i0, j0, i, j, u, w) || !add_crossing(i, j, u, w)) return kNaN;
   }
-  // Crossings of arcs whose chords do not cross: from the chords that come within their arcs'
-  // deviation bounds of each other (none on most curves). Newton that finds no crossing there
-  // finds none to add.
-  for (const auto& [i, j] : near_pairs(pieces, v, 1e-9 * scale))
+  // Crossings of arcs whose chords do not cross (none on most curves); those of crossing chords
+  // again, known already. Newton that finds no crossing there finds none to add.
+  for (const auto& [i, j] : near)
     for (const auto& [u, w] : near_crossings(edge_curve(pieces, v, i), edge_curve(pieces, v, j)))
       if (!add_crossing(i, j, u, w)) return kNaN;
   std::sort(cuts.begin(), cuts.end(),

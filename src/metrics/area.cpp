@@ -308,6 +308,18 @@ std::vector<std::pair<std::size_t, std::size_t>> detail::polygon_crossings(
   return crossings;
 }
 
+bool detail::chords_cross(std::span<const double> x, std::span<const double> y, std::size_t i,
+                          std::size_t j) {
+  const std::size_t n = x.size(), i1 = (i + 1) % n, j1 = (j + 1) % n;
+  const auto side = [&](std::size_t a, std::size_t b, std::size_t c) {  // of c from a -> b
+    return (x[b] - x[a]) * (y[c] - y[a]) - (y[b] - y[a]) * (x[c] - x[a]);
+  };
+  const double sj0 = side(i, i1, j), sj1 = side(i, i1, j1);
+  if (!((sj0 < 0.0 && sj1 > 0.0) || (sj0 > 0.0 && sj1 < 0.0))) return false;
+  const double si0 = side(j, j1, i), si1 = side(j, j1, i1);
+  return (si0 < 0.0 && si1 > 0.0) || (si0 > 0.0 && si1 < 0.0);
+}
+
 std::size_t detail::sweep_visits(std::span<const double> x, std::span<const double> y) {
   check_points("sweep_visits", x, y);
   const std::size_t n = x.size();

@@ -14,6 +14,12 @@ namespace oscidrum::detail {
 std::vector<std::pair<std::size_t, std::size_t>> polygon_crossings(std::span<const double> x,
                                                                    std::span<const double> y);
 
+/// Whether edges i and j of the closed polygon (x, y) (edge k joins point k to point k + 1, the
+/// last edge the last point to the first) cross strictly inside both: the ends of each strictly on
+/// either side of the other's line. polygon_crossings's pairs, one pair at a time.
+bool chords_cross(std::span<const double> x, std::span<const double> y, std::size_t i,
+                  std::size_t j);
+
 /// The work of the area's slab sweep over the closed polygon (x, y): the number of (edge, slab)
 /// pairs it visits, the sum over the edges of the distinct point heights each spans (O(n log n)
 /// to count). The sweep's time is about proportional to it (plus its crossings): a caller that

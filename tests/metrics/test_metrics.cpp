@@ -309,6 +309,41 @@ TEST(EnclosedArea, SweepVisitsCountEdgesPerSlab) {
   EXPECT_EQ(detail::sweep_visits(std::vector<double>{0.0, 1.0}, std::vector<double>{0.0, 1.0}), 0u);
 }
 
+// The one-pair test of crossing chords against the slab sweep's crossings, on random polygons
+// (random points: many crossings; no two points at one height, where the sweep reports none),
+// and the cases it must refuse: edges that join, touch at an end, or run along one line.
+TEST(EnclosedArea, ChordsCrossAsTheSweepFindsThem) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::size_t n = 5 + static_cast<std::size_t>(trial) * 3;
+    std::vector<double> x(n), y(n);
+    for (std::size_t k = 0; k < n; ++k) x[k] = u(rng), y[k] = u(rng);
+    auto expected = detail::polygon_crossings(x, y);
+    for (auto& [i, j] : expected)
+      if (i > j) std::swap(i, j);
+    std::sort(expected.begin(), expected.end());
+    std::vector<std::pair<std::size_t, std::size_t>> found;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (detail::chords_cross(x, y, i, j)) found.emplace_back(i, j);
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(found, expected) << "trial " << trial;
+  }
+  // A square's sides join or lie apart; its diagonals (a bow tie) cross.
+  const std::vector<double> sx{0.0, 1.0, 1.0, 0.0}, sy{0.0, 0.0, 1.0, 1.0};
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = 0; j < 4; ++j) EXPECT_FALSE(detail::chords_cross(sx, sy, i, j));
+  const std::vector<double> bx{0.0, 1.0, 0.0, 1.0}, by{0.0, 1.0, 1.0, 0.0};
+  EXPECT_TRUE(detail::chords_cross(bx, by, 0, 2));
+  EXPECT_TRUE(detail::chords_cross(bx, by, 2, 0));
+  // An edge ending on another (a T), and two edges along one line, do not cross strictly.
+  const std::vector<double> tx{0.0, 2.0, 1.0, 1.0, 3.0}, ty{0.0, 0.0, 0.0, 1.0, 1.0};
+  EXPECT_FALSE(detail::chords_cross(tx, ty, 0, 2));
+  const std::vector<double> lx{0.0, 2.0, 1.0, 3.0}, ly{0.0, 0.0, 0.0, 0.0};
+  EXPECT_FALSE(detail::chords_cross(lx, ly, 0, 2));
+}
+
 // One closed polygon: outer circle, a bridge to an inner circle, the inner circle, back over the
 // bridge. Inner loop reversed: winding 0 in the hole (excluded). Inner loop the same way: winding
 // 2 in the hole (included).
