@@ -238,9 +238,10 @@ TEST(FuzzCli, IdentifyWithARollerThatHardlySettlesEndsInSeconds) {
             0);
   const std::vector<std::string> args = {"identify", record, "--kd", "1e9", "--quiet"};
 #ifdef OSCIDRUM_SANITIZED
-  // About 8 s of work, seven times that under the sanitizers: 60 s was within a loaded
-  // machine's reach of it (a CI run beside a build hung it at 61 s). A hang still runs forever.
-  const double limit = 3.0 * kRunSeconds;
+  // About 20 s of work on a slow machine, seven times that under the sanitizers: the limit must
+  // leave room for a loaded machine (a CI run beside a build took 61 s where 55 s were the work).
+  // A hang still runs forever.
+  const double limit = 6.0 * kRunSeconds;
 #else
   const double limit = kRunSeconds;
 #endif
@@ -248,9 +249,15 @@ TEST(FuzzCli, IdentifyWithARollerThatHardlySettlesEndsInSeconds) {
   EXPECT_FALSE(o.hung) << joined(args);
   EXPECT_TRUE(o.code == 0 || o.code == 1) << o.err;
 #ifndef OSCIDRUM_SANITIZED
-  // The bound is on the work (CPU time), not the wall time, which a loaded machine stretches
-  // (15 s with two other processes on two cores).
-  EXPECT_LT(o.cpu_seconds, 12.0) << joined(args);  // one window: about 7 s
+  // The bound is on the work (CPU time), not the wall time, which a loaded machine stretches, and
+  // relative to the work of the same record's identification with the case's roller, on the same
+  // machine (CPU times differ 2.3x between this project's machines): about 30 times that, a
+  // window without the shared budget over 200 times.
+  const Outcome normal = run_limited(dir, {"identify", record, "--quiet"}, kRunSeconds);
+  ASSERT_EQ(normal.code, 0) << normal.err;
+  EXPECT_LT(o.cpu_seconds, 60.0 * std::max(normal.cpu_seconds, 0.05))
+      << joined(args) << ": " << o.cpu_seconds << " s against " << normal.cpu_seconds
+      << " s for the case's roller";
 #endif
 }
 
