@@ -30,6 +30,7 @@ Debian ``/usr/bin/python3``)::
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import sys
@@ -1208,6 +1209,17 @@ def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: st
     return [save(fig, out / f"{name}.{fmt}", fmt) for name, fig in figures.items()]
 
 
+def _periods(text: str) -> float:
+    """--periods: a finite number of excitation periods > 0 (0 would draw empty time plots)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expects a number of periods > 0; got '{text}'")
+    if not (value > 0.0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(f"must be a finite number of periods > 0; got '{text}'")
+    return value
+
+
 def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="python3 -m oscidrum.plot",
@@ -1221,7 +1233,8 @@ def _parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     case.add_argument("--out", required=True, help="output directory")
     case.add_argument("--format", choices=("png", "svg"), default="png")
     case.add_argument("--label", default="", help="title of the figures")
-    case.add_argument("--periods", type=float, default=2, help="periods shown in time plots")
+    case.add_argument("--periods", type=_periods, default=2,
+                      help="excitation periods shown in the time plots (> 0; default 2)")
     case.add_argument("--spectra-units", choices=SPECTRUM_UNITS, default="both",
                       help="spectra.png: A_n / max A_n (normalised, the paper's), A_n in m/s^2, "
                       "or both (m/s^2 on the left axis, normalised on the right; the default)")
@@ -1282,6 +1295,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     args = _parse(argv)
     try:
         if args.command == "case":
+            if args.json is not None and not os.path.exists(args.json):
+                print(f"warning: --json {args.json}: no such file; the frequency and the periods "
+                      "are inferred from the CSV, the summary's status and metrics are not shown",
+                      file=sys.stderr)
             state = read_case(args.csv, args.json, label=args.label)
             paths = plot_case(state, args.out, args.format, periods=args.periods,
                               spectra_units=args.spectra_units)

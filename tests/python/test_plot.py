@@ -104,6 +104,8 @@ def test_module_entry_case(slip_result, tmp_path):
     p = run_module("oscidrum.plot", "case", "--csv", str(csv), "--json",
                    str(tmp_path / "missing.json"), "--out", str(out))
     assert p.returncode == 0, p.stderr
+    # A --json that does not exist: the figures from the CSV alone, and a word that it is so.
+    assert "warning: --json" in p.stderr and "missing.json" in p.stderr
     files = sorted(f.name for f in out.iterdir())
     assert files == ["accelerations.png", "delta_phi.png", "figure_eight.png", "forces.png",
                      "spectra.png"]
@@ -111,6 +113,11 @@ def test_module_entry_case(slip_result, tmp_path):
     p = run_module("oscidrum.plot", "case", "--csv", str(tmp_path / "nope.csv"), "--out",
                    str(out))
     assert p.returncode == 1 and "error" in p.stderr
+    # --periods must be a positive number of periods (0 drew empty time plots).
+    for bad in ("0", "-1", "nan", "inf", "two"):
+        p = run_module("oscidrum.plot", "case", "--csv", str(csv), "--out", str(out), "--periods",
+                       bad)
+        assert p.returncode == 2 and "--periods" in p.stderr, (bad, p.stderr)
 
 
 def test_module_entry_sweep(tmp_path):
