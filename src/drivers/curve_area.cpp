@@ -602,15 +602,28 @@ std::optional<int> winding_right_of(const std::vector<double>& x, const std::vec
     }
   };
   int w = 0;
+  auto next = turned(0);  // the turned coordinates of vertex i + 1, carried to the next edge
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = i + 1 == n ? 0 : i + 1;
+    const auto [ua, wa] = next;
+    next = turned(k);
     if (i == own[0] || i == own[1]) continue;  // the point's own edges
-    const auto [ua, wa] = turned(i);
-    const auto [ub, wb] = turned(k);
+    const auto [ub, wb] = next;
     // The vertex's distance from the edge; where it is within a quarter of the edge's length,
-    // against the bound on the arc's deviation (evaluated only there).
+    // against the bound on the arc's deviation (evaluated only there). The edge's box, farther
+    // from the vertex than tiny and a quarter of the edge's length, rules both out at once (most
+    // edges: no division).
     {
       const double ex = ub - ua, ew = wb - wa, len2 = ex * ex + ew * ew;
+      const double gap_u = std::max({0.0, std::min(ua, ub), -std::max(ua, ub)});
+      const double gap_w = std::max({0.0, std::min(wa, wb), -std::max(wa, wb)});
+      const double gap2 = gap_u * gap_u + gap_w * gap_w;
+      if (gap2 > tiny * tiny && gap2 > 0.0625 * len2) {
+        if ((wa <= 0.0) == (wb <= 0.0)) continue;  // does not cross the ray's line (half-open)
+        const double u = ua + (ub - ua) * (-wa) / (wb - wa);
+        if (u > 0.0) w += wb > wa ? 1 : -1;  // (u, 0) lies in the box: |u| > tiny
+        continue;
+      }
       const double s = len2 > 0.0 ? std::clamp(-(ua * ex + wa * ew) / len2, 0.0, 1.0) : 0.0;
       const double nu = ua + s * ex, nw = wa + s * ew, dist2 = nu * nu + nw * nw;
       if (dist2 <= tiny * tiny) return std::nullopt;
