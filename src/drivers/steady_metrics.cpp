@@ -373,9 +373,8 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
 
   // phi: drift removed, the fundamental against M0 sin(nu t).
   const double rate = (pieces.back().f[kPhi](pieces.back().b) - pieces.front().f[kPhi](t0)) / P;
-  std::vector<Node> phi_nodes = nodes;
-  for (Node& nd : phi_nodes) nd.phi -= rate * nd.tau;
-  const Spectrum hphi = spectrum(phi_nodes, &Node::phi, P, t0, f, 1);
+  for (Node& nd : nodes) nd.phi -= rate * nd.tau;  // in place: nothing below reads phi
+  const Spectrum hphi = spectrum(nodes, &Node::phi, P, t0, f, 1);
   detail::set_rotation_metrics(m, hphi[1]);
 
   double work = 0.0;

@@ -41,11 +41,22 @@ class ChebyshevInterpolant {
   /// From the values f(node(a, b, k)), k = 0 ... N.
   ChebyshevInterpolant(double a, double b, const std::array<double, kNodes>& values)
       : a_(a), b_(b) {
+    // The transform folded by the symmetry C_j,N-k = (-1)^j C_jk (the points mirror about the
+    // middle): the even c_j from the sums f_k + f_N-k, the odd ones from the differences (the
+    // middle point, for even N, only in the even ones: C_j,N/2 = 0 for odd j). Half the products
+    // of the plain sum over k; the same coefficients to round-off.
+    constexpr int kPairs = (N + 1) / 2;  // k = 0 ... kPairs - 1 paired with N - k
+    std::array<double, kPairs> sum, diff;
+    for (int k = 0; k < kPairs; ++k) {
+      sum[k] = values[k] + values[N - k];
+      diff[k] = values[k] - values[N - k];
+    }
     const auto& C = coefficient_matrix();
     for (int j = 0; j <= N; ++j) {
-      double sum = 0.0;
-      for (int k = 0; k <= N; ++k) sum += C[j][k] * values[k];
-      c_[j] = sum;
+      const auto& u = j % 2 == 0 ? sum : diff;
+      double c = (N % 2 == 0 && j % 2 == 0) ? C[j][N / 2] * values[N / 2] : 0.0;
+      for (int k = 0; k < kPairs; ++k) c += C[j][k] * u[k];
+      c_[j] = c;
     }
   }
 

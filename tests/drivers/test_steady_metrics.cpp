@@ -399,6 +399,38 @@ TEST(SteadyMetrics, AFlatPieceCannotBeatItsValuesBeyondRoundOff) {
   EXPECT_GT(turning.overshoot_bound(), 1e6 * turning.roundoff_bound());
 }
 
+// The interpolant's coefficients (the folded transform) against the discrete cosine transform
+// summed plainly in long double, c_j = (2/N) w_j sum_k w_k cos(pi j k / N) f_k, for even and odd
+// N on values with no symmetry: equal to a few ulp of the values' size; and the interpolant
+// returns its values at the nodes.
+template <int N>
+void expect_plain_transform() {
+  using I = detail::ChebyshevInterpolant<N>;
+  std::array<double, I::kNodes> v;
+  for (int k = 0; k < I::kNodes; ++k) v[k] = std::exp(0.3 * k) * std::cos(1.7 * k + 0.4) + 0.1 * k;
+  const I f(2.0, 2.5, v);
+  double size = 0.0;
+  for (double y : v) size = std::max(size, std::abs(y));
+  for (int j = 0; j <= N; ++j) {
+    long double sum = 0.0L;
+    for (int k = 0; k <= N; ++k) {
+      const long double w = (k == 0 || k == N) ? 0.5L : 1.0L;
+      sum += w * std::cos(3.14159265358979323846264338327950288L * j * k / N) * v[k];
+    }
+    const long double c = 2.0L / N * ((j == 0 || j == N) ? 0.5L : 1.0L) * sum;
+    EXPECT_NEAR(f.coefficients()[j], static_cast<double>(c), 8.0 * N * 2.2e-16 * size)
+        << "N = " << N << ", j = " << j;
+  }
+  for (int k = 0; k < I::kNodes; ++k)
+    EXPECT_NEAR(f(I::node(2.0, 2.5, k)), v[k], 16.0 * N * 2.2e-16 * size) << "N = " << N;
+}
+
+TEST(SteadyMetrics, InterpolantCoefficientsAreTheCosineTransform) {
+  expect_plain_transform<7>();
+  expect_plain_transform<8>();
+  expect_plain_transform<10>();
+}
+
 TEST(SteadyMetrics, ExtremumOfAnInterpolant) {
   using I = detail::ChebyshevInterpolant<10>;
   const auto interpolant = [](auto f, double a, double b) {
