@@ -129,7 +129,7 @@ io::Value to_value(const std::string& key, py::handle value) {
     const long long i = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
     if (overflow != 0)
       throw Error(key + " must be " + (find_field(key) ? field_rule(*find_field(key)) : "finite") +
-                  "; got " + py::repr(value).cast<std::string>() + " (out of range)");
+                  "; got an integer beyond the 64-bit range, " + python_description(value));
     return io::Value(static_cast<std::int64_t>(i));
   }
   if (PyFloat_Check(value.ptr()) || py::isinstance(value, np.floating))

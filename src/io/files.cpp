@@ -106,8 +106,14 @@ OutputFile::OutputFile(std::string path, bool regular_only)
       pending_ = true;
       return;
     }
-    if (errno != EEXIST || attempt >= 100)
-      throw Error("cannot write " + path_ + ": " + std::strerror(errno));
+    if (errno != EEXIST || attempt >= 100) {
+      // The file is written beside its target and renamed over it: say where that failed (a
+      // file /proc allows to exist but no new file beside it gave "No such file or directory").
+      const std::string dir = std::filesystem::path(target_.path).parent_path().string();
+      throw Error("cannot write " + path_ + ": cannot create a file in its directory " +
+                  (dir.empty() ? std::string(".") : dir) + " (" + std::strerror(errno) +
+                  "; oscidrum writes a temporary file there and renames it)");
+    }
   }
 }
 

@@ -340,8 +340,11 @@ bool check_field_value(const Field& f, double v) {
 std::string check_field(const Field& f, double v) {
   if (check_field_value(f, v)) return {};
   std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
-  std::string msg =
-      std::string(f.key) + " must be " + field_rule(f) + unit + "; got " + detail::shortest(v);
+  // inf satisfies "> 0" as written: a rule with bounds says that the value must be finite too.
+  const std::string rule = field_rule(f);
+  const bool say_finite = !std::isfinite(v) && rule != "finite" && f.type == FieldType::real;
+  std::string msg = std::string(f.key) + " must be " + (say_finite ? "finite and " : "") + rule +
+                    unit + "; got " + detail::shortest(v);
   // A value that is right in the unit people say it in (30 for 30 MN/m^2) was meant in it.
   if (f.display_unit && std::isfinite(v) && check_field_value(f, v * f.display_scale))
     msg += " (values are in " + std::string(f.unit) + ": did you mean " +

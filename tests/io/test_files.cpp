@@ -27,6 +27,18 @@ TEST(Files, AtomicWriteReplacesWholeFile) {
   EXPECT_NE(
       error_of([&] { write_file_atomic(dir.file("no/such/dir/x"), "x"); }).find("cannot write"),
       std::string::npos);
+  // The directory is where the write fails: "no/such/dir", not "No such file" for the file.
+  EXPECT_NE(error_of([&] {
+              write_file_atomic(dir.file("no/such/dir/x"), "x");
+            }).find("cannot create a file in its directory " + dir.file("no/such/dir")),
+            std::string::npos);
+  // A regular file that exists where no new file may be created beside it (/proc/version): once
+  // "No such file or directory", as if the file itself were missing.
+  if (std::filesystem::is_regular_file("/proc/version")) {
+    const std::string message = error_of([&] { write_file_atomic("/proc/version", "x"); });
+    EXPECT_NE(message.find("cannot create a file in its directory /proc"), std::string::npos)
+        << message;
+  }
 }
 
 // The rows a journal found, by case index (the first of a case's rows counts).

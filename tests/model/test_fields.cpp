@@ -353,8 +353,12 @@ TEST(Fields, MessagesNameKeyRuleAndValue) {
   EXPECT_EQ(error_of([&] { set_field(c, "roller.kd", -1.0); }),
             "roller.kd must be >= 0 [N/m]; got -1");
   const std::string nan_msg = error_of([&] { set_field(c, "roller.I", kNaN); });
-  EXPECT_NE(nan_msg.find("roller.I must be > 0 [kg m^2]; got "), std::string::npos) << nan_msg;
+  EXPECT_NE(nan_msg.find("roller.I must be finite and > 0 [kg m^2]; got "), std::string::npos)
+      << nan_msg;
   EXPECT_NE(nan_msg.find("nan"), std::string::npos) << nan_msg;
+  // inf is > 0: the rule says that the value must be finite too.
+  EXPECT_EQ(error_of([&] { set_field(c, "roller.m", kInf); }),
+            "roller.m must be finite and > 0 [kg]; got inf");
   const std::string inf_msg = error_of([&] { set_field(c, "MMd", -kInf); });
   EXPECT_NE(inf_msg.find("MMd must be finite [N m]; got -inf"), std::string::npos) << inf_msg;
   const std::string int_msg = error_of([&] { set_field(c, "numerics.max_periods", 2.5); });

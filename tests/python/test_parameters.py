@@ -62,6 +62,17 @@ def test_types_of_values():
         c.set("contact.pure_rolling", "true")  # as in the config files: no quoted booleans
 
 
+def test_values_beyond_range_say_why():
+    # inf and an integer beyond 64 bits satisfy "> 0" as written: the messages say what is wrong
+    # (once "must be > 0; got inf", and the integer's 401 digits).
+    with pytest.raises(oscidrum.Error, match=r"roller.m must be finite and > 0 \[kg\]; got inf"):
+        oscidrum.Case(m=1e400)
+    with pytest.raises(oscidrum.Error) as e:
+        oscidrum.Case(m=10**400)
+    assert "roller.m must be > 0; got an integer beyond the 64-bit range, int (1000" in str(e.value)
+    assert len(str(e.value)) < 200
+
+
 def test_str_has_units_and_repr_is_python():
     text = str(oscidrum.Roller())
     assert text.startswith("Roller(") and "r=0.6 m" in text and "I=411.78 kg m^2" in text
