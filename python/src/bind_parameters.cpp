@@ -127,9 +127,12 @@ io::Value to_value(const std::string& key, py::handle value) {
     if (!number) throw py::error_already_set();
     int overflow = 0;
     const long long i = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
-    if (overflow != 0)
+    if (overflow != 0) {
+      const std::string unit = io::key_unit(key);
       throw Error(key + " must be " + (find_field(key) ? field_rule(*find_field(key)) : "finite") +
+                  (unit.empty() || unit == "-" ? std::string() : " [" + unit + "]") +
                   "; got an integer beyond the 64-bit range, " + python_description(value));
+    }
     return io::Value(static_cast<std::int64_t>(i));
   }
   if (PyFloat_Check(value.ptr()) || py::isinstance(value, np.floating))

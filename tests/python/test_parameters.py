@@ -69,7 +69,8 @@ def test_values_beyond_range_say_why():
         oscidrum.Case(m=1e400)
     with pytest.raises(oscidrum.Error) as e:
         oscidrum.Case(m=10**400)
-    assert "roller.m must be > 0; got an integer beyond the 64-bit range, int (1000" in str(e.value)
+    assert ("roller.m must be > 0 [kg]; got an integer beyond the 64-bit range, int (1000"
+            in str(e.value))
     assert len(str(e.value)) < 200
 
 
