@@ -112,6 +112,12 @@ std::string python_description(py::handle value) {
   return py::str(py::type::of(value).attr("__name__")).cast<std::string>() + " (" + text + ")";
 }
 
+// " [unit]" of a key for its messages; nothing for a dimensionless or unknown key.
+std::string bracketed_unit(const std::string& key) {
+  const std::string unit = io::key_unit(key);
+  return unit.empty() || unit == "-" ? std::string() : " [" + unit + "]";
+}
+
 // A Python value as the config reader would see it: bool, int, float or str. Anything else
 // (None, lists, objects) is an error naming the key.
 io::Value to_value(const std::string& key, py::handle value) {
@@ -127,12 +133,10 @@ io::Value to_value(const std::string& key, py::handle value) {
     if (!number) throw py::error_already_set();
     int overflow = 0;
     const long long i = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
-    if (overflow != 0) {
-      const std::string unit = io::key_unit(key);
+    if (overflow != 0)
       throw Error(key + " must be " + (find_field(key) ? field_rule(*find_field(key)) : "finite") +
-                  (unit.empty() || unit == "-" ? std::string() : " [" + unit + "]") +
-                  "; got an integer beyond the 64-bit range, " + python_description(value));
-    }
+                  bracketed_unit(key) + "; got an integer beyond the 64-bit range, " +
+                  python_description(value));
     return io::Value(static_cast<std::int64_t>(i));
   }
   if (PyFloat_Check(value.ptr()) || py::isinstance(value, np.floating))
@@ -141,9 +145,7 @@ io::Value to_value(const std::string& key, py::handle value) {
   std::string expected = "a number";
   if (f && f->type == FieldType::boolean) expected = "True or False";
   if (f && f->type == FieldType::choice) expected = field_rule(*f);
-  const std::string unit = io::key_unit(key);
-  throw Error(key + " must be " + expected +
-              (unit.empty() || unit == "-" ? std::string() : " [" + unit + "]") + "; got " +
+  throw Error(key + " must be " + expected + bracketed_unit(key) + "; got " +
               python_description(value));
 }
 

@@ -24,14 +24,13 @@ TEST(Files, AtomicWriteReplacesWholeFile) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.file("")),
                           std::filesystem::directory_iterator{}),
             1);
-  EXPECT_NE(
-      error_of([&] { write_file_atomic(dir.file("no/such/dir/x"), "x"); }).find("cannot write"),
-      std::string::npos);
   // The directory is where the write fails: "no/such/dir", not "No such file" for the file.
-  EXPECT_NE(error_of([&] {
-              write_file_atomic(dir.file("no/such/dir/x"), "x");
-            }).find("cannot create a file in its directory " + dir.file("no/such/dir")),
-            std::string::npos);
+  const std::string missing_dir =
+      error_of([&] { write_file_atomic(dir.file("no/such/dir/x"), "x"); });
+  EXPECT_NE(missing_dir.find("cannot write"), std::string::npos) << missing_dir;
+  EXPECT_NE(missing_dir.find("cannot create a file in its directory " + dir.file("no/such/dir")),
+            std::string::npos)
+      << missing_dir;
   // A regular file that exists where no new file may be created beside it (/proc/version): once
   // "No such file or directory", as if the file itself were missing.
   if (std::filesystem::is_regular_file("/proc/version")) {
