@@ -2,6 +2,7 @@
 // callback re-acquires it, and Ctrl-C (SIGINT) cancels the run and raises KeyboardInterrupt.
 #include <chrono>
 #include <exception>
+#include <string>
 
 #include "bindings.hpp"
 #include "oscidrum/model.hpp"
@@ -11,6 +12,12 @@ namespace oscidrum::python {
 namespace {
 
 Result simulate_model(const Model& model, const py::object& progress) {
+  // Checked before the integration starts: called with a non-callable, the first period would
+  // raise Python's bare "'int' object is not callable".
+  if (!progress.is_none() && PyCallable_Check(progress.ptr()) == 0)
+    throw Error("progress must be None or a callable progress(period: int, change: float); got " +
+                std::string(py::str(py::type::of(progress).attr("__name__"))) + " (" +
+                std::string(py::repr(progress)).substr(0, 60) + ")");
   std::exception_ptr error;
   const bool has_callback = !progress.is_none();
   auto next_poll = std::chrono::steady_clock::now();

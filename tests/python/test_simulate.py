@@ -1,6 +1,7 @@
 """simulate, metrics and studies through the bindings."""
 
 import math
+import re
 import threading
 
 import numpy as np
@@ -88,6 +89,15 @@ def test_exception_in_progress_propagates():
 
     with pytest.raises(RuntimeError, match="stop here"):
         oscidrum.simulate(oscidrum.Case(), progress=boom)
+
+
+def test_progress_that_is_not_callable_is_refused_before_integrating():
+    # Python's own "'int' object is not callable" came from inside the first period
+    for bad, shown in ((5, "got int (5)"), ("yes", "got str ('yes')")):
+        with pytest.raises(oscidrum.Error, match=re.escape(
+                "progress must be None or a callable progress(period: int, change: float); "
+                + shown)):
+            oscidrum.simulate(oscidrum.Case(), bad)
 
 
 def test_simulate_releases_the_gil(ticking):
