@@ -65,7 +65,15 @@ Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, con
     try {
       ref.soil = soil_on_scale(value, scale, base.soil);
     } catch (const Error& e) {
-      throw Error("calibrate: the G of reference '" + arg + "': " + e.what());
+      // RECORD@25e6 is 25 MN/m^2 written in Pa (as --G 25e6 is): say so, as --G does.
+      std::string hint;
+      try {
+        (void)soil_on_scale(value / G.display_scale, scale, base.soil);
+        hint = " (G after '@' is in MN/m^2, not in Pa: did you mean " + in.file + "@" +
+               fmt(value / G.display_scale / G.display_scale, 10) + "?)";
+      } catch (const Error&) {
+      }
+      throw Error("calibrate: the G of reference '" + arg + "': " + e.what() + hint);
     }
   }
   const RecordColumns rec = read_record(in);

@@ -460,6 +460,17 @@ TEST(CliCalibrate, WritesTheCaseThatIdentifyThenUses) {
     EXPECT_EQ(b.code, 2) << bad.back() << ": " << b.err;
     EXPECT_NE(b.err.find("error"), std::string::npos) << b.err;
   }
+  // A G written in Pa (as --G 15e6 would be) is named as such, with the reference meant; a G
+  // out of range in MN/m^2 too gets no such hint.
+  const Outcome pa = run({"calibrate", dir / "a.csv@15e6", "--fit", "roller.kd"});
+  EXPECT_EQ(pa.code, 2) << pa.err;
+  EXPECT_NE(pa.err.find("(G after '@' is in MN/m^2, not in Pa: did you mean " +
+                        dir / "a.csv" + "@15?)"),
+            std::string::npos)
+      << pa.err;
+  const Outcome high = run({"calibrate", dir / "a.csv@2500", "--fit", "roller.kd"});
+  EXPECT_EQ(high.code, 2) << high.err;
+  EXPECT_EQ(high.err.find("not in Pa"), std::string::npos) << high.err;
 }
 
 // The sign rules of the window and gate flags say the rule, not CLI11's range of 0 to 1.8e308
