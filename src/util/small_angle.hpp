@@ -41,6 +41,42 @@ inline double round_to_integer(double x) {
   return (x + kShift) - kShift;
 }
 
+namespace turns_series {
+
+/// A turn reduced exactly (see sincos_turns): 2 pi turns = q pi/2 + x, q in {-2, ..., 2}, |x| <=
+/// pi/4.
+struct Reduced {
+  double x, q;
+};
+inline Reduced reduce(double turns) {
+  const double frac = turns - round_to_integer(turns);               // [-1/2, 1/2], exact
+  const double quarters = 4.0 * frac;                                // exact
+  const double q = round_to_integer(quarters);                       // -2 ... 2
+  const double x = (quarters - q) * (0.5 * 3.14159265358979323846);  // |x| <= pi/4
+  return {x, q};
+}
+/// sin x and cos x on |x| <= pi/4 by the series through x^17 and x^16 (Estrin's scheme).
+inline double sin_series(double x) {
+  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0, s7 = -1.0 / 5040.0, s9 = 1.0 / 362880.0,
+                   s11 = -1.0 / 39916800.0, s13 = 1.0 / 6227020800.0, s15 = -1.0 / 1307674368000.0,
+                   s17 = 1.0 / 355687428096000.0;
+  const double ps =
+      (s3 + x2 * s5) + x4 * (s7 + x2 * s9) + x8 * ((s11 + x2 * s13) + x4 * (s15 + x2 * s17));
+  return x + x * x2 * ps;
+}
+inline double cos_series(double x) {
+  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  constexpr double c2 = -0.5, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0, c8 = 1.0 / 40320.0,
+                   c10 = -1.0 / 3628800.0, c12 = 1.0 / 479001600.0, c14 = -1.0 / 87178291200.0,
+                   c16 = 1.0 / 20922789888000.0;
+  const double pc =
+      (c2 + x2 * c4) + x4 * (c6 + x2 * c8) + x8 * ((c10 + x2 * c12) + x4 * (c14 + x2 * c16));
+  return 1.0 + x2 * pc;
+}
+
+}  // namespace turns_series
+
 /// sin and cos of 2 pi `turns` for any `turns`: reduced exactly to a quarter turn about the nearest
 /// multiple of a quarter (turns - round(turns) and 4 turns - q are exact in floating point), then
 /// the series on |x| <= pi/4 (through x^17 and x^16: the first omitted terms below 1e-19). The
@@ -48,22 +84,8 @@ inline double round_to_integer(double x) {
 /// large angle is needed (libm's sin was 7 % of a study's case); within about an ulp of the angle's
 /// sine and cosine.
 inline SinCos sincos_turns(double turns) {
-  const double frac = turns - round_to_integer(turns);               // [-1/2, 1/2], exact
-  const double quarters = 4.0 * frac;                                // exact
-  const double q = round_to_integer(quarters);                       // -2 ... 2
-  const double x = (quarters - q) * (0.5 * 3.14159265358979323846);  // |x| <= pi/4
-  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
-  constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0, s7 = -1.0 / 5040.0, s9 = 1.0 / 362880.0,
-                   s11 = -1.0 / 39916800.0, s13 = 1.0 / 6227020800.0, s15 = -1.0 / 1307674368000.0,
-                   s17 = 1.0 / 355687428096000.0;
-  constexpr double c2 = -0.5, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0, c8 = 1.0 / 40320.0,
-                   c10 = -1.0 / 3628800.0, c12 = 1.0 / 479001600.0, c14 = -1.0 / 87178291200.0,
-                   c16 = 1.0 / 20922789888000.0;
-  const double ps =
-      (s3 + x2 * s5) + x4 * (s7 + x2 * s9) + x8 * ((s11 + x2 * s13) + x4 * (s15 + x2 * s17));
-  const double pc =
-      (c2 + x2 * c4) + x4 * (c6 + x2 * c8) + x8 * ((c10 + x2 * c12) + x4 * (c14 + x2 * c16));
-  const double s = x + x * x2 * ps, c = 1.0 + x2 * pc;
+  const auto [x, q] = turns_series::reduce(turns);
+  const double s = turns_series::sin_series(x), c = turns_series::cos_series(x);
   // 2 pi turns = q pi/2 + x.
   switch (static_cast<int>(q)) {
     case 0:
@@ -74,6 +96,22 @@ inline SinCos sincos_turns(double turns) {
       return {-c, s};
     default:
       return {-s, -c};  // +-2: half a turn
+  }
+}
+
+/// sin(2 pi turns) alone, the same bits as sincos_turns(turns).sin: one series of the two (the
+/// excitation's moment, evaluated in every right-hand side, needs no cosine).
+inline double sin_turns(double turns) {
+  const auto [x, q] = turns_series::reduce(turns);
+  switch (static_cast<int>(q)) {
+    case 0:
+      return turns_series::sin_series(x);
+    case 1:
+      return turns_series::cos_series(x);
+    case -1:
+      return -turns_series::cos_series(x);
+    default:
+      return -turns_series::sin_series(x);  // +-2: half a turn
   }
 }
 

@@ -76,6 +76,20 @@ TEST(SmallAngle, TurnsAgreeWithLibmAndArePeriodic) {
     }
 }
 
+TEST(SmallAngle, SineInTurnsAloneIsSincosTurnsSine) {
+  // The excitation's moment takes sin_turns: the same bits as sincos_turns' sine in every
+  // quarter (each quarter picks the sine or the cosine series), at the quarter points and for
+  // phases of many periods.
+  for (int i = -200000; i <= 200000; ++i) {
+    const double c = 1.37 * i / 100000.0;  // about -2.7 ... 2.7 turns, every quarter
+    const double a = detail::sin_turns(c), b = detail::sincos_turns(c).sin;
+    ASSERT_TRUE(a == b && std::signbit(a) == std::signbit(b)) << c << ": " << a << " " << b;
+  }
+  for (const double c : {0.0, 0.25, -0.25, 0.5, -0.5, 0.75, 1e6 + 0.3, -4.0e5 - 0.1}) {
+    EXPECT_EQ(detail::sin_turns(c), detail::sincos_turns(c).sin) << c;
+  }
+}
+
 TEST(SmallAngle, RoundingToAnIntegerIsNearbyint) {
   // Ties to even, both signs, the halves, values beyond 2^51 and the largest; only a zero's sign
   // may differ (nearbyint(-0.3) = -0, here +0).
