@@ -161,8 +161,7 @@ Model::Model(const Case& c) : case_(c) {
 double Model::torque(double t) const {
   // (5), (6); without an oscillating torque (the vibratory drum: M0 = 0) no sine to evaluate.
   // sin(nu t) with the phase in turns, f t (util/small_angle.hpp).
-  const double MM =
-      (M0_ == 0.0 ? 0.0 : M0_ * detail::sin_turns(case_.roller.f * t)) + case_.MMd;
+  const double MM = (M0_ == 0.0 ? 0.0 : M0_ * detail::sin_turns(case_.roller.f * t)) + case_.MMd;
   if (!(t < ramp_end_)) return MM;
   // A gentler start from rest: the excitation ramped in (docs/periodic.md).
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));

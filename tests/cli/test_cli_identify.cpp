@@ -464,9 +464,9 @@ TEST(CliCalibrate, WritesTheCaseThatIdentifyThenUses) {
   // out of range in MN/m^2 too gets no such hint.
   const Outcome pa = run({"calibrate", dir / "a.csv@15e6", "--fit", "roller.kd"});
   EXPECT_EQ(pa.code, 2) << pa.err;
-  EXPECT_NE(pa.err.find("(G after '@' is in MN/m^2, not in Pa: did you mean " +
-                        dir / "a.csv" + "@15?)"),
-            std::string::npos)
+  EXPECT_NE(
+      pa.err.find("(G after '@' is in MN/m^2, not in Pa: did you mean " + dir / "a.csv" + "@15?)"),
+      std::string::npos)
       << pa.err;
   const Outcome high = run({"calibrate", dir / "a.csv@2500", "--fit", "roller.kd"});
   EXPECT_EQ(high.code, 2) << high.err;
