@@ -326,9 +326,11 @@ void Journal::open_locked(const std::string& header, std::size_t n_cases, bool r
         },
         std::numeric_limits<std::size_t>::max(), &tail);
   }
-  // An empty journal, or one whose header line was cut short (killed while it was being
-  // written), holds no finished case: start it afresh.
-  const bool no_cases = lines == 0 && header.starts_with(tail);
+  // An empty journal, one whose header line was cut short (killed while it was being written),
+  // or one with its header and no whole row (a sweep stopped before its first case finished: on
+  // a loaded machine, Ctrl-C while it was still setting up) holds no finished case: start it
+  // afresh, whatever study its header names, since nothing of it would be kept.
+  const bool no_cases = (lines == 0 && header.starts_with(tail)) || lines == 1;
   if (!restart && !no_cases && (lines > 0 || !tail.empty())) {
     if (!resume)
       throw Error("an unfinished sweep left the journal " + path_ + " (" +

@@ -94,6 +94,36 @@ TEST(Files, EmptyOrTornHeaderJournalHoldsNoCaseAndIsResumable) {
   EXPECT_EQ(read_file(path).rfind("# oscidrum sweep journal v1 fingerprint", 0), 0u);
 }
 
+// A sweep stopped before its first case finished (Ctrl-C while a large study was still being set
+// up) left a journal with its header and no row; the same command run again asked for --resume
+// or --restart although nothing was kept. Such a journal, and one with a torn first row, is
+// started afresh with or without --resume, whatever study its header names.
+TEST(Files, JournalWithoutAFinishedRowStartsAfresh) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  { Journal j(path, 42, 5, false); }  // the header only
+  {
+    Journal j(path, 42, 5, false);
+    EXPECT_TRUE(done(j).empty());
+  }
+  std::ofstream(path, std::ios::app) << "2,tor";  // a torn first row
+  {
+    Journal j(path, 43, 5, false);  // another study's fingerprint: nothing of it is kept
+    EXPECT_TRUE(done(j).empty());
+  }
+  EXPECT_NE(read_file(path).find("fingerprint"), std::string::npos);
+  {
+    Journal j(path, 42, 5, true);
+    EXPECT_TRUE(done(j).empty());
+    j.append(1, "1,x");
+  }
+  // One finished row is kept: the guard against losing it stands.
+  EXPECT_NE(error_of([&] { Journal j(path, 42, 5, false); }).find("run again with --resume"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { Journal j(path, 43, 5, true); }).find("belongs to a different study"),
+            std::string::npos);
+}
+
 // Issue 14 (6): two sweeps on one journal (two --resume at once) both ran every remaining case.
 TEST(Files, JournalIsLockedWhileInUse) {
   TempDir dir;
