@@ -63,8 +63,7 @@ std::span<const double> optional_span(const std::optional<Array>& a, const char*
 RecordWindow window_of(py::handle item, std::size_t i, std::span<const double> t) {
   const std::string where = "record_kb: windows[" + std::to_string(i) + "]";
   if (!py::isinstance<py::dict>(item))
-    throw Error(where + " must be a dict of analyze_windows; got " +
-                py::str(item.get_type().attr("__name__")).cast<std::string>());
+    throw Error(where + " must be a dict of analyze_windows; got " + python_type_name(item));
   const py::dict d = py::reinterpret_borrow<py::dict>(item);
   for (const char* key : {"t_start", "samples", "f", "valid", "metrics"})
     if (!d.contains(key))

@@ -106,12 +106,6 @@ const NumpyTypes& numpy_types() {
   return types;
 }
 
-std::string python_description(py::handle value) {
-  std::string text = py::repr(value).cast<std::string>();
-  if (text.size() > 60) text = text.substr(0, 60) + "...";
-  return py::str(py::type::of(value).attr("__name__")).cast<std::string>() + " (" + text + ")";
-}
-
 // " [unit]" of a key for its messages; nothing for a dimensionless or unknown key.
 std::string bracketed_unit(const std::string& key) {
   const std::string unit = io::key_unit(key);
@@ -483,6 +477,16 @@ std::string alias_table() {
 }
 
 }  // namespace
+
+std::string python_type_name(py::handle value) {
+  return py::str(py::type::of(value).attr("__name__")).cast<std::string>();
+}
+
+std::string python_description(py::handle value) {
+  std::string text = py::repr(value).cast<std::string>();
+  if (text.size() > 60) text = text.substr(0, 60) + "...";
+  return python_type_name(value) + " (" + text + ")";
+}
 
 void bind_parameters(py::module_& m) {
   py::enum_<SoilInput> soil_input(m, "SoilInput",

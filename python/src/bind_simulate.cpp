@@ -16,8 +16,7 @@ Result simulate_model(const Model& model, const py::object& progress) {
   // raise Python's bare "'int' object is not callable".
   if (!progress.is_none() && PyCallable_Check(progress.ptr()) == 0)
     throw Error("progress must be None or a callable progress(period: int, change: float); got " +
-                std::string(py::str(py::type::of(progress).attr("__name__"))) + " (" +
-                std::string(py::repr(progress)).substr(0, 60) + ")");
+                python_description(progress));
   std::exception_ptr error;
   const bool has_callback = !progress.is_none();
   auto next_poll = std::chrono::steady_clock::now();

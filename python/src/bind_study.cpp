@@ -149,7 +149,7 @@ std::vector<Case> to_cases(const py::handle& items) {
     throw Error(
         "cases must be a list (or other iterable) of Case objects or {key: value} dicts; "
         "got " +
-        py::str(py::type::of(items).attr("__name__")).cast<std::string>());
+        python_type_name(items));
   std::vector<Case> cases;
   py::object from_dict = py::module_::import("oscidrum._core").attr("Case").attr("from_dict");
   for (py::handle item : items) {
@@ -163,11 +163,8 @@ std::vector<Case> to_cases(const py::handle& items) {
         throw Error(where + ": " + py::str(e.value()).cast<std::string>());
       }
     } else {
-      std::string text = py::repr(item).cast<std::string>();
-      if (text.size() > 60) text = text.substr(0, 60) + "...";
       throw Error(where + " must be a Case or a {key: value} dict; got " +
-                  py::str(py::type::of(item).attr("__name__")).cast<std::string>() + " (" + text +
-                  ")");
+                  python_description(item));
     }
   }
   return cases;

@@ -100,6 +100,12 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 /// The data of a 1-D array as a span; oscidrum::Error naming the argument if it is not 1-D.
 std::span<const double> span_of(const Array& a, const char* name);
 
+/// The name of a Python value's type ("int", "list", ...), for messages.
+std::string python_type_name(py::handle value);
+
+/// A Python value for a message: its type and its repr, cut after 60 characters ("int (5)").
+std::string python_description(py::handle value);
+
 /// The value of a field as a Python object: float (real), int (integer), bool (boolean) or str
 /// (choice name).
 py::object field_value(const Case& c, const Field& field);
