@@ -503,7 +503,7 @@ class RecordMetrics:
     psi_xz: float
     """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12) [rad]"""
     residual_x: float
-    """RMS of record minus fit, relative to the RMS of x_M'' [-]"""
+    """RMS of record minus fit, relative to the RMS of x_M'' about its mean [-]"""
     residual_z: float
     """the same for z_M'' [-]"""
     rmv: float

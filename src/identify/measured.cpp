@@ -71,15 +71,14 @@ MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t
   d.f = f;
   d.n_signal = static_cast<int>(m.ddx_harmonics.size()) - 1;
   d.samples = samples;
-  double px = 0, pz = 0;  // mean square of the fitted signals
-  for (std::size_t n = 0; n < m.ddx_harmonics.size(); ++n) {
-    const double k = n == 0 ? 1.0 : 0.5;
-    px += k * m.ddx_harmonics[n].amplitude * m.ddx_harmonics[n].amplitude;
-    pz += k * m.ddz_harmonics[n].amplitude * m.ddz_harmonics[n].amplitude;
-    if (n > 0) {
-      d.ddx.push_back(std::polar(m.ddx_harmonics[n].amplitude, m.ddx_harmonics[n].phase));
-      d.ddz.push_back(std::polar(m.ddz_harmonics[n].amplitude, m.ddz_harmonics[n].phase));
-    }
+  // Mean square of the fitted signals about their means (the residuals are relative to the RMS
+  // about the mean: analyze_record).
+  double px = 0, pz = 0;
+  for (std::size_t n = 1; n < m.ddx_harmonics.size(); ++n) {
+    px += 0.5 * m.ddx_harmonics[n].amplitude * m.ddx_harmonics[n].amplitude;
+    pz += 0.5 * m.ddz_harmonics[n].amplitude * m.ddz_harmonics[n].amplitude;
+    d.ddx.push_back(std::polar(m.ddx_harmonics[n].amplitude, m.ddx_harmonics[n].phase));
+    d.ddz.push_back(std::polar(m.ddz_harmonics[n].amplitude, m.ddz_harmonics[n].phase));
   }
   // residual = s / rms with rms^2 = fitted^2 + s^2, so s^2 = fitted^2 r^2 / (1 - r^2).
   auto noise = [](double fitted, double r) {

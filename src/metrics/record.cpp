@@ -149,12 +149,18 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
 double relative_rms(std::span<const double> t, std::span<const double> y, const Eigen::VectorXd& c,
                     double f, int n_max) {
   std::vector<double> cm(2 * n_max + 1), sm(2 * n_max + 1);
+  // Relative to the RMS about the mean: a steady motion's accelerations average zero, so a
+  // record's mean is the sensor's (gravity in an accelerometer's reading, an offset), and a large
+  // one would make any fit look good.
+  double mean = 0.0;
+  for (double v : y) mean += v;
+  mean /= static_cast<double>(y.size());
   double yy = 0.0, rr = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     harmonics_at(f * t[i], n_max, cm, sm);
     double fitted = c[0];
     for (int n = 1; n <= n_max; ++n) fitted += c[2 * n - 1] * cm[n] + c[2 * n] * sm[n];
-    yy += y[i] * y[i];
+    yy += (y[i] - mean) * (y[i] - mean);
     rr += (y[i] - fitted) * (y[i] - fitted);
   }
   return yy > 0 ? std::sqrt(rr / yy) : 0.0;
@@ -268,13 +274,16 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
                                  half_harmonics(t, ddz, f, n_max, m.cycles));
   }
 
-  // The fitted periodic signals over one period, for the extremes and the area.
+  // The fitted periodic signals over one period, for the extremes and the area, without their
+  // means (A0): a steady motion's accelerations average zero, so a record's mean is the sensor's
+  // (gravity in an accelerometer's reading, an offset) and would shift the peaks away from the
+  // model's.
   constexpr int kSamples = 1024;
   const double nu = 2.0 * M_PI * f;
   std::vector<double> x(kSamples), z(kSamples), cj(n_max + 1), sj(n_max + 1);
   for (int j = 0; j < kSamples; ++j) {
     harmonics_at(static_cast<double>(j) / kSamples, n_max, cj, sj);  // n nu t_j = 2 pi n j / 1024
-    double sx = cx[0], sz = cz[0];
+    double sx = 0.0, sz = 0.0;
     for (int n = 1; n <= n_max; ++n) {
       sx += cx[2 * n - 1] * cj[n] + cx[2 * n] * sj[n];
       sz += cz[2 * n - 1] * cj[n] + cz[2 * n] * sj[n];
@@ -290,7 +299,7 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
     double tj = t_grid;
     double value = 0.0;
     for (int iteration = 0; iteration < 8; ++iteration) {
-      double s0 = c[0], s1 = 0.0, s2 = 0.0;
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0;  // without the mean c[0], as the grid
       for (int n = 1; n <= n_max; ++n) {
         const double w = n * nu, cs = std::cos(w * tj), sn = std::sin(w * tj);
         const double a = c[2 * n - 1], b = c[2 * n];
@@ -550,8 +559,11 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     if (!(whole > 0.0)) continue;
     const double r1 = periodic_rms(c == 0 ? a.ddx_harmonics : a.ddz_harmonics);
     const double r2 = periodic_rms(c == 0 ? b.ddx_harmonics : b.ddz_harmonics);
-    double mean_square = 0.0;
-    for (double v : y) mean_square += v * v;
+    // The residuals are relative to the RMS about the mean (relative_rms).
+    double mean = 0.0, mean_square = 0.0;
+    for (double v : y) mean += v;
+    mean /= static_cast<double>(y.size());
+    for (double v : y) mean_square += (v - mean) * (v - mean);
     mean_square /= static_cast<double>(y.size());
     // The noise from the better-fitting half: a half that straddles the change fits worse, and
     // so does the whole window, whose residual would take the change for noise.
