@@ -400,6 +400,23 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   if (!has_header) parse(first, first_no);
   while (next_line(line)) parse(line, no);
   if (out.t.empty()) throw Error(name + ": no data rows after the header");
+  // An accelerometer reads the specific force: at rest +1 g along an axis pointing up, -1 g along
+  // one pointing down, and a record that keeps it (the harmonic fit takes the mean out) tells
+  // which way its z axis points. Read as positive down, a mean near +1 g says the axis points the
+  // other way than the reading assumed (--z-positive): said, not corrected (a record without
+  // gravity, or with the offset removed, says nothing; nor does a hint decide the sign).
+  {
+    double mean = 0.0;
+    for (double v : out.ddz_M) mean += v;
+    mean /= static_cast<double>(out.ddz_M.size());
+    if (std::abs(mean - kStandardGravity) < 0.15 * kStandardGravity)
+      out.notes.push_back(
+          "z_M'': its mean is " + format_factor(mean) +
+          " m/s^2 read as positive down, about +1 g: an accelerometer at rest reads -1 g along a "
+          "downward axis and +1 g along an upward one, so this column's axis likely points " +
+          (o.z_positive == "up" ? std::string("down (drop --z-positive up)")
+                                : std::string("up (give --z-positive up)")));
+  }
   if (cs >= 0 && cp < 0) {
     for (std::size_t i = 1; i < out.t.size(); ++i)
       if (!(out.t[i] > out.t[i - 1])) return out;  // analyze_windows reports it

@@ -49,6 +49,36 @@ TEST(RecordReader, ByteOrderMarkUnitsAndAxisConventions) {
 }
 
 // A European spreadsheet: semicolons and decimal commas; the model's own names (run --csv).
+// An accelerometer's z reading keeps gravity: +1 g on average along an axis pointing up. Read as
+// positive down (the default), that mean says the axis points the other way: a note says so and
+// names the flag; read with --z-positive up (or without gravity in the record) nothing is said.
+TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
+  const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
+  const auto hint = [](const RecordColumns& r) {
+    int found = 0;
+    for (const std::string& n : r.notes) found += n.find("about +1 g") != std::string::npos;
+    return found;
+  };
+  const RecordColumns down = read_text(with_gravity);
+  ASSERT_EQ(hint(down), 1);
+  for (const std::string& n : down.notes)
+    if (n.find("about +1 g") != std::string::npos) {
+      EXPECT_NE(n.find("give --z-positive up"), std::string::npos) << n;
+    }
+  RecordReading up;
+  up.z_positive = "up";
+  EXPECT_EQ(hint(read_text(with_gravity, up)), 0);  // read as up: -1 g, as it should be
+  EXPECT_EQ(hint(read_text("t,acc_x [g],acc_z [g]\n0,0.1,0.05\n0.001,-0.1,-0.05\n")), 0);
+  // Read as up, a mean of -1 g in the file: the axis points down after all.
+  const RecordColumns wrong =
+      read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1.05\n0.001,-0.1,-0.95\n", up);
+  ASSERT_EQ(hint(wrong), 1);
+  for (const std::string& n : wrong.notes)
+    if (n.find("about +1 g") != std::string::npos) {
+      EXPECT_NE(n.find("drop --z-positive up"), std::string::npos) << n;
+    }
+}
+
 TEST(RecordReader, SemicolonsWithDecimalCommas) {
   const RecordColumns r = read_text("t[s];ddx_M[m/s^2];ddz_M[m/s^2]\n0,5;1,25;-2\n");
   EXPECT_EQ(r.delimiter, "semicolon");
