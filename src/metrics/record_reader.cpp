@@ -183,7 +183,8 @@ char acceleration_axis(const std::string& k) {
   if (k == "ddzm" || k == "ddz" || k == "zddot" || k == "az" || k == "av" ||
       k.find("vert") != std::string::npos)
     return 'z';
-  for (const char* stem : {"acceleration", "accel", "acc", "a"}) {
+  // (German loggers: Beschleunigung, Beschl.)
+  for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
     const std::string st = stem;
     for (char axis : {'x', 'z'}) {
       // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number)
@@ -193,12 +194,14 @@ char acceleration_axis(const std::string& k) {
         return axis;
     }
   }
-  // Longer names: acc... or accelerometer... ending in the axis (accelerometer_z, acc_drum_x),
-  // or the axis first (z_acceleration, xaccel).
+  // Longer names: acc... or accelerometer... ending in the axis (accelerometer_z, acc_drum_x,
+  // Beschl. Bandage X), or the axis first (z_acceleration, xaccel).
   for (char axis : {'x', 'z'}) {
-    const bool acc = k.find("acc") != std::string::npos;
-    if (acc && k.rfind("acc", 0) == 0 && k.back() == axis) return axis;
-    if (acc && k.front() == axis && k.find("acc") == 1) return axis;
+    for (const char* stem : {"acc", "beschl"}) {
+      const bool acc = k.find(stem) != std::string::npos;
+      if (acc && k.rfind(stem, 0) == 0 && k.back() == axis) return axis;
+      if (acc && k.front() == axis && k.find(stem) == 1) return axis;
+    }
   }
   return 0;
 }

@@ -52,6 +52,21 @@ TEST(RecordReader, ByteOrderMarkUnitsAndAxisConventions) {
 // An accelerometer's z reading keeps gravity: +1 g on average along an axis pointing up. Read as
 // positive down (the default), that mean says the axis points the other way: a note says so and
 // names the flag; read with --z-positive up (or without gravity in the record) nothing is said.
+// A German logger's names: Zeit, Beschl. X / Beschleunigung Z (keys beschlx, beschleunigungz),
+// and a longer one ending in the axis.
+TEST(RecordReader, GermanChannelNames) {
+  for (const std::string header : {"Zeit [ms];Beschl. X [g];Beschl. Z [g]",
+                                   "Zeit [ms];Beschleunigung X [g];Beschleunigung Z [g]",
+                                   "Zeit [ms];Beschl. Bandage X [g];Beschl. Bandage Z [g]"}) {
+    SCOPED_TRACE(header);
+    const RecordColumns r = read_text(header + "\n0;0,5;-0,25\n1;-0,5;0,25\n");
+    ASSERT_EQ(r.t.size(), 2u);
+    EXPECT_DOUBLE_EQ(r.t[1], 1e-3);
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * 9.80665);
+    EXPECT_DOUBLE_EQ(r.ddz_M[0], -0.25 * 9.80665);
+  }
+}
+
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
   const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
   const auto hint = [](const RecordColumns& r) {
