@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -85,6 +86,102 @@ bool parse_number(std::string cell, bool decimal_comma, double& v) {
 #endif
 }
 
+// Days from 1970-01-01 to y-m-d in the Gregorian calendar (y >= 1).
+long days_since_1970(long y, int m, int d) {
+  static constexpr int kBefore[12] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
+  const auto leap_years = [](long n) { return n / 4 - n / 100 + n / 400; };  // in 1 ... n
+  const bool leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+  return 365 * (y - 1970) + (leap_years(y - 1) - leap_years(1969)) + kBefore[m - 1] +
+         (leap && m > 2 ? 1 : 0) + d - 1;
+}
+
+// A clock time as loggers write it: an optional date (YYYY-MM-DD, YYYY/MM/DD or DD.MM.YYYY), 'T'
+// or a space, HH:MM:SS with an optional fraction ('.' or ','), and an optional zone (Z, +hh:mm,
+// -hhmm). `day`: days since 1970-01-01 (0 without a date); `seconds`: of that day, UTC when a zone
+// is given.
+struct ClockTime {
+  long day = 0;
+  long seconds = 0;       // whole seconds of the day
+  double fraction = 0.0;  // and its fraction, [0, 1)
+  bool dated = false;
+};
+
+std::optional<ClockTime> parse_clock(const std::string& text) {
+  const std::string c = trim(text);
+  std::size_t i = 0;
+  const auto digits = [&](std::size_t n, long& v) {
+    if (i + n > c.size()) return false;
+    v = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const char ch = c[i + k];
+      if (!std::isdigit(static_cast<unsigned char>(ch))) return false;
+      v = 10 * v + (ch - '0');
+    }
+    i += n;
+    return true;
+  };
+  const auto expect = [&](char ch) {
+    if (i < c.size() && c[i] == ch) return ++i, true;
+    return false;
+  };
+  ClockTime out;
+  long y = 0, mo = 0, d = 0;
+  // A date first when the text has one (a ':' after a '-', '/' or '.' in its first ten characters).
+  const std::size_t colon = c.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  if (colon > 2) {
+    if (c.size() >= 10 && (c[4] == '-' || c[4] == '/')) {
+      const char sep = c[4];
+      if (!digits(4, y) || !expect(sep) || !digits(2, mo) || !expect(sep) || !digits(2, d))
+        return std::nullopt;
+    } else if (c.size() >= 10 && c[2] == '.' && c[5] == '.') {
+      if (!digits(2, d) || !expect('.') || !digits(2, mo) || !expect('.') || !digits(4, y))
+        return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+    if (y < 1 || mo < 1 || mo > 12 || d < 1 || d > 31) return std::nullopt;
+    if (!expect('T') && !expect(' ')) return std::nullopt;
+    while (i < c.size() && c[i] == ' ') ++i;
+    out.day = days_since_1970(y, static_cast<int>(mo), static_cast<int>(d));
+    out.dated = true;
+  }
+  long h = 0, mi = 0, sec = 0;
+  // One-digit hours too (9:05:00.5).
+  if (!(digits(2, h) || digits(1, h)) || !expect(':') || !digits(2, mi) || !expect(':') ||
+      !digits(2, sec))
+    return std::nullopt;
+  if (h > 23 || mi > 59 || sec > 60) return std::nullopt;
+  double fraction = 0.0;
+  if (i < c.size() && (c[i] == '.' || c[i] == ',')) {
+    ++i;
+    const std::size_t start = i;
+    while (i < c.size() && std::isdigit(static_cast<unsigned char>(c[i]))) ++i;
+    if (i == start) return std::nullopt;
+    // Rounded once, as the decimal fraction it is.
+    if (!parse_number("0." + c.substr(start, i - start), false, fraction)) return std::nullopt;
+  }
+  long offset = 0;  // the zone's [s], subtracted to give UTC
+  if (i < c.size()) {
+    if (c[i] == 'Z' && i + 1 == c.size()) {
+      ++i;
+    } else if (c[i] == '+' || c[i] == '-') {
+      const long sign = c[i] == '+' ? 1 : -1;
+      ++i;
+      long oh = 0, om = 0;
+      if (!digits(2, oh)) return std::nullopt;
+      expect(':');
+      if (i < c.size() && !digits(2, om)) return std::nullopt;
+      if (oh > 23 || om > 59) return std::nullopt;
+      offset = sign * (3600 * oh + 60 * om);
+    }
+  }
+  if (i != c.size()) return std::nullopt;
+  out.seconds = 3600 * h + 60 * mi + sec - offset;
+  out.fraction = fraction;
+  return out;
+}
+
 // A header cell split into its name and unit: "Time [ms]", "acc_z (g)", "az/g", "ax_mps2".
 struct Heading {
   std::string name, unit;
@@ -94,6 +191,13 @@ struct Heading {
 std::string lower(std::string s) {
   for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   return s;
+}
+
+// A missing value as loggers write one: an empty cell, NaN, NA, null, a dash.
+bool is_missing(const std::string& cell) {
+  const std::string c = lower(trim(cell));
+  return c.empty() || c == "nan" || c == "-nan" || c == "na" || c == "n/a" || c == "null" ||
+         c == "none" || c == "-" || c == "--";
 }
 
 std::string key_of(const std::string& name) {
@@ -259,7 +363,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   bool has_header = false;
   for (const std::string& cell : header) {
     double v = 0;
-    if (!parse_number(cell, decimal_comma, v)) has_header = true;
+    if (!parse_number(cell, decimal_comma, v) && !parse_clock(cell)) has_header = true;
   }
   if (!has_header)
     for (std::size_t c = 0; c < header.size(); ++c) header[c] = "column " + std::to_string(c + 1);
@@ -362,31 +466,85 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   out.t_factor = kt;
   out.x_factor = kx;
   out.z_factor = kz;
-  note("t", ct, kt, "s");
   note("x_M''", cx, kx, "m/s^2 (positive forward)");
   note("z_M''", cz, kz, "m/s^2 (positive down)");
   std::vector<double> speed;
+  // A row with a missing or non-finite value in a column read is skipped (and counted: a note
+  // says how many, and the gap gate judges the windows they fall in).
+  std::size_t skipped = 0, first_skipped = 0;
+  // The time column as clock times (2026-05-12 10:31:22.125): decided on the first data row;
+  // t in s from that row's time.
+  std::optional<bool> clock;
+  ClockTime clock0;
+  bool have_clock0 = false;
+  long last_clock = 0;
+  long extra_days = 0;  // midnights passed by a clock without a date
   auto parse = [&](const std::string& text, std::size_t line_no) {
     const std::vector<std::string> cells = split(text, delim);
     if (cells.size() != header.size())
       throw Error(name + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
                   " cells, but the header has " + std::to_string(header.size()));
+    bool missing = false;
     auto get = [&](int c) {
+      const std::string& cell = cells[static_cast<std::size_t>(c)];
       double v = 0;
-      if (!parse_number(cells[static_cast<std::size_t>(c)], decimal_comma, v))
+      if (is_missing(cell) || (parse_number(cell, decimal_comma, v) && !std::isfinite(v))) {
+        missing = true;
+        return 0.0;
+      }
+      if (!parse_number(cell, decimal_comma, v))
         throw Error(name + ":" + std::to_string(line_no) + ": column '" +
-                    header[static_cast<std::size_t>(c)] + "' must be a number; got '" +
-                    cells[static_cast<std::size_t>(c)] + "'");
+                    header[static_cast<std::size_t>(c)] + "' must be a number" +
+                    (c == ct ? std::string(" or a clock time (2026-05-12 10:31:22.125)") : "") +
+                    "; got '" + cell + "'");
       return v;
     };
-    out.t.push_back(kt * get(ct));
-    out.ddx_M.push_back(kx * get(cx));
-    out.ddz_M.push_back(kz * get(cz));
-    if (cp >= 0) out.position.push_back(get(cp));
-    if (cs >= 0) speed.push_back(get(cs));
-    if (cu >= 0) out.unbalance_angle.push_back(get(cu));
+    auto get_time = [&] {
+      const std::string& cell = cells[static_cast<std::size_t>(ct)];
+      double v = 0;
+      if (!clock && !is_missing(cell))
+        clock = !parse_number(cell, decimal_comma, v) && parse_clock(cell).has_value();
+      if (!clock.value_or(false)) return kt * get(ct);
+      if (is_missing(cell)) {
+        missing = true;
+        return 0.0;
+      }
+      const std::optional<ClockTime> c = parse_clock(cell);
+      if (!c || (have_clock0 && c->dated != clock0.dated))
+        throw Error(name + ":" + std::to_string(line_no) + ": column '" +
+                    header[static_cast<std::size_t>(ct)] + "' must be a clock time like the " +
+                    (clock0.dated ? "first row's, with a date" : "first row's, without a date") +
+                    "; got '" + cell + "'");
+      if (!have_clock0) {
+        clock0 = *c;
+        have_clock0 = true;
+        last_clock = c->seconds;
+      }
+      // A clock without a date that goes back by more than 12 hours passed midnight.
+      if (!c->dated && c->seconds < last_clock - 43200) ++extra_days;
+      last_clock = c->seconds;
+      // Whole seconds apart, then the fractions: no rounding of a large number of seconds.
+      return static_cast<double>((c->day + extra_days - clock0.day) * 86400 +
+                                 (c->seconds - clock0.seconds)) +
+             (c->fraction - clock0.fraction);
+    };
+    const double t = get_time();
+    const double x = kx * get(cx), z = kz * get(cz);
+    const double p = cp >= 0 ? get(cp) : 0.0, sp = cs >= 0 ? get(cs) : 0.0,
+                 u = cu >= 0 ? get(cu) : 0.0;
+    const double lat = clat >= 0 ? get(clat) : 0.0, lon = clat >= 0 ? get(clon) : 0.0;
+    const double east = ceast >= 0 ? get(ceast) : 0.0, north = ceast >= 0 ? get(cnorth) : 0.0;
+    if (missing) {
+      if (skipped++ == 0) first_skipped = line_no;
+      return;
+    }
+    out.t.push_back(t);
+    out.ddx_M.push_back(x);
+    out.ddz_M.push_back(z);
+    if (cp >= 0) out.position.push_back(p);
+    if (cs >= 0) speed.push_back(sp);
+    if (cu >= 0) out.unbalance_angle.push_back(u);
     if (clat >= 0) {
-      const double lat = get(clat), lon = get(clon);
       if (!(std::abs(lat) <= 90.0) || !(std::abs(lon) <= 180.0))
         throw Error(name + ":" + std::to_string(line_no) +
                     ": latitude, longitude must be in "
@@ -396,13 +554,35 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       out.lon.push_back(lon);
     }
     if (ceast >= 0) {
-      out.east.push_back(get(ceast));
-      out.north.push_back(get(cnorth));
+      out.east.push_back(east);
+      out.north.push_back(north);
     }
   };
   if (!has_header) parse(first, first_no);
   while (next_line(line)) parse(line, no);
-  if (out.t.empty()) throw Error(name + ": no data rows after the header");
+  if (out.t.empty())
+    throw Error(name + (skipped > 0 ? ": every data row (" + std::to_string(skipped) +
+                                          ") has a missing or non-finite value"
+                                    : std::string(": no data rows after the header")));
+  // The time column's note first (how t was read is known only now).
+  {
+    const std::vector<std::string> later = std::move(out.notes);
+    out.notes.clear();
+    if (clock.value_or(false)) {
+      out.notes.push_back("t: column '" + out.t_column + "' read as clock times" +
+                          (clock0.dated ? " (with dates)" : "") + ", in s from the first row's" +
+                          (o.t_units != "auto" ? " (--t-units does not apply)" : ""));
+      out.t_factor = 1.0;
+    } else {
+      note("t", ct, kt, "s");
+    }
+    out.notes.insert(out.notes.end(), later.begin(), later.end());
+  }
+  if (skipped > 0)
+    out.notes.push_back("skipped " + std::to_string(skipped) + " row" + (skipped > 1 ? "s" : "") +
+                        " with a missing or non-finite value (the first at line " +
+                        std::to_string(first_skipped) +
+                        "): the gap gate (--max-gap) judges the windows they fall in");
   // An accelerometer reads the specific force: at rest +1 g along an axis pointing up, -1 g along
   // one pointing down, and a record that keeps it (the harmonic fit takes the mean out) tells
   // which way its z axis points. Read as positive down, a mean near +1 g says the axis points the

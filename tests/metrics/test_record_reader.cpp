@@ -67,6 +67,76 @@ TEST(RecordReader, GermanChannelNames) {
   }
 }
 
+// A logger's clock times in the time column: t in s from the first row's, across midnight, a
+// month's end and a leap day, with the dates in ISO or German order, a zone, or no date at all.
+TEST(RecordReader, ClockTimesInTheTimeColumn) {
+  const auto times = [](const std::string& text) { return read_text(text).t; };
+  const std::vector<double> iso = times(
+      "Timestamp,ax,az\n2024-02-28T23:59:59.500Z,1,2\n2024-02-29T00:00:00.750Z,1,2\n"
+      "2024-03-01T00:00:00.500Z,1,2\n");
+  ASSERT_EQ(iso.size(), 3u);
+  EXPECT_DOUBLE_EQ(iso[0], 0.0);
+  EXPECT_DOUBLE_EQ(iso[1], 1.25);
+  EXPECT_DOUBLE_EQ(iso[2], 86401.0);  // 2024 is a leap year: Feb 29 lies between
+  const std::vector<double> plain_year =
+      times("t;ax;az\n28.02.2023 23:59:59,5;1;2\n01.03.2023 00:00:00,5;1;2\n");
+  ASSERT_EQ(plain_year.size(), 2u);
+  EXPECT_DOUBLE_EQ(plain_year[1], 1.0);  // 2023 is not
+  // A zone: 10:00:00+02:00 is 08:00:00Z.
+  const std::vector<double> zoned =
+      times("time,ax,az\n2026-05-12 08:00:00Z,1,2\n2026-05-12 10:00:01+02:00,1,2\n");
+  EXPECT_DOUBLE_EQ(zoned[1], 1.0);
+  // No date: midnight passes when the clock falls back by more than 12 hours.
+  const std::vector<double> clock =
+      times("time\tax\taz\n23:59:59.999\t1\t2\n00:00:00.001\t1\t2\n9:00:00\t1\t2\n");
+  ASSERT_EQ(clock.size(), 3u);
+  EXPECT_NEAR(clock[1], 0.002, 1e-12);
+  EXPECT_NEAR(clock[2], 9 * 3600.0 + 0.001, 1e-9);
+  // Without a header line too (the clock times make the first line data; its columns given).
+  RecordReading columns;
+  columns.t_col = "1";
+  columns.x_col = "2";
+  columns.z_col = "3";
+  const RecordColumns headless =
+      read_text("2026-05-12T08:00:00,1,2\n2026-05-12T08:00:00.001,1,2\n", columns);
+  ASSERT_EQ(headless.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(headless.t[1], 0.001);
+  // The note says how t was read.
+  const RecordColumns r = read_text("Timestamp,ax,az\n2026-05-12 08:00:00,1,2\n");
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("clock times (with dates)"), std::string::npos);
+  // A date that is not one, and a row without the first row's date, are errors at their line.
+  EXPECT_NE(message_of("t,ax,az\n2026-13-01 08:00:00,1,2\n").find("must be a number or a clock"),
+            std::string::npos);
+  EXPECT_NE(
+      message_of("t,ax,az\n2026-05-12 08:00:00,1,2\n08:00:01,1,2\n")
+          .find("record.csv:3: column 't' must be a clock time like the first row's, with a date"),
+      std::string::npos);
+}
+
+// A logger's dropouts: rows with an empty cell, NaN, NA or a dash in a column read are skipped
+// and counted in a note (the gap gate judges the windows they fall in); columns not read may hold
+// anything. A record with nothing but such rows is an error that says so.
+TEST(RecordReader, RowsWithMissingValuesAreSkippedAndCounted) {
+  const RecordColumns r = read_text(
+      "t,ax,az,comment\n0,1,2,x\n0.001,,2,\n0.002,NaN,2,\n0.003,1,NA,\n0.004,1,-,\n"
+      "0.005,1,inf,\n0.006,3,4,\n");
+  ASSERT_EQ(r.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.t[1], 0.006);
+  EXPECT_DOUBLE_EQ(r.ddx_M[1], 3.0);
+  int notes = 0;
+  for (const std::string& n : r.notes)
+    notes += n.find("skipped 5 rows with a missing or non-finite value (the first at line 3)") !=
+             std::string::npos;
+  EXPECT_EQ(notes, 1);
+  EXPECT_NE(message_of("t,ax,az\n0,,1\n1,2,\n").find("every data row (2) has a missing"),
+            std::string::npos);
+  // A cell that is neither a number nor missing is still an error.
+  EXPECT_NE(
+      message_of("t,ax,az\n0,1,2\n1,abc,2\n").find("record.csv:3: column 'ax' must be a number"),
+      std::string::npos);
+}
+
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
   const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
   const auto hint = [](const RecordColumns& r) {
