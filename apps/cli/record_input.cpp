@@ -55,6 +55,11 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                  "unit of the time column: auto (default: from its header, [s], [ms], time_ms, "
                  "...; s without one), s, ms or us")
       ->check(CLI::IsMember({"auto", "s", "ms", "us"}));
+  app.add_option("--rate", o.rate,
+                 "sampling rate [Hz], 1 ... 1e7, of a record without a time column: t = (data "
+                 "row - 1) / rate (instead of --t-col; a row skipped for a missing value keeps "
+                 "its place)")
+      ->check(positive_number());
   app.add_option("--x-positive", o.x_positive,
                  "which way the record's x axis points: forward (default: the model's, the "
                  "direction of travel, where a positive driving torque MMd moves the drum) or "

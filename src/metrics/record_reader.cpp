@@ -411,8 +411,18 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                       : "several columns look like the " + std::string(what) + " (" + which + ")") +
         "; choose one with " + flag + " (a name or 1-based index); the header has: " + names());
   };
-  const int ct =
-      o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key) : find(o.t_col, "--t-col");
+  // From what resolves the slowest excitation searched (a few Hz) to far beyond any logger's.
+  if (!(o.rate == 0.0 || (o.rate >= 1.0 && o.rate <= 1e7)))
+    throw Error(name +
+                ": the sampling rate (--rate) must be in [1, 1e7] Hz (0: read the time "
+                "column); got " +
+                format_factor(o.rate));
+  if (o.rate > 0.0 && !o.t_col.empty())
+    throw Error(name + ": give the time column (--t-col) or the sampling rate (--rate), not both");
+  const bool by_rate = o.rate > 0.0;
+  const int ct = by_rate           ? -1
+                 : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
+                                   : find(o.t_col, "--t-col");
   const int cx = o.x_col.empty()
                      ? recognise("horizontal acceleration x_M''", "--x-col", "ddx_M",
                                  [](const std::string& k) { return acceleration_axis(k) == 'x'; })
@@ -450,7 +460,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
     return k;
   };
-  const double kt = column_scale(ct, true);
+  const double kt = by_rate ? 1.0 / o.rate : column_scale(ct, true);
   const double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
   const double kz = column_scale(cz, false) * (o.z_positive == "up" ? -1.0 : 1.0);
   // A note for each channel not read as the model writes it (its name, unit 1, same sign).
@@ -460,7 +470,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     out.notes.push_back(std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] +
                         "' x " + format_factor(k) + " -> " + si);
   };
-  out.t_column = header[static_cast<std::size_t>(ct)];
+  out.t_column =
+      by_rate ? std::string("(row number / rate)") : header[static_cast<std::size_t>(ct)];
   out.x_column = header[static_cast<std::size_t>(cx)];
   out.z_column = header[static_cast<std::size_t>(cz)];
   out.t_factor = kt;
@@ -471,7 +482,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   std::vector<double> speed;
   // A row with a missing or non-finite value in a column read is skipped (and counted: a note
   // says how many, and the gap gate judges the windows they fall in).
-  std::size_t skipped = 0, first_skipped = 0;
+  std::size_t skipped = 0, first_skipped = 0, data_rows = 0;
   // The time column as clock times (2026-05-12 10:31:22.125): decided on the first data row;
   // t in s from that row's time.
   std::optional<bool> clock;
@@ -485,6 +496,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       throw Error(name + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
                   " cells, but the header has " + std::to_string(header.size()));
     bool missing = false;
+    ++data_rows;
     auto get = [&](int c) {
       const std::string& cell = cells[static_cast<std::size_t>(c)];
       double v = 0;
@@ -500,6 +512,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       return v;
     };
     auto get_time = [&] {
+      if (by_rate) return static_cast<double>(data_rows - 1) / o.rate;  // exact row times
       const std::string& cell = cells[static_cast<std::size_t>(ct)];
       double v = 0;
       if (!clock && !is_missing(cell))
@@ -568,7 +581,11 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   {
     const std::vector<std::string> later = std::move(out.notes);
     out.notes.clear();
-    if (clock.value_or(false)) {
+    if (by_rate) {
+      out.notes.push_back("t: from the row number at --rate " + format_factor(o.rate) +
+                          " Hz (the first data row at t = 0)");
+      out.t_factor = 1.0 / o.rate;
+    } else if (clock.value_or(false)) {
       out.notes.push_back("t: column '" + out.t_column + "' read as clock times" +
                           (clock0.dated ? " (with dates)" : "") + ", in s from the first row's" +
                           (o.t_units != "auto" ? " (--t-units does not apply)" : ""));

@@ -2,6 +2,7 @@
 // the CLI (from a file) and the browser explorer (from a dropped file's text) hand it over.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -135,6 +136,31 @@ TEST(RecordReader, RowsWithMissingValuesAreSkippedAndCounted) {
   EXPECT_NE(
       message_of("t,ax,az\n0,1,2\n1,abc,2\n").find("record.csv:3: column 'ax' must be a number"),
       std::string::npos);
+}
+
+// A record without a time column, at a known sampling rate: t from the data row, a skipped row
+// keeping its place in time; the rate and a time column together, or a rate that is not one, are
+// refused.
+TEST(RecordReader, TimeFromTheRowNumberAtAGivenRate) {
+  RecordReading o;
+  o.rate = 1000.0;
+  const RecordColumns r = read_text("Sample,ax,az\n0,1,2\n1,,2\n2,3,4\n", o);
+  ASSERT_EQ(r.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.t[0], 0.0);
+  EXPECT_DOUBLE_EQ(r.t[1], 0.002);
+  EXPECT_DOUBLE_EQ(r.ddx_M[1], 3.0);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("from the row number at --rate 1000 Hz"), std::string::npos);
+  o.t_col = "Sample";
+  EXPECT_NE(message_of("Sample,ax,az\n0,1,2\n", o).find("not both"), std::string::npos);
+  o.t_col.clear();
+  for (double bad : {-1.0, 0.5, 1.1e7, 1e308, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    o.rate = bad;
+    EXPECT_NE(message_of("Sample,ax,az\n0,1,2\n", o).find("--rate) must be in [1, 1e7] Hz"),
+              std::string::npos)
+        << bad;
+  }
 }
 
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
