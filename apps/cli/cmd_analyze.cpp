@@ -92,9 +92,12 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
   return out;
 }
 
-int run(const AnalyzeOptions& o) {
+int run(AnalyzeOptions o) {
   const RecordColumns rec = read_record(o.input);
   report_reading(rec);
+  // --harmonics not given: 10, or as many as the record's sampling resolves when fewer.
+  if (o.windows.n_max == 0)
+    o.windows.n_max = resolved_harmonics(rec.t, rec.ddx_M, rec.ddz_M, o.windows);
   std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
   // kb from the drum's vertical balance: the case's roller and the record's unbalance angle.
@@ -243,6 +246,7 @@ void add_analyze_command(CLI::App& app, Action& action) {
                   "component F0 sin(alpha); `oscidrum run --csv` writes it as the column alpha): "
                   "name or index; with --case gives kb, without it kb is NaN with the reason");
   add_window_options(*sub, o->windows, 0.0);
+  o->windows.n_max = 0;  // not given: from the sampling (run)
   sub->add_option("--format", o->format,
                   "table, csv (the spectrum; with --window one row per window) or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));

@@ -90,7 +90,9 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                    "most 40")
         ->check(CLI::Range(0, 200));
   else
-    app.add_option("--harmonics", o.n_max, "harmonics n = 0 ... N fitted (default 10)")
+    app.add_option("--harmonics", o.n_max,
+                   "harmonics n = 0 ... N fitted (default 10, or as many as the record's "
+                   "sampling resolves when fewer: 2 N + 1 samples per period)")
         ->check(CLI::Range(2, 200));
   app.add_option("--window", o.window_periods,
                  "window length in excitation periods; 0: the whole record (default " +

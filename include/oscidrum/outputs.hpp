@@ -218,7 +218,7 @@
 #define OSCIDRUM_RECORD_FIT(X)                                                     \
   X(double, cycles, "-", "periods spanned", "excitation periods the record spans") \
   X(double, residual_x, "-", "fit residual x_M''",                                 \
-    "RMS of record minus fit, relative to the RMS of x_M'' about its mean")                       \
+    "RMS of record minus fit, relative to the RMS of x_M'' about its mean")        \
   X(double, residual_z, "-", "fit residual z_M''", "the same for z_M''")
 
 // What a record gives with the roller's case and its unbalance angle (`analyze --case

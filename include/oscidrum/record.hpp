@@ -113,6 +113,12 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                           std::span<const double> position,
                                           const WindowOptions& options = {});
 
+/// The harmonics a record's sampling resolves at its excitation frequency (options.f, or
+/// estimated from its first 4096 samples): 2 N + 1 samples per period at the median step, N in
+/// [2, 10] (10: analyze's default). For WindowOptions::n_max when it is not given.
+int resolved_harmonics(std::span<const double> t, std::span<const double> ddx_M,
+                       std::span<const double> ddz_M, const WindowOptions& options = {});
+
 /// The phase phi_u [rad] of a vibratory drum's unbalance over the samples t [s] of a record:
 /// its angle alpha [rad] (RecordReading::unbalance_col: the unbalance force's downward
 /// component is F0 sin(alpha)) written as alpha = 2 pi f t + phi_u, phi_u the circular mean of

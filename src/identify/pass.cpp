@@ -10,29 +10,7 @@
 #include "oscidrum/identify.hpp"
 
 namespace oscidrum {
-namespace detail {
-
-// The harmonics of the gates when not given: as many as the record's sampling resolves at its
-// frequency (2 N + 1 samples per period at the median step), at most analyze's default 10.
-int gate_harmonics(std::span<const double> t, std::span<const double> ddx,
-                   std::span<const double> ddz, const WindowOptions& w) {
-  if (t.size() < 8) return 10;  // analyze_windows says what is wrong
-  std::vector<double> dt(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  const double step = dt[dt.size() / 2];
-  double f = w.f;
-  if (!(f > 0)) {
-    const std::size_t n = std::min<std::size_t>(t.size(), 4096);
-    FrequencySearch search = w.search;
-    search.n_max = 2;
-    f = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), search);
-  }
-  const double per_period = 1.0 / (f * step);
-  return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
-}
-
-}  // namespace detail
+namespace detail {}  // namespace detail
 
 std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double> t,
                                         std::span<const double> ddx, std::span<const double> ddz,
@@ -57,7 +35,7 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   for (std::size_t i = 0; i < t.size(); ++i) local[i] = t[i] - t0;
   WindowOptions wo = windows;
   wo.time_origin += t0;  // the reasons quote the record's times
-  if (wo.n_max == 0) wo.n_max = detail::gate_harmonics(local, ddx, ddz, wo);
+  if (wo.n_max == 0) wo.n_max = resolved_harmonics(local, ddx, ddz, wo);
   std::vector<RecordWindow> ws = analyze_windows(local, ddx, ddz, position, wo);
   MeasureOptions mo = o.measure;
   mo.covariance = std::max(mo.covariance, o.harmonics);

@@ -64,12 +64,6 @@ struct HarmonicMisfit {
 HarmonicMisfit harmonic_misfit(const Simulated& s, const MeasuredResponse& data, int harmonics,
                                double phi);
 
-/// The harmonics of a record's gates when not given (WindowOptions::n_max == 0): as many as the
-/// record's sampling resolves at its frequency (2 N + 1 samples per period at the median step),
-/// in [2, 10] (analyze's default 10).
-int gate_harmonics(std::span<const double> t, std::span<const double> ddx_M,
-                   std::span<const double> ddz_M, const WindowOptions& w);
-
 class Problem : public LeastSquares {
  public:
   Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& options);

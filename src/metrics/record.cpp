@@ -510,6 +510,24 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
   return f;
 }
 
+int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
+                       std::span<const double> ddz, const WindowOptions& w) {
+  if (t.size() < 8) return 10;  // analyze_windows says what is wrong
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  const double step = dt[dt.size() / 2];
+  double f = w.f;
+  if (!(f > 0)) {
+    const std::size_t n = std::min<std::size_t>(t.size(), 4096);
+    FrequencySearch search = w.search;
+    search.n_max = 2;
+    f = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), search);
+  }
+  const double per_period = 1.0 / (f * step);
+  return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
+}
+
 std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed) {
   if (t.size() != speed.size())
     throw Error("record: t and speed must have the same length; got " + std::to_string(t.size()) +

@@ -269,6 +269,36 @@ TEST(CliAnalyze, LoggerConventionsAreReadBackToTheModels) {
       0.1);
 }
 
+// A logger at 500 Hz resolves 5 harmonics of 39 Hz (12.8 samples per period): without
+// --harmonics analyze fits 5 (2 N + 1 samples per period) and the window is valid; the default
+// 10 made it fail the samples-per-period gate. A sample-number column and --rate give the time.
+TEST(CliAnalyze, ASlowLoggerGetsTheHarmonicsItsSamplingResolves) {
+  TempDir dir;
+  {
+    std::ofstream out(dir / "slow.csv");
+    out << "Sample,acc_x [m/s^2],acc_z [m/s^2]\n";
+    out.precision(17);
+    const double nu = 2 * M_PI * 39.0;
+    for (int i = 0; i < 500; ++i) {
+      const double t = i / 500.0;
+      out << i << "," << 12.0 * std::sin(nu * t) + 3.0 * std::sin(3 * nu * t) << ","
+          << 0.5 * std::sin(2 * nu * t + 0.3) << "\n";
+    }
+  }
+  const Outcome a = run({"analyze", dir / "slow.csv", "--rate", "500", "--format", "json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  const auto j = nlohmann::json::parse(a.out);
+  EXPECT_EQ(j["ddx_harmonics"].size(), 6u);  // n = 0 ... 5
+  EXPECT_NEAR(j["ddx_harmonics"][3]["amplitude"].get<double>(), 3.0, 1e-9);
+  EXPECT_NEAR(j["ddz_harmonics"][2]["amplitude"].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(j["f"].get<double>(), 39.0, 1e-7);
+  // Asked for more than the sampling resolves: the gate says so (the sampling against the flags:
+  // exit 2).
+  const Outcome b = run({"analyze", dir / "slow.csv", "--rate", "500", "--harmonics", "10"});
+  EXPECT_EQ(b.code, 2);
+  EXPECT_NE(b.err.find("too few samples per period"), std::string::npos) << b.err;
+}
+
 TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
   TempDir dir;
   {
