@@ -244,11 +244,14 @@ Heading heading(const std::string& cell) {
 
 // The factor from a column's unit to SI (s or m/s^2); NaN for a unit not of that kind.
 double time_scale(const std::string& unit) {
+  // The micro sign or the Greek mu first: the key keeps ASCII letters only, so "\xC2\xB5s" is
+  // "s" there.
+  const std::string bare = trim(unit);
+  if (bare == "\xC2\xB5s" || bare == "\xCE\xBCs") return 1e-6;
   const std::string u = key_of(unit);
   if (u == "s" || u == "sec" || u == "second" || u == "seconds") return 1.0;
   if (u == "ms" || u == "msec" || u == "millisecond" || u == "milliseconds") return 1e-3;
-  if (u == "us" || u == "usec" || u == "microsecond" || u == "microseconds" || unit == "\xC2\xB5s")
-    return 1e-6;
+  if (u == "us" || u == "usec" || u == "microsecond" || u == "microseconds") return 1e-6;
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -262,6 +265,8 @@ double acceleration_scale(const std::string& unit) {
            rest == "/sec^2" || rest == "/sec2";
   };
   if (u == "g" || u == "g0" || u == "gn") return 9.80665;
+  if (u == "mg") return 9.80665e-3;  // milli-g, as MEMS accelerometers report
+  if (u.rfind("ft", 0) == 0 && per_s2(u.substr(2))) return 0.3048;
   if (u.rfind("mm", 0) == 0 && per_s2(u.substr(2))) return 1e-3;
   if (u.rfind("cm", 0) == 0 && per_s2(u.substr(2))) return 1e-2;
   if (u.rfind("m", 0) == 0 && per_s2(u.substr(1))) return 1.0;

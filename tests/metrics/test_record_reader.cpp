@@ -163,6 +163,18 @@ TEST(RecordReader, TimeFromTheRowNumberAtAGivenRate) {
   }
 }
 
+// Milli-g (MEMS accelerometers), feet per second squared, and microseconds written with the
+// Greek mu as well as the micro sign (both were read as seconds: the unit's key keeps ASCII
+// letters only, and "\xC2\xB5s" became "s").
+TEST(RecordReader, MoreUnits) {
+  const RecordColumns r = read_text("t [\xCE\xBCs],ax [mg],az [ft/s^2]\n0,1000,1\n1000000,500,2\n");
+  ASSERT_EQ(r.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.t[1], 1.0);
+  EXPECT_DOUBLE_EQ(r.ddx_M[0], 9.80665);
+  EXPECT_DOUBLE_EQ(r.ddz_M[1], 2 * 0.3048);
+  EXPECT_DOUBLE_EQ(read_text("t [\xC2\xB5s],ax_mg,az_mg\n0,1,2\n").ddz_M[0], 2 * 9.80665e-3);
+}
+
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
   const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
   const auto hint = [](const RecordColumns& r) {
