@@ -334,46 +334,133 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   auto strip_bom = [](std::string& l) {
     if (l.rfind("\xEF\xBB\xBF", 0) == 0) l.erase(0, 3);
   };
-  {
-    bool got = false;
-    while (std::getline(in, first)) {
-      ++no;
-      if (no == 1) strip_bom(first);
-      if (!first.empty() && first.back() == '\r') first.pop_back();
-      if (!is_comment(first)) {
-        got = true;
-        break;
+  // The delimiter of a line: the first of ; tab , that it holds, else whitespace.
+  const auto delimiter_of = [](const std::string& l) {
+    if (l.find(';') != std::string::npos) return ';';
+    if (l.find('\t') != std::string::npos) return '\t';
+    if (l.find(',') != std::string::npos) return ',';
+    return ' ';
+  };
+  const auto strip_brackets = [](std::string c) {
+    c = trim(c);
+    if (c.size() >= 2 &&
+        ((c.front() == '[' && c.back() == ']') || (c.front() == '(' && c.back() == ')') ||
+         (c.front() == '{' && c.back() == '}')))
+      c = trim(c.substr(1, c.size() - 2));
+    return c;
+  };
+  // A line of units under the header ("s;m/s^2;g", "[s],[g],[g]"): n cells, each empty or a unit,
+  // at least one a unit.
+  const auto is_units_row = [&](const std::string& l, char d, std::size_t n) {
+    const std::vector<std::string> cells = split(l, d);
+    if (cells.size() != n) return false;
+    bool unit = false;
+    for (const std::string& cell : cells) {
+      const std::string c = strip_brackets(cell);
+      if (c.empty() || c == "-") continue;
+      if (!is_unit(c)) return false;
+      unit = true;
+    }
+    return unit;
+  };
+  // A line with a number (or clock time) in some cell, under delimiter d.
+  const auto has_number = [&](const std::string& l, char d) {
+    for (const std::string& cell : split(l, d)) {
+      double v = 0;
+      if (parse_number(cell, d == ';', v) || parse_clock(cell)) return true;
+    }
+    return false;
+  };
+  // A logger's metadata line ("Device: HAMM", "rate = 1000"): never the header.
+  const auto is_metadata = [&](const std::string& l) {
+    const std::vector<std::string> cells = split(l, delimiter_of(l));
+    return cells.empty() || trim(cells.front()).ends_with(':') || l.find('=') != std::string::npos;
+  };
+  // The lines before the data: a logger's preamble (metadata without comment marks), the header
+  // and a line of units under it. The header is the first line (not metadata, at least two cells)
+  // whose next line (after a line of units) has as many cells under the same delimiter and a
+  // number in one; without such a line, the first line as before. At most kLeadLines are held.
+  constexpr std::size_t kLeadLines = 200;
+  std::vector<std::pair<std::string, std::size_t>> lead;
+  std::size_t header_at = 0, data_at = 1;  // indices in lead
+  bool has_units = false, decided = false;
+  const auto decide = [&] {
+    for (std::size_t i = 0; i + 1 < lead.size(); ++i) {
+      const std::string& h = lead[i].first;
+      if (is_metadata(h)) continue;
+      const char d = delimiter_of(h);
+      const std::size_t n = split(h, d).size();
+      if (n < 2) continue;
+      std::size_t j = i + 1;
+      const bool units = is_units_row(lead[j].first, d, n);
+      if (units) {
+        if (j + 1 >= lead.size()) return false;  // one more line to see
+        ++j;
+      }
+      const std::string& next = lead[j].first;
+      if (delimiter_of(next) == d && split(next, d).size() == n && has_number(next, d)) {
+        header_at = i;
+        data_at = j;
+        has_units = units;
+        return true;
       }
     }
-    if (!got) throw Error(name + ": no data (the record is empty or all comments)");
+    return false;
+  };
+  {
+    bool any = false;
+    for (std::string l; lead.size() < kLeadLines && std::getline(in, l);) {
+      ++no;
+      if (no == 1) strip_bom(l);
+      if (!l.empty() && l.back() == '\r') l.pop_back();
+      if (is_comment(l)) continue;
+      any = true;
+      lead.emplace_back(std::move(l), no);
+      if ((decided = decide())) break;
+    }
+    if (!any) throw Error(name + ": no data (the record is empty or all comments)");
+    if (!decided) {  // the first line, as before; its next lines follow as data
+      header_at = 0;
+      data_at = 1;
+      has_units = false;
+    }
   }
-  first_no = no;
-  // Delimiter: the first of ; tab , that the first line holds, else whitespace.
-  char delim = ' ';
+  first = lead[header_at].first;
+  first_no = lead[header_at].second;
+  // Delimiter: the first of ; tab , that the header line holds, else whitespace.
+  const char delim = delimiter_of(first);
   RecordColumns out;
-  out.delimiter = "whitespace";
-  if (first.find(';') != std::string::npos) {
-    delim = ';';
-    out.delimiter = "semicolon";
-  } else if (first.find('\t') != std::string::npos) {
-    delim = '\t';
-    out.delimiter = "tab";
-  } else if (first.find(',') != std::string::npos) {
-    delim = ',';
-    out.delimiter = "comma";
-  }
+  out.delimiter = delim == ';'    ? "semicolon"
+                  : delim == '\t' ? "tab"
+                  : delim == ','  ? "comma"
+                                  : "whitespace";
   const bool decimal_comma = delim == ';';  // 1,5;2,25 (a European spreadsheet)
-  // Header: the first line unless all its cells are numbers.
+  // Header: that line unless all its cells are numbers.
   std::vector<std::string> header = split(first, delim);
   bool has_header = false;
   for (const std::string& cell : header) {
     double v = 0;
     if (!parse_number(cell, decimal_comma, v) && !parse_clock(cell)) has_header = true;
   }
+  if (header_at > 0)
+    out.notes.push_back("skipped " + std::to_string(header_at) + " line" +
+                        (header_at > 1 ? "s" : "") + " before the " +
+                        (has_header ? "header" : "data") +
+                        " (a logger's preamble), which starts at line " + std::to_string(first_no));
+  std::vector<std::string> units_row;
+  if (has_units) {
+    units_row = split(lead[header_at + 1].first, delim);
+    out.notes.push_back("units from line " + std::to_string(lead[header_at + 1].second) +
+                        ", under the header");
+  }
   if (!has_header)
     for (std::size_t c = 0; c < header.size(); ++c) header[c] = "column " + std::to_string(c + 1);
   std::vector<Heading> headings;
   for (const std::string& h : header) headings.push_back(heading(h));
+  for (std::size_t c = 0; c < headings.size() && c < units_row.size(); ++c) {
+    const std::string u = strip_brackets(units_row[c]);
+    if (headings[c].unit.empty() && !u.empty() && u != "-") headings[c].unit = u;
+  }
   auto names = [&] {
     std::string all;
     for (const std::string& h : header) all += (all.empty() ? "" : ", ") + h;
@@ -576,7 +663,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       out.north.push_back(north);
     }
   };
-  if (!has_header) parse(first, first_no);
+  // The held lines after the header (and its units), then the rest as it is read; without a
+  // header the first line is data too.
+  for (std::size_t k = has_header ? data_at : header_at; k < lead.size(); ++k)
+    parse(lead[k].first, lead[k].second);
   while (next_line(line)) parse(line, no);
   if (out.t.empty())
     throw Error(name + (skipped > 0 ? ": every data row (" + std::to_string(skipped) +

@@ -175,6 +175,41 @@ TEST(RecordReader, MoreUnits) {
   EXPECT_DOUBLE_EQ(read_text("t [\xC2\xB5s],ax_mg,az_mg\n0,1,2\n").ddz_M[0], 2 * 9.80665e-3);
 }
 
+// A logger's export: metadata lines before the header (no comment marks), a line of units under
+// it. The preamble is skipped and the units read from that line, each said in a note; a header
+// whose first data row holds text in a column not read, or a bad number, is still the header.
+TEST(RecordReader, PreambleAndALineOfUnitsUnderTheHeader) {
+  const RecordColumns r = read_text(
+      "Device: HAMM HD+ 90 VO\nOperator: test\nSampling rate = 1000 Hz\n"
+      "Time;Acc X;Acc Z\nms;g;[m/s^2]\n0;1;2\n1;-1;-2\n");
+  ASSERT_EQ(r.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.t[1], 1e-3);
+  EXPECT_DOUBLE_EQ(r.ddx_M[0], 9.80665);
+  EXPECT_DOUBLE_EQ(r.ddz_M[1], -2.0);
+  EXPECT_EQ(r.delimiter, "semicolon");
+  int preamble = 0, units = 0;
+  for (const std::string& n : r.notes) {
+    preamble += n.find("skipped 3 lines before the header") != std::string::npos &&
+                n.find("line 4") != std::string::npos;
+    units += n.find("units from line 5, under the header") != std::string::npos;
+  }
+  EXPECT_EQ(preamble, 1);
+  EXPECT_EQ(units, 1);
+  // Headerless data after a preamble.
+  RecordReading columns;
+  columns.t_col = "1";
+  columns.x_col = "2";
+  columns.z_col = "3";
+  const RecordColumns headless = read_text("Logger: X\n0,1,2\n1,3,4\n", columns);
+  ASSERT_EQ(headless.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(headless.ddx_M[1], 3.0);
+  // The first line stays the header when the data under it hold text or a bad number.
+  EXPECT_EQ(read_text("t,ax,az,note\n0,1,2,start\n1,3,4,\n").t.size(), 2u);
+  EXPECT_NE(message_of("t,ax,az\n0,1,2\n1,abc,2\n").find("record.csv:3: column 'ax'"),
+            std::string::npos);
+  EXPECT_NE(message_of("t,ax,az\n0,x1,2\n").find("record.csv:2: column 'ax'"), std::string::npos);
+}
+
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
   const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
   const auto hint = [](const RecordColumns& r) {
