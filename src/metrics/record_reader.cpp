@@ -353,7 +353,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // at least one a unit.
   const auto is_units_row = [&](const std::string& l, char d, std::size_t n) {
     const std::vector<std::string> cells = split(l, d);
-    if (cells.size() != n) return false;
+    if (cells.size() < n) return false;
     bool unit = false;
     for (const std::string& cell : cells) {
       const std::string c = strip_brackets(cell);
@@ -384,12 +384,18 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   std::vector<std::pair<std::string, std::size_t>> lead;
   std::size_t header_at = 0, data_at = 1;  // indices in lead
   bool has_units = false, decided = false;
+  // Cells of a line without empty ones at its end (a trailing delimiter).
+  const auto cells_of = [](const std::string& l, char d) {
+    std::vector<std::string> c = split(l, d);
+    while (c.size() > 1 && trim(c.back()).empty()) c.pop_back();
+    return c.size();
+  };
   const auto decide = [&] {
     for (std::size_t i = 0; i + 1 < lead.size(); ++i) {
       const std::string& h = lead[i].first;
       if (is_metadata(h)) continue;
       const char d = delimiter_of(h);
-      const std::size_t n = split(h, d).size();
+      const std::size_t n = cells_of(h, d);
       if (n < 2) continue;
       std::size_t j = i + 1;
       const bool units = is_units_row(lead[j].first, d, n);
@@ -398,7 +404,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         ++j;
       }
       const std::string& next = lead[j].first;
-      if (delimiter_of(next) == d && split(next, d).size() == n && has_number(next, d)) {
+      if (delimiter_of(next) == d && cells_of(next, d) == n && has_number(next, d)) {
         header_at = i;
         data_at = j;
         has_units = units;

@@ -208,6 +208,10 @@ TEST(RecordReader, PreambleAndALineOfUnitsUnderTheHeader) {
   EXPECT_NE(message_of("t,ax,az\n0,1,2\n1,abc,2\n").find("record.csv:3: column 'ax'"),
             std::string::npos);
   EXPECT_NE(message_of("t,ax,az\n0,x1,2\n").find("record.csv:2: column 'ax'"), std::string::npos);
+  // Data rows with a trailing delimiter: still under the first line, as ragged rows.
+  EXPECT_NE(
+      message_of("t,ax,az\n0,1,2,\n1,3,4,\n").find("record.csv:2: 4 cells, but the header has 3"),
+      std::string::npos);
 }
 
 TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
