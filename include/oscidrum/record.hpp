@@ -74,7 +74,9 @@ struct WindowOptions {
   FrequencySearch search;       ///< used when f == 0
   double window_periods = 0.0;  ///< window length in excitation periods; 0: the whole record
   double hop_periods = 0.0;     ///< hop between window starts [periods]; 0: window_periods
-  int n_max = 10;               ///< harmonics fitted [-]
+  /// Harmonics fitted [-], >= 2; 0: as many as the record's sampling resolves, at most 10
+  /// (resolved_harmonics).
+  int n_max = 0;
   RecordGates gates;
   /// Added to the times the reasons quote [s]: a caller that analyses the times less an origin
   /// (for their precision) gives it, so that a gap is reported at the record's own time.

@@ -122,13 +122,14 @@ void bind_identify(py::module_& m) {
         return out;
       },
       py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"), py::arg("position") = py::none(),
-      py::arg("f") = 0.0, py::arg("window") = 0.0, py::arg("hop") = 0.0, py::arg("n_max") = 10,
+      py::arg("f") = 0.0, py::arg("window") = 0.0, py::arg("hop") = 0.0, py::arg("n_max") = 0,
       py::arg("max_residual") = 0.5, py::arg("max_drift") = 0.002, py::arg("clip_level") = 0.0,
       py::arg("max_gap") = 0.5, py::arg("max_change") = 0.05,
       "The record in windows of `window` excitation periods (0: whole), each fitted and checked "
       "by the quality gates, as `oscidrum analyze`: a list of dicts (window, t_start, t_end, t, "
       "position, samples, samples_per_period, f, drift, change, valid, reason, metrics). f = 0: "
-      "estimated.");
+      "estimated; n_max = 0: as many harmonics as the sampling resolves (2 n_max + 1 samples per "
+      "period), at most 10.");
   m.def(
       "record_kb",
       [](const py::list& windows, const Array& t, const std::optional<Array>& alpha,

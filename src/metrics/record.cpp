@@ -617,9 +617,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   if (!position.empty() && position.size() != t.size())
     throw Error("record: the position column must have one value per sample; got " +
                 std::to_string(position.size()) + " for " + std::to_string(t.size()));
-  if (o.n_max < 2)
-    throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
-                std::to_string(o.n_max));
+  if (o.n_max != 0 && o.n_max < 2)
+    throw Error(
+        "record: n_max must be >= 2 (psi needs the 2f harmonic; 0: as many as the "
+        "sampling resolves); got " +
+        std::to_string(o.n_max));
   if (!(o.f >= 0) || !std::isfinite(o.f))
     throw Error("record: f (--f) must be >= 0 [Hz] (0: estimated); got " + num(o.f));
   // Every size and gate is a finite number in its range (NaN would switch a check off).
@@ -654,6 +656,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
             "f (--f) must be at most half the record's sampling rate, " + num(0.5 * rate) + " Hz",
             o.f);
   }
+  // Harmonics: given, or as many as the sampling resolves (at most 10).
+  const int n_max = o.n_max > 0 ? o.n_max : resolved_harmonics(t, ddx, ddz, o);
   const bool windowed = o.window_periods > 0;
   // The record's frequency: given, or from its beginning (windows) or the whole (no windows).
   double f_rec = o.f;
@@ -804,10 +808,10 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                                 : std::string("on a plateau near the extremes")));
     w.samples_per_period = static_cast<double>(w.count - 1) / ((w.t_end - w.t_start) * f_track);
     const double spanned = (w.t_end - w.t_start) * f_track;
-    const bool dense = w.samples_per_period >= 2.0 * o.n_max + 1.0, long_enough = spanned >= 1.0;
+    const bool dense = w.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;
     if (!dense)
       reasons.push_back("too few samples per period (" + num(w.samples_per_period) + " < " +
-                        std::to_string(2 * o.n_max + 1) + " for " + std::to_string(o.n_max) +
+                        std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
                         " harmonics)");
     if (!long_enough)
       reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
@@ -816,13 +820,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     bool fitted = false;
     if (enough && gap <= max_gap) {
       const double periods = (w.t_end - w.t_start) * f_track;
-      const int nf = o.n_max;  // all of them: unfitted harmonics would bias f
+      const int nf = n_max;  // all of them: unfitted harmonics would bias f
       const double fw =
           o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f_track, std::min(0.05, 0.5 / periods), nf);
       w.f = fw;
       const std::size_t half = w.count / 2;
       const double hw = std::min(0.05, 1.0 / periods);
-      if (half >= static_cast<std::size_t>(2 * o.n_max + 2)) {
+      if (half >= static_cast<std::size_t>(2 * n_max + 2)) {
         const double f1 =
             refine_frequency(tw.first(half), xw.first(half), zw.first(half), fw, hw, nf);
         const double f2 =
@@ -830,12 +834,12 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         w.drift = (f2 - f1) / fw;
       }
       try {
-        w.metrics = analyze_record(tw, xw, zw, fw, o.n_max);
+        w.metrics = analyze_record(tw, xw, zw, fw, n_max);
         fitted = true;
       } catch (const Error& e) {
         reasons.push_back(e.what());
       }
-      if (fitted) change_within(tw, xw, zw, fw, o.n_max, w, reasons, o.gates.max_change);
+      if (fitted) change_within(tw, xw, zw, fw, n_max, w, reasons, o.gates.max_change);
       if (fitted) {
         const double res = std::max(w.metrics.residual_x, w.metrics.residual_z);
         if (!(res <= o.gates.max_residual))
@@ -857,7 +861,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       nan.cycles = (w.t_end - w.t_start) * f_track;
       nan.residual_x = fitted ? w.metrics.residual_x : kNaN;
       nan.residual_z = fitted ? w.metrics.residual_z : kNaN;
-      nan.ddx_harmonics.assign(static_cast<std::size_t>(o.n_max) + 1, Harmonic{kNaN, kNaN});
+      nan.ddx_harmonics.assign(static_cast<std::size_t>(n_max) + 1, Harmonic{kNaN, kNaN});
       nan.ddz_harmonics = nan.ddx_harmonics;
       w.metrics = nan;
     }

@@ -388,6 +388,32 @@ TwoChannels two_channel_record(int n, double dt) {
   return r;
 }
 
+// Without n_max (0, the default) a window is fitted with as many harmonics as the sampling
+// resolves (2 n + 1 samples per period, at most 10): a 500 Hz record of a 39 Hz drum (12.8 samples
+// per period) gets 5, where 10 would fail its samples-per-period gate; a dense record gets 10.
+TEST(Record, WithoutNMaxTheSamplingDecidesTheHarmonics) {
+  for (const auto& [rate, expected] : {std::pair{500.0, 5}, std::pair{2000.0, 10}}) {
+    SCOPED_TRACE(rate);
+    const TwoChannels r = two_channel_record(static_cast<int>(rate), 1.0 / rate);
+    WindowOptions o;
+    ASSERT_EQ(o.n_max, 0);
+    const std::vector<RecordWindow> ws = analyze_windows(r.t, r.x, r.z, {}, o);
+    ASSERT_EQ(ws.size(), 1u);
+    EXPECT_TRUE(ws[0].valid) << ws[0].reason;
+    EXPECT_EQ(ws[0].metrics.ddx_harmonics.size(), static_cast<std::size_t>(expected) + 1);
+    // f is estimated to about 1e-7 f, which moves the amplitudes by some 1e-8.
+    EXPECT_NEAR(ws[0].metrics.ddx_harmonics[3].amplitude, 2.0, 1e-7);
+    EXPECT_NEAR(ws[0].metrics.ddz_harmonics[2].amplitude, 1.1, 1e-7);
+    o.n_max = 10;  // asked for more than the sampling resolves: the gate says so
+    const std::vector<RecordWindow> ten = analyze_windows(r.t, r.x, r.z, {}, o);
+    ASSERT_EQ(ten.size(), 1u);
+    EXPECT_EQ(ten[0].valid, expected == 10) << ten[0].reason;
+    if (expected < 10) {
+      EXPECT_NE(ten[0].reason.find("too few samples per period"), std::string::npos);
+    }
+  }
+}
+
 // A window that fails a gate reports no number as measured: every scalar of the output table is
 // NaN (generated from the table: before, the harmonic ratios, CMV and THD of such a window read 0),
 // and a valid window of the same record has them all finite.

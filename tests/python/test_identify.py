@@ -121,6 +121,21 @@ def test_a_record_with_z_up_is_diagnosed_and_read_with_z_positive_up():
         oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="upward")
 
 
+def test_analyze_windows_fits_the_harmonics_the_sampling_resolves():
+    # 500 Hz of a 39 Hz drum: 12.8 samples per period resolve 5 harmonics, the default; 10 asked
+    # for fail the samples-per-period gate with the reason.
+    t = np.arange(500) / 500.0
+    nu = 2 * np.pi * 39.0
+    x = 12.0 * np.sin(nu * t) + 3.0 * np.sin(3 * nu * t)
+    z = 0.5 * np.sin(2 * nu * t + 0.3)
+    (w,) = oscidrum.analyze_windows(t, x, z)
+    assert w["valid"], w["reason"]
+    assert len(w["metrics"].ddx_amplitude) == 6
+    assert w["metrics"].ddx_amplitude[3] == pytest.approx(3.0, abs=1e-7)
+    (ten,) = oscidrum.analyze_windows(t, x, z, n_max=10)
+    assert not ten["valid"] and "too few samples per period" in ten["reason"]
+
+
 def test_a_window_across_a_change_of_soil_is_flagged():
     # G = 10 then 25 MN/m^2: the windows across the change fail the change gate (key `change`),
     # those on either side are valid; a looser gate lets them through.

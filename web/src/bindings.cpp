@@ -448,9 +448,10 @@ val record_metrics_of(const oscidrum::RecordMetrics& m) {
 }
 
 // Read the record `text` and analyse it as one window (oscidrum::analyze_windows with the
-// defaults of `oscidrum analyze`: the whole record, f estimated, harmonics n = 0 ... 10, the
-// quality gates). Returns {ok: false, error} for a record that cannot be read, else {ok: true,
-// reading, valid, reason, f, metrics, periodic: {ddx_M, ddz_M} (one period of the fit)}.
+// defaults of `oscidrum analyze`: the whole record, f estimated, harmonics n = 0 ... 10 or as
+// many as the sampling resolves when fewer, the quality gates). Returns {ok: false, error} for a
+// record that cannot be read, else {ok: true, reading, valid, reason, f, metrics, periodic: {ddx_M,
+// ddz_M} (one period of the fit)}.
 val analyze_record(const std::string& text, const std::string& name, const val& options) {
   try {
     const oscidrum::RecordColumns rec = record_of(text, name, options);
