@@ -13,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "oscidrum/error.hpp"
@@ -214,17 +215,22 @@ bool is_unit(const std::string& u) {
   return !std::isnan(time_scale(u)) || !std::isnan(acceleration_scale(u));
 }
 
-Heading heading(const std::string& cell) {
-  Heading h{trim(cell), "", ""};
+// A cell ending in a bracketed part ("acc_x [m/s^2]", "t (ms)", "{g}"): the part before it and
+// the bracketed part, each trimmed; nullopt for a cell that ends in no bracket.
+std::optional<std::pair<std::string, std::string>> split_bracket(const std::string& cell) {
+  const std::string c = trim(cell);
   for (const auto& [open, close] :
        {std::pair{'[', ']'}, std::pair{'(', ')'}, std::pair{'{', '}'}}) {
-    const std::size_t a = h.name.rfind(open);
-    if (a != std::string::npos && !h.name.empty() && h.name.back() == close) {
-      h.unit = trim(h.name.substr(a + 1, h.name.size() - a - 2));
-      h.name = trim(h.name.substr(0, a));
-      break;
-    }
+    const std::size_t a = c.rfind(open);
+    if (a != std::string::npos && !c.empty() && c.back() == close)
+      return std::pair{trim(c.substr(0, a)), trim(c.substr(a + 1, c.size() - a - 2))};
   }
+  return std::nullopt;
+}
+
+Heading heading(const std::string& cell) {
+  Heading h{trim(cell), "", ""};
+  if (const auto parts = split_bracket(cell)) std::tie(h.name, h.unit) = *parts;
   if (h.unit.empty()) {
     // A unit after the last space or '_' ("az m/s^2", "ax_g", "time_ms"), or a quantity over its
     // unit ("az/g", "t/s").
@@ -341,13 +347,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (l.find(',') != std::string::npos) return ',';
     return ' ';
   };
-  const auto strip_brackets = [](std::string c) {
-    c = trim(c);
-    if (c.size() >= 2 &&
-        ((c.front() == '[' && c.back() == ']') || (c.front() == '(' && c.back() == ')') ||
-         (c.front() == '{' && c.back() == '}')))
-      c = trim(c.substr(1, c.size() - 2));
-    return c;
+  // A cell of a units line: its unit, with or without brackets ("[s]", "s").
+  const auto strip_brackets = [](const std::string& c) {
+    const auto parts = split_bracket(c);
+    return parts && parts->first.empty() ? parts->second : trim(c);
   };
   // A line of units under the header ("s;m/s^2;g", "[s],[g],[g]"): n cells, each empty or a unit,
   // at least one a unit.
