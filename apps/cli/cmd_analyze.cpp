@@ -95,9 +95,7 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
 int run(AnalyzeOptions o) {
   const RecordColumns rec = read_record(o.input);
   report_reading(rec);
-  // --harmonics not given: 10, or as many as the record's sampling resolves when fewer.
-  if (o.windows.n_max == 0)
-    o.windows.n_max = resolved_harmonics(rec.t, rec.ddx_M, rec.ddz_M, o.windows);
+  // --harmonics not given (0): 10, or as many as the record's sampling resolves when fewer.
   std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
   // kb from the drum's vertical balance: the case's roller and the record's unbalance angle.
@@ -115,7 +113,8 @@ int run(AnalyzeOptions o) {
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
   const bool single = o.windows.window_periods == 0;
   const std::string name = o.input.file == "-" ? "<stdin>" : o.input.file;
-  const int n_max = o.windows.n_max;
+  // The harmonics fitted (every window holds n_max + 1, measured or NaN).
+  const int n_max = static_cast<int>(ws.front().metrics.ddx_harmonics.size()) - 1;
 
   if (o.format == "json") {
     nlohmann::ordered_json j;

@@ -232,7 +232,6 @@ MeasuredResponse measure_record(std::span<const double> t, std::span<const doubl
   wo.window_periods = 0.0;  // the whole record
   wo.hop_periods = 0.0;
   wo.time_origin += t0;  // the reasons quote the record's times
-  if (wo.n_max == 0) wo.n_max = resolved_harmonics(local, ddx_M, ddz_M, wo);
   const std::vector<RecordWindow> ws = analyze_windows(local, ddx_M, ddz_M, {}, wo);
   if (ws.empty()) throw Error("the record has no window to analyse");
   const RecordWindow& w = ws.front();

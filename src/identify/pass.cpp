@@ -35,7 +35,6 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   for (std::size_t i = 0; i < t.size(); ++i) local[i] = t[i] - t0;
   WindowOptions wo = windows;
   wo.time_origin += t0;  // the reasons quote the record's times
-  if (wo.n_max == 0) wo.n_max = resolved_harmonics(local, ddx, ddz, wo);
   std::vector<RecordWindow> ws = analyze_windows(local, ddx, ddz, position, wo);
   MeasureOptions mo = o.measure;
   mo.covariance = std::max(mo.covariance, o.harmonics);

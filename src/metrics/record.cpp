@@ -402,8 +402,16 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
   return f;
 }
 
-double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
-                          std::span<const double> ddz, const FrequencySearch& search) {
+namespace {
+
+// The peak of the harmonic-sum spectrum (estimate_frequency's first step) and its grid spacing.
+struct SpectralPeak {
+  double f = 0;   // [Hz]
+  double df = 0;  // [Hz]
+};
+
+SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> ddx,
+                           std::span<const double> ddz, const FrequencySearch& search) {
   check_record(t, ddx, ddz);
   if (t.size() < 8)
     throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
@@ -497,35 +505,63 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
     }
   }
   if (!(best_p > 0)) throw Error("record: the accelerations are constant; no frequency to find");
-  // Least squares on f: on the segment, then on spans growing fourfold up to the whole record.
-  std::size_t len = n_seg;
-  double f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), best_f,
-                              1.5 * df / best_f, search.n_max);
+  return {best_f, df};
+}
+
+// Least squares on f from the spectrum's peak (of the first 4096 samples of t): on those
+// samples, then on spans growing fourfold up to the whole of t.
+double refine_peak(std::span<const double> t, std::span<const double> ddx,
+                   std::span<const double> ddz, const SpectralPeak& peak, int n_max) {
+  std::size_t len = std::min<std::size_t>(t.size(), 4096);
+  double f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), peak.f,
+                              1.5 * peak.df / peak.f, n_max);
   while (len < t.size()) {
     len = std::min(t.size(), 4 * len);
     const double periods = (t[len - 1] - t[0]) * f;
-    f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), f, 0.3 / periods,
-                         search.n_max);
+    f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), f, 0.3 / periods, n_max);
   }
   return f;
+}
+
+// The median time step of t [s] (t has at least two samples).
+double median_step(std::span<const double> t) {
+  std::vector<double> dt(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
+  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+  return dt[dt.size() / 2];
+}
+
+// The harmonics that samples `step` apart resolve at f: 2 N + 1 per period, N in [2, 10].
+int harmonics_resolved_at(double f, double step) {
+  const double per_period = 1.0 / (f * step);
+  return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
+}
+
+// resolved_harmonics' f when none is given: from the spectrum's peak of the first 4096 samples,
+// refined with two harmonics on them.
+double resolving_frequency(std::span<const double> t, std::span<const double> ddx,
+                           std::span<const double> ddz, const SpectralPeak& peak) {
+  const std::size_t n = std::min<std::size_t>(t.size(), 4096);
+  return refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, 2);
+}
+
+}  // namespace
+
+double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
+                          std::span<const double> ddz, const FrequencySearch& search) {
+  return refine_peak(t, ddx, ddz, spectral_peak(t, ddx, ddz, search), search.n_max);
 }
 
 int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
                        std::span<const double> ddz, const WindowOptions& w) {
   if (t.size() < 8) return 10;  // analyze_windows says what is wrong
-  std::vector<double> dt(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  const double step = dt[dt.size() / 2];
   double f = w.f;
   if (!(f > 0)) {
     const std::size_t n = std::min<std::size_t>(t.size(), 4096);
-    FrequencySearch search = w.search;
-    search.n_max = 2;
-    f = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), search);
+    f = resolving_frequency(t, ddx, ddz,
+                            spectral_peak(t.first(n), ddx.first(n), ddz.first(n), w.search));
   }
-  const double per_period = 1.0 / (f * step);
-  return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
+  return harmonics_resolved_at(f, median_step(t));
 }
 
 std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed) {
@@ -656,14 +692,20 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
             "f (--f) must be at most half the record's sampling rate, " + num(0.5 * rate) + " Hz",
             o.f);
   }
-  // Harmonics: given, or as many as the sampling resolves (at most 10).
-  const int n_max = o.n_max > 0 ? o.n_max : resolved_harmonics(t, ddx, ddz, o);
   const bool windowed = o.window_periods > 0;
-  // The record's frequency: given, or from its beginning (windows) or the whole (no windows).
+  // The record's frequency: given, or from its beginning (windows) or the whole (no windows);
+  // the harmonics: given, or as many as the sampling resolves (resolved_harmonics, from the same
+  // spectrum's peak: both search the first 4096 samples).
   double f_rec = o.f;
+  int n_max = o.n_max;
   if (f_rec == 0.0) {
     const std::size_t n = windowed ? std::min<std::size_t>(t.size(), 4096) : t.size();
-    f_rec = estimate_frequency(t.first(n), ddx.first(n), ddz.first(n), o.search);
+    const SpectralPeak peak = spectral_peak(t.first(n), ddx.first(n), ddz.first(n), o.search);
+    if (n_max == 0)
+      n_max = harmonics_resolved_at(resolving_frequency(t, ddx, ddz, peak), median_step(t));
+    f_rec = refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, o.search.n_max);
+  } else if (n_max == 0) {
+    n_max = resolved_harmonics(t, ddx, ddz, o);
   }
   const double span = t.back() - t.front();
   // More windows than the record has samples is no analysis (a window or hop of a tiny part of
