@@ -39,7 +39,10 @@ struct Simulated {
   bool ok = false;
   std::string message;
   std::vector<std::complex<double>> x, z;  ///< C_n, n = 1 ... harmonics
-  double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0, area = 0;
+  /// The signal's peaks and area: computed only when the fit compares them (use_peaks,
+  /// use_area), else NaN.
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double ddx_max = kNaN, ddx_min = kNaN, ddz_max = kNaN, ddz_min = kNaN, area = kNaN;
   Metrics metrics;
   double friction_ratio = std::numeric_limits<double>::quiet_NaN();  ///< largest |T| / N [-]
   bool rolling = false;  ///< the steady state sticks throughout (no slip)
