@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -595,13 +596,25 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                    double max_change) {
   const std::size_t half = t.size() / 2;
   if (half < 2 || (t[half - 1] - t.front()) * f < 2.0 || (t.back() - t[half]) * f < 2.0) return;
-  RecordMetrics a, b;
-  try {
-    a = analyze_record(t.first(half), x.first(half), z.first(half), f, n_max);
-    b = analyze_record(t.subspan(half), x.subspan(half), z.subspan(half), f, n_max);
-  } catch (const Error&) {
-    return;  // a half that cannot be fitted says nothing about a change
-  }
+  // Each half's harmonics and residuals as analyze_record fits them (the same numbers), without
+  // the peaks, area and subharmonics that are not compared; a half with too few samples per period
+  // for n_max, which analyze_record refuses, says nothing about a change.
+  struct HalfFit {
+    std::vector<Harmonic> ddx_harmonics, ddz_harmonics;
+    double residual_x = 0, residual_z = 0;
+  };
+  const auto fit_half = [&](std::span<const double> th, std::span<const double> xh,
+                            std::span<const double> zh) -> std::optional<HalfFit> {
+    const double cycles = (th.back() - th.front()) * f;
+    if (static_cast<double>(th.size() - 1) / cycles < 2.0 * n_max + 1.0) return std::nullopt;
+    const HarmonicFit fit = fit_harmonics(th, xh, zh, f, n_max, 0.0);
+    return HalfFit{to_harmonics(fit.cx, n_max), to_harmonics(fit.cz, n_max),
+                   relative_rms(th, xh, fit.cx, f, n_max), relative_rms(th, zh, fit.cz, f, n_max)};
+  };
+  const std::optional<HalfFit> fa = fit_half(t.first(half), x.first(half), z.first(half));
+  const std::optional<HalfFit> fb = fit_half(t.subspan(half), x.subspan(half), z.subspan(half));
+  if (!fa || !fb) return;
+  const HalfFit &a = *fa, &b = *fb;
   const double n_half = static_cast<double>(half);
   double worst = 0.0, worst_abs = -1.0;
   bool significant = false;
