@@ -48,8 +48,9 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
                           std::span<const double> ddz_M, const FrequencySearch& search = {});
 
 /// Refine f [Hz] by minimising the residual of the harmonic fit (n = 0 ... n_max) over
-/// [f (1 - half_width), f (1 + half_width)] (golden section, first with the fundamental, then
-/// with more harmonics in narrower brackets; f is returned to 1e-7 relative).
+/// [f (1 - half_width), f (1 + half_width)] (first with the fundamental, then with more harmonics
+/// in narrower brackets; Gauss-Newton steps in f, Brent's search where they fail; f is returned
+/// to about 1e-9 relative, 1e-7 where Brent's search finishes).
 double refine_frequency(std::span<const double> t, std::span<const double> ddx_M,
                         std::span<const double> ddz_M, double f, double half_width, int n_max);
 

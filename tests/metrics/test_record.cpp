@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "metrics/frequency_step.hpp"
 #include "oscidrum/oscidrum.hpp"
 #include "tolerances.hpp"
 
@@ -195,6 +196,71 @@ TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
   EXPECT_NEAR(m.cycles, 3.37, 0.01);
   // Residual = noise RMS / signal RMS (x RMS = sqrt((40^2 + 4^2)/2 + 0.25)).
   EXPECT_NEAR(m.residual_x, 0.5 / std::sqrt((1600 + 16) / 2.0 + 0.25), 0.002);
+}
+
+// A noisy, jittered record of f = 39 Hz with harmonics in both channels (the frequency
+// refinement's test signal): n samples over `periods` periods.
+struct NoisyRecord {
+  std::vector<double> t, x, z;
+};
+NoisyRecord noisy_record(int n, double periods, unsigned seed) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  NoisyRecord r;
+  const double dt = periods / f / n;
+  for (int i = 0; i < n; ++i) {
+    const double ti = 0.123 + (i + jitter(rng)) * dt;
+    r.t.push_back(ti);
+    r.x.push_back(40.0 * std::sin(nu * ti + 0.3) + 4.0 * std::sin(3 * nu * ti - 1.0) + noise(rng));
+    r.z.push_back(1.5 + 5.0 * std::sin(2 * nu * ti + 0.9) + 2.0 * std::sin(nu * ti) + noise(rng));
+  }
+  return r;
+}
+
+// The derivatives of the fit residual F(f) that the Gauss-Newton refinement steps with: dF/df
+// (exact, by variable projection) against central differences of F, and the Gauss-Newton
+// curvature against the second difference, which it equals up to the term in the residual that
+// it leaves out (small for a fit that leaves noise only).
+TEST(Record, FrequencyStepDerivativesMatchFiniteDifferences) {
+  const NoisyRecord r = noisy_record(2000, 20.0, 7);
+  for (const int n_max : {1, 3, 6}) {
+    for (const double offset : {0.0, 1e-3, -4e-3}) {  // [Hz] from the true f
+      SCOPED_TRACE(std::to_string(n_max) + " harmonics, f offset " + std::to_string(offset));
+      const double f = 39.0 + offset, h = 1e-5;  // [Hz]
+      const detail::FrequencyStep s = detail::frequency_step(r.t, r.x, r.z, f, n_max);
+      const double Fp = detail::frequency_step(r.t, r.x, r.z, f + h, n_max).residual;
+      const double Fm = detail::frequency_step(r.t, r.x, r.z, f - h, n_max).residual;
+      const double slope = (Fp - Fm) / (2 * h), second = (Fp - 2 * s.residual + Fm) / (h * h);
+      // The slope crosses zero near the minimum: compared on the scale of F'' h.
+      EXPECT_NEAR(s.slope, slope, 1e-5 * std::abs(second) * h + 1e-6 * std::abs(slope));
+      EXPECT_NEAR(s.curvature, second, 0.02 * second);
+      EXPECT_GT(s.curvature, 0.0);
+      EXPECT_DOUBLE_EQ(s.step, -s.slope / s.curvature);
+    }
+  }
+}
+
+// refine_frequency returns the minimum of the fit residual itself, to 1e-9 f (Gauss-Newton
+// converges there; Brent's search stopped anywhere within 1e-7 f): the parabola through F at
+// f* and f* +- 1e-6 f has its vertex at f*, and F is no lower on either side.
+TEST(Record, RefinedFrequencyIsTheMinimumOfTheFitResidual) {
+  for (const auto& [n, periods] : {std::pair{3000, 3.37}, std::pair{2000, 40.0}}) {
+    SCOPED_TRACE(periods);
+    const NoisyRecord r = noisy_record(n, periods, 42);
+    const double f0 = 39.0 * (1 + 0.2 / periods);  // a fifth of a bin off
+    const double f = refine_frequency(r.t, r.x, r.z, f0, 0.5 / periods, 6);
+    const double d = 1e-6 * f;
+    const auto F = [&](double g) { return detail::frequency_step(r.t, r.x, r.z, g, 6).residual; };
+    const double F0 = F(f), Fp = F(f + d), Fm = F(f - d);
+    EXPECT_GE(Fp, F0);
+    EXPECT_GE(Fm, F0);
+    const double vertex = f + 0.5 * d * (Fm - Fp) / (Fp - 2 * F0 + Fm);
+    EXPECT_NEAR(vertex, f, 1e-9 * f);
+    // The main lobe's minimum (a bin is f / periods wide), off by the noise only.
+    EXPECT_NEAR(f, 39.0, 0.05 * 39.0 / periods);
+  }
 }
 
 // analyze_record fits by the normal equations (one pass, no n x (2 n_max + 1) basis): on a short,
