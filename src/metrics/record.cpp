@@ -400,35 +400,69 @@ FrequencyStep frequency_step(std::span<const double> t, std::span<const double> 
                wz = fit.z_var > 0 ? 1.0 / fit.z_var : 0.0;
   out.residual = wx * fit.x_res + wz * fit.z_res;
   const int cols = 2 * n_max + 1;
-  std::vector<double> cm(n_max + 1), sm(n_max + 1);
   Eigen::VectorXd ux = Eigen::VectorXd::Zero(cols), uz = Eigen::VectorXd::Zero(cols);
   double gx = 0, gz = 0, dxx = 0, dzz = 0;  // <r, D>, |D|^2 of each signal
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double tau = t[i] - t_ref;
-    harmonics_at(f * tau, n_max, cm, sm);
-    double yx = fit.cx[0], yz = fit.cz[0], Dx = 0, Dz = 0;
-    for (int n = 1; n <= n_max; ++n) {
-      // a cos(2 pi n f tau) + b sin(2 pi n f tau), and its derivative in f over 2 pi n tau
-      yx += fit.cx[2 * n - 1] * cm[n] + fit.cx[2 * n] * sm[n];
-      yz += fit.cz[2 * n - 1] * cm[n] + fit.cz[2 * n] * sm[n];
-      Dx += n * (fit.cx[2 * n] * cm[n] - fit.cx[2 * n - 1] * sm[n]);
-      Dz += n * (fit.cz[2 * n] * cm[n] - fit.cz[2 * n - 1] * sm[n]);
+  // Four samples at a time, as fit_harmonics: their angle-addition recurrences are independent
+  // chains that the processor overlaps. The basis of each sample is kept (cm, sm: harmonic n of
+  // lane b at n * kLanes + b) for u = B^T D, which needs D complete.
+  constexpr std::size_t kLanes = 4;
+  std::vector<double> cm((n_max + 1) * kLanes), sm((n_max + 1) * kLanes);
+  const auto lanes = [&](std::size_t row, std::size_t count) {
+    double c1[kLanes], s1[kLanes], tau[kLanes], yx[kLanes], yz[kLanes], Dx[kLanes], Dz[kLanes];
+    for (std::size_t b = 0; b < count; ++b) {
+      tau[b] = t[row + b] - t_ref;
+      const detail::SinCos one = detail::sincos_turns(f * tau[b]);
+      c1[b] = cm[kLanes + b] = one.cos;
+      s1[b] = sm[kLanes + b] = one.sin;
+      yx[b] = fit.cx[0];
+      yz[b] = fit.cz[0];
+      Dx[b] = Dz[b] = 0.0;
     }
-    Dx *= 2.0 * M_PI * tau;
-    Dz *= 2.0 * M_PI * tau;
-    gx += (x[i] - yx) * Dx;
-    gz += (z[i] - yz) * Dz;
-    dxx += Dx * Dx;
-    dzz += Dz * Dz;
-    ux[0] += Dx;
-    uz[0] += Dz;
     for (int n = 1; n <= n_max; ++n) {
-      ux[2 * n - 1] += cm[n] * Dx;
-      ux[2 * n] += sm[n] * Dx;
-      uz[2 * n - 1] += cm[n] * Dz;
-      uz[2 * n] += sm[n] * Dz;
+      const std::size_t k = static_cast<std::size_t>(n) * kLanes;
+      const double ax = fit.cx[2 * n - 1], bx = fit.cx[2 * n], az = fit.cz[2 * n - 1],
+                   bz = fit.cz[2 * n];
+      for (std::size_t b = 0; b < count; ++b) {
+        if (n > 1) {  // cos and sin of n w from those of (n - 1) w
+          cm[k + b] = cm[k - kLanes + b] * c1[b] - sm[k - kLanes + b] * s1[b];
+          sm[k + b] = sm[k - kLanes + b] * c1[b] + cm[k - kLanes + b] * s1[b];
+        }
+        const double c = cm[k + b], sn = sm[k + b];
+        // a cos(2 pi n f tau) + b sin(2 pi n f tau), and its derivative in f over 2 pi n tau
+        yx[b] += ax * c + bx * sn;
+        yz[b] += az * c + bz * sn;
+        Dx[b] += n * (bx * c - ax * sn);
+        Dz[b] += n * (bz * c - az * sn);
+      }
     }
-  }
+    for (std::size_t b = 0; b < count; ++b) {
+      Dx[b] *= 2.0 * M_PI * tau[b];
+      Dz[b] *= 2.0 * M_PI * tau[b];
+      gx += (x[row + b] - yx[b]) * Dx[b];
+      gz += (z[row + b] - yz[b]) * Dz[b];
+      dxx += Dx[b] * Dx[b];
+      dzz += Dz[b] * Dz[b];
+      ux[0] += Dx[b];
+      uz[0] += Dz[b];
+    }
+    for (int n = 1; n <= n_max; ++n) {
+      const std::size_t k = static_cast<std::size_t>(n) * kLanes;
+      double uxc = 0, uxs = 0, uzc = 0, uzs = 0;
+      for (std::size_t b = 0; b < count; ++b) {
+        uxc += cm[k + b] * Dx[b];
+        uxs += sm[k + b] * Dx[b];
+        uzc += cm[k + b] * Dz[b];
+        uzs += sm[k + b] * Dz[b];
+      }
+      ux[2 * n - 1] += uxc;
+      ux[2 * n] += uxs;
+      uz[2 * n - 1] += uzc;
+      uz[2 * n] += uzs;
+    }
+  };
+  std::size_t row = 0;
+  for (; row + kLanes <= t.size(); row += kLanes) lanes(row, kLanes);
+  if (row < t.size()) lanes(row, t.size() - row);
   out.slope = -2.0 * (wx * gx + wz * gz);
   out.curvature =
       2.0 * (wx * (dxx - ux.dot(fit.gram.solve(ux))) + wz * (dzz - uz.dot(fit.gram.solve(uz))));
