@@ -241,6 +241,26 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
     throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
 }
 
+// The least-squares harmonics of both signals at f with absolute-time phases (t_ref = 0), and
+// their residuals relative to the RMS about the mean: analyze_record's fit, and the change gate's
+// of each half of a window.
+struct RecordFit {
+  HarmonicFit fit;
+  Spectrum hx, hz;
+  double residual_x = 0.0, residual_z = 0.0;
+};
+
+RecordFit fit_record(std::span<const double> t, std::span<const double> x,
+                     std::span<const double> z, double f, int n_max) {
+  RecordFit r;
+  r.fit = fit_harmonics(t, x, z, f, n_max, 0.0);
+  r.hx = to_harmonics(r.fit.cx, n_max);
+  r.hz = to_harmonics(r.fit.cz, n_max);
+  r.residual_x = relative_rms(t, x, r.fit.cx, f, n_max);
+  r.residual_z = relative_rms(t, z, r.fit.cz, f, n_max);
+  return r;
+}
+
 }  // namespace
 
 RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx,
@@ -263,17 +283,16 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
                 std::to_string(n_max) + " (need at least " + std::to_string(2 * n_max + 1) + ")");
 
   // Harmonics with absolute-time phases (t_ref = 0).
-  const HarmonicFit fit = fit_harmonics(t, ddx, ddz, f, n_max, 0.0);
-  const Eigen::VectorXd& cx = fit.cx;
-  const Eigen::VectorXd& cz = fit.cz;
-  m.residual_x = relative_rms(t, ddx, cx, f, n_max);
-  m.residual_z = relative_rms(t, ddz, cz, f, n_max);
+  RecordFit rf = fit_record(t, ddx, ddz, f, n_max);
+  const Eigen::VectorXd& cx = rf.fit.cx;
+  const Eigen::VectorXd& cz = rf.fit.cz;
+  m.residual_x = rf.residual_x;
+  m.residual_z = rf.residual_z;
   {
-    Spectrum hx = to_harmonics(cx, n_max), hz = to_harmonics(cz, n_max);
     // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
     double overtones = 0.0;
-    for (int n = 2; n <= n_max; ++n) overtones += std::pow(hx[n].amplitude, 2);
-    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), overtones, n_max,
+    for (int n = 2; n <= n_max; ++n) overtones += std::pow(rf.hx[n].amplitude, 2);
+    detail::set_spectral_metrics(m, std::move(rf.hx), std::move(rf.hz), overtones, n_max,
                                  half_harmonics(t, ddz, f, n_max, m.cycles));
   }
 
@@ -733,25 +752,19 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                    double max_change) {
   const std::size_t half = t.size() / 2;
   if (half < 2 || (t[half - 1] - t.front()) * f < 2.0 || (t.back() - t[half]) * f < 2.0) return;
-  // Each half's harmonics and residuals as analyze_record fits them (the same numbers), without
-  // the peaks, area and subharmonics that are not compared; a half with too few samples per period
+  // Each half's harmonics and residuals as analyze_record fits them (fit_record), without the
+  // peaks, area and subharmonics that are not compared; a half with too few samples per period
   // for n_max, which analyze_record refuses, says nothing about a change.
-  struct HalfFit {
-    std::vector<Harmonic> ddx_harmonics, ddz_harmonics;
-    double residual_x = 0, residual_z = 0;
-  };
   const auto fit_half = [&](std::span<const double> th, std::span<const double> xh,
-                            std::span<const double> zh) -> std::optional<HalfFit> {
+                            std::span<const double> zh) -> std::optional<RecordFit> {
     const double cycles = (th.back() - th.front()) * f;
     if (static_cast<double>(th.size() - 1) / cycles < 2.0 * n_max + 1.0) return std::nullopt;
-    const HarmonicFit fit = fit_harmonics(th, xh, zh, f, n_max, 0.0);
-    return HalfFit{to_harmonics(fit.cx, n_max), to_harmonics(fit.cz, n_max),
-                   relative_rms(th, xh, fit.cx, f, n_max), relative_rms(th, zh, fit.cz, f, n_max)};
+    return fit_record(th, xh, zh, f, n_max);
   };
-  const std::optional<HalfFit> fa = fit_half(t.first(half), x.first(half), z.first(half));
-  const std::optional<HalfFit> fb = fit_half(t.subspan(half), x.subspan(half), z.subspan(half));
+  const std::optional<RecordFit> fa = fit_half(t.first(half), x.first(half), z.first(half));
+  const std::optional<RecordFit> fb = fit_half(t.subspan(half), x.subspan(half), z.subspan(half));
   if (!fa || !fb) return;
-  const HalfFit &a = *fa, &b = *fb;
+  const RecordFit &a = *fa, &b = *fb;
   const double n_half = static_cast<double>(half);
   double worst = 0.0, worst_abs = -1.0;
   bool significant = false;
@@ -761,8 +774,8 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     const RecordMetrics& m = w.metrics;  // the fit of the whole window
     const double whole = periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
     if (!(whole > 0.0)) continue;
-    const double r1 = periodic_rms(c == 0 ? a.ddx_harmonics : a.ddz_harmonics);
-    const double r2 = periodic_rms(c == 0 ? b.ddx_harmonics : b.ddz_harmonics);
+    const double r1 = periodic_rms(c == 0 ? a.hx : a.hz);
+    const double r2 = periodic_rms(c == 0 ? b.hx : b.hz);
     // The residuals are relative to the RMS about the mean (relative_rms).
     double mean = 0.0, mean_square = 0.0;
     for (double v : y) mean += v;
