@@ -113,4 +113,28 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
   return fit;
 }
 
+std::size_t downhill_on_grid(std::size_t n, const std::function<double(std::size_t)>& S) {
+  std::vector<double> v(n, std::numeric_limits<double>::quiet_NaN());
+  std::size_t best = n;
+  const auto at = [&](std::size_t k) {
+    v[k] = S(k);
+    if (std::isfinite(v[k]) && (best == n || v[k] < v[best])) best = k;
+    return v[k];
+  };
+  const std::size_t lo = n / 2 - 1, hi = n / 2;
+  const double s_lo = at(lo), s_hi = at(hi);
+  if (std::isfinite(s_lo) || std::isfinite(s_hi)) {
+    if (s_hi < s_lo) {
+      for (std::size_t k = hi + 1; k < n && at(k) < v[k - 1];) ++k;
+    } else {
+      for (std::size_t k = lo; k-- > 0 && at(k) < v[k + 1];) {
+      }
+    }
+  } else {
+    for (std::size_t k = 0; k < n; ++k)
+      if (k != lo && k != hi) at(k);
+  }
+  return best;
+}
+
 }  // namespace oscidrum::detail

@@ -127,6 +127,21 @@ TEST(Identify, StickSlipG81WithoutDrivingTorque) {
   EXPECT_NEAR(id.f / kF, 1.0, 1e-4);
 }
 
+// A soft soil below the start scan's grid and a stiff one near its upper end (G = 4, 8, ..., 128
+// MN/m^2, walked downhill from 16 and 32 MN/m^2), each identified from a cold start.
+TEST(Identify, SoftAndStiffSoilsFromAColdStart) {
+  for (const double G : {3.5e6, 110e6}) {
+    const RecordSamples r = noisy_record(truth(G, false, 0.0), 0.6, 1500, 5);
+    IdentifyOptions o;
+    o.profile = false;
+    const Identification id = identify_whole(base(false, 0.0), r, o);
+    ASSERT_EQ(id.estimates.size(), 1u);
+    EXPECT_NEAR(id.estimates[0].value / G, 1.0, 0.03) << G;
+    EXPECT_TRUE(id.converged) << G << ": " << id.message;
+    EXPECT_LT(id.reduced_chi2, o.max_reduced_chi2) << G;
+  }
+}
+
 TEST(Identify, PureRollingG427WithDrivingTorque) {
   const RecordSamples r = noisy_record(truth(42.7e6, true, 0.03), 0.6, 1000, 11);
   const Identification id = identify_whole(base(true, 0.03), r, {});

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "identify/solver.hpp"
 
@@ -148,6 +150,48 @@ TEST(Jacobian, ForwardDifferencesOfAnExactDerivative) {
     EXPECT_NEAR(J(i, 0), -y, 2 * kJacobianStep * std::abs(y) + 1e-12);
     EXPECT_NEAR(J(i, 1), y * b * x, 2 * kJacobianStep * (1 + b * x) * std::abs(y * b * x) + 1e-12);
   }
+}
+
+// downhill_on_grid on six points: the grid's minimum for every single-minimum S, found without
+// evaluating the points beyond it; every point where the two middle ones fail.
+TEST(DownhillOnGrid, FindsTheMinimumOfEverySingleMinimumGridWithoutThePointsBeyondIt) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t m = 0; m < 6; ++m) {
+    std::vector<int> calls(6, 0);
+    const auto S = [&](std::size_t k) {
+      ++calls[k];
+      return std::abs(static_cast<double>(k) - static_cast<double>(m)) +
+             0.1 * static_cast<double>(k);
+    };
+    EXPECT_EQ(downhill_on_grid(6, S), m);
+    for (std::size_t k = 0; k < 6; ++k) {
+      EXPECT_LE(calls[k], 1) << "minimum " << m << ", point " << k;
+      // Evaluated: the middle two, the points between them and the minimum, and the one past it.
+      const bool needed =
+          k == 2 || k == 3 || (m <= 2 && k < 2 && k + 1 >= m) || (m >= 3 && k > 3 && k <= m + 1);
+      EXPECT_EQ(calls[k], needed ? 1 : 0) << "minimum " << m << ", point " << k;
+    }
+  }
+  // A failing point (S = inf) ends the walk like a rise.
+  std::vector<double> v{1.0, 2.0, 3.0, 4.0, inf, 0.5};
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 0u);
+  v = {5.0, inf, 3.0, 2.0, 1.0, 0.5};
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 5u);
+  // Both middle points failing: every point is tried.
+  std::vector<int> calls(6, 0);
+  v = {inf, 7.0, inf, inf, 6.0, inf};
+  EXPECT_EQ(downhill_on_grid(6,
+                             [&](std::size_t k) {
+                               ++calls[k];
+                               return v[k];
+                             }),
+            4u);
+  EXPECT_EQ(calls, std::vector<int>(6, 1));
+  // Nowhere finite: n.
+  EXPECT_EQ(downhill_on_grid(6, [](std::size_t) { return inf; }), 6u);
+  // A grid with two minima: the walk stops at the one on its side (documented, not the grid's).
+  v = {0.1, 3.0, 2.0, 2.5, 1.0, 4.0};
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 2u);
 }
 
 }  // namespace
