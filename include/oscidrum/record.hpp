@@ -40,7 +40,8 @@ struct FrequencySearch {
 
 /// The excitation frequency of a record [Hz]: the peak of the harmonic-sum spectrum
 /// P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) of at most the first 4096 samples on a grid of
-/// a quarter of their frequency resolution, refined by minimising the residual of the
+/// at most a quarter of their frequency resolution (an FFT's bins for uniform samples, direct
+/// sums otherwise), refined by minimising the residual of the
 /// least-squares harmonic fit (n = 0 ... n_max, both signals) over f itself, first on that
 /// segment, then on the whole record. Throws oscidrum::Error on the conditions of analyze_record
 /// and when the range holds no frequency.

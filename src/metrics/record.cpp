@@ -11,10 +11,12 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "indicators.hpp"
 #include "metrics/frequency_step.hpp"
+#include "metrics/spectral_peak.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
 #include "util/format.hpp"
@@ -541,16 +543,20 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
   return f;
 }
 
-namespace {
+namespace detail {
 
-// The peak of the harmonic-sum spectrum (estimate_frequency's first step) and its grid spacing.
-struct SpectralPeak {
-  double f = 0;   // [Hz]
-  double df = 0;  // [Hz]
-};
+std::size_t fft_size(std::size_t n) {
+  for (std::size_t L = std::max<std::size_t>(n, 1);; ++L) {
+    std::size_t m = L;
+    for (const std::size_t p : {2, 3, 5})
+      while (m % p == 0) m /= p;
+    if (m == 1) return L;
+  }
+}
 
 SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> ddx,
-                           std::span<const double> ddz, const FrequencySearch& search) {
+                           std::span<const double> ddz, const FrequencySearch& search,
+                           bool allow_fft) {
   check_record(t, ddx, ddz);
   if (t.size() < 8)
     throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
@@ -581,8 +587,54 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   };
   demean(xs);
   demean(zs);
-  const double df = 0.25 / span;
   double best_f = f_lo, best_p = -1.0;
+  // P(f) from the transforms X(n f), Z(n f), n = 1, 2, 3. The excitation frequency carries the
+  // drum's largest acceleration (x_M'' at f). A frequency whose own term is a small part of the
+  // sum is a subharmonic that collects the harmonics of the true f, e.g. f/2 when a change of
+  // the soil along a pass shifts the phase abruptly and splits the peak at f in two.
+  const auto consider = [&](double f, const std::complex<double>(&X)[3],
+                            const std::complex<double>(&Z)[3]) {
+    double p = 0;
+    for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
+    if (std::norm(X[0]) + std::norm(Z[0]) < 0.1 * p) return;
+    if (p > best_p) {
+      best_p = p;
+      best_f = f;
+    }
+  };
+  const auto peak = [&](double df) -> SpectralPeak {
+    if (!(best_p > 0)) throw Error("record: the accelerations are constant; no frequency to find");
+    return {best_f, df};
+  };
+  // Uniform samples (every time within 1e-3 steps of t_0 + k h; the peak only starts the
+  // refinement, which a phase error of 2 pi 3 f 1e-3 h < 1e-2 rad does not move): the spectrum
+  // by one FFT of each signal, zero-padded to L >= 4 (n - 1) points (a 2-3-5 length, Eigen's
+  // kissfft), whose bins k / (L h) are a grid at least as fine as the direct sums' below and hold
+  // n f at bin n k. A few hundred times fewer operations than the sums on a few thousand samples.
+  const double h = span / static_cast<double>(n_seg - 1);
+  bool uniform = allow_fft;
+  for (std::size_t k = 0; k < n_seg && uniform; ++k)
+    uniform = std::abs((t[k] - t[0]) - static_cast<double>(k) * h) <= 1e-3 * h;
+  if (uniform) {
+    const std::size_t L = fft_size(4 * (n_seg - 1));
+    const double dF = 1.0 / (static_cast<double>(L) * h);
+    Eigen::FFT<double> fft;
+    std::vector<double> padded(L, 0.0);
+    std::vector<std::complex<double>> FX, FZ;
+    std::copy(xs.begin(), xs.end(), padded.begin());
+    fft.fwd(FX, padded);
+    std::copy(zs.begin(), zs.end(), padded.begin());
+    fft.fwd(FZ, padded);
+    // 3 k <= L / 2: f_hi <= fs / 6 with fs = 1 / h.
+    for (auto k = static_cast<std::size_t>(std::ceil(f_lo / dF));
+         static_cast<double>(k) * dF <= f_hi && 3 * k < FX.size(); ++k) {
+      const std::complex<double> X[3] = {FX[k], FX[2 * k], FX[3 * k]};
+      const std::complex<double> Z[3] = {FZ[k], FZ[2 * k], FZ[3 * k]};
+      consider(static_cast<double>(k) * dF, X, Z);
+    }
+    return peak(dF);
+  }
+  const double df = 0.25 / span;
   // e^{-i 2 pi f (t_k - t_0)} of every sample, carried from one grid frequency to the next by
   // the factor e^{-i 2 pi df (t_k - t_0)} (no sin and cos per sample and frequency; the record's
   // times need not be uniform), and computed afresh every kFresh frequencies so that the
@@ -649,21 +701,17 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
       X[n] = {Xr[n], Xi[n]};
       Z[n] = {Zr[n], Zi[n]};
     }
-    double p = 0;
-    for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
-    // The excitation frequency carries the drum's largest acceleration (x_M'' at f). A frequency
-    // whose own term is a small part of the sum is a subharmonic that collects the harmonics of
-    // the true f, e.g. f/2 when a change of the soil along a pass shifts the phase abruptly and
-    // splits the peak at f in two.
-    if (std::norm(X[0]) + std::norm(Z[0]) < 0.1 * p) continue;
-    if (p > best_p) {
-      best_p = p;
-      best_f = f;
-    }
+    consider(f, X, Z);
   }
-  if (!(best_p > 0)) throw Error("record: the accelerations are constant; no frequency to find");
-  return {best_f, df};
+  return peak(df);
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::spectral_peak;
+using detail::SpectralPeak;
 
 // Least squares on f from the spectrum's peak (of the first 4096 samples of t): on those
 // samples, then on spans growing fourfold up to the whole of t.

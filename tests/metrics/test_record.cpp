@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "metrics/frequency_step.hpp"
+#include "metrics/spectral_peak.hpp"
 #include "oscidrum/oscidrum.hpp"
 #include "tolerances.hpp"
 
@@ -260,6 +261,57 @@ TEST(Record, RefinedFrequencyIsTheMinimumOfTheFitResidual) {
     EXPECT_NEAR(vertex, f, 1e-9 * f);
     // The main lobe's minimum (a bin is f / periods wide), off by the noise only.
     EXPECT_NEAR(f, 39.0, 0.05 * 39.0 / periods);
+  }
+}
+
+// fft_size: the smallest 2-3-5 length at least n (checked against every smaller length).
+TEST(Record, FftSizeIsTheNextTwoThreeFiveLength) {
+  const auto smooth = [](std::size_t L) {
+    for (const std::size_t p : {2, 3, 5})
+      while (L % p == 0) L /= p;
+    return L == 1;
+  };
+  for (std::size_t n = 1; n <= 20000; ++n) {
+    const std::size_t L = detail::fft_size(n);
+    ASSERT_GE(L, n);
+    ASSERT_TRUE(smooth(L)) << n << " -> " << L;
+    for (std::size_t m = n; m < L; ++m) ASSERT_FALSE(smooth(m)) << n << " -> " << L;
+  }
+  EXPECT_EQ(detail::fft_size(4 * 1029), 4320u);  // the benchmark window's 1030 samples
+}
+
+// The spectral peak of a uniformly sampled record by the FFT and by the direct sums (the path of
+// records with irregular times): the two grids' peaks lie within a grid step of each other and
+// of the true f, both on the true f rather than on its subharmonic f/2 (which collects the even
+// harmonics' power), and the refined frequency is the same from either.
+TEST(Record, SpectralPeakByFftIsTheDirectSumsPeak) {
+  for (const auto& [n, rate, f] : {std::tuple{1030, 1000.0, 39.39}, std::tuple{4096, 2000.0, 31.7},
+                                   std::tuple{777, 500.0, 62.3}}) {
+    SCOPED_TRACE(rate);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.5);
+    std::vector<double> t(n), x(n), z(n);
+    const double nu = 2 * M_PI * f;
+    for (int i = 0; i < n; ++i) {
+      t[i] = 1234.5 + i / rate;
+      const double s = t[i] - 1234.5;
+      x[i] = 9.0 * std::sin(nu * s + 0.3) + 6.0 * std::sin(2 * nu * s - 1.0) + noise(rng);
+      z[i] = 9.81 + 1.0 * std::sin(nu * s) + 3.0 * std::sin(2 * nu * s + 0.9) + noise(rng);
+    }
+    const FrequencySearch search;
+    const detail::SpectralPeak fft = detail::spectral_peak(t, x, z, search, true);
+    const detail::SpectralPeak sums = detail::spectral_peak(t, x, z, search, false);
+    const double span = t.back() - t.front();
+    EXPECT_NEAR(sums.df, 0.25 / span, 1e-12 * sums.df);
+    EXPECT_LT(fft.df, sums.df);  // its own grid: lengths 4320, 16384, 3125 above 4 (n - 1)
+    EXPECT_GT(fft.df, 0.9 * sums.df);
+    EXPECT_NEAR(fft.f, sums.f, sums.df);
+    EXPECT_NEAR(fft.f, f, sums.df);
+    EXPECT_NEAR(sums.f, f, sums.df);
+    const double a = refine_frequency(t, x, z, fft.f, 1.5 * fft.df / fft.f, 6);
+    const double b = refine_frequency(t, x, z, sums.f, 1.5 * sums.df / sums.f, 6);
+    EXPECT_NEAR(a, b, 2e-9 * f);
+    EXPECT_NEAR(a, f, 1e-3 * f);
   }
 }
 

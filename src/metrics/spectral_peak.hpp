@@ -1,0 +1,31 @@
+// spectral_peak.hpp: the first step of the record's frequency estimate (record.cpp), internal;
+// exposed for its tests.
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+#include "oscidrum/record.hpp"
+
+namespace oscidrum::detail {
+
+/// The peak of the harmonic-sum spectrum and its grid spacing.
+struct SpectralPeak {
+  double f = 0;   ///< [Hz]
+  double df = 0;  ///< grid spacing [Hz]
+};
+
+/// The peak of P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) over [max(f_min, 1/span),
+/// min(f_max, fs/6)] of at most the first 4096 samples (demeaned), frequencies whose own term is
+/// below a tenth of P (subharmonics) left out. Uniformly sampled records (and allow_fft): by an
+/// FFT zero-padded to fft_size(4 (n - 1)) points, on its bins; otherwise by direct sums on a grid
+/// of a quarter of the frequency resolution. Throws oscidrum::Error on too few samples, an empty
+/// range or constant accelerations.
+SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> ddx,
+                           std::span<const double> ddz, const FrequencySearch& search,
+                           bool allow_fft = true);
+
+/// The smallest L >= n whose only prime factors are 2, 3 and 5.
+std::size_t fft_size(std::size_t n);
+
+}  // namespace oscidrum::detail
