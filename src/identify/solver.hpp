@@ -44,6 +44,9 @@ struct Fit {
 
 /// Forward-difference step of the internal coordinates.
 inline constexpr double kJacobianStep = 1e-3;
+/// A step of the internal coordinates below this ends a fit as converged: 1e-4 in ln G is
+/// 0.01 % of G, far below any uncertainty the data allow.
+inline constexpr double kStepConverged = 1e-4;
 
 /// The Jacobian dr/dp at p (r = r(p)) by forward differences of kJacobianStep (inwards at an
 /// upper bound, the other side where the problem fails); columns of fixed parameters are 0.
@@ -53,8 +56,9 @@ bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::Vect
 
 /// Levenberg-Marquardt from p over the free parameters, steps clamped to the bounds and limited
 /// to 0.7 in any internal coordinate (a factor 2 in a parameter on a log scale). Converged when
-/// no step lowers S, a step is below 1e-4 or the decrease below 1e-8 S (also the decrease the
-/// linearised problem predicts: such a step is not tried). S is infinite (and
+/// no step lowers S, a step is below kStepConverged or the decrease below 1e-8 S (also the
+/// decrease the linearised problem predicts: such a step is not tried); after a rejected step
+/// below kStepConverged no shorter one is tried. S is infinite (and
 /// `message` says why) when the problem fails at the start or next to it. `first_jacobian`
 /// (optional; its fixed parameters' columns are ignored) stands in for the finite differences of
 /// the first iteration: a Jacobian known near p (a fit's, for the fits of its profile) saves one

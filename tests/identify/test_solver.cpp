@@ -104,6 +104,33 @@ TEST(LevenbergMarquardt, AtTheMinimumItTriesNoStepThatCannotCount) {
   EXPECT_EQ(noisy.calls, 3);  // the start and two finite differences
 }
 
+TEST(LevenbergMarquardt, AfterARejectedStepBelowTheConvergenceSizeItTriesNoShorterOne) {
+  // One parameter, its minimum 1e-5 from the start, and a second residual that is 0 at the start
+  // and 1e-3 everywhere else (the start is the best point there is, as the integration noise of a
+  // model's residual can make it): the first step (5e-6, below kStepConverged) is rejected, and
+  // every shorter step with a larger lambda would be too, each a model run (before: eight calls in
+  // all).
+  class Sticky : public LeastSquares {
+   public:
+    int rows() const override { return 2; }
+    const std::vector<Bounds>& bounds() const override { return bounds_; }
+    bool residual(const Eigen::VectorXd& p, Eigen::VectorXd& r) override {
+      ++calls;
+      r.resize(2);
+      r[0] = p[0] - 1e-5;
+      r[1] = p[0] == 0.0 ? 0.0 : 1e-3;
+      return true;
+    }
+    std::vector<Bounds> bounds_{{-1.0, 1.0}};
+    int calls = 0;
+  } sticky;
+  const Fit fit = levenberg_marquardt(sticky, Eigen::VectorXd::Zero(1), {true}, 100);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_NE(fit.message.find("below 1e-4"), std::string::npos) << fit.message;
+  EXPECT_EQ(fit.p[0], 0.0);
+  EXPECT_EQ(sticky.calls, 3);  // the start, its finite difference and the one step tried
+}
+
 TEST(LevenbergMarquardt, AFixedParameterDoesNotMove) {
   Decay d(2.0, 1.5);
   const Fit fit =
