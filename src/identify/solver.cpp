@@ -132,6 +132,7 @@ std::size_t downhill_on_grid(std::size_t n, const std::function<double(std::size
     if (std::isfinite(v[k]) && (best == n || v[k] < v[best])) best = k;
     return v[k];
   };
+  if (n < 2) return n == 1 && std::isfinite(at(0)) ? 0 : n;
   const std::size_t lo = n / 2 - 1, hi = n / 2;
   const double s_lo = at(lo), s_hi = at(hi);
   if (std::isfinite(s_lo) || std::isfinite(s_hi)) {

@@ -68,8 +68,8 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
                         const Eigen::MatrixXd* first_jacobian = nullptr);
 
 /// The local minimum of S over the grid points 0 ... n-1 found walking downhill from the two
-/// middle ones (n/2 - 1 and n/2; n >= 2): towards the lower of the two, one point at a time,
-/// until S rises or is not finite (a point where the model fails: S = +inf). When both middle
+/// middle ones (n/2 - 1 and n/2; one point: that one): towards the lower of the two, one point at a
+/// time, until S rises or is not finite (a point where the model fails: S = +inf). When both middle
 /// points fail, every point is tried. The grid's minimum wherever S has one minimum on it,
 /// without evaluating the points beyond it. Returns the index of the lowest S evaluated (ties:
 /// the first evaluated) or n when S is nowhere finite; `S(k)` is called once per point at most.

@@ -610,7 +610,7 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   // refinement, which a phase error of 2 pi 3 f 1e-3 h < 1e-2 rad does not move): the spectrum
   // by one FFT of each signal, zero-padded to L >= 4 (n - 1) points (a 2-3-5 length, Eigen's
   // kissfft), whose bins k / (L h) are a grid at least as fine as the direct sums' below and hold
-  // n f at bin n k. A few hundred times fewer operations than the sums on a few thousand samples.
+  // n f at bin n k: 1.6e6 instructions against the sums' 17.5e6 on 1030 samples (bench/README.md).
   const double h = span / static_cast<double>(n_seg - 1);
   bool uniform = allow_fft;
   for (std::size_t k = 0; k < n_seg && uniform; ++k)

@@ -214,6 +214,10 @@ TEST(DownhillOnGrid, FindsTheMinimumOfEverySingleMinimumGridWithoutThePointsBeyo
                              }),
             4u);
   EXPECT_EQ(calls, std::vector<int>(6, 1));
+  // One point, or none.
+  EXPECT_EQ(downhill_on_grid(1, [](std::size_t) { return 2.0; }), 0u);
+  EXPECT_EQ(downhill_on_grid(1, [&](std::size_t) { return inf; }), 1u);
+  EXPECT_EQ(downhill_on_grid(0, [](std::size_t) { return 2.0; }), 0u);
   // Nowhere finite: n.
   EXPECT_EQ(downhill_on_grid(6, [](std::size_t) { return inf; }), 6u);
   // A grid with two minima: the walk stops at the one on its side (documented, not the grid's).
