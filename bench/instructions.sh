@@ -11,7 +11,8 @@
 #   bench/instructions.sh --from-rest [BENCH_SIMULATE_BINARY]
 #     the cases from rest of the performance issue's target 2 (bench_simulate's
 #     BM_Method_StickSlip_Shooting and BM_Method_Rolling_R0606_Shooting; default
-#     build/bench/bench_simulate): the instructions of one call of oscidrum::simulate each.
+#     build/bench/bench_simulate): the instructions of one call of oscidrum::simulate each;
+#     with PROFILE=1 the functions' inclusive shares too (callgrind_annotate --inclusive=yes).
 # Needs valgrind (apt-get install valgrind).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -34,6 +35,10 @@ if [[ ${1:-} == --from-rest ]]; then
     iterations=$(sed -n 's/.*"iterations": \([0-9]*\).*/\1/p' "$tmp/bench.json" | head -1)
     printf '%s from rest: instructions per case %.4g (%s iteration(s))\n' "$case" \
       "$(echo "$total / $iterations" | bc -l)" "$iterations"
+    if [[ ${PROFILE:-0} == 1 ]]; then
+      callgrind_annotate --inclusive=yes "$tmp/cg.out" 2>/dev/null | sed -n '/file:function/,$p' |
+        grep 'oscidrum::' | head -30
+    fi
   done
   exit 0
 fi
