@@ -73,15 +73,13 @@ Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identif
       }
       return p;
     };
-    std::vector<double> S(kGrid.size(), kNaN);
-    const std::size_t k = detail::downhill_on_grid(kGrid.size(), [&](std::size_t j) {
+    const detail::GridMinimum m = detail::downhill_on_grid(kGrid.size(), [&](std::size_t j) {
       Eigen::VectorXd r;
-      return S[j] = pr.residual(point(j), r) ? r.squaredNorm()
-                                             : std::numeric_limits<double>::infinity();
+      return pr.residual(point(j), r) ? r.squaredNorm() : std::numeric_limits<double>::infinity();
     });
-    if (k < kGrid.size() && S[k] < best) {
-      best = S[k];
-      best_p = point(k);
+    if (m.S < best) {
+      best = m.S;
+      best_p = point(m.k);
     }
   }
   if (!std::isfinite(best))

@@ -124,15 +124,21 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
   return fit;
 }
 
-std::size_t downhill_on_grid(std::size_t n, const std::function<double(std::size_t)>& S) {
+GridMinimum downhill_on_grid(std::size_t n, const std::function<double(std::size_t)>& S) {
   std::vector<double> v(n, std::numeric_limits<double>::quiet_NaN());
   std::size_t best = n;
+  const auto found = [&]() -> GridMinimum {
+    return {best, best < n ? v[best] : std::numeric_limits<double>::infinity()};
+  };
   const auto at = [&](std::size_t k) {
     v[k] = S(k);
     if (std::isfinite(v[k]) && (best == n || v[k] < v[best])) best = k;
     return v[k];
   };
-  if (n < 2) return n == 1 && std::isfinite(at(0)) ? 0 : n;
+  if (n < 2) {
+    if (n == 1) at(0);
+    return found();
+  }
   const std::size_t lo = n / 2 - 1, hi = n / 2;
   const double s_lo = at(lo), s_hi = at(hi);
   if (std::isfinite(s_lo) || std::isfinite(s_hi)) {
@@ -146,7 +152,7 @@ std::size_t downhill_on_grid(std::size_t n, const std::function<double(std::size
     for (std::size_t k = 0; k < n; ++k)
       if (k != lo && k != hi) at(k);
   }
-  return best;
+  return found();
 }
 
 }  // namespace oscidrum::detail

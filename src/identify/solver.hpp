@@ -72,7 +72,12 @@ Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
 /// time, until S rises or is not finite (a point where the model fails: S = +inf). When both middle
 /// points fail, every point is tried. The grid's minimum wherever S has one minimum on it,
 /// without evaluating the points beyond it. Returns the index of the lowest S evaluated (ties:
-/// the first evaluated) or n when S is nowhere finite; `S(k)` is called once per point at most.
-std::size_t downhill_on_grid(std::size_t n, const std::function<double(std::size_t)>& S);
+/// the first evaluated) and its S, or {n, +inf} when S is nowhere finite; `S(k)` is called once
+/// per point at most.
+struct GridMinimum {
+  std::size_t k;
+  double S;
+};
+GridMinimum downhill_on_grid(std::size_t n, const std::function<double(std::size_t)>& S);
 
 }  // namespace oscidrum::detail

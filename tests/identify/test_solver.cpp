@@ -190,7 +190,9 @@ TEST(DownhillOnGrid, FindsTheMinimumOfEverySingleMinimumGridWithoutThePointsBeyo
       return std::abs(static_cast<double>(k) - static_cast<double>(m)) +
              0.1 * static_cast<double>(k);
     };
-    EXPECT_EQ(downhill_on_grid(6, S), m);
+    const GridMinimum found = downhill_on_grid(6, S);
+    EXPECT_EQ(found.k, m);
+    EXPECT_EQ(found.S, 0.1 * static_cast<double>(m));
     for (std::size_t k = 0; k < 6; ++k) {
       EXPECT_LE(calls[k], 1) << "minimum " << m << ", point " << k;
       // Evaluated: the middle two, the points between them and the minimum, and the one past it.
@@ -201,9 +203,9 @@ TEST(DownhillOnGrid, FindsTheMinimumOfEverySingleMinimumGridWithoutThePointsBeyo
   }
   // A failing point (S = inf) ends the walk like a rise.
   std::vector<double> v{1.0, 2.0, 3.0, 4.0, inf, 0.5};
-  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 0u);
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }).k, 0u);
   v = {5.0, inf, 3.0, 2.0, 1.0, 0.5};
-  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 5u);
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }).k, 5u);
   // Both middle points failing: every point is tried.
   std::vector<int> calls(6, 0);
   v = {inf, 7.0, inf, inf, 6.0, inf};
@@ -211,18 +213,22 @@ TEST(DownhillOnGrid, FindsTheMinimumOfEverySingleMinimumGridWithoutThePointsBeyo
                              [&](std::size_t k) {
                                ++calls[k];
                                return v[k];
-                             }),
+                             })
+                .k,
             4u);
   EXPECT_EQ(calls, std::vector<int>(6, 1));
   // One point, or none.
-  EXPECT_EQ(downhill_on_grid(1, [](std::size_t) { return 2.0; }), 0u);
-  EXPECT_EQ(downhill_on_grid(1, [&](std::size_t) { return inf; }), 1u);
-  EXPECT_EQ(downhill_on_grid(0, [](std::size_t) { return 2.0; }), 0u);
+  EXPECT_EQ(downhill_on_grid(1, [](std::size_t) { return 2.0; }).k, 0u);
+  EXPECT_EQ(downhill_on_grid(1, [](std::size_t) { return 2.0; }).S, 2.0);
+  EXPECT_EQ(downhill_on_grid(1, [&](std::size_t) { return inf; }).k, 1u);
+  EXPECT_EQ(downhill_on_grid(0, [](std::size_t) { return 2.0; }).k, 0u);
   // Nowhere finite: n.
-  EXPECT_EQ(downhill_on_grid(6, [](std::size_t) { return inf; }), 6u);
+  EXPECT_EQ(downhill_on_grid(6, [](std::size_t) { return inf; }).k, 6u);
+  EXPECT_EQ(downhill_on_grid(6, [](std::size_t) { return inf; }).S, inf);
   // A grid with two minima: the walk stops at the one on its side (documented, not the grid's).
   v = {0.1, 3.0, 2.0, 2.5, 1.0, 4.0};
-  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }), 2u);
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }).k, 2u);
+  EXPECT_EQ(downhill_on_grid(6, [&](std::size_t k) { return v[k]; }).S, 2.0);
 }
 
 }  // namespace
