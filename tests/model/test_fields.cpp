@@ -654,6 +654,28 @@ TEST(ModelValidation, DerivedConstants) {
               1e-12 * 54947.0);
 }
 
+// The excitation's angle nu t wrapped to [0, 2 pi) (the output column alpha): within rounding of
+// the exact remainder of nu t by 2 pi, over a thousand periods and at the wrap itself; the torque
+// is M0 sin(alpha) + MMd there.
+TEST(ModelValidation, ExcitationAngleIsNuTWrappedToOneTurn) {
+  const Model model{Case{}};
+  const double f = 39.0, T = 1.0 / f;
+  for (double t : {0.0, 0.3 * T, 0.999 * T, T, 1.0000001 * T, 17.25 * T, 999.9 * T, 1000.0 * T,
+                   std::nextafter(T, 0.0), std::nextafter(5.0 * T, 10.0)}) {
+    const double alpha = model.excitation_angle(t);
+    EXPECT_GE(alpha, 0.0) << t;
+    EXPECT_LT(alpha, 2.0 * M_PI) << t;
+    // The remainder in long double: nu t to about 1e-19 relative.
+    const long double turns = static_cast<long double>(f) * t;
+    long double wrapped = (turns - std::floor(turns)) * 2.0L * 3.14159265358979323846264338L;
+    // Rounded to either end of the turn: the same angle.
+    if (wrapped > 2.0L * 3.14159265358979323846264338L - 1e-11L) wrapped = 0.0L;
+    if (alpha > 2.0 * M_PI - 1e-11) continue;
+    EXPECT_NEAR(alpha, static_cast<double>(wrapped), 4e-16 * (1.0 + f * t) * 2.0 * M_PI) << t;
+    EXPECT_NEAR(model.torque(t), 54947.0 * std::sin(alpha), 1e-11 * 54947.0 * (1.0 + f * t)) << t;
+  }
+}
+
 // (5): M0 = 4 m_u e_u e_w nu^2. The paper's roller (54 947 N m at 39 Hz) has m_u e_u e_w =
 // 0.22877 kg m^2; given by its unbalance, M0 follows f^2 and replaces roller.M0.
 TEST(ModelValidation, UnbalanceGivesM0ThatGrowsWithFSquared) {
