@@ -152,7 +152,9 @@
     "harmonics of z_M'' (paper Figs. 15, 20)")                                                     \
   X(double, psi_xz, "rad", "lag psi_xz",                                                           \
     "lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: "   \
-    "the 2f component of z_M'' leads (paper Fig. 12)")                                             \
+    "the 2f component of z_M'' leads (paper Fig. 12); NaN when either component is absent "        \
+    "(below 1e-6 of the two signals' largest component: a drum without horizontal motion, a "      \
+    "record's constant channel)")                                                                  \
   X(double, area, "m^2/s^4", "area z_M''(x_M'')",                                                  \
     "area enclosed by the z_M''-over-x_M'' figure over one steady period (non-zero winding: "      \
     "both lobes of a figure eight count; paper Figs. 16, 22)")                                     \

@@ -322,7 +322,7 @@ class Metrics:
     phi_lag: float
     """lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped to (-2, 0], in units of pi (paper Fig. 10) [pi rad]"""
     psi_xz: float
-    """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12) [rad]"""
+    """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12); NaN when either component is absent (below 1e-6 of the two signals' largest component: a drum without horizontal motion, a record's constant channel) [rad]"""
     rmv: float
     """A(f/2)/A(f) of z_M'': the resonance meter value's ratio (the subharmonic of a period-2 motion, 0 for a period-1 one) [-]"""
     scalar_names: list
@@ -501,7 +501,7 @@ class RecordMetrics:
     kb: float
     """Re(F_v(f) / z_M(f)) as for a simulated state, with F_v(f) = F0 e^{i phi_u} + (m nu^2 - kd - i nu cd) z_M(f) from the drum's vertical balance (20), z_M(f) = -z_M''(f) / nu^2: kb = m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 with A_1, theta_1 of z_M'' and phi_u the unbalance's phase (vibratory drum: m, kd, F0 = m_u e_u nu^2 from the case; NaN without the case or the unbalance angle; docs/outputs.md) [N/m]"""
     psi_xz: float
-    """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12) [rad]"""
+    """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12); NaN when either component is absent (below 1e-6 of the two signals' largest component: a drum without horizontal motion, a record's constant channel) [rad]"""
     residual_x: float
     """RMS of record minus fit, relative to the RMS of x_M'' about its mean [-]"""
     residual_z: float

@@ -31,6 +31,20 @@ inline double ratio_to_fundamental(double a, const Spectrum& h) {
                                                        : std::numeric_limits<double>::quiet_NaN();
 }
 
+/// psi_xz = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; NaN when either component is
+/// absent, below kAbsentFundamental times the largest component (mean included) of the two
+/// signals: its phase is then round-off's (a directed vertical exciter's x_M'' = 0, a record's
+/// constant channel, whose own harmonics are all round-off).
+inline double phase_lag_psi(const Spectrum& hx, const Spectrum& hz) {
+  double largest = 0.0;
+  for (const Spectrum* h : {&hx, &hz})
+    for (const Harmonic& c : *h) largest = std::max(largest, c.amplitude);
+  const double floor = kAbsentFundamental * largest;
+  if (!(hx[1].amplitude > floor && hz[2].amplitude > floor))
+    return std::numeric_limits<double>::quiet_NaN();
+  return wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
+}
+
 /// The subharmonics A(f/2), A(3f/2), A(5f/2) of z_M'' [m/s^2] that the RMV- and CCV-type values
 /// read: a p-periodic steady state has them only for an even p (its frequencies are k f / p); 0
 /// for a period-1 state, NaN where they could not be measured.
@@ -55,10 +69,10 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
                           const HalfHarmonics& z_half = {}) {
   // psi = theta_2(z_M'') - 2 theta_1(x_M'') (docs/model.md section 8): the lag of the 2f
   // component of z_M'' against the square of the fundamental of x_M''; > 0: the 2f component
-  // leads (paper Fig. 12).
-  m.psi_xz = wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
-  m.ddx_A2_A1 = ratio_to_fundamental(hx[2].amplitude, hx);
+  // leads (paper Fig. 12); NaN when either component is absent (phase_lag_psi).
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  m.psi_xz = phase_lag_psi(hx, hz);
+  m.ddx_A2_A1 = ratio_to_fundamental(hx[2].amplitude, hx);
   m.ddx_A3_A1 = hx.size() > 3 ? ratio_to_fundamental(hx[3].amplitude, hx) : nan;
   m.ddz_A2_A1 = ratio_to_fundamental(hz[2].amplitude, hz);
   m.ddz_A3_A1 = hz.size() > 3 ? ratio_to_fundamental(hz[3].amplitude, hz) : nan;

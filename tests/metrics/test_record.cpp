@@ -108,6 +108,32 @@ TEST(Record, AnOffsetChangesOnlyTheMean) {
   EXPECT_NEAR(offset.ddx_max, m.ddx_max, 0.02 * m.ddx_max);
 }
 
+// psi_xz compares the phase of z_M'''s 2f component with x_M'''s fundamental: with either
+// channel constant (a dead sensor, or a directed vertical exciter's x_M'' = 0) that phase is
+// round-off's, and psi is NaN instead of a number; the other channel's metrics are unchanged.
+TEST(Record, PsiOfAConstantChannelIsNaN) {
+  Case c;
+  c.numerics.output_periods = 4;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state);
+  const std::vector<double>& t = r.samples.t;
+  const std::vector<double> x = r.samples.ddx_M, z = r.samples.ddz_M;
+  const std::vector<double> zero(t.size(), 0.0), g(t.size(), 9.80665);
+  const RecordMetrics both = analyze_record(t, x, z, c.roller.f);
+  ASSERT_TRUE(std::isfinite(both.psi_xz));
+  for (const auto& [xs, zs] : {std::pair{&x, &zero}, std::pair{&x, &g}, std::pair{&zero, &z}}) {
+    const RecordMetrics m = analyze_record(t, *xs, *zs, c.roller.f);
+    EXPECT_TRUE(std::isnan(m.psi_xz)) << m.psi_xz;
+    EXPECT_LT(std::abs(m.area), 1e-20 * both.area);
+    if (xs == &x) {
+      EXPECT_NEAR(m.ddx_max, both.ddx_max, 1e-9 * both.ddx_max);
+    }
+    if (zs == &z) {
+      EXPECT_NEAR(m.ddz_max, both.ddz_max, 1e-9 * both.ddz_max);
+    }
+  }
+}
+
 // A record of two soils, G = 10 then 25 MN/m^2 (Appendix B), 2 s each: the windows that straddle
 // the change are not valid (their fit belongs to neither soil; a G identified from them lay in
 // between), those on either side are; on a record of one soil with noise, drift and jitter no
