@@ -62,6 +62,15 @@ nlohmann::ordered_json window_json(const RecordWindow& w) {
 
 std::string cell(double v) { return io::format_double_short(v); }
 
+// Why a window's kb is NaN ("" when it is a number): the record's reason (record_kb's note), the
+// window's failed checks, or a vertical response without its fundamental.
+std::string kb_reason(const RecordWindow& w, const std::string& kb_note) {
+  if (!kb_note.empty()) return kb_note;
+  if (std::isfinite(w.metrics.kb)) return "";
+  if (!w.valid) return "the window failed its quality checks";
+  return "z_M'' has no component at f (A_1 = 0): the drum's vertical balance gives no stiffness";
+}
+
 // One CSV row per window (docs/cli.md, `oscidrum analyze`): the window's own columns, then every
 // scalar output of a record in the order of the output table, then the spectra's amplitudes.
 std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
@@ -123,7 +132,7 @@ int run(AnalyzeOptions o) {
       j.update(window_json(ws.front()));
       j.erase("window");
       j["reading"] = reading_json(o.input, rec);
-      if (!kb_note.empty()) j["kb_note"] = kb_note;
+      if (const std::string why = kb_reason(ws.front(), kb_note); !why.empty()) j["kb_note"] = why;
     } else {
       nlohmann::ordered_json rows = nlohmann::json::array();
       for (const RecordWindow& w : ws) rows.push_back(window_json(w));
@@ -185,7 +194,8 @@ int run(AnalyzeOptions o) {
     s.line("z_M'' max / min [m/s^2]", fmt(m.ddz_max, 5) + " / " + fmt(m.ddz_min, 5));
     s.line("psi (x_M'' -> z_M'') [rad]", fmt(m.psi_xz, 5));
     s.line("area z_M''(x_M'') [m^2/s^4]", fmt(m.area, 5));
-    s.line("Kb-type stiffness kb [N/m]", kb_note.empty() ? fmt(m.kb, 6) : "n/a (" + kb_note + ")");
+    const std::string kb_why = kb_reason(w, kb_note);
+    s.line("Kb-type stiffness kb [N/m]", kb_why.empty() ? fmt(m.kb, 6) : "n/a (" + kb_why + ")");
     TextTable t;
     t.header = {"n", "f [Hz]", "A(x_M'') [m/s^2]", "A(z_M'') [m/s^2]", "x / max", "z / max"};
     t.right = {true, true, true, true, true, true};

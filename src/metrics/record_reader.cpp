@@ -721,6 +721,20 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
           (o.z_positive == "up" ? std::string("down (drop --z-positive up)")
                                 : std::string("up (give --z-positive up)")));
   }
+  // A channel that never changes (a dead or disconnected sensor, or a drum that does not move
+  // that way, as a directed vertical exciter's x_M''): its harmonics are zero and what compares
+  // phases with it is NaN (psi_xz, kb, the ratios to its fundamental). Said, the record is still
+  // read.
+  for (const auto& [channel, values] :
+       {std::pair<const char*, const std::vector<double>*>{"x_M''", &out.ddx_M},
+        {"z_M''", &out.ddz_M}}) {
+    const auto [lo, hi] = std::minmax_element(values->begin(), values->end());
+    if (values->size() > 1 && *lo == *hi)
+      out.notes.push_back(std::string(channel) + ": the same value (" + format_factor(*lo) +
+                          " m/s^2) in every row: a dead or disconnected channel, or a drum that "
+                          "does not move that way; what compares phases with it (psi_xz, kb, "
+                          "the ratios to its fundamental) is NaN");
+  }
   if (cs >= 0 && cp < 0) {
     for (std::size_t i = 1; i < out.t.size(); ++i)
       if (!(out.t[i] > out.t[i - 1])) return out;  // analyze_windows reports it

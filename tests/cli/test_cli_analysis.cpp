@@ -307,7 +307,7 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     std::ofstream(dir / "unit.csv") << "t [h],ax,az\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "aunit.csv") << "t,ax [km],az\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "text.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.1,x,2\n";
-    std::ofstream(dir / "short.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.001,1,2\n";
+    std::ofstream(dir / "short.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.001,2,1\n";
     std::ofstream(dir / "ragged.csv") << "t,ddx_M,ddz_M\n0,1\n";
   }
   struct Case {

@@ -241,6 +241,31 @@ TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
     }
 }
 
+// A channel with the same value in every row (a dead sensor) is said, with its value in m/s^2;
+// one that changes, or a record of one row, says nothing.
+TEST(RecordReader, AConstantChannelIsSaid) {
+  const auto dead = [](const RecordColumns& r, const std::string& channel) {
+    int found = 0;
+    for (const std::string& n : r.notes)
+      found += n.rfind(channel + ": the same value", 0) == 0 &&
+               n.find("dead or disconnected") != std::string::npos;
+    return found;
+  };
+  const RecordColumns z_dead = read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1\n0.001,-0.1,-1\n");
+  EXPECT_EQ(dead(z_dead, "z_M''"), 1);
+  EXPECT_EQ(dead(z_dead, "x_M''"), 0);
+  for (const std::string& n : z_dead.notes) {
+    if (n.rfind("z_M'': the same", 0) == 0) {
+      EXPECT_NE(n.find("(-9.80665 m/s^2)"), std::string::npos) << n;
+    }
+  }
+  const RecordColumns x_dead = read_text("t,ddx_M,ddz_M\n0,0,1\n0.001,0,2\n0.002,0,1\n");
+  EXPECT_EQ(dead(x_dead, "x_M''"), 1);
+  EXPECT_EQ(dead(x_dead, "z_M''"), 0);
+  EXPECT_EQ(dead(read_text("t,ddx_M,ddz_M\n0,1,2\n0.001,2,1\n"), "x_M''"), 0);
+  EXPECT_EQ(dead(read_text("t,ddx_M,ddz_M\n0,1,2\n"), "x_M''"), 0);
+}
+
 TEST(RecordReader, SemicolonsWithDecimalCommas) {
   const RecordColumns r = read_text("t[s];ddx_M[m/s^2];ddz_M[m/s^2]\n0,5;1,25;-2\n");
   EXPECT_EQ(r.delimiter, "semicolon");
