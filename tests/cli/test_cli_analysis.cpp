@@ -151,6 +151,34 @@ TEST(CliAnalyze, KbOfAVibratoryRecordWithItsUnbalanceAngle) {
   const nlohmann::json none = nlohmann::json::parse(b.out);
   EXPECT_TRUE(none["kb"].is_null());
   EXPECT_NE(none["kb_note"].get<std::string>().find("--case"), std::string::npos);
+  // The same record with a dead z_M'' channel (0 in every row): read with a note on stderr, kb
+  // and psi_xz null, and kb_note says why.
+  {
+    std::istringstream in(slurp(dir / "s.csv"));
+    std::ofstream out(dir / "dead.csv");
+    std::string line;
+    std::getline(in, line);
+    out << line << "\n";
+    std::size_t col = 0;
+    for (std::size_t i = 0, j = 0; j != std::string::npos; i = j + 1, ++col)
+      if (line.substr(i, (j = line.find(',', i)) - i) == "ddz_M[m/s^2]") break;
+    while (std::getline(in, line)) {
+      std::size_t from = 0;
+      for (std::size_t k = 0; k < col; ++k) from = line.find(',', from) + 1;
+      const std::size_t to = line.find(',', from);
+      out << line.substr(0, from) << "0" << (to == std::string::npos ? "" : line.substr(to))
+          << "\n";
+    }
+  }
+  const Outcome d = run({"analyze", dir / "dead.csv", "--f", "30", "--case", example,
+                         "--unbalance-col", "alpha", "--format", "json"});
+  ASSERT_EQ(d.code, 0) << d.err;
+  EXPECT_NE(d.err.find("z_M'': the same value (0 m/s^2) in every row"), std::string::npos) << d.err;
+  const nlohmann::json dead = nlohmann::json::parse(d.out);
+  EXPECT_TRUE(dead["kb"].is_null()) << d.out;
+  EXPECT_TRUE(dead["psi_xz"].is_null()) << d.out;
+  EXPECT_NE(dead["kb_note"].get<std::string>().find("no component at f"), std::string::npos)
+      << d.out;
 }
 
 // A record's clock may start anywhere: the same record with its times shifted by -100 s (where
