@@ -34,15 +34,17 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
 /// Search range and method of estimate_frequency.
 struct FrequencySearch {
   double f_min = 10.0;   ///< lowest excitation frequency considered [Hz]
-  double f_max = 100.0;  ///< highest [Hz] (further limited so that 3 f stays below Nyquist)
-  int n_max = 10;        ///< harmonics of the least-squares refinement [-]
+  double f_max = 100.0;  ///< highest [Hz] (further limited to fs / 5: two harmonics resolved)
+  int n_max = 10;        ///< harmonics of the least-squares refinement (at most those resolved) [-]
 };
 
 /// The excitation frequency of a record [Hz]: the peak of the harmonic-sum spectrum
-/// P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) of at most the first 4096 samples on a grid of
+/// P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) (the n f below the Nyquist frequency; f up to a
+/// fifth of the sampling rate) of at most the first 4096 samples on a grid of
 /// at most a quarter of their frequency resolution (an FFT's bins for uniform samples, direct
 /// sums otherwise), refined by minimising the residual of the
-/// least-squares harmonic fit (n = 0 ... n_max, both signals) over f itself, first on that
+/// least-squares harmonic fit (n = 0 ... n_max, at most the harmonics the sampling resolves at
+/// the peak, 2 N + 1 samples per period for N; both signals) over f itself, first on that
 /// segment, then on the whole record. Throws oscidrum::Error on the conditions of analyze_record
 /// and when the range holds no frequency.
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx_M,

@@ -570,7 +570,10 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
   const double span = t[n_seg - 1] - t[0];
   const double fs = static_cast<double>(n_seg - 1) / span;
-  const double f_hi = std::min(search.f_max, fs / 6.0);
+  // Up to fs / 5: the 5 samples per period that a fit of two harmonics needs (psi_xz reads the
+  // 2f component); the sum P(f) takes the harmonics below the Nyquist frequency fs / 2 (n = 1 ...
+  // 3 up to fs / 6, n = 1, 2 above: a logger at 200 samples/s still finds 39 Hz).
+  const double f_hi = std::min(search.f_max, fs / 5.0);
   const double f_lo = std::max(search.f_min, 1.0 / span);
   if (!(f_hi > f_lo))
     throw Error("record: no excitation frequency to search in [" + num(search.f_min) + ", " +
@@ -594,8 +597,9 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   // the soil along a pass shifts the phase abruptly and splits the peak at f in two.
   const auto consider = [&](double f, const std::complex<double>(&X)[3],
                             const std::complex<double>(&Z)[3]) {
+    const int resolved = 3.0 * f <= 0.5 * fs ? 3 : 2;  // n f below Nyquist
     double p = 0;
-    for (int n = 0; n < 3; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
+    for (int n = 0; n < resolved; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
     if (std::norm(X[0]) + std::norm(Z[0]) < 0.1 * p) return;
     if (p > best_p) {
       best_p = p;
@@ -625,11 +629,13 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
     fft.fwd(FX, padded);
     std::copy(zs.begin(), zs.end(), padded.begin());
     fft.fwd(FZ, padded);
-    // 3 k <= L / 2: f_hi <= fs / 6 with fs = 1 / h.
+    // 2 k <= L / 2 (f_hi <= fs / 5 with fs = 1 / h); bin 3 k is read only below L / 2 (above it
+    // is the mirror of another frequency, and consider() leaves n = 3 out there).
     for (auto k = static_cast<std::size_t>(std::ceil(f_lo / dF));
-         static_cast<double>(k) * dF <= f_hi && 3 * k < FX.size(); ++k) {
-      const std::complex<double> X[3] = {FX[k], FX[2 * k], FX[3 * k]};
-      const std::complex<double> Z[3] = {FZ[k], FZ[2 * k], FZ[3 * k]};
+         static_cast<double>(k) * dF <= f_hi && 2 * k < FX.size(); ++k) {
+      const std::size_t k3 = 3 * k < FX.size() ? 3 * k : 0;
+      const std::complex<double> X[3] = {FX[k], FX[2 * k], FX[k3]};
+      const std::complex<double> Z[3] = {FZ[k], FZ[2 * k], FZ[k3]};
       consider(static_cast<double>(k) * dF, X, Z);
     }
     return peak(dF);
@@ -754,7 +760,10 @@ double resolving_frequency(std::span<const double> t, std::span<const double> dd
 
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
                           std::span<const double> ddz, const FrequencySearch& search) {
-  return refine_peak(t, ddx, ddz, spectral_peak(t, ddx, ddz, search), search.n_max);
+  const SpectralPeak peak = spectral_peak(t, ddx, ddz, search);
+  // No more harmonics than the sampling resolves at the peak (a slow logger's).
+  return refine_peak(t, ddx, ddz, peak,
+                     std::min(search.n_max, harmonics_resolved_at(peak.f, median_step(t))));
 }
 
 int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,

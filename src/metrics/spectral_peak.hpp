@@ -15,8 +15,9 @@ struct SpectralPeak {
   double df = 0;  ///< grid spacing [Hz]
 };
 
-/// The peak of P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) over [max(f_min, 1/span),
-/// min(f_max, fs/6)] of at most the first 4096 samples (demeaned), frequencies whose own term is
+/// The peak of P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) (n f below the Nyquist frequency
+/// fs/2 only: n = 1, 2 above fs/6) over [max(f_min, 1/span), min(f_max, fs/5)] of at most the
+/// first 4096 samples (demeaned), frequencies whose own term is
 /// below a tenth of P (subharmonics) left out. Uniformly sampled records (and allow_fft): by an
 /// FFT zero-padded to fft_size(4 (n - 1)) points, on its bins; otherwise by direct sums on a grid
 /// of a quarter of the frequency resolution. Throws oscidrum::Error on too few samples, an empty

@@ -680,6 +680,32 @@ TEST(Record, RefusesNaNGatesAndAbsurdSizes) {
   EXPECT_EQ(analyze_windows(t, x, z, {}, ok).size(), 13u);
 }
 
+// A slow logger: 39 Hz recorded at 200-300 samples/s (5.1-7.7 per period). Its third harmonic
+// lies above the Nyquist frequency (or is not resolved), yet the spectrum's peak (n f below
+// Nyquist only, f up to fs / 5) and the refinement (with the harmonics the sampling resolves)
+// find f; the search once stopped at fs / 6 (33 Hz at 200 samples/s) and returned 25.4 Hz. The
+// unresolved 3f component of x_M'' biases f by < 1e-6 (2 harmonics fitted); resolved, f exactly.
+// Irregular times (the direct sums instead of the FFT) find the same peak.
+TEST(Record, ASlowLoggersFrequency) {
+  constexpr double f = 39.0;
+  for (const double fs : {200.0, 250.0, 300.0}) {
+    for (const bool jitter : {false, true}) {
+      std::vector<double> t, x, z;
+      for (int i = 0; i < static_cast<int>(2.0 * fs); ++i) {
+        const double ti = (i + (jitter ? 0.01 * std::sin(1.7 * i) : 0.0)) / fs;
+        t.push_back(ti);
+        x.push_back(10.0 * std::sin(2 * M_PI * f * ti) + 2.0 * std::sin(6 * M_PI * f * ti + 0.3));
+        z.push_back(5.0 * std::sin(4 * M_PI * f * ti + 1.0));
+      }
+      SCOPED_TRACE(std::to_string(fs) + (jitter ? " samples/s, jittered" : " samples/s"));
+      const double est = estimate_frequency(t, x, z);
+      EXPECT_NEAR(est, f, (fs < 7.0 * f ? 1e-6 : 1e-9) * f);  // 3 harmonics: 7 per period
+      const detail::SpectralPeak peak = detail::spectral_peak(t, x, z, FrequencySearch{});
+      EXPECT_NEAR(peak.f, f, 2.0 * peak.df);
+    }
+  }
+}
+
 TEST(Record, RejectsBadRecords) {
   const std::vector<double> t = {0.0, 0.01, 0.02}, y = {0, 1, 2};
   auto message = [](auto fn) {
