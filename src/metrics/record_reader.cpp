@@ -381,8 +381,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   };
   // The lines before the data: a logger's preamble (metadata without comment marks), the header
   // and a line of units under it. The header is the first line (not metadata, at least two cells)
-  // whose next line (after a line of units) has as many cells under the same delimiter and a
-  // number in one; without such a line, the first line as before. At most kLeadLines are held.
+  // whose next kDataRows lines (after a line of units) have as many cells under the same
+  // delimiter and a number in one: a preamble of "key value" pairs with numbers ("Rate 1000",
+  // "Gain 2.5") is not taken for a header and its data. A record that ends sooner is decided on
+  // the lines it has (at least one); without such a line, the first line as before. At most
+  // kLeadLines are held.
+  constexpr std::size_t kDataRows = 3;
   constexpr std::size_t kLeadLines = 200;
   std::vector<std::pair<std::string, std::size_t>> lead;
   std::size_t header_at = 0, data_at = 1;  // indices in lead
@@ -393,7 +397,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     while (c.size() > 1 && trim(c.back()).empty()) c.pop_back();
     return c.size();
   };
-  const auto decide = [&] {
+  // at_end: the record has no more lines (decide on those there are).
+  const auto decide = [&](bool at_end) {
     for (std::size_t i = 0; i + 1 < lead.size(); ++i) {
       const std::string& h = lead[i].first;
       if (is_metadata(h)) continue;
@@ -406,13 +411,21 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         if (j + 1 >= lead.size()) return false;  // one more line to see
         ++j;
       }
-      const std::string& next = lead[j].first;
-      if (delimiter_of(next) == d && cells_of(next, d) == n && has_number(next, d)) {
+      // A data row: n cells, counted with or without empty ones at its end (a row whose last
+      // values are missing, "0.001,,2," under four columns).
+      const auto data_row = [&](const std::string& l) {
+        return delimiter_of(l) == d && (cells_of(l, d) == n || split(l, d).size() == n) &&
+               has_number(l, d);
+      };
+      std::size_t rows = 0;
+      while (rows < kDataRows && j + rows < lead.size() && data_row(lead[j + rows].first)) ++rows;
+      if (rows == kDataRows || (rows > 0 && j + rows == lead.size() && at_end)) {
         header_at = i;
         data_at = j;
         has_units = units;
         return true;
       }
+      if (j + rows == lead.size() && !at_end) return false;  // more lines to see
     }
     return false;
   };
@@ -425,9 +438,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       if (is_comment(l)) continue;
       any = true;
       lead.emplace_back(std::move(l), no);
-      if ((decided = decide())) break;
+      if ((decided = decide(false))) break;
     }
     if (!any) throw Error(name + ": no data (the record is empty or all comments)");
+    if (!decided) decided = decide(true);
     if (!decided) {  // the first line, as before; its next lines follow as data
       header_at = 0;
       data_at = 1;

@@ -208,6 +208,24 @@ TEST(RecordReader, PreambleAndALineOfUnitsUnderTheHeader) {
   EXPECT_NE(message_of("t,ax,az\n0,1,2\n1,abc,2\n").find("record.csv:3: column 'ax'"),
             std::string::npos);
   EXPECT_NE(message_of("t,ax,az\n0,x1,2\n").find("record.csv:2: column 'ax'"), std::string::npos);
+  // A whitespace-delimited preamble of "key value" pairs with numbers: two-cell lines with a
+  // number look like a header and its data for a line or two, not for three; the header is the
+  // line over three rows of its own width, with or without a header line.
+  const std::string pairs = "Device HAMM-XYZ\nRate 1000\nGain 2.5\n";
+  std::string rows;
+  for (int i = 0; i < 4; ++i)
+    rows += std::to_string(i) + " " + std::to_string(i % 2) + " " + std::to_string(2 * i) + "\n";
+  const RecordColumns spaced = read_text(pairs + "t ax az\n" + rows);
+  ASSERT_EQ(spaced.t.size(), 4u);
+  EXPECT_DOUBLE_EQ(spaced.ddz_M[3], 6.0);
+  EXPECT_EQ(spaced.delimiter, "whitespace");
+  int skipped = 0;
+  for (const std::string& n : spaced.notes)
+    skipped += n.find("skipped 3 lines before the header") != std::string::npos;
+  EXPECT_EQ(skipped, 1);
+  const RecordColumns spaced_headless = read_text(pairs + rows, columns);
+  ASSERT_EQ(spaced_headless.t.size(), 4u);
+  EXPECT_DOUBLE_EQ(spaced_headless.ddx_M[1], 1.0);
   // Data rows with a trailing delimiter: still under the first line, as ragged rows.
   EXPECT_NE(
       message_of("t,ax,az\n0,1,2,\n1,3,4,\n").find("record.csv:2: 4 cells, but the header has 3"),
