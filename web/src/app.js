@@ -901,7 +901,7 @@ function fillMetrics(r, m) {
     rows.push(
       ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => num(v)).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
       ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
-      ["lag x_M''→z_M'' ψ", fmt(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x))'],
+      ["lag x_M''→z_M'' ψ", num(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x); n/a: x_M\'\' has no fundamental or z_M\'\' no 2f)'],
       ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
     );
   }
