@@ -202,6 +202,14 @@ void BasicFlow<R>::Impl::restart(double t, const Vec& x) {
   stepper.initialize(x, t, std::min(dt > 0 ? dt : period / 100.0, options.max_step));
   ++counters.restarts;
   e_prev = values(x);
+  // A function of the new phase that is already at or below zero after the switch (not one the
+  // switch marked fresh) would never fire: it fires only when it falls through zero from above.
+  // It counts as fresh, so that find_event takes the switch it makes at once. This happens where
+  // two switching surfaces meet: a drum whose friction cone closes as N reaches 0 (T and N
+  // vanishing together, the symmetric lift-off of a vertical exciter) switches from stick to
+  // slip with N already at 0 in slip, and would otherwise slip on with N < 0, pulling the soil.
+  for (int i = 0; i < Dyn::kEvents; ++i)
+    if (e_prev[i] <= 0.0) e_fresh[i] = true;
   have_step = false;
   t_now = t;
   x_now = x;

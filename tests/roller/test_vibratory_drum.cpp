@@ -159,6 +159,50 @@ TEST(VibratoryDrum, ShootingAndTransientAgree) {
   }
 }
 
+// A directed vertical exciter with flight, MMd = 0: the motion is symmetric, so T vanishes with
+// N at each lift-off and the friction cone closes exactly where the contact opens. The drum
+// switches from stick to slip there with N already at 0 in slip, and must lift off at once: the
+// slip's lift-off function, at or below zero after the switch, fires at the switch (before, it
+// never fired, and the drum slipped on with N < 0, pulling the soil with up to 11 kN, which
+// started a horizontal motion that never settled: max_periods_reached). Both methods find the
+// symmetric steady state (delta = x_A = 0 to round-off), with N >= 0 throughout, and agree.
+TEST(VibratoryDrum, DirectedExciterWithFlightLiftsOffWhereTheConeCloses) {
+  for (double G : {25e6, 50e6}) {
+    Case c = vibratory_case(Exciter::vertical);
+    c.contact.unilateral = true;
+    c.contact.mu = 0.5;
+    c.roller.static_moment = 0.9;
+    c.soil.input = SoilInput::table2;
+    c.soil.G = G;
+    const Result shot = simulate(c);
+    c.numerics.method = SteadyMethod::transient;
+    const Result trans = simulate(c);
+    for (const Result* r : {&shot, &trans}) {
+      ASSERT_EQ(r->status, Status::steady_state) << "G " << G << ": " << r->message;
+      EXPECT_EQ(r->diagnostics.contact_mode, "periodic lift-off");
+      // Seen: 666-683 N at G = 25 MN/m^2 (before: -11 kN).
+      EXPECT_GE(r->diagnostics.min_N, 0.0) << "G " << G;
+      double delta = 0.0, x_A = 0.0, s_A = 0.0;
+      for (std::size_t i = 0; i < r->samples.size(); ++i) {
+        delta = std::max(delta, std::abs(r->samples.delta[i]));
+        x_A = std::max(x_A, std::abs(r->samples.x_A[i]));
+        s_A = std::max(s_A, std::abs(r->samples.s_A[i]));
+      }
+      // Seen: delta 4e-24 rad, x_A 3e-26 m against s_A 1.3 mm (before: 1e-9 rad, 1e-12 m).
+      EXPECT_LE(delta * c.roller.r, 1e-14 * s_A) << "G " << G;
+      EXPECT_LE(x_A, 1e-14 * s_A) << "G " << G;
+    }
+    // Seen: 2 transient periods and 3 Newton steps; the transient method 13 periods.
+    EXPECT_EQ(shot.diagnostics.method, SteadyMethod::shooting) << shot.diagnostics.fallback;
+    EXPECT_LT(trans.diagnostics.periods_simulated, 100);
+    const Metrics a = compute_metrics(shot), b = compute_metrics(trans);
+    const double tol = 2e-7;  // the transient's distance from the orbit (steady_tol 1e-8)
+    EXPECT_NEAR(a.ddz_max, b.ddz_max, tol * std::abs(b.ddz_max));
+    EXPECT_NEAR(a.ddz_min, b.ddz_min, tol * std::abs(b.ddz_min));
+    EXPECT_NEAR(a.flight_fraction, b.flight_fraction, tol);
+  }
+}
+
 // Energy over a steady period with lift-off (circular exciter, Coulomb friction): the unbalance
 // force's work on the drum centre, F . M' (the static load W does no net work over a period),
 // equals what the buffers' and the soil's dashpots dissipate plus the friction's work in slip, |T
