@@ -22,25 +22,33 @@ namespace oscidrum::detail {
 /// numerical noise (the integration tolerances leave ~1e-8), not a physical component.
 inline constexpr double kAbsentFundamental = 1e-6;
 
-/// a / A_1 of the spectrum h; NaN when the fundamental is absent (a ratio to it is undefined:
-/// e.g. z_M'' without driving torque has only even harmonics, paper Fig. 19b).
-inline double ratio_to_fundamental(double a, const Spectrum& h) {
-  double largest = 0.0;
-  for (std::size_t n = 1; n < h.size(); ++n) largest = std::max(largest, h[n].amplitude);
-  return h[1].amplitude > kAbsentFundamental * largest ? a / h[1].amplitude
-                                                       : std::numeric_limits<double>::quiet_NaN();
-}
-
-/// psi_xz = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; NaN when either component is
-/// absent, below kAbsentFundamental times the largest component (mean included) of the two
-/// signals: its phase is then round-off's (a directed vertical exciter's x_M'' = 0, a record's
-/// constant channel, whose own harmonics are all round-off).
-inline double phase_lag_psi(const Spectrum& hx, const Spectrum& hz) {
+/// The level below which a component of x_M'' or z_M'' counts as absent: kAbsentFundamental
+/// times the largest component (mean included) of the two signals. A signal that is all round-off
+/// (a directed vertical exciter's x_M'' = 0, a record's constant channel) has its own harmonics
+/// all round-off, so that it can only be judged against the other signal.
+inline double absent_level(const Spectrum& hx, const Spectrum& hz) {
   double largest = 0.0;
   for (const Spectrum* h : {&hx, &hz})
     for (const Harmonic& c : *h) largest = std::max(largest, c.amplitude);
-  const double floor = kAbsentFundamental * largest;
-  if (!(hx[1].amplitude > floor && hz[2].amplitude > floor))
+  return kAbsentFundamental * largest;
+}
+
+/// a / A_1 of the spectrum h; NaN when the fundamental is absent: below `absent` (absent_level)
+/// or below kAbsentFundamental times h's own largest harmonic (a ratio to it is undefined: e.g.
+/// z_M'' without driving torque has only even harmonics, paper Fig. 19b).
+inline double ratio_to_fundamental(double a, const Spectrum& h, double absent) {
+  double largest = 0.0;
+  for (std::size_t n = 1; n < h.size(); ++n) largest = std::max(largest, h[n].amplitude);
+  return h[1].amplitude > std::max(absent, kAbsentFundamental * largest)
+             ? a / h[1].amplitude
+             : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// psi_xz = theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; NaN when either component is
+/// absent (below absent_level): its phase is then round-off's.
+inline double phase_lag_psi(const Spectrum& hx, const Spectrum& hz) {
+  const double absent = absent_level(hx, hz);
+  if (!(hx[1].amplitude > absent && hz[2].amplitude > absent))
     return std::numeric_limits<double>::quiet_NaN();
   return wrap_pi(hz[2].phase - 2.0 * hx[1].phase);
 }
@@ -72,10 +80,12 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
   // leads (paper Fig. 12); NaN when either component is absent (phase_lag_psi).
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   m.psi_xz = phase_lag_psi(hx, hz);
-  m.ddx_A2_A1 = ratio_to_fundamental(hx[2].amplitude, hx);
-  m.ddx_A3_A1 = hx.size() > 3 ? ratio_to_fundamental(hx[3].amplitude, hx) : nan;
-  m.ddz_A2_A1 = ratio_to_fundamental(hz[2].amplitude, hz);
-  m.ddz_A3_A1 = hz.size() > 3 ? ratio_to_fundamental(hz[3].amplitude, hz) : nan;
+  // The ratios: NaN where the fundamental is absent, against the two signals (absent_level).
+  const double absent = absent_level(hx, hz);
+  m.ddx_A2_A1 = ratio_to_fundamental(hx[2].amplitude, hx, absent);
+  m.ddx_A3_A1 = hx.size() > 3 ? ratio_to_fundamental(hx[3].amplitude, hx, absent) : nan;
+  m.ddz_A2_A1 = ratio_to_fundamental(hz[2].amplitude, hz, absent);
+  m.ddz_A3_A1 = hz.size() > 3 ? ratio_to_fundamental(hz[3].amplitude, hz, absent) : nan;
   // The compaction meter value CMV = C A(2f)/A(f) with C = 300 (Thurner and Sandstroem 1980),
   // here of the oscillation drum's vertical acceleration z_M''.
   m.cmv = 300.0 * m.ddz_A2_A1;
@@ -95,7 +105,7 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
                 ? 100.0 * (z_half.a05 + z_half.a15 + a2 + z_half.a25 + a3) / below
                 : nan;
   }
-  m.ddx_thd = ratio_to_fundamental(std::sqrt(ddx_overtones), hx);
+  m.ddx_thd = ratio_to_fundamental(std::sqrt(ddx_overtones), hx, absent);
   hx.resize(static_cast<std::size_t>(n_max) + 1);
   hz.resize(static_cast<std::size_t>(n_max) + 1);
   m.ddx_harmonics = std::move(hx);

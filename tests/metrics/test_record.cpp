@@ -110,7 +110,8 @@ TEST(Record, AnOffsetChangesOnlyTheMean) {
 
 // psi_xz compares the phase of z_M'''s 2f component with x_M'''s fundamental: with either
 // channel constant (a dead sensor, or a directed vertical exciter's x_M'' = 0) that phase is
-// round-off's, and psi is NaN instead of a number; the other channel's metrics are unchanged.
+// round-off's, and psi is NaN instead of a number, as are the dead channel's harmonic ratios; the
+// other channel's metrics are unchanged.
 TEST(Record, PsiOfAConstantChannelIsNaN) {
   Case c;
   c.numerics.output_periods = 4;
@@ -125,11 +126,22 @@ TEST(Record, PsiOfAConstantChannelIsNaN) {
     const RecordMetrics m = analyze_record(t, *xs, *zs, c.roller.f);
     EXPECT_TRUE(std::isnan(m.psi_xz)) << m.psi_xz;
     EXPECT_LT(std::abs(m.area), 1e-20 * both.area);
+    // The ratios to a dead channel's fundamental are ratios of round-off: NaN, judged against
+    // the other channel (its own harmonics are all round-off); the live channel's are kept.
     if (xs == &x) {
       EXPECT_NEAR(m.ddx_max, both.ddx_max, 1e-9 * both.ddx_max);
+      EXPECT_NEAR(m.ddx_A3_A1, both.ddx_A3_A1, 1e-9 * both.ddx_A3_A1);
+      EXPECT_NEAR(m.ddx_thd, both.ddx_thd, 1e-9 * both.ddx_thd);
+    } else {
+      EXPECT_TRUE(std::isnan(m.ddx_A2_A1)) << m.ddx_A2_A1;
+      EXPECT_TRUE(std::isnan(m.ddx_A3_A1)) << m.ddx_A3_A1;
+      EXPECT_TRUE(std::isnan(m.ddx_thd)) << m.ddx_thd;
     }
     if (zs == &z) {
       EXPECT_NEAR(m.ddz_max, both.ddz_max, 1e-9 * both.ddz_max);
+    } else {
+      EXPECT_TRUE(std::isnan(m.ddz_A2_A1)) << m.ddz_A2_A1;
+      EXPECT_TRUE(std::isnan(m.cmv)) << m.cmv;
     }
   }
 }
