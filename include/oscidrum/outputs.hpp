@@ -181,7 +181,8 @@
   X(double, delta_min, "rad", "delta min", "smallest position angle delta")                     \
   X(double, phi_lag, "pi rad", "lag torque -> phi",                                             \
     "lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped "  \
-    "to (-2, 0], in units of pi (paper Fig. 10)")                                               \
+    "to (-2, 0], in units of pi (paper Fig. 10); NaN without an oscillating torque (the "       \
+    "vibratory drum)")                                                                          \
   X(double, phi_amplitude, "rad", "phi amplitude", "amplitude A_1 of phi (drift removed)")      \
   X(double, stick_fraction, "-", "stick fraction", "share of the sampled time in stick")        \
   X(double, slip_positive_fraction, "-", "slip+ fraction",                                      \

@@ -320,7 +320,7 @@ class Metrics:
     phi_amplitude: float
     """amplitude A_1 of phi (drift removed) [rad]"""
     phi_lag: float
-    """lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped to (-2, 0], in units of pi (paper Fig. 10) [pi rad]"""
+    """lag between the excitation M0 sin(nu t) and phi: theta_1 of phi (drift removed) wrapped to (-2, 0], in units of pi (paper Fig. 10); NaN without an oscillating torque (the vibratory drum) [pi rad]"""
     psi_xz: float
     """lag between x_M'' and z_M'': theta_2(z_M'') - 2 theta_1(x_M'') wrapped to (-pi, pi]; > 0: the 2f component of z_M'' leads (paper Fig. 12); NaN when either component is absent (below 1e-6 of the two signals' largest component: a drum without horizontal motion, a record's constant channel) [rad]"""
     rmv: float

@@ -404,7 +404,13 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   const double rate = (pieces.back().f[kPhi](pieces.back().b) - pieces.front().f[kPhi](t0)) / P;
   for (Node& nd : nodes) nd.phi -= rate * nd.tau;  // in place: nothing below reads phi
   const Spectrum hphi = spectrum(nodes, &Node::phi, P, t0, f, 1);
-  detail::set_rotation_metrics(m, hphi[1]);
+  // M0 sin(nu t) + MMd has M0 = 0 (the vibratory drum) when it is the same at the four quarters
+  // of a period (M0 sin(nu t) takes one value at all four only for M0 = 0).
+  bool torque_oscillates = false;
+  for (int q = 1; q < 4; ++q)
+    torque_oscillates =
+        torque_oscillates || model.torque(t0 + 0.25 * q * model.period()) != model.torque(t0);
+  detail::set_rotation_metrics(m, hphi[1], torque_oscillates);
 
   double work = 0.0;
   for (const Node& nd : nodes) work += nd.weight * nd.friction_power;

@@ -158,12 +158,14 @@ inline double soil_stiffness(const Samples& s, int cycles, double f, double t0) 
 
 /// phi_amplitude and phi_lag from the fundamental of phi (its drift removed), against the
 /// excitation M0 sin(nu t) (phase 0). The lag is in (-2, 0] in units of pi, as paper Fig. 10
-/// plots it (-0.84 pi at G = 5, -> -pi without soil).
-inline void set_rotation_metrics(Metrics& m, const Harmonic& phi_1) {
+/// plots it (-0.84 pi at G = 5, -> -pi without soil). `torque_oscillates`: false for a roller
+/// without an oscillating torque (the vibratory drum, M0 = 0), where a lag behind it is undefined
+/// (NaN; the phase of its phi can be round-off's: a vertical exciter's phi stays at 1e-26 rad).
+inline void set_rotation_metrics(Metrics& m, const Harmonic& phi_1, bool torque_oscillates) {
   m.phi_amplitude = phi_1.amplitude;
   double lag = wrap_pi(phi_1.phase);
   if (lag > 0.0) lag -= 2.0 * std::numbers::pi;
-  m.phi_lag = lag / std::numbers::pi;
+  m.phi_lag = torque_oscillates ? lag / std::numbers::pi : std::numeric_limits<double>::quiet_NaN();
 }
 
 /// The phase fractions from the time spent in each phase [s] (any common unit): stick, slip with

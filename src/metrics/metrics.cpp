@@ -136,7 +136,11 @@ Metrics compute_metrics(const Result& result, int n_max) {
   std::vector<double> phi(n);
   for (std::size_t j = 0; j < n; ++j) phi[j] = s.phi[j] - rate * (s.t[j] - t0);
   const std::vector<Harmonic> hphi = harmonics(phi, cycles, f, t0, 1);
-  detail::set_rotation_metrics(m, hphi[1]);
+  // Without an oscillating torque (a sampled torque column that is constant) phi lags nothing.
+  const bool torque_oscillates =
+      s.torque.size() != n ||
+      std::any_of(s.torque.begin(), s.torque.end(), [&](double v) { return v != s.torque[0]; });
+  detail::set_rotation_metrics(m, hphi[1], torque_oscillates);
 
   // The area over one steady period: `multiplicity` excitation periods (one if none was found).
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;

@@ -786,6 +786,17 @@ TEST(ComputeMetrics, PhiLagRange) {
   EXPECT_NEAR(compute_metrics(make_result(s)).phi_lag, -0.01, kIdentity);
   s.phi_phase = 0.01 * kPi;  // just above 0: wraps to the far end of the range
   EXPECT_NEAR(compute_metrics(make_result(s)).phi_lag, -1.99, kIdentity);
+  // With a torque column: a lag behind M0 sin(nu t) where it oscillates, NaN where it is
+  // constant (the vibratory drum: M0 = 0; a driving torque MMd alone).
+  Result r = make_result(s);
+  const double nu = 2.0 * kPi * s.f;
+  for (double MMd : {0.0, 2.5e3}) {
+    r.samples.torque.assign(r.samples.t.size(), MMd);
+    EXPECT_TRUE(std::isnan(compute_metrics(r).phi_lag)) << MMd;
+    for (std::size_t j = 0; j < r.samples.t.size(); ++j)
+      r.samples.torque[j] += 5e4 * std::sin(nu * r.samples.t[j]);
+    EXPECT_NEAR(compute_metrics(r).phi_lag, -1.99, kIdentity) << MMd;
+  }
 }
 
 // psi = 0: x = X sin(u), z = Z sin(2u) is a scaled Gerono lemniscate (x = X sin u,
