@@ -40,17 +40,28 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bo
 std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
   struct Ratio {
     std::string_view name;
+    double Metrics::*value;
     const Spectrum Metrics::*spectrum;
     std::size_t n;
     const char* signal;
   };
   static constexpr Ratio kRatios[] = {
-      {"ddx_A2_A1", &Metrics::ddx_harmonics, 2, "x_M''"},
-      {"ddx_A3_A1", &Metrics::ddx_harmonics, 3, "x_M''"},
-      {"ddz_A2_A1", &Metrics::ddz_harmonics, 2, "z_M''"},
-      {"ddz_A3_A1", &Metrics::ddz_harmonics, 3, "z_M''"},
-      {"cmv", &Metrics::ddz_harmonics, 2, "z_M''"},
+      {"ddx_A2_A1", &Metrics::ddx_A2_A1, &Metrics::ddx_harmonics, 2, "x_M''"},
+      {"ddx_A3_A1", &Metrics::ddx_A3_A1, &Metrics::ddx_harmonics, 3, "x_M''"},
+      {"ddz_A2_A1", &Metrics::ddz_A2_A1, &Metrics::ddz_harmonics, 2, "z_M''"},
+      {"ddz_A3_A1", &Metrics::ddz_A3_A1, &Metrics::ddz_harmonics, 3, "z_M''"},
+      {"cmv", &Metrics::cmv, &Metrics::ddz_harmonics, 2, "z_M''"},
+      {"ddx_thd", &Metrics::ddx_thd, &Metrics::ddx_harmonics, 2, "x_M''"},
   };
+  // Where a signal is round-off as a whole (a directed vertical exciter's x_M''), its
+  // fundamental is absent against the two signals together (docs/outputs.md).
+  constexpr const char* kAbsentBoth =
+      " is absent: below 1e-6 of the largest component of x_M'' "
+      "and z_M'')";
+  if (name == "psi_xz" && std::isnan(m.psi_xz))
+    return std::string("n/a (A(f) of x_M'' or A(2f) of z_M''") + kAbsentBoth;
+  if (name == "phi_lag" && std::isnan(m.phi_lag))
+    return std::string("n/a (no oscillating torque: the vibratory drum)");
   if (name == "mu_required" && std::isnan(m.mu_required))
     return std::string("n/a (the drum lifts off: N reaches 0, where |T|/N has no bound)");
   // The Kb-type stiffness: a ratio to the fundamental of z_M.
@@ -77,6 +88,8 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
     for (std::size_t k = 1; k < h.size(); ++k) largest = std::max(largest, h[k].amplitude);
     if (h[1].amplitude < kHarmonicZeroFraction * largest)
       return std::string("n/a (A(f) of ") + r.signal + " is 0, e.g. by symmetry without MMd)";
+    if (std::isnan(m.*r.value)) return std::string("n/a (A(f) of ") + r.signal + kAbsentBoth;
+    if (r.name == "ddx_thd") return std::nullopt;
     if (h[r.n].amplitude < kHarmonicZeroFraction * largest)
       return std::string("0 (A(") + std::to_string(r.n) + "f) of " + r.signal + " is 0)";
   }
