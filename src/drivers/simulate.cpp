@@ -526,6 +526,13 @@ void examine_motion(const Model& model, Result& result, const std::function<bool
   } else {
     result.message += "; examined over " + std::to_string(a.periods) +
                       " further periods: " + a.kind + " (" + a.evidence + ")";
+    // A steady state of a longer period than the search looks for: say which setting finds it.
+    const int longest = model.parameters().numerics.max_multiplicity;
+    if (a.kind == "periodic" && a.recurrence > longest)
+      result.message += detail::format(
+          "; it repeats every %.0f excitation periods, beyond numerics.max_multiplicity = %.0f: "
+          "set it to %.0f (at most 64) to find this steady state",
+          a.recurrence, longest, a.recurrence);
   }
 }
 

@@ -321,6 +321,31 @@ TEST(CliRun, AVerticalExcitersMetricsOfRoundOffSayWhy) {
   EXPECT_GT(j["metrics"]["ddz_A2_A1"].get<double>(), 0.0);
 }
 
+// A steady state that repeats every 11 excitation periods (the vertical exciter at 2.5 kg m,
+// 40 Hz: the drum rocks in its trough) is beyond the search's default max_multiplicity of 8: the
+// run ends as max_periods_reached, and its message names the setting that finds it; with it, the
+// run is steady.
+TEST(CliRun, ASteadyStateBeyondMaxMultiplicityNamesTheSetting) {
+  const std::vector<std::string> rocking = {"run",   kSource + "/examples/vibratory.toml",
+                                            "--set", "roller.exciter=vertical",
+                                            "--set", "roller.static_moment=2.5",
+                                            "--f",   "40",
+                                            "--mu",  "0.6",
+                                            "--set", "numerics.max_periods=1500"};
+  Outcome o = run(rocking);
+  EXPECT_EQ(o.code, 1) << o.err;
+  EXPECT_NE(o.out.find("max_periods_reached"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("it repeats every 11 excitation periods, beyond "
+                       "numerics.max_multiplicity = 8: set it to 11"),
+            std::string::npos)
+      << o.out;
+  std::vector<std::string> set = rocking;
+  set.insert(set.end(), {"--set", "numerics.max_multiplicity=11"});
+  o = run(set);
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("repeating every 11 excitation periods"), std::string::npos) << o.out;
+}
+
 TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
   TempDir dir;
   Outcome o = run({"run", kSource + "/examples/case.toml", "--G", "40", "--pure-rolling", "--MMd",
