@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "equations/equations.hpp"
 #include "equations/event_logic.hpp"
@@ -79,6 +80,20 @@ Dynamics<OscillationDrum>::Switch Dynamics<OscillationDrum>::apply(Phase phase, 
 
 bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, std::string* why,
                                         FlowStop* stop) const {
+  // The trough is a settlement depression, open above: a contact point (in flight: the trough's
+  // point nearest to the drum, docs/model.md section 13) past its vertical tangent, |delta| >=
+  // pi/2, would be soil overhanging the drum. The shapes' formulas hold all round (a circle's
+  // point nearest to a drum that jumped almost to its centre can be anywhere on it: a landing
+  // there orbited the drum round the circle, delta growing without bound), the model does not.
+  if (!(std::abs(x[0]) < 0.5 * std::numbers::pi)) {
+    *stop = FlowStop::contact_lost;
+    *why = detail::format(
+        "at t = %.9g s, delta = %.6g rad: the drum's point on the trough passed the trough's "
+        "vertical tangent (|delta| >= pi/2), where the soil would overhang the drum; the trough "
+        "is a depression open above, so the drum has left it, which the model does not follow",
+        t, x[0]);
+    return true;
+  }
   const Kinematics k = kinematics(model_.geometry(), x[0]);
   if (!(k.f5 > 0.0)) {
     *stop = FlowStop::invalid_geometry;

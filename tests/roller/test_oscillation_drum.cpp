@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
+#include <string>
 
 #include "equations/event_logic.hpp"
 #include "equations/jacobian.hpp"
@@ -49,6 +51,33 @@ TEST(OscillationDrum, RightHandSideIsTheOneTheJacobiansDifferentiate) {
       dyn.rhs(phase, 0.001 * i, q.to_array(), f);
       const Vec8 g = phase_rhs(model, 0.001 * i, q, phase, 2.0 * model.nu());
       for (int k = 0; k < 8; ++k) EXPECT_EQ(f[k], g[k]) << to_string(phase) << " " << k;
+    }
+  }
+}
+
+// The trough is open above: a state whose point on the trough is past its vertical tangent,
+// |delta| >= pi/2, is not one the model follows (contact_lost, saying why), in every phase; up to
+// it the state is valid (the paper's rolling cases reach |delta| = 0.45 rad).
+TEST(OscillationDrum, APointPastTheTroughsVerticalTangentHasLeftTheTrough) {
+  const Model model(driven_case());
+  const Dyn dyn(model, 2.0 * model.nu());
+  State q = model.initial_state();
+  for (Phase phase : {Phase::stick, Phase::slip_positive, Phase::slip_negative}) {
+    for (double delta : {-1.5, 0.45, 1.5}) {
+      q.delta = delta;
+      std::string why;
+      FlowStop stop = FlowStop::reached;
+      EXPECT_FALSE(dyn.invalid(phase, q.to_array(), 0.1, &why, &stop)) << delta << ": " << why;
+    }
+    for (double delta : {-1.58, 0.5 * std::numbers::pi, 2.0, 7.0}) {
+      q.delta = delta;
+      std::string why;
+      FlowStop stop = FlowStop::reached;
+      ASSERT_TRUE(dyn.invalid(phase, q.to_array(), 0.1, &why, &stop)) << delta;
+      EXPECT_EQ(stop, FlowStop::contact_lost);
+      EXPECT_NE(why.find("passed the trough's vertical tangent (|delta| >= pi/2)"),
+                std::string::npos)
+          << why;
     }
   }
 }

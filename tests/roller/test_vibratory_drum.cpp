@@ -215,6 +215,27 @@ TEST(VibratoryDrum, DirectedExciterWithFlightLiftsOffWhereTheConeCloses) {
   }
 }
 
+// A drum thrown almost out of its trough (circular exciter at 2.5 kg m and 40 Hz on stiff soil:
+// F0 = 158 kN, 3.5 times its weight; the circle's clearance R - r is 6 mm): in flight the point of
+// the trough nearest to it passed the trough's vertical tangent, and it landed there, on soil above
+// it, and went on orbiting the circle (delta grew by 2 pi every three periods: the run ended as
+// max_periods_reached "converging", or as "chaotic"). The run stops where the model stops holding.
+TEST(VibratoryDrum, ADrumThrownPastTheTroughsVerticalTangentHasLeftTheTrough) {
+  for (Exciter e : {Exciter::circular, Exciter::circular_reversed}) {
+    Case c = vibratory_case(e);
+    c.contact.unilateral = true;
+    c.contact.mu = 0.6;
+    c.roller.static_moment = 2.5;
+    c.roller.f = 40.0;
+    c.soil.input = SoilInput::table2;
+    c.soil.G = 70e6;
+    const Result r = simulate(c);
+    EXPECT_EQ(r.status, Status::contact_lost) << r.message;
+    EXPECT_NE(r.message.find("passed the trough's vertical tangent"), std::string::npos)
+        << r.message;
+  }
+}
+
 // Energy over a steady period with lift-off (circular exciter, Coulomb friction): the unbalance
 // force's work on the drum centre, F . M' (the static load W does no net work over a period),
 // equals what the buffers' and the soil's dashpots dissipate plus the friction's work in slip, |T
