@@ -405,7 +405,9 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   for (Node& nd : nodes) nd.phi -= rate * nd.tau;  // in place: nothing below reads phi
   const Spectrum hphi = spectrum(nodes, &Node::phi, P, t0, f, 1);
   // M0 sin(nu t) + MMd has M0 = 0 (the vibratory drum) when it is the same at the four quarters
-  // of a period (M0 sin(nu t) takes one value at all four only for M0 = 0).
+  // of a period (M0 sin(nu t) takes one value at all four only for M0 = 0). Read from the model,
+  // not from the samples' torque column as compute_metrics(result) does: a study's result may
+  // hold only its section state, one sample, whose column is constant for every roller.
   bool torque_oscillates = false;
   for (int q = 1; q < 4; ++q)
     torque_oscillates =
