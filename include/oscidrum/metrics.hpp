@@ -60,6 +60,17 @@ struct Metrics {
   static Metrics unavailable();
 };
 
+/// Which of x_M'' and z_M'' is absent as a whole: every component of its spectrum (mean
+/// included) at or below 1e-6 of the largest component of the two spectra. Such a signal is the
+/// round-off of a motion that has none (the directed vertical exciter's x_M'', a record's dead
+/// channel): its ratios and phases are NaN (docs/outputs.md), and plots and tables show it as
+/// absent instead of scaling its round-off up to look like a signal.
+struct AbsentSignals {
+  bool ddx = false;  ///< x_M'' absent
+  bool ddz = false;  ///< z_M'' absent
+};
+AbsentSignals absent_signals(const Spectrum& ddx_harmonics, const Spectrum& ddz_harmonics);
+
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if
 /// the result holds no samples or its status is not Status::steady_state.
 Metrics compute_metrics(const Result& result, int n_max = 10);

@@ -82,6 +82,7 @@ _CORE_NAMES = (
     "TroughGeometry",
     "ValidationRow",
     "__version__",
+    "absent_signals",
     "accelerations",
     "case_to_toml",
     "analyze_motion",

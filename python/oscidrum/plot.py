@@ -113,6 +113,16 @@ SLIP_COLORS = {1: ("tab:orange", "slip+ ($v_{rel} > 0$)"),
                -1: ("tab:cyan", "slip- ($v_{rel} < 0$)"),
                2: ("tab:purple", "flight (no contact)")}
 
+#: A signal is absent as a whole when every component of its spectrum (mean included) is at most
+#: this fraction of the largest component of x_M'' and z_M'' together: the round-off of a motion
+#: that has none (the directed vertical exciter's x_M''; the metrics' rule, docs/outputs.md, and
+#: ``oscidrum.absent_signals``). Plots draw it flat on zero with a note instead of scaling its
+#: round-off up to look like a signal.
+ABSENT_FRACTION = 1e-6
+
+#: The acceleration columns and their names in the notes.
+_SIGNAL_NAMES = {"ddx_M": "x_M''", "ddz_M": "z_M''"}
+
 
 def _field(name: str) -> Any:
     """The parameter table's field of a key (aliases resolved), or None (a metric)."""
@@ -552,6 +562,13 @@ def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, flo
                 patches = shade_phases(axis, tau, np.asarray(state.samples.phase)[idx])
                 handles = patches if k == 0 else []
         axis.set_ylabel(ylabel)
+        if column in _SIGNAL_NAMES and _absent_everywhere(states, column):
+            # Round-off, not a signal: flat on zero on the other signal's scale, with a note.
+            other = "ddz_M" if column == "ddx_M" else "ddx_M"
+            top = max(float(np.max(np.abs(np.asarray(getattr(st.samples, other))[
+                _window(st, periods)]))) for st in states) * factor
+            axis.set_ylim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
+            _note_absent(axis, states, column)
         axis.axhline(0.0, color="0.6", lw=0.5)
         axis.grid(alpha=0.3)
         if k == 0:  # one legend for the panels, which show the same cases
@@ -717,7 +734,10 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
         area = _area(state, x, z)
         label = names[i]
         if area is not None:
-            label = (f"{label}: " if label else "") + f"area {area:.4g} m$^2$/s$^4$"
+            text = f"area {area:.4g} m$^2$/s$^4$"
+            if any(absent_signals(state).values()):  # a curve of round-off in one coordinate
+                text = f"area 0 (round-off {area:.2g} m$^2$/s$^4$)"
+            label = (f"{label}: " if label else "") + text
         axis.plot(xc, zc, color=color, lw=1.2, label=label or None, zorder=2)
         _arrows(axis, x, z, color)
     handles = [Patch(color=SLIP_COLORS[v][0], alpha=0.45, label=SLIP_COLORS[v][1])
@@ -726,6 +746,13 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
         handles.insert(0, Patch(facecolor="none", edgecolor="none", label="stick: bare line"))
     axis.set_xlabel(DDX_LABEL)
     axis.set_ylabel(DDZ_LABEL)
+    # A coordinate absent in every case spans the other's range: the curve is a line on zero.
+    for column, other, set_lim in (("ddx_M", "ddz_M", axis.set_xlim),
+                                   ("ddz_M", "ddx_M", axis.set_ylim)):
+        if _absent_everywhere(states, column):
+            top = max(float(np.max(np.abs(np.asarray(getattr(st.samples, other))))) for st in states)
+            set_lim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
+            _note_absent(axis, states, column, bottom=True)
     axis.axhline(0.0, color="0.6", lw=0.5)
     axis.axvline(0.0, color="0.6", lw=0.5)
     axis.grid(alpha=0.3)
@@ -748,6 +775,36 @@ def normalised_spectrum(state: SteadyState, column: str, n_max: int = 10) -> np.
     amp = spectrum(state, column, n_max)[1:]
     peak = float(np.max(amp)) if len(amp) else 0.0
     return amp / peak if peak > 0 else amp
+
+
+def absent_signals(state: SteadyState) -> Dict[str, bool]:
+    """Which of ddx_M and ddz_M is absent as a whole (ABSENT_FRACTION): from the case's spectra
+    (its metrics, else a DFT of its samples), as the metrics judge it."""
+    n_max = 10
+    if state.metrics and "ddx_amplitude" in state.metrics and "ddz_amplitude" in state.metrics:
+        n_max = min(len(state.metrics["ddx_amplitude"]), len(state.metrics["ddz_amplitude"])) - 1
+    spectra = {c: spectrum(state, c, max(n_max, 1)) for c in _SIGNAL_NAMES}
+    level = ABSENT_FRACTION * max(float(np.max(a)) for a in spectra.values())
+    return {c: bool(np.all(a <= level)) for c, a in spectra.items()}
+
+
+def _absent_everywhere(states: Sequence[SteadyState], column: str) -> bool:
+    return bool(states) and all(absent_signals(st)[column] for st in states)
+
+
+def _note_absent(axis: Any, states: Sequence[SteadyState], column: str,
+                 bottom: bool = False) -> None:
+    """The note on a panel whose signal is absent in every case shown (at its top left, or at
+    its bottom left where a legend may sit at the top)."""
+    name = _SIGNAL_NAMES[column]
+    peak = max(float(np.max(np.abs(np.asarray(getattr(st.samples, column), dtype=float))))
+               for st in states)
+    axis.text(0.01, 0.03 if bottom else 0.97,
+              f"{name} is absent: round-off only (|{name}| <= {peak:.2g} m/s$^2$, "
+              "below 1e-6 of the larger signal)", transform=axis.transAxes,
+              va="bottom" if bottom else "top", ha="left",
+              fontsize=8, color="0.25",
+              bbox=dict(facecolor="white", edgecolor="0.8", alpha=0.9, pad=2))
 
 
 #: The units of plot_spectra: "normalised" (A_n / max A_n, the paper's), "m/s^2" (A_n), "both"
@@ -783,6 +840,8 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
                 amp = normalised_spectrum(state, column, n_max)
             else:
                 amp = spectrum(state, column, n_max)[1:]
+            if absent_signals(state)[column]:  # round-off: no bars (normalised they would be 1)
+                amp = np.zeros_like(amp)
             peak = max(peak, float(np.max(amp)) if len(amp) else 0.0)
             n = np.arange(1, len(amp) + 1)
             axis.bar(n - 0.4 + width * (i + 0.5), amp, width=width,
@@ -798,6 +857,8 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
                 right = axis.secondary_yaxis(
                     "right", functions=(lambda a, p=peak: a / p, lambda r, p=peak: r * p))
                 right.set_ylabel(AMP_LABEL)
+        if _absent_everywhere(states, column):
+            _note_absent(axis, states, column)
         axis.grid(alpha=0.3, axis="y")
         if k == 0:  # one legend for the panels, which show the same cases
             _legend(axis, legend=legend, under=axes[-1])

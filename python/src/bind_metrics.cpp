@@ -136,6 +136,23 @@ void bind_metrics(py::module_& m) {
       py::arg("x"), py::arg("y"),
       "Area of the region enclosed by the closed polygon (x, y) (non-zero winding: both lobes "
       "of a figure-eight count) [unit x * unit y].");
+  m.def(
+      "absent_signals",
+      [](const Array& ddx_amplitude, const Array& ddz_amplitude) {
+        auto spectrum = [](const Array& a, const char* name) {
+          Spectrum h;
+          for (double v : span_of(a, name)) h.push_back({v, 0.0});
+          return h;
+        };
+        const AbsentSignals s = absent_signals(spectrum(ddx_amplitude, "ddx_amplitude"),
+                                               spectrum(ddz_amplitude, "ddz_amplitude"));
+        return std::make_pair(s.ddx, s.ddz);
+      },
+      py::arg("ddx_amplitude"), py::arg("ddz_amplitude"),
+      "Whether x_M'' and z_M'' are absent as a whole, from their harmonic amplitudes A_0 ... A_n "
+      "(Metrics.ddx_amplitude, ddz_amplitude): every component of the signal at most 1e-6 of the "
+      "largest component of the two (round-off of a motion that has none, such as the directed "
+      "vertical exciter's x_M''). Returns (ddx_absent, ddz_absent).");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
   m.def(
       "vibration_modulus",

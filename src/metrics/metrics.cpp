@@ -34,6 +34,15 @@ void require_size(const std::vector<double>& v, std::size_t n, const char* name)
 
 }  // namespace
 
+AbsentSignals absent_signals(const Spectrum& ddx_harmonics, const Spectrum& ddz_harmonics) {
+  const double absent = detail::absent_level(ddx_harmonics, ddz_harmonics);
+  auto all_below = [absent](const Spectrum& h) {
+    return std::all_of(h.begin(), h.end(),
+                       [absent](const Harmonic& c) { return c.amplitude <= absent; });
+  };
+  return {all_below(ddx_harmonics), all_below(ddz_harmonics)};
+}
+
 Metrics Metrics::unavailable() { return detail::all_unavailable<Metrics>(metric_outputs()); }
 
 Metrics compute_metrics(const Result& result, int n_max) {

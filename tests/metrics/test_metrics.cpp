@@ -183,6 +183,36 @@ TEST(Harmonics, HighestHarmonicBelowNyquist) {
   expect_error([&] { harmonics(y, 2, f, 0.3, 4); }, {"n_max", "Nyquist", "8 samples per cycle"});
 }
 
+// A signal is absent when every component of its spectrum (mean included) is at most 1e-6 of the
+// largest component of the two spectra; a signal small against the other but above that is not.
+TEST(AbsentSignals, EveryComponentAgainstTheLargestOfBoth) {
+  auto spectrum = [](std::vector<double> a) {
+    Spectrum h;
+    for (double v : a) h.push_back({v, 0.3});
+    return h;
+  };
+  const Spectrum z = spectrum({2.0, 25.0, 3.7, 2.7});
+  // The directed vertical exciter's x_M'' (round-off) against its z_M''.
+  AbsentSignals a = absent_signals(spectrum({1e-23, 3e-22, 7e-23, 1.3e-22}), z);
+  EXPECT_TRUE(a.ddx);
+  EXPECT_FALSE(a.ddz);
+  // The same the other way round.
+  a = absent_signals(z, spectrum({1e-23, 3e-22, 7e-23, 1.3e-22}));
+  EXPECT_FALSE(a.ddx);
+  EXPECT_TRUE(a.ddz);
+  // Just below the threshold (1e-6 of 25) absent, just above it present; the mean counts as a
+  // component.
+  EXPECT_TRUE(absent_signals(spectrum({0.0, 24.9e-6, 0.0, 0.0}), z).ddx);
+  EXPECT_FALSE(absent_signals(spectrum({0.0, 25.1e-6, 0.0, 0.0}), z).ddx);
+  EXPECT_FALSE(absent_signals(spectrum({1e-3, 0.0, 0.0, 0.0}), z).ddx);
+  // A signal without a fundamental (z_M'' of the oscillation drum without driving torque: even
+  // harmonics only) is present.
+  EXPECT_FALSE(absent_signals(z, spectrum({0.0, 1e-9, 3.1, 1e-9})).ddz);
+  // Two dead channels: both absent.
+  a = absent_signals(spectrum({0.0, 0.0}), spectrum({0.0, 0.0}));
+  EXPECT_TRUE(a.ddx && a.ddz);
+}
+
 TEST(Harmonics, RejectsBadInput) {
   const std::vector<double> y(12, 1.0);
   expect_error([] { harmonics({}, 1, 1.0, 0.0, 0); }, {"empty"});

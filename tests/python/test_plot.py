@@ -597,3 +597,45 @@ def test_cli_diagram_plot_draws_the_stroboscopic_points(cli, tmp_path):
     table, units = data.read_table(tmp_path / "d.csv")
     fig = plot.plot_diagram(table, "ddz_M", units=units)
     assert len(fig.axes[0].lines[0].get_xdata()) == 2 * 20  # every point of the up sweep
+
+
+def test_an_absent_signal_is_drawn_flat_with_a_note():
+    """The directed vertical exciter's x_M'' is round-off (1e-22 m/s^2): the plots draw it on
+    zero on z_M'''s scale with a note, the spectra without bars, the area as 0, instead of scaling
+    the round-off up to look like a signal. The plots' rule is the metrics' (absent_signals)."""
+    case = oscidrum.Case(type="vibratory", static_moment=0.9, f=30.0, unilateral=True,
+                         exciter="vertical")
+    result = oscidrum.simulate(case)
+    assert result.status == oscidrum.Status.steady_state, result.message
+    metrics = oscidrum.compute_metrics(result, case=case)
+    state = data.from_result(result, metrics=metrics)
+    assert plot.absent_signals(state) == {"ddx_M": True, "ddz_M": False}
+    assert oscidrum.absent_signals(metrics.ddx_amplitude, metrics.ddz_amplitude) == (True, False)
+    # Without the metrics (the DFT of the samples): the same.
+    assert plot.absent_signals(data.from_result(result)) == {"ddx_M": True, "ddz_M": False}
+    notes = lambda ax: [t.get_text() for t in ax.texts if "absent" in t.get_text()]  # noqa: E731
+
+    fig = plot.plot_accelerations(state)
+    ax_x, ax_z = fig.axes[:2]
+    low, high = ax_x.get_ylim()
+    z_peak = np.max(np.abs(result.samples.ddz_M))
+    assert high >= z_peak and low <= -z_peak  # z_M'''s scale, not 1e-22
+    assert len(notes(ax_x)) == 1 and "x_M''" in notes(ax_x)[0] and not notes(ax_z)
+
+    fig = plot.plot_figure_eight(state)
+    ax = fig.axes[0]
+    assert ax.get_xlim()[1] >= z_peak and len(notes(ax)) == 1
+    assert any(t.get_text().startswith("area 0 (round-off")
+               for t in ax.get_legend().get_texts())
+
+    for units in ("normalised", "m/s^2", "both"):
+        fig = plot.plot_spectra(state, units=units)
+        bars = [p.get_height() for p in fig.axes[0].patches]
+        assert bars and max(bars) == 0.0 and len(notes(fig.axes[0])) == 1, units
+        assert max(p.get_height() for p in fig.axes[1].patches) > 0 and not notes(fig.axes[1])
+
+    # A case with both signals: no note anywhere, the rule agrees with the core's.
+    m = oscidrum.compute_metrics(slip_case_result := oscidrum.simulate(oscidrum.Case()))
+    assert oscidrum.absent_signals(m.ddx_amplitude, m.ddz_amplitude) == (False, False)
+    fig = plot.plot_accelerations(data.from_result(slip_case_result, metrics=m))
+    assert not any(notes(a) for a in fig.axes)

@@ -212,6 +212,10 @@ TEST(VibratoryDrum, DirectedExciterWithFlightLiftsOffWhereTheConeCloses) {
       EXPECT_TRUE(std::isfinite(m->ddz_A2_A1) && m->ddz_A2_A1 > 0.0) << m->ddz_A2_A1;
       // No oscillating torque: phi lags nothing (before: -1.96 pi, the phase of 1e-26 rad).
       EXPECT_TRUE(std::isnan(m->phi_lag)) << m->phi_lag;
+      // What plots and tables read to show x_M'' as absent rather than scale it up.
+      const AbsentSignals absent = absent_signals(m->ddx_harmonics, m->ddz_harmonics);
+      EXPECT_TRUE(absent.ddx);
+      EXPECT_FALSE(absent.ddz);
     }
   }
 }

@@ -8,8 +8,9 @@
 // out of range; several at once) shows a message next to each input without freezing the page,
 // that the exported TOML runs natively to the same area, that the roller selector runs the
 // vibratory drum of examples/vibratory.toml as the native engine does (with its own inputs and
-// rows, none of the oscillation drum's) and restores the oscillation drum's default case, that
-// no console error occurred, and save a screenshot.
+// rows, none of the oscillation drum's), draws the vertical exciter's x_M'' of round-off as absent
+// (flat on zero, no spectrum bars, said so) and restores the oscillation drum's default case,
+// that no console error occurred, and save a screenshot.
 //
 // Usage: node e2e.test.js <path to the native oscidrum> <web/dist> <screenshot.png>
 // (OSCIDRUM_KEEP_EXPORTS=DIR keeps the downloaded exports in DIR.)
@@ -505,6 +506,39 @@ async function main() {
         assert.ok(!(await p2.isVisible('#in-M0')), query);
         await p2.close();
         console.log(`ok   ${query.slice(0, 60)}...: the vibratory drum, area ${area}`);
+      }
+      // The directed vertical exciter: x_M'' is round-off (1e-22 m/s^2). The page draws it flat on
+      // zero on the scale of z_M'' and says it is absent (the time plot's legend, the figure's
+      // scale and caption, no spectrum bars, the table), instead of scaling the round-off up.
+      await page.selectOption('[id="in-exciter"]', { label: 'vertical' });
+      await page.waitForFunction(() => location.search.includes('roller.exciter=vertical'));
+      shown = await settled();
+      {
+        const got = await page.evaluate(() => {
+          const r = window.explorer.last().result;
+          const note = document.querySelector('#plot-spec-x .absent-note');
+          const zNote = document.querySelector('#plot-spec-z .absent-note');
+          return {
+            status: r.status, absent: r.absent, scales: window.explorer.timeScales(),
+            legend: Array.from(document.querySelectorAll('#plot-time .u-legend .u-label'), (e) => e.textContent),
+            bars: window.explorer.spectrum('plot-spec-x'), zBars: window.explorer.spectrum('plot-spec-z'),
+            note: note && !note.hidden ? note.textContent : '', zNote: zNote && !zNote.hidden ? zNote.textContent : '',
+            caption: document.getElementById('area-caption').textContent,
+            table: document.getElementById('metrics').textContent,
+          };
+        });
+        assert.equal(got.status, 'steady_state');
+        assert.deepEqual(got.absent, { ddx_M: true, ddz_M: false });
+        const vert = native([vibFile, '--set', 'roller.exciter=vertical']);
+        assert.ok(Math.abs(vert.metrics.ddx_max) < 1e-6 * vert.metrics.ddz_max, `native x_M'' max ${vert.metrics.ddx_max}`);
+        assert.ok(got.scales.ax[1] >= vert.metrics.ddz_max && got.scales.ax[0] <= -vert.metrics.ddz_max, `x_M'' axis ${got.scales.ax}: not on the scale of z_M''`);
+        assert.ok(got.legend.some((l) => /x_M'' \(absent: round-off only\)/.test(l)), JSON.stringify(got.legend));
+        assert.ok(got.bars.every((v) => v === 0) && got.zBars.some((v) => v > 1), JSON.stringify(got.bars));
+        assert.match(got.note, /x_M'' absent: round-off only/);
+        assert.equal(got.zNote, '');
+        assert.match(got.caption, /^0 \(x_M'' absent: round-off/);
+        assert.match(got.table, /absent: round-off only/);
+        console.log(`ok   vertical exciter: x_M'' absent (native max ${vert.metrics.ddx_max.toExponential(2)} m/s^2), drawn flat on the scale of z_M'' [${got.scales.ax.map((v) => v.toFixed(1))}], no x bars, "${got.caption}"`);
       }
       await page.selectOption('[id="in-exciter"]', { label: 'circular' });
       await settled();

@@ -550,13 +550,19 @@ function render() {
     for (const text of ['status', r.status, `no metrics: ${r.message}`]) tr.insertCell().textContent = text;
     return;
   }
-  $('area-caption').textContent = `${fmt(m.area, 5)} m²/s⁴`;
+  const absentColumn = ['ddx_M', 'ddz_M'].find((c) => isAbsent(r, c));
+  $('area-caption').textContent = absentColumn
+    ? `0 (${SIGNAL_NAME[absentColumn]} absent: round-off ${fmt(m.area, 2)} m²/s⁴)`
+    : `${fmt(m.area, 5)} m²/s⁴`;
   $('area-caption').dataset.value = String(m.area);
   drawTimePlot(r);
   drawFigure($('plot-figure'), r, m);
   const rec = recordState.analysis && recordState.analysis.ok && recordState.analysis.valid ? recordState.analysis.metrics : null;
-  drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x, rec && Array.from(rec.ddx_harmonics.amplitude));
-  drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z, rec && Array.from(rec.ddz_harmonics.amplitude));
+  const n = periodSlice(r);
+  drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x, rec && Array.from(rec.ddx_harmonics.amplitude),
+    isAbsent(r, 'ddx_M') ? absentNote(r, 'ddx_M', n) : null);
+  drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z, rec && Array.from(rec.ddz_harmonics.amplitude),
+    isAbsent(r, 'ddz_M') ? absentNote(r, 'ddz_M', n) : null);
   fillMetrics(r, m);
   startAnimation(r);
 }
@@ -609,16 +615,19 @@ function drawTimePlot(r) {
   const el = $('plot-time');
   const width = Math.max(400, el.clientWidth || 700);
   if (plots.time) plots.time.destroy();
+  // An absent signal (round-off) on the other's scale, named so in the legend.
+  const scale = (column) => (isAbsent(r, column) ? { range: absentRange(r, column, n) } : {});
+  const legendName = (column, name) => (isAbsent(r, column) ? `${name} (absent: round-off only)` : name);
   plots.time = new uPlot({
     width, height: 240,
     // z_M'' (about +-1 m/s^2) on its own axis at the right: on the axis of x_M'' (+-12) it is a
     // flat line.
-    scales: { x: { time: false }, ax: {}, az: {} },
+    scales: { x: { time: false }, ax: scale('ddx_M'), az: scale('ddz_M') },
     axes: [{ label: 't - t0 [ms]' },
       { label: "x_M'' [m/s²]", scale: 'ax', stroke: COLORS.x },
       { label: "z_M'' (down) [m/s²]", scale: 'az', side: 1, stroke: COLORS.z, grid: { show: false } }],
-    series: [{ label: 't [ms]' }, { label: "x_M''", stroke: COLORS.x, width: 1.5, scale: 'ax' },
-      { label: "z_M'' (down)", stroke: COLORS.z, width: 1.5, scale: 'az' }],
+    series: [{ label: 't [ms]' }, { label: legendName('ddx_M', "x_M''"), stroke: COLORS.x, width: 1.5, scale: 'ax' },
+      { label: legendName('ddz_M', "z_M'' (down)"), stroke: COLORS.z, width: 1.5, scale: 'az' }],
     hooks: {
       drawClear: [(u) => {
         const ctx = u.ctx;
@@ -637,8 +646,9 @@ function drawTimePlot(r) {
 
 // The spectrum A_n [m/s²] as bars; a measured record's as dots over them, on the same scale (the
 // identified model and the record side by side, as `oscidrum run --plot` draws them).
-function drawSpectrum(id, amplitudes, color, measured = null) {
-  const a = Array.from(amplitudes);
+// `absent`: the note for a signal that is round-off (no bars: they would be round-off's).
+function drawSpectrum(id, amplitudes, color, measured = null, absent = null) {
+  const a = absent ? Array.from(amplitudes, () => 0) : Array.from(amplitudes);
   const x = a.map((_, i) => i);
   const series = [{ label: 'n' }, { label: 'A_n [m/s²]', stroke: color, fill: color + '99', paths: uPlot.paths.bars({ size: [0.6, 40] }), points: { show: false } }];
   const data = [x, a];
@@ -657,6 +667,15 @@ function drawSpectrum(id, amplitudes, color, measured = null) {
     series,
     legend: { show: false },
   }, data, el);
+  // The note of an absent signal under the plot (an element of the page, for reading and tests).
+  let note = el.querySelector('.absent-note');
+  if (!note) {
+    note = document.createElement('p');
+    note.className = 'absent-note';
+    el.appendChild(note);
+  }
+  note.textContent = absent || '';
+  note.hidden = !absent;
 }
 
 // ---- plain canvas plots (the z-x figure, the drum)
@@ -715,8 +734,11 @@ function drawFigure(canvas, r, m) {
   const measured = recordState.analysis && recordState.analysis.ok && recordState.analysis.valid ? recordState.analysis.periodic : null;
   const xs = measured ? [...x, ...measured.ddx_M] : x, zs = measured ? [...z, ...measured.ddz_M] : z;
   const ctx = canvas.getContext('2d');
+  // A coordinate that is round-off (and no record over it) spans the other's range: a line on 0.
+  const xAbsent = isAbsent(r, 'ddx_M') && !measured, zAbsent = isAbsent(r, 'ddz_M') && !measured;
+  const xr = xAbsent ? absentRange(r, 'ddx_M', n) : range(xs), zr = zAbsent ? absentRange(r, 'ddz_M', n) : range(zs);
   // A top margin for the caption: it must not cover the figure-eight.
-  const { X, Y } = frame(ctx, canvas.width, canvas.height, range(xs), range(zs), "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
+  const { X, Y } = frame(ctx, canvas.width, canvas.height, xr, zr, "x_M'' [m/s²]", "z_M'' (down) [m/s²]", 34);
   // the figure coloured by the contact phase
   ctx.lineWidth = 1.8;
   let curveTop = Infinity;
@@ -742,7 +764,15 @@ function drawFigure(canvas, r, m) {
     canvas.dataset.measuredPoints = String(k);
   }
   ctx.textAlign = 'left';
-  const caption = `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
+  const absentColumn = xAbsent ? 'ddx_M' : zAbsent ? 'ddz_M' : null;
+  if (absentColumn) {
+    ctx.fillStyle = '#444';
+    ctx.font = '10px system-ui, sans-serif';
+    const name = SIGNAL_NAME[absentColumn];
+    ctx.fillText(`${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[absentColumn], n), 2)} m/s²)`, 56, canvas.height - 42);
+    ctx.font = '11px system-ui, sans-serif';
+  }
+  const caption = absentColumn ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
   ctx.fillStyle = '#222';
   ctx.fillText(caption, 60, 20);
   const after = 60 + ctx.measureText(caption).width + 10;
@@ -867,6 +897,26 @@ function largestHarmonics(a) {
   return n.slice(0, 3).sort((i, j) => i - j).map((k) => `A${k} = ${fmt(a[k], 4)}`).join(', ');
 }
 
+// A signal that is round-off as a whole (r.absent, the engine's oscidrum::absent_signals: every
+// harmonic below 1e-6 of the two signals' largest; the vertical exciter's x_M'') is drawn flat on
+// zero on the other signal's scale and named absent, not scaled up to look like a signal.
+const SIGNAL_NAME = { ddx_M: "x_M''", ddz_M: "z_M''" };
+const isAbsent = (r, column) => Boolean(r && r.absent && r.absent[column]);
+function peakOf(values, n = values.length) {
+  let top = 0;
+  for (let i = 0; i < n; i++) top = Math.max(top, Math.abs(values[i]));
+  return top;
+}
+// The symmetric range [-1.05 top, 1.05 top] of the other signal, for an absent one.
+function absentRange(r, column, n) {
+  const top = peakOf(r.samples[column === 'ddx_M' ? 'ddz_M' : 'ddx_M'], n);
+  return top > 0 ? [-1.05 * top, 1.05 * top] : [-1, 1];
+}
+function absentNote(r, column, n) {
+  const name = SIGNAL_NAME[column];
+  return `${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[column], n), 2)} m/s², below 1e-6 of the larger signal)`;
+}
+
 // The name of a choice field's value in the case of a result ('vibratory').
 const choiceOf = (r, key) => fieldByKey[key].choices[r.case[key]];
 
@@ -884,25 +934,28 @@ function fillMetrics(r, m) {
   ];
   if (vibratory) rows.push(['operating mode', r.diagnostics.operating_mode, 'the literature\'s names (docs/model.md section 14)']);
   else if (unilateral) rows.push(['contact mode', r.diagnostics.contact_mode, '']);
+  // A signal that is round-off: said so, its round-off's size beside it.
+  const absentText = (column, text) => (isAbsent(r, column) ? `absent: round-off only (${text})` : text);
+  const areaText = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? `0 (round-off ${fmt(m.area, 2)})` : fmt(m.area, 6);
   rows.push(
-    ["x_M'' max / min", `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`, 'm/s²'],
-    ["z_M'' max / min", `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`, 'm/s², z down'],
-    ["x_M'' largest harmonics", largestHarmonics(hx), 'm/s² (A_n of n f)'],
-    ["z_M'' largest harmonics", largestHarmonics(hz), 'm/s²'],
+    ["x_M'' max / min", absentText('ddx_M', `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`), 'm/s²'],
+    ["z_M'' max / min", absentText('ddz_M', `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`), 'm/s², z down'],
+    ["x_M'' largest harmonics", isAbsent(r, 'ddx_M') ? 'absent: round-off only' : largestHarmonics(hx), 'm/s² (A_n of n f)'],
+    ["z_M'' largest harmonics", isAbsent(r, 'ddz_M') ? 'absent: round-off only' : largestHarmonics(hz), 'm/s²'],
   );
   if (vibratory) {
     rows.push(
       ['kb', num(m.kb / ksv.display_scale, 5), `${ksv.display_unit}: the soil's vertical force in phase with z_M at f, over z_M's amplitude (Kb-type stiffness)`],
       ['CMV-type, RMV-type', [m.cmv, m.rmv].map((v) => num(v)).join(', '), '300 A2/A1 and A(f/2)/A(f) of z_M\'\''],
       ['x THD', num(m.ddx_thd), 'overtones of x_M\'\''],
-      ['area', fmt(m.area, 6), 'm²/s⁴'],
+      ['area', areaText, 'm²/s⁴'],
     );
   } else {
     rows.push(
       ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => num(v)).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
       ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
       ["lag x_M''→z_M'' ψ", num(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x); n/a: x_M\'\' has no fundamental or z_M\'\' no 2f)'],
-      ['area', fmt(m.area, 6), 'm²/s⁴ (Figs. 16, 22)'],
+      ['area', areaText, 'm²/s⁴ (Figs. 16, 22)'],
     );
   }
   const shares = [m.stick_fraction, m.slip_positive_fraction, m.slip_negative_fraction, ...(unilateral ? [m.flight_fraction] : [])];
@@ -1192,7 +1245,7 @@ function exportPng() {
 function svgPlot(x0, y0, w, h, title, xlabel, ylabel, series, shading) {
   const box = { l: x0 + 56, r: x0 + w - 10, t: y0 + 22, b: y0 + h - 36 };
   const xs = series.flatMap((s) => Array.from(s.x)), ys = series.flatMap((s) => Array.from(s.y));
-  const xr = series.xr || range(xs, 0), yr = range(ys);
+  const xr = series.xr || range(xs, 0), yr = series.yr || range(ys);
   const X = (v) => box.l + ((v - xr[0]) / (xr[1] - xr[0])) * (box.r - box.l);
   const Y = (v) => box.b - ((v - yr[0]) / (yr[1] - yr[0])) * (box.b - box.t);
   const parts = [`<text x="${x0 + 4}" y="${y0 + 14}" font-size="13">${title}</text>`];
@@ -1221,13 +1274,24 @@ function plotsSvg() {
   const shading = phaseRuns(s.phase, n).map((run) => ({ x0: t[run.from], x1: t[Math.min(run.to, n - 1)], color: phaseColor(run.phase) }));
   const np = Math.min(s.t.length, r.samples_per_period * Math.max(1, r.diagnostics.multiplicity));
   const closed = (a) => [...a.subarray(0, np), a[0]];
-  const spec = (h, color) => { const a = Array.from(h.amplitude); return [{ x: a.map((_, i) => i), y: a, color, bars: true }]; };
+  // A signal that is round-off: no bars, the figure on the other signal's scale, said so.
+  const spec = (h, color, column) => {
+    const a = Array.from(h.amplitude, (v) => (isAbsent(r, column) ? 0 : v));
+    const out = [{ x: a.map((_, i) => i), y: a, color, bars: true }];
+    if (isAbsent(r, column)) out.yr = [0, 1];
+    return out;
+  };
+  const absentTitle = (column) => (isAbsent(r, column) ? ' (absent: round-off only)' : '');
+  const figure = [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }];
+  if (isAbsent(r, 'ddx_M')) figure.xr = absentRange(r, 'ddx_M', np);
+  if (isAbsent(r, 'ddz_M')) figure.yr = absentRange(r, 'ddz_M', np);
+  const areaTitle = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : `area ${fmt(m.area, 5)} m²/s⁴`;
   const body = [
     svgPlot(0, 0, 900, 280, `x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)${r.case['contact.unilateral'] === 1 ? ', flight (violet)' : ''}`, 't - t0 [ms]', 'm/s²',
       [{ x: t, y: s.ddx_M.subarray(0, n), color: COLORS.x }, { x: t, y: s.ddz_M.subarray(0, n), color: COLORS.z }], shading),
-    svgPlot(0, 290, 440, 320, `z_M'' over x_M'', area ${fmt(m.area, 5)} m²/s⁴`, "x_M'' [m/s²]", "z_M'' [m/s²]", [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }]),
-    svgPlot(460, 290, 440, 155, "spectrum of x_M''", 'n', 'A_n [m/s²]', spec(m.ddx_harmonics, COLORS.x)),
-    svgPlot(460, 455, 440, 155, "spectrum of z_M''", 'n', 'A_n [m/s²]', spec(m.ddz_harmonics, COLORS.z)),
+    svgPlot(0, 290, 440, 320, `z_M'' over x_M'', ${areaTitle}`, "x_M'' [m/s²]", "z_M'' [m/s²]", figure),
+    svgPlot(460, 290, 440, 155, `spectrum of x_M''${absentTitle('ddx_M')}`, 'n', 'A_n [m/s²]', spec(m.ddx_harmonics, COLORS.x, 'ddx_M')),
+    svgPlot(460, 455, 440, 155, `spectrum of z_M''${absentTitle('ddz_M')}`, 'n', 'A_n [m/s²]', spec(m.ddz_harmonics, COLORS.z, 'ddz_M')),
   ];
   return `<svg xmlns="http://www.w3.org/2000/svg" width="900" height="620" font-family="sans-serif">\n<rect width="900" height="620" fill="#fff"/>\n${body.join('\n')}\n</svg>\n`;
 }
@@ -1271,6 +1335,8 @@ window.explorer = {
   // the measured record: {analysis, identification} as the engine returned them, and whether busy
   record: () => ({ analysis: recordState.analysis, identification: recordState.identification, busy: Boolean(recordState.busy) }),
   // the ranges of the time plot's two y axes (x_M'' and z_M'' each on its own)
+  // the bars of a spectrum plot ('plot-spec-x', 'plot-spec-z'): A_n [m/s^2], n = 0 ... N_MAX
+  spectrum: (id) => plots[id] && Array.from(plots[id].data[1]),
   timeScales: () => plots.time && { ax: [plots.time.scales.ax.min, plots.time.scales.ax.max], az: [plots.time.scales.az.min, plots.time.scales.az.max], points: plots.time.data[0].length },
 };
 

@@ -183,6 +183,17 @@ val harmonics_of(const std::vector<oscidrum::Harmonic>& h) {
   return out;
 }
 
+// Which signal is round-off as a whole (the vertical exciter's x_M'', a record's dead channel),
+// {ddx_M, ddz_M}: the page draws it flat on zero with a note instead of scaling it up
+// (oscidrum::absent_signals).
+val absent_of(const oscidrum::Spectrum& hx, const oscidrum::Spectrum& hz) {
+  const oscidrum::AbsentSignals absent = oscidrum::absent_signals(hx, hz);
+  val flags = val::object();
+  flags.set("ddx_M", absent.ddx);
+  flags.set("ddz_M", absent.ddz);
+  return flags;
+}
+
 // Every metric of the output table (oscidrum/outputs.hpp): numbers, and the spectra as
 // {amplitude, phase} arrays.
 val metrics_of(const oscidrum::Metrics& m) {
@@ -265,7 +276,7 @@ val error_object(const std::string& message, const std::string& key = {}) {
 // Simulate the case `values` from rest to its steady state (oscidrum::simulate) and compute its
 // metrics (oscidrum::compute_metrics from the dense output, as the CLI, harmonics n = 0 ... n_max).
 // Returns {ok: false, error} for bad input, else {ok: true, status, message, diagnostics, case,
-// samples, metrics, ...}.
+// samples, metrics, absent: {ddx_M, ddz_M} (absent_of; null with the metrics), ...}.
 val simulate(const val& values, int n_max) {
   try {
     const oscidrum::Case c = case_from(values);
@@ -293,9 +304,12 @@ val simulate(const val& values, int n_max) {
     // Metrics only for a steady state; another status keeps its last periods' samples to draw
     // (as the CLI does), with no numbers that look like a steady state's.
     if (r.samples.size() > 0 && oscidrum::ok(r.status)) {
-      out.set("metrics", metrics_of(oscidrum::compute_metrics(model, r, n_max)));
+      const oscidrum::Metrics m = oscidrum::compute_metrics(model, r, n_max);
+      out.set("metrics", metrics_of(m));
+      out.set("absent", absent_of(m.ddx_harmonics, m.ddz_harmonics));
     } else {
       out.set("metrics", val::null());
+      out.set("absent", val::null());
     }
     return out;
   } catch (const oscidrum::Error& e) {
@@ -467,6 +481,7 @@ val analyze_record(const std::string& text, const std::string& name, const val& 
     out.set("f", w.f);
     out.set("samples_per_period", w.samples_per_period);
     out.set("metrics", record_metrics_of(w.metrics));
+    out.set("absent", absent_of(w.metrics.ddx_harmonics, w.metrics.ddz_harmonics));
     val periodic = val::object();
     periodic.set("ddx_M", periodic_of(w.metrics.ddx_harmonics, 512));
     periodic.set("ddz_M", periodic_of(w.metrics.ddz_harmonics, 512));
