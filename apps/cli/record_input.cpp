@@ -28,10 +28,12 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                  "t, time, zeit, timestamp, ...)");
   app.add_option("--x-col", o.x_col,
                  "horizontal acceleration column x_M'': name or index (default: recognised: "
-                 "ddx_M, ax, a_x, acc_x, accel_x, x_acc, horizontal, ...)");
-  app.add_option("--z-col", o.z_col,
-                 "vertical acceleration column z_M'': name or index (default: recognised: ddz_M, "
-                 "az, a_z, acc_z, accel_z, z_acc, vertical, ...)");
+                 "ddx_M, ax, a_x, acc_x, accel_x, x_acc, horizontal, ...; a bare X if nothing else "
+                 "matches)");
+  app.add_option(
+      "--z-col", o.z_col,
+      "vertical acceleration column z_M'': name or index (default: recognised: ddz_M, "
+      "az, a_z, acc_z, accel_z, z_acc, vertical, ...; a bare Z if nothing else matches)");
   if (file_and_position) {
     app.add_option("--pos-col", o.pos_col,
                    "position column [m] (optional): each window reports its position");

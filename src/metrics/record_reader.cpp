@@ -13,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <tuple>
 #include <utility>
 
@@ -506,25 +507,34 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                 ", by name or 1-based index); the header has: " + names());
   };
   // A column recognised by the names loggers give it; exactly one must match.
-  auto recognise = [&](const char* what, const char* flag, const char* model_name,
-                       auto matches) -> int {
+  // `bare`: a name that counts only where no other column matches (a three-axis logger's bare
+  // X, Y, Z channels; beside acc_x, an x is a position or anything else).
+  auto recognise = [&](const char* what, const char* flag, const char* model_name, auto matches,
+                       const char* bare = nullptr) -> int {
     // The model's own name (as `run --csv` writes it) first, exactly: t[s] beside T[N].
     for (std::size_t c = 0; c < headings.size(); ++c)
       if (headings[c].name == model_name) return static_cast<int>(c);
     std::vector<int> hits;
     for (std::size_t c = 0; c < headings.size(); ++c)
       if (matches(headings[c].key)) hits.push_back(static_cast<int>(c));
+    if (hits.empty() && bare)
+      for (std::size_t c = 0; c < headings.size(); ++c)
+        if (headings[c].key == bare) hits.push_back(static_cast<int>(c));
     if (hits.size() == 1) return hits.front();
     if (!has_header)
       throw Error(name + ": the record has no header line: give the " + std::string(what) +
                   " column with " + flag + " (a 1-based index)");
     std::string which;
     for (int c : hits) which += (which.empty() ? "" : ", ") + header[static_cast<std::size_t>(c)];
-    throw Error(
-        name + ": " +
-        (hits.empty() ? "no column looks like the " + std::string(what)
-                      : "several columns look like the " + std::string(what) + " (" + which + ")") +
-        "; choose one with " + flag + " (a name or 1-based index); the header has: " + names());
+    throw Error(name + ": " +
+                (hits.empty()
+                     ? "no column looks like the " + std::string(what)
+                     : "several columns look like the " + std::string(what) + " (" + which + ")") +
+                "; choose one with " + flag + " (a name or 1-based index)" +
+                (std::string_view(flag) == "--t-col"
+                     ? ", or give the sampling rate with --rate HZ for a record without one"
+                     : "") +
+                "; the header has: " + names());
   };
   // From what resolves the slowest excitation searched (a few Hz) to far beyond any logger's.
   if (!(o.rate == 0.0 || (o.rate >= 1.0 && o.rate <= 1e7)))
@@ -539,12 +549,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                  : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
                                    : find(o.t_col, "--t-col");
   const int cx = o.x_col.empty()
-                     ? recognise("horizontal acceleration x_M''", "--x-col", "ddx_M",
-                                 [](const std::string& k) { return acceleration_axis(k) == 'x'; })
+                     ? recognise(
+                           "horizontal acceleration x_M''", "--x-col", "ddx_M",
+                           [](const std::string& k) { return acceleration_axis(k) == 'x'; }, "x")
                      : find(o.x_col, "--x-col");
   const int cz = o.z_col.empty()
-                     ? recognise("vertical acceleration z_M''", "--z-col", "ddz_M",
-                                 [](const std::string& k) { return acceleration_axis(k) == 'z'; })
+                     ? recognise(
+                           "vertical acceleration z_M''", "--z-col", "ddz_M",
+                           [](const std::string& k) { return acceleration_axis(k) == 'z'; }, "z")
                      : find(o.z_col, "--z-col");
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");

@@ -2,6 +2,7 @@
 // the CLI (from a file) and the browser explorer (from a dropped file's text) hand it over.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -66,6 +67,38 @@ TEST(RecordReader, GermanChannelNames) {
     EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * 9.80665);
     EXPECT_DOUBLE_EQ(r.ddz_M[0], -0.25 * 9.80665);
   }
+}
+
+// A three-axis logger's bare channel names X, Y, Z: x and z are the accelerations where no other
+// column looks like one; beside acc_x, acc_z they are something else (a position) and not read.
+TEST(RecordReader, BareAxisNamesWhereNothingElseMatches) {
+  for (const std::string header : {"t,X,Y,Z,temp", "Time [s];X [g];Y [g];Z [g]", "t x z"}) {
+    SCOPED_TRACE(header);
+    const char d = header.find(';') != std::string::npos   ? ';'
+                   : header.find(',') != std::string::npos ? ','
+                                                           : ' ';
+    const bool four = header.find('Y') != std::string::npos;
+    std::string row0 =
+        std::string("0") + d + "0.5" + d + (four ? std::string("7") + d : "") + "-0.25";
+    std::string row1 =
+        std::string("0.001") + d + "1.5" + d + (four ? std::string("7") + d : "") + "0.75";
+    if (header.find("temp") != std::string::npos) {
+      row0 += ",21";
+      row1 += ",21";
+    }
+    if (d == ';') {  // a decimal comma
+      std::replace(row0.begin(), row0.end(), '.', ',');
+      std::replace(row1.begin(), row1.end(), '.', ',');
+    }
+    const RecordColumns r = read_text(header + "\n" + row0 + "\n" + row1 + "\n");
+    ASSERT_EQ(r.t.size(), 2u);
+    const double g = header.find("[g]") != std::string::npos ? 9.80665 : 1.0;
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
+  }
+  const RecordColumns r = read_text("t,x,z,acc_x,acc_z\n0,100,200,1,2\n0.001,101,201,3,4\n");
+  EXPECT_DOUBLE_EQ(r.ddx_M[1], 3.0);
+  EXPECT_DOUBLE_EQ(r.ddz_M[1], 4.0);
 }
 
 // A logger's clock times in the time column: t in s from the first row's, across midnight, a
@@ -299,6 +332,10 @@ TEST(RecordReader, MessagesNameTheLineColumnOrOption) {
                 .find("record.csv:3: column 'az' must be a number; got 'oops'"),
             std::string::npos);
   EXPECT_NE(message_of("a,b,c\n0,1,2\n").find("no column looks like the time"), std::string::npos);
+  // Without a time column: the rate is the other way.
+  EXPECT_NE(message_of("acc_x,acc_z\n1,2\n").find("or give the sampling rate with --rate HZ"),
+            std::string::npos);
+  EXPECT_EQ(message_of("t,a,b\n0,1,2\n").find("--rate"), std::string::npos);
   EXPECT_NE(message_of("t,ax,az\n0,1\n").find("record.csv:2: 2 cells, but the header has 3"),
             std::string::npos);
   EXPECT_NE(message_of("# only comments\n").find("no data"), std::string::npos);
