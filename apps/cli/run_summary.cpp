@@ -53,11 +53,12 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
       {"cmv", &Metrics::cmv, &Metrics::ddz_harmonics, 2, "z_M''"},
       {"ddx_thd", &Metrics::ddx_thd, &Metrics::ddx_harmonics, 2, "x_M''"},
   };
-  // Where a signal is round-off as a whole (a directed vertical exciter's x_M''), its
-  // fundamental is absent against the two signals together (docs/outputs.md).
+  // Where a signal is round-off as a whole (a directed vertical exciter's x_M''; both signals of
+  // a drum without friction), its fundamental is absent against the two signals together or
+  // against the round-off floor (docs/outputs.md).
   constexpr const char* kAbsentBoth =
       " is absent: below 1e-6 of the largest component of x_M'' "
-      "and z_M'')";
+      "and z_M'', or round-off below 1e-12 g)";
   if (name == "psi_xz" && std::isnan(m.psi_xz))
     return std::string("n/a (A(f) of x_M'' or A(2f) of z_M''") + kAbsentBoth;
   if (name == "phi_lag" && std::isnan(m.phi_lag))

@@ -61,7 +61,8 @@ struct Metrics {
 };
 
 /// Which of x_M'' and z_M'' is absent as a whole: every component of its spectrum (mean
-/// included) at or below 1e-6 of the largest component of the two spectra. Such a signal is the
+/// included) at or below 1e-6 of the largest component of the two spectra, or below 1e-12 g
+/// [m/s^2] (the spectra in m/s^2; both signals of a drum without friction). Such a signal is the
 /// round-off of a motion that has none (the directed vertical exciter's x_M'', a record's dead
 /// channel): its ratios and phases are NaN (docs/outputs.md), and plots and tables show it as
 /// absent instead of scaling its round-off up to look like a signal.

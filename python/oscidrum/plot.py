@@ -114,11 +114,14 @@ SLIP_COLORS = {1: ("tab:orange", "slip+ ($v_{rel} > 0$)"),
                2: ("tab:purple", "flight (no contact)")}
 
 #: A signal is absent as a whole when every component of its spectrum (mean included) is at most
-#: this fraction of the largest component of x_M'' and z_M'' together: the round-off of a motion
-#: that has none (the directed vertical exciter's x_M''; the metrics' rule, docs/outputs.md, and
-#: ``oscidrum.absent_signals``). Plots draw it flat on zero with a note instead of scaling its
+#: this fraction of the largest component of x_M'' and z_M'' together, or at most
+#: ROUND_OFF_ACCELERATION: the round-off of a motion that has none (the directed vertical
+#: exciter's x_M''; both signals of a drum without friction; the metrics' rule, docs/outputs.md,
+#: and ``oscidrum.absent_signals``). Plots draw it flat on zero with a note instead of scaling its
 #: round-off up to look like a signal.
 ABSENT_FRACTION = 1e-6
+#: [m/s^2] 1e-12 g: below what the integration resolves or a logger measures.
+ROUND_OFF_ACCELERATION = 1e-12 * 9.80665
 
 #: The acceleration columns and their names in the notes.
 _SIGNAL_NAMES = {"ddx_M": "x_M''", "ddz_M": "z_M''"}
@@ -784,7 +787,8 @@ def absent_signals(state: SteadyState) -> Dict[str, bool]:
     if state.metrics and "ddx_amplitude" in state.metrics and "ddz_amplitude" in state.metrics:
         n_max = min(len(state.metrics["ddx_amplitude"]), len(state.metrics["ddz_amplitude"])) - 1
     spectra = {c: spectrum(state, c, max(n_max, 1)) for c in _SIGNAL_NAMES}
-    level = ABSENT_FRACTION * max(float(np.max(a)) for a in spectra.values())
+    level = max(ABSENT_FRACTION * max(float(np.max(a)) for a in spectra.values()),
+                ROUND_OFF_ACCELERATION)
     return {c: bool(np.all(a <= level)) for c, a in spectra.items()}
 
 
@@ -800,8 +804,8 @@ def _note_absent(axis: Any, states: Sequence[SteadyState], column: str,
     peak = max(float(np.max(np.abs(np.asarray(getattr(st.samples, column), dtype=float))))
                for st in states)
     axis.text(0.01, 0.03 if bottom else 0.97,
-              f"{name} is absent: round-off only (|{name}| <= {peak:.2g} m/s$^2$, "
-              "below 1e-6 of the larger signal)", transform=axis.transAxes,
+              f"{name} is absent: round-off only (|{name}| <= {peak:.2g} m/s$^2$)",
+              transform=axis.transAxes,
               va="bottom" if bottom else "top", ha="left",
               fontsize=8, color="0.25",
               bbox=dict(facecolor="white", edgecolor="0.8", alpha=0.9, pad=2))

@@ -150,9 +150,9 @@ void bind_metrics(py::module_& m) {
       },
       py::arg("ddx_amplitude"), py::arg("ddz_amplitude"),
       "Whether x_M'' and z_M'' are absent as a whole, from their harmonic amplitudes A_0 ... A_n "
-      "(Metrics.ddx_amplitude, ddz_amplitude): every component of the signal at most 1e-6 of the "
-      "largest component of the two (round-off of a motion that has none, such as the directed "
-      "vertical exciter's x_M''). Returns (ddx_absent, ddz_absent).");
+      "(Metrics.ddx_amplitude, ddz_amplitude) [m/s^2]: every component of the signal at most 1e-6 "
+      "of the largest component of the two, or below 1e-12 g (round-off of a motion that has "
+      "none, such as the directed vertical exciter's x_M''). Returns (ddx_absent, ddz_absent).");
   m.def("wrap_pi", &wrap_pi, py::arg("angle"), "Wrap an angle [rad] to (-pi, pi].");
   m.def(
       "vibration_modulus",

@@ -22,15 +22,23 @@ namespace oscidrum::detail {
 /// numerical noise (the integration tolerances leave ~1e-8), not a physical component.
 inline constexpr double kAbsentFundamental = 1e-6;
 
+/// Accelerations below this are round-off whatever the other signal [m/s^2]: 1e-12 g. The
+/// integration resolves components down to about atol nu^2 (6e-7 m/s^2 at the default 1e-11 m
+/// and 39 Hz) and a logger's noise lies far above it, so nothing measurable is below; a drum
+/// without friction (mu = 0: the torque spins the drum alone) has x_M'' and z_M'' both at
+/// 1e-16 m/s^2, which the relative level alone took for signals (CMV 299 of round-off).
+inline constexpr double kRoundOffAcceleration = 1e-12 * 9.80665;
+
 /// The level below which a component of x_M'' or z_M'' counts as absent: kAbsentFundamental
-/// times the largest component (mean included) of the two signals. A signal that is all round-off
-/// (a directed vertical exciter's x_M'' = 0, a record's constant channel) has its own harmonics
-/// all round-off, so that it can only be judged against the other signal.
+/// times the largest component (mean included) of the two signals, and at least
+/// kRoundOffAcceleration. A signal that is all round-off (a directed vertical exciter's
+/// x_M'' = 0, a record's constant channel) has its own harmonics all round-off, so that it can
+/// only be judged against the other signal, or against the floor where both are round-off.
 inline double absent_level(const Spectrum& hx, const Spectrum& hz) {
   double largest = 0.0;
   for (const Spectrum* h : {&hx, &hz})
     for (const Harmonic& c : *h) largest = std::max(largest, c.amplitude);
-  return kAbsentFundamental * largest;
+  return std::max(kAbsentFundamental * largest, kRoundOffAcceleration);
 }
 
 /// a / A_1 of the spectrum h; NaN when the fundamental is absent: below `absent` (absent_level)
@@ -92,18 +100,18 @@ void set_spectral_metrics(M& m, Spectrum hx, Spectrum hz, double ddx_overtones, 
   // The resonance meter value RMV = A(Omega/2)/A(Omega) and the compaction control value
   // CCV = 100 [A(Omega/2) + A(3 Omega/2) + A(2 Omega) + A(5 Omega/2) + A(3 Omega)] /
   // [A(Omega/2) + A(Omega)] of vibratory rollers (docs/outputs.md, with their sources), of z_M''.
-  // Undefined (NaN) where a denominator is absent against the signal's largest component.
+  // Undefined (NaN) where a denominator is absent against the signal's largest component or
+  // against both signals (absent_level).
   {
     double largest = std::max({z_half.a05, z_half.a15, z_half.a25});
     for (std::size_t n = 1; n < hz.size(); ++n) largest = std::max(largest, hz[n].amplitude);
     const double a1 = std::isnan(z_half.a1) ? hz[1].amplitude : z_half.a1;
     const double a2 = std::isnan(z_half.a2) ? hz[2].amplitude : z_half.a2;
     const double a3 = std::isnan(z_half.a3) ? (hz.size() > 3 ? hz[3].amplitude : nan) : z_half.a3;
-    m.rmv = a1 > kAbsentFundamental * largest ? z_half.a05 / a1 : nan;
+    const double floor = std::max(kAbsentFundamental * largest, absent);
+    m.rmv = a1 > floor ? z_half.a05 / a1 : nan;
     const double below = z_half.a05 + a1;
-    m.ccv = below > kAbsentFundamental * largest
-                ? 100.0 * (z_half.a05 + z_half.a15 + a2 + z_half.a25 + a3) / below
-                : nan;
+    m.ccv = below > floor ? 100.0 * (z_half.a05 + z_half.a15 + a2 + z_half.a25 + a3) / below : nan;
   }
   m.ddx_thd = ratio_to_fundamental(std::sqrt(ddx_overtones), hx, absent);
   hx.resize(static_cast<std::size_t>(n_max) + 1);

@@ -208,6 +208,13 @@ TEST(AbsentSignals, EveryComponentAgainstTheLargestOfBoth) {
   // A signal without a fundamental (z_M'' of the oscillation drum without driving torque: even
   // harmonics only) is present.
   EXPECT_FALSE(absent_signals(z, spectrum({0.0, 1e-9, 3.1, 1e-9})).ddz);
+  // Two signals of round-off (a drum without friction: 1e-16 m/s^2): both absent, below the
+  // floor of 1e-12 g, though each is far above 1e-6 of the other; just above the floor present.
+  a = absent_signals(spectrum({3e-16, 1.5e-16, 1.5e-16}), spectrum({1e-15, 1.5e-16, 1.5e-16}));
+  EXPECT_TRUE(a.ddx && a.ddz);
+  a = absent_signals(spectrum({0.0, 1.1e-11, 0.0}), spectrum({0.0, 0.9e-11, 0.0}));
+  EXPECT_FALSE(a.ddx);
+  EXPECT_TRUE(a.ddz);
   // Two dead channels: both absent.
   a = absent_signals(spectrum({0.0, 0.0}), spectrum({0.0, 0.0}));
   EXPECT_TRUE(a.ddx && a.ddz);

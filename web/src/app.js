@@ -914,7 +914,7 @@ function absentRange(r, column, n) {
 }
 function absentNote(r, column, n) {
   const name = SIGNAL_NAME[column];
-  return `${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[column], n), 2)} m/s², below 1e-6 of the larger signal)`;
+  return `${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[column], n), 2)} m/s²)`;
 }
 
 // The name of a choice field's value in the case of a result ('vibratory').
