@@ -1016,8 +1016,10 @@ BasicShootingOutcome<R> Shooter<R>::run(const ShootingStart& start) {
   out.phi_drift = Dyn::cyclic_drift(cur.end.to_array(), z.to_array()) / p_;
   if (p_ == 1 || start.multiplicity > 1)
     out.message =
-        fmt("periodic orbit by shooting after %.0f transient periods and %.0f Newton steps",
-            out.transient_periods, out.newton_iterations);
+        fmt("periodic orbit by shooting after %.0f transient period", out.transient_periods) +
+        (out.transient_periods == 1 ? "" : "s") +
+        fmt(" and %.0f Newton step", out.newton_iterations) +
+        (out.newton_iterations == 1 ? "" : "s");
   flow_.reset(t0_, z, phase_);
   return out;
 }

@@ -326,10 +326,12 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   result.message =
       warm.from_state ? shot.message + " from the neighbouring case's orbit" : shot.message;
   if (settled)
-    result.message += detail::format(
-        "; integrated on plainly (its change over the sampled periods was %.3g, above "
-        "numerics.steady_tol), it settled after %.0f more periods",
-        change, settled->periods);
+    result.message +=
+        detail::format(
+            "; integrated on plainly (its change over the sampled periods was %.3g, above "
+            "numerics.steady_tol), it settled after %.0f more period",
+            change, settled->periods) +
+        (settled->periods == 1 ? "" : "s");
   result.floquet = shot.floquet;
   if (p > 1) result.period1_floquet = shot.period1_floquet;
   d.method = SteadyMethod::shooting;
