@@ -568,10 +568,11 @@ def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, flo
         if column in _SIGNAL_NAMES and _absent_everywhere(states, column):
             # Round-off, not a signal: flat on zero on the other signal's scale, with a note.
             other = "ddz_M" if column == "ddx_M" else "ddx_M"
-            top = max(float(np.max(np.abs(np.asarray(getattr(st.samples, other))[
-                _window(st, periods)]))) for st in states) * factor
+            top = 0.0 if _absent_everywhere(states, other) else max(
+                float(np.max(np.abs(np.asarray(getattr(st.samples, other))[
+                    _window(st, periods)]))) for st in states) * factor
             axis.set_ylim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
-            _note_absent(axis, states, column)
+            _note_absent(axis, states, [column])
         axis.axhline(0.0, color="0.6", lw=0.5)
         axis.grid(alpha=0.3)
         if k == 0:  # one legend for the panels, which show the same cases
@@ -739,7 +740,7 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
         if area is not None:
             text = f"area {area:.4g} m$^2$/s$^4$"
             if any(absent_signals(state).values()):  # a curve of round-off in one coordinate
-                text = f"area 0 (round-off {area:.2g} m$^2$/s$^4$)"
+                text = f"area 0 (round-off {area:.2g} m$^2$/s$^4$)" if area != 0 else "area 0"
             label = (f"{label}: " if label else "") + text
         axis.plot(xc, zc, color=color, lw=1.2, label=label or None, zorder=2)
         _arrows(axis, x, z, color)
@@ -750,12 +751,16 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     axis.set_xlabel(DDX_LABEL)
     axis.set_ylabel(DDZ_LABEL)
     # A coordinate absent in every case spans the other's range: the curve is a line on zero.
+    absent = []
     for column, other, set_lim in (("ddx_M", "ddz_M", axis.set_xlim),
                                    ("ddz_M", "ddx_M", axis.set_ylim)):
         if _absent_everywhere(states, column):
-            top = max(float(np.max(np.abs(np.asarray(getattr(st.samples, other))))) for st in states)
+            top = 0.0 if _absent_everywhere(states, other) else max(
+                float(np.max(np.abs(np.asarray(getattr(st.samples, other))))) for st in states)
             set_lim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
-            _note_absent(axis, states, column, bottom=True)
+            absent.append(column)
+    if absent:
+        _note_absent(axis, states, absent, bottom=True)
     axis.axhline(0.0, color="0.6", lw=0.5)
     axis.axvline(0.0, color="0.6", lw=0.5)
     axis.grid(alpha=0.3)
@@ -796,15 +801,17 @@ def _absent_everywhere(states: Sequence[SteadyState], column: str) -> bool:
     return bool(states) and all(absent_signals(st)[column] for st in states)
 
 
-def _note_absent(axis: Any, states: Sequence[SteadyState], column: str,
+def _note_absent(axis: Any, states: Sequence[SteadyState], columns: Sequence[str],
                  bottom: bool = False) -> None:
-    """The note on a panel whose signal is absent in every case shown (at its top left, or at
-    its bottom left where a legend may sit at the top)."""
-    name = _SIGNAL_NAMES[column]
-    peak = max(float(np.max(np.abs(np.asarray(getattr(st.samples, column), dtype=float))))
-               for st in states)
+    """The note on a panel whose signals `columns` are absent in every case shown (at its top
+    left, or at its bottom left where a legend may sit at the top)."""
+    names = [_SIGNAL_NAMES[c] for c in columns]
+    peaks = [max(float(np.max(np.abs(np.asarray(getattr(st.samples, c), dtype=float))))
+                 for st in states) for c in columns]
+    bounds = ", ".join(f"|{n}| <= {p:.2g}" for n, p in zip(names, peaks))
+    verb = "is" if len(names) == 1 else "are"
     axis.text(0.01, 0.03 if bottom else 0.97,
-              f"{name} is absent: round-off only (|{name}| <= {peak:.2g} m/s$^2$)",
+              f"{' and '.join(names)} {verb} absent: round-off only ({bounds} m/s$^2$)",
               transform=axis.transAxes,
               va="bottom" if bottom else "top", ha="left",
               fontsize=8, color="0.25",
@@ -862,7 +869,7 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
                     "right", functions=(lambda a, p=peak: a / p, lambda r, p=peak: r * p))
                 right.set_ylabel(AMP_LABEL)
         if _absent_everywhere(states, column):
-            _note_absent(axis, states, column)
+            _note_absent(axis, states, [column])
         axis.grid(alpha=0.3, axis="y")
         if k == 0:  # one legend for the panels, which show the same cases
             _legend(axis, legend=legend, under=axes[-1])

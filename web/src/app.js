@@ -552,7 +552,7 @@ function render() {
   }
   const absentColumn = ['ddx_M', 'ddz_M'].find((c) => isAbsent(r, c));
   $('area-caption').textContent = absentColumn
-    ? `0 (${SIGNAL_NAME[absentColumn]} absent: round-off ${fmt(m.area, 2)} m²/s⁴)`
+    ? `0 (${SIGNAL_NAME[absentColumn]} absent${m.area !== 0 ? `: round-off ${fmt(m.area, 2)} m²/s⁴` : ''})`
     : `${fmt(m.area, 5)} m²/s⁴`;
   $('area-caption').dataset.value = String(m.area);
   drawTimePlot(r);
@@ -764,15 +764,17 @@ function drawFigure(canvas, r, m) {
     canvas.dataset.measuredPoints = String(k);
   }
   ctx.textAlign = 'left';
-  const absentColumn = xAbsent ? 'ddx_M' : zAbsent ? 'ddz_M' : null;
-  if (absentColumn) {
+  const absentColumns = [...(xAbsent ? ['ddx_M'] : []), ...(zAbsent ? ['ddz_M'] : [])];
+  if (absentColumns.length) {
     ctx.fillStyle = '#444';
     ctx.font = '10px system-ui, sans-serif';
-    const name = SIGNAL_NAME[absentColumn];
-    ctx.fillText(`${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[absentColumn], n), 2)} m/s²)`, 56, canvas.height - 42);
+    const names = absentColumns.map((c) => SIGNAL_NAME[c]);
+    const bounds = absentColumns.map((c) => `|${SIGNAL_NAME[c]}| ≤ ${fmt(peakOf(r.samples[c], n), 2)}`).join(', ');
+    ctx.fillText(`${names.join(' and ')} absent: round-off only (${bounds} m/s²)`, 56, canvas.height - 42);
     ctx.font = '11px system-ui, sans-serif';
   }
-  const caption = absentColumn ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`;
+  const caption = !absentColumns.length ? `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`
+    : m.area !== 0 ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : 'area 0';
   ctx.fillStyle = '#222';
   ctx.fillText(caption, 60, 20);
   const after = 60 + ctx.measureText(caption).width + 10;
@@ -907,9 +909,11 @@ function peakOf(values, n = values.length) {
   for (let i = 0; i < n; i++) top = Math.max(top, Math.abs(values[i]));
   return top;
 }
-// The symmetric range [-1.05 top, 1.05 top] of the other signal, for an absent one.
+// The symmetric range [-1.05 top, 1.05 top] of the other signal, for an absent one; [-1, 1] m/s²
+// where both are absent (a drum without friction).
 function absentRange(r, column, n) {
-  const top = peakOf(r.samples[column === 'ddx_M' ? 'ddz_M' : 'ddx_M'], n);
+  const other = column === 'ddx_M' ? 'ddz_M' : 'ddx_M';
+  const top = isAbsent(r, other) ? 0 : peakOf(r.samples[other], n);
   return top > 0 ? [-1.05 * top, 1.05 * top] : [-1, 1];
 }
 function absentNote(r, column, n) {
@@ -936,7 +940,7 @@ function fillMetrics(r, m) {
   else if (unilateral) rows.push(['contact mode', r.diagnostics.contact_mode, '']);
   // A signal that is round-off: said so, its round-off's size beside it.
   const absentText = (column, text) => (isAbsent(r, column) ? `absent: round-off only (${text})` : text);
-  const areaText = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? `0 (round-off ${fmt(m.area, 2)})` : fmt(m.area, 6);
+  const areaText = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? (m.area !== 0 ? `0 (round-off ${fmt(m.area, 2)})` : '0') : fmt(m.area, 6);
   rows.push(
     ["x_M'' max / min", absentText('ddx_M', `${fmt(m.ddx_max, 5)} / ${fmt(m.ddx_min, 5)}`), 'm/s²'],
     ["z_M'' max / min", absentText('ddz_M', `${fmt(m.ddz_max, 5)} / ${fmt(m.ddz_min, 5)}`), 'm/s², z down'],
@@ -1285,7 +1289,7 @@ function plotsSvg() {
   const figure = [{ x: closed(s.ddx_M), y: closed(s.ddz_M), color: '#333' }];
   if (isAbsent(r, 'ddx_M')) figure.xr = absentRange(r, 'ddx_M', np);
   if (isAbsent(r, 'ddz_M')) figure.yr = absentRange(r, 'ddz_M', np);
-  const areaTitle = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : `area ${fmt(m.area, 5)} m²/s⁴`;
+  const areaTitle = isAbsent(r, 'ddx_M') || isAbsent(r, 'ddz_M') ? (m.area !== 0 ? `area 0 (round-off ${fmt(m.area, 2)} m²/s⁴)` : 'area 0') : `area ${fmt(m.area, 5)} m²/s⁴`;
   const body = [
     svgPlot(0, 0, 900, 280, `x_M'' (blue), z_M'' (red, down) over two steady periods; shading: stick (green), slip+ (orange), slip- (red)${r.case['contact.unilateral'] === 1 ? ', flight (violet)' : ''}`, 't - t0 [ms]', 'm/s²',
       [{ x: t, y: s.ddx_M.subarray(0, n), color: COLORS.x }, { x: t, y: s.ddz_M.subarray(0, n), color: COLORS.z }], shading),
