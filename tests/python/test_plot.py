@@ -639,3 +639,20 @@ def test_an_absent_signal_is_drawn_flat_with_a_note():
     assert oscidrum.absent_signals(m.ddx_amplitude, m.ddz_amplitude) == (False, False)
     fig = plot.plot_accelerations(data.from_result(slip_case_result, metrics=m))
     assert not any(notes(a) for a in fig.axes)
+
+
+def test_two_absent_signals_share_one_note():
+    """A drum without friction: x_M'' and z_M'' are both round-off (1e-16 m/s^2). The figure
+    spans 1 m/s^2 each way with one note naming both, and its area reads 0."""
+    case = oscidrum.Case(soil=oscidrum.table2_soil(25e6))
+    case.contact.mu = 0.0
+    result = oscidrum.simulate(case)
+    metrics = oscidrum.compute_metrics(result)
+    assert np.isnan(metrics.cmv) and np.isnan(metrics.ddz_A2_A1)
+    state = data.from_result(result, metrics=metrics)
+    assert plot.absent_signals(state) == {"ddx_M": True, "ddz_M": True}
+    ax = plot.plot_figure_eight(state).axes[0]
+    assert ax.get_xlim() == (-1.0, 1.0) and ax.get_ylim() == (-1.0, 1.0)
+    notes = [t.get_text() for t in ax.texts if "absent" in t.get_text()]
+    assert len(notes) == 1 and notes[0].startswith("x_M'' and z_M'' are absent")
+    assert any(t.get_text() == "area 0" for t in ax.get_legend().get_texts())
