@@ -900,8 +900,9 @@ function largestHarmonics(a) {
 }
 
 // A signal that is round-off as a whole (r.absent, the engine's oscidrum::absent_signals: every
-// harmonic below 1e-6 of the two signals' largest; the vertical exciter's x_M'') is drawn flat on
-// zero on the other signal's scale and named absent, not scaled up to look like a signal.
+// harmonic below 1e-6 of the two signals' largest or 1e-12 g; the vertical exciter's x_M'', both
+// signals of a drum without friction) is drawn flat on zero on the other signal's scale and named
+// absent, not scaled up to look like a signal.
 const SIGNAL_NAME = { ddx_M: "x_M''", ddz_M: "z_M''" };
 const isAbsent = (r, column) => Boolean(r && r.absent && r.absent[column]);
 function peakOf(values, n = values.length) {
