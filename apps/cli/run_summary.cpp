@@ -37,7 +37,7 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bo
 // would mislead: "n/a" with the reason when the fundamental is absent (the ratio is NaN), "0" when
 // the numerator is below the threshold at which the harmonics line prints 0 (e.g. A(2f) of x_M''
 // without a driving torque: zero by symmetry, 1e-10 of rounding).
-std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
+std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, bool vibratory) {
   struct Ratio {
     std::string_view name;
     double Metrics::*value;
@@ -65,9 +65,12 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name) {
     return std::string("n/a (no oscillating torque: the vibratory drum)");
   if (name == "mu_required" && std::isnan(m.mu_required))
     return std::string("n/a (the drum lifts off: N reaches 0, where |T|/N has no bound)");
-  // The Kb-type stiffness: a ratio to the fundamental of z_M.
+  // The Kb-type stiffness: a ratio to the fundamental of z_M, where a vertical force excites the
+  // drum (docs/outputs.md).
   if (name == "kb" && std::isnan(m.kb))
-    return std::string("n/a (z_M has no fundamental, e.g. by symmetry without MMd)");
+    return std::string(vibratory ? "n/a (z_M has no fundamental)"
+                                 : "n/a (the oscillation drum has no vertical excitation force: "
+                                   "its drum balance (20) gives m nu^2 - kd whatever the soil)");
   // The Evib-type modulus: Lundberg's cylinder needs the soil's Poisson's ratio.
   if (name == "evib" && std::isnan(m.evib))
     return std::string(
@@ -169,7 +172,7 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       const MetricOutput& out = outputs[i];
       if (is_scalar(out)) {
-        s.line(out.label, ratio_note(m, out.name).value_or(output_text(m, out)));
+        s.line(out.label, ratio_note(m, out.name, vibratory).value_or(output_text(m, out)));
         continue;
       }
       const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);

@@ -212,7 +212,8 @@
     "Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T "       \
     "sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the "       \
     "excitation frequency, over that displacement's amplitude (the k_s of Anderegg and "        \
-    "Kaufmann 2004 from the contact force itself; docs/outputs.md)")                            \
+    "Kaufmann 2004 from the contact force itself; docs/outputs.md); NaN for the oscillation "   \
+    "drum, which has no vertical excitation force: there it is m nu^2 - kd whatever the soil")  \
   X(double, evib, "Pa", "Evib-type vibration modulus",                                          \
     "the Young's modulus under which Lundberg's rigid cylinder (radius roller.r, length "       \
     "roller.b, the soil's Poisson's ratio) settles as the drum does on the loading branch of "  \

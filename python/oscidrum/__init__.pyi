@@ -310,7 +310,7 @@ class Metrics:
     gap_max: float
     """largest gap between drum and trough over the steady period (contact.unilateral) [m]"""
     kb: float
-    """Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the excitation frequency, over that displacement's amplitude (the k_s of Anderegg and Kaufmann 2004 from the contact force itself; docs/outputs.md) [N/m]"""
+    """Re(F_v(f) / z_M(f)): the soil's vertical force on the drum, F_v = N cos(delta) + T sin(delta) (25), in phase with the drum centre's vertical displacement z_M, at the excitation frequency, over that displacement's amplitude (the k_s of Anderegg and Kaufmann 2004 from the contact force itself; docs/outputs.md); NaN for the oscillation drum, which has no vertical excitation force: there it is m nu^2 - kd whatever the soil [N/m]"""
     landing_velocity: float
     """largest speed at which the gap closes at a landing, -g' (contact.unilateral) [m/s]"""
     liftoffs_per_period: float

@@ -422,9 +422,22 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   m.liftoffs_per_period = static_cast<double>(rec.lift_offs) / p;
   m.gap_max = std::max(gap.hi, 0.0);
   m.landing_velocity = rec.landing_speed;
-  // The Kb-type stiffness: the fundamentals of F_v and z_M integrated over the period.
-  const auto [h_force, h_z] = spectra<2>(nodes, {&Node::vertical_force, &Node::z}, P, t0, f, 2);
-  m.kb = detail::soil_stiffness(h_force[1], h_z);
+  // The Kb-type stiffness: the fundamentals of F_v and z_M integrated over the period. Only where
+  // a vertical force excites the drum (the vibratory drum's unbalance): without one, the drum's
+  // vertical balance (20) at f gives F_v(f) = (m nu^2 - kd - i nu cd) z_M(f), so that
+  // Re(F_v / z_M) is m nu^2 - kd whatever the soil (the oscillation drum: 107.1 MN/m for the
+  // paper's roller at 39 Hz on every soil), a number of the machine, not of the soil. Read from
+  // the model at four quarters of a period, as the torque above.
+  bool vertical_force = false;
+  for (int q = 1; q < 4; ++q)
+    vertical_force = vertical_force ||
+                     model.centre_load(t0 + 0.25 * q * model.period()).z != model.centre_load(t0).z;
+  if (vertical_force) {
+    const auto [h_force, h_z] = spectra<2>(nodes, {&Node::vertical_force, &Node::z}, P, t0, f, 2);
+    m.kb = detail::soil_stiffness(h_force[1], h_z);
+  } else {
+    m.kb = std::numeric_limits<double>::quiet_NaN();
+  }
 
   // The Evib-type modulus: the loop F_v(z_M) through kEvibPoints + 1 points of each piece, both
   // ends included (a landing's two one-sided values of F_v at the same z_M).

@@ -201,7 +201,14 @@ Metrics compute_metrics(const Result& result, int n_max) {
   m.gap_max = 0.0;
   if (s.gap.size() == n)
     for (double g : s.gap) m.gap_max = std::max(m.gap_max, g);
-  m.kb = detail::soil_stiffness(s, cycles, f, t0);
+  // The Kb-type stiffness only where a vertical force excites the drum (see steady_metrics.cpp:
+  // without one it is m nu^2 - kd whatever the soil). The samples do not hold that force; an
+  // oscillating torque column is the oscillation drum's excitation, which has none.
+  const bool torque_column_oscillates =
+      s.torque.size() == n &&
+      std::any_of(s.torque.begin(), s.torque.end(), [&](double v) { return v != s.torque[0]; });
+  m.kb = torque_column_oscillates ? std::numeric_limits<double>::quiet_NaN()
+                                  : detail::soil_stiffness(s, cycles, f, t0);
   // The Evib-type modulus needs the drum's radius and length and the soil's Poisson's ratio,
   // which a Result does not hold: compute_metrics(model, result) computes it.
   m.evib = std::numeric_limits<double>::quiet_NaN();
