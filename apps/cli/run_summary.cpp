@@ -168,11 +168,25 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
     s.section("steady state (" + std::to_string(result.sample_periods) + " periods, " +
               std::to_string(result.samples.size()) + " samples)");
     bool zeroed = false;
+    // A signal of round-off as a whole (the vertical exciter's x_M'', both signals of a drum
+    // without friction): its peaks, harmonics and the area are printed as computed, said so.
+    const AbsentSignals absent = absent_signals(m.ddx_harmonics, m.ddz_harmonics);
+    const auto round_off = [&](std::string_view name) -> std::string {
+      const bool x = absent.ddx && (name.starts_with("ddx_") || name == "area");
+      const bool z = absent.ddz && (name.starts_with("ddz_") || name == "area");
+      if (!x && !z) return "";
+      return std::string(" (round-off: ") +
+             (x && z ? "x_M'' and z_M'' are"
+              : x    ? "x_M'' is"
+                     : "z_M'' is") +
+             " absent)";
+    };
     const auto& outputs = metric_outputs();
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       const MetricOutput& out = outputs[i];
       if (is_scalar(out)) {
-        s.line(out.label, ratio_note(m, out.name, vibratory).value_or(output_text(m, out)));
+        const auto note = ratio_note(m, out.name, vibratory);
+        s.line(out.label, note ? *note : output_text(m, out) + round_off(out.name));
         continue;
       }
       const Spectrum& h = m.*std::get<Spectrum Metrics::*>(out.member);
@@ -182,7 +196,7 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
       }
       const std::size_t shown = std::min<std::size_t>(6, h.size());
       s.line(std::string(out.label) + " A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
-             harmonics_text(h, shown - 1, zeroed));
+             harmonics_text(h, shown - 1, zeroed) + round_off(out.name));
       // After the last of consecutive spectra: what a printed 0 means.
       if (zeroed && (i + 1 == outputs.size() || is_scalar(outputs[i + 1]))) {
         s.line("",

@@ -312,6 +312,20 @@ TEST(CliRun, AVerticalExcitersMetricsOfRoundOffSayWhy) {
         << line;
   }
   EXPECT_NE(o.out.find("n/a (no oscillating torque: the vibratory drum)"), std::string::npos);
+  // The numbers of round-off (1e-22 m/s^2) are printed, and said to be round-off; z_M'' is not.
+  const auto line_of = [&](const std::string& label) {
+    const std::size_t at = o.out.find("\n  " + label + " ");
+    return at == std::string::npos ? std::string()
+                                   : o.out.substr(at + 1, o.out.find('\n', at + 1) - at - 1);
+  };
+  for (const char* label : {"x_M'' max", "x_M'' min", "x_M'' harmonics", "area z_M''(x_M'')"})
+    EXPECT_NE(line_of(label).find("(round-off: x_M'' is absent)"), std::string::npos)
+        << label << "\n"
+        << o.out;
+  for (const char* label : {"z_M'' max", "z_M'' harmonics"}) {
+    ASSERT_FALSE(line_of(label).empty()) << label;
+    EXPECT_EQ(line_of(label).find("round-off"), std::string::npos) << line_of(label);
+  }
   o = run({"run", kSource + "/examples/vibratory.toml", "--set", "roller.exciter=vertical",
            "--format", "json"});
   ASSERT_EQ(o.code, 0) << o.err;

@@ -231,7 +231,8 @@ TEST(Simulate, KbOfTheOscillationDrumIsTheMachinesNotTheSoils) {
     const double machine = model.m() * model.nu() * model.nu() - model.kd();
     // The DFT of the samples aliases the jumps of T at the stick/slip switches at about
     // 1 / samples_per_period of them (seen: 3e-6 and 1.6e-5 relative; the dense output's integral
-    // in compute_metrics(model, r) gave the constant to 2e-8), while ksv goes from 16.3 to 169 MN/m.
+    // in compute_metrics(model, r) gave the constant to 2e-8), while ksv goes from 16.3 to 169
+    // MN/m.
     EXPECT_NEAR(ratio, machine, 1e-4 * machine) << "G " << G;
     EXPECT_TRUE(std::isnan(compute_metrics(r).kb)) << "G " << G;
     EXPECT_TRUE(std::isnan(compute_metrics(model, r).kb)) << "G " << G;
