@@ -61,7 +61,8 @@ using enum recording::Quantity;
 constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
 
 // The fallback: polygons through n points per piece of the interpolants, n doubled and
-// Richardson-extrapolated (error ~ n^-2) until two estimates agree to 1e-11 relative, or until the
+// Richardson-extrapolated (error ~ n^-2) until two estimates agree to `tolerance` relative (1e-11
+// for the default integration; looser for a looser one, see steady_metrics.cpp), or until the
 // sweep of the next polygon would cost more than kFallbackVisits (edge, slab) visits (area.hpp,
 // sweep_visits; always at least n = 8, one extrapolation). A period of thousands of pieces (10 000
 // at 0.1 Hz), or a curve that winds thousands of times around one place (a drum barely excited:
@@ -71,7 +72,7 @@ constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the ar
 // relative for the paper's roller at 0.1 Hz, tests/drivers/test_steady_metrics.cpp).
 constexpr std::size_t kFallbackVisits = 30'000'000;
 
-double extrapolated_area(const std::vector<Piece>& pieces) {
+double extrapolated_area(const std::vector<Piece>& pieces, double tolerance) {
   double previous = std::numeric_limits<double>::quiet_NaN(), coarse = 0.0, area = 0.0;
   std::vector<double> x, z;
   for (int n = 4; n <= (1 << 12); n *= 2) {
@@ -88,7 +89,7 @@ double extrapolated_area(const std::vector<Piece>& pieces) {
     const double fine = enclosed_area(x, z);
     if (n > 4) {
       area = (4.0 * fine - coarse) / 3.0;
-      if (std::abs(area - previous) <= 1e-11 * std::abs(area)) break;
+      if (std::abs(area - previous) <= tolerance * std::abs(area)) break;
       previous = area;
     }
     coarse = fine;
@@ -938,14 +939,14 @@ double green_curve_area(const std::vector<Piece>& pieces) { return green_area(pi
 
 double swept_curve_area(const std::vector<Piece>& pieces) { return swept_area(pieces); }
 
-double extrapolated_curve_area(const std::vector<Piece>& pieces) {
-  return extrapolated_area(pieces);
+double extrapolated_curve_area(const std::vector<Piece>& pieces, double tolerance) {
+  return extrapolated_area(pieces, tolerance);
 }
 
-double curve_area(const std::vector<Piece>& pieces) {
+double curve_area(const std::vector<Piece>& pieces, double tolerance) {
   double area = green_area(pieces);
   if (std::isnan(area)) area = swept_area(pieces);
-  if (std::isnan(area)) area = extrapolated_area(pieces);
+  if (std::isnan(area)) area = extrapolated_area(pieces, tolerance);
   return area;
 }
 

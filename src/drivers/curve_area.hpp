@@ -12,8 +12,8 @@ namespace oscidrum::detail {
 
 /// The area, by the first of the three methods below that answers: Green's theorem on the arcs
 /// between the curve's self-intersections, else the polygon sweep with bulges, else refined
-/// polygons extrapolated.
-double curve_area(const std::vector<recording::Piece>& pieces);
+/// polygons extrapolated until two estimates agree to `tolerance` (relative).
+double curve_area(const std::vector<recording::Piece>& pieces, double tolerance = 1e-11);
 
 /// Green's theorem on the region's boundary: the curve cut at its self-intersections (each
 /// located by Newton on the interpolants) into arcs; an arc bounds the region with it on its left
@@ -30,7 +30,9 @@ double green_curve_area(const std::vector<recording::Piece>& pieces);
 double swept_curve_area(const std::vector<recording::Piece>& pieces);
 
 /// Polygons of the interpolants through n points per piece, n doubled and
-/// Richardson-extrapolated: the last resort (see curve_area.cpp for its bounded cost).
-double extrapolated_curve_area(const std::vector<recording::Piece>& pieces);
+/// Richardson-extrapolated until two estimates agree to `tolerance` (relative): the last resort
+/// (see curve_area.cpp for its bounded cost).
+double extrapolated_curve_area(const std::vector<recording::Piece>& pieces,
+                               double tolerance = 1e-11);
 
 }  // namespace oscidrum::detail
