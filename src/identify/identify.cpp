@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "identify/solver.hpp"
 #include "identify/statistics.hpp"
 #include "oscidrum/error.hpp"
+#include "oscidrum/record_reader.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
 
@@ -39,6 +41,45 @@ void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
 }
 
 // The start: the previous window's estimate, else the best of a coarse scan of the soil.
+// The point p with its soil unknowns (G, or ksh and ksv) at the soil of shear modulus G [Pa].
+Eigen::VectorXd soil_point(const Problem& pr, const IdentifyOptions& o, Eigen::VectorXd p,
+                           double G) {
+  if (o.modulus) {
+    p[0] = std::log(G);
+  } else {
+    const SoilCoefficients s =
+        soil_coefficients(G, pr.base().soil.nu, pr.base().soil.rho, pr.base().roller);
+    p[0] = std::log(s.ksh);
+    p[1] = std::log(s.ksv);
+  }
+  return p;
+}
+
+// A poor fit may be a local minimum of the misfit: the x_M'' of a stiff soil hardly depends on G
+// (a record of G = 200 MN/m^2 fitted as 11 MN/m^2 from the start's grid, which ends at 128). The
+// whole of a wide grid, G = 2, 4, ..., 1024 MN/m^2 (within the unknowns' bounds), with the fit's
+// other unknowns: the best point that beats the fit, or nothing.
+std::optional<Eigen::VectorXd> better_grid_point(Problem& pr, const IdentifyOptions& o,
+                                                 const detail::Fit& fit) {
+  std::optional<Eigen::VectorXd> best;
+  double best_S = fit.S;
+  for (double G = 2e6; G <= 1024e6; G *= 2.0) {
+    const Eigen::VectorXd p = soil_point(pr, o, fit.p, G);
+    bool inside = true;
+    for (Eigen::Index j = 0; j < (o.modulus ? 1 : 2); ++j)
+      inside = inside && p[j] >= pr.bounds()[static_cast<std::size_t>(j)].lo &&
+               p[j] <= pr.bounds()[static_cast<std::size_t>(j)].hi;
+    if (!inside) continue;
+    Eigen::VectorXd r;
+    if (!pr.residual(p, r)) continue;
+    if (r.squaredNorm() < best_S) {
+      best_S = r.squaredNorm();
+      best = p;
+    }
+  }
+  return best;
+}
+
 Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identification* start) {
   Eigen::VectorXd p0 = pr.internal_of(start ? start->fitted : pr.base());
   if (start && o.fit_mu && start->fitted.contact.pure_rolling) p0 = pr.internal_of(pr.base());
@@ -114,6 +155,27 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
   return d;
 }
 
+// The record with its accelerations s times as large: read in another unit (s = g: a record in g
+// read as m/s^2; s = 1/g the other way round).
+MeasuredResponse scaled(MeasuredResponse d, double s) {
+  for (auto& c : d.ddx) c *= s;
+  for (auto& c : d.ddz) c *= s;
+  for (double& c : d.cov_x) c *= s * s;
+  for (double& c : d.cov_z) c *= s * s;
+  for (double& c : d.trend_x) c *= s;
+  for (double& c : d.trend_z) c *= s;
+  d.sigma_x *= s;
+  d.sigma_z *= s;
+  d.noise_x *= s;
+  d.noise_z *= s;
+  d.ddx_max *= s;
+  d.ddx_min *= s;
+  d.ddz_max *= s;
+  d.ddz_min *= s;
+  d.area *= s * s;
+  return d;
+}
+
 // A poor fit: what causes it? Each cause that can be checked is fitted from the same coarse start
 // (no profile): an axis read the other way round (x_M'', z_M'' or both negated), G on the other
 // scale, and mu and MMd fitted when they are not. One that fits (a reduced chi^2 within the limit,
@@ -124,10 +186,16 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
                                    const IdentifyOptions& o, double s2, long steps) {
   struct Alternative {
     bool x = false, z = false, other_scale = false, mu = false, MMd = false;
+    double units = 1.0;  // the record's accelerations times this (g: it was in g)
   };
   std::vector<Alternative> alternatives = {
       {false, true, false}, {true, false, false}, {true, true, false}, {false, false, true},
       {false, true, true},  {true, false, true},  {true, true, true}};
+  // The unit of the accelerations (a logger's g read as m/s^2, or m/s^2 read as g), alone and with
+  // the axes a logger in g often has the other way round.
+  for (const double u : {kStandardGravity, 1.0 / kStandardGravity})
+    for (const auto& [x, z] : {std::pair{false, false}, {false, true}, {true, true}})
+      alternatives.push_back({x, z, false, false, false, u});
   if (!o.fit_mu) alternatives.push_back({false, false, false, true, false});
   if (!o.fit_MMd) alternatives.push_back({false, false, false, false, true});
   auto describe = [&](const Alternative& a) {
@@ -147,6 +215,17 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       advice =
           "the record's x axis points backward: read it with --x-positive backward (Python: "
           "x_positive='backward')";
+    }
+    if (a.units != 1.0) {
+      const bool in_g = a.units > 1.0;
+      what = std::string(in_g ? "the accelerations read as g (x 9.80665)"
+                              : "the accelerations read as m/s^2 (/ 9.80665)") +
+             (what.empty() ? "" : " and " + what);
+      advice = std::string(in_g ? "the record's accelerations are in g, not m/s^2: read it with "
+                                  "--units g (Python: multiply them by 9.80665)"
+                                : "the record's accelerations are in m/s^2, not g: read it with "
+                                  "--units m/s2 (Python: divide them by 9.80665)") +
+               (advice.empty() ? "" : "; " + advice);
     }
     if (a.other_scale) {
       what += std::string(what.empty() ? "" : " and ") + "G on the other soil scale";
@@ -186,7 +265,7 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
     const auto [what, advice] = describe(a);
     try {
-      Problem pr(base, flipped(data, a.x, a.z), o2);
+      Problem pr(base, scaled(flipped(data, a.x, a.z), a.units), o2);
       pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
       if (dof < 1) continue;
@@ -195,7 +274,8 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
           detail::levenberg_marquardt(pr, start_point(pr, o2, nullptr), all, o2.max_iterations);
       const double chi2 = fit.S / dof;
       // The list of what was checked: each single change (x alone is a time shift, see below).
-      if (std::isfinite(chi2) && (a.x ? a.z && !a.other_scale : !(a.z && a.other_scale)))
+      if (std::isfinite(chi2) && (a.x ? a.z && !a.other_scale : !(a.z && a.other_scale)) &&
+          (a.units == 1.0 || (!a.x && !a.z)))
         checked.push_back({chi2, what});
       // The alternatives come simplest first (one change, then two, three); a later one must fit
       // clearly better (half the chi^2) to replace an earlier: with no driving torque, negating
@@ -338,9 +418,15 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
                 std::to_string(q) + " unknowns and the time shift; use more --harmonics");
   const std::vector<bool> all(q, true);
 
-  const detail::Fit fit =
+  detail::Fit fit =
       detail::levenberg_marquardt(pr, start_point(pr, o, start), all, o.max_iterations);
   if (!std::isfinite(fit.S)) throw Error("identify: " + fit.message);
+  if (fit.S / dof > o.max_reduced_chi2) {
+    if (const auto p = better_grid_point(pr, o, fit)) {
+      detail::Fit again = detail::levenberg_marquardt(pr, *p, all, o.max_iterations);
+      if (again.S < fit.S) fit = std::move(again);
+    }
+  }
 
   Identification id;
   id.f = data.f;

@@ -367,6 +367,62 @@ TEST(Identify, APoorFitNamesTheCauseItChecked) {
     EXPECT_NE(roller.find(what), std::string::npos) << what << " not in " << roller;
 }
 
+// Stiff soils: x_M'' hardly depends on G there, and the misfit has a second minimum on soft soil
+// (records of G = 180, 200, 300 MN/m^2 were fitted as 16, 11 and 3 MN/m^2, with a poor fit, from
+// the start's grid G = 4 ... 128 MN/m^2). A poor fit looks at the whole of a wider grid and fits
+// again from its best point.
+TEST(Identify, StiffSoilsBeyondTheStartsGrid) {
+  for (const double G : {200e6, 300e6}) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = G;
+    SyntheticRecord so;
+    so.duration = 1.1;
+    so.sample_rate = 1000;
+    so.noise = 0.02;
+    so.seed = 3;
+    const RecordSamples r = synthetic_record({c}, so);
+    IdentifyOptions o;
+    o.profile = false;
+    const Identification id = identify_whole(Case{}, r, o);
+    EXPECT_NEAR(id.estimates.at(0).value / G, 1.0, 0.01) << G;
+    EXPECT_LT(id.reduced_chi2, o.max_reduced_chi2) << G;
+  }
+}
+
+// A logger's record in g read as m/s^2 (a header without units): the fit is poor by a factor of
+// 1e7 and the diagnosis names the unit, alone and where the logger's z axis points up too; the
+// opposite (m/s^2 read as g) names --units m/s2.
+TEST(Identify, APoorFitNamesTheUnitOfTheAccelerations) {
+  const RecordSamples truth_record = noisy_record(truth(17.3e6, false, 0.0), 0.6, 1000, 11);
+  struct Case_ {
+    double factor;  // the record's numbers are the accelerations times this
+    bool z_up;      // and its z axis points up
+    const char* flag;
+    const char* what;
+  };
+  for (const Case_ k : {Case_{1.0 / kStandardGravity, false, "--units g", "read as g (x 9.80665)"},
+                        Case_{1.0 / kStandardGravity, true, "--units g", "z_M'' negated"},
+                        Case_{kStandardGravity, false, "--units m/s2", "read as m/s^2"}}) {
+    RecordSamples r = truth_record;
+    for (double& v : r.ddx_M) v *= k.factor;
+    for (double& v : r.ddz_M) v *= (k.z_up ? -1.0 : 1.0) * k.factor;
+    IdentifyOptions o;
+    o.profile = false;
+    const Identification id = identify_whole(base(false, 0.0), r, o);
+    EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
+    std::string all;
+    for (const std::string& w : id.warnings) all += w + "\n";
+    SCOPED_TRACE(all);
+    EXPECT_NE(all.find("the fit is far better with the accelerations " +
+                       std::string(k.factor < 1.0 ? "read as g" : "read as m/s^2")),
+              std::string::npos);
+    EXPECT_NE(all.find(k.what), std::string::npos);
+    EXPECT_NE(all.find(k.flag), std::string::npos);
+    EXPECT_EQ(all.find("still fits poorly"), std::string::npos);
+  }
+}
+
 // A record of a Table 2 soil (what `oscidrum run --G 30` simulates) is identified on the Table 2
 // scale; on the formulas' scale the same record gives about 21 MN/m^2 with a poor fit (42) as
 // printed does not reproduce Table 2's stiffness). Between the rows (G = 27.3) the scale is
