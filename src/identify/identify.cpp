@@ -40,7 +40,6 @@ void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
     throw Error("identify: the uncertainties of the measured harmonics must be > 0");
 }
 
-// The start: the previous window's estimate, else the best of a coarse scan of the soil.
 // The point p with its soil unknowns (G, or ksh and ksv) at the soil of shear modulus G [Pa].
 Eigen::VectorXd soil_point(const Problem& pr, const IdentifyOptions& o, Eigen::VectorXd p,
                            double G) {
@@ -80,6 +79,7 @@ std::optional<Eigen::VectorXd> better_grid_point(Problem& pr, const IdentifyOpti
   return best;
 }
 
+// The start: the previous window's estimate, else the best of a coarse scan of the soil.
 Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identification* start) {
   Eigen::VectorXd p0 = pr.internal_of(start ? start->fitted : pr.base());
   if (start && o.fit_mu && start->fitted.contact.pure_rolling) p0 = pr.internal_of(pr.base());
@@ -178,7 +178,8 @@ MeasuredResponse scaled(MeasuredResponse d, double s) {
 
 // A poor fit: what causes it? Each cause that can be checked is fitted from the same coarse start
 // (no profile): an axis read the other way round (x_M'', z_M'' or both negated), G on the other
-// scale, and mu and MMd fitted when they are not. One that fits (a reduced chi^2 within the limit,
+// scale, the accelerations in another unit (g for m/s^2 or the other way round), and mu and MMd
+// fitted when they are not. One that fits (a reduced chi^2 within the limit,
 // or ten times below the fit's) is named with what to change; otherwise the warning lists what was
 // checked and what remains (the roller, the window's own fit). Costs a few fits, only when the fit
 // is poor.
