@@ -567,11 +567,8 @@ def _time_panels(states: List[SteadyState], panels: Sequence[Tuple[str, str, flo
         axis.set_ylabel(ylabel)
         if column in _SIGNAL_NAMES and _absent_everywhere(states, column):
             # Round-off, not a signal: flat on zero on the other signal's scale, with a note.
-            other = "ddz_M" if column == "ddx_M" else "ddx_M"
-            top = 0.0 if _absent_everywhere(states, other) else max(
-                float(np.max(np.abs(np.asarray(getattr(st.samples, other))[
-                    _window(st, periods)]))) for st in states) * factor
-            axis.set_ylim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
+            axis.set_ylim(*_absent_range(states, column, lambda st: _window(st, periods),
+                                         factor))
             _note_absent(axis, states, [column])
         axis.axhline(0.0, color="0.6", lw=0.5)
         axis.grid(alpha=0.3)
@@ -752,12 +749,9 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     axis.set_ylabel(DDZ_LABEL)
     # A coordinate absent in every case spans the other's range: the curve is a line on zero.
     absent = []
-    for column, other, set_lim in (("ddx_M", "ddz_M", axis.set_xlim),
-                                   ("ddz_M", "ddx_M", axis.set_ylim)):
+    for column, set_lim in (("ddx_M", axis.set_xlim), ("ddz_M", axis.set_ylim)):
         if _absent_everywhere(states, column):
-            top = 0.0 if _absent_everywhere(states, other) else max(
-                float(np.max(np.abs(np.asarray(getattr(st.samples, other))))) for st in states)
-            set_lim(-1.05 * top if top > 0 else -1.0, 1.05 * top if top > 0 else 1.0)
+            set_lim(*_absent_range(states, column, lambda st: slice(None)))
             absent.append(column)
     if absent:
         _note_absent(axis, states, absent, bottom=True)
@@ -799,6 +793,17 @@ def absent_signals(state: SteadyState) -> Dict[str, bool]:
 
 def _absent_everywhere(states: Sequence[SteadyState], column: str) -> bool:
     return bool(states) and all(absent_signals(st)[column] for st in states)
+
+
+def _absent_range(states: Sequence[SteadyState], column: str, window: Any,
+                  factor: float = 1.0) -> Tuple[float, float]:
+    """The axis range of an absent signal: symmetric about zero, the other signal's largest
+    |value| over window(state) (times factor) and 5 % more; +-1 where both are absent."""
+    other = "ddz_M" if column == "ddx_M" else "ddx_M"
+    top = 0.0 if _absent_everywhere(states, other) else max(
+        float(np.max(np.abs(np.asarray(getattr(st.samples, other))[window(st)])))
+        for st in states) * factor
+    return (-1.05 * top, 1.05 * top) if top > 0 else (-1.0, 1.0)
 
 
 def _note_absent(axis: Any, states: Sequence[SteadyState], columns: Sequence[str],

@@ -408,10 +408,13 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   // of a period (M0 sin(nu t) takes one value at all four only for M0 = 0). Read from the model,
   // not from the samples' torque column as compute_metrics(result) does: a study's result may
   // hold only its section state, one sample, whose column is constant for every roller.
-  bool torque_oscillates = false;
-  for (int q = 1; q < 4; ++q)
-    torque_oscillates =
-        torque_oscillates || model.torque(t0 + 0.25 * q * model.period()) != model.torque(t0);
+  // Whether a load of the model's takes another value at one of the quarters of a period.
+  const auto oscillates = [&](auto load) {
+    for (int q = 1; q < 4; ++q)
+      if (load(t0 + 0.25 * q * model.period()) != load(t0)) return true;
+    return false;
+  };
+  const bool torque_oscillates = oscillates([&](double t) { return model.torque(t); });
   detail::set_rotation_metrics(m, hphi[1], torque_oscillates);
 
   double work = 0.0;
@@ -428,11 +431,7 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   // Re(F_v / z_M) is m nu^2 - kd whatever the soil (the oscillation drum: 107.1 MN/m for the
   // paper's roller at 39 Hz on every soil), a number of the machine, not of the soil. Read from
   // the model at four quarters of a period, as the torque above.
-  bool vertical_force = false;
-  for (int q = 1; q < 4; ++q)
-    vertical_force = vertical_force ||
-                     model.centre_load(t0 + 0.25 * q * model.period()).z != model.centre_load(t0).z;
-  if (vertical_force) {
+  if (oscillates([&](double t) { return model.centre_load(t).z; })) {
     const auto [h_force, h_z] = spectra<2>(nodes, {&Node::vertical_force, &Node::z}, P, t0, f, 2);
     m.kb = detail::soil_stiffness(h_force[1], h_z);
   } else {
@@ -461,7 +460,7 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   // The interpolants hold the curve to about numerics.rtol: the last-resort extrapolation need not
   // resolve its area much finer (1e-11 at the default rtol 1e-8; 1e-9 for an identification's
   // model at 1e-6, where a curve at G = 150 MN/m^2 that Green's theorem and the sweep both
-  // refused took 0.3 s at 1e-11 and 0.04-0.09 s at 1e-9, the same area to 10 digits).
+  // refused took (seen) 0.3 s at 1e-11 and 0.04-0.09 s at 1e-9, the same area to 10 digits).
   m.area = detail::curve_area(pieces, std::max(1e-11, 1e-3 * model.parameters().numerics.rtol));
   return m;
 }

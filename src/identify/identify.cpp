@@ -86,7 +86,6 @@ Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identif
   if (start) return p0;
   double best = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_p = p0;
-  const Roller roller = pr.base().roller;
   // With mu unknown, the scan is made at the case's mu and at the largest mu (a drum that
   // does not slip): a record of a rolling drum is far from any slipping response.
   std::vector<Eigen::VectorXd> starts{p0};
@@ -102,18 +101,7 @@ Eigen::VectorXd start_point(Problem& pr, const IdentifyOptions& o, const Identif
   // bench_identify: the stiffer soil's faster modes).
   constexpr std::array<double, 6> kGrid{4e6, 8e6, 16e6, 32e6, 64e6, 128e6};
   for (const Eigen::VectorXd& p_start : starts) {
-    auto point = [&](std::size_t k) {
-      Eigen::VectorXd p = p_start;
-      if (o.modulus) {
-        p[0] = std::log(kGrid[k]);
-      } else {
-        const SoilCoefficients s =
-            soil_coefficients(kGrid[k], pr.base().soil.nu, pr.base().soil.rho, roller);
-        p[0] = std::log(s.ksh);
-        p[1] = std::log(s.ksv);
-      }
-      return p;
-    };
+    auto point = [&](std::size_t k) { return soil_point(pr, o, p_start, kGrid[k]); };
     const detail::GridMinimum m = detail::downhill_on_grid(kGrid.size(), [&](std::size_t j) {
       Eigen::VectorXd r;
       return pr.residual(point(j), r) ? r.squaredNorm() : std::numeric_limits<double>::infinity();

@@ -560,9 +560,9 @@ function render() {
   const rec = recordState.analysis && recordState.analysis.ok && recordState.analysis.valid ? recordState.analysis.metrics : null;
   const n = periodSlice(r);
   drawSpectrum('plot-spec-x', m.ddx_harmonics.amplitude, COLORS.x, rec && Array.from(rec.ddx_harmonics.amplitude),
-    isAbsent(r, 'ddx_M') ? absentNote(r, 'ddx_M', n) : null);
+    isAbsent(r, 'ddx_M') ? absentNote(r, ['ddx_M'], n) : null);
   drawSpectrum('plot-spec-z', m.ddz_harmonics.amplitude, COLORS.z, rec && Array.from(rec.ddz_harmonics.amplitude),
-    isAbsent(r, 'ddz_M') ? absentNote(r, 'ddz_M', n) : null);
+    isAbsent(r, 'ddz_M') ? absentNote(r, ['ddz_M'], n) : null);
   fillMetrics(r, m);
   startAnimation(r);
 }
@@ -768,9 +768,7 @@ function drawFigure(canvas, r, m) {
   if (absentColumns.length) {
     ctx.fillStyle = '#444';
     ctx.font = '10px system-ui, sans-serif';
-    const names = absentColumns.map((c) => SIGNAL_NAME[c]);
-    const bounds = absentColumns.map((c) => `|${SIGNAL_NAME[c]}| ≤ ${fmt(peakOf(r.samples[c], n), 2)}`).join(', ');
-    ctx.fillText(`${names.join(' and ')} absent: round-off only (${bounds} m/s²)`, 56, canvas.height - 42);
+    ctx.fillText(absentNote(r, absentColumns, n), 56, canvas.height - 42);
     ctx.font = '11px system-ui, sans-serif';
   }
   const caption = !absentColumns.length ? `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`
@@ -917,9 +915,11 @@ function absentRange(r, column, n) {
   const top = isAbsent(r, other) ? 0 : peakOf(r.samples[other], n);
   return top > 0 ? [-1.05 * top, 1.05 * top] : [-1, 1];
 }
-function absentNote(r, column, n) {
-  const name = SIGNAL_NAME[column];
-  return `${name} absent: round-off only (|${name}| ≤ ${fmt(peakOf(r.samples[column], n), 2)} m/s²)`;
+// The note for the absent signals `columns` (one or both), with the size of their round-off.
+function absentNote(r, columns, n) {
+  const names = columns.map((c) => SIGNAL_NAME[c]);
+  const bounds = columns.map((c) => `|${SIGNAL_NAME[c]}| ≤ ${fmt(peakOf(r.samples[c], n), 2)}`).join(', ');
+  return `${names.join(' and ')} absent: round-off only (${bounds} m/s²)`;
 }
 
 // The name of a choice field's value in the case of a result ('vibratory').
