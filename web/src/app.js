@@ -768,7 +768,11 @@ function drawFigure(canvas, r, m) {
   if (absentColumns.length) {
     ctx.fillStyle = '#444';
     ctx.font = '10px system-ui, sans-serif';
-    ctx.fillText(absentNote(r, absentColumns, n), 56, canvas.height - 42);
+    // On two lines where one would run past the canvas's right edge (both signals named).
+    const note = absentNote(r, absentColumns, n), cut = note.indexOf(' (');
+    const lines = ctx.measureText(note).width <= canvas.width - 56 - 8 || cut < 0
+      ? [note] : [note.slice(0, cut), note.slice(cut + 1)];
+    lines.forEach((line, i) => ctx.fillText(line, 56, canvas.height - 42 - 12 * (lines.length - 1 - i)));
     ctx.font = '11px system-ui, sans-serif';
   }
   const caption = !absentColumns.length ? `area ${fmt(m.area, 5)} m²/s⁴ (both lobes)`
