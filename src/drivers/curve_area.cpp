@@ -15,10 +15,13 @@
 // counted along a ray from a point of the arc (a polygon vertex inside a piece, away from the
 // crossings) over the polygon through the pieces. The integrals are exact: on a piece, x dz/dt is
 // a polynomial whose antiderivative is summed at the arc's ends (BulgeSeries); on a straight
-// segment the trapezoid. Checks: at every crossing the boundary must close (the c of the two arcs
-// arriving sum to those of the two leaving); a curve without crossings must have c = +-1; the
-// area must not be negative. Any failure, or a crossing that Newton cannot place on the arcs,
-// leaves the area to the sweep below.
+// segment the trapezoid. Where a point is nearer another branch than that branch's chord may stray
+// from its arc, the arc itself is counted along the ray. An arc none of whose points can tell
+// takes its c from the boundary's closing at one of its crossings (the c of the two arcs arriving
+// sum to those of the two leaving); a loop of round-off's size that no crossing decides is left
+// out. Checks: at every crossing the boundary must close; a curve without crossings must have
+// c = +-1; the area must not be negative. Any failure, or a crossing that Newton cannot place on
+// the arcs, leaves the area to the sweep below.
 //
 // The sweep (swept_curve_area): a polygon through kAreaPoints + 1 points per piece with every
 // self-intersection inserted as a point of both branches, swept by enclosed_area with the exact
@@ -569,39 +572,81 @@ struct Cut {
   std::size_t crossing;  // which crossing (both of its cuts carry the same)
 };
 
+// The point (x, z) relative to (px, pz), turned so that the ray along `axis` (0: +x, 1: -x,
+// 2: +z, 3: -z) is the positive u axis (rotations only: winding numbers keep their sign).
+std::array<double, 2> turned_to_ray(double x, double z, double px, double pz, int axis) {
+  const double dx = x - px, dz = z - pz;
+  switch (axis) {
+    case 0:
+      return {dx, dz};
+    case 1:
+      return {-dx, -dz};
+    case 2:
+      return {dz, -dx};
+    default:
+      return {-dz, dx};
+  }
+}
+
+// The signed number of times the arc of edge e (from its chord's start a to its end b, both
+// turned) crosses the ray, counted as winding_right_of counts a chord's crossing (half-open at
+// w = 0), for a point between the chord and its arc, where the chord's count would be wrong. The
+// arc is followed through kArcSamples pieces (it turns by a few degrees along an edge: it crosses
+// the ray's line at most once in each), each crossing placed by bisection. Nothing where the arc
+// passes within `tiny` of the point.
+std::optional<int> arc_ray_crossings(const EdgeCurve& e, std::array<double, 2> a,
+                                     std::array<double, 2> b, double px, double pz, int axis,
+                                     double tiny) {
+  constexpr int kArcSamples = 16;
+  const auto at = [&](double u) {
+    const auto p = e.at(u);
+    return turned_to_ray(p[0], p[1], px, pz, axis);
+  };
+  int count = 0;
+  double u_from = e.u0;
+  std::array<double, 2> from = a;
+  for (int k = 1; k <= kArcSamples; ++k) {
+    const double u_to = k == kArcSamples ? e.u1 : e.u0 + (e.u1 - e.u0) * k / kArcSamples;
+    const std::array<double, 2> to = k == kArcSamples ? b : at(u_to);
+    if (to[0] * to[0] + to[1] * to[1] <= tiny * tiny) return std::nullopt;
+    if ((from[1] <= 0.0) != (to[1] <= 0.0)) {
+      double lo = u_from, hi = u_to;  // w(lo) on from's side, w(hi) on to's
+      std::array<double, 2> mid = from;
+      for (int it = 0; it < 60 && hi - lo > 1e-15 * (e.u1 - e.u0); ++it) {
+        const double u = 0.5 * (lo + hi);
+        mid = at(u);
+        ((mid[1] <= 0.0) == (from[1] <= 0.0) ? lo : hi) = u;
+      }
+      if (std::abs(mid[0]) <= tiny) return std::nullopt;
+      if (mid[0] > 0.0) count += to[1] > from[1] ? 1 : -1;
+    }
+    u_from = u_to, from = to;
+  }
+  return count;
+}
+
 // The winding number of the closed polygon (x, z) just to the right of a point (px, pz) of the
 // curve, seen along the curve's tangent (tx, tz) there: counted along a ray from the point in the
 // axis direction closest to the right-hand normal (at least 45 degrees from the tangent). The
 // point is a vertex of the polygon (`own` its two edges) or lies on the arc of edge `own[0]` (=
 // own[1]), which the polygon then passes through the point instead: either way the edges at the
 // point cannot meet the ray and are skipped. The result is the curve's winding number there unless
-// the point lies between another edge and its arc: nothing when an edge passes closer to it than
-// `deviation(i)` (a bound on how far edge i's arc strays from its chord), or meets the ray's line
-// within `tiny` of it.
-template <class Deviation>
+// the point lies between another edge and its arc: where an edge passes closer to it than the
+// bound on how far the edge's arc strays from its chord (arc_deviation of `edge(i)`, the
+// EdgeCurve of edge i), the arc's own crossings of the ray count (two branches of the curve
+// running close together, as near a tangency of the figure). Nothing when the point lies within
+// `tiny` of an edge or its arc, or an edge meets the ray's line within `tiny` of it.
+template <class Edge>
 std::optional<int> winding_right_of(const std::vector<double>& x, const std::vector<double>& z,
                                     double px, double pz, std::array<std::size_t, 2> own, double tx,
-                                    double tz, double tiny, const Deviation& deviation) {
+                                    double tz, double tiny, const Edge& edge) {
   const std::size_t n = x.size();
   // The right-hand normal is (tz, -tx); its dot products with +x, -x, +z, -z.
   const std::array<double, 4> dot{tz, -tz, -tx, tx};
   const int axis = static_cast<int>(std::max_element(dot.begin(), dot.end()) - dot.begin());
   if (!(dot[axis] > 0.0)) return std::nullopt;
-  // Coordinates relative to the vertex, turned so that the ray is the positive u axis (rotations
-  // only: the winding numbers keep their sign).
-  const auto turned = [&](std::size_t i) -> std::array<double, 2> {
-    const double dx = x[i] - px, dz = z[i] - pz;
-    switch (axis) {
-      case 0:
-        return {dx, dz};
-      case 1:
-        return {-dx, -dz};
-      case 2:
-        return {dz, -dx};
-      default:
-        return {-dz, dx};
-    }
-  };
+  // Coordinates relative to the vertex, turned so that the ray is the positive u axis.
+  const auto turned = [&](std::size_t i) { return turned_to_ray(x[i], z[i], px, pz, axis); };
   int w = 0;
   auto next = turned(0);  // the turned coordinates of vertex i + 1, carried to the next edge
   for (std::size_t i = 0; i < n; ++i) {
@@ -629,8 +674,14 @@ std::optional<int> winding_right_of(const std::vector<double>& x, const std::vec
       const double nu = ua + s * ex, nw = wa + s * ew, dist2 = nu * nu + nw * nw;
       if (dist2 <= tiny * tiny) return std::nullopt;
       if (dist2 <= 0.0625 * len2) {
-        const double d = deviation(i);
-        if (dist2 <= d * d) return std::nullopt;
+        const EdgeCurve e = edge(i);
+        const double d = arc_deviation(e, tiny);
+        if (dist2 <= d * d) {  // between the chord and its arc, maybe: the arc counts
+          const auto crossings = arc_ray_crossings(e, {ua, wa}, {ub, wb}, px, pz, axis, tiny);
+          if (!crossings) return std::nullopt;
+          w += *crossings;
+          continue;
+        }
       }
     }
     if ((wa <= 0.0) == (wb <= 0.0)) continue;  // does not cross the ray's line (half-open)
@@ -857,17 +908,14 @@ double green_area(const std::vector<Piece>& pieces) {
     }
   }
   const double tiny = 1e-9 * scale;
-  // How far the arc of edge i may stray from its chord: twice the distance of the arc's middle
-  // from the chord's (an arc of a few degrees' turn is nearly a parabola, whose largest distance
-  // from its chord is at its middle), plus round-off; none for the straight segments.
-  const auto deviation = [&](std::size_t i) {
-    return arc_deviation(edge_curve(pieces, v, i), tiny);
-  };
+  // The curve of edge i: its arc's deviation bound (arc_deviation) and, for a point near it, the
+  // arc itself.
+  const auto edge = [&](std::size_t i) { return edge_curve(pieces, v, i); };
   // The winding just right of vertex i (inside a piece).
   const auto right_of_vertex = [&](std::size_t i) {
     const Piece& pc = pieces[v[i].piece];
     return winding_right_of(x, z, x[i], z[i], {(i + n - 1) % n, i}, pc.dx(v[i].t), pc.dz(v[i].t),
-                            tiny, deviation);
+                            tiny, edge);
   };
   // An arc too short to hold a vertex away from the cuts (between two close crossings): the
   // point at the middle of its longest part in one piece (it spans a few pieces at most).
@@ -890,9 +938,15 @@ double green_area(const std::vector<Piece>& pieces) {
     std::size_t e = piece * kPer;
     while (e + 1 < (piece + 1) * kPer - 1 && v[e + 1].t <= t) ++e;
     return winding_right_of(x, z, pc.f[kDdx](t), pc.f[kDdz](t), {e, e}, pc.dx(t), pc.dz(t), tiny,
-                            deviation);
+                            edge);
   };
-  std::vector<int> c(arcs, 0);
+  // An arc whose points cannot tell (too short to hold a point away from its crossings, as a
+  // loop of 1e-7 m/s^2 at a corner of the curve, or all its points near the other branch's
+  // edges): its c from the boundary's closing at one of its crossings, where it is the one arc
+  // not known (one point that could tell must agree).
+  constexpr int kUnknown = 2;  // c is -1, 0 or +1
+  std::vector<int> c(arcs, kUnknown);
+  std::vector<std::optional<int>> hint(arcs);
   for (std::size_t k = 0; k < arcs; ++k) {
     const auto& cand = candidates[k];
     const std::size_t size = cand.size();
@@ -915,17 +969,62 @@ double green_area(const std::vector<Piece>& pieces) {
       right = w;
       ++agreeing;
     }
-    if (!right || (size > 1 && agreeing < 2)) return kNaN;
-    c[k] = int{*right + 1 != 0} - int{*right != 0};
+    const auto c_of = [](int w) { return int{w + 1 != 0} - int{w != 0}; };
+    if (right && (size <= 1 || agreeing >= 2)) {
+      c[k] = c_of(*right);
+    } else {
+      if (m == 0) return kNaN;
+      if (right) hint[k] = c_of(*right);
+    }
   }
-  // Checks: the boundary closes at every crossing; a curve without crossings bounds its region.
-  if (m == 0 && c[0] == 0) return kNaN;
   std::vector<std::array<std::size_t, 2>> at(crossings.size());
   std::vector<int> seen_count(crossings.size(), 0);
   for (std::size_t k = 0; k < m; ++k) at[cuts[k].crossing][seen_count[cuts[k].crossing]++] = k;
+  // The closing at a crossing: the c of the two arcs arriving (+1) equal those of the two leaving
+  // (-1); an arc that both arrives and leaves there (a loop) cancels.
+  const auto terms = [&](std::size_t ka, std::size_t kb) {
+    return std::array<std::pair<std::size_t, int>, 4>{
+        {{(ka + m - 1) % m, 1}, {(kb + m - 1) % m, 1}, {ka, -1}, {kb, -1}}};
+  };
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (const auto& [ka, kb] : at) {
+      int known = 0, coefficient = 0;
+      std::optional<std::size_t> unknown;
+      bool several = false;
+      for (const auto& [k, sign] : terms(ka, kb)) {
+        if (c[k] != kUnknown) {
+          known += sign * c[k];
+        } else if (!unknown || *unknown == k) {
+          unknown = k, coefficient += sign;
+        } else {
+          several = true;
+        }
+      }
+      if (!unknown || several || coefficient == 0) continue;
+      if (known % coefficient != 0) return kNaN;
+      const int value = -known / coefficient;
+      if (value < -1 || value > 1 || (hint[*unknown] && *hint[*unknown] != value)) return kNaN;
+      c[*unknown] = value;
+      progress = true;
+    }
+  }
+  // A loop left unknown (its c cancels at its one crossing): where it encloses less than 1e-12
+  // of what the arcs sweep in all (a loop of round-off's size at a corner of the curve), it is
+  // left out, as a loop within two consecutive polygon edges is.
+  double swept = 0.0;
+  for (const double i : integral) swept += std::abs(i);
+  for (std::size_t k = 0; k < arcs; ++k)
+    if (c[k] == kUnknown && m > 0 && cuts[k].crossing == cuts[(k + 1) % m].crossing &&
+        std::abs(integral[k]) <= 1e-12 * swept)
+      c[k] = 0;
+  if (std::find(c.begin(), c.end(), kUnknown) != c.end()) return kNaN;
+  // Checks: the boundary closes at every crossing; a curve without crossings bounds its region.
+  if (m == 0 && c[0] == 0) return kNaN;
   for (const auto& [ka, kb] : at) {
-    const int arriving = c[(ka + m - 1) % m] + c[(kb + m - 1) % m], leaving = c[ka] + c[kb];
-    if (arriving != leaving) return kNaN;
+    int balance = 0;
+    for (const auto& [k, sign] : terms(ka, kb)) balance += sign * c[k];
+    if (balance != 0) return kNaN;
   }
   double area = 0.0;
   for (std::size_t k = 0; k < arcs; ++k) area += c[k] * integral[k];

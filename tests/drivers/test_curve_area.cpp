@@ -162,6 +162,55 @@ TEST(CurveArea, ACrossingBeyondTheJointOfTwoPieces) {
   EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
 }
 
+// Two branches of the figure running close together (symmetric excitation on stiff soil, the
+// identification's integration at rtol 1e-6: three crossings within 2e-3 m/s^2 of one line, the
+// branches as close between them): the arcs between the crossings hold no point farther from the
+// other branch than its chords may stray from its arcs, where the winding number once refused to
+// count. The arcs themselves count there, and Green's theorem answers (it gave NaN for G = 150.0
+// ... 152.9 MN/m^2, the sweep from 151.4 on), in agreement with the extrapolated polygons.
+TEST(CurveArea, TwoBranchesCloseTogether) {
+  for (const double G : {150.5e6, 152.2e6}) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = G;
+    c.roller.f = 39.39;
+    c.roller.M0 = 56053.5;
+    c.numerics.rtol = 1e-6;
+    c.numerics.steady_tol = 1e-6;
+    const Model model(c);
+    detail::recording::Recording period;
+    const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
+    ASSERT_EQ(r.status, Status::steady_state) << r.message;
+    SCOPED_TRACE("G " + std::to_string(G));
+    const double green = detail::green_curve_area(period.pieces);
+    ASSERT_FALSE(std::isnan(green));
+    EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+  }
+}
+
+// A loop of 1e-14 m^2/s^4 where two pieces join (soft soil, the identification's integration at
+// rtol 1e-6, 35 pieces a period): no point of it can tell which side of it the region lies, and
+// its c cancels at its one crossing. It is left out (below round-off of the area of 97 m^2/s^4),
+// and Green's theorem answers, where it once gave NaN.
+TEST(CurveArea, ALoopOfRoundOffWhereTwoPiecesJoin) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 11.15e6;
+  c.contact.mu = 0.815;
+  c.roller.f = 36.765;
+  c.roller.M0 = 54947.0 * (c.roller.f / 39.0) * (c.roller.f / 39.0);
+  c.MMd = 0.0034 * c.roller.M0;
+  c.numerics.rtol = 1e-6;
+  c.numerics.steady_tol = 1e-6;
+  const Model model(c);
+  detail::recording::Recording period;
+  const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const double green = detail::green_curve_area(period.pieces);
+  ASSERT_FALSE(std::isnan(green));
+  EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+}
+
 // The steady periods of a spread of cases (soil from soft to stiff, friction, asymmetric and
 // symmetric excitation, pure rolling, a higher frequency): Green's theorem answers on nearly all
 // (the fast path; a few fall back by design) and agrees with the sweep to round-off.
