@@ -103,6 +103,20 @@ std::string join(const std::vector<std::string>& v) {
   return out;
 }
 
+// The samples per period of the window an identification was fitted to.
+double samples_per_period(const Identification& id) {
+  const MeasuredResponse& d = id.measured;
+  return static_cast<double>(d.samples - 1) / ((d.t_last - d.t_first) * d.f);
+}
+
+// What Identification::model_sampled means, for the summary.
+std::string model_sampled_text(const Identification& id) {
+  return "sampled at the record's times (the record is sampled in step with the excitation, " +
+         fmt(samples_per_period(id), 4) +
+         " samples per period: its harmonics above those fitted alias onto the compared ones, as "
+         "the model's do so sampled; docs/identify.md)";
+}
+
 // One row per window (docs/identify.md, "Output columns").
 std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOptions& io) {
   std::ostringstream out;
@@ -112,7 +126,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
       out << "," << name << suffix << "[" << unit << "]";
   if (io.modulus) out << ",soil_scale[-]";
   out << ",tau[s],rms_residual[m/s^2],relative_residual[-],reduced_chi2[-],condition[-],"
-         "iterations[-],simulations[-],warnings[-]\n";
+         "iterations[-],simulations[-],warnings[-],model_sampled[-]\n";
   for (const PassEstimate& p : pass) {
     const RecordWindow& w = p.window;
     const Identification& id = p.identification;
@@ -132,7 +146,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
         << cell(p.valid ? id.relative_residual : nan) << ","
         << cell(p.valid ? id.reduced_chi2 : nan) << "," << cell(p.valid ? id.condition : nan) << ","
         << (p.valid ? id.iterations : 0) << "," << (p.valid ? id.simulations : 0) << ","
-        << io::csv_quote(join(id.warnings)) << "\n";
+        << io::csv_quote(join(id.warnings)) << "," << (p.valid && id.model_sampled ? 1 : 0) << "\n";
   }
   return out.str();
 }
@@ -154,7 +168,8 @@ nlohmann::ordered_json identification_json(const Identification& id) {
           {"harmonics_fitted", id.measured.ddx.size()},
           {"noise_x", id.measured.noise_x},
           {"noise_z", id.measured.noise_z},
-          {"warnings", id.warnings}};
+          {"warnings", id.warnings},
+          {"model_sampled", id.model_sampled}};
 }
 
 // An unknown's soil field ("G" -> soil.G), whose display unit it is shown in (the field table's
@@ -215,6 +230,7 @@ nlohmann::ordered_json pass_geojson(const std::vector<PassEstimate>& pass, const
       for (const std::string& text : p.identification.warnings) warnings.push_back(text);
     }
     props["warnings"] = warnings;
+    props["model_sampled"] = p.valid && p.identification.model_sampled;
     features.push_back({{"type", "Feature"}, {"geometry", geometry}, {"properties", props}});
   }
   return {{"type", "FeatureCollection"}, {"name", name}, {"features", features}};
@@ -324,8 +340,20 @@ int run(const IdentifyCliOptions& o) {
       return interrupted_exit_code();
     }
   }
-  std::size_t valid = 0;
-  for (const PassEstimate& p : pass) valid += p.valid ? 1 : 0;
+  std::size_t valid = 0, model_sampled = 0;
+  const Identification* sampled_window = nullptr;
+  for (const PassEstimate& p : pass) {
+    valid += p.valid ? 1 : 0;
+    if (p.valid && p.identification.model_sampled) {
+      ++model_sampled;
+      if (!sampled_window) sampled_window = &p.identification;
+    }
+  }
+  // Said once for a pass (a single window's summary says it too): windows whose samples alias.
+  if (sampled_window && pass.size() > 1 && !o.quiet)
+    std::cerr << "oscidrum: identify: " << model_sampled << " of " << valid
+              << " windows compared the model " << model_sampled_text(*sampled_window)
+              << " (column model_sampled)\n";
 
   const std::string csv_text = pass_csv(pass, io);
   nlohmann::ordered_json rows = nlohmann::json::array();
@@ -385,6 +413,7 @@ int run(const IdentifyCliOptions& o) {
     s.line("time shift tau [s]", fmt(id.time_shift, 6));
     s.line("iterations, simulations",
            std::to_string(id.iterations) + ", " + std::to_string(id.simulations));
+    if (id.model_sampled) s.line("model compared", model_sampled_text(id));
     for (const std::string& w : id.warnings) s.line("WARNING", w);
     std::cout << s.text();
   } else {

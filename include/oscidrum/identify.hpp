@@ -64,6 +64,16 @@ struct MeasuredResponse {
   double noise_x = 0.0, noise_z = 0.0;
   double t_first = 0.0, t_last = 0.0;
   std::vector<double> trend_x, trend_z;
+  /// A window sampled in step with the excitation (measure_window: a whole number of samples per
+  /// period, or so nearly one that the window cannot tell): the harmonics above those fitted
+  /// alias onto the fitted ones coherently, as they do not at other rates. For such a window, the
+  /// fit as a linear map of the samples, so that the model can be sampled as the record was:
+  /// the sample times t_i - t_ref [s], and for each sample the weights of Re C_n and Im C_n,
+  /// n = 1 ... K (2 K per sample, K as for cov_x): C_n = sum_i w_i y_i. Empty for other windows.
+  /// identify() fits such a window both ways (the model's harmonics themselves, as a logger with
+  /// an anti-aliasing filter records them, and the model sampled at the record's times, as raw
+  /// samples do) and keeps the better fit; Identification::measured does not keep these.
+  std::vector<double> alias_t, alias_w;
 };
 
 /// The measured response of a fitted record (or window) of `samples` samples at f [Hz] from
@@ -169,9 +179,13 @@ struct Identification {
   int iterations = 0;               ///< Levenberg-Marquardt iterations [-]
   int simulations = 0;              ///< calls of simulate_metrics [-]
   std::vector<std::string> warnings;  ///< parameters that cannot be told apart, flat profiles
-  Case fitted;                        ///< the case at the estimate (f and M0 of the record)
-  Metrics simulated;                  ///< its metrics
-  MeasuredResponse measured;          ///< what the model was fitted to
+  /// The model was compared as the window's fit measures it sampled at the record's times, not
+  /// by its harmonics themselves: a window sampled in step with the excitation whose raw samples
+  /// alias (MeasuredResponse::alias_t), where that fits better (docs/identify.md).
+  bool model_sampled = false;
+  Case fitted;                ///< the case at the estimate (f and M0 of the record)
+  Metrics simulated;          ///< its metrics
+  MeasuredResponse measured;  ///< what the model was fitted to
 };
 
 /// The unknowns `options` estimate, in the order of Identification::estimates, with their SI

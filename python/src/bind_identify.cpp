@@ -220,6 +220,7 @@ void bind_identify(py::module_& m) {
           d["iterations"] = id.iterations;
           d["simulations"] = id.simulations;
           d["warnings"] = id.warnings;
+          d["model_sampled"] = p.valid && id.model_sampled;
           if (p.valid) d["fitted"] = id.fitted;
           out.append(d);
         }

@@ -153,4 +153,10 @@ namespace oscidrum::detail {
 Metrics compute_metrics(const Model& model, const Result& result, int n_max,
                         const recording::Recording* recorded);
 
+/// The steady period of `result` as compute_metrics reads it: `recorded` when it is that period
+/// (as above), else the period integrated again from the first sample and recorded. Throws
+/// oscidrum::Error as compute_metrics does.
+recording::Recording steady_period(const Model& model, const Result& result,
+                                   const recording::Recording* recorded);
+
 }  // namespace oscidrum::detail

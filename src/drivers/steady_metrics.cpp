@@ -269,7 +269,31 @@ bool is_the_period(const Recording& rec, const Model& model, const Samples& s, d
          rec.phase == dynamics.flow_phase(s.phase.front());
 }
 
+// The span of the steady period compute_metrics reads: from the first sample over p / f, p the
+// multiplicity.
+std::pair<double, double> period_span(const Result& result) {
+  const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
+  const double t0 = result.samples.t.front();
+  return {t0, t0 + p / result.frequency};
+}
+
+// Whether `recorded` (may be null) is the steady period of `result` (is_the_period).
+bool reads_recorded(const Model& model, const Result& result, const Recording* recorded) {
+  const auto [t0, t1] = period_span(result);
+  return recorded != nullptr && detail::with_roller(model, [&]<class R>() {
+           return is_the_period<R>(*recorded, model, result.samples, t0, t1);
+         });
+}
+
 }  // namespace
+
+Recording detail::steady_period(const Model& model, const Result& result,
+                                const Recording* recorded) {
+  if (reads_recorded(model, result, recorded)) return *recorded;
+  const auto [t0, t1] = period_span(result);
+  return detail::with_roller(
+      model, [&]<class R>() { return record_period<R>(model, result.samples, t0, t1); });
+}
 
 Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
   return detail::compute_metrics(model, result, n_max, nullptr);
@@ -293,15 +317,11 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
                 std::to_string(n_max));
   const int p = result.diagnostics.multiplicity >= 1 ? result.diagnostics.multiplicity : 1;
   const double f = result.frequency, P = p / f;
-  const double t0 = s.t.front(), t1 = t0 + P;
+  const double t0 = s.t.front();
   // The sampling's own recording of the period when it has one; else the period integrated again.
-  const bool reuse = recorded != nullptr && detail::with_roller(model, [&]<class R>() {
-                       return is_the_period<R>(*recorded, model, s, t0, t1);
-                     });
+  const bool reuse = reads_recorded(model, result, recorded);
   Recording again;
-  if (!reuse)
-    again =
-        detail::with_roller(model, [&]<class R>() { return record_period<R>(model, s, t0, t1); });
+  if (!reuse) again = steady_period(model, result, nullptr);
   const Recording& rec = reuse ? *recorded : again;
   const std::vector<Piece>& pieces = rec.pieces;
 

@@ -173,8 +173,9 @@ class Calibrating : public detail::LeastSquares {
       const double T = 1.0 / ref.data.f;
       const double tau = std::fmod(ref.data.t_ref, T) - phi / (2.0 * M_PI * ref.data.f);
       fit.time_shift = tau - T * std::floor(tau / T);
-      const detail::HarmonicMisfit m =
-          detail::harmonic_misfit(pr.simulate_at(soil), ref.data, o_.harmonics, phi);
+      std::vector<std::complex<double>> cx, cz;
+      pr.compared(pr.simulate_at(soil), phi, cx, cz);
+      const detail::HarmonicMisfit m = detail::harmonic_misfit(cx, cz, ref.data, o_.harmonics);
       fit.rms_residual = m.rms;
       fit.relative_residual = m.relative;
       fit.reduced_chi2 = ri.squaredNorm() / static_cast<double>(ri.size() - 1);

@@ -275,6 +275,52 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   out.sigma_x = std::sqrt(var_x / (2 * K));
   out.sigma_z = std::sqrt(var_z / (2 * K));
   signal_shape(out.ddx, out.ddz, out);
+
+  // Sampled in step with the excitation? Harmonic m lands, after sampling at the rate of
+  // per_period samples a period, on the frequency |m - j per_period| f for the nearest whole j;
+  // it falls on a fitted harmonic n (and shifts its estimate the same way in every period) when
+  // j per_period is a whole number to within what the window of `periods` periods resolves,
+  // about 1 / periods, and the sample times keep to their grid well enough for the phases of
+  // harmonics near j per_period to stay together (a jitter of s steps turns them by about
+  // 2 pi j s). Checked for the first four bands (j = 1 ... 4), where the harmonics beyond those
+  // fitted are largest. (From the median step, which lost samples do not shift; times rounded
+  // coarsely to a logger's resolution do, and such a record is not taken to be in step.)
+  const double periods = f * span;
+  double jitter = 0.0;  // the median deviation of a step from the median step, in steps
+  {
+    const double h = 1.0 / (f * per_period);
+    std::vector<double> dev(M - 1);
+    for (std::size_t i = 1; i < M; ++i) dev[i - 1] = std::abs(t[i] - t[i - 1] - h) / h;
+    std::nth_element(dev.begin(), dev.begin() + static_cast<std::ptrdiff_t>(dev.size() / 2),
+                     dev.end());
+    jitter = dev[dev.size() / 2];
+  }
+  bool in_step = false;
+  for (int j = 1; j <= 4 && !in_step; ++j) {
+    const double jm = j * per_period;
+    in_step = std::abs(jm - std::round(jm)) * periods < 2.0 && j * jitter < 0.01;
+  }
+  if (in_step) {
+    // The estimator's rows: C_n = sum_i w_i y_i with w_i = B_i X, B_i the basis at sample i.
+    out.alias_t.resize(M);
+    out.alias_w.assign(M * static_cast<std::size_t>(2 * K), 0.0);
+    std::vector<double> basis(static_cast<std::size_t>(p));
+    for (std::size_t i = 0; i < M; ++i) {
+      legendre(2.0 * (t[i] - mid) / span, d, P);
+      harmonics_at(f * (t[i] - out.t_ref), N, cm, sm);
+      for (int j = 0; j < np; ++j) basis[static_cast<std::size_t>(j)] = P[j];
+      for (int n = 1; n <= N; ++n) {
+        basis[static_cast<std::size_t>(col_cos(n))] = cm[n];
+        basis[static_cast<std::size_t>(col_sin(n))] = sm[n];
+      }
+      out.alias_t[i] = t[i] - out.t_ref;
+      for (int k = 0; k < 2 * K; ++k) {
+        double w = 0.0;
+        for (int j = 0; j < p; ++j) w += basis[static_cast<std::size_t>(j)] * X(j, k);
+        out.alias_w[i * static_cast<std::size_t>(2 * K) + static_cast<std::size_t>(k)] = w;
+      }
+    }
+  }
   return out;
 }
 

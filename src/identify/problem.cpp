@@ -8,6 +8,7 @@
 #include <exception>
 #include <limits>
 
+#include "oscidrum/error.hpp"
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
@@ -93,21 +94,26 @@ double to_physical(Unknown k, double p, double M0) {
   return k == Unknown::MMd ? p * M0 : std::exp(p);
 }
 
-HarmonicMisfit harmonic_misfit(const Simulated& s, const MeasuredResponse& data, int harmonics,
-                               double phi) {
+HarmonicMisfit harmonic_misfit(const std::vector<std::complex<double>>& x,
+                               const std::vector<std::complex<double>>& z,
+                               const MeasuredResponse& data, int harmonics) {
   double num2 = 0, den2 = 0;
   for (int n = 1; n <= harmonics; ++n) {
-    const std::complex<double> e = std::polar(1.0, n * phi);
-    num2 +=
-        std::norm(data.ddx[n - 1] - s.x[n - 1] * e) + std::norm(data.ddz[n - 1] - s.z[n - 1] * e);
+    num2 += std::norm(data.ddx[n - 1] - x[n - 1]) + std::norm(data.ddz[n - 1] - z[n - 1]);
     den2 += std::norm(data.ddx[n - 1]) + std::norm(data.ddz[n - 1]);
   }
   return {std::sqrt(num2 / (2.0 * harmonics)),
           den2 > 0 ? std::sqrt(num2 / den2) : std::numeric_limits<double>::quiet_NaN()};
 }
 
-Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o)
-    : data_(data), o_(o) {
+Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
+                 Comparison comparison)
+    : data_(data), o_(o), comparison_(comparison) {
+  if (comparison == Comparison::sampled &&
+      (data.alias_t.empty() ||
+       data.alias_w.size() < data.alias_t.size() * static_cast<std::size_t>(2 * o.harmonics)))
+    throw Error("identify: the model sampled at the window's times needs the window's fit of " +
+                std::to_string(o.harmonics) + " harmonics (measure_window, alias_t)");
   case_ = base;
   const double scale = data.f / base.roller.f;
   case_.roller.f = data.f;
@@ -258,6 +264,13 @@ const Simulated& Problem::simulate_at(const Eigen::VectorXd& p) {
         signal_shape(r.metrics.ddx_harmonics, r.metrics.ddz_harmonics, data_.n_signal, s.ddx_max,
                      s.ddx_min, s.ddz_max, s.ddz_min, s.area);
       s.metrics = r.metrics;
+      if (comparison_ == Comparison::sampled) {
+        s.signal = std::move(signal_);
+        if (s.signal.empty()) {  // (a steady state always has its period)
+          s.ok = false;
+          s.message = "no steady period recorded";
+        }
+      }
     }
   } catch (const std::exception& e) {  // an invalid trial case, or the integrator gave up
     s.ok = false;
@@ -293,9 +306,9 @@ ModelResponse Problem::run(const Case& c, const Eigen::VectorXd& p) {
                     (p - orbit_p_).cwiseAbs().maxCoeff() <= kWarmRadius &&
                     orbit_pure_rolling_ == c.contact.pure_rolling;
   std::optional<WarmStart> orbit;
-  ModelResponse r =
-      simulate_metrics_from(c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps),
-                            near ? &*orbit_ : nullptr, &orbit);
+  ModelResponse r = simulate_metrics_from(
+      c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps), near ? &*orbit_ : nullptr,
+      &orbit, comparison_ == Comparison::sampled ? &signal_ : nullptr);
   if (orbit) {
     orbit_ = std::move(orbit);
     orbit_p_ = p;
@@ -392,13 +405,43 @@ double Problem::best_phase(const Simulated& s) const {
   return boost::math::tools::brent_find_minima(objective, best - h, best + h, 40, iterations).first;
 }
 
+void Problem::compared(const Simulated& s, double phi, std::vector<std::complex<double>>& x,
+                       std::vector<std::complex<double>>& z) const {
+  const int H = o_.harmonics;
+  x.assign(static_cast<std::size_t>(H), 0.0);
+  z.assign(static_cast<std::size_t>(H), 0.0);
+  if (comparison_ == Comparison::harmonics) {
+    for (int n = 1; n <= H; ++n) {
+      const std::complex<double> e = std::polar(1.0, n * phi);
+      x[static_cast<std::size_t>(n - 1)] = s.x[static_cast<std::size_t>(n - 1)] * e;
+      z[static_cast<std::size_t>(n - 1)] = s.z[static_cast<std::size_t>(n - 1)] * e;
+    }
+    return;
+  }
+  // The window's fit (a linear map of its samples) of the model at the window's times: record
+  // time t_ref + s is model time s + phi / (2 pi f) (identify.cpp, the time shift). The harmonics
+  // the fit resolves come out as C_n e^{i n phi}; those above alias as the record's own do.
+  const std::size_t K2 = data_.alias_w.size() / data_.alias_t.size();
+  const double shift = phi / (2.0 * M_PI * data_.f);
+  for (std::size_t i = 0; i < data_.alias_t.size(); ++i) {
+    const auto [yx, yz] = s.signal.at(data_.alias_t[i] + shift);
+    const double* w = &data_.alias_w[i * K2];
+    for (int n = 0; n < H; ++n) {
+      const auto k = static_cast<std::size_t>(n);
+      x[k] += std::complex<double>(w[2 * k] * yx, w[2 * k + 1] * yx);
+      z[k] += std::complex<double>(w[2 * k] * yz, w[2 * k + 1] * yz);
+    }
+  }
+}
+
 void Problem::harmonic_residual(const Simulated& s, double phi, Eigen::VectorXd& r) const {
   const int m = 2 * o_.harmonics;
   Eigen::VectorXd vx(m), vz(m);
+  std::vector<std::complex<double>> cx, cz;
+  compared(s, phi, cx, cz);
   for (int n = 1; n <= o_.harmonics; ++n) {
-    const std::complex<double> e = std::polar(1.0, n * phi);
-    const std::complex<double> dx = data_.ddx[n - 1] - s.x[n - 1] * e;
-    const std::complex<double> dz = data_.ddz[n - 1] - s.z[n - 1] * e;
+    const std::complex<double> dx = data_.ddx[n - 1] - cx[static_cast<std::size_t>(n - 1)];
+    const std::complex<double> dz = data_.ddz[n - 1] - cz[static_cast<std::size_t>(n - 1)];
     vx[2 * n - 2] = dx.real();
     vx[2 * n - 1] = dx.imag();
     vz[2 * n - 2] = dz.real();

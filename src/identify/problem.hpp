@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <complex>
 #include <limits>
 #include <map>
@@ -13,16 +14,31 @@
 #include <vector>
 
 #include "drivers/continuation.hpp"
+#include "drivers/period_recording.hpp"
 #include "identify/solver.hpp"
 #include "oscidrum/identify.hpp"
 
 namespace oscidrum::detail {
 
+/// x_M'' and z_M'' of a steady state as functions of model time: the interpolants of the steady
+/// period's pieces (one per integration step, exact to round-off between the switches), repeated
+/// with its period. What the model gives at a record's sample times (MeasuredResponse::alias_t).
+struct PeriodicSignal {
+  double t0 = 0.0, period = 0.0;  ///< the period recorded: [t0, t0 + period) [s]
+  std::vector<double> starts;     ///< the start of each piece [s]
+  std::vector<recording::Interpolant> x, z;
+  bool empty() const { return starts.empty(); }
+  /// x_M'', z_M'' at model time t [s] [m/s^2].
+  std::array<double, 2> at(double t) const;
+};
+
 /// simulate_metrics (oscidrum/identify.hpp) with shooting started from `warm` (may be null) when
 /// the case's method is shooting (simulate_from); `orbit` (may be null) receives the run's steady
-/// state as a start for the next run. The metrics read the steady period the sampling recorded.
+/// state as a start for the next run. The metrics read the steady period the sampling recorded;
+/// `signal` (may be null) receives that period's x_M'' and z_M'' (empty without a steady state).
 ModelResponse simulate_metrics_from(const Case& c, int n_max, long max_steps, const WarmStart* warm,
-                                    std::optional<WarmStart>* orbit);
+                                    std::optional<WarmStart>* orbit,
+                                    PeriodicSignal* signal = nullptr);
 
 /// The unknowns an identification can estimate.
 enum class Unknown { G, ksh, ksv, mu, MMd };
@@ -45,7 +61,8 @@ struct Simulated {
   double ddx_max = kNaN, ddx_min = kNaN, ddz_max = kNaN, ddz_min = kNaN, area = kNaN;
   Metrics metrics;
   double friction_ratio = std::numeric_limits<double>::quiet_NaN();  ///< largest |T| / N [-]
-  bool rolling = false;  ///< the steady state sticks throughout (no slip)
+  bool rolling = false;   ///< the steady state sticks throughout (no slip)
+  PeriodicSignal signal;  ///< the steady state's x_M'', z_M'' (only for a sampled comparison)
 };
 
 /// Every model run of an identification is bounded: at most this many integration steps in all
@@ -57,19 +74,28 @@ inline constexpr long kMaxStepsPerRun = 400000;
 /// periods) took minutes of such trials, the diagnosis's refits multiplying them.
 inline constexpr long kMaxStepsPerWindow = 8000000;
 
-/// The misfit of the harmonics n = 1 ... harmonics of the model `s` turned by e^{i n phi}
-/// against the measured ones: the RMS of C_n(measured) - C_n(model) over n and both signals
-/// [m/s^2], and its norm relative to the measured harmonics' (NaN without any) [-].
+/// The misfit of the harmonics n = 1 ... harmonics of the model (`x`, `z`: as Problem::compared
+/// gives them) against the measured ones: the RMS of C_n(measured) - C_n(model) over n and both
+/// signals [m/s^2], and its norm relative to the measured harmonics' (NaN without any) [-].
 struct HarmonicMisfit {
   double rms = 0.0;
   double relative = 0.0;
 };
-HarmonicMisfit harmonic_misfit(const Simulated& s, const MeasuredResponse& data, int harmonics,
-                               double phi);
+HarmonicMisfit harmonic_misfit(const std::vector<std::complex<double>>& x,
+                               const std::vector<std::complex<double>>& z,
+                               const MeasuredResponse& data, int harmonics);
+
+/// How the model's harmonics are compared with a window's: as the model's own (the default), or
+/// as the window's fit measures the model sampled at the window's times (MeasuredResponse::
+/// alias_t; a window sampled in step with the excitation, whose raw samples alias).
+enum class Comparison { harmonics, sampled };
 
 class Problem : public LeastSquares {
  public:
-  Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& options);
+  /// Throws oscidrum::Error for `sampled` without the window's estimator (data.alias_t) for
+  /// options.harmonics harmonics.
+  Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& options,
+          Comparison comparison = Comparison::harmonics);
 
   int rows() const override { return rows_; }
   const std::vector<Bounds>& bounds() const override { return bounds_; }
@@ -85,6 +111,8 @@ class Problem : public LeastSquares {
   long steps() const { return *steps_used_; }
   /// Count the steps in `counter` instead (shared by the refits of one window's diagnosis).
   void count_steps_in(long& counter) { steps_used_ = &counter; }
+  /// The counter the steps are counted in (for another problem of the same window).
+  long& steps_counter() { return *steps_used_; }
   double M0() const { return case_.roller.M0; }
   /// The base case at the record's f (M0 scaled by (f / roller.f)^2, (5)), with the numerics of
   /// the identification.
@@ -94,6 +122,12 @@ class Problem : public LeastSquares {
   Eigen::VectorXd internal_of(const Case& c) const;
   /// The model at p (cached).
   const Simulated& simulate_at(const Eigen::VectorXd& p);
+  /// The model's harmonics n = 1 ... harmonics as the fit compares them with the measured ones at
+  /// the time shift phi: C_n e^{i n phi}, or (Comparison::sampled) the window's fit of the model
+  /// sampled at the window's times shifted by phi / (2 pi f).
+  void compared(const Simulated& s, double phi, std::vector<std::complex<double>>& x,
+                std::vector<std::complex<double>>& z) const;
+  Comparison comparison() const { return comparison_; }
 
  private:
   /// One bounded model run of c, the case at the internal coordinates p.
@@ -105,6 +139,7 @@ class Problem : public LeastSquares {
 
   MeasuredResponse data_;
   IdentifyOptions o_;
+  Comparison comparison_ = Comparison::harmonics;
   Case case_;
   std::vector<Unknown> unknowns_;
   std::vector<Bounds> bounds_;
@@ -113,6 +148,7 @@ class Problem : public LeastSquares {
   int n_sim_ = 10, rows_ = 0, simulations_ = 0;
   long steps_ = 0;              // integration steps of this identification's model runs so far
   long* steps_used_ = &steps_;  // where they are counted (steps_, or a shared counter)
+  PeriodicSignal signal_;       // the last run's steady state (Comparison::sampled)
   std::map<std::vector<double>, Simulated> cache_;
   std::map<std::vector<double>, ModelResponse> rolling_cache_;
   // The steady state of the last model run that found one, at orbit_p_: a run within kWarmRadius

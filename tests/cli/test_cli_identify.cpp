@@ -116,6 +116,41 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
     EXPECT_TRUE(std::filesystem::exists(dir / ("plots/" + std::string(png)))) << png << o.err;
 }
 
+// A record sampled in step with the excitation (64 samples a period, as an encoder-triggered
+// logger samples), in g with z up as such loggers write: every window compares the model sampled
+// at the record's times (column model_sampled), says so once, and recovers G; the same soil at
+// 1 kHz does not.
+TEST(CliIdentify, ARecordSampledInStepComparesTheModelSampled) {
+  TempDir dir;
+  for (const double rate : {64 * kF, 1000.0}) {
+    SyntheticRecord so;
+    so.duration = 2.1;
+    so.sample_rate = rate;
+    so.noise = 0.002;
+    so.seed = 9;
+    const RecordSamples r = synthetic_record({truth(30e6)}, so);
+    std::ofstream out(dir / "in_step.csv");
+    out << "time,acc_x_g,acc_z_g\n";
+    char line[160];
+    for (std::size_t i = 0; i < r.t.size(); ++i) {
+      std::snprintf(line, sizeof line, "%.9f,%.9g,%.9g\n", r.t[i], r.ddx_M[i] / kStandardGravity,
+                    -r.ddz_M[i] / kStandardGravity);
+      out << line;
+    }
+    out.close();
+    const Outcome o = run({"identify", dir / "in_step.csv", "--window", "40", "--units", "g",
+                           "--z-positive", "up", "--format", "csv"});
+    ASSERT_EQ(o.code, 0) << o.err << o.out;
+    const std::vector<double> G = column(o.out, "G"), sampled = column(o.out, "model_sampled");
+    ASSERT_GE(G.size(), 2u) << o.out;  // (and one ending with the record)
+    for (std::size_t k = 0; k < G.size(); ++k) {
+      EXPECT_NEAR(G[k] / 30e6, 1.0, 2e-3) << rate << " window " << k;
+      EXPECT_EQ(sampled[k], rate == 1000.0 ? 0.0 : 1.0) << rate << " window " << k;
+    }
+    EXPECT_EQ(o.err.find("sampled in step") != std::string::npos, rate != 1000.0) << o.err;
+  }
+}
+
 // The pass as a map: with GNSS columns, --geojson writes one feature per window, its point at the
 // window's centre (the columns interpolated in time) and G with its interval in MN/m^2.
 TEST(CliIdentify, GeoJsonPutsEachWindowOnTheMap) {

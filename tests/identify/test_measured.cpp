@@ -135,5 +135,53 @@ TEST(MeasureWindow, HarmonicsFromTheSampling) {
   }
 }
 
+// A window sampled in step with the excitation (16 samples a period: 7 harmonics fitted, 8 ... 15
+// alias onto them the same way in every period) keeps the fit as a linear map of its samples,
+// whose weights give the fitted harmonics again; a window at another rate (or jittered) does not.
+TEST(MeasureWindow, InStepWindowsKeepTheFitAsAMapOfTheSamples) {
+  Signal s;
+  const double rate = 16.0 * kF;
+  for (int i = 0; i < 16 * 40; ++i) {
+    const double t = 2.0 + i / rate;
+    double x = 0, z = 0;
+    for (int n = 1; n <= 15; ++n) {
+      const std::complex<double> c = coefficient(n);
+      const double w = n * 2 * M_PI * kF * (t - 2.0);
+      x += std::abs(c) * std::sin(w + std::arg(c));
+      z += 0.5 * std::abs(c) * std::sin(w + std::arg(c) + 1.0);
+    }
+    s.t.push_back(t);
+    s.x.push_back(x);
+    s.z.push_back(z);
+  }
+  const MeasuredResponse m = measure_window(s.t, s.x, s.z, kF);
+  ASSERT_EQ(m.ddx.size(), 7u);
+  const std::size_t K =
+      m.cov_x.empty() ? 0 : static_cast<std::size_t>(std::sqrt(m.cov_x.size())) / 2;
+  ASSERT_EQ(K, 4u);
+  ASSERT_EQ(m.alias_t.size(), s.t.size());
+  ASSERT_EQ(m.alias_w.size(), s.t.size() * 2 * K);
+  for (std::size_t n = 0; n < K; ++n) {
+    std::complex<double> cx = 0, cz = 0;
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+      const double* w = &m.alias_w[i * 2 * K];
+      cx += std::complex<double>(w[2 * n] * s.x[i], w[2 * n + 1] * s.x[i]);
+      cz += std::complex<double>(w[2 * n] * s.z[i], w[2 * n + 1] * s.z[i]);
+    }
+    EXPECT_LT(std::abs(cx - m.ddx[n]), 1e-12 * std::abs(coefficient(1))) << n;
+    EXPECT_LT(std::abs(cz - m.ddz[n]), 1e-12 * std::abs(coefficient(1))) << n;
+    EXPECT_DOUBLE_EQ(m.alias_t[n], s.t[n] - s.t.front());
+  }
+  // The aliases are there: C_1 is off by about |C_15| (harmonic 15 lands on 1).
+  EXPECT_GT(std::abs(m.ddx[0] - coefficient(1)), 0.5 * std::abs(coefficient(15)));
+  // Not in step: 1 kHz with jitter, and 16.1 samples a period over 40 periods.
+  const Signal jittered = make(1000, 0.0, 5);
+  EXPECT_TRUE(measure_window(jittered.t, jittered.x, jittered.z, kF).alias_t.empty());
+  std::vector<double> t_off(s.t.size());
+  for (std::size_t i = 0; i < t_off.size(); ++i)
+    t_off[i] = 2.0 + static_cast<double>(i) / (16.1 * kF);
+  EXPECT_TRUE(measure_window(t_off, s.x, s.z, kF).alias_t.empty());
+}
+
 }  // namespace
 }  // namespace oscidrum
