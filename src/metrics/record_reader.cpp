@@ -430,13 +430,20 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
     return false;
   };
+  // The last comment line before the first other line: the header of a record whose header is
+  // commented out ("# t,ax,az" as numpy.savetxt writes it, "% time ax az" as Octave does).
+  std::string comment_before;
+  std::size_t comment_before_no = 0;
   {
     bool any = false;
     for (std::string l; lead.size() < kLeadLines && std::getline(in, l);) {
       ++no;
       if (no == 1) strip_bom(l);
       if (!l.empty() && l.back() == '\r') l.pop_back();
-      if (is_comment(l)) continue;
+      if (is_comment(l)) {
+        if (!any && !trim(l).empty()) comment_before = l, comment_before_no = no;
+        continue;
+      }
       any = true;
       lead.emplace_back(std::move(l), no);
       if ((decided = decide(false))) break;
@@ -465,6 +472,26 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   for (const std::string& cell : header) {
     double v = 0;
     if (!parse_number(cell, decimal_comma, v) && !parse_clock(cell)) has_header = true;
+  }
+  // No header, but a comment just before the data that names as many columns, none a number:
+  // those are the names (the data start at the first line, as without a header).
+  bool commented_header = false;
+  if (!has_header && header_at == 0 && !comment_before.empty()) {
+    std::string c = trim(comment_before);
+    c.erase(0, c.rfind("//", 0) == 0 ? 2 : 1);
+    while (!c.empty() && (c.front() == '#' || c.front() == '%')) c.erase(0, 1);
+    const std::vector<std::string> cells = split(trim(c), delim);
+    bool names = cells.size() == header.size();
+    for (const std::string& cell : cells) {
+      double v = 0;
+      names = names && !trim(cell).empty() && !parse_number(cell, decimal_comma, v) &&
+              !parse_clock(cell);
+    }
+    if (names) {
+      header = cells;
+      has_header = commented_header = true;
+      out.notes.push_back("header from the comment at line " + std::to_string(comment_before_no));
+    }
   }
   if (header_at > 0)
     out.notes.push_back("skipped " + std::to_string(header_at) + " line" +
@@ -700,7 +727,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   };
   // The held lines after the header (and its units), then the rest as it is read; without a
   // header the first line is data too.
-  for (std::size_t k = has_header ? data_at : header_at; k < lead.size(); ++k)
+  for (std::size_t k = has_header && !commented_header ? data_at : header_at; k < lead.size(); ++k)
     parse(lead[k].first, lead[k].second);
   while (next_line(line)) parse(line, no);
   if (out.t.empty())

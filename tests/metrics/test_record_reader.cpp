@@ -101,6 +101,31 @@ TEST(RecordReader, BareAxisNamesWhereNothingElseMatches) {
   EXPECT_DOUBLE_EQ(r.ddz_M[1], 4.0);
 }
 
+// A header written as a comment (numpy.savetxt's "# t,ax,az", Octave's "% time ax az"): the last
+// comment before the data names the columns when it has as many as the data, none a number; a
+// comment that does not (a description, or a line of numbers) leaves the record without a header.
+TEST(RecordReader, AHeaderWrittenAsAComment) {
+  for (const std::string text : {"# made by numpy\n# t,ax,az\n0,0.5,-0.25\n0.001,1.5,0.75\n",
+                                 "% time ax az\n0 0.5 -0.25\n0.001 1.5 0.75\n",
+                                 "//t;ax [g];az [g]\n0;0,5;-0,25\n0,001;1,5;0,75\n"}) {
+    SCOPED_TRACE(text);
+    const RecordColumns r = read_text(text);
+    ASSERT_EQ(r.t.size(), 2u);  // the first line of data is data
+    const double g = text.find("[g]") != std::string::npos ? 9.80665 : 1.0;
+    EXPECT_DOUBLE_EQ(r.t[1], 0.001);
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
+    EXPECT_TRUE(std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+      return n.find("header from the comment") != std::string::npos;
+    }));
+  }
+  for (const std::string text : {"# a record of the drum\n0,0.5,-0.25\n0.001,1.5,0.75\n",
+                                 "# 1,2,3\n0,0.5,-0.25\n0.001,1.5,0.75\n"}) {
+    SCOPED_TRACE(text);
+    EXPECT_NE(message_of(text).find("has no header line"), std::string::npos) << message_of(text);
+  }
+}
+
 // A logger's clock times in the time column: t in s from the first row's, across midnight, a
 // month's end and a leap day, with the dates in ISO or German order, a zone, or no date at all.
 TEST(RecordReader, ClockTimesInTheTimeColumn) {
