@@ -749,6 +749,24 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       out.t_factor = 1.0;
     } else {
       note("t", ct, kt, "s");
+      // A time column without a unit is read in s; one whose samples are then too far apart for
+      // any roller's excitation (under 50 samples/s) but a logger's rate in ms is likely in ms.
+      if (o.t_units == "auto" && headings[static_cast<std::size_t>(ct)].unit.empty() &&
+          out.t.size() > 2) {
+        const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
+        std::vector<double> dt(n - 1);
+        for (std::size_t i = 1; i < n; ++i) dt[i - 1] = out.t[i] - out.t[i - 1];
+        std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2),
+                         dt.end());
+        const double step = dt[dt.size() / 2];
+        if (step >= 0.02 && step <= 20.0)
+          out.notes.push_back("t: column '" + out.t_column +
+                              "' has no unit and is read in s, its samples " + format_factor(step) +
+                              " s apart (" + format_factor(1.0 / step) +
+                              " samples/s: too few for an excitation of 10 Hz or more); if it "
+                              "is in ms (" +
+                              format_factor(1000.0 / step) + " samples/s), give --t-units ms");
+      }
     }
     out.notes.insert(out.notes.end(), later.begin(), later.end());
   }

@@ -126,6 +126,22 @@ TEST(RecordReader, AHeaderWrittenAsAComment) {
   }
 }
 
+// A time column without a unit is read in s; samples 1 s apart (a logger's ms read as s) are said
+// with the flag that reads them in ms, and samples 1 ms apart are not.
+TEST(RecordReader, TimeInMsWithoutAUnitIsHinted) {
+  const auto hinted = [](const RecordColumns& r) {
+    return std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+      return n.find("give --t-units ms") != std::string::npos;
+    });
+  };
+  EXPECT_TRUE(hinted(read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")));
+  EXPECT_FALSE(hinted(read_text("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n")));
+  EXPECT_FALSE(hinted(read_text("t [ms],ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")));
+  RecordReading o;
+  o.t_units = "s";
+  EXPECT_FALSE(hinted(read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o)));
+}
+
 // A logger's clock times in the time column: t in s from the first row's, across midnight, a
 // month's end and a leap day, with the dates in ISO or German order, a zone, or no date at all.
 TEST(RecordReader, ClockTimesInTheTimeColumn) {
