@@ -27,6 +27,8 @@ namespace {
 
 using detail::shortest;
 std::string num(double v) { return shortest(v); }
+// Four significant digits, for the lengths and frequencies a message reports.
+std::string sig4(double v) { return detail::format("%.4g", v); }
 
 // The least-squares fit of a record on the harmonic basis 1, cos(n w), sin(n w), n = 1 ... n_max,
 // w = nu (t - t_ref), by the normal equations without the n x (2 n_max + 1) basis: B^T B needs
@@ -951,8 +953,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     throw Error("record: must span at least " +
                 (windowed ? "one window (" + num(o.window_periods) + " periods"
                           : std::string("one excitation period (1/f")) +
-                " = " + num(std::max(1.0, o.window_periods) / f_rec) + " s at f = " + num(f_rec) +
-                " Hz); its samples cover " + num(covered) + " s");
+                " = " + sig4(std::max(1.0, o.window_periods) / f_rec) + " s at f = " +
+                sig4(f_rec) + " Hz); its samples cover " + sig4(covered) + " s (" +
+                sig4(covered * f_rec) + " periods)" +
+                (windowed && covered * f_rec >= 1.0
+                     ? ": take the whole record as one window with --window 0, or a shorter "
+                       "--window"
+                     : ""));
 
   // Time steps (gaps), and the samples at a channel's extreme (plateaus: clipping).
   std::vector<double> dt(t.size() - 1);
