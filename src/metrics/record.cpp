@@ -953,9 +953,9 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     throw Error("record: must span at least " +
                 (windowed ? "one window (" + num(o.window_periods) + " periods"
                           : std::string("one excitation period (1/f")) +
-                " = " + sig4(std::max(1.0, o.window_periods) / f_rec) + " s at f = " +
-                sig4(f_rec) + " Hz); its samples cover " + sig4(covered) + " s (" +
-                sig4(covered * f_rec) + " periods)" +
+                " = " + sig4(std::max(1.0, o.window_periods) / f_rec) + " s at f = " + sig4(f_rec) +
+                " Hz); its samples cover " + sig4(covered) + " s (" + sig4(covered * f_rec) +
+                " periods)" +
                 (windowed && covered * f_rec >= 1.0
                      ? ": take the whole record as one window with --window 0, or a shorter "
                        "--window"

@@ -246,6 +246,15 @@ Heading heading(const std::string& cell) {
     }
   }
   h.key = key_of(h.name);
+  // Two primes, the paper's notation for a second derivative ("x_M''", "z''", "x″"): the key of
+  // the model's name for it ("ddxm", "ddz"), not of the coordinate itself.
+  for (const char* primes : {"''", "\"", "\xE2\x80\xB3"}) {  // '', ", U+2033 double prime
+    const std::string p = primes;
+    if (h.name.size() > p.size() && h.name.ends_with(p)) {
+      h.key = "dd" + key_of(h.name.substr(0, h.name.size() - p.size()));
+      break;
+    }
+  }
   return h;
 }
 
@@ -293,12 +302,20 @@ bool is_time_key(const std::string& k) {
 // 'x' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x, acc_x,
 // accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, ...); 0 otherwise.
 char acceleration_axis(const std::string& k) {
-  if (k == "ddxm" || k == "ddx" || k == "xddot" || k == "ax" || k == "ah" ||
-      k.find("horiz") != std::string::npos)
+  // The model's names and the notations of a second derivative: x double dot (xddot, xdd),
+  // x prime prime (xpp), of x or of x_M (xm...).
+  for (const char axis : {'x', 'z'}) {
+    const std::string a(1, axis);
+    for (const std::string& name : {"dd" + a + "m", "dd" + a, a + "ddot", a + "dd", a + "pp",
+                                    a + "mddot", a + "mdd", a + "mpp"})
+      if (k == name) return axis;
+  }
+  // acc_hor / acc_vert, a_h / a_v, horizontal / vertical.
+  const bool acc_first = k.rfind("acc", 0) == 0 || k.rfind("a", 0) == 0;
+  if (k == "ax" || k == "ah" || k.find("horiz") != std::string::npos ||
+      (acc_first && k.ends_with("hor")))
     return 'x';
-  if (k == "ddzm" || k == "ddz" || k == "zddot" || k == "az" || k == "av" ||
-      k.find("vert") != std::string::npos)
-    return 'z';
+  if (k == "az" || k == "av" || k.find("vert") != std::string::npos) return 'z';
   // (German loggers: Beschleunigung, Beschl.)
   for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
     const std::string st = stem;
@@ -317,6 +334,8 @@ char acceleration_axis(const std::string& k) {
       const bool acc = k.find(stem) != std::string::npos;
       if (acc && k.rfind(stem, 0) == 0 && k.back() == axis) return axis;
       if (acc && k.front() == axis && k.find(stem) == 1) return axis;
+      if (acc && k.front() == axis && k.size() > 1 && k[1] == 'm' && k.find(stem) == 2)
+        return axis;  // xM_acc: the drum centre M's
     }
   }
   return 0;

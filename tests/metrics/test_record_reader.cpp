@@ -142,6 +142,24 @@ TEST(RecordReader, TimeInMsWithoutAUnitIsHinted) {
   EXPECT_FALSE(hinted(read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o)));
 }
 
+// The paper's notation and others for the drum centre's accelerations: x_M'' (beside the
+// displacement x_M), x'', x double dot, x prime prime, xM_acc, acc_hor / acc_vert.
+TEST(RecordReader, NotationsOfASecondDerivative) {
+  for (const std::string header :
+       {"t,x_M,x_M'',z_M'',z_M", "t,x'',z''", "t,x_dd,z_dd", "t,xpp,zpp", "t,xM_acc,zM_acc",
+        "time,acc_hor,acc_vert", "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]"}) {
+    SCOPED_TRACE(header);
+    const bool four = std::count(header.begin(), header.end(), ',') == 4;
+    const std::string rows =
+        four ? "0,9,0.5,-0.25,9\n0.001,9,1.5,0.75,9\n" : "0,0.5,-0.25\n0.001,1.5,0.75\n";
+    const RecordColumns r = read_text(header + "\n" + rows);
+    ASSERT_EQ(r.t.size(), 2u);
+    const double g = header.find("[g]") != std::string::npos ? 9.80665 : 1.0;
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
+  }
+}
+
 // A logger's clock times in the time column: t in s from the first row's, across midnight, a
 // month's end and a leap day, with the dates in ISO or German order, a zone, or no date at all.
 TEST(RecordReader, ClockTimesInTheTimeColumn) {
