@@ -274,11 +274,14 @@ double time_scale(const std::string& unit) {
 double acceleration_scale(const std::string& unit) {
   std::string u = lower(unit);
   std::erase(u, ' ');
-  // m/s^2 written in its usual ways: m/s^2, m/s2, m/s\xC2\xB2, m s^-2, m*s^-2, mps2, ms-2.
+  // m/s^2 written in its usual ways: m/s^2, m/s2, m/s\xC2\xB2, m s^-2, m*s^-2, mps2, ms-2, m.s-2,
+  // m\xC2\xB7s\xE2\x81\xBB\xC2\xB2 (a middle dot and a superscript minus two).
   auto per_s2 = [](const std::string& rest) {
     return rest == "/s^2" || rest == "/s2" || rest == "/s\xC2\xB2" || rest == "s^-2" ||
            rest == "*s^-2" || rest == "s-2" || rest == "ps2" || rest == "/s/s" || rest == "s2" ||
-           rest == "/sec^2" || rest == "/sec2";
+           rest == "/sec^2" || rest == "/sec2" || rest == ".s-2" || rest == ".s^-2" ||
+           rest == "\xC2\xB7s-2" || rest == "\xC2\xB7s^-2" ||
+           rest == "\xC2\xB7s\xE2\x81\xBB\xC2\xB2" || rest == "s\xE2\x81\xBB\xC2\xB2";
   };
   if (u == "g" || u == "g0" || u == "gn") return 9.80665;
   if (u == "mg") return 9.80665e-3;  // milli-g, as MEMS accelerometers report

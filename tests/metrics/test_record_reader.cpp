@@ -265,6 +265,9 @@ TEST(RecordReader, MoreUnits) {
   EXPECT_DOUBLE_EQ(r.ddx_M[0], 9.80665);
   EXPECT_DOUBLE_EQ(r.ddz_M[1], 2 * 0.3048);
   EXPECT_DOUBLE_EQ(read_text("t [\xC2\xB5s],ax_mg,az_mg\n0,1,2\n").ddz_M[0], 2 * 9.80665e-3);
+  // m.s-2 and m\xC2\xB7s\xE2\x81\xBB\xC2\xB2 (a middle dot, a superscript minus two).
+  EXPECT_DOUBLE_EQ(read_text("t,ax [m.s-2],az [m\xC2\xB7s\xE2\x81\xBB\xC2\xB2]\n0,1,2\n").ddz_M[0],
+                   2.0);
 }
 
 // A logger's export: metadata lines before the header (no comment marks), a line of units under
