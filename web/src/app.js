@@ -1143,6 +1143,8 @@ function fillRecordTable() {
   }
   row('scale of G', id.soil_scale === 'table2' ? 'Table 2 (interpolated between its rows)' : 'Appendix B (42)-(45) with the case\'s ν, ρ');
   row('relative residual, reduced χ²', `${fmt(id.relative_residual, 3)}, ${fmt(id.reduced_chi2, 3)}`, 'harmonics n = 1 ... 4');
+  // A record sampled in step with the excitation: its raw samples alias (docs/identify.md).
+  if (id.model_sampled) row('model compared', 'sampled at the record\'s times', 'the record is sampled in step with the excitation');
   for (const w of id.warnings) row('WARNING', w);
 }
 

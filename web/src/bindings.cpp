@@ -513,7 +513,8 @@ val estimate_of(const oscidrum::Estimate& e) {
 // not estimated from the case `values`; G on the scale `soil_scale` ("formulas": Appendix B
 // (42)-(45), "table2": the paper's Table 2 interpolated). Returns {ok: false, error} for bad
 // input, else {ok: true, valid, reason, f, estimates: [{name, unit, value, u, lower, upper}],
-// relative_residual, reduced_chi2, time_shift, warnings, iterations, simulations, message}.
+// relative_residual, reduced_chi2, time_shift, warnings, iterations, simulations, message,
+// model_sampled}.
 val identify_record(const std::string& text, const std::string& name, const val& options,
                     const val& values, const std::string& soil_scale) {
   try {
@@ -547,6 +548,7 @@ val identify_record(const std::string& text, const std::string& name, const val&
     out.set("time_shift", id.time_shift);
     out.set("iterations", id.iterations);
     out.set("simulations", id.simulations);
+    out.set("model_sampled", p.valid && id.model_sampled);
     val warnings = val::array();
     for (const std::string& w : id.warnings) warnings.call<void>("push", w);
     out.set("warnings", warnings);
