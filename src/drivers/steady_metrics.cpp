@@ -279,9 +279,11 @@ std::pair<double, double> period_span(const Result& result) {
 
 // Whether `recorded` (may be null) is the steady period of `result` (is_the_period).
 bool reads_recorded(const Model& model, const Result& result, const Recording* recorded) {
-  const auto [t0, t1] = period_span(result);
+  // (Not a structured binding: the lambdas below could not capture one before C++20, and
+  // Emscripten's clang 14 still cannot.)
+  const std::pair<double, double> span = period_span(result);
   return recorded != nullptr && detail::with_roller(model, [&]<class R>() {
-           return is_the_period<R>(*recorded, model, result.samples, t0, t1);
+           return is_the_period<R>(*recorded, model, result.samples, span.first, span.second);
          });
 }
 
@@ -290,9 +292,10 @@ bool reads_recorded(const Model& model, const Result& result, const Recording* r
 Recording detail::steady_period(const Model& model, const Result& result,
                                 const Recording* recorded) {
   if (reads_recorded(model, result, recorded)) return *recorded;
-  const auto [t0, t1] = period_span(result);
-  return detail::with_roller(
-      model, [&]<class R>() { return record_period<R>(model, result.samples, t0, t1); });
+  const std::pair<double, double> span = period_span(result);
+  return detail::with_roller(model, [&]<class R>() {
+    return record_period<R>(model, result.samples, span.first, span.second);
+  });
 }
 
 Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
