@@ -31,6 +31,7 @@ std::array<double, 2> detail::PeriodicSignal::at(double t) const {
 ModelResponse detail::simulate_metrics_from(const Case& c, int n_max, long max_steps,
                                             const WarmStart* warm, std::optional<WarmStart>* orbit,
                                             PeriodicSignal* signal) {
+  if (signal != nullptr) *signal = PeriodicSignal{};  // (none without a steady state)
   const Model model(c);
   // The budget counts the flow's polls of `cancelled`: one per accepted integration step.
   long steps = 0;
@@ -57,7 +58,6 @@ ModelResponse detail::simulate_metrics_from(const Case& c, int n_max, long max_s
   if (ok(r.status)) out.metrics = compute_metrics(model, r, n_max, &period);
   if (signal != nullptr && ok(r.status)) {
     const recording::Recording rec = steady_period(model, r, &period);
-    *signal = PeriodicSignal{};
     signal->t0 = rec.t_begin;
     signal->period = rec.t_end - rec.t_begin;
     for (const recording::Piece& pc : rec.pieces) {

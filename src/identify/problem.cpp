@@ -338,9 +338,11 @@ ModelResponse Problem::rolling_instead(const Case& c, const Eigen::VectorXd& p,
     Case roll = c;
     roll.contact.pure_rolling = true;
     if (rolling_cache_.size() > 1024) rolling_cache_.clear();
-    it = rolling_cache_.emplace(std::move(key), run(roll, p)).first;
+    ModelResponse response = run(roll, p);
+    it = rolling_cache_.emplace(std::move(key), std::pair{std::move(response), signal_}).first;
   }
-  const ModelResponse& roll = it->second;
+  const ModelResponse& roll = it->second.first;
+  signal_ = it->second.second;  // the rolling steady state's (Comparison::sampled)
   const double cone = c.contact.mu_static >= 0 ? c.contact.mu_static : c.contact.mu;
   if (ok(roll.status) && roll.friction_ratio <= cone) {
     ModelResponse out = roll;

@@ -150,7 +150,7 @@ class Problem : public LeastSquares {
   long* steps_used_ = &steps_;  // where they are counted (steps_, or a shared counter)
   PeriodicSignal signal_;       // the last run's steady state (Comparison::sampled)
   std::map<std::vector<double>, Simulated> cache_;
-  std::map<std::vector<double>, ModelResponse> rolling_cache_;
+  std::map<std::vector<double>, std::pair<ModelResponse, PeriodicSignal>> rolling_cache_;
   // The steady state of the last model run that found one, at orbit_p_: a run within kWarmRadius
   // of it starts shooting there (run()), as the cases of a study continue their neighbours.
   static constexpr double kWarmRadius = 2.0 * kJacobianStep;
