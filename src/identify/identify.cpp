@@ -420,9 +420,9 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   // harmonics above those fitted onto the compared ones the same way in every period, a bias of
   // about 1e-3 of A_1 at 64 samples a period (G off by 0.06-1.6 % and the fit poor, noise-free:
   // tests/identify, ARecordSampledInStepWithTheExcitation), which a logger's anti-aliasing filter
-  // would have removed. Which of the two the record is, its fit
-  // tells: the model sampled at the record's times is fitted too, from the estimate, and the
-  // better fit kept (the same estimate to within the noise where the aliases are below it).
+  // would have removed. Which of the two the record is, its fit tells: the model sampled at the
+  // record's times is fitted too, from the estimate, and the better fit kept (the same estimate
+  // to within the noise where the aliases are below it).
   std::optional<Problem> sampled;
   int other_simulations = 0;  // of a sampled comparison not kept
   if (!data.alias_t.empty() &&
