@@ -141,6 +141,17 @@ TEST(CurveArea, NoPiecesNoArea) {
   EXPECT_EQ(detail::swept_curve_area(none), 0.0);
 }
 
+// Green's theorem on the steady period of c answers, and agrees with the extrapolated polygons.
+void expect_green_answers(const Case& c) {
+  const Model model(c);
+  detail::recording::Recording period;
+  const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const double green = detail::green_curve_area(period.pieces);
+  ASSERT_FALSE(std::isnan(green));
+  EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+}
+
 // A steady period whose chords cross on one side of the joint of two pieces while the arcs cross
 // on the other (found here by a scan of random cases): Newton from the crossing chords leaves
 // their piece, and the crossing is found from the neighbouring edges' chords. Green's theorem
@@ -153,13 +164,7 @@ TEST(CurveArea, ACrossingBeyondTheJointOfTwoPieces) {
   c.contact.mu = 0.5077;
   c.MMd = 0.03867 * c.roller.M0;
   c.roller.f = 29.019;
-  const Model model(c);
-  detail::recording::Recording period;
-  const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
-  ASSERT_EQ(r.status, Status::steady_state) << r.message;
-  const double green = detail::green_curve_area(period.pieces);
-  ASSERT_FALSE(std::isnan(green));
-  EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+  expect_green_answers(c);
 }
 
 // Two branches of the figure running close together (symmetric excitation on stiff soil, the
@@ -177,14 +182,8 @@ TEST(CurveArea, TwoBranchesCloseTogether) {
     c.roller.M0 = 56053.5;
     c.numerics.rtol = 1e-6;
     c.numerics.steady_tol = 1e-6;
-    const Model model(c);
-    detail::recording::Recording period;
-    const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
-    ASSERT_EQ(r.status, Status::steady_state) << r.message;
     SCOPED_TRACE("G " + std::to_string(G));
-    const double green = detail::green_curve_area(period.pieces);
-    ASSERT_FALSE(std::isnan(green));
-    EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+    expect_green_answers(c);
   }
 }
 
@@ -202,13 +201,7 @@ TEST(CurveArea, ALoopOfRoundOffWhereTwoPiecesJoin) {
   c.MMd = 0.0034 * c.roller.M0;
   c.numerics.rtol = 1e-6;
   c.numerics.steady_tol = 1e-6;
-  const Model model(c);
-  detail::recording::Recording period;
-  const Result r = detail::simulate_from(model, {}, {}, nullptr, false, &period);
-  ASSERT_EQ(r.status, Status::steady_state) << r.message;
-  const double green = detail::green_curve_area(period.pieces);
-  ASSERT_FALSE(std::isnan(green));
-  EXPECT_NEAR(green, detail::extrapolated_curve_area(period.pieces), 1e-10 * green);
+  expect_green_answers(c);
 }
 
 // The steady periods of a spread of cases (soil from soft to stiff, friction, asymmetric and
