@@ -101,7 +101,8 @@ nlohmann::ordered_json calibration_json(const Calibration& cal, const CalibrateC
                     {"tau", r.time_shift},
                     {"rms_residual", r.rms_residual},
                     {"relative_residual", r.relative_residual},
-                    {"reduced_chi2", r.reduced_chi2}});
+                    {"reduced_chi2", r.reduced_chi2},
+                    {"model_sampled", r.model_sampled}});
   return {{"schema", "oscidrum-calibrate/1"},
           {"references", refs},
           {"soil_scale", o.soil_scale},
@@ -165,9 +166,12 @@ int run(const CalibrateCliOptions& o) {
     s.line("iterations, simulations",
            std::to_string(cal.iterations) + ", " + std::to_string(cal.simulations));
     for (const ReferenceFit& r : cal.references)
-      s.line("reference " + r.name, "f " + fmt(r.f, 7) + " Hz, relative residual " +
-                                        fmt(r.relative_residual, 3) + ", reduced chi^2 " +
-                                        fmt(r.reduced_chi2, 3));
+      s.line("reference " + r.name,
+             "f " + fmt(r.f, 7) + " Hz, relative residual " + fmt(r.relative_residual, 3) +
+                 ", reduced chi^2 " + fmt(r.reduced_chi2, 3) +
+                 (r.model_sampled ? "; sampled in step with the excitation: the "
+                                    "model compared sampled at its times"
+                                  : ""));
     if (!o.out.empty()) s.line("calibrated case", o.out);
     for (const std::string& w : cal.warnings) s.line("WARNING", w);
     std::cout << s.text();

@@ -61,6 +61,9 @@ struct ReferenceFit {
   /// This reference's weighted sum of squares / (its measured values - 1) [-] (its share of the
   /// fit; about 1 when the model fits it to its noise).
   double reduced_chi2 = 0.0;
+  /// The model was compared sampled at this reference's times (a record sampled in step with the
+  /// excitation, whose raw samples alias; as Identification::model_sampled).
+  bool model_sampled = false;
 };
 
 /// The result of a calibration.

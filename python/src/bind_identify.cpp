@@ -299,6 +299,7 @@ void bind_identify(py::module_& m) {
           d["rms_residual"] = r.rms_residual;
           d["relative_residual"] = r.relative_residual;
           d["reduced_chi2"] = r.reduced_chi2;
+          d["model_sampled"] = r.model_sampled;
           fits.append(d);
         }
         py::dict out;

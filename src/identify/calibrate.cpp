@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,6 +61,14 @@ const Field& calibrated_field(const Case& base, const std::string& key) {
   return f;
 }
 
+// Whether a reference is sampled in step with the excitation, with the window's fit kept for
+// `harmonics` compared harmonics (measure_window).
+bool in_step(const Reference& ref, int harmonics) {
+  return !ref.data.alias_t.empty() &&
+         ref.data.alias_w.size() >=
+             ref.data.alias_t.size() * static_cast<std::size_t>(2 * harmonics);
+}
+
 // The calibration as a least-squares problem: the unknowns are ln of the fields; the residual
 // stacks each reference's weighted residual of the harmonics (problem.hpp), each aligned by its
 // own time shift.
@@ -72,8 +81,11 @@ class Calibrating : public detail::LeastSquares {
     std::vector<ReferenceFit> fits;  // f, tau, misfit and chi^2 share of each reference
   };
 
-  Calibrating(const Case& base, std::span<const Reference> refs, const CalibrateOptions& o)
-      : base_(base), refs_(refs), o_(o) {
+  /// `sampled`: the references sampled in step with the excitation (MeasuredResponse::alias_t)
+  /// compare the model sampled at their times (Comparison::sampled), the others its harmonics.
+  Calibrating(const Case& base, std::span<const Reference> refs, const CalibrateOptions& o,
+              bool sampled = false)
+      : base_(base), refs_(refs), o_(o), sampled_(sampled) {
     for (const std::string& key : o.parameters) {
       const Field& f = calibrated_field(base, key);
       for (const Field* g : fields_)
@@ -152,7 +164,9 @@ class Calibrating : public detail::LeastSquares {
       io.diagnose = false;
       io.model_tolerance = o_.model_tolerance;
       io.shooting = o_.shooting;
-      detail::Problem pr(ci, ref.data, io);
+      const bool sampled = sampled_ && in_step(ref, o_.harmonics);
+      detail::Problem pr(ci, ref.data, io,
+                         sampled ? detail::Comparison::sampled : detail::Comparison::harmonics);
       pr.count_steps_in(steps);
       const Eigen::VectorXd soil = pr.internal_of(pr.base());
       Eigen::VectorXd ri;
@@ -179,6 +193,7 @@ class Calibrating : public detail::LeastSquares {
       fit.rms_residual = m.rms;
       fit.relative_residual = m.relative;
       fit.reduced_chi2 = ri.squaredNorm() / static_cast<double>(ri.size() - 1);
+      fit.model_sampled = sampled;
       at.fits.push_back(std::move(fit));
     }
     at.ok = true;
@@ -188,6 +203,7 @@ class Calibrating : public detail::LeastSquares {
   Case base_;
   std::span<const Reference> refs_;
   CalibrateOptions o_;
+  bool sampled_ = false;
   std::vector<const Field*> fields_;
   std::vector<detail::Bounds> bounds_;
   std::vector<double> start_;
@@ -249,21 +265,37 @@ MeasuredResponse measure_record(std::span<const double> t, std::span<const doubl
 Calibration calibrate(const Case& base, std::span<const Reference> refs,
                       const CalibrateOptions& o) {
   check_input(refs, o);
-  Calibrating pr(base, refs, o);
-  const std::size_t q = pr.fields().size();
+  Calibrating plain(base, refs, o);
+  const std::size_t q = plain.fields().size();
   // Degrees of freedom: every measured value less the unknowns and one time shift per reference.
-  const int dof = pr.rows() - static_cast<int>(q) - static_cast<int>(refs.size());
+  const int dof = plain.rows() - static_cast<int>(q) - static_cast<int>(refs.size());
   if (dof < 1)
-    throw Error("calibrate: " + std::to_string(pr.rows()) + " measured values are too few for " +
+    throw Error("calibrate: " + std::to_string(plain.rows()) + " measured values are too few for " +
                     std::to_string(q) + " parameters and " + std::to_string(refs.size()) +
                     " time shifts; compare more harmonics or add references",
                 "harmonics");
   const std::vector<bool> all(q, true);
   Eigen::VectorXd r0;
-  if (!pr.residual(pr.start(), r0))
-    throw Error("calibrate: the model fails at the start values: " + pr.failure(pr.start()));
-  const detail::Fit fit = detail::levenberg_marquardt(pr, pr.start(), all, o.max_iterations);
+  if (!plain.residual(plain.start(), r0))
+    throw Error("calibrate: the model fails at the start values: " + plain.failure(plain.start()));
+  detail::Fit fit = detail::levenberg_marquardt(plain, plain.start(), all, o.max_iterations);
   if (!std::isfinite(fit.S)) throw Error("calibrate: " + fit.message);
+  // References sampled in step with the excitation alias as the model's harmonics do not (as in
+  // identify): fitted again with the model sampled at their times, and the better fit kept.
+  std::optional<Calibrating> sampled;
+  int other_simulations = 0;
+  if (std::any_of(refs.begin(), refs.end(),
+                  [&](const Reference& ref) { return in_step(ref, o.harmonics); })) {
+    sampled.emplace(base, refs, o, true);
+    detail::Fit as_sampled = detail::levenberg_marquardt(*sampled, fit.p, all, o.max_iterations);
+    if (std::isfinite(as_sampled.S) && as_sampled.S < fit.S) {
+      fit = std::move(as_sampled);
+    } else {
+      other_simulations = sampled->simulations();
+      sampled.reset();
+    }
+  }
+  Calibrating& pr = sampled ? *sampled : plain;
 
   Calibration cal;
   cal.converged = fit.converged;
@@ -352,7 +384,7 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
     }
     cal.estimates.push_back(e);
   }
-  cal.simulations = pr.simulations();
+  cal.simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations);
   return cal;
 }
 

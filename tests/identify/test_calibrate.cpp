@@ -80,6 +80,31 @@ TEST(Calibrate, RecoversTheUnbalanceAndTheAxleLoadFromTwoReferences) {
   for (const std::string& w : cal.warnings) ADD_FAILURE() << "unexpected warning: " << w;
 }
 
+// References sampled in step with the excitation (64 samples a period, noise-free): their raw
+// samples alias, and the model is compared sampled at their times, as identify does.
+TEST(Calibrate, ReferencesSampledInStepWithTheExcitation) {
+  std::vector<Reference> refs;
+  for (const double G : {15e6, 60e6}) {
+    SyntheticRecord so;
+    so.duration = 1.0;
+    so.sample_rate = 64 * kF;
+    const RecordSamples r = synthetic_record({truth(modulus_soil(G))}, so);
+    refs.push_back(
+        {"G=" + std::to_string(G), modulus_soil(G), measure_record(r.t, r.ddx_M, r.ddz_M)});
+    ASSERT_FALSE(refs.back().data.alias_t.empty());
+  }
+  CalibrateOptions o;
+  o.parameters = {"roller.M0", "roller.P0"};
+  o.profile = false;
+  const Calibration cal = calibrate(Case{}, refs, o);
+  ASSERT_EQ(cal.estimates.size(), 2u);
+  EXPECT_NEAR(cal.estimates[0].value / (Roller{}.M0 * kM0), 1.0, 1e-4);
+  EXPECT_NEAR(cal.estimates[1].value / (Roller{}.P0 * kP0), 1.0, 1e-4);
+  EXPECT_LT(cal.reduced_chi2, 1.0);
+  ASSERT_EQ(cal.references.size(), 2u);
+  for (const ReferenceFit& r : cal.references) EXPECT_TRUE(r.model_sampled) << r.name;
+}
+
 // What calibration is for: the soil of a third record, identified with the paper's roller, is off
 // by more than its interval admits; with the calibrated roller it is found.
 TEST(Calibrate, TheCalibratedCaseIdentifiesTheSoil) {
