@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "case_options.hpp"
@@ -120,6 +121,19 @@ int run(AnalyzeOptions o) {
   if (ws.empty()) throw oscidrum::Error("analyze: no window fits in the record " + o.input.file);
   std::size_t valid = 0;
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
+  // A record sampled in step with the excitation: what it reports of the harmonics above those it
+  // resolves is aliased (said once, from the first valid window).
+  for (const RecordWindow& w : ws) {
+    if (!w.valid) continue;
+    if (sampled_in_step(std::span<const double>(rec.t).subspan(w.first, w.count), w.f))
+      std::cerr << "oscidrum: analyze: the record is sampled in step with the excitation ("
+                << fmt(w.samples_per_period, 4)
+                << " samples per period): its harmonics above those the fit resolves alias onto "
+                   "the ones reported, the same way in every period (raw samples; a logger's "
+                   "anti-aliasing filter would have removed them; identify compares the model "
+                   "sampled alike: docs/identify.md)\n";
+    break;
+  }
   const bool single = o.windows.window_periods == 0;
   const std::string name = o.input.file == "-" ? "<stdin>" : o.input.file;
   // The harmonics fitted (every window holds n_max + 1, measured or NaN).

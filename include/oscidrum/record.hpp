@@ -119,6 +119,15 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                           std::span<const double> position,
                                           const WindowOptions& options = {});
 
+/// Whether samples at the increasing times t [s] are taken in step with an excitation at f [Hz]:
+/// j M a whole number (M the samples per period at the median step) to within what the span of
+/// t resolves, |j M - round(j M)| times its periods below 2, for a band j = 1 ... 4, with the
+/// steps' median deviation from the median step below 1 %/j. Harmonic m of the signal then lands,
+/// after sampling, on |m - j M| f with the same phase in every period: the harmonics above those
+/// a fit resolves alias onto the fitted ones coherently, as they do not at other rates
+/// (docs/identify.md). False for fewer than 3 samples.
+bool sampled_in_step(std::span<const double> t, double f);
+
 /// The harmonics a record's sampling resolves at its excitation frequency (options.f, or
 /// estimated from its first 4096 samples): 2 N + 1 samples per period at the median step, N in
 /// [2, 10] (10: analyze's default). For WindowOptions::n_max when it is not given.

@@ -9,6 +9,7 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
+#include "oscidrum/record.hpp"
 #include "util/format.hpp"
 #include "util/small_angle.hpp"
 
@@ -276,30 +277,11 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   out.sigma_z = std::sqrt(var_z / (2 * K));
   signal_shape(out.ddx, out.ddz, out);
 
-  // Sampled in step with the excitation? Harmonic m lands, after sampling at the rate of
-  // per_period samples a period, on the frequency |m - j per_period| f for the nearest whole j;
-  // it falls on a fitted harmonic n (and shifts its estimate the same way in every period) when
-  // j per_period is a whole number to within what the window of `periods` periods resolves,
-  // about 1 / periods, and the sample times keep to their grid well enough for the phases of
-  // harmonics near j per_period to stay together (a jitter of s steps turns them by about
-  // 2 pi j s). Checked for the first four bands (j = 1 ... 4), where the harmonics beyond those
-  // fitted are largest. (From the median step, which lost samples do not shift; times rounded
-  // coarsely to a logger's resolution do, and such a record is not taken to be in step.)
-  const double periods = f * span;
-  double jitter = 0.0;  // the median deviation of a step from the median step, in steps
-  {
-    const double h = 1.0 / (f * per_period);
-    std::vector<double> dev(M - 1);
-    for (std::size_t i = 1; i < M; ++i) dev[i - 1] = std::abs(t[i] - t[i - 1] - h) / h;
-    std::nth_element(dev.begin(), dev.begin() + static_cast<std::ptrdiff_t>(dev.size() / 2),
-                     dev.end());
-    jitter = dev[dev.size() / 2];
-  }
-  bool in_step = false;
-  for (int j = 1; j <= 4 && !in_step; ++j) {
-    const double jm = j * per_period;
-    in_step = std::abs(jm - std::round(jm)) * periods < 2.0 && j * jitter < 0.01;
-  }
+  // Sampled in step with the excitation (record.hpp): the harmonics above the N fitted alias onto
+  // the fitted ones the same way in every period. (From the median step, which lost samples do
+  // not shift; times rounded coarsely to a logger's resolution do, and such a record is not taken
+  // to be in step.)
+  const bool in_step = sampled_in_step(t, f);
   if (in_step) {
     // The estimator's rows: C_n = sum_i w_i y_i with w_i = B_i X, B_i the basis at sample i.
     out.alias_t.resize(M);

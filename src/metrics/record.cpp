@@ -768,6 +768,22 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
                      std::min(search.n_max, harmonics_resolved_at(peak.f, median_step(t))));
 }
 
+bool sampled_in_step(std::span<const double> t, double f) {
+  if (t.size() < 3 || !(f > 0)) return false;
+  const double h = median_step(t);
+  const double per_period = 1.0 / (f * h), periods = f * (t.back() - t.front());
+  std::vector<double> dev(t.size() - 1);  // each step's deviation from h, in steps
+  for (std::size_t i = 1; i < t.size(); ++i) dev[i - 1] = std::abs(t[i] - t[i - 1] - h) / h;
+  std::nth_element(dev.begin(), dev.begin() + static_cast<std::ptrdiff_t>(dev.size() / 2),
+                   dev.end());
+  const double jitter = dev[dev.size() / 2];
+  for (int j = 1; j <= 4; ++j) {
+    const double jm = j * per_period;
+    if (std::abs(jm - std::round(jm)) * periods < 2.0 && j * jitter < 0.01) return true;
+  }
+  return false;
+}
+
 int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
                        std::span<const double> ddz, const WindowOptions& w) {
   if (t.size() < 8) return 10;  // analyze_windows says what is wrong

@@ -118,8 +118,8 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
 
 // A record sampled in step with the excitation (64 samples a period, as an encoder-triggered
 // logger samples), in g with z up as such loggers write: every window compares the model sampled
-// at the record's times (column model_sampled), says so once, and recovers G; the same soil at
-// 1 kHz does not.
+// at the record's times (column model_sampled), says so once, and recovers G, and analyze says
+// its harmonics are aliased; the same soil at 1 kHz does neither.
 TEST(CliIdentify, ARecordSampledInStepComparesTheModelSampled) {
   TempDir dir;
   for (const double rate : {64 * kF, 1000.0}) {
@@ -148,6 +148,12 @@ TEST(CliIdentify, ARecordSampledInStepComparesTheModelSampled) {
       EXPECT_EQ(sampled[k], rate == 1000.0 ? 0.0 : 1.0) << rate << " window " << k;
     }
     EXPECT_EQ(o.err.find("sampled in step") != std::string::npos, rate != 1000.0) << o.err;
+    // analyze says the harmonics it reports are aliased.
+    const Outcome a = run({"analyze", dir / "in_step.csv", "--units", "g", "--z-positive", "up"});
+    ASSERT_EQ(a.code, 0) << a.err << a.out;
+    EXPECT_EQ(a.err.find("sampled in step with the excitation") != std::string::npos,
+              rate != 1000.0)
+        << a.err;
   }
 }
 
