@@ -314,9 +314,8 @@ char acceleration_axis(const std::string& k) {
       if (k == name) return axis;
   }
   // acc_hor / acc_vert, a_h / a_v, horizontal / vertical.
-  const bool acc_first = k.rfind("acc", 0) == 0 || k.rfind("a", 0) == 0;
-  if (k == "ax" || k == "ah" || k.find("horiz") != std::string::npos ||
-      (acc_first && k.ends_with("hor")))
+  if (k == "ax" || k == "ah" || k == "ahor" || k == "acchor" || k == "accelhor" ||
+      k == "accelerationhor" || k.find("horiz") != std::string::npos)
     return 'x';
   if (k == "az" || k == "av" || k.find("vert") != std::string::npos) return 'z';
   // (German loggers: Beschleunigung, Beschl.)
