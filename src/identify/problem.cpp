@@ -412,6 +412,12 @@ void Problem::compared(const Simulated& s, double phi, std::vector<std::complex<
   const int H = o_.harmonics;
   x.assign(static_cast<std::size_t>(H), 0.0);
   z.assign(static_cast<std::size_t>(H), 0.0);
+  if (!s.ok || (comparison_ == Comparison::sampled && s.signal.empty())) {  // a failed trial
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    x.assign(static_cast<std::size_t>(H), {nan, nan});
+    z.assign(static_cast<std::size_t>(H), {nan, nan});
+    return;
+  }
   if (comparison_ == Comparison::harmonics) {
     for (int n = 1; n <= H; ++n) {
       const std::complex<double> e = std::polar(1.0, n * phi);
