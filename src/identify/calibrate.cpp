@@ -61,14 +61,6 @@ const Field& calibrated_field(const Case& base, const std::string& key) {
   return f;
 }
 
-// Whether a reference is sampled in step with the excitation, with the window's fit kept for
-// `harmonics` compared harmonics (measure_window).
-bool in_step(const Reference& ref, int harmonics) {
-  return !ref.data.alias_t.empty() &&
-         ref.data.alias_w.size() >=
-             ref.data.alias_t.size() * static_cast<std::size_t>(2 * harmonics);
-}
-
 // The calibration as a least-squares problem: the unknowns are ln of the fields; the residual
 // stacks each reference's weighted residual of the harmonics (problem.hpp), each aligned by its
 // own time shift.
@@ -164,7 +156,7 @@ class Calibrating : public detail::LeastSquares {
       io.diagnose = false;
       io.model_tolerance = o_.model_tolerance;
       io.shooting = o_.shooting;
-      const bool sampled = sampled_ && in_step(ref, o_.harmonics);
+      const bool sampled = sampled_ && detail::has_sampling_map(ref.data, o_.harmonics);
       detail::Problem pr(ci, ref.data, io,
                          sampled ? detail::Comparison::sampled : detail::Comparison::harmonics);
       pr.count_steps_in(steps);
@@ -284,16 +276,11 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
   // identify): fitted again with the model sampled at their times, and the better fit kept.
   std::optional<Calibrating> sampled;
   int other_simulations = 0;
-  if (std::any_of(refs.begin(), refs.end(),
-                  [&](const Reference& ref) { return in_step(ref, o.harmonics); })) {
+  if (std::any_of(refs.begin(), refs.end(), [&](const Reference& ref) {
+        return detail::has_sampling_map(ref.data, o.harmonics);
+      })) {
     sampled.emplace(base, refs, o, true);
-    detail::Fit as_sampled = detail::levenberg_marquardt(*sampled, fit.p, all, o.max_iterations);
-    if (std::isfinite(as_sampled.S) && as_sampled.S < fit.S) {
-      fit = std::move(as_sampled);
-    } else {
-      other_simulations = sampled->simulations();
-      sampled.reset();
-    }
+    other_simulations = detail::keep_the_better(sampled, fit, all, o.max_iterations);
   }
   Calibrating& pr = sampled ? *sampled : plain;
 

@@ -425,17 +425,10 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   // to within the noise where the aliases are below it).
   std::optional<Problem> sampled;
   int other_simulations = 0;  // of a sampled comparison not kept
-  if (!data.alias_t.empty() &&
-      data.alias_w.size() >= data.alias_t.size() * static_cast<std::size_t>(2 * o.harmonics)) {
+  if (detail::has_sampling_map(data, o.harmonics)) {
     sampled.emplace(base, data, o, detail::Comparison::sampled);
     sampled->count_steps_in(plain.steps_counter());
-    detail::Fit as_sampled = detail::levenberg_marquardt(*sampled, fit.p, all, o.max_iterations);
-    if (std::isfinite(as_sampled.S) && as_sampled.S < fit.S) {
-      fit = std::move(as_sampled);
-    } else {
-      other_simulations = sampled->simulations();
-      sampled.reset();
-    }
+    other_simulations = detail::keep_the_better(sampled, fit, all, o.max_iterations);
   }
   Problem& pr = sampled ? *sampled : plain;
 

@@ -109,9 +109,7 @@ HarmonicMisfit harmonic_misfit(const std::vector<std::complex<double>>& x,
 Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
                  Comparison comparison)
     : data_(data), o_(o), comparison_(comparison) {
-  if (comparison == Comparison::sampled &&
-      (data.alias_t.empty() ||
-       data.alias_w.size() < data.alias_t.size() * static_cast<std::size_t>(2 * o.harmonics)))
+  if (comparison == Comparison::sampled && !has_sampling_map(data, o.harmonics))
     throw Error("identify: the model sampled at the window's times needs the window's fit of " +
                 std::to_string(o.harmonics) + " harmonics (measure_window, alias_t)");
   case_ = base;

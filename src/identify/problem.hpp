@@ -85,6 +85,13 @@ HarmonicMisfit harmonic_misfit(const std::vector<std::complex<double>>& x,
                                const std::vector<std::complex<double>>& z,
                                const MeasuredResponse& data, int harmonics);
 
+/// Whether `data` holds its window's fit as a map of the samples (MeasuredResponse::alias_t: a
+/// window sampled in step with the excitation) for `harmonics` compared harmonics.
+inline bool has_sampling_map(const MeasuredResponse& data, int harmonics) {
+  return !data.alias_t.empty() &&
+         data.alias_w.size() >= data.alias_t.size() * static_cast<std::size_t>(2 * harmonics);
+}
+
 /// How the model's harmonics are compared with a window's: as the model's own (the default), or
 /// as the window's fit measures the model sampled at the window's times (MeasuredResponse::
 /// alias_t; a window sampled in step with the excitation, whose raw samples alias).

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,23 @@ bool jacobian(LeastSquares& problem, const Eigen::VectorXd& p, const Eigen::Vect
 Fit levenberg_marquardt(LeastSquares& problem, const Eigen::VectorXd& p,
                         const std::vector<bool>& free, int max_iterations,
                         const Eigen::MatrixXd* first_jacobian = nullptr);
+
+/// The same data fitted another way (`other`, a problem of the same rows and unknowns: identify's
+/// and calibrate's model sampled at an in-step record's times) from `fit`'s estimate: where that
+/// fits better (a lower S), it replaces `fit` and `other` is kept; else `other` is dropped and
+/// its model runs are returned (to be counted with the rest), else 0.
+template <class Problem>
+int keep_the_better(std::optional<Problem>& other, Fit& fit, const std::vector<bool>& free,
+                    int max_iterations) {
+  Fit alternative = levenberg_marquardt(*other, fit.p, free, max_iterations);
+  if (std::isfinite(alternative.S) && alternative.S < fit.S) {
+    fit = std::move(alternative);
+    return 0;
+  }
+  const int runs = other->simulations();
+  other.reset();
+  return runs;
+}
 
 /// The local minimum of S over the grid points 0 ... n-1 found walking downhill from the two
 /// middle ones (n/2 - 1 and n/2; one point: that one): towards the lower of the two, one point at a
