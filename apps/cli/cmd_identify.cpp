@@ -103,16 +103,11 @@ std::string join(const std::vector<std::string>& v) {
   return out;
 }
 
-// The samples per period of the window an identification was fitted to.
-double samples_per_period(const Identification& id) {
-  const MeasuredResponse& d = id.measured;
-  return static_cast<double>(d.samples - 1) / ((d.t_last - d.t_first) * d.f);
-}
-
-// What Identification::model_sampled means, for the summary.
-std::string model_sampled_text(const Identification& id) {
+// What Identification::model_sampled means, for the summary, with the window's samples per
+// period.
+std::string model_sampled_text(double samples_per_period) {
   return "sampled at the record's times (the record is sampled in step with the excitation, " +
-         fmt(samples_per_period(id), 4) +
+         fmt(samples_per_period, 4) +
          " samples per period: its harmonics above those fitted alias onto the compared ones, as "
          "the model's do so sampled; docs/identify.md)";
 }
@@ -341,18 +336,19 @@ int run(const IdentifyCliOptions& o) {
     }
   }
   std::size_t valid = 0, model_sampled = 0;
-  const Identification* sampled_window = nullptr;
+  const RecordWindow* sampled_window = nullptr;
   for (const PassEstimate& p : pass) {
     valid += p.valid ? 1 : 0;
     if (p.valid && p.identification.model_sampled) {
       ++model_sampled;
-      if (!sampled_window) sampled_window = &p.identification;
+      if (!sampled_window) sampled_window = &p.window;
     }
   }
   // Said once for a pass (a single window's summary says it too): windows whose samples alias.
   if (sampled_window && pass.size() > 1 && !o.quiet)
     std::cerr << "oscidrum: identify: " << model_sampled << " of " << valid
-              << " windows compared the model " << model_sampled_text(*sampled_window)
+              << " windows compared the model "
+              << model_sampled_text(sampled_window->samples_per_period)
               << " (column model_sampled)\n";
 
   const std::string csv_text = pass_csv(pass, io);
@@ -413,7 +409,8 @@ int run(const IdentifyCliOptions& o) {
     s.line("time shift tau [s]", fmt(id.time_shift, 6));
     s.line("iterations, simulations",
            std::to_string(id.iterations) + ", " + std::to_string(id.simulations));
-    if (id.model_sampled) s.line("model compared", model_sampled_text(id));
+    if (id.model_sampled)
+      s.line("model compared", model_sampled_text(pass.front().window.samples_per_period));
     for (const std::string& w : id.warnings) s.line("WARNING", w);
     std::cout << s.text();
   } else {
