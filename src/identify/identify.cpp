@@ -254,13 +254,23 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
     const auto [what, advice] = describe(a);
     try {
-      Problem pr(base, scaled(flipped(data, a.x, a.z), a.units), o2);
+      const MeasuredResponse read_so = scaled(flipped(data, a.x, a.z), a.units);
+      Problem pr(base, read_so, o2);
       pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
       if (dof < 1) continue;
       const std::vector<bool> all(pr.unknowns().size(), true);
-      const detail::Fit fit =
+      detail::Fit fit =
           detail::levenberg_marquardt(pr, start_point(pr, o2, nullptr), all, o2.max_iterations);
+      // Compared as the window's own fit was (identify()): a window sampled in step is fitted
+      // with the model sampled at its times too, the better kept. Its raw samples alias, and
+      // the harmonics alone would leave a poor fit where the change named fits exactly.
+      if (std::isfinite(fit.S) && detail::has_sampling_map(read_so, o2.harmonics)) {
+        std::optional<Problem> sampled;
+        sampled.emplace(base, read_so, o2, detail::Comparison::sampled);
+        sampled->count_steps_in(steps);
+        (void)detail::keep_the_better(sampled, fit, all, o2.max_iterations);
+      }
       const double chi2 = fit.S / dof;
       // The list of what was checked: each single change (x alone is a time shift, see below).
       if (std::isfinite(chi2) && (a.x ? a.z && !a.other_scale : !(a.z && a.other_scale)) &&

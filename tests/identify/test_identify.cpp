@@ -174,6 +174,28 @@ TEST(Identify, ARecordSampledInStepWithTheExcitation) {
   EXPECT_FALSE(id.model_sampled);
 }
 
+// A record sampled in step whose z axis points up: the diagnosis of the poor fit compares the
+// model as the window's fit did (sampled at the record's times), so it names the axis as the
+// whole cause; compared by its harmonics alone it found the negated axis still fitting poorly.
+TEST(Identify, APoorFitOfARecordSampledInStepIsDiagnosedAsItWasFitted) {
+  const Case c = truth(40e6, false, 0.0);
+  SyntheticRecord so;
+  so.duration = 1.0;
+  so.sample_rate = 64 * kF;
+  RecordSamples r = synthetic_record({c}, so);
+  for (double& v : r.ddz_M) v = -v;
+  IdentifyOptions o;
+  o.profile = false;
+  const Identification id = identify_whole(base(false, 0.0), r, o);
+  EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
+  std::string all;
+  for (const std::string& w : id.warnings) all += w + "\n";
+  SCOPED_TRACE(all);
+  EXPECT_NE(all.find("the fit is far better with z_M'' negated"), std::string::npos);
+  EXPECT_NE(all.find("--z-positive up"), std::string::npos);
+  EXPECT_EQ(all.find("still fits poorly"), std::string::npos);
+}
+
 TEST(Identify, StickSlipG81WithoutDrivingTorque) {
   const RecordSamples r = noisy_record(truth(8.1e6, false, 0.0), 0.6, 1500);
   const Identification id = identify_whole(base(false, 0.0), r, {});
