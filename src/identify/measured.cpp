@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/median_step.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
 #include "oscidrum/record.hpp"
@@ -28,13 +29,6 @@ void legendre(double u, int d, std::vector<double>& P) {
 // cos(k w), sin(k w), k = 0 ... m, w the phase 2 pi `turns` (detail::harmonics_turns).
 void harmonics_at(double turns, int m, std::vector<double>& c, std::vector<double>& s) {
   detail::harmonics_turns(turns, m, c.data(), s.data());
-}
-
-double median_step(std::span<const double> t) {
-  std::vector<double> dt(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2];
 }
 
 // The periodic signal of harmonics 1 ... N over one period: extremes and area.
@@ -123,7 +117,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   }
   const std::size_t M = t.size();
   const double span = t.back() - t.front();
-  const double per_period = 1.0 / (f * median_step(t));  // samples per period
+  const double per_period = 1.0 / (f * detail::median_step(t));  // samples per period
   int N = o.harmonics;
   if (N == 0)
     N = std::min(kMaxMeasuredHarmonics, static_cast<int>(std::floor((per_period - 2) / 2)));

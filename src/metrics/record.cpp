@@ -16,6 +16,7 @@
 
 #include "indicators.hpp"
 #include "metrics/frequency_step.hpp"
+#include "metrics/median_step.hpp"
 #include "metrics/spectral_peak.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
@@ -736,14 +737,6 @@ double refine_peak(std::span<const double> t, std::span<const double> ddx,
   return f;
 }
 
-// The median time step of t [s] (t has at least two samples).
-double median_step(std::span<const double> t) {
-  std::vector<double> dt(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) dt[i - 1] = t[i] - t[i - 1];
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2];
-}
-
 // The harmonics that samples `step` apart resolve at f: 2 N + 1 per period, N in [2, 10].
 int harmonics_resolved_at(double f, double step) {
   const double per_period = 1.0 / (f * step);
@@ -765,12 +758,12 @@ double estimate_frequency(std::span<const double> t, std::span<const double> ddx
   const SpectralPeak peak = spectral_peak(t, ddx, ddz, search);
   // No more harmonics than the sampling resolves at the peak (a slow logger's).
   return refine_peak(t, ddx, ddz, peak,
-                     std::min(search.n_max, harmonics_resolved_at(peak.f, median_step(t))));
+                     std::min(search.n_max, harmonics_resolved_at(peak.f, detail::median_step(t))));
 }
 
 bool sampled_in_step(std::span<const double> t, double f) {
   if (t.size() < 3 || !(f > 0)) return false;
-  const double h = median_step(t);
+  const double h = detail::median_step(t);
   const double per_period = 1.0 / (f * h), periods = f * (t.back() - t.front());
   std::vector<double> dev(t.size() - 1);  // each step's deviation from h, in steps
   for (std::size_t i = 1; i < t.size(); ++i) dev[i - 1] = std::abs(t[i] - t[i - 1] - h) / h;
@@ -793,7 +786,7 @@ int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
     f = resolving_frequency(t, ddx, ddz,
                             spectral_peak(t.first(n), ddx.first(n), ddz.first(n), w.search));
   }
-  return harmonics_resolved_at(f, median_step(t));
+  return harmonics_resolved_at(f, detail::median_step(t));
 }
 
 std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed) {
@@ -921,10 +914,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   // f: at most half the record's sampling rate (a harmonic fit needs 2 samples per period).
   double sample_step = 0.0;  // the median time step [s]
   {
-    std::vector<double> steps(t.size() - 1);
-    for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
-    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-    sample_step = steps[steps.size() / 2];
+    sample_step = detail::median_step(t);
     const double rate = 1.0 / sample_step;
     require(o.f <= 0.5 * rate,
             "f (--f) must be at most half the record's sampling rate, " + num(0.5 * rate) + " Hz",
@@ -940,7 +930,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     const std::size_t n = windowed ? std::min<std::size_t>(t.size(), 4096) : t.size();
     const SpectralPeak peak = spectral_peak(t.first(n), ddx.first(n), ddz.first(n), o.search);
     if (n_max == 0)
-      n_max = harmonics_resolved_at(resolving_frequency(t, ddx, ddz, peak), median_step(t));
+      n_max = harmonics_resolved_at(resolving_frequency(t, ddx, ddz, peak), detail::median_step(t));
     f_rec = refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, o.search.n_max);
   } else if (n_max == 0) {
     n_max = resolved_harmonics(t, ddx, ddz, o);

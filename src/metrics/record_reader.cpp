@@ -17,6 +17,7 @@
 #include <tuple>
 #include <utility>
 
+#include "metrics/median_step.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/record.hpp"
 
@@ -775,11 +776,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       if (o.t_units == "auto" && headings[static_cast<std::size_t>(ct)].unit.empty() &&
           out.t.size() > 2) {
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
-        std::vector<double> dt(n - 1);
-        for (std::size_t i = 1; i < n; ++i) dt[i - 1] = out.t[i] - out.t[i - 1];
-        std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2),
-                         dt.end());
-        const double step = dt[dt.size() / 2];
+        const double step = detail::median_step(std::span<const double>(out.t).first(n));
         if (step >= 0.02 && step <= 20.0)
           out.notes.push_back("t: column '" + out.t_column +
                               "' has no unit and is read in s, its samples " + format_factor(step) +
