@@ -72,6 +72,8 @@ std::vector<std::ptrdiff_t> continuation_links(const io::StudySpec& spec, const 
   std::map<std::string, std::ptrdiff_t> last_on_line;  // line -> index into pending
   std::vector<std::ptrdiff_t> previous(pending.size(), -1);
   for (std::size_t j = 0; j < pending.size(); ++j) {
+    // Ctrl-C: the links so far (run_study sees the signal too and runs nothing).
+    if (j % io::kStudyProgressCases == 0 && interrupted()) break;
     std::string line;
     for (std::size_t k = 0; k < n_keys; ++k)
       if (k < along_begin || k >= along_end)
@@ -125,14 +127,20 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
 
 // A frequency study with M0 fixed is rarely what is meant (M0 = 4 m_u e_u e_w nu^2 (5)): say so
 // once, as io::finalize does for one case.
-void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study) {
+void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study,
+                       const io::StudyProgress& progress) {
   bool M0_given = spec.base.given("roller.M0");
   for (const std::string& k : study.keys) M0_given = M0_given || k == "roller.M0";
+  if (M0_given) return;
   std::size_t fixed = 0;
-  for (const Case& c : study.cases)  // the vibratory drum has no M0 (docs/model.md section 14)
+  const std::size_t total = study.cases.size();
+  for (std::size_t n = 0; n < total; ++n) {
+    if (n % io::kStudyProgressCases == 0 && n > 0) progress(n, total);
+    const Case c = study.cases[n];  // the vibratory drum has no M0 (docs/model.md section 14)
     fixed += c.roller.type == RollerType::oscillation && c.roller.unbalance == 0.0 &&
              c.roller.f != Roller{}.f;
-  if (fixed == 0 || M0_given) return;
+  }
+  if (fixed == 0) return;
   warn(std::to_string(fixed) + " of the " + std::to_string(study.cases.size()) +
        " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +
        " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w nu^2 (5) grows "
@@ -169,13 +177,23 @@ SweepPlan plan_sweep(const SweepOptions& o) {
   p.shard = p.sharded ? io::parse_shard(o.shard) : io::Shard{};
   p.spec = io::read_study_file(o.study);
   apply(o.c, p.spec.base);
-  p.study = io::expand(p.spec);
+  // Every case is built and checked before the first runs (seconds for the largest studies),
+  // with a progress line on a terminal; Ctrl-C stops it (main reports the signal).
+  ProgressLine line(stderr_is_terminal() && !o.quiet);
+  const auto progress = [&line](const char* what) {
+    return [&line, what](std::size_t done, std::size_t total) {
+      if (interrupted()) throw Error(std::string("interrupted while ") + what);
+      line.update(std::string(what) + ": case " + std::to_string(done) + " of " +
+                  std::to_string(total));
+    };
+  };
+  p.study = io::expand(p.spec, progress("checking the study's cases"));
   if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
   p.total = p.study.cases.size();
-  warn_fixed_moment(p.spec, p.study);
+  warn_fixed_moment(p.spec, p.study, progress("checking each case's M0 against its f"));
   p.columns = io::StudyColumns{p.study.keys, o.harmonics};
   p.header = io::study_csv_header(p.columns);
-  p.fingerprint = io::fingerprint(p.study, p.header);
+  p.fingerprint = io::fingerprint(p.study, p.header, progress("fingerprinting the study"));
   p.mine.assign(p.total, true);
   p.n_mine = p.total;
   if (p.sharded) {
@@ -216,13 +234,18 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
     throw Error("--resume and --restart need --out FILE (the journal lives beside it)");
   if (!o.plot.empty() && o.out.empty())
     throw Error("--plot " + o.plot + " needs --out FILE (the plot is drawn from the results CSV)");
-  // As run says it (the library would name its option, StudyOptions::n_harmonics).
+  // As run says it (the library would name its option, StudyOptions::n_harmonics). Every case
+  // has the base case's samples per period unless the study sweeps them.
+  const bool spp_swept = std::find(p.study.keys.begin(), p.study.keys.end(),
+                                   "numerics.samples_per_period") != p.study.keys.end();
   for (std::size_t i = 0; i < p.total; ++i) {
+    if (!p.mine[i]) continue;
     const int spp = p.study.cases[i].numerics.samples_per_period;
-    if (p.mine[i] && o.harmonics >= spp / 2)
+    if (o.harmonics >= spp / 2)
       throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
                   std::to_string(spp / 2) + " (the samples' Nyquist limit; case " +
                   std::to_string(i) + "); got " + std::to_string(o.harmonics));
+    if (!spp_swept) break;
   }
   if (!o.plot.empty()) {
     // Before the first case: a figure that cannot be drawn must not cost a whole sweep.

@@ -20,8 +20,14 @@ std::atomic<pid_t> g_child{0};
 // How long a command has after the signal to stop by itself.
 constexpr long kGraceNanoseconds = 800'000'000;
 
+// A second signal this soon after the first is the same one delivered twice: timeout(1) sends
+// it to the process and to its process group, and a terminal's Ctrl-C cannot come twice within
+// 0.1 s.
+constexpr long kSameSignalNanoseconds = 100'000'000;
+
 // Waits for SIGINT or SIGTERM (blocked in every thread); after the first, gives the command the
-// grace period and then ends the process, unless it ended first. A second signal ends it at once.
+// grace period and then ends the process, unless it ended first. A second signal ends it at once
+// (one within kSameSignalNanoseconds of the first is not a second).
 void watch(sigset_t set) {
   int sig = 0;
   while (sigwait(&set, &sig) != 0) {
@@ -32,10 +38,11 @@ void watch(sigset_t set) {
   clock_gettime(CLOCK_MONOTONIC, &start);
   while (true) {
     const int r = sigtimedwait(&set, nullptr, &left);
-    if (r > 0 || (r < 0 && errno == EAGAIN)) break;  // a second signal, or the time is up
+    if (r < 0 && errno == EAGAIN) break;  // the time is up
     timespec now{};
     clock_gettime(CLOCK_MONOTONIC, &now);
     const long spent = (now.tv_sec - start.tv_sec) * 1'000'000'000L + (now.tv_nsec - start.tv_nsec);
+    if (r > 0 && spent >= kSameSignalNanoseconds) break;  // a second signal
     if (spent >= kGraceNanoseconds) break;
     left = {0, kGraceNanoseconds - spent};
   }

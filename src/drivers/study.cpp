@@ -165,16 +165,25 @@ bool continues(const Case& c) {
   return c.numerics.method == SteadyMethod::shooting && c.numerics.continuation;
 }
 
+// Planning builds every case (a few seconds for a million): the caller's cancellation callback
+// is polled every kPlanningPoll cases.
+constexpr std::size_t kPlanningPoll = 4096;
+bool planning_cancelled(std::size_t k, const std::function<bool()>& cancelled) {
+  return cancelled && k % kPlanningPoll == 0 && cancelled();
+}
+
 // The chains of `previous` (validated), cut into pieces of at most max_continuation_piece(n),
 // ordered by their first case.
 std::vector<std::vector<std::size_t>> make_chains(std::size_t n, const CaseSource& case_at,
-                                                  const std::vector<std::ptrdiff_t>& previous) {
+                                                  const std::vector<std::ptrdiff_t>& previous,
+                                                  const std::function<bool()>& cancelled) {
   if (previous.size() != n)
     throw Error("StudyOptions::previous must have one entry per case (" + std::to_string(n) +
                 "); got " + std::to_string(previous.size()));
   std::vector<std::ptrdiff_t> next(n, -1);
   std::vector<bool> linked(n, false);
   for (std::size_t k = 0; k < n; ++k) {
+    if (planning_cancelled(k, cancelled)) return {};  // no chains: every case cancelled
     const std::ptrdiff_t p = previous[k];
     if (p == -1) continue;
     if (p < 0 || static_cast<std::size_t>(p) >= k)
@@ -254,7 +263,8 @@ CaseOutcome run_case(const Case& c, bool keep_samples, int n_harmonics) {
 namespace {
 
 // continuation_chains over cases built on demand (each built once, kept while it is the newest).
-std::vector<std::ptrdiff_t> chains_of(std::size_t n, const CaseSource& case_at) {
+std::vector<std::ptrdiff_t> chains_of(std::size_t n, const CaseSource& case_at,
+                                      const std::function<bool()>& cancelled = {}) {
   std::vector<std::ptrdiff_t> previous(n, -1);
   const std::span<const Field> all = fields();
   std::vector<bool> along;  // the fields in which the chain's first two cases differ
@@ -262,6 +272,7 @@ std::vector<std::ptrdiff_t> chains_of(std::size_t n, const CaseSource& case_at) 
   if (n == 0) return previous;
   Case before = case_at(0);
   for (std::size_t k = 1; k < n; ++k) {
+    if (planning_cancelled(k, cancelled)) break;  // make_chains stops too
     Case now = case_at(k);
     auto differs = [&](std::size_t f) {
       const double a = all[f].get(before), b = all[f].get(now);
@@ -304,19 +315,22 @@ std::vector<CaseOutcome> run_study(std::size_t count, const CaseSource& case_at,
   if (options.n_harmonics < 0)
     throw Error("StudyOptions::n_harmonics must be >= 0; got " +
                 std::to_string(options.n_harmonics));
+  std::vector<CaseOutcome> outcomes(options.keep_outcomes ? count : 0);
+  for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
   // Checked before the first case (compute_metrics would refuse each case alike).
   for (std::size_t i = 0; i < count; ++i) {
+    if (planning_cancelled(i, options.cancelled)) return outcomes;
     const int spp = case_at(i).numerics.samples_per_period;
     if (options.n_harmonics >= spp / 2)
       throw Error("StudyOptions::n_harmonics must be < numerics.samples_per_period / 2 = " +
                   std::to_string(spp / 2) + " (the samples' Nyquist limit); got " +
                   std::to_string(options.n_harmonics));
   }
-  std::vector<CaseOutcome> outcomes(options.keep_outcomes ? count : 0);
-  for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
   Pool pool(count, case_at, options, outcomes,
             make_chains(count, case_at,
-                        options.previous.empty() ? chains_of(count, case_at) : options.previous));
+                        options.previous.empty() ? chains_of(count, case_at, options.cancelled)
+                                                 : options.previous,
+                        options.cancelled));
   std::size_t threads = options.threads > 0 ? static_cast<std::size_t>(options.threads)
                                             : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min(threads, pool.chains.size());

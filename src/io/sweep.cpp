@@ -91,7 +91,7 @@ void Study::adjust(std::function<void(Case&)> f) {
   varied = StudyValues(e);
 }
 
-Study expand(const StudySpec& spec) {
+Study expand(const StudySpec& spec, const StudyProgress& progress) {
   std::vector<SweepFactor> factors = spec.factors;
   if (factors.empty())
     throw Error(spec.source +
@@ -136,6 +136,7 @@ Study expand(const StudySpec& spec) {
   e->total = total;
   // Every case is built and validated now, before anything runs; then only its recipe is kept.
   for (std::size_t n = 0; n < total; ++n) {
+    if (progress && n % kStudyProgressCases == 0 && n > 0) progress(n, total);
     try {
       (void)e->build(n, true);
     } catch (const Error& err) {
@@ -148,14 +149,19 @@ Study expand(const StudySpec& spec) {
   return study;
 }
 
-std::uint64_t fingerprint(const Study& study, const std::string& extra) {
+std::uint64_t fingerprint(const Study& study, const std::string& extra,
+                          const StudyProgress& progress) {
   std::uint64_t h = 0xcbf29ce484222325ull;
   mix(h, extra.data(), extra.size());
-  for (const Case& c : study.cases)
+  const std::size_t total = study.cases.size();
+  for (std::size_t n = 0; n < total; ++n) {
+    if (progress && n % kStudyProgressCases == 0 && n > 0) progress(n, total);
+    const Case c = study.cases[n];
     for (const Field& f : fields()) {
       const double v = f.get(c);
       mix(h, &v, sizeof v);
     }
+  }
   return h;
 }
 

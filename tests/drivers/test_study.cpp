@@ -210,6 +210,39 @@ TEST(Study, CancellationStopsARunningCase) {
   for (const CaseOutcome& o : out) EXPECT_EQ(o.error, "cancelled");
 }
 
+// Before its first case a study builds every case (its checks and its chains: seconds for a
+// million). Cancelled then, it stops within a few thousand builds and runs nothing.
+TEST(Study, CancellationWhilePlanningBuildsFewCases) {
+  constexpr std::size_t n = 200000;
+  std::size_t built = 0;
+  const CaseSource case_at = [&](std::size_t i) {
+    ++built;
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = 5e6 + static_cast<double>(i);
+    return c;
+  };
+  for (const bool chained : {false, true}) {
+    SCOPED_TRACE(chained ? "links given" : "links found");
+    built = 0;
+    StudyOptions options;
+    options.threads = 1;
+    if (chained) {
+      options.previous.assign(n, -1);
+      for (std::size_t k = 1; k < n; ++k) options.previous[k] = static_cast<std::ptrdiff_t>(k - 1);
+    }
+    std::size_t polls = 0, reported = 0;
+    options.cancelled = [&] { return ++polls > 3; };
+    options.on_case_done = [&](std::size_t, const CaseOutcome&) { ++reported; };
+    const std::vector<CaseOutcome> out = run_study(n, case_at, options);
+    EXPECT_LT(built, 20000u);
+    EXPECT_EQ(reported, 0u);
+    ASSERT_EQ(out.size(), n);
+    EXPECT_EQ(out.front().error, "cancelled");
+    EXPECT_EQ(out.back().error, "cancelled");
+  }
+}
+
 TEST(Study, InvalidCaseIsReportedNotThrown) {
   std::vector<Case> cases = some_cases();
   cases[1].trough.shape = CircleTrough{0.5};  // R < r

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/io_test_util.hpp"
+#include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/soil.hpp"
@@ -32,6 +33,28 @@ TEST(Study, ProductCountsLikeNestedLoopsInFileOrder) {
   EXPECT_EQ(Model(s.cases[5]).ksh(), table2_soil(10e6).ksh);
   EXPECT_TRUE(s.cases[5].contact.pure_rolling);
   EXPECT_DOUBLE_EQ(s.cases[5].MMd, 0.05 * Roller{}.M0);
+}
+
+// A large study reports its expansion and its fingerprint every kStudyProgressCases cases (the
+// CLI's progress line, and Ctrl-C: the callback may throw to stop).
+TEST(Study, ExpansionAndFingerprintReportProgressAndMayBeStopped) {
+  const StudySpec spec = read_study_text(
+      "[soil]\ninput = \"modulus\"\n[sweep]\n\"soil.G\" = { start = 5e6, stop = 100e6, num = "
+      "10000 }\n",
+      "study.toml", "");
+  std::vector<std::size_t> seen;
+  const StudyProgress note = [&](std::size_t done, std::size_t total) {
+    EXPECT_EQ(total, 10000u);
+    seen.push_back(done);
+  };
+  const Study s = expand(spec, note);
+  EXPECT_EQ(seen, (std::vector<std::size_t>{4096, 8192}));
+  seen.clear();
+  EXPECT_EQ(fingerprint(s, "x", note), fingerprint(s, "x"));
+  EXPECT_EQ(seen, (std::vector<std::size_t>{4096, 8192}));
+  const StudyProgress stop = [](std::size_t, std::size_t) { throw Error("stopped"); };
+  EXPECT_THROW((void)expand(spec, stop), Error);
+  EXPECT_THROW((void)fingerprint(s, "x", stop), Error);
 }
 
 TEST(Study, ZipAndGroups) {

@@ -97,13 +97,20 @@ struct Study {
 /// Largest study expand() accepts.
 inline constexpr std::size_t kMaxStudyCases = 1000000;
 
+/// Called by expand() and fingerprint(), which build every case (a few seconds for a million),
+/// every kStudyProgressCases cases with (cases done, cases in all): a progress line; it may
+/// throw to stop.
+using StudyProgress = std::function<void(std::size_t done, std::size_t total)>;
+inline constexpr std::size_t kStudyProgressCases = 4096;
+
 /// Expand the product (or the zip) into finalised, validated cases, in order: product mode
 /// counts like nested loops with the first factor outermost. Throws oscidrum::Error naming the
 /// case and its swept values when one is invalid, or when zipped lists differ in length.
-Study expand(const StudySpec& spec);
+Study expand(const StudySpec& spec, const StudyProgress& progress = {});
 
 /// A 64-bit fingerprint of the cases (every field of every case) and of `extra` (e.g. the
 /// output header): a journal of a different study is never resumed.
-std::uint64_t fingerprint(const Study& study, const std::string& extra);
+std::uint64_t fingerprint(const Study& study, const std::string& extra,
+                          const StudyProgress& progress = {});
 
 }  // namespace oscidrum::io
