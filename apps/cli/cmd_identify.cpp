@@ -424,6 +424,21 @@ int run(const IdentifyCliOptions& o) {
     t.header.push_back("status");
     t.right.assign(t.header.size(), true);
     t.right.back() = false;
+    // A window's warnings (a poor fit's diagnosis runs to several hundred characters) and a long
+    // reason for no estimate are notes below the table: in the status column they made every
+    // row as wide as the longest.
+    constexpr std::size_t kInlineStatus = 60;
+    std::vector<std::string> notes;
+    const auto status = [&](const PassEstimate& p) -> std::string {
+      if (p.valid && p.identification.warnings.empty()) return "ok";
+      const std::string text =
+          p.valid ? "WARNING: " + join(p.identification.warnings) : std::string(p.reason);
+      if (text.size() <= kInlineStatus) return text;
+      notes.push_back("[" + std::to_string(notes.size() + 1) + "] window " +
+                      std::to_string(p.window.index) + ": " + text);
+      return std::string(p.valid ? "WARNING" : "no estimate") + ", note [" +
+             std::to_string(notes.size()) + "]";
+    };
     for (const PassEstimate& p : pass) {
       std::vector<std::string> row = {
           std::to_string(p.window.index), fmt(p.window.t_mid, 5),
@@ -433,16 +448,17 @@ int run(const IdentifyCliOptions& o) {
         row.push_back(e ? value_text(*e) : "");
       }
       row.push_back(p.valid ? fmt(p.identification.relative_residual, 3) : "");
-      row.push_back(!p.valid ? p.reason
-                             : (p.identification.warnings.empty()
-                                    ? "ok"
-                                    : "WARNING: " + join(p.identification.warnings)));
+      row.push_back(status(p));
       t.rows.push_back(row);
     }
     std::cout << name << ": " << pass.size() << " windows, " << valid << " identified"
               << (io.modulus ? "; G on the scale of " + scale_text(io.soil_scale) : std::string())
               << "\n"
               << t.text();
+    if (!notes.empty()) {
+      std::cout << "\nnotes:\n";
+      for (const std::string& n : notes) std::cout << n << "\n";
+    }
   }
   std::cout.flush();
 

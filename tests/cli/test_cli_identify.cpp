@@ -83,6 +83,39 @@ std::vector<double> column(const std::string& csv, const std::string& name) {
   return v;
 }
 
+// A poor fit's warnings (hundreds of characters) are numbered notes below the table: the status
+// column stays short, so the rows stay readable.
+TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
+  TempDir dir;
+  // A Table 2 soil identified on the formulas' scale: a poor fit in every window.
+  Case c = truth(30e6);
+  const SoilCoefficients k = table2_coefficients(30e6);
+  c.soil.input = SoilInput::coefficients;
+  c.soil.ksh = k.ksh;
+  c.soil.ksv = k.ksv;
+  c.soil.csh = k.csh;
+  c.soil.csv = k.csv;
+  write_record(dir / "r.csv", {c}, 1.2);
+  const Outcome o = run({"identify", dir / "r.csv", "--window", "20", "--no-profile", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err << o.out;
+  std::istringstream lines(o.out);
+  std::size_t widest = 0, rows = 0;
+  bool in_notes = false;
+  std::vector<std::string> notes;
+  for (std::string line; std::getline(lines, line);) {
+    if (line == "notes:") in_notes = true;
+    if (in_notes && line.rfind("[", 0) == 0) notes.push_back(line);
+    if (!in_notes) widest = std::max(widest, line.size());
+    rows += !in_notes && line.find("WARNING, note [") != std::string::npos;
+  }
+  EXPECT_GE(rows, 2u) << o.out;
+  EXPECT_EQ(notes.size(), rows) << o.out;
+  EXPECT_LT(widest, 200u) << o.out;
+  ASSERT_FALSE(notes.empty()) << o.out;
+  EXPECT_EQ(notes.front().rfind("[1] window 0: WARNING: poor fit", 0), 0u) << notes.front();
+  EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
+}
+
 TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
   TempDir dir;
   // Two soils along the pass: G = 17.3 for 0.8 s, then 8.1 MN/m^2.
