@@ -165,7 +165,7 @@ bool continues(const Case& c) {
   return c.numerics.method == SteadyMethod::shooting && c.numerics.continuation;
 }
 
-// Planning builds every case (a few seconds for a million): the caller's cancellation callback
+// Planning builds every case (seconds for the largest studies): the caller's cancellation callback
 // is polled every kPlanningPoll cases.
 constexpr std::size_t kPlanningPoll = 4096;
 bool planning_cancelled(std::size_t k, const std::function<bool()>& cancelled) {

@@ -97,7 +97,7 @@ struct Study {
 /// Largest study expand() accepts.
 inline constexpr std::size_t kMaxStudyCases = 1000000;
 
-/// Called by expand() and fingerprint(), which build every case (a few seconds for a million),
+/// Called by expand() and fingerprint(), which build every case (seconds for the largest studies),
 /// every kStudyProgressCases cases with (cases done, cases in all): a progress line; it may
 /// throw to stop.
 using StudyProgress = std::function<void(std::size_t done, std::size_t total)>;
