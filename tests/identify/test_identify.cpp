@@ -48,6 +48,18 @@ void expect_recovered(const Estimate& e, double value, double tolerance) {
   EXPECT_NEAR((e.upper - e.lower) / (4.0 * e.standard_uncertainty), 1.0, 0.35) << e.name;
 }
 
+// The warnings of a record identified as a whole against `b` (no profile), one per line, after
+// checking that the fit is poor.
+std::string poor_fit_warnings(const Case& b, const RecordSamples& r) {
+  IdentifyOptions o;
+  o.profile = false;
+  const Identification id = identify_whole(b, r, o);
+  EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
+  std::string all;
+  for (const std::string& w : id.warnings) all += w + "\n";
+  return all;
+}
+
 TEST(Frequency, FoundOnePercentAwayFrom39HzInANoisyRecord) {
   const RecordSamples r = noisy_record(truth(17.3e6, false, 0.0), 1.0, 1500);
   const double f = estimate_frequency(r.t, r.ddx_M, r.ddz_M);
@@ -184,12 +196,7 @@ TEST(Identify, APoorFitOfARecordSampledInStepIsDiagnosedAsItWasFitted) {
   so.sample_rate = 64 * kF;
   RecordSamples r = synthetic_record({c}, so);
   for (double& v : r.ddz_M) v = -v;
-  IdentifyOptions o;
-  o.profile = false;
-  const Identification id = identify_whole(base(false, 0.0), r, o);
-  EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
-  std::string all;
-  for (const std::string& w : id.warnings) all += w + "\n";
+  const std::string all = poor_fit_warnings(base(false, 0.0), r);
   SCOPED_TRACE(all);
   EXPECT_NE(all.find("the fit is far better with z_M'' negated"), std::string::npos);
   EXPECT_NE(all.find("--z-positive up"), std::string::npos);
@@ -419,14 +426,7 @@ TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
 // listing what it checked, best first.
 TEST(Identify, APoorFitNamesTheCauseItChecked) {
   auto warnings_of = [](const Case& t, const Case& b) {
-    const RecordSamples r = noisy_record(t, 0.6, 1000, 11);
-    IdentifyOptions o;
-    o.profile = false;
-    const Identification id = identify_whole(b, r, o);
-    EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
-    std::string all;
-    for (const std::string& w : id.warnings) all += w + "\n";
-    return all;
+    return poor_fit_warnings(b, noisy_record(t, 0.6, 1000, 11));
   };
   const std::string mu = warnings_of(truth(17.3e6, false, 0.0, 0.42), base(false, 0.0));
   EXPECT_NE(mu.find("far better with mu fitted too"), std::string::npos) << mu;
@@ -486,12 +486,7 @@ TEST(Identify, APoorFitNamesTheUnitOfTheAccelerations) {
     RecordSamples r = truth_record;
     for (double& v : r.ddx_M) v *= k.factor;
     for (double& v : r.ddz_M) v *= (k.z_up ? -1.0 : 1.0) * k.factor;
-    IdentifyOptions o;
-    o.profile = false;
-    const Identification id = identify_whole(base(false, 0.0), r, o);
-    EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
-    std::string all;
-    for (const std::string& w : id.warnings) all += w + "\n";
+    const std::string all = poor_fit_warnings(base(false, 0.0), r);
     SCOPED_TRACE(all);
     EXPECT_NE(all.find("the fit is far better with the accelerations " +
                        std::string(k.factor < 1.0 ? "read as g" : "read as m/s^2")),
