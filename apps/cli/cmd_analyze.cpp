@@ -179,7 +179,7 @@ int run(AnalyzeOptions o) {
                   "z_M'' max", "area",  "res x",        "res z",  "status"};
       t.right = {true, true, true, true, true, true, true, true, true, false};
       for (const RecordWindow& w : ws)
-        t.rows.push_back({std::to_string(w.index), fmt(w.t_mid, 5),
+        t.rows.push_back({std::to_string(w.index), time_text(w.t_mid),
                           std::isfinite(w.position) ? fmt(w.position, 5) : "", fmt(w.f, 6),
                           fmt(w.metrics.ddx_max, 4), fmt(w.metrics.ddz_max, 4),
                           fmt(w.metrics.area, 4), fmt(w.metrics.residual_x, 3),

@@ -441,7 +441,7 @@ int run(const IdentifyCliOptions& o) {
     };
     for (const PassEstimate& p : pass) {
       std::vector<std::string> row = {
-          std::to_string(p.window.index), fmt(p.window.t_mid, 5),
+          std::to_string(p.window.index), time_text(p.window.t_mid),
           std::isfinite(p.window.position) ? fmt(p.window.position, 5) : "", fmt(p.window.f, 6)};
       for (const auto& [n, u] : identified_unknowns(io)) {
         const Estimate* e = p.valid ? find_estimate(p.identification, n) : nullptr;

@@ -27,6 +27,13 @@ std::string fmt(double v, int digits) {
   return buf;
 }
 
+std::string time_text(double t) {
+  if (!(std::abs(t) >= 100.0) || !std::isfinite(t)) return fmt(t, 5);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3f", t);
+  return buf;
+}
+
 std::string duration(double seconds) {
   if (seconds < 60) return fmt(seconds, 2) + " s";
   if (seconds < 3600) return fmt(seconds / 60, 2) + " min";

@@ -17,6 +17,10 @@ std::string fmt(double v, int digits = 6);
 /// A time for progress lines and summaries: "12 s", "3.5 min", "1.2 h".
 std::string duration(double seconds);
 
+/// A record's time [s] in a table: 5 significant digits, and to the millisecond from 100 s on
+/// (a logger's clock in s since 1970 printed as 1.7646e+09 made every window look alike).
+std::string time_text(double t);
+
 /// A table of text cells with a header row, printable for people (aligned columns), as CSV or as
 /// a Markdown table.
 struct TextTable {

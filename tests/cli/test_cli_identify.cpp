@@ -45,7 +45,11 @@ void write_record(const std::string& path, const std::vector<Case>& cases, doubl
   out << "t,ddx_M,ddz_M,v\n";
   char line[160];
   for (std::size_t i = 0; i < r.t.size(); ++i) {
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,0.8\n", r.t[i], r.ddx_M[i], r.ddz_M[i]);
+    // A logger's clock (s since 1970) to the microsecond, as loggers write it.
+    if (start >= 1e5)
+      std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,0.8\n", r.t[i], r.ddx_M[i], r.ddz_M[i]);
+    else
+      std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,0.8\n", r.t[i], r.ddx_M[i], r.ddz_M[i]);
     out << line;
   }
 }
@@ -114,6 +118,22 @@ TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
   ASSERT_FALSE(notes.empty()) << o.out;
   EXPECT_EQ(notes.front().rfind("[1] window 0: WARNING: poor fit", 0), 0u) << notes.front();
   EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
+}
+
+// A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
+// five significant digits every window was 1.7646e+09).
+TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 1.2, 1000, 1764630000.0);
+  for (const char* command : {"analyze", "identify"}) {
+    SCOPED_TRACE(command);
+    std::vector<std::string> args = {command, dir / "r.csv", "--window", "20"};
+    if (std::string(command) == "identify") args.push_back("--no-profile");
+    const Outcome o = run(args);
+    ASSERT_EQ(o.code, 0) << o.err << o.out;
+    EXPECT_EQ(o.out.find("1.7646e+09"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("  1764630000."), std::string::npos) << o.out;
+  }
 }
 
 TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
