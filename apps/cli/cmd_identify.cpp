@@ -3,6 +3,8 @@
 // MMd, per window along a pass, with uncertainties, 95 % profile intervals and warnings
 // (identify.hpp, docs/identify.md).
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "case_options.hpp"
 #include "commands.hpp"
@@ -45,6 +48,45 @@ struct IdentifyCliOptions {
 };
 
 std::string cell(double v) { return io::format_double_short(v); }
+
+// A text with each number in it (digits, a decimal point, an exponent) replaced by '#': the
+// texts of two windows that say the same with their own numbers have the same shape.
+std::string number_shape(const std::string& text) {
+  std::string shape;
+  const auto digit = [&](std::size_t i) {
+    return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
+  };
+  for (std::size_t i = 0; i < text.size();) {
+    if (!digit(i) && !(text[i] == '.' && digit(i + 1))) {
+      shape += text[i++];
+      continue;
+    }
+    while (digit(i) || text[i] == '.') ++i;
+    if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+      std::size_t j = i + 1;
+      if (j < text.size() && (text[j] == '+' || text[j] == '-')) ++j;
+      if (digit(j)) {
+        i = j;
+        while (digit(i)) ++i;
+      }
+    }
+    shape += '#';
+  }
+  return shape;
+}
+
+// The windows a note belongs to, ascending: "window 3", "windows 0-2, 5, 7-59".
+std::string windows_text(const std::vector<int>& windows) {
+  std::string text;
+  for (std::size_t i = 0; i < windows.size();) {
+    std::size_t j = i;
+    while (j + 1 < windows.size() && windows[j + 1] == windows[j] + 1) ++j;
+    text += (text.empty() ? "" : ", ") + std::to_string(windows[i]) +
+            (j > i ? "-" + std::to_string(windows[j]) : "");
+    i = j + 1;
+  }
+  return (windows.size() == 1 ? "window " : "windows ") + text;
+}
 
 // The case the record is compared with: the case file, the flags, --set.
 Case base_case(const IdentifyCliOptions& o) {
@@ -426,18 +468,27 @@ int run(const IdentifyCliOptions& o) {
     t.right.back() = false;
     // A window's warnings (a poor fit's diagnosis runs to several hundred characters) and a long
     // reason for no estimate are notes below the table: in the status column they made every
-    // row as wide as the longest.
+    // row as wide as the longest. Windows whose texts differ only in their numbers share one
+    // note, with the first one's numbers (a cause that every window of a pass has, each with its
+    // own reduced chi^2: 60 windows, one note; the table gives each window's residual).
     constexpr std::size_t kInlineStatus = 60;
-    std::vector<std::string> notes;
+    struct Note {
+      std::string text, shape;
+      std::vector<int> windows;
+    };
+    std::vector<Note> notes;
     const auto status = [&](const PassEstimate& p) -> std::string {
       if (p.valid && p.identification.warnings.empty()) return "ok";
       const std::string text =
           p.valid ? "WARNING: " + join(p.identification.warnings) : std::string(p.reason);
       if (text.size() <= kInlineStatus) return text;
-      notes.push_back("[" + std::to_string(notes.size() + 1) + "] window " +
-                      std::to_string(p.window.index) + ": " + text);
+      const std::string shape = number_shape(text);
+      auto it = std::find_if(notes.begin(), notes.end(),
+                             [&](const Note& note) { return note.shape == shape; });
+      if (it == notes.end()) it = notes.insert(notes.end(), Note{text, shape, {}});
+      it->windows.push_back(p.window.index);
       return std::string(p.valid ? "WARNING" : "no estimate") + ", note [" +
-             std::to_string(notes.size()) + "]";
+             std::to_string(it - notes.begin() + 1) + "]";
     };
     for (const PassEstimate& p : pass) {
       std::vector<std::string> row = {
@@ -457,7 +508,12 @@ int run(const IdentifyCliOptions& o) {
               << t.text();
     if (!notes.empty()) {
       std::cout << "\nnotes:\n";
-      for (const std::string& n : notes) std::cout << n << "\n";
+      for (std::size_t k = 0; k < notes.size(); ++k)
+        std::cout << "[" << k + 1 << "] " << windows_text(notes[k].windows)
+                  << (notes[k].windows.size() > 1
+                          ? " (the numbers of window " + std::to_string(notes[k].windows[0]) + ")"
+                          : std::string())
+                  << ": " << notes[k].text << "\n";
     }
   }
   std::cout.flush();

@@ -144,10 +144,11 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   out.lyapunov_second = (sum - first) / ((periods - half) * T);
   const double per_period = out.lyapunov * T, a = out.lyapunov_first * T,
                b = out.lyapunov_second * T, spread = std::abs(a - b);
-  const std::string numbers = "largest Lyapunov exponent " + detail::shortest(out.lyapunov) +
-                              " 1/s (" + detail::shortest(per_period) + " per period; halves " +
-                              detail::shortest(a) + ", " + detail::shortest(b) + ") over " +
-                              std::to_string(periods) + " periods";
+  // Estimates, to the digits they carry (the halves differ in the second or third).
+  const std::string numbers =
+      detail::format("largest Lyapunov exponent %.3g 1/s (%.3g per period; halves %.3g, %.3g)",
+                     out.lyapunov, per_period, a, b) +
+      " over " + std::to_string(periods) + " periods";
   // Convergence to an orbit of period p: the distance between points p periods apart shrinks
   // geometrically, ln d_p(k) falls along a straight line (a torus or chaos makes it wander).
   // Over the second half, the least-squares line of ln d_p(k) against k for p = 1 ... 16: a
@@ -180,7 +181,7 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     out.kind = "converging";
     out.evidence = "the distance between stroboscopic points " +
                    std::to_string(out.converging_period) +
-                   " periods apart shrinks geometrically (by " + detail::shortest(out.contraction) +
+                   " periods apart shrinks geometrically (by " + detail::format("%.3g", out.contraction) +
                    " over the last " + std::to_string(n / 2) +
                    " periods): the motion still approaches an attractor; " + numbers;
   } else if (per_period > kZeroPerPeriod && per_period - spread > 0.0) {

@@ -113,10 +113,12 @@ TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
     rows += !in_notes && line.find("WARNING, note [") != std::string::npos;
   }
   EXPECT_GE(rows, 2u) << o.out;
-  EXPECT_EQ(notes.size(), rows) << o.out;
   EXPECT_LT(widest, 200u) << o.out;
-  ASSERT_FALSE(notes.empty()) << o.out;
-  EXPECT_EQ(notes.front().rfind("[1] window 0: WARNING: poor fit", 0), 0u) << notes.front();
+  // Every window has the same cause, each with its own numbers (its reduced chi^2): one note.
+  ASSERT_EQ(notes.size(), 1u) << o.out;
+  const std::string windows = "[1] windows 0-" + std::to_string(rows - 1) +
+                              " (the numbers of window 0): WARNING: poor fit";
+  EXPECT_EQ(notes.front().rfind(windows, 0), 0u) << notes.front();
   EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
 }
 
