@@ -144,9 +144,10 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   out.lyapunov_second = (sum - first) / ((periods - half) * T);
   const double per_period = out.lyapunov * T, a = out.lyapunov_first * T,
                b = out.lyapunov_second * T, spread = std::abs(a - b);
-  // Estimates, to the digits they carry (the halves differ in the second or third).
+  // Estimates, to the digits they carry (the halves differ in the second or third; as
+  // docs/bifurcations.md quotes them).
   const std::string numbers =
-      detail::format("largest Lyapunov exponent %.3g 1/s (%.3g per period; halves %.3g, %.3g)",
+      detail::format("largest Lyapunov exponent %.4g 1/s (%.4g per period; halves %.4g, %.4g)",
                      out.lyapunov, per_period, a, b) +
       " over " + std::to_string(periods) + " periods";
   // Convergence to an orbit of period p: the distance between points p periods apart shrinks
@@ -179,11 +180,11 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
                    numbers;
   } else if (out.converging_period > 0) {
     out.kind = "converging";
-    out.evidence = "the distance between stroboscopic points " +
-                   std::to_string(out.converging_period) +
-                   " periods apart shrinks geometrically (by " + detail::format("%.3g", out.contraction) +
-                   " over the last " + std::to_string(n / 2) +
-                   " periods): the motion still approaches an attractor; " + numbers;
+    out.evidence =
+        "the distance between stroboscopic points " + std::to_string(out.converging_period) +
+        " periods apart shrinks geometrically (by " + detail::format("%.4g", out.contraction) +
+        " over the last " + std::to_string(n / 2) +
+        " periods): the motion still approaches an attractor; " + numbers;
   } else if (per_period > kZeroPerPeriod && per_period - spread > 0.0) {
     out.kind = "chaotic";
     out.evidence = "a positive " + numbers + ", and the stroboscopic points do not recur";

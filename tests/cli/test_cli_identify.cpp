@@ -116,8 +116,8 @@ TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
   EXPECT_LT(widest, 200u) << o.out;
   // Every window has the same cause, each with its own numbers (its reduced chi^2): one note.
   ASSERT_EQ(notes.size(), 1u) << o.out;
-  const std::string windows = "[1] windows 0-" + std::to_string(rows - 1) +
-                              " (the numbers of window 0): WARNING: poor fit";
+  const std::string windows =
+      "[1] windows 0-" + std::to_string(rows - 1) + " (the numbers of window 0): WARNING: poor fit";
   EXPECT_EQ(notes.front().rfind(windows, 0), 0u) << notes.front();
   EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
 }
