@@ -304,7 +304,8 @@ bool is_time_key(const std::string& k) {
 }
 
 // 'x' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x, acc_x,
-// accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, ...); 0 otherwise.
+// accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
+// otherwise.
 char acceleration_axis(const std::string& k) {
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd),
   // x prime prime (xpp), of x or of x_M (xm...).
@@ -314,9 +315,13 @@ char acceleration_axis(const std::string& k) {
                                     a + "mddot", a + "mdd", a + "mpp"})
       if (k == name) return axis;
   }
-  // acc_hor / acc_vert, a_h / a_v, horizontal / vertical.
-  if (k == "ax" || k == "ah" || k == "ahor" || k == "acchor" || k == "accelhor" ||
-      k == "accelerationhor" || k.find("horiz") != std::string::npos)
+  // acc_hor / acc_vert, a_h / a_v, horizontal / vertical, hor / vert; the horizontal one named
+  // for the direction of travel: longitudinal, acc_long, a_long (not "long" alone: a GNSS
+  // longitude).
+  if (k == "ax" || k == "ah" || k == "hor" || k == "ahor" || k == "acchor" || k == "accelhor" ||
+      k == "accelerationhor" || k.find("horiz") != std::string::npos || k == "along" ||
+      k == "acclong" || k == "accellong" || k == "accelerationlong" ||
+      k.find("longitudinal") != std::string::npos)
     return 'x';
   if (k == "az" || k == "av" || k.find("vert") != std::string::npos) return 'z';
   // (German loggers: Beschleunigung, Beschl.)
