@@ -330,6 +330,7 @@ void write_fit_files(const std::string& dir, const RecordColumns& rec, const Pas
 }
 
 int run(const IdentifyCliOptions& o) {
+  double window_periods = o.windows.window_periods;  // the window in effect (0: the record)
   if (o.input.file.empty() == o.metrics_file.empty())
     throw Error("identify: give either a record or --metrics FILE (the JSON of analyze)");
   const Case base = base_case(o);
@@ -376,6 +377,21 @@ int run(const IdentifyCliOptions& o) {
       std::cerr << "oscidrum: interrupted after " << pass.size() << " windows; nothing written\n";
       return interrupted_exit_code();
     }
+    // WindowOptions::whole_if_shorter: the default window was longer than the record.
+    if (o.windows.whole_if_shorter && pass.size() == 1) {
+      const RecordWindow& w = pass.front().window;
+      // n samples cover n steps: the last sample's step counts.
+      const double periods = (w.t_end - w.t_start) * w.f +
+                             (w.samples_per_period > 0 ? 1.0 / w.samples_per_period : 0.0);
+      if (periods < o.windows.window_periods) {
+        window_periods = 0.0;
+        if (!o.quiet)
+          std::cerr << "oscidrum: identify: the record spans about " << fmt(periods, 3)
+                    << " periods, fewer than the default window of "
+                    << fmt(o.windows.window_periods, 3)
+                    << ": identified whole, as one window (as --window 0)\n";
+      }
+    }
   }
   std::size_t valid = 0, model_sampled = 0;
   const RecordWindow* sampled_window = nullptr;
@@ -416,7 +432,7 @@ int run(const IdentifyCliOptions& o) {
       {"fit_MMd", o.fit_MMd},
       {"compare_harmonics", o.compare},
       {"model_method", o.transient ? "transient" : "shooting"},
-      {"window_periods", o.windows.window_periods},
+      {"window_periods", window_periods},
       {"reading",
        o.metrics_file.empty() ? reading_json(o.input, rec) : nlohmann::ordered_json(nullptr)},
       {"valid_windows", valid},
@@ -631,7 +647,11 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "the window compared in --plot (default: the first identified)")
       ->group(out);
   sub->add_flag("--quiet,-q", o->quiet, "no progress line on stderr")->group(out);
-  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+  sub->callback([o, sub, &action] {
+    // The default window (40 periods) of a record shorter than it: the whole record, said.
+    o->windows.whole_if_shorter = sub->count("--window") == 0;
+    action = [o] { return run(*o); };
+  });
 }
 
 }  // namespace oscidrum::cli

@@ -98,7 +98,11 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
         ->check(CLI::Range(2, 200));
   app.add_option("--window", o.window_periods,
                  "window length in excitation periods; 0: the whole record (default " +
-                     std::to_string(static_cast<int>(default_window)) + ")")
+                     std::to_string(static_cast<int>(default_window)) +
+                     (default_window > 0 ? "; a record shorter than that is taken whole, as one "
+                                           "window, with a note"
+                                         : "") +
+                     ")")
       ->check(non_negative_number());
   app.add_option("--hop", o.hop_periods,
                  "hop between window starts in periods (default: the window length)")

@@ -78,6 +78,10 @@ struct WindowOptions {
   FrequencySearch search;       ///< used when f == 0
   double window_periods = 0.0;  ///< window length in excitation periods; 0: the whole record
   double hop_periods = 0.0;     ///< hop between window starts [periods]; 0: window_periods
+  /// A record shorter than one window (but of at least one excitation period) is analysed whole,
+  /// as one window (as window_periods = 0), instead of refused: for a default window that the
+  /// user did not choose (`oscidrum identify` without --window; Python's window=None).
+  bool whole_if_shorter = false;
   /// Harmonics fitted [-], >= 2; 0: as many as the record's sampling resolves, at most 10
   /// (resolved_harmonics).
   int n_max = 0;
@@ -112,7 +116,8 @@ struct RecordWindow {
 /// [m] (one per sample, or empty) is interpolated at the window centres. Windows are
 /// window_periods / f long at the record's f, start hop_periods / f apart, and the last one
 /// ends within the record. Throws oscidrum::Error for inconsistent input (sizes, non-finite or
-/// non-increasing t) and for a record shorter than one window; a window that fails a gate is
+/// non-increasing t) and for a record shorter than one window (unless whole_if_shorter, or one
+/// period); a window that fails a gate is
 /// returned with valid == false and its reason.
 std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<const double> ddx_M,
                                           std::span<const double> ddz_M,

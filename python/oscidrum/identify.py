@@ -42,7 +42,7 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
 
     ``case`` (an :class:`oscidrum.Case`, default the paper's roller) gives everything not
     estimated. Options as :func:`oscidrum.identify_record`: f (0: estimated), window (periods,
-    default 40; 0: the whole record), hop, n_max, estimate ('G' or 'ks'), fit_mu, fit_MMd,
+    default None: 40, or the whole record when it is shorter; 0: the whole record), hop, n_max, estimate ('G' or 'ks'), fit_mu, fit_MMd,
     compare (harmonics compared), use_peaks, use_area, profile, shooting (the model's steady
     states by shooting, default; False: by the transient from rest). Returns one dict per window with
     the keys of the CLI's CSV columns (G, G_u, G_lo, G_hi in Pa, ..., valid, reason, warnings).

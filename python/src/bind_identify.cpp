@@ -173,12 +173,16 @@ void bind_identify(py::module_& m) {
   m.def(
       "identify_record",
       [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,
-         const std::optional<Array>& position, double f, double window, double hop, int n_max,
-         const std::string& estimate, bool fit_mu, bool fit_MMd, int compare, bool use_peaks,
-         bool use_area, bool profile, bool shooting, const std::string& soil_scale) {
+         const std::optional<Array>& position, double f, std::optional<double> window, double hop,
+         int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, int compare,
+         bool use_peaks, bool use_area, bool profile, bool shooting,
+         const std::string& soil_scale) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
-        const WindowOptions wo = window_options(f, window, hop, n_max, 0.5, 0.002, 0.0, 0.5, 0.05);
+        // window=None: 40 periods, or the whole record when it is shorter.
+        WindowOptions wo =
+            window_options(f, window.value_or(40.0), hop, n_max, 0.5, 0.002, 0.0, 0.5, 0.05);
+        wo.whole_if_shorter = !window.has_value();
         IdentifyOptions io;
         io.modulus = estimate == "G";
         io.soil_scale = soil_scale_from(soil_scale);
@@ -227,7 +231,7 @@ void bind_identify(py::module_& m) {
         return out;
       },
       py::arg("case"), py::arg("t"), py::arg("ddx_M"), py::arg("ddz_M"),
-      py::arg("position") = py::none(), py::arg("f") = 0.0, py::arg("window") = 40.0,
+      py::arg("position") = py::none(), py::arg("f") = 0.0, py::arg("window") = py::none(),
       py::arg("hop") = 0.0, py::arg("n_max") = 0, py::arg("estimate") = "G",
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
@@ -235,7 +239,9 @@ void bind_identify(py::module_& m) {
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "
-      "not estimated; its M0 is scaled by (f / roller.f)^2 to the record's f.");
+      "not estimated; its M0 is scaled by (f / roller.f)^2 to the record's f. `window` [periods]: "
+      "None (the default) is 40, or the whole record as one window when it is shorter; 0 is the "
+      "whole record; a window longer than the record is an error.");
   m.def(
       "soil_on_scale",
       [](double G, const std::string& scale, const Soil& base) {

@@ -122,6 +122,32 @@ TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
   EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
 }
 
+// A record shorter than the default window (the two periods the paper evaluates, as another
+// implementation writes them): identified whole, as one window, with a note; the same record
+// with that window given explicitly is refused, as is any record shorter than its --window.
+TEST(CliIdentify, ARecordShorterThanTheDefaultWindowIsIdentifiedWhole) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.3);  // about 12 periods
+  const Outcome o = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err << o.out;
+  EXPECT_NE(o.err.find("fewer than the default window of 40: identified whole"), std::string::npos)
+      << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["window_periods"].get<double>(), 0.0);
+  ASSERT_EQ(j["windows"].size(), 1u);
+  EXPECT_TRUE(j["windows"][0]["valid"].get<bool>()) << o.out;
+  const Outcome whole =
+      run({"identify", dir / "r.csv", "--no-profile", "--format", "json", "--window", "0"});
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("identified whole"), std::string::npos) << whole.err;
+  EXPECT_EQ(nlohmann::json::parse(whole.out)["windows"], j["windows"]);
+  for (const char* window : {"40", "20"}) {
+    const Outcome refused = run({"identify", dir / "r.csv", "--no-profile", "--window", window});
+    EXPECT_EQ(refused.code, 2) << window << refused.err;
+    EXPECT_NE(refused.err.find("must span at least one window"), std::string::npos) << refused.err;
+  }
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {

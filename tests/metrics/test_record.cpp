@@ -529,6 +529,23 @@ TEST(Record, ARecordOfNPeriodsHoldsAWindowOfNPeriods) {
     } catch (const Error& e) {  // what to do instead
       EXPECT_NE(std::string(e.what()).find("--window 0"), std::string::npos) << e.what();
     }
+    // A default window the user did not choose (whole_if_shorter): the shorter record is one
+    // window, the same as asked for whole (window_periods = 0); shorter than a period, refused.
+    WindowOptions whole = o, fallback = o;
+    whole.window_periods = 0.0;
+    fallback.whole_if_shorter = true;
+    const std::vector<RecordWindow> a = analyze_windows(ts, xs, zs, {}, fallback);
+    const std::vector<RecordWindow> b = analyze_windows(ts, xs, zs, {}, whole);
+    ASSERT_EQ(a.size(), 1u);
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_TRUE(a[0].valid) << a[0].reason;
+    EXPECT_EQ(a[0].count, ts.size());
+    EXPECT_EQ(a[0].f, b[0].f);
+    EXPECT_EQ(a[0].metrics.area, b[0].metrics.area);
+    // The record long enough: windows as without the flag.
+    EXPECT_EQ(analyze_windows(t, x, z, {}, fallback)[0].count, ws[0].count);
+    const auto [tp, xp, zp] = record(per_period / 2);
+    EXPECT_THROW(analyze_windows(tp, xp, zp, {}, fallback), Error);
   }
 }
 

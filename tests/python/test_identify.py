@@ -33,6 +33,21 @@ def test_identify_recovers_G_with_an_interval_that_covers_it():
     assert row["fitted"].get("soil.G") == pytest.approx(row["G"])
 
 
+def test_a_record_shorter_than_the_default_window_is_identified_whole():
+    # window=None (the default): 40 periods, or the whole record when it is shorter (about 12
+    # periods here), the same as window=0; a window given explicitly must fit in the record.
+    r = oscidrum.synthetic_record([truth(17.3e6)], duration=0.3, sample_rate=1500, noise=0.05,
+                                  seed=3)
+    case = truth(17.3e6)
+    (row,) = oscidrum.identify_record(case, r["t"], r["ddx_M"], r["ddz_M"], profile=False)
+    (whole,) = oscidrum.identify_record(case, r["t"], r["ddx_M"], r["ddz_M"], window=0,
+                                        profile=False)
+    assert row["valid"], row["reason"]
+    assert row["G"] == whole["G"] and row["t_end"] == whole["t_end"]
+    with pytest.raises(ValueError, match="must span at least one window"):
+        oscidrum.identify_record(case, r["t"], r["ddx_M"], r["ddz_M"], window=40, profile=False)
+
+
 def test_failed_windows_carry_every_estimate_key_as_nan():
     # Windows of half a period fail their gates: the docs' frame example must still find G, G_lo,
     # G_hi (NaN), as the CLI's CSV has the columns; soil_scale is in every row.
