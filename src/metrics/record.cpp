@@ -580,8 +580,8 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   const double f_lo = std::max(search.f_min, 1.0 / span);
   if (!(f_hi > f_lo))
     throw Error("record: no excitation frequency to search in [" + num(search.f_min) + ", " +
-                num(search.f_max) + "] Hz: the record (" + num(fs) + " samples/s over " +
-                num(span) + " s) resolves [" + num(f_lo) + ", " + num(f_hi) + "] Hz");
+                num(search.f_max) + "] Hz: the record (" + sig4(fs) + " samples/s over " +
+                sig4(span) + " s) resolves [" + sig4(f_lo) + ", " + sig4(f_hi) + "] Hz");
   // Harmonic-sum spectrum on a grid of 1/(4 span).
   std::vector<double> xs(ddx.begin(), ddx.begin() + static_cast<std::ptrdiff_t>(n_seg));
   std::vector<double> zs(ddz.begin(), ddz.begin() + static_cast<std::ptrdiff_t>(n_seg));

@@ -775,19 +775,36 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                           (o.t_units != "auto" ? " (--t-units does not apply)" : ""));
       out.t_factor = 1.0;
     } else {
-      note("t", ct, kt, "s");
-      // A time column without a unit is read in s; one whose samples are then too far apart for
-      // any roller's excitation (under 50 samples/s) but a logger's rate in ms is likely in ms.
-      if (o.t_units == "auto" && headings[static_cast<std::size_t>(ct)].unit.empty() &&
-          out.t.size() > 2) {
+      // A time column without a unit is read in s, unless its samples are then too far apart for
+      // any roller's excitation (under 20 samples/s: not even 10 Hz is resolved) and a logger's
+      // rate (100 samples/s or more) in ms or us: then it is read in that unit, said with the flag
+      // that reads it in s. Samples 0.02-0.05 s apart are read in s, with the flag for ms.
+      double step = 0.0;
+      const bool unitless = o.t_units == "auto" &&
+                            headings[static_cast<std::size_t>(ct)].unit.empty() && out.t.size() > 2;
+      if (unitless) {
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
-        const double step = detail::median_step(std::span<const double>(out.t).first(n));
-        if (step >= 0.02 && step <= 20.0)
+        step = detail::median_step(std::span<const double>(out.t).first(n));
+      }
+      const double factor = !(step > 0.05) ? 1.0 : step <= 10.0 ? 1e-3 : step <= 1e4 ? 1e-6 : 1.0;
+      if (factor != 1.0) {
+        for (double& v : out.t) v *= factor;
+        out.t_factor = factor;
+        const char* unit = factor == 1e-3 ? "ms" : "us";
+        out.notes.push_back("t: column '" + out.t_column + "' has no unit and is read in " + unit +
+                            " (" + format_factor(1.0 / (step * factor)) +
+                            " samples/s): in s its samples would be " + format_factor(step) +
+                            " s apart (" + format_factor(1.0 / step) +
+                            " samples/s, too few for an excitation of 10 Hz or more); give "
+                            "--t-units s to read it in s");
+      } else {
+        note("t", ct, kt, "s");
+        if (step >= 0.02)
           out.notes.push_back("t: column '" + out.t_column +
                               "' has no unit and is read in s, its samples " + format_factor(step) +
                               " s apart (" + format_factor(1.0 / step) +
-                              " samples/s: too few for an excitation of 10 Hz or more); if it "
-                              "is in ms (" +
+                              " samples/s: too few for an excitation of more than " +
+                              format_factor(0.5 / step) + " Hz); if it is in ms (" +
                               format_factor(1000.0 / step) + " samples/s), give --t-units ms");
       }
     }

@@ -126,20 +126,36 @@ TEST(RecordReader, AHeaderWrittenAsAComment) {
   }
 }
 
-// A time column without a unit is read in s; samples 1 s apart (a logger's ms read as s) are said
-// with the flag that reads them in ms, and samples 1 ms apart are not.
-TEST(RecordReader, TimeInMsWithoutAUnitIsHinted) {
-  const auto hinted = [](const RecordColumns& r) {
-    return std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) {
-      return n.find("give --t-units ms") != std::string::npos;
-    });
+// A time column without a unit is read in s; samples 1 s apart (a logger's ms read as s: 1
+// sample/s resolves no excitation) are read in ms, and 1000 apart in us, said with the flag that
+// reads them in s; samples 0.03 s apart (33 samples/s) are read in s, said with the flag for ms;
+// samples 1 ms apart, a unit in the header or --t-units are read as they say.
+TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
+  const auto said = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
   };
-  EXPECT_TRUE(hinted(read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")));
-  EXPECT_FALSE(hinted(read_text("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n")));
-  EXPECT_FALSE(hinted(read_text("t [ms],ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")));
+  const RecordColumns ms = read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n");
+  EXPECT_DOUBLE_EQ(ms.t[3], 0.003);
+  EXPECT_EQ(ms.t_factor, 1e-3);
+  EXPECT_TRUE(said(ms, "has no unit and is read in ms (1000 samples/s)"));
+  EXPECT_TRUE(said(ms, "give --t-units s"));
+  const RecordColumns us = read_text("t,ax,az\n0,1,2\n1000,1,2\n2000,1,2\n3000,1,2\n");
+  EXPECT_DOUBLE_EQ(us.t[3], 0.003);
+  EXPECT_TRUE(said(us, "has no unit and is read in us (1000 samples/s)"));
+  const RecordColumns slow = read_text("t,ax,az\n0,1,2\n0.03,1,2\n0.06,1,2\n0.09,1,2\n");
+  EXPECT_DOUBLE_EQ(slow.t[3], 0.09);
+  EXPECT_TRUE(said(slow, "give --t-units ms"));
+  for (const RecordColumns& r : {read_text("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n"),
+                                 read_text("t [ms],ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")}) {
+    EXPECT_DOUBLE_EQ(r.t[3], 0.003);
+    EXPECT_FALSE(said(r, "has no unit"));
+  }
   RecordReading o;
   o.t_units = "s";
-  EXPECT_FALSE(hinted(read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o)));
+  const RecordColumns given = read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o);
+  EXPECT_DOUBLE_EQ(given.t[3], 3.0);
+  EXPECT_FALSE(said(given, "has no unit"));
 }
 
 // The paper's notation and others for the drum centre's accelerations: x_M'' (beside the
