@@ -240,7 +240,12 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
       throw Error("record: non-finite value in row " + std::to_string(i + 1));
     if (i > 0 && !(t[i] > t[i - 1]))
       throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
-                  " has t = " + num(t[i]) + " after " + num(t[i - 1]));
+                  " has t = " + num(t[i]) + " after " + num(t[i - 1]) +
+                  (t[i] == t[i - 1]
+                       ? " (a repeated time, as an event-driven integrator writes both sides of "
+                         "a switch: make each run of them one sample, its accelerations "
+                         "averaged, as the CSV reader does)"
+                       : ""));
   }
   if (t.size() < 2)
     throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));

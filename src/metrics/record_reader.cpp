@@ -810,6 +810,44 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
     out.notes.insert(out.notes.end(), later.begin(), later.end());
   }
+  // Rows with the time of the row before: an event-driven integrator writes both sides of a
+  // switch (where the accelerations jump) at the switch's time. Each run of them is one sample,
+  // its accelerations averaged (the middle of the jump, where a harmonic series converges); the
+  // other columns keep the run's first row.
+  {
+    std::size_t kept = 0, repeated = 0;
+    double first_repeated = 0.0;
+    std::vector<double>* const others[] = {
+        &out.position, &out.lat, &out.lon, &out.east, &out.north, &out.unbalance_angle, &speed};
+    for (std::size_t i = 0; i < out.t.size();) {
+      std::size_t j = i + 1;
+      double sx = out.ddx_M[i], sz = out.ddz_M[i];
+      for (; j < out.t.size() && out.t[j] == out.t[i]; ++j) {
+        sx += out.ddx_M[j];
+        sz += out.ddz_M[j];
+      }
+      if (j - i > 1 && repeated == 0) first_repeated = out.t[i];
+      repeated += j - i - 1;
+      const double m = static_cast<double>(j - i);
+      out.t[kept] = out.t[i];
+      out.ddx_M[kept] = sx / m;
+      out.ddz_M[kept] = sz / m;
+      for (std::vector<double>* v : others)
+        if (!v->empty()) (*v)[kept] = (*v)[i];
+      ++kept;
+      i = j;
+    }
+    if (repeated > 0) {
+      for (std::vector<double>* v : {&out.t, &out.ddx_M, &out.ddz_M}) v->resize(kept);
+      for (std::vector<double>* v : others)
+        if (!v->empty()) v->resize(kept);
+      out.notes.push_back(
+          std::to_string(repeated) + " row" + (repeated > 1 ? "s repeat" : " repeats") +
+          " the time of the row before (the first at t = " + format_factor(first_repeated) +
+          " s; an event-driven integrator writes both sides of a switch so): each such run is "
+          "one sample, its accelerations averaged (the middle of the jump)");
+    }
+  }
   if (skipped > 0)
     out.notes.push_back("skipped " + std::to_string(skipped) + " row" + (skipped > 1 ? "s" : "") +
                         " with a missing or non-finite value (the first at line " +

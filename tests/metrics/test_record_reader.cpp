@@ -406,6 +406,33 @@ TEST(RecordReader, SemicolonsWithDecimalCommas) {
   EXPECT_TRUE(r.notes.empty());  // read as the model writes it
 }
 
+// Both sides of a switch at its time, as an event-driven integrator writes them: each run of
+// rows with one time is one sample, the accelerations averaged, the position its first row's;
+// the analysis then accepts the record (it needs increasing times, and says so for arrays).
+TEST(RecordReader, RowsAtTheTimeOfTheRowBeforeAreOneSample) {
+  const RecordColumns r = read_text(
+      "t,ax,az,x\n0,1,2,5\n0.001,1,2,6\n0.001,3,-2,7\n0.001,5,0,8\n0.002,1,2,9\n0.003,4,4,9\n"
+      "0.003,2,2,9\n");
+  EXPECT_EQ(r.t, (std::vector<double>{0, 0.001, 0.002, 0.003}));
+  EXPECT_EQ(r.ddx_M, (std::vector<double>{1, 3, 1, 3}));
+  EXPECT_EQ(r.ddz_M, (std::vector<double>{2, 0, 2, 3}));
+  EXPECT_TRUE(std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+    return n.find("3 rows repeat the time of the row before (the first at t = 0.001 s") !=
+           std::string::npos;
+  })) << ::testing::PrintToString(r.notes);
+  RecordReading o;
+  o.pos_col = "x";
+  EXPECT_EQ(read_text("t,ax,az,x\n0,1,2,5\n0.001,1,2,6\n0.001,3,-2,7\n", o).position,
+            (std::vector<double>{5, 6}));
+  const std::vector<double> t = {0, 0.001, 0.001}, a = {1, 2, 3};
+  try {
+    analyze_windows(t, a, a, {});
+    ADD_FAILURE() << "a repeated time accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("as the CSV reader does"), std::string::npos) << e.what();
+  }
+}
+
 // Messages name the record, the line and the column, or the option to give.
 TEST(RecordReader, MessagesNameTheLineColumnOrOption) {
   EXPECT_NE(message_of("t,ax,az\n0,1,2\n0.001,1,oops\n")
