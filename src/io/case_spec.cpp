@@ -114,6 +114,11 @@ std::string key_unit(std::string_view key) {
 std::string suggest_key(std::string_view key) {
   if (key.size() > 80) return "; see 'oscidrum fields' for every key";  // no edit distances
   const std::vector<std::string_view> keys = all_keys();
+  // 0. The trough's radius R (the CLI's --R, Python's R=) is trough.a of a circle (trough.k = 0):
+  // by name alone "R" would suggest the drum's radius roller.r.
+  if (key == "R" || lower(key) == "trough.r" || lower(key) == "trough.radius")
+    return "; did you mean 'trough.a' (the radius R of a circular trough, with trough.k = 0, as "
+           "the CLI's --R sets it)?";
   // 1. The same name in another (or no) section, any case: "G" -> "soil.G", "soil.g" -> "soil.G".
   for (std::string_view k : keys)
     if (lower(k) == lower(key)) return "; did you mean '" + std::string(k) + "'?";
