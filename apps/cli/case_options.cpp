@@ -191,6 +191,10 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
       throw Error("--set " + s + ": 'oscidrum " + o.command + "' does not use " + key +
                   " (it would have no effect); it uses " + uses);
     }
+    // The same key from a flag (or an earlier --set): the later one holds, said.
+    if (const auto it = spec.origin.find(key);
+        it != spec.origin.end() && it->second.rfind("--", 0) == 0)
+      warn("--set " + io::clip(s) + " overrides " + it->second);
     if (key == "MMd") forget(spec, "MMd_fraction");
     if (key == "MMd_fraction") forget(spec, "MMd");
     if (key == "soil.table2_G") io::clear_soil(spec);

@@ -382,6 +382,18 @@ TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
   EXPECT_EQ(nlohmann::json::parse(o.out)["soil"]["source"], "appendix_b");
   o = run({"run", "--set", "soil.table2_G=10e6", "--format", "json"});
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(o.out)["soil"]["ksh"].get<double>(), 19.7e6);
+  // --set after a flag (or an earlier --set) of the same key: the later holds, said; a flag
+  // over the file's value is what flags are for, not said.
+  o = run({"run", "--mu", "0.3", "--set", "contact.mu=0.4", "--set", "contact.mu=0.45",
+           "--print-config"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("mu = 0.45"), std::string::npos) << o.out;
+  EXPECT_NE(o.err.find("warning: --set contact.mu=0.4 overrides --mu 0.3"), std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("--set contact.mu=0.45 overrides --set contact.mu=0.4"), std::string::npos)
+      << o.err;
+  o = run({"run", kSource + "/examples/case.toml", "--mu", "0.3", "--print-config"});
+  EXPECT_EQ(o.err.find("overrides"), std::string::npos) << o.err;
 }
 
 TEST(CliRun, ExitCodeOneWhenNotSteady) {
