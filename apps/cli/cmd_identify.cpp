@@ -383,7 +383,7 @@ int run(const IdentifyCliOptions& o) {
       // n samples cover n steps: the last sample's step counts.
       const double periods = (w.t_end - w.t_start) * w.f +
                              (w.samples_per_period > 0 ? 1.0 / w.samples_per_period : 0.0);
-      if (periods < o.windows.window_periods) {
+      if (periods < o.windows.window_periods * (1.0 - 1e-3)) {  // analyze_windows' tolerance
         window_periods = 0.0;
         if (!o.quiet)
           std::cerr << "oscidrum: identify: the record spans about " << fmt(periods, 3)
