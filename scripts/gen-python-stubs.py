@@ -130,6 +130,7 @@ def main():
             emit_function(lines, obj, n)
     text = "\n".join(lines) + "\n"
     text = text.replace("load_case(path: Any)", "load_case(path: Union[str, os.PathLike])")
+    text = text.replace("read_record(path: Any,", "read_record(path: Union[str, os.PathLike],")
     compile(text, str(OUT), "exec")
     OUT.write_text(text)
     print(f"wrote {OUT}")

@@ -107,6 +107,7 @@ _CORE_NAMES = (
     "paper_case",
     "paper_series",
     "phi_rolling",
+    "read_record",
     "record_kb",
     "run_case",
     "run_paper_studies",

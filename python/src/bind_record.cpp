@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <deque>
+#include <fstream>
 #include <span>
 #include <string>
 #include <variant>
@@ -12,6 +13,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/record.hpp"
+#include "oscidrum/record_reader.hpp"
 
 namespace oscidrum::python {
 namespace {
@@ -91,6 +93,81 @@ void bind_record(py::module_& m) {
       "x_M'' and z_M'' [m/s^2] sampled at t [s] (strictly increasing, any spacing, at least one "
       "period of f [Hz]) by least squares, then evaluate the metrics on the fitted periodic "
       "signals. Raises oscidrum.Error on inconsistent input.");
+  m.def(
+      "read_record",
+      [](const py::object& where, const std::string& t_col, const std::string& x_col,
+         const std::string& z_col, const std::string& pos_col, const std::string& speed_col,
+         const std::string& lat_col, const std::string& lon_col, const std::string& east_col,
+         const std::string& north_col, const std::string& unbalance_col, const std::string& units,
+         const std::string& t_units, double rate, const std::string& x_positive,
+         const std::string& z_positive) {
+        if (!py::isinstance<py::str>(where) && !py::hasattr(where, "__fspath__"))
+          throw Error("read_record: path must be a str or os.PathLike; got " +
+                      python_description(where));
+        const std::string path = py::str(py::module_::import("os").attr("fspath")(where));
+        RecordReading o;
+        o.t_col = t_col, o.x_col = x_col, o.z_col = z_col;
+        o.pos_col = pos_col, o.speed_col = speed_col;
+        o.lat_col = lat_col, o.lon_col = lon_col, o.east_col = east_col, o.north_col = north_col;
+        o.unbalance_col = unbalance_col;
+        o.units = units, o.t_units = t_units, o.rate = rate;
+        o.x_positive = x_positive, o.z_positive = z_positive;
+        // The CLI's checks of the choices (its flags allow only these).
+        const auto choice = [](const std::string& name, const std::string& v,
+                               std::initializer_list<const char*> allowed) {
+          std::string list;
+          for (const char* a : allowed) {
+            if (v == a) return;
+            list += (list.empty() ? "" : ", ") + std::string(a);
+          }
+          throw Error("read_record: " + name + " must be one of " + list + "; got '" + v + "'");
+        };
+        choice("units", units, {"auto", "m/s2", "g"});
+        choice("t_units", t_units, {"auto", "s", "ms", "us"});
+        choice("x_positive", x_positive, {"forward", "backward"});
+        choice("z_positive", z_positive, {"down", "up"});
+        if (!(rate == 0.0 || (rate >= 1.0 && rate <= 1e7)))
+          throw Error("read_record: rate must be 0 (the time column) or in [1, 1e7] [Hz]; got " +
+                      std::to_string(rate));
+        RecordColumns r;
+        {
+          py::gil_scoped_release release;
+          std::ifstream in(path);
+          if (!in) throw Error(path + ": cannot open the file");
+          r = read_record(in, path, o);
+        }
+        py::dict d;
+        d["t"] = to_array(r.t);
+        d["ddx_M"] = to_array(r.ddx_M);
+        d["ddz_M"] = to_array(r.ddz_M);
+        const std::pair<const char*, const std::vector<double>*> optional[] = {
+            {"position", &r.position}, {"lat", &r.lat},     {"lon", &r.lon},
+            {"east", &r.east},         {"north", &r.north}, {"alpha", &r.unbalance_angle}};
+        for (const auto& [key, v] : optional)
+          if (!v->empty()) d[key] = to_array(*v);
+        d["notes"] = r.notes;
+        d["columns"] = py::dict(py::arg("t") = r.t_column, py::arg("ddx_M") = r.x_column,
+                                py::arg("ddz_M") = r.z_column);
+        d["factors"] = py::dict(py::arg("t") = r.t_factor, py::arg("ddx_M") = r.x_factor,
+                                py::arg("ddz_M") = r.z_factor);
+        d["delimiter"] = r.delimiter;
+        return d;
+      },
+      py::arg("path"), py::arg("t_col") = "", py::arg("x_col") = "", py::arg("z_col") = "",
+      py::arg("pos_col") = "", py::arg("speed_col") = "", py::arg("lat_col") = "",
+      py::arg("lon_col") = "", py::arg("east_col") = "", py::arg("north_col") = "",
+      py::arg("unbalance_col") = "", py::arg("units") = "auto", py::arg("t_units") = "auto",
+      py::arg("rate") = 0.0, py::arg("x_positive") = "forward", py::arg("z_positive") = "down",
+      "A measured record's file read as `oscidrum analyze` and `identify` read it (docs/cli.md): "
+      "columns recognised from the header (or given by name or 1-based index: t_col, x_col, "
+      "z_col, pos_col, speed_col, lat_col, lon_col, east_col, north_col, unbalance_col), units "
+      "from it (units: 'auto', 'm/s2' or 'g'; t_units: 'auto', 's', 'ms' or 'us'), rate [Hz] for "
+      "a record without a time column, and the axes' directions (x_positive: 'forward' or "
+      "'backward'; z_positive: 'down' or 'up'). Returns a dict: t [s], ddx_M, ddz_M [m/s^2] in "
+      "the model's conventions (x forward, z down), position [m], lat, lon [deg], east, north "
+      "[m] and alpha [rad] when read, notes (how each column was read, what was skipped or "
+      "merged), columns (the header each came from), factors and delimiter. Raises "
+      "oscidrum.Error naming the file, line and column.");
 }
 
 }  // namespace oscidrum::python

@@ -48,6 +48,35 @@ def test_a_record_shorter_than_the_default_window_is_identified_whole():
         oscidrum.identify_record(case, r["t"], r["ddx_M"], r["ddz_M"], window=40, profile=False)
 
 
+def test_read_record_reads_a_loggers_file_as_the_cli_does(tmp_path):
+    # A logger's file: a preamble, semicolons with decimal commas, time in ms under a bare 't',
+    # accelerations in g with the z axis up, a repeated time (both sides of a switch).
+    r = oscidrum.synthetic_record([truth(17.3e6)], duration=0.6, sample_rate=1500, noise=0.05,
+                                  seed=3)
+    lines = ["Device: CCC logger", "", "t;acc_x [g];acc_z [g]"]
+    for t, x, z in zip(r["t"], r["ddx_M"], r["ddz_M"]):
+        lines.append(f"{t * 1000:.6f};{x / 9.80665:.9g};{-z / 9.80665:.9g}".replace(".", ","))
+    lines.insert(5, lines[4])
+    path = tmp_path / "logger.csv"
+    path.write_text("\n".join(lines) + "\n")
+    rec = oscidrum.read_record(path, z_positive="up")
+    assert rec["delimiter"] == "semicolon"
+    assert rec["columns"] == {"t": "t", "ddx_M": "acc_x [g]", "ddz_M": "acc_z [g]"}
+    assert rec["factors"] == {"t": 1e-3, "ddx_M": 9.80665, "ddz_M": -9.80665}
+    assert any("read in ms" in n for n in rec["notes"]), rec["notes"]
+    assert any("1 row repeats the time" in n for n in rec["notes"]), rec["notes"]
+    assert len(rec["t"]) == len(r["t"])
+    assert np.allclose(rec["t"], r["t"], atol=1e-9)
+    assert np.allclose(rec["ddz_M"], r["ddz_M"], rtol=1e-8, atol=1e-8)
+    (row,) = oscidrum.identify.identify(rec["t"], rec["ddx_M"], rec["ddz_M"], window=0,
+                                        profile=False)
+    assert row["valid"] and abs(row["G"] / 17.3e6 - 1) < 0.03, row
+    with pytest.raises(oscidrum.Error, match="cannot open the file"):
+        oscidrum.read_record(tmp_path / "missing.csv")
+    with pytest.raises(oscidrum.Error, match="z_positive must be one of down, up"):
+        oscidrum.read_record(path, z_positive="upward")
+
+
 def test_failed_windows_carry_every_estimate_key_as_nan():
     # Windows of half a period fail their gates: the docs' frame example must still find G, G_lo,
     # G_hi (NaN), as the CLI's CSV has the columns; soil_scale is in every row.
