@@ -206,6 +206,7 @@ int run(ContinueOptions o) {
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
+  check_harmonics(o.branch.harmonics, c.numerics.samples_per_period);
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
   o.branch.cancelled = [] { return interrupted(); };

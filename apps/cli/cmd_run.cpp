@@ -70,10 +70,7 @@ int run(const RunOptions& o) {
     std::cout << io::case_to_toml(c);
     return kExitOk;
   }
-  if (o.harmonics >= c.numerics.samples_per_period / 2)
-    throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
-                std::to_string(c.numerics.samples_per_period / 2) + "; got " +
-                std::to_string(o.harmonics));
+  check_harmonics(o.harmonics, c.numerics.samples_per_period);
 
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);

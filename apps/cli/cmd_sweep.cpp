@@ -241,10 +241,7 @@ void check_run_options(const SweepOptions& o, const SweepPlan& p) {
   for (std::size_t i = 0; i < p.total; ++i) {
     if (!p.mine[i]) continue;
     const int spp = p.study.cases[i].numerics.samples_per_period;
-    if (o.harmonics >= spp / 2)
-      throw Error("--harmonics must be < numerics.samples_per_period / 2 = " +
-                  std::to_string(spp / 2) + " (the samples' Nyquist limit; case " +
-                  std::to_string(i) + "); got " + std::to_string(o.harmonics));
+    check_harmonics(o.harmonics, spp, " (case " + std::to_string(i) + ")");
     if (!spp_swept) break;
   }
   if (!o.plot.empty()) {

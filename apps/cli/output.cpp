@@ -181,6 +181,16 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
                 std::strerror(errno));
 }
 
+void check_harmonics(int harmonics, int samples_per_period, const std::string& which) {
+  if (harmonics < samples_per_period / 2) return;
+  throw Error("--harmonics (default 10) must be below numerics.samples_per_period / 2 = " +
+              std::to_string(samples_per_period / 2) + ", the samples' Nyquist limit" + which +
+              "; got " + std::to_string(harmonics) + ": give --harmonics " +
+              std::to_string(std::max(0, samples_per_period / 2 - 1)) +
+              " or less, or numerics.samples_per_period of at least " +
+              std::to_string(2 * harmonics + 2));
+}
+
 void warn(const std::string& message) {
   std::cerr << "oscidrum: warning: " << printable(message) << "\n";
 }

@@ -83,4 +83,9 @@ void check_plot_file(const std::string& flag, const std::string& path);
 /// "oscidrum: warning: ..." on stderr.
 void warn(const std::string& message);
 
+/// Throws oscidrum::Error unless --harmonics (default 10) is below numerics.samples_per_period / 2
+/// (the samples' Nyquist limit), naming both ways out; `which` follows the limit in the message
+/// (" (case 3)").
+void check_harmonics(int harmonics, int samples_per_period, const std::string& which = "");
+
 }  // namespace oscidrum::cli

@@ -32,6 +32,13 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
   if (!(o.tolerance > 0 && o.tolerance < 1))
     throw Error("continue: tolerance must be in (0, 1); got " + detail::shortest(o.tolerance));
   if (o.max_points < 2) throw Error("continue: max_points must be >= 2");
+  // The metrics' harmonics within what the samples resolve (else every point's metrics were
+  // unavailable without a word: compute_metrics refuses them).
+  if (o.metrics && (o.harmonics < 0 || o.harmonics >= c.numerics.samples_per_period / 2))
+    throw Error("continue: harmonics must be in [0, numerics.samples_per_period / 2 = " +
+                    std::to_string(c.numerics.samples_per_period / 2) +
+                    "), the samples' Nyquist limit; got " + std::to_string(o.harmonics),
+                "numerics.samples_per_period");
   const Model model(c);  // validates the case
   return detail::with_roller(model, [&]<class R>() {
     detail::branching::Continuation<R> primary(c, o, *field);

@@ -339,8 +339,24 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   // Harmonics beyond the samples' Nyquist limit: named as the flag, not the library's option.
   o = run({"sweep", study, "--harmonics", "600", "-q"});
   EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.err.find("--harmonics must be < numerics.samples_per_period / 2"), std::string::npos)
+  EXPECT_NE(o.err.find("--harmonics (default 10) must be below numerics.samples_per_period / 2 = "
+                       "512, the samples' Nyquist limit (case 0); got 600: give --harmonics 511 "
+                       "or less, or numerics.samples_per_period of at least 1202"),
+            std::string::npos)
       << o.err;
+  // The default 10 beyond what 16 samples per period resolve: both ways out named, by run and
+  // by continue (whose points' metrics were NaN without a word).
+  for (const char* command : {"run", "continue"}) {
+    std::vector<std::string> args = {command, "--set", "numerics.samples_per_period=16", "-q"};
+    if (std::string(command) == "continue")
+      args.insert(args.end(), {"--param", "contact.mu", "--from", "0.5", "--to", "0.45"});
+    o = run(args);
+    EXPECT_EQ(o.code, 2) << command;
+    EXPECT_NE(o.err.find("got 10: give --harmonics 7 or less, or numerics.samples_per_period of "
+                         "at least 22"),
+              std::string::npos)
+        << o.err;
+  }
 }
 
 // A figure that cannot be drawn (its format, its metric) is refused before the first case: no

@@ -288,6 +288,17 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
   o.to = 0.3;
   o.initial_step = 0.0;
   EXPECT_THROW(continue_branch(c, o), Error);  // a step of 0
+  // Metrics' harmonics the samples cannot resolve: refused, not NaN metrics at every point.
+  o.initial_step = BranchOptions{}.initial_step;
+  Case coarse;
+  coarse.numerics.samples_per_period = 16;
+  try {
+    continue_branch(coarse, o);
+    ADD_FAILURE() << "harmonics 10 at 16 samples per period accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the samples' Nyquist limit; got 10"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
