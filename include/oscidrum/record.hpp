@@ -31,6 +31,11 @@ struct RecordMetrics {
 RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx_M,
                              std::span<const double> ddz_M, double f, int n_max = 10);
 
+/// The most harmonics a record's fit takes (analyze_record, WindowOptions::n_max,
+/// FrequencySearch::n_max; the CLI's --harmonics): the fit's normal equations are
+/// (2 n_max + 1)^2 numbers.
+inline constexpr int kMaxRecordHarmonics = 200;
+
 /// Search range and method of estimate_frequency.
 struct FrequencySearch {
   double f_min = 10.0;   ///< lowest excitation frequency considered [Hz]
@@ -82,8 +87,8 @@ struct WindowOptions {
   /// as one window (as window_periods = 0), instead of refused: for a default window that the
   /// user did not choose (`oscidrum identify` without --window; Python's window=None).
   bool whole_if_shorter = false;
-  /// Harmonics fitted [-], >= 2; 0: as many as the record's sampling resolves, at most 10
-  /// (resolved_harmonics).
+  /// Harmonics fitted [-], 2 ... kMaxRecordHarmonics; 0: as many as the record's sampling
+  /// resolves, at most 10 (resolved_harmonics).
   int n_max = 0;
   RecordGates gates;
   /// Added to the times the reasons quote [s]: a caller that analyses the times less an origin

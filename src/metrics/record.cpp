@@ -276,9 +276,9 @@ RecordFit fit_record(std::span<const double> t, std::span<const double> x,
 RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx,
                              std::span<const double> ddz, double f, int n_max) {
   if (!(std::isfinite(f) && f > 0)) throw Error("record: f must be > 0 [Hz]; got " + num(f));
-  if (n_max < 2)
-    throw Error("record: n_max must be >= 2 (psi needs the 2f harmonic); got " +
-                std::to_string(n_max));
+  if (n_max < 2 || n_max > kMaxRecordHarmonics)
+    throw Error("record: n_max must be in [2, " + std::to_string(kMaxRecordHarmonics) +
+                "] (psi needs the 2f harmonic); got " + std::to_string(n_max));
   check_record(t, ddx, ddz);
   RecordMetrics m;
   m.kb = std::numeric_limits<double>::quiet_NaN();  // needs the case and the unbalance's angle:
@@ -575,6 +575,9 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
         "upper limit f_max (--f-max); got [" +
             num(search.f_min) + ", " + num(search.f_max) + "] Hz",
         "f_min", search.f_min);
+  if (search.n_max < 1 || search.n_max > kMaxRecordHarmonics)
+    throw Error("record: the frequency search's n_max must be in [1, " +
+                std::to_string(kMaxRecordHarmonics) + "]; got " + std::to_string(search.n_max));
   const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
   const double span = t[n_seg - 1] - t[0];
   const double fs = static_cast<double>(n_seg - 1) / span;
@@ -889,11 +892,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   if (!position.empty() && position.size() != t.size())
     throw Error("record: the position column must have one value per sample; got " +
                 std::to_string(position.size()) + " for " + std::to_string(t.size()));
-  if (o.n_max != 0 && o.n_max < 2)
-    throw Error(
-        "record: n_max must be >= 2 (psi needs the 2f harmonic; 0: as many as the "
-        "sampling resolves); got " +
-        std::to_string(o.n_max));
+  if (o.n_max != 0 && (o.n_max < 2 || o.n_max > kMaxRecordHarmonics))
+    throw Error("record: n_max must be in [2, " + std::to_string(kMaxRecordHarmonics) +
+                "] (psi needs the 2f harmonic; 0: as many as the sampling resolves); got " +
+                std::to_string(o.n_max));
+
   if (!(o.f >= 0) || !std::isfinite(o.f))
     throw Error("record: f (--f) must be >= 0 [Hz] (0: estimated); got " + num(o.f));
   // Every size and gate is a finite number in its range (NaN would switch a check off).

@@ -706,6 +706,18 @@ TEST(Record, RefusesNaNGatesAndAbsurdSizes) {
   refused([&](WindowOptions& o) { o.f = 1e308; }, "at most half the record's sampling rate");
   refused([&](WindowOptions& o) { o.window_periods = 1e-9; }, "more than the record's 4000");
   refused([&](WindowOptions& o) { o.hop_periods = 1e-9; }, "more than the record's 4000");
+  // Harmonics beyond kMaxRecordHarmonics (the fit's normal equations are (2 n_max + 1)^2
+  // numbers: 1e9 allocated without bound before): refused, by every entry point.
+  refused([&](WindowOptions& o) { o.n_max = 1000000000; }, "n_max must be in [2, 200]");
+  refused([&](WindowOptions& o) { o.n_max = 201; }, "n_max must be in [2, 200]");
+  refused(
+      [&](WindowOptions& o) {
+        o.f = 0.0;
+        o.search.n_max = 1000000000;
+      },
+      "the frequency search's n_max must be in [1, 200]");
+  EXPECT_NE(error_of([&] { analyze_record(t, x, z, f, 1000000000); }).find("[2, 200]"),
+            std::string::npos);
   // The bound is the record's: a hop of one sample's worth of periods is still accepted.
   WindowOptions ok;
   ok.f = f;
