@@ -776,9 +776,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       out.t_factor = 1.0;
     } else {
       // A time column without a unit is read in s, unless its samples are then too far apart for
-      // any roller's excitation (under 20 samples/s: not even 10 Hz is resolved) and a logger's
-      // rate (100 samples/s or more) in ms or us: then it is read in that unit, said with the flag
-      // that reads it in s. Samples 0.02-0.05 s apart are read in s, with the flag for ms.
+      // any roller's excitation (over 0.02 s: under 50 samples/s, the frequency search finds
+      // nothing of 10 Hz or more, which needs 5 samples per period) and a logger's rate in ms or
+      // us: then it is read in that unit, said with the flag that reads it in s.
       double step = 0.0;
       const bool unitless = o.t_units == "auto" &&
                             headings[static_cast<std::size_t>(ct)].unit.empty() && out.t.size() > 2;
@@ -786,7 +786,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
         step = detail::median_step(std::span<const double>(out.t).first(n));
       }
-      const double factor = !(step > 0.05) ? 1.0 : step <= 10.0 ? 1e-3 : step <= 1e4 ? 1e-6 : 1.0;
+      const double factor = !(step > 0.02) ? 1.0 : step <= 10.0 ? 1e-3 : step <= 1e4 ? 1e-6 : 1.0;
       if (factor != 1.0) {
         for (double& v : out.t) v *= factor;
         out.t_factor = factor;
@@ -799,13 +799,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                             "--t-units s to read it in s");
       } else {
         note("t", ct, kt, "s");
-        if (step >= 0.02)
-          out.notes.push_back("t: column '" + out.t_column +
-                              "' has no unit and is read in s, its samples " + format_factor(step) +
-                              " s apart (" + format_factor(1.0 / step) +
-                              " samples/s: too few for an excitation of more than " +
-                              format_factor(0.5 / step) + " Hz); if it is in ms (" +
-                              format_factor(1000.0 / step) + " samples/s), give --t-units ms");
       }
     }
     out.notes.insert(out.notes.end(), later.begin(), later.end());

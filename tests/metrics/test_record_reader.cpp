@@ -127,9 +127,10 @@ TEST(RecordReader, AHeaderWrittenAsAComment) {
 }
 
 // A time column without a unit is read in s; samples 1 s apart (a logger's ms read as s: 1
-// sample/s resolves no excitation) are read in ms, and 1000 apart in us, said with the flag that
-// reads them in s; samples 0.03 s apart (33 samples/s) are read in s, said with the flag for ms;
-// samples 1 ms apart, a unit in the header or --t-units are read as they say.
+// sample/s resolves no excitation) are read in ms, as are samples 0.03 s apart (33 samples/s: under
+// the 5 per period of 10 Hz), and 1000 apart in us, said with the flag that reads them in s;
+// samples 0.015 s apart (66 samples/s) or 1 ms apart, a unit in the header or --t-units are read
+// as they say.
 TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
   const auto said = [](const RecordColumns& r, const std::string& what) {
     return std::any_of(r.notes.begin(), r.notes.end(),
@@ -143,9 +144,12 @@ TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
   const RecordColumns us = read_text("t,ax,az\n0,1,2\n1000,1,2\n2000,1,2\n3000,1,2\n");
   EXPECT_DOUBLE_EQ(us.t[3], 0.003);
   EXPECT_TRUE(said(us, "has no unit and is read in us (1000 samples/s)"));
-  const RecordColumns slow = read_text("t,ax,az\n0,1,2\n0.03,1,2\n0.06,1,2\n0.09,1,2\n");
-  EXPECT_DOUBLE_EQ(slow.t[3], 0.09);
-  EXPECT_TRUE(said(slow, "give --t-units ms"));
+  const RecordColumns fast_ms = read_text("t,ax,az\n0,1,2\n0.03,1,2\n0.06,1,2\n0.09,1,2\n");
+  EXPECT_DOUBLE_EQ(fast_ms.t[3], 0.09e-3);
+  EXPECT_TRUE(said(fast_ms, "has no unit and is read in ms"));
+  const RecordColumns slow = read_text("t,ax,az\n0,1,2\n0.015,1,2\n0.03,1,2\n0.045,1,2\n");
+  EXPECT_DOUBLE_EQ(slow.t[3], 0.045);
+  EXPECT_FALSE(said(slow, "has no unit"));
   for (const RecordColumns& r : {read_text("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n"),
                                  read_text("t [ms],ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n")}) {
     EXPECT_DOUBLE_EQ(r.t[3], 0.003);
