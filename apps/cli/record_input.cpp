@@ -90,12 +90,12 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                    "harmonics n = 1 ... N fitted in each window beside a cubic trend; 0 (the "
                    "default): as many as the sampling resolves (2 N + 2 samples per period), at "
                    "most 40")
-        ->check(CLI::Range(0, 200));
+        ->check(CLI::Range(0, kMaxRecordHarmonics));
   else
     app.add_option("--harmonics", o.n_max,
                    "harmonics n = 0 ... N fitted (default 10, or as many as the record's "
                    "sampling resolves when fewer: 2 N + 1 samples per period)")
-        ->check(CLI::Range(2, 200));
+        ->check(CLI::Range(2, kMaxRecordHarmonics));
   app.add_option("--window", o.window_periods,
                  "window length in excitation periods; 0: the whole record (default " +
                      std::to_string(static_cast<int>(default_window)) +

@@ -104,8 +104,9 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   if (o.trend_degree < 0 || o.trend_degree > 10)
     throw Error("identify: the trend's degree must be in [0, 10]; got " +
                 std::to_string(o.trend_degree));
-  if (o.harmonics < 0 || o.harmonics > 200)
-    throw Error("identify: the harmonics fitted must be in [0, 200] (0: from the sampling); got " +
+  if (o.harmonics < 0 || o.harmonics > kMaxRecordHarmonics)
+    throw Error("identify: the harmonics fitted must be in [0, " +
+                std::to_string(kMaxRecordHarmonics) + "] (0: from the sampling); got " +
                 std::to_string(o.harmonics));
   if (t.size() < 8) throw Error("identify: a window needs at least 8 samples");
   for (std::size_t i = 0; i < t.size(); ++i) {
