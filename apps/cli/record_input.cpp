@@ -68,9 +68,11 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                  "backward (x_M'' is negated)")
       ->check(CLI::IsMember({"forward", "backward"}));
   app.add_option("--z-positive", o.z_positive,
-                 "which way the record's z axis points: down (default: the model's) or up (most "
-                 "accelerometer mounts; z_M'' is negated)")
-      ->check(CLI::IsMember({"down", "up"}));
+                 "which way the record's z axis points: auto (default: down, the model's, unless "
+                 "the column's mean is about +1 g, which an accelerometer reads at rest along an "
+                 "axis pointing up: then up, with a note), down, or up (most accelerometer "
+                 "mounts; z_M'' is negated)")
+      ->check(CLI::IsMember({"auto", "down", "up"}));
 }
 
 void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
@@ -198,7 +200,7 @@ nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& r
   };
   return {{"delimiter", rec.delimiter},
           {"x_positive", o.x_positive},
-          {"z_positive", o.z_positive},
+          {"z_positive", rec.z_positive},
           {"t", channel(rec.t_column, rec.t_factor, "s")},
           {"ddx_M", channel(rec.x_column, rec.x_factor, "m/s^2")},
           {"ddz_M", channel(rec.z_column, rec.z_factor, "m/s^2")}};

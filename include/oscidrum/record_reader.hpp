@@ -33,7 +33,9 @@ struct RecordReading {
   /// their place in time.
   double rate = 0.0;
   std::string x_positive = "forward";  ///< forward (the model's x) or backward
-  std::string z_positive = "down";     ///< down (the model's z) or up
+  /// down (the model's z), up (negated), or auto: down unless the column's mean is about +1 g,
+  /// which an accelerometer reads at rest along an axis pointing up (then up, with a note).
+  std::string z_positive = "auto";
 };
 
 /// The columns of a record in the model's conventions: t in s, accelerations in m/s^2, x_M''
@@ -50,6 +52,7 @@ struct RecordColumns {
   /// one) and the factor applied to reach the model's units and signs [s or m/s^2 per unit read].
   std::string t_column, x_column, z_column;
   double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
+  std::string z_positive = "down";  ///< which way the z column was read to point: down or up
 };
 
 /// Read a record from `in` (`name` names it in messages: the file, "<stdin>"): a UTF-8

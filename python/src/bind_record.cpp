@@ -125,7 +125,7 @@ void bind_record(py::module_& m) {
         choice("units", units, {"auto", "m/s2", "g"});
         choice("t_units", t_units, {"auto", "s", "ms", "us"});
         choice("x_positive", x_positive, {"forward", "backward"});
-        choice("z_positive", z_positive, {"down", "up"});
+        choice("z_positive", z_positive, {"auto", "down", "up"});
         if (!(rate == 0.0 || (rate >= 1.0 && rate <= 1e7)))
           throw Error("read_record: rate must be 0 (the time column) or in [1, 1e7] [Hz]; got " +
                       std::to_string(rate));
@@ -151,22 +151,26 @@ void bind_record(py::module_& m) {
         d["factors"] = py::dict(py::arg("t") = r.t_factor, py::arg("ddx_M") = r.x_factor,
                                 py::arg("ddz_M") = r.z_factor);
         d["delimiter"] = r.delimiter;
+        d["z_positive"] = r.z_positive;
         return d;
       },
       py::arg("path"), py::arg("t_col") = "", py::arg("x_col") = "", py::arg("z_col") = "",
       py::arg("pos_col") = "", py::arg("speed_col") = "", py::arg("lat_col") = "",
       py::arg("lon_col") = "", py::arg("east_col") = "", py::arg("north_col") = "",
       py::arg("unbalance_col") = "", py::arg("units") = "auto", py::arg("t_units") = "auto",
-      py::arg("rate") = 0.0, py::arg("x_positive") = "forward", py::arg("z_positive") = "down",
+      py::arg("rate") = 0.0, py::arg("x_positive") = "forward", py::arg("z_positive") = "auto",
       "A measured record's file read as `oscidrum analyze` and `identify` read it (docs/cli.md): "
       "columns recognised from the header (or given by name or 1-based index: t_col, x_col, "
       "z_col, pos_col, speed_col, lat_col, lon_col, east_col, north_col, unbalance_col), units "
       "from it (units: 'auto', 'm/s2' or 'g'; t_units: 'auto', 's', 'ms' or 'us'), rate [Hz] for "
       "a record without a time column, and the axes' directions (x_positive: 'forward' or "
-      "'backward'; z_positive: 'down' or 'up'). Returns a dict: t [s], ddx_M, ddz_M [m/s^2] in "
+      "'backward'; z_positive: 'auto' (down unless the column's mean is about +1 g: up), 'down' or "
+      "'up'). Returns a dict: t [s], ddx_M, ddz_M [m/s^2] in "
       "the model's conventions (x forward, z down), position [m], lat, lon [deg], east, north "
       "[m] and alpha [rad] when read, notes (how each column was read, what was skipped or "
-      "merged), columns (the header each came from), factors and delimiter. Raises "
+      "merged), columns (the header each came from), factors, delimiter and z_positive (the "
+      "direction "
+      "the z column was read in). Raises "
       "oscidrum.Error naming the file, line and column.");
 }
 

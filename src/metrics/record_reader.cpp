@@ -643,7 +643,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   };
   const double kt = by_rate ? 1.0 / o.rate : column_scale(ct, true);
   const double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
-  const double kz = column_scale(cz, false) * (o.z_positive == "up" ? -1.0 : 1.0);
+  // z_positive "auto" reads the column as positive down until its mean says otherwise (below).
+  double kz = column_scale(cz, false) * (o.z_positive == "up" ? -1.0 : 1.0);
   // A note for each channel not read as the model writes it (its name, unit 1, same sign).
   auto note = [&](const char* channel, int c, double k, const char* si) {
     const std::string& named = headings[static_cast<std::size_t>(c)].name;
@@ -846,22 +847,47 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         " with a missing or non-finite value (the first at line " +
                         std::to_string(first_skipped) +
                         "): the gap gate (--max-gap) judges the windows they fall in");
-  // An accelerometer reads the specific force: at rest +1 g along an axis pointing up, -1 g along
-  // one pointing down, and a record that keeps it (the harmonic fit takes the mean out) tells
-  // which way its z axis points. Read as positive down, a mean near +1 g says the axis points the
-  // other way than the reading assumed (--z-positive): said, not corrected (a record without
-  // gravity, or with the offset removed, says nothing; nor does a hint decide the sign).
+  // An accelerometer reads the specific force f = a - g (g pointing down): at rest +1 g along an
+  // axis pointing up, -1 g along one pointing down. A record that keeps it (the harmonic fit takes
+  // the mean out) therefore tells which way its z axis points: read as positive down, a mean near
+  // +1 g is g - z_M'', the axis points up (or the logger writes -f, as some phone APIs do: the
+  // same column). With z_positive "auto" (the default) such a column is negated, with a note; an
+  // explicit direction is kept, with a note when the mean contradicts it. A record without
+  // gravity, or with the offset removed, says nothing: it is read as positive down (auto) and the
+  // identification's poor-fit diagnosis names a z axis the other way round.
+  out.z_positive = o.z_positive == "up" ? "up" : "down";
   {
     double mean = 0.0;
     for (double v : out.ddz_M) mean += v;
     mean /= static_cast<double>(out.ddz_M.size());
-    if (std::abs(mean - kStandardGravity) < 0.15 * kStandardGravity)
-      out.notes.push_back(
-          "z_M'': its mean is " + format_factor(mean) +
+    if (std::abs(mean - kStandardGravity) < 0.15 * kStandardGravity) {
+      const std::string why =
+          "its mean is " + format_factor(mean) +
           " m/s^2 read as positive down, about +1 g: an accelerometer at rest reads -1 g along a "
-          "downward axis and +1 g along an upward one, so this column's axis likely points " +
-          (o.z_positive == "up" ? std::string("down (drop --z-positive up)")
-                                : std::string("up (give --z-positive up)")));
+          "downward axis and +1 g along an upward one";
+      if (o.z_positive == "auto") {
+        for (double& v : out.ddz_M) v = -v;
+        kz = -kz;
+        out.z_factor = kz;
+        out.z_positive = "up";
+        const std::string how = "z_M'': column '" + out.z_column + "' x " + format_factor(kz) +
+                                " -> m/s^2 (positive down)";
+        const auto was = std::find_if(out.notes.begin(), out.notes.end(), [](const auto& n) {
+          return n.rfind("z_M'': column '", 0) == 0;
+        });
+        if (was != out.notes.end())
+          *was = how;
+        else
+          out.notes.push_back(how);
+        out.notes.push_back("z_M'': read as pointing up (negated): " + why +
+                            " (give --z-positive down to read it as it is)");
+      } else {
+        out.notes.push_back("z_M'': " + why + ", so this column's axis likely points " +
+                            (o.z_positive == "up"
+                                 ? std::string("down (give --z-positive down or auto)")
+                                 : std::string("up (give --z-positive up or auto)")));
+      }
+    }
   }
   // A channel that never changes (a dead or disconnected sensor, or a drum that does not move
   // that way, as a directed vertical exciter's x_M''): its harmonics are zero and what compares

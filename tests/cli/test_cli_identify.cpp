@@ -148,6 +148,44 @@ TEST(CliIdentify, ARecordShorterThanTheDefaultWindowIsIdentifiedWhole) {
   }
 }
 
+// A logger's file in field conventions: time in ms, accelerations in g, the z axis pointing up and
+// gravity kept (+1 g at rest). Read by default, the z column is taken as pointing up (its mean
+// says so) and the soil is identified as from the model's own record; read as pointing down it is
+// not (the poor-fit diagnosis names the axis).
+TEST(CliIdentify, ALoggersFileInGWithZUpAndGravityIsReadAsPointingUp) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  std::ifstream in(dir / "r.csv");
+  std::ofstream out(dir / "logger.csv");
+  out << "Time [ms];Acc X [g];Acc Z [g]\n";
+  std::string line;
+  std::getline(in, line);  // the header
+  char row[160];
+  while (std::getline(in, line)) {
+    double t = 0, x = 0, z = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+    std::snprintf(row, sizeof row, "%.3f;%.9g;%.9g\n", t * 1e3, x / kStandardGravity,
+                  1.0 - z / kStandardGravity);
+    out << row;
+  }
+  out.close();
+  const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  const Outcome logger = run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
+  ASSERT_EQ(model.code, 0) << model.err;
+  ASSERT_EQ(logger.code, 0) << logger.err;
+  EXPECT_NE(logger.err.find("read as pointing up (negated)"), std::string::npos) << logger.err;
+  const nlohmann::json a = nlohmann::json::parse(model.out)["windows"][0];
+  const nlohmann::json b = nlohmann::json::parse(logger.out)["windows"][0];
+  EXPECT_EQ(nlohmann::json::parse(logger.out)["reading"]["z_positive"], "up");
+  ASSERT_TRUE(b["valid"].get<bool>()) << logger.out;
+  EXPECT_NEAR(b["estimates"][0]["value"].get<double>() / a["estimates"][0]["value"].get<double>(),
+              1.0, 1e-4);
+  const Outcome as_down = run(
+      {"identify", dir / "logger.csv", "--no-profile", "--format", "json", "--z-positive", "down"});
+  EXPECT_NE(as_down.err.find("give --z-positive up or auto"), std::string::npos) << as_down.err;
+  EXPECT_NE(as_down.out.find("the record's z axis points up"), std::string::npos) << as_down.out;
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {

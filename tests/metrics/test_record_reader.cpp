@@ -349,31 +349,57 @@ TEST(RecordReader, PreambleAndALineOfUnitsUnderTheHeader) {
       std::string::npos);
 }
 
-TEST(RecordReader, GravityInTheZReadingHintsAtItsAxis) {
+// An accelerometer reads +1 g at rest along an axis pointing up: a z column whose mean is about
+// +1 g read as positive down points up. By default (auto) it is negated, with a note; an explicit
+// direction is kept, with a note when the mean contradicts it.
+TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
   const std::string with_gravity = "t,acc_x [g],acc_z [g]\n0,0.1,1.05\n0.001,-0.1,0.95\n";
-  const auto hint = [](const RecordColumns& r) {
-    int found = 0;
-    for (const std::string& n : r.notes) found += n.find("about +1 g") != std::string::npos;
+  const auto note_of = [](const RecordColumns& r, const std::string& what) {
+    std::string found;
+    for (const std::string& n : r.notes)
+      if (n.find(what) != std::string::npos) found += n;
     return found;
   };
-  const RecordColumns down = read_text(with_gravity);
-  ASSERT_EQ(hint(down), 1);
-  for (const std::string& n : down.notes)
-    if (n.find("about +1 g") != std::string::npos) {
-      EXPECT_NE(n.find("give --z-positive up"), std::string::npos) << n;
-    }
+  const RecordColumns automatic = read_text(with_gravity);
+  EXPECT_EQ(automatic.z_positive, "up");
+  EXPECT_DOUBLE_EQ(automatic.z_factor, -kStandardGravity);
+  EXPECT_DOUBLE_EQ(automatic.ddz_M[0], -1.05 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(automatic.ddz_M[1], -0.95 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(automatic.ddx_M[0], 0.1 * kStandardGravity);  // x as it was
+  EXPECT_NE(note_of(automatic, "read as pointing up (negated)").find("give --z-positive down"),
+            std::string::npos);
+  EXPECT_NE(note_of(automatic, "z_M'': column 'acc_z [g]' x -9.80665 -> m/s^2"), "");
+
+  RecordReading down;
+  down.z_positive = "down";
+  const RecordColumns kept = read_text(with_gravity, down);
+  EXPECT_EQ(kept.z_positive, "down");
+  EXPECT_DOUBLE_EQ(kept.ddz_M[0], 1.05 * kStandardGravity);
+  EXPECT_NE(note_of(kept, "about +1 g").find("give --z-positive up or auto"), std::string::npos);
+
   RecordReading up;
   up.z_positive = "up";
-  EXPECT_EQ(hint(read_text(with_gravity, up)), 0);  // read as up: -1 g, as it should be
-  EXPECT_EQ(hint(read_text("t,acc_x [g],acc_z [g]\n0,0.1,0.05\n0.001,-0.1,-0.05\n")), 0);
+  const RecordColumns read_up = read_text(with_gravity, up);  // read as up: -1 g, as it should be
+  EXPECT_EQ(note_of(read_up, "about +1 g"), "");
+  EXPECT_EQ(read_up.z_positive, "up");
+  EXPECT_DOUBLE_EQ(read_up.ddz_M[0], -1.05 * kStandardGravity);
+
+  // Without gravity the column says nothing: read as positive down.
+  const RecordColumns plain = read_text("t,acc_x [g],acc_z [g]\n0,0.1,0.05\n0.001,-0.1,-0.05\n");
+  EXPECT_EQ(note_of(plain, "about +1 g"), "");
+  EXPECT_EQ(plain.z_positive, "down");
+  EXPECT_DOUBLE_EQ(plain.ddz_M[0], 0.05 * kStandardGravity);
+  // -1 g read as down: the downward axis an accelerometer at rest reads so; nothing changed.
+  const RecordColumns downward =
+      read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1.05\n0.001,-0.1,-0.95\n");
+  EXPECT_EQ(downward.z_positive, "down");
+  EXPECT_EQ(note_of(downward, "about +1 g"), "");
+
   // Read as up, a mean of -1 g in the file: the axis points down after all.
   const RecordColumns wrong =
       read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1.05\n0.001,-0.1,-0.95\n", up);
-  ASSERT_EQ(hint(wrong), 1);
-  for (const std::string& n : wrong.notes)
-    if (n.find("about +1 g") != std::string::npos) {
-      EXPECT_NE(n.find("drop --z-positive up"), std::string::npos) << n;
-    }
+  EXPECT_NE(note_of(wrong, "about +1 g").find("give --z-positive down or auto"), std::string::npos);
+  EXPECT_DOUBLE_EQ(wrong.ddz_M[0], 1.05 * kStandardGravity);  // kept as given
 }
 
 // A channel with the same value in every row (a dead sensor) is said, with its value in m/s^2;

@@ -73,8 +73,20 @@ def test_read_record_reads_a_loggers_file_as_the_cli_does(tmp_path):
     assert row["valid"] and abs(row["G"] / 17.3e6 - 1) < 0.03, row
     with pytest.raises(oscidrum.Error, match="cannot open the file"):
         oscidrum.read_record(tmp_path / "missing.csv")
-    with pytest.raises(oscidrum.Error, match="z_positive must be one of down, up"):
+    with pytest.raises(oscidrum.Error, match="z_positive must be one of auto, down, up"):
         oscidrum.read_record(path, z_positive="upward")
+    assert rec["z_positive"] == "up"
+    # The same logger keeping gravity in its z column (+1 g at rest along an axis pointing up):
+    # read by default (z_positive='auto') as pointing up, the offset left for the fit's mean.
+    lines = [line if k < 3 else line.rsplit(";", 1)[0] + ";" +
+             f"{float(line.rsplit(';', 1)[1].replace(',', '.')) + 1:.9g}".replace(".", ",")
+             for k, line in enumerate(lines)]
+    path.write_text("\n".join(lines) + "\n")
+    rec = oscidrum.read_record(path)
+    assert rec["z_positive"] == "up" and rec["factors"]["ddz_M"] == -9.80665
+    assert any("read as pointing up (negated)" in n for n in rec["notes"]), rec["notes"]
+    assert np.allclose(rec["ddz_M"], r["ddz_M"] - 9.80665, rtol=1e-8, atol=1e-7)
+    assert oscidrum.read_record(path, z_positive="down")["z_positive"] == "down"
 
 
 def test_failed_windows_carry_every_estimate_key_as_nan():

@@ -396,13 +396,13 @@ std::string text_option(const val& options, const char* key, const std::string& 
 
 // How the record's text is read (oscidrum::RecordReading, the options of `oscidrum analyze`):
 // {units: "auto"|"m/s2"|"g", t_units: "auto"|"s"|"ms"|"us", x_positive: "forward"|"backward",
-// z_positive: "down"|"up", t_col, x_col, z_col: a name or 1-based index, empty: recognised}.
+// z_positive: "auto"|"down"|"up", t_col, x_col, z_col: a name or 1-based index, empty: recognised}.
 oscidrum::RecordReading reading_from(const val& options) {
   oscidrum::RecordReading o;
   o.units = text_option(options, "units", "auto", "auto|m/s2|g");
   o.t_units = text_option(options, "t_units", "auto", "auto|s|ms|us");
   o.x_positive = text_option(options, "x_positive", "forward", "forward|backward");
-  o.z_positive = text_option(options, "z_positive", "down", "down|up");
+  o.z_positive = text_option(options, "z_positive", "auto", "auto|down|up");
   o.t_col = text_option(options, "t_col", "", "");
   o.x_col = text_option(options, "x_col", "", "");
   o.z_col = text_option(options, "z_col", "", "");
@@ -426,6 +426,7 @@ val reading_of(const oscidrum::RecordColumns& rec) {
   out.set("t_factor", rec.t_factor);
   out.set("x_factor", rec.x_factor);
   out.set("z_factor", rec.z_factor);
+  out.set("z_positive", rec.z_positive);
   val notes = val::array();
   for (const std::string& n : rec.notes) notes.call<void>("push", n);
   out.set("notes", notes);
