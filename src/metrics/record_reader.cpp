@@ -318,6 +318,9 @@ char acceleration_axis(const std::string& k) {
   // acc_hor / acc_vert, a_h / a_v, horizontal / vertical, hor / vert; the horizontal one named
   // for the direction of travel: longitudinal, acc_long, a_long (not "long" alone: a GNSS
   // longitude).
+  // acc_h / acc_v and ax_M / az_M (the drum centre M's) as well.
+  if (k == "axm" || k == "acch" || k == "accelh" || k == "accelerationh") return 'x';
+  if (k == "azm" || k == "accv" || k == "accelv" || k == "accelerationv") return 'z';
   if (k == "ax" || k == "ah" || k == "hor" || k == "ahor" || k == "acchor" || k == "accelhor" ||
       k == "accelerationhor" || k.find("horiz") != std::string::npos || k == "along" ||
       k == "acclong" || k == "accellong" || k == "accelerationlong" ||

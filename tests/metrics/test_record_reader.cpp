@@ -169,7 +169,8 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
   for (const std::string header :
        {"t,x_M,x_M'',z_M'',z_M", "t,x'',z''", "t,x_dd,z_dd", "t,xpp,zpp", "t,xM_acc,zM_acc",
         "time,acc_hor,acc_vert", "time,hor,vert", "timestamp,acc_long,acc_vert", "t,a_long,a_v",
-        "t,longitudinal,vertical", "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]"}) {
+        "t,longitudinal,vertical", "timestamp,acc_h,acc_v", "t,ax_M,az_M",
+        "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const std::string rows =
