@@ -68,10 +68,11 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                  "backward (x_M'' is negated)")
       ->check(CLI::IsMember({"forward", "backward"}));
   app.add_option("--z-positive", o.z_positive,
-                 "which way the record's z axis points: auto (default: down, the model's, unless "
-                 "the column's mean is about +1 g, which an accelerometer reads at rest along an "
-                 "axis pointing up: then up, with a note), down, or up (most accelerometer "
-                 "mounts; z_M'' is negated)")
+                 "which way the record's z axis points: auto (default: down, the model's, or up "
+                 "for a two-dimensional record's y, unless the column's mean says otherwise: an "
+                 "accelerometer at rest reads +1 g along an axis pointing up, -1 g along one "
+                 "pointing down; with a note), down, or up (most accelerometer mounts; z_M'' is "
+                 "negated)")
       ->check(CLI::IsMember({"auto", "down", "up"}));
 }
 

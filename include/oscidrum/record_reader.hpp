@@ -33,8 +33,9 @@ struct RecordReading {
   /// their place in time.
   double rate = 0.0;
   std::string x_positive = "forward";  ///< forward (the model's x) or backward
-  /// down (the model's z), up (negated), or auto: down unless the column's mean is about +1 g,
-  /// which an accelerometer reads at rest along an axis pointing up (then up, with a note).
+  /// down (the model's z), up (negated), or auto: down (up for a two-dimensional record's y,
+  /// read as the vertical when there is no z column) unless the column's mean says otherwise
+  /// (an accelerometer at rest reads +1 g along an axis pointing up: then turned, with a note).
   std::string z_positive = "auto";
 };
 

@@ -303,13 +303,14 @@ bool is_time_key(const std::string& k) {
   return false;
 }
 
-// 'x' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x, acc_x,
-// accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
-// otherwise.
+// 'x', 'y' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x,
+// acc_x, accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
+// otherwise. (y: the lateral axis of a three-axis logger, or the vertical of a two-dimensional
+// record without z.)
 char acceleration_axis(const std::string& k) {
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd),
   // x prime prime (xpp), of x or of x_M (xm...).
-  for (const char axis : {'x', 'z'}) {
+  for (const char axis : {'x', 'y', 'z'}) {
     const std::string a(1, axis);
     for (const std::string& name : {"dd" + a + "m", "dd" + a, a + "ddot", a + "dd", a + "pp",
                                     a + "mddot", a + "mdd", a + "mpp"})
@@ -330,7 +331,7 @@ char acceleration_axis(const std::string& k) {
   // (German loggers: Beschleunigung, Beschl.)
   for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
     const std::string st = stem;
-    for (char axis : {'x', 'z'}) {
+    for (char axis : {'x', 'y', 'z'}) {
       // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number)
       if (k == st + axis || k == axis + st) return axis;
       if (k.size() == st.size() + 2 && k.rfind(st + axis, 0) == 0 &&
@@ -340,7 +341,7 @@ char acceleration_axis(const std::string& k) {
   }
   // Longer names: acc... or accelerometer... ending in the axis (accelerometer_z, acc_drum_x,
   // Beschl. Bandage X), or the axis first (z_acceleration, xaccel).
-  for (char axis : {'x', 'z'}) {
+  for (char axis : {'x', 'y', 'z'}) {
     for (const char* stem : {"acc", "beschl"}) {
       const bool acc = k.find(stem) != std::string::npos;
       if (acc && k.rfind(stem, 0) == 0 && k.back() == axis) return axis;
@@ -610,11 +611,30 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                            "horizontal acceleration x_M''", "--x-col", "ddx_M",
                            [](const std::string& k) { return acceleration_axis(k) == 'x'; }, "x")
                      : find(o.x_col, "--x-col");
-  const int cz = o.z_col.empty()
-                     ? recognise(
-                           "vertical acceleration z_M''", "--z-col", "ddz_M",
-                           [](const std::string& k) { return acceleration_axis(k) == 'z'; }, "z")
-                     : find(o.z_col, "--z-col");
+  // A two-dimensional record (another implementation's x and y, y vertical) has no z column:
+  // its one y acceleration is the vertical, with a note (beside a z column, y is lateral).
+  int cz = -1;
+  std::string z_from_y;
+  if (o.z_col.empty()) {
+    std::vector<int> z_like, y_like;
+    for (std::size_t c = 0; c < headings.size(); ++c) {
+      const std::string& k = headings[c].key;
+      const char axis = acceleration_axis(k);
+      if (axis == 'z' || k == "z" || headings[c].name == "ddz_M")
+        z_like.push_back(static_cast<int>(c));
+      if (axis == 'y') y_like.push_back(static_cast<int>(c));
+    }
+    if (z_like.empty() && y_like.size() == 1 && has_header) {
+      cz = y_like.front();
+      z_from_y = header[static_cast<std::size_t>(cz)];
+    } else {
+      cz = recognise(
+          "vertical acceleration z_M''", "--z-col", "ddz_M",
+          [](const std::string& k) { return acceleration_axis(k) == 'z'; }, "z");
+    }
+  } else {
+    cz = find(o.z_col, "--z-col");
+  }
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
   const int cu = o.unbalance_col.empty() ? -1 : find(o.unbalance_col, "--unbalance-col");
@@ -646,8 +666,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   };
   const double kt = by_rate ? 1.0 / o.rate : column_scale(ct, true);
   const double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
-  // z_positive "auto" reads the column as positive down until its mean says otherwise (below).
-  double kz = column_scale(cz, false) * (o.z_positive == "up" ? -1.0 : 1.0);
+  // z_positive "auto": down, or up for a two-dimensional record's y (the usual Cartesian axes),
+  // until the column's mean says otherwise (below).
+  bool z_up = o.z_positive == "up" || (o.z_positive == "auto" && !z_from_y.empty());
+  double kz = column_scale(cz, false) * (z_up ? -1.0 : 1.0);
   // A note for each channel not read as the model writes it (its name, unit 1, same sign).
   auto note = [&](const char* channel, int c, double k, const char* si) {
     const std::string& named = headings[static_cast<std::size_t>(c)].name;
@@ -664,6 +686,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   out.z_factor = kz;
   note("x_M''", cx, kx, "m/s^2 (positive forward)");
   note("z_M''", cz, kz, "m/s^2 (positive down)");
+  if (!z_from_y.empty())
+    out.notes.push_back("z_M'': no z column: the y column '" + z_from_y +
+                        "' is read as the vertical (a two-dimensional record's x and y), " +
+                        (o.z_positive == "auto"
+                             ? "pointing up as y usually does (give --z-positive down if it "
+                               "points down)"
+                             : "pointing " + o.z_positive + " (--z-positive)"));
   std::vector<double> speed;
   // A row with a missing or non-finite value in a column read is skipped (and counted: a note
   // says how many, and the gap gate judges the windows they fall in).
@@ -854,25 +883,26 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // axis pointing up, -1 g along one pointing down. A record that keeps it (the harmonic fit takes
   // the mean out) therefore tells which way its z axis points: read as positive down, a mean near
   // +1 g is g - z_M'', the axis points up (or the logger writes -f, as some phone APIs do: the
-  // same column). With z_positive "auto" (the default) such a column is negated, with a note; an
-  // explicit direction is kept, with a note when the mean contradicts it. A record without
-  // gravity, or with the offset removed, says nothing: it is read as positive down (auto) and the
-  // identification's poor-fit diagnosis names a z axis the other way round.
-  out.z_positive = o.z_positive == "up" ? "up" : "down";
+  // same column). With z_positive "auto" (the default) the direction read is turned round then
+  // (down to up, or a two-dimensional record's y from up to down), with a note; an explicit
+  // direction is kept, with a note when the mean contradicts it. A record without gravity, or
+  // with the offset removed, says nothing: it is read as auto's first guess and the
+  // identification's poor-fit diagnosis names an axis the other way round.
   {
     double mean = 0.0;
     for (double v : out.ddz_M) mean += v;
     mean /= static_cast<double>(out.ddz_M.size());
     if (std::abs(mean - kStandardGravity) < 0.15 * kStandardGravity) {
       const std::string why =
-          "its mean is " + format_factor(mean) +
-          " m/s^2 read as positive down, about +1 g: an accelerometer at rest reads -1 g along a "
+          "its mean read as pointing " + std::string(z_up ? "up" : "down") + " is " +
+          format_factor(mean) +
+          " m/s^2 (z down), about +1 g, where an accelerometer at rest reads -1 g along a "
           "downward axis and +1 g along an upward one";
       if (o.z_positive == "auto") {
+        z_up = !z_up;
         for (double& v : out.ddz_M) v = -v;
         kz = -kz;
         out.z_factor = kz;
-        out.z_positive = "up";
         const std::string how = "z_M'': column '" + out.z_column + "' x " + format_factor(kz) +
                                 " -> m/s^2 (positive down)";
         const auto was = std::find_if(out.notes.begin(), out.notes.end(), [](const auto& n) {
@@ -882,8 +912,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
           *was = how;
         else
           out.notes.push_back(how);
-        out.notes.push_back("z_M'': read as pointing up (negated): " + why +
-                            " (give --z-positive down to read it as it is)");
+        out.notes.push_back("z_M'': read as pointing " + std::string(z_up ? "up" : "down") +
+                            (z_up ? " (negated)" : " (as it is)") + ": " + why +
+                            " (give --z-positive " + (z_up ? "down" : "up") +
+                            " to read it the other way)");
       } else {
         out.notes.push_back("z_M'': " + why + ", so this column's axis likely points " +
                             (o.z_positive == "up"
@@ -892,6 +924,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       }
     }
   }
+  out.z_positive = z_up ? "up" : "down";
   // A channel that never changes (a dead or disconnected sensor, or a drum that does not move
   // that way, as a directed vertical exciter's x_M''): its harmonics are zero and what compares
   // phases with it is NaN (psi_xz, kb, the ratios to its fundamental). Said, the record is still

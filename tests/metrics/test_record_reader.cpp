@@ -403,6 +403,43 @@ TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
   EXPECT_DOUBLE_EQ(wrong.ddz_M[0], 1.05 * kStandardGravity);  // kept as given
 }
 
+// A two-dimensional record (another implementation's x and y, no z): its y acceleration is the
+// vertical, read as pointing up (the usual Cartesian y) unless its mean of -1 g says it points
+// down; beside a z column, y is a three-axis logger's lateral channel.
+TEST(RecordReader, ATwoDimensionalRecordsYIsTheVertical) {
+  const auto has = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  for (const std::string header : {"t,ax,ay", "time,acc_x,acc_y", "t,x'',y''", "t,ddx,ddy"}) {
+    SCOPED_TRACE(header);
+    const RecordColumns r = read_text(header + "\n0,0.5,-0.25\n0.001,1.5,0.75\n");
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], -0.75);  // y up: negated
+    EXPECT_EQ(r.z_positive, "up");
+    EXPECT_TRUE(
+        has(r, "is read as the vertical (a two-dimensional record's x and y), pointing up"));
+  }
+  RecordReading down;
+  down.z_positive = "down";
+  const RecordColumns as_down = read_text("t,ax,ay\n0,0.5,-0.25\n0.001,1.5,0.75\n", down);
+  EXPECT_DOUBLE_EQ(as_down.ddz_M[1], 0.75);
+  EXPECT_EQ(as_down.z_positive, "down");
+  // Gravity kept along an upward y (+1 g): up, as guessed; along a downward y (-1 g): turned.
+  const RecordColumns up_g = read_text("t,ax [g],ay [g]\n0,0.5,1.25\n0.001,1.5,0.75\n");
+  EXPECT_EQ(up_g.z_positive, "up");
+  EXPECT_FALSE(has(up_g, "about +1 g"));
+  const RecordColumns down_g = read_text("t,ax [g],ay [g]\n0,0.5,-1.25\n0.001,1.5,-0.75\n");
+  EXPECT_EQ(down_g.z_positive, "down");
+  EXPECT_DOUBLE_EQ(down_g.ddz_M[0], -1.25 * kStandardGravity);
+  EXPECT_TRUE(has(down_g, "read as pointing down (as it is)"));
+  // Three axes: z is the vertical, y the lateral channel.
+  const RecordColumns three = read_text("t,ax,ay,az\n0,0.5,9,-0.25\n0.001,1.5,9,0.75\n");
+  EXPECT_DOUBLE_EQ(three.ddz_M[1], 0.75);
+  EXPECT_EQ(three.z_positive, "down");
+  EXPECT_FALSE(has(three, "two-dimensional"));
+}
+
 // A channel with the same value in every row (a dead sensor) is said, with its value in m/s^2;
 // one that changes, or a record of one row, says nothing.
 TEST(RecordReader, AConstantChannelIsSaid) {
