@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -355,7 +356,78 @@ char acceleration_axis(const std::string& k) {
 
 }  // namespace
 
+namespace {
+
+// UTF-16 text (a spreadsheet's "Unicode text" export) with its byte-order mark, as UTF-8.
+std::string utf8_of_utf16(const std::string& raw, bool little_endian) {
+  std::string out;
+  out.reserve(raw.size() / 2);
+  const auto unit = [&](std::size_t i) {
+    const auto a = static_cast<unsigned char>(raw[i]), b = static_cast<unsigned char>(raw[i + 1]);
+    return little_endian ? static_cast<unsigned>(a | (b << 8))
+                         : static_cast<unsigned>(b | (a << 8));
+  };
+  for (std::size_t i = 2; i + 1 < raw.size(); i += 2) {
+    unsigned c = unit(i);
+    if (c >= 0xD800 && c < 0xDC00 && i + 3 < raw.size()) {  // a surrogate pair
+      const unsigned low = unit(i + 2);
+      if (low >= 0xDC00 && low < 0xE000) {
+        c = 0x10000 + ((c - 0xD800) << 10) + (low - 0xDC00);
+        i += 2;
+      }
+    }
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else if (c < 0x800) {
+      out += static_cast<char>(0xC0 | (c >> 6));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+      out += static_cast<char>(0xE0 | (c >> 12));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+      out += static_cast<char>(0xF0 | (c >> 18));
+      out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    }
+  }
+  return out;
+}
+
+// A file that is not text, by its first bytes: what it is and what to do, or empty.
+std::string not_text(const std::string& first_line) {
+  if (first_line.rfind("\x1F\x8B", 0) == 0)
+    return "a gzip-compressed file: decompress it first (gunzip)";
+  if (first_line.rfind("PK\x03\x04", 0) == 0)
+    return "a zip archive (an Excel .xlsx workbook is one): export the sheet as CSV text";
+  if (first_line.rfind("\xD0\xCF\x11\xE0", 0) == 0)
+    return "an Excel .xls workbook: export the sheet as CSV text";
+  if (first_line.rfind("\x89HDF", 0) == 0)
+    return "an HDF5 file: export the record's columns as CSV text";
+  if (first_line.find('\0') != std::string::npos)
+    return "not text (a NUL byte in its first line; UTF-16 without a byte-order mark?): save it "
+           "as CSV text, UTF-8 or UTF-16 with its byte-order mark";
+  return "";
+}
+
+}  // namespace
+
 RecordColumns read_record(std::istream& in, const std::string& name, const RecordReading& o) {
+  // UTF-16 with a byte-order mark (FF FE little-endian, FE FF big-endian): read as UTF-8 text.
+  if (const int b = in.peek(); b == 0xFF || b == 0xFE) {
+    const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const bool le = raw.rfind("\xFF\xFE", 0) == 0, be = raw.rfind("\xFE\xFF", 0) == 0;
+    if (!le && !be)  // bytes no UTF-8 text begins with
+      throw Error(name + ": not text (its first byte is 0x" + (b == 0xFF ? "FF" : "FE") +
+                  " without a UTF-16 byte-order mark): save it as CSV text, UTF-8 or UTF-16 with "
+                  "its byte-order mark");
+    std::istringstream text(utf8_of_utf16(raw, le));
+    RecordColumns r = read_record(text, name, o);
+    r.notes.insert(r.notes.begin(), std::string("read as UTF-16 text (") + (le ? "little" : "big") +
+                                        "-endian, by its byte-order mark)");
+    return r;
+  }
   // Streamed: the first non-comment line sets the delimiter and the header; every other line is
   // parsed as it is read, so memory holds the columns, not the text (24 bytes per row).
   std::string line, first;
@@ -402,7 +474,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   const auto has_number = [&](const std::string& l, char d) {
     for (const std::string& cell : split(l, d)) {
       double v = 0;
-      if (parse_number(cell, d == ';', v) || parse_clock(cell)) return true;
+      if (parse_number(cell, d == ';' || d == '\t', v) || parse_clock(cell)) return true;
     }
     return false;
   };
@@ -469,7 +541,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     bool any = false;
     for (std::string l; lead.size() < kLeadLines && std::getline(in, l);) {
       ++no;
-      if (no == 1) strip_bom(l);
+      if (no == 1) {
+        if (const std::string what = not_text(l); !what.empty()) throw Error(name + ": " + what);
+        strip_bom(l);
+      }
       if (!l.empty() && l.back() == '\r') l.pop_back();
       if (is_comment(l)) {
         if (!any && !trim(l).empty()) comment_before = l, comment_before_no = no;
@@ -496,7 +571,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                   : delim == '\t' ? "tab"
                   : delim == ','  ? "comma"
                                   : "whitespace";
-  const bool decimal_comma = delim == ';';  // 1,5;2,25 (a European spreadsheet)
+  // 1,5;2,25 or 1,5<tab>2,25 (a European spreadsheet's CSV or "Unicode text"): a comma within a
+  // cell is a decimal comma where it is not the delimiter.
+  const bool decimal_comma = delim == ';' || delim == '\t';
   // Header: that line unless all its cells are numbers.
   std::vector<std::string> header = split(first, delim);
   bool has_header = false;

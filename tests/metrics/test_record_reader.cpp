@@ -403,6 +403,48 @@ TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
   EXPECT_DOUBLE_EQ(wrong.ddz_M[0], 1.05 * kStandardGravity);  // kept as given
 }
 
+// UTF-16 text with its byte-order mark (a spreadsheet's "Unicode text" export: tab separated,
+// decimal commas in a German locale) is read as the UTF-8 text it encodes, a surrogate pair and
+// a superscript two included; what is not text is named, not read as a header.
+TEST(RecordReader, UTF16TextIsReadAndWhatIsNotTextIsNamed) {
+  // "Zeit [ms]\tBeschl. X [m/s\u00B2]\tBeschl. Z [m/s\u00B2]\t\U0001F600\n0\t1,5\t-0,25\t1\n..."
+  const std::u16string text =
+      u"Zeit [ms]\tBeschl. X [m/s\u00B2]\tBeschl. Z [m/s\u00B2]\tnote \U0001F600\n"
+      u"0\t1,5\t-0,25\t1\n1\t2,5\t0,75\t1\n";
+  for (const bool little : {true, false}) {
+    SCOPED_TRACE(little);
+    std::string bytes = little ? "\xFF\xFE" : "\xFE\xFF";
+    for (const char16_t u : text) {
+      const char lo = static_cast<char>(u & 0xFF), hi = static_cast<char>(u >> 8);
+      bytes += little ? std::string{lo, hi} : std::string{hi, lo};
+    }
+    const RecordColumns r = read_text(bytes);
+    ASSERT_EQ(r.t.size(), 2u);
+    EXPECT_DOUBLE_EQ(r.t[1], 1e-3);
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 1.5);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75);
+    EXPECT_EQ(r.delimiter, "tab");
+    EXPECT_EQ(r.x_column, "Beschl. X [m/s\xC2\xB2]");
+    ASSERT_FALSE(r.notes.empty());
+    EXPECT_EQ(r.notes.front(), std::string("read as UTF-16 text (") + (little ? "little" : "big") +
+                                   "-endian, by its byte-order mark)");
+  }
+  // Tab separated UTF-8 with decimal commas, too.
+  const RecordColumns tabbed = read_text("t\tax\taz\n0\t1,5\t2\n0,001\t-1\t0,5\n");
+  EXPECT_DOUBLE_EQ(tabbed.t[1], 0.001);
+  EXPECT_DOUBLE_EQ(tabbed.ddx_M[0], 1.5);
+  for (const auto& [bytes, what] : std::vector<std::pair<std::string, std::string>>{
+           {std::string("\x1F\x8B\x08\x08garbage\n", 12), "a gzip-compressed file"},
+           {"PK\x03\x04garbage\n", "a zip archive (an Excel .xlsx workbook is one)"},
+           {"\xD0\xCF\x11\xE0garbage\n", "an Excel .xls workbook"},
+           {"\x89HDF\r\n", "an HDF5 file"},
+           {std::string("t\0,\0a\0x\n", 9), "not text (a NUL byte in its first line"},
+           {"\xFFgarbage\n", "not text (its first byte is 0xFF"}}) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(message_of(bytes).find("record.csv: " + what), 0u) << message_of(bytes);
+  }
+}
+
 // A two-dimensional record (another implementation's x and y, no z): its y acceleration is the
 // vertical, read as pointing up (the usual Cartesian y) unless its mean of -1 g says it points
 // down; beside a z column, y is a three-axis logger's lateral channel.
