@@ -134,6 +134,37 @@ int run(AnalyzeOptions o) {
                    "sampled alike: docs/identify.md)\n";
     break;
   }
+  // Residuals that are the harmonics above those fitted, not noise (a clean or simulated record
+  // of a stick-slip motion, whose accelerations jump at its switches): the peaks and the area of
+  // the fitted signal then miss them. Said once, from the first valid window, with what a fit of
+  // four times the harmonics (as many as the sampling resolves, at most 200) gives.
+  for (const RecordWindow& w : ws) {
+    if (!w.valid) continue;
+    const int used = static_cast<int>(w.metrics.ddx_harmonics.size()) - 1;
+    const int resolved =
+        std::min(static_cast<int>((w.samples_per_period - 1.0) / 2.0), kMaxRecordHarmonics);
+    const int more = std::min(4 * used, resolved);
+    const double before = std::max(w.metrics.residual_x, w.metrics.residual_z);
+    if (more < 2 * used || !(before > 2e-3)) break;
+    const auto part = [&](const std::vector<double>& v) {
+      return std::span<const double>(v).subspan(w.first, w.count);
+    };
+    const RecordMetrics m =
+        analyze_record(part(rec.t), part(rec.ddx_M), part(rec.ddz_M), w.f, more);
+    const double after = std::max(m.residual_x, m.residual_z);
+    if (after < before / 3.0)
+      std::cerr << "oscidrum: analyze: the fit's residuals (x_M'' " << fmt(w.metrics.residual_x, 3)
+                << ", z_M'' " << fmt(w.metrics.residual_z, 3) << ") are mostly harmonics above the "
+                << used << " fitted, not noise: with " << more << " they are "
+                << fmt(m.residual_x, 3) << ", " << fmt(m.residual_z, 3)
+                << ", and the fitted signal's x_M'' max " << fmt(w.metrics.ddx_max, 5) << " -> "
+                << fmt(m.ddx_max, 5) << " m/s^2, z_M'' max " << fmt(w.metrics.ddz_max, 5) << " -> "
+                << fmt(m.ddz_max, 5) << " m/s^2, area " << fmt(w.metrics.area, 5) << " -> "
+                << fmt(m.area, 5) << " m^2/s^4 (give --harmonics " << more
+                << " for those; a stick-slip motion's accelerations jump at its switches, "
+                   "which harmonics approach slowly)\n";
+    break;
+  }
   const bool single = o.windows.window_periods == 0;
   const std::string name = o.input.file == "-" ? "<stdin>" : o.input.file;
   // The harmonics fitted (every window holds n_max + 1, measured or NaN).

@@ -89,6 +89,21 @@ TEST(CliAnalyze, RecordOfASimulationGivesItsHarmonics) {
   const double sim_a1 = sim["metrics"]["ddx_harmonics"][1]["amplitude"].get<double>();
   EXPECT_NEAR(a1, sim_a1, 1e-5 * sim_a1);
   EXPECT_NEAR(rec["psi_xz"].get<double>(), sim["metrics"]["psi_xz"].get<double>(), 1e-5);
+  // A stick-slip record's accelerations jump at the switches: the residuals of ten harmonics are
+  // the harmonics above them, not noise, and a note says what 40 give (closer to the run's own
+  // peaks, which the record's samples hold).
+  EXPECT_NE(a.err.find("are mostly harmonics above the 10 fitted, not noise: with 40"),
+            std::string::npos)
+      << a.err;
+  const Outcome more =
+      run({"analyze", dir / "s.csv", "--f", "39", "--harmonics", "40", "--format", "json"});
+  ASSERT_EQ(more.code, 0) << more.err;
+  const double x_max = sim["metrics"]["ddx_max"].get<double>();
+  EXPECT_LT(std::abs(nlohmann::json::parse(more.out)["ddx_max"].get<double>() - x_max),
+            std::abs(rec["ddx_max"].get<double>() - x_max));
+  const Outcome most = run({"analyze", dir / "s.csv", "--f", "39", "--harmonics", "200"});
+  ASSERT_EQ(most.code, 0) << most.err;
+  EXPECT_EQ(most.err.find("are mostly harmonics above"), std::string::npos) << most.err;
 }
 
 // kb of a record (`analyze --case --unbalance-col`, docs/outputs.md): the steady state of
@@ -320,6 +335,7 @@ TEST(CliAnalyze, ASlowLoggerGetsTheHarmonicsItsSamplingResolves) {
   EXPECT_NEAR(j["ddx_harmonics"][3]["amplitude"].get<double>(), 3.0, 1e-9);
   EXPECT_NEAR(j["ddz_harmonics"][2]["amplitude"].get<double>(), 0.5, 1e-9);
   EXPECT_NEAR(j["f"].get<double>(), 39.0, 1e-7);
+  EXPECT_EQ(a.err.find("are mostly harmonics above"), std::string::npos) << a.err;
   // Asked for more than the sampling resolves: the gate says so (the sampling against the flags:
   // exit 2).
   const Outcome b = run({"analyze", dir / "slow.csv", "--rate", "500", "--harmonics", "10"});
