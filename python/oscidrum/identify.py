@@ -30,14 +30,38 @@ _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6)
             "MMd": (r"$M_{Md}$", "kN m", 1e-3)}
 
 
+#: Standard gravity [m/s^2] (an accelerometer's 1 g).
+_G0 = 9.80665
+
+
+def _z_down(z: np.ndarray, z_positive: str, where: str) -> np.ndarray:
+    """ddz_M positive down: negated for 'up'; for 'auto' (the default), negated when its mean is
+    about +1 g (within 0.15 g), which an accelerometer at rest reads along an axis pointing up,
+    with a warning, as ``oscidrum identify --z-positive auto`` reads a file."""
+    from . import Error
+    if z_positive not in ("auto", "down", "up"):
+        raise Error(f"z_positive must be 'auto', 'down' or 'up'; got {z_positive!r}")
+    if z_positive == "up":
+        return -z
+    if z_positive == "auto" and z.size and abs(float(np.mean(z)) - _G0) < 0.15 * _G0:
+        import warnings
+        warnings.warn(f"{where}: ddz_M's mean is {float(np.mean(z)):.6g} m/s^2, about +1 g, which an "
+                      "accelerometer at rest reads along an axis pointing up: read as pointing up "
+                      "(negated); give z_positive='down' to read it as it is", stacklevel=3)
+        return -z
+    return z
+
+
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
              position: Optional[Sequence[float]] = None, x_positive: str = "forward",
-             z_positive: str = "down", **options: Any) -> List[Dict[str, Any]]:
+             z_positive: str = "auto", **options: Any) -> List[Dict[str, Any]]:
     """Identify the soil in each window of a record (t [s], ddx_M, ddz_M [m/s^2]).
 
     The model's axes: x_M'' positive forward (the direction of travel), z_M'' positive down.
     A record whose axes point the other way gives ``x_positive='backward'`` or
-    ``z_positive='up'`` (most accelerometer mounts); the channel is negated. A poor fit that a
+    ``z_positive='up'`` (most accelerometer mounts); the channel is negated. ``z_positive='auto'``
+    (the default) is 'down' unless ddz_M's mean is about +1 g (gravity along an axis pointing
+    up: then 'up', with a warning), as the CLI reads a file. A poor fit that a
     negated axis or the other soil scale would fix says so in ``warnings``.
 
     ``case`` (an :class:`oscidrum.Case`, default the paper's roller) gives everything not
@@ -50,13 +74,10 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     from . import Case, Error, identify_record
     if x_positive not in ("forward", "backward"):
         raise Error(f"x_positive must be 'forward' or 'backward'; got {x_positive!r}")
-    if z_positive not in ("down", "up"):
-        raise Error(f"z_positive must be 'down' or 'up'; got {z_positive!r}")
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
     if x_positive == "backward":
         arrays[1] = -arrays[1]
-    if z_positive == "up":
-        arrays[2] = -arrays[2]
+    arrays[2] = _z_down(arrays[2], z_positive, "identify")
     pos = None if position is None else np.asarray(position, dtype=float)
     return identify_record(case if case is not None else Case(), *arrays, position=pos,
                            **options)
@@ -76,7 +97,7 @@ def identify_frame(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[f
 
 def calibrate(references: Sequence[Dict[str, Any]], case=None,
               parameters: Sequence[str] = ("roller.M0",), soil_scale: str = "formulas",
-              x_positive: str = "forward", z_positive: str = "down",
+              x_positive: str = "forward", z_positive: str = "auto",
               **options: Any) -> Dict[str, Any]:
     """Calibrate the roller on reference records of known soil (``oscidrum calibrate``).
 
@@ -93,8 +114,8 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
     from . import Case, Error, calibrate_records, soil_on_scale
     if x_positive not in ("forward", "backward"):
         raise Error(f"x_positive must be 'forward' or 'backward'; got {x_positive!r}")
-    if z_positive not in ("down", "up"):
-        raise Error(f"z_positive must be 'down' or 'up'; got {z_positive!r}")
+    if z_positive not in ("auto", "down", "up"):
+        raise Error(f"z_positive must be 'auto', 'down' or 'up'; got {z_positive!r}")
     base = case if case is not None else Case()
     refs = []
     for k, ref in enumerate(references):
@@ -112,7 +133,7 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
         refs.append({"name": str(ref.get("name", f"reference {k}")), "soil": soil,
                      "t": np.asarray(ref["t"], dtype=float),
                      "ddx_M": -x if x_positive == "backward" else x,
-                     "ddz_M": -z if z_positive == "up" else z})
+                     "ddz_M": _z_down(z, z_positive, f"calibrate: reference {k}")})
     return calibrate_records(base, refs, list(parameters), **options)
 
 

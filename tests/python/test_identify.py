@@ -173,8 +173,16 @@ def test_a_record_with_z_up_is_diagnosed_and_read_with_z_positive_up():
     assert right["valid"], right["reason"]
     assert abs(right["G"] / 30e6 - 1) < 0.01
     assert not any("far better" in w for w in right["warnings"])
-    with pytest.raises(oscidrum.Error, match="z_positive must be 'down' or 'up'"):
+    with pytest.raises(oscidrum.Error, match="z_positive must be 'auto', 'down' or 'up'"):
         oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="upward")
+    # With gravity kept (+1 g along the upward axis), the default ('auto') reads it as pointing
+    # up, with a warning, and gives what z_positive='up' gives; 'down' keeps it as it is.
+    with pytest.warns(UserWarning, match="about \\+1 g.*read as pointing up"):
+        (auto,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up + 9.80665, window=0)
+    assert auto["valid"] and abs(auto["G"] / right["G"] - 1) < 1e-6, (auto["G"], right["G"])
+    (kept,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up + 9.80665, window=0,
+                                         z_positive="down")
+    assert any("far better with z_M'' negated" in w for w in kept["warnings"]), kept["warnings"]
 
 
 def test_analyze_windows_fits_the_harmonics_the_sampling_resolves():
