@@ -1077,74 +1077,113 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     w.change = kNaN;
     const auto tw = t.subspan(first, w.count), xw = ddx.subspan(first, w.count),
                zw = ddz.subspan(first, w.count);
-    std::vector<std::string> reasons;
-    // Gates that need no fit.
-    double gap = 0, gap_at = 0;
-    for (std::size_t i = first; i < last; ++i)
-      if (dt[i] > gap) {
-        gap = dt[i];
-        gap_at = t[i];
-      }
-    // A few lost samples are not a gap: the least-squares fit takes the samples where they
-    // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
-    const double max_gap = o.gates.max_gap / f_track;
-    if (gap > max_gap)
-      reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at + o.time_origin) + " s (" +
-                        num(std::round(gap * f_track * 100) / 100) + " excitation periods > " +
-                        num(o.gates.max_gap) + "; a harmonic fit does not bridge it)");
+    // Clipping needs no fit and no frequency.
+    std::vector<std::string> clip_reasons;
     std::size_t n_clipped = 0;
     if (o.gates.clip_level > 0)
       for (std::size_t i = first; i <= last; ++i) n_clipped += clipped[i] ? 1 : 0;
     else
       n_clipped = plateau_samples(first, last);
     if (n_clipped > 0)
-      reasons.push_back("clipped: " + std::to_string(n_clipped) + " samples " +
-                        (o.gates.clip_level > 0 ? "at |a| >= " + num(o.gates.clip_level)
-                                                : std::string("on a plateau near the extremes")));
-    w.samples_per_period = static_cast<double>(w.count - 1) / ((w.t_end - w.t_start) * f_track);
-    const double spanned = (w.t_end - w.t_start) * f_track;
-    const bool dense = w.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;
-    if (!dense)
-      reasons.push_back("too few samples per period (" + num(w.samples_per_period) + " < " +
-                        std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
-                        " harmonics)");
-    if (!long_enough)
-      reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
-                        " excitation periods (< 1)");
-    const bool enough = dense && long_enough;
-    bool fitted = false;
-    if (enough && gap <= max_gap) {
-      const double periods = (w.t_end - w.t_start) * f_track;
+      clip_reasons.push_back("clipped: " + std::to_string(n_clipped) + " samples " +
+                             (o.gates.clip_level > 0
+                                  ? "at |a| >= " + num(o.gates.clip_level)
+                                  : std::string("on a plateau near the extremes")));
+    double gap = 0, gap_at = 0;
+    for (std::size_t i = first; i < last; ++i)
+      if (dt[i] > gap) {
+        gap = dt[i];
+        gap_at = t[i];
+      }
+    // The window analysed about the frequency f0 (the tracked one, or one searched for): its
+    // gates, f refined, the fit and its metrics.
+    struct Attempt {
+      RecordWindow w;
+      std::vector<std::string> reasons;
+      bool fitted = false;
+      bool poor_fit = false;  // fitted, but the residual gate failed
+    };
+    const auto attempt = [&](double f0) {
+      Attempt a{w, clip_reasons};
+      RecordWindow& aw = a.w;
+      std::vector<std::string>& reasons = a.reasons;
+      // A few lost samples are not a gap: the least-squares fit takes the samples where they
+      // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
+      const double max_gap = o.gates.max_gap / f0;
+      if (gap > max_gap)
+        reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at + o.time_origin) +
+                          " s (" + num(std::round(gap * f0 * 100) / 100) +
+                          " excitation periods > " + num(o.gates.max_gap) +
+                          "; a harmonic fit does not bridge it)");
+      aw.samples_per_period = static_cast<double>(aw.count - 1) / ((aw.t_end - aw.t_start) * f0);
+      const double spanned = (aw.t_end - aw.t_start) * f0;
+      const bool dense = aw.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;
+      if (!dense)
+        reasons.push_back("too few samples per period (" + num(aw.samples_per_period) + " < " +
+                          std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
+                          " harmonics)");
+      if (!long_enough)
+        reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
+                          " excitation periods (< 1)");
+      if (!(dense && long_enough && gap <= max_gap)) return a;
+      const double periods = spanned;
       const int nf = n_max;  // all of them: unfitted harmonics would bias f
       const double fw =
-          o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f_track, std::min(0.05, 0.5 / periods), nf);
-      w.f = fw;
-      const std::size_t half = w.count / 2;
+          o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f0, std::min(0.05, 0.5 / periods), nf);
+      aw.f = fw;
+      const std::size_t half = aw.count / 2;
       const double hw = std::min(0.05, 1.0 / periods);
       if (half >= static_cast<std::size_t>(2 * n_max + 2)) {
         const double f1 =
             refine_frequency(tw.first(half), xw.first(half), zw.first(half), fw, hw, nf);
         const double f2 =
             refine_frequency(tw.subspan(half), xw.subspan(half), zw.subspan(half), fw, hw, nf);
-        w.drift = (f2 - f1) / fw;
+        aw.drift = (f2 - f1) / fw;
       }
       try {
-        w.metrics = analyze_record(tw, xw, zw, fw, n_max);
-        fitted = true;
+        aw.metrics = analyze_record(tw, xw, zw, fw, n_max);
+        a.fitted = true;
       } catch (const Error& e) {
         reasons.push_back(e.what());
       }
-      if (fitted) change_within(tw, xw, zw, fw, n_max, w, reasons, o.gates.max_change);
-      if (fitted) {
-        const double res = std::max(w.metrics.residual_x, w.metrics.residual_z);
-        if (!(res <= o.gates.max_residual))
-          reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
-                            num(o.gates.max_residual));
-        if (std::isfinite(w.drift) && std::abs(w.drift) > o.gates.max_drift)
-          reasons.push_back("frequency drift " + num(std::round(w.drift * 1e5) / 1e5) +
-                            " within the window (|drift| > " + num(o.gates.max_drift) + ")");
+      if (!a.fitted) return a;
+      change_within(tw, xw, zw, fw, n_max, aw, reasons, o.gates.max_change);
+      const double res = std::max(aw.metrics.residual_x, aw.metrics.residual_z);
+      if (!(res <= o.gates.max_residual)) {
+        a.poor_fit = true;
+        reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
+                          num(o.gates.max_residual));
+      }
+      if (std::isfinite(aw.drift) && std::abs(aw.drift) > o.gates.max_drift)
+        reasons.push_back("frequency drift " + num(std::round(aw.drift * 1e5) / 1e5) +
+                          " within the window (|drift| > " + num(o.gates.max_drift) + ")");
+      return a;
+    };
+    Attempt best = attempt(f_track);
+    // A fit that explains little at the tracked frequency: the excitation's frequency may have
+    // changed (the operator's other setting, a start or a stop). The window's own spectral peak
+    // is searched, as the record's was, and the window analysed about it too; the better fit
+    // (the smaller residual) is kept.
+    if (o.f == 0.0 && best.poor_fit) {
+      try {
+        const SpectralPeak peak = spectral_peak(tw, xw, zw, o.search);
+        const double f_new = refine_peak(
+            tw, xw, zw, peak,
+            std::min(o.search.n_max, harmonics_resolved_at(peak.f, detail::median_step(tw))));
+        if (std::isfinite(f_new) && std::abs(f_new / f_track - 1.0) > 0.01) {
+          Attempt other = attempt(f_new);
+          const auto residual = [](const Attempt& a) {
+            return a.fitted ? std::max(a.w.metrics.residual_x, a.w.metrics.residual_z) : kNaN;
+          };
+          if (residual(other) < residual(best)) best = std::move(other);
+        }
+      } catch (const Error&) {
+        // no peak to be found in this window: the tracked frequency's analysis stands
       }
     }
+    w = std::move(best.w);
+    std::vector<std::string>& reasons = best.reasons;
+    const bool fitted = best.fitted;
     w.valid = reasons.empty();
     for (const std::string& r : reasons) w.reason += (w.reason.empty() ? "" : "; ") + r;
     if (w.valid) {

@@ -200,6 +200,49 @@ TEST(Record, AWindowAcrossAChangeOfSoilIsNotValid) {
   }
 }
 
+// The operator switches the excitation from 39 to 30 Hz and back (a roller's two settings): the
+// windows at 30 Hz are found there (their own spectral peak, searched when the tracked frequency
+// explains little), not failed as a poor fit at 39 Hz; those across a switch are not valid.
+TEST(Record, AChangeOfTheExcitationFrequencyIsFollowed) {
+  std::vector<double> t, x, z;
+  double phase = 0.0;  // the exciter's angle, continuous through the switches [rad]
+  const double rate = 2000.0;
+  for (int i = 0; i < 6000; ++i) {
+    const double ti = i / rate;
+    const double f = ti >= 1.0 && ti < 2.0 ? 30.0 : 39.0;
+    t.push_back(ti);
+    x.push_back(12.0 * std::sin(phase) + 3.0 * std::sin(3.0 * phase + 0.2));
+    z.push_back(0.5 * std::sin(2.0 * phase + 0.3) + 0.1 * std::sin(4.0 * phase));
+    phase += 2.0 * M_PI * f / rate;
+  }
+  WindowOptions w;
+  w.window_periods = 10;
+  const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, w);
+  int at_30 = 0;
+  for (const RecordWindow& win : ws) {
+    SCOPED_TRACE(win.t_start);
+    const bool across =
+        (win.t_start < 1.0 && win.t_end > 1.0) || (win.t_start < 2.0 && win.t_end > 2.0);
+    if (across) {
+      EXPECT_FALSE(win.valid);
+      continue;
+    }
+    ASSERT_TRUE(win.valid) << win.reason;
+    const double f = win.t_start >= 1.0 && win.t_end < 2.0 ? 30.0 : 39.0;
+    at_30 += f == 30.0;
+    EXPECT_NEAR(win.f, f, 1e-6 * f);
+    EXPECT_NEAR(win.metrics.ddx_harmonics[3].amplitude, 3.0, 1e-6);
+    EXPECT_NEAR(win.metrics.ddz_harmonics[2].amplitude, 0.5, 1e-6);
+  }
+  EXPECT_GE(at_30, 2);
+  // With f given (--f 39), the windows at 30 Hz fail as before: nothing is searched.
+  w.f = 39.0;
+  for (const RecordWindow& win : analyze_windows(t, x, z, {}, w))
+    if (win.t_start > 1.0 && win.t_end < 2.0) {
+      EXPECT_FALSE(win.valid) << win.t_start;
+    }
+}
+
 // A "measured" record: 3.37 periods, jittered sampling times, noise. The fit recovers the
 // harmonics to the noise level and reports the noise as the residual.
 TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
