@@ -378,19 +378,18 @@ int run(const IdentifyCliOptions& o) {
       return interrupted_exit_code();
     }
     // WindowOptions::whole_if_shorter: the default window was longer than the record.
-    if (o.windows.whole_if_shorter && pass.size() == 1) {
+    if (pass.size() == 1 && pass.front().window.whole) {
       const RecordWindow& w = pass.front().window;
       // n samples cover n steps: the last sample's step counts.
       const double periods = (w.t_end - w.t_start) * w.f +
                              (w.samples_per_period > 0 ? 1.0 / w.samples_per_period : 0.0);
-      if (periods < o.windows.window_periods * (1.0 - 1e-3)) {  // analyze_windows' tolerance
-        window_periods = 0.0;
-        if (!o.quiet)
-          std::cerr << "oscidrum: identify: the record spans about " << fmt(periods, 3)
-                    << " periods, fewer than the default window of "
-                    << fmt(o.windows.window_periods, 3)
-                    << ": identified whole, as one window (as --window 0)\n";
-      }
+      window_periods = 0.0;
+      if (!o.quiet)
+        std::cerr << "oscidrum: identify: the record spans "
+                  << (std::isfinite(periods) ? "about " + fmt(periods, 3) + " periods"
+                                             : std::string("less"))
+                  << ", fewer than the default window of " << fmt(o.windows.window_periods, 3)
+                  << ": identified whole, as one window (as --window 0)\n";
     }
   }
   std::size_t valid = 0, model_sampled = 0;

@@ -112,9 +112,12 @@ struct RecordWindow {
   /// two periods); RecordGates::max_change bounds it.
   double change = 0.0;
   double samples_per_period = 0.0;  ///< [-]
-  bool valid = false;               ///< passed every gate
-  std::string reason;               ///< why not valid (empty when valid); several joined by "; "
-  RecordMetrics metrics;            ///< NaN when not valid (residuals kept when the fit was made)
+  /// The whole record as the one window, the window asked being longer than the record
+  /// (WindowOptions::whole_if_shorter).
+  bool whole = false;
+  bool valid = false;     ///< passed every gate
+  std::string reason;     ///< why not valid (empty when valid); several joined by "; "
+  RecordMetrics metrics;  ///< NaN when not valid (residuals kept when the fit was made)
 };
 
 /// A record cut into windows, each with its own f, its metrics and its quality gates. `position`

@@ -29,6 +29,7 @@ py::dict window_dict(const RecordWindow& w) {
   d["position"] = w.position;
   d["samples"] = w.count;
   d["samples_per_period"] = w.samples_per_period;
+  d["whole"] = w.whole;
   d["f"] = w.f;
   d["drift"] = w.drift;
   d["change"] = w.change;

@@ -960,7 +960,9 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     WindowOptions whole = o;
     whole.window_periods = whole.hop_periods = 0.0;
     whole.whole_if_shorter = false;
-    return analyze_windows(t, ddx, ddz, position, whole);
+    std::vector<RecordWindow> one = analyze_windows(t, ddx, ddz, position, whole);
+    for (RecordWindow& w : one) w.whole = true;
+    return one;
   }
   // More windows than the record has samples is no analysis (a window or hop of a tiny part of
   // a period): refused with the smallest hop that makes sense.

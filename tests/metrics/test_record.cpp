@@ -585,8 +585,11 @@ TEST(Record, ARecordOfNPeriodsHoldsAWindowOfNPeriods) {
     EXPECT_EQ(a[0].count, ts.size());
     EXPECT_EQ(a[0].f, b[0].f);
     EXPECT_EQ(a[0].metrics.area, b[0].metrics.area);
+    EXPECT_TRUE(a[0].whole);   // the fallback, said in the window
+    EXPECT_FALSE(b[0].whole);  // asked for
     // The record long enough: windows as without the flag.
     EXPECT_EQ(analyze_windows(t, x, z, {}, fallback)[0].count, ws[0].count);
+    EXPECT_FALSE(analyze_windows(t, x, z, {}, fallback)[0].whole);
     const auto [tp, xp, zp] = record(per_period / 2);
     EXPECT_THROW(analyze_windows(tp, xp, zp, {}, fallback), Error);
   }
