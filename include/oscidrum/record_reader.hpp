@@ -59,7 +59,9 @@ struct RecordColumns {
 /// Read a record from `in` (`name` names it in messages: the file, "<stdin>"): a UTF-8
 /// byte-order mark is dropped; comment lines (# % //) are skipped; the delimiter is the first of
 /// ; tab , on the first line, else whitespace (with ';' a decimal comma); the first line is a
-/// header unless all its cells are numbers. Streamed: memory holds the columns, not the text.
+/// header unless all its cells are numbers. Streamed: memory holds the columns, not the text
+/// (but for UTF-16 text, recognised by its byte-order mark and converted whole). A file that is
+/// not text (gzip, zip or xlsx, xls, HDF5, NUL bytes) is refused with what it is.
 /// Throws oscidrum::Error naming the record, line and column, or the option to give.
 RecordColumns read_record(std::istream& in, const std::string& name, const RecordReading& o);
 

@@ -354,10 +354,6 @@ char acceleration_axis(const std::string& k) {
   return 0;
 }
 
-}  // namespace
-
-namespace {
-
 // UTF-16 text (a spreadsheet's "Unicode text" export) with its byte-order mark, as UTF-8.
 std::string utf8_of_utf16(const std::string& raw, bool little_endian) {
   std::string out;
