@@ -372,6 +372,7 @@ std::string utf8_of_utf16(const std::string& raw, bool little_endian) {
         i += 2;
       }
     }
+    if (c >= 0xD800 && c < 0xE000) c = 0xFFFD;  // a lone surrogate: the replacement character
     if (c < 0x80) {
       out += static_cast<char>(c);
     } else if (c < 0x800) {

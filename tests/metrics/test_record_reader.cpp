@@ -429,6 +429,14 @@ TEST(RecordReader, UTF16TextIsReadAndWhatIsNotTextIsNamed) {
     EXPECT_EQ(r.notes.front(), std::string("read as UTF-16 text (") + (little ? "little" : "big") +
                                    "-endian, by its byte-order mark)");
   }
+  // A lone surrogate is the replacement character U+FFFD (valid UTF-8 in the header): the
+  // column "az" followed by an unpaired high surrogate.
+  const RecordColumns lone =
+      read_text(std::string("\xFF\xFEt\0,\0a\0x\0,\0a\0z\0\x00\xD8\n\0"
+                            "0\0,\0\x31\0,\0\x32\0\n\0",
+                            30));
+  EXPECT_EQ(lone.z_column, "az\xEF\xBF\xBD");
+  EXPECT_DOUBLE_EQ(lone.ddz_M[0], 2.0);
   // Tab separated UTF-8 with decimal commas, too.
   const RecordColumns tabbed = read_text("t\tax\taz\n0\t1,5\t2\n0,001\t-1\t0,5\n");
   EXPECT_DOUBLE_EQ(tabbed.t[1], 0.001);
