@@ -941,11 +941,18 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       for (std::vector<double>* v : {&out.t, &out.ddx_M, &out.ddz_M}) v->resize(kept);
       for (std::vector<double>* v : others)
         if (!v->empty()) v->resize(kept);
+      // Many (a tenth of the samples or more): a clock coarser than the sampling (a logger's
+      // time stamps rounded to the millisecond at 2 kHz), not an integrator's switches.
+      const bool coarse_clock = 10 * repeated >= kept;
       out.notes.push_back(
           std::to_string(repeated) + " row" + (repeated > 1 ? "s repeat" : " repeats") +
           " the time of the row before (the first at t = " + format_factor(first_repeated) +
-          " s; an event-driven integrator writes both sides of a switch so): each such run is "
-          "one sample, its accelerations averaged (the middle of the jump)");
+          (coarse_clock
+               ? " s; so many that the time stamps are likely coarser than the sampling, a "
+                 "clock rounded): each such run is one sample, its accelerations averaged; if "
+                 "the rows are equally spaced, --rate HZ gives each row its own time"
+               : " s; an event-driven integrator writes both sides of a switch so): each such "
+                 "run is one sample, its accelerations averaged (the middle of the jump)"));
     }
   }
   if (skipped > 0)

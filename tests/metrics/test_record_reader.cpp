@@ -538,6 +538,22 @@ TEST(RecordReader, RowsAtTheTimeOfTheRowBeforeAreOneSample) {
     return n.find("3 rows repeat the time of the row before (the first at t = 0.001 s") !=
            std::string::npos;
   })) << ::testing::PrintToString(r.notes);
+  // One repeat in a hundred rows: an integrator's switch; every other row a repeat: a clock
+  // coarser than the sampling (2 kHz stamped to the millisecond), and the note names --rate.
+  const auto note_of = [](const std::string& text) {
+    std::string all;
+    for (const std::string& n : read_text(text).notes) all += n;
+    return all;
+  };
+  std::string one = "t,ax,az\n", pairs = one;
+  for (int i = 0; i < 100; ++i) {
+    one += std::to_string(i == 50 ? 49 : i) + "e-3,1,2\n";
+    pairs += std::to_string(i / 2) + "e-3,1,2\n";
+  }
+  EXPECT_NE(note_of(one).find("an event-driven integrator"), std::string::npos);
+  EXPECT_EQ(note_of(one).find("--rate"), std::string::npos);
+  EXPECT_NE(note_of(pairs).find("coarser than the sampling"), std::string::npos);
+  EXPECT_NE(note_of(pairs).find("--rate HZ"), std::string::npos);
   RecordReading o;
   o.pos_col = "x";
   EXPECT_EQ(read_text("t,ax,az,x\n0,1,2,5\n0.001,1,2,6\n0.001,3,-2,7\n", o).position,
