@@ -149,8 +149,12 @@ int run(AnalyzeOptions o) {
     const auto part = [&](const std::vector<double>& v) {
       return std::span<const double>(v).subspan(w.first, w.count);
     };
-    const RecordMetrics m =
-        analyze_record(part(rec.t), part(rec.ddx_M), part(rec.ddz_M), w.f, more);
+    RecordMetrics m;
+    try {
+      m = analyze_record(part(rec.t), part(rec.ddx_M), part(rec.ddz_M), w.f, more);
+    } catch (const oscidrum::Error&) {
+      break;  // the window's refined f resolving a harmonic fewer: nothing to say
+    }
     const double after = std::max(m.residual_x, m.residual_z);
     if (after < before / 3.0)
       std::cerr << "oscidrum: analyze: the fit's residuals (x_M'' " << fmt(w.metrics.residual_x, 3)
