@@ -65,4 +65,15 @@ struct RecordColumns {
 /// Throws oscidrum::Error naming the record, line and column, or the option to give.
 RecordColumns read_record(std::istream& in, const std::string& name, const RecordReading& o);
 
+/// How far from +1 g the mean of a vertical acceleration may lie and still be gravity read along
+/// an upward axis (gravity_points_up) [-, a fraction of kStandardGravity].
+inline constexpr double kGravityBand = 0.15;
+
+/// Whether a vertical acceleration read as positive down [m/s^2] keeps gravity along an axis that
+/// points up: an accelerometer reads the specific force, at rest +1 g along an upward axis and
+/// -1 g along a downward one, so a mean within kGravityBand g of +1 g says the axis points up
+/// (z_positive "auto" then turns the column). `mean` receives the column's mean [m/s^2] (NaN for
+/// an empty column, which never points up).
+bool gravity_points_up(const std::vector<double>& ddz_M, double* mean = nullptr);
+
 }  // namespace oscidrum

@@ -98,6 +98,7 @@ _CORE_NAMES = (
     "estimate_frequency",
     "fields",
     "find_field",
+    "gravity_points_up",
     "harmonics",
     "identify_record",
     "key_in_effect",

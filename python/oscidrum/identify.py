@@ -30,22 +30,21 @@ _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6)
             "MMd": (r"$M_{Md}$", "kN m", 1e-3)}
 
 
-#: Standard gravity [m/s^2] (an accelerometer's 1 g).
-_G0 = 9.80665
-
-
 def _z_down(z: np.ndarray, z_positive: str, where: str) -> np.ndarray:
     """ddz_M positive down: negated for 'up'; for 'auto' (the default), negated when its mean is
     about +1 g (within 0.15 g), which an accelerometer at rest reads along an axis pointing up,
     with a warning, as ``oscidrum identify --z-positive auto`` reads a file."""
-    from . import Error
+    from . import Error, gravity_points_up
     if z_positive not in ("auto", "down", "up"):
         raise Error(f"z_positive must be 'auto', 'down' or 'up'; got {z_positive!r}")
     if z_positive == "up":
         return -z
-    if z_positive == "auto" and z.size and abs(float(np.mean(z)) - _G0) < 0.15 * _G0:
+    if z_positive != "auto":
+        return z
+    up, mean = gravity_points_up(z)
+    if up:
         import warnings
-        warnings.warn(f"{where}: ddz_M's mean is {float(np.mean(z)):.6g} m/s^2, about +1 g, which an "
+        warnings.warn(f"{where}: ddz_M's mean is {mean:.6g} m/s^2, about +1 g, which an "
                       "accelerometer at rest reads along an axis pointing up: read as pointing up "
                       "(negated); give z_positive='down' to read it as it is", stacklevel=3)
         return -z

@@ -172,6 +172,17 @@ void bind_record(py::module_& m) {
       "direction "
       "the z column was read in). Raises "
       "oscidrum.Error naming the file, line and column.");
+  m.def(
+      "gravity_points_up",
+      [](const std::vector<double>& ddz_M) {
+        double mean = 0.0;
+        const bool up = gravity_points_up(ddz_M, &mean);
+        return py::make_tuple(up, mean);
+      },
+      py::arg("ddz_M"),
+      "Whether a vertical acceleration read as positive down [m/s^2] keeps gravity along an axis "
+      "pointing up (its mean within 0.15 g of +1 g, what an accelerometer at rest reads along an "
+      "upward axis), as read_record's z_positive='auto' decides: (points_up, mean [m/s^2]).");
 }
 
 }  // namespace oscidrum::python

@@ -744,12 +744,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // until the column's mean says otherwise (below).
   bool z_up = o.z_positive == "up" || (o.z_positive == "auto" && !z_from_y.empty());
   double kz = column_scale(cz, false) * (z_up ? -1.0 : 1.0);
-  // A note for each channel not read as the model writes it (its name, unit 1, same sign).
+  // A note for each channel not read as the model writes it (its name, unit 1, same sign); empty
+  // for one read as written.
   auto note = [&](const char* channel, int c, double k, const char* si) {
     const std::string& named = headings[static_cast<std::size_t>(c)].name;
-    if (k == 1.0 && (named == "t" || named == "ddx_M" || named == "ddz_M")) return;
-    out.notes.push_back(std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] +
-                        "' x " + format_factor(k) + " -> " + si);
+    if (k == 1.0 && (named == "t" || named == "ddx_M" || named == "ddz_M")) return std::string();
+    return std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] + "' x " +
+           format_factor(k) + " -> " + si;
   };
   out.t_column =
       by_rate ? std::string("(row number / rate)") : header[static_cast<std::size_t>(ct)];
@@ -758,8 +759,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   out.t_factor = kt;
   out.x_factor = kx;
   out.z_factor = kz;
-  note("x_M''", cx, kx, "m/s^2 (positive forward)");
-  note("z_M''", cz, kz, "m/s^2 (positive down)");
+  if (std::string x_note = note("x_M''", cx, kx, "m/s^2 (positive forward)"); !x_note.empty())
+    out.notes.push_back(std::move(x_note));
+  // The vertical channel's note keeps its place here and gets its text when gravity has decided
+  // the sign (below).
+  std::size_t z_note_at = out.notes.size();
+  out.notes.emplace_back();
   if (!z_from_y.empty())
     out.notes.push_back("z_M'': no z column: the y column '" + z_from_y +
                         "' is read as the vertical (a two-dimensional record's x and y), " +
@@ -905,9 +910,11 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                             " samples/s, too few for an excitation of 10 Hz or more); give "
                             "--t-units s to read it in s");
       } else {
-        note("t", ct, kt, "s");
+        if (std::string t_note = note("t", ct, kt, "s"); !t_note.empty())
+          out.notes.push_back(std::move(t_note));
       }
     }
+    z_note_at += out.notes.size();  // the time column's notes now stand before it
     out.notes.insert(out.notes.end(), later.begin(), later.end());
   }
   // Rows with the time of the row before: an event-driven integrator writes both sides of a
@@ -962,49 +969,39 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         "): the gap gate (--max-gap) judges the windows they fall in");
   // An accelerometer reads the specific force f = a - g (g pointing down): at rest +1 g along an
   // axis pointing up, -1 g along one pointing down. A record that keeps it (the harmonic fit takes
-  // the mean out) therefore tells which way its z axis points: read as positive down, a mean near
-  // +1 g is g - z_M'', the axis points up (or the logger writes -f, as some phone APIs do: the
-  // same column). With z_positive "auto" (the default) the direction read is turned round then
-  // (down to up, or a two-dimensional record's y from up to down), with a note; an explicit
-  // direction is kept, with a note when the mean contradicts it. A record without gravity, or
-  // with the offset removed, says nothing: it is read as auto's first guess and the
-  // identification's poor-fit diagnosis names an axis the other way round.
-  {
-    double mean = 0.0;
-    for (double v : out.ddz_M) mean += v;
-    mean /= static_cast<double>(out.ddz_M.size());
-    if (std::abs(mean - kStandardGravity) < 0.15 * kStandardGravity) {
-      const std::string why =
-          "its mean read as pointing " + std::string(z_up ? "up" : "down") + " is " +
-          format_factor(mean) +
-          " m/s^2 (z down), about +1 g, where an accelerometer at rest reads -1 g along a "
-          "downward axis and +1 g along an upward one";
-      if (o.z_positive == "auto") {
-        z_up = !z_up;
-        for (double& v : out.ddz_M) v = -v;
-        kz = -kz;
-        out.z_factor = kz;
-        const std::string how = "z_M'': column '" + out.z_column + "' x " + format_factor(kz) +
-                                " -> m/s^2 (positive down)";
-        const auto was = std::find_if(out.notes.begin(), out.notes.end(), [](const auto& n) {
-          return n.rfind("z_M'': column '", 0) == 0;
-        });
-        if (was != out.notes.end())
-          *was = how;
-        else
-          out.notes.push_back(how);
-        out.notes.push_back("z_M'': read as pointing " + std::string(z_up ? "up" : "down") +
-                            (z_up ? " (negated)" : " (as it is)") + ": " + why +
-                            " (give --z-positive " + (z_up ? "down" : "up") +
-                            " to read it the other way)");
-      } else {
-        out.notes.push_back("z_M'': " + why + ", so this column's axis likely points " +
-                            (o.z_positive == "up"
-                                 ? std::string("down (give --z-positive down or auto)")
-                                 : std::string("up (give --z-positive up or auto)")));
-      }
+  // the mean out) therefore tells which way its z axis points (gravity_points_up): read as
+  // positive down, a mean near +1 g is g - z_M'', the axis points up (or the logger writes -f, as
+  // some phone APIs do: the same column). With z_positive "auto" (the default) the direction read
+  // is turned round then (down to up, or a two-dimensional record's y from up to down), with a
+  // note; an explicit direction is kept, with a note when the mean contradicts it. A record
+  // without gravity, or with the offset removed, says nothing: it is read as auto's first guess
+  // and the identification's poor-fit diagnosis names an axis the other way round.
+  std::string gravity_note;
+  if (double mean = 0.0; gravity_points_up(out.ddz_M, &mean)) {
+    const std::string why =
+        "its mean read as pointing " + std::string(z_up ? "up" : "down") + " is " +
+        format_factor(mean) +
+        " m/s^2 (z down), about +1 g, where an accelerometer at rest reads -1 g "
+        "along a downward axis and +1 g along an upward one";
+    if (o.z_positive == "auto") {
+      z_up = !z_up;
+      for (double& v : out.ddz_M) v = -v;
+      kz = -kz;
+      out.z_factor = kz;
+      gravity_note = "z_M'': read as pointing " + std::string(z_up ? "up" : "down") +
+                     (z_up ? " (negated)" : " (as it is)") + ": " + why + " (give --z-positive " +
+                     (z_up ? "down" : "up") + " to read it the other way)";
+    } else {
+      gravity_note = "z_M'': " + why + ", so this column's axis likely points " +
+                     (o.z_positive == "up" ? std::string("down (give --z-positive down or auto)")
+                                           : std::string("up (give --z-positive up or auto)"));
     }
   }
+  if (std::string z_note = note("z_M''", cz, kz, "m/s^2 (positive down)"); !z_note.empty())
+    out.notes[z_note_at] = std::move(z_note);
+  else
+    out.notes.erase(out.notes.begin() + static_cast<std::ptrdiff_t>(z_note_at));
+  if (!gravity_note.empty()) out.notes.push_back(std::move(gravity_note));
   out.z_positive = z_up ? "up" : "down";
   // A channel that never changes (a dead or disconnected sensor, or a drum that does not move
   // that way, as a directed vertical exciter's x_M''): its harmonics are zero and what compares
@@ -1033,6 +1030,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         std::hypot(out.east[i] - out.east[i - 1], out.north[i] - out.north[i - 1]);
   }
   return out;
+}
+
+bool gravity_points_up(const std::vector<double>& ddz_M, double* mean) {
+  double sum = 0.0;
+  for (double v : ddz_M) sum += v;
+  const double m = ddz_M.empty() ? std::nan("") : sum / static_cast<double>(ddz_M.size());
+  if (mean) *mean = m;
+  return std::abs(m - kStandardGravity) < kGravityBand * kStandardGravity;
 }
 
 }  // namespace oscidrum

@@ -275,7 +275,7 @@ TEST(CliAnalyze, LoggerConventionsAreReadBackToTheModels) {
   ASSERT_EQ(a.code, 0) << a.err;
   ASSERT_EQ(b.code, 0) << b.err;
   EXPECT_NE(b.err.find("record: t: column 'Time [ms]' x 0.001 -> s"), std::string::npos) << b.err;
-  EXPECT_NE(b.err.find("record: x_M'': column 'Acc X [g]' x -9.80665"), std::string::npos);
+  EXPECT_NE(b.err.find("record: x_M'': column 'Acc X [g]' x -9.80665"), std::string::npos) << b.err;
   const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
   // The JSON says how the record was read: columns, factors, axis conventions.
   const auto& reading = jb["reading"];

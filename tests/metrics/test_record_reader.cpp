@@ -401,6 +401,38 @@ TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
       read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1.05\n0.001,-0.1,-0.95\n", up);
   EXPECT_NE(note_of(wrong, "about +1 g").find("give --z-positive down or auto"), std::string::npos);
   EXPECT_DOUBLE_EQ(wrong.ddz_M[0], 1.05 * kStandardGravity);  // kept as given
+
+  // The notes in their order: t, x_M'', then z_M'' (its factor after gravity turned it), then
+  // gravity's reason.
+  ASSERT_EQ(automatic.notes.size(), 3u);
+  EXPECT_EQ(automatic.notes[0].rfind("x_M'': column 'acc_x [g]'", 0), 0u);
+  EXPECT_EQ(automatic.notes[1].rfind("z_M'': column 'acc_z [g]' x -9.80665", 0), 0u);
+  EXPECT_EQ(automatic.notes[2].rfind("z_M'': read as pointing up", 0), 0u);
+  const RecordColumns timed = read_text("t [ms],acc_x [g],acc_z [g]\n0,0.1,1.05\n1,-0.1,0.95\n");
+  ASSERT_EQ(timed.notes.size(), 4u);
+  EXPECT_EQ(timed.notes[0].rfind("t: column 't [ms]' x 0.001", 0), 0u);
+  EXPECT_EQ(timed.notes[1].rfind("x_M'': column 'acc_x [g]'", 0), 0u);
+  EXPECT_EQ(timed.notes[2].rfind("z_M'': column 'acc_z [g]' x -9.80665", 0), 0u);
+  EXPECT_EQ(timed.notes[3].rfind("z_M'': read as pointing up", 0), 0u);
+  // A z column named and written as the model's, read as it is: no note for it.
+  const RecordColumns model = read_text("t,ddx_M,ddz_M\n0,1,-2\n0.001,-1,2\n");
+  EXPECT_TRUE(model.notes.empty()) << model.notes.front();
+}
+
+// The rule read_record's z_positive "auto" and Python's identify() share: a mean within 0.15 g
+// of +1 g, and nothing else, is gravity along an upward axis.
+TEST(RecordReader, GravityPointsUpWithinItsBandOfOneG) {
+  double mean = 0.0;
+  EXPECT_TRUE(gravity_points_up({kStandardGravity + 1.0, kStandardGravity - 1.0}, &mean));
+  EXPECT_DOUBLE_EQ(mean, kStandardGravity);
+  const double edge = kGravityBand * kStandardGravity;
+  EXPECT_TRUE(gravity_points_up({kStandardGravity + 0.99 * edge}));
+  EXPECT_TRUE(gravity_points_up({kStandardGravity - 0.99 * edge}));
+  EXPECT_FALSE(gravity_points_up({kStandardGravity + 1.01 * edge}));
+  EXPECT_FALSE(gravity_points_up({kStandardGravity - 1.01 * edge}));
+  EXPECT_FALSE(gravity_points_up({-kStandardGravity}));  // an axis pointing down
+  EXPECT_FALSE(gravity_points_up({}, &mean));
+  EXPECT_TRUE(std::isnan(mean));
 }
 
 // UTF-16 text with its byte-order mark (a spreadsheet's "Unicode text" export: tab separated,
