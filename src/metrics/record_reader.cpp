@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -308,13 +309,27 @@ bool is_time_key(const std::string& k) {
 // acc_x, accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
 // otherwise. (y: the lateral axis of a three-axis logger, or the vertical of a two-dimensional
 // record without z.)
+// The words that name the drum in a column's key (ax_drum, drum acc. x, Beschl. Bandage X,
+// Trommel): what they qualify is read without them.
+constexpr const char* kDrumWords[] = {"drum", "bandage", "trommel"};
+
+bool names_the_drum(const std::string& k) {
+  for (const char* w : kDrumWords)
+    if (k.find(w) != std::string::npos) return true;
+  return false;
+}
+
 char acceleration_axis(const std::string& k) {
-  // The model's names and the notations of a second derivative: x double dot (xddot, xdd),
-  // x prime prime (xpp), of x or of x_M (xm...).
+  for (const char* w : kDrumWords)
+    if (const std::size_t at = k.find(w); at != std::string::npos && k.size() > std::strlen(w))
+      return acceleration_axis(k.substr(0, at) + k.substr(at + std::strlen(w)));
+  // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
+  // ddot{x}), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm...).
   for (const char axis : {'x', 'y', 'z'}) {
     const std::string a(1, axis);
-    for (const std::string& name : {"dd" + a + "m", "dd" + a, a + "ddot", a + "dd", a + "pp",
-                                    a + "mddot", a + "mdd", a + "mpp"})
+    for (const std::string& name :
+         {"dd" + a + "m", "dd" + a, a + "ddot", a + "dd", a + "pp", a + "mddot", a + "mdd",
+          a + "mpp", "ddot" + a, "ddot" + a + "m", "d2" + a, "d2" + a + "m"})
       if (k == name) return axis;
   }
   // acc_hor / acc_vert, a_h / a_v, horizontal / vertical, hor / vert; the horizontal one named
@@ -333,8 +348,8 @@ char acceleration_axis(const std::string& k) {
   for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
     const std::string st = stem;
     for (char axis : {'x', 'y', 'z'}) {
-      // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number)
-      if (k == st + axis || k == axis + st) return axis;
+      // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number), acc_x_M (the drum centre M's)
+      if (k == st + axis || k == axis + st || k == st + axis + 'm') return axis;
       if (k.size() == st.size() + 2 && k.rfind(st + axis, 0) == 0 &&
           std::isdigit(static_cast<unsigned char>(k.back())))
         return axis;
@@ -652,6 +667,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (hits.empty() && bare)
       for (std::size_t c = 0; c < headings.size(); ++c)
         if (headings[c].key == bare) hits.push_back(static_cast<int>(c));
+    // Several: the one that names the drum (ax_drum beside ax_frame, Bandage beside Rahmen).
+    if (hits.size() > 1 && std::count_if(hits.begin(), hits.end(), [&](int c) {
+                             return names_the_drum(headings[static_cast<std::size_t>(c)].key);
+                           }) == 1)
+      return *std::find_if(hits.begin(), hits.end(), [&](int c) {
+        return names_the_drum(headings[static_cast<std::size_t>(c)].key);
+      });
     if (hits.size() == 1) return hits.front();
     if (!has_header)
       throw Error(name + ": the record has no header line: give the " + std::string(what) +

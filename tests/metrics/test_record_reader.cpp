@@ -170,7 +170,8 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
        {"t,x_M,x_M'',z_M'',z_M", "t,x'',z''", "t,x_dd,z_dd", "t,xpp,zpp", "t,xM_acc,zM_acc",
         "time,acc_hor,acc_vert", "time,hor,vert", "timestamp,acc_long,acc_vert", "t,a_long,a_v",
         "t,longitudinal,vertical", "timestamp,acc_h,acc_v", "t,ax_M,az_M",
-        "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]"}) {
+        "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]", "t,ddot{x}_M,ddot{z}_M", "t,ddot_x,ddot_z",
+        "t,d2x,d2z", "t,d2x_M,d2z_M", "t,acc_x_M,acc_z_M", "t,accel_x_M,accel_z_M"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const std::string rows =
@@ -181,6 +182,28 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
     EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
     EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
   }
+}
+
+// A column named for the drum (ax_drum, drum acc. x, Bandage, Trommel) is read as its
+// acceleration, and chosen over one that does not name it (a frame's beside the drum's).
+TEST(RecordReader, ColumnsNamedForTheDrum) {
+  for (const std::string header :
+       {"t,ax_drum,az_drum", "time [s],drum acc. x [m/s2],drum acc. z [m/s2]",
+        "Zeit,Beschl. Bandage X,Beschl. Bandage Z", "t,Trommel a_x,Trommel a_z",
+        "t,acc_x,acc_z,acc_x_drum,acc_z_drum", "t,drum_ax,drum_az,ax,az"}) {
+    SCOPED_TRACE(header);
+    const bool four = std::count(header.begin(), header.end(), ',') == 4;
+    const bool drum_first = header.rfind("t,drum_", 0) == 0;
+    const std::string rows = !four        ? "0,0.5,-0.25\n0.001,1.5,0.75\n"
+                             : drum_first ? "0,0.5,-0.25,9,9\n0.001,1.5,0.75,9,9\n"
+                                          : "0,9,9,0.5,-0.25\n0.001,9,9,1.5,0.75\n";
+    const RecordColumns r = read_text(header + "\n" + rows);
+    ASSERT_EQ(r.t.size(), 2u);
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75);
+  }
+  // Two drums' columns: still a choice for the user.
+  EXPECT_THROW(read_text("t,ax_drum1,ax_drum2,az\n0,1,2,3\n"), Error);
 }
 
 // A logger's clock times in the time column: t in s from the first row's, across midnight, a
