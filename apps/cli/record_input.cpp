@@ -71,8 +71,9 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                  "which way the record's z axis points: auto (default: down, the model's, or up "
                  "for a two-dimensional record's y, unless the column's mean says otherwise: an "
                  "accelerometer at rest reads +1 g along an axis pointing up, -1 g along one "
-                 "pointing down; with a note), down, or up (most accelerometer mounts; z_M'' is "
-                 "negated)")
+                 "pointing down; with a note; without gravity in the column identify fits z_M'' "
+                 "negated where only that fits, with a warning), down, or up (most accelerometer "
+                 "mounts; z_M'' is negated)")
       ->check(CLI::IsMember({"auto", "down", "up"}));
 }
 
@@ -202,6 +203,7 @@ nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& r
   return {{"delimiter", rec.delimiter},
           {"x_positive", o.x_positive},
           {"z_positive", rec.z_positive},
+          {"z_open", rec.z_open},
           {"t", channel(rec.t_column, rec.t_factor, "s")},
           {"ddx_M", channel(rec.x_column, rec.x_factor, "m/s^2")},
           {"ddz_M", channel(rec.z_column, rec.z_factor, "m/s^2")}};

@@ -145,6 +145,12 @@ struct IdentifyOptions {
   /// negated and G on the other soil scale, and warn when one of them fits: the record's axis
   /// conventions or soil scale are then likely wrong (a few more fits, only for a poor fit).
   bool diagnose = true;
+  /// The record's vertical axis is open: nothing said which way it points (z_positive "auto" on
+  /// a column without gravity's mean, RecordColumns::z_open). A fit that is poor as read
+  /// (max_reduced_chi2) but good with z_M'' negated is then taken so, with a warning
+  /// (Identification::z_negated): the axis points the other way. False: the record is fitted
+  /// as read, and a poor fit's diagnosis only names the axis.
+  bool z_open = false;
   /// How each window's harmonics are measured (identify_pass); measure.covariance is raised to
   /// `harmonics`.
   MeasureOptions measure;
@@ -183,6 +189,10 @@ struct Identification {
   /// by its harmonics themselves: a window sampled in step with the excitation whose raw samples
   /// alias (MeasuredResponse::alias_t), where that fits better (docs/identify.md).
   bool model_sampled = false;
+  /// IdentifyOptions::z_open: the window was fitted with its z_M'' negated (its axis taken to
+  /// point the other way than read), which fits well where the record as read did not.
+  /// `measured` is the window so negated; fit_curves gives the model in the record as read.
+  bool z_negated = false;
   Case fitted;                ///< the case at the estimate (f and M0 of the record)
   Metrics simulated;          ///< its metrics
   MeasuredResponse measured;  ///< what the model was fitted to
@@ -207,8 +217,9 @@ Identification identify(const Case& base, const MeasuredResponse& data,
 
 /// The best fit in the record's time, for plots: the model's accelerations at record times t
 /// [s], the steady state of id.fitted shifted by id.time_shift, plus the trend of the window
-/// (id.measured: offsets and slow drift; none from analyze's metrics). Throws oscidrum::Error
-/// when the fitted case does not reach its steady state.
+/// (id.measured: offsets and slow drift; none from analyze's metrics), in the record's axes as
+/// it was read (z_M'' negated back for a window fitted negated, Identification::z_negated). Throws
+/// oscidrum::Error when the fitted case does not reach its steady state.
 struct FitCurves {
   std::vector<double> ddx_M, ddz_M;  ///< [m/s^2]
 };

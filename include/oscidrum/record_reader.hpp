@@ -54,6 +54,10 @@ struct RecordColumns {
   std::string t_column, x_column, z_column;
   double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
   std::string z_positive = "down";  ///< which way the z column was read to point: down or up
+  /// z_positive "auto" found no gravity in the column: its direction is auto's first guess
+  /// (down; a two-dimensional record's y: up), which identify may turn when the fit says so
+  /// (IdentifyOptions::z_open). False when the direction was given or gravity decided it.
+  bool z_open = false;
 };
 
 /// Read a record from `in` (`name` names it in messages: the file, "<stdin>"): a UTF-8

@@ -18,7 +18,7 @@ import json
 import math
 import sys
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -30,25 +30,28 @@ _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6)
             "MMd": (r"$M_{Md}$", "kN m", 1e-3)}
 
 
-def _z_down(z: np.ndarray, z_positive: str, where: str) -> np.ndarray:
-    """ddz_M positive down: negated for 'up'; for 'auto' (the default), negated when its mean is
-    about +1 g (within 0.15 g), which an accelerometer at rest reads along an axis pointing up,
-    with a warning, as ``oscidrum identify --z-positive auto`` reads a file."""
+def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, bool]:
+    """ddz_M positive down, and whether its direction is open: negated for 'up'; for 'auto' (the
+    default), negated when its mean is about +1 g (within 0.15 g), which an accelerometer at rest
+    reads along an axis pointing up, with a warning, as ``oscidrum identify --z-positive auto``
+    reads a file; open when 'auto' finds no gravity either way (identify then fits ddz_M negated
+    where that fits and as given does not)."""
     from . import Error, gravity_points_up
     if z_positive not in ("auto", "down", "up"):
         raise Error(f"z_positive must be 'auto', 'down' or 'up'; got {z_positive!r}")
     if z_positive == "up":
-        return -z
+        return -z, False
     if z_positive != "auto":
-        return z
+        return z, False
     up, mean = gravity_points_up(z)
     if up:
         import warnings
         warnings.warn(f"{where}: ddz_M's mean is {mean:.6g} m/s^2, about +1 g, which an "
                       "accelerometer at rest reads along an axis pointing up: read as pointing up "
                       "(negated); give z_positive='down' to read it as it is", stacklevel=3)
-        return -z
-    return z
+        return -z, False
+    down, _ = gravity_points_up(-z)
+    return z, not down
 
 
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
@@ -60,8 +63,10 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     A record whose axes point the other way gives ``x_positive='backward'`` or
     ``z_positive='up'`` (most accelerometer mounts); the channel is negated. ``z_positive='auto'``
     (the default) is 'down' unless ddz_M's mean is about +1 g (gravity along an axis pointing
-    up: then 'up', with a warning), as the CLI reads a file. A poor fit that a
-    negated axis or the other soil scale would fix says so in ``warnings``.
+    up: then 'up', with a warning), as the CLI reads a file; without gravity in ddz_M, a window
+    that fits poorly as given and well with ddz_M negated is fitted negated (its ``z_negated``
+    true, with a warning). A poor fit that a negated axis or the other soil scale would fix
+    says so in ``warnings``.
 
     ``case`` (an :class:`oscidrum.Case`, default the paper's roller) gives everything not
     estimated. Options as :func:`oscidrum.identify_record`: f (0: estimated), window (periods,
@@ -76,10 +81,10 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
     if x_positive == "backward":
         arrays[1] = -arrays[1]
-    arrays[2] = _z_down(arrays[2], z_positive, "identify")
+    arrays[2], z_open = _z_down(arrays[2], z_positive, "identify")
     pos = None if position is None else np.asarray(position, dtype=float)
     return identify_record(case if case is not None else Case(), *arrays, position=pos,
-                           **options)
+                           z_open=z_open, **options)
 
 
 def identify_frame(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
@@ -132,7 +137,7 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
         refs.append({"name": str(ref.get("name", f"reference {k}")), "soil": soil,
                      "t": np.asarray(ref["t"], dtype=float),
                      "ddx_M": -x if x_positive == "backward" else x,
-                     "ddz_M": _z_down(z, z_positive, f"calibrate: reference {k}")})
+                     "ddz_M": _z_down(z, z_positive, f"calibrate: reference {k}")[0]})
     return calibrate_records(base, refs, list(parameters), **options)
 
 

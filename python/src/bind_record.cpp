@@ -152,6 +152,7 @@ void bind_record(py::module_& m) {
                                 py::arg("ddz_M") = r.z_factor);
         d["delimiter"] = r.delimiter;
         d["z_positive"] = r.z_positive;
+        d["z_open"] = r.z_open;
         return d;
       },
       py::arg("path"), py::arg("t_col") = "", py::arg("x_col") = "", py::arg("z_col") = "",
@@ -168,9 +169,10 @@ void bind_record(py::module_& m) {
       "'up'). Returns a dict: t [s], ddx_M, ddz_M [m/s^2] in "
       "the model's conventions (x forward, z down), position [m], lat, lon [deg], east, north "
       "[m] and alpha [rad] when read, notes (how each column was read, what was skipped or "
-      "merged), columns (the header each came from), factors, delimiter and z_positive (the "
-      "direction "
-      "the z column was read in). Raises "
+      "merged), columns (the header each came from), factors, delimiter, z_positive (the "
+      "direction the z column was read in) and z_open (true: 'auto' found no gravity to decide "
+      "it; identify_record(z_open=True) then fits z_M'' negated where that fits and as read "
+      "does not). Raises "
       "oscidrum.Error naming the file, line and column.");
   m.def(
       "gravity_points_up",

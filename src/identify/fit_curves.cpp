@@ -51,6 +51,8 @@ FitCurves fit_curves(const Identification& id, std::span<const double> t) {
     for (std::size_t k = 0; k < d.trend_x.size(); ++k) out.ddx_M[i] += d.trend_x[k] * P[k];
     for (std::size_t k = 0; k < d.trend_z.size(); ++k) out.ddz_M[i] += d.trend_z[k] * P[k];
   }
+  if (id.z_negated)
+    for (double& z : out.ddz_M) z = -z;  // the model in the record's axes as read
   return out;
 }
 

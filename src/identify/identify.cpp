@@ -468,6 +468,31 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   id.rms_residual = misfit.rms;
   id.relative_residual = misfit.relative;
   // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
+  if (s2 > o.max_reduced_chi2 && o.z_open) {
+    // Nothing said which way the record's z axis points, and as read the model misses it: the
+    // window with z_M'' negated is fitted too and taken where it fits (an accelerometer mounted
+    // z up whose gravity the logger removed; most mounts point up).
+    IdentifyOptions negated = o;
+    negated.z_open = false;
+    negated.diagnose = false;
+    try {
+      Identification other = identify(base, flipped(data, false, true), negated, start);
+      if (other.reduced_chi2 <= o.max_reduced_chi2) {
+        other.z_negated = true;
+        other.simulations +=
+            plain.simulations() + (sampled ? sampled->simulations() : 0) + other_simulations;
+        other.warnings.insert(
+            other.warnings.begin(),
+            "z_M'' fitted negated: the record's z axis points up (reduced chi^2 " +
+                num(std::round(other.reduced_chi2 * 100) / 100) + " so, " + num(std::round(s2)) +
+                " as read pointing down; the column has no gravity to tell): give --z-positive up "
+                "to read it so, or --z-positive down to fit it as read (Python: z_positive)");
+        return other;
+      }
+    } catch (const Error&) {
+      // the window negated cannot be fitted: it stays as read
+    }
+  }
   if (s2 > o.max_reduced_chi2) {
     id.warnings.push_back(poor_fit_warning(id, o));
     if (o.diagnose)

@@ -999,7 +999,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // without gravity, or with the offset removed, says nothing: it is read as auto's first guess
   // and the identification's poor-fit diagnosis names an axis the other way round.
   std::string gravity_note;
-  if (double mean = 0.0; gravity_points_up(out.ddz_M, &mean)) {
+  double mean = 0.0;
+  const bool gravity_up = gravity_points_up(out.ddz_M, &mean);
+  // Gravity confirms the direction read when the column so read has a mean of -1 g (an axis
+  // pointing down at rest); without gravity either way, "auto" leaves the direction open.
+  const bool gravity_down = gravity_points_up({-mean});
+  out.z_open = o.z_positive == "auto" && !gravity_up && !gravity_down;
+  if (gravity_up) {
     const std::string why =
         "its mean read as pointing " + std::string(z_up ? "up" : "down") + " is " +
         format_factor(mean) +

@@ -186,6 +186,53 @@ TEST(CliIdentify, ALoggersFileInGWithZUpAndGravityIsReadAsPointingUp) {
   EXPECT_NE(as_down.out.find("the record's z axis points up"), std::string::npos) << as_down.out;
 }
 
+// The same logger's file with gravity removed (an AC-coupled channel): nothing in the column
+// tells its axis, so the fit does: the window is fitted with z_M'' negated, says so, and gives
+// the model's own record's G; given as down, it is fitted as read and diagnosed.
+TEST(CliIdentify, AZUpRecordWithoutGravityIsFittedNegatedAndSaysSo) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  std::ifstream in(dir / "r.csv");
+  std::ofstream out(dir / "logger.csv");
+  out << "Time [ms];Acc X [g];Acc Z [g]\n";
+  std::string line;
+  std::getline(in, line);  // the header
+  char row[160];
+  while (std::getline(in, line)) {
+    double t = 0, x = 0, z = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+    std::snprintf(row, sizeof row, "%.3f;%.9g;%.9g\n", t * 1e3, x / kStandardGravity,
+                  -z / kStandardGravity);
+    out << row;
+  }
+  out.close();
+  const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  const Outcome logger = run(
+      {"identify", dir / "logger.csv", "--no-profile", "--format", "json", "--csv", dir / "G.csv"});
+  ASSERT_EQ(model.code, 0) << model.err;
+  ASSERT_EQ(logger.code, 0) << logger.err;
+  const nlohmann::json a = nlohmann::json::parse(model.out)["windows"][0];
+  const nlohmann::json j = nlohmann::json::parse(logger.out);
+  const nlohmann::json& b = j["windows"][0];
+  EXPECT_EQ(j["reading"]["z_positive"], "down");
+  EXPECT_TRUE(j["reading"]["z_open"].get<bool>());
+  EXPECT_FALSE(a["z_negated"].get<bool>());  // the model's own record: as read
+  ASSERT_TRUE(b["valid"].get<bool>()) << logger.out;
+  EXPECT_TRUE(b["z_negated"].get<bool>());
+  EXPECT_NEAR(b["estimates"][0]["value"].get<double>() / a["estimates"][0]["value"].get<double>(),
+              1.0, 1e-4);
+  EXPECT_NE(b["warnings"][0].get<std::string>().find("z_M'' fitted negated"), std::string::npos)
+      << b["warnings"];
+  EXPECT_EQ(column(slurp(dir / "G.csv"), "z_negated"), std::vector<double>{1.0});
+  const Outcome as_down = run(
+      {"identify", dir / "logger.csv", "--no-profile", "--format", "json", "--z-positive", "down"});
+  ASSERT_EQ(as_down.code, 0) << as_down.err;
+  const nlohmann::json c = nlohmann::json::parse(as_down.out)["windows"][0];
+  EXPECT_FALSE(c["z_negated"].get<bool>());
+  EXPECT_GT(c["reduced_chi2"].get<double>(), 4.0);
+  EXPECT_NE(as_down.out.find("the record's z axis points up"), std::string::npos) << as_down.out;
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {

@@ -625,6 +625,51 @@ TEST(FitCurves, TheFitLiesOnTheSamplesWhateverTheClock) {
   }
 }
 
+// A record whose z axis points up and whose logger removed gravity (nothing tells the axis):
+// with the direction open (z_positive auto), the window is fitted with z_M'' negated where that
+// fits and as read does not, and says so; the fit's curves are in the record's axes as read. A
+// record read as the model writes it is fitted as read; with the direction given (z_open false)
+// a z-up record is fitted as read, poorly, and diagnosed.
+TEST(Identify, AnOpenZAxisIsFittedNegatedWhereThatFits) {
+  const double G = 17.3e6;
+  RecordSamples up = noisy_record(truth(G, false, 0.0), 0.6, 1000, 5);
+  for (double& z : up.ddz_M) z = -z;
+  IdentifyOptions open;
+  open.z_open = true;
+  const Identification id = identify_whole(base(false, 0.0), up, open);
+  ASSERT_TRUE(id.z_negated);
+  ASSERT_FALSE(id.estimates.empty());
+  expect_recovered(id.estimates.front(), G, 0.01);
+  EXPECT_LE(id.reduced_chi2, open.max_reduced_chi2);
+  ASSERT_FALSE(id.warnings.empty());
+  EXPECT_EQ(id.warnings.front().rfind("z_M'' fitted negated: the record's z axis points up", 0), 0u)
+      << id.warnings.front();
+  EXPECT_NE(id.warnings.front().find("--z-positive up"), std::string::npos);
+  // The fit's curves lie on the record as read (its z negated back).
+  const FitCurves fit = fit_curves(id, up.t);
+  double misfit = 0, peak = 0;
+  for (std::size_t i = 0; i < up.t.size(); ++i) {
+    misfit = std::max(misfit, std::abs(up.ddz_M[i] - fit.ddz_M[i]));
+    peak = std::max(peak, std::abs(up.ddz_M[i]));
+  }
+  EXPECT_LT(misfit, 0.25 * peak);  // the noise (5 % of the peak) and its tails, not a sign
+  // Given as down: fitted as read, poorly, and the diagnosis names the axis.
+  IdentifyOptions given;
+  given.profile = false;
+  const Identification as_read = identify_whole(base(false, 0.0), up, given);
+  EXPECT_FALSE(as_read.z_negated);
+  EXPECT_GT(as_read.reduced_chi2, given.max_reduced_chi2);
+  std::string all;
+  for (const std::string& w : as_read.warnings) all += w + "\n";
+  EXPECT_NE(all.find("far better with z_M'' negated"), std::string::npos) << all;
+  // A record written as the model writes it, its direction open: as read.
+  const RecordSamples down = noisy_record(truth(G, false, 0.0), 0.6, 1000, 5);
+  const Identification kept = identify_whole(base(false, 0.0), down, open);
+  EXPECT_FALSE(kept.z_negated);
+  EXPECT_NEAR(kept.estimates.front().value / G, 1.0, 0.01);
+  EXPECT_NEAR(kept.estimates.front().value / id.estimates.front().value, 1.0, 1e-9);
+}
+
 // ---- the gates of analyze_windows ------------------------------------------------------------
 
 std::vector<RecordWindow> windows(const RecordSamples& r, double f = 0.0) {

@@ -412,11 +412,15 @@ TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
   const RecordColumns plain = read_text("t,acc_x [g],acc_z [g]\n0,0.1,0.05\n0.001,-0.1,-0.05\n");
   EXPECT_EQ(note_of(plain, "about +1 g"), "");
   EXPECT_EQ(plain.z_positive, "down");
+  EXPECT_TRUE(plain.z_open);  // nothing decided it: identify may (IdentifyOptions::z_open)
+  EXPECT_FALSE(read_text("t,acc_x [g],acc_z [g]\n0,0.1,0.05\n0.001,-0.1,-0.05\n", down).z_open);
   EXPECT_DOUBLE_EQ(plain.ddz_M[0], 0.05 * kStandardGravity);
   // -1 g read as down: the downward axis an accelerometer at rest reads so; nothing changed.
   const RecordColumns downward =
       read_text("t,acc_x [g],acc_z [g]\n0,0.1,-1.05\n0.001,-0.1,-0.95\n");
   EXPECT_EQ(downward.z_positive, "down");
+  EXPECT_FALSE(downward.z_open);   // gravity confirms it
+  EXPECT_FALSE(automatic.z_open);  // gravity turned it
   EXPECT_EQ(note_of(downward, "about +1 g"), "");
 
   // Read as up, a mean of -1 g in the file: the axis points down after all.

@@ -161,18 +161,27 @@ def test_a_table2_soil_on_the_table2_scale():
 
 
 def test_a_record_with_z_up_is_diagnosed_and_read_with_z_positive_up():
-    # Most accelerometer mounts point z up; read as the model's z (down) the fit is poor, and
-    # the warning says which convention fits. Read with z_positive='up' it is the truth again.
+    # Most accelerometer mounts point z up; read as the model's z (down, given) the fit is poor,
+    # and the warning says which convention fits. Read with z_positive='up' it is the truth
+    # again; so it is by default ('auto': without gravity in the channel, the fit decides, and
+    # the window says so).
     r = oscidrum.synthetic_record([truth(30e6)], duration=0.6, sample_rate=1500, noise=0.02,
                                   seed=5)
     z_up = -np.asarray(r["ddz_M"])
-    (wrong,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0)
+    (wrong,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="down")
+    assert not wrong["z_negated"]
     assert any("far better with z_M'' negated" in w and "z_positive='up'" in w
                for w in wrong["warnings"]), wrong["warnings"]
     (right,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="up")
     assert right["valid"], right["reason"]
     assert abs(right["G"] / 30e6 - 1) < 0.01
+    assert not right["z_negated"]
     assert not any("far better" in w for w in right["warnings"])
+    (fitted,) = oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0)
+    assert fitted["valid"] and fitted["z_negated"], fitted["warnings"]
+    assert fitted["G"] == pytest.approx(right["G"], rel=1e-9)
+    assert fitted["warnings"][0].startswith("z_M'' fitted negated"), fitted["warnings"]
+    assert not oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0)[0]["z_negated"]
     with pytest.raises(oscidrum.Error, match="z_positive must be 'auto', 'down' or 'up'"):
         oscidrum.identify.identify(r["t"], r["ddx_M"], z_up, window=0, z_positive="upward")
     # With gravity kept (+1 g along the upward axis), the default ('auto') reads it as pointing
