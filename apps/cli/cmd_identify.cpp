@@ -163,7 +163,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
       out << "," << name << suffix << "[" << unit << "]";
   if (io.modulus) out << ",soil_scale[-]";
   out << ",tau[s],rms_residual[m/s^2],relative_residual[-],reduced_chi2[-],condition[-],"
-         "iterations[-],simulations[-],warnings[-],model_sampled[-],z_negated[-]\n";
+         "iterations[-],simulations[-],warnings[-],model_sampled[-],z_negated[-],read_in_g[-]\n";
   for (const PassEstimate& p : pass) {
     const RecordWindow& w = p.window;
     const Identification& id = p.identification;
@@ -184,7 +184,7 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
         << cell(p.valid ? id.reduced_chi2 : nan) << "," << cell(p.valid ? id.condition : nan) << ","
         << (p.valid ? id.iterations : 0) << "," << (p.valid ? id.simulations : 0) << ","
         << io::csv_quote(join(id.warnings)) << "," << (p.valid && id.model_sampled ? 1 : 0) << ","
-        << (p.valid && id.z_negated ? 1 : 0) << "\n";
+        << (p.valid && id.z_negated ? 1 : 0) << "," << (p.valid && id.read_in_g ? 1 : 0) << "\n";
   }
   return out.str();
 }
@@ -208,7 +208,8 @@ nlohmann::ordered_json identification_json(const Identification& id) {
           {"noise_z", id.measured.noise_z},
           {"warnings", id.warnings},
           {"model_sampled", id.model_sampled},
-          {"z_negated", id.z_negated}};
+          {"z_negated", id.z_negated},
+          {"read_in_g", id.read_in_g}};
 }
 
 // An unknown's soil field ("G" -> soil.G), whose display unit it is shown in (the field table's
@@ -271,6 +272,7 @@ nlohmann::ordered_json pass_geojson(const std::vector<PassEstimate>& pass, const
     props["warnings"] = warnings;
     props["model_sampled"] = p.valid && p.identification.model_sampled;
     props["z_negated"] = p.valid && p.identification.z_negated;
+    props["read_in_g"] = p.valid && p.identification.read_in_g;
     features.push_back({{"type", "Feature"}, {"geometry", geometry}, {"properties", props}});
   }
   return {{"type", "FeatureCollection"}, {"name", name}, {"features", features}};
@@ -369,6 +371,7 @@ int run(const IdentifyCliOptions& o) {
     rec = read_record(o.input);
     report_reading(rec);
     io.z_open = rec.z_open;
+    io.units_open = rec.units_open;
     ProgressLine line(stderr_is_terminal() && !o.quiet);
     pass = identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows, io,
                          [&](std::size_t k, std::size_t n) {
@@ -474,6 +477,8 @@ int run(const IdentifyCliOptions& o) {
       s.line("model compared", model_sampled_text(pass.front().window.samples_per_period));
     if (id.z_negated)
       s.line("z_M''", "fitted negated: the record's z axis points up (see the warning)");
+    if (id.read_in_g)
+      s.line("accelerations", "fitted in g: the record's columns have no unit (see the warning)");
     for (const std::string& w : id.warnings) s.line("WARNING", w);
     std::cout << s.text();
   } else {

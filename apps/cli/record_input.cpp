@@ -49,9 +49,12 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
                    "the path length along them");
     app.add_option("--north-col", o.north_col, "projected northing column [m] (with --east-col)");
   }
-  app.add_option("--units", o.units,
-                 "units of the accelerations: auto (default: each column's unit from its header, "
-                 "[m/s^2], [g], (mm/s2), az_g, ...; m/s^2 without one), m/s2 or g (9.80665 m/s^2)")
+  app.add_option(
+         "--units", o.units,
+         "units of the accelerations: auto (default: each column's unit from its header, "
+         "[m/s^2], [g], (mm/s2), az_g, ...; without one m/s^2, or g when the vertical's mean is "
+         "about +-1, gravity in g; identify fits g where only that fits), m/s2 or g "
+         "(9.80665 m/s^2)")
       ->check(CLI::IsMember({"auto", "m/s2", "g"}));
   app.add_option("--t-units", o.t_units,
                  "unit of the time column: auto (default: from its header, [s], [ms], time_ms, "
@@ -204,6 +207,7 @@ nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& r
           {"x_positive", o.x_positive},
           {"z_positive", rec.z_positive},
           {"z_open", rec.z_open},
+          {"units_open", rec.units_open},
           {"t", channel(rec.t_column, rec.t_factor, "s")},
           {"ddx_M", channel(rec.x_column, rec.x_factor, "m/s^2")},
           {"ddz_M", channel(rec.z_column, rec.z_factor, "m/s^2")}};

@@ -151,6 +151,10 @@ struct IdentifyOptions {
   /// (Identification::z_negated): the axis points the other way. False: the record is fitted
   /// as read, and a poor fit's diagnosis only names the axis.
   bool z_open = false;
+  /// The record's accelerations had no unit and were read in m/s^2 (RecordColumns::units_open):
+  /// a fit that is poor so but good with them read in g (x 9.80665; with z_M'' negated too when
+  /// z_open) is taken so, with a warning (Identification::read_in_g).
+  bool units_open = false;
   /// How each window's harmonics are measured (identify_pass); measure.covariance is raised to
   /// `harmonics`.
   MeasureOptions measure;
@@ -193,6 +197,10 @@ struct Identification {
   /// point the other way than read), which fits well where the record as read did not.
   /// `measured` is the window so negated; fit_curves gives the model in the record as read.
   bool z_negated = false;
+  /// IdentifyOptions::units_open: the window's accelerations were fitted read in g (times
+  /// 9.80665), which fits well where m/s^2 did not; `measured` is so scaled, fit_curves gives
+  /// the model in the record's units as read.
+  bool read_in_g = false;
   Case fitted;                ///< the case at the estimate (f and M0 of the record)
   Metrics simulated;          ///< its metrics
   MeasuredResponse measured;  ///< what the model was fitted to
@@ -218,7 +226,8 @@ Identification identify(const Case& base, const MeasuredResponse& data,
 /// The best fit in the record's time, for plots: the model's accelerations at record times t
 /// [s], the steady state of id.fitted shifted by id.time_shift, plus the trend of the window
 /// (id.measured: offsets and slow drift; none from analyze's metrics), in the record's axes as
-/// it was read (z_M'' negated back for a window fitted negated, Identification::z_negated). Throws
+/// it was read (z_M'' negated back for a window fitted negated, Identification::z_negated, and
+/// divided by 9.80665 for one fitted in g, Identification::read_in_g). Throws
 /// oscidrum::Error when the fitted case does not reach its steady state.
 struct FitCurves {
   std::vector<double> ddx_M, ddz_M;  ///< [m/s^2]

@@ -58,6 +58,10 @@ struct RecordColumns {
   /// (down; a two-dimensional record's y: up), which identify may turn when the fit says so
   /// (IdentifyOptions::z_open). False when the direction was given or gravity decided it.
   bool z_open = false;
+  /// The accelerations have no unit (no --units, none in the header: read in m/s^2) and no
+  /// gravity in g told it (a vertical mean of about +-1, which reads them in g, with a note):
+  /// identify may read them in g when the fit says so (IdentifyOptions::units_open).
+  bool units_open = false;
 };
 
 /// Read a record from `in` (`name` names it in messages: the file, "<stdin>"): a UTF-8

@@ -177,7 +177,7 @@ void bind_identify(py::module_& m) {
          const std::optional<Array>& position, double f, std::optional<double> window, double hop,
          int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, int compare,
          bool use_peaks, bool use_area, bool profile, bool shooting, const std::string& soil_scale,
-         bool z_open) {
+         bool z_open, bool units_open) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
         // window=None: 40 periods, or the whole record when it is shorter.
@@ -195,6 +195,7 @@ void bind_identify(py::module_& m) {
         io.profile = profile;
         io.shooting = shooting;
         io.z_open = z_open;
+        io.units_open = units_open;
         io.measure.harmonics = n_max;
         std::vector<PassEstimate> pass;
         {
@@ -228,6 +229,7 @@ void bind_identify(py::module_& m) {
           d["warnings"] = id.warnings;
           d["model_sampled"] = p.valid && id.model_sampled;
           d["z_negated"] = p.valid && id.z_negated;
+          d["read_in_g"] = p.valid && id.read_in_g;
           if (p.valid) d["fitted"] = id.fitted;
           out.append(d);
         }
@@ -239,6 +241,7 @@ void bind_identify(py::module_& m) {
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
       py::arg("shooting") = true, py::arg("soil_scale") = "formulas", py::arg("z_open") = false,
+      py::arg("units_open") = false,
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "
@@ -246,7 +249,9 @@ void bind_identify(py::module_& m) {
       "None (the default) is 40, or the whole record as one window when it is shorter; 0 is the "
       "whole record; a window longer than the record is an error. `z_open`: nothing said which "
       "way ddz_M's axis points (read_record's z_open): a window that fits poorly as given but "
-      "well with ddz_M negated is fitted so (its key z_negated true, with a warning).");
+      "well with ddz_M negated is fitted so (its key z_negated true, with a warning); "
+      "`units_open`: the accelerations had no unit (read_record's units_open), and a window that "
+      "fits well only with them in g is fitted so (read_in_g true, with a warning).");
   m.def(
       "soil_on_scale",
       [](double G, const std::string& scale, const Soil& base) {

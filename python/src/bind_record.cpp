@@ -153,6 +153,7 @@ void bind_record(py::module_& m) {
         d["delimiter"] = r.delimiter;
         d["z_positive"] = r.z_positive;
         d["z_open"] = r.z_open;
+        d["units_open"] = r.units_open;
         return d;
       },
       py::arg("path"), py::arg("t_col") = "", py::arg("x_col") = "", py::arg("z_col") = "",
@@ -170,9 +171,10 @@ void bind_record(py::module_& m) {
       "the model's conventions (x forward, z down), position [m], lat, lon [deg], east, north "
       "[m] and alpha [rad] when read, notes (how each column was read, what was skipped or "
       "merged), columns (the header each came from), factors, delimiter, z_positive (the "
-      "direction the z column was read in) and z_open (true: 'auto' found no gravity to decide "
+      "direction the z column was read in), z_open (true: 'auto' found no gravity to decide "
       "it; identify_record(z_open=True) then fits z_M'' negated where that fits and as read "
-      "does not). Raises "
+      "does not) and units_open (true: the accelerations had no unit and no gravity in g told "
+      "it; identify_record(units_open=True) fits them in g where only that fits). Raises "
       "oscidrum.Error naming the file, line and column.");
   m.def(
       "gravity_points_up",

@@ -6,6 +6,7 @@
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/identify.hpp"
+#include "oscidrum/record_reader.hpp"
 #include "oscidrum/simulate.hpp"
 
 namespace oscidrum {
@@ -51,8 +52,10 @@ FitCurves fit_curves(const Identification& id, std::span<const double> t) {
     for (std::size_t k = 0; k < d.trend_x.size(); ++k) out.ddx_M[i] += d.trend_x[k] * P[k];
     for (std::size_t k = 0; k < d.trend_z.size(); ++k) out.ddz_M[i] += d.trend_z[k] * P[k];
   }
-  if (id.z_negated)
-    for (double& z : out.ddz_M) z = -z;  // the model in the record's axes as read
+  // The model in the record's axes and units as read.
+  const double to_read = id.read_in_g ? 1.0 / kStandardGravity : 1.0;
+  for (double& x : out.ddx_M) x *= to_read;
+  for (double& z : out.ddz_M) z *= id.z_negated ? -to_read : to_read;
   return out;
 }
 

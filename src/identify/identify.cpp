@@ -468,29 +468,65 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   id.rms_residual = misfit.rms;
   id.relative_residual = misfit.relative;
   // The uncertainties grow with the residual (s^2 below), but a bias does not show in them.
-  if (s2 > o.max_reduced_chi2 && o.z_open) {
-    // Nothing said which way the record's z axis points, and as read the model misses it: the
-    // window with z_M'' negated is fitted too and taken where it fits (an accelerometer mounted
-    // z up whose gravity the logger removed; most mounts point up).
-    IdentifyOptions negated = o;
-    negated.z_open = false;
-    negated.diagnose = false;
-    try {
-      Identification other = identify(base, flipped(data, false, true), negated, start);
-      if (other.reduced_chi2 <= o.max_reduced_chi2) {
-        other.z_negated = true;
-        other.simulations +=
-            plain.simulations() + (sampled ? sampled->simulations() : 0) + other_simulations;
-        other.warnings.insert(
-            other.warnings.begin(),
-            "z_M'' fitted negated: the record's z axis points up (reduced chi^2 " +
-                num(std::round(other.reduced_chi2 * 100) / 100) + " so, " + num(std::round(s2)) +
-                " as read pointing down; the column has no gravity to tell): give --z-positive up "
-                "to read it so, or --z-positive down to fit it as read (Python: z_positive)");
+  if (s2 > o.max_reduced_chi2 && (o.z_open || o.units_open)) {
+    // Nothing said which way the record's z axis points (an accelerometer mounted z up whose
+    // gravity the logger removed; most mounts point up), or in what unit its accelerations are
+    // (columns without one, read as m/s^2; loggers often write g), and as read the model misses
+    // them: the readings left open are fitted too, simplest first, and the first that fits is
+    // taken, with a warning.
+    struct Reading {
+      bool z_negated = false;
+      bool in_g = false;
+    };
+    std::vector<Reading> readings;
+    if (o.z_open) readings.push_back({true, false});
+    if (o.units_open) readings.push_back({false, true});
+    if (o.z_open && o.units_open) readings.push_back({true, true});
+    IdentifyOptions as_given = o;
+    as_given.z_open = false;
+    as_given.units_open = false;
+    as_given.diagnose = false;
+    int simulations =
+        plain.simulations() + (sampled ? sampled->simulations() : 0) + other_simulations;
+    for (const Reading& rd : readings) {
+      try {
+        Identification other = identify(
+            base, scaled(flipped(data, false, rd.z_negated), rd.in_g ? kStandardGravity : 1.0),
+            as_given, start);
+        simulations += other.simulations;
+        if (!(other.reduced_chi2 <= o.max_reduced_chi2)) continue;
+        other.z_negated = rd.z_negated;
+        other.read_in_g = rd.in_g;
+        other.simulations = simulations;
+        const std::string what = rd.in_g && rd.z_negated
+                                     ? "the accelerations fitted in g (x 9.80665) and z_M'' negated"
+                                 : rd.in_g ? "the accelerations fitted in g (x 9.80665)"
+                                           : "z_M'' fitted negated";
+        const std::string why =
+            rd.in_g && rd.z_negated
+                ? "the record's columns have no unit and are in g, and its z axis points up"
+            : rd.in_g ? "the record's columns have no unit and are in g"
+                      : "the record's z axis points up";
+        const std::string as_read = rd.in_g && rd.z_negated ? "as read in m/s^2, pointing down"
+                                    : rd.in_g               ? "as read in m/s^2"
+                                                            : "as read pointing down";
+        const std::string give =
+            rd.in_g && rd.z_negated
+                ? "give --units g --z-positive up to read it so, or --units m/s2 --z-positive "
+                  "down to fit it as read (Python: the arrays in m/s^2 and z_positive)"
+            : rd.in_g ? "give --units g to read it so, or --units m/s2 to fit it as read (Python: "
+                        "the arrays in m/s^2)"
+                      : "give --z-positive up to read it so, or --z-positive down to fit it as "
+                        "read (Python: z_positive)";
+        other.warnings.insert(other.warnings.begin(),
+                              what + ": " + why + " (reduced chi^2 " +
+                                  num(std::round(other.reduced_chi2 * 100) / 100) + " so, " +
+                                  num(std::round(s2)) + " " + as_read +
+                                  "; nothing in the columns tells): " + give);
         return other;
+      } catch (const Error&) {
+        // a reading the model cannot fit: the next one
       }
-    } catch (const Error&) {
-      // the window negated cannot be fitted: it stays as read
     }
   }
   if (s2 > o.max_reduced_chi2) {

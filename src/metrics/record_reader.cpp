@@ -761,7 +761,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     return k;
   };
   const double kt = by_rate ? 1.0 / o.rate : column_scale(ct, true);
-  const double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
+  double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
   // z_positive "auto": down, or up for a two-dimensional record's y (the usual Cartesian axes),
   // until the column's mean says otherwise (below).
   bool z_up = o.z_positive == "up" || (o.z_positive == "auto" && !z_from_y.empty());
@@ -781,11 +781,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   out.t_factor = kt;
   out.x_factor = kx;
   out.z_factor = kz;
-  if (std::string x_note = note("x_M''", cx, kx, "m/s^2 (positive forward)"); !x_note.empty())
-    out.notes.push_back(std::move(x_note));
-  // The vertical channel's note keeps its place here and gets its text when gravity has decided
-  // the sign (below).
-  std::size_t z_note_at = out.notes.size();
+  // The channels' notes keep their places here and get their text when gravity has decided the
+  // unit of a column without one and the sign of the vertical (below).
+  std::size_t x_note_at = out.notes.size(), z_note_at = x_note_at + 1;
+  out.notes.emplace_back();
   out.notes.emplace_back();
   if (!z_from_y.empty())
     out.notes.push_back("z_M'': no z column: the y column '" + z_from_y +
@@ -936,7 +935,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
           out.notes.push_back(std::move(t_note));
       }
     }
-    z_note_at += out.notes.size();  // the time column's notes now stand before it
+    x_note_at += out.notes.size();  // the time column's notes now stand before them
+    z_note_at += out.notes.size();
     out.notes.insert(out.notes.end(), later.begin(), later.end());
   }
   // Rows with the time of the row before: an event-driven integrator writes both sides of a
@@ -1000,7 +1000,32 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // and the identification's poor-fit diagnosis names an axis the other way round.
   std::string gravity_note;
   double mean = 0.0;
-  const bool gravity_up = gravity_points_up(out.ddz_M, &mean);
+  bool gravity_up = gravity_points_up(out.ddz_M, &mean);
+  // Accelerations without a unit (no --units, none in the header, not the model's own names) are
+  // read in m/s^2. A vertical column whose mean is then about +-1 (within kGravityBand) is gravity
+  // in g: an accelerometer at rest reads 1 g, and an offset of 1 m/s^2 is none a logger keeps.
+  // Both channels are then read in g, with a note; without gravity the unit stays open
+  // (RecordColumns::units_open) for identify's fit to decide.
+  const auto unitless = [&](int c) {
+    const Heading& h = headings[static_cast<std::size_t>(c)];
+    return h.unit.empty() && h.name != "ddx_M" && h.name != "ddz_M";
+  };
+  out.units_open = o.units == "auto" && unitless(cx) && unitless(cz);
+  std::string units_note;
+  if (out.units_open && std::abs(std::abs(mean) - 1.0) < kGravityBand) {
+    for (double& v : out.ddx_M) v *= kStandardGravity;
+    for (double& v : out.ddz_M) v *= kStandardGravity;
+    kx *= kStandardGravity;
+    kz *= kStandardGravity;
+    out.x_factor = kx;
+    out.z_factor = kz;
+    out.units_open = false;
+    units_note = "accelerations: no unit in the header, and the mean of z_M'' " +
+                 format_factor(mean) +
+                 " is gravity in g (an accelerometer at rest reads 1 g): both read in g "
+                 "(x 9.80665; give --units m/s2 to read them as m/s^2)";
+    gravity_up = gravity_points_up(out.ddz_M, &mean);
+  }
   // Gravity confirms the direction read when the column so read has a mean of -1 g (an axis
   // pointing down at rest); without gravity either way, "auto" leaves the direction open.
   const bool gravity_down = gravity_points_up({-mean});
@@ -1025,10 +1050,16 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                                            : std::string("up (give --z-positive up or auto)"));
     }
   }
+  // The channels' notes in their places (z after x; an empty one dropped), then why.
   if (std::string z_note = note("z_M''", cz, kz, "m/s^2 (positive down)"); !z_note.empty())
     out.notes[z_note_at] = std::move(z_note);
   else
     out.notes.erase(out.notes.begin() + static_cast<std::ptrdiff_t>(z_note_at));
+  if (std::string x_note = note("x_M''", cx, kx, "m/s^2 (positive forward)"); !x_note.empty())
+    out.notes[x_note_at] = std::move(x_note);
+  else
+    out.notes.erase(out.notes.begin() + static_cast<std::ptrdiff_t>(x_note_at));
+  if (!units_note.empty()) out.notes.push_back(std::move(units_note));
   if (!gravity_note.empty()) out.notes.push_back(std::move(gravity_note));
   out.z_positive = z_up ? "up" : "down";
   // A channel that never changes (a dead or disconnected sensor, or a drum that does not move

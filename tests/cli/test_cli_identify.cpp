@@ -233,6 +233,47 @@ TEST(CliIdentify, AZUpRecordWithoutGravityIsFittedNegatedAndSaysSo) {
   EXPECT_NE(as_down.out.find("the record's z axis points up"), std::string::npos) << as_down.out;
 }
 
+// A logger's columns in g without a unit, z up, gravity removed: nothing in the file tells the
+// unit or the axis, so the fit does (read_in_g, z_negated), and gives the model's own record's
+// G; with gravity kept, the reader itself reads the columns in g and the axis up.
+TEST(CliIdentify, ColumnsInGWithoutAUnitAreFittedInG) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  for (const double gravity : {0.0, 1.0}) {
+    SCOPED_TRACE(gravity);
+    std::ifstream in(dir / "r.csv");
+    std::ofstream out(dir / "logger.csv");
+    out << "t,ax,az\n";
+    std::string line;
+    std::getline(in, line);  // the header
+    char row[160];
+    while (std::getline(in, line)) {
+      double t = 0, x = 0, z = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", t, x / kStandardGravity,
+                    gravity - z / kStandardGravity);
+      out << row;
+    }
+    out.close();
+    const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+    const Outcome logger =
+        run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
+    ASSERT_EQ(model.code, 0) << model.err;
+    ASSERT_EQ(logger.code, 0) << logger.err;
+    const nlohmann::json j = nlohmann::json::parse(logger.out);
+    const nlohmann::json& b = j["windows"][0];
+    const double G = nlohmann::json::parse(model.out)["windows"][0]["estimates"][0]["value"];
+    ASSERT_TRUE(b["valid"].get<bool>()) << logger.out;
+    EXPECT_NEAR(b["estimates"][0]["value"].get<double>() / G, 1.0, 1e-4);
+    EXPECT_EQ(j["reading"]["units_open"].get<bool>(), gravity == 0.0);
+    EXPECT_EQ(b["read_in_g"].get<bool>(), gravity == 0.0);
+    EXPECT_EQ(b["z_negated"].get<bool>(), gravity == 0.0);
+    if (gravity != 0.0) {
+      EXPECT_NE(logger.err.find("is gravity in g"), std::string::npos) << logger.err;
+    }
+  }
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {

@@ -670,6 +670,40 @@ TEST(Identify, AnOpenZAxisIsFittedNegatedWhereThatFits) {
   EXPECT_NEAR(kept.estimates.front().value / id.estimates.front().value, 1.0, 1e-9);
 }
 
+// A record in g whose columns carry no unit (read as m/s^2, the unit open): fitted in g where
+// only that fits, with z_M'' negated too where the z axis is open as well and points up.
+TEST(Identify, AnOpenUnitIsFittedInGWhereOnlyThatFits) {
+  const double G = 17.3e6;
+  const RecordSamples truth_record = noisy_record(truth(G, false, 0.0), 0.6, 1000, 5);
+  IdentifyOptions open;
+  open.units_open = true;
+  open.profile = false;
+  const Identification as_given = identify_whole(base(false, 0.0), truth_record, open);
+  EXPECT_FALSE(as_given.read_in_g);  // a record in m/s^2 fits as read
+  for (const bool up : {false, true}) {
+    SCOPED_TRACE(up);
+    RecordSamples in_g = truth_record;
+    for (double& x : in_g.ddx_M) x /= kStandardGravity;
+    for (double& z : in_g.ddz_M) z /= up ? -kStandardGravity : kStandardGravity;
+    IdentifyOptions o = open;
+    o.z_open = up;
+    const Identification id = identify_whole(base(false, 0.0), in_g, o);
+    ASSERT_TRUE(id.read_in_g);
+    EXPECT_EQ(id.z_negated, up);
+    EXPECT_NEAR(id.estimates.front().value / as_given.estimates.front().value, 1.0, 1e-6);
+    EXPECT_EQ(id.warnings.front().rfind("the accelerations fitted in g (x 9.80665)", 0), 0u)
+        << id.warnings.front();
+    // The curves in the record's units and axes as read.
+    const FitCurves fit = fit_curves(id, in_g.t);
+    double misfit = 0, peak = 0;
+    for (std::size_t i = 0; i < in_g.t.size(); ++i) {
+      misfit = std::max(misfit, std::abs(in_g.ddx_M[i] - fit.ddx_M[i]));
+      peak = std::max(peak, std::abs(in_g.ddx_M[i]));
+    }
+    EXPECT_LT(misfit, 0.25 * peak);
+  }
+}
+
 // ---- the gates of analyze_windows ------------------------------------------------------------
 
 std::vector<RecordWindow> windows(const RecordSamples& r, double f = 0.0) {

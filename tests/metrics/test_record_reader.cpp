@@ -446,6 +446,43 @@ TEST(RecordReader, GravityInTheZReadingDecidesItsAxis) {
   EXPECT_TRUE(model.notes.empty()) << model.notes.front();
 }
 
+// Accelerations without a unit are read in m/s^2, unless the vertical's mean of about +-1 says
+// they are in g with gravity (both read in g, with a note); without gravity the unit stays open
+// for identify (RecordColumns::units_open). A unit in the header, --units or the model's own
+// names decide it.
+TEST(RecordReader, GravityInGTellsTheUnitOfColumnsWithoutOne) {
+  const RecordColumns in_g = read_text("t,ax,az\n0,0.5,1.05\n0.001,-0.5,0.95\n");
+  EXPECT_DOUBLE_EQ(in_g.ddx_M[0], 0.5 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(in_g.ddz_M[0], -1.05 * kStandardGravity);  // and gravity turned z: up
+  EXPECT_DOUBLE_EQ(in_g.x_factor, kStandardGravity);
+  EXPECT_DOUBLE_EQ(in_g.z_factor, -kStandardGravity);
+  EXPECT_EQ(in_g.z_positive, "up");
+  EXPECT_FALSE(in_g.units_open);
+  EXPECT_FALSE(in_g.z_open);
+  bool said = false;
+  for (const std::string& n : in_g.notes)
+    said = said || n.rfind("accelerations: no unit in the header", 0) == 0;
+  EXPECT_TRUE(said);
+  // -1 g: in g, pointing down as read.
+  const RecordColumns down = read_text("t,ax,az\n0,0.5,-1.05\n0.001,-0.5,-0.95\n");
+  EXPECT_DOUBLE_EQ(down.ddz_M[0], -1.05 * kStandardGravity);
+  EXPECT_EQ(down.z_positive, "down");
+  // No gravity: m/s^2, the unit open.
+  const RecordColumns open = read_text("t,ax,az\n0,0.5,0.05\n0.001,-0.5,-0.05\n");
+  EXPECT_DOUBLE_EQ(open.ddx_M[0], 0.5);
+  EXPECT_TRUE(open.units_open);
+  EXPECT_TRUE(open.z_open);
+  // A unit given decides it, and a mean of 1 m/s^2 is then an offset.
+  RecordReading si;
+  si.units = "m/s2";
+  const RecordColumns given = read_text("t,ax,az\n0,0.5,1.05\n0.001,-0.5,0.95\n", si);
+  EXPECT_DOUBLE_EQ(given.ddz_M[0], 1.05);
+  EXPECT_FALSE(given.units_open);
+  EXPECT_FALSE(read_text("t,ax [m/s^2],az [m/s^2]\n0,0.5,1.05\n0.001,-0.5,0.95\n").units_open);
+  EXPECT_FALSE(read_text("t,ddx_M,ddz_M\n0,0.5,1.05\n0.001,-0.5,0.95\n").units_open);
+  EXPECT_DOUBLE_EQ(read_text("t,ddx_M,ddz_M\n0,0.5,1.05\n0.001,-0.5,0.95\n").ddz_M[0], 1.05);
+}
+
 // The rule read_record's z_positive "auto" and Python's identify() share: a mean within 0.15 g
 // of +1 g, and nothing else, is gravity along an upward axis.
 TEST(RecordReader, GravityPointsUpWithinItsBandOfOneG) {

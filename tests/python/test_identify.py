@@ -342,3 +342,29 @@ def test_synthetic_record_refuses_sizes_and_noise_it_cannot_make():
         with pytest.raises(oscidrum.Error) as e:
             oscidrum.synthetic_record([oscidrum.Case()], **kw)
         assert e.value.key == key
+
+
+def test_a_loggers_columns_in_g_without_a_unit_are_read_or_fitted_in_g(tmp_path):
+    # Columns in g with no unit in the header: with gravity kept, read_record reads them in g
+    # (and gravity turns z up); without it the unit stays open (units_open), and identify_record
+    # with units_open=True fits them in g, as the CLI does.
+    r = oscidrum.synthetic_record([truth(30e6)], duration=0.6, sample_rate=1500, noise=0.02,
+                                  seed=5)
+    g = 9.80665
+    t, x, z = (np.asarray(r[k]) for k in ("t", "ddx_M", "ddz_M"))
+    for gravity in (1.0, 0.0):
+        path = tmp_path / f"logger{gravity}.csv"
+        np.savetxt(path, np.column_stack([t, x / g, gravity - z / g]), delimiter=",",
+                   header="t,ax,az", comments="")
+        rec = oscidrum.read_record(path)
+        assert rec["units_open"] == (gravity == 0.0)
+        assert rec["z_open"] == (gravity == 0.0)
+        if gravity:
+            assert rec["ddx_M"] == pytest.approx(x, rel=1e-6, abs=1e-6)
+            assert any(n.startswith("accelerations: no unit in the header") for n in rec["notes"])
+            continue
+        (row,) = oscidrum.identify_record(oscidrum.Case(), rec["t"], rec["ddx_M"], rec["ddz_M"],
+                                          window=0, z_open=rec["z_open"],
+                                          units_open=rec["units_open"])
+        assert row["valid"] and row["read_in_g"] and row["z_negated"], row["warnings"]
+        assert abs(row["G"] / 30e6 - 1) < 0.01

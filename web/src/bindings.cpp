@@ -428,6 +428,7 @@ val reading_of(const oscidrum::RecordColumns& rec) {
   out.set("z_factor", rec.z_factor);
   out.set("z_positive", rec.z_positive);
   out.set("z_open", rec.z_open);
+  out.set("units_open", rec.units_open);
   val notes = val::array();
   for (const std::string& n : rec.notes) notes.call<void>("push", n);
   out.set("notes", notes);
@@ -516,7 +517,7 @@ val estimate_of(const oscidrum::Estimate& e) {
 // (42)-(45), "table2": the paper's Table 2 interpolated). Returns {ok: false, error} for bad
 // input, else {ok: true, valid, reason, f, estimates: [{name, unit, value, u, lower, upper}],
 // relative_residual, reduced_chi2, time_shift, warnings, iterations, simulations, message,
-// model_sampled, z_negated}.
+// model_sampled, z_negated, read_in_g}.
 val identify_record(const std::string& text, const std::string& name, const val& options,
                     const val& values, const std::string& soil_scale) {
   try {
@@ -529,6 +530,7 @@ val identify_record(const std::string& text, const std::string& name, const val&
     io.soil_scale = oscidrum::soil_scale_from(soil_scale, "soil_scale");
     io.measure.harmonics = windows.n_max;
     io.z_open = rec.z_open;
+    io.units_open = rec.units_open;
     const std::vector<oscidrum::PassEstimate> pass =
         oscidrum::identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, windows, io);
     if (pass.empty()) throw oscidrum::Error(name + ": no window fits in the record");
@@ -553,6 +555,7 @@ val identify_record(const std::string& text, const std::string& name, const val&
     out.set("simulations", id.simulations);
     out.set("model_sampled", p.valid && id.model_sampled);
     out.set("z_negated", p.valid && id.z_negated);
+    out.set("read_in_g", p.valid && id.read_in_g);
     val warnings = val::array();
     for (const std::string& w : id.warnings) warnings.call<void>("push", w);
     out.set("warnings", warnings);
