@@ -1025,6 +1025,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                  " is gravity in g (an accelerometer at rest reads 1 g): both read in g "
                  "(x 9.80665; give --units m/s2 to read them as m/s^2)";
     gravity_up = gravity_points_up(out.ddz_M, &mean);
+  } else if (out.units_open) {
+    units_note =
+        "accelerations: no unit in the header and no gravity to tell it: read in m/s^2 (give "
+        "--units g if the logger wrote g; identify fits them in g where only that fits)";
   }
   // Gravity confirms the direction read when the column so read has a mean of -1 g (an axis
   // pointing down at rest); without gravity either way, "auto" leaves the direction open.
