@@ -78,6 +78,8 @@ Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, con
   }
   const RecordColumns rec = read_record(in);
   report_reading(rec);
+  ref.z_open = rec.z_open;
+  ref.units_open = rec.units_open;
   try {
     ref.data = measure_record(rec.t, rec.ddx_M, rec.ddz_M, o.windows);
   } catch (const Error& e) {
@@ -102,7 +104,9 @@ nlohmann::ordered_json calibration_json(const Calibration& cal, const CalibrateC
                     {"rms_residual", r.rms_residual},
                     {"relative_residual", r.relative_residual},
                     {"reduced_chi2", r.reduced_chi2},
-                    {"model_sampled", r.model_sampled}});
+                    {"model_sampled", r.model_sampled},
+                    {"z_negated", r.z_negated},
+                    {"read_in_g", r.read_in_g}});
   return {{"schema", "oscidrum-calibrate/1"},
           {"references", refs},
           {"soil_scale", o.soil_scale},
@@ -171,7 +175,9 @@ int run(const CalibrateCliOptions& o) {
                  ", reduced chi^2 " + fmt(r.reduced_chi2, 3) +
                  (r.model_sampled ? "; sampled in step with the excitation: the "
                                     "model compared sampled at its times"
-                                  : ""));
+                                  : "") +
+                 (r.z_negated ? "; z_M'' fitted negated" : "") +
+                 (r.read_in_g ? "; fitted in g" : ""));
     if (!o.out.empty()) s.line("calibrated case", o.out);
     for (const std::string& w : cal.warnings) s.line("WARNING", w);
     std::cout << s.text();

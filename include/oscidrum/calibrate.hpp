@@ -23,6 +23,12 @@ struct Reference {
   std::string name;       ///< for the messages and the report (e.g. the file name)
   Soil soil;              ///< the soil under the reference (any soil.input)
   MeasuredResponse data;  ///< its measured harmonics (measure_record)
+  /// Nothing said which way its z axis points, or in what unit its accelerations are
+  /// (RecordColumns::z_open, units_open): a calibration that fits poorly as read but well with
+  /// the open references read the other way (z_M'' negated, in g, or both) is taken so, with a
+  /// warning (ReferenceFit::z_negated, read_in_g), as identify does a window.
+  bool z_open = false;
+  bool units_open = false;
 };
 
 /// The measured response of a whole record (a reference): its f (windows.f, or estimated), the
@@ -64,6 +70,8 @@ struct ReferenceFit {
   /// The model was compared sampled at this reference's times (a record sampled in step with the
   /// excitation, whose raw samples alias; as Identification::model_sampled).
   bool model_sampled = false;
+  bool z_negated = false;  ///< fitted with its z_M'' negated (Reference::z_open)
+  bool read_in_g = false;  ///< fitted with its accelerations in g (Reference::units_open)
 };
 
 /// The result of a calibration.

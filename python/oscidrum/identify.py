@@ -134,10 +134,11 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
             soil = ref.get("soil", base.soil)
         x = np.asarray(ref["ddx_M"], dtype=float)
         z = np.asarray(ref["ddz_M"], dtype=float)
+        z_down, z_open = _z_down(z, z_positive, f"calibrate: reference {k}")
         refs.append({"name": str(ref.get("name", f"reference {k}")), "soil": soil,
                      "t": np.asarray(ref["t"], dtype=float),
                      "ddx_M": -x if x_positive == "backward" else x,
-                     "ddz_M": _z_down(z, z_positive, f"calibrate: reference {k}")[0]})
+                     "ddz_M": z_down, "z_open": z_open})
     return calibrate_records(base, refs, list(parameters), **options)
 
 

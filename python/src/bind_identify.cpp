@@ -274,6 +274,8 @@ void bind_identify(py::module_& m) {
           r.name = d.contains("name") ? py::cast<std::string>(d["name"])
                                       : "reference " + std::to_string(refs.size());
           r.soil = py::cast<Soil>(d["soil"]);
+          r.z_open = d.contains("z_open") && py::cast<bool>(d["z_open"]);
+          r.units_open = d.contains("units_open") && py::cast<bool>(d["units_open"]);
           const Array t = py::cast<Array>(d["t"]), x = py::cast<Array>(d["ddx_M"]),
                       z = py::cast<Array>(d["ddz_M"]);
           try {
@@ -316,6 +318,8 @@ void bind_identify(py::module_& m) {
           d["relative_residual"] = r.relative_residual;
           d["reduced_chi2"] = r.reduced_chi2;
           d["model_sampled"] = r.model_sampled;
+          d["z_negated"] = r.z_negated;
+          d["read_in_g"] = r.read_in_g;
           fits.append(d);
         }
         py::dict out;

@@ -20,6 +20,7 @@
 #include "identify/statistics.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/record_reader.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
 
@@ -295,6 +296,57 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
 
   std::vector<std::string> names;
   for (const Field* f : pr.fields()) names.push_back(f->key);
+  // A poor fit of references whose axis or unit nothing decided: read the other way, as identify
+  // reads a window (IdentifyOptions::z_open, units_open), all open ones alike (one logger), the
+  // simplest reading first; the first that fits is taken, with a warning.
+  const auto open = [&](bool Reference::*flag) {
+    return std::any_of(refs.begin(), refs.end(), [&](const Reference& ref) { return ref.*flag; });
+  };
+  if (s2 > o.max_reduced_chi2 && (open(&Reference::z_open) || open(&Reference::units_open))) {
+    std::vector<std::pair<bool, bool>> readings;  // (z negated, in g)
+    if (open(&Reference::z_open)) readings.emplace_back(true, false);
+    if (open(&Reference::units_open)) readings.emplace_back(false, true);
+    if (open(&Reference::z_open) && open(&Reference::units_open)) readings.emplace_back(true, true);
+    int simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations);
+    for (const auto& [z, g] : readings) {
+      std::vector<Reference> read = std::vector<Reference>(refs.begin(), refs.end());
+      std::vector<std::pair<bool, bool>> applied;
+      for (Reference& ref : read) {
+        const bool negate = z && ref.z_open, in_g = g && ref.units_open;
+        ref.data =
+            detail::scaled(detail::flipped(ref.data, false, negate), in_g ? kStandardGravity : 1.0);
+        ref.z_open = ref.units_open = false;
+        applied.emplace_back(negate, in_g);
+      }
+      try {
+        Calibration other = calibrate(base, read, o);
+        simulations += other.simulations;
+        if (!(other.reduced_chi2 <= o.max_reduced_chi2)) continue;
+        std::string which;
+        for (std::size_t k = 0; k < read.size(); ++k) {
+          other.references[k].z_negated = applied[k].first;
+          other.references[k].read_in_g = applied[k].second;
+          if (applied[k].first || applied[k].second)
+            which += (which.empty() ? "" : ", ") + read[k].name;
+        }
+        other.simulations = simulations;
+        other.warnings.insert(
+            other.warnings.begin(),
+            std::string(z && g ? "the accelerations fitted in g (x 9.80665) and z_M'' negated"
+                        : g    ? "the accelerations fitted in g (x 9.80665)"
+                               : "z_M'' fitted negated") +
+                " in " + which + ": reduced chi^2 " + sig3(other.reduced_chi2) + " so, " +
+                sig3(s2) + " as read, and nothing in the columns tells (give " +
+                (z && g ? "--units g --z-positive up"
+                 : g    ? "--units g"
+                        : "--z-positive up") +
+                " to read them so, or the unit and axis as read to fit them so)");
+        return other;
+      } catch (const Error&) {
+        // a reading the model cannot fit: the next one
+      }
+    }
+  }
   // A poor fit, and the reference that makes it.
   if (s2 > o.max_reduced_chi2) {
     cal.warnings.push_back(

@@ -127,43 +127,6 @@ std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o)
                                    "does not describe the roller)"));
 }
 
-// The record read the other way round: x_M'' (or z_M'') negated, its harmonics, peaks and
-// trend with it (the area and the covariances do not change sign).
-MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
-  if (x) {
-    for (auto& c : d.ddx) c = -c;
-    for (double& c : d.trend_x) c = -c;
-    d.ddx_max = -std::exchange(d.ddx_min, -d.ddx_max);
-  }
-  if (z) {
-    for (auto& c : d.ddz) c = -c;
-    for (double& c : d.trend_z) c = -c;
-    d.ddz_max = -std::exchange(d.ddz_min, -d.ddz_max);
-  }
-  return d;
-}
-
-// The record with its accelerations s times as large: read in another unit (s = g: a record in g
-// read as m/s^2; s = 1/g the other way round).
-MeasuredResponse scaled(MeasuredResponse d, double s) {
-  for (auto& c : d.ddx) c *= s;
-  for (auto& c : d.ddz) c *= s;
-  for (double& c : d.cov_x) c *= s * s;
-  for (double& c : d.cov_z) c *= s * s;
-  for (double& c : d.trend_x) c *= s;
-  for (double& c : d.trend_z) c *= s;
-  d.sigma_x *= s;
-  d.sigma_z *= s;
-  d.noise_x *= s;
-  d.noise_z *= s;
-  d.ddx_max *= s;
-  d.ddx_min *= s;
-  d.ddz_max *= s;
-  d.ddz_min *= s;
-  d.area *= s * s;
-  return d;
-}
-
 // What a window fitted in a reading the record left open says (IdentifyOptions::z_open,
 // units_open): its z_M'' negated, its accelerations in g, or both; chi2 the reduced chi^2 so,
 // s2 as read.
@@ -280,7 +243,7 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
     const auto [what, advice] = describe(a);
     try {
-      const MeasuredResponse read_so = scaled(flipped(data, a.x, a.z), a.units);
+      const MeasuredResponse read_so = detail::scaled(detail::flipped(data, a.x, a.z), a.units);
       Problem pr(base, read_so, o2);
       pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
@@ -515,9 +478,10 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         plain.simulations() + (sampled ? sampled->simulations() : 0) + other_simulations;
     for (const Reading& rd : readings) {
       try {
-        Identification other = identify(
-            base, scaled(flipped(data, false, rd.z_negated), rd.in_g ? kStandardGravity : 1.0),
-            as_given, start);
+        Identification other = identify(base,
+                                        detail::scaled(detail::flipped(data, false, rd.z_negated),
+                                                       rd.in_g ? kStandardGravity : 1.0),
+                                        as_given, start);
         simulations += other.simulations;
         if (!(other.reduced_chi2 <= o.max_reduced_chi2)) continue;
         other.z_negated = rd.z_negated;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <utility>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/simulate.hpp"
@@ -482,6 +483,39 @@ bool Problem::residual(const Eigen::VectorXd& p, Eigen::VectorXd& r, double& phi
     r[i++] = (data_.area - s.area) / sa;
   }
   return true;
+}
+
+MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
+  if (x) {
+    for (auto& c : d.ddx) c = -c;
+    for (double& c : d.trend_x) c = -c;
+    d.ddx_max = -std::exchange(d.ddx_min, -d.ddx_max);
+  }
+  if (z) {
+    for (auto& c : d.ddz) c = -c;
+    for (double& c : d.trend_z) c = -c;
+    d.ddz_max = -std::exchange(d.ddz_min, -d.ddz_max);
+  }
+  return d;
+}
+
+MeasuredResponse scaled(MeasuredResponse d, double s) {
+  for (auto& c : d.ddx) c *= s;
+  for (auto& c : d.ddz) c *= s;
+  for (double& c : d.cov_x) c *= s * s;
+  for (double& c : d.cov_z) c *= s * s;
+  for (double& c : d.trend_x) c *= s;
+  for (double& c : d.trend_z) c *= s;
+  d.sigma_x *= s;
+  d.sigma_z *= s;
+  d.noise_x *= s;
+  d.noise_z *= s;
+  d.ddx_max *= s;
+  d.ddx_min *= s;
+  d.ddz_max *= s;
+  d.ddz_min *= s;
+  d.area *= s * s;
+  return d;
 }
 
 }  // namespace oscidrum::detail

@@ -167,4 +167,12 @@ class Problem : public LeastSquares {
   bool warm_starts_ = true;  // false with mu among the unknowns (run())
 };
 
+/// The record read the other way round: x_M'' (or z_M'') negated, its harmonics, peaks and trend
+/// with it (the area and the covariances do not change sign).
+MeasuredResponse flipped(MeasuredResponse d, bool x, bool z);
+
+/// The record with its accelerations s times as large: read in another unit (s = g: a record in
+/// g read as m/s^2; s = 1/g the other way round).
+MeasuredResponse scaled(MeasuredResponse d, double s);
+
 }  // namespace oscidrum::detail

@@ -1028,7 +1028,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   } else if (out.units_open) {
     units_note =
         "accelerations: no unit in the header and no gravity to tell it: read in m/s^2 (give "
-        "--units g if the logger wrote g; identify fits them in g where only that fits)";
+        "--units g if the logger wrote g; identify and calibrate fit them in g where only that "
+        "fits)";
   }
   // Gravity confirms the direction read when the column so read has a mean of -1 g (an axis
   // pointing down at rest); without gravity either way, "auto" leaves the direction open.

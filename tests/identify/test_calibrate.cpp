@@ -80,6 +80,47 @@ TEST(Calibrate, RecoversTheUnbalanceAndTheAxleLoadFromTwoReferences) {
   for (const std::string& w : cal.warnings) ADD_FAILURE() << "unexpected warning: " << w;
 }
 
+// References whose z axis points up with gravity removed, or whose columns are in g without a
+// unit: nothing tells, so the open ones are read the other way where only that fits (all alike),
+// and the roller is the one the references read as the model writes them give.
+TEST(Calibrate, OpenReferencesAreReadTheWayThatFits) {
+  // The reference of G, its z axis up (gravity removed) and in g if asked.
+  const auto logged = [](double G, unsigned seed, bool z_up, bool in_g) {
+    const Soil s = modulus_soil(G);
+    RecordSamples r = record_of(truth(s), seed);
+    const double k = in_g ? 1.0 / kStandardGravity : 1.0;
+    for (double& x : r.ddx_M) x *= k;
+    for (double& z : r.ddz_M) z *= z_up ? -k : k;
+    return Reference{"G=" + std::to_string(G), s, measure_record(r.t, r.ddx_M, r.ddz_M)};
+  };
+  CalibrateOptions o;
+  o.parameters = {"roller.M0", "roller.P0"};
+  o.profile = false;
+  const std::vector<Reference> as_the_model = {reference(15e6, 3), reference(60e6, 4)};
+  const Calibration truth_fit = calibrate(Case{}, as_the_model, o);
+  for (const bool in_g : {false, true}) {
+    SCOPED_TRACE(in_g);
+    // The first reference's axis open and up; the second's given (down, as the model's).
+    std::vector<Reference> refs = {logged(15e6, 3, true, in_g), logged(60e6, 4, false, in_g)};
+    refs[0].z_open = true;
+    refs[0].units_open = refs[1].units_open = in_g;
+    const Calibration cal = calibrate(Case{}, refs, o);
+    EXPECT_LE(cal.reduced_chi2, o.max_reduced_chi2);
+    EXPECT_LE(truth_fit.reduced_chi2, o.max_reduced_chi2);
+    for (std::size_t j = 0; j < 2; ++j)
+      EXPECT_NEAR(cal.estimates[j].value / truth_fit.estimates[j].value, 1.0, 1e-6);
+    EXPECT_TRUE(cal.references[0].z_negated);
+    EXPECT_FALSE(cal.references[1].z_negated);
+    EXPECT_EQ(cal.references[0].read_in_g, in_g);
+    EXPECT_EQ(cal.references[1].read_in_g, in_g);
+    ASSERT_FALSE(cal.warnings.empty());
+    EXPECT_NE(cal.warnings.front().find(" in G=15"), std::string::npos) << cal.warnings.front();
+    // Nothing open: fitted as read, poorly.
+    for (Reference& ref : refs) ref.z_open = ref.units_open = false;
+    EXPECT_GT(calibrate(Case{}, refs, o).reduced_chi2, o.max_reduced_chi2);
+  }
+}
+
 // References sampled in step with the excitation (64 samples a period, noise-free): their raw
 // samples alias, and the model is compared sampled at their times, as identify does.
 TEST(Calibrate, ReferencesSampledInStepWithTheExcitation) {

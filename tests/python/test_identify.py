@@ -303,6 +303,14 @@ def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
         assert e["lower"] <= truths[e["name"]] <= e["upper"], e
     assert cal["warnings"] == [] and cal["converged"]
     assert [r["name"] for r in cal["references"]] == ["G=15", "G=60"]
+    assert not any(r["z_negated"] for r in cal["references"])
+    # The same references by default ('auto'; no gravity in them): the fit reads them z up.
+    auto = oscidrum.identify.calibrate([record(15e6, 1), record(60e6, 2)],
+                                       parameters=["roller.M0", "roller.P0"])
+    assert all(r["z_negated"] for r in auto["references"]), auto["warnings"]
+    for e, given in zip(auto["estimates"], cal["estimates"]):
+        assert e["value"] == pytest.approx(given["value"], rel=1e-9)
+    assert auto["warnings"][0].startswith("z_M'' fitted negated in G=15, G=60"), auto["warnings"]
     path = tmp_path / "roller.toml"
     path.write_text(oscidrum.case_to_toml(cal["calibrated"]))
     case = oscidrum.load_case(str(path))
