@@ -305,10 +305,6 @@ bool is_time_key(const std::string& k) {
   return false;
 }
 
-// 'x', 'y' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x,
-// acc_x, accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
-// otherwise. (y: the lateral axis of a three-axis logger, or the vertical of a two-dimensional
-// record without z.)
 // The words that name the drum in a column's key (ax_drum, drum acc. x, Beschl. Bandage X,
 // Trommel): what they qualify is read without them.
 constexpr const char* kDrumWords[] = {"drum", "bandage", "trommel"};
@@ -319,6 +315,10 @@ bool names_the_drum(const std::string& k) {
   return false;
 }
 
+// 'x', 'y' or 'z' if the key names an acceleration along that axis (the model's names, ax, a_x,
+// acc_x, accel_x, acceleration_x, x_acc, xacc, ddx, horizontal, vertical, longitudinal, ...); 0
+// otherwise. (y: the lateral axis of a three-axis logger, or the vertical of a two-dimensional
+// record without z.)
 char acceleration_axis(const std::string& k) {
   for (const char* w : kDrumWords)
     if (const std::size_t at = k.find(w); at != std::string::npos && k.size() > std::strlen(w))
@@ -996,8 +996,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // some phone APIs do: the same column). With z_positive "auto" (the default) the direction read
   // is turned round then (down to up, or a two-dimensional record's y from up to down), with a
   // note; an explicit direction is kept, with a note when the mean contradicts it. A record
-  // without gravity, or with the offset removed, says nothing: it is read as auto's first guess
-  // and the identification's poor-fit diagnosis names an axis the other way round.
+  // without gravity, or with the offset removed, says nothing: it is read as auto's first guess,
+  // its direction left open (RecordColumns::z_open) for identify's fit to decide.
   std::string gravity_note;
   double mean = 0.0;
   bool gravity_up = gravity_points_up(out.ddz_M, &mean);
