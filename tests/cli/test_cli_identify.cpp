@@ -54,6 +54,26 @@ void write_record(const std::string& path, const std::vector<Case>& cases, doubl
   }
 }
 
+// The record `from` (t, x_M'', z_M'' as write_record writes them) written again as a logger
+// writes it, to `to`: `header`, then per row the time (in ms with `ms`, else s) and the
+// accelerations in g with the z axis pointing up, `gravity` [g] added to z, separated by `sep`.
+void write_logger_file(const std::string& from, const std::string& to, const std::string& header,
+                       char sep, bool ms, double gravity) {
+  std::ifstream in(from);
+  std::ofstream out(to);
+  out << header << "\n";
+  std::string line;
+  std::getline(in, line);  // the header
+  char row[160];
+  while (std::getline(in, line)) {
+    double t = 0, x = 0, z = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+    std::snprintf(row, sizeof row, ms ? "%.3f%c%.9g%c%.9g\n" : "%.6f%c%.9g%c%.9g\n",
+                  ms ? t * 1e3 : t, sep, x / kStandardGravity, sep, gravity - z / kStandardGravity);
+    out << row;
+  }
+}
+
 // Column `name` (without unit) of a CSV text, as numbers (NaN for text).
 std::vector<double> column(const std::string& csv, const std::string& name) {
   std::istringstream in(csv);
@@ -155,20 +175,8 @@ TEST(CliIdentify, ARecordShorterThanTheDefaultWindowIsIdentifiedWhole) {
 TEST(CliIdentify, ALoggersFileInGWithZUpAndGravityIsReadAsPointingUp) {
   TempDir dir;
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
-  std::ifstream in(dir / "r.csv");
-  std::ofstream out(dir / "logger.csv");
-  out << "Time [ms];Acc X [g];Acc Z [g]\n";
-  std::string line;
-  std::getline(in, line);  // the header
-  char row[160];
-  while (std::getline(in, line)) {
-    double t = 0, x = 0, z = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
-    std::snprintf(row, sizeof row, "%.3f;%.9g;%.9g\n", t * 1e3, x / kStandardGravity,
-                  1.0 - z / kStandardGravity);
-    out << row;
-  }
-  out.close();
+  write_logger_file(dir / "r.csv", dir / "logger.csv", "Time [ms];Acc X [g];Acc Z [g]", ';', true,
+                    1.0);
   const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
   const Outcome logger = run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
   ASSERT_EQ(model.code, 0) << model.err;
@@ -192,20 +200,8 @@ TEST(CliIdentify, ALoggersFileInGWithZUpAndGravityIsReadAsPointingUp) {
 TEST(CliIdentify, AZUpRecordWithoutGravityIsFittedNegatedAndSaysSo) {
   TempDir dir;
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
-  std::ifstream in(dir / "r.csv");
-  std::ofstream out(dir / "logger.csv");
-  out << "Time [ms];Acc X [g];Acc Z [g]\n";
-  std::string line;
-  std::getline(in, line);  // the header
-  char row[160];
-  while (std::getline(in, line)) {
-    double t = 0, x = 0, z = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
-    std::snprintf(row, sizeof row, "%.3f;%.9g;%.9g\n", t * 1e3, x / kStandardGravity,
-                  -z / kStandardGravity);
-    out << row;
-  }
-  out.close();
+  write_logger_file(dir / "r.csv", dir / "logger.csv", "Time [ms];Acc X [g];Acc Z [g]", ';', true,
+                    0.0);
   const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
   const Outcome logger = run(
       {"identify", dir / "logger.csv", "--no-profile", "--format", "json", "--csv", dir / "G.csv"});
@@ -241,20 +237,7 @@ TEST(CliIdentify, ColumnsInGWithoutAUnitAreFittedInG) {
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
   for (const double gravity : {0.0, 1.0}) {
     SCOPED_TRACE(gravity);
-    std::ifstream in(dir / "r.csv");
-    std::ofstream out(dir / "logger.csv");
-    out << "t,ax,az\n";
-    std::string line;
-    std::getline(in, line);  // the header
-    char row[160];
-    while (std::getline(in, line)) {
-      double t = 0, x = 0, z = 0;
-      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
-      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", t, x / kStandardGravity,
-                    gravity - z / kStandardGravity);
-      out << row;
-    }
-    out.close();
+    write_logger_file(dir / "r.csv", dir / "logger.csv", "t,ax,az", ',', false, gravity);
     const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
     const Outcome logger =
         run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
