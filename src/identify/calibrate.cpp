@@ -330,17 +330,8 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
             which += (which.empty() ? "" : ", ") + read[k].name;
         }
         other.simulations = simulations;
-        other.warnings.insert(
-            other.warnings.begin(),
-            std::string(z && g ? "the accelerations fitted in g (x 9.80665) and z_M'' negated"
-                        : g    ? "the accelerations fitted in g (x 9.80665)"
-                               : "z_M'' fitted negated") +
-                " in " + which + ": reduced chi^2 " + sig3(other.reduced_chi2) + " so, " +
-                sig3(s2) + " as read, and nothing in the columns tells (give " +
-                (z && g ? "--units g --z-positive up"
-                 : g    ? "--units g"
-                        : "--z-positive up") +
-                " to read them so, or the unit and axis as read to fit them so)");
+        other.warnings.insert(other.warnings.begin(),
+                              detail::open_reading_warning(z, g, other.reduced_chi2, s2, which));
         return other;
       } catch (const Error&) {
         // a reading the model cannot fit: the next one

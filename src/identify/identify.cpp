@@ -127,32 +127,6 @@ std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o)
                                    "does not describe the roller)"));
 }
 
-// What a window fitted in a reading the record left open says (IdentifyOptions::z_open,
-// units_open): its z_M'' negated, its accelerations in g, or both; chi2 the reduced chi^2 so,
-// s2 as read.
-std::string open_reading_warning(bool z_negated, bool in_g, double chi2, double s2) {
-  const bool both = z_negated && in_g;
-  const std::string what = both   ? "the accelerations fitted in g (x 9.80665) and z_M'' negated"
-                           : in_g ? "the accelerations fitted in g (x 9.80665)"
-                                  : "z_M'' fitted negated";
-  const std::string why = both   ? "the record's columns have no unit and are in g, and its z "
-                                   "axis points up"
-                          : in_g ? "the record's columns have no unit and are in g"
-                                 : "the record's z axis points up";
-  const std::string as_read = both   ? "as read in m/s^2, pointing down"
-                              : in_g ? "as read in m/s^2"
-                                     : "as read pointing down";
-  const std::string give =
-      both   ? "give --units g --z-positive up to read it so, or --units m/s2 --z-positive down "
-               "to fit it as read (Python: the arrays in m/s^2 and z_positive)"
-      : in_g ? "give --units g to read it so, or --units m/s2 to fit it as read (Python: the "
-               "arrays in m/s^2)"
-             : "give --z-positive up to read it so, or --z-positive down to fit it as read "
-               "(Python: z_positive)";
-  return what + ": " + why + " (reduced chi^2 " + num(std::round(chi2 * 100) / 100) + " so, " +
-         num(std::round(s2)) + " " + as_read + "; nothing in the columns tells): " + give;
-}
-
 // A poor fit: what causes it? Each cause that can be checked is fitted from the same coarse start
 // (no profile): an axis read the other way round (x_M'', z_M'' or both negated), G on the other
 // scale, the accelerations in another unit (g for m/s^2 or the other way round), and mu and MMd
@@ -487,8 +461,9 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         other.z_negated = rd.z_negated;
         other.read_in_g = rd.in_g;
         other.simulations = simulations;
-        other.warnings.insert(other.warnings.begin(),
-                              open_reading_warning(rd.z_negated, rd.in_g, other.reduced_chi2, s2));
+        other.warnings.insert(
+            other.warnings.begin(),
+            detail::open_reading_warning(rd.z_negated, rd.in_g, other.reduced_chi2, s2, ""));
         return other;
       } catch (const Error&) {
         // a reading the model cannot fit: the next one

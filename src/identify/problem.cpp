@@ -518,4 +518,29 @@ MeasuredResponse scaled(MeasuredResponse d, double s) {
   return d;
 }
 
+std::string open_reading_warning(bool z_negated, bool in_g, double chi2, double s2,
+                                 const std::string& where) {
+  const bool both = z_negated && in_g;
+  const std::string what = both   ? "the accelerations fitted in g (x 9.80665) and z_M'' negated"
+                           : in_g ? "the accelerations fitted in g (x 9.80665)"
+                                  : "z_M'' fitted negated";
+  const std::string why = both   ? "the record's columns have no unit and are in g, and its z "
+                                   "axis points up"
+                          : in_g ? "the record's columns have no unit and are in g"
+                                 : "the record's z axis points up";
+  const std::string as_read = both   ? "as read in m/s^2, pointing down"
+                              : in_g ? "as read in m/s^2"
+                                     : "as read pointing down";
+  const std::string give =
+      both   ? "give --units g --z-positive up to read it so, or --units m/s2 --z-positive down "
+               "to fit it as read (Python: the arrays in m/s^2 and z_positive)"
+      : in_g ? "give --units g to read it so, or --units m/s2 to fit it as read (Python: the "
+               "arrays in m/s^2)"
+             : "give --z-positive up to read it so, or --z-positive down to fit it as read "
+               "(Python: z_positive)";
+  return what + (where.empty() ? "" : " in " + where) + ": " + why + " (reduced chi^2 " +
+         num(std::round(chi2 * 100) / 100) + " so, " + num(std::round(s2)) + " " + as_read +
+         "; nothing in the columns tells): " + give;
+}
+
 }  // namespace oscidrum::detail

@@ -175,4 +175,10 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z);
 /// g read as m/s^2; s = 1/g the other way round).
 MeasuredResponse scaled(MeasuredResponse d, double s);
 
+/// What a fit in a reading the record left open says (IdentifyOptions::z_open, units_open;
+/// Reference::z_open, units_open): z_M'' negated, the accelerations in g, or both, `where` (a
+/// calibration's references; empty: the window), chi2 the reduced chi^2 so, s2 as read.
+std::string open_reading_warning(bool z_negated, bool in_g, double chi2, double s2,
+                                 const std::string& where);
+
 }  // namespace oscidrum::detail
