@@ -709,7 +709,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                      : find(o.x_col, "--x-col");
   // A two-dimensional record (another implementation's x and y, y vertical) has no z column:
   // its one y acceleration is the vertical, with a note (beside a z column, y is lateral).
-  int cz = -1;
+  int cz = -1, cy = -1;
   std::string z_from_y;
   if (o.z_col.empty()) {
     std::vector<int> z_like, y_like;
@@ -727,6 +727,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       cz = recognise(
           "vertical acceleration z_M''", "--z-col", "ddz_M",
           [](const std::string& k) { return acceleration_axis(k) == 'z'; }, "z");
+      // Beside it, a three-axis logger's one y channel: the vertical instead when gravity says so
+      // (below, once the rows are read).
+      if (y_like.size() == 1 && y_like.front() != cz && y_like.front() != cx) cy = y_like.front();
     }
   } else {
     cz = find(o.z_col, "--z-col");
@@ -793,7 +796,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                              ? "pointing up as y usually does (give --z-positive down if it "
                                "points down)"
                              : "pointing " + o.z_positive + " (--z-positive)"));
-  std::vector<double> speed;
+  std::vector<double> speed, y_raw;
   // A row with a missing or non-finite value in a column read is skipped (and counted: a note
   // says how many, and the gap gate judges the windows they fall in).
   std::size_t skipped = 0, first_skipped = 0, data_rows = 0;
@@ -857,6 +860,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     };
     const double t = get_time();
     const double x = kx * get(cx), z = kz * get(cz);
+    // The y channel that may be the vertical: read as it is (NaN where it has no number), and
+    // without skipping the row for it.
+    double y = std::nan("");
+    if (cy >= 0 && !missing) {
+      const std::string& cell = cells[static_cast<std::size_t>(cy)];
+      if (!is_missing(cell) && !parse_number(cell, decimal_comma, y)) y = std::nan("");
+    }
     const double p = cp >= 0 ? get(cp) : 0.0, sp = cs >= 0 ? get(cs) : 0.0,
                  u = cu >= 0 ? get(cu) : 0.0;
     const double lat = clat >= 0 ? get(clat) : 0.0, lon = clat >= 0 ? get(clon) : 0.0;
@@ -868,6 +878,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     out.t.push_back(t);
     out.ddx_M.push_back(x);
     out.ddz_M.push_back(z);
+    if (cy >= 0) y_raw.push_back(y);
     if (cp >= 0) out.position.push_back(p);
     if (cs >= 0) speed.push_back(sp);
     if (cu >= 0) out.unbalance_angle.push_back(u);
@@ -894,6 +905,46 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     throw Error(name + (skipped > 0 ? ": every data row (" + std::to_string(skipped) +
                                           ") has a missing or non-finite value"
                                     : std::string(": no data rows after the header")));
+  // A three-axis logger mounted with its y axis vertical (z lateral, or along the drum's axle):
+  // gravity, which an accelerometer at rest reads as +-1 g along the vertical and about 0 along a
+  // horizontal axis, is in the mean of y and not in z's. Then y is read as the vertical, with a
+  // note; --z-col chooses otherwise. In m/s^2 (the columns' units), or in g for columns without a
+  // unit (a mean of about +-1; read in g below).
+  if (cy >= 0 && o.units == "auto") {
+    const auto mean_of = [](const std::vector<double>& v, double k) {
+      double sum = 0.0;
+      for (double e : v) sum += e;
+      return v.empty() ? std::nan("") : k * sum / static_cast<double>(v.size());
+    };
+    const Heading& hy = headings[static_cast<std::size_t>(cy)];
+    const Heading& hz = headings[static_cast<std::size_t>(cz)];
+    const double ky = hy.unit.empty() ? 1.0 : acceleration_scale(hy.unit);
+    const double mean_y = mean_of(y_raw, ky), mean_z = mean_of(out.ddz_M, 1.0);
+    const auto gravity = [](double mean, bool unitless) {
+      const double a = std::abs(mean);
+      return std::abs(a - kStandardGravity) < kGravityBand * kStandardGravity ||
+             (unitless && std::abs(a - 1.0) < kGravityBand);
+    };
+    const bool unitless_y = hy.unit.empty(), unitless_z = hz.unit.empty() && hz.name != "ddz_M";
+    if (std::isfinite(ky) && std::isfinite(mean_y) && gravity(mean_y, unitless_y) &&
+        !gravity(mean_z, unitless_z) && unitless_y == unitless_z) {
+      const std::string z_name = header[static_cast<std::size_t>(cz)];
+      const double scale_z = hz.unit.empty() ? 1.0 : acceleration_scale(hz.unit);
+      kz = kz / scale_z * ky;
+      cz = cy;
+      for (std::size_t i = 0; i < out.ddz_M.size(); ++i) out.ddz_M[i] = kz * y_raw[i];
+      out.z_column = header[static_cast<std::size_t>(cz)];
+      out.z_factor = kz;
+      out.notes.push_back("z_M'': the y column '" + out.z_column +
+                          "' is read as the vertical: its mean " + format_factor(mean_y) +
+                          (unitless_y ? "" : " m/s^2") +
+                          " is gravity (an accelerometer at rest reads 1 g along the vertical) "
+                          "and that of the z column '" +
+                          z_name + "', " + format_factor(mean_z) +
+                          ", is not: a three-axis logger mounted with y vertical (give --z-col '" +
+                          z_name + "' to read z)");
+    }
+  }
   // The time column's note first (how t was read is known only now).
   {
     const std::vector<std::string> later = std::move(out.notes);

@@ -257,6 +257,49 @@ TEST(CliIdentify, ColumnsInGWithoutAUnitAreFittedInG) {
   }
 }
 
+// A three-axis logger mounted with y vertical (up, gravity kept) and z along the drum's axle (a
+// small lateral signal, no gravity), in g: the reader takes y as the vertical and says so, and
+// identify gives the model's own record's G.
+TEST(CliIdentify, AThreeAxisLoggerMountedWithYVerticalIsIdentified) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  {
+    std::ifstream in(dir / "r.csv");
+    std::ofstream out(dir / "logger.csv");
+    out << "Time [s],Acc X [g],Acc Y [g],Acc Z [g]\n";
+    std::string line;
+    std::getline(in, line);  // the header
+    char row[200];
+    for (int k = 0; std::getline(in, line); ++k) {
+      double t = 0, x = 0, z = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g,%.9g\n", t, x / kStandardGravity,
+                    1.0 - z / kStandardGravity, 0.01 * std::sin(0.37 * k));
+      out << row;
+    }
+  }
+  const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  const Outcome logger = run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
+  ASSERT_EQ(model.code, 0) << model.err;
+  ASSERT_EQ(logger.code, 0) << logger.err;
+  EXPECT_NE(logger.err.find("the y column 'Acc Y [g]' is read as the vertical"), std::string::npos)
+      << logger.err;
+  const nlohmann::json j = nlohmann::json::parse(logger.out);
+  EXPECT_EQ(j["reading"]["z_positive"], "up");
+  const nlohmann::json& b = j["windows"][0];
+  ASSERT_TRUE(b["valid"].get<bool>()) << logger.out;
+  EXPECT_NEAR(
+      b["estimates"][0]["value"].get<double>() /
+          nlohmann::json::parse(model.out)["windows"][0]["estimates"][0]["value"].get<double>(),
+      1.0, 1e-4);
+  // --z-col reads the lateral channel as asked: no vertical motion there, no valid fit.
+  const Outcome as_z = run(
+      {"identify", dir / "logger.csv", "--no-profile", "--format", "json", "--z-col", "Acc Z [g]"});
+  EXPECT_EQ(as_z.err.find("is read as the vertical"), std::string::npos) << as_z.err;
+  EXPECT_EQ(as_z.code, 1) << as_z.err;  // no window identified
+  EXPECT_FALSE(nlohmann::json::parse(as_z.out)["windows"][0]["valid"].get<bool>()) << as_z.out;
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {

@@ -580,10 +580,61 @@ TEST(RecordReader, ATwoDimensionalRecordsYIsTheVertical) {
   EXPECT_DOUBLE_EQ(down_g.ddz_M[0], -1.25 * kStandardGravity);
   EXPECT_TRUE(has(down_g, "read as pointing down (as it is)"));
   // Three axes: z is the vertical, y the lateral channel.
-  const RecordColumns three = read_text("t,ax,ay,az\n0,0.5,9,-0.25\n0.001,1.5,9,0.75\n");
+  const RecordColumns three = read_text("t,ax,ay,az\n0,0.5,0.2,-0.25\n0.001,1.5,-0.1,0.75\n");
+  EXPECT_EQ(three.z_column, "az");
   EXPECT_DOUBLE_EQ(three.ddz_M[1], 0.75);
   EXPECT_EQ(three.z_positive, "down");
   EXPECT_FALSE(has(three, "two-dimensional"));
+  EXPECT_FALSE(has(three, "is read as the vertical"));
+  // With gravity in z (and y lateral, about 0), z stays the vertical.
+  const RecordColumns z_g = read_text("t,ax,ay,az\n0,0.5,0.2,-9.5\n0.001,1.5,-0.1,-10.1\n");
+  EXPECT_EQ(z_g.z_column, "az");
+  EXPECT_FALSE(has(z_g, "is read as the vertical"));
+}
+
+// A three-axis logger mounted with its y axis vertical: gravity (+-1 g at rest) is in the mean of
+// y, not of z (now a horizontal axis, about 0): y is read as the vertical, with a note naming
+// the flag that reads z; its direction from gravity's sign as for any vertical column. In g
+// without a unit (a mean of about +-1), both channels in g. Where z has gravity too, or y has
+// none, or --z-col chooses, nothing changes.
+TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
+  const auto has = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  // m/s^2 in the header; y points down (mean -9.81: read as it is).
+  const std::string si =
+      "t,acc_x [m/s^2],acc_y [m/s^2],acc_z [m/s^2]\n0,0.5,-9.3,0.2\n0.001,1.5,-10.3,-0.1\n";
+  const RecordColumns down = read_text(si);
+  EXPECT_EQ(down.z_column, "acc_y [m/s^2]");
+  EXPECT_DOUBLE_EQ(down.ddz_M[0], -9.3);
+  EXPECT_DOUBLE_EQ(down.ddx_M[1], 1.5);
+  EXPECT_EQ(down.z_positive, "down");
+  EXPECT_TRUE(has(down, "the y column 'acc_y [m/s^2]' is read as the vertical"));
+  EXPECT_TRUE(has(down, "give --z-col 'acc_z [m/s^2]' to read z"));
+  // In g, y pointing up (mean +1 g): turned round by gravity's rule.
+  const RecordColumns up = read_text("t,ax [g],ay [g],az [g]\n0,0.5,0.95,0.02\n0.001,1.5,1.05,0\n");
+  EXPECT_EQ(up.z_column, "ay [g]");
+  EXPECT_EQ(up.z_positive, "up");
+  EXPECT_DOUBLE_EQ(up.ddz_M[0], -0.95 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(up.z_factor, -kStandardGravity);
+  // Without units: y's mean about 1 is gravity in g; both read in g.
+  const RecordColumns g = read_text("t,ax,ay,az\n0,0.5,0.95,0.02\n0.001,1.5,1.05,0\n");
+  EXPECT_EQ(g.z_column, "ay");
+  EXPECT_DOUBLE_EQ(g.ddx_M[0], 0.5 * kStandardGravity);
+  EXPECT_EQ(g.z_positive, "up");
+  EXPECT_FALSE(g.units_open);
+  // Gravity in both (a logger tilted so) or in neither: z stays the vertical.
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,-9.3,9.8\n0.001,1.5,-10.3,9.8\n").z_column, "az");
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,0.3,0.2\n0.001,1.5,-0.3,-0.1\n").z_column, "az");
+  // A y cell without a number (z's and x's fine): y is not taken, the row is kept.
+  const RecordColumns gap = read_text(si + "0.002,1,,0.3\n");
+  EXPECT_EQ(gap.z_column, "acc_z [m/s^2]");
+  EXPECT_EQ(gap.t.size(), 3u);
+  // --z-col chooses z; --units given: the columns are read as told.
+  RecordReading named;
+  named.z_col = "acc_z [m/s^2]";
+  EXPECT_EQ(read_text(si, named).z_column, "acc_z [m/s^2]");
 }
 
 // A channel with the same value in every row (a dead sensor) is said, with its value in m/s^2;
