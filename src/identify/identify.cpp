@@ -281,6 +281,15 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
     return {found + ", but it still fits poorly (reduced chi^2 " + sig3(best) + " > " +
             num(o.max_reduced_chi2) + "): checked, best first: " + list +
             ". Other causes: " + remaining};
+  if (checked.empty())  // every refit failed: the window's budget spent, or no model fits
+    return {"no cause of the poor fit could be checked: the model failed on every refit (" +
+            std::string(steps < detail::kMaxStepsPerWindow
+                            ? "no steady state for any of them"
+                            : "the window's model runs had used up their budget of " +
+                                  std::to_string(detail::kMaxStepsPerWindow) +
+                                  " integration steps: the model hardly settles for "
+                                  "this roller; check its parameters") +
+            "). Remaining causes: " + remaining};
   return {
       "none of the causes checked explains the poor fit (reduced chi^2 with each, best "
       "first: " +
@@ -369,10 +378,17 @@ Soil soil_on_scale(double G, SoilScale scale, const Soil& base) {
   return s;
 }
 
-Identification identify(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
-                        const Identification* start) {
+namespace {
+
+// identify() with the window's model runs counted in `steps` (kMaxStepsPerWindow), when given:
+// the refits of readings left open share the window's budget with its fit, as the diagnosis's
+// refits do. (A roller whose model hardly settles spends the budget on the fit as read; each
+// reading then fails at once instead of spending a budget of its own.)
+Identification identify_in(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
+                           const Identification* start, long* steps) {
   check_input(data, o);
   Problem plain(base, data, o);
+  if (steps != nullptr) plain.count_steps_in(*steps);
   const std::size_t q = plain.unknowns().size();
   const int dof = plain.rows() - static_cast<int>(q) - 1;  // - 1: the time shift
   if (dof < 1)
@@ -452,10 +468,11 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
         plain.simulations() + (sampled ? sampled->simulations() : 0) + other_simulations;
     for (const Reading& rd : readings) {
       try {
-        Identification other = identify(base,
-                                        detail::scaled(detail::flipped(data, false, rd.z_negated),
-                                                       rd.in_g ? kStandardGravity : 1.0),
-                                        as_given, start);
+        Identification other =
+            identify_in(base,
+                        detail::scaled(detail::flipped(data, false, rd.z_negated),
+                                       rd.in_g ? kStandardGravity : 1.0),
+                        as_given, start, &plain.steps_counter());
         simulations += other.simulations;
         if (!(other.reduced_chi2 <= o.max_reduced_chi2)) continue;
         other.z_negated = rd.z_negated;
@@ -520,6 +537,13 @@ Identification identify(const Case& base, const MeasuredResponse& data, const Id
   id.measured.alias_w.clear();
   id.measured.alias_w.shrink_to_fit();
   return id;
+}
+
+}  // namespace
+
+Identification identify(const Case& base, const MeasuredResponse& data, const IdentifyOptions& o,
+                        const Identification* start) {
+  return identify_in(base, data, o, start, nullptr);
 }
 
 std::vector<IdentifiedUnknown> identified_unknowns(const IdentifyOptions& options) {
