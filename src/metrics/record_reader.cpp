@@ -1062,6 +1062,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     return h.unit.empty() && h.name != "ddx_M" && h.name != "ddz_M";
   };
   out.units_open = o.units == "auto" && unitless(cx) && unitless(cz);
+  const bool gravity_in_si =
+      std::abs(std::abs(mean) - kStandardGravity) < kGravityBand * kStandardGravity;
   std::string units_note;
   if (out.units_open && std::abs(std::abs(mean) - 1.0) < kGravityBand) {
     for (double& v : out.ddx_M) v *= kStandardGravity;
@@ -1076,6 +1078,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                  " is gravity in g (an accelerometer at rest reads 1 g): both read in g "
                  "(x 9.80665; give --units m/s2 to read them as m/s^2)";
     gravity_up = gravity_points_up(out.ddz_M, &mean);
+  } else if (out.units_open && gravity_in_si) {
+    // Gravity in m/s^2 (a mean of about +-9.81): the unit is told, m/s^2 as read.
+    out.units_open = false;
+    units_note = "accelerations: no unit in the header, and the mean of z_M'' " +
+                 format_factor(mean) +
+                 " m/s^2 is gravity in m/s^2 (an accelerometer at rest reads 1 g): both read in "
+                 "m/s^2 (give --units g to read them as g)";
   } else if (out.units_open) {
     units_note =
         "accelerations: no unit in the header and no gravity to tell it: read in m/s^2 (give "

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -467,6 +468,17 @@ TEST(RecordReader, GravityInGTellsTheUnitOfColumnsWithoutOne) {
   const RecordColumns down = read_text("t,ax,az\n0,0.5,-1.05\n0.001,-0.5,-0.95\n");
   EXPECT_DOUBLE_EQ(down.ddz_M[0], -1.05 * kStandardGravity);
   EXPECT_EQ(down.z_positive, "down");
+  // Gravity in m/s^2 (a mean of about -9.81 or +9.81): m/s^2 as read, the unit told, said so.
+  for (const double g : {-9.81, 9.81}) {
+    const RecordColumns si_g = read_text("t,ax,az\n0,0.5," + std::to_string(g + 0.3) +
+                                         "\n0.001,-0.5," + std::to_string(g - 0.3) + "\n");
+    EXPECT_DOUBLE_EQ(si_g.ddx_M[0], 0.5);
+    EXPECT_NEAR(std::abs(si_g.ddz_M[0]), std::abs(g + 0.3), 1e-12);
+    EXPECT_FALSE(si_g.units_open);
+    EXPECT_TRUE(std::any_of(si_g.notes.begin(), si_g.notes.end(), [](const std::string& n) {
+      return n.find("is gravity in m/s^2") != std::string::npos;
+    }));
+  }
   // No gravity: m/s^2, the unit open.
   const RecordColumns open = read_text("t,ax,az\n0,0.5,0.05\n0.001,-0.5,-0.05\n");
   EXPECT_DOUBLE_EQ(open.ddx_M[0], 0.5);
