@@ -34,7 +34,8 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
       "--z-col", o.z_col,
       "vertical acceleration column z_M'': name or index (default: recognised: ddz_M, "
       "az, a_z, acc_z, accel_z, z_acc, vertical, ...; a bare Z if nothing else matches; a "
-      "y column instead where it, not z, has gravity in its mean: a logger mounted y vertical)");
+      "y column instead where it, not z, has gravity in its mean (a logger mounted y vertical), "
+      "or where z never changes and y does)");
   if (file_and_position) {
     app.add_option("--pos-col", o.pos_col,
                    "position column [m] (optional): each window reports its position");

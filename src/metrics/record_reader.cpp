@@ -905,12 +905,15 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     throw Error(name + (skipped > 0 ? ": every data row (" + std::to_string(skipped) +
                                           ") has a missing or non-finite value"
                                     : std::string(": no data rows after the header")));
-  // A three-axis logger mounted with its y axis vertical (z lateral, or along the drum's axle):
-  // gravity, which an accelerometer at rest reads as +-1 g along the vertical and about 0 along a
-  // horizontal axis, is in the mean of y and not in z's. Then y is read as the vertical, with a
-  // note; --z-col chooses otherwise. In m/s^2 (the columns' units), or in g for columns without a
-  // unit (a mean of about +-1; read in g below).
-  if (cy >= 0 && o.units == "auto") {
+  // A three-axis record whose vertical is its y axis (z lateral, or along the drum's axle), told
+  // by one of two things, each with a note (--z-col reads z):
+  // - gravity, which an accelerometer at rest reads as +-1 g along the vertical and about 0 along
+  //   a horizontal axis, is in the mean of y and not in z's (in m/s^2, or in g for columns
+  //   without a unit: a mean of about +-1, read in g below);
+  // - z has the same value in every row and y does not: another implementation's three
+  //   coordinates with y vertical and z along the axle (the drum never moves that way), read
+  //   pointing up as y usually does, as a two-dimensional record's y.
+  if (cy >= 0) {
     const auto mean_of = [](const std::vector<double>& v, double k) {
       double sum = 0.0;
       for (double e : v) sum += e;
@@ -918,7 +921,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     };
     const Heading& hy = headings[static_cast<std::size_t>(cy)];
     const Heading& hz = headings[static_cast<std::size_t>(cz)];
-    const double ky = hy.unit.empty() ? 1.0 : acceleration_scale(hy.unit);
+    const double ky = o.units != "auto" ? (o.units == "g" ? kStandardGravity : 1.0)
+                      : hy.unit.empty() ? 1.0
+                                        : acceleration_scale(hy.unit);
     const double mean_y = mean_of(y_raw, ky), mean_z = mean_of(out.ddz_M, 1.0);
     const auto gravity = [](double mean, bool unitless) {
       const double a = std::abs(mean);
@@ -926,23 +931,34 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
              (unitless && std::abs(a - 1.0) < kGravityBand);
     };
     const bool unitless_y = hy.unit.empty(), unitless_z = hz.unit.empty() && hz.name != "ddz_M";
-    if (std::isfinite(ky) && std::isfinite(mean_y) && gravity(mean_y, unitless_y) &&
-        !gravity(mean_z, unitless_z) && unitless_y == unitless_z) {
+    const bool by_gravity = o.units == "auto" && gravity(mean_y, unitless_y) &&
+                            !gravity(mean_z, unitless_z) && unitless_y == unitless_z;
+    const auto [z_lo, z_hi] = std::minmax_element(out.ddz_M.begin(), out.ddz_M.end());
+    const auto [y_lo, y_hi] = std::minmax_element(y_raw.begin(), y_raw.end());
+    const bool z_still = out.ddz_M.size() > 1 && *z_lo == *z_hi && *y_lo != *y_hi;
+    if (std::isfinite(ky) && std::isfinite(mean_y) && (by_gravity || z_still)) {
       const std::string z_name = header[static_cast<std::size_t>(cz)];
-      const double scale_z = hz.unit.empty() ? 1.0 : acceleration_scale(hz.unit);
-      kz = kz / scale_z * ky;
+      if (!by_gravity && o.z_positive == "auto") z_up = true;
+      kz = ky * (z_up ? -1.0 : 1.0);
       cz = cy;
       for (std::size_t i = 0; i < out.ddz_M.size(); ++i) out.ddz_M[i] = kz * y_raw[i];
       out.z_column = header[static_cast<std::size_t>(cz)];
       out.z_factor = kz;
-      out.notes.push_back("z_M'': the y column '" + out.z_column +
-                          "' is read as the vertical: its mean " + format_factor(mean_y) +
-                          (unitless_y ? "" : " m/s^2") +
-                          " is gravity (an accelerometer at rest reads 1 g along the vertical) "
-                          "and that of the z column '" +
-                          z_name + "', " + format_factor(mean_z) +
-                          ", is not: a three-axis logger mounted with y vertical (give --z-col '" +
-                          z_name + "' to read z)");
+      out.notes.push_back(
+          "z_M'': the y column '" + out.z_column + "' is read as the vertical" +
+          (by_gravity
+               ? ": its mean " + format_factor(mean_y) + (unitless_y ? "" : " m/s^2") +
+                     " is gravity (an accelerometer at rest reads 1 g along the vertical) "
+                     "and that of the z column '" +
+                     z_name + "', " + format_factor(mean_z) +
+                     ", is not: a three-axis logger mounted with y vertical"
+               : ": the z column '" + z_name +
+                     "' has the same value in every row (an axis the drum does not move "
+                     "along: the axle), y does not; " +
+                     (o.z_positive == "auto" ? "pointing up as y usually does (give "
+                                               "--z-positive down if it points down)"
+                                             : "pointing " + o.z_positive + " (--z-positive)")) +
+          " (give --z-col '" + z_name + "' to read z)");
     }
   }
   // The time column's note first (how t was read is known only now).

@@ -608,7 +608,8 @@ TEST(RecordReader, ATwoDimensionalRecordsYIsTheVertical) {
 // y, not of z (now a horizontal axis, about 0): y is read as the vertical, with a note naming
 // the flag that reads z; its direction from gravity's sign as for any vertical column. In g
 // without a unit (a mean of about +-1), both channels in g. Where z has gravity too, or y has
-// none, or --z-col chooses, nothing changes.
+// none, or --z-col chooses, nothing changes. A z that never changes beside a y that does (three
+// coordinates of a model, z along the axle) makes y the vertical too.
 TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
   const auto has = [](const RecordColumns& r, const std::string& what) {
     return std::any_of(r.notes.begin(), r.notes.end(),
@@ -637,7 +638,7 @@ TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
   EXPECT_EQ(g.z_positive, "up");
   EXPECT_FALSE(g.units_open);
   // Gravity in both (a logger tilted so) or in neither: z stays the vertical.
-  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,-9.3,9.8\n0.001,1.5,-10.3,9.8\n").z_column, "az");
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,-9.3,9.7\n0.001,1.5,-10.3,9.9\n").z_column, "az");
   EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,0.3,0.2\n0.001,1.5,-0.3,-0.1\n").z_column, "az");
   // A y cell without a number (z's and x's fine): y is not taken, the row is kept.
   const RecordColumns gap = read_text(si + "0.002,1,,0.3\n");
@@ -647,6 +648,23 @@ TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
   RecordReading named;
   named.z_col = "acc_z [m/s^2]";
   EXPECT_EQ(read_text(si, named).z_column, "acc_z [m/s^2]");
+  // Another implementation's three coordinates, y vertical and z along the axle (the same value
+  // in every row), no gravity: y is the vertical, pointing up as a two-dimensional record's y.
+  const std::string coordinates = "t,ax,ay,az\n0,0.5,-0.25,0\n0.001,1.5,0.75,0\n";
+  const RecordColumns model = read_text(coordinates);
+  EXPECT_EQ(model.z_column, "ay");
+  EXPECT_EQ(model.z_positive, "up");
+  EXPECT_DOUBLE_EQ(model.ddz_M[1], -0.75);
+  EXPECT_TRUE(model.z_open);  // no gravity: identify may still fit it negated
+  EXPECT_TRUE(has(model, "'az' has the same value in every row"));
+  EXPECT_FALSE(has(model, "the same value (0 m/s^2) in every row"));  // not a dead vertical
+  RecordReading as_down;
+  as_down.z_positive = "down";
+  const RecordColumns model_down = read_text(coordinates, as_down);
+  EXPECT_DOUBLE_EQ(model_down.ddz_M[1], 0.75);
+  EXPECT_TRUE(has(model_down, "pointing down (--z-positive)"));
+  // Both still: z stays (and is said to be dead).
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.5,0,0\n0.001,1.5,0,0\n").z_column, "az");
 }
 
 // A channel with the same value in every row (a dead sensor) is said, with its value in m/s^2;
