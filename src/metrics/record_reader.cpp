@@ -324,12 +324,15 @@ char acceleration_axis(const std::string& k) {
     if (const std::size_t at = k.find(w); at != std::string::npos && k.size() > std::strlen(w))
       return acceleration_axis(k.substr(0, at) + k.substr(at + std::strlen(w)));
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
-  // ddot{x}), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm...).
+  // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm... or
+  // ...m: x_dd_M).
   for (const char axis : {'x', 'y', 'z'}) {
     const std::string a(1, axis);
     for (const std::string& name :
-         {"dd" + a + "m", "dd" + a, a + "ddot", a + "dd", a + "pp", a + "mddot", a + "mdd",
-          a + "mpp", "ddot" + a, "ddot" + a + "m", "d2" + a, "d2" + a + "m"})
+         {"dd" + a + "m", "dd" + a,     a + "ddot",       a + "dd",      a + "pp",
+          a + "mddot",    a + "mdd",    a + "mpp",        a + "ddotm",   a + "ddm",
+          a + "ppm",      a + "dotdot", a + "dotdotm",    a + "mdotdot", a + "2dot",
+          a + "2dotm",    "ddot" + a,   "ddot" + a + "m", "d2" + a,      "d2" + a + "m"})
       if (k == name) return axis;
   }
   // acc_hor / acc_vert, a_h / a_v, horizontal / vertical, hor / vert; the horizontal one named
@@ -348,8 +351,10 @@ char acceleration_axis(const std::string& k) {
   for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
     const std::string st = stem;
     for (char axis : {'x', 'y', 'z'}) {
-      // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number), acc_x_M (the drum centre M's)
-      if (k == st + axis || k == axis + st || k == st + axis + 'm') return axis;
+      // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number), acc_x_M and acc_M_x (the
+      // drum centre M's)
+      if (k == st + axis || k == axis + st || k == st + axis + 'm' || k == st + 'm' + axis)
+        return axis;
       if (k.size() == st.size() + 2 && k.rfind(st + axis, 0) == 0 &&
           std::isdigit(static_cast<unsigned char>(k.back())))
         return axis;

@@ -167,12 +167,33 @@ TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
 // displacement x_M), x'', x double dot, x prime prime, xM_acc, acc_hor / acc_vert, hor / vert,
 // acc_long (the direction of travel).
 TEST(RecordReader, NotationsOfASecondDerivative) {
-  for (const std::string header :
-       {"t,x_M,x_M'',z_M'',z_M", "t,x'',z''", "t,x_dd,z_dd", "t,xpp,zpp", "t,xM_acc,zM_acc",
-        "time,acc_hor,acc_vert", "time,hor,vert", "timestamp,acc_long,acc_vert", "t,a_long,a_v",
-        "t,longitudinal,vertical", "timestamp,acc_h,acc_v", "t,ax_M,az_M",
-        "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]", "t,ddot{x}_M,ddot{z}_M", "t,ddot_x,ddot_z",
-        "t,d2x,d2z", "t,d2x_M,d2z_M", "t,acc_x_M,acc_z_M", "t,accel_x_M,accel_z_M"}) {
+  for (const std::string header : {"t,x_M,x_M'',z_M'',z_M",
+                                   "t,x'',z''",
+                                   "t,x_dd,z_dd",
+                                   "t,xpp,zpp",
+                                   "t,xM_acc,zM_acc",
+                                   "time,acc_hor,acc_vert",
+                                   "time,hor,vert",
+                                   "timestamp,acc_long,acc_vert",
+                                   "t,a_long,a_v",
+                                   "t,longitudinal,vertical",
+                                   "timestamp,acc_h,acc_v",
+                                   "t,ax_M,az_M",
+                                   "t,x_M [m],x_M'' [g],z_M'' [g],z_M [m]",
+                                   "t,ddot{x}_M,ddot{z}_M",
+                                   "t,ddot_x,ddot_z",
+                                   "t,d2x,d2z",
+                                   "t,d2x_M,d2z_M",
+                                   "t,acc_x_M,acc_z_M",
+                                   "t,accel_x_M,accel_z_M",
+                                   "t,x_dd_M,z_dd_M",
+                                   "t,xddot_M,zddot_M",
+                                   "t,x_pp_M,z_pp_M",
+                                   "t,x_dotdot,z_dotdot",
+                                   "t,x_M_dotdot,z_M_dotdot",
+                                   "t,x_2dot,z_2dot",
+                                   "t,a_M_x,a_M_z",
+                                   "t,acc_M_x,acc_M_z"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const std::string rows =
