@@ -19,6 +19,12 @@ RecordColumns read_text(const std::string& text, const RecordReading& o = {}) {
   return read_record(in, "record.csv", o);
 }
 
+// True when one of the reading's notes contains `what`.
+bool has_note(const RecordColumns& r, const std::string& what) {
+  return std::any_of(r.notes.begin(), r.notes.end(),
+                     [&](const std::string& n) { return n.find(what) != std::string::npos; });
+}
+
 std::string message_of(const std::string& text, const RecordReading& o = {}) {
   try {
     read_text(text, o);
@@ -496,9 +502,7 @@ TEST(RecordReader, GravityInGTellsTheUnitOfColumnsWithoutOne) {
     EXPECT_DOUBLE_EQ(si_g.ddx_M[0], 0.5);
     EXPECT_NEAR(std::abs(si_g.ddz_M[0]), std::abs(g + 0.3), 1e-12);
     EXPECT_FALSE(si_g.units_open);
-    EXPECT_TRUE(std::any_of(si_g.notes.begin(), si_g.notes.end(), [](const std::string& n) {
-      return n.find("is gravity in m/s^2") != std::string::npos;
-    }));
+    EXPECT_TRUE(has_note(si_g, "is gravity in m/s^2"));
   }
   // No gravity: m/s^2, the unit open.
   const RecordColumns open = read_text("t,ax,az\n0,0.5,0.05\n0.001,-0.5,-0.05\n");
@@ -586,10 +590,7 @@ TEST(RecordReader, UTF16TextIsReadAndWhatIsNotTextIsNamed) {
 // vertical, read as pointing up (the usual Cartesian y) unless its mean of -1 g says it points
 // down; beside a z column, y is a three-axis logger's lateral channel.
 TEST(RecordReader, ATwoDimensionalRecordsYIsTheVertical) {
-  const auto has = [](const RecordColumns& r, const std::string& what) {
-    return std::any_of(r.notes.begin(), r.notes.end(),
-                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
-  };
+  const auto has = has_note;
   for (const std::string header : {"t,ax,ay", "time,acc_x,acc_y", "t,x'',y''", "t,ddx,ddy"}) {
     SCOPED_TRACE(header);
     const RecordColumns r = read_text(header + "\n0,0.5,-0.25\n0.001,1.5,0.75\n");
@@ -632,10 +633,7 @@ TEST(RecordReader, ATwoDimensionalRecordsYIsTheVertical) {
 // none, or --z-col chooses, nothing changes. A z that never changes beside a y that does (three
 // coordinates of a model, z along the axle) makes y the vertical too.
 TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
-  const auto has = [](const RecordColumns& r, const std::string& what) {
-    return std::any_of(r.notes.begin(), r.notes.end(),
-                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
-  };
+  const auto has = has_note;
   // m/s^2 in the header; y points down (mean -9.81: read as it is).
   const std::string si =
       "t,acc_x [m/s^2],acc_y [m/s^2],acc_z [m/s^2]\n0,0.5,-9.3,0.2\n0.001,1.5,-10.3,-0.1\n";
