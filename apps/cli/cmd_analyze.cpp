@@ -104,7 +104,8 @@ std::string windows_csv(const std::vector<RecordWindow>& ws, int n_max) {
 
 int run(AnalyzeOptions o) {
   const RecordColumns rec = read_record(o.input);
-  report_reading(rec);
+  // How the record was read is said once nothing can fail any more: a refusal (exit code 2) is one
+  // line on stderr.
   // --harmonics not given (0): 10, or as many as the record's sampling resolves when fewer.
   std::vector<RecordWindow> ws =
       analyze_windows(rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows);
@@ -119,6 +120,7 @@ int run(AnalyzeOptions o) {
   // analyze_windows refuses a record shorter than one window, so there is always a first window;
   // should that ever fail, say so instead of reading an empty list.
   if (ws.empty()) throw oscidrum::Error("analyze: no window fits in the record " + o.input.file);
+  report_reading(rec);
   std::size_t valid = 0;
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
   // A record sampled in step with the excitation: what it reports of the harmonics above those it

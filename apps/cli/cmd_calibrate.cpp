@@ -43,8 +43,9 @@ struct CalibrateCliOptions {
 
 // A reference argument: the record's file and, after the last '@', the soil's G [MN/m^2] on the
 // soil scale (none: the case's soil).
+// How its record was read goes to `notes`.
 Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, const Case& base,
-                       SoilScale scale) {
+                       SoilScale scale, std::vector<std::string>& notes) {
   const std::size_t at = arg.rfind('@');
   Reference ref;
   RecordInput in = o.input;
@@ -77,7 +78,7 @@ Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, con
     }
   }
   const RecordColumns rec = read_record(in);
-  report_reading(rec);
+  notes.insert(notes.end(), rec.notes.begin(), rec.notes.end());
   ref.z_open = rec.z_open;
   ref.units_open = rec.units_open;
   try {
@@ -142,8 +143,9 @@ int run(const CalibrateCliOptions& o) {
   const SoilScale scale = soil_scale_from(o.soil_scale, "--soil-scale");
   install_interrupt_handlers();
   std::vector<Reference> refs;
+  std::vector<std::string> notes;  // how the records were read, said once nothing can fail
   for (const std::string& arg : o.references) {
-    refs.push_back(reference_of(arg, o, base, scale));
+    refs.push_back(reference_of(arg, o, base, scale, notes));
     if (interrupted()) return interrupted_exit_code();
   }
   CalibrateOptions co;
@@ -152,6 +154,7 @@ int run(const CalibrateCliOptions& o) {
   co.range = o.range;
   co.profile = !o.no_profile;
   const Calibration cal = calibrate(base, refs, co);
+  report_reading(notes);
   if (interrupted()) {
     std::cerr << "oscidrum: interrupted; nothing written\n";
     return interrupted_exit_code();

@@ -369,7 +369,6 @@ int run(const IdentifyCliOptions& o) {
   } else {
     name = o.input.file == "-" ? "<stdin>" : o.input.file;
     rec = read_record(o.input);
-    report_reading(rec);
     io.z_open = rec.z_open;
     io.units_open = rec.units_open;
     ProgressLine line(stderr_is_terminal() && !o.quiet);
@@ -380,6 +379,8 @@ int run(const IdentifyCliOptions& o) {
                            return !interrupted();
                          });
     line.clear();
+    // How the record was read, once the pass has run: a refusal (exit code 2) is one line.
+    report_reading(rec);
     if (interrupted()) {
       std::cerr << "oscidrum: interrupted after " << pass.size() << " windows; nothing written\n";
       return interrupted_exit_code();

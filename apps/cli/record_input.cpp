@@ -138,9 +138,11 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
       ->check(positive_number());
 }
 
-void report_reading(const RecordColumns& rec) {
-  for (const std::string& n : rec.notes) std::cerr << "oscidrum: record: " << n << "\n";
+void report_reading(const std::vector<std::string>& notes) {
+  for (const std::string& n : notes) std::cerr << "oscidrum: record: " << n << "\n";
 }
+
+void report_reading(const RecordColumns& rec) { report_reading(rec.notes); }
 
 std::string failure_reasons(const std::vector<RecordWindow>& windows) {
   std::string out;

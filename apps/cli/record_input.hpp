@@ -40,6 +40,7 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
 /// The notes of read_record on stderr ("oscidrum: record: x_M'': column 'acc_x [g]' x 9.80665 ->
 /// m/s^2 (positive forward)"), one per channel not read as the model writes it.
 void report_reading(const RecordColumns& rec);
+void report_reading(const std::vector<std::string>& notes);
 
 /// How the record was read, for the JSON outputs of analyze and identify: the columns taken, the
 /// factors applied, the axis conventions (x_positive, z_positive) and the delimiter.

@@ -257,6 +257,30 @@ TEST(CliIdentify, ColumnsInGWithoutAUnitAreFittedInG) {
   }
 }
 
+// A record read (with notes on how) that the analysis then refuses (at --rate 1 no excitation
+// frequency can be searched): the refusal is one line on stderr, exit code 2, as every refusal;
+// the notes on the reading come only once nothing can fail (found by the fuzz suite, seed 112).
+TEST(CliIdentify, ARefusalAfterTheRecordIsReadIsOneLine) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"analyze", dir / "r.csv", "--rate", "1"},
+        {"identify", dir / "r.csv", "--rate", "1"},
+        {"calibrate", dir / "r.csv@25", "--rate", "1"}}) {
+    SCOPED_TRACE(args[0]);
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << o.err;
+  }
+  // Read and analysed: the notes are said.
+  const Outcome ok = run({"analyze", dir / "r.csv", "--rate", "1000"});
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("oscidrum: record: t: from the row number at --rate 1000 Hz"),
+            std::string::npos)
+      << ok.err;
+}
+
 // A three-axis logger mounted with y vertical (up, gravity kept) and z along the drum's axle (a
 // small lateral signal, no gravity), in g: the reader takes y as the vertical and says so, and
 // identify gives the model's own record's G.
