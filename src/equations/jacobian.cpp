@@ -124,12 +124,13 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   const double Fh = csh * q.dx_A + ksh * q.x_A, Fv = csv * q.ds_A + ksv * q.s_A;
   const double mc = m / csh;
 
-  // A: coefficients of (delta'', x_A'', s_A'', phi'') in (34), (38), (53), (36).
-  Eigen::Matrix4d A;
-  A << m * c34, m * fmu1, -m * fmu2, 0.0,           //
-      m * k.f3_tilde, m * sn, m * cs, 0.0,          //
-      0.0, m * fmu1, -(csv / csh) * m * fmu2, 0.0,  //
-      smu * m * k.f3_tilde, smu * m * sn, smu * m * cs, I / r;
+  // A: coefficients of (delta'', x_A'', s_A'', phi'') in (34), (38), (53), (36). Only (36) holds
+  // phi'': A is block lower triangular, [A3 0; a4^T I/r].
+  Eigen::Matrix3d A3;
+  A3 << m * c34, m * fmu1, -m * fmu2,  //
+      m * k.f3_tilde, m * sn, m * cs,  //
+      0.0, m * fmu1, -(csv / csh) * m * fmu2;
+  const Eigen::RowVector3d a4(smu * m * k.f3_tilde, smu * m * sn, smu * m * cs);
   Eigen::Matrix<double, 4, 8> dR = Eigen::Matrix<double, 4, 8>::Zero();
   // (34)
   dR(0, D) = m * dc34 * a.delta + m * dfmu1 * a.x_A - m * dfmu2 * a.s_A + de34 * m * dd2 +
@@ -170,13 +171,16 @@ Mat8 slip_jacobian(const Model& model, double t, const State& q, int s, double b
   dR(3, DXA) = smu * cd * sn;
   dR(3, DSA) = smu * cd * cs;
 
-  const Eigen::Matrix<double, 4, 8> da = -A.inverse().lazyProduct(dR);  // as in the stick Jacobian
+  // A da = -dR by blocks: A3 da_top = -dR_top (the closed-form inverse, as in the stick
+  // Jacobian), then (36)'s row, a4^T da_top + (I/r) da_phi = -dR_phi.
+  const Eigen::Matrix<double, 3, 8> da = -A3.inverse().lazyProduct(dR.topRows<3>());
   Mat8 J = Mat8::Zero();
   J(D, DD) = 1.0;
   J(XA, DXA) = 1.0;
   J(SA, DSA) = 1.0;
   J(PHI, DPHI) = 1.0;
-  J.bottomRows<4>() = da;
+  J.middleRows<3>(DD) = da;
+  J.row(DPHI) = -(r / I) * (dR.row(3) + a4.lazyProduct(da));
   return J;
 }
 
@@ -210,10 +214,29 @@ Mat8 general_slip_jacobian(const Model& model, double t, const State& q, int s, 
 Mat8 jacobian_times(const Mat8& J, const Mat8& X) {
   Mat8 Y;
   Y.topRows<3>() = X.middleRows<3>(DD);  // delta'' ... = rows DD, DXA, DSA: J(D, DD) = 1, ...
-  // The other rows as dot products of J's rows (stored as columns) with X's columns.
-  const Eigen::Matrix<double, 8, 5> rows = J.bottomRows<5>().transpose();
-  for (int c = 0; c < 8; ++c)
-    for (int r = 0; r < 5; ++r) Y(PHI + r, c) = rows.col(r).dot(X.col(c));
+  // Nothing depends on phi (the drum's angle is cyclic): J's column PHI is zero and is skipped.
+  // A column of X that is the unit vector of phi (as Phi's own column PHI stays under the
+  // variational equations: d y / d phi(t0) = e_PHI) therefore gives the zero column. The row of
+  // phi is sparse: phi' = f5 delta' in stick (entries at D and DD), phi' = phi' in slip (DPHI).
+  // The four acceleration rows, column by column, as sums of J's columns (their four lower
+  // entries) weighted by X's entries. Every skip drops only exact zeros.
+  for (int c = 0; c < 8; ++c) {
+    const auto x = X.col(c);
+    if (x[PHI] == 1.0 && x[D] == 0.0 && x[XA] == 0.0 && x[SA] == 0.0 && x[DD] == 0.0 &&
+        x[DXA] == 0.0 && x[DSA] == 0.0 && x[DPHI] == 0.0) {
+      Y.col(c).tail<5>().setZero();
+      continue;
+    }
+    Y(PHI, c) = J(PHI, D) * x[D] + J(PHI, DD) * x[DD] + J(PHI, DPHI) * x[DPHI];
+    Eigen::Vector4d a = J.col(D).tail<4>() * x[D];
+    a += J.col(XA).tail<4>() * x[XA];
+    a += J.col(SA).tail<4>() * x[SA];
+    a += J.col(DD).tail<4>() * x[DD];
+    a += J.col(DXA).tail<4>() * x[DXA];
+    a += J.col(DSA).tail<4>() * x[DSA];
+    a += J.col(DPHI).tail<4>() * x[DPHI];
+    Y.col(c).tail<4>() = a;
+  }
   return Y;
 }
 
