@@ -29,13 +29,15 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
   app.add_option("--x-col", o.x_col,
                  "horizontal acceleration column x_M'': name or index (default: recognised: "
                  "ddx_M, ax, a_x, acc_x, accel_x, x_acc, horizontal, ...; a bare X if nothing else "
-                 "matches)");
+                 "matches; a y column beside z where no x is; y or z, whichever moves more, "
+                 "where x has gravity in m/s^2 in its mean and y and z do not: a logger mounted "
+                 "x vertical)");
   app.add_option(
       "--z-col", o.z_col,
       "vertical acceleration column z_M'': name or index (default: recognised: ddz_M, "
       "az, a_z, acc_z, accel_z, z_acc, vertical, ...; a bare Z if nothing else matches; a "
       "y column instead where it, not z, has gravity in its mean (a logger mounted y vertical), "
-      "or where z never changes and y does)");
+      "or where z never changes and y does; x where it alone has gravity in m/s^2)");
   if (file_and_position) {
     app.add_option("--pos-col", o.pos_col,
                    "position column [m] (optional): each window reports its position");

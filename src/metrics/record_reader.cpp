@@ -707,11 +707,34 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   const int ct = by_rate           ? -1
                  : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
                                    : find(o.t_col, "--t-col");
-  const int cx = o.x_col.empty()
-                     ? recognise(
-                           "horizontal acceleration x_M''", "--x-col", "ddx_M",
-                           [](const std::string& k) { return acceleration_axis(k) == 'x'; }, "x")
-                     : find(o.x_col, "--x-col");
+  // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
+  // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
+  // flags' conventions for x: forward unless --x-positive backward).
+  std::string x_from_y;
+  int cx = -1;
+  if (o.x_col.empty()) {
+    std::vector<int> x_like, y_like;
+    bool z_like = false;
+    for (std::size_t c = 0; c < headings.size(); ++c) {
+      const std::string& k = headings[c].key;
+      const char axis = acceleration_axis(k);
+      if (axis == 'x' || k == "x" || headings[c].name == "ddx_M")
+        x_like.push_back(static_cast<int>(c));
+      if (axis == 'y') y_like.push_back(static_cast<int>(c));
+      if (axis == 'z' || k == "z" || headings[c].name == "ddz_M") z_like = true;
+    }
+    if (x_like.empty() && y_like.size() == 1 && z_like && has_header &&
+        (o.z_col.empty() || find(o.z_col, "--z-col") != y_like.front())) {
+      cx = y_like.front();
+      x_from_y = header[static_cast<std::size_t>(cx)];
+    } else {
+      cx = recognise(
+          "horizontal acceleration x_M''", "--x-col", "ddx_M",
+          [](const std::string& k) { return acceleration_axis(k) == 'x'; }, "x");
+    }
+  } else {
+    cx = find(o.x_col, "--x-col");
+  }
   // A two-dimensional record (another implementation's x and y, y vertical) has no z column:
   // its one y acceleration is the vertical, with a note (beside a z column, y is lateral).
   int cz = -1, cy = -1;
@@ -723,7 +746,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       const char axis = acceleration_axis(k);
       if (axis == 'z' || k == "z" || headings[c].name == "ddz_M")
         z_like.push_back(static_cast<int>(c));
-      if (axis == 'y') y_like.push_back(static_cast<int>(c));
+      if (axis == 'y' && static_cast<int>(c) != cx) y_like.push_back(static_cast<int>(c));
     }
     if (z_like.empty() && y_like.size() == 1 && has_header) {
       cz = y_like.front();
@@ -794,6 +817,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   std::size_t x_note_at = out.notes.size(), z_note_at = x_note_at + 1;
   out.notes.emplace_back();
   out.notes.emplace_back();
+  if (!x_from_y.empty())
+    out.notes.push_back("x_M'': no x column: the y column '" + x_from_y +
+                        "' is read as the horizontal beside the vertical z (a sensor's y and z "
+                        "channels, y along the direction of travel), pointing " +
+                        (o.x_positive == "backward" ? "backward (--x-positive)"
+                                                    : "forward (give --x-positive backward if it "
+                                                      "points the other way)"));
   if (!z_from_y.empty())
     out.notes.push_back("z_M'': no z column: the y column '" + z_from_y +
                         "' is read as the vertical (a two-dimensional record's x and y), " +
@@ -941,7 +971,19 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     const auto [z_lo, z_hi] = std::minmax_element(out.ddz_M.begin(), out.ddz_M.end());
     const auto [y_lo, y_hi] = std::minmax_element(y_raw.begin(), y_raw.end());
     const bool z_still = out.ddz_M.size() > 1 && *z_lo == *z_hi && *y_lo != *y_hi;
-    if (std::isfinite(ky) && std::isfinite(mean_y) && (by_gravity || z_still)) {
+    const double kx_unit = column_scale(cx, false);  // x's unit, without --x-positive's sign
+    const double mean_x = mean_of(out.ddx_M, kx_unit / kx);
+    const bool unitless_x = headings[static_cast<std::size_t>(cx)].unit.empty() &&
+                            headings[static_cast<std::size_t>(cx)].name != "ddx_M";
+    // Gravity in x's mean alone: a logger mounted with x vertical (below), before z_still. In
+    // m/s^2 only (with a unit or without): a horizontal channel's mean of about 1 without a unit
+    // may be an offset of 1 m/s^2 (a slope of 6 degrees) as well as gravity in g, and reading a
+    // horizontal channel as the vertical would swap the axes.
+    const bool x_by_gravity =
+        o.units == "auto" && o.x_col.empty() && std::isfinite(ky) && std::isfinite(mean_y) &&
+        std::isfinite(mean_x) && gravity(mean_x, false) && !gravity(mean_y, unitless_y) &&
+        !gravity(mean_z, unitless_z) && unitless_x == unitless_y && unitless_y == unitless_z;
+    if (std::isfinite(ky) && std::isfinite(mean_y) && (by_gravity || (z_still && !x_by_gravity))) {
       const std::string z_name = header[static_cast<std::size_t>(cz)];
       if (!by_gravity && o.z_positive == "auto") z_up = true;
       kz = ky * (z_up ? -1.0 : 1.0);
@@ -964,6 +1006,50 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                                                "--z-positive down if it points down)"
                                              : "pointing " + o.z_positive + " (--z-positive)")) +
           " (give --z-col '" + z_name + "' to read z)");
+    } else if (x_by_gravity) {
+      // A three-axis logger mounted with x vertical: gravity is in x's mean and in neither of
+      // the others'. x is the vertical (its direction decided by gravity below, as any
+      // vertical's); the horizontal is the one of y and z that moves more (the direction of
+      // travel; the other is the axle's, along which the drum does not move).
+      const double kz_unit = column_scale(cz, false);
+      const auto spread = [](const std::vector<double>& v, double k) {
+        double sum = 0.0, sum2 = 0.0;
+        for (double e : v) {
+          sum += k * e;
+          sum2 += k * e * k * e;
+        }
+        const double n = static_cast<double>(v.size());
+        return n > 0 ? sum2 / n - (sum / n) * (sum / n) : 0.0;
+      };
+      const bool travel_y = spread(y_raw, ky) >= spread(out.ddz_M, kz_unit / kz);
+      const double sign_x = o.x_positive == "backward" ? -1.0 : 1.0;
+      const std::string x_name = header[static_cast<std::size_t>(cx)];
+      const std::string other = header[static_cast<std::size_t>(travel_y ? cz : cy)];
+      std::vector<double> vertical(out.ddx_M.size()), horizontal(out.ddx_M.size());
+      for (std::size_t i = 0; i < out.ddx_M.size(); ++i) {
+        vertical[i] = kx_unit * (out.ddx_M[i] / kx);
+        horizontal[i] = sign_x * (travel_y ? ky * y_raw[i] : kz_unit * (out.ddz_M[i] / kz));
+      }
+      out.ddz_M = std::move(vertical);
+      out.ddx_M = std::move(horizontal);
+      const int old_z = cz;
+      z_up = false;  // x's direction: gravity's rule below turns it round when it points up
+      kz = kx_unit;
+      cz = cx;
+      cx = travel_y ? cy : old_z;
+      kx = sign_x * (travel_y ? ky : kz_unit);
+      out.x_column = header[static_cast<std::size_t>(cx)];
+      out.z_column = header[static_cast<std::size_t>(cz)];
+      out.x_factor = kx;
+      out.z_factor = kz;
+      out.notes.push_back(
+          "z_M'': the x column '" + x_name + "' is read as the vertical: its mean " +
+          format_factor(mean_x) + (unitless_x ? "" : " m/s^2") +
+          " is gravity (an accelerometer at rest reads 1 g along the vertical) and those of "
+          "the y and z columns are not: a three-axis logger mounted with x vertical; x_M'' is "
+          "the column '" +
+          out.x_column + "', the one of y and z that moves more (the direction of travel; '" +
+          other + "' along the axle) (give --x-col and --z-col to choose)");
     }
   }
   // The time column's note first (how t was read is known only now).

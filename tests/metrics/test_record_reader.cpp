@@ -780,5 +780,80 @@ TEST(RecordReader, MessagesNameTheLineColumnOrOption) {
             std::string::npos);
 }
 
+// A record with y and z accelerations and no x (a two-axis sensor's y and z channels, y along the
+// direction of travel): y is the horizontal, with a note; beside an x column it is not.
+TEST(RecordReader, YBesideZWithoutXIsTheHorizontal) {
+  const std::string yz = "time,ay,az\n0,0.5,-0.2\n0.001,1.5,0.3\n";
+  const RecordColumns r = read_text(yz);
+  EXPECT_EQ(r.x_column, "ay");
+  EXPECT_EQ(r.z_column, "az");
+  EXPECT_DOUBLE_EQ(r.ddx_M[1], 1.5);
+  EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.3);
+  EXPECT_TRUE(has_note(r, "no x column: the y column 'ay' is read as the horizontal"));
+  RecordReading backward;
+  backward.x_positive = "backward";
+  const RecordColumns b = read_text(yz, backward);
+  EXPECT_DOUBLE_EQ(b.ddx_M[1], -1.5);
+  EXPECT_TRUE(has_note(b, "pointing backward (--x-positive)"));
+  // --z-col naming z: y is still the horizontal; naming y: no horizontal is found.
+  RecordReading z_named;
+  z_named.z_col = "az";
+  EXPECT_EQ(read_text(yz, z_named).x_column, "ay");
+  RecordReading y_named;
+  y_named.z_col = "ay";
+  EXPECT_THROW(read_text(yz, y_named), Error);
+  // Beside an x column, y is a three-axis logger's lateral channel.
+  const RecordColumns xyz = read_text("t,ax,ay,az\n0,0.5,0.01,-0.2\n0.001,1.5,-0.01,0.3\n");
+  EXPECT_EQ(xyz.x_column, "ax");
+  EXPECT_EQ(xyz.z_column, "az");
+}
+
+// A three-axis logger mounted with x vertical: gravity in x's mean alone makes x the vertical
+// (its direction by gravity, as any vertical's), and the one of y and z that moves more the
+// horizontal (the other is along the axle), with a note; gravity in another column too, or
+// --x-col, leaves the columns as named.
+TEST(RecordReader, AThreeAxisLoggersXWithGravityIsTheVertical) {
+  // In g, x pointing up (mean +1 g), y the direction of travel, z the axle's.
+  const RecordColumns up =
+      read_text("t,ax [g],ay [g],az [g]\n0,0.95,0.5,0.02\n0.001,1.05,-1.5,0.01\n");
+  EXPECT_EQ(up.z_column, "ax [g]");
+  EXPECT_EQ(up.x_column, "ay [g]");
+  EXPECT_EQ(up.z_positive, "up");
+  EXPECT_DOUBLE_EQ(up.ddz_M[0], -0.95 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(up.ddx_M[1], -1.5 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(up.x_factor, kStandardGravity);
+  EXPECT_FALSE(up.units_open);
+  EXPECT_TRUE(has_note(up, "the x column 'ax [g]' is read as the vertical"));
+  EXPECT_TRUE(has_note(up, "'az [g]' along the axle"));
+  // Without a unit, in m/s^2 (mean about -9.81): x the vertical, read in m/s^2.
+  const RecordColumns si = read_text("t,ax,ay,az\n0,-9.3,0.5,0.02\n0.001,-10.3,-1.5,0.01\n");
+  EXPECT_EQ(si.z_column, "ax");
+  EXPECT_DOUBLE_EQ(si.ddz_M[1], -10.3);
+  EXPECT_FALSE(si.units_open);
+  // Without a unit, a mean of about 1 may be gravity in g or an offset of 1 m/s^2 (a slope): the
+  // columns as named.
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.95,0.5,0.02\n0.001,1.05,-1.5,0.01\n").z_column, "az");
+  // In m/s^2, x pointing down (mean -9.81: read as it is), z moving more than y: z the horizontal.
+  const RecordColumns down =
+      read_text("t,acc_x [m/s^2],acc_y [m/s^2],acc_z [m/s^2]\n0,-9.3,0.1,2\n0.001,-10.3,0.2,-3\n");
+  EXPECT_EQ(down.z_column, "acc_x [m/s^2]");
+  EXPECT_EQ(down.x_column, "acc_z [m/s^2]");
+  EXPECT_EQ(down.z_positive, "down");
+  EXPECT_DOUBLE_EQ(down.ddz_M[1], -10.3);
+  EXPECT_DOUBLE_EQ(down.ddx_M[1], -3.0);
+  RecordReading backward;
+  backward.x_positive = "backward";
+  EXPECT_DOUBLE_EQ(
+      read_text("t,ax,ay,az\n0,-9.3,0.5,0.02\n0.001,-10.3,-1.5,0.01\n", backward).ddx_M[1], 1.5);
+  // Gravity in x and in z (a tilted logger), or in none: the columns as named.
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,-9.3,0.5,-9.5\n0.001,-10.3,-1.5,-10.1\n").z_column, "az");
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,0.3,0.5,0.02\n0.001,-0.3,-1.5,0.01\n").z_column, "az");
+  // --x-col given: read as told.
+  RecordReading named;
+  named.x_col = "ax";
+  EXPECT_EQ(read_text("t,ax,ay,az\n0,-9.3,0.5,0.02\n0.001,-10.3,-1.5,0.01\n", named).z_column,
+            "az");
+}
+
 }  // namespace
 }  // namespace oscidrum
