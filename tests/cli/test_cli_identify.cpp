@@ -324,6 +324,50 @@ TEST(CliIdentify, AThreeAxisLoggerMountedWithYVerticalIsIdentified) {
   EXPECT_FALSE(nlohmann::json::parse(as_z.out)["windows"][0]["valid"].get<bool>()) << as_z.out;
 }
 
+// A logger mounted with x vertical (gravity in m/s^2 in x's mean, y the direction of travel, z
+// along the axle), and a sensor's y and z channels without x: identified as the model's own
+// record is.
+TEST(CliIdentify, ALoggerMountedWithXVerticalAndAYZSensorAreIdentified) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  {
+    std::ifstream in(dir / "r.csv");
+    std::ofstream xv(dir / "x_vertical.csv"), yz(dir / "yz.csv");
+    xv << "Time [s],Acc X [m/s^2],Acc Y [m/s^2],Acc Z [m/s^2]\n";
+    yz << "t,ay,az\n";
+    std::string line;
+    std::getline(in, line);  // the header
+    char row[200];
+    for (int k = 0; std::getline(in, line); ++k) {
+      double t = 0, x = 0, z = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g,%.9g\n", t, kStandardGravity - z, x,
+                    0.05 * std::sin(0.37 * k));
+      xv << row;
+      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", t, x, z);
+      yz << row;
+    }
+  }
+  const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  ASSERT_EQ(model.code, 0) << model.err;
+  const nlohmann::json m = nlohmann::json::parse(model.out);
+  const double G = m["windows"][0]["estimates"][0]["value"].get<double>();
+  for (const char* file : {"x_vertical.csv", "yz.csv"}) {
+    SCOPED_TRACE(file);
+    const Outcome logger = run({"identify", dir / file, "--no-profile", "--format", "json"});
+    ASSERT_EQ(logger.code, 0) << logger.err;
+    EXPECT_NE(logger.err.find(std::string(file) == "yz.csv"
+                                  ? "the y column 'ay' is read as the horizontal"
+                                  : "the x column 'Acc X [m/s^2]' is read as the vertical"),
+              std::string::npos)
+        << logger.err;
+    const nlohmann::json j = nlohmann::json::parse(logger.out);
+    const nlohmann::json& b = j["windows"][0];
+    ASSERT_TRUE(b["valid"].get<bool>()) << logger.out;
+    EXPECT_NEAR(b["estimates"][0]["value"].get<double>() / G, 1.0, 1e-4);
+  }
+}
+
 // A logger's clock in s since 1970: the tables tell the windows apart (to the millisecond; with
 // five significant digits every window was 1.7646e+09).
 TEST(CliIdentify, WindowTimesOfALoggersClockAreToTheMillisecond) {
