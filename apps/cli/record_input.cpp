@@ -67,7 +67,8 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
   app.add_option("--rate", o.rate,
                  "sampling rate [Hz], 1 ... 1e7, of a record without a time column: t = (data "
                  "row - 1) / rate (instead of --t-col; a row skipped for a missing value keeps "
-                 "its place)")
+                 "its place; default: the rate a line before the data states, 'Sample rate: "
+                 "1000 Hz', 'fs = 2 kHz', 'Sample interval: 1 ms')")
       ->check(positive_number());
   app.add_option("--x-positive", o.x_positive,
                  "which way the record's x axis points: forward (default: the model's, the "

@@ -305,6 +305,87 @@ bool is_time_key(const std::string& k) {
   return false;
 }
 
+// The sampling rate a logger's preamble line states ("Sample rate: 1000 Hz", "Sampling frequency
+// [Hz] = 2000", "rate = 1000", "fs 500", "Abtastrate: 1 kHz", "Sample interval: 1 ms"), in Hz;
+// NaN if the line states none. A frequency alone ("Frequency: 39 Hz") may be the excitation's and
+// is not read.
+double preamble_rate(const std::string& line) {
+  std::string l = lower(line);
+  while (!l.empty() && (l.front() == '#' || l.front() == '%' || l.front() == '/' ||
+                        std::isspace(static_cast<unsigned char>(l.front()))))
+    l.erase(0, 1);
+  struct Key {
+    const char* word;
+    bool interval;  // a time between samples, not a rate
+  };
+  static const Key keys[] = {{"sampling rate", false},
+                             {"sample rate", false},
+                             {"samplerate", false},
+                             {"sample_rate", false},
+                             {"sampling_rate", false},
+                             {"samplingrate", false},
+                             {"sampling frequency", false},
+                             {"sample frequency", false},
+                             {"sampling_frequency", false},
+                             {"sample_frequency", false},
+                             {"samplingfrequency", false},
+                             {"abtastrate", false},
+                             {"abtastfrequenz", false},
+                             {"scan rate", false},
+                             {"rate", false},
+                             {"fs", false},
+                             {"sampling interval", true},
+                             {"sample interval", true},
+                             {"sampling_interval", true},
+                             {"sample_interval", true},
+                             {"sample period", true},
+                             {"abtastintervall", true},
+                             {"dt", true}};
+  for (const Key& key : keys) {
+    const std::string w = key.word;
+    if (l.rfind(w, 0) != 0) continue;  // the line starts with the key
+    std::string rest = l.substr(w.size());
+    if (!rest.empty() && std::isalnum(static_cast<unsigned char>(rest.front()))) continue;
+    // A unit in brackets after the key ("[Hz]", "(ms)"), then separators.
+    std::string unit;
+    std::size_t i = 0;
+    while (i < rest.size() && rest[i] == ' ') ++i;
+    if (i < rest.size() && (rest[i] == '[' || rest[i] == '(')) {
+      const std::size_t close = rest.find(rest[i] == '[' ? ']' : ')', i);
+      if (close == std::string::npos) return std::nan("");
+      unit = trim(rest.substr(i + 1, close - i - 1));
+      i = close + 1;
+    }
+    while (i < rest.size() && (rest[i] == ' ' || rest[i] == ':' || rest[i] == '=' ||
+                               rest[i] == '\t' || rest[i] == ';' || rest[i] == ','))
+      ++i;
+    const char* begin = rest.c_str() + i;
+    char* end = nullptr;
+    const double v = std::strtod(begin, &end);
+    if (end == begin || !(v > 0.0) || !std::isfinite(v)) return std::nan("");
+    std::string after = trim(std::string(end));
+    while (!after.empty() && (after.back() == ';' || after.back() == ',')) after.pop_back();
+    if (unit.empty())
+      unit = after;
+    else if (!after.empty())
+      return std::nan("");  // more than a number after the key
+    if (key.interval) {
+      const double k = unit.empty() || unit == "s" || unit == "sec" ? 1.0
+                       : unit == "ms"                               ? 1e-3
+                       : unit == "us" || unit == "\u00b5s"          ? 1e-6
+                                                                    : std::nan("");
+      return 1.0 / (k * v);
+    }
+    const double k = unit.empty() || unit == "hz" || unit == "1/s" || unit == "/s" ||
+                             unit == "sps" || unit == "s/s" || unit == "samples/s"
+                         ? 1.0
+                     : unit == "khz" || unit == "ksps" ? 1e3
+                                                       : std::nan("");
+    return k * v;
+  }
+  return std::nan("");
+}
+
 // The words that name the drum in a column's key (ax_drum, drum acc. x, Beschl. Bandage X,
 // Trommel): what they qualify is read without them.
 constexpr const char* kDrumWords[] = {"drum", "bandage", "trommel"};
@@ -554,6 +635,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // commented out ("# t,ax,az" as numpy.savetxt writes it, "% time ax az" as Octave does).
   std::string comment_before;
   std::size_t comment_before_no = 0;
+  std::vector<std::pair<std::string, std::size_t>> comments_before;  // (for a stated rate)
   {
     bool any = false;
     for (std::string l; lead.size() < kLeadLines && std::getline(in, l);) {
@@ -565,6 +647,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       if (!l.empty() && l.back() == '\r') l.pop_back();
       if (is_comment(l)) {
         if (!any && !trim(l).empty()) comment_before = l, comment_before_no = no;
+        if (comments_before.size() < kLeadLines) comments_before.emplace_back(l, no);
         continue;
       }
       any = true;
@@ -703,7 +786,26 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                 format_factor(o.rate));
   if (o.rate > 0.0 && !o.t_col.empty())
     throw Error(name + ": give the time column (--t-col) or the sampling rate (--rate), not both");
-  const bool by_rate = o.rate > 0.0;
+  // A record without a time column whose preamble (or a comment before the data) states the
+  // sampling rate: t from the row number at that rate, with a note (--rate overrides it).
+  double rate = o.rate;
+  std::string rate_line;
+  if (rate == 0.0 && o.t_col.empty() && has_header) {
+    bool time_column = false;
+    for (const Heading& h : headings)
+      time_column = time_column || h.name == "t" || is_time_key(h.key);
+    std::vector<std::pair<std::string, std::size_t>> stated = comments_before;
+    for (std::size_t k = 0; k < header_at; ++k) stated.push_back(lead[k]);
+    for (const auto& [text, line_no] : stated) {
+      const double r = time_column ? std::nan("") : preamble_rate(text);
+      if (std::isfinite(r) && r >= 1.0 && r <= 1e7) {
+        rate = r;
+        rate_line = "line " + std::to_string(line_no) + " ('" + trim(text) + "')";
+        break;
+      }
+    }
+  }
+  const bool by_rate = rate > 0.0;
   const int ct = by_rate           ? -1
                  : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
                                    : find(o.t_col, "--t-col");
@@ -791,7 +893,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
     return k;
   };
-  const double kt = by_rate ? 1.0 / o.rate : column_scale(ct, true);
+  const double kt = by_rate ? 1.0 / rate : column_scale(ct, true);
   double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
   // z_positive "auto": down, or up for a two-dimensional record's y (the usual Cartesian axes),
   // until the column's mean says otherwise (below).
@@ -864,7 +966,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       return v;
     };
     auto get_time = [&] {
-      if (by_rate) return static_cast<double>(data_rows - 1) / o.rate;  // exact row times
+      if (by_rate) return static_cast<double>(data_rows - 1) / rate;  // exact row times
       const std::string& cell = cells[static_cast<std::size_t>(ct)];
       double v = 0;
       if (!clock && !is_missing(cell))
@@ -1057,9 +1159,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     const std::vector<std::string> later = std::move(out.notes);
     out.notes.clear();
     if (by_rate) {
-      out.notes.push_back("t: from the row number at --rate " + format_factor(o.rate) +
-                          " Hz (the first data row at t = 0)");
-      out.t_factor = 1.0 / o.rate;
+      out.notes.push_back("t: from the row number at " +
+                          (rate_line.empty()
+                               ? "--rate " + format_factor(rate) + " Hz"
+                               : format_factor(rate) +
+                                     " Hz, the sampling rate the record states at " + rate_line +
+                                     " (no time column; --rate overrides it)") +
+                          " (the first data row at t = 0)");
+      out.t_factor = 1.0 / rate;
     } else if (clock.value_or(false)) {
       out.notes.push_back("t: column '" + out.t_column + "' read as clock times" +
                           (clock0.dated ? " (with dates)" : "") + ", in s from the first row's" +

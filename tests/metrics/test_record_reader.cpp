@@ -855,5 +855,39 @@ TEST(RecordReader, AThreeAxisLoggersXWithGravityIsTheVertical) {
             "az");
 }
 
+// A record without a time column whose preamble (or a comment before the data) states the
+// sampling rate: t from the row number at that rate, with a note naming the line. A frequency
+// alone may be the excitation's and is not read; a time column, or --rate, goes first.
+TEST(RecordReader, ARateStatedBeforeTheDataGivesTheTimes) {
+  const std::string data = "ax,az\n1,2\n3,4\n5,6\n";
+  for (const auto& [preamble, hz] :
+       std::vector<std::pair<std::string, double>>{{"Sample rate: 1000 Hz", 1000.0},
+                                                   {"# Sampling frequency [Hz] = 2000", 2000.0},
+                                                   {"Sample interval: 2 ms", 500.0},
+                                                   {"Abtastrate: 1 kHz", 1000.0},
+                                                   {"rate = 250", 250.0},
+                                                   {"% fs 4000", 4000.0}}) {
+    SCOPED_TRACE(preamble);
+    const RecordColumns r = read_text("Device: logger 7\n" + preamble + "\n" + data);
+    ASSERT_EQ(r.t.size(), 3u);
+    EXPECT_DOUBLE_EQ(r.t[2], 2.0 / hz);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 4.0);
+    EXPECT_TRUE(has_note(r, "the sampling rate the record states at line 2"));
+  }
+  // An excitation frequency, or a rate out of [1, 1e7] Hz, is not a sampling rate.
+  for (const std::string preamble : {"Frequency: 39 Hz", "Sample rate: 0.5 Hz", "rate = 1e9"}) {
+    SCOPED_TRACE(preamble);
+    EXPECT_THROW(read_text(preamble + "\n" + data), Error);
+  }
+  // --rate overrides the stated rate; a time column goes before it.
+  RecordReading given;
+  given.rate = 100.0;
+  EXPECT_DOUBLE_EQ(read_text("Sample rate: 1000 Hz\n" + data, given).t[1], 0.01);
+  const RecordColumns timed =
+      read_text("Sample rate: 1000 Hz\nt,ax,az\n0,1,2\n0.004,3,4\n0.008,5,6\n");
+  EXPECT_DOUBLE_EQ(timed.t[1], 0.004);
+  EXPECT_FALSE(has_note(timed, "states at line"));
+}
+
 }  // namespace
 }  // namespace oscidrum
