@@ -402,8 +402,12 @@ bool names_the_drum(const std::string& k) {
 // record without z.)
 char acceleration_axis(const std::string& k) {
   for (const char* w : kDrumWords)
-    if (const std::size_t at = k.find(w); at != std::string::npos && k.size() > std::strlen(w))
-      return acceleration_axis(k.substr(0, at) + k.substr(at + std::strlen(w)));
+    if (const std::size_t at = k.find(w); at != std::string::npos && k.size() > std::strlen(w)) {
+      const std::string rest = k.substr(0, at) + k.substr(at + std::strlen(w));
+      // The drum's word with an axis alone (Drum X, Bandage Z): that axis's channel of the drum.
+      if (rest == "x" || rest == "y" || rest == "z") return rest.front();
+      return acceleration_axis(rest);
+    }
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
   // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm... or
   // ...m: x_dd_M).
@@ -428,8 +432,10 @@ char acceleration_axis(const std::string& k) {
       k.find("longitudinal") != std::string::npos)
     return 'x';
   if (k == "az" || k == "av" || k.find("vert") != std::string::npos) return 'z';
-  // (German loggers: Beschleunigung, Beschl.)
-  for (const char* stem : {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl"}) {
+  // (German loggers: Beschleunigung, Beschl.; a vibration channel, Vib X, whose unit tells an
+  // acceleration from a velocity: a unit that is not an acceleration's is an error.)
+  for (const char* stem :
+       {"acceleration", "accel", "acc", "a", "beschleunigung", "beschl", "vibration", "vib"}) {
     const std::string st = stem;
     for (char axis : {'x', 'y', 'z'}) {
       // acc_x, accx, a_x, x_acc, xacc, acc_x1 (a channel number), acc_x_M and acc_M_x (the

@@ -218,7 +218,9 @@ TEST(RecordReader, ColumnsNamedForTheDrum) {
   for (const std::string header :
        {"t,ax_drum,az_drum", "time [s],drum acc. x [m/s2],drum acc. z [m/s2]",
         "Zeit,Beschl. Bandage X,Beschl. Bandage Z", "t,Trommel a_x,Trommel a_z",
-        "t,acc_x,acc_z,acc_x_drum,acc_z_drum", "t,drum_ax,drum_az,ax,az"}) {
+        "t,acc_x,acc_z,acc_x_drum,acc_z_drum", "t,drum_ax,drum_az,ax,az",
+        "Time (s),Drum X (g),Drum Z (g)", "t,Bandage X,Bandage Z", "t,Vib X,Vib Z",
+        "t,vibration_x [m/s^2],vibration_z [m/s^2]"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const bool drum_first = header.rfind("t,drum_", 0) == 0;
@@ -227,9 +229,12 @@ TEST(RecordReader, ColumnsNamedForTheDrum) {
                                           : "0,9,9,0.5,-0.25\n0.001,9,9,1.5,0.75\n";
     const RecordColumns r = read_text(header + "\n" + rows);
     ASSERT_EQ(r.t.size(), 2u);
-    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5);
-    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75);
+    const double g = header.find("(g)") != std::string::npos ? kStandardGravity : 1.0;
+    EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
+    EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
   }
+  // A vibration channel in a velocity's unit is not read as an acceleration.
+  EXPECT_THROW(read_text("t,Vib X [mm/s],Vib Z [mm/s]\n0,0.5,-0.25\n0.001,1.5,0.75\n"), Error);
   // Two drums' columns: still a choice for the user.
   EXPECT_THROW(read_text("t,ax_drum1,ax_drum2,az\n0,1,2,3\n"), Error);
 }
