@@ -682,6 +682,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   const bool decimal_comma = delim == ';' || delim == '\t';
   // Header: that line unless all its cells are numbers.
   std::vector<std::string> header = split(first, delim);
+  // A delimiter at the end of the header line names no column (a spreadsheet's export).
+  while (header.size() > 1 && trim(header.back()).empty()) header.pop_back();
   bool has_header = false;
   for (const std::string& cell : header) {
     double v = 0;
@@ -815,6 +817,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   const int ct = by_rate           ? -1
                  : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
                                    : find(o.t_col, "--t-col");
+  // A time zone in the time column's brackets ("Timestamp (UTC)") is not its unit.
+  if (ct >= 0) {
+    Heading& h = headings[static_cast<std::size_t>(ct)];
+    const std::string zone = key_of(h.unit);
+    for (const char* z : {"utc", "gmt", "cet", "cest", "mez", "mesz", "local", "localtime", "z"})
+      if (zone == z) h.unit.clear();
+  }
   // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
   // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
   // flags' conventions for x: forward unless --x-positive backward).
@@ -951,7 +960,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   long last_clock = 0;
   long extra_days = 0;  // midnights passed by a clock without a date
   auto parse = [&](const std::string& text, std::size_t line_no) {
-    const std::vector<std::string> cells = split(text, delim);
+    std::vector<std::string> cells = split(text, delim);
+    // Delimiters at the end of a data row beyond the header's columns hold no values.
+    while (cells.size() > header.size() && trim(cells.back()).empty()) cells.pop_back();
     if (cells.size() != header.size())
       throw Error(name + ":" + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
                   " cells, but the header has " + std::to_string(header.size()));
