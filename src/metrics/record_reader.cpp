@@ -827,20 +827,21 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
   // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
   // flags' conventions for x: forward unless --x-positive backward).
+  // The columns that name an acceleration along each axis (x and z also by their bare letter or
+  // the model's own name).
+  std::vector<int> x_like, y_like, z_like;
+  for (std::size_t c = 0; c < headings.size(); ++c) {
+    const std::string& k = headings[c].key;
+    const char axis = acceleration_axis(k);
+    const int column = static_cast<int>(c);
+    if (axis == 'x' || k == "x" || headings[c].name == "ddx_M") x_like.push_back(column);
+    if (axis == 'y') y_like.push_back(column);
+    if (axis == 'z' || k == "z" || headings[c].name == "ddz_M") z_like.push_back(column);
+  }
   std::string x_from_y;
   int cx = -1;
   if (o.x_col.empty()) {
-    std::vector<int> x_like, y_like;
-    bool z_like = false;
-    for (std::size_t c = 0; c < headings.size(); ++c) {
-      const std::string& k = headings[c].key;
-      const char axis = acceleration_axis(k);
-      if (axis == 'x' || k == "x" || headings[c].name == "ddx_M")
-        x_like.push_back(static_cast<int>(c));
-      if (axis == 'y') y_like.push_back(static_cast<int>(c));
-      if (axis == 'z' || k == "z" || headings[c].name == "ddz_M") z_like = true;
-    }
-    if (x_like.empty() && y_like.size() == 1 && z_like && has_header &&
+    if (x_like.empty() && y_like.size() == 1 && !z_like.empty() && has_header &&
         (o.z_col.empty() || find(o.z_col, "--z-col") != y_like.front())) {
       cx = y_like.front();
       x_from_y = header[static_cast<std::size_t>(cx)];
@@ -857,14 +858,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   int cz = -1, cy = -1;
   std::string z_from_y;
   if (o.z_col.empty()) {
-    std::vector<int> z_like, y_like;
-    for (std::size_t c = 0; c < headings.size(); ++c) {
-      const std::string& k = headings[c].key;
-      const char axis = acceleration_axis(k);
-      if (axis == 'z' || k == "z" || headings[c].name == "ddz_M")
-        z_like.push_back(static_cast<int>(c));
-      if (axis == 'y' && static_cast<int>(c) != cx) y_like.push_back(static_cast<int>(c));
-    }
+    // (A y read as the horizontal above is not a candidate for the vertical.)
+    std::erase(y_like, cx);
     if (z_like.empty() && y_like.size() == 1 && has_header) {
       cz = y_like.front();
       z_from_y = header[static_cast<std::size_t>(cz)];

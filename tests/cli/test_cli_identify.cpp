@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -281,27 +282,46 @@ TEST(CliIdentify, ARefusalAfterTheRecordIsReadIsOneLine) {
       << ok.err;
 }
 
+// A record written by write_record (t, x_M'', z_M'' in m/s^2), rewritten under `header` with
+// each row made by row(k, t, x, z) (k counts the rows from 0): a logger's conventions.
+void rewrite_record(const std::filesystem::path& from, const std::filesystem::path& to,
+                    const std::string& header,
+                    const std::function<std::string(int, double, double, double)>& row) {
+  std::ifstream in(from);
+  std::ofstream out(to);
+  out << header << "\n";
+  std::string line;
+  std::getline(in, line);  // the header
+  for (int k = 0; std::getline(in, line); ++k) {
+    double t = 0, x = 0, z = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
+    out << row(k, t, x, z);
+  }
+}
+
+// "t,v1,v2,...\n", t to the microsecond and the values to 9 digits.
+std::string format_row(double t, std::initializer_list<double> values) {
+  char cell[40];
+  std::snprintf(cell, sizeof cell, "%.6f", t);
+  std::string out = cell;
+  for (double v : values) {
+    std::snprintf(cell, sizeof cell, ",%.9g", v);
+    out += cell;
+  }
+  return out + "\n";
+}
+
 // A three-axis logger mounted with y vertical (up, gravity kept) and z along the drum's axle (a
 // small lateral signal, no gravity), in g: the reader takes y as the vertical and says so, and
 // identify gives the model's own record's G.
 TEST(CliIdentify, AThreeAxisLoggerMountedWithYVerticalIsIdentified) {
   TempDir dir;
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
-  {
-    std::ifstream in(dir / "r.csv");
-    std::ofstream out(dir / "logger.csv");
-    out << "Time [s],Acc X [g],Acc Y [g],Acc Z [g]\n";
-    std::string line;
-    std::getline(in, line);  // the header
-    char row[200];
-    for (int k = 0; std::getline(in, line); ++k) {
-      double t = 0, x = 0, z = 0;
-      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
-      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g,%.9g\n", t, x / kStandardGravity,
-                    1.0 - z / kStandardGravity, 0.01 * std::sin(0.37 * k));
-      out << row;
-    }
-  }
+  rewrite_record(dir / "r.csv", dir / "logger.csv", "Time [s],Acc X [g],Acc Y [g],Acc Z [g]",
+                 [](int k, double t, double x, double z) {
+                   return format_row(t, {x / kStandardGravity, 1.0 - z / kStandardGravity,
+                                         0.01 * std::sin(0.37 * k)});
+                 });
   const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
   const Outcome logger = run({"identify", dir / "logger.csv", "--no-profile", "--format", "json"});
   ASSERT_EQ(model.code, 0) << model.err;
@@ -330,24 +350,14 @@ TEST(CliIdentify, AThreeAxisLoggerMountedWithYVerticalIsIdentified) {
 TEST(CliIdentify, ALoggerMountedWithXVerticalAndAYZSensorAreIdentified) {
   TempDir dir;
   write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
-  {
-    std::ifstream in(dir / "r.csv");
-    std::ofstream xv(dir / "x_vertical.csv"), yz(dir / "yz.csv");
-    xv << "Time [s],Acc X [m/s^2],Acc Y [m/s^2],Acc Z [m/s^2]\n";
-    yz << "t,ay,az\n";
-    std::string line;
-    std::getline(in, line);  // the header
-    char row[200];
-    for (int k = 0; std::getline(in, line); ++k) {
-      double t = 0, x = 0, z = 0;
-      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &z), 3) << line;
-      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g,%.9g\n", t, kStandardGravity - z, x,
-                    0.05 * std::sin(0.37 * k));
-      xv << row;
-      std::snprintf(row, sizeof row, "%.6f,%.9g,%.9g\n", t, x, z);
-      yz << row;
-    }
-  }
+  rewrite_record(dir / "r.csv", dir / "x_vertical.csv",
+                 "Time [s],Acc X [m/s^2],Acc Y [m/s^2],Acc Z [m/s^2]",
+                 [](int k, double t, double x, double z) {
+                   return format_row(t, {kStandardGravity - z, x, 0.05 * std::sin(0.37 * k)});
+                 });
+  rewrite_record(dir / "r.csv", dir / "yz.csv", "t,ay,az", [](int, double t, double x, double z) {
+    return format_row(t, {x, z});
+  });
   const Outcome model = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
   ASSERT_EQ(model.code, 0) << model.err;
   const nlohmann::json m = nlohmann::json::parse(model.out);

@@ -181,11 +181,12 @@ TEST(Jacobian, SmoothPhaseOfTheRegularisedLawAgainstFiniteDifferences) {
   }
 }
 
-TEST(Jacobian, PhiIsCyclicAndStickSlavesPhiDot) {
-  // No right-hand side depends on phi (jacobian_times skips J's column of phi on this); in stick
-  // none depends on phi' either (phi' = f5 delta'). Every phase, both troughs, Coulomb's law and
-  // the regularised one (its smooth phase, and its general slip equations by dual numbers).
-  std::mt19937 rng(3);
+// Every phase Jacobian of both troughs under Coulomb's law and the regularised one (its smooth
+// phase, from the general slip equations by dual numbers), at `states` random states, with and
+// without the Baumgarte term: check(J, phase, model).
+template <class Check>
+void for_each_phase_jacobian(unsigned seed, int states, double dt, const Check& check) {
+  std::mt19937 rng(seed);
   for (bool spiral : {false, true}) {
     for (bool regularised : {false, true}) {
       Case c = trough_case(spiral);
@@ -194,74 +195,62 @@ TEST(Jacobian, PhiIsCyclicAndStickSlavesPhiDot) {
         c.contact.v_eps = 0.05;
       }
       const Model model(c);
-      for (int i = 0; i < 3; ++i) {
+      for (int i = 0; i < states; ++i) {
         const State q = random_state(rng, model);
         for (Phase phase :
              {Phase::stick, Phase::slip_positive, Phase::slip_negative, Phase::smooth}) {
           if ((phase == Phase::smooth) != regularised) continue;
-          for (double b : {0.0, 2.0 * model.nu()}) {
-            const Mat8 J = phase_jacobian(model, 0.01 * i, q, phase, b);
-            EXPECT_EQ(J.col(3).norm(), 0.0) << to_string(phase);
-            if (phase == Phase::stick) {
-              EXPECT_EQ(J.col(7).norm(), 0.0);
-            }
-          }
+          for (double b : {0.0, 2.0 * model.nu()})
+            check(phase_jacobian(model, dt * i, q, phase, b), phase, model);
         }
       }
     }
   }
 }
 
+TEST(Jacobian, PhiIsCyclicAndStickSlavesPhiDot) {
+  // No right-hand side depends on phi (jacobian_times skips J's column of phi on this); in stick
+  // none depends on phi' either (phi' = f5 delta').
+  for_each_phase_jacobian(3, 3, 0.01, [](const Mat8& J, Phase phase, const Model&) {
+    EXPECT_EQ(J.col(3).norm(), 0.0) << to_string(phase);
+    if (phase == Phase::stick) {
+      EXPECT_EQ(J.col(7).norm(), 0.0);
+    }
+  });
+}
+
 // jacobian_times relies on the rows of delta, x_A and s_A being the unit rows of their velocities
 // and on the sparsity of phi's row (D, DD, DPHI) in every phase (with and without the Baumgarte
 // term, the regularised law's smooth phase among them), and equals the full product.
 TEST(Jacobian, KinematicRowsAndTheStructuredProduct) {
-  std::mt19937 rng(17);
-  for (bool spiral : {false, true})
-    for (bool regularised : {false, true}) {
-      Case c = trough_case(spiral);
-      if (regularised) {
-        c.contact.law = FrictionChoice::regularised;
-        c.contact.v_eps = 0.05;
-      }
-      const Model model(c);
-      for (int i = 0; i < 5; ++i) {
-        const State q = random_state(rng, model);
-        for (Phase phase :
-             {Phase::stick, Phase::slip_positive, Phase::slip_negative, Phase::smooth}) {
-          if ((phase == Phase::smooth) != regularised) continue;
-          for (double b : {0.0, 2.0 * model.nu()}) {
-            const Mat8 J = phase_jacobian(model, 0.002 * i, q, phase, b);
-            for (int row = 0; row < 3; ++row) {
-              Eigen::Matrix<double, 1, 8> unit = Eigen::Matrix<double, 1, 8>::Zero();
-              unit[row + 4] = 1.0;
-              EXPECT_EQ(J.row(row), unit) << to_string(phase) << " row " << row;
-            }
-            Mat8 X = Mat8::Random();
-            X(3, 3) = 1e3;  // entries of different sizes
-            const Mat8 full = J * X, structured = jacobian_times(J, X);
-            EXPECT_LE((structured - full).cwiseAbs().maxCoeff(),
-                      1e-14 * (J.cwiseAbs() * X.cwiseAbs()).maxCoeff())
-                << to_string(phase);
-            // The unit rows are copies, exactly.
-            EXPECT_EQ(structured.topRows<3>(), X.middleRows<3>(4));
-            // A column of X that is phi's unit vector (Phi's column of phi under the variational
-            // equations) gives a zero column, exactly, as the full product does; the others are
-            // unchanged by it.
-            Mat8 U = X;
-            U.col(3) = Vec8::Unit(3);
-            U.col(5) = Vec8::Unit(3);
-            const Mat8 unit = jacobian_times(J, U), unit_full = J * U;
-            EXPECT_EQ(unit.col(3), Vec8::Zero()) << to_string(phase);
-            EXPECT_EQ(unit.col(5), Vec8::Zero()) << to_string(phase);
-            EXPECT_EQ(unit_full.col(3), Vec8::Zero()) << to_string(phase);
-            EXPECT_LE((unit - unit_full).cwiseAbs().maxCoeff(),
-                      1e-14 * (J.cwiseAbs() * U.cwiseAbs()).maxCoeff())
-                << to_string(phase);
-          }
-        }
-      }
+  for_each_phase_jacobian(17, 5, 0.002, [](const Mat8& J, Phase phase, const Model&) {
+    for (int row = 0; row < 3; ++row) {
+      Eigen::Matrix<double, 1, 8> unit = Eigen::Matrix<double, 1, 8>::Zero();
+      unit[row + 4] = 1.0;
+      EXPECT_EQ(J.row(row), unit) << to_string(phase) << " row " << row;
     }
+    Mat8 X = Mat8::Random();
+    X(3, 3) = 1e3;  // entries of different sizes
+    const Mat8 full = J * X, structured = jacobian_times(J, X);
+    EXPECT_LE((structured - full).cwiseAbs().maxCoeff(),
+              1e-14 * (J.cwiseAbs() * X.cwiseAbs()).maxCoeff())
+        << to_string(phase);
+    // The unit rows are copies, exactly.
+    EXPECT_EQ(structured.topRows<3>(), X.middleRows<3>(4));
+    // A column of X that is phi's unit vector (Phi's column of phi under the variational
+    // equations) gives a zero column, exactly, as the full product does; the others are unchanged
+    // by it.
+    Mat8 U = X;
+    U.col(3) = Vec8::Unit(3);
+    U.col(5) = Vec8::Unit(3);
+    const Mat8 unit = jacobian_times(J, U), unit_full = J * U;
+    EXPECT_EQ(unit.col(3), Vec8::Zero()) << to_string(phase);
+    EXPECT_EQ(unit.col(5), Vec8::Zero()) << to_string(phase);
+    EXPECT_EQ(unit_full.col(3), Vec8::Zero()) << to_string(phase);
+    EXPECT_LE((unit - unit_full).cwiseAbs().maxCoeff(),
+              1e-14 * (J.cwiseAbs() * U.cwiseAbs()).maxCoeff())
+        << to_string(phase);
+  });
 }
 
 TEST(Jacobian, EventGradientsAgainstFiniteDifferences) {
