@@ -824,9 +824,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     for (const char* z : {"utc", "gmt", "cet", "cest", "mez", "mesz", "local", "localtime", "z"})
       if (zone == z) h.unit.clear();
   }
-  // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
-  // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
-  // flags' conventions for x: forward unless --x-positive backward).
   // The columns that name an acceleration along each axis (x and z also by their bare letter or
   // the model's own name).
   std::vector<int> x_like, y_like, z_like;
@@ -838,6 +835,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (axis == 'y') y_like.push_back(column);
     if (axis == 'z' || k == "z" || headings[c].name == "ddz_M") z_like.push_back(column);
   }
+  // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
+  // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
+  // flags' conventions for x: forward unless --x-positive backward).
   std::string x_from_y;
   int cx = -1;
   if (o.x_col.empty()) {
