@@ -1,5 +1,5 @@
 // oscidrum/record_reader.hpp: the columns of a measured acceleration record from its text (CSV,
-// semicolon, tab or whitespace separated), in the model's conventions. Pure text: the caller
+// semicolon, tab, pipe or whitespace separated), in the model's conventions. Pure text: the caller
 // opens the file (the CLI's `analyze` and `identify`) or hands over the text (the browser
 // explorer); the reader neither opens nor writes files.
 #pragma once
@@ -46,7 +46,7 @@ struct RecordColumns {
   std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
   std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
   std::vector<double> unbalance_angle;  ///< the unbalance's angle [rad] (empty without a column)
-  std::string delimiter;                ///< as detected: "comma", "semicolon", "tab", "whitespace"
+  std::string delimiter;                ///< as detected: "comma", "semicolon", "tab", "pipe", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
   /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without

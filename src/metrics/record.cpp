@@ -245,7 +245,8 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
                        ? " (a repeated time, as an event-driven integrator writes both sides of "
                          "a switch: make each run of them one sample, its accelerations "
                          "averaged, as the CSV reader does)"
-                       : ""));
+                       : " (the time goes back: rows out of order, a logger that restarted its "
+                         "clock, or files joined; give each part on its own)"));
   }
   if (t.size() < 2)
     throw Error("record: needs at least 2 samples; got " + std::to_string(t.size()));
@@ -1113,7 +1114,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
       const double max_gap = o.gates.max_gap / f0;
       if (gap > max_gap)
-        reasons.push_back("gap of " + num(gap) + " s at t = " + num(gap_at + o.time_origin) +
+        reasons.push_back("gap of " + sig4(gap) + " s at t = " + num(gap_at + o.time_origin) +
                           " s (" + num(std::round(gap * f0 * 100) / 100) +
                           " excitation periods > " + num(o.gates.max_gap) +
                           "; a harmonic fit does not bridge it)");

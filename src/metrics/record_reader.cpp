@@ -271,6 +271,8 @@ double time_scale(const std::string& unit) {
   if (u == "s" || u == "sec" || u == "second" || u == "seconds") return 1.0;
   if (u == "ms" || u == "msec" || u == "millisecond" || u == "milliseconds") return 1e-3;
   if (u == "us" || u == "usec" || u == "microsecond" || u == "microseconds") return 1e-6;
+  if (u == "millis") return 1e-3;  // as Arduino-style loggers name their clock
+  if (u == "micros") return 1e-6;
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -303,6 +305,23 @@ bool is_time_key(const std::string& k) {
   for (const char* n : names)
     if (k == n) return true;
   return false;
+}
+
+// A time column named otherwise, taken only where no column has a name of `is_time_key`; its
+// rank, 0 for none: 1 for a name ending in "time" or "zeit" or starting with "time" (Relative
+// Time, Record Time, Sample time, DateTime, Uhrzeit, Messzeit, Time of day), a time unit alone
+// (ms, millis, us, s: the column's unit too) and the words for it in a few languages (Sekunden,
+// Dauer, Duration, tiempo, temps, tempo); 2 for a date (Date, Datum: a spreadsheet's serial date,
+// or a clock time with a date), taken where nothing of rank 1 is (beside an Uhrzeit, a Datum
+// holds the day).
+int time_key_rank(const std::string& k) {
+  static const char* const names[] = {"sekunden", "dauer", "duration", "tiempo", "temps", "tempo"};
+  for (const char* n : names)
+    if (k == n) return 1;
+  if (k.size() > 4 && (k.starts_with("time") || k.ends_with("time") || k.ends_with("zeit")))
+    return 1;
+  if (!std::isnan(time_scale(k))) return 1;
+  return k == "date" || k == "datum" ? 2 : 0;
 }
 
 // The sampling rate a logger's preamble line states ("Sample rate: 1000 Hz", "Sampling frequency
@@ -548,10 +567,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   auto strip_bom = [](std::string& l) {
     if (l.rfind("\xEF\xBB\xBF", 0) == 0) l.erase(0, 3);
   };
-  // The delimiter of a line: the first of ; tab , that it holds, else whitespace.
+  // The delimiter of a line: the first of ; tab | , that it holds, else whitespace (a comma
+  // beside the others is a decimal comma).
   const auto delimiter_of = [](const std::string& l) {
     if (l.find(';') != std::string::npos) return ';';
     if (l.find('\t') != std::string::npos) return '\t';
+    if (l.find('|') != std::string::npos) return '|';
     if (l.find(',') != std::string::npos) return ',';
     return ' ';
   };
@@ -578,7 +599,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   const auto has_number = [&](const std::string& l, char d) {
     for (const std::string& cell : split(l, d)) {
       double v = 0;
-      if (parse_number(cell, d == ';' || d == '\t', v) || parse_clock(cell)) return true;
+      if (parse_number(cell, d == ';' || d == '\t' || d == '|', v) || parse_clock(cell))
+        return true;
     }
     return false;
   };
@@ -670,16 +692,17 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   }
   first = lead[header_at].first;
   first_no = lead[header_at].second;
-  // Delimiter: the first of ; tab , that the header line holds, else whitespace.
+  // Delimiter: the first of ; tab | , that the header line holds, else whitespace.
   const char delim = delimiter_of(first);
   RecordColumns out;
   out.delimiter = delim == ';'    ? "semicolon"
                   : delim == '\t' ? "tab"
                   : delim == ','  ? "comma"
+                  : delim == '|'  ? "pipe"
                                   : "whitespace";
   // 1,5;2,25 or 1,5<tab>2,25 (a European spreadsheet's CSV or "Unicode text"): a comma within a
   // cell is a decimal comma where it is not the delimiter.
-  const bool decimal_comma = delim == ';' || delim == '\t';
+  const bool decimal_comma = delim == ';' || delim == '\t' || delim == '|';
   // Header: that line unless all its cells are numbers.
   std::vector<std::string> header = split(first, delim);
   // A delimiter at the end of the header line names no column (a spreadsheet's export).
@@ -753,7 +776,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // `bare`: a name that counts only where no other column matches (a three-axis logger's bare
   // X, Y, Z channels; beside acc_x, an x is a position or anything else).
   auto recognise = [&](const char* what, const char* flag, const char* model_name, auto matches,
-                       const char* bare = nullptr) -> int {
+                       const char* bare = nullptr,
+                       int (*rank)(const std::string&) = nullptr) -> int {
     // The model's own name (as `run --csv` writes it) first, exactly: t[s] beside T[N].
     for (std::size_t c = 0; c < headings.size(); ++c)
       if (headings[c].name == model_name) return static_cast<int>(c);
@@ -763,6 +787,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (hits.empty() && bare)
       for (std::size_t c = 0; c < headings.size(); ++c)
         if (headings[c].key == bare) hits.push_back(static_cast<int>(c));
+    // Else the names of the lowest rank that some column has.
+    for (int r = 1; hits.empty() && rank && r <= 2; ++r)
+      for (std::size_t c = 0; c < headings.size(); ++c)
+        if (rank(headings[c].key) == r) hits.push_back(static_cast<int>(c));
     // Several: the one that names the drum (ax_drum beside ax_frame, Bandage beside Rahmen).
     if (hits.size() > 1 && std::count_if(hits.begin(), hits.end(), [&](int c) {
                              return names_the_drum(headings[static_cast<std::size_t>(c)].key);
@@ -801,7 +829,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   if (rate == 0.0 && o.t_col.empty() && has_header) {
     bool time_column = false;
     for (const Heading& h : headings)
-      time_column = time_column || h.name == "t" || is_time_key(h.key);
+      time_column =
+          time_column || h.name == "t" || is_time_key(h.key) || time_key_rank(h.key) > 0;
     std::vector<std::pair<std::string, std::size_t>> stated = comments_before;
     for (std::size_t k = 0; k < header_at; ++k) stated.push_back(lead[k]);
     for (const auto& [text, line_no] : stated) {
@@ -815,14 +844,17 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   }
   const bool by_rate = rate > 0.0;
   const int ct = by_rate           ? -1
-                 : o.t_col.empty() ? recognise("time", "--t-col", "t", is_time_key)
-                                   : find(o.t_col, "--t-col");
+                 : o.t_col.empty()
+                     ? recognise("time", "--t-col", "t", is_time_key, nullptr, time_key_rank)
+                     : find(o.t_col, "--t-col");
   // A time zone in the time column's brackets ("Timestamp (UTC)") is not its unit.
   if (ct >= 0) {
     Heading& h = headings[static_cast<std::size_t>(ct)];
     const std::string zone = key_of(h.unit);
     for (const char* z : {"utc", "gmt", "cet", "cest", "mez", "mesz", "local", "localtime", "z"})
       if (zone == z) h.unit.clear();
+    // A time column named by its unit alone ("ms", "millis", "us") is in that unit.
+    if (h.unit.empty() && !std::isnan(time_scale(h.name))) h.unit = h.name;
   }
   // The columns that name an acceleration along each axis (x and z also by their bare letter or
   // the model's own name).
@@ -1045,11 +1077,55 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       out.north.push_back(north);
     }
   };
+  // A line that repeats the header (files joined with their headers) is skipped and counted.
+  // A line refused as a row that has another number of cells than the header, or no number, is
+  // an error unless no row follows it: up to kFooterLines such lines at the end are a footer
+  // ("End of data", a summary) or a last row cut short by a logger's power loss, skipped with a
+  // note. (A line with the header's cells and a number is a row, and its error stands.)
+  constexpr std::size_t kFooterLines = 20;
+  std::size_t repeated_headers = 0, first_repeated_header = 0;
+  std::optional<Error> refused;  // the first line refused, while no row has followed it
+  std::size_t refused_at = 0, footer = 0;
+  std::string refused_text;
+  const std::string header_key = key_of(first);
+  auto take = [&](const std::string& text, std::size_t line_no) {
+    if (has_header && !commented_header && key_of(text) == header_key) {
+      if (repeated_headers++ == 0) first_repeated_header = line_no;
+      return;
+    }
+    try {
+      parse(text, line_no);
+    } catch (const Error& e) {
+      // A line with the columns' number of cells and a number in one is a row: its error stands.
+      if (cells_of(text, delim) == header.size() && has_number(text, delim)) throw;
+      if (!refused) {
+        refused = e;
+        refused_at = line_no;
+        refused_text = trim(text);
+      }
+      if (++footer > kFooterLines) throw *refused;
+      return;
+    }
+    if (refused) throw *refused;  // a row after the refused line: it was no footer
+  };
   // The held lines after the header (and its units), then the rest as it is read; without a
   // header the first line is data too.
   for (std::size_t k = has_header && !commented_header ? data_at : header_at; k < lead.size(); ++k)
-    parse(lead[k].first, lead[k].second);
-  while (next_line(line)) parse(line, no);
+    take(lead[k].first, lead[k].second);
+  while (next_line(line)) take(line, no);
+  if (refused && out.t.empty()) throw *refused;
+  if (refused) {
+    if (refused_text.size() > 40) refused_text = refused_text.substr(0, 37) + "...";
+    out.notes.push_back("skipped " + std::to_string(footer) + " line" + (footer > 1 ? "s" : "") +
+                        " after the data, from line " + std::to_string(refused_at) + " ('" +
+                        refused_text +
+                        "'), that are not rows of its columns: a footer, or a last row cut "
+                        "short");
+  }
+  if (repeated_headers > 0)
+    out.notes.push_back("skipped " + std::to_string(repeated_headers) + " line" +
+                        (repeated_headers > 1 ? "s" : "") + " repeating the header (the first at " +
+                        "line " + std::to_string(first_repeated_header) + "; files joined)");
   if (out.t.empty())
     throw Error(name + (skipped > 0 ? ": every data row (" + std::to_string(skipped) +
                                           ") has a missing or non-finite value"
@@ -1197,7 +1273,21 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         step = detail::median_step(std::span<const double>(out.t).first(n));
       }
       const double factor = !(step > 0.02) ? 1.0 : step <= 10.0 ? 1e-3 : step <= 1e4 ? 1e-6 : 1.0;
-      if (factor != 1.0) {
+      // A spreadsheet's serial date (days since 1899-12-30; MATLAB's datenum counts from year 0):
+      // values of at least a day whose steps would be under a microsecond in s (no accelerometer
+      // logger samples so fast) but between 1 Hz and 10 MHz in days. In s from the first row's,
+      // the first value taken off before the scaling so that the days' digits are not lost.
+      const bool serial_days = step > 0.0 && step < 1e-6 && step * 86400.0 >= 1e-7 &&
+                               step * 86400.0 <= 1.0 && out.t.front() >= 1.0;
+      if (serial_days) {
+        const double t0 = out.t.front();
+        for (double& v : out.t) v = (v - t0) * 86400.0;
+        out.t_factor = 86400.0;
+        out.notes.push_back("t: column '" + out.t_column + "' has no unit and is read in days, " +
+                            "a spreadsheet's serial date (" + format_factor(1.0 / (step * 86400.0)) +
+                            " samples/s), in s from the first row's: in s its samples would be " +
+                            format_factor(step) + " s apart; give --t-units s to read it in s");
+      } else if (factor != 1.0) {
         for (double& v : out.t) v *= factor;
         out.t_factor = factor;
         const char* unit = factor == 1e-3 ? "ms" : "us";

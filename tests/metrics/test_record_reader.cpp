@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -167,6 +168,109 @@ TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
   const RecordColumns given = read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o);
   EXPECT_DOUBLE_EQ(given.t[3], 3.0);
   EXPECT_FALSE(said(given, "has no unit"));
+}
+
+// Time columns named otherwise than t, time, zeit, timestamp: by a name ending in "time" or
+// "zeit", by their unit alone (then read in it), by a word for it, by a date (only where no
+// other column names the time: beside an Uhrzeit, a Datum holds the day); and a spreadsheet's
+// serial date (days) without a unit.
+TEST(RecordReader, TimeColumnsNamedOtherwiseAndSerialDates) {
+  const auto said = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  const std::string rows_s = "0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n";
+  for (const std::string name : {"Relative Time", "Record Time", "Sample time", "DateTime",
+                                 "Uhrzeit", "Messzeit", "Laufzeit", "Datum/Zeit", "Time of day",
+                                 "Sekunden", "Duration", "s", "Date"}) {
+    SCOPED_TRACE(name);
+    const RecordColumns r = read_text(name + ",ax,az\n" + rows_s);
+    EXPECT_EQ(r.t_column, name);
+    EXPECT_DOUBLE_EQ(r.t[3], 0.003);
+  }
+  for (const auto& [name, rows] :
+       {std::pair<std::string, std::string>{"ms", "0,1,2\n1,1,2\n2,1,2\n3,1,2\n"},
+        {"millis", "10,1,2\n11,1,2\n12,1,2\n13,1,2\n"},
+        {"us", "0,1,2\n1000,1,2\n2000,1,2\n3000,1,2\n"},
+        {"micros", "0,1,2\n1000,1,2\n2000,1,2\n3000,1,2\n"}}) {
+    SCOPED_TRACE(name);
+    const RecordColumns r = read_text(name + ",ax,az\n" + rows);
+    EXPECT_EQ(r.t_column, name);
+    EXPECT_NEAR(r.t[3] - r.t[0], 0.003, 1e-15);
+    EXPECT_FALSE(said(r, "has no unit"));  // the name is the unit
+  }
+  // A name of the first kind wins over the others; a date only where nothing else names a time.
+  EXPECT_EQ(read_text("Datum,Uhrzeit,ax,az\n1,0,1,2\n1,0.001,1,2\n1,0.002,1,2\n").t_column,
+            "Uhrzeit");
+  EXPECT_EQ(read_text("Relative Time,t,ax,az\n5,0,1,2\n5,0.001,1,2\n5,0.002,1,2\n").t_column,
+            "t");
+  // Serial dates: 1 kHz as days since 1899-12-30, in s from the first row, with a note.
+  std::string serial = "Date,ax,az\n";
+  for (int i = 0; i < 6; ++i) {
+    char line[64];
+    std::snprintf(line, sizeof line, "%.12f,1,2\n", 46174.5 + i / 86400000.0);
+    serial += line;
+  }
+  const RecordColumns days = read_text(serial);
+  EXPECT_EQ(days.t.front(), 0.0);
+  // A double holds 46174.5 days to 7.3e-12 days (0.63 us): each row time is that close.
+  EXPECT_NEAR(days.t[5], 0.005, 1e-6);
+  EXPECT_EQ(days.t_factor, 86400.0);
+  EXPECT_TRUE(said(days, "read in days, a spreadsheet's serial date"));
+  RecordReading in_s;
+  in_s.t_units = "s";
+  EXPECT_NEAR(read_text(serial, in_s).t[5], 46174.5 + 5 / 86400000.0, 1e-9);
+  // Under a day, steps of under a microsecond are a fast simulation's seconds, not days.
+  const RecordColumns fast = read_text("t,ax,az\n0,1,2\n1e-8,1,2\n2e-8,1,2\n3e-8,1,2\n");
+  EXPECT_DOUBLE_EQ(fast.t[3], 3e-8);
+  EXPECT_FALSE(said(fast, "days"));
+  // A sample number is not a time: the message names --rate.
+  try {
+    (void)read_text("Index,ax,az\n0,1,2\n1,1,2\n2,1,2\n");
+    ADD_FAILURE() << "an index read as the time";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no column looks like the time"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("--rate"), std::string::npos);
+  }
+}
+
+// What files joined or cut short hold: a header repeated between the parts is skipped; lines
+// after the data that are not rows (a footer, a last row cut short) are skipped with a note, up
+// to 20 of them and only where no row follows; a pipe-separated record is read.
+TEST(RecordReader, RepeatedHeadersFootersAndPipes) {
+  const auto said = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  const std::string rows = "0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n";
+  const RecordColumns joined =
+      read_text("t,ax,az\n" + rows + "t,ax,az\n0.004,1,2\nT, AX ,az\n0.005,1,2\n");
+  EXPECT_EQ(joined.t.size(), 6u);
+  EXPECT_DOUBLE_EQ(joined.t[5], 0.005);
+  EXPECT_TRUE(said(joined, "skipped 2 lines repeating the header (the first at line 6"));
+  const RecordColumns footer = read_text("t,ax,az\n" + rows + "End of data\nSamples: 4\n");
+  EXPECT_EQ(footer.t.size(), 4u);
+  EXPECT_TRUE(said(footer, "skipped 2 lines after the data, from line 6 ('End of data')"));
+  const RecordColumns cut = read_text("t,ax,az\n" + rows + "0.004,1.2");
+  EXPECT_EQ(cut.t.size(), 4u);
+  EXPECT_TRUE(said(cut, "a last row cut short"));
+  // A refused line with rows after it is an error, as it was; so are more than 20 such lines
+  // and a last line with the header's cells and a number (a row with a bad value).
+  for (const std::string& text :
+       {std::string("t,ax,az\n0,1,2\n0.001,x,2\n0.002,1,2\n0.003,1,2\n"),
+        std::string("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1\n0.003,1,2\n"), "t,ax,az\n" + rows + "0.004,x,2\n"}) {
+    SCOPED_TRACE(text.substr(0, 60));
+    EXPECT_THROW((void)read_text(text), Error);
+  }
+  std::string long_footer = "t,ax,az\n" + rows;
+  for (int i = 0; i < 21; ++i) long_footer += "summary line\n";
+  EXPECT_THROW((void)read_text(long_footer), Error);
+  // Only footer lines: no rows, the first refusal.
+  EXPECT_THROW((void)read_text("t,ax,az\nEnd of data\nSamples: 0\n"), Error);
+  const RecordColumns pipes = read_text("t|ax|az\n0|1,5|2\n0.001|1|2\n0.002|1|2\n");
+  EXPECT_EQ(pipes.delimiter, "pipe");
+  EXPECT_DOUBLE_EQ(pipes.ddx_M[0], 1.5);  // a decimal comma, as beside ; and tab
+  EXPECT_DOUBLE_EQ(pipes.t[2], 0.002);
 }
 
 // The paper's notation and others for the drum centre's accelerations: x_M'' (beside the
