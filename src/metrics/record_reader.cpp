@@ -427,6 +427,9 @@ char acceleration_axis(const std::string& k) {
       if (rest == "x" || rest == "y" || rest == "z") return rest.front();
       return acceleration_axis(rest);
     }
+  // A linear acceleration (linear_acceleration_x, as phones' and robots' inertial units name
+  // the acceleration without the rotation's): the name without the word.
+  if (k.size() > 6 && k.starts_with("linear")) return acceleration_axis(k.substr(6));
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
   // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm... or
   // ...m: x_dd_M).

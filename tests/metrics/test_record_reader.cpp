@@ -303,7 +303,8 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
                                    "t,x_M_dotdot,z_M_dotdot",
                                    "t,x_2dot,z_2dot",
                                    "t,a_M_x,a_M_z",
-                                   "t,acc_M_x,acc_M_z"}) {
+                                   "t,acc_M_x,acc_M_z",
+                                   "t,linear_acceleration_x,linear_acceleration_z"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const std::string rows =
