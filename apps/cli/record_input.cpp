@@ -39,13 +39,19 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
       "y column instead where it, not z, has gravity in its mean (a logger mounted y vertical), "
       "or where z never changes and y does; x where it alone has gravity in m/s^2)");
   if (file_and_position) {
-    app.add_option("--pos-col", o.pos_col,
-                   "position column [m] (optional): each window reports its position");
-    app.add_option("--speed-col", o.speed_col,
-                   "speed column [m/s] (optional): integrated to the position");
+    app.add_option(
+        "--pos-col", o.pos_col,
+        "position column [m] (optional; a unit in its header, km, cm, ft, is read): each "
+        "window reports its position");
+    app.add_option(
+        "--speed-col", o.speed_col,
+        "speed column [m/s] (optional; a unit in its header, km/h, m/min, mph, is read): "
+        "integrated to the position");
     app.add_option("--lat-col", o.lat_col,
                    "GNSS latitude column [deg, WGS 84] (optional, with --lon-col): each window "
-                   "gets the point at its centre (identify --geojson)");
+                   "gets the point at its centre (identify --geojson); default: a header's one "
+                   "lat/Latitude/GPS Lat/Breite and one lon/Longitude/Laenge column, else its one "
+                   "Easting/Rechtswert and one Northing/Hochwert column, with a note");
     app.add_option("--lon-col", o.lon_col, "GNSS longitude column [deg, WGS 84] (with --lat-col)");
     app.add_option("--east-col", o.east_col,
                    "projected easting column [m] (optional, with --north-col): each window gets "

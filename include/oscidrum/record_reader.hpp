@@ -46,7 +46,7 @@ struct RecordColumns {
   std::vector<double> lat, lon;     ///< GNSS latitude, longitude [deg] (empty without the columns)
   std::vector<double> east, north;  ///< projected easting, northing [m] (empty without them)
   std::vector<double> unbalance_angle;  ///< the unbalance's angle [rad] (empty without a column)
-  std::string delimiter;                ///< as detected: "comma", "semicolon", "tab", "pipe", "whitespace"
+  std::string delimiter;  ///< as detected: "comma", "semicolon", "tab", "pipe", "whitespace"
   /// How each column was read, for the summary: "t: 'Time [ms]' (ms)" and so on.
   std::vector<std::string> notes;
   /// The column each of t, x_M'', z_M'' was read from (its header, or its 1-based index without

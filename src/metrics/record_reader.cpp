@@ -297,6 +297,56 @@ double acceleration_scale(const std::string& unit) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// The factor from a speed's unit to m/s, and from a length's to m; NaN for another unit.
+double speed_scale(const std::string& unit) {
+  std::string u = lower(unit);
+  std::erase(u, ' ');
+  if (u == "m/s" || u == "mps" || u == "m/sec" || u == "ms^-1" || u == "ms-1") return 1.0;
+  if (u == "km/h" || u == "kmh" || u == "kph" || u == "kmph" || u == "km/hr") return 1.0 / 3.6;
+  if (u == "m/min") return 1.0 / 60.0;
+  if (u == "mph") return 0.44704;
+  if (u == "ft/s" || u == "fps") return 0.3048;
+  if (u == "cm/s") return 1e-2;
+  if (u == "mm/s") return 1e-3;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double length_scale(const std::string& unit) {
+  const std::string u = key_of(unit);
+  if (u == "m" || u == "meter" || u == "metre" || u == "meters" || u == "metres") return 1.0;
+  if (u == "km") return 1e3;
+  if (u == "cm") return 1e-2;
+  if (u == "mm") return 1e-3;
+  if (u == "ft" || u == "feet") return 0.3048;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// GNSS columns a logger writes (keys): latitude and longitude in degrees, or projected easting
+// and northing; recognised only where the flags name none of them.
+bool is_latitude_key(const std::string& k) {
+  for (const char* n : {"lat", "latitude", "gpslat", "gpslatitude", "gnsslat", "gnsslatitude",
+                        "breite", "breitengrad", "latdeg"})
+    if (k == n) return true;
+  return false;
+}
+bool is_longitude_key(const std::string& k) {
+  for (const char* n :
+       {"lon", "lng", "long", "longitude", "gpslon", "gpslng", "gpslong", "gpslongitude", "gnsslon",
+        "gnsslongitude", "laenge", "lnge", "laengengrad", "lngengrad", "londeg"})
+    if (k == n) return true;
+  return false;
+}
+bool is_easting_key(const std::string& k) {
+  for (const char* n : {"easting", "east", "rechtswert", "utmeast", "utmeasting", "utme"})
+    if (k == n) return true;
+  return false;
+}
+bool is_northing_key(const std::string& k) {
+  for (const char* n : {"northing", "north", "hochwert", "utmnorth", "utmnorthing", "utmn"})
+    if (k == n) return true;
+  return false;
+}
+
 // Names loggers give the three channels (keys: lower-case letters and digits).
 bool is_time_key(const std::string& k) {
   static const char* const names[] = {"t",       "time",   "times",  "zeit",    "timestamp",
@@ -832,8 +882,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   if (rate == 0.0 && o.t_col.empty() && has_header) {
     bool time_column = false;
     for (const Heading& h : headings)
-      time_column =
-          time_column || h.name == "t" || is_time_key(h.key) || time_key_rank(h.key) > 0;
+      time_column = time_column || h.name == "t" || is_time_key(h.key) || time_key_rank(h.key) > 0;
     std::vector<std::pair<std::string, std::size_t>> stated = comments_before;
     for (std::size_t k = 0; k < header_at; ++k) stated.push_back(lead[k]);
     for (const auto& [text, line_no] : stated) {
@@ -846,7 +895,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
   }
   const bool by_rate = rate > 0.0;
-  const int ct = by_rate           ? -1
+  const int ct = by_rate ? -1
                  : o.t_col.empty()
                      ? recognise("time", "--t-col", "t", is_time_key, nullptr, time_key_rank)
                      : find(o.t_col, "--t-col");
@@ -919,10 +968,39 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   if (o.east_col.empty() != o.north_col.empty())
     throw Error(std::string("give both --east-col and --north-col; got only ") +
                 (o.east_col.empty() ? "--north-col" : "--east-col"));
-  const int ceast = o.east_col.empty() ? -1 : find(o.east_col, "--east-col");
-  const int cnorth = o.north_col.empty() ? -1 : find(o.north_col, "--north-col");
-  const int clat = o.lat_col.empty() ? -1 : find(o.lat_col, "--lat-col");
-  const int clon = o.lon_col.empty() ? -1 : find(o.lon_col, "--lon-col");
+  int ceast = o.east_col.empty() ? -1 : find(o.east_col, "--east-col");
+  int cnorth = o.north_col.empty() ? -1 : find(o.north_col, "--north-col");
+  int clat = o.lat_col.empty() ? -1 : find(o.lat_col, "--lat-col");
+  int clon = o.lon_col.empty() ? -1 : find(o.lon_col, "--lon-col");
+  // Without those flags, a header with exactly one latitude and one longitude column (Latitude,
+  // GPS Lon, Breite, Laenge), else one easting and one northing (Easting, Rechtswert,
+  // Hochwert), gives each window its point, with a note.
+  std::string gnss_note, gnss_text;  // gnss_text: the first cell of theirs that is no number
+  if (clat < 0 && ceast < 0 && has_header) {
+    const auto only = [&](bool (*is)(const std::string&)) {
+      int hit = -1, hits = 0;
+      for (std::size_t c = 0; c < headings.size(); ++c)
+        if (is(headings[c].key) && static_cast<int>(c) != ct && static_cast<int>(c) != cx &&
+            static_cast<int>(c) != cz)
+          hit = static_cast<int>(c), ++hits;
+      return hits == 1 ? hit : -1;
+    };
+    if (const int a = only(is_latitude_key), b = only(is_longitude_key); a >= 0 && b >= 0) {
+      clat = a;
+      clon = b;
+      gnss_note = "position: latitude and longitude from the columns '" +
+                  header[static_cast<std::size_t>(a)] + "' and '" +
+                  header[static_cast<std::size_t>(b)] +
+                  "' [deg, WGS 84], each window's point (give --lat-col and --lon-col to choose)";
+    } else if (const int e = only(is_easting_key), n = only(is_northing_key); e >= 0 && n >= 0) {
+      ceast = e;
+      cnorth = n;
+      gnss_note = "position: easting and northing from the columns '" +
+                  header[static_cast<std::size_t>(e)] + "' and '" +
+                  header[static_cast<std::size_t>(n)] +
+                  "' [m], each window's point (give --east-col and --north-col to choose)";
+    }
+  }
   // Units: a flag's, else the column's header, else SI.
   auto column_scale = [&](int c, bool time) {
     const Heading& h = headings[static_cast<std::size_t>(c)];
@@ -938,6 +1016,22 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
     return k;
   };
+  // A speed's, a position's or a coordinate's unit from its header ("Speed [km/h]",
+  // "Distance (km)"); none: SI.
+  const auto other_scale = [&](int c, double (*scale)(const std::string&), const char* what) {
+    if (c < 0) return 1.0;
+    const Heading& h = headings[static_cast<std::size_t>(c)];
+    if (h.unit.empty()) return 1.0;
+    const double k = scale(h.unit);
+    if (std::isnan(k))
+      throw Error(name + ": column '" + header[static_cast<std::size_t>(c)] + "': unit '" + h.unit +
+                  "' is not " + what);
+    return k;
+  };
+  const double kspeed = other_scale(cs, speed_scale, "a speed unit (m/s, km/h, m/min, mph)");
+  const double kpos = other_scale(cp, length_scale, "a length unit (m, km, cm, mm, ft)");
+  const double keast = other_scale(ceast, length_scale, "a length unit (m, km)");
+  const double knorth = other_scale(cnorth, length_scale, "a length unit (m, km)");
   const double kt = by_rate ? 1.0 / rate : column_scale(ct, true);
   double kx = column_scale(cx, false) * (o.x_positive == "backward" ? -1.0 : 1.0);
   // z_positive "auto": down, or up for a two-dimensional record's y (the usual Cartesian axes),
@@ -1051,10 +1145,26 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       const std::string& cell = cells[static_cast<std::size_t>(cy)];
       if (!is_missing(cell) && !parse_number(cell, decimal_comma, y)) y = std::nan("");
     }
-    const double p = cp >= 0 ? get(cp) : 0.0, sp = cs >= 0 ? get(cs) : 0.0,
+    const double p = cp >= 0 ? kpos * get(cp) : 0.0, sp = cs >= 0 ? kspeed * get(cs) : 0.0,
                  u = cu >= 0 ? get(cu) : 0.0;
-    const double lat = clat >= 0 ? get(clat) : 0.0, lon = clat >= 0 ? get(clon) : 0.0;
-    const double east = ceast >= 0 ? get(ceast) : 0.0, north = ceast >= 0 ? get(cnorth) : 0.0;
+    // A GNSS cell without a number (a receiver's fix comes at a few Hz, the accelerations at a
+    // kHz) does not skip the row: NaN, filled from the fixes around it below.
+    // In columns recognised rather than chosen, a cell that is no number (48°12'N) is NaN too,
+    // and the columns are dropped below.
+    const auto fix = [&](int c) {
+      const std::string& cell = cells[static_cast<std::size_t>(c)];
+      double v = 0;
+      if (is_missing(cell)) return std::nan("");
+      if (!gnss_note.empty() && !parse_number(cell, decimal_comma, v)) {
+        if (gnss_text.empty())
+          gnss_text = "line " + std::to_string(line_no) + " has '" + trim(cell) + "'";
+        return std::nan("");
+      }
+      return get(c);
+    };
+    const double lat = clat >= 0 ? fix(clat) : 0.0, lon = clat >= 0 ? fix(clon) : 0.0;
+    const double east = ceast >= 0 ? keast * fix(ceast) : 0.0,
+                 north = ceast >= 0 ? knorth * fix(cnorth) : 0.0;
     if (missing) {
       if (skipped++ == 0) first_skipped = line_no;
       return;
@@ -1067,11 +1177,24 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (cs >= 0) speed.push_back(sp);
     if (cu >= 0) out.unbalance_angle.push_back(u);
     if (clat >= 0) {
-      if (!(std::abs(lat) <= 90.0) || !(std::abs(lon) <= 180.0))
+      if (std::abs(lat) > 90.0 || std::abs(lon) > 180.0) {
+        if (!gnss_note.empty()) {  // recognised, not chosen: not coordinates in degrees
+          gnss_note = "position: the columns '" + header[static_cast<std::size_t>(clat)] +
+                      "' and '" + header[static_cast<std::size_t>(clon)] +
+                      "' are not read as latitude and longitude: line " + std::to_string(line_no) +
+                      " has " + format_factor(lat) + ", " + format_factor(lon) +
+                      ", outside [-90, 90], [-180, 180] degrees (give --lat-col and --lon-col "
+                      "for columns in degrees)";
+          clat = clon = -1;
+          out.lat.clear();
+          out.lon.clear();
+          return;
+        }
         throw Error(name + ":" + std::to_string(line_no) +
                     ": latitude, longitude must be in "
                     "[-90, 90], [-180, 180] degrees (WGS 84); got " +
                     format_factor(lat) + ", " + format_factor(lon));
+      }
       out.lat.push_back(lat);
       out.lon.push_back(lon);
     }
@@ -1124,6 +1247,59 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                         refused_text +
                         "'), that are not rows of its columns: a footer, or a last row cut "
                         "short");
+  }
+  // The GNSS columns: recognised ones with a cell that is no number are dropped; NaN between
+  // fixes filled linearly in time from the fixes around it (held before the first fix and after
+  // the last); without any fix, none.
+  {
+    const bool latlon = clat >= 0;
+    std::vector<double>& a = latlon ? out.lat : out.east;
+    std::vector<double>& b = latlon ? out.lon : out.north;
+    if (!gnss_text.empty()) {
+      gnss_note = "position: the columns '" +
+                  header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
+                  header[static_cast<std::size_t>(latlon ? clon : cnorth)] +
+                  "' are not read as coordinates: " + gnss_text + " (give " +
+                  (latlon ? "--lat-col and --lon-col" : "--east-col and --north-col") +
+                  " for columns of numbers)";
+      a.clear();
+      b.clear();
+      clat = clon = ceast = cnorth = -1;
+    } else if (!a.empty()) {
+      std::size_t fixes = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        fixes += std::isfinite(a[i]) && std::isfinite(b[i]) ? 1 : 0;
+      if (fixes == 0) {
+        gnss_note = "position: the columns '" +
+                    header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
+                    header[static_cast<std::size_t>(latlon ? clon : cnorth)] +
+                    "' hold no fix: no window has a point";
+        a.clear();
+        b.clear();
+        clat = clon = ceast = cnorth = -1;
+      } else if (fixes < a.size()) {
+        std::size_t last = a.size();  // the previous fix
+        for (std::size_t i = 0; i < a.size(); ++i) {
+          if (!(std::isfinite(a[i]) && std::isfinite(b[i]))) continue;
+          if (last == a.size()) {
+            for (std::size_t j = 0; j < i; ++j) a[j] = a[i], b[j] = b[i];
+          } else {
+            for (std::size_t j = last + 1; j < i; ++j) {
+              const double span = out.t[i] - out.t[last];  // (times checked later)
+              const double w = span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0;
+              a[j] = a[last] + w * (a[i] - a[last]);
+              b[j] = b[last] + w * (b[i] - b[last]);
+            }
+          }
+          last = i;
+        }
+        for (std::size_t j = last + 1; j < a.size(); ++j) a[j] = a[last], b[j] = b[last];
+        out.notes.push_back("position: " + std::to_string(fixes) + " of the " +
+                            std::to_string(a.size()) +
+                            " rows hold a GNSS fix; the rows between are interpolated in time");
+      }
+    }
+    if (!gnss_note.empty()) out.notes.push_back(gnss_note);
   }
   if (repeated_headers > 0)
     out.notes.push_back("skipped " + std::to_string(repeated_headers) + " line" +
@@ -1287,7 +1463,8 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         for (double& v : out.t) v = (v - t0) * 86400.0;
         out.t_factor = 86400.0;
         out.notes.push_back("t: column '" + out.t_column + "' has no unit and is read in days, " +
-                            "a spreadsheet's serial date (" + format_factor(1.0 / (step * 86400.0)) +
+                            "a spreadsheet's serial date (" +
+                            format_factor(1.0 / (step * 86400.0)) +
                             " samples/s), in s from the first row's: in s its samples would be " +
                             format_factor(step) + " s apart; give --t-units s to read it in s");
       } else if (factor != 1.0) {

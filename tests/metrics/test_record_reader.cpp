@@ -180,9 +180,9 @@ TEST(RecordReader, TimeColumnsNamedOtherwiseAndSerialDates) {
                        [&](const std::string& n) { return n.find(what) != std::string::npos; });
   };
   const std::string rows_s = "0,1,2\n0.001,1,2\n0.002,1,2\n0.003,1,2\n";
-  for (const std::string name : {"Relative Time", "Record Time", "Sample time", "DateTime",
-                                 "Uhrzeit", "Messzeit", "Laufzeit", "Datum/Zeit", "Time of day",
-                                 "Sekunden", "Duration", "s", "Date"}) {
+  for (const std::string name :
+       {"Relative Time", "Record Time", "Sample time", "DateTime", "Uhrzeit", "Messzeit",
+        "Laufzeit", "Datum/Zeit", "Time of day", "Sekunden", "Duration", "s", "Date"}) {
     SCOPED_TRACE(name);
     const RecordColumns r = read_text(name + ",ax,az\n" + rows_s);
     EXPECT_EQ(r.t_column, name);
@@ -202,8 +202,7 @@ TEST(RecordReader, TimeColumnsNamedOtherwiseAndSerialDates) {
   // A name of the first kind wins over the others; a date only where nothing else names a time.
   EXPECT_EQ(read_text("Datum,Uhrzeit,ax,az\n1,0,1,2\n1,0.001,1,2\n1,0.002,1,2\n").t_column,
             "Uhrzeit");
-  EXPECT_EQ(read_text("Relative Time,t,ax,az\n5,0,1,2\n5,0.001,1,2\n5,0.002,1,2\n").t_column,
-            "t");
+  EXPECT_EQ(read_text("Relative Time,t,ax,az\n5,0,1,2\n5,0.001,1,2\n5,0.002,1,2\n").t_column, "t");
   // Serial dates: 1 kHz as days since 1899-12-30, in s from the first row, with a note.
   std::string serial = "Date,ax,az\n";
   for (int i = 0; i < 6; ++i) {
@@ -256,9 +255,9 @@ TEST(RecordReader, RepeatedHeadersFootersAndPipes) {
   EXPECT_TRUE(said(cut, "a last row cut short"));
   // A refused line with rows after it is an error, as it was; so are more than 20 such lines
   // and a last line with the header's cells and a number (a row with a bad value).
-  for (const std::string& text :
-       {std::string("t,ax,az\n0,1,2\n0.001,x,2\n0.002,1,2\n0.003,1,2\n"),
-        std::string("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1\n0.003,1,2\n"), "t,ax,az\n" + rows + "0.004,x,2\n"}) {
+  for (const std::string& text : {std::string("t,ax,az\n0,1,2\n0.001,x,2\n0.002,1,2\n0.003,1,2\n"),
+                                  std::string("t,ax,az\n0,1,2\n0.001,1,2\n0.002,1\n0.003,1,2\n"),
+                                  "t,ax,az\n" + rows + "0.004,x,2\n"}) {
     SCOPED_TRACE(text.substr(0, 60));
     EXPECT_THROW((void)read_text(text), Error);
   }
@@ -271,6 +270,67 @@ TEST(RecordReader, RepeatedHeadersFootersAndPipes) {
   EXPECT_EQ(pipes.delimiter, "pipe");
   EXPECT_DOUBLE_EQ(pipes.ddx_M[0], 1.5);  // a decimal comma, as beside ; and tab
   EXPECT_DOUBLE_EQ(pipes.t[2], 0.002);
+}
+
+// A logger's GNSS columns are recognised without flags (Latitude/Longitude, else Easting/
+// Northing); a fix every few rows fills the rows between in time; columns that are no
+// coordinates in degrees, or not numbers, are dropped with a note (given by the flags, they are
+// an error). A speed's or position's unit in its header is read (km/h, km).
+TEST(RecordReader, GnssColumnsFixesBetweenRowsAndUnitsOfSpeed) {
+  const auto said = [](const RecordColumns& r, const std::string& what) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(what) != std::string::npos; });
+  };
+  const RecordColumns r = read_text(
+      "Time [s],Acc X,Acc Z,Latitude,Longitude\n0,1,2,48.0,16.0\n0.001,1,2,,\n0.002,1,2,,\n"
+      "0.003,1,2,,\n0.004,1,2,48.4,16.8\n0.005,1,2,,\n");
+  ASSERT_EQ(r.t.size(), 6u);  // no row skipped for an empty fix
+  ASSERT_EQ(r.lat.size(), 6u);
+  EXPECT_NEAR(r.lat[1], 48.1, 1e-12);
+  EXPECT_NEAR(r.lon[3], 16.6, 1e-12);
+  EXPECT_DOUBLE_EQ(r.lat[5], 48.4);  // held after the last fix
+  EXPECT_TRUE(said(r, "latitude and longitude from the columns 'Latitude' and 'Longitude'"));
+  EXPECT_TRUE(said(r, "2 of the 6 rows hold a GNSS fix"));
+  const RecordColumns before = read_text(
+      "t,ax,az,lat,lon\n0,1,2,,\n0.001,1,2,48.2,16.3\n0.002,1,2,48.2,16.3\n0.003,1,2,48.2,16.3\n");
+  EXPECT_DOUBLE_EQ(before.lat[0], 48.2);  // held before the first
+  const RecordColumns utm = read_text(
+      "t,ax,az,Rechtswert,Hochwert [km]\n0,1,2,600000,5340\n0.001,1,2,600003,5340.004\n"
+      "0.002,1,2,600006,5340.008\n");
+  ASSERT_EQ(utm.east.size(), 3u);
+  EXPECT_NEAR(utm.north[2], 5340008.0, 1e-6);
+  EXPECT_NEAR(utm.position[2], 10.0, 1e-6);  // 3 m east and 4 m north a row: 5 m along the track
+  for (const std::string& text :
+       {std::string("t,ax,az,Lat,Lon\n0,1,2,4812.5,1622.1\n0.001,1,2,4812.5,1622.1\n"
+                    "0.002,1,2,4812.5,1622.1\n"),
+        std::string("t,ax,az,Lat,Lon\n0,1,2,48N,16E\n0.001,1,2,48N,16E\n0.002,1,2,48N,16E\n"),
+        std::string("t,ax,az,Lat,Lon\n0,1,2,,\n0.001,1,2,,\n0.002,1,2,,\n")}) {
+    SCOPED_TRACE(text);
+    const RecordColumns dropped = read_text(text);
+    EXPECT_EQ(dropped.t.size(), 3u);
+    EXPECT_TRUE(dropped.lat.empty());
+    EXPECT_TRUE(said(dropped, "position: the columns 'Lat' and 'Lon'"));
+  }
+  RecordReading chosen;
+  chosen.lat_col = "Lat";
+  chosen.lon_col = "Lon";
+  EXPECT_THROW(
+      (void)read_text("t,ax,az,Lat,Lon\n0,1,2,4812.5,1622.1\n0.001,1,2,4812.5,1622.1\n", chosen),
+      Error);
+  // Two latitude-like columns: none chosen.
+  EXPECT_TRUE(
+      read_text("t,ax,az,lat,gps_lat,lon\n0,1,2,48,48,16\n0.001,1,2,48,48,16\n").lat.empty());
+  RecordReading speed;
+  speed.speed_col = "Speed [km/h]";
+  const RecordColumns kmh =
+      read_text("t [s],ax,az,Speed [km/h]\n0,1,2,3.6\n1,1,2,3.6\n2,1,2,3.6\n", speed);
+  EXPECT_NEAR(kmh.position[2], 2.0, 1e-12);  // 1 m/s for 2 s
+  speed.speed_col = "Speed [knots]";
+  EXPECT_THROW((void)read_text("t,ax,az,Speed [knots]\n0,1,2,3.6\n1,1,2,3.6\n", speed), Error);
+  RecordReading pos;
+  pos.pos_col = "Station (km)";
+  EXPECT_NEAR(read_text("t [s],ax,az,Station (km)\n0,1,2,1.5\n1,1,2,1.501\n", pos).position[1],
+              1501.0, 1e-9);
 }
 
 // The paper's notation and others for the drum centre's accelerations: x_M'' (beside the
