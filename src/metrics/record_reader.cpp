@@ -480,6 +480,23 @@ char acceleration_axis(const std::string& k) {
   // A linear acceleration (linear_acceleration_x, as phones' and robots' inertial units name
   // the acceleration without the rotation's): the name without the word.
   if (k.size() > 6 && k.starts_with("linear")) return acceleration_axis(k.substr(6));
+  // A numbered sensor or channel before the name (Sensor1_AccX, S1.ax, Ch1_AccX, Kanal 2 az), or
+  // a numbered accelerometer before its axis (A1_X, acc2 z, a1x): the name after the number.
+  for (const char* word : {"sensor", "sens", "channel", "kanal", "ch", "s", "accelerometer",
+                           "accel", "acc", "a", "imu"}) {
+    const std::string w = word;
+    if (!k.starts_with(w) || k.size() < w.size() + 2 ||
+        !std::isdigit(static_cast<unsigned char>(k[w.size()])))
+      continue;
+    std::size_t at = w.size();
+    while (at < k.size() && std::isdigit(static_cast<unsigned char>(k[at]))) ++at;
+    if (at == k.size()) continue;
+    const std::string rest = k.substr(at);
+    const bool accelerometer = w[0] == 'a' || w == "imu";
+    if (rest.size() == 1 && (rest[0] == 'x' || rest[0] == 'y' || rest[0] == 'z'))
+      return accelerometer ? rest[0] : char{0};
+    return acceleration_axis(rest);
+  }
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
   // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm... or
   // ...m: x_dd_M).

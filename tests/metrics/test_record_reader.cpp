@@ -364,7 +364,13 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
                                    "t,x_2dot,z_2dot",
                                    "t,a_M_x,a_M_z",
                                    "t,acc_M_x,acc_M_z",
-                                   "t,linear_acceleration_x,linear_acceleration_z"}) {
+                                   "t,linear_acceleration_x,linear_acceleration_z",
+                                   "t,A1_X,A1_Z",
+                                   "t,a1x,a1z",
+                                   "t,Sensor1_AccX,Sensor1_AccZ",
+                                   "t,S1.ax,S1.az",
+                                   "t,Ch1_AccX,Ch2_AccZ",
+                                   "t,Kanal 3 Beschl. X,Kanal 3 Beschl. Z"}) {
     SCOPED_TRACE(header);
     const bool four = std::count(header.begin(), header.end(), ',') == 4;
     const std::string rows =
@@ -375,6 +381,10 @@ TEST(RecordReader, NotationsOfASecondDerivative) {
     EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * g);
     EXPECT_DOUBLE_EQ(r.ddz_M[1], 0.75 * g);
   }
+  // A numbered sensor's bare axis is an accelerometer's only where its word says so (s1x may be
+  // a displacement).
+  EXPECT_THROW((void)read_text("t,s1x,s1z\n0,1,2\n0.001,1,2\n"), Error);
+  EXPECT_THROW((void)read_text("t,A1_X,A1_Z,A2_X,A2_Z\n0,1,2,1,2\n0.001,1,2,1,2\n"), Error);
 }
 
 // A column named for the drum (ax_drum, drum acc. x, Bandage, Trommel) is read as its
