@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,127 @@ void signal_shape(const std::vector<std::complex<double>>& cx,
   d.ddz_min = *zlo;
   d.ddz_max = *zhi;
   d.area = enclosed_area(x, z);
+}
+
+// The least-squares fit of two channels (about their means) on a trend (Legendre polynomials
+// P_0 ... P_d over the window) and the harmonics of the given orders (ascending) about t_ref:
+// normal equations from sums (products of harmonics are harmonics: sums of cos, sin of k w,
+// k <= 2 max order; the rest accumulated per sample), O(M n d) work, O(p^2) memory. Columns:
+// the trend's, then cos and sin of each order in turn.
+struct HarmonicFit {
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::VectorXd cx, cz;
+  double rss_x = 0, rss_z = 0;  // residual sums of squares, summed explicitly
+  bool ok = false;              // the samples determine every column
+};
+
+HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
+                          std::span<const double> yz, double f, double t_ref, int d,
+                          const std::vector<int>& orders) {
+  const std::size_t M = t.size();
+  const int np = d + 1, n_orders = static_cast<int>(orders.size()), p = np + 2 * n_orders;
+  const int top = orders.empty() ? 0 : orders.back();
+  const double mid = 0.5 * (t.front() + t.back()), span = t.back() - t.front();
+  std::vector<double> P(static_cast<std::size_t>(np)), cm(2 * top + 1), sm(2 * top + 1),
+      sc(2 * top + 1, 0.0), ss(2 * top + 1, 0.0);
+  Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, n_orders),
+                  ps = Eigen::MatrixXd::Zero(np, n_orders), pp = Eigen::MatrixXd::Zero(np, np);
+  Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
+  for (std::size_t i = 0; i < M; ++i) {
+    legendre(2.0 * (t[i] - mid) / span, d, P);
+    harmonics_at(f * (t[i] - t_ref), 2 * top, cm, sm);
+    const double x = yx[i], z = yz[i];
+    for (int k = 0; k <= 2 * top; ++k) {
+      sc[k] += cm[k];
+      ss[k] += sm[k];
+    }
+    for (int j = 0; j < np; ++j) {
+      for (int a = 0; a < n_orders; ++a) {
+        pc(j, a) += P[j] * cm[orders[a]];
+        ps(j, a) += P[j] * sm[orders[a]];
+      }
+      for (int l = j; l < np; ++l) pp(j, l) += P[j] * P[l];
+      bx[j] += x * P[j];
+      bz[j] += z * P[j];
+    }
+    for (int a = 0; a < n_orders; ++a) {
+      bx[np + 2 * a] += x * cm[orders[a]];
+      bx[np + 2 * a + 1] += x * sm[orders[a]];
+      bz[np + 2 * a] += z * cm[orders[a]];
+      bz[np + 2 * a + 1] += z * sm[orders[a]];
+    }
+  }
+  Eigen::MatrixXd G(p, p);
+  for (int j = 0; j < np; ++j) {
+    for (int l = j; l < np; ++l) G(j, l) = G(l, j) = pp(j, l);
+    for (int a = 0; a < n_orders; ++a) {
+      G(j, np + 2 * a) = G(np + 2 * a, j) = pc(j, a);
+      G(j, np + 2 * a + 1) = G(np + 2 * a + 1, j) = ps(j, a);
+    }
+  }
+  auto sum_sin = [&](int k) { return k >= 0 ? ss[k] : -ss[-k]; };
+  for (int i = 0; i < n_orders; ++i)
+    for (int j = 0; j < n_orders; ++j) {
+      const int a = orders[i], b = orders[j];
+      const int ca = np + 2 * i, sa = ca + 1, cb = np + 2 * j, sb = cb + 1;
+      const double cd = sc[std::abs(a - b)], cs = sc[a + b];
+      G(ca, cb) = 0.5 * (cd + cs);                          // cos a cos b
+      G(sa, sb) = 0.5 * (cd - cs);                          // sin a sin b
+      G(ca, sb) = 0.5 * (sum_sin(a + b) - sum_sin(a - b));  // cos a sin b
+      G(sb, ca) = G(ca, sb);
+    }
+  HarmonicFit fit;
+  fit.ldlt.compute(G);
+  fit.ok = fit.ldlt.info() == Eigen::Success && fit.ldlt.rcond() > 1e-12;
+  if (!fit.ok) return fit;
+  fit.cx = fit.ldlt.solve(bx);
+  fit.cz = fit.ldlt.solve(bz);
+  for (std::size_t i = 0; i < M; ++i) {
+    legendre(2.0 * (t[i] - mid) / span, d, P);
+    harmonics_at(f * (t[i] - t_ref), top, cm, sm);
+    double fx = 0, fz = 0;
+    for (int j = 0; j < np; ++j) {
+      fx += fit.cx[j] * P[j];
+      fz += fit.cz[j] * P[j];
+    }
+    for (int a = 0; a < n_orders; ++a) {
+      fx += fit.cx[np + 2 * a] * cm[orders[a]] + fit.cx[np + 2 * a + 1] * sm[orders[a]];
+      fz += fit.cz[np + 2 * a] * cm[orders[a]] + fit.cz[np + 2 * a + 1] * sm[orders[a]];
+    }
+    fit.rss_x += (yx[i] - fx) * (yx[i] - fx);
+    fit.rss_z += (yz[i] - fz) * (yz[i] - fz);
+  }
+  return fit;
+}
+
+// The harmonics beyond N that the window can tell apart from the fitted ones and from each
+// other: order n's frequency n f folded about the sampling rate (1 / the median step) is at least
+// two of the window's frequency bins (2 / its span) from 0, from every fitted or chosen order's,
+// and at least one from half the rate; up to order 8 (N + 1), at most 160. The noise is
+// estimated with them fitted too: a stick-slip signal's harmonics decay slowly (x_M'' jumps at
+// each switch), and left in the residual they would count as noise, by a different share in
+// each channel (tests/identify, `MeasureWindow.TheNoiseIsNotTheHarmonicsBeyondThoseCompared`).
+std::vector<int> separable_orders(double f, double step, double span, int N) {
+  std::vector<int> orders;
+  if (!(step > 0.0 && span > 0.0)) return orders;
+  const double rate = 1.0 / step, bin = 1.0 / span;
+  const auto folded = [&](int n) {
+    const double a = std::fmod(n * f, rate);
+    return std::min(a, rate - a);
+  };
+  std::vector<double> taken;
+  for (int n = 1; n <= N; ++n) taken.push_back(folded(n));
+  const int top = std::min(8 * (N + 1), 160);
+  for (int n = N + 1; n <= top; ++n) {
+    const double a = folded(n);
+    if (a < 2.0 * bin || std::abs(a - 0.5 * rate) < bin) continue;
+    if (std::any_of(taken.begin(), taken.end(),
+                    [&](double b) { return std::abs(a - b) < 2.0 * bin; }))
+      continue;
+    taken.push_back(a);
+    orders.push_back(n);
+  }
+  return orders;
 }
 
 }  // namespace
@@ -148,81 +270,40 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   mean_x /= static_cast<double>(M);
   mean_z /= static_cast<double>(M);
 
-  // Normal equations from sums: products of harmonics are harmonics (sums of cos, sin of k w,
-  // k <= 2N), the rest accumulated per sample. O(M N d) work, O(p^2) memory.
-  const double mid = 0.5 * (t.front() + t.back());
-  std::vector<double> P(np), cm(2 * N + 1), sm(2 * N + 1), sc(2 * N + 1, 0.0), ss(2 * N + 1, 0.0);
-  Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, N + 1), ps = Eigen::MatrixXd::Zero(np, N + 1),
-                  pp = Eigen::MatrixXd::Zero(np, np);
-  Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
+  std::vector<double> yx(M), yz(M);
   for (std::size_t i = 0; i < M; ++i) {
-    legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(f * (t[i] - out.t_ref), 2 * N, cm, sm);
-    const double yx = ddx[i] - mean_x, yz = ddz[i] - mean_z;
-    for (int k = 0; k <= 2 * N; ++k) {
-      sc[k] += cm[k];
-      ss[k] += sm[k];
-    }
-    for (int j = 0; j < np; ++j) {
-      for (int n = 1; n <= N; ++n) {
-        pc(j, n) += P[j] * cm[n];
-        ps(j, n) += P[j] * sm[n];
-      }
-      for (int l = j; l < np; ++l) pp(j, l) += P[j] * P[l];
-      bx[j] += yx * P[j];
-      bz[j] += yz * P[j];
-    }
-    for (int n = 1; n <= N; ++n) {
-      bx[col_cos(n)] += yx * cm[n];
-      bx[col_sin(n)] += yx * sm[n];
-      bz[col_cos(n)] += yz * cm[n];
-      bz[col_sin(n)] += yz * sm[n];
-    }
+    yx[i] = ddx[i] - mean_x;
+    yz[i] = ddz[i] - mean_z;
   }
-  Eigen::MatrixXd G(p, p);
-  for (int j = 0; j < np; ++j) {
-    for (int l = j; l < np; ++l) G(j, l) = G(l, j) = pp(j, l);
-    for (int n = 1; n <= N; ++n) {
-      G(j, col_cos(n)) = G(col_cos(n), j) = pc(j, n);
-      G(j, col_sin(n)) = G(col_sin(n), j) = ps(j, n);
-    }
-  }
-  auto sum_sin = [&](int k) { return k >= 0 ? ss[k] : -ss[-k]; };
-  for (int a = 1; a <= N; ++a)
-    for (int b = 1; b <= N; ++b) {
-      const double cd = sc[std::abs(a - b)], cs = sc[a + b];
-      G(col_cos(a), col_cos(b)) = 0.5 * (cd + cs);                          // cos a cos b
-      G(col_sin(a), col_sin(b)) = 0.5 * (cd - cs);                          // sin a sin b
-      G(col_cos(a), col_sin(b)) = 0.5 * (sum_sin(a + b) - sum_sin(a - b));  // cos a sin b
-      G(col_sin(b), col_cos(a)) = G(col_cos(a), col_sin(b));
-    }
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);
-  if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12))
+  std::vector<int> orders(static_cast<std::size_t>(N));
+  for (int n = 1; n <= N; ++n) orders[static_cast<std::size_t>(n - 1)] = n;
+  const HarmonicFit fit = fit_harmonics(t, yx, yz, f, out.t_ref, d, orders);
+  if (!fit.ok)
     throw Error("identify: the window's samples do not determine " + std::to_string(N) +
                 " harmonics and a trend of degree " + std::to_string(d) +
                 " (a gap too large, or too few samples per period)");
-  const Eigen::VectorXd cx = ldlt.solve(bx), cz = ldlt.solve(bz);
-
-  // The residual, summed explicitly in a second pass.
-  double rss_x = 0, rss_z = 0;
-  for (std::size_t i = 0; i < M; ++i) {
-    legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(f * (t[i] - out.t_ref), N, cm, sm);
-    double fx = 0, fz = 0;
-    for (int j = 0; j < np; ++j) {
-      fx += cx[j] * P[j];
-      fz += cz[j] * P[j];
-    }
-    for (int n = 1; n <= N; ++n) {
-      fx += cx[col_cos(n)] * cm[n] + cx[col_sin(n)] * sm[n];
-      fz += cz[col_cos(n)] * cm[n] + cz[col_sin(n)] * sm[n];
-    }
-    rss_x += std::pow(ddx[i] - mean_x - fx, 2);
-    rss_z += std::pow(ddz[i] - mean_z - fz, 2);
-  }
+  const Eigen::LDLT<Eigen::MatrixXd>& ldlt = fit.ldlt;
+  const Eigen::VectorXd& cx = fit.cx;
+  const Eigen::VectorXd& cz = fit.cz;
   const double dof = static_cast<double>(M) - p;
-  out.noise_x = std::sqrt(rss_x / dof);
-  out.noise_z = std::sqrt(rss_z / dof);
+  out.noise_x = std::sqrt(fit.rss_x / dof);
+  out.noise_z = std::sqrt(fit.rss_z / dof);
+  // The noise that weighs the compared harmonics: the residual with the separable harmonics
+  // beyond N fitted as well (where the samples determine them), else the residual above.
+  double noise2_x = out.noise_x * out.noise_x, noise2_z = out.noise_z * out.noise_z;
+  {
+    std::vector<int> more = orders;
+    const std::vector<int> extra = separable_orders(f, detail::median_step(t), span, N);
+    more.insert(more.end(), extra.begin(), extra.end());
+    const double dof_more = static_cast<double>(M) - (np + 2.0 * static_cast<double>(more.size()));
+    if (!extra.empty() && dof_more >= 0.5 * static_cast<double>(M)) {
+      const HarmonicFit wide = fit_harmonics(t, yx, yz, f, out.t_ref, d, more);
+      if (wide.ok) {
+        noise2_x = std::min(noise2_x, wide.rss_x / dof_more);
+        noise2_z = std::min(noise2_z, wide.rss_z / dof_more);
+      }
+    }
+  }
   for (int n = 1; n <= N; ++n) {
     // a cos + b sin = A sin(x + theta): C = A e^{i theta} = b + i a.
     out.ddx.emplace_back(cx[col_sin(n)], cx[col_cos(n)]);
@@ -251,10 +332,8 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   }
   const double floor_x = 1e-6 * std::sqrt(power_x) + 1e-300,
                floor_z = 1e-6 * std::sqrt(power_z) + 1e-300;
-  const double s2x =
-      std::max(out.noise_x * out.noise_x, floor_x * floor_x * static_cast<double>(M) / 2);
-  const double s2z =
-      std::max(out.noise_z * out.noise_z, floor_z * floor_z * static_cast<double>(M) / 2);
+  const double s2x = std::max(noise2_x, floor_x * floor_x * static_cast<double>(M) / 2);
+  const double s2z = std::max(noise2_z, floor_z * floor_z * static_cast<double>(M) / 2);
   out.cov_x.resize(static_cast<std::size_t>(4 * K * K));
   out.cov_z.resize(out.cov_x.size());
   double var_x = 0, var_z = 0;
@@ -281,7 +360,9 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
     // The estimator's rows: C_n = sum_i w_i y_i with w_i = B_i X, B_i the basis at sample i.
     out.alias_t.resize(M);
     out.alias_w.assign(M * static_cast<std::size_t>(2 * K), 0.0);
-    std::vector<double> basis(static_cast<std::size_t>(p));
+    std::vector<double> basis(static_cast<std::size_t>(p)), P(static_cast<std::size_t>(np)),
+        cm(static_cast<std::size_t>(N) + 1), sm(static_cast<std::size_t>(N) + 1);
+    const double mid = 0.5 * (t.front() + t.back());
     for (std::size_t i = 0; i < M; ++i) {
       legendre(2.0 * (t[i] - mid) / span, d, P);
       harmonics_at(f * (t[i] - out.t_ref), N, cm, sm);

@@ -118,6 +118,65 @@ TEST(MeasureWindow, TheCovarianceIsCalibrated) {
   EXPECT_NEAR(var, 16.0, 6.0);
 }
 
+// The noise is not the harmonics beyond those compared: a signal whose harmonics decay as 1/n
+// (x_M'' of stick-slip jumps at each switch) up to n = 50, sampled at 1 kHz (11 harmonics
+// fitted), left about four times the noise's power in x's residual and none in z's; counted as
+// noise, it made the covariance of x's harmonics four times too large, and x's weight against
+// z's wrong. With the separable harmonics beyond N fitted for the noise, the covariance is again
+// what the noise does (as in TheCovarianceIsCalibrated, where every harmonic is fitted). (In
+// this window, orders beyond about 63 fold onto lower ones within two frequency bins, n and
+// 127 - n: content there would stay in the noise.)
+TEST(MeasureWindow, TheNoiseIsNotTheHarmonicsBeyondThoseCompared) {
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Signal s;
+  for (int i = 0; i < 1023; ++i) {
+    const double t = (i + (i > 0 ? 0.1 * (u(rng) - 0.5) : 0.0)) / 1000.0;
+    double x = 0, z = 0;
+    for (int n = 1; n <= 50; ++n) {
+      const double w = n * 2 * M_PI * kF * t;
+      x += 3.0 / n * std::sin(w + 0.7 * n);
+      z += (n <= 11 ? 0.5 / (n * n) : 0.0) * std::sin(w + 0.3 * n);
+    }
+    s.t.push_back(t);
+    s.x.push_back(x);
+    s.z.push_back(z);
+  }
+  std::normal_distribution<double> g(0.0, 1.0);
+  MeasureOptions o;
+  o.covariance = 4;
+  const MeasuredResponse clean = measure_window(s.t, s.x, s.z, kF, o);
+  ASSERT_EQ(clean.ddx.size(), 11u);
+  double sum_x = 0, sum_z = 0, noise_x = 0;
+  const int trials = 200;
+  for (int k = 0; k < trials; ++k) {
+    Signal noisy = s;
+    for (double& x : noisy.x) x += 0.3 * g(rng);
+    for (double& z : noisy.z) z += 0.1 * g(rng);
+    const MeasuredResponse m = measure_window(noisy.t, noisy.x, noisy.z, kF, o);
+    noise_x += m.noise_x / trials;
+    for (const bool x : {true, false}) {
+      Eigen::MatrixXd C(8, 8);
+      Eigen::VectorXd e(8);
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b)
+          C(a, b) = (x ? m.cov_x : m.cov_z)[static_cast<std::size_t>(a * 8 + b)];
+      for (int n = 0; n < 4; ++n) {
+        const std::complex<double> d =
+            x ? m.ddx[static_cast<std::size_t>(n)] - clean.ddx[static_cast<std::size_t>(n)]
+              : m.ddz[static_cast<std::size_t>(n)] - clean.ddz[static_cast<std::size_t>(n)];
+        e[2 * n] = d.real();
+        e[2 * n + 1] = d.imag();
+      }
+      (x ? sum_x : sum_z) += e.dot(C.ldlt().solve(e)) / trials;
+    }
+  }
+  EXPECT_GT(noise_x, 1.8 * 0.3);  // the fit's residual holds the harmonics beyond 11
+  // The mean of 200 draws of chi^2_8 has a standard deviation of 4 / sqrt(200) = 0.28.
+  EXPECT_NEAR(sum_x, 8.0, 1.0);
+  EXPECT_NEAR(sum_z, 8.0, 1.0);
+}
+
 TEST(MeasureWindow, HarmonicsFromTheSampling) {
   const Signal s = make(1000, 0.0, 5);  // 25.4 samples per period: 11 harmonics
   EXPECT_EQ(measure_window(s.t, s.x, s.z, kF).ddx.size(), 11u);
