@@ -1002,20 +1002,26 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
           hit = static_cast<int>(c), ++hits;
       return hits == 1 ? hit : -1;
     };
-    if (const int a = only(is_latitude_key), b = only(is_longitude_key); a >= 0 && b >= 0) {
-      clat = a;
-      clon = b;
-      gnss_note = "position: latitude and longitude from the columns '" +
+    struct Pair {
+      bool (*first)(const std::string&);
+      bool (*second)(const std::string&);
+      int *c1, *c2;
+      const char *names, *unit, *flags;
+    };
+    for (const Pair& pair :
+         {Pair{is_latitude_key, is_longitude_key, &clat, &clon, "latitude and longitude",
+               "[deg, WGS 84]", "--lat-col and --lon-col"},
+          Pair{is_easting_key, is_northing_key, &ceast, &cnorth, "easting and northing", "[m]",
+               "--east-col and --north-col"}}) {
+      const int a = only(pair.first), b = only(pair.second);
+      if (a < 0 || b < 0) continue;
+      *pair.c1 = a;
+      *pair.c2 = b;
+      gnss_note = std::string("position: ") + pair.names + " from the columns '" +
                   header[static_cast<std::size_t>(a)] + "' and '" +
-                  header[static_cast<std::size_t>(b)] +
-                  "' [deg, WGS 84], each window's point (give --lat-col and --lon-col to choose)";
-    } else if (const int e = only(is_easting_key), n = only(is_northing_key); e >= 0 && n >= 0) {
-      ceast = e;
-      cnorth = n;
-      gnss_note = "position: easting and northing from the columns '" +
-                  header[static_cast<std::size_t>(e)] + "' and '" +
-                  header[static_cast<std::size_t>(n)] +
-                  "' [m], each window's point (give --east-col and --north-col to choose)";
+                  header[static_cast<std::size_t>(b)] + "' " + pair.unit +
+                  ", each window's point (give " + pair.flags + " to choose)";
+      break;
     }
   }
   // Units: a flag's, else the column's header, else SI.
