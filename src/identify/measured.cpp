@@ -6,6 +6,7 @@
 #include <complex>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "metrics/median_step.hpp"
@@ -66,16 +67,17 @@ void signal_shape(const std::vector<std::complex<double>>& cx,
 struct HarmonicFit {
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
   Eigen::VectorXd cx, cz;
-  double rss_x = 0, rss_z = 0;  // residual sums of squares, summed explicitly
-  bool ok = false;              // the samples determine every column
+  double rss_x = 0, rss_z = 0;  // residual sums of squares, summed explicitly (residual_pass)
+  double explained_x = 0, explained_z = 0;  // b^T c: the sums of squares the fit explains
+  bool ok = false;                          // the samples determine every column
 };
 
-// explicit_residual false: the residual sums of squares as y^T y - b^T c from the normal
-// equations (without a second pass; cancellation costs about as many digits as the fit explains
-// of the signal, far above the noise floor of measure_window).
+// d = -1: no trend. The residuals themselves into rx, rz where given; residual_pass false: no
+// second pass (rss_x, rss_z left 0).
 HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
                           std::span<const double> yz, double f, double t_ref, int d,
-                          const std::vector<int>& orders, bool explicit_residual = true) {
+                          const std::vector<int>& orders, std::vector<double>* rx = nullptr,
+                          std::vector<double>* rz = nullptr, bool residual_pass = true) {
   const std::size_t M = t.size();
   const int np = d + 1, n_orders = static_cast<int>(orders.size()), p = np + 2 * n_orders;
   const int top = orders.empty() ? 0 : orders.back();
@@ -85,15 +87,11 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
   Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, n_orders),
                   ps = Eigen::MatrixXd::Zero(np, n_orders), pp = Eigen::MatrixXd::Zero(np, np);
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
-  // The orders' cos and sin at a sample, contiguous: the sums over them vectorise.
   std::vector<double> co(static_cast<std::size_t>(n_orders)), si(co.size());
-  double yy_x = 0, yy_z = 0;
   for (std::size_t i = 0; i < M; ++i) {
-    legendre(2.0 * (t[i] - mid) / span, d, P);
+    if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
     harmonics_at(f * (t[i] - t_ref), 2 * top, cm, sm);
     const double x = yx[i], z = yz[i];
-    yy_x += x * x;
-    yy_z += z * z;
     for (int k = 0; k <= 2 * top; ++k) {
       sc[k] += cm[k];
       ss[k] += sm[k];
@@ -143,13 +141,10 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
   if (!fit.ok) return fit;
   fit.cx = fit.ldlt.solve(bx);
   fit.cz = fit.ldlt.solve(bz);
-  if (!explicit_residual) {
-    fit.rss_x = std::max(0.0, yy_x - bx.dot(fit.cx));
-    fit.rss_z = std::max(0.0, yy_z - bz.dot(fit.cz));
-    return fit;
-  }
-  for (std::size_t i = 0; i < M; ++i) {
-    legendre(2.0 * (t[i] - mid) / span, d, P);
+  fit.explained_x = bx.dot(fit.cx);
+  fit.explained_z = bz.dot(fit.cz);
+  for (std::size_t i = 0; residual_pass && i < M; ++i) {
+    if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
     harmonics_at(f * (t[i] - t_ref), top, cm, sm);
     double fx = 0, fz = 0;
     for (int j = 0; j < np; ++j) {
@@ -162,6 +157,8 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
     }
     fit.rss_x += (yx[i] - fx) * (yx[i] - fx);
     fit.rss_z += (yz[i] - fz) * (yz[i] - fz);
+    if (rx) (*rx)[i] = yx[i] - fx;
+    if (rz) (*rz)[i] = yz[i] - fz;
   }
   return fit;
 }
@@ -294,7 +291,8 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   }
   std::vector<int> orders(static_cast<std::size_t>(N));
   for (int n = 1; n <= N; ++n) orders[static_cast<std::size_t>(n - 1)] = n;
-  const HarmonicFit fit = fit_harmonics(t, yx, yz, f, out.t_ref, d, orders);
+  std::vector<double> rx(M), rz(M);
+  const HarmonicFit fit = fit_harmonics(t, yx, yz, f, out.t_ref, d, orders, &rx, &rz);
   if (!fit.ok)
     throw Error("identify: the window's samples do not determine " + std::to_string(N) +
                 " harmonics and a trend of degree " + std::to_string(d) +
@@ -305,19 +303,22 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   const double dof = static_cast<double>(M) - p;
   out.noise_x = std::sqrt(fit.rss_x / dof);
   out.noise_z = std::sqrt(fit.rss_z / dof);
-  // The noise that weighs the compared harmonics: the residual with the separable harmonics
-  // beyond N fitted as well (where the samples determine them), else the residual above.
+  // The noise that weighs the compared harmonics: the residual less what the separable
+  // harmonics beyond N explain of it (where the samples leave the degrees of freedom for them).
   double noise2_x = out.noise_x * out.noise_x, noise2_z = out.noise_z * out.noise_z;
   {
-    std::vector<int> more = orders;
     const std::vector<int> extra = separable_orders(f, detail::median_step(t), span, N);
-    more.insert(more.end(), extra.begin(), extra.end());
-    const double dof_more = static_cast<double>(M) - (np + 2.0 * static_cast<double>(more.size()));
+    const double dof_more = dof - 2.0 * static_cast<double>(extra.size());
     if (!extra.empty() && dof_more >= 0.5 * static_cast<double>(M)) {
-      const HarmonicFit wide = fit_harmonics(t, yx, yz, f, out.t_ref, d, more, false);
-      if (wide.ok) {
-        noise2_x = std::min(noise2_x, wide.rss_x / dof_more);
-        noise2_z = std::min(noise2_z, wide.rss_z / dof_more);
+      // The residual fitted on the separable harmonics alone (no trend): it is orthogonal to
+      // the first fit's columns, and theirs nearly so to these, so that this explains what the
+      // joint fit would to second order in their small correlations, without their products
+      // with the trend and the first fit's harmonics.
+      const HarmonicFit more =
+          fit_harmonics(t, rx, rz, f, out.t_ref, -1, extra, nullptr, nullptr, false);
+      if (more.ok) {
+        noise2_x = std::min(noise2_x, std::max(0.0, fit.rss_x - more.explained_x) / dof_more);
+        noise2_z = std::min(noise2_z, std::max(0.0, fit.rss_z - more.explained_z) / dof_more);
       }
     }
   }
