@@ -57,9 +57,10 @@ struct MeasuredResponse {
   int n_signal = 10;     ///< harmonics of the fitted signal the peaks and area are taken from
   double ddx_max = 0, ddx_min = 0, ddz_max = 0, ddz_min = 0;  ///< peaks [m/s^2]
   double area = 0;  ///< area of the z_M''(x_M'') figure [m^2/s^4]
-  /// The fit of a window (measure_window): samples, residual RMS (the noise) [m/s^2], and the
-  /// trend beside the harmonics (Legendre coefficients c_k of sum c_k P_k(u), u from -1 at
-  /// t_first to 1 at t_last; c_0 holds the offset) [m/s^2].
+  /// The fit of a window (measure_window): samples, residual RMS [m/s^2] (the noise and the
+  /// harmonics beyond those fitted; cov_x and cov_z take their noise without what of those
+  /// harmonics the window resolves), and the trend beside the harmonics (Legendre coefficients
+  /// c_k of sum c_k P_k(u), u from -1 at t_first to 1 at t_last; c_0 holds the offset) [m/s^2].
   std::size_t samples = 0;
   double noise_x = 0.0, noise_z = 0.0;
   double t_first = 0.0, t_last = 0.0;
