@@ -100,15 +100,19 @@ long days_since_1970(long y, int m, int d) {
          (leap && m > 2 ? 1 : 0) + d - 1;
 }
 
-// A clock time as loggers write it: an optional date (YYYY-MM-DD, YYYY/MM/DD or DD.MM.YYYY), 'T'
-// or a space, HH:MM:SS with an optional fraction ('.' or ','), and an optional zone (Z, +hh:mm,
-// -hhmm). `day`: days since 1970-01-01 (0 without a date); `seconds`: of that day, UTC when a zone
-// is given.
+// A clock time as loggers write it: an optional date, 'T' or spaces, HH:MM:SS with an optional
+// fraction ('.' or ','), an optional AM/PM and an optional zone (Z, +hh:mm, -hhmm); or, without a
+// date, an elapsed MM:SS with a fraction (01:01.500). The date: YYYY-MM-DD, YYYY/MM/DD,
+// DD.MM.YYYY, or with slashes or dashes and the year last, M/D/YYYY as US spreadsheets write it
+// (D/M/YYYY where the first field is above 12); fields of one digit too. `day`: days since
+// 1970-01-01 (0 without a date); `seconds`: of that day (of the hour for MM:SS), UTC when a zone
+// is given; `period`: after what an undated clock starts again.
 struct ClockTime {
   long day = 0;
   long seconds = 0;       // whole seconds of the day
   double fraction = 0.0;  // and its fraction, [0, 1)
   bool dated = false;
+  long period = 86400;  // [s]: 3600 for MM:SS
 };
 
 std::optional<ClockTime> parse_clock(const std::string& text) {
@@ -125,23 +129,42 @@ std::optional<ClockTime> parse_clock(const std::string& text) {
     i += n;
     return true;
   };
+  // 1 ... max digits; their count into n.
+  const auto number = [&](std::size_t max, long& v, std::size_t& n) {
+    n = 0;
+    v = 0;
+    while (n < max && i < c.size() && std::isdigit(static_cast<unsigned char>(c[i]))) {
+      v = 10 * v + (c[i] - '0');
+      ++i;
+      ++n;
+    }
+    return n > 0;
+  };
   const auto expect = [&](char ch) {
     if (i < c.size() && c[i] == ch) return ++i, true;
     return false;
   };
   ClockTime out;
-  long y = 0, mo = 0, d = 0;
-  // A date first when the text has one (a ':' after a '-', '/' or '.' in its first ten characters).
+  // A date first when the text has one: a '-', '/' or '.' before its first ':'.
   const std::size_t colon = c.find(':');
   if (colon == std::string::npos) return std::nullopt;
-  if (colon > 2) {
-    if (c.size() >= 10 && (c[4] == '-' || c[4] == '/')) {
-      const char sep = c[4];
-      if (!digits(4, y) || !expect(sep) || !digits(2, mo) || !expect(sep) || !digits(2, d))
-        return std::nullopt;
-    } else if (c.size() >= 10 && c[2] == '.' && c[5] == '.') {
-      if (!digits(2, d) || !expect('.') || !digits(2, mo) || !expect('.') || !digits(4, y))
-        return std::nullopt;
+  if (c.find_first_of("-/.", 0) < colon) {
+    long a = 0, b = 0, e = 0;
+    std::size_t na = 0, nb = 0, ne = 0;
+    if (!number(4, a, na) || i >= c.size()) return std::nullopt;
+    const char sep = c[i];
+    if (sep != '-' && sep != '/' && sep != '.') return std::nullopt;
+    ++i;
+    if (!number(2, b, nb) || !expect(sep) || !number(4, e, ne)) return std::nullopt;
+    long y = 0, mo = 0, d = 0;
+    if (na == 4 && sep != '.') {
+      y = a, mo = b, d = e;  // YYYY-MM-DD, YYYY/MM/DD
+      if (ne > 2) return std::nullopt;
+    } else if (ne == 4 && na <= 2) {
+      if (sep == '.' || a > 12)
+        d = a, mo = b, y = e;  // DD.MM.YYYY, D/M/YYYY
+      else
+        mo = a, d = b, y = e;  // M/D/YYYY
     } else {
       return std::nullopt;
     }
@@ -152,11 +175,22 @@ std::optional<ClockTime> parse_clock(const std::string& text) {
     out.dated = true;
   }
   long h = 0, mi = 0, sec = 0;
-  // One-digit hours too (9:05:00.5).
-  if (!(digits(2, h) || digits(1, h)) || !expect(':') || !digits(2, mi) || !expect(':') ||
-      !digits(2, sec))
+  std::size_t nh = 0;
+  // One-digit hours too (9:05:00.5); without a date, up to four digits of minutes (MM:SS).
+  if (!number(out.dated ? 2 : 4, h, nh) || !expect(':') || !digits(2, mi)) return std::nullopt;
+  const bool has_seconds = expect(':');
+  if (out.dated && !has_seconds) return std::nullopt;
+  const bool minutes_seconds = !has_seconds;
+  if (minutes_seconds) {
+    // An elapsed MM:SS(.fff): the first field counts minutes, the second seconds.
+    sec = mi;
+    mi = h;
+    h = 0;
+    if (sec > 59 || i >= c.size() || (c[i] != '.' && c[i] != ',')) return std::nullopt;
+    out.period = 3600;
+  } else if (nh > 2 || !digits(2, sec) || h > 23 || mi > 59 || sec > 60) {
     return std::nullopt;
-  if (h > 23 || mi > 59 || sec > 60) return std::nullopt;
+  }
   double fraction = 0.0;
   if (i < c.size() && (c[i] == '.' || c[i] == ',')) {
     ++i;
@@ -165,6 +199,21 @@ std::optional<ClockTime> parse_clock(const std::string& text) {
     if (i == start) return std::nullopt;
     // Rounded once, as the decimal fraction it is.
     if (!parse_number("0." + c.substr(start, i - start), false, fraction)) return std::nullopt;
+  }
+  // AM / PM (12 AM is midnight, 12 PM noon).
+  {
+    std::size_t k = i;
+    while (k < c.size() && c[k] == ' ') ++k;
+    if (!minutes_seconds && k + 2 <= c.size() && (c[k + 1] == 'M' || c[k + 1] == 'm') &&
+        (k + 2 == c.size() || c[k + 2] == ' ')) {
+      const char ap = static_cast<char>(std::toupper(static_cast<unsigned char>(c[k])));
+      if (ap == 'A' || ap == 'P') {
+        if (h < 1 || h > 12) return std::nullopt;
+        h = (h % 12) + (ap == 'P' ? 12 : 0);
+        i = k + 2;
+        while (i < c.size() && c[i] == ' ') ++i;
+      }
+    }
   }
   long offset = 0;  // the zone's [s], subtracted to give UTC
   if (i < c.size()) {
@@ -182,6 +231,7 @@ std::optional<ClockTime> parse_clock(const std::string& text) {
     }
   }
   if (i != c.size()) return std::nullopt;
+  if (minutes_seconds && offset != 0) return std::nullopt;
   out.seconds = 3600 * h + 60 * mi + sec - offset;
   out.fraction = fraction;
   return out;
@@ -1105,7 +1155,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   ClockTime clock0;
   bool have_clock0 = false;
   long last_clock = 0;
-  long extra_days = 0;  // midnights passed by a clock without a date
+  long extra_days = 0;  // midnights (hours, for MM:SS) passed by a clock without a date
   auto parse = [&](const std::string& text, std::size_t line_no) {
     std::vector<std::string> cells = split(text, delim);
     // Delimiters at the end of a data row beyond the header's columns hold no values.
@@ -1141,7 +1191,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         return 0.0;
       }
       const std::optional<ClockTime> c = parse_clock(cell);
-      if (!c || (have_clock0 && c->dated != clock0.dated))
+      if (!c || (have_clock0 && (c->dated != clock0.dated || c->period != clock0.period)))
         throw Error(name + ":" + std::to_string(line_no) + ": column '" +
                     header[static_cast<std::size_t>(ct)] + "' must be a clock time like the " +
                     (clock0.dated ? "first row's, with a date" : "first row's, without a date") +
@@ -1151,11 +1201,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         have_clock0 = true;
         last_clock = c->seconds;
       }
-      // A clock without a date that goes back by more than 12 hours passed midnight.
-      if (!c->dated && c->seconds < last_clock - 43200) ++extra_days;
+      // A clock without a date that goes back by more than half its period passed midnight (an
+      // MM:SS clock, the hour).
+      if (!c->dated && c->seconds < last_clock - c->period / 2) ++extra_days;
       last_clock = c->seconds;
       // Whole seconds apart, then the fractions: no rounding of a large number of seconds.
-      return static_cast<double>((c->day + extra_days - clock0.day) * 86400 +
+      return static_cast<double>((c->day - clock0.day) * 86400 + extra_days * c->period +
                                  (c->seconds - clock0.seconds)) +
              (c->fraction - clock0.fraction);
     };

@@ -459,6 +459,28 @@ TEST(RecordReader, ClockTimesInTheTimeColumn) {
       message_of("t,ax,az\n2026-05-12 08:00:00,1,2\n08:00:01,1,2\n")
           .find("record.csv:3: column 't' must be a clock time like the first row's, with a date"),
       std::string::npos);
+  // US spreadsheets: M/D/YYYY with AM/PM (12 AM is midnight, 12 PM noon), D/M/YYYY where the
+  // first field is above 12, one-digit fields.
+  const std::vector<double> us = times(
+      "Time,ax,az\n12/31/2025 11:59:59.5 PM,1,2\n1/1/2026 12:00:00.25 AM,1,2\n"
+      "1/1/2026 12:00:00.25 PM,1,2\n");
+  ASSERT_EQ(us.size(), 3u);
+  EXPECT_DOUBLE_EQ(us[1], 0.75);
+  EXPECT_DOUBLE_EQ(us[2], 0.75 + 12 * 3600.0);
+  EXPECT_DOUBLE_EQ(times("t,ax,az\n13/1/2026 08:00:00,1,2\n14/1/2026 08:00:00,1,2\n")[1], 86400.0);
+  EXPECT_DOUBLE_EQ(times("t,ax,az\n1-2-2026 08:00:00,1,2\n1-3-2026 08:00:00,1,2\n")[1],
+                   86400.0);  // M-D-YYYY: January 2 and 3
+  // Elapsed minutes and seconds with a fraction (MM:SS.fff); a clock of the hour passes it.
+  const std::vector<double> elapsed =
+      times("Time,ax,az\n01:01.500,1,2\n01:01.501,1,2\n75:00.0,1,2\n");
+  EXPECT_NEAR(elapsed[1], 0.001, 1e-12);
+  EXPECT_DOUBLE_EQ(elapsed[2], 75 * 60.0 - 61.5);
+  EXPECT_NEAR(times("Time,ax,az\n59:59.999,1,2\n00:00.001,1,2\n")[1], 0.002, 1e-12);
+  // HH:MM without seconds is not a time of a record; 13 PM is no time.
+  EXPECT_NE(message_of("t,ax,az\n10:31,1,2\n10:32,1,2\n").find("must be a number or a clock"),
+            std::string::npos);
+  EXPECT_NE(message_of("t,ax,az\n1/1/2026 13:00:00 PM,1,2\n").find("must be a number or a clock"),
+            std::string::npos);
 }
 
 // A logger's dropouts: rows with an empty cell, NaN, NA or a dash in a column read are skipped
