@@ -639,6 +639,44 @@ std::string utf8_of_utf16(const std::string& raw, bool little_endian) {
 }
 
 // A file that is not text, by its first bytes: what it is and what to do, or empty.
+// Whether a line is valid UTF-8 (ASCII is).
+bool is_utf8(const std::string& line) {
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const auto b = static_cast<unsigned char>(line[i]);
+    const std::size_t n = b < 0x80           ? 1
+                          : (b >> 5) == 0x6  ? 2
+                          : (b >> 4) == 0xE  ? 3
+                          : (b >> 3) == 0x1E ? 4
+                                             : 0;
+    if (n == 0 || i + n > line.size()) return false;
+    for (std::size_t k = 1; k < n; ++k)
+      if ((static_cast<unsigned char>(line[i + k]) & 0xC0) != 0x80) return false;
+    i += n;
+  }
+  return true;
+}
+
+// A line of Windows-1252 / Latin-1 text (a European spreadsheet's CSV export: "m/s\xB2",
+// "\xB5s", "\xB0C") as UTF-8: each byte above 0x7F the code point of the same number (0x80 ...
+// 0x9F, Windows-1252's punctuation, as the replacement character; no header needs them).
+std::string utf8_of_latin1(const std::string& line) {
+  std::string out;
+  out.reserve(line.size() + 8);
+  for (const char ch : line) {
+    const auto b = static_cast<unsigned char>(ch);
+    if (b < 0x80) {
+      out += ch;
+    } else if (b < 0xA0) {
+      out += "\xEF\xBF\xBD";
+    } else {
+      out += static_cast<char>(0xC0 | (b >> 6));
+      out += static_cast<char>(0x80 | (b & 0x3F));
+    }
+  }
+  return out;
+}
+
 std::string not_text(const std::string& first_line) {
   if (first_line.rfind("\x1F\x8B", 0) == 0)
     return "a gzip-compressed file: decompress it first (gunzip)";
@@ -675,10 +713,19 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // parsed as it is read, so memory holds the columns, not the text (24 bytes per row).
   std::string line, first;
   std::size_t no = 0, first_no = 0;
+  // A line that is not UTF-8 is Windows-1252 / Latin-1 text, read as its UTF-8 (noted once).
+  std::size_t latin1_at = 0;
+  auto as_utf8 = [&](std::string& l) {
+    if (std::all_of(l.begin(), l.end(), [](char ch) { return (ch & 0x80) == 0; }) || is_utf8(l))
+      return;
+    l = utf8_of_latin1(l);
+    if (latin1_at == 0) latin1_at = no;
+  };
   auto next_line = [&](std::string& into) {
     while (std::getline(in, into)) {
       ++no;
       if (!into.empty() && into.back() == '\r') into.pop_back();
+      as_utf8(into);
       if (!is_comment(into)) return true;
     }
     return false;
@@ -793,6 +840,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         strip_bom(l);
       }
       if (!l.empty() && l.back() == '\r') l.pop_back();
+      as_utf8(l);
       if (is_comment(l)) {
         if (!any && !trim(l).empty()) comment_before = l, comment_before_no = no;
         if (comments_before.size() < kLeadLines) comments_before.emplace_back(l, no);
@@ -1375,6 +1423,10 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
     if (!gnss_note.empty()) out.notes.push_back(gnss_note);
   }
+  if (latin1_at > 0)
+    out.notes.push_back("read as Windows-1252 / Latin-1 text: line " + std::to_string(latin1_at) +
+                        " is not UTF-8 (a spreadsheet's export: its m/s\xC2\xB2, \xC2\xB5s as "
+                        "they were meant)");
   if (repeated_headers > 0)
     out.notes.push_back("skipped " + std::to_string(repeated_headers) + " line" +
                         (repeated_headers > 1 ? "s" : "") + " repeating the header (the first at " +

@@ -333,6 +333,27 @@ TEST(RecordReader, GnssColumnsFixesBetweenRowsAndUnitsOfSpeed) {
               1501.0, 1e-9);
 }
 
+// A European spreadsheet's CSV in Windows-1252 / Latin-1 (not UTF-8): its units m/s\xB2 and
+// \xB5s are read as meant, with a note; a UTF-8 file's are as before.
+TEST(RecordReader, Windows1252TextIsReadAsItsCharacters) {
+  const RecordColumns r = read_text(
+      "Zeit [\xB5s];Beschl. X [m/s\xB2];Beschl. Z [m/s\xB2];Temperatur [\xB0" "C]\n"
+      "0;1,5;2;21\n1000;1;2;21\n2000;1;2;21\n");
+  ASSERT_EQ(r.t.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.t[2], 0.002);
+  EXPECT_DOUBLE_EQ(r.ddx_M[0], 1.5);
+  EXPECT_EQ(r.x_column, "Beschl. X [m/s\xC2\xB2]");
+  EXPECT_TRUE(std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+    return n.find("read as Windows-1252 / Latin-1 text: line 1 is not UTF-8") != std::string::npos;
+  }));
+  const RecordColumns utf8 =
+      read_text("t [\xC2\xB5s],ax [m/s\xC2\xB2],az [m/s\xC2\xB2]\n0,1,2\n1000,1,2\n2000,1,2\n");
+  EXPECT_DOUBLE_EQ(utf8.t[2], 0.002);
+  EXPECT_TRUE(std::none_of(utf8.notes.begin(), utf8.notes.end(), [](const std::string& n) {
+    return n.find("Latin-1") != std::string::npos;
+  }));
+}
+
 // The paper's notation and others for the drum centre's accelerations: x_M'' (beside the
 // displacement x_M), x'', x double dot, x prime prime, xM_acc, acc_hor / acc_vert, hor / vert,
 // acc_long (the direction of travel).
