@@ -337,7 +337,8 @@ TEST(RecordReader, GnssColumnsFixesBetweenRowsAndUnitsOfSpeed) {
 // \xB5s are read as meant, with a note; a UTF-8 file's are as before.
 TEST(RecordReader, Windows1252TextIsReadAsItsCharacters) {
   const RecordColumns r = read_text(
-      "Zeit [\xB5s];Beschl. X [m/s\xB2];Beschl. Z [m/s\xB2];Temperatur [\xB0" "C]\n"
+      "Zeit [\xB5s];Beschl. X [m/s\xB2];Beschl. Z [m/s\xB2];Temperatur [\xB0"
+      "C]\n"
       "0;1,5;2;21\n1000;1;2;21\n2000;1;2;21\n");
   ASSERT_EQ(r.t.size(), 3u);
   EXPECT_DOUBLE_EQ(r.t[2], 0.002);
