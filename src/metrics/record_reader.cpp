@@ -72,6 +72,17 @@ bool parse_number(std::string cell, bool decimal_comma, double& v) {
     for (char& ch : cell)
       if (ch == ',') ch = '.';
   if (!cell.empty() && cell[0] == '+') cell.erase(0, 1);
+  // A Fortran program's double-precision exponent: 1.2345D+01 is 1.2345e+01.
+  if (const std::size_t k = cell.find_first_of("dD");
+      k != std::string::npos && k > 0 && k + 1 < cell.size() &&
+      (std::isdigit(static_cast<unsigned char>(cell[k - 1])) || cell[k - 1] == '.')) {
+    std::size_t j = k + 1;
+    if (cell[j] == '+' || cell[j] == '-') ++j;
+    if (j < cell.size() &&
+        std::all_of(cell.begin() + static_cast<std::ptrdiff_t>(j), cell.end(),
+                    [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+      cell[k] = 'e';
+  }
   const char* begin = cell.data();
   const char* end = begin + cell.size();
 #ifdef __EMSCRIPTEN__

@@ -556,6 +556,22 @@ TEST(RecordReader, TimeFromTheRowNumberAtAGivenRate) {
 // Milli-g (MEMS accelerometers), feet per second squared, and microseconds written with the
 // Greek mu as well as the micro sign (both were read as seconds: the unit's key keeps ASCII
 // letters only, and "\xC2\xB5s" became "s").
+// Another implementation's numbers: a Fortran program's D exponents, a leading '+', a bare
+// decimal point.
+TEST(RecordReader, FortranExponentsAndOtherNumberForms) {
+  const RecordColumns r =
+      read_text("t,ax,az\n0.0D+00,1.25D+01,-2.5d-1\n1.0D-03,+.5,5.\n2.0D-3,1,2\n");
+  ASSERT_EQ(r.t.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.t[1], 1e-3);
+  EXPECT_DOUBLE_EQ(r.ddx_M[0], 12.5);
+  EXPECT_DOUBLE_EQ(r.ddz_M[0], -0.25);
+  EXPECT_DOUBLE_EQ(r.ddx_M[1], 0.5);
+  EXPECT_DOUBLE_EQ(r.ddz_M[1], 5.0);
+  // A D that is not an exponent is no number.
+  EXPECT_THROW((void)read_text("t,ax,az\n0,1D,2\n0.001,1,2\n"), Error);
+  EXPECT_THROW((void)read_text("t,ax,az\n0,1D+1x,2\n0.001,1,2\n"), Error);
+}
+
 TEST(RecordReader, MoreUnits) {
   const RecordColumns r = read_text("t [\xCE\xBCs],ax [mg],az [ft/s^2]\n0,1000,1\n1000000,500,2\n");
   ASSERT_EQ(r.t.size(), 2u);
