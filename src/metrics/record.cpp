@@ -504,16 +504,21 @@ FrequencyStep frequency_step(std::span<const double> t, std::span<const double> 
 
 namespace {
 
-// The minimum of fit_residual with n_max harmonics by Gauss-Newton steps from f, to |step| <= tol
-// [Hz], staying within [f - h, f + h] and decreasing the residual at every step; nullopt when it
-// does not (a start outside the minimum's basin), and the caller falls back to Brent's search.
-// Each step costs about two evaluations of the residual; from a start in the main lobe it
-// converges in two or three where Brent's search takes a dozen.
+// The minimum of fit_residual with n_max harmonics by Gauss-Newton steps from f, to tol [Hz],
+// staying within [f - h, f + h] and decreasing the residual at every step; nullopt when it does
+// not (a start outside the minimum's basin), and the caller falls back to Brent's search. Each
+// step costs about two evaluations of the residual; from a start in the main lobe it converges
+// in two or three where Brent's search takes a dozen. Converged: a step of at most tol, or a
+// step s_k whose contraction theta = |s_k| / |s_k-1| bounds what is left after it,
+// theta / (1 - theta) |s_k| <= tail_tol (the geometric tail of a linearly converging iteration,
+// the test of simplified Newton iterations in implicit integrators: Hairer & Wanner, Solving
+// Ordinary Differential Equations II, Sect. IV.8), which saves the evaluation that would only
+// confirm it.
 std::optional<double> newton_frequency(std::span<const double> t, std::span<const double> x,
                                        std::span<const double> z, double f, double h, int n_max,
-                                       double tol) {
+                                       double tol, double tail_tol) {
   const double lo = f - h, hi = f + h;
-  double previous = kNaN;
+  double previous = kNaN, previous_step = kNaN;
   for (int iteration = 0; iteration < 12; ++iteration) {
     const detail::FrequencyStep s = detail::frequency_step(t, x, z, f, n_max);
     if (!std::isfinite(s.step) || !std::isfinite(s.residual)) return std::nullopt;
@@ -523,7 +528,11 @@ std::optional<double> newton_frequency(std::span<const double> t, std::span<cons
     const double next = f + s.step;
     if (!(next >= lo && next <= hi)) return std::nullopt;
     f = next;
-    if (std::abs(s.step) <= tol) return f;
+    const double size = std::abs(s.step);
+    if (size <= tol) return f;
+    const double theta = size / std::abs(previous_step);  // NaN at the first step
+    if (theta < 0.5 && theta / (1.0 - theta) * size <= tail_tol) return f;
+    previous_step = s.step;
   }
   return std::nullopt;
 }
@@ -538,16 +547,23 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
   // they fail (a start outside the minimum's basin: a short record whose fundamental alone puts
   // f far off). The last stage goes to 1e-9 f: Gauss-Newton converges fast enough that the
   // minimum is found rather than bracketed (Brent's search stops at 1e-7 f).
+  // A stage before the last only has to end well inside the next one's bracket: to a tenth of
+  // that bracket's half width.
   const double span = t.empty() ? 0.0 : t.back() - t.front();
   double h = half_width * f;
   for (const int n : {1, 2, 4, n_max}) {
     const int m = std::min(n, n_max);
     const bool last = m == n_max;
-    const double tol = last ? 1e-7 * f : 1e-3 * h;
-    const std::optional<double> g = newton_frequency(t, ddx, ddz, f, h, m, last ? 1e-9 * f : tol);
+    const double h_next = span > 0 ? std::min(h, 0.15 / (m * span)) : h;
+    const double tol = last ? 1e-7 * f : 0.1 * h_next;
+    // The last stage: a step of 1e-9 f, after which the next would be far smaller, or a tail
+    // estimated at 1e-11 f (what such a step leaves).
+    const std::optional<double> g =
+        last ? newton_frequency(t, ddx, ddz, f, h, m, 1e-9 * f, 1e-11 * f)
+             : newton_frequency(t, ddx, ddz, f, h, m, tol, tol);
     f = g ? *g : minimise_residual(t, ddx, ddz, f, h, m, tol);
     if (last) break;
-    if (span > 0) h = std::min(h, 0.15 / (m * span));
+    h = h_next;
   }
   return f;
 }
