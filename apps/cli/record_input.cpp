@@ -68,8 +68,8 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
       ->check(CLI::IsMember({"auto", "m/s2", "g"}));
   app.add_option("--t-units", o.t_units,
                  "unit of the time column: auto (default: from its header, [s], [ms], time_ms, "
-                 "...; s without one), s, ms or us")
-      ->check(CLI::IsMember({"auto", "s", "ms", "us"}));
+                 "...; s without one), s, ms, us or ns")
+      ->check(CLI::IsMember({"auto", "s", "ms", "us", "ns"}));
   app.add_option("--rate", o.rate,
                  "sampling rate [Hz], 1 ... 1e7, of a record without a time column: t = (data "
                  "row - 1) / rate (instead of --t-col; a row skipped for a missing value keeps "

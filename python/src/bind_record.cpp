@@ -123,7 +123,7 @@ void bind_record(py::module_& m) {
           throw Error("read_record: " + name + " must be one of " + list + "; got '" + v + "'");
         };
         choice("units", units, {"auto", "m/s2", "g"});
-        choice("t_units", t_units, {"auto", "s", "ms", "us"});
+        choice("t_units", t_units, {"auto", "s", "ms", "us", "ns"});
         choice("x_positive", x_positive, {"forward", "backward"});
         choice("z_positive", z_positive, {"auto", "down", "up"});
         if (!(rate == 0.0 || (rate >= 1.0 && rate <= 1e7)))

@@ -334,6 +334,8 @@ double time_scale(const std::string& unit) {
   if (u == "us" || u == "usec" || u == "microsecond" || u == "microseconds") return 1e-6;
   if (u == "millis") return 1e-3;  // as Arduino-style loggers name their clock
   if (u == "micros") return 1e-6;
+  if (u == "ns" || u == "nsec" || u == "nanos" || u == "nanosecond" || u == "nanoseconds")
+    return 1e-9;
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -539,7 +541,11 @@ char acceleration_axis(const std::string& k) {
       return acceleration_axis(rest);
     }
   // A linear acceleration (linear_acceleration_x, as phones' and robots' inertial units name
-  // the acceleration without the rotation's): the name without the word.
+  // the acceleration without the rotation's): the name without the word, and without the path of
+  // the message it is a field of (ROS's field.linear_acceleration.x as `rostopic echo -p`
+  // writes it, /imu/data/linear_acceleration/x as PlotJuggler exports it).
+  if (const std::size_t at = k.find("linearacceleration"); at != std::string::npos && at > 0)
+    return acceleration_axis(k.substr(at));
   if (k.size() > 6 && k.starts_with("linear")) return acceleration_axis(k.substr(6));
   // A numbered sensor or channel before the name (Sensor1_AccX, S1.ax, Ch1_AccX, Kanal 2 az), or
   // a numbered accelerometer before its axis (A1_X, acc2 z, a1x): the name after the number.
@@ -882,14 +888,22 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // 1,5;2,25 or 1,5<tab>2,25 (a European spreadsheet's CSV or "Unicode text"): a comma within a
   // cell is a decimal comma where it is not the delimiter.
   const bool decimal_comma = delim == ';' || delim == '\t' || delim == '|';
-  // Header: that line unless all its cells are numbers.
+  // Header: that line unless its cells are numbers wherever the line below has numbers (a text
+  // column of the data, a ROS message's frame_id "imu_link", is text in every row: a first data
+  // row is not a header for it).
   std::vector<std::string> header = split(first, delim);
   // A delimiter at the end of the header line names no column (a spreadsheet's export).
   while (header.size() > 1 && trim(header.back()).empty()) header.pop_back();
   bool has_header = false;
-  for (const std::string& cell : header) {
-    double v = 0;
-    if (!parse_number(cell, decimal_comma, v) && !parse_clock(cell)) has_header = true;
+  {
+    const std::vector<std::string> below =
+        data_at < lead.size() ? split(lead[data_at].first, delim) : std::vector<std::string>{};
+    const auto value = [&](const std::string& cell) {
+      double v = 0;
+      return parse_number(cell, decimal_comma, v) || parse_clock(cell);
+    };
+    for (std::size_t c = 0; c < header.size(); ++c)
+      if (!value(header[c]) && (c >= below.size() || value(below[c]))) has_header = true;
   }
   // No header, but a comment just before the data that names as many columns, none a number:
   // those are the names (the data start at the first line, as without a header).
@@ -1021,7 +1035,31 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
   }
   const bool by_rate = rate > 0.0;
-  const int ct = by_rate ? -1
+  // A stamp in two columns, whole seconds and nanoseconds (ROS 2's header.stamp.sec and
+  // header.stamp.nanosec, ROS 1's secs and nsecs), where no column names a time: the seconds'
+  // column is the time, the nanoseconds' added to it (cns).
+  int cns = -1;
+  int c_stamp = -1;
+  if (!by_rate && o.t_col.empty() && has_header &&
+      std::none_of(headings.begin(), headings.end(), [](const Heading& h) {
+        return h.name == "t" || is_time_key(h.key) || time_key_rank(h.key) > 0;
+      })) {
+    for (std::size_t c = 0; c < headings.size() && cns < 0; ++c)
+      for (const auto& [nanos, whole] :
+           {std::pair{"nanosec", "sec"}, std::pair{"nsecs", "secs"}, std::pair{"nsec", "sec"}}) {
+        const std::string& k = headings[c].key;
+        if (!k.ends_with(nanos)) continue;
+        const std::string seconds = k.substr(0, k.size() - std::strlen(nanos)) + whole;
+        for (std::size_t d = 0; d < headings.size(); ++d)
+          if (headings[d].key == seconds && c_stamp < 0) c_stamp = static_cast<int>(d);
+        if (c_stamp >= 0) {
+          cns = static_cast<int>(c);
+          break;
+        }
+      }
+  }
+  const int ct = by_rate        ? -1
+                 : c_stamp >= 0 ? c_stamp
                  : o.t_col.empty()
                      ? recognise("time", "--t-col", "t", is_time_key, nullptr, time_key_rank)
                      : find(o.t_col, "--t-col");
@@ -1137,7 +1175,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   auto column_scale = [&](int c, bool time) {
     const Heading& h = headings[static_cast<std::size_t>(c)];
     if (time && o.t_units != "auto")
-      return o.t_units == "ms" ? 1e-3 : o.t_units == "us" ? 1e-6 : 1.0;
+      return o.t_units == "ms" ? 1e-3 : o.t_units == "us" ? 1e-6 : o.t_units == "ns" ? 1e-9 : 1.0;
     if (!time && o.units != "auto") return o.units == "g" ? kStandardGravity : 1.0;
     if (h.unit.empty()) return 1.0;
     const double k = time ? time_scale(h.unit) : acceleration_scale(h.unit);
@@ -1178,8 +1216,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     return std::string(channel) + ": column '" + header[static_cast<std::size_t>(c)] + "' x " +
            format_factor(k) + " -> " + si;
   };
-  out.t_column =
-      by_rate ? std::string("(row number / rate)") : header[static_cast<std::size_t>(ct)];
+  out.t_column = by_rate    ? std::string("(row number / rate)")
+                 : cns >= 0 ? header[static_cast<std::size_t>(ct)] + " + " +
+                                  header[static_cast<std::size_t>(cns)] + " x 1e-9"
+                            : header[static_cast<std::size_t>(ct)];
+  if (cns >= 0)
+    out.notes.push_back("t: columns '" + header[static_cast<std::size_t>(ct)] + "' (s) and '" +
+                        header[static_cast<std::size_t>(cns)] +
+                        "' (ns), a stamp in whole seconds and nanoseconds");
   out.x_column = header[static_cast<std::size_t>(cx)];
   out.z_column = header[static_cast<std::size_t>(cz)];
   out.t_factor = kt;
@@ -1244,7 +1288,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       double v = 0;
       if (!clock && !is_missing(cell))
         clock = !parse_number(cell, decimal_comma, v) && parse_clock(cell).has_value();
-      if (!clock.value_or(false)) return kt * get(ct);
+      if (!clock.value_or(false)) return kt * get(ct) + (cns >= 0 ? 1e-9 * get(cns) : 0.0);
       if (is_missing(cell)) {
         missing = true;
         return 0.0;
@@ -1579,8 +1623,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     } else {
       // A time column without a unit is read in s, unless its samples are then too far apart for
       // any roller's excitation (over 0.02 s: under 50 samples/s, the frequency search finds
-      // nothing of 10 Hz or more, which needs 5 samples per period) and a logger's rate in ms or
-      // us: then it is read in that unit, said with the flag that reads it in s.
+      // nothing of 10 Hz or more, which needs 5 samples per period) and a logger's rate in ms,
+      // us or ns (a ROS message's stamp, `rostopic echo -p`'s %time): then it is read in that
+      // unit, said with the flag that reads it in s.
       double step = 0.0;
       const bool unitless = o.t_units == "auto" &&
                             headings[static_cast<std::size_t>(ct)].unit.empty() && out.t.size() > 2;
@@ -1588,7 +1633,11 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
         step = detail::median_step(std::span<const double>(out.t).first(n));
       }
-      const double factor = !(step > 0.02) ? 1.0 : step <= 10.0 ? 1e-3 : step <= 1e4 ? 1e-6 : 1.0;
+      const double factor = !(step > 0.02) ? 1.0
+                            : step <= 10.0 ? 1e-3
+                            : step <= 1e4  ? 1e-6
+                            : step <= 1e7  ? 1e-9
+                                           : 1.0;
       // A spreadsheet's serial date (days since 1899-12-30; MATLAB's datenum counts from year 0):
       // values of at least a day whose steps would be under a microsecond in s (no accelerometer
       // logger samples so fast) but between 1 Hz and 10 MHz in days. In s from the first row's,
@@ -1607,7 +1656,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       } else if (factor != 1.0) {
         for (double& v : out.t) v *= factor;
         out.t_factor = factor;
-        const char* unit = factor == 1e-3 ? "ms" : "us";
+        const char* unit = factor == 1e-3 ? "ms" : factor == 1e-6 ? "us" : "ns";
         out.notes.push_back("t: column '" + out.t_column + "' has no unit and is read in " + unit +
                             " (" + format_factor(1.0 / (step * factor)) +
                             " samples/s): in s its samples would be " + format_factor(step) +
@@ -1615,7 +1664,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                             " samples/s, too few for an excitation of 10 Hz or more); give "
                             "--t-units s to read it in s");
       } else {
-        if (std::string t_note = note("t", ct, kt, "s"); !t_note.empty())
+        if (std::string t_note = cns >= 0 ? std::string() : note("t", ct, kt, "s"); !t_note.empty())
           out.notes.push_back(std::move(t_note));
       }
     }

@@ -163,11 +163,57 @@ TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
     EXPECT_DOUBLE_EQ(r.t[3], 0.003);
     EXPECT_FALSE(said(r, "has no unit"));
   }
+  // Nanoseconds (a ROS message's stamp), without a unit and as the unit of time_ns.
+  const RecordColumns ns = read_text("t,ax,az\n0,1,2\n1000000,1,2\n2000000,1,2\n3000000,1,2\n");
+  EXPECT_DOUBLE_EQ(ns.t[3], 0.003);
+  EXPECT_TRUE(said(ns, "has no unit and is read in ns (1000 samples/s)"));
+  EXPECT_DOUBLE_EQ(read_text("time_ns,ax,az\n0,1,2\n500000,1,2\n").t[1], 5e-4);
   RecordReading o;
   o.t_units = "s";
   const RecordColumns given = read_text("t,ax,az\n0,1,2\n1,1,2\n2,1,2\n3,1,2\n", o);
   EXPECT_DOUBLE_EQ(given.t[3], 3.0);
   EXPECT_FALSE(said(given, "has no unit"));
+}
+
+// A robot's inertial unit as ROS writes it. ROS 1's `rostopic echo -p`: the header a comment
+// (%time), a text column in every row (frame_id: the first data row is no header for it), the
+// stamps in ns since 1970, the channels fields of the message (field.linear_acceleration.x;
+// PlotJuggler's export names them by their path, /imu/data/linear_acceleration/x). ROS 2's
+// stamp in two columns, whole seconds and nanoseconds.
+TEST(RecordReader, RosMessagesAsCsv) {
+  const RecordColumns ros1 = read_text(
+      "%time,field.header.seq,field.header.frame_id,field.angular_velocity.x,"
+      "field.linear_acceleration.x,field.linear_acceleration.y,field.linear_acceleration.z\n"
+      "1764752400000000000,0,imu_link,0.0,1.5,0.1,-9.8\n"
+      "1764752400001000000,1,imu_link,0.0,2.5,0.1,-9.7\n"
+      "1764752400002000000,2,imu_link,0.0,3.5,0.1,-9.6\n"
+      "1764752400003000000,3,imu_link,0.0,4.5,0.1,-9.5\n");
+  ASSERT_EQ(ros1.t.size(), 4u);  // the first data row is data
+  EXPECT_EQ(ros1.t_column, "time");
+  EXPECT_NEAR(ros1.t[3] - ros1.t[0], 0.003, 1e-6);  // (the stamps' doubles: 2.4e-7 s apart)
+  EXPECT_NEAR(ros1.t[0], 1764752400.0, 1e-6);
+  EXPECT_EQ(ros1.x_column, "field.linear_acceleration.x");
+  EXPECT_EQ(ros1.z_column, "field.linear_acceleration.z");
+  EXPECT_DOUBLE_EQ(ros1.ddx_M[3], 4.5);
+  const RecordColumns juggler = read_text(
+      "__time,/imu/data/linear_acceleration/x,/imu/data/linear_acceleration/z\n"
+      "1764752400.000,1,2\n1764752400.001,3,4\n");
+  EXPECT_EQ(juggler.x_column, "/imu/data/linear_acceleration/x");
+  EXPECT_DOUBLE_EQ(juggler.ddz_M[1], 4.0);
+  const RecordColumns ros2 = read_text(
+      "header.stamp.sec,header.stamp.nanosec,linear_acceleration.x,linear_acceleration.z\n"
+      "1764752400,999000000,1,2\n1764752401,0,3,4\n1764752401,1000000,5,6\n");
+  ASSERT_EQ(ros2.t.size(), 3u);
+  EXPECT_NEAR(ros2.t[1] - ros2.t[0], 0.001, 1e-6);
+  EXPECT_NEAR(ros2.t[2] - ros2.t[0], 0.002, 1e-6);
+  EXPECT_EQ(ros2.t_column, "header.stamp.sec + header.stamp.nanosec x 1e-9");
+  const RecordColumns ros1_stamp =
+      read_text("stamp.secs,stamp.nsecs,ax,az\n10,999000000,1,2\n11,0,3,4\n");
+  EXPECT_NEAR(ros1_stamp.t[1] - ros1_stamp.t[0], 0.001, 1e-12);
+  // A text column in the data does not make its first row a header where another line is one.
+  const RecordColumns labelled = read_text("t,ax,az,label\n0,1,2,a\n0.001,3,4,a\n");
+  ASSERT_EQ(labelled.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(labelled.ddx_M[0], 1.0);
 }
 
 // Time columns named otherwise than t, time, zeit, timestamp: by a name ending in "time" or
