@@ -421,17 +421,20 @@ bool is_time_key(const std::string& k) {
 }
 
 // A time column named otherwise, taken only where no column has a name of `is_time_key`; its
-// rank, 0 for none: 1 for a name ending in "time" or "zeit" or starting with "time" (Relative
-// Time, Record Time, Sample time, DateTime, Uhrzeit, Messzeit, Time of day), a time unit alone
-// (ms, millis, us, s: the column's unit too) and the words for it in a few languages (Sekunden,
-// Dauer, Duration, tiempo, temps, tempo); 2 for a date (Date, Datum: a spreadsheet's serial date,
+// rank, 0 for none: 1 for a name ending in "time", "zeit" or "tiempo" or starting with "time",
+// "zeit" or "tijd" (Relative Time, Record Time, Sample time, DateTime, Uhrzeit, Messzeit, Time of
+// day, Zeitstempel, Tijdstempel, Marca de tiempo), a time unit alone (ms, millis, us, s: the
+// column's unit too) and the words for it in a few languages (Sekunden, Dauer, Duration, tiempo,
+// temps, tempo, tijd, horodatage, heure); 2 for a date (Date, Datum: a spreadsheet's serial date,
 // or a clock time with a date), taken where nothing of rank 1 is (beside an Uhrzeit, a Datum
 // holds the day).
 int time_key_rank(const std::string& k) {
-  static const char* const names[] = {"sekunden", "dauer", "duration", "tiempo", "temps", "tempo"};
+  static const char* const names[] = {"sekunden", "dauer", "duration", "tiempo",    "temps",
+                                      "tempo",    "tijd",  "heure",    "horodatage"};
   for (const char* n : names)
     if (k == n) return 1;
-  if (k.size() > 4 && (k.starts_with("time") || k.ends_with("time") || k.ends_with("zeit")))
+  if (k.size() > 4 && (k.starts_with("time") || k.starts_with("zeit") || k.starts_with("tijd") ||
+                       k.ends_with("time") || k.ends_with("zeit") || k.ends_with("tiempo")))
     return 1;
   if (!std::isnan(time_scale(k))) return 1;
   return k == "date" || k == "datum" ? 2 : 0;

@@ -277,6 +277,15 @@ TEST(RecordReader, TimeColumnsNamedOtherwiseAndSerialDates) {
     EXPECT_NE(std::string(e.what()).find("no column looks like the time"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("--rate"), std::string::npos);
   }
+  // A time stamp in German, Dutch, Spanish and French, and a German date with a decimal comma.
+  for (const char* name : {"Zeitstempel", "Tijdstempel", "Marca de tiempo", "Horodatage"})
+    EXPECT_DOUBLE_EQ(read_text(std::string(name) + ",ax,az\n0,1,2\n0.001,3,4\n").t[1], 0.001)
+        << name;
+  const RecordColumns german =
+      read_text("Zeitstempel;ax;az\n03.12.2026 10:15:30,000;1,5;2\n03.12.2026 10:15:30,001;3;4\n");
+  ASSERT_EQ(german.t.size(), 2u);
+  EXPECT_NEAR(german.t[1], 0.001, 1e-12);
+  EXPECT_DOUBLE_EQ(german.ddx_M[0], 1.5);
 }
 
 // What files joined or cut short hold: a header repeated between the parts is skipped; lines
