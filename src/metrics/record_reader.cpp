@@ -296,6 +296,8 @@ std::optional<std::pair<std::string, std::string>> split_bracket(const std::stri
 Heading heading(const std::string& cell) {
   Heading h{trim(cell), "", ""};
   if (const auto parts = split_bracket(cell)) std::tie(h.name, h.unit) = *parts;
+  // "(t)" after a name is the argument of a function of time ("x''(t)"), not a unit.
+  if (key_of(h.unit) == "t" && !h.name.empty()) h.unit.clear();
   if (h.unit.empty()) {
     // A unit after the last space or '_' ("az m/s^2", "ax_g", "time_ms"), or a quantity over its
     // unit ("az/g", "t/s").
@@ -522,8 +524,8 @@ double preamble_rate(const std::string& line) {
 }
 
 // The words that name the drum in a column's key (ax_drum, drum acc. x, Beschl. Bandage X,
-// Trommel): what they qualify is read without them.
-constexpr const char* kDrumWords[] = {"drum", "bandage", "trommel"};
+// Trommel, the drum's centre M: ax_centre, acc_x_center): what they qualify is read without them.
+constexpr const char* kDrumWords[] = {"drum", "bandage", "trommel", "centre", "center"};
 
 bool names_the_drum(const std::string& k) {
   for (const char* w : kDrumWords)
@@ -568,15 +570,16 @@ char acceleration_axis(const std::string& k) {
     return acceleration_axis(rest);
   }
   // The model's names and the notations of a second derivative: x double dot (xddot, xdd,
-  // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x), of x or of x_M (xm... or
-  // ...m: x_dd_M).
+  // ddot{x}, x_dotdot, x_2dot), x prime prime (xpp), d2x (d^2x, d2x/dt2), of x or of x_M (xm...
+  // or ...m: x_dd_M).
   for (const char axis : {'x', 'y', 'z'}) {
     const std::string a(1, axis);
     for (const std::string& name :
-         {"dd" + a + "m", "dd" + a,     a + "ddot",       a + "dd",      a + "pp",
-          a + "mddot",    a + "mdd",    a + "mpp",        a + "ddotm",   a + "ddm",
-          a + "ppm",      a + "dotdot", a + "dotdotm",    a + "mdotdot", a + "2dot",
-          a + "2dotm",    "ddot" + a,   "ddot" + a + "m", "d2" + a,      "d2" + a + "m"})
+         {"dd" + a + "m",   "dd" + a,         a + "ddot",       a + "dd",      a + "pp",
+          a + "mddot",      a + "mdd",        a + "mpp",        a + "ddotm",   a + "ddm",
+          a + "ppm",        a + "dotdot",     a + "dotdotm",    a + "mdotdot", a + "2dot",
+          a + "2dotm",      "ddot" + a,       "ddot" + a + "m", "d2" + a,      "d2" + a + "m",
+          "d2" + a + "dt2", "d2" + a + "mdt2"})
       if (k == name) return axis;
   }
   // acc_hor / acc_vert, a_h / a_v, horizontal / vertical, hor / vert; the horizontal one named
@@ -1185,7 +1188,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (std::isnan(k))
       throw Error(name + ": column '" + header[static_cast<std::size_t>(c)] + "': unit '" + h.unit +
                   "' is not " +
-                  (time ? "a time unit (s, ms, us); give --t-units"
+                  (time ? "a time unit (s, ms, us, ns); give --t-units"
                         : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
     return k;
   };

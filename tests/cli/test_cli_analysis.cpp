@@ -346,7 +346,7 @@ TEST(CliAnalyze, ASlowLoggerGetsTheHarmonicsItsSamplingResolves) {
 TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
   TempDir dir;
   {
-    std::ofstream(dir / "cols.csv") << "zeitpunkt,kanal1,kanal2\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "cols.csv") << "punkt,kanal1,kanal2\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "two_x.csv") << "t,ax,acc_x,az\n0,1,1,2\n0.1,1,1,2\n";
     std::ofstream(dir / "unit.csv") << "t [h],ax,az\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "aunit.csv") << "t,ax [km],az\n0,1,2\n0.1,1,2\n";
@@ -361,7 +361,7 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
        {Case{"cols.csv", "no column looks like the time; choose one with --t-col"},
         Case{"two_x.csv",
              "several columns look like the horizontal acceleration x_M'' (ax, acc_x)"},
-        Case{"unit.csv", "unit 'h' is not a time unit (s, ms, us); give --t-units"},
+        Case{"unit.csv", "unit 'h' is not a time unit (s, ms, us, ns); give --t-units"},
         Case{"aunit.csv", "unit 'km' is not an acceleration unit (m/s^2, mm/s^2, g); give --units"},
         Case{"text.csv", "must be a number"}, Case{"short.csv", "at least 8 samples"},
         Case{"ragged.csv", "2 cells, but the header has 3"},
@@ -375,7 +375,7 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     EXPECT_NE(o.err.find(c.message), std::string::npos) << o.err;
   }
   // Columns chosen by flag.
-  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "zeitpunkt",
+  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "punkt",
                          "--x-col", "kanal1", "--z-col", "3"});
   // 2 samples over 3.9 periods: f = 39 Hz is above half the record's sampling rate (10 Hz), so
   // no harmonic of it can be measured: refused as input.
