@@ -262,9 +262,41 @@ std::string lower(std::string s) {
 // A missing value as loggers write one: an empty cell, NaN, NA, null, a dash.
 bool is_missing(const std::string& cell) {
   const std::string c = lower(trim(cell));
+  // (and a spreadsheet's error values: #N/A, #DIV/0!, #VALUE!, #NUM!, #REF!, #NAME?, #NULL!)
   return c.empty() || c == "nan" || c == "-nan" || c == "na" || c == "n/a" || c == "null" ||
-         c == "none" || c == "-" || c == "--";
+         c == "none" || c == "-" || c == "--" || c == "#n/a" || c == "#div/0!" || c == "#value!" ||
+         c == "#num!" || c == "#ref!" || c == "#name?" || c == "#null!";
 }
+
+// The lines of a text ended by LF, CR LF or a lone CR (classic Mac OS text, as Excel for Mac
+// wrote its CSV), each without its end; next() is false at the end of the text, as std::getline.
+// Lines are read by std::getline (LF); one that holds a CR before its end is split there (a
+// text of lone CRs is one such line, held whole).
+class LineReader {
+ public:
+  explicit LineReader(std::istream& in) : in_(in) {}
+  bool next(std::string& l) {
+    if (at_ >= held_.size()) {
+      if (!std::getline(in_, held_)) return false;
+      at_ = 0;
+      if (held_.find('\r') == std::string::npos || held_.find('\r') + 1 == held_.size()) {
+        l.swap(held_);  // the usual line: no lone CR within it
+        held_.clear();
+        return true;
+      }
+    }
+    const std::size_t end = std::min(held_.find('\r', at_), held_.size());
+    l.assign(held_, at_, end - at_);
+    at_ = end + 1;
+    if (at_ >= held_.size()) held_.clear(), at_ = 0;
+    return true;
+  }
+
+ private:
+  std::istream& in_;
+  std::string held_;
+  std::size_t at_ = 0;
+};
 
 std::string key_of(const std::string& name) {
   std::string k;
@@ -736,6 +768,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // parsed as it is read, so memory holds the columns, not the text (24 bytes per row).
   std::string line, first;
   std::size_t no = 0, first_no = 0;
+  LineReader lines(in);
   // A line that is not UTF-8 is Windows-1252 / Latin-1 text, read as its UTF-8 (noted once).
   std::size_t latin1_at = 0;
   auto as_utf8 = [&](std::string& l) {
@@ -745,7 +778,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (latin1_at == 0) latin1_at = no;
   };
   auto next_line = [&](std::string& into) {
-    while (std::getline(in, into)) {
+    while (lines.next(into)) {
       ++no;
       if (!into.empty() && into.back() == '\r') into.pop_back();
       as_utf8(into);
@@ -856,7 +889,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   std::vector<std::pair<std::string, std::size_t>> comments_before;  // (for a stated rate)
   {
     bool any = false;
-    for (std::string l; lead.size() < kLeadLines && std::getline(in, l);) {
+    for (std::string l; lead.size() < kLeadLines && lines.next(l);) {
       ++no;
       if (no == 1) {
         if (const std::string what = not_text(l); !what.empty()) throw Error(name + ": " + what);

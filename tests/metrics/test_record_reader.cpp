@@ -175,6 +175,27 @@ TEST(RecordReader, TimeInMsOrUsWithoutAUnitIsReadSo) {
   EXPECT_FALSE(said(given, "has no unit"));
 }
 
+// Lines ended by a lone CR (classic Mac OS text, Excel for Mac's CSV), by CR LF, or mixed; a
+// spreadsheet's error values (#N/A, #DIV/0!) are missing values, their rows skipped and counted.
+TEST(RecordReader, LoneCarriageReturnsAndSpreadsheetErrors) {
+  for (const std::string& text : {std::string("t,ax,az\r0,1,2\r0.001,3,4\r0.002,5,6\r"),
+                                  std::string("t,ax,az\r\n0,1,2\r\n0.001,3,4\r\n0.002,5,6"),
+                                  std::string("t,ax,az\n0,1,2\r0.001,3,4\r\n0.002,5,6\n")}) {
+    SCOPED_TRACE(text);
+    const RecordColumns r = read_text(text);
+    ASSERT_EQ(r.t.size(), 3u);
+    EXPECT_DOUBLE_EQ(r.t[2], 0.002);
+    EXPECT_DOUBLE_EQ(r.ddz_M[2], 6.0);
+  }
+  const RecordColumns errors =
+      read_text("t,ax,az\n0,1,2\n0.001,#N/A,4\n0.002,5,#DIV/0!\n0.003,7,8\n");
+  ASSERT_EQ(errors.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(errors.t[1], 0.003);
+  EXPECT_TRUE(std::any_of(errors.notes.begin(), errors.notes.end(), [](const std::string& n) {
+    return n.find("skipped 2 rows with a missing") != std::string::npos;
+  }));
+}
+
 // A robot's inertial unit as ROS writes it. ROS 1's `rostopic echo -p`: the header a comment
 // (%time), a text column in every row (frame_id: the first data row is no header for it), the
 // stamps in ns since 1970, the channels fields of the message (field.linear_acceleration.x;
