@@ -927,22 +927,27 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // 1,5;2,25 or 1,5<tab>2,25 (a European spreadsheet's CSV or "Unicode text"): a comma within a
   // cell is a decimal comma where it is not the delimiter.
   const bool decimal_comma = delim == ';' || delim == '\t' || delim == '|';
-  // Header: that line unless its cells are numbers wherever the line below has numbers (a text
-  // column of the data, a ROS message's frame_id "imu_link", is text in every row: a first data
-  // row is not a header for it).
+  // Header: that line unless its cells are numbers wherever the lines below have numbers (a
+  // text column of the data, a ROS message's frame_id "imu_link", is text in every row: a first
+  // data row is not a header for it). Up to three lines below are looked at (a first data row
+  // may be all missing values).
   std::vector<std::string> header = split(first, delim);
   // A delimiter at the end of the header line names no column (a spreadsheet's export).
   while (header.size() > 1 && trim(header.back()).empty()) header.pop_back();
   bool has_header = false;
   {
-    const std::vector<std::string> below =
-        data_at < lead.size() ? split(lead[data_at].first, delim) : std::vector<std::string>{};
     const auto value = [&](const std::string& cell) {
       double v = 0;
       return parse_number(cell, decimal_comma, v) || parse_clock(cell);
     };
+    std::vector<bool> number_below(header.size(), data_at >= lead.size());
+    for (std::size_t k = data_at; k < lead.size() && k < data_at + 3; ++k) {
+      const std::vector<std::string> below = split(lead[k].first, delim);
+      for (std::size_t c = 0; c < header.size(); ++c)
+        if (c >= below.size() || value(below[c])) number_below[c] = true;
+    }
     for (std::size_t c = 0; c < header.size(); ++c)
-      if (!value(header[c]) && (c >= below.size() || value(below[c]))) has_header = true;
+      if (!value(header[c]) && number_below[c]) has_header = true;
   }
   // No header, but a comment just before the data that names as many columns, none a number:
   // those are the names (the data start at the first line, as without a header).

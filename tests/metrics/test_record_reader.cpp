@@ -235,6 +235,10 @@ TEST(RecordReader, RosMessagesAsCsv) {
   const RecordColumns labelled = read_text("t,ax,az,label\n0,1,2,a\n0.001,3,4,a\n");
   ASSERT_EQ(labelled.t.size(), 2u);
   EXPECT_DOUBLE_EQ(labelled.ddx_M[0], 1.0);
+  // Nor does a first data row of missing values alone.
+  const RecordColumns first_missing = read_text("t,ax,az\nNaN,NaN,NaN\n0,1,2\n0.001,3,4\n");
+  ASSERT_EQ(first_missing.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(first_missing.ddz_M[1], 4.0);
 }
 
 // Time columns named otherwise than t, time, zeit, timestamp: by a name ending in "time" or
