@@ -375,8 +375,8 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     EXPECT_NE(o.err.find(c.message), std::string::npos) << o.err;
   }
   // Columns chosen by flag.
-  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "punkt",
-                         "--x-col", "kanal1", "--z-col", "3"});
+  const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "punkt", "--x-col",
+                         "kanal1", "--z-col", "3"});
   // 2 samples over 3.9 periods: f = 39 Hz is above half the record's sampling rate (10 Hz), so
   // no harmonic of it can be measured: refused as input.
   EXPECT_EQ(o.code, 2);
