@@ -279,7 +279,8 @@ class LineReader {
     if (at_ >= held_.size()) {
       if (!std::getline(in_, held_)) return false;
       at_ = 0;
-      if (held_.find('\r') == std::string::npos || held_.find('\r') + 1 == held_.size()) {
+      if (const std::size_t cr = held_.find('\r');
+          cr == std::string::npos || cr + 1 == held_.size()) {
         l.swap(held_);  // the usual line: no lone CR within it
         held_.clear();
         return true;
