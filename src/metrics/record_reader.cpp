@@ -1672,7 +1672,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       // us or ns (a ROS message's stamp, `rostopic echo -p`'s %time): then it is read in that
       // unit, said with the flag that reads it in s.
       double step = 0.0;
-      const bool unitless = o.t_units == "auto" &&
+      const bool unitless = o.t_units == "auto" && cns < 0 &&
                             headings[static_cast<std::size_t>(ct)].unit.empty() && out.t.size() > 2;
       if (unitless) {
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);

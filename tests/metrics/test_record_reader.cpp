@@ -231,6 +231,10 @@ TEST(RecordReader, RosMessagesAsCsv) {
   const RecordColumns ros1_stamp =
       read_text("stamp.secs,stamp.nsecs,ax,az\n10,999000000,1,2\n11,0,3,4\n");
   EXPECT_NEAR(ros1_stamp.t[1] - ros1_stamp.t[0], 0.001, 1e-12);
+  // Its units are the columns': a slow logger's stamps are not rescaled by their step.
+  const RecordColumns slow =
+      read_text("stamp.sec,stamp.nanosec,ax,az\n10,0,1,2\n10,100000000,3,4\n10,200000000,5,6\n");
+  EXPECT_NEAR(slow.t[2] - slow.t[0], 0.2, 1e-12);
   // A text column in the data does not make its first row a header where another line is one.
   const RecordColumns labelled = read_text("t,ax,az,label\n0,1,2,a\n0.001,3,4,a\n");
   ASSERT_EQ(labelled.t.size(), 2u);
