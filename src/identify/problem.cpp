@@ -293,25 +293,34 @@ ModelResponse Problem::run(const Case& c, const Eigen::VectorXd& p) {
     return out;
   }
   ++simulations_;
-  // Shooting starts from the last steady state when it was found at a neighbour of p no farther
-  // than a finite-difference step of the Jacobian (kWarmRadius) with the same friction model:
-  // there the two orbits lie on one branch. A farther trial (a step of the fit, a profile) starts
+  // Shooting starts from a steady state found at a neighbour of p no farther than a
+  // finite-difference step of the Jacobian (kWarmRadius) with the same friction model: there the
+  // two orbits lie on one branch. The nearest of the last kOrbits (the latest of equally near
+  // ones): a Jacobian's column at the start point continues the start point's orbit even when
+  // the start scan ran another point last. A farther trial (a step of the fit, a profile) starts
   // from rest: from a distant orbit Newton could reach another steady state that coexists with
   // the one from rest, and the model's response would depend on the fit's path. With mu among
   // the unknowns not even a neighbour's orbit is safe: a trial mu can admit both a rolling orbit
   // (the neighbour's, or the pure-rolling one that stands in for a failed run) and the
   // stick-slip orbit the run from rest reaches (seen: a pure-rolling record's G off by 6 %).
-  const bool near = warm_starts_ && orbit_ && orbit_p_.size() == p.size() &&
-                    (p - orbit_p_).cwiseAbs().maxCoeff() <= kWarmRadius &&
-                    orbit_pure_rolling_ == c.contact.pure_rolling;
+  const WarmStart* near = nullptr;
+  double nearest = kWarmRadius;
+  if (warm_starts_)
+    for (auto o = orbits_.rbegin(); o != orbits_.rend(); ++o) {
+      if (o->p.size() != p.size() || o->pure_rolling != c.contact.pure_rolling) continue;
+      const double d = (p - o->p).cwiseAbs().maxCoeff();
+      if (d <= nearest && (!near || d < nearest)) {
+        near = &o->orbit;
+        nearest = d;
+      }
+    }
   std::optional<WarmStart> orbit;
-  ModelResponse r = simulate_metrics_from(
-      c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps), near ? &*orbit_ : nullptr,
-      &orbit, comparison_ == Comparison::sampled ? &signal_ : nullptr);
+  ModelResponse r =
+      simulate_metrics_from(c, n_sim_, std::min(kMaxStepsPerRun, kMaxStepsPerWindow - steps), near,
+                            &orbit, comparison_ == Comparison::sampled ? &signal_ : nullptr);
   if (orbit) {
-    orbit_ = std::move(orbit);
-    orbit_p_ = p;
-    orbit_pure_rolling_ = c.contact.pure_rolling;
+    if (orbits_.size() == kOrbits) orbits_.erase(orbits_.begin());
+    orbits_.push_back({p, c.contact.pure_rolling, std::move(*orbit)});
   }
   steps += std::max(r.steps, 1L);
   if (r.status == Status::budget_exceeded && steps >= kMaxStepsPerWindow)

@@ -158,13 +158,18 @@ class Problem : public LeastSquares {
   PeriodicSignal signal_;       // the last run's steady state (Comparison::sampled)
   std::map<std::vector<double>, Simulated> cache_;
   std::map<std::vector<double>, std::pair<ModelResponse, PeriodicSignal>> rolling_cache_;
-  // The steady state of the last model run that found one, at orbit_p_: a run within kWarmRadius
-  // of it starts shooting there (run()), as the cases of a study continue their neighbours.
+  // The steady states of the last kOrbits model runs that found one, each at its point p: a run
+  // within kWarmRadius of one starts shooting at the nearest (run()), as the cases of a study
+  // continue their neighbours.
   static constexpr double kWarmRadius = 2.0 * kJacobianStep;
-  std::optional<WarmStart> orbit_;
-  Eigen::VectorXd orbit_p_;
-  bool orbit_pure_rolling_ = false;
-  bool warm_starts_ = true;  // false with mu among the unknowns (run())
+  static constexpr std::size_t kOrbits = 8;
+  struct SolvedOrbit {
+    Eigen::VectorXd p;
+    bool pure_rolling = false;
+    WarmStart orbit;
+  };
+  std::vector<SolvedOrbit> orbits_;  // oldest first
+  bool warm_starts_ = true;          // false with mu among the unknowns (run())
 };
 
 /// The record read the other way round: x_M'' (or z_M'') negated, its harmonics, peaks and trend
