@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <complex>
@@ -53,40 +54,75 @@ void harmonics_at(double turns, int m_max, std::vector<double>& cm, std::vector<
   detail::harmonics_turns(turns, m_max, cm.data(), sm.data());
 }
 
-HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
-                          std::span<const double> z, double f, int n_max, double t_ref) {
+// The sums a harmonic fit at f needs over the samples (w = nu tau, tau = t - t_ref): of
+// tau^k cos(m w) and tau^k sin(m w) (m = 0 ... 2 n_max) and of each signal about its mean times
+// tau^k cos(n w), tau^k sin(n w) (n = 0 ... n_max, in the basis' order), for k = 0 and, with
+// kMoments, k = 1 and 2 as well (frequency_step: the basis' derivative in f is 2 pi tau times
+// another harmonic, so its products with the basis, the signals and itself are these sums too).
+template <bool kMoments>
+struct HarmonicSums {
+  static constexpr int kOrders = kMoments ? 3 : 1;
+  double x_mean = 0.0, z_mean = 0.0;
+  double x_var = 0.0, z_var = 0.0;                  ///< sums of (y - mean)^2
+  std::array<std::vector<double>, kOrders> sc, ss;  ///< [k][m]: sum tau^k cos(m w), sin(m w)
+  std::array<Eigen::VectorXd, kOrders - (kMoments ? 1 : 0)> bx, bz;  ///< [k]: sum tau^k y B
+};
+
+template <bool kMoments>
+HarmonicSums<kMoments> harmonic_sums(std::span<const double> t, std::span<const double> x,
+                                     std::span<const double> z, double f, int n_max, double t_ref) {
+  constexpr int K = HarmonicSums<kMoments>::kOrders;
+  constexpr int KB = kMoments ? 2 : 1;  // the signals' sums: tau^0 and tau^1
   const std::size_t rows = t.size();
   const int cols = 2 * n_max + 1, m_max = 2 * n_max;
-  double x_mean = 0.0, z_mean = 0.0;
+  HarmonicSums<kMoments> out;
   for (std::size_t i = 0; i < rows; ++i) {
-    x_mean += x[i];
-    z_mean += z[i];
+    out.x_mean += x[i];
+    out.z_mean += z[i];
   }
-  x_mean /= static_cast<double>(rows);
-  z_mean /= static_cast<double>(rows);
-  std::vector<double> sc(m_max + 1, 0.0), ss(m_max + 1, 0.0);  // sum cos(m w), sum sin(m w)
-  Eigen::VectorXd bx = Eigen::VectorXd::Zero(cols), bz = Eigen::VectorXd::Zero(cols);  // B^T y
-  std::vector<double> cm(m_max + 1), sm(m_max + 1);
-  HarmonicFit fit;
+  out.x_mean /= static_cast<double>(rows);
+  out.z_mean /= static_cast<double>(rows);
+  for (int k = 0; k < K; ++k) {
+    out.sc[k].assign(m_max + 1, 0.0);
+    out.ss[k].assign(m_max + 1, 0.0);
+  }
+  for (int k = 0; k < KB; ++k) {
+    out.bx[k] = Eigen::VectorXd::Zero(cols);
+    out.bz[k] = Eigen::VectorXd::Zero(cols);
+  }
   // Four samples at a time: their angle-addition recurrences are independent chains, which the
   // processor overlaps (one sample's chain of 2 n_max dependent steps left it waiting); each
   // sample's cos and sin are those of harmonics_turns, the sums only grouped differently.
   constexpr std::size_t kLanes = 4;
+  const auto sum4 = [](const double* v) { return (v[0] + v[1]) + (v[2] + v[3]); };
   std::size_t row = 0;
   for (; row + kLanes <= rows; row += kLanes) {
-    double c1[kLanes], s1[kLanes], c[kLanes], s[kLanes], xi[kLanes], zi[kLanes];
+    double c1[kLanes], s1[kLanes], c[kLanes], s[kLanes], xi[kLanes], zi[kLanes], tau[kLanes];
+    double tc[kLanes], ts[kLanes], v[kLanes];
     for (std::size_t b = 0; b < kLanes; ++b) {
-      const detail::SinCos one = detail::sincos_turns(f * (t[row + b] - t_ref));
+      tau[b] = t[row + b] - t_ref;
+      const detail::SinCos one = detail::sincos_turns(f * tau[b]);
       c1[b] = c[b] = one.cos;
       s1[b] = s[b] = one.sin;
-      xi[b] = x[row + b] - x_mean;
-      zi[b] = z[row + b] - z_mean;
+      xi[b] = x[row + b] - out.x_mean;
+      zi[b] = z[row + b] - out.z_mean;
     }
-    sc[0] += static_cast<double>(kLanes);
-    bx[0] += (xi[0] + xi[1]) + (xi[2] + xi[3]);
-    bz[0] += (zi[0] + zi[1]) + (zi[2] + zi[3]);
-    fit.x_var += (xi[0] * xi[0] + xi[1] * xi[1]) + (xi[2] * xi[2] + xi[3] * xi[3]);
-    fit.z_var += (zi[0] * zi[0] + zi[1] * zi[1]) + (zi[2] * zi[2] + zi[3] * zi[3]);
+    out.sc[0][0] += static_cast<double>(kLanes);
+    out.bx[0][0] += sum4(xi);
+    out.bz[0][0] += sum4(zi);
+    for (std::size_t b = 0; b < kLanes; ++b) v[b] = xi[b] * xi[b];
+    out.x_var += sum4(v);
+    for (std::size_t b = 0; b < kLanes; ++b) v[b] = zi[b] * zi[b];
+    out.z_var += sum4(v);
+    if constexpr (kMoments) {
+      out.sc[1][0] += sum4(tau);
+      for (std::size_t b = 0; b < kLanes; ++b) v[b] = tau[b] * tau[b];
+      out.sc[2][0] += sum4(v);
+      for (std::size_t b = 0; b < kLanes; ++b) v[b] = tau[b] * xi[b];
+      out.bx[1][0] += sum4(v);
+      for (std::size_t b = 0; b < kLanes; ++b) v[b] = tau[b] * zi[b];
+      out.bz[1][0] += sum4(v);
+    }
     for (int m = 1; m <= m_max; ++m) {
       if (m > 1) {
         for (std::size_t b = 0; b < kLanes; ++b) {
@@ -95,34 +131,62 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
           c[b] = cn;
         }
       }
-      sc[m] += (c[0] + c[1]) + (c[2] + c[3]);
-      ss[m] += (s[0] + s[1]) + (s[2] + s[3]);
+      out.sc[0][m] += sum4(c);
+      out.ss[0][m] += sum4(s);
+      if constexpr (kMoments) {
+        for (std::size_t b = 0; b < kLanes; ++b) {
+          tc[b] = tau[b] * c[b];
+          ts[b] = tau[b] * s[b];
+        }
+        out.sc[1][m] += sum4(tc);
+        out.ss[1][m] += sum4(ts);
+        for (std::size_t b = 0; b < kLanes; ++b) v[b] = tau[b] * tc[b];
+        out.sc[2][m] += sum4(v);
+        for (std::size_t b = 0; b < kLanes; ++b) v[b] = tau[b] * ts[b];
+        out.ss[2][m] += sum4(v);
+      }
       if (m <= n_max) {
-        bx[2 * m - 1] += (xi[0] * c[0] + xi[1] * c[1]) + (xi[2] * c[2] + xi[3] * c[3]);
-        bx[2 * m] += (xi[0] * s[0] + xi[1] * s[1]) + (xi[2] * s[2] + xi[3] * s[3]);
-        bz[2 * m - 1] += (zi[0] * c[0] + zi[1] * c[1]) + (zi[2] * c[2] + zi[3] * c[3]);
-        bz[2 * m] += (zi[0] * s[0] + zi[1] * s[1]) + (zi[2] * s[2] + zi[3] * s[3]);
+        for (int k = 0; k < KB; ++k) {
+          const double* cc = k == 0 ? c : tc;
+          const double* sk = k == 0 ? s : ts;
+          out.bx[k][2 * m - 1] += (xi[0] * cc[0] + xi[1] * cc[1]) + (xi[2] * cc[2] + xi[3] * cc[3]);
+          out.bx[k][2 * m] += (xi[0] * sk[0] + xi[1] * sk[1]) + (xi[2] * sk[2] + xi[3] * sk[3]);
+          out.bz[k][2 * m - 1] += (zi[0] * cc[0] + zi[1] * cc[1]) + (zi[2] * cc[2] + zi[3] * cc[3]);
+          out.bz[k][2 * m] += (zi[0] * sk[0] + zi[1] * sk[1]) + (zi[2] * sk[2] + zi[3] * sk[3]);
+        }
       }
     }
   }
+  std::vector<double> cm(m_max + 1), sm(m_max + 1);
   for (std::size_t i = row; i < rows; ++i) {
-    harmonics_at(f * (t[i] - t_ref), m_max, cm, sm);
-    for (int m = 0; m <= m_max; ++m) {
-      sc[m] += cm[m];
-      ss[m] += sm[m];
+    const double tau = t[i] - t_ref;
+    harmonics_at(f * tau, m_max, cm, sm);
+    const double xi = x[i] - out.x_mean, zi = z[i] - out.z_mean;
+    double power = 1.0;  // tau^k
+    for (int k = 0; k < K; ++k, power *= tau) {
+      for (int m = 0; m <= m_max; ++m) {
+        out.sc[k][m] += power * cm[m];
+        out.ss[k][m] += power * sm[m];
+      }
+      if (k >= KB) continue;
+      out.bx[k][0] += power * xi;
+      out.bz[k][0] += power * zi;
+      for (int n = 1; n <= n_max; ++n) {
+        out.bx[k][2 * n - 1] += power * xi * cm[n];
+        out.bx[k][2 * n] += power * xi * sm[n];
+        out.bz[k][2 * n - 1] += power * zi * cm[n];
+        out.bz[k][2 * n] += power * zi * sm[n];
+      }
     }
-    const double xi = x[i] - x_mean, zi = z[i] - z_mean;
-    bx[0] += xi;
-    bz[0] += zi;
-    for (int n = 1; n <= n_max; ++n) {
-      bx[2 * n - 1] += xi * cm[n];
-      bx[2 * n] += xi * sm[n];
-      bz[2 * n - 1] += zi * cm[n];
-      bz[2 * n] += zi * sm[n];
-    }
-    fit.x_var += xi * xi;
-    fit.z_var += zi * zi;
+    out.x_var += xi * xi;
+    out.z_var += zi * zi;
   }
+  return out;
+}
+
+// sum_i tau_i^k B_i B_i^T from the sums of tau^k cos(m w) and tau^k sin(m w): products of
+// harmonics are harmonics.
+Eigen::MatrixXd gram_of(const std::vector<double>& sc, const std::vector<double>& ss, int cols) {
   auto sum_cos = [&](int m) { return sc[static_cast<std::size_t>(std::abs(m))]; };
   auto sum_sin = [&](int m) { return m >= 0 ? ss[m] : -ss[-m]; };
   Eigen::MatrixXd gram(cols, cols);
@@ -142,14 +206,28 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
         gram(i, j) = 0.5 * (sum_sin(ki + kj) + sum_sin(ki - kj));
     }
   }
-  fit.gram.compute(gram);
-  fit.cx = fit.gram.solve(bx);
-  fit.cz = fit.gram.solve(bz);
-  fit.x_res = std::max(0.0, fit.x_var - fit.cx.dot(bx));
-  fit.z_res = std::max(0.0, fit.z_var - fit.cz.dot(bz));
-  fit.cx[0] += x_mean;
-  fit.cz[0] += z_mean;
+  return gram;
+}
+
+// The fit from its sums (the coefficients' constant term with the mean added back).
+template <bool kMoments>
+HarmonicFit fit_of(const HarmonicSums<kMoments>& sums, int n_max) {
+  HarmonicFit fit;
+  fit.x_var = sums.x_var;
+  fit.z_var = sums.z_var;
+  fit.gram.compute(gram_of(sums.sc[0], sums.ss[0], 2 * n_max + 1));
+  fit.cx = fit.gram.solve(sums.bx[0]);
+  fit.cz = fit.gram.solve(sums.bz[0]);
+  fit.x_res = std::max(0.0, fit.x_var - fit.cx.dot(sums.bx[0]));
+  fit.z_res = std::max(0.0, fit.z_var - fit.cz.dot(sums.bz[0]));
+  fit.cx[0] += sums.x_mean;
+  fit.cz[0] += sums.z_mean;
   return fit;
+}
+
+HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
+                          std::span<const double> z, double f, int n_max, double t_ref) {
+  return fit_of(harmonic_sums<false>(t, x, z, f, n_max, t_ref), n_max);
 }
 
 // RMS of y minus the fitted series, relative to the RMS of y, summed explicitly (a second pass:
@@ -425,77 +503,35 @@ FrequencyStep frequency_step(std::span<const double> t, std::span<const double> 
   FrequencyStep out;
   if (t.size() < static_cast<std::size_t>(2 * n_max + 1)) return out;
   const double t_ref = t[0];  // the phase origin is free (fit_residual's)
-  const HarmonicFit fit = fit_harmonics(t, x, z, f, n_max, t_ref);
+  // One pass over the samples: with T = diag(tau) and D = d(B c)/df = 2 pi T B d (d: n b_n at
+  // cos(n w), -n a_n at sin(n w)), <r, D> = 2 pi d^T (B^T T y - B^T T B c), |D|^2 =
+  // 4 pi^2 d^T (B^T T^2 B) d and u = B^T D = 2 pi (B^T T B) d: sums of tau and tau^2 times the
+  // basis' products and the signals (harmonic_sums), not a second pass with D per sample.
+  const HarmonicSums<true> sums = harmonic_sums<true>(t, x, z, f, n_max, t_ref);
+  const HarmonicFit fit = fit_of(sums, n_max);
+  const int cols = 2 * n_max + 1;
+  const Eigen::MatrixXd G1 = gram_of(sums.sc[1], sums.ss[1], cols);
+  const Eigen::MatrixXd G2 = gram_of(sums.sc[2], sums.ss[2], cols);
   const double wx = fit.x_var > 0 ? 1.0 / fit.x_var : 0.0,
                wz = fit.z_var > 0 ? 1.0 / fit.z_var : 0.0;
   out.residual = wx * fit.x_res + wz * fit.z_res;
-  const int cols = 2 * n_max + 1;
-  Eigen::VectorXd ux = Eigen::VectorXd::Zero(cols), uz = Eigen::VectorXd::Zero(cols);
-  double gx = 0, gz = 0, dxx = 0, dzz = 0;  // <r, D>, |D|^2 of each signal
-  // Four samples at a time, as fit_harmonics: their angle-addition recurrences are independent
-  // chains that the processor overlaps. The basis of each sample is kept (cm, sm: harmonic n of
-  // lane b at n * kLanes + b) for u = B^T D, which needs D complete.
-  constexpr std::size_t kLanes = 4;
-  std::vector<double> cm((n_max + 1) * kLanes), sm((n_max + 1) * kLanes);
-  const auto lanes = [&](std::size_t row, std::size_t count) {
-    double c1[kLanes], s1[kLanes], tau[kLanes], yx[kLanes], yz[kLanes], Dx[kLanes], Dz[kLanes];
-    for (std::size_t b = 0; b < count; ++b) {
-      tau[b] = t[row + b] - t_ref;
-      const detail::SinCos one = detail::sincos_turns(f * tau[b]);
-      c1[b] = cm[kLanes + b] = one.cos;
-      s1[b] = sm[kLanes + b] = one.sin;
-      yx[b] = fit.cx[0];
-      yz[b] = fit.cz[0];
-      Dx[b] = Dz[b] = 0.0;
-    }
+  // <r, D> and |(I - P) D|^2 of one signal with coefficients c (about its mean) and B^T T y.
+  const auto terms = [&](Eigen::VectorXd c, double mean, const Eigen::VectorXd& bty) {
+    c[0] -= mean;
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(cols);
     for (int n = 1; n <= n_max; ++n) {
-      const std::size_t k = static_cast<std::size_t>(n) * kLanes;
-      const double ax = fit.cx[2 * n - 1], bx = fit.cx[2 * n], az = fit.cz[2 * n - 1],
-                   bz = fit.cz[2 * n];
-      for (std::size_t b = 0; b < count; ++b) {
-        if (n > 1) {  // cos and sin of n w from those of (n - 1) w
-          cm[k + b] = cm[k - kLanes + b] * c1[b] - sm[k - kLanes + b] * s1[b];
-          sm[k + b] = sm[k - kLanes + b] * c1[b] + cm[k - kLanes + b] * s1[b];
-        }
-        const double c = cm[k + b], sn = sm[k + b];
-        // a cos(2 pi n f tau) + b sin(2 pi n f tau), and its derivative in f over 2 pi n tau
-        yx[b] += ax * c + bx * sn;
-        yz[b] += az * c + bz * sn;
-        Dx[b] += n * (bx * c - ax * sn);
-        Dz[b] += n * (bz * c - az * sn);
-      }
+      d[2 * n - 1] = n * c[2 * n];
+      d[2 * n] = -n * c[2 * n - 1];
     }
-    for (std::size_t b = 0; b < count; ++b) {
-      Dx[b] *= 2.0 * M_PI * tau[b];
-      Dz[b] *= 2.0 * M_PI * tau[b];
-      gx += (x[row + b] - yx[b]) * Dx[b];
-      gz += (z[row + b] - yz[b]) * Dz[b];
-      dxx += Dx[b] * Dx[b];
-      dzz += Dz[b] * Dz[b];
-      ux[0] += Dx[b];
-      uz[0] += Dz[b];
-    }
-    for (int n = 1; n <= n_max; ++n) {
-      const std::size_t k = static_cast<std::size_t>(n) * kLanes;
-      double uxc = 0, uxs = 0, uzc = 0, uzs = 0;
-      for (std::size_t b = 0; b < count; ++b) {
-        uxc += cm[k + b] * Dx[b];
-        uxs += sm[k + b] * Dx[b];
-        uzc += cm[k + b] * Dz[b];
-        uzs += sm[k + b] * Dz[b];
-      }
-      ux[2 * n - 1] += uxc;
-      ux[2 * n] += uxs;
-      uz[2 * n - 1] += uzc;
-      uz[2 * n] += uzs;
-    }
+    const double g = 2.0 * M_PI * d.dot(bty - G1 * c);
+    const Eigen::VectorXd u = 2.0 * M_PI * (G1 * d);
+    const double dd = 4.0 * M_PI * M_PI * d.dot(G2 * d);
+    return std::pair{g, dd - u.dot(fit.gram.solve(u))};
   };
-  std::size_t row = 0;
-  for (; row + kLanes <= t.size(); row += kLanes) lanes(row, kLanes);
-  if (row < t.size()) lanes(row, t.size() - row);
+  const auto [gx, cx] = terms(fit.cx, sums.x_mean, sums.bx[1]);
+  const auto [gz, cz] = terms(fit.cz, sums.z_mean, sums.bz[1]);
   out.slope = -2.0 * (wx * gx + wz * gz);
-  out.curvature =
-      2.0 * (wx * (dxx - ux.dot(fit.gram.solve(ux))) + wz * (dzz - uz.dot(fit.gram.solve(uz))));
+  out.curvature = 2.0 * (wx * cx + wz * cz);
   if (out.curvature > 0) out.step = -out.slope / out.curvature;
   return out;
 }
@@ -537,10 +573,12 @@ std::optional<double> newton_frequency(std::span<const double> t, std::span<cons
   return std::nullopt;
 }
 
-}  // namespace
-
-double refine_frequency(std::span<const double> t, std::span<const double> ddx,
-                        std::span<const double> ddz, double f, double half_width, int n_max) {
+// refine_frequency from f that is already its stage with `refined` harmonics on these samples
+// (from the same start and bracket): the stages up to that one are skipped, and their brackets
+// narrowed as they would have been. refined = 0: all stages.
+double refine_staged(std::span<const double> t, std::span<const double> ddx,
+                     std::span<const double> ddz, double f, double half_width, int n_max,
+                     int refined) {
   // The residual of harmonic n has side lobes 1/(n T) apart (T the record's span): refine with
   // the fundamental over the whole bracket first, then with more harmonics in brackets narrow
   // enough to hold only their main lobe. Each stage by Gauss-Newton steps, Brent's search where
@@ -555,6 +593,11 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
     const int m = std::min(n, n_max);
     const bool last = m == n_max;
     const double h_next = span > 0 ? std::min(h, 0.15 / (m * span)) : h;
+    if (m <= refined && (!last || m == refined)) {  // done: as a refinement with `refined` ends
+      if (last) break;
+      h = h_next;
+      continue;
+    }
     const double tol = last ? 1e-7 * f : 0.1 * h_next;
     // The last stage: a step of 1e-9 f, after which the next would be far smaller, or a tail
     // estimated at 1e-11 f (what such a step leaves).
@@ -566,6 +609,13 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
     h = h_next;
   }
   return f;
+}
+
+}  // namespace
+
+double refine_frequency(std::span<const double> t, std::span<const double> ddx,
+                        std::span<const double> ddz, double f, double half_width, int n_max) {
+  return refine_staged(t, ddx, ddz, f, half_width, n_max, 0);
 }
 
 namespace detail {
@@ -748,12 +798,16 @@ using detail::spectral_peak;
 using detail::SpectralPeak;
 
 // Least squares on f from the spectrum's peak (of the first 4096 samples of t): on those
-// samples, then on spans growing fourfold up to the whole of t.
+// samples, then on spans growing fourfold up to the whole of t. `with_two`: the refinement with
+// two harmonics on those samples (resolving_frequency), where the one with n_max continues.
 double refine_peak(std::span<const double> t, std::span<const double> ddx,
-                   std::span<const double> ddz, const SpectralPeak& peak, int n_max) {
+                   std::span<const double> ddz, const SpectralPeak& peak, int n_max,
+                   std::optional<double> with_two = std::nullopt) {
   std::size_t len = std::min<std::size_t>(t.size(), 4096);
-  double f = refine_frequency(t.first(len), ddx.first(len), ddz.first(len), peak.f,
-                              1.5 * peak.df / peak.f, n_max);
+  if (n_max < 2) with_two.reset();
+  double f =
+      refine_staged(t.first(len), ddx.first(len), ddz.first(len), with_two ? *with_two : peak.f,
+                    1.5 * peak.df / peak.f, n_max, with_two ? 2 : 0);
   while (len < t.size()) {
     len = std::min(t.size(), 4 * len);
     const double periods = (t[len - 1] - t[0]) * f;
@@ -954,9 +1008,12 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   if (f_rec == 0.0) {
     const std::size_t n = windowed ? std::min<std::size_t>(t.size(), 4096) : t.size();
     const SpectralPeak peak = spectral_peak(t.first(n), ddx.first(n), ddz.first(n), o.search);
-    if (n_max == 0)
-      n_max = harmonics_resolved_at(resolving_frequency(t, ddx, ddz, peak), detail::median_step(t));
-    f_rec = refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, o.search.n_max);
+    std::optional<double> with_two;  // the same peak refined with two harmonics
+    if (n_max == 0) {
+      with_two = resolving_frequency(t, ddx, ddz, peak);
+      n_max = harmonics_resolved_at(*with_two, detail::median_step(t));
+    }
+    f_rec = refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, o.search.n_max, with_two);
   } else if (n_max == 0) {
     n_max = resolved_harmonics(t, ddx, ddz, o);
   }

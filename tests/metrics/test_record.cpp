@@ -324,6 +324,53 @@ TEST(Record, FrequencyStepDerivativesMatchFiniteDifferences) {
   }
 }
 
+// frequency_step's one pass of sums against the definitions evaluated sample by sample: the
+// basis B as a matrix, the fit by QR, r = y - B c, D = d(B c)/df at c by its formula, and the
+// Gauss-Newton curvature |(I - P) D|^2 with P the projection onto B's columns. Records of 2000
+// samples over 20 periods and of 1031 over 40.2 (an identification window's), 1 ... 10
+// harmonics.
+TEST(Record, FrequencyStepEqualsItsDefinitionSampleBySample) {
+  for (const auto& [n, periods] : {std::pair{2000, 20.0}, std::pair{1031, 40.2}}) {
+    const NoisyRecord r = noisy_record(n, periods, 3);
+    for (const int n_max : {1, 4, 10}) {
+      SCOPED_TRACE(std::to_string(n) + " samples, " + std::to_string(n_max) + " harmonics");
+      const double f = 39.0 + 2e-3;
+      const detail::FrequencyStep s = detail::frequency_step(r.t, r.x, r.z, f, n_max);
+      const int cols = 2 * n_max + 1;
+      Eigen::MatrixXd B(n, cols), dB(n, cols);  // the basis and its derivative in f
+      for (int i = 0; i < n; ++i) {
+        const double tau = r.t[static_cast<std::size_t>(i)] - r.t[0];
+        B(i, 0) = 1.0;
+        dB(i, 0) = 0.0;
+        for (int k = 1; k <= n_max; ++k) {
+          const double w = 2 * M_PI * k * f * tau, dw = 2 * M_PI * k * tau;
+          B(i, 2 * k - 1) = std::cos(w);
+          B(i, 2 * k) = std::sin(w);
+          dB(i, 2 * k - 1) = -std::sin(w) * dw;
+          dB(i, 2 * k) = std::cos(w) * dw;
+        }
+      }
+      const Eigen::HouseholderQR<Eigen::MatrixXd> qr(B);
+      const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, cols);
+      double F = 0, slope = 0, curvature = 0;
+      for (const std::vector<double>* y : {&r.x, &r.z}) {
+        const Eigen::Map<const Eigen::VectorXd> Y(y->data(), n);
+        const double var = (Y.array() - Y.mean()).square().sum();
+        const Eigen::VectorXd c = qr.solve(Eigen::VectorXd(Y));
+        const Eigen::VectorXd res = Y - B * c, D = dB * c;
+        const Eigen::VectorXd D_out = D - Q * (Q.transpose() * D);  // (I - P) D
+        F += res.squaredNorm() / var;
+        slope += -2.0 * res.dot(D) / var;
+        curvature += 2.0 * D_out.squaredNorm() / var;
+      }
+      EXPECT_NEAR(s.residual, F, 1e-11 * F);
+      // The slope on the scale of its terms (r is orthogonal to B: the sum cancels to it).
+      EXPECT_NEAR(s.slope, slope, 1e-12 * std::sqrt(F * curvature));
+      EXPECT_NEAR(s.curvature, curvature, 1e-12 * curvature);
+    }
+  }
+}
+
 // refine_frequency returns the minimum of the fit residual itself, to 1e-9 f (Gauss-Newton
 // converges there; Brent's search stopped anywhere within 1e-7 f): the parabola through F at
 // f* and f* +- 1e-6 f has its vertex at f*, and F is no lower on either side.
