@@ -82,23 +82,32 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
   const int np = d + 1, n_orders = static_cast<int>(orders.size()), p = np + 2 * n_orders;
   const int top = orders.empty() ? 0 : orders.back();
   const double mid = 0.5 * (t.front() + t.back()), span = t.back() - t.front();
-  std::vector<double> P(static_cast<std::size_t>(np)), cm(2 * top + 1), sm(2 * top + 1),
-      sc(2 * top + 1, 0.0), ss(2 * top + 1, 0.0);
+  std::vector<double> P(static_cast<std::size_t>(np)), sc(2 * top + 1, 0.0), ss(2 * top + 1, 0.0);
   Eigen::MatrixXd pc = Eigen::MatrixXd::Zero(np, n_orders),
                   ps = Eigen::MatrixXd::Zero(np, n_orders), pp = Eigen::MatrixXd::Zero(np, np);
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
   std::vector<double> co(static_cast<std::size_t>(n_orders)), si(co.size());
+  // The harmonics of kHarmonicLanes samples at a time (harmonics_turns_lanes), each sample's
+  // sums then in turn as before.
+  constexpr std::size_t L = detail::kHarmonicLanes;
+  std::vector<double> cl(L * (2 * top + 1)), sl(cl.size());
+  double turns[L];
   for (std::size_t i = 0; i < M; ++i) {
+    const std::size_t b = i % L;
+    if (b == 0) {
+      const std::size_t count = std::min(L, M - i);
+      for (std::size_t k = 0; k < count; ++k) turns[k] = f * (t[i + k] - t_ref);
+      detail::harmonics_turns_lanes(turns, count, 2 * top, cl.data(), sl.data());
+    }
     if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(f * (t[i] - t_ref), 2 * top, cm, sm);
     const double x = yx[i], z = yz[i];
     for (int k = 0; k <= 2 * top; ++k) {
-      sc[k] += cm[k];
-      ss[k] += sm[k];
+      sc[k] += cl[static_cast<std::size_t>(k) * L + b];
+      ss[k] += sl[static_cast<std::size_t>(k) * L + b];
     }
     for (int a = 0; a < n_orders; ++a) {
-      co[static_cast<std::size_t>(a)] = cm[orders[a]];
-      si[static_cast<std::size_t>(a)] = sm[orders[a]];
+      co[static_cast<std::size_t>(a)] = cl[static_cast<std::size_t>(orders[a]) * L + b];
+      si[static_cast<std::size_t>(a)] = sl[static_cast<std::size_t>(orders[a]) * L + b];
     }
     for (int j = 0; j < np; ++j) {
       for (int a = 0; a < n_orders; ++a) {
@@ -144,16 +153,22 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
   fit.explained_x = bx.dot(fit.cx);
   fit.explained_z = bz.dot(fit.cz);
   for (std::size_t i = 0; residual_pass && i < M; ++i) {
+    const std::size_t b = i % L;
+    if (b == 0) {
+      const std::size_t count = std::min(L, M - i);
+      for (std::size_t k = 0; k < count; ++k) turns[k] = f * (t[i + k] - t_ref);
+      detail::harmonics_turns_lanes(turns, count, top, cl.data(), sl.data());
+    }
     if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
-    harmonics_at(f * (t[i] - t_ref), top, cm, sm);
     double fx = 0, fz = 0;
     for (int j = 0; j < np; ++j) {
       fx += fit.cx[j] * P[j];
       fz += fit.cz[j] * P[j];
     }
     for (int a = 0; a < n_orders; ++a) {
-      fx += fit.cx[np + 2 * a] * cm[orders[a]] + fit.cx[np + 2 * a + 1] * sm[orders[a]];
-      fz += fit.cz[np + 2 * a] * cm[orders[a]] + fit.cz[np + 2 * a + 1] * sm[orders[a]];
+      const std::size_t k = static_cast<std::size_t>(orders[a]) * L + b;
+      fx += fit.cx[np + 2 * a] * cl[k] + fit.cx[np + 2 * a + 1] * sl[k];
+      fz += fit.cz[np + 2 * a] * cl[k] + fit.cz[np + 2 * a + 1] * sl[k];
     }
     fit.rss_x += (yx[i] - fx) * (yx[i] - fx);
     fit.rss_z += (yz[i] - fz) * (yz[i] - fz);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 namespace oscidrum::detail {
 
@@ -127,6 +128,31 @@ inline void harmonics_turns(double turns, int m, double* c, double* s) {
   for (int k = 1; k <= m; ++k) {
     c[k] = c[k - 1] * one.cos - s[k - 1] * one.sin;
     s[k] = s[k - 1] * one.cos + c[k - 1] * one.sin;
+  }
+}
+
+/// harmonics_turns of up to kHarmonicLanes phases at once (count of them), harmonic k of phase b
+/// at c[k * kHarmonicLanes + b]: the same values bit for bit (the same recurrence), its
+/// independent chains overlapped by the processor where one phase's chain of dependent steps
+/// would leave it waiting.
+inline constexpr std::size_t kHarmonicLanes = 4;
+inline void harmonics_turns_lanes(const double* turns, std::size_t count, int m, double* c,
+                                  double* s) {
+  constexpr std::size_t L = kHarmonicLanes;
+  double c1[L] = {}, s1[L] = {};
+  for (std::size_t b = 0; b < count; ++b) {
+    const SinCos one = sincos_turns(turns[b]);
+    c1[b] = one.cos;
+    s1[b] = one.sin;
+    c[b] = 1.0;
+    s[b] = 0.0;
+  }
+  for (int k = 1; k <= m; ++k) {
+    const std::size_t j = static_cast<std::size_t>(k) * L, i = j - L;
+    for (std::size_t b = 0; b < count; ++b) {
+      c[j + b] = c[i + b] * c1[b] - s[i + b] * s1[b];
+      s[j + b] = s[i + b] * c1[b] + c[i + b] * s1[b];
+    }
   }
 }
 
