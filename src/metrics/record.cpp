@@ -234,7 +234,11 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
 // the reported residual does not rest on the difference of sums).
 double relative_rms(std::span<const double> t, std::span<const double> y, const Eigen::VectorXd& c,
                     double f, int n_max) {
-  std::vector<double> cm(2 * n_max + 1), sm(2 * n_max + 1);
+  // The harmonics of kHarmonicLanes samples at a time (their chains of angle additions overlap),
+  // each sample's terms then in turn.
+  constexpr std::size_t L = detail::kHarmonicLanes;
+  std::vector<double> cl(L * static_cast<std::size_t>(n_max + 1)), sl(cl.size());
+  double turns[L];
   // Relative to the RMS about the mean: a steady motion's accelerations average zero, so a
   // record's mean is the sensor's (gravity in an accelerometer's reading, an offset), and a large
   // one would make any fit look good.
@@ -243,9 +247,17 @@ double relative_rms(std::span<const double> t, std::span<const double> y, const 
   mean /= static_cast<double>(y.size());
   double yy = 0.0, rr = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    harmonics_at(f * t[i], n_max, cm, sm);
+    const std::size_t b = i % L;
+    if (b == 0) {
+      const std::size_t count = std::min(L, t.size() - i);
+      for (std::size_t k = 0; k < count; ++k) turns[k] = f * t[i + k];
+      detail::harmonics_turns_lanes(turns, count, n_max, cl.data(), sl.data());
+    }
     double fitted = c[0];
-    for (int n = 1; n <= n_max; ++n) fitted += c[2 * n - 1] * cm[n] + c[2 * n] * sm[n];
+    for (int n = 1; n <= n_max; ++n) {
+      const std::size_t k = static_cast<std::size_t>(n) * L + b;
+      fitted += c[2 * n - 1] * cl[k] + c[2 * n] * sl[k];
+    }
     yy += (y[i] - mean) * (y[i] - mean);
     rr += (y[i] - fitted) * (y[i] - fitted);
   }
