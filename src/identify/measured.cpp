@@ -87,27 +87,18 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
                   ps = Eigen::MatrixXd::Zero(np, n_orders), pp = Eigen::MatrixXd::Zero(np, np);
   Eigen::VectorXd bx = Eigen::VectorXd::Zero(p), bz = Eigen::VectorXd::Zero(p);
   std::vector<double> co(static_cast<std::size_t>(n_orders)), si(co.size());
-  // The harmonics of kHarmonicLanes samples at a time (harmonics_turns_lanes), each sample's
-  // sums then in turn as before.
-  constexpr std::size_t L = detail::kHarmonicLanes;
-  std::vector<double> cl(L * (2 * top + 1)), sl(cl.size());
-  double turns[L];
+  detail::HarmonicsInOrder h(t, t_ref, f, 2 * top);
   for (std::size_t i = 0; i < M; ++i) {
-    const std::size_t b = i % L;
-    if (b == 0) {
-      const std::size_t count = std::min(L, M - i);
-      for (std::size_t k = 0; k < count; ++k) turns[k] = f * (t[i + k] - t_ref);
-      detail::harmonics_turns_lanes(turns, count, 2 * top, cl.data(), sl.data());
-    }
+    h.at(i);
     if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
     const double x = yx[i], z = yz[i];
     for (int k = 0; k <= 2 * top; ++k) {
-      sc[k] += cl[static_cast<std::size_t>(k) * L + b];
-      ss[k] += sl[static_cast<std::size_t>(k) * L + b];
+      sc[k] += h.cos(k);
+      ss[k] += h.sin(k);
     }
     for (int a = 0; a < n_orders; ++a) {
-      co[static_cast<std::size_t>(a)] = cl[static_cast<std::size_t>(orders[a]) * L + b];
-      si[static_cast<std::size_t>(a)] = sl[static_cast<std::size_t>(orders[a]) * L + b];
+      co[static_cast<std::size_t>(a)] = h.cos(orders[a]);
+      si[static_cast<std::size_t>(a)] = h.sin(orders[a]);
     }
     for (int j = 0; j < np; ++j) {
       for (int a = 0; a < n_orders; ++a) {
@@ -152,13 +143,9 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
   fit.cz = fit.ldlt.solve(bz);
   fit.explained_x = bx.dot(fit.cx);
   fit.explained_z = bz.dot(fit.cz);
+  detail::HarmonicsInOrder again(t, t_ref, f, top);
   for (std::size_t i = 0; residual_pass && i < M; ++i) {
-    const std::size_t b = i % L;
-    if (b == 0) {
-      const std::size_t count = std::min(L, M - i);
-      for (std::size_t k = 0; k < count; ++k) turns[k] = f * (t[i + k] - t_ref);
-      detail::harmonics_turns_lanes(turns, count, top, cl.data(), sl.data());
-    }
+    again.at(i);
     if (np > 0) legendre(2.0 * (t[i] - mid) / span, d, P);
     double fx = 0, fz = 0;
     for (int j = 0; j < np; ++j) {
@@ -166,9 +153,9 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> yx,
       fz += fit.cz[j] * P[j];
     }
     for (int a = 0; a < n_orders; ++a) {
-      const std::size_t k = static_cast<std::size_t>(orders[a]) * L + b;
-      fx += fit.cx[np + 2 * a] * cl[k] + fit.cx[np + 2 * a + 1] * sl[k];
-      fz += fit.cz[np + 2 * a] * cl[k] + fit.cz[np + 2 * a + 1] * sl[k];
+      const double c = again.cos(orders[a]), s = again.sin(orders[a]);
+      fx += fit.cx[np + 2 * a] * c + fit.cx[np + 2 * a + 1] * s;
+      fz += fit.cz[np + 2 * a] * c + fit.cz[np + 2 * a + 1] * s;
     }
     fit.rss_x += (yx[i] - fx) * (yx[i] - fx);
     fit.rss_z += (yz[i] - fz) * (yz[i] - fz);

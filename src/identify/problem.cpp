@@ -309,7 +309,7 @@ ModelResponse Problem::run(const Case& c, const Eigen::VectorXd& p) {
     for (auto o = orbits_.rbegin(); o != orbits_.rend(); ++o) {
       if (o->p.size() != p.size() || o->pure_rolling != c.contact.pure_rolling) continue;
       const double d = (p - o->p).cwiseAbs().maxCoeff();
-      if (d <= nearest && (!near || d < nearest)) {
+      if (near ? d < nearest : d <= nearest) {
         near = &o->orbit;
         nearest = d;
       }

@@ -234,11 +234,7 @@ HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> x,
 // the reported residual does not rest on the difference of sums).
 double relative_rms(std::span<const double> t, std::span<const double> y, const Eigen::VectorXd& c,
                     double f, int n_max) {
-  // The harmonics of kHarmonicLanes samples at a time (their chains of angle additions overlap),
-  // each sample's terms then in turn.
-  constexpr std::size_t L = detail::kHarmonicLanes;
-  std::vector<double> cl(L * static_cast<std::size_t>(n_max + 1)), sl(cl.size());
-  double turns[L];
+  detail::HarmonicsInOrder h(t, 0.0, f, n_max);
   // Relative to the RMS about the mean: a steady motion's accelerations average zero, so a
   // record's mean is the sensor's (gravity in an accelerometer's reading, an offset), and a large
   // one would make any fit look good.
@@ -247,17 +243,9 @@ double relative_rms(std::span<const double> t, std::span<const double> y, const 
   mean /= static_cast<double>(y.size());
   double yy = 0.0, rr = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const std::size_t b = i % L;
-    if (b == 0) {
-      const std::size_t count = std::min(L, t.size() - i);
-      for (std::size_t k = 0; k < count; ++k) turns[k] = f * t[i + k];
-      detail::harmonics_turns_lanes(turns, count, n_max, cl.data(), sl.data());
-    }
+    h.at(i);
     double fitted = c[0];
-    for (int n = 1; n <= n_max; ++n) {
-      const std::size_t k = static_cast<std::size_t>(n) * L + b;
-      fitted += c[2 * n - 1] * cl[k] + c[2 * n] * sl[k];
-    }
+    for (int n = 1; n <= n_max; ++n) fitted += c[2 * n - 1] * h.cos(n) + c[2 * n] * h.sin(n);
     yy += (y[i] - mean) * (y[i] - mean);
     rr += (y[i] - fitted) * (y[i] - fitted);
   }
@@ -585,9 +573,9 @@ std::optional<double> newton_frequency(std::span<const double> t, std::span<cons
   return std::nullopt;
 }
 
-// refine_frequency from f that is already its stage with `refined` harmonics on these samples
-// (from the same start and bracket): the stages up to that one are skipped, and their brackets
-// narrowed as they would have been. refined = 0: all stages.
+// refine_frequency from f that is already its stage with `refined` <= n_max harmonics on these
+// samples (from the same start and bracket): the stages up to that one are skipped, and their
+// brackets narrowed as they would have been. refined = 0: all stages.
 double refine_staged(std::span<const double> t, std::span<const double> ddx,
                      std::span<const double> ddz, double f, double half_width, int n_max,
                      int refined) {
@@ -605,7 +593,7 @@ double refine_staged(std::span<const double> t, std::span<const double> ddx,
     const int m = std::min(n, n_max);
     const bool last = m == n_max;
     const double h_next = span > 0 ? std::min(h, 0.15 / (m * span)) : h;
-    if (m <= refined && (!last || m == refined)) {  // done: as a refinement with `refined` ends
+    if (m <= refined) {  // done (the last stage only where it is the `refined` one)
       if (last) break;
       h = h_next;
       continue;
@@ -816,7 +804,7 @@ double refine_peak(std::span<const double> t, std::span<const double> ddx,
                    std::span<const double> ddz, const SpectralPeak& peak, int n_max,
                    std::optional<double> with_two = std::nullopt) {
   std::size_t len = std::min<std::size_t>(t.size(), 4096);
-  if (n_max < 2) with_two.reset();
+  if (n_max < 2) with_two.reset();  // (refine_staged: refined <= n_max)
   double f =
       refine_staged(t.first(len), ddx.first(len), ddz.first(len), with_two ? *with_two : peak.f,
                     1.5 * peak.df / peak.f, n_max, with_two ? 2 : 0);

@@ -6,8 +6,11 @@
 // taking a tenth of its time). Larger angles go to libm.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
+#include <vector>
 
 namespace oscidrum::detail {
 
@@ -131,29 +134,50 @@ inline void harmonics_turns(double turns, int m, double* c, double* s) {
   }
 }
 
-/// harmonics_turns of up to kHarmonicLanes phases at once (count of them), harmonic k of phase b
-/// at c[k * kHarmonicLanes + b]: the same values bit for bit (the same recurrence), its
-/// independent chains overlapped by the processor where one phase's chain of dependent steps
-/// would leave it waiting.
-inline constexpr std::size_t kHarmonicLanes = 4;
-inline void harmonics_turns_lanes(const double* turns, std::size_t count, int m, double* c,
-                                  double* s) {
-  constexpr std::size_t L = kHarmonicLanes;
-  double c1[L] = {}, s1[L] = {};
-  for (std::size_t b = 0; b < count; ++b) {
-    const SinCos one = sincos_turns(turns[b]);
-    c1[b] = one.cos;
-    s1[b] = one.sin;
-    c[b] = 1.0;
-    s[b] = 0.0;
-  }
-  for (int k = 1; k <= m; ++k) {
-    const std::size_t j = static_cast<std::size_t>(k) * L, i = j - L;
+/// cos(2 pi k f (t_i - t_ref)) and sin(...), k = 0 ... m, of the samples t_i visited in order
+/// (at(0), at(1), ...): the values of harmonics_turns bit for bit, made for kLanes samples at a
+/// time as the first of them is visited, so that their chains of dependent angle additions (up to
+/// 2 m steps each) overlap rather than leave the processor waiting for one.
+class HarmonicsInOrder {
+ public:
+  static constexpr std::size_t kLanes = 4;
+  HarmonicsInOrder(std::span<const double> t, double t_ref, double f, int m)
+      : t_(t),
+        t_ref_(t_ref),
+        f_(f),
+        m_(m),
+        c_(kLanes * static_cast<std::size_t>(m + 1)),
+        s_(c_.size()) {}
+  /// Sample i; every sample from 0 on, in increasing order.
+  void at(std::size_t i) {
+    b_ = i % kLanes;
+    if (b_ != 0) return;
+    const std::size_t count = std::min(kLanes, t_.size() - i);
+    double c1[kLanes] = {}, s1[kLanes] = {};
     for (std::size_t b = 0; b < count; ++b) {
-      c[j + b] = c[i + b] * c1[b] - s[i + b] * s1[b];
-      s[j + b] = s[i + b] * c1[b] + c[i + b] * s1[b];
+      const SinCos one = sincos_turns(f_ * (t_[i + b] - t_ref_));
+      c1[b] = one.cos;
+      s1[b] = one.sin;
+      c_[b] = 1.0;
+      s_[b] = 0.0;
+    }
+    for (int k = 1; k <= m_; ++k) {
+      const std::size_t j = static_cast<std::size_t>(k) * kLanes, p = j - kLanes;
+      for (std::size_t b = 0; b < count; ++b) {
+        c_[j + b] = c_[p + b] * c1[b] - s_[p + b] * s1[b];
+        s_[j + b] = s_[p + b] * c1[b] + c_[p + b] * s1[b];
+      }
     }
   }
-}
+  double cos(int k) const { return c_[static_cast<std::size_t>(k) * kLanes + b_]; }
+  double sin(int k) const { return s_[static_cast<std::size_t>(k) * kLanes + b_]; }
+
+ private:
+  std::span<const double> t_;
+  double t_ref_, f_;
+  int m_;
+  std::vector<double> c_, s_;
+  std::size_t b_ = 0;
+};
 
 }  // namespace oscidrum::detail
