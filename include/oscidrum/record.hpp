@@ -45,13 +45,15 @@ struct FrequencySearch {
 
 /// The excitation frequency of a record [Hz]: the peak of the harmonic-sum spectrum
 /// P(f) = sum_{n=1}^{3} (|X(n f)|^2 + |Z(n f)|^2) (the n f below the Nyquist frequency; f up to a
-/// fifth of the sampling rate) of at most the first 4096 samples on a grid of
+/// fifth of the sampling rate) of at most 4096 samples (the first, or where the record's
+/// beginning is quiet, those from its first stretch where the drum oscillates) on a grid of
 /// at most a quarter of their frequency resolution (an FFT's bins for uniform samples, direct
 /// sums otherwise), refined by minimising the residual of the
 /// least-squares harmonic fit (n = 0 ... n_max, at most the harmonics the sampling resolves at
 /// the peak, 2 N + 1 samples per period for N; both signals) over f itself, first on that
-/// segment, then on the whole record. Throws oscidrum::Error on the conditions of analyze_record
-/// and when the range holds no frequency.
+/// segment, then on the rest of the record from its start. Throws oscidrum::Error on the
+/// conditions of analyze_record, when the range holds no frequency and when both accelerations
+/// are constant.
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx_M,
                           std::span<const double> ddz_M, const FrequencySearch& search = {});
 
@@ -142,7 +144,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
 bool sampled_in_step(std::span<const double> t, double f);
 
 /// The harmonics a record's sampling resolves at its excitation frequency (options.f, or
-/// estimated from its first 4096 samples): 2 N + 1 samples per period at the median step, N in
+/// estimated as estimate_frequency's peak is): 2 N + 1 samples per period at the median step, N in
 /// [2, 10] (10: analyze's default). For WindowOptions::n_max when it is not given.
 int resolved_harmonics(std::span<const double> t, std::span<const double> ddx_M,
                        std::span<const double> ddz_M, const WindowOptions& options = {});

@@ -620,6 +620,32 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx,
 
 namespace detail {
 
+std::size_t estimation_start(std::span<const double> ddx, std::span<const double> ddz) {
+  constexpr std::size_t n = kEstimationSamples;
+  const std::size_t blocks = std::min(ddx.size(), ddz.size()) / n;
+  if (blocks < 2) return 0;
+  // Mean absolute deviation from the mean, both channels.
+  const auto loudness = [&](std::size_t b) {
+    double total = 0.0;
+    for (const std::span<const double> y : {ddx.subspan(b * n, n), ddz.subspan(b * n, n)}) {
+      double mean = 0.0;
+      for (double v : y) mean += v;
+      mean /= static_cast<double>(n);
+      double dev = 0.0;
+      for (double v : y) dev += std::abs(v - mean);
+      total += dev / static_cast<double>(n);
+    }
+    return total;
+  };
+  std::vector<double> loud(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) loud[b] = loudness(b);
+  const double loudest = *std::max_element(loud.begin(), loud.end());
+  if (!(loud[0] < 0.5 * loudest)) return 0;
+  std::size_t b = 1;
+  while (loud[b] < 0.5 * loudest) ++b;
+  return b * n;
+}
+
 std::size_t fft_size(std::size_t n) {
   for (std::size_t L = std::max<std::size_t>(n, 1);; ++L) {
     std::size_t m = L;
@@ -645,7 +671,21 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   if (search.n_max < 1 || search.n_max > kMaxRecordHarmonics)
     throw Error("record: the frequency search's n_max must be in [1, " +
                 std::to_string(kMaxRecordHarmonics) + "]; got " + std::to_string(search.n_max));
-  const std::size_t n_seg = std::min<std::size_t>(t.size(), 4096);
+  const std::size_t n_seg = std::min<std::size_t>(t.size(), kEstimationSamples);
+  {
+    // Both channels the same value in every sample (a dead logger, a drum at rest): no
+    // oscillation, whatever round-off the means leave below.
+    const auto constant = [&](std::span<const double> y) {
+      const auto [lo, hi] =
+          std::minmax_element(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n_seg));
+      return *lo == *hi;
+    };
+    if (constant(ddx) && constant(ddz))
+      throw Error("record: the accelerations are constant (x_M'' = " + num(ddx[0]) +
+                  ", z_M'' = " + num(ddz[0]) + " m/s^2 in every sample" +
+                  (n_seg < t.size() ? " of the " + std::to_string(n_seg) + " searched" : "") +
+                  ": a dead or disconnected logger, or the exciter off); no frequency to find");
+  }
   const double span = t[n_seg - 1] - t[0];
   const double fs = static_cast<double>(n_seg - 1) / span;
   // Up to fs / 5: the 5 samples per period that a fit of two harmonics needs (psi_xz reads the
@@ -834,6 +874,10 @@ double resolving_frequency(std::span<const double> t, std::span<const double> dd
 
 double estimate_frequency(std::span<const double> t, std::span<const double> ddx,
                           std::span<const double> ddz, const FrequencySearch& search) {
+  check_record(t, ddx, ddz);
+  // From the first stretch where the drum oscillates (the record's beginning, unless it is quiet).
+  const std::size_t s = detail::estimation_start(ddx, ddz);
+  t = t.subspan(s), ddx = ddx.subspan(s), ddz = ddz.subspan(s);
   const SpectralPeak peak = spectral_peak(t, ddx, ddz, search);
   // No more harmonics than the sampling resolves at the peak (a slow logger's).
   return refine_peak(t, ddx, ddz, peak,
@@ -861,9 +905,11 @@ int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
   if (t.size() < 8) return 10;  // analyze_windows says what is wrong
   double f = w.f;
   if (!(f > 0)) {
-    const std::size_t n = std::min<std::size_t>(t.size(), 4096);
-    f = resolving_frequency(t, ddx, ddz,
-                            spectral_peak(t.first(n), ddx.first(n), ddz.first(n), w.search));
+    const std::size_t s = detail::estimation_start(ddx, ddz);
+    const auto ts = t.subspan(s), xs = ddx.subspan(s), zs = ddz.subspan(s);
+    const std::size_t n = std::min<std::size_t>(ts.size(), detail::kEstimationSamples);
+    f = resolving_frequency(ts, xs, zs,
+                            spectral_peak(ts.first(n), xs.first(n), zs.first(n), w.search));
   }
   return harmonics_resolved_at(f, detail::median_step(t));
 }
@@ -1002,18 +1048,23 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   const bool windowed = o.window_periods > 0;
   // The record's frequency: given, or from its beginning (windows) or the whole (no windows);
   // the harmonics: given, or as many as the sampling resolves (resolved_harmonics, from the same
-  // spectrum's peak: both search the first 4096 samples).
+  // spectrum's peak: both search the same 4096 samples).
   double f_rec = o.f;
   int n_max = o.n_max;
   if (f_rec == 0.0) {
-    const std::size_t n = windowed ? std::min<std::size_t>(t.size(), 4096) : t.size();
-    const SpectralPeak peak = spectral_peak(t.first(n), ddx.first(n), ddz.first(n), o.search);
+    // From the record's first stretch where the drum oscillates: its beginning, unless that is
+    // quiet (a logger started before the exciter), where a frequency of the noise would be found.
+    const std::size_t s = detail::estimation_start(ddx, ddz);
+    const auto ts = t.subspan(s), xs = ddx.subspan(s), zs = ddz.subspan(s);
+    const std::size_t n =
+        windowed ? std::min<std::size_t>(ts.size(), detail::kEstimationSamples) : ts.size();
+    const SpectralPeak peak = spectral_peak(ts.first(n), xs.first(n), zs.first(n), o.search);
     std::optional<double> with_two;  // the same peak refined with two harmonics
     if (n_max == 0) {
-      with_two = resolving_frequency(t, ddx, ddz, peak);
+      with_two = resolving_frequency(ts, xs, zs, peak);
       n_max = harmonics_resolved_at(*with_two, detail::median_step(t));
     }
-    f_rec = refine_peak(t.first(n), ddx.first(n), ddz.first(n), peak, o.search.n_max, with_two);
+    f_rec = refine_peak(ts.first(n), xs.first(n), zs.first(n), peak, o.search.n_max, with_two);
   } else if (n_max == 0) {
     n_max = resolved_harmonics(t, ddx, ddz, o);
   }
@@ -1171,6 +1222,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         gap = dt[i];
         gap_at = t[i];
       }
+    // Both channels one value throughout (a logger that holds its last value, a dead channel,
+    // the exciter off): nothing to fit, and the gates' ratios of a zero signal mean nothing.
+    const auto one_value = [](std::span<const double> y) {
+      const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+      return *lo == *hi;
+    };
+    const bool flat = one_value(xw) && one_value(zw);
     // The window analysed about the frequency f0 (the tracked one, or one searched for): its
     // gates, f refined, the fit and its metrics.
     struct Attempt {
@@ -1201,7 +1259,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (!long_enough)
         reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
                           " excitation periods (< 1)");
-      if (!(dense && long_enough && gap <= max_gap)) return a;
+      if (flat)
+        reasons.push_back(
+            "no oscillation: x_M'' and z_M'' are each one value over the window (a "
+            "logger that holds its last value, a dead channel, or the exciter off)");
+      if (!(dense && long_enough && gap <= max_gap) || flat) return a;
       const double periods = spanned;
       const int nf = n_max;  // all of them: unfitted harmonics would bias f
       const double fw =

@@ -26,6 +26,18 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
                            std::span<const double> ddz, const FrequencySearch& search,
                            bool allow_fft = true);
 
+/// Samples in the segment the record's frequency is first estimated on (spectral_peak's).
+inline constexpr std::size_t kEstimationSamples = 4096;
+
+/// Where that segment starts: 0 (the record's beginning) unless the beginning is quiet, i.e. a
+/// logger started before the exciter. The record is cut into blocks of kEstimationSamples (the
+/// last, shorter one left out); a block's loudness is the mean absolute deviation of x_M'' and of
+/// z_M'' from their means, added (robust to a spike: one sample moves it by its size over the
+/// block's length). When the first block is less than half as loud as the loudest, the segment
+/// starts with the first block at least half as loud: the first stretch where the drum
+/// oscillates. A stationary record (every block about as loud) keeps 0.
+std::size_t estimation_start(std::span<const double> ddx, std::span<const double> ddz);
+
 /// The smallest L >= n whose only prime factors are 2, 3 and 5.
 std::size_t fft_size(std::size_t n);
 

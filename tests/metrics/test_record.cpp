@@ -243,6 +243,120 @@ TEST(Record, AChangeOfTheExcitationFrequencyIsFollowed) {
     }
 }
 
+// A logger started before the exciter: the first 4.5 s of the record are quiet (the drum at rest:
+// a constant reading, or the sensor's noise), then the drum oscillates at 39 Hz. The record's
+// frequency comes from the first stretch where it oscillates, not from the quiet beginning
+// (where a frequency of the noise, or of nothing, was found: 10.3 Hz on the constant reading),
+// so the windows are 10 periods of 39 Hz long and those after the start are fitted there.
+TEST(Record, TheFrequencyComesFromTheFirstStretchWhereTheDrumOscillates) {
+  const double rate = 2000.0, f = 39.0, quiet_until = 4.5;
+  for (const bool noisy : {false, true}) {
+    SCOPED_TRACE(noisy ? "noise at the start" : "a constant reading at the start");
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0.0, 1e-3);
+    std::vector<double> t, x, z;
+    for (int i = 0; i < 18000; ++i) {
+      const double ti = i / rate, phase = 2.0 * M_PI * f * ti;
+      t.push_back(ti);
+      if (ti < quiet_until) {
+        x.push_back(noisy ? noise(rng) : 0.3);
+        z.push_back(noisy ? noise(rng) : -0.2);
+      } else {
+        x.push_back(12.0 * std::sin(phase) + 3.0 * std::sin(3.0 * phase + 0.2));
+        z.push_back(0.5 * std::sin(2.0 * phase + 0.3) + 0.1 * std::sin(4.0 * phase));
+      }
+    }
+    // Blocks of 4096 samples (2.048 s): the first two are quiet, the third mostly not.
+    EXPECT_EQ(detail::estimation_start(x, z), 2 * detail::kEstimationSamples);
+    // (The segment still holds 0.4 s of the quiet start, which the fit's periodic model does not
+    // follow: f to about 3e-7 of itself, where the quiet beginning gave 10.3 Hz.)
+    EXPECT_NEAR(estimate_frequency(t, x, z), f, 1e-6 * f);
+    WindowOptions w;
+    w.window_periods = 10;
+    const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, w);
+    int fitted = 0;
+    for (const RecordWindow& win : ws) {
+      SCOPED_TRACE(win.t_start);
+      // The samples within [t_s, t_s + 10 / f]: the last at most a step before its end.
+      EXPECT_GE(win.t_end - win.t_start, 10.0 / f - 2.0 / rate);
+      EXPECT_LE(win.t_end - win.t_start, 10.0 / f + 1e-9);
+      if (win.t_start > quiet_until) {
+        ASSERT_TRUE(win.valid) << win.reason;
+        EXPECT_NEAR(win.f, f, 1e-6 * f);
+        EXPECT_NEAR(win.metrics.ddx_harmonics[3].amplitude, 3.0, 1e-6);
+        ++fitted;
+      } else if (win.t_end < quiet_until) {
+        EXPECT_FALSE(win.valid);
+        // A constant reading has nothing to fit and is said to be one.
+        if (!noisy) {
+          EXPECT_NE(win.reason.find("no oscillation"), std::string::npos) << win.reason;
+        }
+      }
+    }
+    EXPECT_GE(fitted, 15);
+    // Without windows (the whole record): f from the oscillating stretch on, the quiet start
+    // failing the window as a change of the response.
+    w.window_periods = 0;
+    const std::vector<RecordWindow> whole = analyze_windows(t, x, z, {}, w);
+    ASSERT_EQ(whole.size(), 1u);
+    EXPECT_NEAR(whole[0].f, f, 1e-5 * f);
+    EXPECT_FALSE(whole[0].valid);
+  }
+}
+
+// estimation_start leaves a stationary record's beginning alone, a spike (one sample at a
+// thousand times the signal) included, and starts at the first loud block otherwise.
+TEST(Record, EstimationStartIsTheBeginningUnlessItIsQuiet) {
+  const std::size_t n = detail::kEstimationSamples;
+  std::vector<double> x(6 * n), z(6 * n);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] = 10.0 * std::sin(0.123 * static_cast<double>(i));
+    z[i] = 0.5 * std::cos(0.246 * static_cast<double>(i));
+  }
+  EXPECT_EQ(detail::estimation_start(x, z), 0u);
+  x[3 * n + 17] = 1e4;
+  EXPECT_EQ(detail::estimation_start(x, z), 0u);
+  std::fill(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(3 * n), 0.0);
+  std::fill(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(3 * n), 0.0);
+  EXPECT_EQ(detail::estimation_start(x, z), 3 * n);
+  // Shorter than two blocks: the beginning.
+  EXPECT_EQ(detail::estimation_start(std::span(x).first(n + 5), std::span(z).first(n + 5)), 0u);
+}
+
+// Both channels one value throughout (a dead logger; 1 g on both axes read in g): no frequency,
+// said so by name, where the means' round-off left a spectrum of nothing whose peak was taken.
+TEST(Record, ConstantAccelerationsHaveNoFrequency) {
+  std::vector<double> t, x, z;
+  for (int i = 0; i < 10000; ++i) {
+    t.push_back(i * 1e-3);
+    x.push_back(9.80665);
+    z.push_back(-9.80665);
+  }
+  const auto message = [](auto fn) {
+    try {
+      fn();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { estimate_frequency(t, x, z); }).find("the accelerations are constant"),
+            std::string::npos);
+  WindowOptions w;
+  w.window_periods = 40;
+  EXPECT_NE(
+      message([&] { analyze_windows(t, x, z, {}, w); }).find("the accelerations are constant"),
+      std::string::npos);
+  // With f given there is no search: every window is refused as one without oscillation.
+  w.f = 39.0;
+  const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, w);
+  ASSERT_FALSE(ws.empty());
+  for (const RecordWindow& win : ws) {
+    EXPECT_FALSE(win.valid);
+    EXPECT_NE(win.reason.find("no oscillation"), std::string::npos) << win.reason;
+  }
+}
+
 // A "measured" record: 3.37 periods, jittered sampling times, noise. The fit recovers the
 // harmonics to the noise level and reports the noise as the residual.
 TEST(Record, RecoversHarmonicsFromNoisyIrregularRecord) {
