@@ -1248,7 +1248,10 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         reasons.push_back("gap of " + sig4(gap) + " s at t = " + num(gap_at + o.time_origin) +
                           " s (" + num(std::round(gap * f0 * 100) / 100) +
                           " excitation periods > " + num(o.gates.max_gap) +
-                          "; a harmonic fit does not bridge it)");
+                          "; a harmonic fit does not bridge it" +
+                          (windowed ? std::string(")")
+                                    : std::string("): windows (--window 40) fit the stretches "
+                                                  "on either side of it")));
       aw.samples_per_period = static_cast<double>(aw.count - 1) / ((aw.t_end - aw.t_start) * f0);
       const double spanned = (aw.t_end - aw.t_start) * f0;
       const bool dense = aw.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;

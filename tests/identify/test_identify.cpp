@@ -783,7 +783,17 @@ TEST(Gates, GapsAreFlaggedOnlyWhereTheyAre) {
   for (std::size_t k : {1u, 2u}) {
     EXPECT_FALSE(ws[k].valid);
     EXPECT_NE(ws[k].reason.find("gap"), std::string::npos) << ws[k].reason;
+    EXPECT_EQ(ws[k].reason.find("--window"), std::string::npos) << ws[k].reason;
   }
+  // The whole record as one window: the gap fails it, and windows are the way round it.
+  WindowOptions whole;
+  whole.f = kF;
+  const std::vector<RecordWindow> one = analyze_windows(g.t, g.ddx_M, g.ddz_M, {}, whole);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_FALSE(one[0].valid);
+  EXPECT_NE(one[0].reason.find("windows (--window 40) fit the stretches on either side"),
+            std::string::npos)
+      << one[0].reason;
 }
 
 TEST(Gates, TooFewSamplesPerPeriodForTheHarmonics) {
