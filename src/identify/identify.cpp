@@ -129,16 +129,17 @@ std::string poor_fit_warning(const Identification& id, const IdentifyOptions& o)
 
 // A poor fit: what causes it? Each cause that can be checked is fitted from the same coarse start
 // (no profile): an axis read the other way round (x_M'', z_M'' or both negated), G on the other
-// scale, the accelerations in another unit (g for m/s^2 or the other way round), and mu and MMd
-// fitted when they are not. One that fits (a reduced chi^2 within the limit,
-// or ten times below the fit's) is named with what to change; otherwise the warning lists what was
-// checked and what remains (the roller, the window's own fit). Costs a few fits, only when the fit
-// is poor.
+// scale, the accelerations in another unit (g for m/s^2 or the other way round), the two axes
+// exchanged (with either sign), and mu and MMd fitted when they are not. One that fits (a reduced
+// chi^2 within the limit, or ten times below the fit's) is named with what to change; otherwise the
+// warning lists what was checked and what remains (the roller, the window's own fit). Costs a few
+// fits, only when the fit is poor.
 std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& data,
                                    const IdentifyOptions& o, double s2, long steps) {
   struct Alternative {
     bool x = false, z = false, other_scale = false, mu = false, MMd = false;
     double units = 1.0;  // the record's accelerations times this (g: it was in g)
+    bool swap = false;   // x_M'' and z_M'' exchanged (before x and z are negated)
   };
   std::vector<Alternative> alternatives = {
       {false, true, false}, {true, false, false}, {true, true, false}, {false, false, true},
@@ -148,6 +149,11 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
   for (const double u : {kStandardGravity, 1.0 / kStandardGravity})
     for (const auto& [x, z] : {std::pair{false, false}, {false, true}, {true, true}})
       alternatives.push_back({x, z, false, false, false, u});
+  // The two axes exchanged (a logger turned by 90 degrees about the axle, or its columns named
+  // the other way round: the record's x_M'' then holds the even harmonics of z_M''), with each
+  // sign the turn may leave.
+  for (const auto& [x, z] : {std::pair{false, false}, {false, true}, {true, false}, {true, true}})
+    alternatives.push_back({x, z, false, false, false, 1.0, true});
   if (!o.fit_mu) alternatives.push_back({false, false, false, true, false});
   if (!o.fit_MMd) alternatives.push_back({false, false, false, false, true});
   auto describe = [&](const Alternative& a) {
@@ -167,6 +173,15 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       advice =
           "the record's x axis points backward: read it with --x-positive backward (Python: "
           "x_positive='backward')";
+    }
+    if (a.swap) {
+      what = "x_M'' and z_M'' exchanged" + (what.empty() ? "" : " and " + what);
+      advice =
+          "the record's x and z channels are the other way round (a logger turned by 90 "
+          "degrees about the axle, or its columns named so): read it with --x-col and "
+          "--z-col naming each other's column (Python: pass ddx_M and ddz_M the other way "
+          "round)" +
+          (advice.empty() ? "" : "; then " + advice);
     }
     if (a.units != 1.0) {
       const bool in_g = a.units > 1.0;
@@ -217,7 +232,8 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       o2.soil_scale = o.soil_scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
     const auto [what, advice] = describe(a);
     try {
-      const MeasuredResponse read_so = detail::scaled(detail::flipped(data, a.x, a.z), a.units);
+      const MeasuredResponse read_so =
+          detail::scaled(detail::flipped(a.swap ? detail::swapped(data) : data, a.x, a.z), a.units);
       Problem pr(base, read_so, o2);
       pr.count_steps_in(steps);  // the refits share the window's budget with its fit
       const int dof = pr.rows() - static_cast<int>(pr.unknowns().size()) - 1;
@@ -237,7 +253,7 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       const double chi2 = fit.S / dof;
       // The list of what was checked: each single change (x alone is a time shift, see below).
       if (std::isfinite(chi2) && (a.x ? a.z && !a.other_scale : !(a.z && a.other_scale)) &&
-          (a.units == 1.0 || (!a.x && !a.z)))
+          ((a.units == 1.0 && !a.swap) || (!a.x && !a.z)))
         checked.push_back({chi2, what});
       // The alternatives come simplest first (one change, then two, three); a later one must fit
       // clearly better (half the chi^2) to replace an earlier: with no driving torque, negating

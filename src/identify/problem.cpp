@@ -508,6 +508,17 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
   return d;
 }
 
+MeasuredResponse swapped(MeasuredResponse d) {
+  std::swap(d.ddx, d.ddz);
+  std::swap(d.cov_x, d.cov_z);
+  std::swap(d.sigma_x, d.sigma_z);
+  std::swap(d.noise_x, d.noise_z);
+  std::swap(d.trend_x, d.trend_z);
+  std::swap(d.ddx_max, d.ddz_max);
+  std::swap(d.ddx_min, d.ddz_min);
+  return d;
+}
+
 MeasuredResponse scaled(MeasuredResponse d, double s) {
   for (auto& c : d.ddx) c *= s;
   for (auto& c : d.ddz) c *= s;

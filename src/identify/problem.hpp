@@ -176,6 +176,11 @@ class Problem : public LeastSquares {
 /// with it (the area and the covariances do not change sign).
 MeasuredResponse flipped(MeasuredResponse d, bool x, bool z);
 
+/// The record with x_M'' and z_M'' exchanged (a logger turned by 90 degrees about the axle, or its
+/// columns named the other way round): harmonics, covariances, noise, trends and peaks (the
+/// enclosed area is the same).
+MeasuredResponse swapped(MeasuredResponse d);
+
 /// The record with its accelerations s times as large: read in another unit (s = g: a record in
 /// g read as m/s^2; s = 1/g the other way round).
 MeasuredResponse scaled(MeasuredResponse d, double s);

@@ -497,6 +497,21 @@ TEST(Identify, APoorFitNamesTheUnitOfTheAccelerations) {
   }
 }
 
+// A logger turned by 90 degrees about the axle (or its columns named the other way round): the
+// record's x holds z_M'' and its z holds x_M''. The diagnosis named the unit (g, the best of what
+// it checked then, still a poor fit); it names the exchange now, which fits.
+TEST(Identify, APoorFitNamesAxesExchanged) {
+  const RecordSamples truth_record = noisy_record(truth(17.3e6, false, 0.0), 0.6, 1000, 11);
+  RecordSamples r = truth_record;
+  std::swap(r.ddx_M, r.ddz_M);
+  const std::string all = poor_fit_warnings(base(false, 0.0), r);
+  SCOPED_TRACE(all);
+  EXPECT_NE(all.find("the fit is far better with x_M'' and z_M'' exchanged ("), std::string::npos);
+  EXPECT_NE(all.find("--x-col and --z-col"), std::string::npos);
+  EXPECT_EQ(all.find("still fits poorly"), std::string::npos);
+  EXPECT_EQ(all.find("--units g"), std::string::npos);
+}
+
 // A record of a Table 2 soil (what `oscidrum run --G 30` simulates) is identified on the Table 2
 // scale; on the formulas' scale the same record gives about 21 MN/m^2 with a poor fit (42) as
 // printed does not reproduce Table 2's stiffness). Between the rows (G = 27.3) the scale is
