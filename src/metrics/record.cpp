@@ -1046,6 +1046,18 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
             o.f);
   }
   const bool windowed = o.window_periods > 0;
+  // A slow logger's: the frequency searched only up to a fifth of its sampling rate
+  // (spectral_peak), below the search's own limit. A poor fit at the f found there may be a faster
+  // excitation's harmonic folded below it (39 Hz at 100 samples/s: its third harmonic at 17 Hz).
+  const double searched_up_to = 0.2 / sample_step;
+  const std::string slow_logger =
+      o.f == 0.0 && searched_up_to < o.search.f_max
+          ? " (f was searched up to " + sig4(searched_up_to) + " Hz only, a fifth of the " +
+                sig4(1.0 / sample_step) +
+                " samples/s: a faster excitation, or its harmonic folded below that, is not "
+                "resolved; give --f if the excitation frequency is known, or record at 5 f "
+                "samples/s or more)"
+          : std::string();
   // The record's frequency: given, or from its beginning (windows) or the whole (no windows);
   // the harmonics: given, or as many as the sampling resolves (resolved_harmonics, from the same
   // spectrum's peak: both search the same 4096 samples).
@@ -1256,7 +1268,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       const double spanned = (aw.t_end - aw.t_start) * f0;
       const bool dense = aw.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;
       if (!dense)
-        reasons.push_back("too few samples per period (" + num(aw.samples_per_period) + " < " +
+        reasons.push_back("too few samples per period (" + sig4(aw.samples_per_period) + " < " +
                           std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
                           " harmonics)");
       if (!long_enough)
@@ -1293,7 +1305,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (!(res <= o.gates.max_residual)) {
         a.poor_fit = true;
         reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
-                          num(o.gates.max_residual));
+                          num(o.gates.max_residual) + slow_logger);
       }
       if (std::isfinite(aw.drift) && std::abs(aw.drift) > o.gates.max_drift)
         reasons.push_back("frequency drift " + num(std::round(aw.drift * 1e5) / 1e5) +

@@ -994,6 +994,22 @@ TEST(Record, ASlowLoggersFrequency) {
       EXPECT_NEAR(peak.f, f, 2.0 * peak.df);
     }
   }
+  // At 100 samples/s the search ends at 20 Hz, where the third harmonic folds (3 f - 100 = 17
+  // Hz): the fit there fails, and its reason says why the frequency could not be found.
+  std::vector<double> t, x, z;
+  for (int i = 0; i < 1000; ++i) {
+    const double ti = i / 100.0;
+    t.push_back(ti);
+    x.push_back(10.0 * std::sin(2 * M_PI * f * ti) + 2.0 * std::sin(6 * M_PI * f * ti + 0.3));
+    z.push_back(5.0 * std::sin(4 * M_PI * f * ti + 1.0));
+  }
+  const std::vector<RecordWindow> ws = analyze_windows(t, x, z, {}, WindowOptions{});
+  ASSERT_EQ(ws.size(), 1u);
+  EXPECT_FALSE(ws[0].valid);
+  EXPECT_LE(ws[0].f, 20.0);
+  EXPECT_NE(ws[0].reason.find("f was searched up to 20 Hz only, a fifth of the 100 samples/s"),
+            std::string::npos)
+      << ws[0].reason;
 }
 
 TEST(Record, RejectsBadRecords) {
