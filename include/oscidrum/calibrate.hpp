@@ -34,7 +34,8 @@ struct Reference {
 /// The measured response of a whole record (a reference): its f (windows.f, or estimated), the
 /// gates of analyze_windows over the whole record (windows.window_periods is ignored), and its
 /// harmonics by measure_window. Throws oscidrum::Error with the gate's reason when the record
-/// fails one (a reference must be clean), or for inconsistent input.
+/// fails one (a reference must be clean), when x_M'' or z_M'' is one value in every sample (a
+/// dead channel), or for inconsistent input.
 MeasuredResponse measure_record(std::span<const double> t, std::span<const double> ddx_M,
                                 std::span<const double> ddz_M, const WindowOptions& windows = {},
                                 const MeasureOptions& measure = {});

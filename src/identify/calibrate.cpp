@@ -246,6 +246,8 @@ MeasuredResponse measure_record(std::span<const double> t, std::span<const doubl
   if (ws.empty()) throw Error("the record has no window to analyse");
   const RecordWindow& w = ws.front();
   if (!w.valid) throw Error("the record fails a quality gate: " + w.reason);
+  detail::require_live_channels(ddx_M.subspan(w.first, w.count), ddz_M.subspan(w.first, w.count),
+                                "the record");
   const std::span<const double> tw = std::span<const double>(local).subspan(w.first, w.count);
   MeasuredResponse d = measure_window(tw, ddx_M.subspan(w.first, w.count),
                                       ddz_M.subspan(w.first, w.count), w.f, measure);

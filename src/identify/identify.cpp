@@ -4,8 +4,10 @@
 #include "oscidrum/identify.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <limits>
 #include <optional>
@@ -36,6 +38,15 @@ void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
       static_cast<int>(data.ddz.size()) < o.harmonics)
     throw Error("identify: harmonics must be in [1, " + std::to_string(data.ddx.size()) +
                 "] (the measured ones); got " + std::to_string(o.harmonics));
+  // A channel with no signal and no noise at all: one value in every sample of the window.
+  const auto dead = [](const std::vector<std::complex<double>>& c, double noise) {
+    return noise == 0.0 &&
+           std::all_of(c.begin(), c.end(), [](std::complex<double> v) { return v == 0.0; });
+  };
+  for (const bool x : {true, false})
+    if (!((x ? data.sigma_x : data.sigma_z) > 0) &&
+        dead(x ? data.ddx : data.ddz, x ? data.noise_x : data.noise_z))
+      throw Error("identify: " + detail::dead_channel(x, "the window"));
   if (!(data.sigma_x > 0 && data.sigma_z > 0))
     throw Error("identify: the uncertainties of the measured harmonics must be > 0");
 }

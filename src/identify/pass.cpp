@@ -51,6 +51,13 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
     } else {
       try {
         const std::span<const double> tw = std::span<const double>(local).subspan(w.first, w.count);
+        // A channel of one value (analyze's window is valid with the other alone).
+        try {
+          detail::require_live_channels(ddx.subspan(w.first, w.count),
+                                        ddz.subspan(w.first, w.count), "the window");
+        } catch (const Error& e) {
+          throw Error(std::string("identify: ") + e.what());
+        }
         MeasuredResponse d = measure_window(tw, ddx.subspan(w.first, w.count),
                                             ddz.subspan(w.first, w.count), w.f, mo);
         d.t_ref += t0;

@@ -508,6 +508,23 @@ MeasuredResponse flipped(MeasuredResponse d, bool x, bool z) {
   return d;
 }
 
+std::string dead_channel(bool x, const std::string& where) {
+  return std::string(x ? "x_M''" : "z_M''") + " is one value in every sample of " + where +
+         " (a dead or disconnected channel, or a column that is not the drum's " +
+         (x ? "horizontal" : "vertical") +
+         " acceleration): the model is fitted to x_M'' and z_M'' together; give the logger's " +
+         (x ? "horizontal channel with --x-col" : "vertical channel with --z-col");
+}
+
+void require_live_channels(std::span<const double> ddx, std::span<const double> ddz,
+                           const std::string& where) {
+  for (const bool x : {true, false}) {
+    const std::span<const double> y = x ? ddx : ddz;
+    if (!y.empty() && std::all_of(y.begin(), y.end(), [&](double v) { return v == y.front(); }))
+      throw Error(dead_channel(x, where));
+  }
+}
+
 MeasuredResponse swapped(MeasuredResponse d) {
   std::swap(d.ddx, d.ddz);
   std::swap(d.cov_x, d.cov_z);

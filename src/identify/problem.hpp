@@ -176,6 +176,14 @@ class Problem : public LeastSquares {
 /// with it (the area and the covariances do not change sign).
 MeasuredResponse flipped(MeasuredResponse d, bool x, bool z);
 
+/// Why a record (`where`: "the window", "the record") whose x_M'' (x) or z_M'' is one value in
+/// every sample cannot be fitted.
+std::string dead_channel(bool x, const std::string& where);
+
+/// Throws oscidrum::Error (dead_channel) when x_M'' or z_M'' is one value in every sample.
+void require_live_channels(std::span<const double> ddx, std::span<const double> ddz,
+                           const std::string& where);
+
 /// The record with x_M'' and z_M'' exchanged (a logger turned by 90 degrees about the axle, or its
 /// columns named the other way round): harmonics, covariances, noise, trends and peaks (the
 /// enclosed area is the same).

@@ -967,6 +967,8 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     const RecordMetrics& m = w.metrics;  // the fit of the whole window
     const double whole = periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
     if (!(whole > 0.0)) continue;
+    // One value throughout (a dead channel): its fitted "RMS" is the round-off of a constant.
+    if (std::all_of(y.begin(), y.end(), [&](double v) { return v == y.front(); })) continue;
     const double r1 = periodic_rms(c == 0 ? a.hx : a.hz);
     const double r2 = periodic_rms(c == 0 ? b.hx : b.hz);
     // The residuals are relative to the RMS about the mean (relative_rms).

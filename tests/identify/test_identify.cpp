@@ -3,6 +3,7 @@
 // with the excitation 1 % away from 39 Hz, 5 % noise and a slow drift.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -809,6 +810,40 @@ TEST(Gates, GapsAreFlaggedOnlyWhereTheyAre) {
   EXPECT_NE(one[0].reason.find("windows (--window 40) fit the stretches on either side"),
             std::string::npos)
       << one[0].reason;
+}
+
+// A dead channel (one value in every sample: 1 g of a vertical sensor that reads nothing else,
+// or zeros): analyze's windows stay valid on the other channel, without a change gate computed on
+// the constant's round-off (it failed windows as 'the RMS of z_M'' changes by -7 %'), and
+// identify and calibrate refuse it by name where they fitted it with reduced chi^2 1e66.
+TEST(Gates, ADeadChannelIsNamed) {
+  const RecordSamples live = noisy_record(truth(17.3e6, false, 0.0), 1.2, 1000);
+  for (const double level : {0.0, 9.80665}) {
+    SCOPED_TRACE(level);
+    RecordSamples r = live;
+    std::fill(r.ddz_M.begin(), r.ddz_M.end(), level);
+    const std::vector<RecordWindow> ws = windows(r, kF);
+    ASSERT_FALSE(ws.empty());
+    for (const RecordWindow& w : ws) EXPECT_TRUE(w.valid) << w.reason;
+    WindowOptions wo;
+    wo.window_periods = 20;
+    IdentifyOptions o;
+    o.profile = false;
+    for (const PassEstimate& p : identify_pass(Case{}, r.t, r.ddx_M, r.ddz_M, {}, wo, o)) {
+      EXPECT_FALSE(p.valid);
+      EXPECT_NE(p.reason.find("z_M'' is one value in every sample of the window"),
+                std::string::npos)
+          << p.reason;
+    }
+    try {
+      (void)measure_record(r.t, r.ddx_M, r.ddz_M);
+      ADD_FAILURE() << "a dead channel measured";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("z_M'' is one value in every sample of the record"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(Gates, TooFewSamplesPerPeriodForTheHarmonics) {
