@@ -13,6 +13,7 @@
 #include "oscidrum/simulate.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
+#include "util/one_value.hpp"
 #include "util/small_angle.hpp"
 
 namespace oscidrum::detail {
@@ -520,8 +521,7 @@ void require_live_channels(std::span<const double> ddx, std::span<const double> 
                            const std::string& where) {
   for (const bool x : {true, false}) {
     const std::span<const double> y = x ? ddx : ddz;
-    if (!y.empty() && std::all_of(y.begin(), y.end(), [&](double v) { return v == y.front(); }))
-      throw Error(dead_channel(x, where));
+    if (one_value(y)) throw Error(dead_channel(x, where));
   }
 }
 

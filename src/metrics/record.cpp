@@ -22,6 +22,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
 #include "util/format.hpp"
+#include "util/one_value.hpp"
 #include "util/small_angle.hpp"
 
 namespace oscidrum {
@@ -675,12 +676,7 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   {
     // Both channels the same value in every sample (a dead logger, a drum at rest): no
     // oscillation, whatever round-off the means leave below.
-    const auto constant = [&](std::span<const double> y) {
-      const auto [lo, hi] =
-          std::minmax_element(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n_seg));
-      return *lo == *hi;
-    };
-    if (constant(ddx) && constant(ddz))
+    if (one_value(ddx.first(n_seg)) && one_value(ddz.first(n_seg)))
       throw Error("record: the accelerations are constant (x_M'' = " + num(ddx[0]) +
                   ", z_M'' = " + num(ddz[0]) + " m/s^2 in every sample" +
                   (n_seg < t.size() ? " of the " + std::to_string(n_seg) + " searched" : "") +
@@ -968,7 +964,7 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     const double whole = periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
     if (!(whole > 0.0)) continue;
     // One value throughout (a dead channel): its fitted "RMS" is the round-off of a constant.
-    if (std::all_of(y.begin(), y.end(), [&](double v) { return v == y.front(); })) continue;
+    if (detail::one_value(y)) continue;
     const double r1 = periodic_rms(c == 0 ? a.hx : a.hz);
     const double r2 = periodic_rms(c == 0 ? b.hx : b.hz);
     // The residuals are relative to the RMS about the mean (relative_rms).
@@ -1238,11 +1234,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       }
     // Both channels one value throughout (a logger that holds its last value, a dead channel,
     // the exciter off): nothing to fit, and the gates' ratios of a zero signal mean nothing.
-    const auto one_value = [](std::span<const double> y) {
-      const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
-      return *lo == *hi;
-    };
-    const bool flat = one_value(xw) && one_value(zw);
+    const bool flat = detail::one_value(xw) && detail::one_value(zw);
     // The window analysed about the frequency f0 (the tracked one, or one searched for): its
     // gates, f refined, the fit and its metrics.
     struct Attempt {

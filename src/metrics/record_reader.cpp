@@ -22,6 +22,7 @@
 #include "metrics/median_step.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/record.hpp"
+#include "util/one_value.hpp"
 
 namespace oscidrum {
 namespace {
@@ -1861,9 +1862,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   for (const auto& [channel, values] :
        {std::pair<const char*, const std::vector<double>*>{"x_M''", &out.ddx_M},
         {"z_M''", &out.ddz_M}}) {
-    const auto [lo, hi] = std::minmax_element(values->begin(), values->end());
-    if (values->size() > 1 && *lo == *hi)
-      out.notes.push_back(std::string(channel) + ": the same value (" + format_factor(*lo) +
+    if (values->size() > 1 && detail::one_value(*values))
+      out.notes.push_back(std::string(channel) + ": the same value (" +
+                          format_factor(values->front()) +
                           " m/s^2) in every row: a dead or disconnected channel, or a drum that "
                           "does not move that way; what compares phases with it (psi_xz, kb, "
                           "the ratios to its fundamental) is NaN");
