@@ -307,7 +307,10 @@ double key_flag_value(const Field& f, const std::string& flag, const std::string
   if (!shown)
     throw Error(flag + ": must be " + number_rule() + " [" +
                 (f.display_unit ? f.display_unit : f.unit) + "]; got '" + text + "'");
-  if (!f.display_unit) return *shown;
+  // The unit the key is typed in elsewhere on the command line: its case flag's. Only --G takes
+  // its field's display unit (MN/m^2); --ksh, --csh, ... and --set take SI, although tables show
+  // those in MN/m and kN s/m.
+  if (!f.display_unit || std::string_view(f.key) != "soil.G") return *shown;
   const double value = *shown * f.display_scale;
   // A value typed in SI where the flag takes the display unit (--from 20e6 for soil.G, meant as
   // 20 MN/m^2): out of the field's range as typed, within it as SI. Said with what was meant.

@@ -71,9 +71,9 @@ void apply(const CaseOptions& o, io::CaseSpec& spec);
 double soil_G_flag(double value);
 
 /// The value of a flag that gives a value of the field `f` (--from/--to of continue and diagram)
-/// in its SI unit: the text is in the unit the key is typed in, the display unit where it has one
-/// (--from 20 for soil.G is 20 MN/m^2). Throws oscidrum::Error "FLAG: must be ..." for text that is
-/// not a decimal number.
+/// in its SI unit: the text is in the unit the key is typed in on the command line, MN/m^2 for
+/// soil.G (as --G: --from 20 is 20 MN/m^2), SI for every other key (as --ksh, --set). Throws
+/// oscidrum::Error "FLAG: must be ..." for text that is not a decimal number.
 double key_flag_value(const Field& f, const std::string& flag, const std::string& text);
 
 /// The case a command runs: the case file `config` (if any), then the flags and --set of `o`,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -43,6 +44,31 @@ TEST(CliDiagram, WritesThePointsOfEveryValue) {
   // stdout: the table, one line per value after the header and its rule.
   EXPECT_NE(o.out.find("periodic"), std::string::npos) << o.out;
   EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 2 + 6) << o.out;
+}
+
+// --from/--to are typed in the unit of the key's case flag: MN/m^2 for soil.G (as --G), SI for
+// the soil's coefficients (as --ksh), although the table shows ksh in MN/m.
+TEST(CliDiagram, TheRangeIsInTheUnitOfTheKeysFlag) {
+  TempDir dir;
+  {
+    std::ofstream(dir / "coef.toml") << "[soil]\ninput = \"coefficients\"\nksh = 1e7\nksv = 1e8\n"
+                                        "csh = 1e5\ncsv = 1e5\n";
+  }
+  const Outcome o =
+      run({"diagram", dir / "coef.toml", "--param", "soil.ksh", "--from", "1e7", "--to", "2e7",
+           "--steps", "1", "--periods", "20", "--json", dir / "k.json", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "k.json"));
+  EXPECT_EQ(j["unit"], "N/m");
+  EXPECT_EQ(j["from"].get<double>(), 1e7);
+  EXPECT_EQ(j["to"].get<double>(), 2e7);
+  EXPECT_EQ(j["values"][0]["verdict"], "periodic");
+  EXPECT_NE(o.out.find("soil.ksh [MN/m]"), std::string::npos) << o.out;
+  const Outcome g =
+      run({"diagram", "--param", "soil.G", "--set", "soil.input=modulus", "--from", "20", "--to",
+           "30", "--steps", "1", "--periods", "20", "--json", dir / "g.json", "--quiet"});
+  ASSERT_EQ(g.code, 0) << g.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "g.json"))["from"].get<double>(), 20e6);
 }
 
 TEST(CliDiagram, BadInputIsRefusedWithOneLineNamingTheFlag) {
