@@ -80,7 +80,7 @@
     "steady period in excitation periods (0: none found)")                                        \
   X(double, final_change, 0.0, "-", "final change",                                               \
     "last period-to-period change of the state, scaled by its range over a period (see "          \
-    "numerics.steady_tol)")                                                                       \
+    "numerics.steady_tol; empty when the run ended before two period boundaries)")                \
   X(long, steps, 0, "-", "integrator steps", "accepted integrator steps")                         \
   X(long, rejected_steps, 0, "-", "rejected steps", "rejected trial steps")                       \
   X(long, rhs_evaluations, 0, "-", "RHS evaluations", "right-hand-side evaluations")              \
@@ -90,7 +90,7 @@
   X(long, inconsistent_slip_ends, 0, "-", "inconsistent slip ends",                               \
     "slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken") \
   X(double, switches_per_period, 0.0, "-", "switches per period",                                 \
-    "stick/slip switches per excitation period in the sampled window")                            \
+    "stick/slip switches per excitation period in the sampled window (empty without one)")        \
   X(double, max_slip_residual, 0.0, "-", "max slip residual (39)",                                \
     "largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = "  \
     "P0 (a force ratio), over the result's trajectory: the run from rest and the sampled "        \
@@ -109,7 +109,8 @@
     "cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations "  \
     "weighted by their cost) / the right-hand-side evaluations of one sampled period")            \
   X(double, phi_drift, 0.0, "rad", "phi drift per period",                                        \
-    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r")                  \
+    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r (gross_slip: "     \
+    "over the last period integrated; empty for any other status)")                               \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
     "why shooting fell back to the transient method (empty if it did not)")                       \
   X(std::string, contact_mode, "", "-", "contact mode",                                           \

@@ -53,7 +53,8 @@ struct BasicShootingOutcome {
   int newton_iterations = 0;  ///< Newton steps taken (each one period with sensitivities)
   int period_maps = 0;        ///< period maps evaluated with sensitivities (incl. trials)
   int plain_maps = 0;         ///< period maps evaluated without them (chord steps)
-  double final_change = 0.0;  ///< scaled |P(z) - z| at the last evaluated iterate [-]
+  /// scaled |P(z) - z| at the last evaluated iterate [-]; NaN before the first
+  double final_change = std::numeric_limits<double>::quiet_NaN();
   /// The last Newton step was taken without evaluating the period map at its result (its
   /// predicted residual was far below the threshold); the caller's plain integration of the
   /// sampled periods from the orbit confirms it.

@@ -128,6 +128,7 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     result.message = shot.message;
     result.events = shot.recent_events;
     d.method = SteadyMethod::shooting;
+    d.final_change = shot.final_change;
     d.max_slip_residual = flow.counters().max_slip_residual;
     d.min_N = flow.counters().min_N;
     return true;
@@ -553,9 +554,16 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
       detail::operating_mode(model.parameters().roller.type, result.diagnostics);
   // Without a sampled window (a run that ended before sampling: gross slip, contact lost, ...)
   // no time was spent in any phase of it: unknown, not 0 (a spinning drum with zero slip time).
-  if (result.samples.size() == 0)
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (result.samples.size() == 0) {
     result.stick_time = result.slip_positive_time = result.slip_negative_time = result.flight_time =
-        std::numeric_limits<double>::quiet_NaN();
+        kNaN;
+    result.diagnostics.switches_per_period = kNaN;  // counted in the sampled window
+  }
+  // The drift of phi per period is the steady state's; a gross slip keeps the drift of its last
+  // period (what the status reports); any other run that is not steady has none, not 0.
+  if (!ok(result.status) && result.status != Status::gross_slip)
+    result.diagnostics.phi_drift = kNaN;
   return result;
 }
 

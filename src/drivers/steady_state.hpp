@@ -26,9 +26,10 @@ namespace oscidrum::detail {
 struct SearchOutcome {
   Status status = Status::steady_state;
   std::string message;
-  int multiplicity = 0;              ///< steady period in excitation periods (0: none found)
-  int periods = 0;                   ///< boundary index n reached
-  double final_change = 0.0;         ///< last period-to-period change (scaled) [-]
+  int multiplicity = 0;  ///< steady period in excitation periods (0: none found)
+  int periods = 0;       ///< boundary index n reached
+  /// last period-to-period change (scaled) [-]; NaN until two period boundaries were reached
+  double final_change = std::numeric_limits<double>::quiet_NaN();
   double phi_drift = 0.0;            ///< gross slip: the drift of phi over the last period [rad]
   std::vector<Event> recent_events;  ///< the last events before a stop other than steady/max
 };

@@ -569,6 +569,37 @@ TEST(Simulate, StepBudgetStopsTheRun) {
   const Result r = simulate(c);
   EXPECT_EQ(r.status, Status::budget_exceeded) << r.message;
   EXPECT_NE(r.message.find("numerics.max_steps_per_period"), std::string::npos);
+  // No sampled window, no drift of a steady state: unknown (NaN: empty in the CSV, null in
+  // JSON), not 0, which would read as a switch-free motion that does not slip. The change of its
+  // last whole period was measured.
+  EXPECT_TRUE(std::isnan(r.diagnostics.switches_per_period));
+  EXPECT_TRUE(std::isnan(r.diagnostics.phi_drift));
+  EXPECT_GT(r.diagnostics.final_change, c.numerics.steady_tol);
+  // A drum of almost no inertia: stopped within its first period, by either method, before any
+  // period-to-period change (not a change of 0, a perfectly converged motion).
+  for (SteadyMethod method : {SteadyMethod::shooting, SteadyMethod::transient}) {
+    Case light = stick_slip_case(25);
+    light.roller.I = 1e-9;
+    light.numerics.method = method;
+    const Result t = simulate(light);
+    ASSERT_EQ(t.status, Status::budget_exceeded) << t.message;
+    EXPECT_LE(t.diagnostics.periods_simulated, 1);
+    EXPECT_TRUE(std::isnan(t.diagnostics.final_change)) << t.diagnostics.final_change;
+    EXPECT_TRUE(std::isnan(t.diagnostics.phi_drift));
+  }
+}
+
+// A run that reaches numerics.max_periods measured its last change (above the tolerance) and
+// samples periods for inspection, but has no steady drift of phi.
+TEST(Simulate, MaxPeriodsReachedHasItsChangeButNoSteadyDrift) {
+  Case c = stick_slip_case(25);
+  c.numerics.method = SteadyMethod::transient;
+  c.numerics.max_periods = 3;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_GT(r.diagnostics.final_change, c.numerics.steady_tol);
+  EXPECT_TRUE(std::isfinite(r.diagnostics.switches_per_period));
+  EXPECT_TRUE(std::isnan(r.diagnostics.phi_drift));
 }
 
 // Cancellation is polled at every step: a run stops within a step of being asked to.
