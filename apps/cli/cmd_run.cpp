@@ -99,6 +99,10 @@ int run(const RunOptions& o) {
       warn(std::string("no metrics: ") + e.what());
     }
   }
+  if (interrupted()) {  // while the metrics were computed: nothing is written
+    std::cerr << "oscidrum: interrupted; nothing written\n";
+    return interrupted_exit_code();
+  }
   std::string csv_path = o.csv, json_path = o.json;
   if (!o.plot_dir.empty()) {
     std::error_code ec;
@@ -130,6 +134,7 @@ int run(const RunOptions& o) {
               << result.message << "\n";
   if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir))
     return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
+  if (interrupted()) return interrupted_exit_code();  // during the writing: the files are whole
   return ok(result.status) ? kExitOk : kExitCaseFailed;
 }
 

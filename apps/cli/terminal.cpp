@@ -10,6 +10,8 @@
 #include <ctime>
 #include <thread>
 
+#include "oscidrum_io/files.hpp"
+
 namespace oscidrum::cli {
 namespace {
 
@@ -47,6 +49,8 @@ void watch(sigset_t set) {
     left = {0, kGraceNanoseconds - spent};
   }
   if (const pid_t child = g_child.load(); child > 0) ::kill(child, SIGKILL);
+  // The command did not stop in time: no temporary output file of it may stay behind.
+  io::remove_pending_outputs();
   static const char message[] = "\noscidrum: interrupted\n";
   (void)!::write(STDERR_FILENO, message, sizeof message - 1);
   ::_exit(128 + sig);

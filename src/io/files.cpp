@@ -16,6 +16,8 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <streambuf>
 #include <utility>
 #include <vector>
@@ -89,6 +91,34 @@ OutputTarget output_target(const std::string& path, bool regular_only) {
   }
 }
 
+namespace {
+
+// The temporary files of the OutputFiles alive and not yet committed or discarded
+// (remove_pending_outputs): the one state of this file that is the process's, as the files are.
+std::mutex& pending_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::set<std::string>& pending_paths() {
+  static std::set<std::string> paths;
+  return paths;
+}
+void track_pending(const std::string& path, bool pending) {
+  const std::lock_guard<std::mutex> lock(pending_mutex());
+  if (pending)
+    pending_paths().insert(path);
+  else
+    pending_paths().erase(path);
+}
+
+}  // namespace
+
+void remove_pending_outputs() noexcept {
+  const std::lock_guard<std::mutex> lock(pending_mutex());
+  for (const std::string& path : pending_paths()) ::unlink(path.c_str());
+  pending_paths().clear();
+}
+
 OutputFile::OutputFile(std::string path, bool regular_only)
     : path_(std::move(path)), target_(output_target(path_, regular_only)) {
   if (target_.direct) {
@@ -104,6 +134,7 @@ OutputFile::OutputFile(std::string path, bool regular_only)
     if (fd >= 0) {
       ::close(fd);
       pending_ = true;
+      track_pending(write_path_, true);
       return;
     }
     if (errno != EEXIST || attempt >= 100) {
@@ -120,7 +151,10 @@ OutputFile::OutputFile(std::string path, bool regular_only)
 OutputFile::~OutputFile() { discard(); }
 
 void OutputFile::discard() {
-  if (pending_) ::unlink(write_path_.c_str());
+  if (pending_) {
+    ::unlink(write_path_.c_str());
+    track_pending(write_path_, false);
+  }
   pending_ = false;
 }
 
@@ -153,6 +187,7 @@ void OutputFile::commit() {
   }
   if (std::rename(write_path_.c_str(), target_.path.c_str()) != 0) fail(errno);
   pending_ = false;
+  track_pending(write_path_, false);
 }
 
 namespace {

@@ -47,6 +47,35 @@ std::map<std::size_t, std::string> done(const Journal& j) {
   return rows;
 }
 
+// A process ended without unwinding (the CLI after an interrupt's grace period) first removes
+// the temporary files of the outputs still being written; committed and discarded ones are not
+// touched, and the OutputFile's own discard afterwards does no harm.
+TEST(Files, PendingOutputsAreRemovedOnRequest) {
+  TempDir dir;
+  const auto entries = [&] {
+    return std::distance(std::filesystem::directory_iterator(dir.file("")),
+                         std::filesystem::directory_iterator{});
+  };
+  write_file_atomic(dir.file("done.csv"), "done\n");
+  {
+    OutputFile a(dir.file("a.csv")), b(dir.file("b.csv"));
+    EXPECT_TRUE(std::filesystem::exists(a.write_path()));
+    EXPECT_EQ(entries(), 3);
+    b.discard();
+    EXPECT_EQ(entries(), 2);
+    remove_pending_outputs();
+    EXPECT_FALSE(std::filesystem::exists(a.write_path()));
+    EXPECT_EQ(entries(), 1);
+  }
+  EXPECT_EQ(read_file(dir.file("done.csv")), "done\n");
+  // A committed file is no longer pending.
+  OutputFile c(dir.file("c.csv"));
+  std::ofstream(c.write_path()) << "c\n";
+  c.commit();
+  remove_pending_outputs();
+  EXPECT_EQ(read_file(dir.file("c.csv")), "c\n");
+}
+
 TEST(Files, JournalResumesAndDropsATornLine) {
   TempDir dir;
   const std::string path = dir.file("r.csv.journal");

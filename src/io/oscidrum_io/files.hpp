@@ -57,6 +57,12 @@ class OutputFile {
   bool pending_ = false;  ///< a temporary file exists and is not committed
 };
 
+/// Delete every temporary file of an OutputFile of this process that is neither committed nor
+/// discarded yet: for a process about to end without unwinding (the CLI's forced exit after an
+/// interrupt's grace period), which would otherwise leave TARGET.tmp.PID.N files beside the
+/// targets. Safe from any thread; never throws.
+void remove_pending_outputs() noexcept;
+
 /// Write `text` to `path` through an OutputFile: readers of a regular file see the old file or
 /// the new one, never a part. Throws oscidrum::Error "cannot write PATH: reason".
 void write_file_atomic(const std::string& path, std::string_view text);
