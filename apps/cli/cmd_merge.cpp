@@ -65,7 +65,8 @@ void add_merge_command(CLI::App& app, Action& action) {
       "shard comes from 'oscidrum sweep study.toml --shard I/N --out FILE'; the merge is byte for "
       "byte the CSV one unsharded sweep writes. It refuses files that are not shard outputs, "
       "shards of another study or of another split (N), a shard given twice, a missing shard and "
-      "a shard whose rows are not exactly its cases. The HDF5 files of shards (sweep --shard I/N "
+      "a shard whose rows are not exactly its cases or were edited or damaged (cells, statuses, "
+      "numbers). The HDF5 files of shards (sweep --shard I/N "
       "--hdf5 FILE) merge the same way into the HDF5 file of the whole study.");
   sub->footer(
       "Examples:\n"

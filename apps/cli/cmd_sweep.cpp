@@ -367,7 +367,23 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   }
   if (out.journal) {
     // Streamed from the journal into the row store: a resumed million-case sweep holds no rows.
+    const std::vector<std::string> header = io::csv_split(p.header);
     out.journal->for_each_done([&](std::size_t index, const std::string& row) {
+      // A row the sweep did not write as it reads (edited, damaged) is refused, never copied
+      // into the results: its cells, status and numbers, and its swept values, the case's.
+      std::string defect = io::study_row_defect(header, row);
+      if (defect.empty()) {
+        const std::vector<std::string> cells = io::csv_split(row);
+        const std::vector<io::Value>& values = p.study.varied[index];
+        for (std::size_t k = 0; k < values.size() && defect.empty(); ++k)
+          if (cells[1 + k] != io::format_value(values[k]))
+            defect = "its " + p.study.keys[k] + " is '" + cells[1 + k] + "', the case's is '" +
+                     io::format_value(values[k]) + "'";
+      }
+      if (!defect.empty())
+        throw Error("the journal " + out.journal->path() +
+                    " is damaged or edited: the row of case " + std::to_string(index) +
+                    " cannot be this sweep's (" + defect + "); run with --restart to discard it");
       if (!p.mine[index] || out.rows->has(index)) return;
       if (!o.cases_dir.empty() &&
           !std::filesystem::exists(o.cases_dir + "/" + case_file_name(index, p.total)))

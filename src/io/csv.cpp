@@ -207,6 +207,43 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
   return join(r);
 }
 
+std::string study_row_defect(const std::vector<std::string>& header, std::string_view row) {
+  const std::vector<std::string> cells = csv_split(row);
+  if (cells.size() != header.size())
+    return "it has " + std::to_string(cells.size()) + " cells where the header has " +
+           std::to_string(header.size());
+  const auto status_at = std::find(header.begin(), header.end(), label("status", "-"));
+  if (status_at == header.end()) return "the header has no column status[-]";
+  const std::size_t s = static_cast<std::size_t>(status_at - header.begin());
+  const auto index_end = std::find_if_not(cells[0].begin(), cells[0].end(),
+                                          [](char ch) { return ch >= '0' && ch <= '9'; });
+  if (cells[0].empty() || index_end != cells[0].end())
+    return "its first cell '" + cells[0] + "' is not a case index";
+  const std::string& status = cells[s];
+  const auto known = statuses();
+  if (status != "invalid" && std::none_of(known.begin(), known.end(),
+                                          [&](const StatusInfo& k) { return status == k.name; }))
+    return "its status '" + status + "' is not one of oscidrum's statuses";
+  // After status and message: the diagnostics (some of them text), then the metrics (numbers).
+  std::size_t c = s + 2;
+  const auto number = [](const std::string& cell) {
+    if (cell.empty()) return true;
+    char* end = nullptr;
+    (void)std::strtod(cell.c_str(), &end);
+    return end == cell.c_str() + cell.size() && cell.find_first_of(" \t") == std::string::npos;
+  };
+  for (const DiagnosticOutput& d : diagnostic_outputs()) {
+    if (c >= cells.size()) break;
+    if (!is_text(d) && !number(cells[c]))
+      return "its cell '" + cells[c] + "' in column " + header[c] + " is not a number";
+    ++c;
+  }
+  for (; c < cells.size(); ++c)
+    if (!number(cells[c]))
+      return "its cell '" + cells[c] + "' in column " + header[c] + " is not a number";
+  return {};
+}
+
 int NumericTable::find(std::string_view name) const {
   for (std::size_t c = 0; c < header.size(); ++c) {
     const std::string& h = header[c];

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "oscidrum/error.hpp"
+#include "oscidrum_io/csv.hpp"
 
 namespace oscidrum::io {
 namespace {
@@ -120,6 +121,7 @@ std::string merge_csv_shards(const std::vector<ShardFile>& files) {
   check_shard_set(infos, paths);
   const std::size_t total = infos.front().n_cases;
   std::string header;
+  std::vector<std::string> header_cells;
   std::vector<std::string_view> rows(total);
   std::vector<bool> have(total, false);
   for (std::size_t i = 0; i < files.size(); ++i) {
@@ -130,14 +132,16 @@ std::string merge_csv_shards(const std::vector<ShardFile>& files) {
     if (h_end == std::string_view::npos)
       throw Error(path + " is damaged: no header line after the shard line");
     const std::string_view h = text.substr(pos, h_end - pos);
-    if (i == 0)
+    if (i == 0) {
       header = std::string(h);
-    else if (h != header)
+      header_cells = csv_split(header);
+    } else if (h != header)
       throw Error(path + " has other columns than " + paths.front() +
                   " (a different --harmonics?); merge only the shards of one sweep");
     pos = h_end + 1;
-    std::size_t n_rows = 0;
+    std::size_t n_rows = 0, line = 2;
     while (pos < text.size()) {
+      ++line;
       const std::size_t end = text.find('\n', pos);
       if (end == std::string_view::npos)
         throw Error(path + " is damaged: its last line is cut off");
@@ -152,6 +156,10 @@ std::string merge_csv_shards(const std::vector<ShardFile>& files) {
         throw Error(path + " (shard " + infos[i].shard.text() + ") holds case " +
                     std::to_string(index) + ", which belongs to another shard");
       if (have[index]) throw Error(path + " holds case " + std::to_string(index) + " twice");
+      if (const std::string defect = study_row_defect(header_cells, row); !defect.empty())
+        throw Error(path + " is damaged or edited: the row of case " + std::to_string(index) +
+                    " (line " + std::to_string(line) + ") cannot be a sweep's: " + defect +
+                    "; run that shard again");
       rows[index] = row;
       have[index] = true;
       ++n_rows;

@@ -178,6 +178,26 @@ TEST(CliSweep, ResumeRefusesAJournalOfAnotherStudy) {
   Outcome changed = run({"sweep", study, "--out", out, "--resume", "--set", "roller.m=1900"});
   EXPECT_EQ(changed.code, 2);
   EXPECT_NE(changed.err.find("belongs to a different study"), std::string::npos);
+  // A row edited by hand (its swept value, or its status) is refused, not copied into the
+  // results; the journal is left as it is.
+  const std::string journal = slurp(out + ".journal");
+  const std::size_t row = journal.find('\n') + 1, value = journal.find(',', row) + 1;
+  for (const auto& [from, to, why] :
+       {std::tuple<std::size_t, std::size_t, std::string>{
+            value, journal.find(',', value), "its soil.G is '99', the case's is '5000000'"},
+        {journal.find(',', value) + 1, journal.find(',', journal.find(',', value) + 1),
+         "its status '99' is not one of oscidrum's statuses"}}) {
+    std::string edited = journal;
+    edited.replace(from, to - from, "99");
+    std::ofstream(out + ".journal", std::ios::trunc) << edited;
+    const Outcome refused = run({"sweep", study, "--out", out, "--resume"});
+    EXPECT_EQ(refused.code, 2) << refused.err;
+    EXPECT_NE(refused.err.find("is damaged or edited: the row of case 0 cannot be this sweep's (" +
+                               why + "); run with --restart"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_EQ(slurp(out + ".journal"), edited);
+  }
   changed = run({"sweep", study, "--out", out, "--restart", "--set", "roller.m=1900", "--set",
                  "numerics.max_periods=5", "-q"});
   EXPECT_EQ(changed.code, 1) << changed.err;  // max_periods_reached everywhere

@@ -49,6 +49,14 @@ std::string study_csv_header(const StudyColumns& columns);
 std::string study_csv_row(const StudyColumns& columns, std::size_t index,
                           const std::vector<Value>& varied, const CaseOutcome& outcome);
 
+/// Why `row` cannot be a row of a study CSV with the header `header` (study_csv_header, split
+/// by csv_split), or empty when it can: the same number of cells as the header, a case index, a
+/// known status (or "invalid") in the column status[-], and in every numeric column of the
+/// diagnostics and metrics a number (nan and inf included) or nothing. For the readers of rows
+/// a sweep wrote earlier (a merge's shards, a resumed sweep's journal): an edited or damaged row
+/// is refused, never copied into a study's results. The swept values are the caller's to check.
+std::string study_row_defect(const std::vector<std::string>& header, std::string_view row);
+
 /// A CSV file of numbers with one header line (e.g. a measured acceleration record).
 struct NumericTable {
   std::vector<std::string> header;           ///< column names as written
