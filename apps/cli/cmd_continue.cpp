@@ -35,6 +35,7 @@ struct ContinueOptions {
   std::string config;
   CaseOptions c;
   std::string key, csv, json, hdf5, bifurcations, plot, plot_metric = "area", format = "table";
+  CLI::Option* plot_metric_flag = nullptr;
   std::string from_text, to_text;
   BranchOptions branch;
   bool quiet = false;
@@ -87,6 +88,31 @@ std::string points_csv(const Branch& root) {
     }
   }
   return out;
+}
+
+// --plot-metric before the branch is followed: a numeric column of points_csv (a metric, or one
+// of the orbit's own columns), never found missing after the whole run.
+void check_plot_metric(const std::string& name) {
+  static const char* const kOwn[] = {"arclength", "multiplicity",        "stable",
+                                     "unstable",  "max_modulus",         "dq_ds",
+                                     "min_N",     "corrector_iterations"};
+  for (const char* own : kOwn)
+    if (name == own) return;
+  std::string metrics;
+  for (const MetricOutput& m : metric_outputs())
+    if (std::holds_alternative<double Metrics::*>(m.member)) {
+      if (name == m.name) return;
+      metrics += (metrics.empty() ? "" : ", ") + std::string(m.name);
+    }
+  // A multiplier's part: mu1_re, mu2_im, ...
+  const std::size_t us = name.rfind('_');
+  if (name.starts_with("mu") && us != std::string::npos && us > 2 &&
+      (name.substr(us) == "_re" || name.substr(us) == "_im") &&
+      name.find_first_not_of("0123456789", 2) == us)
+    return;
+  throw Error("--plot-metric " + name +
+              ": not a numeric column of the branch CSV (docs/bifurcations.md): a metric (" +
+              metrics + "), max_modulus, min_N, dq_ds, ... or a multiplier's part, mu1_re, mu1_im");
 }
 
 std::string bifurcations_csv(const Branch& root) {
@@ -203,6 +229,10 @@ int run(ContinueOptions o) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
       throw Error("--plot " + o.plot + " needs --csv FILE (the plot is drawn from it)");
+    check_plot_metric(o.plot_metric);
+  } else if (o.plot_metric_flag && o.plot_metric_flag->count() > 0) {
+    throw Error("--plot-metric " + o.plot_metric +
+                " needs --plot FILE (the figure it is drawn in)");
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
@@ -309,8 +339,11 @@ void add_continue_command(CLI::App& app, Action& action) {
                   "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "
                   "stable solid, unstable dashed, bifurcations marked")
       ->type_name("FILE");
-  sub->add_option("--plot-metric", o->plot_metric, "the metric --plot shows (default area)")
-      ->type_name("COLUMN");
+  o->plot_metric_flag =
+      sub->add_option("--plot-metric", o->plot_metric,
+                      "the column --plot shows (default area; a metric such as ddx_max or "
+                      "psi_xz, or max_modulus, min_N)")
+          ->type_name("COLUMN");
   sub->add_option("--format", o->format, "stdout: table (default), csv, json or none")
       ->check(CLI::IsMember({"table", "csv", "json", "none"}));
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");

@@ -191,10 +191,12 @@ void add_soil_command(CLI::App& app, Action& action) {
       "  oscidrum soil --G 27 --nu 0.35 --rho 2000\n"
       "  oscidrum soil --table2 --format csv\n"
       "CSV and JSON values are SI (Pa, m, N/m, N s/m).");
-  sub->add_option("--G", o->G, "shear modulus in MN/m^2 (default 25)");
+  CLI::Option* G = sub->add_option("--G", o->G, "shear modulus in MN/m^2 (default 25)");
   sub->add_option("--nu", o->nu, "Poisson's ratio [-] (default 0.3)");
   sub->add_option("--rho", o->rho, "density [kg/m^3] (default 1900)");
-  sub->add_flag("--table2", o->all, "all G of paper Table 2 (5 ... 70 MN/m^2), side by side");
+  sub->add_flag("--table2", o->all,
+                "all G of paper Table 2 (5 ... 70 MN/m^2), side by side (instead of --G)")
+      ->excludes(G);
   add_roller_flags(*sub, o->c, {"roller.r", "roller.b", "roller.P0"});
   add_set_flag(*sub, o->c, {"roller.r", "roller.b", "roller.P0"});
   sub->add_option("--format", o->format, "table, csv or json")

@@ -45,6 +45,8 @@ struct SweepOptions {
   CLI::Option *out_flag = nullptr, *cases_dir_flag = nullptr, *shard_flag = nullptr,
               *hdf5_flag = nullptr;
   std::string plot, plot_metric = "area";  // --plot FILE: the study's figure
+  CLI::Option* plot_flag = nullptr;
+  bool out_is_stdout = false;  // --out -
   int threads = 0, harmonics = 10;
   bool resume = false, restart = false, quiet = false, list = false, no_continuation = false;
 };
@@ -151,8 +153,10 @@ void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study,
 // Every option that can be checked without running a case: a sweep must not fail at its end,
 // after every case ran.
 void check_options(const SweepOptions& o) {
-  if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out, false);
+  if (o.out_flag && o.out_flag->count() > 0 && !o.out_is_stdout)
+    check_output_file("--out", o.out, false);
   if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
+  if (o.plot_flag && o.plot_flag->count() > 0) check_plot_file("--plot", o.plot);
   if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
   if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
@@ -579,7 +583,7 @@ void add_sweep_command(CLI::App& app, Action& action) {
       sub->add_option(
              "--out,-o", o->out,
              "write the results CSV to FILE (atomically, at the end; finished rows are kept "
-             "in FILE.journal meanwhile). Without it the CSV goes to stdout")
+             "in FILE.journal meanwhile). Without it, or with '-', the CSV goes to stdout")
           ->type_name("FILE");
   o->cases_dir_flag =
       sub->add_option(
@@ -610,22 +614,30 @@ void add_sweep_command(CLI::App& app, Action& action) {
                       "I - 1. The CSV starts with a line naming the study and the shard; join the "
                       "shards with 'oscidrum merge' (examples/slurm/ for a cluster job array)")
           ->type_name("I/N");
-  sub->add_option("--plot", o->plot,
-                  "also draw the study into FILE (.png or .svg; needs --out): the metric against "
-                  "the first swept key, one curve per value of the others and a panel per "
-                  "contact regime when contact.pure_rolling is swept, or a heat map over two "
-                  "numeric swept keys (Python package, docs/python.md)")
-      ->type_name("FILE");
+  o->plot_flag =
+      sub->add_option(
+             "--plot", o->plot,
+             "also draw the study into FILE (.png or .svg; needs --out): the metric against "
+             "the first swept key, one curve per value of the others and a panel per "
+             "contact regime when contact.pure_rolling is swept, or a heat map over two "
+             "numeric swept keys (Python package, docs/python.md)")
+          ->type_name("FILE");
   sub->add_option("--plot-metric", o->plot_metric,
                   "the results column --plot shows (default area; e.g. ddx_max, psi_xz)")
       ->type_name("COLUMN");
   sub->add_flag("--no-continuation", o->no_continuation,
                 "start every case from rest (numerics.continuation = false): with numerics.method "
                 "= shooting, a case otherwise starts from the steady state of its neighbour "
-                "along the last swept key (docs/periodic.md)");
+                "along the swept key with the most values (docs/periodic.md)");
   sub->add_flag("--list", o->list, "print the expanded cases and exit without running them");
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
-  sub->callback([o, &action] { action = [o] { return run(*o); }; });
+  sub->callback([o, &action] {
+    if (o->out == "-") {  // stdout, as without --out (and as run's --csv -)
+      o->out.clear();
+      o->out_is_stdout = true;
+    }
+    action = [o] { return run(*o); };
+  });
 }
 
 }  // namespace oscidrum::cli

@@ -138,6 +138,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--threads", "-1"}, "-1"},
       {{"soil", "--G", "-5"}, "--G must be > 0"},
       {{"soil", "--nu", "0.7"}, "soil.nu must be in [0, 0.5); got 0.7"},
+      {{"soil", "--table2", "--G", "30"}, "--G excludes --table2"},
       {{"transmissibility", "--mf", "0"}, "m_f must be > 0"},
       {{"fields", "--format", "yaml"}, "yaml"},
   };

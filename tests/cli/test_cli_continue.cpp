@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "process.hpp"
@@ -75,6 +76,22 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
                           "soil.input=modulus"});
   EXPECT_EQ(pa.code, 2);
   EXPECT_NE(pa.err.find("did you mean --from 20?"), std::string::npos) << pa.err;
+  // --plot-metric is checked before the branch is followed (it ran the whole branch, then failed
+  // with exit 1, or drew a text column), and is refused without --plot.
+  TempDir dir;
+  for (const auto& [metric, plot, message] :
+       std::vector<std::tuple<std::string, bool, std::string>>{
+           {"nosuch", true, "--plot-metric nosuch: not a numeric column of the branch CSV"},
+           {"sequence", true, "--plot-metric sequence: not a numeric column"},
+           {"area", false, "--plot-metric area needs --plot FILE"}}) {
+    std::vector<std::string> args = {"continue", "--param", "MMd",           "--from", "0",
+                                     "--to",     "1000",    "--plot-metric", metric};
+    if (plot) args.insert(args.end(), {"--csv", dir / "b.csv", "--plot", dir / "b.png"});
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << metric << ": " << o.err;
+    EXPECT_NE(o.err.find(message), std::string::npos) << o.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.csv"));
+  }
 }
 
 }  // namespace

@@ -409,6 +409,16 @@ TEST(CliSweep, OutToStdoutWritesThroughAndNoJournalInDev) {
   EXPECT_EQ(o.out.rfind("case[-],soil.table2_G[Pa]", 0), 0u) << o.out.substr(0, 200);
   EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 57);
   EXPECT_FALSE(std::filesystem::exists("/dev/stdout.journal"));
+  // '-' is stdout, as for run's --csv and merge's --out (not a file named '-'); an empty name
+  // for the figure is refused before any case runs.
+  TempDir dir;
+  const Outcome dash = run({"sweep", study, "--out", "-", "--quiet"});
+  EXPECT_EQ(dash.code, 0) << dash.err;
+  EXPECT_EQ(dash.out, o.out);
+  EXPECT_FALSE(std::filesystem::exists("-"));  // in the working directory, the child's too
+  const Outcome empty_plot = run({"sweep", study, "--out", dir / "r.csv", "--plot", ""});
+  EXPECT_EQ(empty_plot.code, 2);
+  EXPECT_NE(empty_plot.err.find("--plot needs a file name"), std::string::npos) << empty_plot.err;
 }
 
 }  // namespace
