@@ -34,6 +34,10 @@ namespace {
 // (On periodic orbits the estimate after the burn-in is within 3e-3 per period of ln |mu_max|
 // from 200 periods on: tests/drivers/test_motion.cpp.)
 constexpr double kZeroPerPeriod = 0.02;
+// Estimates of a zero exponent over 400 periods scatter up to about this per period (the tori of
+// docs/bifurcations.md: halves from -0.005 to 0.011): an exponent whose two halves are both below
+// its negative is not zero.
+constexpr double kZeroScatter = 0.01;
 // Stroboscopic points that agree to this fraction of the components' ranges recur.
 constexpr double kRecurrence = 1e-6;
 constexpr int kMaxRecurrence = 64;
@@ -153,8 +157,15 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   // Convergence to an orbit of period p: the distance between points p periods apart shrinks
   // geometrically, ln d_p(k) falls along a straight line (a torus or chaos makes it wander).
   // Over the second half, the least-squares line of ln d_p(k) against k for p = 1 ... 16: a
-  // negative slope with R^2 >= 0.9 is convergence (to the p with the steepest).
+  // negative slope with R^2 >= 0.9 is convergence, to the smallest p that falls at least half
+  // as steeply as the steepest: the multiples of the orbit's period all fall at its rate, and
+  // the steepest of them is the noise's choice (a period-2 approach was read as period 16).
   // `contraction` is d_p's shrink factor over that half for the p found (1 if none).
+  struct Fall {
+    int p;
+    double slope, m;  // ln d_p per period, over m points
+  };
+  std::vector<Fall> falling;
   double steepest = 0.0;
   for (int p = 1; p <= std::min(16, periods / 4); ++p) {
     double sk = 0, sy = 0, skk = 0, sky = 0, syy = 0, m = 0;
@@ -167,12 +178,17 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     if (m < 10) continue;
     const double sxx = skk - sk * sk / m, sxy = sky - sk * sy / m, s_yy = syy - sy * sy / m;
     const double slope = sxy / sxx, r2 = s_yy > 0 ? sxy * sxy / (sxx * s_yy) : 0.0;
-    if (slope < steepest && r2 >= 0.9) {  // the steepest: a period-2 orbit's d_1 flattens
-      steepest = slope;
-      out.converging_period = p;
-      out.contraction = std::exp(slope * m);
+    if (slope < 0.0 && r2 >= 0.9) {  // a period-2 orbit's d_1 flattens: not among them
+      falling.push_back({p, slope, m});
+      steepest = std::min(steepest, slope);
     }
   }
+  for (const Fall& f : falling)
+    if (f.slope <= 0.5 * steepest) {
+      out.converging_period = f.p;
+      out.contraction = std::exp(f.slope * f.m);
+      break;
+    }
   if (out.recurrence > 0) {
     out.kind = "periodic";
     out.evidence = "the stroboscopic points repeat every " + std::to_string(out.recurrence) +
@@ -188,6 +204,16 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   } else if (per_period > kZeroPerPeriod && per_period - spread > 0.0) {
     out.kind = "chaotic";
     out.evidence = "a positive " + numbers + ", and the stroboscopic points do not recur";
+  } else if (std::max(a, b) < -kZeroScatter) {
+    // Negative in both halves beyond the scatter of a zero exponent's estimates: an attractor
+    // approached slowly and not along one line (two multipliers of about the same modulus, or
+    // a complex pair), not a torus (a period-2 orbit with multiplier 0.97 per two periods gave
+    // -0.014 per period, halves -0.013 and -0.014: it was called a torus).
+    out.kind = "converging";
+    out.evidence = "a negative " + numbers + ", in both halves below -" +
+                   detail::shortest(kZeroScatter) +
+                   " per period (beyond the scatter of a zero exponent's estimates): the motion "
+                   "still approaches an attractor";
   } else if (std::abs(per_period) <= kZeroPerPeriod) {
     out.kind = "quasi_periodic";
     out.evidence = "a zero " + numbers + " (|per period| <= " + detail::shortest(kZeroPerPeriod) +
