@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "oscidrum/error.hpp"
+#include "oscidrum/model.hpp"
+#include "util/format.hpp"
 
 namespace oscidrum::detail {
 
@@ -21,6 +23,18 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
   for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
     const std::string why = check_field(*field, value);
     if (!why.empty()) throw Error(who + ": " + name + ": " + why);
+  }
+  // The rules between fields too (a drum radius beyond the trough's, ...): a range whose end no
+  // case can have is said now, not after a branch crawled towards it and failed there.
+  for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
+    Case at = c;
+    field->set(at, value);
+    try {
+      const Model model(at);
+    } catch (const Error& e) {
+      throw Error(who + ": " + name + " " + shortest(value) + " " + field->unit +
+                  ": the case is not valid there: " + e.what());
+    }
   }
   return *field;
 }

@@ -76,6 +76,14 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
                           "soil.input=modulus"});
   EXPECT_EQ(pa.code, 2);
   EXPECT_NE(pa.err.find("did you mean --from 20?"), std::string::npos) << pa.err;
+  // A range whose end no case can have (the drum larger than the trough) is refused before the
+  // branch crawls towards it (705 points, then exit 1, "the corrector did not converge").
+  const Outcome r = run({"continue", "--param", "roller.r", "--from", "0.55", "--to", "0.7"});
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("continue: --to 0.7 m: the case is not valid there: trough.a must be > "
+                       "roller.r"),
+            std::string::npos)
+      << r.err;
   // --plot-metric is checked before the branch is followed (it ran the whole branch, then failed
   // with exit 1, or drew a text column), and is refused without --plot.
   TempDir dir;
