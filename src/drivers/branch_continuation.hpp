@@ -477,14 +477,26 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
     BranchPoint last = pb;
     const Solution* last_solution = &b;
     std::optional<Solution> kept;
-    for (int k = 0; k < 40 && std::abs(q_hi - q_lo) > q_tol; ++k) {
+    // Why the bisection stopped short of the tolerance (empty: it did not).
+    std::string short_of = "40 bisections";
+    for (int k = 0; k < 40; ++k) {
+      if (std::abs(q_hi - q_lo) <= q_tol) {
+        short_of.clear();
+        break;
+      }
       const double mid = 0.5 * (lo + hi);
       int iterations = 0;
       std::optional<Solution> s = correct(a.v + mid * a.tangent, a.tangent, &iterations, mid);
-      if (!s) break;
+      if (!s) {
+        short_of = "the corrector failed inside the bracket";
+        break;
+      }
       if (test.kind == BifurcationKind::fold) {
         const std::optional<VectorXd> t = tangent(s->v, s->map, a.tangent);
-        if (!t) break;
+        if (!t) {
+          short_of = "no tangent inside the bracket";
+          break;
+        }
         s->tangent = *t;
       }
       BranchPoint pm = point(*s, 0.0, iterations);
@@ -548,6 +560,11 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
       case BifurcationKind::lift_off:  // not a test between points (see end_at_lift_off)
         break;
     }
+    if (!short_of.empty() && std::abs(q_hi - q_lo) > q_tol)
+      bif.description += "; located within a bracket of " +
+                         detail::format("%.3g", std::abs(q_hi - q_lo)) + unit + " only (" +
+                         short_of + "), wider than the tolerance's " +
+                         detail::format("%.3g", q_tol) + unit;
     branch.bifurcations.push_back(bif);
   }
 }

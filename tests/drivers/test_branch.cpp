@@ -95,6 +95,17 @@ TEST(Branch, GrazingAndGrossSlipInTheDrivingTorque) {
   EXPECT_LE(b.bifurcations[0].tolerance, o.tolerance * 14000.0);
   EXPECT_LE(b.bifurcations[1].tolerance, 1.0);
   for (const Bifurcation& x : b.bifurcations) EXPECT_EQ(x.kind, BifurcationKind::grazing);
+  // A point located short of the tolerance says so in its description, with why; one located
+  // to it does not.
+  for (const Bifurcation& x : b.bifurcations) {
+    const bool wide = 2.0 * x.tolerance > o.tolerance * 14000.0;
+    EXPECT_EQ(x.description.find("located within a bracket of") != std::string::npos, wide)
+        << x.description;
+    if (wide) {
+      EXPECT_NE(x.description.find("the corrector failed"), std::string::npos);
+    }
+  }
+  EXPECT_GT(2.0 * b.bifurcations[1].tolerance, o.tolerance * 14000.0);  // the case above
   // The slip+ phase: 4 switches per period below the point, 2 above (slip- and stick).
   const double q1 = b.bifurcations[0].parameter;
   const Result below = run_at(c, "MMd", q1 - 20.0), above = run_at(c, "MMd", q1 + 20.0);
