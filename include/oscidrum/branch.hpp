@@ -32,7 +32,7 @@ struct BranchOptions {
   bool metrics = true;    ///< compute the CCC metrics of every point
   int harmonics = 10;     ///< harmonics n = 0 ... N in the metrics
   /// Branch switching at period doublings: 0 none, 1 onto the period-2p branch, 2 also from
-  /// it onto 4p, ...
+  /// it onto 4p, ... (at most 5)
   int switch_depth = 1;
   /// Polled during every period map; true stops the continuation (BranchEnd::cancelled).
   std::function<bool()> cancelled;

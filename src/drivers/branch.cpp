@@ -18,7 +18,7 @@ namespace oscidrum {
 
 Branch continue_branch(const Case& c, const BranchOptions& o) {
   const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue");
-  if (!(o.from != o.to)) throw Error("continue: --from and --to must differ");
+  if (!(o.from != o.to)) throw Error("continue: --from and --to must differ", o.key, o.to);
   // The branch moves G continuously; Table 2 holds 14 values of it.
   if (o.key == "soil.G" && c.soil.input == SoilInput::table2)
     throw Error(
@@ -31,14 +31,19 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
     throw Error("continue: steps must satisfy 0 < min_step <= initial_step <= max_step <= 1");
   if (!(o.tolerance > 0 && o.tolerance < 1))
     throw Error("continue: tolerance must be in (0, 1); got " + detail::shortest(o.tolerance));
-  if (o.max_points < 2) throw Error("continue: max_points must be >= 2");
+  if (o.max_points < 2) throw Error("continue: max_points must be >= 2", "max_points");
+  // As the CLI's --switch-depth: a cascade of period doublings followed to period 2^5 at most
+  // (each level a branch of its own; an unbounded depth could follow it to period 2^99).
+  if (o.switch_depth < 0 || o.switch_depth > 5)
+    throw Error("continue: switch_depth must be in [0, 5]; got " + std::to_string(o.switch_depth),
+                "switch_depth", o.switch_depth);
   // The metrics' harmonics within what the samples resolve (else every point's metrics were
   // unavailable without a word: compute_metrics refuses them).
   if (o.metrics && (o.harmonics < 0 || o.harmonics >= c.numerics.samples_per_period / 2))
     throw Error("continue: harmonics must be in [0, numerics.samples_per_period / 2 = " +
                     std::to_string(c.numerics.samples_per_period / 2) +
                     "), the samples' Nyquist limit; got " + std::to_string(o.harmonics),
-                "numerics.samples_per_period");
+                "harmonics", o.harmonics);
   const Model model(c);  // validates the case
   return detail::with_roller(model, [&]<class R>() {
     detail::branching::Continuation<R> primary(c, o, *field);

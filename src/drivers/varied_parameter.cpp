@@ -22,7 +22,7 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
     throw Error(who + ": " + key + " has no effect in this case: " + key_not_in_effect(c, key));
   for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
     const std::string why = check_field(*field, value);
-    if (!why.empty()) throw Error(who + ": " + name + ": " + why);
+    if (!why.empty()) throw Error(who + ": " + name + ": " + why, key, value);
   }
   // The rules between fields too (a drum radius beyond the trough's, ...): a range whose end no
   // case can have is said now, not after a branch crawled towards it and failed there.
@@ -33,7 +33,8 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
       const Model model(at);
     } catch (const Error& e) {
       throw Error(who + ": " + name + " " + shortest(value) + " " + field->unit +
-                  ": the case is not valid there: " + e.what());
+                      ": the case is not valid there: " + e.what(),
+                  key, value);
     }
   }
   return *field;

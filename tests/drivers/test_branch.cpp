@@ -309,7 +309,26 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("the samples' Nyquist limit; got 10"), std::string::npos)
         << e.what();
+    EXPECT_EQ(e.key(), "harmonics");
   }
+  // Each refusal names what it is about (Python's error.key): the option, or the varied key
+  // with the value received.
+  const auto key_of = [&](const Case& cc, const BranchOptions& oo) {
+    try {
+      continue_branch(cc, oo);
+    } catch (const Error& e) {
+      return std::pair{e.key(), e.value()};
+    }
+    return std::pair{std::string("accepted"), 0.0};
+  };
+  BranchOptions depth = o;
+  for (int d : {-1, 6}) {
+    depth.switch_depth = d;
+    EXPECT_EQ(key_of(c, depth), std::pair(std::string("switch_depth"), double(d)));
+  }
+  BranchOptions outside = o;
+  outside.to = -0.1;
+  EXPECT_EQ(key_of(c, outside), std::pair(std::string("contact.mu"), -0.1));
 }
 
 }  // namespace
