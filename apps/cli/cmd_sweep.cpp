@@ -191,6 +191,20 @@ SweepPlan plan_sweep(const SweepOptions& o) {
                   std::to_string(total));
     };
   };
+  // A value given for a swept key would be replaced in every case: from the command line that
+  // is a mistake (said, exit 2); in the study's base case a default the sweep overrides (warned).
+  std::vector<std::string> swept;
+  for (const io::SweepFactor& f : p.spec.factors)
+    for (const io::SweepAxis& a : f.axes) swept.push_back(a.key);
+  for (const auto& [key, origin] : p.spec.base.origin) {
+    if (std::find(swept.begin(), swept.end(), key) == swept.end()) continue;
+    if (origin.rfind("--", 0) == 0)
+      throw Error(origin + ": " + key + " is swept by the study " + o.study +
+                      ": this value would be replaced in every case (change the sweep instead)",
+                  key);
+    if (!o.quiet)
+      warn(origin + ": " + key + " is swept by the study: this value is replaced in every case");
+  }
   p.study = io::expand(p.spec, progress("checking the study's cases"));
   if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
   p.total = p.study.cases.size();

@@ -136,6 +136,9 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"sweep"}, "study"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--resume"}, "need --out FILE"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--threads", "-1"}, "-1"},
+      // A value for a swept key would be replaced in every case (it was, without a word).
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--set", "soil.table2_G=5e6"},
+       "--set soil.table2_G=5e6: soil.table2_G is swept by the study"},
       {{"soil", "--G", "-5"}, "--G must be > 0"},
       {{"soil", "--nu", "0.7"}, "soil.nu must be in [0, 0.5); got 0.7"},
       {{"soil", "--table2", "--G", "30"}, "--G excludes --table2"},
