@@ -87,7 +87,16 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, b
   for (const Ratio& r : kRatios) {
     if (r.name != name) continue;
     const Spectrum& h = m.*r.spectrum;
-    if (h.size() <= r.n) return std::nullopt;
+    if (h.size() <= r.n) {
+      // The spectrum is kept only to --harmonics (0 or 2 here); the ratio itself, computed from
+      // the harmonics up to 3 whatever --harmonics says, decides alone, as the harmonics would.
+      const double ratio = m.*r.value / (r.name == "cmv" ? 300.0 : 1.0);
+      if (std::isnan(ratio)) return std::string("n/a (A(f) of ") + r.signal + kAbsentBoth;
+      if (r.name != "ddx_thd" && ratio < kHarmonicZeroFraction)
+        return std::string("0 (A(") + std::to_string(r.n) + "f) of " + r.signal +
+               " is below 1e-6 of A(f))";
+      return std::nullopt;
+    }
     double largest = 0.0;
     for (std::size_t k = 1; k < h.size(); ++k) largest = std::max(largest, h[k].amplitude);
     if (h[1].amplitude < kHarmonicZeroFraction * largest)

@@ -175,6 +175,19 @@ TEST(CliRun, DefaultCaseReachesSteadyState) {
   // Codes of the CSV and JSON in words: a single run starts from rest.
   EXPECT_NE(o.out.find("warm start (continuation)       no: started from rest"), std::string::npos)
       << o.out;
+  // With fewer harmonics kept (--harmonics 0 or 2) the ratios read the same in words: no NaN and
+  // no ratio of round-off (5.6e-11 for A(2f)/A(f) of x_M'' was printed).
+  for (const char* n : {"0", "2"}) {
+    const Outcome few = run({"run", "--harmonics", n});
+    ASSERT_EQ(few.code, 0) << few.err;
+    for (const char* line :
+         {"x_M'' A(2f)/A(f)", "z_M'' A(2f)/A(f)", "z_M'' A(3f)/A(f)", "CMV-type value"}) {
+      const std::string rest = few.out.substr(few.out.find(line));
+      const std::string text = rest.substr(0, rest.find('\n'));
+      EXPECT_EQ(text.find("nan"), std::string::npos) << n << ": " << text;
+      EXPECT_EQ(text.find("e-"), std::string::npos) << n << ": " << text;
+    }
+  }
 }
 
 // f changed with M0 fixed is rarely meant (M0 = 4 m_u e_u e_w nu^2 (5)): a warning on stderr. The
