@@ -182,10 +182,10 @@ TEST(CliRun, DefaultCaseReachesSteadyState) {
     ASSERT_EQ(few.code, 0) << few.err;
     for (const char* line :
          {"x_M'' A(2f)/A(f)", "z_M'' A(2f)/A(f)", "z_M'' A(3f)/A(f)", "CMV-type value"}) {
-      const std::string rest = few.out.substr(few.out.find(line));
-      const std::string text = rest.substr(0, rest.find('\n'));
-      EXPECT_EQ(text.find("nan"), std::string::npos) << n << ": " << text;
-      EXPECT_EQ(text.find("e-"), std::string::npos) << n << ": " << text;
+      const std::string rest = few.out.substr(few.out.find(line) + std::string(line).size());
+      const std::string text = rest.substr(rest.find_first_not_of(' '));
+      EXPECT_TRUE(text.rfind("0 (", 0) == 0 || text.rfind("n/a (", 0) == 0)
+          << n << ": " << line << text.substr(0, text.find('\n'));
     }
   }
 }
