@@ -24,6 +24,15 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
     const std::string why = check_field(*field, value);
     if (!why.empty()) throw Error(who + ": " + name + ": " + why, key, value);
   }
+  // roller.unbalance = 0 is not a moment of zero but "M0 as roller.M0 gives it": the model
+  // jumps there (M0 = 4 m_u e_u e_w nu^2 just above), so no branch or row of values can start,
+  // end or pass at it.
+  if (key == "roller.unbalance" && (from == 0.0 || to == 0.0))
+    throw Error(who + ": roller.unbalance = 0 means M0 as roller.M0 gives it (" +
+                    shortest(c.roller.M0) +
+                    " N m here), not a moment of 0: M0 jumps there; start the range above 0 (e.g. "
+                    "0.01 kg m^2), or vary roller.M0 instead",
+                key, 0.0);
   // The rules between fields too (a drum radius beyond the trough's, ...): a range whose end no
   // case can have is said now, not after a branch crawled towards it and failed there.
   for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {

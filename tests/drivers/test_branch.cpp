@@ -326,6 +326,13 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
     depth.switch_depth = d;
     EXPECT_EQ(key_of(c, depth), std::pair(std::string("switch_depth"), double(d)));
   }
+  // roller.unbalance = 0 is "M0 as roller.M0 gives it": M0 jumps there (the start failed with
+  // "no tangent at the start").
+  BranchOptions unbalance = o;
+  unbalance.key = "roller.unbalance";
+  unbalance.from = 0.0;
+  unbalance.to = 0.3;
+  EXPECT_EQ(key_of(c, unbalance), std::pair(std::string("roller.unbalance"), 0.0));
   BranchOptions outside = o;
   outside.to = -0.1;
   EXPECT_EQ(key_of(c, outside), std::pair(std::string("contact.mu"), -0.1));
