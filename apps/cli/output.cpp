@@ -145,6 +145,10 @@ void write_output(const std::string& path, const std::string& text) {
 }
 
 void check_plot_file(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  if (!path.empty() && std::filesystem::is_directory(path, ec))
+    throw Error(flag + " " + path + " is a directory; give the figure's file name (e.g. " +
+                (std::filesystem::path(path) / "figure.png").string() + ")");
   check_output_file(flag, path, false);
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -179,6 +183,13 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
     throw Error(flag + " " + shown + ": cannot write into " +
                 (parent.empty() ? std::string("the current directory") : parent.string()) + ": " +
                 std::strerror(errno));
+  // Permissions are not everything (root may write anywhere, yet /proc takes no new file): the
+  // temporary file the output is written through is created, and removed again.
+  try {
+    io::OutputFile probe(path, regular_only);
+  } catch (const Error& e) {
+    throw Error(flag + ": " + e.what());
+  }
 }
 
 void check_harmonics(int harmonics, int samples_per_period, const std::string& which) {

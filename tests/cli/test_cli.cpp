@@ -133,6 +133,15 @@ TEST(CliErrors, BadFlagsAndValues) {
        "--harmonics (default 10) must be below numerics.samples_per_period / 2"},
       {{"run", "a.toml", "b.toml"}, "b.toml"},
       {{"run", "--csv", "/nonexistent/dir/x.csv"}, "the directory /nonexistent/dir does not exist"},
+      // A directory that takes no new file although its permissions say otherwise (to root):
+      // said before the run, not blamed on the Python package after it.
+      {{"run", "--csv", "/proc/x.csv"}, "--csv: cannot write /proc/x.csv: cannot create a file"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--out", "/tmp/oscidrum_never.csv",
+        "--plot", "/proc/x.png"},
+       "--plot: cannot write /proc/x.png"},
+      {{"sweep", kSource + "/examples/table2_sweep.toml", "--out", "/tmp/oscidrum_never.csv",
+        "--plot", "/tmp"},
+       "--plot /tmp is a directory; give the figure's file name (e.g. /tmp/figure.png)"},
       {{"sweep"}, "study"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--resume"}, "need --out FILE"},
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--threads", "-1"}, "-1"},
