@@ -45,6 +45,10 @@ std::string discrepancy_note(const Roller& roller) {
          "--soil-formula.";
 }
 
+constexpr const char* kNoComparison =
+    "No Table 2 comparison: Table 2 holds for the paper's roller, nu = 0.3, rho = 1900 kg/m^3 and "
+    "G = 5, 10, ..., 70 MN/m^2.";
+
 const Table2Row* table2_row(double G) {
   for (const Table2Row& row : table2())
     if (std::abs(row.G - G) <= 1e-9 * row.G) return &row;
@@ -108,6 +112,13 @@ int run(const SoilOptions& o) {
   std::string single;
   for (double G : Gs) {
     const SoilCoefficients k = soil_coefficients(G, o.nu, o.rho, roller);
+    for (const Quantity& q : kQuantities)
+      if (!std::isfinite(k.*q.formula))
+        throw Error(std::string("soil: ") + q.name +
+                    " (Appendix B) is not a finite number for G = " + fmt(G / 1e6) +
+                    " MN/m^2 with this roller (r = " + fmt(roller.r) + " m, b = " + fmt(roller.b) +
+                    " m, P0 = " + fmt(roller.P0) +
+                    " N): the formulas overflow; give the roller's real dimensions");
     const Table2Row* row = compare ? table2_row(G) : nullptr;
     nlohmann::ordered_json rec = {{"G", G}, {"nu", o.nu}, {"rho", o.rho}};
     std::vector<std::string> w = {fmt(G / 1e6)}, c = {io::format_double(G), io::format_double(o.nu),
@@ -147,7 +158,7 @@ int run(const SoilOptions& o) {
     nlohmann::ordered_json j = {{"schema", "oscidrum-soil/1"},
                                 {"roller", {{"r", roller.r}, {"b", roller.b}, {"P0", roller.P0}}},
                                 {"rows", records},
-                                {"note", discrepancy_note(roller)}};
+                                {"note", compare ? discrepancy_note(roller) : kNoComparison}};
     std::cout << j.dump(2) << "\n";
   } else if (o.format == "csv") {
     std::cout << csv.csv();
@@ -167,8 +178,7 @@ int run(const SoilOptions& o) {
     if (any_row)
       std::cout << "\n" << discrepancy_note(roller) << "\n";
     else
-      std::cout << "\n(No Table 2 comparison: Table 2 holds for the paper's roller, nu = 0.3, "
-                   "rho = 1900 kg/m^3 and G = 5, 10, ..., 70 MN/m^2.)\n";
+      std::cout << "\n(" << kNoComparison << ")\n";
   }
   return kExitOk;
 }

@@ -151,6 +151,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"soil", "--G", "-5"}, "--G must be > 0"},
       {{"soil", "--nu", "0.7"}, "soil.nu must be in [0, 0.5); got 0.7"},
       {{"soil", "--table2", "--G", "30"}, "--G excludes --table2"},
+      {{"soil", "--b", "1e300"}, "ksh (Appendix B) is not a finite number"},
       {{"transmissibility", "--mf", "0"}, "m_f must be > 0"},
       {{"fields", "--format", "yaml"}, "yaml"},
   };
@@ -510,6 +511,13 @@ TEST(CliSoil, CalculatorAndTable2) {
   EXPECT_TRUE(j["rows"][0]["table2"].is_null());  // 27 is no Table 2 G
   // (44)-(45): the dashpots do not depend on G.
   EXPECT_NEAR(j["rows"][0]["formula"]["csh"].get<double>(), 140577.4, 0.1);
+  // Another roller: the JSON's note makes no claim about Table 2 (it said that (44)-(45)
+  // reproduce the table's dashpots, which r = 0.5 m does not).
+  o = run({"soil", "--r", "0.5", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(
+      nlohmann::json::parse(o.out)["note"].get<std::string>().rfind("No Table 2 comparison", 0),
+      0u);
 }
 
 TEST(CliTransmissibility, AppendixA) {
