@@ -66,6 +66,10 @@ ShardInfo read_shard_line(const ShardFile& file) {
   std::uint64_t fp = 0;
   char tail = 0;
   const std::string copy(line);
+  if (line.ends_with('\r'))
+    throw Error(file.path +
+                " has Windows line endings (CR LF), which oscidrum sweep does not write: convert "
+                "it back (e.g. dos2unix) and merge again");
   if (!line.starts_with(kPrefix) ||
       std::sscanf(copy.c_str(), "# oscidrum shard %llu/%llu of study %16" SCNx64 " cases %llu%c",
                   &index, &count, &fp, &cases, &tail) != 4 ||

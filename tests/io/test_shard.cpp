@@ -104,6 +104,15 @@ TEST(Shards, MergeJoinsInCaseOrderAndRefusesBadSets) {
   EXPECT_NE(edited(number).find("its cell 'abc' in column evib[Pa] is not a number"),
             std::string::npos)
       << edited(number);
+  // CR LF line endings (a file passed through a Windows tool): said as such, not as "not the
+  // output of oscidrum sweep --shard" quoting a line that looks right.
+  std::string crlf;
+  for (char ch : files[2].text) {
+    if (ch == '\n') crlf += '\r';
+    crlf += ch;
+  }
+  EXPECT_NE(refused({files[0], files[1], {"s2", crlf}}).find("s2 has Windows line endings"),
+            std::string::npos);
   std::string index = row4;
   index[0] = 'x';
   EXPECT_NE(edited(index).find("is damaged"), std::string::npos);
