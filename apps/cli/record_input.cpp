@@ -180,7 +180,13 @@ RecordColumns read_record(const RecordInput& o) {
       throw Error(name + ": cannot open the file (" +
                   (std::filesystem::exists(o.file, ec) ? "not readable" : "no such file") + ")");
   }
-  return oscidrum::read_record(o.file == "-" ? std::cin : file, name, o);
+  RecordColumns rec = oscidrum::read_record(o.file == "-" ? std::cin : file, name, o);
+  // Said with the file's name here (the analysis would say "record: needs at least 2 samples").
+  if (rec.t.size() < 2)
+    throw Error(name +
+                ": one data row; a record needs at least 2 samples (and for its "
+                "frequency and harmonics, at least one excitation period of them)");
+  return rec;
 }
 
 }  // namespace oscidrum::cli

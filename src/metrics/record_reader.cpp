@@ -1392,6 +1392,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       if (skipped++ == 0) first_skipped = line_no;
       return;
     }
+    // A time that goes back is said here, at its line (the analysis would name only the sample).
+    if (!out.t.empty() && t < out.t.back())
+      throw Error(name + ":" + std::to_string(line_no) + ": the time goes back: " +
+                  format_factor(t) + " after " + format_factor(out.t.back()) +
+                  " (in the time column's unit; rows out of order, a logger that restarted its "
+                  "clock, or files joined: give each part on its own)");
     out.t.push_back(t);
     out.ddx_M.push_back(x);
     out.ddz_M.push_back(z);

@@ -1238,3 +1238,16 @@ TEST(RecordReader, TrailingDelimitersAndATimeZoneInTheHeader) {
 
 }  // namespace
 }  // namespace oscidrum
+
+namespace oscidrum {
+namespace {
+
+// A time that goes back (a logger that restarted its clock, files joined) is refused at its line,
+// with the file's name; the analysis named only the sample, without the file.
+TEST(RecordReader, ATimeThatGoesBackIsNamedAtItsLine) {
+  const std::string m = message_of("t,ddx_M,ddz_M\n0,1,2\n0.001,1,2\n0.002,1,2\n0,1,2\n");
+  EXPECT_NE(m.find("record.csv:5: the time goes back: 0 after 0.002"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace oscidrum
