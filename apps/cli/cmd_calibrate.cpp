@@ -78,7 +78,8 @@ Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, con
     }
   }
   const RecordColumns rec = read_record(in);
-  notes.insert(notes.end(), rec.notes.begin(), rec.notes.end());
+  // Each reference's own notes, named by its file (two references may be read differently).
+  for (const std::string& note : rec.notes) notes.push_back(in.file + ": " + note);
   ref.z_open = rec.z_open;
   ref.units_open = rec.units_open;
   try {

@@ -27,6 +27,9 @@
 namespace oscidrum {
 namespace {
 
+// A magnitude of x_M'' or z_M'' [m/s^2] (1e8 g) that no accelerometer reads: a corrupted cell.
+constexpr double kImplausibleAcceleration = 9.80665e8;
+
 std::string trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
   return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
@@ -1392,6 +1395,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       if (skipped++ == 0) first_skipped = line_no;
       return;
     }
+    // An acceleration beyond any accelerometer's range (a corrupted cell, 1e30 or 1e308) is said
+    // here: in a window it made the gates speak of clipping or of a change of soil, and beyond
+    // 1e154 its squares overflowed into NaN in the messages.
+    for (const auto& [what, v] : {std::pair{"x_M''", x}, std::pair{"z_M''", z}})
+      if (std::abs(v) > kImplausibleAcceleration)
+        throw Error(name + ":" + std::to_string(line_no) + ": " + what + " = " + format_factor(v) +
+                    " m/s^2, beyond any accelerometer (1e8 g): a corrupted cell? (remove the "
+                    "line, or the record's part around it)");
     // A time that goes back is said here, at its line (the analysis would name only the sample).
     if (!out.t.empty() && t < out.t.back())
       throw Error(name + ":" + std::to_string(line_no) + ": the time goes back: " +
