@@ -931,6 +931,15 @@ double periodic_rms(const std::vector<Harmonic>& h) {
   return std::sqrt(sum);
 }
 
+// The RMS of y about its mean (what relative_rms divides by).
+double rms_about_mean(std::span<const double> y) {
+  double mean = 0.0, mean_square = 0.0;
+  for (double v : y) mean += v;
+  mean /= static_cast<double>(y.size());
+  for (double v : y) mean_square += (v - mean) * (v - mean);
+  return std::sqrt(mean_square / static_cast<double>(y.size()));
+}
+
 // The standard deviation of a window's frequency drift (f of the second half - f of the first)
 // / f that the noise alone makes, as the change gate weighs a change against it. Each half's f is
 // a least-squares estimate together with the harmonics' coefficients: its variance is sigma^2 /
@@ -963,12 +972,7 @@ double drift_noise(std::span<const double> t, std::span<const double> x, std::sp
     double information = 0.0;
     for (int c = 0; c < 2; ++c) {
       const std::span<const double> y = (c == 0 ? x : z).subspan(from, count);
-      double mean = 0.0, mean_square = 0.0;
-      for (double v : y) mean += v;
-      mean /= static_cast<double>(y.size());
-      for (double v : y) mean_square += (v - mean) * (v - mean);
-      mean_square /= static_cast<double>(y.size());
-      const double sigma = (c == 0 ? m.residual_x : m.residual_z) * std::sqrt(mean_square);
+      const double sigma = (c == 0 ? m.residual_x : m.residual_z) * rms_about_mean(y);
       if (!(sigma > 0.0)) continue;
       const Eigen::VectorXd coefficients = qr.solve(Eigen::Map<const Eigen::VectorXd>(y.data(), n));
       Eigen::VectorXd D(n);
@@ -1026,17 +1030,12 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     if (detail::one_value(y)) continue;
     const double r1 = periodic_rms(c == 0 ? a.hx : a.hz);
     const double r2 = periodic_rms(c == 0 ? b.hx : b.hz);
-    // The residuals are relative to the RMS about the mean (relative_rms).
-    double mean = 0.0, mean_square = 0.0;
-    for (double v : y) mean += v;
-    mean /= static_cast<double>(y.size());
-    for (double v : y) mean_square += (v - mean) * (v - mean);
-    mean_square /= static_cast<double>(y.size());
     // The noise from the better-fitting half: a half that straddles the change fits worse, and
     // so does the whole window, whose residual would take the change for noise.
     const double residual =
         c == 0 ? std::min(a.residual_x, b.residual_x) : std::min(a.residual_z, b.residual_z);
-    const double sigma = residual * std::sqrt(mean_square);
+    // The residuals are relative to the RMS about the mean (relative_rms).
+    const double sigma = residual * rms_about_mean(y);
     const double noise = std::sqrt(2.0) * sigma / std::sqrt(n_half);
     const double change = (r2 - r1) / whole;
     if (std::abs(change) > worst_abs) {
