@@ -36,6 +36,19 @@ Transmissibility transmissibility(double kd, double cd, double m_f, double nu) {
   const double one_minus_r2 = 1.0 - t.ratio * t.ratio;
   t.Tp = std::sqrt((1.0 + two_zeta_r * two_zeta_r) /
                    (one_minus_r2 * one_minus_r2 + two_zeta_r * two_zeta_r));  // (40)
+  // Inputs each valid but at the ends of the doubles (kd 1e308 on m_f 1e-300) overflow or
+  // underflow omega, zeta or nu/omega: a number printed from them would be meaningless (omega
+  // inf, Tp 1), so say so. Tp alone may be inf: the undamped suspension at resonance.
+  if (!std::isfinite(t.omega) || !(t.omega > 0) || !std::isfinite(t.zeta) ||
+      !std::isfinite(t.ratio) || !(t.ratio > 0) || std::isnan(t.Tp)) {
+    throw Error("transmissibility (Appendix A): roller.kd = " + detail::shortest(kd) +
+                    " N/m, roller.cd = " + detail::shortest(cd) + " N s/m and roller.m_f = " +
+                    detail::shortest(m_f) +
+                    " kg give no finite natural frequency, damping ratio or frequency ratio in "
+                    "double precision (omega = sqrt(kd / m_f) = " +
+                    detail::shortest(t.omega) + " rad/s); use values nearer a real suspension",
+                "roller.kd", kd);
+  }
   return t;
 }
 

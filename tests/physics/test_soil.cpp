@@ -374,5 +374,19 @@ TEST(AppendixA, RejectsNonPositiveInput) {
   EXPECT_THROW(transmissibility(4e6, 3e3, 2760.0, std::numeric_limits<double>::infinity()), Error);
 }
 
+// Each input valid, their ratio beyond the doubles: omega = sqrt(1e308 / 1e-300) overflows (it
+// printed omega inf, Tp 1 and "the frame hardly follows"), and sqrt(1e-300 / 1e300) underflows
+// to 0. The undamped resonance (Tp very large or infinite) stays a result.
+TEST(AppendixA, RefusesInputsWhoseQuantitiesLeaveTheDoubles) {
+  const double nu = 2.0 * M_PI * 39.0;
+  EXPECT_THROW(transmissibility(1e308, 3e3, 1e-300, nu), Error);
+  EXPECT_THROW(transmissibility(1e-300, 3e3, 1e300, nu), Error);
+  EXPECT_THROW(transmissibility(1e-300, 1e300, 1e-10, nu), Error);
+  const Transmissibility ok = transmissibility(4e6, 3e3, 1e-3, nu);  // extreme but finite
+  EXPECT_TRUE(std::isfinite(ok.omega) && std::isfinite(ok.Tp));
+  const double kd = 2760.0 * nu * nu;  // omega = nu to rounding
+  EXPECT_GT(transmissibility(kd, 0.0, 2760.0, nu).Tp, 1e6);
+}
+
 }  // namespace
 }  // namespace oscidrum
