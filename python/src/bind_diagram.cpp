@@ -24,18 +24,23 @@ py::dict diagram_dict(const Diagram& d) {
   out["periods_integrated"] = d.periods_integrated;
   out["seconds"] = d.seconds;
   py::dict values;
-  const auto add = [&](const char* name, auto get) {
-    std::vector<double> v;
-    for (const DiagramValue& x : d.values) v.push_back(static_cast<double>(get(x)));
-    values[name] = to_array(v);
+  // Each column in its own type: counts and signs as integers, flags as booleans (NumPy's
+  // int64 and bool), measures as floats.
+  const auto add = [&]<class T>(const char* name, T (*get)(const DiagramValue&)) {
+    py::array_t<T> a(static_cast<py::ssize_t>(d.values.size()));
+    for (std::size_t i = 0; i < d.values.size(); ++i) a.mutable_data()[i] = get(d.values[i]);
+    values[name] = a;
   };
-  add("parameter", [](const DiagramValue& x) { return x.parameter; });
-  add("direction", [](const DiagramValue& x) { return x.direction; });
-  add("from_rest", [](const DiagramValue& x) { return x.from_rest ? 1 : 0; });
-  add("shooting", [](const DiagramValue& x) { return x.shooting ? 1 : 0; });
-  add("period", [](const DiagramValue& x) { return x.period; });
-  add("lyapunov", [](const DiagramValue& x) { return x.motion.lyapunov; });
-  add("excitation_period", [](const DiagramValue& x) { return x.excitation_period; });
+  add.operator()<double>("parameter", [](const DiagramValue& x) { return x.parameter; });
+  add.operator()<std::int64_t>("direction",
+                               [](const DiagramValue& x) -> std::int64_t { return x.direction; });
+  add.operator()<bool>("from_rest", [](const DiagramValue& x) { return x.from_rest; });
+  add.operator()<bool>("shooting", [](const DiagramValue& x) { return x.shooting; });
+  add.operator()<std::int64_t>("period",
+                               [](const DiagramValue& x) -> std::int64_t { return x.period; });
+  add.operator()<double>("lyapunov", [](const DiagramValue& x) { return x.motion.lyapunov; });
+  add.operator()<double>("excitation_period",
+                         [](const DiagramValue& x) { return x.excitation_period; });
   py::list verdict, evidence;
   for (const DiagramValue& x : d.values)
     verdict.append(x.motion.kind), evidence.append(x.motion.evidence);
@@ -43,16 +48,18 @@ py::dict diagram_dict(const Diagram& d) {
   values["evidence"] = evidence;
   out["values"] = values;
   py::dict points;
-  std::vector<double> index, parameter, direction;
+  std::vector<std::int64_t> index, direction;
+  std::vector<double> parameter;
   for (std::size_t i = 0; i < d.values.size(); ++i)
     for (std::size_t k = 0; k < d.values[i].section.size(); ++k) {
-      index.push_back(static_cast<double>(i));
+      index.push_back(static_cast<std::int64_t>(i));
       parameter.push_back(d.values[i].parameter);
       direction.push_back(d.values[i].direction);
     }
-  points["value"] = to_array(index);
+  points["value"] = py::array_t<std::int64_t>(static_cast<py::ssize_t>(index.size()), index.data());
   points["parameter"] = to_array(parameter);
-  points["direction"] = to_array(direction);
+  points["direction"] =
+      py::array_t<std::int64_t>(static_cast<py::ssize_t>(direction.size()), direction.data());
   for (const SampleOutput& o : sample_outputs()) {
     std::vector<double> column;
     for (const DiagramValue& x : d.values)

@@ -85,8 +85,9 @@ void set_field_value(Case& c, std::string_view key, py::handle value) {
   }
   const std::string unit = field->unit;
   throw Error(std::string(field->key) + " must be a number" +
-              (unit == "-" ? std::string() : " [" + unit + "]") + "; got " +
-              py::repr(value).cast<std::string>());
+                  (unit == "-" ? std::string() : " [" + unit + "]") + "; got " +
+                  py::repr(value).cast<std::string>(),
+              field->key);
 }
 
 void bind_fields(py::module_& m) {

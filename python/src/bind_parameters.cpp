@@ -129,8 +129,9 @@ io::Value to_value(const std::string& key, py::handle value) {
     const long long i = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
     if (overflow != 0)
       throw Error(key + " must be " + (find_field(key) ? field_rule(*find_field(key)) : "finite") +
-                  bracketed_unit(key) + "; got an integer beyond the 64-bit range, " +
-                  python_description(value));
+                      bracketed_unit(key) + "; got an integer beyond the 64-bit range, " +
+                      python_description(value),
+                  key);
     return io::Value(static_cast<std::int64_t>(i));
   }
   if (PyFloat_Check(value.ptr()) || py::isinstance(value, np.floating))
@@ -139,8 +140,9 @@ io::Value to_value(const std::string& key, py::handle value) {
   std::string expected = "a number";
   if (f && f->type == FieldType::boolean) expected = "True or False";
   if (f && f->type == FieldType::choice) expected = field_rule(*f);
-  throw Error(key + " must be " + expected + bracketed_unit(key) + "; got " +
-              python_description(value));
+  throw Error(
+      key + " must be " + expected + bracketed_unit(key) + "; got " + python_description(value),
+      key);
 }
 
 // ---- building a Case the way the config reader does -----------------------------------------

@@ -18,7 +18,9 @@ namespace oscidrum {
 
 Branch continue_branch(const Case& c, const BranchOptions& o) {
   const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue");
-  if (!(o.from != o.to)) throw Error("continue: --from and --to must differ", o.key, o.to);
+  if (!(o.from != o.to))
+    throw Error("continue: the range's start and end (from and to, --from and --to) must differ",
+                o.key, o.to);
   // The branch moves G continuously; Table 2 holds 14 values of it.
   if (o.key == "soil.G" && c.soil.input == SoilInput::table2)
     throw Error(

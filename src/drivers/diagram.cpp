@@ -139,14 +139,20 @@ const char* to_string(DiagramSweep sweep) {
 Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
   const Field& field = detail::varied_field(c, o.key, o.from, o.to, "diagram");
   if (!(o.from < o.to))
-    throw Error("diagram: --to must be > --from; got " + detail::shortest(o.from) + " and " +
-                detail::shortest(o.to));
+    throw Error("diagram: the range's end (to, --to) must be > its start (from, --from); got " +
+                    detail::shortest(o.from) + " and " + detail::shortest(o.to),
+                o.key, o.to);
   if (o.steps < 1 || o.steps > 100000)
-    throw Error("diagram: --steps must be in [1, 100000]; got " + std::to_string(o.steps));
+    throw Error("diagram: steps (--steps) must be in [1, 100000]; got " + std::to_string(o.steps),
+                "steps", o.steps);
   if (o.discard < 0 || o.discard > 1000000)
-    throw Error("diagram: --discard must be in [0, 1000000]; got " + std::to_string(o.discard));
+    throw Error(
+        "diagram: discard (--discard) must be in [0, 1000000]; got " + std::to_string(o.discard),
+        "discard", o.discard);
   if (o.periods < 20 || o.periods > 100000)
-    throw Error("diagram: --periods must be in [20, 100000]; got " + std::to_string(o.periods));
+    throw Error(
+        "diagram: periods (--periods) must be in [20, 100000]; got " + std::to_string(o.periods),
+        "periods", o.periods);
   const Model model(c);  // validates the case
   const auto t_start = std::chrono::steady_clock::now();
   Diagram d;

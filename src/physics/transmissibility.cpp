@@ -42,8 +42,8 @@ Transmissibility transmissibility(double kd, double cd, double m_f, double nu) {
   if (!std::isfinite(t.omega) || !(t.omega > 0) || !std::isfinite(t.zeta) ||
       !std::isfinite(t.ratio) || !(t.ratio > 0) || std::isnan(t.Tp)) {
     throw Error("transmissibility (Appendix A): roller.kd = " + detail::shortest(kd) +
-                    " N/m, roller.cd = " + detail::shortest(cd) + " N s/m and roller.m_f = " +
-                    detail::shortest(m_f) +
+                    " N/m, roller.cd = " + detail::shortest(cd) +
+                    " N s/m and roller.m_f = " + detail::shortest(m_f) +
                     " kg give no finite natural frequency, damping ratio or frequency ratio in "
                     "double precision (omega = sqrt(kd / m_f) = " +
                     detail::shortest(t.omega) + " rad/s); use values nearer a real suspension",

@@ -138,6 +138,17 @@ def test_strict_types(kwargs, message):
         Case(**kwargs)
 
 
+@pytest.mark.parametrize("kwargs, key", [
+    ({"m": None}, "roller.m"), ({"m": [1.0]}, "roller.m"), ({"m": "1851"}, "roller.m"),
+    ({"pure_rolling": "off"}, "contact.pure_rolling"), ({"max_periods": 2.5}, "numerics.max_periods"),
+])
+def test_a_value_of_the_wrong_type_names_its_key(kwargs, key):
+    # Error.key was None for a value that is no number (Case(m=None)), though the message named it.
+    with pytest.raises(oscidrum.Error) as e:
+        Case(**kwargs)
+    assert e.value.key == key
+
+
 def test_numpy_scalars_are_numbers():
     c = Case(m=np.float64(2000.0), max_periods=np.int64(100), pure_rolling=np.bool_(True))
     assert (c.roller.m, c.numerics.max_periods, c.contact.pure_rolling) == (2000.0, 100, True)
@@ -274,6 +285,10 @@ def test_bifurcation_diagram_gives_values_and_points_as_columns():
     assert list(d["values"]["parameter"]) == [0.0, 2000.0, 2000.0, 0.0]
     assert list(d["values"]["direction"]) == [1, 1, -1, -1]
     assert d["values"]["verdict"] == ["periodic"] * 4 and list(d["values"]["period"]) == [1] * 4
+    # Counts and signs are integers, flags booleans (they came back as floats: 1.0, -1.0).
+    assert d["values"]["period"].dtype.kind == "i" and d["values"]["direction"].dtype.kind == "i"
+    assert d["values"]["from_rest"].dtype == bool and d["values"]["shooting"].dtype == bool
+    assert d["points"]["value"].dtype.kind == "i" and d["points"]["direction"].dtype.kind == "i"
     points = pd.DataFrame(d["points"])
     assert len(points) == 4 * 20 and {"ddx_M", "ddz_M", "x_A", "s_A", "delta"} <= set(points)
     # A period-1 orbit: every stroboscopic point of a value is the same.
