@@ -339,7 +339,7 @@ void Journal::open_locked(const std::string& header, std::size_t n_cases, bool r
                           bool restart) {
   // Read line by line: a million-case journal is checked without holding it.
   std::size_t good_bytes = 0, lines = 0;
-  bool same = false;
+  bool same = false, is_header = false;
   std::string tail;
   if (!restart) {
     read_lines(
@@ -347,6 +347,7 @@ void Journal::open_locked(const std::string& header, std::size_t n_cases, bool r
         [&](const std::string& line, std::size_t end) {
           if (lines++ == 0) {
             same = line == header;
+            is_header = line.starts_with("# oscidrum sweep journal ");
             good_bytes = end;
             return true;
           }
@@ -372,6 +373,12 @@ void Journal::open_locked(const std::string& header, std::size_t n_cases, bool r
                   std::to_string(lines ? lines - 1 : 0) +
                   " cases done); run again with --resume to finish it, or with --restart to "
                   "discard it");
+    // A first line that is no journal's header (edited, or cut off the front) is damage, not
+    // another study.
+    if (!is_header)
+      throw Error("the journal " + path_ +
+                  " is damaged (its first line is not a journal's header: an edit "
+                  "or a copy lost it); run with --restart to discard it");
     if (!same)
       throw Error("the journal " + path_ +
                   " belongs to a different study (its cases or output "

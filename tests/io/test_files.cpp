@@ -153,6 +153,23 @@ TEST(Files, JournalWithoutAFinishedRowStartsAfresh) {
             std::string::npos);
 }
 
+// A journal whose header line was removed (an edit) was said to belong to a different study;
+// it is damaged, and says so.
+TEST(Files, JournalWithoutItsHeaderLineIsDamagedNotAnotherStudy) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv.journal");
+  {
+    Journal j(path, 42, 5, false);
+    j.append(0, "0,a");
+    j.append(1, "1,b");
+  }
+  const std::string text = read_file(path);
+  std::ofstream(path) << text.substr(text.find('\n') + 1);
+  const std::string e = error_of([&] { Journal j(path, 42, 5, true); });
+  EXPECT_NE(e.find("is damaged (its first line is not a journal's header"), std::string::npos) << e;
+  EXPECT_EQ(e.find("different study"), std::string::npos) << e;
+}
+
 // Issue 14 (6): two sweeps on one journal (two --resume at once) both ran every remaining case.
 TEST(Files, JournalIsLockedWhileInUse) {
   TempDir dir;
