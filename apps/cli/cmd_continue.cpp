@@ -2,6 +2,7 @@
 // continuation), with the Floquet multipliers and CCC metrics of every orbit and the bifurcations
 // on the branch (docs/bifurcations.md).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -63,9 +64,20 @@ std::string points_csv(const Branch& root) {
                     "min_N[N],corrector_iterations[-],sequence[-]";
   for (std::size_t i = 1; i <= n_mu; ++i)
     out += ",mu" + std::to_string(i) + "_re[-],mu" + std::to_string(i) + "_im[-]";
+  // The harmonics' amplitudes A_1 ... A_H of each spectrum (H = --harmonics), as in a sweep's CSV.
+  std::size_t n_harmonics = 0;
+  for (const auto& [b, parent] : branches)
+    n_harmonics =
+        std::max(n_harmonics, harmonics_held(b->points, [](const BranchPoint& p) -> const Metrics& {
+                   return p.metrics;
+                 }));
   for (const MetricOutput& o : metric_outputs())
     if (std::holds_alternative<double Metrics::*>(o.member))
       out += std::string(",") + o.name + "[" + o.unit + "]";
+  for (const MetricOutput& o : metric_outputs())
+    if (!std::holds_alternative<double Metrics::*>(o.member))
+      for (std::size_t n = 1; n <= n_harmonics; ++n)
+        out += "," + spectrum_prefix(o.name) + "_A" + std::to_string(n) + "[" + o.unit + "]";
   out += "\n";
   for (std::size_t index = 0; index < branches.size(); ++index) {
     const Branch& b = *branches[index].first;
@@ -84,6 +96,10 @@ std::string points_csv(const Branch& root) {
       for (const MetricOutput& o : metric_outputs())
         if (std::holds_alternative<double Metrics::*>(o.member))
           out.append(",").append(cell(scalar_value(p.metrics, o)));
+      for (const MetricOutput& o : metric_outputs())
+        if (!std::holds_alternative<double Metrics::*>(o.member))
+          for (std::size_t n = 1; n <= n_harmonics; ++n)
+            out.append(",").append(cell(harmonic_amplitude(p.metrics, o, n)));
       out += "\n";
     }
   }
@@ -164,9 +180,17 @@ nlohmann::ordered_json branch_json(const Branch& b) {
     nlohmann::ordered_json mu = nlohmann::json::array();
     for (const auto& m : p.floquet.multipliers) mu.push_back({m.real(), m.imag()});
     nlohmann::ordered_json metrics;
-    for (const MetricOutput& o : metric_outputs())
-      if (std::holds_alternative<double Metrics::*>(o.member))
+    for (const MetricOutput& o : metric_outputs()) {
+      if (std::holds_alternative<double Metrics::*>(o.member)) {
         metrics[o.name] = scalar_value(p.metrics, o);
+      } else {  // a spectrum: {n, amplitude, phase} for n = 0 ... H, as `run --json` has it
+        nlohmann::ordered_json a = nlohmann::json::array();
+        const Spectrum& h = p.metrics.*std::get<Spectrum Metrics::*>(o.member);
+        for (std::size_t n = 0; n < h.size(); ++n)
+          a.push_back({{"n", n}, {"amplitude", h[n].amplitude}, {"phase", h[n].phase}});
+        metrics[o.name] = a;
+      }
+    }
     points.push_back({{"parameter", p.parameter},
                       {"arclength", p.arclength},
                       {"multiplicity", p.multiplicity},
@@ -323,7 +347,9 @@ void add_continue_command(CLI::App& app, Action& action) {
                   "follow the period-2p branch born at each period doubling, and onward, to this "
                   "depth (default 1; 0: none)")
       ->check(CLI::Range(0, 5));
-  sub->add_option("--harmonics", o->branch.harmonics, "harmonics in the metrics (default 10)")
+  sub->add_option("--harmonics", o->branch.harmonics,
+                  "harmonics in the metrics, and the columns ddx_A1 ... ddx_AN, ddz_A1 ... ddz_AN "
+                  "of --csv (default 10)")
       ->check(CLI::Range(2, 1000));
   sub->add_option("--csv", o->csv, "write the points to FILE (one row per orbit)")
       ->type_name("FILE");

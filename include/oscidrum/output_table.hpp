@@ -3,6 +3,8 @@
 // writers, the Python bindings, the run summary and `oscidrum outputs` read these tables.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <span>
 #include <string>
 #include <string_view>
@@ -53,6 +55,22 @@ bool is_acceleration_metric(std::string_view name);
 
 /// The CSV column prefix of a spectrum output: "ddx" for "ddx_harmonics" (columns ddx_A1 ...).
 std::string spectrum_prefix(std::string_view name);
+
+/// The amplitude A_n of the spectrum output `out` (ddx_harmonics, ddz_harmonics) of `m` [the
+/// output's unit], NaN where `m` holds no such harmonic (n beyond its spectrum, no metrics).
+double harmonic_amplitude(const Metrics& m, const MetricOutput& out, std::size_t n);
+
+/// The largest n for which some of `metrics` holds A_n of a spectrum output (0: none).
+template <class Range, class Get>
+std::size_t harmonics_held(const Range& items, Get metrics_of) {
+  std::size_t n = 0;
+  for (const auto& item : items) {
+    const Metrics& m = metrics_of(item);
+    n = std::max({n, m.ddx_harmonics.empty() ? 0 : m.ddx_harmonics.size() - 1,
+                  m.ddz_harmonics.empty() ? 0 : m.ddz_harmonics.size() - 1});
+  }
+  return n;
+}
 
 /// A scalar member's value as a double (integers converted exactly up to 2^53).
 template <class Struct, class... Types>

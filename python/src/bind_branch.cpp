@@ -49,6 +49,17 @@ py::dict branch_dict(const Branch& b) {
     for (const BranchPoint& p : b.points) v.push_back(scalar_value(p.metrics, o));
     points[o.name] = to_array(v);
   }
+  // The spectra's amplitudes as the CSV's columns ddx_A1 ... ddx_AH, ddz_A1 ...
+  const std::size_t n_h =
+      harmonics_held(b.points, [](const BranchPoint& p) -> const Metrics& { return p.metrics; });
+  for (const MetricOutput& o : metric_outputs()) {
+    if (std::holds_alternative<double Metrics::*>(o.member)) continue;
+    for (std::size_t n = 1; n <= n_h; ++n) {
+      std::vector<double> v;
+      for (const BranchPoint& p : b.points) v.push_back(harmonic_amplitude(p.metrics, o, n));
+      points[(spectrum_prefix(o.name) + "_A" + std::to_string(n)).c_str()] = to_array(v);
+    }
+  }
   py::list sequence, multipliers;
   for (const BranchPoint& p : b.points) {
     sequence.append(p.sequence);
@@ -166,7 +177,8 @@ void bind_branch(py::module_& m) {
         "'gross_slip', 'lift_off', 'step_too_small', 'max_points', 'start_failed'), message, "
         "period_maps, "
         "seconds; points: columns (NumPy arrays) parameter, arclength, multiplicity, stable, "
-        "unstable, max_modulus, dq_ds, min_N, every metric, and sequence (list of str); "
+        "unstable, max_modulus, dq_ds, min_N, every metric, the amplitudes ddx_A1 ... ddz_AH (H = "
+        "harmonics), and sequence (list of str); "
         "multipliers: one list of complex per point; bifurcations: list of dicts (kind, "
         "parameter, tolerance, after_point, multiplier, description, child); children: the "
         "period-2p branches born at period doublings (switch_depth levels), as dicts alike. "

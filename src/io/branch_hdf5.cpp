@@ -120,6 +120,16 @@ void write_branch(hid_t parent, std::size_t index, const Branch& b, int parent_i
         for (const BranchPoint& p : b.points) v.push_back(scalar_value(p.metrics, o));
         write_doubles(metrics, o.name, v, o.unit, false, file);
       }
+    // A spectrum (ddx_harmonics, ddz_harmonics): its amplitudes A_1 ... A_H, points x H.
+    const std::size_t n_h =
+        harmonics_held(b.points, [](const BranchPoint& p) -> const Metrics& { return p.metrics; });
+    for (const MetricOutput& o : metric_outputs())
+      if (!std::holds_alternative<double Metrics::*>(o.member) && n_h > 0) {
+        std::vector<double> v;
+        for (const BranchPoint& p : b.points)
+          for (std::size_t n = 1; n <= n_h; ++n) v.push_back(harmonic_amplitude(p.metrics, o, n));
+        write_matrix(metrics, o.name, v, b.points.size(), n_h, o.unit, file);
+      }
   }
   // The point index as the dimension scale of every 1-D column (netCDF-4 readers see it).
   {

@@ -1,6 +1,7 @@
 // The output tables of oscidrum/output_table.hpp, generated from the lists of oscidrum/outputs.hpp.
 #include "oscidrum/output_table.hpp"
 
+#include <limits>
 #include <string>
 
 namespace oscidrum {
@@ -60,6 +61,13 @@ std::string spectrum_prefix(std::string_view name) {
   if (name.size() > suffix.size() && name.substr(name.size() - suffix.size()) == suffix)
     name.remove_suffix(suffix.size());
   return std::string(name);
+}
+
+double harmonic_amplitude(const Metrics& m, const MetricOutput& out, std::size_t n) {
+  const auto* member = std::get_if<Spectrum Metrics::*>(&out.member);
+  if (member == nullptr) return std::numeric_limits<double>::quiet_NaN();
+  const Spectrum& h = m.**member;
+  return n < h.size() ? h[n].amplitude : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace oscidrum

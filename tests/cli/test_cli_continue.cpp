@@ -49,6 +49,35 @@ TEST(CliContinue, BranchToTheGrossSlipLimitWritesItsFiles) {
             static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n') - 1));
 }
 
+// --harmonics had no effect: the branch's files held the scalar metrics only. Each point now has
+// the amplitudes A_1 ... A_H of x_M'' and z_M'' (H = --harmonics), as a sweep's rows do: the
+// first point, at --from, the same as `run` gives there.
+TEST(CliContinue, HarmonicsGiveEachPointsAmplitudes) {
+  TempDir dir;
+  const Outcome o =
+      run({"continue", "--param", "MMd", "--from", "0", "--to", "2000", "--harmonics", "3", "--csv",
+           dir / "b.csv", "--json", dir / "b.json", "--format", "none", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::string csv = read(dir / "b.csv");
+  const std::string header = csv.substr(0, csv.find('\n'));
+  for (const char* column : {",ddx_A1[m/s^2],", ",ddx_A3[m/s^2],", ",ddz_A1[m/s^2],"})
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  EXPECT_EQ(header.find("ddx_A4"), std::string::npos);
+  EXPECT_TRUE(header.ends_with(",ddz_A3[m/s^2]")) << header;
+  const nlohmann::json j = nlohmann::json::parse(read(dir / "b.json"));
+  const auto& first = j["points"][0]["metrics"];
+  ASSERT_EQ(first["ddx_harmonics"].size(), 4u);  // n = 0 ... 3, as run --json
+  ASSERT_EQ(first["ddz_harmonics"].size(), 4u);
+  const Outcome single = run({"run", "--MMd", "0", "--json", dir / "r.json", "--quiet"});
+  ASSERT_EQ(single.code, 0) << single.err;
+  const nlohmann::json r = nlohmann::json::parse(read(dir / "r.json"));
+  const double a1 = r["metrics"]["ddx_harmonics"][1]["amplitude"].get<double>();
+  EXPECT_EQ(first["ddx_harmonics"][1]["n"], 1);
+  const double b1 = first["ddx_harmonics"][1]["amplitude"].get<double>();
+  EXPECT_NEAR(b1, a1, 1e-6 * a1);
+  EXPECT_GT(a1, 1.0);
+}
+
 TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
   for (const auto& args : std::vector<std::vector<std::string>>{
            {"continue", "--param", "soil.gg", "--from", "1", "--to", "2"},

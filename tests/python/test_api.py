@@ -275,6 +275,10 @@ def test_continue_branch_gives_the_branch_as_columns():
     assert [b["kind"] for b in result["bifurcations"]] == ["grazing", "grazing"]
     with pytest.raises(oscidrum.Error, match="numerical setting"):
         oscidrum.continue_branch(oscidrum.Case(), "numerics.rtol", 1e-8, 1e-7)
+    # The amplitudes A_1 ... A_harmonics of each spectrum, as the CSV's columns.
+    short = oscidrum.continue_branch(oscidrum.Case(), "MMd", 0.0, 1000.0, harmonics=3)
+    assert {"ddx_A1", "ddx_A3", "ddz_A3"} <= set(short["points"]) and "ddx_A4" not in short["points"]
+    assert (short["points"]["ddx_A1"] > 1.0).all()
 
 
 def test_bifurcation_diagram_gives_values_and_points_as_columns():

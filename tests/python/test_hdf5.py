@@ -220,6 +220,10 @@ def test_continue_hdf5_holds_the_branches_of_the_csv_with_units(cli, tmp_path):
                                        [float(r["soil.G[Pa]"]) for r in mine], rtol=1e-12)
             np.testing.assert_allclose(g["metrics"]["ddx_max"][:],
                                        [float(r["ddx_max[m/s^2]"]) for r in mine], rtol=1e-12)
+            h = g["metrics"]["ddz_harmonics"]  # points x H: the amplitudes A_1 ... A_10
+            assert h.shape == (len(mine), 10) and h.attrs["unit"] == "m/s^2"
+            np.testing.assert_allclose(h[:, 1], [float(r["ddz_A2[m/s^2]"]) for r in mine],
+                                       rtol=1e-12)
             assert g["multipliers_re"].shape[0] == len(mine)
             np.testing.assert_allclose(g["multipliers_re"][:, 0],
                                        [float(r["mu1_re[-]"]) for r in mine], rtol=1e-12)
