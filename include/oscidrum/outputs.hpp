@@ -97,7 +97,8 @@
     "periods (shooting: its short transient from rest and the sampled periods of the orbit, "     \
     "not Newton's iterates)")                                                                     \
   X(double, min_N, 0.0, "N", "min N",                                                             \
-    "smallest normal force (26) at the step ends of the same trajectory")                         \
+    "smallest normal force (26) at the step ends of the same trajectory; 0 where N reached 0 "    \
+    "(contact lost, or a lift-off)")                                                              \
   X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
     "what produced the steady state: transient (integrated from rest until it repeats) or "       \
     "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \

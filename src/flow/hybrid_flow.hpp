@@ -228,6 +228,11 @@ FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) 
   ev.kind = sw.kind;
   ev.to = sw.to;
   ev.speed = sw.speed;
+  // N reached 0 here (a lift-off, or the contact lost): the smallest normal force of the
+  // trajectory is 0, not the smallest at the step ends before it (which read as a margin of
+  // hundreds of newtons on a run that lost contact).
+  if (sw.kind == EventKind::contact_lost || sw.kind == EventKind::lift_off)
+    counters.min_N = std::min(counters.min_N, 0.0);
   const StateT before = StateT::from_array(x);
   if (sw.terminal) {
     if (observer) observer->on_event(ev, before, before);

@@ -364,6 +364,7 @@ TEST(Simulate, ContactLossIsReported) {
   EXPECT_NE(r.message.find("contact lost"), std::string::npos);
   ASSERT_FALSE(r.events.empty());
   EXPECT_EQ(r.events.back().kind, EventKind::contact_lost);
+  EXPECT_EQ(r.diagnostics.min_N, 0.0);  // N reached 0 (it said the smallest at a step end)
 }
 
 // A large friction coefficient with a large driving torque climbs the drum up the trough's flank

@@ -426,6 +426,10 @@ TEST(UnilateralDrum, MetricsAcrossTheBoundaryOfLiftOff) {
   ASSERT_LT(first, flight.size()) << "no case with flight";
   // The last orbit in contact nearly grazes: min N has fallen to ~0.1 % of W = P0.
   EXPECT_LT(min_N[first - 1], 1e-2 * cases[0].roller.P0);
+  EXPECT_GT(min_N[first - 1], 0.0);
+  // An orbit with flight reaches N = 0 at its lift-offs: its min N is 0 (it was the smallest N
+  // at the step ends in contact, hundreds of newtons).
+  for (std::size_t i = first; i < min_N.size(); ++i) EXPECT_EQ(min_N[i], 0.0) << i;
   for (std::size_t i = 1; i < ddx.size(); ++i) {
     const double step = ddx[i] - ddx[i - 1];
     // Half a MN/m^2 moves the peak by ~1.2 % on either side; across the boundary as well.
