@@ -190,11 +190,8 @@ std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool
     };
   // Polled by the runner between cases and once per simulated period.
   options.cancelled = [&]() { return calls.cancelled(); };
-  std::vector<CaseOutcome> outcomes;
-  {
-    py::gil_scoped_release release;
-    outcomes = run_study(cases, options);
-  }
+  std::vector<CaseOutcome> outcomes =
+      run_watching_signals(calls, [&] { return run_study(cases, options); });
   calls.rethrow();
   return outcomes;
 }

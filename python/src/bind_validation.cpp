@@ -46,8 +46,7 @@ std::vector<SeriesResult> run_paper_studies_py(int threads, bool keep_samples, i
   options.cancelled = [&]() { return calls.cancelled(); };
   std::vector<SeriesResult> results;
   try {
-    py::gil_scoped_release release;
-    results = run_paper_studies(options);
+    results = run_watching_signals(calls, [&] { return run_paper_studies(options); });
   } catch (const Error&) {
     if (!calls.failed()) throw;  // "cancelled" because of a kept exception: raise that instead
   }

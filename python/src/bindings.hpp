@@ -10,9 +10,12 @@
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <future>
 #include <span>
 #include <string>
 #include <string_view>
+#include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "oscidrum/error.hpp"
@@ -83,6 +86,12 @@ class GuardedCalls {
     });
     return stop_.load();
   }
+  /// Ctrl-C now (PyErr_CheckSignals, which acts only in the main thread).
+  void check_signals() {
+    guarded([] {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    });
+  }
   bool failed() const { return static_cast<bool>(error_); }
   void rethrow() const {
     if (error_) std::rethrow_exception(error_);
@@ -93,6 +102,35 @@ class GuardedCalls {
   std::atomic<bool> stop_{false};           // set once error_ is: read without the GIL
   std::atomic<std::int64_t> next_poll_{0};  // steady_clock ticks of the next signal check
 };
+
+/// Runs `work` with the GIL released on a thread of its own while the calling thread looks for
+/// Ctrl-C every 50 ms (calls.check_signals). Python handles signals only in its main thread: a
+/// computation whose cases all run on worker threads (a study on two or more threads) polled
+/// from those threads only, and a Ctrl-C waited for the whole study. Returns what `work`
+/// returns, or throws what it threw.
+template <class F>
+std::invoke_result_t<F&> run_watching_signals(GuardedCalls& calls, F&& work) {
+  using T = std::invoke_result_t<F&>;
+  std::promise<T> promise;
+  std::future<T> future = promise.get_future();
+  py::gil_scoped_release release;
+  std::thread worker([&] {
+    try {
+      if constexpr (std::is_void_v<T>) {
+        work();
+        promise.set_value();
+      } else {
+        promise.set_value(work());
+      }
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  });
+  while (future.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready)
+    calls.check_signals();
+  worker.join();
+  return future.get();
+}
 
 /// A float64 NumPy array argument (converted if needed, C-contiguous).
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
