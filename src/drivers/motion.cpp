@@ -41,7 +41,7 @@ constexpr double kZeroScatter = 0.01;
 // Stroboscopic points that agree to this fraction of the components' ranges recur.
 constexpr double kRecurrence = 1e-6;
 constexpr int kMaxRecurrence = 64;
-// Samples of the period sampled for the scales when the result holds only its section state.
+// Samples per period of the periods sampled for the scales when the result says none.
 constexpr int kScaleSamples = 64;
 
 template <class R>
@@ -64,24 +64,25 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   out.section.push_back(std::vector<double>(x.begin(), x.end()));
   out.section_phase.push_back(phase);
   std::vector<Eigen::MatrixXd> maps;  // Phi of each period on the periodic components
-  // The samples whose ranges scale the components: the result's, or, when it holds only the
-  // state at its section (a study keeps no more unless asked), the first examined period
-  // sampled on the way (without it the scales collapse to 1e-9 of the values, and the
-  // recurrence, the convergence and the exponent's alignment would judge noise).
+  // The samples whose ranges scale the components: the result's sampled periods (their number
+  // and density), sampled again on the way from the same section state, whether the result holds
+  // them or only that state (a study keeps no more unless asked). Without them the scales
+  // collapse to 1e-9 of the values, and the recurrence, the convergence and the exponent's
+  // alignment would judge noise; taken from the result's own samples when it held them, the
+  // verdict of a case depended on whether its samples were kept (sweep --hdf5, keep_samples):
+  // quasi-periodic without, converging with.
   Result sampled;
-  const Samples* ranges = &result.samples;
+  sampled.frequency = result.frequency;
+  const int scale_periods = std::clamp(result.sample_periods, 1, periods);
+  const int scale_density =
+      result.samples_per_period > 0 ? result.samples_per_period : kScaleSamples;
+  detail::sampling::Sampler<R> sampler(flow, t0, scale_periods, scale_density, true, sampled);
+  detail::ObserverPair<R> both(mono, sampler);
+  const Samples* ranges = &sampled.samples;
   for (int k = 1; k <= periods; ++k) {
     mono.reset();
-    FlowStop stop;
-    if (k == 1 && result.samples.size() < 2) {
-      sampled.frequency = result.frequency;
-      detail::sampling::Sampler<R> sampler(flow, t0, 1, kScaleSamples, true, sampled);
-      detail::ObserverPair<R> both(mono, sampler);
-      stop = flow.advance(t0 + T, &both);
-      ranges = &sampled.samples;
-    } else {
-      stop = flow.advance(t0 + k * T, &mono);
-    }
+    const FlowStop stop =
+        k <= scale_periods ? flow.advance(t0 + k * T, &both) : flow.advance(t0 + k * T, &mono);
     if (stop != FlowStop::reached) {
       out.kind = "undecided";
       out.periods = k - 1;
