@@ -473,13 +473,15 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
 }
 
 // An interrupted sweep: what is kept and how to finish it.
-int report_interrupted(const SweepOptions& o, const SweepPlan& p, const SweepOutputs& out,
-                       std::size_t finished) {
+int report_interrupted(const SweepPlan& p, const SweepOutputs& out, std::size_t finished) {
   std::cerr << "oscidrum: interrupted: " << finished << " of " << p.n_mine << " cases done";
   if (out.journal)
-    std::cerr << " (kept in " << out.journal->path() << "); run 'oscidrum sweep " << o.study
-              << (p.sharded ? " --shard " + p.shard.text() : std::string()) << " --out " << o.out
-              << " --resume' to finish\n";
+    // The same command with --resume: a hint that rebuilt it named --out and --shard only, and
+    // without the others (--hdf5, --harmonics, --set, --no-continuation) the journal was another
+    // study's, or the HDF5 file was left unfinished.
+    std::cerr << " (kept in " << out.journal->path()
+              << "); run the same command with --resume added to finish it (every other flag as "
+                 "it was)\n";
   else
     std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
   return interrupted_exit_code();
@@ -543,7 +545,7 @@ int run(const SweepOptions& o) {
   SweepOutputs out = open_outputs(o, p);
   const double elapsed = run_cases(o, p, out);
   // Interrupted (a signal after the last case changes nothing).
-  if (out.finished < p.n_mine) return report_interrupted(o, p, out, out.finished);
+  if (out.finished < p.n_mine) return report_interrupted(p, out, out.finished);
 
   write_results(o, p, out);
   std::string format = o.format;

@@ -153,7 +153,7 @@ TEST(CliSweep, KillAndResumeLosesNothing) {
                       kept + 3, SIGINT);
   EXPECT_EQ(o.code, 130) << o.err;
   EXPECT_NE(o.err.find("resuming: " + std::to_string(kept) + " of 60"), std::string::npos);
-  EXPECT_NE(o.err.find("--resume' to finish"), std::string::npos);
+  EXPECT_NE(o.err.find("run the same command with --resume added"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(out));
   const std::size_t kept2 = count_lines(slurp(journal)) - 1;
   EXPECT_GE(kept2, kept + 3);
