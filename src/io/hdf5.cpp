@@ -512,14 +512,22 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
     if (text[c] || !unit.empty()) attr_string(result_sets[c], "unit", unit, file);
   }
 
-  // /case is the dimension of every table (netCDF-4: xarray opens /parameters and /results with
-  // a named dimension `case` and its coordinate).
+  // Each table's group holds its dimension `case` (a copy of /case, a dimension scale attached
+  // to the group's other datasets): netCDF-4 readers take a group's own variable of a dimension's
+  // name as its coordinate, so xarray opens /parameters and /results with the coordinate `case`
+  // (with the scale in the root only, the groups had none, and a shard's .sel(case=4) picked the
+  // row at position 4).
   {
-    const Id case_set(H5Dopen2(impl_->file, "case", H5P_DEFAULT), H5Dclose);
     std::vector<hid_t> tables;
     for (const Id& d : param_sets) tables.push_back(d);
+    write_ints(params, "case", cases, H5T_STD_I64LE, false, file);
+    const Id param_cases(H5Dopen2(params, "case", H5P_DEFAULT), H5Dclose);
+    attach_scale(param_cases, "case", tables, file);
+    tables.clear();
     for (std::size_t c = 1; c < labels.size(); ++c) tables.push_back(result_sets[c]);
-    attach_scale(case_set, "case", tables, file);
+    write_ints(results, "case", cases, H5T_STD_I64LE, false, file);
+    const Id result_cases(H5Dopen2(results, "case", H5P_DEFAULT), H5Dclose);
+    attach_scale(result_cases, "case", tables, file);
   }
 
   std::vector<std::vector<double>> numbers(std::max(every.size(), labels.size()));
@@ -680,17 +688,18 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
         copy_attributes(src.front(), d, paths.front());
       }
     }
-    {  // /case, the tables' dimension, as in an unsharded file
-      const Id case_set(H5Dopen2(dst, "case", H5P_DEFAULT), H5Dclose);
+    // Each table's group's `case` (merged as its other columns), the dimension scale of the
+    // group's other datasets, as in an unsharded file.
+    for (const char* group : {"parameters", "results"}) {
+      const Id g(H5Gopen2(dst, group, H5P_DEFAULT), H5Gclose);
       std::vector<Id> open;
       std::vector<hid_t> tables;
-      for (const char* group : {"parameters", "results"}) {
-        const Id g(H5Gopen2(dst, group, H5P_DEFAULT), H5Gclose);
-        for (const std::string& name : member_names(g)) {
-          open.emplace_back(H5Dopen2(g, name.c_str(), H5P_DEFAULT), H5Dclose);
-          tables.push_back(open.back());
-        }
+      for (const std::string& name : member_names(g)) {
+        if (name == "case") continue;
+        open.emplace_back(H5Dopen2(g, name.c_str(), H5P_DEFAULT), H5Dclose);
+        tables.push_back(open.back());
       }
+      const Id case_set(H5Dopen2(g, "case", H5P_DEFAULT), H5Dclose);
       attach_scale(case_set, "case", tables, out);
     }
     const Id cases = checked(H5Gcreate2(dst, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),

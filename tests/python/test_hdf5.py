@@ -164,6 +164,9 @@ def test_hdf5_tables_have_the_named_dimension_case(tmp_path):
     ds = xr.open_dataset(out, group="results")
     assert "case" in ds.dims and ds.sizes["case"] == 3
     assert ds["area"].dims == ("case",)
+    # ... and `case` its coordinate, in both tables (it had none: the scale was in the root only).
+    assert list(ds["case"].values) == [0, 1, 2] and "case" in ds.coords
+    assert "case" in xr.open_dataset(out, group="parameters").coords
     # Each case's steady state: the dimension t, with t its coordinate; merged shards too.
     with h5py.File(out, "r") as h5:
         group = "steady_state/" + sorted(h5["steady_state"].keys())[1]
@@ -183,6 +186,14 @@ def test_hdf5_tables_have_the_named_dimension_case(tmp_path):
     done = subprocess.run([cli, "merge", *shards, "--out", str(merged)], capture_output=True,
                           text=True)
     assert done.returncode == 0, done.stderr
+    # A shard's tables select by case index, not by row position (shard 2 holds case 1 alone).
+    two = xr.open_dataset(shards[1], group="results")
+    assert list(two["case"].values) == [1]
+    # (the same case within the continuation's accuracy; mu 0.3, 0.5, 0.7 differ by far more)
+    assert float(two.sel(case=1)["area"]) == pytest.approx(float(ds.sel(case=1)["area"]), rel=1e-7)
+    assert abs(float(ds.sel(case=2)["area"]) / float(ds.sel(case=1)["area"]) - 1) > 1e-3
+    whole = xr.open_dataset(merged, group="results")
+    assert list(whole["case"].values) == [0, 1, 2] and "case" in whole.coords
     for k in range(3):
         with h5py.File(merged, "r") as h5:
             name = sorted(h5["steady_state"].keys())[k]
