@@ -174,7 +174,7 @@ def _result_to_dataframe(self):
     -------
     pandas.DataFrame
         One column per sample attribute (t [s], delta [rad], ..., ddx_M [m/s^2], ..., phase
-        [-]: 0 stick, 1 slip+, -1 slip-), in the column order of the CLI's CSV;
+        [-]: 0 stick, 1 slip+, -1 slip-, 2 flight), in the column order of the CLI's CSV;
         ``df.attrs['units']`` maps the columns to units.
 
     Examples

@@ -51,7 +51,7 @@ class SteadyState:
     """A sampled steady state, ready to plot.
 
     ``samples`` has one NumPy array per column of docs/csv-columns.md (``samples.t`` [s],
-    ``samples.ddx_M`` [m/s^2], ..., ``samples.phase`` int8: 0 stick, 1 slip+, -1 slip-).
+    ``samples.ddx_M`` [m/s^2], ..., ``samples.phase`` int8: 0 stick, 1 slip+, -1 slip-, 2 flight).
     """
 
     samples: Any
