@@ -16,6 +16,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/record.hpp"
+#include "oscidrum/version.hpp"
 #include "oscidrum_io/csv.hpp"
 #include "output.hpp"
 #include "record_input.hpp"
@@ -32,7 +33,9 @@ struct AnalyzeOptions {
 
 nlohmann::ordered_json spectrum(const std::vector<Harmonic>& h) {
   nlohmann::ordered_json a = nlohmann::json::array();
-  for (const Harmonic& x : h) a.push_back({{"amplitude", x.amplitude}, {"phase", x.phase}});
+  // {n, amplitude, phase} as the docs and `run --json` have them (n was missing).
+  for (std::size_t n = 0; n < h.size(); ++n)
+    a.push_back({{"n", n}, {"amplitude", h[n].amplitude}, {"phase", h[n].phase}});
   return a;
 }
 
@@ -179,7 +182,7 @@ int run(AnalyzeOptions o) {
   if (o.format == "json") {
     nlohmann::ordered_json j;
     if (single) {
-      j = {{"schema", "oscidrum-record/1"}, {"file", name}};
+      j = {{"schema", "oscidrum-record/1"}, {"oscidrum_version", version}, {"file", name}};
       j.update(window_json(ws.front()));
       j.erase("window");
       j["reading"] = reading_json(o.input, rec);
@@ -188,6 +191,7 @@ int run(AnalyzeOptions o) {
       nlohmann::ordered_json rows = nlohmann::json::array();
       for (const RecordWindow& w : ws) rows.push_back(window_json(w));
       j = {{"schema", "oscidrum-record-windows/1"},
+           {"oscidrum_version", version},
            {"file", name},
            {"window_periods", o.windows.window_periods},
            {"hop_periods",

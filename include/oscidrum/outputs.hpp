@@ -65,7 +65,7 @@
     "circular exciter's unbalance from +x towards +z), the oscillation drum's moment is M0 "       \
     "sin(alpha) (5); `analyze --unbalance-col alpha` reads it for kb")                             \
   X(SamplePhases, phase, "-", "phase",                                                             \
-    "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0, 2 flight "            \
+    "contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0, 2 flight "             \
     "(contact.unilateral: the drum off the soil) (regularised friction: the apparent phase, "      \
     "stick while |v_rel| <= 4 v_eps)")
 

@@ -155,21 +155,15 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                    {"samples_per_period", result.samples_per_period},
                    {"samples", result.samples.size()},
                    {"t0", result.samples.size() ? number(result.samples.t.front()) : json()}};
-  j["phase_times"] = {{"stick", number(result.stick_time)},
-                      {"slip_positive", number(result.slip_positive_time)},
-                      {"slip_negative", number(result.slip_negative_time)},
-                      {"flight", number(result.flight_time)}};
+  // null, as documented, when nothing was sampled (it was an object of four nulls).
+  if (result.samples.size() == 0 && std::isnan(result.stick_time))
+    j["phase_times"] = nullptr;
+  else
+    j["phase_times"] = {{"stick", number(result.stick_time)},
+                        {"slip_positive", number(result.slip_positive_time)},
+                        {"slip_negative", number(result.slip_negative_time)},
+                        {"flight", number(result.flight_time)}};
   j["metrics"] = metrics ? outputs_json(*metrics, metric_outputs()) : json(nullptr);
-  return j.dump(2) + "\n";
-}
-
-std::string record_json(const std::string& file, double f, const RecordMetrics& metrics) {
-  json j;
-  j["schema"] = "oscidrum-record/1";
-  j["oscidrum_version"] = version;
-  j["file"] = file;
-  j["f"] = number(f);
-  j.update(outputs_json(metrics, record_outputs()));
   return j.dump(2) + "\n";
 }
 

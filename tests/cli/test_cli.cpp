@@ -239,6 +239,16 @@ std::string documented_header() {
   return header;
 }
 
+// A run that ended before its sampling (gross slip) has phase_times null, as documented (it was
+// an object of four nulls).
+TEST(CliRun, ARunWithoutSamplesHasNoPhaseTimes) {
+  const Outcome o = run({"run", "--MMd", "20000", "--format", "json", "-q"});
+  ASSERT_EQ(o.code, 1) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["status"], "gross_slip");
+  EXPECT_TRUE(j["phase_times"].is_null()) << j["phase_times"];
+}
+
 TEST(CliRun, FilesFollowTheContracts) {
   TempDir dir;
   const Outcome o = run({"run", kSource + "/examples/case.toml", "--csv", dir / "s.csv", "--json",

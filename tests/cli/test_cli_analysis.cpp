@@ -79,8 +79,10 @@ TEST(CliAnalyze, RecordOfASimulationGivesItsHarmonics) {
   const nlohmann::json rec = nlohmann::json::parse(a.out);
   const nlohmann::json sim = nlohmann::json::parse(slurp(dir / "s.json"));
   EXPECT_EQ(rec["schema"], "oscidrum-record/1");
+  EXPECT_EQ(rec["oscidrum_version"], sim["oscidrum_version"]);  // documented, was missing
   const auto& hx = rec["ddx_harmonics"];
   ASSERT_EQ(hx.size(), 11u);
+  EXPECT_EQ(hx[3]["n"], 3);  // {n, amplitude, phase} as documented (n was missing)
   const double a1 = hx[1]["amplitude"].get<double>();
   EXPECT_GT(a1, 1.0);
   // The run's JSON holds the same harmonic (docs/outputs.md: metrics.ddx_harmonics), there an

@@ -19,10 +19,6 @@ namespace oscidrum::io {
 std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
                       const Metrics* metrics, const std::string& config);
 
-/// Schema "oscidrum-record/1": the file, f [Hz] and every output of record_outputs() by name
-/// (docs/outputs.md), for `oscidrum analyze --format json`.
-std::string record_json(const std::string& file, double f, const RecordMetrics& metrics);
-
 /// Schema "oscidrum-sweep/1" from a sweep's CSV header and rows (docs/outputs.md): numbers
 /// become numbers, empty cells null.
 std::string study_json(const std::string& header, const std::vector<std::string>& rows);
