@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <span>
 #include <utility>
@@ -25,6 +26,7 @@
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/output_table.hpp"
+#include "oscidrum/soil.hpp"
 #include "oscidrum/version.hpp"
 #include "oscidrum_io/case_spec.hpp"
 #include "oscidrum_io/csv.hpp"
@@ -530,20 +532,63 @@ void StudyHdf5Writer::finish(const Study& study, const std::vector<std::size_t>&
     attach_scale(result_cases, "case", tables, file);
   }
 
+  // /derived: what the model ran with where a case gives it through other keys: the soil's
+  // Kelvin-Voigt coefficients (Table 2 or Appendix B) and the oscillation moment (roller.M0, or
+  // 4 m_u e_u e_w nu^2 from roller.unbalance (5); 0 for the vibratory drum).
+  constexpr std::size_t kDerived = 5;
+  static constexpr const char* kDerivedNames[kDerived] = {"ksh", "ksv", "csh", "csv", "M0"};
+  static constexpr const char* kDerivedUnits[kDerived] = {"N/m", "N/m", "N s/m", "N s/m", "N m"};
+  static constexpr const char* kDerivedMeaning[kDerived] = {
+      "horizontal soil spring used (the soil input's coefficients)", "vertical soil spring used",
+      "horizontal soil damper used", "vertical soil damper used",
+      "oscillation moment amplitude used (5): roller.M0, or 4 m_u e_u e_w nu^2 with "
+      "roller.unbalance; 0 for the vibratory drum"};
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const Id derived_group =
+      checked(H5Gcreate2(impl_->file, "derived", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+              "cannot write " + file + ": group derived");
+  std::vector<Id> derived_sets;
+  for (std::size_t j = 0; j < kDerived; ++j) {
+    derived_sets.push_back(
+        create_dataset(derived_group, kDerivedNames[j], H5T_IEEE_F64LE, n, false, file));
+    attr_string(derived_sets.back(), "unit", kDerivedUnits[j], file);
+    attr_string(derived_sets.back(), "description", kDerivedMeaning[j], file);
+  }
+  {
+    std::vector<hid_t> tables;
+    for (const Id& d : derived_sets) tables.push_back(d);
+    write_ints(derived_group, "case", cases, H5T_STD_I64LE, false, file);
+    const Id derived_cases(H5Dopen2(derived_group, "case", H5P_DEFAULT), H5Dclose);
+    attach_scale(derived_cases, "case", tables, file);
+  }
+  std::vector<std::vector<double>> derived(kDerived);
   std::vector<std::vector<double>> numbers(std::max(every.size(), labels.size()));
   std::vector<std::vector<std::string>> strings(labels.size());
   for (std::size_t first = 0; first < n; first += kBlockRows) {
     const std::size_t count = std::min(kBlockRows, n - first);
     for (auto& v : numbers) v.clear();
+    for (auto& v : derived) v.clear();
     for (std::size_t k = first; k < first + count; ++k) {
       const Case c = study.cases[indices[k]];
-      for (std::size_t j = 0; j < every.size(); ++j) numbers[j].push_back(every[j].get(c));
+      // NaN for a key without effect in the case (its default, written as if used, told
+      // another soil or moment than the run's: /derived has those).
+      for (std::size_t j = 0; j < every.size(); ++j)
+        numbers[j].push_back(key_in_effect(c, every[j].key) ? every[j].get(c) : kNaN);
+      const SoilCoefficients soil = soil_coefficients(c.soil, c.roller);
+      const bool vibratory = c.roller.type == RollerType::vibratory;
+      const double derived_values[kDerived] = {soil.ksh, soil.ksv, soil.csh, soil.csv,
+                                               vibratory ? 0.0 : oscillation_moment(c.roller)};
+      for (std::size_t j = 0; j < kDerived; ++j) derived[j].push_back(derived_values[j]);
     }
     for (std::size_t j = 0; j < every.size(); ++j)
       write_block(param_sets[j], H5T_NATIVE_DOUBLE, first, count, numbers[j].data(),
                   "cannot write " + file + ": dataset parameters/" + every[j].key);
+    for (std::size_t j = 0; j < kDerived; ++j)
+      write_block(derived_sets[j], H5T_NATIVE_DOUBLE, first, count, derived[j].data(),
+                  "cannot write " + file + ": dataset derived/" + kDerivedNames[j]);
 
     for (auto& v : numbers) v.clear();
+    for (auto& v : derived) v.clear();
     for (auto& v : strings) v.clear();
     for (std::size_t k = first; k < first + count; ++k) {
       const std::vector<std::string> cells = csv_split(row(k));
@@ -647,7 +692,7 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
     for (std::size_t i = 0; i < total; ++i) all[i] = static_cast<std::int64_t>(i);
     write_ints(dst, "case", all, H5T_STD_I64LE, false, out);
 
-    for (const char* group : {"parameters", "results"}) {
+    for (const char* group : {"parameters", "derived", "results"}) {
       const Id g0(H5Gopen2(files.front(), group, H5P_DEFAULT), H5Gclose);
       if (!g0.ok()) throw Error(paths.front() + " is damaged: no /" + group);
       const Id g = checked(H5Gcreate2(dst, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
@@ -690,7 +735,7 @@ void merge_hdf5_shards(const std::vector<std::string>& paths, const std::string&
     }
     // Each table's group's `case` (merged as its other columns), the dimension scale of the
     // group's other datasets, as in an unsharded file.
-    for (const char* group : {"parameters", "results"}) {
+    for (const char* group : {"parameters", "derived", "results"}) {
       const Id g(H5Gopen2(dst, group, H5P_DEFAULT), H5Gclose);
       std::vector<Id> open;
       std::vector<hid_t> tables;

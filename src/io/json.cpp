@@ -88,7 +88,11 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   j["message"] = result.message;
 
   json params = json::object();
-  for (const Field& f : fields()) params[f.key] = field_value(c, f);
+  // null for a key without effect in this case (key_not_in_effect: soil.ksh under Table 2,
+  // roller.M0 beside roller.unbalance, ...): its default was written as if the run had used it.
+  // The values used instead are under "soil" and "derived".
+  for (const Field& f : fields())
+    params[f.key] = key_in_effect(c, f.key) ? field_value(c, f) : json(nullptr);
   j["parameters"] = params;
   json origins = json::object();
   for (const auto& [key, where] : spec.origin) origins[key] = where;

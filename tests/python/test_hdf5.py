@@ -249,3 +249,26 @@ def test_continue_hdf5_holds_the_branches_of_the_csv_with_units(cli, tmp_path):
         assert root["bifurcations"]["child_branch"][k] == 1
         assert abs(root["bifurcations"]["parameter"][k] - 125.004e6) < 0.01e6
         assert root["bifurcations"]["parameter"].attrs["unit"] == "Pa"
+
+
+def test_hdf5_parameters_without_effect_are_nan_and_derived_holds_what_was_used(cli, tmp_path):
+    """/parameters wrote each key's default where the case does not read it (soil.ksh under
+    Table 2: 41.4e6 for every G; roller.M0 beside roller.unbalance), as if the run had used it.
+    Those are NaN now, and /derived holds the soil coefficients and the moment the model used."""
+    study = tmp_path / "s.toml"
+    study.write_text('[roller]\nunbalance = 0.22877\nf = 25.0\n'
+                     '[sweep]\n"soil.table2_G" = [5e6, 25e6]\n')
+    out = tmp_path / "s.h5"
+    done = subprocess.run([cli, "sweep", str(study), "--out", str(tmp_path / "s.csv"),
+                           "--hdf5", str(out), "-q"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with h5py.File(out, "r") as h5:
+        assert np.isnan(h5["parameters/soil.ksh"][:]).all()
+        assert np.isnan(h5["parameters/roller.M0"][:]).all()
+        assert list(h5["parameters/soil.G"][:]) == [5e6, 25e6]
+        assert list(h5["derived/ksh"][:]) == [11.4e6, 41.4e6]  # paper Table 2
+        assert h5["derived/ksh"].attrs["unit"] == "N/m"
+        M0 = 4 * 0.22877 * (2 * np.pi * 25.0) ** 2  # (5)
+        np.testing.assert_allclose(h5["derived/M0"][:], [M0, M0], rtol=1e-12)
+    xr = pytest.importorskip("xarray")
+    assert "case" in xr.open_dataset(out, group="derived").coords
