@@ -158,6 +158,16 @@ void check_options(const SweepOptions& o) {
   if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
   if (o.plot_flag && o.plot_flag->count() > 0) check_plot_file("--plot", o.plot);
   if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
+  // The sweep's own files beside --out (its journal, removed at the end) and beside --hdf5 (the
+  // file being written, renamed at the end): an output named as one of them was deleted or
+  // overwritten without a word (--hdf5 r.csv.journal, exit 0, no HDF5 file).
+  if (!o.hdf5.empty() && !o.out.empty() && !o.out_is_stdout) {
+    const std::string journal = o.out + ".journal";
+    if (o.hdf5 == journal || o.out == o.hdf5 + ".partial")
+      throw Error("--hdf5 " + o.hdf5 + " and --out " + o.out + ": the sweep keeps its journal in " +
+                  journal + " and writes the HDF5 file as " + o.hdf5 +
+                  ".partial until it is done; name the outputs otherwise");
+  }
   if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
 }

@@ -5,10 +5,12 @@
 #
 # Each task runs `oscidrum sweep STUDY --shard I/N` on the cores Slurm gives it and writes
 # OUT/shard_I.csv; when every task has ended, a dependent job runs `oscidrum merge`, which
-# writes OUT/results.csv, byte for byte what one unsharded `oscidrum sweep` writes (and refuses to
-# merge if a shard is missing, duplicated or from another study). A task that is killed (time
-# limit, preemption) keeps its finished cases in OUT/shard_I.csv.journal: resubmit that task with
-# `sbatch --array=I ...` and it resumes. Change --array and N together.
+# writes OUT/results.csv, the rows one unsharded `oscidrum sweep` writes (byte for byte when the
+# cases are independent, --no-continuation; and refuses to merge if a shard is missing,
+# duplicated or from another study). A task that is killed (time limit, preemption) keeps its
+# finished cases in OUT/shard_I.csv.journal: resubmit that task with
+# `sbatch --array=I --export=ALL,SHARDS=N,...` (an array of one task counts 1, so N must be
+# given) and it resumes. N is SHARDS, else the array's largest task id.
 #SBATCH --job-name=oscidrum-sweep
 #SBATCH --array=1-8
 #SBATCH --cpus-per-task=4
@@ -19,7 +21,9 @@ set -euo pipefail
 OSCIDRUM=${OSCIDRUM:-oscidrum}         # the binary (e.g. build/apps/cli/oscidrum)
 STUDY=${STUDY:?set STUDY=path/to/study.toml}
 OUT=${OUT:-results}
-N=${SLURM_ARRAY_TASK_COUNT:?run this script with sbatch --array=1-N}
+# The number of shards: SHARDS, else the array's largest index (--array=1-N). Not the array's
+# task count, which is 1 for a resubmitted task (--array=3 made it shard 3/1).
+N=${SHARDS:-${SLURM_ARRAY_TASK_MAX:?run this script with sbatch --array=1-N, or set SHARDS=N}}
 I=${SLURM_ARRAY_TASK_ID}
 mkdir -p "$OUT"
 

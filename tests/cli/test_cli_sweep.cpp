@@ -352,6 +352,16 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   o = run({"sweep", study, "--out", dir / "no/such/r.csv"});
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("does not exist"), std::string::npos) << o.err;
+  // --hdf5 named as the sweep's journal was deleted with it at the end (exit 0, no HDF5 file);
+  // --out named as the HDF5 file being written was overwritten by it.
+  const std::string csv = dir / "r.csv";
+  o = run({"sweep", study, "--out", csv, "--hdf5", csv + ".journal", "-q"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("the sweep keeps its journal in"), std::string::npos) << o.err;
+  o = run({"sweep", study, "--out", dir / "r.partial", "--hdf5", dir / "r", "-q"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("writes the HDF5 file as"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.partial"));
   o = run({"sweep", study, "--out", ""});  // issue 14 (4): an empty path was ignored
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("--out needs a file name"), std::string::npos) << o.err;
