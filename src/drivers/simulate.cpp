@@ -461,6 +461,12 @@ std::string contact_mode(const Result& r) {
   if (every)
     return p == 1 ? "periodic lift-off"
                   : "lift-off every period, repeating every " + std::to_string(p) + " periods";
+  // Lift-offs in one repetition of the orbit (p periods): one, or several (a 3-period orbit of
+  // the lift-off study lifts off twice in its 3 periods, and read "lift-off every 3 periods").
+  const int sampled = std::max(1, r.sample_periods);
+  const long per_repetition = std::lround(static_cast<double>(lift_offs) * p / sampled);
+  if (per_repetition > 1)
+    return std::to_string(per_repetition) + " lift-offs every " + std::to_string(p) + " periods";
   return "lift-off every " + std::to_string(p) + " periods";
 }
 

@@ -403,6 +403,23 @@ TEST(UnilateralDrum, EnergyBalanceOverAPeriodWithFlight) {
 // the oscillation roller's main CCC value, moves on smoothly across the boundary, as it does on
 // either side; the vertical metrics change with the orbit (docs/model.md section 13: without a
 // friction limit the tangential force released at lift-off makes the grazing discontinuous).
+// The contact mode counts the lift-offs of one repetition: at 70 Hz on G = 50 MN/m^2 the orbit
+// repeats every 3 periods and lifts off twice in them (every 1.5 periods), which read "lift-off
+// every 3 periods"; at 60 Hz once in 2 periods.
+TEST(UnilateralDrum, ContactModeCountsTheLiftOffsOfOneRepetition) {
+  Case c = flying_case();
+  c.soil.G = 50e6;
+  c.roller.f = 70.0;
+  Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_EQ(r.diagnostics.multiplicity, 3);
+  EXPECT_EQ(r.diagnostics.contact_mode, "2 lift-offs every 3 periods");
+  c.roller.f = 60.0;
+  r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  EXPECT_EQ(r.diagnostics.contact_mode, "lift-off every 2 periods");
+}
+
 TEST(UnilateralDrum, MetricsAcrossTheBoundaryOfLiftOff) {
   std::vector<Case> cases;
   for (double G = 44.0; G <= 49.01; G += 0.5) {
