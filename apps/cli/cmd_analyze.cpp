@@ -124,6 +124,11 @@ int run(AnalyzeOptions o) {
   // should that ever fail, say so instead of reading an empty list.
   if (ws.empty()) throw oscidrum::Error("analyze: no window fits in the record " + o.input.file);
   report_reading(rec);
+  if (o.windows.window_periods > 0) {
+    std::vector<const RecordWindow*> all;
+    for (const RecordWindow& w : ws) all.push_back(&w);
+    warn_unchecked_change(all, "analyze");
+  }
   std::size_t valid = 0;
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
   // A record sampled in step with the excitation: what it reports of the harmonics above those it

@@ -381,6 +381,11 @@ int run(const IdentifyCliOptions& o) {
     line.clear();
     // How the record was read, once the pass has run: a refusal (exit code 2) is one line.
     report_reading(rec);
+    {
+      std::vector<const RecordWindow*> all;
+      for (const PassEstimate& p : pass) all.push_back(&p.window);
+      warn_unchecked_change(all, "identify");
+    }
     if (interrupted()) {
       std::cerr << "oscidrum: interrupted after " << pass.size() << " windows; nothing written\n";
       return interrupted_exit_code();

@@ -153,6 +153,24 @@ void report_reading(const std::vector<std::string>& notes) {
 
 void report_reading(const RecordColumns& rec) { report_reading(rec.notes); }
 
+void warn_unchecked_change(std::span<const RecordWindow* const> windows, const char* command) {
+  std::size_t unchecked = 0, valid = 0;
+  for (const RecordWindow* w : windows) {
+    if (!w->valid || w->whole) continue;
+    ++valid;
+    if (std::isnan(w->change)) ++unchecked;
+  }
+  if (unchecked == 0) return;
+  const int n =
+      windows.empty() ? 0 : static_cast<int>(windows.front()->metrics.ddx_harmonics.size()) - 1;
+  std::cerr << "oscidrum: " << command << ": warning: " << unchecked << " of " << valid
+            << " valid windows are too short to check whether the response changes within them "
+               "(each half needs one period and "
+            << 2 * (2 * std::max(n, 0) + 1)
+            << " samples, twice its fit's coefficients): a window across a change of the soil "
+               "passes with mixed metrics; give a longer --window, or fewer --harmonics\n";
+}
+
 std::string failure_reasons(const std::vector<RecordWindow>& windows) {
   std::string out;
   std::size_t shown = 0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +46,10 @@ void report_reading(const std::vector<std::string>& notes);
 /// How the record was read, for the JSON outputs of analyze and identify: the columns taken, the
 /// factors applied, the axis conventions (x_positive, z_positive) and the delimiter.
 nlohmann::ordered_json reading_json(const RecordInput& o, const RecordColumns& rec);
+
+/// A warning on stderr when valid windows (not a whole record taken as one) could not be checked
+/// for a change of the response within them (RecordWindow::change NaN: halves too short).
+void warn_unchecked_change(std::span<const RecordWindow* const> windows, const char* command);
 
 /// The record's latitude and longitude [deg] at time t (linear between samples; NaN without
 /// the columns).

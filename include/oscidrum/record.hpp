@@ -110,8 +110,8 @@ struct RecordWindow {
   double f = 0.0;         ///< excitation frequency of the window [Hz] (NaN if not fitted)
   double drift = 0.0;     ///< (f(second half) - f(first half)) / f [-] (NaN if not fitted)
   /// (RMS(second half) - RMS(first half)) / RMS(window) of the fitted periodic signal, of
-  /// x_M'' or z_M'', whichever changes more [-] (NaN if not fitted or a half is shorter than
-  /// two periods); RecordGates::max_change bounds it.
+  /// x_M'' or z_M'', whichever changes more [-] (NaN if not fitted, or a half is shorter than
+  /// one period or holds fewer than 2 (2 n + 1) samples); RecordGates::max_change bounds it.
   double change = 0.0;
   double samples_per_period = 0.0;  ///< [-]
   /// The whole record as the one window, the window asked being longer than the record

@@ -1002,8 +1002,18 @@ double drift_noise(std::span<const double> t, std::span<const double> x, std::sp
 void change_within(std::span<const double> t, std::span<const double> x, std::span<const double> z,
                    double f, int n_max, RecordWindow& w, std::vector<std::string>& reasons,
                    double max_change) {
+  // Each half at least one period long and with twice as many samples as its fit has
+  // coefficients (2 (2 n_max + 1): the residual, and with it the noise the change is weighed
+  // against, means something). Halves of two periods were asked before, and windows of 2 to 4
+  // periods, which the docs suggest for placing a change between windows, were never checked:
+  // one straddling a change of the soil passed as valid with mixed metrics.
   const std::size_t half = t.size() / 2;
-  if (half < 2 || (t[half - 1] - t.front()) * f < 2.0 || (t.back() - t[half]) * f < 2.0) return;
+  const auto min_samples = static_cast<std::size_t>(2 * (2 * n_max + 1));
+  // A half's span counts its last sample's interval: 1024 samples of one period cover it.
+  const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  if (half < min_samples || t.size() - half < min_samples ||
+      (t[half - 1] - t.front() + dt) * f < 1.0 - 1e-9 || (t.back() - t[half] + dt) * f < 1.0 - 1e-9)
+    return;
   // Each half's harmonics and residuals as analyze_record fits them (fit_record), without the
   // peaks, area and subharmonics that are not compared; a half with too few samples per period
   // for n_max, which analyze_record refuses, says nothing about a change.

@@ -1094,3 +1094,56 @@ TEST(Record, RejectsBadRecords) {
 
 }  // namespace
 }  // namespace oscidrum
+
+namespace oscidrum {
+namespace {
+
+// Windows of 2 to 4 periods, which docs/identify.md suggests for placing a change between
+// windows, were never checked for a change within them (the halves had to be two periods long):
+// one straddling a step of the response passed as valid. Halves of one period, each with twice
+// its fit's coefficients in samples, are checked now; where a half has fewer samples the change
+// stays unmeasured (NaN).
+TEST(Record, ShortWindowsAreCheckedForAChangeWithinThem) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  const auto record = [&](int per_period) {
+    const int n = 12 * per_period;
+    std::array<std::vector<double>, 3> r;
+    for (int i = 0; i < n; ++i) {
+      const double t = i / (per_period * f);
+      const double a = t < 6.0 / f ? 1.0 : 1.3;  // the response steps up after 6 periods
+      r[0].push_back(t);
+      r[1].push_back(a * (12.0 * std::sin(nu * t + 0.2) + 2.0 * std::sin(3 * nu * t - 0.7)));
+      r[2].push_back(a * (1.1 * std::sin(2 * nu * t + 1.3) + 0.3 * std::sin(nu * t)));
+    }
+    return r;
+  };
+  WindowOptions o;
+  o.f = f;
+  o.n_max = 6;
+  o.window_periods = 2.0;
+  o.hop_periods = 1.0;
+  const auto dense = record(256);
+  const std::vector<RecordWindow> ws = analyze_windows(dense[0], dense[1], dense[2], {}, o);
+  ASSERT_GE(ws.size(), 10u);
+  for (const RecordWindow& w : ws) {
+    SCOPED_TRACE("window at " + std::to_string(w.t_start * f) + " periods");
+    ASSERT_FALSE(std::isnan(w.change));
+    const bool across = w.t_start * f < 5.5 && (w.t_end * f) > 6.5;
+    if (across) {  // periods 5-7: one half before the step, one after
+      EXPECT_FALSE(w.valid);
+      EXPECT_GT(w.change, 0.2);
+      EXPECT_NE(w.reason.find("the response changes within the window"), std::string::npos);
+    } else {
+      EXPECT_TRUE(w.valid) << w.reason;
+      EXPECT_LT(std::abs(w.change),
+                0.01);  // (a window ending at the step holds one sample after it)
+    }
+  }
+  // 20 samples per period: a half of one period has fewer than 2 (2 * 6 + 1) = 26.
+  const auto sparse = record(20);
+  for (const RecordWindow& w : analyze_windows(sparse[0], sparse[1], sparse[2], {}, o))
+    EXPECT_TRUE(std::isnan(w.change));
+}
+
+}  // namespace
+}  // namespace oscidrum
