@@ -363,6 +363,20 @@ void collect_axes(const toml::node& node, const std::string& key, const toml::so
                 " is an empty table; give a list [a, b, ...] or a range {start, stop, step} or "
                 "{start, stop, num}");
   if (const toml::table* t = node.as_table(); t && !is_range(*t)) {
+    // A parameter's table that is no range (a key beside start, stop, step, num: scale = "log")
+    // was taken for nested keys: "unknown parameter 'soil.G.num'".
+    if (find_field(key) || find_extra_key(key)) {
+      std::string others;
+      for (auto&& [k, n] : *t) {
+        (void)n;
+        if (k != "start" && k != "stop" && k != "step" && k != "num")
+          others += (others.empty() ? "'" : ", '") + std::string(k.str()) + "'";
+      }
+      throw Error(where + ": " + key + " range: its keys are start, stop and step or num; got " +
+                  others +
+                  " (a range is evenly spaced; for other values, such as logarithmic ones, give "
+                  "the list [a, b, ...])");
+    }
     for (auto&& [k, n] : *t)
       collect_axes(n, key + "." + std::string(k.str()), k.source(), name, out, grouped);
     return;
