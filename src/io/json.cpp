@@ -88,12 +88,17 @@ std::string case_json(const CaseSpec& spec, const Case& c, const Result& result,
   j["message"] = result.message;
 
   json params = json::object();
-  // null for a key without effect in this case (key_not_in_effect: soil.ksh under Table 2,
-  // roller.M0 beside roller.unbalance, ...): its default was written as if the run had used it.
-  // The values used instead are under "soil" and "derived".
-  for (const Field& f : fields())
-    params[f.key] = key_in_effect(c, f.key) ? field_value(c, f) : json(nullptr);
+  // Every field's value (the case as given: it runs again from these), and the keys the case
+  // does not read (key_not_in_effect: soil.ksh under Table 2, roller.M0 beside roller.unbalance)
+  // named in unused_parameters: their values are defaults the run did not use (the values used
+  // are under "soil" and "derived").
+  json unused = json::array();
+  for (const Field& f : fields()) {
+    params[f.key] = field_value(c, f);
+    if (!key_in_effect(c, f.key)) unused.push_back(f.key);
+  }
   j["parameters"] = params;
+  j["unused_parameters"] = unused;
   json origins = json::object();
   for (const auto& [key, where] : spec.origin) origins[key] = where;
   j["origins"] = origins;
