@@ -263,7 +263,7 @@ struct SyntheticRecord {
   double sample_rate = 1000;  ///< [1/s]
   double noise = 0.0;         ///< white noise, standard deviation / peak |a| of each signal [-]
   double drift = 0.0;         ///< slow drift amplitude / peak |a| (a sine of period `duration`)
-  double jitter = 0.0;        ///< random sample-time jitter / sample interval [-]
+  double jitter = 0.0;        ///< random sample-time jitter / sample interval, in [0, 1) [-]
   unsigned seed = 1;
   double speed = 0.0;    ///< roller speed for the position column [m/s]
   double start = 0.0;    ///< time of the first sample [s] (a logger's clock)

@@ -156,7 +156,17 @@ class StudyResult(list):
         units = df.attrs["units"]
         data = ["status", "ok", "periods_to_steady", "multiplicity"] + list(
             _core.Metrics.scalar_names)
-        ds = df.set_index(dims)[data].to_xarray() if dims else df[data].iloc[0].to_xarray()
+        if dims:
+            ds = df.set_index(dims)[data].to_xarray()
+            # A varied key that is not a dim follows the dims (soil.ksh with soil.G under Table 2,
+            # or mu varied together with G case by case): a coordinate over them, not dropped.
+            varied = [k for k in self.to_dataframe("varied").columns
+                      if k in df.columns and k in _core.Case.keys() and k not in dims]
+            for k in varied:
+                ds = ds.assign_coords({k: df.set_index(dims)[k].to_xarray()})
+        else:  # one case: a Dataset of scalars (a Series' to_xarray is a DataArray)
+            import xarray as xr
+            ds = xr.Dataset({name: ((), df[name].iloc[0]) for name in data})
         for name in list(ds.variables):
             if name in units:
                 ds[name].attrs["units"] = units[name]

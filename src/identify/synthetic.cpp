@@ -30,6 +30,14 @@ RecordSamples synthetic_record(const std::vector<Case>& segments, const Syntheti
       throw Error(std::string("synthetic_record: ") + name + " must be finite and >= 0; got " +
                       detail::shortest(value),
                   name, value);
+  // Each time moves by up to half the jitter of an interval: at 1 or more, neighbours swap and
+  // the record's times go back (which every record function refuses).
+  if (!(o.jitter < 1.0))
+    throw Error(
+        "synthetic_record: jitter must be in [0, 1) sample intervals (times must increase); "
+        "got " +
+            detail::shortest(o.jitter),
+        "jitter", o.jitter);
   for (const auto& [name, value] : {std::pair{"start", o.start}, std::pair{"speed", o.speed}})
     if (!std::isfinite(value))
       throw Error(std::string("synthetic_record: ") + name + " must be finite; got " +

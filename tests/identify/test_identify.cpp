@@ -94,6 +94,22 @@ TEST(Frequency, FoundInAnExactRecord) {
   EXPECT_NEAR(estimate_frequency(r.t, r.ddx_M, r.ddz_M) / kF, 1.0, 3e-6);
 }
 
+// A jitter of a whole sample interval or more swapped neighbouring samples: the "record for
+// trying" had times going back, which every record function refuses. Below 1 the times increase.
+TEST(Frequency, SyntheticJitterKeepsTimesIncreasing) {
+  Case c = truth(25e6, false, 0.0);
+  SyntheticRecord o;
+  o.duration = 0.2;
+  o.sample_rate = 1000;
+  o.jitter = 0.99;
+  const RecordSamples r = synthetic_record({c}, o);
+  for (std::size_t i = 1; i < r.t.size(); ++i) ASSERT_GT(r.t[i], r.t[i - 1]) << i;
+  o.jitter = 1.0;
+  EXPECT_THROW(synthetic_record({c}, o), Error);
+  o.jitter = 2.0;
+  EXPECT_THROW(synthetic_record({c}, o), Error);
+}
+
 TEST(SimulateMetrics, IsTheEnginesSteadyStateMetrics) {
   const Case c = truth(8.1e6, false, 0.03);
   const ModelResponse m = simulate_metrics(c, 6);

@@ -85,6 +85,22 @@ def test_xarray_and_netcdf(local, tmp_path):
         oscidrum.StudyResult(local.cases * 2, list(local) * 2).to_xarray()
 
 
+def test_xarray_of_one_case_and_of_keys_varied_together(tmp_path):
+    # One case raised AttributeError from inside the package (a Series' to_xarray is a
+    # DataArray); mu varied together with G case by case was dropped without a word.
+    one = oscidrum.run_study([oscidrum.Case()], progress=False)
+    ds = one.to_xarray()
+    assert ds["area"].item() == one[0].metrics.area and ds["status"].item() == "steady_state"
+    one.to_netcdf(tmp_path / "one.nc")
+    cases = [oscidrum.Case(table2_G=G, mu=mu) for G, mu in ((5e6, 0.3), (25e6, 0.5), (70e6, 0.7))]
+    res = oscidrum.run_study(cases, progress=False)
+    ds = res.to_xarray()
+    assert ds["area"].dims == ("soil.G",)
+    assert list(ds["contact.mu"].values) == [0.3, 0.5, 0.7]
+    assert ds["contact.mu"].dims == ("soil.G",)
+    res.to_netcdf(tmp_path / "two.nc")
+
+
 def test_progress_bar_only_on_a_terminal(capsys):
     cases = [oscidrum.Case(pure_rolling=True)] * 3
     oscidrum.run_study(cases)  # stderr is not a terminal here: no bar
