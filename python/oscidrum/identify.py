@@ -160,12 +160,14 @@ def _json_value(v: Any) -> Any:
 def to_geojson(rows, t: Optional[Sequence[float]] = None, lat: Optional[Sequence[float]] = None,
                lon: Optional[Sequence[float]] = None, path: Optional[str | Path] = None,
                name: str = "") -> Dict[str, Any]:
-    """The pass as GeoJSON (RFC 7946), as ``oscidrum identify --geojson`` writes it: a
+    """The pass as GeoJSON (RFC 7946), in the layout of ``oscidrum identify --geojson``: a
     FeatureCollection with one Feature per window (``rows``: :func:`identify`'s list or
     :func:`identify_frame`'s DataFrame). With the record's times ``t`` [s] and GNSS ``lat``,
     ``lon`` [deg, WGS 84] (one per sample), each feature is the Point at its window's centre
     (interpolated linearly in time); without them its geometry is null. The properties are the
-    window's scalar columns (G etc. in SI units, as the CSV; NaN as null) and ``warnings``.
+    window's scalar columns as the rows name them (``G``, ``G_lo``, ``G_hi``, ... in SI units,
+    G in Pa; NaN as null) and ``warnings`` -- not the CLI file's properties (``G`` in MN/m^2 with
+    ``G_lower``, ``G_upper``, ``G_unit``): the two files' ``G`` differ by 1e6.
     ``path``: also write the file. Returns the GeoJSON as a dict."""
     from . import Error
     records = rows.to_dict("records") if hasattr(rows, "to_dict") else list(rows)
