@@ -378,6 +378,13 @@ class Shooter {
   const Numerics& num_;
   const double period_;
   const ProgressCallback& progress_;
+  // The last period reported: a Newton step's count starts from the transient's periods, of
+  // which the last, integrated as the first map, was reported already (the caller saw 1, 2, 3, 3).
+  int reported_ = 0;
+  bool report(int period, double change) {
+    reported_ = std::max(period, reported_ + 1);
+    return progress_(reported_, change);
+  }
   const Dyn dynamics_;
   MonodromyObserver<R> mono_;
   // The last period of the short transient, integrated as the period map of its start.
@@ -460,7 +467,7 @@ bool Shooter<R>::short_transient(ShootingOutcome& out) {
     out.transient_periods = before + n - map_periods;  // the maps are counted as such
     // A period integrated as a map keeps the scale of the period before.
     if (!as_map) set_scales(obs);
-    if (progress_ && !progress_(before + n, std::numeric_limits<double>::infinity())) {
+    if (progress_ && !report(before + n, std::numeric_limits<double>::infinity())) {
       out.terminal = true;
       out.status = Status::cancelled;
       out.message = fmt("cancelled after %.0f periods", n);
@@ -590,7 +597,7 @@ bool Shooter<R>::newton(State& z, Phase phase, PeriodMap& cur, ShootingOutcome& 
           fmt("Newton did not converge in %.0f steps (scaled residual %.3g)", k, cur.residual);
       break;
     }
-    if (progress_ && !progress_(out.transient_periods + out.newton_iterations + 1, cur.residual)) {
+    if (progress_ && !report(out.transient_periods + out.newton_iterations + 1, cur.residual)) {
       out.terminal = true;
       out.status = Status::cancelled;
       out.message = "cancelled during the Newton iteration";

@@ -81,6 +81,12 @@ def test_progress_callback_and_cancel():
     assert len(seen) > 10 and all(isinstance(p, int) for p, _ in seen)
     r = oscidrum.simulate(case, progress=lambda period, change: period < 5)
     assert r.status == oscidrum.Status.cancelled
+    # By shooting each call counts on: the first Newton step repeated the transient's last
+    # period (1, 2, 3, 3, 4, ...).
+    for c in (oscidrum.Case(), oscidrum.Case(pure_rolling=True)):
+        periods = []
+        oscidrum.simulate(c, progress=lambda period, change: periods.append(period))
+        assert periods == list(range(1, len(periods) + 1)), periods
 
 
 def test_exception_in_progress_propagates():
