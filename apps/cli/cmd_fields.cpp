@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "oscidrum/fields.hpp"
+#include "oscidrum/version.hpp"
 #include "oscidrum_io/case_spec.hpp"
 #include "output.hpp"
 
@@ -26,7 +27,7 @@ int run(const std::string& format) {
     extra_table.rows.push_back({e.key, e.unit, "(not set)", e.rule, e.description});
 
   if (format == "json") {
-    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (const Field& f : fields()) {
       nlohmann::ordered_json e = {{"key", f.key},
                                   {"unit", f.unit},
@@ -47,16 +48,19 @@ int run(const std::string& format) {
           e["type"] = "real", e["default"] = f.get(defaults);
           break;
       }
-      j.push_back(e);
+      list.push_back(e);
     }
     for (const io::ExtraKey& x : io::extra_keys())
-      j.push_back({{"key", x.key},
-                   {"unit", x.unit},
-                   {"rule", x.rule},
-                   {"description", x.description},
-                   {"shorthand", true},
-                   {"type", "real"},
-                   {"default", nullptr}});
+      list.push_back({{"key", x.key},
+                      {"unit", x.unit},
+                      {"rule", x.rule},
+                      {"description", x.description},
+                      {"shorthand", true},
+                      {"type", "real"},
+                      {"default", nullptr}});
+    const nlohmann::ordered_json j = {{"schema", "oscidrum-fields/1"},
+                                      {"oscidrum_version", version},
+                                      {"fields", std::move(list)}};
     std::cout << j.dump(2) << "\n";
   } else if (format == "csv") {
     TextTable all = fields_table;

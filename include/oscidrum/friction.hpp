@@ -122,8 +122,17 @@ inline Phase flow_phase(const FrictionLaw& law, Phase sample_phase) {
   return has_phase(law, sample_phase) ? sample_phase : initial_phase(law);
 }
 
+/// True for a Coulomb law without friction (mu = 0): its cone is a point, slip exerts no force
+/// either way, and the flow has no event at v_rel = 0 (src/flow/event_functions.cpp), so the
+/// flow's slip direction is arbitrary (initial_phase).
+bool frictionless(const FrictionLaw& law);
 /// The phase a sample is shown in: the flow's phase, except in the smooth phase, where it is stick
-/// (creep) while |v_rel| <= the law's creep velocity (v_eps), else slip with the sign of v_rel.
+/// (creep) while |v_rel| <= the law's creep velocity (v_eps), else slip with the sign of v_rel, and
+/// in slip without friction (frictionless), where it is slip with the sign of v_rel (the flow's
+/// phase where v_rel = 0).
 Phase apparent_phase(const FrictionLaw& law, Phase phase, double v_rel);
+/// True when apparent_phase can differ from `phase` along a trajectory in it: the smooth phase,
+/// and slip without friction.
+bool apparent_varies(const FrictionLaw& law, Phase phase);
 
 }  // namespace oscidrum

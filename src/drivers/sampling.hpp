@@ -65,12 +65,12 @@ class Sampler : public BasicFlowObserver<R> {
     }
     const double lo = std::max(step.t0(), t_start_), hi = std::min(step.t1(), t_end_);
     if (hi > lo) {
-      if (step.phase() != Phase::smooth) {
+      if (!dynamics_.apparent_varies(step.phase())) {
         add_time(step.phase(), hi - lo);
       } else {
-        // The smooth phase of a regularised law: the time in each apparent phase, from the
-        // midpoints of kSmoothParts equal parts of the piece (a piece is at most T/16, so the
-        // times are good to about 1/500 of a period).
+        // The smooth phase of a regularised law, slip without friction: the time in each
+        // apparent phase, from the midpoints of kSmoothParts equal parts of the piece (a piece is
+        // at most T/16, so the times are good to about 1/500 of a period).
         constexpr int kSmoothParts = 16;
         const double h = (hi - lo) / kSmoothParts;
         for (int i = 0; i < kSmoothParts; ++i)

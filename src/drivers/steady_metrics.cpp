@@ -388,12 +388,12 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
                          s_mid * c_off + sign * c_mid * s_off});
       }
     }
-    // slip- 0, stick 1, slip+ 2, flight 3; a smooth law's one phase: its apparent phases' times
-    // come from the sampling (below).
-    if (pc.phase != Phase::smooth)
+    // slip- 0, stick 1, slip+ 2, flight 3; a smooth law's one phase and slip without friction:
+    // their apparent phases' times come from the sampling (below).
+    if (!apparent_varies(model.friction(), pc.phase))
       time[static_cast<std::size_t>(static_cast<int>(pc.phase) + 1)] += pc.b - pc.a;
   }
-  if (model.friction_phases() == FrictionPhases::smooth)
+  if (model.friction_phases() == FrictionPhases::smooth || frictionless(model.friction()))
     time = {result.slip_negative_time, result.stick_time, result.slip_positive_time,
             result.flight_time};
   const Extremes &ddx = peaks[0], &ddz = peaks[1], &delta = peaks[2], &traction = peaks[3],

@@ -56,8 +56,22 @@ bool has_phase(const FrictionLaw& law, Phase phase) {
   return false;
 }
 
+bool frictionless(const FrictionLaw& law) {
+  return friction_phases(law) == FrictionPhases::stick_slip && cone_coefficient(law) == 0.0;
+}
+
+bool apparent_varies(const FrictionLaw& law, Phase phase) {
+  return phase == Phase::smooth ||
+         ((phase == Phase::slip_positive || phase == Phase::slip_negative) && frictionless(law));
+}
+
 Phase apparent_phase(const FrictionLaw& law, Phase phase, double v_rel) {
-  if (phase != Phase::smooth) return phase;
+  if (!apparent_varies(law, phase)) return phase;
+  if (phase != Phase::smooth) {
+    // mu = 0: no force tells the directions apart; the sample shows the way the drum slips.
+    if (v_rel == 0.0) return phase;
+    return v_rel > 0.0 ? Phase::slip_positive : Phase::slip_negative;
+  }
   const double creep = std::visit([](const auto& l) { return l.creep_velocity(); }, law);
   if (std::abs(v_rel) <= creep) return Phase::stick;
   return v_rel > 0.0 ? Phase::slip_positive : Phase::slip_negative;

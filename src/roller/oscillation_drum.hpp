@@ -93,11 +93,16 @@ class Dynamics<OscillationDrum> {
 
   // ---- sampling -------------------------------------------------------------------------------
   void sample(double t, const Vector& x, Phase phase, Samples& samples) const;
-  /// The phase a state is shown in (the smooth phase of a regularised law shows its apparent
-  /// phase, oscidrum/friction.hpp; every other phase itself).
+  /// The phase a state is shown in (the smooth phase of a regularised law and slip without
+  /// friction show their apparent phase, oscidrum/friction.hpp; every other phase itself).
   Phase apparent(Phase phase, const Vector& x) const {
-    if (phase != Phase::smooth) return phase;
+    if (!apparent_varies(phase)) return phase;
     return apparent_phase(model_.friction(), phase, slip_velocity(model_, State::from_array(x)));
+  }
+  /// True when the phase shown can change inside a piece of the flow in `phase` (the smooth
+  /// phase; slip without friction: oscidrum/friction.hpp).
+  bool apparent_varies(Phase phase) const {
+    return oscidrum::apparent_varies(model_.friction(), phase);
   }
   /// What the steady metrics read at a point of the trajectory (src/drivers/steady_metrics.cpp):
   /// x_M'', z_M'' (18), delta, phi, T/N, the friction power |T v_rel| (0 in stick), the gap (0),

@@ -94,6 +94,9 @@ class Dynamics<UnilateralDrum> {
   Phase apparent(Phase phase, const Vector& x) const {
     return phase == Phase::flight ? phase : drum_.apparent(phase, contact_part(x));
   }
+  bool apparent_varies(Phase phase) const {
+    return phase != Phase::flight && drum_.apparent_varies(phase);
+  }
   /// The drum's quantities in contact (gap 0); in flight x_M'', z_M'' from (19), (20) with
   /// N = T = 0, delta, phi, T/N = 0, no friction power, the gap, F_v = 0 and z_M.
   std::array<double, 9> quantities(double t, const Vector& x, Phase phase) const;

@@ -609,7 +609,8 @@ TEST(CliFields, DocsConfigTableIsTheGeneratedOne) {
         << "between its markers";
   }
   const nlohmann::json j = nlohmann::json::parse(run({"fields", "--format", "json"}).out);
-  EXPECT_EQ(j.size(), fields().size() + 2);
+  EXPECT_EQ(j.at("schema"), "oscidrum-fields/1");  // as every JSON document (docs/outputs.md)
+  EXPECT_EQ(j.at("fields").size(), fields().size() + 2);
   EXPECT_EQ(run({"params"}).code, 0);
 }
 

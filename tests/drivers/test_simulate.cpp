@@ -199,6 +199,17 @@ TEST(Simulate, FrictionlessDrumSpinsFreely) {
     EXPECT_NEAR(r.samples.T[j], 0.0, 1e-9 * model.W());
     EXPECT_NEAR(r.samples.delta[j], 0.0, 1e-12);
   }
+  // phi' >= 0 from rest, so the drum slips backwards (v_rel <= 0) throughout: every sample shows
+  // slip- where v_rel < 0, and both metric paths give slip- for the whole period (all were
+  // labelled slip+, the flow's arbitrary direction, oscidrum/friction.hpp frictionless).
+  for (std::size_t j = 0; j < r.samples.size(); ++j) {
+    ASSERT_TRUE(r.samples.v_rel[j] >= 0.0 || r.samples.phase[j] == Phase::slip_negative) << j;
+  }
+  for (const Metrics& m : {compute_metrics(r), compute_metrics(model, r)}) {
+    EXPECT_NEAR(m.slip_negative_fraction, 1.0, 1e-12);
+    EXPECT_EQ(m.slip_positive_fraction, 0.0);
+    EXPECT_EQ(m.stick_fraction, 0.0);
+  }
   // x_M'' and z_M'' are round-off (seen: 0 and 1e-16 m/s^2): absent, and every ratio to their
   // fundamentals NaN (before: z_M'' A2/A1 0.998, CMV 299, CCV 199, of round-off).
   for (const Metrics& m : {compute_metrics(r), compute_metrics(model, r)}) {

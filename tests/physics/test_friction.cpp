@@ -70,6 +70,23 @@ TEST(Friction, RegularisedCoefficientAndItsDerivatives) {
   EXPECT_EQ(apparent_phase(CoulombFriction{0.5}, Phase::slip_negative, 0.0), Phase::slip_negative);
 }
 
+// Without friction (mu = 0) the slip direction exerts nothing and the flow never switches it:
+// samples show the sign of v_rel (they showed the flow's arbitrary slip+ against v_rel < 0).
+TEST(Friction, SlipWithoutFrictionShowsTheSignOfTheSlipVelocity) {
+  const CoulombFriction none{0.0};
+  EXPECT_TRUE(frictionless(none));
+  EXPECT_FALSE(frictionless(CoulombFriction{0.5}));
+  EXPECT_FALSE(frictionless(PureRolling{}));
+  EXPECT_FALSE(frictionless(RegularisedCoulomb{0.0, 0.01}));  // smooth: its own labels
+  EXPECT_TRUE(apparent_varies(none, Phase::slip_positive));
+  EXPECT_FALSE(apparent_varies(none, Phase::stick));
+  EXPECT_FALSE(apparent_varies(CoulombFriction{0.5}, Phase::slip_positive));
+  EXPECT_EQ(apparent_phase(none, Phase::slip_positive, -0.2), Phase::slip_negative);
+  EXPECT_EQ(apparent_phase(none, Phase::slip_negative, 0.2), Phase::slip_positive);
+  EXPECT_EQ(apparent_phase(none, Phase::slip_negative, 0.0), Phase::slip_negative);
+  EXPECT_EQ(apparent_phase(CoulombFriction{0.5}, Phase::slip_positive, -0.2), Phase::slip_positive);
+}
+
 TEST(Friction, RegularisedLawRefusesAStaticCoefficient) {
   Case c;
   c.contact.law = FrictionChoice::regularised;
