@@ -108,7 +108,7 @@ std::string points_csv(const Branch& root) {
 
 // --plot-metric before the branch is followed: a numeric column of points_csv (a metric, or one
 // of the orbit's own columns), never found missing after the whole run.
-void check_plot_metric(const std::string& name) {
+void check_plot_metric(const std::string& name, int harmonics) {
   static const char* const kOwn[] = {"arclength", "multiplicity",        "stable",
                                      "unstable",  "max_modulus",         "dq_ds",
                                      "min_N",     "corrector_iterations"};
@@ -120,6 +120,23 @@ void check_plot_metric(const std::string& name) {
       if (name == m.name) return;
       metrics += (metrics.empty() ? "" : ", ") + std::string(m.name);
     }
+  // A harmonic's amplitude of a spectrum with --harmonics H: ddx_A1 ... ddx_AH (they were refused
+  // though the CSV holds them).
+  std::string amplitudes;
+  for (const MetricOutput& m : metric_outputs())
+    if (!std::holds_alternative<double Metrics::*>(m.member)) {
+      const std::string prefix = spectrum_prefix(m.name) + "_A";
+      amplitudes += (amplitudes.empty() ? "" : ", ") + prefix + "1 ... " + prefix + "H";
+      if (name.starts_with(prefix) && name.size() > prefix.size() &&
+          name.find_first_not_of("0123456789", prefix.size()) == std::string::npos &&
+          name.size() - prefix.size() <= 6) {
+        const int n = std::stoi(name.substr(prefix.size()));
+        if (n >= 1 && n <= harmonics) return;
+        throw Error("--plot-metric " + name + ": the branch CSV holds the amplitudes " + prefix +
+                    "1 ... " + prefix + std::to_string(std::max(harmonics, 0)) + " (--harmonics " +
+                    std::to_string(harmonics) + ")");
+      }
+    }
   // A multiplier's part: mu1_re, mu2_im, ...
   const std::size_t us = name.rfind('_');
   if (name.starts_with("mu") && us != std::string::npos && us > 2 &&
@@ -128,7 +145,9 @@ void check_plot_metric(const std::string& name) {
     return;
   throw Error("--plot-metric " + name +
               ": not a numeric column of the branch CSV (docs/bifurcations.md): a metric (" +
-              metrics + "), max_modulus, min_N, dq_ds, ... or a multiplier's part, mu1_re, mu1_im");
+              metrics +
+              "), max_modulus, min_N, dq_ds, ..., a harmonic's amplitude with --harmonics H (" +
+              amplitudes + ") or a multiplier's part, mu1_re, mu1_im");
 }
 
 std::string bifurcations_csv(const Branch& root) {
@@ -253,7 +272,7 @@ int run(ContinueOptions o) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
       throw Error("--plot " + o.plot + " needs --csv FILE (the plot is drawn from it)");
-    check_plot_metric(o.plot_metric);
+    check_plot_metric(o.plot_metric, o.branch.harmonics);
   } else if (o.plot_metric_flag && o.plot_metric_flag->count() > 0) {
     throw Error("--plot-metric " + o.plot_metric +
                 " needs --plot FILE (the figure it is drawn in)");

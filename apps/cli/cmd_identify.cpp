@@ -157,7 +157,7 @@ std::string model_sampled_text(double samples_per_period) {
 // One row per window (docs/identify.md, "Output columns").
 std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOptions& io) {
   std::ostringstream out;
-  out << "window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-]";
+  out << "window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],change[-],valid[-],reason[-]";
   for (const auto& [name, unit] : identified_unknowns(io))
     for (const char* suffix : {"", "_u", "_lo", "_hi"})
       out << "," << name << suffix << "[" << unit << "]";
@@ -168,8 +168,8 @@ std::string pass_csv(const std::vector<PassEstimate>& pass, const IdentifyOption
     const RecordWindow& w = p.window;
     const Identification& id = p.identification;
     out << w.index << "," << cell(w.t_start) << "," << cell(w.t_end) << "," << cell(w.t_mid) << ","
-        << cell(w.position) << "," << cell(w.f) << "," << (p.valid ? 1 : 0) << ","
-        << io::csv_quote(p.reason);
+        << cell(w.position) << "," << cell(w.f) << "," << cell(w.change) << "," << (p.valid ? 1 : 0)
+        << "," << io::csv_quote(p.reason);
     for (const auto& [name, unit] : identified_unknowns(io)) {
       const Estimate* e = p.valid ? find_estimate(id, name) : nullptr;
       for (double v : {e ? e->value : NAN, e ? e->standard_uncertainty : NAN, e ? e->lower : NAN,
@@ -363,7 +363,14 @@ int run(const IdentifyCliOptions& o) {
     PassEstimate p;
     p.window.f = d.f;
     p.window.position = NAN;
+    p.window.change = NAN;  // measured by analyze (its JSON), not here
     p.identification = identify(base, d, io);
+    // The record is read already: the advice on how to read it goes to analyze, which measured
+    // these metrics (identify --metrics refuses the reading flags).
+    for (std::string& w : p.identification.warnings)
+      for (std::size_t at = w.find("read it with"); at != std::string::npos;
+           at = w.find("read it with", at))
+        w.replace(at, 12, "analyze the record again with");
     p.valid = true;
     pass.push_back(p);
   } else {
@@ -430,6 +437,7 @@ int run(const IdentifyCliOptions& o) {
                                 {"t", p.window.t_mid},
                                 {"position", p.window.position},
                                 {"f", p.window.f},
+                                {"change", p.window.change},
                                 {"valid", p.valid},
                                 {"reason", p.reason}};
     if (p.valid) r.update(identification_json(p.identification));
@@ -601,8 +609,14 @@ void add_identify_command(CLI::App& app, Action& action) {
       "  oscidrum identify record.csv --window 0 --fit-mu\n"
       "  oscidrum identify --metrics record.json --pure-rolling\n"
       "Exit codes: 0 at least one window identified, 1 none, 2 bad input, 130 interrupted.");
+  const std::size_t before_reading = sub->get_options().size();
   add_record_options(*sub, o->input, false);
   add_window_options(*sub, o->windows, 40.0, true);
+  // The record's reading and window flags: metrics measured already (--metrics) cannot use them.
+  const std::vector<CLI::Option*> added = sub->get_options();
+  std::vector<const CLI::Option*> reading;
+  for (std::size_t i = before_reading; i < added.size(); ++i)
+    if (added[i]->nonpositional()) reading.push_back(added[i]);
   sub->add_option("--metrics", o->metrics_file,
                   "identify from these metrics (the JSON of `oscidrum analyze --format json`) "
                   "instead of a record")
@@ -663,9 +677,22 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "the window compared in --plot (default: the first identified)")
       ->group(out);
   sub->add_flag("--quiet,-q", o->quiet, "no progress line on stderr")->group(out);
-  sub->callback([o, sub, &action] {
+  sub->callback([o, sub, reading, &action] {
     // The default window (40 periods) of a record shorter than it: the whole record, said.
     o->windows.whole_if_shorter = sub->count("--window") == 0;
+    // --metrics with a record's flags: they were accepted without effect, and a warning's advice
+    // to read the record "with --z-positive up" changed nothing.
+    if (!o->metrics_file.empty()) {
+      std::string given;
+      for (const CLI::Option* opt : reading)
+        if (opt->count() > 0) given += (given.empty() ? "" : ", ") + opt->get_name();
+      if (!given.empty())
+        throw CLI::ValidationError(
+            "--metrics", "the metrics were measured already: " + given +
+                             " (reading a record, its windows and gates) cannot change them; "
+                             "give them to `oscidrum analyze RECORD --format json` and identify "
+                             "from its output, or identify from the record itself");
+    }
     action = [o] { return run(*o); };
   });
 }

@@ -115,7 +115,7 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                    "sampling resolves when fewer: 2 N + 1 samples per period)")
         ->check(CLI::Range(2, kMaxRecordHarmonics));
   app.add_option("--window", o.window_periods,
-                 "window length in excitation periods; 0: the whole record (default " +
+                 "window length in excitation periods, >= 1; 0: the whole record (default " +
                      std::to_string(static_cast<int>(default_window)) +
                      (default_window > 0 ? "; a record shorter than that is taken whole, as one "
                                            "window, with a note"
@@ -141,9 +141,10 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                  "(default 0.5; a few lost samples are not)")
       ->check(positive_number());
   app.add_option("--max-change", o.gates.max_change,
-                 "gate: largest change of the response within a window, |RMS(second half) - "
-                 "RMS(first half)| / RMS of the fitted x_M'' or z_M'', beyond the noise (default "
-                 "0.05; a window across a change of soil fits neither side)")
+                 "gate: largest change of the response within a window, |RMS(later part) - "
+                 "RMS(earlier part)| / RMS of the fitted x_M'' or z_M'' over the window's 4 (3, 2) "
+                 "equal parts, beyond the noise (default 0.05; a window across a change of soil "
+                 "fits neither side)")
       ->check(positive_number());
 }
 

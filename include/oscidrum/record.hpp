@@ -73,8 +73,9 @@ struct RecordGates {
   int clip_run = 3;  ///< this many equal samples running in the outer quarter of a channel's range
                      ///< in the window: clipped [-]
   double max_gap = 0.5;  ///< a time step longer than this part of an excitation period: gap [-]
-  /// Largest change of the response within a window: |RMS(second half) - RMS(first half)| /
-  /// RMS(window) of the fitted periodic x_M'' or z_M'' (beyond the noise) [-]. A window that
+  /// Largest change of the response within a window: |RMS(later part) - RMS(earlier part)| /
+  /// RMS(window) of the fitted periodic x_M'' or z_M'', over the window's 4 (3, 2) equal parts
+  /// (beyond the noise) [-]. A window that
   /// straddles a change of soil (or of the roller's settings) fits neither side.
   double max_change = 0.05;
 };
@@ -109,9 +110,10 @@ struct RecordWindow {
   std::size_t count = 0;  ///< samples in the window [-]
   double f = 0.0;         ///< excitation frequency of the window [Hz] (NaN if not fitted)
   double drift = 0.0;     ///< (f(second half) - f(first half)) / f [-] (NaN if not fitted)
-  /// (RMS(second half) - RMS(first half)) / RMS(window) of the fitted periodic signal, of
-  /// x_M'' or z_M'', whichever changes more [-] (NaN if not fitted, or a half is shorter than
-  /// one period or holds fewer than 2 (2 n + 1) samples); RecordGates::max_change bounds it.
+  /// (RMS(later part) - RMS(earlier part)) / RMS(window) of the fitted periodic signal, for the
+  /// two of the window's 4 equal parts (3 or 2 where shorter ones would not hold a period and
+  /// 2 (2 n + 1) samples) and the channel, x_M'' or z_M'', that differ most [-] (NaN if not
+  /// fitted, or halves are too short already); RecordGates::max_change bounds it.
   double change = 0.0;
   double samples_per_period = 0.0;  ///< [-]
   /// The whole record as the one window, the window asked being longer than the record

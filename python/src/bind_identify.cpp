@@ -197,12 +197,17 @@ void bind_identify(py::module_& m) {
         io.z_open = z_open;
         io.units_open = units_open;
         io.measure.harmonics = n_max;
-        std::vector<PassEstimate> pass;
-        {
-          py::gil_scoped_release release;
-          pass = identify_pass(c, span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"),
-                               optional_span(position, "position"), wo, io);
-        }
+        // Ctrl-C between windows (a pass of a long record takes minutes; it could not be
+        // interrupted): the main thread watches while the pass runs on a thread of its own.
+        GuardedCalls calls;
+        const std::span<const double> ts = span_of(t, "t"), xs = span_of(ddx, "ddx_M"),
+                                      zs = span_of(ddz, "ddz_M"),
+                                      ps = optional_span(position, "position");
+        std::vector<PassEstimate> pass = run_watching_signals(calls, [&] {
+          return identify_pass(c, ts, xs, zs, ps, wo, io,
+                               [&](std::size_t, std::size_t) { return !calls.cancelled(); });
+        });
+        calls.rethrow();
         py::list out;
         for (const PassEstimate& p : pass) {
           py::dict d = window_dict(p.window);

@@ -36,8 +36,11 @@ void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
     throw Error("identify: f must be > 0 [Hz]; got " + num(data.f));
   if (o.harmonics < 1 || static_cast<int>(data.ddx.size()) < o.harmonics ||
       static_cast<int>(data.ddz.size()) < o.harmonics)
-    throw Error("identify: harmonics must be in [1, " + std::to_string(data.ddx.size()) +
-                "] (the measured ones); got " + std::to_string(o.harmonics));
+    throw Error("identify: the harmonics compared (harmonics, --compare) must be in [1, " +
+                std::to_string(std::min(data.ddx.size(), data.ddz.size())) +
+                "] (the harmonics measured in the window: --harmonics, by default as many as "
+                "its sampling resolves); got " +
+                std::to_string(o.harmonics));
   // A channel with no signal and no noise at all: one value in every sample of the window.
   const auto dead = [](const std::vector<std::complex<double>>& c, double noise) {
     return noise == 0.0 &&

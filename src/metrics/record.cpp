@@ -366,9 +366,16 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
   m.kb = std::numeric_limits<double>::quiet_NaN();  // needs the case and the unbalance's angle:
                                                     // record_kb
   m.cycles = t.empty() ? 0.0 : (t.back() - t.front()) * f;
-  if (t.size() < 2 || m.cycles < 1.0)
+  // n samples at the step dt cover n dt: one period of samples (26 at 1 kHz and 39 Hz, 0.975
+  // periods from the first to the last) is a period.
+  if (t.size() < 2 ||
+      m.cycles * static_cast<double>(t.size()) / static_cast<double>(t.size() - 1) < 1.0 - 1e-9)
     throw Error("record: must span at least one excitation period (1/f = " + num(1.0 / f) +
-                " s); it spans " + num(t.empty() ? 0.0 : t.back() - t.front()) + " s");
+                " s); its samples cover " +
+                num(t.size() < 2 ? 0.0
+                                 : (t.back() - t.front()) * static_cast<double>(t.size()) /
+                                       static_cast<double>(t.size() - 1)) +
+                " s");
   const double per_period = static_cast<double>(t.size() - 1) / m.cycles;
   if (per_period < 2.0 * n_max + 1.0)
     throw Error("record: " + num(per_period) + " samples per period are too few for n_max = " +
@@ -855,6 +862,24 @@ double refine_peak(std::span<const double> t, std::span<const double> ddx,
 }
 
 // The harmonics that samples `step` apart resolve at f: 2 N + 1 per period, N in [2, 10].
+// The record's mean sampling step [s], without the steps that are gaps (longer than half an
+// excitation period, which the gap gate judges): the step the harmonics resolved are counted at.
+// Not the median step: a fifth of the samples lost at random left the median at the logger's
+// 1 ms, 10 harmonics were asked of 20.2 samples per period, and every window was refused as too
+// sparse, where half as many samples evenly spaced were identified.
+double sampling_step(std::span<const double> t, double f) {
+  const double gap = 0.5 / f;
+  double covered = 0.0;
+  std::size_t steps = 0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double dt = t[i] - t[i - 1];
+    if (dt > gap) continue;
+    covered += dt;
+    ++steps;
+  }
+  return steps > 0 ? covered / static_cast<double>(steps) : detail::median_step(t);
+}
+
 int harmonics_resolved_at(double f, double step) {
   const double per_period = 1.0 / (f * step);
   return std::clamp(static_cast<int>(std::floor((per_period - 1.0) / 2.0)), 2, 10);
@@ -909,7 +934,7 @@ int resolved_harmonics(std::span<const double> t, std::span<const double> ddx,
     f = resolving_frequency(ts, xs, zs,
                             spectral_peak(ts.first(n), xs.first(n), zs.first(n), w.search));
   }
-  return harmonics_resolved_at(f, detail::median_step(t));
+  return harmonics_resolved_at(f, sampling_step(t, f));
 }
 
 std::vector<double> integrate_speed(std::span<const double> t, std::span<const double> speed) {
@@ -992,43 +1017,53 @@ double drift_noise(std::span<const double> t, std::span<const double> x, std::sp
   return std::sqrt(variance);
 }
 
-// Does the response change within the window? Each half is fitted at the window's f; the RMS of
-// the fitted periodic signal of each channel is compared between the halves, relative to the
-// window's. A change counts when it exceeds `max_change` and five times what the noise alone
-// makes of it. White noise of deviation sigma (from the residual of the better-fitting half) moves
-// each fitted coefficient by about sigma sqrt(2 / n_half), and the RMS R = sqrt(sum A_n^2 / 2)
-// by its projection on the signal, about sigma / sqrt(n_half) (the rest changes R only in the
-// second order); the difference of the two halves by sqrt(2) times that.
+// Does the response change within the window? The window is cut into K equal parts (4, or 3 or 2
+// where shorter parts would not hold a period and their samples), each fitted at the window's f;
+// the RMS of the fitted periodic signal of each channel is compared between every two parts,
+// relative to the window's. Halves alone missed a change inside the window that returns before
+// its end (a stiff spot in its middle half: equal halves, a confident G that belongs to neither
+// soil). A change counts when it exceeds `max_change` and five times what the noise alone makes
+// of it. White noise of deviation sigma (from the residual of the best-fitting part) moves each
+// fitted coefficient by about sigma sqrt(2 / n_part), and the RMS R = sqrt(sum A_n^2 / 2) by its
+// projection on the signal, about sigma / sqrt(n_part) (the rest changes R only in the second
+// order); the difference of two parts by sqrt(2) times that.
 void change_within(std::span<const double> t, std::span<const double> x, std::span<const double> z,
                    double f, int n_max, RecordWindow& w, std::vector<std::string>& reasons,
                    double max_change) {
-  // Each half at least one period long and with twice as many samples as its fit has
+  // Each part at least one period long and with twice as many samples as its fit has
   // coefficients (2 (2 n_max + 1): the residual, and with it the noise the change is weighed
   // against, means something). Halves of two periods were asked before, and windows of 2 to 4
   // periods, which the docs suggest for placing a change between windows, were never checked:
   // one straddling a change of the soil passed as valid with mixed metrics.
-  const std::size_t half = t.size() / 2;
   const auto min_samples = static_cast<std::size_t>(2 * (2 * n_max + 1));
-  // A half's span counts its last sample's interval: 1024 samples of one period cover it.
+  // A part's span counts its last sample's interval: 1024 samples of one period cover it.
   const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-  if (half < min_samples || t.size() - half < min_samples ||
-      (t[half - 1] - t.front() + dt) * f < 1.0 - 1e-9 || (t.back() - t[half] + dt) * f < 1.0 - 1e-9)
-    return;
-  // Each half's harmonics and residuals as analyze_record fits them (fit_record), without the
-  // peaks, area and subharmonics that are not compared; a half with too few samples per period
-  // for n_max, which analyze_record refuses, says nothing about a change.
-  const auto fit_half = [&](std::span<const double> th, std::span<const double> xh,
-                            std::span<const double> zh) -> std::optional<RecordFit> {
-    const double cycles = (th.back() - th.front()) * f;
-    if (static_cast<double>(th.size() - 1) / cycles < 2.0 * n_max + 1.0) return std::nullopt;
-    return fit_record(th, xh, zh, f, n_max);
+  const auto part_begin = [&t](std::size_t k, std::size_t parts) { return t.size() * k / parts; };
+  const auto usable = [&](std::size_t parts) {
+    for (std::size_t k = 0; k < parts; ++k) {
+      const std::size_t b = part_begin(k, parts), e = part_begin(k + 1, parts);
+      if (e - b < min_samples || (t[e - 1] - t[b] + dt) * f < 1.0 - 1e-9) return false;
+    }
+    return true;
   };
-  const std::optional<RecordFit> fa = fit_half(t.first(half), x.first(half), z.first(half));
-  const std::optional<RecordFit> fb = fit_half(t.subspan(half), x.subspan(half), z.subspan(half));
-  if (!fa || !fb) return;
-  const RecordFit &a = *fa, &b = *fb;
-  const double n_half = static_cast<double>(half);
+  std::size_t parts = 4;
+  while (parts >= 2 && !usable(parts)) --parts;
+  if (parts < 2) return;
+  // Each part's harmonics and residuals as analyze_record fits them (fit_record), without the
+  // peaks, area and subharmonics that are not compared; a part with too few samples per period
+  // for n_max, which analyze_record refuses, says nothing about a change.
+  std::vector<RecordFit> fits;
+  for (std::size_t k = 0; k < parts; ++k) {
+    const std::size_t b = part_begin(k, parts), n = part_begin(k + 1, parts) - b;
+    const std::span<const double> tk = t.subspan(b, n);
+    const double cycles = (tk.back() - tk.front()) * f;
+    if (static_cast<double>(tk.size() - 1) / cycles < 2.0 * n_max + 1.0) return;
+    fits.push_back(fit_record(tk, x.subspan(b, n), z.subspan(b, n), f, n_max));
+  }
+  // The smallest part (they differ by one sample at most) sets the noise.
+  const auto n_part = static_cast<double>(t.size() / parts);
   double worst = 0.0, worst_abs = -1.0;
+  std::size_t from = 0, to = 1;
   bool significant = false;
   const char* channel = "x_M''";
   for (int c = 0; c < 2; ++c) {
@@ -1038,31 +1073,43 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
     if (!(whole > 0.0)) continue;
     // One value throughout (a dead channel): its fitted "RMS" is the round-off of a constant.
     if (detail::one_value(y)) continue;
-    const double r1 = periodic_rms(c == 0 ? a.hx : a.hz);
-    const double r2 = periodic_rms(c == 0 ? b.hx : b.hz);
-    // The noise from the better-fitting half: a half that straddles the change fits worse, and
+    // The noise from the best-fitting part: a part that straddles the change fits worse, and
     // so does the whole window, whose residual would take the change for noise.
-    const double residual =
-        c == 0 ? std::min(a.residual_x, b.residual_x) : std::min(a.residual_z, b.residual_z);
+    double residual = std::numeric_limits<double>::infinity();
+    std::vector<double> rms;
+    for (const RecordFit& fit : fits) {
+      residual = std::min(residual, c == 0 ? fit.residual_x : fit.residual_z);
+      rms.push_back(periodic_rms(c == 0 ? fit.hx : fit.hz));
+    }
     // The residuals are relative to the RMS about the mean (relative_rms).
     const double sigma = residual * rms_about_mean(y);
-    const double noise = std::sqrt(2.0) * sigma / std::sqrt(n_half);
-    const double change = (r2 - r1) / whole;
-    if (std::abs(change) > worst_abs) {
-      worst_abs = std::abs(change);
-      worst = change;
-      channel = c == 0 ? "x_M''" : "z_M''";
-      significant = std::abs(r2 - r1) > 5.0 * noise;
+    const double noise = std::sqrt(2.0) * sigma / std::sqrt(n_part);
+    for (std::size_t i = 0; i < parts; ++i) {
+      for (std::size_t j = i + 1; j < parts; ++j) {
+        const double change = (rms[j] - rms[i]) / whole;
+        if (std::abs(change) > worst_abs) {
+          worst_abs = std::abs(change);
+          worst = change;
+          from = i, to = j;
+          channel = c == 0 ? "x_M''" : "z_M''";
+          significant = std::abs(rms[j] - rms[i]) > 5.0 * noise;
+        }
+      }
     }
   }
   if (worst_abs < 0.0) return;
   w.change = worst;
-  if (significant && worst_abs > max_change)
+  if (significant && worst_abs > max_change) {
+    const std::string where = parts == 2 ? "from its first half to its second"
+                                         : "from part " + std::to_string(from + 1) + " to part " +
+                                               std::to_string(to + 1) + " of " +
+                                               std::to_string(parts) + " equal parts";
     reasons.push_back("the response changes within the window: the RMS of " + std::string(channel) +
-                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) +
-                      " % from its first half to its second (> " + num(max_change * 100) +
+                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % " +
+                      where + " (> " + num(max_change * 100) +
                       " %; --max-change): a change of soil or of the roller's settings within it; "
                       "a shorter --window resolves it");
+  }
 }
 
 }  // namespace
@@ -1086,8 +1133,9 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   const auto require = [](bool holds, const std::string& what, double value) {
     if (!holds) throw Error("record: " + what + "; got " + num(value));
   };
-  require(o.window_periods >= 0 && std::isfinite(o.window_periods),
-          "window (--window) must be >= 0 [periods] (0: the whole record)", o.window_periods);
+  // A window shorter than a period holds no period to fit: every window failed its own check.
+  require((o.window_periods == 0 || o.window_periods >= 1) && std::isfinite(o.window_periods),
+          "window (--window) must be >= 1 [periods] (0: the whole record)", o.window_periods);
   require(o.hop_periods >= 0 && std::isfinite(o.hop_periods),
           "hop (--hop) must be >= 0 [periods] (0: the window)", o.hop_periods);
   require(o.gates.max_residual > 0 && std::isfinite(o.gates.max_residual),
@@ -1140,7 +1188,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
     std::optional<double> with_two;  // the same peak refined with two harmonics
     if (n_max == 0) {
       with_two = resolving_frequency(ts, xs, zs, peak);
-      n_max = harmonics_resolved_at(*with_two, detail::median_step(t));
+      n_max = harmonics_resolved_at(*with_two, sampling_step(t, *with_two));
     }
     f_rec = refine_peak(ts.first(n), xs.first(n), zs.first(n), peak, o.search.n_max, with_two);
   } else if (n_max == 0) {
@@ -1327,21 +1375,25 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                     : std::string("): windows (--window 40) fit the stretches "
                                                   "on either side of it")));
       aw.samples_per_period = static_cast<double>(aw.count - 1) / ((aw.t_end - aw.t_start) * f0);
-      const double spanned = (aw.t_end - aw.t_start) * f0;
-      const bool dense = aw.samples_per_period >= 2.0 * n_max + 1.0, long_enough = spanned >= 1.0;
+      // Its samples cover their last interval too (n samples at the step dt cover n dt, as for
+      // the record above): a window of one period at 1 kHz, 26 samples spanning 0.975 periods
+      // between the first and the last, was refused as shorter than a period.
+      const double spanned = (aw.t_end - aw.t_start + sample_step) * f0;
+      const bool dense = aw.samples_per_period >= 2.0 * n_max + 1.0,
+                 long_enough = spanned >= 1.0 - 1e-9;
       if (!dense)
         reasons.push_back("too few samples per period (" + sig4(aw.samples_per_period) + " < " +
                           std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
                           " harmonics)");
       if (!long_enough)
-        reasons.push_back("its samples span " + num(std::round(spanned * 1000) / 1000) +
+        reasons.push_back("its samples cover " + num(std::round(spanned * 1000) / 1000) +
                           " excitation periods (< 1)");
       if (flat)
         reasons.push_back(
             "no oscillation: x_M'' and z_M'' are each one value over the window (a "
             "logger that holds its last value, a dead channel, or the exciter off)");
       if (!(dense && long_enough && gap <= max_gap) || flat) return a;
-      const double periods = spanned;
+      const double periods = (aw.t_end - aw.t_start) * f0;  // between the first and last samples
       const int nf = n_max;  // all of them: unfitted harmonics would bias f
       const double fw =
           o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f0, std::min(0.05, 0.5 / periods), nf);
@@ -1366,12 +1418,54 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         reasons.push_back(e.what());
       }
       if (!a.fitted) return a;
+      if (o.f > 0.0) {
+        // A given f that is not the excitation's: at half of it (a subharmonic) the harmonics
+        // 2, 4, 6 hold the whole signal and the fit's residual stays small, so the residual gate
+        // passed it with every metric wrong (psi_xz -1.24 for 0.44 rad). The frequency search
+        // refuses such a frequency (its own term below a tenth of P(f), spectral_peak); a given
+        // one is held to the same rule on the fitted harmonics 1-3 of both channels.
+        double at_f = 0.0, first_three = 0.0, largest = 0.0;
+        int strongest = 1;
+        for (int n = 1; n <= 3; ++n) {
+          double p = 0.0;
+          for (const std::vector<Harmonic>* h :
+               {&aw.metrics.ddx_harmonics, &aw.metrics.ddz_harmonics})
+            if (static_cast<std::size_t>(n) < h->size())
+              p += (*h)[static_cast<std::size_t>(n)].amplitude *
+                   (*h)[static_cast<std::size_t>(n)].amplitude;
+          if (n == 1) at_f = p;
+          first_three += p;
+          if (p > largest) largest = p, strongest = n;
+        }
+        if (first_three > 0.0 && at_f < 0.1 * first_three)
+          reasons.push_back("the given f (--f " + num(fw) + " Hz) carries " +
+                            num(std::round(1000.0 * at_f / first_three) / 10) +
+                            " % of the power of its first three harmonics (< 10 %; the excitation "
+                            "carries the most): the record is excited at another frequency (" +
+                            num(strongest * fw) + " Hz carries " +
+                            num(std::round(1000.0 * largest / first_three) / 10) +
+                            " %); give that, or leave --f out to estimate it");
+      }
       change_within(tw, xw, zw, fw, n_max, aw, reasons, o.gates.max_change);
       const double res = std::max(aw.metrics.residual_x, aw.metrics.residual_z);
       if (!(res <= o.gates.max_residual)) {
         a.poor_fit = true;
+        // Harmonics beyond the fitted ones above the Nyquist frequency fold between them and stay
+        // in the residual: at 300 samples/s and 39 Hz (3 harmonics fitted) the overtones 4f and
+        // 6f of z_M'' did, where the hint of a search held below --f-max sent the user after a
+        // frequency that was found right.
+        const double nyquist = 0.5 / sample_step;
+        const std::string folded =
+            (n_max + 1) * fw > nyquist
+                ? " (the harmonics above the " + std::to_string(n_max) + " fitted, from " +
+                      sig4((n_max + 1) * fw) + " Hz, lie beyond half the " +
+                      sig4(1.0 / sample_step) +
+                      " samples/s and fold between the fitted ones: a response with overtones "
+                      "needs more samples per period; record at " +
+                      sig4(21.0 * fw) + " samples/s (21 f, 10 harmonics) or more)" + slow_logger
+                : slow_logger;
         reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
-                          num(o.gates.max_residual) + slow_logger);
+                          num(o.gates.max_residual) + folded);
       }
       if (std::isfinite(aw.drift) && std::abs(aw.drift) > o.gates.max_drift &&
           !(std::abs(aw.drift) <= 5.0 * drift_noise(tw, xw, zw, aw.metrics, fw, nf)))

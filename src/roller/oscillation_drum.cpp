@@ -211,9 +211,12 @@ std::array<double, 9> Dynamics<OscillationDrum>::quantities(double t, const Vect
 }
 
 int Dynamics<OscillationDrum>::pushed_slip(Phase phase, const Vector& x, double* hold) const {
-  // The sign of the slip: the phase's, or in the smooth phase of a regularised law v_rel's.
-  const double v_rel = phase == Phase::smooth ? slip_velocity(model_, State::from_array(x)) : 0.0;
-  const int s = phase == Phase::smooth ? (v_rel > 0.0) - (v_rel < 0.0) : slip_sign(phase);
+  // The sign of the slip: the phase's, or v_rel's in the smooth phase of a regularised law and in
+  // slip without friction (mu = 0, whose flow phase keeps the arbitrary sign it started with: a
+  // drum spun up by MMd > 0 slipping with v_rel < 0 in "slip+" ran to max_periods as aperiodic).
+  const bool by_velocity = apparent_varies(phase);
+  const double v_rel = by_velocity ? slip_velocity(model_, State::from_array(x)) : 0.0;
+  const int s = by_velocity ? (v_rel > 0.0) - (v_rel < 0.0) : slip_sign(phase);
   const double MMd = model_.parameters().MMd;
   *hold = largest_slip_coefficient(model_.friction()) * model_.W() * model_.r();
   return (phase != Phase::stick && -s * MMd > 0.0) ? s : 0;

@@ -232,10 +232,15 @@ TEST(CliAnalyze, RecordShiftedToNegativeTimesGivesTheSameHarmonics) {
           << s << " " << n;
   }
   EXPECT_NEAR(jb["psi_xz"].get<double>(), ja["psi_xz"].get<double>(), 1e-9);
-  // Windows of 0.9 periods along the two periods of the shifted record (each too short to fit:
-  // flagged, exit 1), and one of 1.5 periods (its halves are too short to measure a drift of f:
-  // that gate off).
-  for (const auto& [window, count, code] : {std::tuple{"0.9", 2u, 1}, std::tuple{"1.5", 1u, 0}}) {
+  // Windows of 0.9 periods (each too short to fit: every one was flagged, exit 1) are refused at
+  // once; one of 1.5 periods is analysed (its halves are too short to measure a drift of f: that
+  // gate off).
+  const Outcome short_window =
+      run({"analyze", dir / "shifted.csv", "--f", "39", "--window", "0.9"});
+  EXPECT_EQ(short_window.code, 2) << short_window.err;
+  EXPECT_NE(short_window.err.find("window (--window) must be >= 1 [periods]"), std::string::npos)
+      << short_window.err;
+  for (const auto& [window, count, code] : {std::tuple{"1.5", 1u, 0}}) {
     const Outcome w = run({"analyze", dir / "shifted.csv", "--f", "39", "--window", window,
                            "--max-drift", "1", "--format", "json"});
     EXPECT_EQ(w.signal, 0);

@@ -120,7 +120,10 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
        std::vector<std::tuple<std::string, bool, std::string>>{
            {"nosuch", true, "--plot-metric nosuch: not a numeric column of the branch CSV"},
            {"sequence", true, "--plot-metric sequence: not a numeric column"},
-           {"area", false, "--plot-metric area needs --plot FILE"}}) {
+           {"area", false, "--plot-metric area needs --plot FILE"},
+           // the amplitude columns of the spectra (they were refused though the CSV holds them)
+           {"ddz_A11", true,
+            "--plot-metric ddz_A11: the branch CSV holds the amplitudes ddz_A1 ... ddz_A10"}}) {
     std::vector<std::string> args = {"continue", "--param", "MMd",           "--from", "0",
                                      "--to",     "1000",    "--plot-metric", metric};
     if (plot) args.insert(args.end(), {"--csv", dir / "b.csv", "--plot", dir / "b.png"});
@@ -129,6 +132,13 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
     EXPECT_NE(o.err.find(message), std::string::npos) << o.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "b.csv"));
   }
+  // ... and ddx_A2 is one: the check lets it through, the branch is followed and written (and
+  // drawn where the Python package is there).
+  const Outcome a =
+      run({"continue", "--param", "MMd", "--from", "0", "--to", "300", "--plot-metric", "ddx_A2",
+           "--csv", dir / "a.csv", "--plot", dir / "a.png", "-q"});
+  EXPECT_EQ(a.err.find("--plot-metric"), std::string::npos) << a.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "a.csv")) << a.err;
 }
 
 }  // namespace

@@ -406,15 +406,17 @@ TEST(CliIdentify, PassPrintsAndWritesTheGProfileWithItsBandAndPlots) {
   // Windows at 0 and 31.6 periods, and one ending with the record (its last 20 periods).
   EXPECT_NE(o.out.find("3 windows, 3 identified"), std::string::npos) << o.out;
   const std::string csv = slurp(dir / "G.csv");
-  EXPECT_EQ(csv.rfind("window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],valid[-],reason[-],"
-                      "G[Pa],G_u[Pa],G_lo[Pa],G_hi[Pa],soil_scale[-],tau[s]",
-                      0),
-            0u)
+  EXPECT_EQ(
+      csv.rfind("window[-],t_start[s],t_end[s],t[s],position[m],f[Hz],change[-],valid[-],reason[-],"
+                "G[Pa],G_u[Pa],G_lo[Pa],G_hi[Pa],soil_scale[-],tau[s]",
+                0),
+      0u)
       << csv;
   const std::vector<double> G = column(csv, "G"), lo = column(csv, "G_lo"),
                             hi = column(csv, "G_hi"), x = column(csv, "position"),
                             t = column(csv, "t");
   ASSERT_EQ(G.size(), 3u);
+  for (double change : column(csv, "change")) EXPECT_LT(std::abs(change), 0.05);  // the gate's
   const double expected[3] = {17.3e6, 8.1e6, 8.1e6};
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(G[k] / expected[k], 1.0, 0.03) << k;
@@ -615,6 +617,30 @@ TEST(CliIdentify, FromTheMetricsOfAnalyze) {
   EXPECT_NEAR(e["value"].get<double>() / 17.3e6, 1.0, 0.03);
   EXPECT_LE(e["lower"].get<double>(), 17.3e6);
   EXPECT_GE(e["upper"].get<double>(), 17.3e6);
+}
+
+// The record's reading flags with --metrics were accepted without effect (and the advice of a
+// warning, "read it with --z-positive up", changed nothing): refused, naming them; the advice
+// points to analyze, which measured the metrics.
+TEST(CliIdentify, TheMetricsOfAnalyzeRefuseTheReadingFlags) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6, 1500);
+  const Outcome a = run({"analyze", dir / "r.csv", "--format", "json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  std::ofstream(dir / "r.json") << a.out;
+  const Outcome o = run({"identify", "--metrics", dir / "r.json", "--z-positive", "up", "--f", "45",
+                         "--window", "10", "--no-profile"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--z-positive, --f, --window"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("oscidrum analyze"), std::string::npos) << o.err;
+  // z_M'' negated in the metrics: the warning sends the user to analyze.
+  nlohmann::json j = nlohmann::json::parse(a.out);
+  for (nlohmann::json& h : j["ddz_harmonics"])
+    if (h["n"].get<int>() > 0) h["phase"] = h["phase"].get<double>() + M_PI;
+  std::ofstream(dir / "up.json") << j.dump();
+  const Outcome u = run({"identify", "--metrics", dir / "up.json", "--no-profile", "--quiet"});
+  EXPECT_NE(u.out.find("analyze the record again with --z-positive up"), std::string::npos)
+      << u.out << u.err;
 }
 
 // A drum that rolls without slipping: --fit-mu must say that mu is not identifiable (and

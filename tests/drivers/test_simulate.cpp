@@ -221,6 +221,21 @@ TEST(Simulate, FrictionlessDrumSpinsFreely) {
   }
 }
 
+// Without friction a driving torque spins the drum up, phi'' = (M0 sin nu t + MMd) / I (23): gross
+// slip either way. With MMd > 0 the drum slips with v_rel < 0 in the flow's arbitrary "slip+",
+// and the gross-slip test read that sign: it ran the 5000 periods of max_periods and called the
+// motion aperiodic, quasi-periodic (MMd < 0 was found).
+TEST(Simulate, FrictionlessDrumWithADrivingTorqueSpins) {
+  for (double MMd : {1000.0, -1000.0}) {
+    Case c = stick_slip_case(25, 0.0);
+    c.contact.mu = 0.0;
+    c.MMd = MMd;
+    const Result r = simulate(Model(c));
+    EXPECT_EQ(r.status, Status::gross_slip) << MMd << ": " << r.message;
+    EXPECT_LT(r.diagnostics.periods_simulated, 50) << MMd;
+  }
+}
+
 // The Kb-type stiffness Re(F_v(f) / z_M(f)) means nothing for the oscillation drum: with no
 // vertical excitation force its vertical balance (20) at f gives F_v(f) = (m nu^2 - kd - i nu cd)
 // z_M(f), so the ratio is m nu^2 - kd on every soil (it was reported as the soil's stiffness,

@@ -237,6 +237,87 @@ TEST(Record, AWindowAcrossAChangeOfSoilIsNotValid) {
   }
 }
 
+// A stiff spot in the middle half of a window (soft, stiff, stiff, soft, 10 periods each): its
+// halves are alike, and the gate that compared halves passed it as valid (G 15.6 +- 0.3 MN/m^2
+// with the CLI, a confident value of neither soil, 10 or 25). The window's quarters differ; the
+// same window on one soil, equally noisy, stays valid.
+TEST(Record, AChangeThatReturnsWithinTheWindowIsNotValid) {
+  Case soft, stiff;
+  soft.soil.input = stiff.soil.input = SoilInput::modulus;
+  soft.soil.G = 10e6;
+  stiff.soil.G = 25e6;
+  SyntheticRecord options;
+  options.duration = 40.0 / soft.roller.f;
+  options.noise = 0.05;
+  options.seed = 3;
+  const RecordSamples spot = synthetic_record({soft, stiff, stiff, soft}, options);
+  const RecordSamples plain = synthetic_record({soft, soft, soft, soft}, options);
+  const std::vector<RecordWindow> a =
+      analyze_windows(spot.t, spot.ddx_M, spot.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_FALSE(a[0].valid);
+  EXPECT_NE(a[0].reason.find("the response changes within the window"), std::string::npos)
+      << a[0].reason;
+  EXPECT_NE(a[0].reason.find("of 4 equal parts"), std::string::npos) << a[0].reason;
+  EXPECT_GT(std::abs(a[0].change), 0.3);
+  const std::vector<RecordWindow> b =
+      analyze_windows(plain.t, plain.ddx_M, plain.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_TRUE(b[0].valid) << b[0].reason;
+  EXPECT_LT(std::abs(b[0].change), WindowOptions{}.gates.max_change);
+}
+
+// A given f at half the record's frequency fitted with a small residual (the harmonics 2, 4, 6
+// held the signal) and passed every gate: psi_xz and the area were wrong with exit 0. It is held
+// to the frequency search's rule (the excitation carries at least a tenth of harmonics 1-3).
+TEST(Record, AGivenSubharmonicOfTheExcitationIsRefused) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 17.3e6;
+  SyntheticRecord options;
+  options.duration = 1.0;
+  options.noise = 0.02;
+  const RecordSamples r = synthetic_record({c}, options);
+  WindowOptions at_f, at_half;
+  at_f.f = c.roller.f;
+  at_half.f = c.roller.f / 2.0;
+  const std::vector<RecordWindow> good = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, at_f);
+  ASSERT_EQ(good.size(), 1u);
+  EXPECT_TRUE(good[0].valid) << good[0].reason;
+  const std::vector<RecordWindow> bad = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, at_half);
+  ASSERT_EQ(bad.size(), 1u);
+  EXPECT_FALSE(bad[0].valid);
+  EXPECT_NE(bad[0].reason.find("the given f (--f 19.5 Hz) carries"), std::string::npos)
+      << bad[0].reason;
+  EXPECT_NE(bad[0].reason.find("39 Hz carries"), std::string::npos) << bad[0].reason;
+  EXPECT_TRUE(std::isnan(bad[0].metrics.psi_xz));
+}
+
+// A fifth of a 1 kHz logger's samples lost at random (20.2 samples per period left): the
+// harmonics are those its mean step resolves (9), not its median step's (10, which asked 21
+// samples per period and failed every window as too sparse); the same record thinned evenly to
+// 500 samples/s was identified.
+TEST(Record, RandomlyLostSamplesLowerTheHarmonicsNotTheWindows) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 17.3e6;
+  SyntheticRecord options;
+  options.duration = 2.0;
+  options.noise = 0.02;
+  options.dropped = 0.2;
+  options.seed = 5;
+  const RecordSamples r = synthetic_record({c}, options);
+  WindowOptions w;
+  w.window_periods = 40;
+  const std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, w);
+  ASSERT_GE(ws.size(), 1u);
+  for (const RecordWindow& win : ws) {
+    EXPECT_TRUE(win.valid) << win.t_start << ": " << win.reason;
+    EXPECT_LT(win.samples_per_period, 21.0);
+    EXPECT_EQ(win.metrics.ddx_harmonics.size(), 10u);  // the mean and harmonics 1-9
+  }
+}
+
 // The operator switches the excitation from 39 to 30 Hz and back (a roller's two settings): the
 // windows at 30 Hz are found there (their own spectral peak, searched when the tracked frequency
 // explains little), not failed as a poor fit at 39 Hz; those across a switch are not valid.
@@ -978,14 +1059,16 @@ TEST(Record, RefusesNaNGatesAndAbsurdSizes) {
     const std::string msg = error_of([&] { analyze_windows(t, x, z, {}, o); });
     EXPECT_NE(msg.find(what), std::string::npos) << msg;
   };
-  refused([&](WindowOptions& o) { o.window_periods = nan; }, "window (--window) must be >= 0");
+  refused([&](WindowOptions& o) { o.window_periods = nan; }, "window (--window) must be >= 1");
   refused([&](WindowOptions& o) { o.hop_periods = nan; }, "hop (--hop) must be >= 0");
   refused([&](WindowOptions& o) { o.gates.max_drift = nan; }, "max_drift");
   refused([&](WindowOptions& o) { o.gates.max_residual = nan; }, "max_residual");
   refused([&](WindowOptions& o) { o.gates.clip_level = nan; }, "clip_level");
   refused([&](WindowOptions& o) { o.gates.max_gap = nan; }, "max_gap");
   refused([&](WindowOptions& o) { o.f = 1e308; }, "at most half the record's sampling rate");
-  refused([&](WindowOptions& o) { o.window_periods = 1e-9; }, "more than the record's 4000");
+  // A window shorter than a period holds no period to fit (each one failed its own check).
+  refused([&](WindowOptions& o) { o.window_periods = 1e-9; }, "window (--window) must be >= 1");
+  refused([&](WindowOptions& o) { o.window_periods = 0.99; }, "window (--window) must be >= 1");
   refused([&](WindowOptions& o) { o.hop_periods = 1e-9; }, "more than the record's 4000");
   // Harmonics beyond kMaxRecordHarmonics (the fit's normal equations are (2 n_max + 1)^2
   // numbers: 1e9 allocated without bound before): refused, by every entry point.
@@ -1049,6 +1132,29 @@ TEST(Record, ASlowLoggersFrequency) {
       << ws[0].reason;
 }
 
+// At 300 samples/s and 39 Hz (3 harmonics resolved) the overtones 4f and 6f of z_M'' fold between
+// the fitted harmonics: the residual gate fails, and its reason names the folding first (it named
+// only the frequency search held below 60 Hz, though f was found right).
+TEST(Record, AResidualOfFoldedOvertonesSaysSo) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 17.3e6;
+  SyntheticRecord options;
+  options.duration = 2.0;
+  options.sample_rate = 300;
+  options.noise = 0.02;
+  options.seed = 3;
+  const RecordSamples r = synthetic_record({c}, options);
+  const std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(ws.size(), 1u);
+  EXPECT_FALSE(ws[0].valid);
+  EXPECT_NEAR(ws[0].f, 39.0, 0.01);
+  EXPECT_NE(ws[0].reason.find("the harmonics above the 3 fitted, from 156 Hz, lie beyond half the "
+                              "300 samples/s and fold between the fitted ones"),
+            std::string::npos)
+      << ws[0].reason;
+}
+
 TEST(Record, RejectsBadRecords) {
   const std::vector<double> t = {0.0, 0.01, 0.02}, y = {0, 1, 2};
   auto message = [](auto fn) {
@@ -1059,7 +1165,9 @@ TEST(Record, RejectsBadRecords) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([&] { analyze_record(t, y, y, 39.0); }).find("at least one excitation period"),
+  // Three samples 0.01 s apart cover 0.03 s, less than a period at 30 Hz (at 39 Hz they cover
+  // one: n samples at the step dt cover n dt).
+  EXPECT_NE(message([&] { analyze_record(t, y, y, 30.0); }).find("at least one excitation period"),
             std::string::npos);
   const std::vector<double> back = {0.0, 0.02, 0.01};
   EXPECT_NE(message([&] { analyze_record(back, y, y, 1.0); }).find("t must increase strictly"),

@@ -90,10 +90,13 @@ def test_read_record_reads_a_loggers_file_as_the_cli_does(tmp_path):
 
 
 def test_failed_windows_carry_every_estimate_key_as_nan():
-    # Windows of half a period fail their gates: the docs' frame example must still find G, G_lo,
-    # G_hi (NaN), as the CLI's CSV has the columns; soil_scale is in every row.
+    # Windows of noise alone fail their gates (the residual's): the docs' frame example must
+    # still find G, G_lo, G_hi (NaN), as the CLI's CSV has the columns; soil_scale is in every
+    # row. (Windows of half a period were used; they are refused now, as no window can hold one.)
     r = oscidrum.synthetic_record([truth(17.3e6)], duration=0.3, sample_rate=1500, seed=3)
-    frame = oscidrum.identify.identify_frame(r["t"], r["ddx_M"], r["ddz_M"], window=0.5,
+    rng = np.random.default_rng(3)
+    noise_x, noise_z = rng.normal(size=len(r["t"])), rng.normal(size=len(r["t"]))
+    frame = oscidrum.identify.identify_frame(r["t"], noise_x, noise_z, window=2, f=39.0,
                                              fit_mu=True)
     assert len(frame) > 0 and not frame["valid"].any()
     for key in ("G", "G_u", "G_lo", "G_hi", "mu", "mu_lo", "mu_hi"):
@@ -330,7 +333,7 @@ def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
 def test_plot_pass_takes_legend_like_the_other_plots():
     r = oscidrum.synthetic_record([truth(25e6)], duration=0.6, sample_rate=1000, noise=0.02,
                                   seed=2)
-    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0.2)
+    rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=4, profile=False)
     fig = oscidrum.identify.plot_pass(rows, x="t", legend=None)
     assert fig.axes[0].get_legend() is None
     fig = oscidrum.identify.plot_pass(rows, x="t", legend="outside")
@@ -376,3 +379,22 @@ def test_a_loggers_columns_in_g_without_a_unit_are_read_or_fitted_in_g(tmp_path)
                                           units_open=rec["units_open"])
         assert row["valid"] and row["read_in_g"] and row["z_negated"], row["warnings"]
         assert abs(row["G"] / 30e6 - 1) < 0.01
+
+
+def test_ctrl_c_interrupts_a_pass():
+    # A pass ran to its end whatever Ctrl-C said (the windows ran with the GIL released and no
+    # one looked for signals): it stops between windows now.
+    import os
+    import signal
+    import threading
+    import time
+
+    r = oscidrum.synthetic_record([truth(17.3e6)], duration=30.0, sample_rate=1000, noise=0.02,
+                                  seed=4)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=2)
+    timer.join()
+    assert time.perf_counter() - start < 5.0
