@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -190,6 +191,34 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
       out.contraction = std::exp(f.slope * f.m);
       break;
     }
+  // The points' spread (the RMS distance from their centre, in scaled components) in each quarter
+  // of the window: on a torus (or a chaotic attractor) it stays, approaching an orbit it shrinks
+  // as |mu|^k. An approach along a complex pair of multipliers of modulus 0.9988 (pure rolling
+  // on the unilateral contact at 58 Hz, G 86 MN/m^2) does not fall on a line (the distances
+  // oscillate with the rotation), and its exponent, -0.003 per period, is "zero": it was called a
+  // torus, with status aperiodic, where the transient reaches the periodic orbit after 11 000
+  // periods. A spread that shrinks from quarter to quarter, by more than a tenth from the first
+  // half to the second, is that approach.
+  const auto spread_of = [&](std::size_t from, std::size_t to) {
+    Eigen::VectorXd centre = Eigen::VectorXd::Zero(P);
+    for (std::size_t k = from; k < to; ++k)
+      for (int i = 0; i < P; ++i)
+        centre[i] += out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i];
+    centre /= static_cast<double>(to - from);
+    double squares = 0.0;
+    for (std::size_t k = from; k < to; ++k)
+      for (int i = 0; i < P; ++i) {
+        const double d =
+            out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i] - centre[i];
+        squares += d * d;
+      }
+    return std::sqrt(squares / static_cast<double>(to - from));
+  };
+  const std::array<double, 4> quarter = {spread_of(0, n / 4), spread_of(n / 4, n / 2),
+                                         spread_of(n / 2, 3 * n / 4), spread_of(3 * n / 4, n)};
+  const double spread_ratio = spread_of(n / 2, n) / spread_of(0, n / 2);
+  const bool shrinking = spread_ratio < 0.9 && quarter[1] < quarter[0] && quarter[2] < quarter[1] &&
+                         quarter[3] < quarter[2];
   if (out.recurrence > 0) {
     out.kind = "periodic";
     out.evidence = "the stroboscopic points repeat every " + std::to_string(out.recurrence) +
@@ -215,6 +244,13 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
                    detail::shortest(kZeroScatter) +
                    " per period (beyond the scatter of a zero exponent's estimates): the motion "
                    "still approaches an attractor";
+  } else if (shrinking) {
+    out.kind = "converging";
+    out.evidence = "the stroboscopic points' spread shrinks in every quarter of the window (by " +
+                   detail::format("%.3g", spread_ratio) +
+                   " from its first half to its second): the motion still approaches an "
+                   "attractor (a multiplier near the unit circle), not a torus; " +
+                   numbers;
   } else if (std::abs(per_period) <= kZeroPerPeriod) {
     out.kind = "quasi_periodic";
     out.evidence = "a zero " + numbers + " (|per period| <= " + detail::shortest(kZeroPerPeriod) +
