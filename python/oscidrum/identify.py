@@ -163,8 +163,9 @@ def to_geojson(rows, t: Optional[Sequence[float]] = None, lat: Optional[Sequence
     """The pass as GeoJSON (RFC 7946), in the layout of ``oscidrum identify --geojson``: a
     FeatureCollection with one Feature per window (``rows``: :func:`identify`'s list or
     :func:`identify_frame`'s DataFrame). With the record's times ``t`` [s] and GNSS ``lat``,
-    ``lon`` [deg, WGS 84] (one per sample), each feature is the Point at its window's centre
-    (interpolated linearly in time); without them its geometry is null. The properties are the
+    ``lon`` [deg, WGS 84] (one per sample; NaN between a logger's fixes), each feature is the
+    Point at its window's centre (interpolated linearly in time between the fixes, held beyond
+    the first and last); without them, or without any fix, its geometry is null. The properties are the
     window's scalar columns as the rows name them (``G``, ``G_lo``, ``G_hi``, ... in SI units,
     G in Pa; NaN as null) and ``warnings`` -- not the CLI file's properties (``G`` in MN/m^2 with
     ``G_lower``, ``G_upper``, ``G_unit``): the two files' ``G`` differ by 1e6.
@@ -180,15 +181,22 @@ def to_geojson(rows, t: Optional[Sequence[float]] = None, lat: Optional[Sequence
             raise Error("to_geojson: t, lat and lon must be 1-D arrays of one length")
         if np.any(np.abs(lat_arr) > 90) or np.any(np.abs(lon_arr) > 180):
             raise Error("to_geojson: lat and lon must be in [-90, 90] and [-180, 180] degrees")
+        # A logger's GNSS columns hold a fix every few rows, NaN between (empty cells): the
+        # centres are interpolated between the fixes, as the CLI does (NaN coordinates were
+        # written, which is no JSON); without any fix the geometry is null.
+        fix = np.isfinite(t_arr) & np.isfinite(lat_arr) & np.isfinite(lon_arr)
+        t_arr, lat_arr, lon_arr = t_arr[fix], lat_arr[fix], lon_arr[fix]
+        have_points = t_arr.size > 0
     features = []
     for row in records:
         props = {k: _json_value(v) for k, v in row.items() if k not in ("metrics", "fitted")}
         geometry = None
         if have_points and props.get("t") is not None:
             centre = float(row["t"])
-            geometry = {"type": "Point",
-                        "coordinates": [float(np.interp(centre, t_arr, lon_arr)),
-                                        float(np.interp(centre, t_arr, lat_arr))]}
+            if math.isfinite(centre):
+                geometry = {"type": "Point",
+                            "coordinates": [float(np.interp(centre, t_arr, lon_arr)),
+                                            float(np.interp(centre, t_arr, lat_arr))]}
         features.append({"type": "Feature", "geometry": geometry, "properties": props})
     collection = {"type": "FeatureCollection", "name": name, "features": features}
     if path is not None:

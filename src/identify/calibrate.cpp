@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,10 @@ const Field& calibrated_field(const Case& base, const std::string& key) {
     throw Error(k + " is given by each reference (its known soil), not fitted", "parameters");
   if (key == "roller.f")
     throw Error(k + " is each record's own excitation frequency, not fitted", "parameters");
+  if (key == "roller.m_f")
+    throw Error(k + " enters the Appendix A transmissibility only (oscidrum transmissibility), "
+                    "not the drum's motion: it cannot be fitted to records",
+                "parameters");
   if (key == "roller.g" || !(key.rfind("roller.", 0) == 0 || key.rfind("contact.", 0) == 0 ||
                              key.rfind("trough.", 0) == 0))
     throw Error(k + " is not a parameter of the roller, the contact or the trough", "parameters");
@@ -245,7 +250,22 @@ MeasuredResponse measure_record(std::span<const double> t, std::span<const doubl
   const std::vector<RecordWindow> ws = analyze_windows(local, ddx_M, ddz_M, {}, wo);
   if (ws.empty()) throw Error("the record has no window to analyse");
   const RecordWindow& w = ws.front();
-  if (!w.valid) throw Error("the record fails a quality gate: " + w.reason);
+  if (!w.valid) {
+    // The gates' advice names the window flags of analyze and identify; a reference is one window
+    // of one soil (calibrate has neither --window nor --max-change).
+    std::string reason = w.reason;
+    const auto replace = [&reason](std::string_view from, std::string_view to) {
+      for (std::size_t at = reason.find(from); at != std::string::npos;
+           at = reason.find(from, at + to.size()))
+        reason.replace(at, from.size(), to);
+    };
+    replace("; --max-change)", ")");
+    replace("a shorter --window resolves it",
+            "a reference must be of one soil and one setting: cut the record where it changes");
+    replace("windows (--window 40) fit the stretches on either side of it",
+            "cut the record at it, a reference per stretch");
+    throw Error("the record fails a quality gate: " + reason);
+  }
   detail::require_live_channels(ddx_M.subspan(w.first, w.count), ddz_M.subspan(w.first, w.count),
                                 "the record");
   const std::span<const double> tw = std::span<const double>(local).subspan(w.first, w.count);

@@ -1441,10 +1441,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           reasons.push_back("the given f (--f " + num(fw) + " Hz) carries " +
                             num(std::round(1000.0 * at_f / first_three) / 10) +
                             " % of the power of its first three harmonics (< 10 %; the excitation "
-                            "carries the most): the record is excited at another frequency (" +
+                            "carries the most): the record is not excited at f (its multiple " +
                             num(strongest * fw) + " Hz carries " +
                             num(std::round(1000.0 * largest / first_three) / 10) +
-                            " %); give that, or leave --f out to estimate it");
+                            " %: f may be a subharmonic, or the record of another frequency); "
+                            "leave --f out to estimate the frequency");
       }
       change_within(tw, xw, zw, fw, n_max, aw, reasons, o.gates.max_change);
       const double res = std::max(aw.metrics.residual_x, aw.metrics.residual_z);

@@ -1371,7 +1371,13 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       const std::string& cell = cells[static_cast<std::size_t>(cy)];
       if (!is_missing(cell) && !parse_number(cell, decimal_comma, y)) y = std::nan("");
     }
-    const double p = cp >= 0 ? kpos * get(cp) : 0.0, sp = cs >= 0 ? kspeed * get(cs) : 0.0,
+    // A speed or position logged at the GNSS receiver's few Hz beside accelerations at a kHz: an
+    // empty cell does not skip the row (99 % of a record's rows were dropped, and the refusal
+    // spoke of its sampling); NaN, filled in time from the values around it below.
+    const auto sparse = [&](int c) {
+      return is_missing(cells[static_cast<std::size_t>(c)]) ? std::nan("") : get(c);
+    };
+    const double p = cp >= 0 ? kpos * sparse(cp) : 0.0, sp = cs >= 0 ? kspeed * sparse(cs) : 0.0,
                  u = cu >= 0 ? get(cu) : 0.0;
     // A GNSS cell without a number (a receiver's fix comes at a few Hz, the accelerations at a
     // kHz) does not skip the row: NaN, filled from the fixes around it below.
@@ -1495,6 +1501,30 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     const bool latlon = clat >= 0;
     std::vector<double>& a = latlon ? out.lat : out.east;
     std::vector<double>& b = latlon ? out.lon : out.north;
+    // Fills the rows between fixes of one pair of columns; returns its fixes.
+    const auto fill_between_fixes = [&out](std::vector<double>& u, std::vector<double>& v) {
+      std::size_t fixes = 0;
+      for (std::size_t i = 0; i < u.size(); ++i)
+        fixes += std::isfinite(u[i]) && std::isfinite(v[i]) ? 1 : 0;
+      if (fixes == 0 || fixes == u.size()) return fixes;
+      std::size_t last = u.size();  // the previous fix
+      for (std::size_t i = 0; i < u.size(); ++i) {
+        if (!(std::isfinite(u[i]) && std::isfinite(v[i]))) continue;
+        if (last == u.size()) {
+          for (std::size_t j = 0; j < i; ++j) u[j] = u[i], v[j] = v[i];
+        } else {
+          for (std::size_t j = last + 1; j < i; ++j) {
+            const double span = out.t[i] - out.t[last];  // (times checked later)
+            const double w = span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0;
+            u[j] = u[last] + w * (u[i] - u[last]);
+            v[j] = v[last] + w * (v[i] - v[last]);
+          }
+        }
+        last = i;
+      }
+      for (std::size_t j = last + 1; j < u.size(); ++j) u[j] = u[last], v[j] = v[last];
+      return fixes;
+    };
     if (!gnss_text.empty()) {
       gnss_note = "position: the columns '" +
                   header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
@@ -1506,9 +1536,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       b.clear();
       clat = clon = ceast = cnorth = -1;
     } else if (!a.empty()) {
-      std::size_t fixes = 0;
-      for (std::size_t i = 0; i < a.size(); ++i)
-        fixes += std::isfinite(a[i]) && std::isfinite(b[i]) ? 1 : 0;
+      const std::size_t fixes = fill_between_fixes(a, b);
       if (fixes == 0) {
         gnss_note = "position: the columns '" +
                     header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
@@ -1518,28 +1546,54 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         b.clear();
         clat = clon = ceast = cnorth = -1;
       } else if (fixes < a.size()) {
-        std::size_t last = a.size();  // the previous fix
-        for (std::size_t i = 0; i < a.size(); ++i) {
-          if (!(std::isfinite(a[i]) && std::isfinite(b[i]))) continue;
-          if (last == a.size()) {
-            for (std::size_t j = 0; j < i; ++j) a[j] = a[i], b[j] = b[i];
-          } else {
-            for (std::size_t j = last + 1; j < i; ++j) {
-              const double span = out.t[i] - out.t[last];  // (times checked later)
-              const double w = span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0;
-              a[j] = a[last] + w * (a[i] - a[last]);
-              b[j] = b[last] + w * (b[i] - b[last]);
-            }
-          }
-          last = i;
-        }
-        for (std::size_t j = last + 1; j < a.size(); ++j) a[j] = a[last], b[j] = b[last];
         out.notes.push_back("position: " + std::to_string(fixes) + " of the " +
                             std::to_string(a.size()) +
                             " rows hold a GNSS fix; the rows between are interpolated in time");
       }
+      // Projected coordinates read as well as latitude and longitude: filled between their own
+      // fixes too (they stayed NaN between fixes, and with them every window's position,
+      // easting and northing, without a word).
+      if (latlon && !out.east.empty() && fill_between_fixes(out.east, out.north) == 0) {
+        out.notes.push_back("position: the columns '" + header[static_cast<std::size_t>(ceast)] +
+                            "' and '" + header[static_cast<std::size_t>(cnorth)] +
+                            "' hold no fix: no easting, northing or position from them");
+        out.east.clear();
+        out.north.clear();
+        ceast = cnorth = -1;
+      }
     }
     if (!gnss_note.empty()) out.notes.push_back(gnss_note);
+  }
+  // The speed and position columns: empty cells between values filled linearly in time (held
+  // before the first value and after the last), as the GNSS columns are.
+  for (const auto& [column, values] : {std::pair{cs, &speed}, std::pair{cp, &out.position}}) {
+    if (column < 0 || values->empty()) continue;
+    std::vector<double>& v = *values;
+    std::size_t given = 0;
+    for (double e : v) given += std::isfinite(e) ? 1 : 0;
+    const std::string& col = header[static_cast<std::size_t>(column)];
+    if (given == 0)
+      throw Error(name + ": the column '" + col + "' (" +
+                  (column == cs ? "--speed-col" : "--pos-col") + ") holds no number");
+    if (given == v.size()) continue;
+    std::size_t last = v.size();
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!std::isfinite(v[i])) continue;
+      if (last == v.size()) {
+        for (std::size_t j = 0; j < i; ++j) v[j] = v[i];
+      } else {
+        for (std::size_t j = last + 1; j < i; ++j) {
+          const double span = out.t[i] - out.t[last];
+          v[j] = v[last] + (span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0) * (v[i] - v[last]);
+        }
+      }
+      last = i;
+    }
+    for (std::size_t j = last + 1; j < v.size(); ++j) v[j] = v[last];
+    out.notes.push_back(std::string(column == cs ? "speed" : "position") + ": " +
+                        std::to_string(given) + " of the " + std::to_string(v.size()) +
+                        " rows hold a value in '" + col +
+                        "'; the rows between are interpolated in time");
   }
   if (latin1_at > 0)
     out.notes.push_back("read as Windows-1252 / Latin-1 text: line " + std::to_string(latin1_at) +

@@ -250,6 +250,14 @@ std::string choice_name_of(const char* choices, int index) {
                                      : std::string(key)) +
                     "'";
   if (key.size() > 80) throw Error(msg);
+  // The same name in its section first ("M0" -> "roller.M0", "mu" -> "contact.mu"): by edit
+  // distance alone "M0" and "mu" suggested "MMd".
+  const auto last_part = [](std::string_view k) {
+    const std::size_t dot = k.rfind('.');
+    return dot == std::string_view::npos ? k : k.substr(dot + 1);
+  };
+  for (const Field& f : kFields)
+    if (last_part(f.key) == key) throw Error(msg + "; did you mean '" + f.key + "'?");
   const Field* best = nullptr;
   std::size_t best_d = 4;
   for (const Field& f : kFields) {

@@ -395,6 +395,19 @@ TEST(RecordReader, GnssColumnsFixesBetweenRowsAndUnitsOfSpeed) {
     EXPECT_TRUE(dropped.lat.empty());
     EXPECT_TRUE(said(dropped, "position: the columns 'Lat' and 'Lon'"));
   }
+  // Both pairs given, fixes every few rows: the projected pair is filled between its fixes as
+  // well (it stayed NaN there, and with it every window's position, easting and northing).
+  RecordReading both;
+  both.lat_col = "lat", both.lon_col = "lon", both.east_col = "E", both.north_col = "N";
+  const RecordColumns pairs = read_text(
+      "t,ax,az,lat,lon,E,N\n0,1,2,48.0,16.0,600000,5340000\n0.001,1,2,,,,\n"
+      "0.002,1,2,48.2,16.2,600006,5340008\n",
+      both);
+  ASSERT_EQ(pairs.east.size(), 3u);
+  EXPECT_NEAR(pairs.lat[1], 48.1, 1e-12);
+  EXPECT_NEAR(pairs.east[1], 600003.0, 1e-6);
+  EXPECT_NEAR(pairs.north[1], 5340004.0, 1e-6);
+  EXPECT_NEAR(pairs.position[2], 10.0, 1e-6);
   RecordReading chosen;
   chosen.lat_col = "Lat";
   chosen.lon_col = "Lon";
@@ -404,6 +417,16 @@ TEST(RecordReader, GnssColumnsFixesBetweenRowsAndUnitsOfSpeed) {
   // Two latitude-like columns: none chosen.
   EXPECT_TRUE(
       read_text("t,ax,az,lat,gps_lat,lon\n0,1,2,48,48,16\n0.001,1,2,48,48,16\n").lat.empty());
+  // A speed logged at the GNSS rate (empty cells between): the rows are kept (99 % of a pass's
+  // rows were dropped for them) and the speed between interpolated in time.
+  RecordReading sparse_speed;
+  sparse_speed.speed_col = "v";
+  const RecordColumns sv =
+      read_text("t,ax,az,v\n0,1,2,1\n0.001,1,2,\n0.002,1,2,3\n0.003,1,2,\n", sparse_speed);
+  ASSERT_EQ(sv.t.size(), 4u);
+  EXPECT_NEAR(sv.position[3], 1e-3 * (1.5 + 2.5 + 3.0), 1e-15);  // speeds 1, 2, 3, 3 m/s
+  EXPECT_TRUE(said(sv, "2 of the 4 rows hold a value in 'v'"));
+  EXPECT_THROW((void)read_text("t,ax,az,v\n0,1,2,\n1,1,2,\n", sparse_speed), Error);
   RecordReading speed;
   speed.speed_col = "Speed [km/h]";
   const RecordColumns kmh =

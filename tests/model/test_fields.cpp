@@ -430,6 +430,11 @@ TEST(Fields, UnknownKeySuggestsTheNearestKey) {
             "unknown parameter 'roller.mas'; did you mean 'roller.m'?");
   EXPECT_EQ(error_of([&] { set_field_text(c, "contact.mue", "0.4"); }),
             "unknown parameter 'contact.mue'; did you mean 'contact.mu'?");
+  // A key's name without its section: that key (by edit distance M0 and mu were 'MMd').
+  EXPECT_EQ(error_of([&] { set_field(c, "M0", 1.0); }),
+            "unknown parameter 'M0'; did you mean 'roller.M0'?");
+  EXPECT_EQ(error_of([&] { set_field(c, "mu", 1.0); }),
+            "unknown parameter 'mu'; did you mean 'contact.mu'?");
   // Nothing close: no suggestion.
   EXPECT_EQ(error_of([&] { set_field(c, "completely.unrelated", 1.0); }),
             "unknown parameter 'completely.unrelated'");

@@ -275,6 +275,20 @@ def test_identify_frame_and_geojson(tmp_path):
         lon_f, lat_f = f["geometry"]["coordinates"]
         assert lat_f == pytest.approx(48.2 + 1e-5 * row["t"], abs=1e-10)
         assert f["properties"]["G"] == pytest.approx(row["G"])
+    # A logger's sparse fixes (NaN between, every 100th row a fix): the centres between the fixes,
+    # and no NaN in the file (it held NaN coordinates, which is no JSON).
+    sparse_lat, sparse_lon = lat.copy(), lon.copy()
+    gaps = np.arange(len(lat)) % 100 != 0
+    sparse_lat[gaps], sparse_lon[gaps] = np.nan, np.nan
+    sparse = oscidrum.identify.to_geojson(frame, t=r["t"], lat=sparse_lat, lon=sparse_lon,
+                                          path=path)
+    json.loads(path.read_text(), parse_constant=lambda c: pytest.fail("no JSON: " + c))
+    for f, g in zip(sparse["features"], gj["features"]):
+        assert f["geometry"]["coordinates"] == pytest.approx(g["geometry"]["coordinates"],
+                                                             abs=1e-9)
+    no_fix = np.full_like(lat, np.nan)
+    assert oscidrum.identify.to_geojson(frame, t=r["t"], lat=no_fix,
+                                        lon=no_fix)["features"][0]["geometry"] is None
     rows = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=20)
     assert oscidrum.identify.to_geojson(rows)["features"][0]["geometry"] is None
     with pytest.raises(ValueError):
