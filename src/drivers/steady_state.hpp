@@ -115,6 +115,9 @@ class Search : public BasicFlowObserver<R> {
 
   std::deque<std::pair<Vec, Phase>> history_;  // states at the last boundaries, newest first
   Vec range_lo_{}, range_hi_{}, last_range_{};
+  // Each finished period's extremes of every component, newest first (as history_): the scale of
+  // a p-period comparison is the range over the last p periods.
+  std::deque<std::pair<Vec, Vec>> period_extremes_;
   std::array<int, 65> below_{};  // consecutive boundaries with change_p < steady_tol, per p
   std::deque<Event> recent_;
   long switches_this_period_ = 0;
@@ -176,11 +179,15 @@ bool Search<R>::on_boundary(int n, const Vec& x) {
   // The scale of each compared component: its range over the last period, floored at a level
   // the integration tolerances can resolve (a component that hardly moves, like s_A around its
   // static value, must not demand more than the integrator delivers).
+  period_extremes_.emplace_front(range_lo_, range_hi_);
+  if (static_cast<int>(period_extremes_.size()) > num_.max_multiplicity)
+    period_extremes_.pop_back();
+  const auto scale_of = [this](double lo, double hi) {
+    const double floor = 100.0 * (num_.atol + num_.rtol * std::max(std::abs(hi), std::abs(lo)));
+    return std::max(hi - lo, floor);
+  };
   for (int i : kPeriodic) {
-    const double range = range_hi_[i] - range_lo_[i];
-    const double floor =
-        100.0 * (num_.atol + num_.rtol * std::max(std::abs(range_hi_[i]), std::abs(range_lo_[i])));
-    last_range_[i] = std::max(range, floor);
+    last_range_[i] = scale_of(range_lo_[i], range_hi_[i]);
     range_lo_[i] = range_hi_[i] = x[i];
   }
 
@@ -215,10 +222,20 @@ bool Search<R>::on_boundary(int n, const Vec& x) {
   int found = 0;
   double change1 = std::numeric_limits<double>::infinity();
   double shorter_min = std::numeric_limits<double>::infinity();
+  // The scale of the p-period comparison: each component's range over the last p periods (over
+  // the last one only, a component that moves in one period of a p-cycle, as the gap of a
+  // period-3 orbit that lifts off in one of its three periods, was scaled by the integration's
+  // floor in the others: a change of 1e8 for an orbit repeating to 1e-9, never accepted).
+  Vec lo = range_lo_, hi = range_hi_;  // (reset above: only x)
   for (int p = 1; p < static_cast<int>(history_.size()); ++p) {
     const auto& [xp, phase_p] = history_[p];
+    if (static_cast<std::size_t>(p) <= period_extremes_.size()) {
+      const auto& [plo, phi] = period_extremes_[static_cast<std::size_t>(p - 1)];
+      for (int i : kPeriodic) lo[i] = std::min(lo[i], plo[i]), hi[i] = std::max(hi[i], phi[i]);
+    }
     double change = 0.0;
-    for (int i : kPeriodic) change = std::max(change, std::abs(x[i] - xp[i]) / last_range_[i]);
+    for (int i : kPeriodic)
+      change = std::max(change, std::abs(x[i] - xp[i]) / scale_of(lo[i], hi[i]));
     if (phase_p != history_.front().second) change = std::max(change, 1.0);
     if (p == 1) change1 = change;
     below_[p] = change < num_.steady_tol ? below_[p] + 1 : 0;

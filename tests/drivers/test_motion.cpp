@@ -99,6 +99,21 @@ TEST(Motion, ASpiralApproachIsNotATorus) {
   EXPECT_EQ(torus.diagnostics.motion, "quasi_periodic") << torus.message;
 }
 
+// A stable period-3 orbit that lifts off in one of its three periods (58 Hz study, G = 55
+// MN/m^2): the gap moves in that period only, and the 3-period change was scaled by the last
+// period's range, the integration's floor in the two periods without flight: a change of 1e8
+// for an orbit repeating to 1e-9, max_periods_reached without metrics (its own examination said
+// periodic, every 3 periods). Scaled by the range over the 3 periods, it is a steady state.
+TEST(Motion, APeriodThreeOrbitWithOneFlightIsASteadyState) {
+  for (SteadyMethod method : {SteadyMethod::transient, SteadyMethod::shooting}) {
+    Case c = torus_case(55e6);
+    c.numerics.method = method;
+    const Result r = simulate(c);
+    EXPECT_EQ(r.status, Status::steady_state) << r.message;
+    EXPECT_EQ(r.diagnostics.multiplicity, 3) << r.message;
+  }
+}
+
 TEST(Motion, ChaoticExponentIsTheGrowthOfNearbyTrajectories) {
   const Model model(torus_case(50e6));
   const Result r = simulate(model);
