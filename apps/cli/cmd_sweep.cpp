@@ -483,7 +483,8 @@ double run_cases(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out) {
 }
 
 // An interrupted sweep: what is kept and how to finish it.
-int report_interrupted(const SweepPlan& p, const SweepOutputs& out, std::size_t finished) {
+int report_interrupted(const SweepOptions& o, const SweepPlan& p, SweepOutputs& out,
+                       std::size_t finished) {
   std::cerr << "oscidrum: interrupted: " << finished << " of " << p.n_mine << " cases done";
   if (out.journal)
     // The same command with --resume: a hint that rebuilt it named --out and --shard only, and
@@ -492,8 +493,19 @@ int report_interrupted(const SweepPlan& p, const SweepOutputs& out, std::size_t 
     std::cerr << " (kept in " << out.journal->path()
               << "); run the same command with --resume added to finish it (every other flag as "
                  "it was)\n";
-  else
-    std::cerr << "; nothing written (give --out FILE to make a sweep resumable)\n";
+  else {
+    // Not resumable (no journal without --out): the HDF5 file's .partial could never be finished
+    // and was left behind (30-50 MB) while this said "nothing written"; the case files of
+    // --cases-dir are whole files of finished cases and stay, said.
+    if (out.hdf5) {
+      out.hdf5.reset();
+      io::StudyHdf5Writer::discard_partial(o.hdf5);
+    }
+    std::cerr << "; no results written"
+              << (o.cases_dir.empty() ? std::string()
+                                      : " (the finished cases' files are in " + o.cases_dir + ")")
+              << "; give --out FILE to make a sweep resumable\n";
+  }
   return interrupted_exit_code();
 }
 
@@ -555,7 +567,7 @@ int run(const SweepOptions& o) {
   SweepOutputs out = open_outputs(o, p);
   const double elapsed = run_cases(o, p, out);
   // Interrupted (a signal after the last case changes nothing).
-  if (out.finished < p.n_mine) return report_interrupted(p, out, out.finished);
+  if (out.finished < p.n_mine) return report_interrupted(o, p, out, out.finished);
 
   write_results(o, p, out);
   std::string format = o.format;
