@@ -1,6 +1,8 @@
 // oscidrum merge: join the outputs of the shards of one study (oscidrum sweep --shard I/N) into
 // the output of the whole study, exactly what one unsharded sweep writes.
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -40,6 +42,13 @@ int run(const MergeOptions& o) {
     if (n_hdf5 != o.shards.size())
       throw Error("merge: give either the CSV files or the HDF5 files of the shards, not both");
     if (o.out.empty()) throw Error("merge of HDF5 shards needs --out FILE.h5");
+    // An HDF5 file named .csv was written without a word (and a CSV reader then fails on it).
+    std::string ext = std::filesystem::path(o.out).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ext == ".csv" || ext == ".txt" || ext == ".tsv")
+      throw Error("merge: the shards are HDF5 files, and so is the merged study: --out " + o.out +
+                  " names a text file; name it FILE.h5 (merge the shards' CSV files for a CSV)");
     io::merge_hdf5_shards(o.shards, o.out);
     if (!o.quiet)
       std::cerr << "oscidrum: merged " << o.shards.size() << " HDF5 shards; wrote " << o.out

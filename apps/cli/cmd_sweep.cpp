@@ -170,6 +170,18 @@ void check_options(const SweepOptions& o) {
   }
   if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
+  // The directory is made before the cases run: named as an output file, it was made first and
+  // the file refused after ("it is a directory"), an empty directory left behind.
+  if (!o.cases_dir.empty()) {
+    const auto same = [](const std::string& a, const std::string& b) {
+      return std::filesystem::absolute(a).lexically_normal() ==
+             std::filesystem::absolute(b).lexically_normal();
+    };
+    for (const auto& [flag, file] : {std::pair{"--out", o.out}, std::pair{"--hdf5", o.hdf5}})
+      if (!file.empty() && file != "-" && same(o.cases_dir, file))
+        throw Error("--cases-dir " + o.cases_dir + " and " + flag + " " + file +
+                    ": a directory and a file cannot have one name; name them otherwise");
+  }
 }
 
 // The study expanded into cases, and the cases this run is for (all, or its shard's).
@@ -212,8 +224,8 @@ SweepPlan plan_sweep(const SweepOptions& o) {
       throw Error(origin + ": " + key + " is swept by the study " + o.study +
                       ": this value would be replaced in every case (change the sweep instead)",
                   key);
-    if (!o.quiet)
-      warn(origin + ": " + key + " is swept by the study: this value is replaced in every case");
+    // A warning, not progress: --quiet hides progress and the summary only (docs/cli.md).
+    warn(origin + ": " + key + " is swept by the study: this value is replaced in every case");
   }
   p.study = io::expand(p.spec, progress("checking the study's cases"));
   if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });

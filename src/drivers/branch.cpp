@@ -30,7 +30,14 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
         "soil.G");
   if (!(o.initial_step > 0 && o.max_step >= o.initial_step && o.min_step > 0 &&
         o.min_step <= o.initial_step && o.max_step <= 1))
-    throw Error("continue: steps must satisfy 0 < min_step <= initial_step <= max_step <= 1");
+    throw Error(
+        "continue: the arclength steps must satisfy 0 < min_step <= initial_step (--step) "
+        "<= max_step (--max-step) <= 1; got min_step " +
+        detail::shortest(o.min_step) + ", initial_step " + detail::shortest(o.initial_step) +
+        ", max_step " + detail::shortest(o.max_step) +
+        (o.initial_step > o.max_step && o.max_step <= 1
+             ? " (a --step above --max-step needs a --max-step at least as large)"
+             : ""));
   if (!(o.tolerance > 0 && o.tolerance < 1))
     throw Error("continue: tolerance must be in (0, 1); got " + detail::shortest(o.tolerance));
   if (o.max_points < 2) throw Error("continue: max_points must be >= 2", "max_points");

@@ -145,8 +145,10 @@ Model::Model(const Case& c) : case_(c) {
     throw Error("trough: the clearance between trough and drum, " +
                 std::string(curvature_radius_formula(geometry_.shape)) + " - roller.r = " +
                 num(clearance) + " m, must be at least 1 % of the static soil deflection W / " +
-                "(ksv + kd) = " + num(deflection) +
-                " m: a trough of the drum's own size makes the rolling relation (11) degenerate");
+                "(ksv + kd) = " + num(deflection) + " m (W = roller.P0 = " + num(W_) +
+                " N, ksv = " + num(s.ksv) + " N/m, kd = roller.kd = " + num(R.kd) +
+                " N/m: is one of them in the wrong unit?): a trough of the drum's own size makes "
+                "the rolling relation (11) degenerate");
   nu_ = 2.0 * M_PI * R.f;
   // The vibratory drum has no oscillation moment: its excitation is the unbalance force.
   const bool vibratory = R.type == RollerType::vibratory;

@@ -386,6 +386,11 @@ TEST(CliSweep, UnwritableOutIsRefusedBeforeAnyCaseRuns) {
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("writes the HDF5 file as"), std::string::npos) << o.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.partial"));
+  // --cases-dir named as --out: the directory was made, then the file refused (it is one).
+  o = run({"sweep", study, "--out", dir / "y.csv", "--cases-dir", dir / "y.csv", "-q"});
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("a directory and a file cannot have one name"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "y.csv"));
   o = run({"sweep", study, "--out", ""});  // issue 14 (4): an empty path was ignored
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("--out needs a file name"), std::string::npos) << o.err;
@@ -453,6 +458,19 @@ TEST(CliSweep, OutToStdoutWritesThroughAndNoJournalInDev) {
   const Outcome empty_plot = run({"sweep", study, "--out", dir / "r.csv", "--plot", ""});
   EXPECT_EQ(empty_plot.code, 2);
   EXPECT_NE(empty_plot.err.find("--plot needs a file name"), std::string::npos) << empty_plot.err;
+}
+
+// A value of the study's base case that the sweep replaces is warned of, with --quiet too (it hid
+// the warning; --quiet hides progress and the summary only).
+TEST(CliSweep, QuietKeepsTheWarningOfAReplacedBaseValue) {
+  TempDir dir;
+  std::ofstream(dir / "s.toml")
+      << "[soil]\ntable2_G = 25e6\n[sweep]\n\"soil.table2_G\" = [5e6, 10e6]\n";
+  const Outcome o = run({"sweep", dir / "s.toml", "-q"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("soil.table2_G is swept by the study: this value is replaced in every case"),
+            std::string::npos)
+      << o.err;
 }
 
 }  // namespace

@@ -299,6 +299,16 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
   o.to = 0.3;
   o.initial_step = 0.0;
   EXPECT_THROW(continue_branch(c, o), Error);  // a step of 0
+  // --step 0.1 above the default --max-step 0.05: the message names the flags and the values.
+  o.initial_step = 0.1;
+  try {
+    (void)continue_branch(c, o);
+    ADD_FAILURE() << "a first step above the largest was taken";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("initial_step 0.1, max_step 0.05"), std::string::npos) << m;
+    EXPECT_NE(m.find("needs a --max-step at least as large"), std::string::npos) << m;
+  }
   // Metrics' harmonics the samples cannot resolve: refused, not NaN metrics at every point.
   o.initial_step = BranchOptions{}.initial_step;
   Case coarse;

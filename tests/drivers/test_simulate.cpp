@@ -236,6 +236,21 @@ TEST(Simulate, FrictionlessDrumWithADrivingTorqueSpins) {
   }
 }
 
+// P0 typed in the wrong unit (45224e3 for 45224 N) makes the static deflection 0.64 m and the
+// 6 mm trough too tight: the message blamed the trough alone; it names W = roller.P0, ksv and kd.
+TEST(Simulate, ATroughTooTightForTheLoadNamesTheLoad) {
+  Case c;
+  c.roller.P0 = 45224e3;
+  std::string message;
+  try {
+    const Model model(c);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("W = roller.P0 = 45224000 N"), std::string::npos) << message;
+  EXPECT_NE(message.find("in the wrong unit?"), std::string::npos) << message;
+}
+
 // The Kb-type stiffness Re(F_v(f) / z_M(f)) means nothing for the oscillation drum: with no
 // vertical excitation force its vertical balance (20) at f gives F_v(f) = (m nu^2 - kd - i nu cd)
 // z_M(f), so the ratio is m nu^2 - kd on every soil (it was reported as the soil's stiffness,

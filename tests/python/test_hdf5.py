@@ -145,6 +145,11 @@ def test_merged_hdf5_shards_equal_the_unsharded_file(cli, study):
     assert done.returncode == 2
     assert "1 of 3 shards missing: 3" in done.stderr
     assert not (study / "bad.h5").exists()
+    # An HDF5 study named .csv (it was written so, exit 0): refused.
+    done = subprocess.run([cli, "merge", *shards, "--out", study / "m.csv"],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and "name it FILE.h5" in done.stderr, done.stderr
+    assert not (study / "m.csv").exists()
 
 
 def test_hdf5_tables_have_the_named_dimension_case(tmp_path):
