@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -750,6 +751,39 @@ std::string not_text(const std::string& first_line) {
     return "not text (a NUL byte in its first line; UTF-16 without a byte-order mark?): save it "
            "as CSV text, UTF-8 or UTF-16 with its byte-order mark";
   return "";
+}
+
+// Columns logged at a slower rate than the accelerations (a GNSS receiver's few Hz beside a
+// kHz): the rows where every one of `columns` holds a number are the fixes; each column is filled
+// linearly in time between fixes, held before the first and after the last. Returns the fixes
+// (none: the columns are left as they are).
+std::size_t fill_between_fixes(const std::vector<double>& t,
+                               std::initializer_list<std::vector<double>*> columns) {
+  const auto is_fix = [&columns](std::size_t i) {
+    return std::all_of(columns.begin(), columns.end(),
+                       [i](const std::vector<double>* c) { return std::isfinite((*c)[i]); });
+  };
+  std::size_t fixes = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) fixes += is_fix(i) ? 1 : 0;
+  if (fixes == 0 || fixes == t.size()) return fixes;
+  std::size_t last = t.size();  // the previous fix
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!is_fix(i)) continue;
+    for (std::vector<double>* c : columns) {
+      std::vector<double>& v = *c;
+      if (last == t.size()) {
+        for (std::size_t j = 0; j < i; ++j) v[j] = v[i];
+      } else {
+        const double span = t[i] - t[last];  // (times checked later)
+        for (std::size_t j = last + 1; j < i; ++j)
+          v[j] = v[last] + (span > 0.0 ? (t[j] - t[last]) / span : 0.0) * (v[i] - v[last]);
+      }
+    }
+    last = i;
+  }
+  for (std::vector<double>* c : columns)
+    for (std::size_t j = last + 1; j < t.size(); ++j) (*c)[j] = (*c)[last];
+  return fixes;
 }
 
 }  // namespace
@@ -1501,30 +1535,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     const bool latlon = clat >= 0;
     std::vector<double>& a = latlon ? out.lat : out.east;
     std::vector<double>& b = latlon ? out.lon : out.north;
-    // Fills the rows between fixes of one pair of columns; returns its fixes.
-    const auto fill_between_fixes = [&out](std::vector<double>& u, std::vector<double>& v) {
-      std::size_t fixes = 0;
-      for (std::size_t i = 0; i < u.size(); ++i)
-        fixes += std::isfinite(u[i]) && std::isfinite(v[i]) ? 1 : 0;
-      if (fixes == 0 || fixes == u.size()) return fixes;
-      std::size_t last = u.size();  // the previous fix
-      for (std::size_t i = 0; i < u.size(); ++i) {
-        if (!(std::isfinite(u[i]) && std::isfinite(v[i]))) continue;
-        if (last == u.size()) {
-          for (std::size_t j = 0; j < i; ++j) u[j] = u[i], v[j] = v[i];
-        } else {
-          for (std::size_t j = last + 1; j < i; ++j) {
-            const double span = out.t[i] - out.t[last];  // (times checked later)
-            const double w = span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0;
-            u[j] = u[last] + w * (u[i] - u[last]);
-            v[j] = v[last] + w * (v[i] - v[last]);
-          }
-        }
-        last = i;
-      }
-      for (std::size_t j = last + 1; j < u.size(); ++j) u[j] = u[last], v[j] = v[last];
-      return fixes;
-    };
     if (!gnss_text.empty()) {
       gnss_note = "position: the columns '" +
                   header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
@@ -1536,7 +1546,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       b.clear();
       clat = clon = ceast = cnorth = -1;
     } else if (!a.empty()) {
-      const std::size_t fixes = fill_between_fixes(a, b);
+      const std::size_t fixes = fill_between_fixes(out.t, {&a, &b});
       if (fixes == 0) {
         gnss_note = "position: the columns '" +
                     header[static_cast<std::size_t>(latlon ? clat : ceast)] + "' and '" +
@@ -1553,7 +1563,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       // Projected coordinates read as well as latitude and longitude: filled between their own
       // fixes too (they stayed NaN between fixes, and with them every window's position,
       // easting and northing, without a word).
-      if (latlon && !out.east.empty() && fill_between_fixes(out.east, out.north) == 0) {
+      if (latlon && !out.east.empty() && fill_between_fixes(out.t, {&out.east, &out.north}) == 0) {
         out.notes.push_back("position: the columns '" + header[static_cast<std::size_t>(ceast)] +
                             "' and '" + header[static_cast<std::size_t>(cnorth)] +
                             "' hold no fix: no easting, northing or position from them");
@@ -1569,27 +1579,12 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   for (const auto& [column, values] : {std::pair{cs, &speed}, std::pair{cp, &out.position}}) {
     if (column < 0 || values->empty()) continue;
     std::vector<double>& v = *values;
-    std::size_t given = 0;
-    for (double e : v) given += std::isfinite(e) ? 1 : 0;
     const std::string& col = header[static_cast<std::size_t>(column)];
+    const std::size_t given = fill_between_fixes(out.t, {&v});
     if (given == 0)
       throw Error(name + ": the column '" + col + "' (" +
                   (column == cs ? "--speed-col" : "--pos-col") + ") holds no number");
     if (given == v.size()) continue;
-    std::size_t last = v.size();
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!std::isfinite(v[i])) continue;
-      if (last == v.size()) {
-        for (std::size_t j = 0; j < i; ++j) v[j] = v[i];
-      } else {
-        for (std::size_t j = last + 1; j < i; ++j) {
-          const double span = out.t[i] - out.t[last];
-          v[j] = v[last] + (span > 0.0 ? (out.t[j] - out.t[last]) / span : 0.0) * (v[i] - v[last]);
-        }
-      }
-      last = i;
-    }
-    for (std::size_t j = last + 1; j < v.size(); ++j) v[j] = v[last];
     out.notes.push_back(std::string(column == cs ? "speed" : "position") + ": " +
                         std::to_string(given) + " of the " + std::to_string(v.size()) +
                         " rows hold a value in '" + col +
