@@ -31,7 +31,8 @@
   X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")              \
   X(aperiodic,                                                                                 \
     "no periodic steady state: the motion, examined after numerics.max_periods, is "           \
-    "quasi-periodic or chaotic (diagnostics motion, lyapunov_exponent; docs/bifurcations.md)")
+    "quasi-periodic or chaotic (diagnostics motion, lyapunov_exponent; docs/bifurcations.md)") \
+  X(invalid, "the case of a study was refused before it ran (its parameters; the error says why)")
 
 // ------------------------------------------------------------------------------------------------
 // The sampled steady state (Samples, the steady-state CSV), one column per entry, in file order.

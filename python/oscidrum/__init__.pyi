@@ -731,6 +731,7 @@ class Status(enum.IntEnum):
     budget_exceeded = 7
     cancelled = 8
     aperiodic = 9
+    invalid = 10
     def __getstate__(self: Any) -> int: ...
     @overload
     def __init__(self: Status, value: handle) -> None: ...

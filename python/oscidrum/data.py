@@ -97,6 +97,12 @@ def from_result(result: Any, label: str = "", metrics: Any = None,
         if metrics is None and len(result.result.samples) > 0:
             metrics = result.metrics
         result = result.result
+    if not (hasattr(result, "samples") and hasattr(result, "status")):
+        # An AttributeError from inside the package ("'int' object has no attribute 'samples'").
+        from . import Error
+        raise Error("a plot or a steady state takes a Result, a CaseOutcome, a SteadyState, a "
+                    "steady-state CSV's path or a (result, case) pair; got "
+                    f"{type(result).__name__}")
     if len(result.samples) == 0:
         raise ValueError("the result holds no samples (run the study with keep_samples=True)")
     s = result.samples

@@ -18,6 +18,7 @@ import json
 import math
 import sys
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -54,6 +55,12 @@ def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, boo
     return z, not down
 
 
+# The options identify passes on to identify_record (its keyword arguments but the arrays, the
+# position and z_open, which identify sets).
+_IDENTIFY_OPTIONS = ("f", "window", "hop", "n_max", "estimate", "fit_mu", "fit_MMd", "compare",
+                     "use_peaks", "use_area", "profile", "shooting", "soil_scale", "units_open")
+
+
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
              position: Optional[Sequence[float]] = None, x_positive: str = "forward",
              z_positive: str = "auto", **options: Any) -> List[Dict[str, Any]]:
@@ -78,6 +85,17 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     from . import Case, Error, identify_record
     if x_positive not in ("forward", "backward"):
         raise Error(f"x_positive must be 'forward' or 'backward'; got {x_positive!r}")
+    # A misspelled option or a case of another type: said in one line (pybind11's refusal named
+    # identify_record and dumped its signature and the arrays, without the option's name).
+    for name in options:
+        if name not in _IDENTIFY_OPTIONS:
+            import difflib
+            near = difflib.get_close_matches(name, _IDENTIFY_OPTIONS, n=1)
+            raise Error(f"identify: unknown option {name!r}" +
+                        (f" (did you mean {near[0]!r}?)" if near else "") +
+                        "; the options: " + ", ".join(_IDENTIFY_OPTIONS))
+    if case is not None and not isinstance(case, Case):
+        raise Error(f"identify: case must be an oscidrum.Case; got {type(case).__name__}")
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
     if x_positive == "backward":
         arrays[1] = -arrays[1]
@@ -123,6 +141,10 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
     base = case if case is not None else Case()
     refs = []
     for k, ref in enumerate(references):
+        if not isinstance(ref, Mapping):
+            raise Error(f"reference {k} must be a dict with t, ddx_M, ddz_M and G or soil (as "
+                        f"synthetic_record or read_record gives them); got "
+                        f"{type(ref).__name__}")
         missing = [key for key in ("t", "ddx_M", "ddz_M") if key not in ref]
         if missing:
             raise Error(f"reference {k} has no {', '.join(missing)}")

@@ -732,8 +732,13 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
                 slip_seen[value] = True
                 axis.plot(np.where(mask, xc, np.nan), np.where(mask, zc, np.nan),
                           color=slip_color, lw=6, alpha=0.45, solid_capstyle="round", zorder=1)
-        area = _area(state, x, z)
+        # Not a steady state (max_periods_reached, aperiodic, ...): the last periods drawn are no
+        # orbit, and their "area" is a number compute_metrics refuses; the label says the status.
+        steady = state.status == "steady_state"
+        area = _area(state, x, z) if steady else None
         label = names[i]
+        if not steady:
+            label = (f"{label}: " if label else "") + f"{state.status}, not a steady state"
         if area is not None:
             text = f"area {area:.4g} m$^2$/s$^4$"
             if any(absent_signals(state).values()):  # a curve of round-off in one coordinate

@@ -24,7 +24,7 @@ __all__ = ["run_study", "StudyResult", "Interrupted", "run_chunk"]
 #: simulations (a case takes 4-15 ms), small enough to spread a study over the workers.
 DEFAULT_CHUNK_SIZE = 500
 
-_OUTCOME_COLUMNS = ("valid", "ok", "status", "error")
+_OUTCOME_COLUMNS = ("valid", "ok", "status", "error", "message")
 _UNITS = {"periods_to_steady": "-", "multiplicity": "-"}
 
 
@@ -63,7 +63,7 @@ class StudyResult(list):
         Returns
         -------
         pandas.DataFrame
-            Columns: the parameters (SI units), ``valid``, ``ok``, ``status``, ``error``,
+            Columns: the parameters (SI units), ``valid``, ``ok``, ``status``, ``error``, ``message``,
             ``periods_to_steady``, ``multiplicity`` and every scalar metric of
             :class:`oscidrum.Metrics` (``area`` [m^2/s^4], ``ddx_max`` [m/s^2], ...; NaN when a
             case has no steady state). ``df.attrs['units']`` maps columns to units.
@@ -92,7 +92,10 @@ class StudyResult(list):
             row["valid"] = o.valid
             row["ok"] = o.ok
             row["status"] = o.result.status.name if o.valid else "invalid"
-            row["error"] = o.error if not o.valid else o.result.message
+            # error: why a case was refused ('' for a case that ran, as CaseOutcome.error; it held
+            # the result's message, so that every row had an "error"); message: the result's.
+            row["error"] = o.error
+            row["message"] = o.result.message if o.valid else o.error
             d = o.result.diagnostics
             row["periods_to_steady"] = d.periods_to_steady
             row["multiplicity"] = d.multiplicity

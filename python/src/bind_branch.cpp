@@ -91,7 +91,7 @@ py::dict continue_branch_py(const Case& c, const std::string& key, double from, 
                             double initial_step, double max_step, double tolerance, int max_points,
                             bool metrics, int harmonics, int switch_depth) {
   BranchOptions o;
-  o.key = key;
+  o.key = dotted_field_key(key);  // Python's flat names too ("mu": "unknown key 'mu'" before)
   o.from = from;
   o.to = to;
   o.initial_step = initial_step;

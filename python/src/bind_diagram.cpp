@@ -77,7 +77,7 @@ py::dict diagram_dict(const Diagram& d) {
 py::dict bifurcation_diagram_py(const Case& c, const std::string& key, double from, double to,
                                 int steps, const std::string& sweep, int discard, int periods) {
   DiagramOptions o;
-  o.key = key;
+  o.key = dotted_field_key(key);  // Python's flat names too ("mu" -> "contact.mu")
   o.from = from;
   o.to = to;
   o.steps = steps;

@@ -480,6 +480,14 @@ std::string alias_table() {
 
 }  // namespace
 
+std::string dotted_field_key(std::string_view name) {
+  if (find_field(name) != nullptr) return std::string(name);
+  const auto& table = aliases();
+  if (auto it = table.find(name); it != table.end() && find_field(it->second) != nullptr)
+    return it->second;
+  return std::string(name);
+}
+
 std::string python_type_name(py::handle value) {
   return py::str(py::type::of(value).attr("__name__")).cast<std::string>();
 }

@@ -132,6 +132,10 @@ std::invoke_result_t<F&> run_watching_signals(GuardedCalls& calls, F&& work) {
   return future.get();
 }
 
+/// The field key a Python name stands for: the dotted key itself, or the field of a flat alias
+/// ("mu" -> "contact.mu"); any other name unchanged (the library names what it refuses).
+std::string dotted_field_key(std::string_view name);
+
 /// A float64 NumPy array argument (converted if needed, C-contiguous).
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 

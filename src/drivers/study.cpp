@@ -88,6 +88,14 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     out.valid = false;
     out.error = std::string("internal error: ") + e.what();
   }
+  if (!out.valid) {
+    // Never run: its result said steady_state and its metrics were 0 (a default Result and
+    // Metrics), which a list of o.metrics.area took for numbers.
+    out.result = Result{};
+    out.result.status = Status::invalid;
+    out.result.message = out.error;
+    out.metrics = Metrics::unavailable();
+  }
   if (!keep_samples) out.result.samples = Samples{};
   return out;
 }
@@ -316,7 +324,15 @@ std::vector<CaseOutcome> run_study(std::size_t count, const CaseSource& case_at,
     throw Error("StudyOptions::n_harmonics must be >= 0; got " +
                 std::to_string(options.n_harmonics));
   std::vector<CaseOutcome> outcomes(options.keep_outcomes ? count : 0);
-  for (CaseOutcome& o : outcomes) o.valid = false, o.error = "cancelled";
+  // A case never run (the study cancelled before it) is no steady state: status cancelled, no
+  // metrics (a default Result said steady_state, and the metrics were 0).
+  for (CaseOutcome& o : outcomes) {
+    o.valid = false;
+    o.error = "cancelled";
+    o.result.status = Status::cancelled;
+    o.result.message = "cancelled before the case ran";
+    o.metrics = Metrics::unavailable();
+  }
   // Checked before the first case (compute_metrics would refuse each case alike).
   for (std::size_t i = 0; i < count; ++i) {
     if (planning_cancelled(i, options.cancelled)) return outcomes;

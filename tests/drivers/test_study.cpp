@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -181,7 +182,26 @@ TEST(Study, CancellationBetweenCasesLeavesTheRestCancelled) {
   for (std::size_t i = 2; i < out.size(); ++i) {
     EXPECT_FALSE(out[i].valid);
     EXPECT_EQ(out[i].error, "cancelled");
+    EXPECT_EQ(out[i].result.status, Status::cancelled);  // it said steady_state
+    EXPECT_TRUE(std::isnan(out[i].metrics.area));        // it was 0
   }
+}
+
+// An invalid case (a trough smaller than the drum) is refused, not run: its outcome said status
+// steady_state with every metric 0, which a list of o.metrics.area took for a number.
+TEST(Study, AnInvalidCaseHasNoSteadyStateAndNoMetrics) {
+  Case bad;
+  bad.trough.shape = CircleTrough{0.59};
+  const std::vector<Case> cases = {bad, Case{}};
+  const std::vector<CaseOutcome> out = run_study(cases, StudyOptions{});
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_FALSE(out[0].valid);
+  EXPECT_EQ(out[0].result.status, Status::invalid);
+  EXPECT_EQ(out[0].result.message, out[0].error);
+  EXPECT_TRUE(std::isnan(out[0].metrics.area));
+  EXPECT_TRUE(std::isnan(out[0].metrics.ddx_max));
+  EXPECT_TRUE(out[1].valid);
+  EXPECT_EQ(out[1].result.status, Status::steady_state);
 }
 
 TEST(Study, CancellationStopsARunningCase) {

@@ -412,3 +412,18 @@ def test_ctrl_c_interrupts_a_pass():
         oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=2)
     timer.join()
     assert time.perf_counter() - start < 5.0
+
+
+def test_calibrate_names_a_reference_that_is_no_dict():
+    # A TypeError from inside the package ("argument of type 'int' is not iterable").
+    with pytest.raises(oscidrum.Error, match="reference 0 must be a dict"):
+        oscidrum.identify.calibrate([5])
+
+
+def test_identify_names_a_misspelled_option():
+    # pybind11's refusal named identify_record and dumped its signature and the arrays.
+    r = oscidrum.synthetic_record([truth(25e6)], duration=0.3, seed=1)
+    with pytest.raises(oscidrum.Error, match="unknown option 'windw' \\(did you mean 'window'\\?\\)"):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], windw=20)
+    with pytest.raises(oscidrum.Error, match="case must be an oscidrum.Case; got int"):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], case=5)

@@ -656,3 +656,20 @@ def test_two_absent_signals_share_one_note():
     notes = [t.get_text() for t in ax.texts if "absent" in t.get_text()]
     assert len(notes) == 1 and notes[0].startswith("x_M'' and z_M'' are absent")
     assert any(t.get_text() == "area 0" for t in ax.get_legend().get_texts())
+
+
+def test_figure_eight_of_a_run_without_steady_state_shows_no_area():
+    # The legend read "area 95.5 m^2/s^4" for the last periods of a transient (the steady state's
+    # is 22.8), a number compute_metrics refuses for the same result.
+    bad = oscidrum.simulate(oscidrum.Case(max_periods=3))
+    assert bad.status.name == "max_periods_reached"
+    fig = plot.plot_figure_eight(bad)
+    texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "max_periods_reached, not a steady state" in texts[0], texts
+    assert not any("area" in t for t in texts), texts
+
+
+def test_a_plot_of_something_else_names_what_it_takes():
+    # An AttributeError from inside the package ("'int' object has no attribute 'samples'").
+    with pytest.raises(oscidrum.Error, match="takes a Result, a CaseOutcome"):
+        plot.plot_accelerations(42)

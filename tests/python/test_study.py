@@ -281,3 +281,18 @@ def test_harmonics_bounded_by_the_samples_nyquist_limit():
         oscidrum.run_study([oscidrum.Case()], n_harmonics=10**7)
     outcome = oscidrum.run_case(oscidrum.Case(), n_harmonics=10**7)
     assert not outcome.valid and "n_max must be <" in outcome.error
+
+
+def test_an_invalid_case_has_no_steady_state_and_no_metrics():
+    # It said status steady_state with every metric 0 (o.metrics.area read 0.0); the DataFrame's
+    # "error" held the result's message for cases that ran ("periodic orbit by shooting ...").
+    import math
+    res = oscidrum.run_study([{"R": 0.59}, {"G": 30e6}])
+    bad, good = res
+    assert not bad.valid and bad.result.status.name == "invalid"
+    assert math.isnan(bad.metrics.area) and math.isnan(bad.metrics.ddx_max)
+    assert good.ok and good.error == ""
+    df = res.to_dataframe()
+    assert list(df["status"]) == ["invalid", "steady_state"]
+    assert df["error"][1] == "" and "trough.a must be > roller.r" in df["error"][0]
+    assert df["message"][1].startswith("periodic orbit")
