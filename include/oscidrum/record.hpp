@@ -97,6 +97,10 @@ struct WindowOptions {
   /// Added to the times the reasons quote [s]: a caller that analyses the times less an origin
   /// (for their precision) gives it, so that a gap is reported at the record's own time.
   double time_origin = 0.0;
+  /// The record is a reference of one soil and one setting, analysed whole (`oscidrum
+  /// calibrate`): a gate's advice is to cut the record where it changes, not the window flags of
+  /// `analyze` and `identify` (--window, --max-change), which such a caller does not have.
+  bool one_reference = false;
 };
 
 /// One window of a record.

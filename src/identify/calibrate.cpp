@@ -246,26 +246,12 @@ MeasuredResponse measure_record(std::span<const double> t, std::span<const doubl
   WindowOptions wo = windows;
   wo.window_periods = 0.0;  // the whole record
   wo.hop_periods = 0.0;
-  wo.time_origin += t0;  // the reasons quote the record's times
+  wo.time_origin += t0;     // the reasons quote the record's times
+  wo.one_reference = true;  // and advise cutting the record, not window flags calibrate lacks
   const std::vector<RecordWindow> ws = analyze_windows(local, ddx_M, ddz_M, {}, wo);
   if (ws.empty()) throw Error("the record has no window to analyse");
   const RecordWindow& w = ws.front();
-  if (!w.valid) {
-    // The gates' advice names the window flags of analyze and identify; a reference is one window
-    // of one soil (calibrate has neither --window nor --max-change).
-    std::string reason = w.reason;
-    const auto replace = [&reason](std::string_view from, std::string_view to) {
-      for (std::size_t at = reason.find(from); at != std::string::npos;
-           at = reason.find(from, at + to.size()))
-        reason.replace(at, from.size(), to);
-    };
-    replace("; --max-change)", ")");
-    replace("a shorter --window resolves it",
-            "a reference must be of one soil and one setting: cut the record where it changes");
-    replace("windows (--window 40) fit the stretches on either side of it",
-            "cut the record at it, a reference per stretch");
-    throw Error("the record fails a quality gate: " + reason);
-  }
+  if (!w.valid) throw Error("the record fails a quality gate: " + w.reason);
   detail::require_live_channels(ddx_M.subspan(w.first, w.count), ddz_M.subspan(w.first, w.count),
                                 "the record");
   const std::span<const double> tw = std::span<const double>(local).subspan(w.first, w.count);

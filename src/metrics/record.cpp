@@ -1029,7 +1029,8 @@ double drift_noise(std::span<const double> t, std::span<const double> x, std::sp
 // order); the difference of two parts by sqrt(2) times that.
 void change_within(std::span<const double> t, std::span<const double> x, std::span<const double> z,
                    double f, int n_max, RecordWindow& w, std::vector<std::string>& reasons,
-                   double max_change) {
+                   const WindowOptions& o) {
+  const double max_change = o.gates.max_change;
   // Each part at least one period long and with twice as many samples as its fit has
   // coefficients (2 (2 n_max + 1): the residual, and with it the noise the change is weighed
   // against, means something). Halves of two periods were asked before, and windows of 2 to 4
@@ -1038,11 +1039,18 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
   const auto min_samples = static_cast<std::size_t>(2 * (2 * n_max + 1));
   // A part's span counts its last sample's interval: 1024 samples of one period cover it.
   const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  // A part is also as densely sampled as analyze_record asks of a window for n_max harmonics
+  // (2 n_max + 1 samples per period between its first and last); one that is not says nothing
+  // about a change.
   const auto part_begin = [&t](std::size_t k, std::size_t parts) { return t.size() * k / parts; };
   const auto usable = [&](std::size_t parts) {
     for (std::size_t k = 0; k < parts; ++k) {
       const std::size_t b = part_begin(k, parts), e = part_begin(k + 1, parts);
-      if (e - b < min_samples || (t[e - 1] - t[b] + dt) * f < 1.0 - 1e-9) return false;
+      if (e - b < min_samples) return false;
+      const double cycles = (t[e - 1] - t[b]) * f;
+      if (cycles + dt * f < 1.0 - 1e-9 ||
+          static_cast<double>(e - b - 1) < (2.0 * n_max + 1.0) * cycles)
+        return false;
     }
     return true;
   };
@@ -1050,15 +1058,11 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
   while (parts >= 2 && !usable(parts)) --parts;
   if (parts < 2) return;
   // Each part's harmonics and residuals as analyze_record fits them (fit_record), without the
-  // peaks, area and subharmonics that are not compared; a part with too few samples per period
-  // for n_max, which analyze_record refuses, says nothing about a change.
+  // peaks, area and subharmonics that are not compared.
   std::vector<RecordFit> fits;
   for (std::size_t k = 0; k < parts; ++k) {
     const std::size_t b = part_begin(k, parts), n = part_begin(k + 1, parts) - b;
-    const std::span<const double> tk = t.subspan(b, n);
-    const double cycles = (tk.back() - tk.front()) * f;
-    if (static_cast<double>(tk.size() - 1) / cycles < 2.0 * n_max + 1.0) return;
-    fits.push_back(fit_record(tk, x.subspan(b, n), z.subspan(b, n), f, n_max));
+    fits.push_back(fit_record(t.subspan(b, n), x.subspan(b, n), z.subspan(b, n), f, n_max));
   }
   // The smallest part (they differ by one sample at most) sets the noise.
   const auto n_part = static_cast<double>(t.size() / parts);
@@ -1104,11 +1108,14 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                                          : "from part " + std::to_string(from + 1) + " to part " +
                                                std::to_string(to + 1) + " of " +
                                                std::to_string(parts) + " equal parts";
-    reasons.push_back("the response changes within the window: the RMS of " + std::string(channel) +
-                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % " +
-                      where + " (> " + num(max_change * 100) +
-                      " %; --max-change): a change of soil or of the roller's settings within it; "
-                      "a shorter --window resolves it");
+    reasons.push_back(
+        "the response changes within the window: the RMS of " + std::string(channel) + " by " +
+        (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % " + where + " (> " +
+        num(max_change * 100) + (o.one_reference ? " %): " : " %; --max-change): ") +
+        (o.one_reference ? "a reference must be of one soil and one setting: cut the record "
+                           "where it changes"
+                         : "a change of soil or of the roller's settings within it; a shorter "
+                           "--window resolves it"));
   }
 }
 
@@ -1367,13 +1374,14 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // are. A gap is a step the fit cannot bridge, a sizeable part of an excitation period.
       const double max_gap = o.gates.max_gap / f0;
       if (gap > max_gap)
-        reasons.push_back("gap of " + sig4(gap) + " s at t = " + num(gap_at + o.time_origin) +
-                          " s (" + num(std::round(gap * f0 * 100) / 100) +
-                          " excitation periods > " + num(o.gates.max_gap) +
-                          "; a harmonic fit does not bridge it" +
-                          (windowed ? std::string(")")
-                                    : std::string("): windows (--window 40) fit the stretches "
-                                                  "on either side of it")));
+        reasons.push_back(
+            "gap of " + sig4(gap) + " s at t = " + num(gap_at + o.time_origin) + " s (" +
+            num(std::round(gap * f0 * 100) / 100) + " excitation periods > " +
+            num(o.gates.max_gap) + "; a harmonic fit does not bridge it" +
+            (windowed          ? std::string(")")
+             : o.one_reference ? std::string("): cut the record at it, a reference per stretch")
+                               : std::string("): windows (--window 40) fit the stretches "
+                                             "on either side of it")));
       aw.samples_per_period = static_cast<double>(aw.count - 1) / ((aw.t_end - aw.t_start) * f0);
       // Its samples cover their last interval too (n samples at the step dt cover n dt, as for
       // the record above): a window of one period at 1 kHz, 26 samples spanning 0.975 periods
@@ -1447,7 +1455,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                             " %: f may be a subharmonic, or the record of another frequency); "
                             "leave --f out to estimate the frequency");
       }
-      change_within(tw, xw, zw, fw, n_max, aw, reasons, o.gates.max_change);
+      change_within(tw, xw, zw, fw, n_max, aw, reasons, o);
       const double res = std::max(aw.metrics.residual_x, aw.metrics.residual_z);
       if (!(res <= o.gates.max_residual)) {
         a.poor_fit = true;

@@ -243,5 +243,28 @@ TEST(MeasureRecord, RefusesARecordThatFailsAGate) {
   EXPECT_NE(message.find("cut the record where it changes"), std::string::npos) << message;
 }
 
+TEST(MeasureRecord, AGapIsToldAsAReferenceCutNotAWindowFlag) {
+  RecordSamples r = record_of(truth(modulus_soil(25e6)), 10);
+  // Two excitation periods of samples lost in the middle: a gap no harmonic fit bridges.
+  const double t_mid = r.t[r.t.size() / 2], period = 1.0 / 39.0;
+  RecordSamples cut;
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    if (r.t[i] > t_mid && r.t[i] < t_mid + 2.0 * period) continue;
+    cut.t.push_back(r.t[i]);
+    cut.ddx_M.push_back(r.ddx_M[i]);
+    cut.ddz_M.push_back(r.ddz_M[i]);
+  }
+  std::string message;
+  try {
+    measure_record(cut.t, cut.ddx_M, cut.ddz_M);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("gap of"), std::string::npos) << message;
+  EXPECT_EQ(message.find("--window"), std::string::npos) << message;
+  EXPECT_NE(message.find("cut the record at it, a reference per stretch"), std::string::npos)
+      << message;
+}
+
 }  // namespace
 }  // namespace oscidrum
