@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,48 @@ TEST(CliDiagram, WritesThePointsOfEveryValue) {
   // stdout: the table, one line per value after the header and its rule.
   EXPECT_NE(o.out.find("periodic"), std::string::npos) << o.out;
   EXPECT_EQ(std::count(o.out.begin(), o.out.end(), '\n'), 2 + 6) << o.out;
+}
+
+// Two values of one stable period-1 orbit (G 110 and 110.0001 MN/m^2 on a log-spiral trough):
+// their points lie within 1e-9 of each other, and counted against that tiny range over the
+// diagram the round-off made 390 "distinct" points; each value shows 1.
+TEST(CliDiagram, APeriodicOrbitShowsOneDistinctPointWhateverTheOtherValues) {
+  const Outcome o = run({"diagram",
+                         "--param",
+                         "soil.G",
+                         "--from",
+                         "110",
+                         "--to",
+                         "110.0001",
+                         "--steps",
+                         "1",
+                         "--set",
+                         "soil.input=modulus",
+                         "--set",
+                         "trough.k=0.002",
+                         "--set",
+                         "trough.a=0.601",
+                         "--mu",
+                         "0.7",
+                         "--set",
+                         "roller.unbalance=0.22877",
+                         "--f",
+                         "25",
+                         "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::istringstream lines(o.out);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("up ", 0) != 0) continue;
+    std::istringstream cells(line);
+    std::string sweep, value, verdict, period, lambda, distinct;
+    cells >> sweep >> value >> verdict >> period >> lambda >> distinct;
+    EXPECT_EQ(verdict, "periodic") << line;
+    EXPECT_EQ(distinct, "1") << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2) << o.out;
 }
 
 // --from/--to are typed in the unit of the key's case flag: MN/m^2 for soil.G (as --G), SI for

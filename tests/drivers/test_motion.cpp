@@ -114,6 +114,24 @@ TEST(Motion, APeriodThreeOrbitWithOneFlightIsASteadyState) {
   }
 }
 
+// A stable period-11 orbit (58 Hz study, G = 60 MN/m^2) beyond numerics.max_multiplicity = 8:
+// the run ends max_periods_reached, and its examination must name the period. The recurrence was
+// measured against the ranges of the two sampled periods, a part of the orbit, and the points'
+// 6.5e-7 of their own ranges missed it: "converging", with no period and no advice.
+TEST(Motion, AnOrbitLongerThanTheLongestSearchedIsNamedPeriodic) {
+  const Case c = torus_case(60e6);
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_EQ(r.diagnostics.motion, "periodic") << r.message;
+  EXPECT_NE(r.message.find("repeat every 11 periods"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("set it to 11"), std::string::npos) << r.message;
+  Case longer = c;
+  longer.numerics.max_multiplicity = 12;
+  const Result found = simulate(longer);
+  EXPECT_EQ(found.status, Status::steady_state) << found.message;
+  EXPECT_EQ(found.diagnostics.multiplicity, 11) << found.message;
+}
+
 TEST(Motion, ChaoticExponentIsTheGrowthOfNearbyTrajectories) {
   const Model model(torus_case(50e6));
   const Result r = simulate(model);
