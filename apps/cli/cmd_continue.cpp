@@ -237,7 +237,10 @@ std::string table(const Branch& root, const Field& f) {
     const auto& [b, parent] = branches[index];
     if (index > 0)
       out += "\nbranch " + std::to_string(index) + ": period " + std::to_string(b->multiplicity) +
-             " T, born at a period doubling of branch " + std::to_string(parent) + " (" +
+             (b->multiplicity < branches[static_cast<std::size_t>(parent)].first->multiplicity
+                  ? " T, the orbit branch " + std::to_string(parent) +
+                        " shrank onto at a period doubling ("
+                  : " T, born at a period doubling of branch " + std::to_string(parent) + " (") +
              to_string(b->end) + ": " + b->message + ")\n";
     TextTable t;
     t.header = {"point",          root.key + " [" + unit + "]", "stable",  "max |mu|",
@@ -310,7 +313,8 @@ int run(ContinueOptions o) {
               << " s; " << to_string(b.end) << ": " << b.message
               << (b.children.empty() ? std::string()
                                      : "; " + std::to_string(all_branches(b).size() - 1) +
-                                           " period-doubled branches")
+                                           " more branches switched onto at period "
+                                           "doublings")
               << "\n";
   if (!o.plot.empty()) {
     std::vector<std::string> args = {"oscidrum.plot", "branch",      "--csv", o.csv,
@@ -319,7 +323,8 @@ int run(ContinueOptions o) {
     if (run_python(args, "the branch is in " + o.csv) != 0) return kExitCaseFailed;
   }
   const bool ok = b.end == BranchEnd::reached_end || b.end == BranchEnd::left_range ||
-                  b.end == BranchEnd::gross_slip || b.end == BranchEnd::lift_off;
+                  b.end == BranchEnd::gross_slip || b.end == BranchEnd::lift_off ||
+                  b.end == BranchEnd::period_halved;
   return ok ? kExitOk : kExitCaseFailed;
 }
 

@@ -88,8 +88,10 @@ struct Bifurcation {
   /// part); 0 for grazing.
   std::complex<double> multiplier = 0.0;
   std::string description;  ///< what changes, in words
-  /// A period doubling: the index in Branch::children of the period-2p branch switched onto
-  /// here (-1: none, or not found).
+  /// A period doubling: the index in Branch::children of the branch switched onto here: the
+  /// period-2p branch born there, or, where this branch's period-p orbit shrinks onto a period-p/2
+  /// orbit (BranchEnd::period_halved), that period-p/2 branch towards `to` (-1: none, or not
+  /// found).
   int child = -1;
 };
 
@@ -105,10 +107,14 @@ enum class BranchEnd {
   /// Unilateral contact: the orbit's smallest normal force reached zero and the corrector found
   /// no orbit beyond (the last bifurcation, lift_off, locates the point; message says where)
   lift_off,
+  /// The period-p orbit shrank onto a period-p/2 orbit (the last bifurcation, a period doubling
+  /// of that orbit met from the period-p side): beyond it the branch turns back through its own
+  /// orbits shifted by p/2 periods; the period-p/2 branch towards `to` is its child
+  period_halved,
 };
 
 /// "reached_end", "left_range", "max_points", "step_too_small", "gross_slip", "start_failed",
-/// "cancelled", "lift_off".
+/// "cancelled", "lift_off", "period_halved".
 const char* to_string(BranchEnd end);
 
 struct Branch {

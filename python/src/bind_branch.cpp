@@ -166,25 +166,28 @@ void bind_branch(py::module_& m) {
       "`periods` further excitation periods: stroboscopic points, largest Lyapunov exponent, "
       "recurrence, and a verdict (docs/bifurcations.md). simulate() does this itself for a run "
       "without a steady state (Diagnostics.motion).");
-  m.def("continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
-        py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
-        py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,
-        py::arg("harmonics") = 10, py::arg("switch_depth") = 1,
-        "Follow the periodic orbits of `case` through the parameter `key` from `from_` to `to` "
-        "(SI units) by pseudo-arclength continuation, stable and unstable alike, and locate the "
-        "bifurcations on the branch (docs/bifurcations.md).\n\n"
-        "Returns\n-------\ndict\n    key, unit, multiplicity, end ('reached_end', 'left_range', "
-        "'gross_slip', 'lift_off', 'step_too_small', 'max_points', 'start_failed'), message, "
-        "period_maps, "
-        "seconds; points: columns (NumPy arrays) parameter, arclength, multiplicity, stable, "
-        "unstable, max_modulus, dq_ds, min_N, every metric, the amplitudes ddx_A1 ... ddz_AH (H = "
-        "harmonics), and sequence (list of str); "
-        "multipliers: one list of complex per point; bifurcations: list of dicts (kind, "
-        "parameter, tolerance, after_point, multiplier, description, child); children: the "
-        "period-2p branches born at period doublings (switch_depth levels), as dicts alike. "
-        "pandas.DataFrame(result['points']) is the table of `oscidrum continue --csv`.\n\n"
-        "Raises\n------\noscidrum.Error\n    A key that cannot be continued, a range outside its "
-        "rule, bad options.");
+  m.def(
+      "continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
+      py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
+      py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,
+      py::arg("harmonics") = 10, py::arg("switch_depth") = 1,
+      "Follow the periodic orbits of `case` through the parameter `key` from `from_` to `to` "
+      "(SI units) by pseudo-arclength continuation, stable and unstable alike, and locate the "
+      "bifurcations on the branch (docs/bifurcations.md).\n\n"
+      "Returns\n-------\ndict\n    key, unit, multiplicity, end ('reached_end', 'left_range', "
+      "'gross_slip', 'lift_off', 'period_halved', 'step_too_small', 'max_points', 'start_failed'), "
+      "message, "
+      "period_maps, "
+      "seconds; points: columns (NumPy arrays) parameter, arclength, multiplicity, stable, "
+      "unstable, max_modulus, dq_ds, min_N, every metric, the amplitudes ddx_A1 ... ddz_AH (H = "
+      "harmonics), and sequence (list of str); "
+      "multipliers: one list of complex per point; bifurcations: list of dicts (kind, "
+      "parameter, tolerance, after_point, multiplier, description, child); children: the "
+      "branches switched onto at period doublings (switch_depth levels: the period-2p branches "
+      "born there, or the period-p branch a period-2p orbit shrank onto), as dicts alike. "
+      "pandas.DataFrame(result['points']) is the table of `oscidrum continue --csv`.\n\n"
+      "Raises\n------\noscidrum.Error\n    A key that cannot be continued, a range outside its "
+      "rule, bad options.");
 }
 
 }  // namespace oscidrum::python

@@ -72,6 +72,18 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
                 static_cast<int>(parent.children.size());
             parent.children.push_back(std::move(b));
           }
+          // A period-p branch that shrank onto its period-p/2 orbit: that orbit's branch on
+          // towards `to` (the range the user asked for).
+          if (const auto& h = from.halving()) {
+            if (o.cancelled && o.cancelled()) return;
+            detail::branching::Continuation<R> child(c, o, *field);
+            child.set_multiplicity(parent.multiplicity);
+            Branch b = child.halve_at(*h, from.scale());
+            grow(b, child, depth + 1);
+            parent.bifurcations[static_cast<std::size_t>(h->index)].child =
+                static_cast<int>(parent.children.size());
+            parent.children.push_back(std::move(b));
+          }
         };
     grow(branch, primary, 1);
     return branch;

@@ -22,11 +22,13 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "drivers/sampling.hpp"
@@ -61,10 +63,12 @@ inline bool is_complex(std::complex<double> m) { return std::abs(m.imag()) > 1e-
 // has it: the integration's tolerances leave ~1e-8 on a multiplier that is 1 by the physics.
 inline constexpr double kNeutral = 1e-6;
 
-inline MultiplierCounts count_multipliers(const Floquet& f) {
+// `neutral`: the band around the unit circle that counts as on it (kNeutral for the detection;
+// 0 where a change already detected is located: the band's edge is not the crossing).
+inline MultiplierCounts count_multipliers(const Floquet& f, double neutral = kNeutral) {
   MultiplierCounts c;
   for (const std::complex<double> m : f.multipliers) {
-    if (std::abs(m) <= 1.0 + kNeutral) continue;
+    if (std::abs(m) <= 1.0 + neutral) continue;
     if (is_complex(m))
       c.complex_outside += m.imag() > 0 ? 1 : 0;
     else if (m.real() > 0)
@@ -125,6 +129,19 @@ class Continuation {
     int index = -1;              // of the bifurcation in the parent's list
   };
   const std::vector<Doubling>& doublings() const { return doublings_; }
+  // Where a period-p branch (p even) turned back at its orbit's collapse onto a period-p/2 orbit:
+  // the period doubling of that orbit, met from the period-p side. The orbit there is (within
+  // the location's tolerance) the period-p/2 orbit.
+  struct Halving {
+    double q = 0.0, section = 0.0;
+    Phase phase = Phase::stick;
+    Vector state{};
+    int index = -1;  // of the bifurcation in the parent's list
+  };
+  const std::optional<Halving>& halving() const { return halving_; }
+  // The period-p/2 branch from the collapse `h`, followed towards the end of the range the
+  // parent was heading for.
+  Branch halve_at(const Halving& h, const std::array<double, P>& scale);
   // The period-2p branch born at `d`, followed to the end of the range on its side.
   Branch switch_at(const Doubling& d, const std::array<double, P>& scale);
   const std::array<double, P>& scale() const { return scale_; }
@@ -163,6 +180,14 @@ class Continuation {
     return x;
   }
   double parameter(const VectorXd& v) const { return v[P] * sq_; }
+  // "key = value unit" for the messages (SI: the unit of the field table).
+  std::string at_value(double q, const char* format = nullptr) const {
+    return std::string(field_.key) + " = " +
+           (format ? detail::format(format, q) : detail::shortest(q)) +
+           (field_.unit[0] != '\0' && std::string_view(field_.unit) != "-"
+                ? " " + std::string(field_.unit)
+                : std::string());
+  }
   Map map(const VectorXd& v, bool sensitivities);
   std::optional<VectorXd> dF_dq(const VectorXd& v, const Map& at);
   std::optional<VectorXd> tangent(const VectorXd& v, const Map& at, const VectorXd& previous);
@@ -174,6 +199,9 @@ class Continuation {
   void locate(Branch& branch, const Solution& a, const Solution& b, double ds,
               const BranchPoint& pa, const BranchPoint& pb);
   bool resection(Solution& s);
+  // Is the orbit of `s` (on a period-p branch, p even) the period-p/2 orbit, which the branch
+  // through `before` has shrunk onto? Its P^(p/2) residual is small, and small against before's.
+  bool collapses(const Solution& s, const Solution& before);
   static bool has_flight(const std::string& sequence) {
     return sequence.find(to_string(Phase::flight)) != std::string::npos;
   }
@@ -198,6 +226,7 @@ class Continuation {
   long maps_ = 0;
   std::string last_failure_;
   std::vector<Doubling> doublings_;
+  std::optional<Halving> halving_;
   // The continuation from an accepted first solution to the end of the range.
   Branch follow(Branch branch, Solution cur, int iterations,
                 std::chrono::steady_clock::time_point start_time);
@@ -454,23 +483,37 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
   const double q_tol = o_.tolerance * sq_;
   for (const Test& test : tests) {
     if (!test.changed) continue;
+    const bool crossing = test.kind == BifurcationKind::branch_point ||
+                          test.kind == BifurcationKind::period_doubling ||
+                          test.kind == BifurcationKind::neimark_sacker;
+    // The band that counts a multiplier as on the unit circle (kNeutral) detects a crossing; the
+    // crossing itself is where the modulus passes 1, not the band's edge 1 + 1e-6 (the doubling
+    // of docs/bifurcations.md's log-spiral study, where |mu| moves by 3.5e-4 per MN/m^2, was
+    // reported 2.8 kPa from it with a tolerance of 65 Pa). It is located without the band where
+    // the two ends are on different sides of the circle itself (else, a modulus within the band
+    // at an end, with it).
+    double neutral = kNeutral;
     // The side a test is on at a solution.
     auto side = [&](const Solution& s, const BranchPoint& p) -> long {
       switch (test.kind) {
         case BifurcationKind::fold:
           return p.dq_ds > 0 ? 1 : 0;
         case BifurcationKind::branch_point:
-          return count_multipliers(p.floquet).beyond_plus_one;
+          return count_multipliers(p.floquet, neutral).beyond_plus_one;
         case BifurcationKind::period_doubling:
-          return count_multipliers(p.floquet).beyond_minus_one;
+          return count_multipliers(p.floquet, neutral).beyond_minus_one;
         case BifurcationKind::neimark_sacker:
-          return count_multipliers(p.floquet).complex_outside;
+          return count_multipliers(p.floquet, neutral).complex_outside;
         case BifurcationKind::grazing:
         case BifurcationKind::lift_off:
           return static_cast<long>(std::hash<std::string>{}(s.map.sequence));
       }
       return 0;
     };
+    if (crossing) {
+      neutral = 0.0;
+      if (side(a, pa) == side(b, pb)) neutral = kNeutral;
+    }
     const long side_a = side(a, pa);
     double lo = 0.0, hi = ds;
     double q_lo = pa.parameter, q_hi = pb.parameter;
@@ -513,12 +556,55 @@ void Continuation<R>::locate(Branch& branch, const Solution& a, const Solution& 
     bif.after_point = static_cast<int>(branch.points.size()) - 1;
     bif.parameter = 0.5 * (q_lo + q_hi);
     bif.tolerance = 0.5 * std::abs(q_hi - q_lo);
+    if (crossing) {
+      // The crossing of the modulus 1 by the secant from the located point (the rate of the
+      // critical multiplier's modulus from the two points around it): where the bisection ran
+      // without the band this moves it within its bracket; where an end lay within the band
+      // (small steps pass the circle itself between earlier points) it moves the band's edge to
+      // the circle. A modulus is known to the band kNeutral only (the integration's tolerances),
+      // so the crossing lies within the parameter change that moves it by that much, whatever
+      // the bracket.
+      const auto modulus = [&](const BranchPoint& p) {
+        return std::abs(
+            test.kind == BifurcationKind::period_doubling ? nearest(p.floquet, -1.0, false)
+            : test.kind == BifurcationKind::branch_point  ? nearest(p.floquet, 1.0, false)
+                                                          : nearest(p.floquet, 0.0, true));
+      };
+      const double slope = (modulus(pb) - modulus(pa)) / (pb.parameter - pa.parameter);
+      if (slope != 0.0 && std::isfinite(slope)) {
+        const double shift = (1.0 - modulus(last)) / slope, band = kNeutral / std::abs(slope);
+        if (std::abs(shift) <= 2.0 * band) bif.parameter = last.parameter + shift;
+        bif.tolerance = std::max(bif.tolerance, band);
+      }
+    }
     const std::string unit = std::string(" ") + field_.unit;
     switch (test.kind) {
       case BifurcationKind::fold:
         bif.multiplier = nearest(last.floquet, 1.0, false);
         bif.description = "the branch turns back in " + std::string(field_.key) +
                           " (saddle-node: a stable and an unstable orbit meet)";
+        if (p_ % 2 == 0 && collapses(*last_solution, a)) {
+          // The period-p orbit has shrunk onto a period-p/2 orbit: P^p's multiplier +1 there is
+          // -1 of P^(p/2), and beyond it the branch returns through its own orbits shifted by
+          // p/2 periods (the turn of a pitchfork of P^p, not a saddle-node: the orbits on both
+          // sides are the same).
+          bif.kind = BifurcationKind::period_doubling;
+          bif.description =
+              "the period-" + std::to_string(p_) + " orbit shrinks onto a period-" +
+              std::to_string(p_ / 2) + " orbit: its period doubling, met from the period-" +
+              std::to_string(p_) +
+              " side (the multiplier +1 of this branch's map is -1 of the period-" +
+              std::to_string(p_ / 2) +
+              " orbit's); beyond it this branch turns back through its own orbits, shifted by " +
+              std::to_string(p_ / 2) + (p_ / 2 == 1 ? " period" : " periods");
+          Halving h;
+          h.q = last.parameter;
+          h.section = section_;
+          h.phase = phase_;
+          h.state = full_state(last_solution->v);
+          h.index = static_cast<int>(branch.bifurcations.size());
+          halving_ = h;
+        }
         break;
       case BifurcationKind::branch_point:
         bif.multiplier = nearest(last.floquet, 1.0, false);
@@ -659,9 +745,8 @@ Branch Continuation<R>::run() {
     return finish(branch, BranchEnd::cancelled, "cancelled at the start", start_time);
   if (!ok(r0.status) || r0.samples.size() == 0)
     return finish(branch, BranchEnd::start_failed,
-                  std::string("no steady state at ") + field_.key + " = " +
-                      detail::shortest(o_.from) + " to start from: " + to_string(r0.status) + " (" +
-                      r0.message + ")",
+                  "no steady state at " + at_value(o_.from) +
+                      " to start from: " + to_string(r0.status) + " (" + r0.message + ")",
                   start_time);
   Start start;
   start.multiplicity = std::max(1, r0.diagnostics.multiplicity);
@@ -774,7 +859,7 @@ Branch Continuation<R>::switch_at(const Doubling& d, const std::array<double, P>
                 "no period-" + std::to_string(2 * parent_p) +
                     " orbit found beside the period "
                     "doubling at " +
-                    std::string(field_.key) + " = " + detail::shortest(d.q) + ": " + last_failure_,
+                    at_value(d.q) + ": " + last_failure_,
                 start_time);
 }
 
@@ -820,15 +905,44 @@ std::optional<Branch> Continuation<R>::end_at_lift_off(
   bif.tolerance = reach;
   bif.description =
       detail::format("the smallest normal force reaches zero (%.3g N at ", last.min_N) +
-      std::string(field_.key) + " = " + detail::format("%.9g", last.parameter) +
+      at_value(last.parameter, "%.9g") +
       "): the drum lifts off, and no orbit in contact continues the branch beyond";
   branch.bifurcations.push_back(bif);
   return finish(branch, BranchEnd::lift_off,
-                "at " + std::string(field_.key) + " = " + detail::format("%.9g", q_star) +
+                "at " + at_value(q_star, "%.9g") +
                     " the drum lifts off (the orbit's smallest normal force reaches zero); the "
                     "orbit beyond, with flight, is not on this branch (oscidrum diagram or run "
                     "show the motion there)",
                 start_time);
+}
+
+template <class R>
+bool Continuation<R>::collapses(const Solution& s, const Solution& before) {
+  const int p = p_;
+  p_ = p / 2;
+  const Map at = map(s.v, false), away = map(before.v, false);
+  p_ = p;
+  if (!at.ok) return false;
+  const double r_at = at.F.cwiseAbs().maxCoeff();
+  const double r_away =
+      away.ok ? away.F.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  return r_at < 1e-2 && r_at < 0.1 * r_away;
+}
+
+template <class R>
+Branch Continuation<R>::halve_at(const Halving& h, const std::array<double, P>& scale) {
+  Start start;
+  start.section = h.section;
+  start.reference = h.state;
+  start.phase = h.phase;
+  start.multiplicity = p_ / 2;
+  start.scale = scale;
+  o_.from = h.q;
+  const auto start_time = std::chrono::steady_clock::now();
+  Branch branch;
+  branch.key = field_.key;
+  branch.unit = field_.unit;
+  return begin(std::move(branch), start, start_time);
 }
 
 template <class R>
@@ -864,8 +978,7 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
           return *lifted;
         return finish(branch, BranchEnd::step_too_small,
                       "the corrector failed down to the smallest step at " +
-                          std::string(field_.key) + " = " +
-                          detail::shortest(branch.points.back().parameter) + ": " + last_failure_,
+                          at_value(branch.points.back().parameter) + ": " + last_failure_,
                       start_time);
       }
       continue;
@@ -876,6 +989,18 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
     locate(branch, cur, *next, ds, branch.points.back(), pt);
     branch.points.push_back(std::move(pt));
     if (o_.on_point) o_.on_point(static_cast<int>(branch.points.size()), q);
+    if (halving_) {
+      // The orbits beyond the collapse are this branch's own again (shifted by p/2 periods): the
+      // branch ends there, and its child follows the period-p/2 orbit on towards `to`.
+      const Bifurcation& at = branch.bifurcations[static_cast<std::size_t>(halving_->index)];
+      return finish(
+          branch, BranchEnd::period_halved,
+          "at " + at_value(at.parameter, "%.9g") + " the period-" + std::to_string(p_) +
+              " orbit shrinks onto the period-" + std::to_string(p_ / 2) +
+              " orbit (its period doubling); beyond it the branch returns through its own "
+              "orbits",
+          start_time);
+    }
     cur = std::move(*next);
     // Slip without a switch over the whole period: the stick phase has vanished and the drum
     // spins (gross slip). Its orbits form a continuum (phi' is free: a multiplier stays at +1)
@@ -883,7 +1008,7 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
     if (cur.map.switches.empty() &&
         (phase_ == Phase::slip_positive || phase_ == Phase::slip_negative)) {
       return finish(branch, BranchEnd::gross_slip,
-                    "at " + std::string(field_.key) + " = " + detail::shortest(q) +
+                    "at " + at_value(q) +
                         " the drum slips throughout the period (gross slip): no periodic orbit "
                         "beyond",
                     start_time);
@@ -892,9 +1017,8 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
     if (q > hi_q || q < lo_q) {
       const bool at_end = o_.to > o_.from ? q > hi_q : q < lo_q;
       return finish(branch, at_end ? BranchEnd::reached_end : BranchEnd::left_range,
-                    at_end ? "reached " + std::string(field_.key) + " = " + detail::shortest(o_.to)
-                           : "the branch turned back and left the range at " +
-                                 std::string(field_.key) + " = " + detail::shortest(o_.from),
+                    at_end ? "reached " + at_value(o_.to)
+                           : "the branch turned back and left the range at " + at_value(o_.from),
                     start_time);
     }
     if (iterations <= 3) ds = std::min(ds * 1.5, o_.max_step);

@@ -115,6 +115,8 @@ const char* to_string(BranchEnd end) {
       return "cancelled";
     case BranchEnd::lift_off:
       return "lift_off";
+    case BranchEnd::period_halved:
+      return "period_halved";
   }
   return "?";
 }
