@@ -458,13 +458,15 @@ std::string contact_mode(const Result& r) {
   if (r.status != Status::steady_state) return "";
   if (lift_offs == 0) return "permanent contact";
   const bool every = std::all_of(per_period.begin(), per_period.end(), [](int n) { return n > 0; });
-  if (every)
-    return p == 1 ? "periodic lift-off"
-                  : "lift-off every period, repeating every " + std::to_string(p) + " periods";
   // Lift-offs in one repetition of the orbit (p periods): one, or several (a 3-period orbit of
   // the lift-off study lifts off twice in its 3 periods, and read "lift-off every 3 periods").
   const int sampled = std::max(1, r.sample_periods);
   const long per_repetition = std::lround(static_cast<double>(lift_offs) * p / sampled);
+  if (every && p == 1) return "periodic lift-off";
+  // A lift-off in every period, one each (a period-2 orbit with two lift-offs in one of its
+  // periods and one in the other, 3 in 2 periods, read "lift-off every period"): counted.
+  if (every && per_repetition == p)
+    return "lift-off every period, repeating every " + std::to_string(p) + " periods";
   if (per_repetition > 1)
     return std::to_string(per_repetition) + " lift-offs every " + std::to_string(p) + " periods";
   return "lift-off every " + std::to_string(p) + " periods";

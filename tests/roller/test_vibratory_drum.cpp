@@ -365,16 +365,19 @@ TEST(VibratoryDrum, NoRequiredFrictionWhereTheDrumLiftsOff) {
 // The operating modes by the literature's names (docs/model.md section 14) along a sequence of
 // stiffening soils (Appendix B soil, G = 10, 50, 300 MN/m^2; m_u e_u = 1.5 kg m at 30 Hz,
 // unilateral contact): continuous contact, partial uplift (lift-off every period, period 1),
-// double jump (lift-off every period, period 2, with the f/2 subharmonic the RMV reads).
+// double jump (period 2, with the f/2 subharmonic the RMV reads: two lift-offs in one period and
+// one in the next, whose contact_mode said "lift-off every period, repeating every 2 periods").
 TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
   struct Expected {
     double G, static_moment;
     const char* mode;
     int multiplicity;
+    const char* contact;
   };
   for (const Expected& e :
-       {Expected{10e6, 0.9, "continuous contact", 1}, Expected{50e6, 1.5, "partial uplift", 1},
-        Expected{300e6, 1.5, "double jump", 2}}) {
+       {Expected{10e6, 0.9, "continuous contact", 1, "permanent contact"},
+        Expected{50e6, 1.5, "partial uplift", 1, "periodic lift-off"},
+        Expected{300e6, 1.5, "double jump", 2, "3 lift-offs every 2 periods"}}) {
     Case c = vibratory_case(Exciter::circular);
     c.contact.unilateral = true;
     c.soil.input = SoilInput::modulus;
@@ -384,6 +387,7 @@ TEST(VibratoryDrum, OperatingModesFromContinuousContactToDoubleJump) {
     ASSERT_EQ(r.status, Status::steady_state) << r.message;
     EXPECT_EQ(r.diagnostics.operating_mode, e.mode) << e.G;
     EXPECT_EQ(r.diagnostics.multiplicity, e.multiplicity) << e.G;
+    EXPECT_EQ(r.diagnostics.contact_mode, e.contact) << e.G;
     const Metrics m = compute_metrics(Model(c), r);
     if (e.multiplicity == 2) {
       EXPECT_GT(m.rmv, 0.01) << e.G;  // the f/2 subharmonic of a period-2 motion
@@ -409,6 +413,8 @@ TEST(VibratoryDrum, OperatingModeNamesFromTheRunsDiagnostics) {
   EXPECT_EQ(name("permanent contact", 1, ""), "continuous contact");
   EXPECT_EQ(name("periodic lift-off", 1, ""), "partial uplift");
   EXPECT_EQ(name("lift-off every 2 periods", 2, ""), "double jump");
+  EXPECT_EQ(name("3 lift-offs every 2 periods", 2, ""), "double jump");
+  EXPECT_EQ(name("lift-off every period, repeating every 2 periods", 2, ""), "double jump");
   EXPECT_EQ(name("lift-off every 3 periods", 3, ""), "lift-off with period 3");
   EXPECT_EQ(name("aperiodic", 0, "chaotic"), "chaotic");
   EXPECT_EQ(name("aperiodic", 0, "quasi_periodic"), "quasi-periodic");
