@@ -118,9 +118,11 @@
     "why shooting fell back to the transient method (empty if it did not)")                       \
   X(std::string, contact_mode, "", "-", "contact mode",                                           \
     "how the steady state uses its contact: permanent contact, periodic lift-off (every "         \
-    "period), lift-off every p periods or n lift-offs every p periods (a subharmonic with "       \
-    "periods of permanent contact); aperiodic for a run with lift-offs that reaches no steady "   \
-    "state; empty otherwise")                                                                     \
+    "period), lift-off every period, repeating every p periods (a subharmonic with one lift-off " \
+    "in each of its periods), lift-off every p periods, or n lift-offs every p periods (any "     \
+    "other count: a subharmonic with periods of permanent contact, or with two lift-offs in "     \
+    "some period); aperiodic for a run with lift-offs that reaches no steady state; empty "       \
+    "otherwise")                                                                                  \
   X(std::string, operating_mode, "", "-", "operating mode",                                       \
     "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "    \
     "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), " \

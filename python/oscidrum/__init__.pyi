@@ -97,13 +97,13 @@ class ContactForces:
 class Diagnostics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     contact_mode: str
-    """how the steady state uses its contact: permanent contact, periodic lift-off (every period), lift-off every p periods (a subharmonic with periods of permanent contact); aperiodic for a run with lift-offs that reaches no steady state; empty otherwise [-]"""
+    """how the steady state uses its contact: permanent contact, periodic lift-off (every period), lift-off every period, repeating every p periods (a subharmonic with one lift-off in each of its periods), lift-off every p periods, or n lift-offs every p periods (any other count: a subharmonic with periods of permanent contact, or with two lift-offs in some period); aperiodic for a run with lift-offs that reaches no steady state; empty otherwise [-]"""
     events: int
     """located events [-]"""
     fallback: str
     """why shooting fell back to the transient method (empty if it did not) [-]"""
     final_change: float
-    """last period-to-period change of the state, scaled by its range over a period (see numerics.steady_tol) [-]"""
+    """last period-to-period change of the state, scaled by its range over a period (see numerics.steady_tol; empty when the run ended before two period boundaries) [-]"""
     inconsistent_slip_ends: int
     """slip ends where neither stick nor a reversal is consistent (docs/model.md); stick is taken [-]"""
     jacobian_evaluations: int
@@ -115,7 +115,7 @@ class Diagnostics:
     method: str
     """what produced the steady state: transient (integrated from rest until it repeats) or shooting (solved for by Newton's method on the period map, docs/periodic.md) [-]"""
     min_N: float
-    """smallest normal force (26) at the step ends of the same trajectory [N]"""
+    """smallest normal force (26) at the step ends of the same trajectory; 0 where N reached 0 (contact lost, or a lift-off) [N]"""
     motion: str
     """a run without a periodic steady state, examined over 400 further periods: quasi_periodic, chaotic, periodic (its stroboscopic points recur: reached slowly), converging, undecided; empty otherwise (docs/bifurcations.md) [-]"""
     multiplicity: int
@@ -132,7 +132,7 @@ class Diagnostics:
     periods_to_steady: int
     """period index at which the steady state was found (-1: never) [-]"""
     phi_drift: float
-    """phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r [rad]"""
+    """phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r (gross_slip: over the last period integrated; empty for any other status) [rad]"""
     rejected_steps: int
     """rejected trial steps [-]"""
     reversals: int
@@ -146,7 +146,7 @@ class Diagnostics:
     switches: int
     """stick/slip phase changes [-]"""
     switches_per_period: float
-    """stick/slip switches per excitation period in the sampled window [-]"""
+    """stick/slip switches per excitation period in the sampled window (empty without one) [-]"""
     def to_dict(self: Any) -> dict: ...
     units: dict
     warm_start: int
@@ -619,7 +619,7 @@ class Samples:
     """steady-state samples, column gap[m] of docs/csv-columns.md: gap between drum and trough along the normal at the trough's nearest point (contact.unilateral; 0 in contact) (read-only NumPy view)"""
     headers: list
     phase: numpy.ndarray
-    """contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0 (regularised friction: the apparent phase, stick while |v_rel| <= 4 v_eps) (int8 copy)"""
+    """contact phase: 0 stick, 1 slip with v_rel > 0, -1 slip with v_rel < 0, 2 flight (contact.unilateral: the drum off the soil) (regularised friction: the apparent phase, stick while |v_rel| <= 4 v_eps) (int8 copy)"""
     phi: numpy.ndarray
     """steady-state samples, column phi[rad] of docs/csv-columns.md: total drum rotation (read-only NumPy view)"""
     s_A: numpy.ndarray
