@@ -349,6 +349,10 @@ def _window(state: SteadyState, periods: Optional[float]) -> np.ndarray:
     tau = state.tau()
     if periods is None:
         return np.arange(len(tau))
+    if not (isinstance(periods, (int, float, np.integer, np.floating)) and periods > 0):
+        # 0 drew empty axes without a word
+        raise ValueError(f"periods must be > 0 (excitation periods to show) or None (all); "
+                         f"got {periods!r}")
     return np.nonzero(tau < periods - 1e-9)[0]
 
 

@@ -79,13 +79,19 @@ const std::map<std::string, std::string, std::less<>>& aliases() {
   return table;
 }
 
+// The dotted key of a flat name in the alias table ("mu" -> "contact.mu"); null if none.
+const std::string* alias_of(std::string_view name) {
+  const auto& table = aliases();
+  const auto it = table.find(name);
+  return it != table.end() ? &it->second : nullptr;
+}
+
 // The dotted key a Python keyword stands for ("mu" -> "contact.mu"); the key itself if it is a
 // field or a shorthand; kRadius for "R". Throws the library's "unknown parameter" error.
 std::string resolve_key(std::string_view name) {
   if (find_field(name) != nullptr || io::find_extra_key(name) != nullptr) return std::string(name);
   if (name == kRadius) return kRadius;
-  const auto& table = aliases();
-  if (auto it = table.find(name); it != table.end()) return it->second;
+  if (const std::string* key = alias_of(name)) return *key;
   throw Error("unknown parameter '" + std::string(name) + "'" + io::suggest_key(name) +
               " (Python also takes the flat names of oscidrum.Case.aliases() and R)");
 }
@@ -482,9 +488,7 @@ std::string alias_table() {
 
 std::string dotted_field_key(std::string_view name) {
   if (find_field(name) != nullptr) return std::string(name);
-  const auto& table = aliases();
-  if (auto it = table.find(name); it != table.end() && find_field(it->second) != nullptr)
-    return it->second;
+  if (const std::string* key = alias_of(name); key && find_field(*key) != nullptr) return *key;
   return std::string(name);
 }
 

@@ -673,3 +673,11 @@ def test_a_plot_of_something_else_names_what_it_takes():
     # An AttributeError from inside the package ("'int' object has no attribute 'samples'").
     with pytest.raises(oscidrum.Error, match="takes a Result, a CaseOutcome"):
         plot.plot_accelerations(42)
+
+
+def test_a_window_of_no_periods_is_refused(slip_result):
+    # periods=0 drew empty axes without a word; the time plots name the argument.
+    for draw in (plot.plot_accelerations, plot.plot_delta_phi, plot.plot_forces):
+        for periods in (0, -1, float("nan")):
+            with pytest.raises(ValueError, match="periods must be > 0"):
+                draw(slip_result, periods=periods)
