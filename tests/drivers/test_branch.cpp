@@ -24,6 +24,18 @@ Case modulus_case() {
   return c;
 }
 
+// The log-spiral study of docs/bifurcations.md: the paper's trough (k = 0.002, a = 0.601 m) at
+// 25 Hz with the unbalance and mu = 0.7, a period doubling near G = 125 MN/m^2.
+Case log_spiral_case() {
+  Case c = modulus_case();
+  set_field(c, "trough.k", 0.002);
+  set_field(c, "trough.a", 0.601);
+  set_field(c, "contact.mu", 0.7);
+  set_field(c, "roller.f", 25.0);
+  set_field(c, "roller.unbalance", 0.22877);
+  return c;
+}
+
 Result run_at(Case c, const std::string& key, double q) {
   set_field(c, key, q);
   return simulate(c);
@@ -230,12 +242,7 @@ TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
 // shooting, started from rest on either side, finds a period-1 orbit below it and a period-2
 // orbit above it, and the branch switched onto there is made of those period-2 orbits.
 TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
-  Case c = modulus_case();
-  set_field(c, "trough.k", 0.002);
-  set_field(c, "trough.a", 0.601);
-  set_field(c, "contact.mu", 0.7);
-  set_field(c, "roller.f", 25.0);
-  set_field(c, "roller.unbalance", 0.22877);
+  const Case c = log_spiral_case();
   BranchOptions o;
   o.key = "soil.G";
   o.from = 100e6;
@@ -294,12 +301,7 @@ TEST(Branch, PeriodDoublingOnTheLogSpiralTrough) {
 // where the forward branch locates it, the end period_halved, and the period-1 branch from there
 // to `to` as its child.
 TEST(Branch, APeriodTwoBranchEndsWhereItShrinksOntoThePeriodOneOrbit) {
-  Case c = modulus_case();
-  set_field(c, "trough.k", 0.002);
-  set_field(c, "trough.a", 0.601);
-  set_field(c, "contact.mu", 0.7);
-  set_field(c, "roller.f", 25.0);
-  set_field(c, "roller.unbalance", 0.22877);
+  const Case c = log_spiral_case();
   BranchOptions o;
   o.key = "soil.G";
   o.from = 140e6;
