@@ -468,15 +468,79 @@ Metrics detail::compute_metrics(const Model& model, const Result& result, int n_
   const double nu_soil = detail::evib_poisson_ratio(c);
   if (c.roller.type == RollerType::vibratory && !std::isnan(nu_soil)) {
     constexpr int kEvibPoints = 32;
-    std::vector<double> z, Fv;
+    std::vector<double> z, Fv, ts;
+    std::vector<std::size_t> piece_of;
     z.reserve(pieces.size() * (kEvibPoints + 1));
     Fv.reserve(z.capacity());
-    for (const Piece& pc : pieces)
+    ts.reserve(z.capacity());
+    piece_of.reserve(z.capacity());
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Piece& pc = pieces[i];
       for (int k = 0; k <= kEvibPoints; ++k) {
         const double t = k == kEvibPoints ? pc.b : pc.a + (pc.b - pc.a) * k / kEvibPoints;
         z.push_back(pc.f[kZ](t));
         Fv.push_back(pc.f[kVerticalForce](t));
+        ts.push_back(t);
+        piece_of.push_back(i);
       }
+    }
+    // The loop's end points are extrema: the least and the greatest z_M (the loading branch's
+    // ends; the least z_M its start in continuous contact, where F_v still changes) and the
+    // greatest F_v (where z_M still changes). Read at the nearest of the points above, each came
+    // with an error of the first order in their spacing: evib moved by 2e-4 from one tolerance
+    // to the next and did not converge. Each is located on its piece's interpolant (a
+    // golden-section search between the neighbouring points of the same piece; an extremum at a
+    // piece's end, a switch, stays there), and its point moved onto it.
+    const std::size_t n = z.size();
+    // The extremum of sign * column on [ts[k], ts[k + 1]] of piece `i` (golden-section search):
+    // its time and its value of sign * column.
+    const auto extremum = [&](std::size_t i, std::size_t column, double sign, double a, double b) {
+      const Interpolant& g = pieces[i].f[column];
+      constexpr double kGolden = 0.6180339887498949;
+      double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
+      double g1 = sign * g(x1), g2 = sign * g(x2);
+      for (int k = 0; k < 100 && b - a > 1e-14 * (std::abs(a) + std::abs(b)); ++k) {
+        if (g1 > g2) {  // the larger of sign * g lies in [a, x2]
+          b = x2, x2 = x1, g2 = g1;
+          x1 = b - kGolden * (b - a), g1 = sign * g(x1);
+        } else {
+          a = x1, x1 = x2, g1 = g2;
+          x2 = a + kGolden * (b - a), g2 = sign * g(x2);
+        }
+      }
+      const double t = 0.5 * (a + b);
+      return std::pair{t, sign * g(t)};
+    };
+    // Sample j is an extremum of the points: the extremum of the curve in the intervals around it
+    // (within pieces: one at a switch stays there), and the point of that piece nearest to it in
+    // time moved onto it (so the points keep their order).
+    const auto refine = [&](std::size_t j, std::size_t column, double sign) {
+      double best_t = ts[j], best_v = sign * pieces[piece_of[j]].f[column](ts[j]);
+      std::size_t best_piece = piece_of[j];
+      for (std::size_t k = j >= 2 ? j - 2 : 0; k + 1 < n && k <= j + 1; ++k) {
+        if (piece_of[k] != piece_of[k + 1] || !(ts[k + 1] > ts[k])) continue;
+        const auto [t, v] = extremum(piece_of[k], column, sign, ts[k], ts[k + 1]);
+        if (v > best_v) best_t = t, best_v = v, best_piece = piece_of[k];
+      }
+      std::size_t moved = n;
+      for (std::size_t k = j >= 2 ? j - 2 : 0; k < n && k <= j + 2; ++k)
+        if (piece_of[k] == best_piece &&
+            (moved == n || std::abs(ts[k] - best_t) < std::abs(ts[moved] - best_t)))
+          moved = k;
+      if (moved == n) return;
+      ts[moved] = best_t;
+      z[moved] = pieces[best_piece].f[kZ](best_t);
+      Fv[moved] = pieces[best_piece].f[kVerticalForce](best_t);
+    };
+    if (n >= 3) {
+      refine(static_cast<std::size_t>(std::min_element(z.begin(), z.end()) - z.begin()), kZ, -1.0);
+      refine(static_cast<std::size_t>(std::max_element(z.begin(), z.end()) - z.begin()), kZ, 1.0);
+      // Every local maximum of F_v (the loading branch's greatest is one of them).
+      for (std::size_t j = 1; j + 1 < n; ++j)
+        if (Fv[j] > 0.0 && Fv[j] >= Fv[j - 1] && Fv[j] >= Fv[j + 1] &&
+            (Fv[j] > Fv[j - 1] || Fv[j] > Fv[j + 1]))
+          refine(j, kVerticalForce, 1.0);
+    }
     m.evib = vibration_modulus(z, Fv, c.roller.r, c.roller.b, nu_soil);
   }
 
