@@ -517,6 +517,38 @@ TEST(Simulate, GrossSlipIsReadFromTheMotionBelowMuWr) {
   EXPECT_EQ(simulate(stick_slip_case(25, 0.05)).status, Status::steady_state);
 }
 
+// Under the regularised law (T = -mu tanh(v_rel / v_eps) N) friction grows with the slip speed and
+// can hold a driving torque in steady creep: at MMd = 0.1 M0 and v_eps = 1 m/s the paper's drum
+// creeps in one slip direction throughout (a stable orbit, multiplier 0.88), phi' approaching its
+// creep rate. The paper's transient method called that gross slip after 3 periods (shooting found
+// the orbit); a torque friction cannot hold (0.5 M0) is still gross slip, under either law and
+// with numerics.max_multiplicity = 1, whose history was too short for the test (the drum spun to
+// max_periods_reached).
+TEST(Simulate, CreepUnderTheRegularisedLawIsNotGrossSlip) {
+  Case creep = stick_slip_case(25, 0.1);
+  creep.contact.law = FrictionChoice::regularised;
+  creep.contact.v_eps = 1.0;
+  creep.numerics.method = SteadyMethod::transient;
+  const Result transient = simulate(creep);
+  ASSERT_EQ(transient.status, Status::steady_state) << transient.message;
+  creep.numerics.method = SteadyMethod::shooting;
+  const Result shooting = simulate(creep);
+  ASSERT_EQ(shooting.status, Status::steady_state) << shooting.message;
+  EXPECT_NEAR(transient.diagnostics.phi_drift, shooting.diagnostics.phi_drift,
+              1e-6 * std::abs(shooting.diagnostics.phi_drift));
+  EXPECT_GT(std::abs(shooting.diagnostics.phi_drift), 0.01);
+  for (const bool regularised : {false, true})
+    for (const int longest : {1, 8}) {
+      Case spin = stick_slip_case(25, 0.5);
+      if (regularised) spin.contact.law = FrictionChoice::regularised;
+      spin.numerics.max_multiplicity = longest;
+      spin.numerics.method = SteadyMethod::transient;
+      const Result r = simulate(spin);
+      EXPECT_EQ(r.status, Status::gross_slip) << regularised << " " << longest << ": " << r.message;
+      EXPECT_LT(r.diagnostics.periods_simulated, 30) << r.message;
+    }
+}
+
 // The excitation ramped in from rest (numerics.start_ramp_periods): (1 - cos(pi t / t_ramp)) / 2
 // times the torque, exactly the torque after t_ramp.
 TEST(Simulate, StartRampScalesTheTorque) {
