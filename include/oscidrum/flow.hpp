@@ -41,7 +41,8 @@ enum class FlowStop {
   contact_lost,      ///< N reached 0 (lift-off is outside the model)
   chattering,        ///< too many switches in a period, or 20 within a vanishing time
   non_finite,        ///< the state became NaN or infinite
-  invalid_geometry,  ///< the trough's curvature radius fell to the drum radius (f5 <= 0)
+  invalid_geometry,  ///< the trough's curvature radius fell to the drum radius (f5 below 1e-3 of
+                     ///< its value at the bottom)
   budget_exceeded,   ///< more steps in one excitation period than FlowOptions allows
   cancelled,         ///< FlowOptions::cancelled returned true
   /// The state given to Flow::reset lies on the wrong side of a switching surface of its phase

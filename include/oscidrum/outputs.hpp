@@ -15,23 +15,25 @@
 
 // ------------------------------------------------------------------------------------------------
 // How a simulation ended (Result::status). Only steady_state carries steady-state metrics.
-#define OSCIDRUM_STATUSES(X)                                                                   \
-  X(steady_state, "the response repeats; the steady state was sampled")                        \
-  X(max_periods_reached,                                                                       \
-    "no steady state within numerics.max_periods (the last periods are sampled, but they are " \
-    "no steady state)")                                                                        \
-  X(contact_lost,                                                                              \
-    "N <= 0 (lift-off, which the model does not cover), singular slip equations, or the drum " \
-    "left its trough (|delta| >= pi/2, or in flight beyond its clearance)")                    \
-  X(chattering, "too many stick/slip switches in a vanishing time")                            \
-  X(non_finite, "a NaN or infinity appeared in the state")                                     \
-  X(invalid_geometry, "the trough's curvature radius fell to the drum radius (f5 <= 0)")       \
-  X(gross_slip, "the drum spins: the driving torque exceeds what friction can hold")           \
-  X(budget_exceeded, "more steps in one period than numerics.max_steps_per_period")            \
-  X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")              \
-  X(aperiodic,                                                                                 \
-    "no periodic steady state: the motion, examined after numerics.max_periods, is "           \
-    "quasi-periodic or chaotic (diagnostics motion, lyapunov_exponent; docs/bifurcations.md)") \
+#define OSCIDRUM_STATUSES(X)                                                                    \
+  X(steady_state, "the response repeats; the steady state was sampled")                         \
+  X(max_periods_reached,                                                                        \
+    "no steady state within numerics.max_periods (the last periods are sampled, but they are "  \
+    "no steady state)")                                                                         \
+  X(contact_lost,                                                                               \
+    "N <= 0 (lift-off, which the model does not cover), singular slip equations, or the drum "  \
+    "left its trough (|delta| >= pi/2, or in flight beyond its clearance)")                     \
+  X(chattering, "too many stick/slip switches in a vanishing time")                             \
+  X(non_finite, "a NaN or infinity appeared in the state")                                      \
+  X(invalid_geometry,                                                                           \
+    "the trough's curvature radius fell to the drum radius (f5 below 1e-3 of its value at the " \
+    "bottom)")                                                                                  \
+  X(gross_slip, "the drum spins: the driving torque exceeds what friction can hold")            \
+  X(budget_exceeded, "more steps in one period than numerics.max_steps_per_period")             \
+  X(cancelled, "stopped by the caller (progress callback, cancellation, Ctrl-C)")               \
+  X(aperiodic,                                                                                  \
+    "no periodic steady state: the motion, examined after numerics.max_periods, is "            \
+    "quasi-periodic or chaotic (diagnostics motion, lyapunov_exponent; docs/bifurcations.md)")  \
   X(invalid, "the case of a study was refused before it ran (its parameters; the error says why)")
 
 // ------------------------------------------------------------------------------------------------

@@ -78,6 +78,11 @@ Dynamics<OscillationDrum>::Switch Dynamics<OscillationDrum>::apply(Phase phase, 
   return out;
 }
 
+Dynamics<OscillationDrum>::Dynamics(const Model& model, double baumgarte)
+    : model_(model),
+      baumgarte_(baumgarte),
+      f5_bottom_(kinematics(model.geometry(), 0.0).f5) {}
+
 bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, std::string* why,
                                         FlowStop* stop) const {
   // The trough is a settlement depression, open above: a contact point (in flight: the trough's
@@ -95,12 +100,18 @@ bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, 
     return true;
   }
   const Kinematics k = kinematics(model_.geometry(), x[0]);
-  if (!(k.f5 > 0.0)) {
+  // The accelerations grow as 1 / f5 as the trough's curvature radius shrinks to the drum's
+  // (a log spiral's does with delta): the step size collapsed before f5 reached 0, and such runs
+  // ended as budget_exceeded (blaming the step budget) or non_finite. As for the slip
+  // determinant, a value 1e-3 of the bottom's is taken for the singularity itself.
+  if (!(k.f5 > kSingularRolling * f5_bottom_)) {
     *stop = FlowStop::invalid_geometry;
     *why = detail::format(
         "at t = %.9g s, delta = %.6g rad, the trough's curvature radius fell "
-        "to the drum radius (f5 <= 0): rolling is undefined there",
-        t, x[0]);
+        "to the drum radius (f5 = %.3g, %.3g of its value at the trough's bottom): rolling is "
+        "undefined there (a trough whose curvature radius at the bottom is closer to the drum "
+        "radius, or a steeper log spiral, reaches it at a smaller delta)",
+        t, x[0], k.f5, k.f5 / f5_bottom_);
     return true;
   }
   if (phase == Phase::stick) return false;

@@ -30,6 +30,9 @@ class Dynamics<OscillationDrum> {
   static constexpr int kSpin = 7;
   /// The slip determinant (slip_determinant) below which a slip state counts as singular.
   static constexpr double kSingularSlip = 1e-3;
+  /// f5 (50), relative to its value at the trough's bottom, below which rolling counts as
+  /// undefined (the trough's curvature radius has come within that of the drum radius).
+  static constexpr double kSingularRolling = 1e-3;
   using Vector = std::array<double, kStates>;
   using Matrix = Mat8;
   using EventValues = oscidrum::EventValues;
@@ -49,7 +52,7 @@ class Dynamics<OscillationDrum> {
                          ///< slip reversal (counted)
   };
 
-  Dynamics(const Model& model, double baumgarte) : model_(model), baumgarte_(baumgarte) {}
+  Dynamics(const Model& model, double baumgarte);
   const Model& model() const { return model_; }
 
   // ---- the flow -------------------------------------------------------------------------------
@@ -62,8 +65,8 @@ class Dynamics<OscillationDrum> {
   /// Event `which` of `phase` at time t, x the state just before it.
   Switch apply(Phase phase, int which, double t, const Vector& x) const;
   /// A state the equations are undefined at, with the stop it ends the run in: the trough's
-  /// curvature radius fell to the drum radius (f5 <= 0, invalid_geometry), or in slip the slip
-  /// system became singular (contact_lost).
+  /// curvature radius fell to the drum radius (f5 below 1e-3 of its bottom's, invalid_geometry), or
+  /// in slip the slip system became singular (contact_lost).
   bool invalid(Phase phase, const Vector& x, double t, std::string* why, FlowStop* stop) const;
   /// min N and the largest slip residual (39) at a step's end.
   void track(Phase phase, const Vector& x, double N, FlowCounters& counters) const;
@@ -126,6 +129,7 @@ class Dynamics<OscillationDrum> {
  private:
   const Model& model_;
   double baumgarte_;
+  double f5_bottom_;  // f5 (50) at delta = 0 [-]
 };
 
 }  // namespace oscidrum::detail

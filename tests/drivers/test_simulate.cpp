@@ -436,6 +436,31 @@ TEST(Simulate, SingularSlipEquationsStopTheRunAsContactLost) {
   }
 }
 
+// A log spiral whose curvature radius shrinks with delta reaches the drum radius (f5 (50) -> 0)
+// at a few hundredths of a radian when its bottom's is only 1 mm larger: the accelerations grow as
+// 1 / f5 and the step size collapsed before f5 reached 0, so the runs ended as budget_exceeded
+// (naming the step budget, and so after 1e6 steps with numerics.max_steps_per_period = 1e6) or
+// non_finite. They end where f5 falls to 1e-3 of the bottom's, as invalid_geometry, early.
+TEST(Simulate, ATroughNarrowingToTheDrumIsInvalidGeometry) {
+  struct Spiral {
+    double k, a;
+    bool rolling;
+  };
+  for (const Spiral& sp :
+       {Spiral{0.05, 0.5535260185218347, true}, Spiral{0.05, 0.5535260185218347, false},
+        Spiral{0.002, 0.5981209927578562, false}}) {
+    Case c;
+    set_field(c, "trough.k", sp.k);
+    set_field(c, "trough.a", sp.a);
+    c.contact.pure_rolling = sp.rolling;
+    const Result r = simulate(c);
+    EXPECT_EQ(r.status, Status::invalid_geometry) << sp.k << ": " << r.message;
+    EXPECT_NE(r.message.find("curvature radius fell to the drum radius"), std::string::npos)
+        << r.message;
+    EXPECT_LT(r.diagnostics.steps, 100000) << r.message;
+  }
+}
+
 TEST(Simulate, MaxPeriodsReachedStillSamples) {
   Case c = pure_rolling_case(25);
   c.numerics.max_periods = 10;
