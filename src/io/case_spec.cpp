@@ -396,7 +396,7 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
   // Pure rolling has no friction limit: a friction coefficient given with it changes nothing (a
   // warning, not an error: a study may sweep contact.pure_rolling over a base case with mu).
   if (warnings && c.contact.pure_rolling)
-    for (const char* key : {"contact.mu", "contact.mu_static"})
+    for (const char* key : {"contact.mu", "contact.mu_static", "contact.law"})
       if (spec.given(key))
         warnings->push_back(spec.where(key) + key +
                             " has no effect while contact.pure_rolling = "

@@ -225,6 +225,12 @@ TEST(CliRun, FrequencyWithFixedM0Warns) {
   EXPECT_NE(o.err.find("contact.mu has no effect while contact.pure_rolling = true"),
             std::string::npos)
       << o.err;
+  // ... and so does a friction law (it was silent).
+  o = run({"run", "--pure-rolling", "--set", "contact.law=regularised", "-q", "--format", "json"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("contact.law has no effect while contact.pure_rolling = true"),
+            std::string::npos)
+      << o.err;
 }
 
 // The column names of docs/csv-columns.md, in order.
