@@ -173,6 +173,51 @@ async function main() {
       await page3.close();
       console.log(`ok   a case without a steady state: '${status.slice(0, 60)}...'`);
     }
+    // From a probe of the page (2026-12-05): with roller.unbalance the driving torque is a
+    // fraction of the unbalance's M0 = 4 m_u e_u e_w nu^2 (5), as --MMd-fraction takes it (the
+    // page took the M0 box's 54947 N m: another area than the CLI's), and the M0 box is not in
+    // effect; a period-2 steady state's time plot spans two of its periods (4 excitation periods);
+    // hexadecimal text is not a number; a link's misspelled choice is said, not replaced quietly;
+    // and while a case computes the status says so.
+    {
+      const page5 = await browser.newPage();
+      page5.on('pageerror', (e) => consoleErrors.push(String(e.stack || e)));
+      const ready = () => page5.waitForFunction(() => window.explorer && !window.explorer.busy() && window.explorer.last(), null, { timeout: 60000 });
+      await page5.goto(url + '?roller.unbalance=0.22877&f=50&MMd=0.05');
+      await ready();
+      const nat = native(['--set', 'roller.unbalance=0.22877', '--f', '50', '--MMd-fraction', '0.05']);
+      const area = Number(await page5.getAttribute('#area-caption', 'data-value'));
+      assert.ok(Math.abs(area - nat.metrics.area) <= AREA_RTOL * nat.metrics.area, `unbalance: area ${area} vs native ${nat.metrics.area}`);
+      assert.equal(await page5.isDisabled('#in-M0'), true);
+      const m0row = await page5.evaluate(() => [...document.querySelectorAll('#metrics tbody tr')].map((tr) => tr.textContent).find((t) => t.startsWith('M0, MMd')) || '');
+      assert.match(m0row, /^M0, MMd90314\.8, 4515\.74/);
+      await page5.goto(url + '?trough=spiral&k=0.002&a=0.601&f=25&roller.unbalance=0.22877&mu=0.7&soil=modulus&G=140');
+      await ready();
+      const sc = await page5.evaluate(() => window.explorer.timeScales());
+      assert.equal(sc.points, 4 * 1024, `a period-2 orbit's two periods: ${JSON.stringify(sc)}`);
+      await page5.goto(url + '?G=0x28&contact.law=regularized');
+      await page5.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+      await page5.waitForFunction(() => /invalid input/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
+      assert.match(await page5.textContent('#err-G'), /not a number: '0x28'/);
+      assert.match(await page5.textContent('#url-note'), /contact\.law = 'regularized' is not one of coulomb/);
+      assert.equal(await page5.isDisabled('#export-toml'), true);
+      await page5.fill('#in-G', '40');
+      await ready();
+      const busy = await page5.evaluate(() => {
+        const g = document.getElementById('in-G');
+        g.value = '45';
+        g.dispatchEvent(new Event('input', { bubbles: true }));
+        const s = document.getElementById('status');
+        return { text: s.textContent, cls: s.className, metrics: document.getElementById('metrics').classList.contains('stale') };
+      });
+      assert.match(busy.text, /^computing this case/);
+      assert.equal(busy.cls, 'busy');
+      assert.equal(busy.metrics, true);
+      await ready();
+      assert.equal(await page5.getAttribute('#status', 'class'), 'ok');
+      await page5.close();
+      console.log('ok   the unbalance\'s M0 for MMd (area as native), a period-2 plot of 4 periods, 0x28 refused, a misspelled choice in the link said, "computing" while a case runs');
+    }
     // A measured record (issue 25 point 4): a record of a known soil (G = 30 MN/m^2 by Appendix
     // B, f 1 % above the case's, 2 % noise) made by the engine and written as a logger would (a
     // byte-order mark, 'Time [s]', g, z positive up) is dropped onto the page: its fit is drawn

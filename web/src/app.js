@@ -154,7 +154,7 @@ function choiceIndex(field, text) {
 // true/false).
 function setExtra(f, value) {
   const el = $(`in-${extraName(f.key)}`);
-  if (f.type === 'boolean') el.checked = value === true || value === 1 || value === 'true';
+  if (f.type === 'boolean') el.checked = value === true || value === 1 || value === 'true' || value === '1';
   else if (f.type === 'choice') el.value = String(Math.max(0, choiceIndex(f, value)));
   else el.value = String(value);
 }
@@ -298,6 +298,11 @@ function updateVisibility() {
   // the inputs of the other roller are hidden (and not sent to the engine)
   for (const name of ROLLER_INPUTS) document.querySelector(`.field[data-input="${name}"]`).hidden = !rollerInput(name);
   $('M0_scale_box').hidden = !rollerInput('M0');
+  // An unbalance sets M0 (5): the M0 input and its f^2 box then say so and are not used.
+  const byUnbalance = unbalanceInput() > 0;
+  $('in-M0').disabled = byUnbalance;
+  $('M0_scale').disabled = byUnbalance;
+  $('in-M0').title = byUnbalance ? 'not used: roller.unbalance sets M0 = 4 m_u e_u e_w ν² (5)' : '';
   for (const f of extras) document.querySelector(`.field[data-input="${extraName(f.key)}"]`).hidden = !rollerKeyInEffect(f.key);
   $('in-mu').disabled = $('rolling').checked;
   const scaled = $('M0_scale').checked;
@@ -328,12 +333,24 @@ function readInputs() {
       errors[name] = `enter a value: ${about}`;
       continue;
     }
-    const v = Number(text);
+    // decimal only, as the command line reads numbers (Number() also took 0x28, 0b1, 0o50)
+    const decimal = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(text) || /^[+-]?(inf|infinity|nan)$/i.test(text);
+    const v = decimal ? Number(text.replace(/^([+-]?)inf(inity)?$/i, '$1Infinity')) : NaN;
     if (Number.isNaN(v)) errors[name] = `not a number: '${text}'; ${about}`;
     else if (!Number.isFinite(v)) errors[name] = `must be finite; ${about}`;
     else values[name] = v;
   }
   return { values, errors };
+}
+
+// M0 = 4 m_u e_u e_w nu^2 (5) of an unbalance m_u e_u e_w [kg m^2] at f [Hz].
+const oscillationMoment = (unbalance, f) => 4 * unbalance * (2 * Math.PI * f) ** 2;
+
+// The unbalance the inputs give (0 without one): the M0 input is then not in effect.
+function unbalanceInput() {
+  if (!fieldByKey['roller.unbalance'] || !rollerKeyInEffect('roller.unbalance')) return 0;
+  const u = Number(extraText(fieldByKey['roller.unbalance']));
+  return Number.isFinite(u) && u > 0 ? u : 0;
 }
 
 // The engine's case (field key -> SI number) from the parsed inputs.
@@ -350,8 +367,13 @@ function caseValues(v) {
   // The excitation of the chosen roller (the other roller's inputs are not sent): the oscillation
   // drum's M0 (M0 = 4 m_u e_u e_w nu^2 grows with f^2 (5)) and MMd as its fraction; the vibratory
   // drum's static moment, exciter and MMd in N m.
-  if (shown.has('M0')) c['roller.M0'] = $('M0_scale').checked ? v.M0 * (v.f / F_REF) ** 2 : v.M0;
-  if (shown.has('MMd')) c.MMd = v.MMd * c['roller.M0'];
+  // With roller.unbalance the engine takes M0 = 4 m_u e_u e_w nu^2 (5) and the M0 input is not
+  // in effect (oscidrum run refuses both): MMd is a fraction of that M0, as --MMd-fraction is.
+  const unbalance = shown.has(extraName('roller.unbalance')) ? v[extraName('roller.unbalance')] : 0;
+  const M0 = unbalance > 0 ? oscillationMoment(unbalance, v.f)
+    : $('M0_scale').checked ? v.M0 * (v.f / F_REF) ** 2 : v.M0;
+  if (shown.has('M0') && !(unbalance > 0)) c['roller.M0'] = M0;
+  if (shown.has('MMd')) c.MMd = v.MMd * M0;
   if (shown.has('static_moment')) c['roller.static_moment'] = v.static_moment;
   if (shown.has('exciter')) c['roller.exciter'] = v.exciter;
   if (shown.has('torque')) c.MMd = v.torque;
@@ -398,6 +420,28 @@ function saveUrl() {
 
 function loadUrl() {
   const p = new URLSearchParams(location.search);
+  // What the link gives that the page cannot take (a misspelled choice, a boolean other than
+  // true/false): said above the results, not replaced by a default without a word.
+  const problems = [];
+  const choice = (f, text) => {
+    if (choiceIndex(f, text) < 0) problems.push(`${f.key} = '${text}' is not one of ${f.choices.join(', ')}: ${f.choices[0]} is used`);
+  };
+  const boolean = (name, text) => {
+    if (!['true', 'false', '1', '0'].includes(text)) problems.push(`${name} = '${text}' is not true or false: false is used`);
+  };
+  if (p.has('roller.type')) choice(fieldByKey['roller.type'], p.get('roller.type'));
+  for (const [name, values] of [['soil', ['table2', 'modulus']], ['trough', ['circle', 'spiral']]])
+    if (p.has(name) && !values.includes(p.get(name))) problems.push(`${name} = '${p.get(name)}' is not one of ${values.join(', ')}: ${values[0]} is used`);
+  for (const name of ['rolling', 'M0f2']) if (p.has(name)) boolean(name, p.get(name));
+  for (const f of extras) {
+    if (!p.has(f.key)) continue;
+    if (f.type === 'choice') choice(f, p.get(f.key));
+    if (f.type === 'boolean') boolean(f.key, p.get(f.key));
+  }
+  const known = new Set(['roller.type', 'soil', 'trough', 'rolling', 'M0f2', ...Object.keys(INPUTS).map(urlName), ...extras.map((f) => f.key)]);
+  for (const key of p.keys()) if (!known.has(key)) problems.push(`'${key}' is not a parameter of this page: ignored`);
+  $('url-note').textContent = problems.length ? `The link: ${problems.join('; ')}.` : '';
+  $('url-note').hidden = problems.length === 0;
   // The roller first (by its name, or its index as older links wrote it), with its defaults; the
   // URL's inputs then override them.
   const rollerField = fieldByKey['roller.type'];
@@ -406,8 +450,8 @@ function loadUrl() {
   applyRoller(roller);
   if (p.get('soil') === 'modulus') $('soil_mode').value = 'modulus';
   if (p.get('trough') === 'spiral') $('trough_mode').value = 'spiral';
-  $('rolling').checked = p.get('rolling') === '1';
-  $('M0_scale').checked = p.get('M0f2') === '1';
+  $('rolling').checked = ['1', 'true'].includes(p.get('rolling'));
+  $('M0_scale').checked = ['1', 'true'].includes(p.get('M0f2'));
   for (const name of Object.keys(INPUTS)) if (p.has(urlName(name))) setInputText(name, p.get(urlName(name)));
   for (const f of extras) if (p.has(f.key)) setExtra(f, p.get(f.key));
 }
@@ -442,9 +486,17 @@ function send(msg) {
   busySince = performance.now();
   pending = null;
   worker.postMessage(msg);
+  if (msg.checkOnly) return;
+  // Until the answer comes nothing on screen may pass for the new case's: the status says it is
+  // computing, and the previous case's results are faded (a case that takes seconds showed the
+  // previous one's green "steady state" and its metrics meanwhile).
   $('results').classList.add('busy');
-  for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.add('stale');
+  showStatus('computing this case … (the results below are still the previous case\'s)', null, '');
+  for (const id of STALE_WHILE_BUSY) $(id).classList.add('stale');
 }
+
+// What is faded while a case computes.
+const STALE_WHILE_BUSY = ['plot-time', 'plot-figure', 'drum', 'metrics', 'plot-spec-x', 'plot-spec-z', 'area-caption'];
 
 function onMessage(msg) {
   if (msg.type === 'ready') {
@@ -463,7 +515,8 @@ function onMessage(msg) {
     send(pending);
   }
   if (msg.seq !== seq) return;  // an answer to an outdated request
-  for (const id of ['plot-time', 'plot-figure', 'drum']) $(id).classList.remove('stale');
+  for (const id of STALE_WHILE_BUSY) $(id).classList.remove('stale');
+  $('results').classList.remove('busy');
   const { values } = readInputs();
   // Every invalid input at once: the page's own messages (empty, not a number) and the engine's
   // rule of every other field.
@@ -475,6 +528,7 @@ function onMessage(msg) {
     }
     const count = document.querySelectorAll('.field.invalid').length;
     showStatus(`invalid input (${count} ${count === 1 ? 'field' : 'fields'}): see the messages next to the inputs`, false);
+    setExports(false, false);
     markReady();
     return;
   }
@@ -484,6 +538,7 @@ function onMessage(msg) {
     const name = r.key ? inputForKey(r.key) : null;
     if (name && visibleInputs().includes(name)) setError(name, r.error);
     showStatus(`invalid input: ${r.error}`, false);
+    setExports(false, false);
     markReady();
     return;
   }
@@ -499,10 +554,22 @@ function markReady() {
   document.body.classList.add('ready');
 }
 
+// The exports follow what is on screen: the case file only for inputs that are valid (it wrote the
+// last valid case while the inputs read otherwise), the plots only of a steady state (the SVG of
+// a run without one was an empty file).
+function setExports(caseOk, steadyOk) {
+  $('export-toml').disabled = !caseOk;
+  $('export-toml').title = caseOk ? 'a case file for oscidrum run' : 'the inputs are not valid: no case to export';
+  for (const id of ['export-png', 'export-svg']) {
+    $(id).disabled = !steadyOk;
+    $(id).title = steadyOk ? '' : 'no steady state: no plots to export';
+  }
+}
+
 function showStatus(text, ok, value = '') {
   const s = $('status');
   s.textContent = text;
-  s.className = ok ? 'ok' : 'bad';
+  s.className = ok === null ? 'busy' : ok ? 'ok' : 'bad';
   s.dataset.value = value;
 }
 
@@ -513,6 +580,7 @@ function onChange() {
   for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
   if (Object.keys(errors).length) {
     showStatus('invalid input: see the messages next to the inputs', false);
+    setExports(false, false);
     // The other inputs are checked against their rules all the same (nothing is computed), so
     // that every invalid input is flagged at once, not only the first.
     const parsed = Object.fromEntries(Object.entries(caseValues(values)).filter(([, v]) => Number.isFinite(v)));
@@ -530,6 +598,7 @@ function render() {
   const ok = r.status === 'steady_state';
   const m = r.metrics;
   showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
+  setExports(true, !!m);
   $('timing').textContent = `computed in ${ms.toFixed(0)} ms: ${r.diagnostics.periods_simulated} periods, ` +
     `${r.diagnostics.steps} steps, ${r.diagnostics.switches} stick/slip switches`;
   if (!m) {
@@ -583,9 +652,10 @@ function clearPlots(ids, canvasIds, note) {
 }
 
 function periodSlice(r) {
-  // the first two excitation periods of the sampled steady state (all of them if fewer)
-  const n = Math.min(r.samples.t.length, 2 * r.samples_per_period);
-  return n;
+  // the first two periods of the sampled steady state: 2 p excitation periods for an orbit of
+  // period p T (all of them if fewer; a period-2 orbit showed one of its periods, captioned two)
+  const p = Math.max(1, r.diagnostics.multiplicity || 1);
+  return Math.min(r.samples.t.length, 2 * p * r.samples_per_period);
 }
 
 function phaseRuns(phase, n) {
@@ -992,7 +1062,10 @@ function fillMetrics(r, m) {
     rows.push(['m_u e_u, F0, exciter', `${fmt(r.case['roller.static_moment'], 6)} kg m, ${fmt(F0 / 1e3, 5)} kN, ${choiceOf(r, 'roller.exciter')}`, 'F0 = m_u e_u ν²']);
     rows.push(['MMd', fmt(r.case.MMd, 6), 'N m']);
   } else {
-    rows.push(['M0, MMd', `${fmt(r.case['roller.M0'], 6)}, ${fmt(r.case.MMd, 6)}`, 'N m']);
+    // the moment the engine used: from the unbalance (5) when one is given
+    const u = r.case['roller.unbalance'];
+    const M0 = u > 0 ? oscillationMoment(u, r.case['roller.f']) : r.case['roller.M0'];
+    rows.push(['M0, MMd', `${fmt(M0, 6)}, ${fmt(r.case.MMd, 6)}`, u > 0 ? 'N m (M0 = 4 m_u e_u e_w ν² of the unbalance)' : 'N m']);
   }
   const body = $('metrics').tBodies[0];
   body.innerHTML = '';
@@ -1317,6 +1390,8 @@ function init() {
   // A roller chosen starts from its defaults (before the form's listeners read the inputs).
   for (const type of ['input', 'change']) $('roller_type').addEventListener(type, () => applyRoller(currentRoller()));
   $('case-form').addEventListener('input', onChange);
+  // the note on the link's parameters holds until the inputs are changed (the URL is then the page's)
+  $('case-form').addEventListener('input', () => { $('url-note').hidden = true; });
   $('case-form').addEventListener('change', onChange);
   $('reset').addEventListener('click', () => {
     $('roller_type').value = fieldByKey['roller.type'].choices[fieldByKey['roller.type'].default];
