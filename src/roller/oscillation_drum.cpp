@@ -79,9 +79,7 @@ Dynamics<OscillationDrum>::Switch Dynamics<OscillationDrum>::apply(Phase phase, 
 }
 
 Dynamics<OscillationDrum>::Dynamics(const Model& model, double baumgarte)
-    : model_(model),
-      baumgarte_(baumgarte),
-      f5_bottom_(kinematics(model.geometry(), 0.0).f5) {}
+    : model_(model), baumgarte_(baumgarte), f5_bottom_(kinematics(model.geometry(), 0.0).f5) {}
 
 bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, std::string* why,
                                         FlowStop* stop) const {
