@@ -195,13 +195,16 @@ async function main() {
       await ready();
       const sc = await page5.evaluate(() => window.explorer.timeScales());
       assert.equal(sc.points, 4 * 1024, `a period-2 orbit's two periods: ${JSON.stringify(sc)}`);
-      await page5.goto(url + '?G=0x28&contact.law=regularized');
+      await page5.goto(url + '?G=0x28&R=0.5&contact.law=regularized');
       await page5.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
-      await page5.waitForFunction(() => /invalid input/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
+      await page5.waitForFunction(() => /invalid input \(2 fields\)/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
       assert.match(await page5.textContent('#err-G'), /not a number: '0x28'/);
+      // a rule of two fields beside an input invalid on its own: both flagged at once
+      assert.match(await page5.textContent('#err-R'), /trough\.a must be > roller\.r/);
       assert.match(await page5.textContent('#url-note'), /contact\.law = 'regularized' is not one of coulomb/);
       assert.equal(await page5.isDisabled('#export-toml'), true);
       await page5.fill('#in-G', '40');
+      await page5.fill('#in-R', '0.606');
       await ready();
       const busy = await page5.evaluate(() => {
         const g = document.getElementById('in-G');
@@ -216,7 +219,7 @@ async function main() {
       await ready();
       assert.equal(await page5.getAttribute('#status', 'class'), 'ok');
       await page5.close();
-      console.log('ok   the unbalance\'s M0 for MMd (area as native), a period-2 plot of 4 periods, 0x28 refused, a misspelled choice in the link said, "computing" while a case runs');
+      console.log('ok   the unbalance\'s M0 for MMd (area as native), a period-2 plot of 4 periods, 0x28 refused beside R < r (both flagged), a misspelled choice in the link said, "computing" while a case runs');
     }
     // A measured record (issue 25 point 4): a record of a known soil (G = 30 MN/m^2 by Appendix
     // B, f 1 % above the case's, 2 % noise) made by the engine and written as a logger would (a

@@ -132,6 +132,26 @@ val case_values(const oscidrum::Case& c) {
   return out;
 }
 
+// The rules of several fields (trough.a > roller.r, ...) on the case of `values` (the defaults
+// for the keys not given): {error, key} of the first one broken, or null. Only the Model is built
+// (it validates the case); nothing is integrated.
+val check_case(const val& values) {
+  try {
+    const oscidrum::Model model(case_from(values));
+  } catch (const oscidrum::Error& e) {
+    val out = val::object();
+    out.set("error", std::string(e.what()));
+    out.set("key", e.key());
+    return out;
+  } catch (const std::exception& e) {
+    val out = val::object();
+    out.set("error", std::string(e.what()));
+    out.set("key", std::string());
+    return out;
+  }
+  return val::null();
+}
+
 // Whether each field takes effect in the case (oscidrum::key_in_effect), keyed as above.
 val keys_in_effect(const oscidrum::Case& c) {
   val out = val::object();
@@ -596,6 +616,7 @@ std::string version() { return oscidrum::version; }
 EMSCRIPTEN_BINDINGS(oscidrum) {
   emscripten::function("fields", &fields);
   emscripten::function("checkField", &check_field);
+  emscripten::function("checkCase", &check_case);
   emscripten::function("keyInEffect", &key_in_effect);
   emscripten::function("simulate", &simulate);
   emscripten::function("soilCoefficients", &soil_coefficients);

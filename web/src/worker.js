@@ -42,6 +42,13 @@ function run(msg) {
     const e = engine.checkField(key, value);
     if (e) errors[key] = e;
   }
+  if (msg.checkOnly) {
+    // The rules of several fields too, on the values valid on their own (the others at their
+    // defaults): an R below the drum radius beside an empty G is flagged with it.
+    const valid = Object.fromEntries(Object.entries(msg.values).filter(([key]) => !errors[key]));
+    const broken = engine.checkCase(valid);
+    if (broken && broken.key && !errors[broken.key]) errors[broken.key] = broken.error;
+  }
   if (Object.keys(errors).length || msg.checkOnly) {
     postMessage({ type: 'result', seq: msg.seq, result: null, errors, ms: 0 });
     return;
