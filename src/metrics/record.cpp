@@ -1245,7 +1245,11 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                 (windowed && covered * f_rec >= 1.0
                      ? ": take the whole record as one window with --window 0, or a shorter "
                        "--window"
-                     : ""));
+                 : o.f > 0 ? ""
+                           // f estimated from less than a period of samples (0.6 periods at 39
+                           // Hz read as 60 Hz, quoted here as if measured): not to be trusted
+                           : "; f was estimated from these samples, less than one period of "
+                             "it, and is not known from them: the record must be longer"));
 
   // Time steps (gaps), and the samples at a channel's extreme (plateaus: clipping).
   std::vector<double> dt(t.size() - 1);

@@ -293,6 +293,35 @@ TEST(Record, AGivenSubharmonicOfTheExcitationIsRefused) {
   EXPECT_TRUE(std::isnan(bad[0].metrics.psi_xz));
 }
 
+// A record of less than a period: the frequency estimated from it is not the excitation's (0.6
+// periods at 39 Hz read as about 60 Hz), and the refusal quoted it as if measured; it says so. With
+// a given f the refusal quotes that f alone.
+TEST(Record, ARecordShorterThanAPeriodSaysItsFrequencyIsUnknown) {
+  SyntheticRecord options;
+  options.duration = 0.6 / 39.0;
+  options.sample_rate = 40000.0;
+  const RecordSamples r = synthetic_record({Case{}}, options);
+  std::string estimated, given;
+  try {
+    analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, WindowOptions{});
+  } catch (const Error& e) {
+    estimated = e.what();
+  }
+  WindowOptions at_f;
+  at_f.f = 39.0;
+  try {
+    analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, at_f);
+  } catch (const Error& e) {
+    given = e.what();
+  }
+  EXPECT_NE(estimated.find("must span at least one excitation period"), std::string::npos)
+      << estimated;
+  EXPECT_NE(estimated.find("is not known from them: the record must be longer"), std::string::npos)
+      << estimated;
+  EXPECT_NE(given.find("at f = 39 Hz"), std::string::npos) << given;
+  EXPECT_EQ(given.find("not known"), std::string::npos) << given;
+}
+
 // A fifth of a 1 kHz logger's samples lost at random (20.2 samples per period left): the
 // harmonics are those its mean step resolves (9), not its median step's (10, which asked 21
 // samples per period and failed every window as too sparse); the same record thinned evenly to
