@@ -191,6 +191,13 @@ async function main() {
       assert.equal(await page5.isDisabled('#in-M0'), true);
       const m0row = await page5.evaluate(() => [...document.querySelectorAll('#metrics tbody tr')].map((tr) => tr.textContent).find((t) => t.startsWith('M0, MMd')) || '');
       assert.match(m0row, /^M0, MMd90314\.8, 4515\.74/);
+      // the disabled M0 box is not checked either (a bad text there blocked every run)
+      await page5.goto(url + '?M0=abc&roller.unbalance=0.22877&f=50&MMd=0.05');
+      await ready();
+      assert.equal(Number(await page5.getAttribute('#area-caption', 'data-value')), area);
+      await page5.goto(url + '?roller.type=vibratory&roller.exciter=circulr');
+      await ready();
+      assert.match(await page5.textContent('#url-note'), /roller\.exciter = 'circulr' is not one of circular/);
       await page5.goto(url + '?trough=spiral&k=0.002&a=0.601&f=25&roller.unbalance=0.22877&mu=0.7&soil=modulus&G=140');
       await ready();
       const sc = await page5.evaluate(() => window.explorer.timeScales());

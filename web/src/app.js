@@ -285,6 +285,8 @@ function visibleInputs() {
   names.unshift(...SOIL_INPUTS.filter(soilInputInEffect));
   names.push(...(spiral ? ['k', 'a'] : ['R']));
   if ($('rolling').checked) names.splice(names.indexOf('mu'), 1);
+  // an unbalance sets M0 (5): the (disabled) M0 box is then neither read nor checked
+  if (names.includes('M0') && unbalanceInput() > 0) names.splice(names.indexOf('M0'), 1);
   for (const f of rollerExtras()) names.push(extraName(f.key));
   return names;
 }
@@ -333,14 +335,21 @@ function readInputs() {
       errors[name] = `enter a value: ${about}`;
       continue;
     }
-    // decimal only, as the command line reads numbers (Number() also took 0x28, 0b1, 0o50)
-    const decimal = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(text) || /^[+-]?(inf|infinity|nan)$/i.test(text);
-    const v = decimal ? Number(text.replace(/^([+-]?)inf(inity)?$/i, '$1Infinity')) : NaN;
+    const v = decimalNumber(text);
     if (Number.isNaN(v)) errors[name] = `not a number: '${text}'; ${about}`;
     else if (!Number.isFinite(v)) errors[name] = `must be finite; ${about}`;
     else values[name] = v;
   }
   return { values, errors };
+}
+
+// A decimal number's value (NaN for any other text), as the command line reads numbers:
+// Number() also took 0x28, 0b1 and 0o50.
+function decimalNumber(text) {
+  const t = String(text).trim();
+  if (/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(t)) return Number(t);
+  if (/^[+-]?(inf|infinity)$/i.test(t)) return t.startsWith('-') ? -Infinity : Infinity;
+  return NaN;
 }
 
 // M0 = 4 m_u e_u e_w nu^2 (5) of an unbalance m_u e_u e_w [kg m^2] at f [Hz].
@@ -349,7 +358,7 @@ const oscillationMoment = (unbalance, f) => 4 * unbalance * (2 * Math.PI * f) **
 // The unbalance the inputs give (0 without one): the M0 input is then not in effect.
 function unbalanceInput() {
   if (!fieldByKey['roller.unbalance'] || !rollerKeyInEffect('roller.unbalance')) return 0;
-  const u = Number(extraText(fieldByKey['roller.unbalance']));
+  const u = decimalNumber(extraText(fieldByKey['roller.unbalance']));
   return Number.isFinite(u) && u > 0 ? u : 0;
 }
 
@@ -433,6 +442,11 @@ function loadUrl() {
   for (const [name, values] of [['soil', ['table2', 'modulus']], ['trough', ['circle', 'spiral']]])
     if (p.has(name) && !values.includes(p.get(name))) problems.push(`${name} = '${p.get(name)}' is not one of ${values.join(', ')}: ${values[0]} is used`);
   for (const name of ['rolling', 'M0f2']) if (p.has(name)) boolean(name, p.get(name));
+  // the choice inputs above the extras (the vibratory drum's roller.exciter)
+  for (const spec of Object.values(INPUTS)) {
+    const f = spec.key && fieldByKey[spec.key];
+    if (f && f.type === 'choice' && p.has(spec.param || spec.key)) choice(f, p.get(spec.param || spec.key));
+  }
   for (const f of extras) {
     if (!p.has(f.key)) continue;
     if (f.type === 'choice') choice(f, p.get(f.key));
