@@ -251,7 +251,8 @@ using PassProgress = std::function<bool(std::size_t index, std::size_t count)>;
 /// and their gates are analyze_windows' (windows.n_max == 0: the gates' harmonics from the
 /// sampling, at most 10), on the record's times less its first (so that clock times such as
 /// 1.7e9 s keep their precision; the windows report record times); each window's harmonics are
-/// measured by measure_window (options.measure).
+/// measured by measure_window (options.measure). Throws oscidrum::Error when options.harmonics
+/// is more than every measured window resolves (rather than failing each window alike).
 std::vector<PassEstimate> identify_pass(
     const Case& base, std::span<const double> t, std::span<const double> ddx_M,
     std::span<const double> ddz_M, std::span<const double> position, const WindowOptions& windows,

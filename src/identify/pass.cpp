@@ -42,6 +42,10 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   out.reserve(ws.size());
   // The previous valid window, by index: a pointer into `out` would dangle when it grows.
   std::optional<std::size_t> previous;
+  // Windows measured, and those of them measuring fewer harmonics than are compared (their
+  // sampling's limit: the same for every window of a uniformly sampled record).
+  std::size_t measured = 0, too_few = 0;
+  std::size_t most_resolved = 0;
   for (std::size_t k = 0; k < ws.size(); ++k) {
     PassEstimate pe;
     RecordWindow& w = ws[k];
@@ -60,6 +64,12 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
         }
         MeasuredResponse d = measure_window(tw, ddx.subspan(w.first, w.count),
                                             ddz.subspan(w.first, w.count), w.f, mo);
+        ++measured;
+        const std::size_t resolved = std::min(d.ddx.size(), d.ddz.size());
+        if (static_cast<int>(resolved) < o.harmonics) {
+          ++too_few;
+          most_resolved = std::max(most_resolved, resolved);
+        }
         d.t_ref += t0;
         d.t_first += t0;
         d.t_last += t0;
@@ -78,6 +88,16 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
     if (out.back().valid) previous = out.size() - 1;
     if (progress && !progress(k, ws.size())) break;
   }
+  // Every window failed for the harmonics asked alone: the request, not the record, is wrong
+  // (a bad input, said once, rather than a failure repeated for each window).
+  if (measured > 0 && too_few == measured &&
+      std::none_of(out.begin(), out.end(), [](const PassEstimate& p) { return p.valid; }))
+    throw Error("identify: compare (--compare) = " + std::to_string(o.harmonics) +
+                " is more harmonics than the record's windows measure: " +
+                std::to_string(most_resolved) +
+                " (as many as their sampling resolves, N harmonics needing 2 N + 2 samples per "
+                "period); give --compare " +
+                std::to_string(most_resolved) + " or less");
   return out;
 }
 

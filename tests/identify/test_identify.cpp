@@ -402,6 +402,34 @@ TEST(IdentifyPass, ReasonsQuoteTheRecordsOwnTimes) {
   EXPECT_NE(ws.front().reason.find(" s at t = 1000.499 s"), std::string::npos) << ws.front().reason;
 }
 
+// More harmonics compared than any window's sampling resolves: one refusal naming how many can
+// be, not every window failing alike (the CLI's exit code 2, not 1).
+TEST(IdentifyPass, HarmonicsBeyondTheSamplingAreRefusedOnce) {
+  const double f = 39.0, nu = 2 * M_PI * f;
+  std::vector<double> t, x, z;
+  for (int i = 0; i < 2000; ++i) {  // 12 samples per period: harmonics 1 ... 5 resolved
+    const double u = i / (12.0 * f);
+    t.push_back(u);
+    x.push_back(12.0 * std::sin(nu * u));
+    z.push_back(1.1 * std::sin(2 * nu * u));
+  }
+  WindowOptions wo;
+  wo.f = f;
+  IdentifyOptions o;
+  o.harmonics = 6;
+  try {
+    (void)identify_pass(Case{}, t, x, z, {}, wo, o);
+    FAIL() << "no refusal";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("windows measure: 5 "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("give --compare 5 or less"), std::string::npos)
+        << e.what();
+  }
+  // 5 is within the sampling: the windows are measured and compared (no refusal of the request).
+  o.harmonics = 5;
+  EXPECT_NO_THROW((void)identify_pass(Case{}, t, x, z, {}, wo, o));
+}
+
 TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
   std::vector<Case> segments;
   for (const double G : {10e6, 25e6}) {
