@@ -2,10 +2,12 @@
 // row and the steady-state header, the contract of the CSV files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -97,6 +99,29 @@ TEST(Csv, StudyRowHasAsManyCellsAsTheHeader) {
   full.metrics.ddz_harmonics.resize(5);
   EXPECT_EQ(csv_split(study_csv_row(columns, 3, {5e6, true}, full)).size(), n);
   EXPECT_EQ(csv_split(study_csv_header(columns))[1], "soil.table2_G[Pa]");
+}
+
+// A diagnostic that does not apply (NaN) is an empty cell (docs/outputs.md: phi_drift,
+// final_change, switches_per_period "empty" where they do not apply), not the text nan.
+TEST(Csv, DiagnosticsThatDoNotApplyAreEmptyCells) {
+  const StudyColumns columns{{"soil.table2_G"}, 2};
+  const std::vector<std::string> header = csv_split(study_csv_header(columns));
+  CaseOutcome chattering;
+  chattering.result.status = Status::chattering;
+  chattering.result.diagnostics.phi_drift = std::numeric_limits<double>::quiet_NaN();
+  chattering.result.diagnostics.final_change = std::numeric_limits<double>::quiet_NaN();
+  chattering.result.diagnostics.switches_per_period = 2.5;
+  const std::vector<std::string> row =
+      csv_split(study_csv_row(columns, 0, {5e6}, chattering));
+  ASSERT_EQ(row.size(), header.size());
+  const auto cell = [&](const std::string& name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    return at == header.end() ? std::string("(no column)") : row[at - header.begin()];
+  };
+  EXPECT_EQ(cell("phi_drift[rad]"), "");
+  EXPECT_EQ(cell("final_change[-]"), "");
+  EXPECT_EQ(cell("switches_per_period[-]"), "2.5");
+  EXPECT_EQ(study_row_defect(header, study_csv_row(columns, 0, {5e6}, chattering)), "");
 }
 
 TEST(Csv, SteadyStateHeaderIsTheContract) {
