@@ -65,6 +65,8 @@ Reference reference_of(const std::string& arg, const CalibrateCliOptions& o, con
     }
     try {
       ref.soil = soil_on_scale(value, scale, base.soil);
+      ref.G = value;
+      ref.scale = scale;
     } catch (const Error& e) {
       // RECORD@25e6 is 25 MN/m^2 written in Pa (as --G 25e6 is): say so, as --G does.
       std::string hint;

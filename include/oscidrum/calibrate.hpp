@@ -8,6 +8,7 @@
 // "Calibrating the roller").
 #pragma once
 
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +30,12 @@ struct Reference {
   /// warning (ReferenceFit::z_negated, read_in_g), as identify does a window.
   bool z_open = false;
   bool units_open = false;
+  /// The G [Pa] on `scale` that `soil` was made from (soil_on_scale), when it was: a calibration
+  /// that fits poorly as given but far better with every reference's G on the other scale says
+  /// so in a warning (the calibration itself stays on the scale given). NaN: the soil was given
+  /// otherwise.
+  double G = std::numeric_limits<double>::quiet_NaN();
+  SoilScale scale = SoilScale::formulas;
 };
 
 /// The measured response of a whole record (a reference): its f (windows.f, or estimated), the

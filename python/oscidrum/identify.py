@@ -157,10 +157,13 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
         x = np.asarray(ref["ddx_M"], dtype=float)
         z = np.asarray(ref["ddz_M"], dtype=float)
         z_down, z_open = _z_down(z, z_positive, f"calibrate: reference {k}")
-        refs.append({"name": str(ref.get("name", f"reference {k}")), "soil": soil,
-                     "t": np.asarray(ref["t"], dtype=float),
-                     "ddx_M": -x if x_positive == "backward" else x,
-                     "ddz_M": z_down, "z_open": z_open})
+        entry = {"name": str(ref.get("name", f"reference {k}")), "soil": soil,
+                 "t": np.asarray(ref["t"], dtype=float),
+                 "ddx_M": -x if x_positive == "backward" else x,
+                 "ddz_M": z_down, "z_open": z_open}
+        if "G" in ref:  # a poor fit checks the other scale (and names it when that fits)
+            entry.update(G=float(ref["G"]), soil_scale=soil_scale)
+        refs.append(entry)
     return calibrate_records(base, refs, list(parameters), **options)
 
 

@@ -281,6 +281,10 @@ void bind_identify(py::module_& m) {
           r.soil = py::cast<Soil>(d["soil"]);
           r.z_open = d.contains("z_open") && py::cast<bool>(d["z_open"]);
           r.units_open = d.contains("units_open") && py::cast<bool>(d["units_open"]);
+          if (d.contains("G")) {  // the G [Pa] on "soil_scale" that "soil" was made from
+            r.G = py::cast<double>(d["G"]);
+            r.scale = soil_scale_from(py::cast<std::string>(d["soil_scale"]));
+          }
           const Array t = py::cast<Array>(d["t"]), x = py::cast<Array>(d["ddx_M"]),
                       z = py::cast<Array>(d["ddz_M"]);
           try {

@@ -347,12 +347,45 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
     }
   }
   // A poor fit, and the reference that makes it.
+  int scale_simulations = 0;  // those of the check of the other soil scale
   if (s2 > o.max_reduced_chi2) {
     cal.warnings.push_back(
         "poor fit: reduced chi^2 " + sig3(s2) + " > " + num(o.max_reduced_chi2) +
         ": the calibrated model does not reproduce the references to their noise, and the "
         "estimates are biased by what it lacks (a parameter not fitted, a reference's soil or "
         "driving torque not what is assumed, the record's axis conventions)");
+    // The references' G on the other soil scale (as identify's diagnosis checks a window's):
+    // named when it fits, or ten times better; the calibration stays on the scale given.
+    const SoilScale given = refs.front().scale;
+    if (std::all_of(refs.begin(), refs.end(), [&](const Reference& r) {
+          return std::isfinite(r.G) && r.scale == given;
+        })) {
+      std::vector<Reference> other = std::vector<Reference>(refs.begin(), refs.end());
+      try {
+        for (Reference& r : other) {
+          r.scale = r.scale == SoilScale::formulas ? SoilScale::table2 : SoilScale::formulas;
+          r.soil = soil_on_scale(r.G, r.scale, r.soil);
+          r.G = kNaN;  // checked once
+        }
+        CalibrateOptions o2 = o;
+        o2.profile = false;
+        const Calibration c2 = calibrate(base, other, o2);
+        scale_simulations = c2.simulations;
+        if (std::isfinite(c2.reduced_chi2) &&
+            (c2.reduced_chi2 <= o.max_reduced_chi2 || c2.reduced_chi2 < s2 / 10.0))
+          cal.warnings.push_back(
+              "the fit is far better with the references' G on the other soil scale (reduced "
+              "chi^2 " +
+              sig3(c2.reduced_chi2) + " against " + sig3(s2) + "): " +
+              (given == SoilScale::formulas
+                   ? "their soils are Table 2 soils (what run --G simulates): --soil-scale table2 "
+                     "(Python: soil_scale='table2')"
+                   : "their soils follow Appendix B's formulas: --soil-scale formulas (Python: "
+                     "soil_scale='formulas')"));
+      } catch (const Error&) {
+        // a G outside the other scale's range, or a calibration that fails there: nothing said
+      }
+    }
   }
   if (refs.size() > 1) {
     std::vector<double> shares;
@@ -422,7 +455,8 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
     }
     cal.estimates.push_back(e);
   }
-  cal.simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations);
+  cal.simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations) +
+                    scale_simulations;
   return cal;
 }
 
