@@ -328,6 +328,13 @@ def test_calibrate_then_identify_with_the_calibrated_case(tmp_path):
     for e, given in zip(auto["estimates"], cal["estimates"]):
         assert e["value"] == pytest.approx(given["value"], rel=1e-9)
     assert auto["warnings"][0].startswith("z_M'' fitted negated in G=15, G=60"), auto["warnings"]
+    # Read on the other soil scale, the same references fit poorly, and the warning names the
+    # scale they fit on (the references carry their G and scale to the library).
+    other = oscidrum.identify.calibrate([record(15e6, 1), record(60e6, 2)],
+                                        parameters=["roller.M0", "roller.P0"], z_positive="up",
+                                        soil_scale="table2", profile=False)
+    assert any("other soil scale" in w and "--soil-scale formulas" in w
+               for w in other["warnings"]), other["warnings"]
     path = tmp_path / "roller.toml"
     path.write_text(oscidrum.case_to_toml(cal["calibrated"]))
     case = oscidrum.load_case(str(path))
