@@ -453,8 +453,11 @@ std::string contact_mode(const Result& r) {
     const auto k = static_cast<std::size_t>(std::floor((e.t - t0) * r.frequency));
     if (k < per_period.size()) ++per_period[k];
   }
+  // A run without a steady state: its lift-offs may all lie before the sampled periods (an
+  // intermittent, chaotic flight). N reached 0 somewhere on its trajectory (min_N, 0 at every
+  // lift-off) without the contact being lost (another status): it lifted off.
   if (r.status == Status::max_periods_reached || r.status == Status::aperiodic)
-    return lift_offs > 0 ? "aperiodic" : "";
+    return lift_offs > 0 || r.diagnostics.min_N <= 0.0 ? "aperiodic" : "";
   if (r.status != Status::steady_state) return "";
   if (lift_offs == 0) return "permanent contact";
   const bool every = std::all_of(per_period.begin(), per_period.end(), [](int n) { return n > 0; });

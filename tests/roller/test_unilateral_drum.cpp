@@ -420,6 +420,23 @@ TEST(UnilateralDrum, ContactModeCountsTheLiftOffsOfOneRepetition) {
   EXPECT_EQ(r.diagnostics.contact_mode, "lift-off every 2 periods");
 }
 
+// A chaotic run with intermittent flight (58 Hz on G = 50 MN/m^2, docs/bifurcations.md): its
+// lift-offs need not fall in the periods sampled at the end, yet it is a run with lift-offs that
+// reaches no steady state, contact_mode "aperiodic" whatever max_periods (it was empty at 1500).
+TEST(UnilateralDrum, AnAperiodicRunWithLiftOffsIsSaidSoWhereverTheyFall) {
+  Case c = flying_case();
+  c.soil.G = 50e6;
+  c.roller.f = 58.0;
+  c.numerics.method = SteadyMethod::transient;
+  for (const int periods : {500, 1500}) {
+    c.numerics.max_periods = periods;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::aperiodic) << r.message;
+    EXPECT_EQ(r.diagnostics.min_N, 0.0);
+    EXPECT_EQ(r.diagnostics.contact_mode, "aperiodic") << periods << " periods";
+  }
+}
+
 TEST(UnilateralDrum, MetricsAcrossTheBoundaryOfLiftOff) {
   std::vector<Case> cases;
   for (double G = 44.0; G <= 49.01; G += 0.5) {
