@@ -1316,6 +1316,38 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       first = 0;
     }
     while (first < t.size() && t[first] < ts - slack) ++first;
+    // A window with no sample at all lies within a gap of the record (a logger paused between
+    // two passes): it keeps its place in time, with the gap as its reason (its one "sample" was
+    // the first after the gap, outside it: t_start = t_end there and a reason of a dead channel).
+    if (windowed && (first >= t.size() || t[first] > ts + W + slack)) {
+      RecordWindow w;
+      w.index = k;
+      w.first = std::min(first, t.size() - 1);
+      w.count = 0;
+      w.t_start = ts;
+      w.t_end = ts + W;
+      w.t_mid = ts + 0.5 * W;
+      w.f = w.drift = w.change = w.samples_per_period = kNaN;
+      w.position = kNaN;
+      if (!position.empty() && first > 0 && first < t.size()) {
+        const double u = (w.t_mid - t[first - 1]) / (t[first] - t[first - 1]);
+        w.position = position[first - 1] + u * (position[first] - position[first - 1]);
+      }
+      const double before = first > 0 ? t[first - 1] : ts, after = first < t.size() ? t[first] : ts + W;
+      w.reason = "no samples: the window lies within a gap of " + sig4(after - before) +
+                 " s at t = " + num(before + o.time_origin) + " s (" +
+                 num(std::round((after - before) * f_track * 100) / 100) +
+                 " excitation periods without a sample)";
+      RecordMetrics nan = detail::all_unavailable<RecordMetrics>(record_outputs());
+      nan.cycles = W * f_track;
+      nan.residual_x = nan.residual_z = kNaN;
+      nan.ddx_harmonics.assign(static_cast<std::size_t>(n_max) + 1, Harmonic{kNaN, kNaN});
+      nan.ddz_harmonics = nan.ddx_harmonics;
+      w.metrics = nan;
+      out.push_back(std::move(w));
+      if (end_window) break;
+      continue;
+    }
     std::size_t last = first;
     while (last + 1 < t.size() && t[last + 1] <= ts + W + slack) ++last;
     RecordWindow w;

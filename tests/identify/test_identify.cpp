@@ -856,6 +856,44 @@ TEST(Gates, GapsAreFlaggedOnlyWhereTheyAre) {
       << one[0].reason;
 }
 
+// A logger paused between two passes (3 s without a sample, the clock running on): the windows
+// inside the pause keep their place in time, with no samples and the gap as their reason (each
+// was the one sample after the pause, t_start = t_end, with the reason of a dead channel and
+// "-nan" samples per period); the windows on either side are valid.
+TEST(Gates, WindowsWithinAPauseKeepTheirPlaceAndNameTheGap) {
+  RecordSamples r = noisy_record(truth(17.3e6, false, 0.0), 2.0, 1000);
+  RecordSamples g;
+  for (std::size_t i = 0; i < r.t.size(); ++i) {
+    const double shift = r.t[i] >= 1.0 ? 3.0 : 0.0;
+    g.t.push_back(r.t[i] + shift);
+    g.ddx_M.push_back(r.ddx_M[i]);
+    g.ddz_M.push_back(r.ddz_M[i]);
+  }
+  const std::vector<RecordWindow> ws = windows(g, kF);
+  const double W = 20.0 / kF;
+  int inside = 0;
+  for (const RecordWindow& w : ws) {
+    if (w.count > 0) {
+      EXPECT_TRUE(w.t_end <= 1.0 || w.t_start >= 4.0) << w.index;
+      continue;
+    }
+    ++inside;
+    EXPECT_FALSE(w.valid);
+    EXPECT_GT(w.t_start, 0.99);
+    EXPECT_LT(w.t_end, 4.0);
+    EXPECT_NEAR(w.t_end - w.t_start, W, 1e-9);
+    EXPECT_NE(w.reason.find("no samples: the window lies within a gap of 3.0"), std::string::npos)
+        << w.reason;
+    EXPECT_NE(w.reason.find(" s at t = 0.99"),
+              std::string::npos)
+        << w.reason;
+    EXPECT_TRUE(std::isnan(w.metrics.area));
+  }
+  EXPECT_GE(inside, 4);  // 3 s of 0.51 s windows
+  EXPECT_TRUE(ws.front().valid) << ws.front().reason;
+  EXPECT_TRUE(ws.back().valid) << ws.back().reason;
+}
+
 // A dead channel (one value in every sample: 1 g of a vertical sensor that reads nothing else,
 // or zeros): analyze's windows stay valid on the other channel, without a change gate computed on
 // the constant's round-off (it failed windows as 'the RMS of z_M'' changes by -7 %'), and
