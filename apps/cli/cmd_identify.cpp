@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -94,8 +95,9 @@ Case base_case(const IdentifyCliOptions& o) {
   return resolve_case(o.config, o.c, spec);
 }
 
-// The measured response from `analyze --format json` (schema oscidrum-record/1).
-MeasuredResponse read_metrics(const std::string& path) {
+// The measured response from `analyze --format json` (schema oscidrum-record/1), and the
+// window's times, position and samples into `window` (NaN where the JSON has none).
+MeasuredResponse read_metrics(const std::string& path, RecordWindow& window) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the file");
   nlohmann::json j;
@@ -130,6 +132,15 @@ MeasuredResponse read_metrics(const std::string& path) {
   m.ddz_min = number("ddz_min");
   m.area = number("area");
   const double samples = j.contains("samples") ? number("samples") : 1000.0;
+  const auto optional = [&](const char* key) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  window.t_start = optional("t_start");
+  window.t_end = optional("t_end");
+  window.t_mid = optional("t");
+  window.position = optional("position");
+  window.samples_per_period = optional("samples_per_period");
+  window.count = static_cast<std::size_t>(std::max(0.0, samples));
   return measured_response(m, number("f"), static_cast<std::size_t>(std::max(1.0, samples)));
 }
 
@@ -359,10 +370,9 @@ int run(const IdentifyCliOptions& o) {
   std::string name = o.metrics_file;
   install_interrupt_handlers();
   if (!o.metrics_file.empty()) {
-    const MeasuredResponse d = read_metrics(o.metrics_file);
     PassEstimate p;
+    const MeasuredResponse d = read_metrics(o.metrics_file, p.window);  // and its times
     p.window.f = d.f;
-    p.window.position = NAN;
     p.window.change = NAN;  // measured by analyze (its JSON), not here
     p.identification = identify(base, d, io);
     // The record is read already: the advice on how to read it goes to analyze, which measured

@@ -617,6 +617,13 @@ TEST(CliIdentify, FromTheMetricsOfAnalyze) {
   EXPECT_NEAR(e["value"].get<double>() / 17.3e6, 1.0, 0.03);
   EXPECT_LE(e["lower"].get<double>(), 17.3e6);
   EXPECT_GE(e["upper"].get<double>(), 17.3e6);
+  // The window's times are analyze's (they were 0: lost on the way).
+  const nlohmann::json analyzed = nlohmann::json::parse(a.out);
+  for (const char* key : {"t_start", "t_end", "t"}) {
+    ASSERT_TRUE(analyzed[key].is_number()) << key;
+    EXPECT_EQ(j["windows"][0][key], analyzed[key]) << key;
+  }
+  EXPECT_GT(analyzed["t_end"].get<double>(), 0.5);
 }
 
 // The record's reading flags with --metrics were accepted without effect (and the advice of a
