@@ -124,8 +124,9 @@ bool Dynamics<OscillationDrum>::invalid(Phase phase, const Vector& x, double t, 
   if (D > kSingularSlip) return false;
   *stop = FlowStop::contact_lost;
   *why = detail::format(
-      "at t = %.9g s, delta = %.6g rad, the slip equations became singular (their determinant "
-      "fell to %.3g of its value at delta = 0, slip coefficient %.6g): the accelerations grow "
+      "at t = %.9g s, delta = %.6g rad, the slip equations became singular (their determinant, "
+      "checked at each step's end, is %.3g of its value at delta = 0: at or past its zero, the "
+      "run stops at 1e-3; slip coefficient %.6g): the accelerations grow "
       "without bound and the soil cannot keep the drum in contact (a Painleve-type singularity "
       "of the massless soil with a large friction coefficient, docs/model.md section 6)",
       t, x[0], D, m);
