@@ -983,9 +983,34 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
       }
       continue;
     }
-    const double q = parameter(next->v);
+    double q = parameter(next->v);
+    // A step past the end of the range: the last point is the orbit at `to` itself (the
+    // corrector with the parameter fixed there, from the previous point's tangent), not one up to
+    // a step beyond it, with bifurcations located past the range.
+    const bool past_end = o_.to > o_.from ? q > hi_q : q < lo_q;
+    if (past_end && cur.tangent[P] != 0.0) {
+      const double to_v = o_.to / sq_;
+      const double ds_end = (to_v - cur.v[P]) / cur.tangent[P];
+      VectorXd predicted = cur.v + ds_end * cur.tangent;
+      predicted[P] = to_v;
+      VectorXd fixed = VectorXd::Zero(cur.v.size());
+      fixed[P] = 1.0;
+      int end_iterations = iterations;
+      std::optional<Solution> end = correct(predicted, fixed, &end_iterations, std::abs(ds_end));
+      if (end) {
+        const std::optional<VectorXd> t = tangent(end->v, end->map, cur.tangent);
+        if (t) {
+          end->tangent = *t;
+          next = std::move(end);
+          iterations = end_iterations;
+          ds = std::abs(ds_end);
+          q = parameter(next->v);
+        }
+      }
+    }
     s += ds;
     BranchPoint pt = point(*next, s, iterations);
+    if (past_end && std::abs(pt.parameter - o_.to) <= 1e-12 * std::abs(o_.to)) pt.parameter = o_.to;
     locate(branch, cur, *next, ds, branch.points.back(), pt);
     branch.points.push_back(std::move(pt));
     if (o_.on_point) o_.on_point(static_cast<int>(branch.points.size()), q);
@@ -1014,8 +1039,8 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
                     start_time);
     }
     resection(cur);
-    if (q > hi_q || q < lo_q) {
-      const bool at_end = o_.to > o_.from ? q > hi_q : q < lo_q;
+    if (past_end || q > hi_q || q < lo_q) {
+      const bool at_end = past_end;
       return finish(branch, at_end ? BranchEnd::reached_end : BranchEnd::left_range,
                     at_end ? "reached " + at_value(o_.to)
                            : "the branch turned back and left the range at " + at_value(o_.from),
