@@ -12,29 +12,14 @@
 #include <complex>
 #include <string>
 
+#include "bifurcation_cases.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
 namespace {
 
-Case modulus_case() {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  c.numerics.method = SteadyMethod::shooting;
-  return c;
-}
-
-// The log-spiral study of docs/bifurcations.md: the paper's trough (k = 0.002, a = 0.601 m) at
-// 25 Hz with the unbalance and mu = 0.7, a period doubling near G = 125 MN/m^2.
-Case log_spiral_case() {
-  Case c = modulus_case();
-  set_field(c, "trough.k", 0.002);
-  set_field(c, "trough.a", 0.601);
-  set_field(c, "contact.mu", 0.7);
-  set_field(c, "roller.f", 25.0);
-  set_field(c, "roller.unbalance", 0.22877);
-  return c;
-}
+using test::log_spiral_case;
+using test::modulus_case;
 
 Result run_at(Case c, const std::string& key, double q) {
   set_field(c, key, q);

@@ -8,23 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "bifurcation_cases.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
 namespace {
 
-// The paper's log-spiral trough at 25 Hz with mu = 0.7 (docs/bifurcations.md): a period doubling
-// at G = 125.004 MN/m^2.
-Case log_spiral_case() {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  set_field(c, "trough.k", 0.002);
-  set_field(c, "trough.a", 0.601);
-  set_field(c, "contact.mu", 0.7);
-  set_field(c, "roller.f", 25.0);
-  set_field(c, "roller.unbalance", 0.22877);
-  return c;
-}
+using test::log_spiral_case;
 
 // The distinct values of a column (apart by more than `tol` of the largest magnitude).
 std::vector<double> distinct(std::vector<double> v, double tol) {
