@@ -391,9 +391,14 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   // "beside" (no journal next to a device node): such a sweep is not resumable.
   if (!o.out.empty() && !io::output_target(o.out).direct) {
     // A shard's journal is its own: resuming shard 2 never picks up the rows of shard 3.
-    const std::uint64_t journal_fingerprint =
+    // And a sweep that also writes --hdf5 is another journal than one that does not: resumed
+    // without it, its FILE.partial was left unfinished without a word.
+    std::uint64_t journal_fingerprint =
         p.sharded ? io::fingerprint(p.study, p.header + "\nshard " + p.shard.text())
                   : p.fingerprint;
+    if (!o.hdf5.empty())  // FNV-1a of the HDF5 file's path, mixed in
+      for (const char ch : "hdf5 " + std::filesystem::weakly_canonical(std::filesystem::absolute(o.hdf5)).string())
+        journal_fingerprint = (journal_fingerprint ^ static_cast<unsigned char>(ch)) * 0x100000001b3ULL;
     // Beside the file --out names, through symbolic links (--out /dev/stdout redirected to a
     // file: beside that file, never in /dev).
     out.journal = std::make_unique<io::Journal>(journal_path(o.out), journal_fingerprint, p.total,

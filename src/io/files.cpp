@@ -381,10 +381,10 @@ void Journal::open_locked(const std::string& header, std::size_t n_cases, bool r
                   "or a copy lost it); run with --restart to discard it");
     if (!same)
       throw Error("the journal " + path_ +
-                  " belongs to a different study (its cases or output columns changed): "
-                  "resume with the command that started it (the same study file and --set, "
-                  "--harmonics, --no-continuation), or run with --restart to discard it and "
-                  "start over");
+                  " belongs to a different study (its cases, output columns or HDF5 file "
+                  "changed): resume with the command that started it (the same study file and "
+                  "--set, --harmonics, --no-continuation, --hdf5), or run with --restart to "
+                  "discard it and start over");
   } else {
     good_bytes = 0;
   }

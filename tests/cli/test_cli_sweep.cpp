@@ -228,6 +228,34 @@ TEST(CliSweep, ResumeRefusesAJournalOfAnotherStudy) {
   EXPECT_EQ(count_lines(slurp(out)), 61u);
 }
 
+// A sweep interrupted while also writing --hdf5, resumed without it: its FILE.partial was left
+// unfinished without a word (the resumed sweep ended with exit 0 and no HDF5 file). The journal
+// knows the HDF5 file: resumed without it, it is refused; with it (named from another directory),
+// the sweep finishes both files.
+TEST(CliSweep, ResumeNeedsTheHdf5FileTheSweepWasWriting) {
+  TempDir dir;
+  const std::string study = write_slow_study(dir);
+  const std::string out = dir / "r.csv", h5 = dir / "r.h5";
+  const Outcome o = interrupt_after({"sweep", study, "--out", out, "--hdf5", h5, "--threads", "1"},
+                                    dir, out + ".journal", 1, SIGINT);
+  ASSERT_EQ(o.code, 130) << o.err;
+  ASSERT_TRUE(std::filesystem::exists(h5 + ".partial"));
+  const Outcome without = run({"sweep", study, "--out", out, "--resume", "-q"});
+  EXPECT_EQ(without.code, 2);
+  EXPECT_NE(without.err.find("HDF5 file changed"), std::string::npos) << without.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // The same file by another relative path (from its directory's parent).
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  std::filesystem::current_path(std::filesystem::path(dir.path()).parent_path());
+  const std::string name = std::filesystem::path(dir.path()).filename().string();
+  const Outcome with = run({"sweep", study, "--out", out, "--resume", "--hdf5", name + "/r.h5",
+                            "-q"});
+  std::filesystem::current_path(cwd);
+  EXPECT_EQ(with.code, 0) << with.err;
+  EXPECT_TRUE(std::filesystem::exists(h5));
+  EXPECT_FALSE(std::filesystem::exists(h5 + ".partial"));
+}
+
 // Issue 11 (2): a study split into 4 shards that run as separate processes (at the same time),
 // merged, is byte for byte the unsharded result when the cases are independent (without
 // continuation: with it, a shard's chains start from rest where the unsharded ones continue, which
