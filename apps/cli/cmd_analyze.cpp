@@ -244,7 +244,7 @@ int run(AnalyzeOptions o) {
            fmt(o.windows.f > 0 ? o.windows.f : w.f, 8) +
                (o.windows.f > 0 ? " (given)" : " (estimated from the record)"));
     s.line("excitation periods spanned", fmt(m.cycles, 4));
-    s.line("frequency drift (halves)", fmt(w.drift, 3));
+    s.line("frequency drift (between parts)", fmt(w.drift, 3));
     s.line("change of the response (parts)", fmt(w.change, 3) + " (relative RMS)");
     s.line("fit residual x_M'', z_M''",
            fmt(m.residual_x, 3) + ", " + fmt(m.residual_z, 3) + " (RMS relative to the signal)");

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -133,7 +133,8 @@ MeasuredResponse read_metrics(const std::string& path, RecordWindow& window) {
   m.area = number("area");
   const double samples = j.contains("samples") ? number("samples") : 1000.0;
   const auto optional = [&](const char* key) {
-    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>()
+                                                 : std::numeric_limits<double>::quiet_NaN();
   };
   window.t_start = optional("t_start");
   window.t_end = optional("t_end");

@@ -397,8 +397,10 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
         p.sharded ? io::fingerprint(p.study, p.header + "\nshard " + p.shard.text())
                   : p.fingerprint;
     if (!o.hdf5.empty())  // FNV-1a of the HDF5 file's path, mixed in
-      for (const char ch : "hdf5 " + std::filesystem::weakly_canonical(std::filesystem::absolute(o.hdf5)).string())
-        journal_fingerprint = (journal_fingerprint ^ static_cast<unsigned char>(ch)) * 0x100000001b3ULL;
+      for (const char ch :
+           "hdf5 " + std::filesystem::weakly_canonical(std::filesystem::absolute(o.hdf5)).string())
+        journal_fingerprint =
+            (journal_fingerprint ^ static_cast<unsigned char>(ch)) * 0x100000001b3ULL;
     // Beside the file --out names, through symbolic links (--out /dev/stdout redirected to a
     // file: beside that file, never in /dev).
     out.journal = std::make_unique<io::Journal>(journal_path(o.out), journal_fingerprint, p.total,

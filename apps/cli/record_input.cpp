@@ -129,8 +129,8 @@ void add_window_options(CLI::App& app, WindowOptions& o, double default_window,
                  "gate: largest fit residual (RMS relative to the signal) (default 0.5)")
       ->check(positive_number());
   app.add_option("--max-drift", o.gates.max_drift,
-                 "gate: largest relative change of f between the halves of a window (default "
-                 "0.002)")
+                 "gate: largest relative change of f between parts of a window (its quarters, "
+                 "beyond the noise; default 0.002)")
       ->check(positive_number());
   app.add_option("--clip-level", o.gates.clip_level,
                  "gate: |a| at or above this is clipped [m/s^2, after --units]; default: "

@@ -68,7 +68,7 @@ double refine_frequency(std::span<const double> t, std::span<const double> ddx_M
 /// flagged, and its metrics are NaN.
 struct RecordGates {
   double max_residual = 0.5;  ///< largest fit residual (relative RMS) of x_M'' or z_M'' [-]
-  double max_drift = 0.002;   ///< largest |f(second half) - f(first half)| / f in a window [-]
+  double max_drift = 0.002;   ///< largest |f(later part) - f(earlier part)| / f in a window [-]
   double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
   int clip_run = 3;  ///< this many equal samples running in the outer quarter of a channel's range
                      ///< in the window: clipped [-]
@@ -113,7 +113,10 @@ struct RecordWindow {
   std::size_t first = 0;  ///< index of the first sample in the record [-]
   std::size_t count = 0;  ///< samples in the window [-]
   double f = 0.0;         ///< excitation frequency of the window [Hz] (NaN if not fitted)
-  double drift = 0.0;     ///< (f(second half) - f(first half)) / f [-] (NaN if not fitted)
+  /// (f(later part) - f(earlier part)) / f for the two of the window's 4 equal parts (3 or 2
+  /// where a part would span less than a period; the halves where those hold too few samples)
+  /// whose f differ most beyond the noise (else most) [-] (NaN if not fitted or not measured)
+  double drift = 0.0;
   /// (RMS(later part) - RMS(earlier part)) / RMS(window) of the fitted periodic signal, for the
   /// two of the window's 4 equal parts (3 or 2 where shorter ones would not hold a period and
   /// 2 (2 n + 1) samples) and the channel, x_M'' or z_M'', that differ most [-] (NaN if not

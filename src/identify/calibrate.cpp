@@ -357,9 +357,8 @@ Calibration calibrate(const Case& base, std::span<const Reference> refs,
     // The references' G on the other soil scale (as identify's diagnosis checks a window's):
     // named when it fits, or ten times better; the calibration stays on the scale given.
     const SoilScale given = refs.front().scale;
-    if (std::all_of(refs.begin(), refs.end(), [&](const Reference& r) {
-          return std::isfinite(r.G) && r.scale == given;
-        })) {
+    if (std::all_of(refs.begin(), refs.end(),
+                    [&](const Reference& r) { return std::isfinite(r.G) && r.scale == given; })) {
       std::vector<Reference> other = std::vector<Reference>(refs.begin(), refs.end());
       try {
         for (Reference& r : other) {

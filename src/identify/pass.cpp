@@ -92,12 +92,12 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   // (a bad input, said once, rather than a failure repeated for each window).
   if (measured > 0 && too_few == measured &&
       std::none_of(out.begin(), out.end(), [](const PassEstimate& p) { return p.valid; }))
-    throw Error("identify: compare (--compare) = " + std::to_string(o.harmonics) +
-                " is more harmonics than the record's windows measure: " +
-                std::to_string(most_resolved) +
-                " (as many as their sampling resolves, N harmonics needing 2 N + 2 samples per "
-                "period); give --compare " +
-                std::to_string(most_resolved) + " or less");
+    throw Error(
+        "identify: compare (--compare) = " + std::to_string(o.harmonics) +
+        " is more harmonics than the record's windows measure: " + std::to_string(most_resolved) +
+        " (as many as their sampling resolves, N harmonics needing 2 N + 2 samples per "
+        "period); give --compare " +
+        std::to_string(most_resolved) + " or less");
   return out;
 }
 

@@ -191,9 +191,9 @@ std::string study_csv_row(const StudyColumns& columns, std::size_t index,
     // A diagnostic that does not apply (NaN: phi_drift of a status other than a steady state or
     // gross slip, final_change before two period boundaries, switches_per_period without a sampled
     // window) is an empty cell, as docs/outputs.md says, and null in JSON.
-    r.push_back(is_integer(d)     ? std::to_string(static_cast<long long>(v))
+    r.push_back(is_integer(d)   ? std::to_string(static_cast<long long>(v))
                 : std::isnan(v) ? std::string()
-                                  : format_double_short(v));
+                                : format_double_short(v));
   }
   if (!ok(res.status)) {  // only a steady state has metrics (its samples may not be kept)
     r.resize(r.size() + metric_cells);

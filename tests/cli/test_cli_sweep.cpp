@@ -248,8 +248,8 @@ TEST(CliSweep, ResumeNeedsTheHdf5FileTheSweepWasWriting) {
   const std::filesystem::path cwd = std::filesystem::current_path();
   std::filesystem::current_path(std::filesystem::path(dir.path()).parent_path());
   const std::string name = std::filesystem::path(dir.path()).filename().string();
-  const Outcome with = run({"sweep", study, "--out", out, "--resume", "--hdf5", name + "/r.h5",
-                            "-q"});
+  const Outcome with =
+      run({"sweep", study, "--out", out, "--resume", "--hdf5", name + "/r.h5", "-q"});
   std::filesystem::current_path(cwd);
   EXPECT_EQ(with.code, 0) << with.err;
   EXPECT_TRUE(std::filesystem::exists(h5));

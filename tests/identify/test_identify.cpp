@@ -884,9 +884,7 @@ TEST(Gates, WindowsWithinAPauseKeepTheirPlaceAndNameTheGap) {
     EXPECT_NEAR(w.t_end - w.t_start, W, 1e-9);
     EXPECT_NE(w.reason.find("no samples: the window lies within a gap of 3.0"), std::string::npos)
         << w.reason;
-    EXPECT_NE(w.reason.find(" s at t = 0.99"),
-              std::string::npos)
-        << w.reason;
+    EXPECT_NE(w.reason.find(" s at t = 0.99"), std::string::npos) << w.reason;
     EXPECT_TRUE(std::isnan(w.metrics.area));
   }
   EXPECT_GE(inside, 4);  // 3 s of 0.51 s windows
@@ -954,6 +952,28 @@ TEST(Gates, FrequencyDriftWithinAWindow) {
   ASSERT_GE(ws.size(), 1u);
   EXPECT_FALSE(ws[0].valid);
   EXPECT_NE(ws[0].reason.find("drift"), std::string::npos) << ws[0].reason;
+}
+
+// A frequency that wobbles (+-0.5 %, two cycles in the 40-period window: a hydraulic drive's
+// speed swinging) leaves the window's halves alike; its halves' drift was 2e-4, the window valid,
+// and G biased by twice its uncertainty. Its quarters differ.
+TEST(Gates, AFrequencyThatWobblesWithinAWindow) {
+  const double f0 = 39.0, A = 0.005, window = 40.0 / f0, fm = 2.0 / window;
+  RecordSamples r;
+  for (int i = 0; i < 1100; ++i) {
+    const double t = i * 1e-3;
+    const double phase = 2 * M_PI * f0 * t - (A * f0 / fm) * std::cos(2 * M_PI * fm * t);
+    r.t.push_back(t);
+    r.ddx_M.push_back(10 * std::sin(phase));
+    r.ddz_M.push_back(2 * std::sin(2 * phase + 0.3));
+  }
+  WindowOptions o;
+  o.window_periods = 40;
+  const std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, o);
+  ASSERT_GE(ws.size(), 1u);
+  EXPECT_FALSE(ws[0].valid);
+  EXPECT_GT(std::abs(ws[0].drift), 0.002);
+  EXPECT_NE(ws[0].reason.find("frequency drift"), std::string::npos) << ws[0].reason;
 }
 
 TEST(Windows, PositionFromSpeedIsInterpolatedAtTheCentres) {

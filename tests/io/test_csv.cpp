@@ -111,8 +111,7 @@ TEST(Csv, DiagnosticsThatDoNotApplyAreEmptyCells) {
   chattering.result.diagnostics.phi_drift = std::numeric_limits<double>::quiet_NaN();
   chattering.result.diagnostics.final_change = std::numeric_limits<double>::quiet_NaN();
   chattering.result.diagnostics.switches_per_period = 2.5;
-  const std::vector<std::string> row =
-      csv_split(study_csv_row(columns, 0, {5e6}, chattering));
+  const std::vector<std::string> row = csv_split(study_csv_row(columns, 0, {5e6}, chattering));
   ASSERT_EQ(row.size(), header.size());
   const auto cell = [&](const std::string& name) {
     const auto at = std::find(header.begin(), header.end(), name);
