@@ -367,7 +367,7 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, sample, n_
                   on_case_done):
     n = len(cases)
     if chunk_size is None:
-        workers = getattr(executor, "_max_workers", None) or os.cpu_count() or 1
+        workers = _executor_workers(executor)
         chunk_size = max(1, min(DEFAULT_CHUNK_SIZE, math.ceil(n / workers))) if n else 1
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
         raise _core.Error(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
@@ -396,4 +396,25 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, sample, n_
         for f in futures:
             f.cancel()
         raise Interrupted(_not_run(cases, outcomes)) from None
+    except BaseException:
+        # An exception of on_case_done or progress (or a failed chunk): no new cases, as a local
+        # study stops; the chunks not started yet are cancelled (they ran to the end before).
+        for f in futures:
+            f.cancel()
+        raise
     return StudyResult(cases, outcomes)
+
+
+def _executor_workers(executor) -> int:
+    """How many workers an executor has, for the default chunk size: concurrent.futures' and
+    mpi4py's pools say it (_max_workers); a Dask ClientExecutor's are its cluster's workers (not
+    the cores of the machine running the client: a 2-core login node split a study into 2 tasks
+    whatever the cluster's size); otherwise this machine's cores."""
+    workers = getattr(executor, "_max_workers", None)
+    if not workers:
+        client = getattr(executor, "_client", None)
+        try:
+            workers = len(client.nthreads()) if client is not None else None
+        except Exception:  # a client that cannot say (closed, not Dask's)
+            workers = None
+    return max(1, int(workers or os.cpu_count() or 1))

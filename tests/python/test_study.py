@@ -141,6 +141,50 @@ def test_thread_pool_executor_equals_local(local):
     assert res.cases == local.cases
 
 
+def test_an_exception_of_the_callback_cancels_the_chunks_not_started():
+    """An exception in on_case_done stops a local study; on an executor the chunks submitted ran
+    on to the end (a Dask or MPI study kept the cluster busy for its whole length). They are
+    cancelled, as on Ctrl-C."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    class Recording(ThreadPoolExecutor):
+        futures = []
+
+        def submit(self, *args, **kwargs):
+            f = super().submit(*args, **kwargs)
+            self.futures.append(f)
+            return f
+
+    def fail(index, outcome):
+        raise RuntimeError("stop here")
+
+    cases = [oscidrum.Case(table2_G=G, continuation=False) for G in (5e6, 10e6, 15e6, 20e6) * 5]
+    with Recording(1) as pool:
+        with pytest.raises(RuntimeError, match="stop here"):
+            oscidrum.run_study(cases, executor=pool, chunk_size=1, threads=1, on_case_done=fail)
+    assert len(pool.futures) == 20
+    assert sum(f.cancelled() for f in pool.futures) >= 15
+
+
+def test_default_chunks_follow_the_executors_workers():
+    """The default chunk size splits a study over the executor's workers: a pool's own count, a
+    Dask ClientExecutor's cluster workers (not the client machine's cores)."""
+    from concurrent.futures import ThreadPoolExecutor
+    from oscidrum.study import _executor_workers
+
+    class Client:
+        def nthreads(self):
+            return {f"tcp://w{k}": 1 for k in range(8)}
+
+    class DaskLike:
+        _client = Client()
+
+    with ThreadPoolExecutor(3) as pool:
+        assert _executor_workers(pool) == 3
+    assert _executor_workers(DaskLike()) == 8
+    assert _executor_workers(object()) == (os.cpu_count() or 1)
+
+
 def test_samples_reach_the_callback_only_when_asked(local):
     """Without keep_samples no case is sampled, unless samples_in_callback: then on_case_done
     sees each steady state's samples, and the outcomes returned (locally and from an executor)
@@ -181,6 +225,8 @@ def test_dask_distributed_executor(local):
             distributed.Client(cluster) as client:
         res = oscidrum.run_study(grid(), executor=client.get_executor(), chunk_size=4)
         workers = client.run(os.getpid)
+        from oscidrum.study import _executor_workers
+        assert _executor_workers(client.get_executor()) == 2  # the cluster's, for chunk_size
     assert len(set(workers.values())) == 2
     same(res, local)
 
