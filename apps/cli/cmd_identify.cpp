@@ -43,6 +43,7 @@ struct IdentifyCliOptions {
   bool fit_mu = false, fit_MMd = false, use_peaks = false, use_area = false, no_profile = false;
   bool transient = false;
   int compare = 4;
+  double gain_uncertainty = 0.0;
   std::string csv, json, geojson, plot_dir, format = "table";
   int plot_window = -1;
   bool quiet = false;
@@ -359,6 +360,7 @@ int run(const IdentifyCliOptions& o) {
   io.harmonics = o.compare;
   io.use_peaks = o.use_peaks;
   io.use_area = o.use_area;
+  io.gain_uncertainty = o.gain_uncertainty;
   io.profile = !o.no_profile;
   io.shooting = !o.transient;
   io.measure.harmonics = o.windows.n_max;
@@ -462,6 +464,7 @@ int run(const IdentifyCliOptions& o) {
       {"fit_mu", o.fit_mu},
       {"fit_MMd", o.fit_MMd},
       {"compare_harmonics", o.compare},
+      {"gain_uncertainty", o.gain_uncertainty},
       {"model_method", o.transient ? "transient" : "shooting"},
       {"window_periods", window_periods},
       {"reading",
@@ -652,6 +655,11 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "harmonics n = 1 ... N of x_M'' and z_M'' compared (default 4)")
       ->check(CLI::Range(1, kMaxComparedHarmonics))
       ->group(fit);
+  sub->add_option("--gain-uncertainty", o->gain_uncertainty,
+                  "relative standard uncertainty of each accelerometer channel's gain (its "
+                  "calibration, e.g. 0.02), 0 ... 0.5; its effect on each estimate (refits with "
+                  "each gain that far off) is added to the uncertainty and the 95 % interval "
+                  "(default 0: not counted; a gain error biases G, which the fit cannot see)");
   sub->add_flag("--use-peaks", o->use_peaks, "compare the peaks of x_M'' and z_M'' too")
       ->group(fit);
   sub->add_flag("--use-area", o->use_area, "compare the area of the z_M''(x_M'') figure too")

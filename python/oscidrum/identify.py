@@ -58,7 +58,8 @@ def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, boo
 # The options identify passes on to identify_record (its keyword arguments but the arrays, the
 # position and z_open, which identify sets).
 _IDENTIFY_OPTIONS = ("f", "window", "hop", "n_max", "estimate", "fit_mu", "fit_MMd", "compare",
-                     "use_peaks", "use_area", "profile", "shooting", "soil_scale", "units_open")
+                     "use_peaks", "use_area", "profile", "shooting", "soil_scale", "units_open",
+                     "gain_uncertainty")
 
 
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,

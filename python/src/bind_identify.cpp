@@ -177,7 +177,7 @@ void bind_identify(py::module_& m) {
          const std::optional<Array>& position, double f, std::optional<double> window, double hop,
          int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, int compare,
          bool use_peaks, bool use_area, bool profile, bool shooting, const std::string& soil_scale,
-         bool z_open, bool units_open) {
+         bool z_open, bool units_open, double gain_uncertainty) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
         // window=None: 40 periods, or the whole record when it is shorter.
@@ -196,6 +196,7 @@ void bind_identify(py::module_& m) {
         io.shooting = shooting;
         io.z_open = z_open;
         io.units_open = units_open;
+        io.gain_uncertainty = gain_uncertainty;
         io.measure.harmonics = n_max;
         // Ctrl-C between windows (a pass of a long record takes minutes; it could not be
         // interrupted): the main thread watches while the pass runs on a thread of its own.
@@ -222,6 +223,7 @@ void bind_identify(py::module_& m) {
             d[py::str(e.name + "_u")] = e.standard_uncertainty;
             d[py::str(e.name + "_lo")] = e.lower;
             d[py::str(e.name + "_hi")] = e.upper;
+            if (io.gain_uncertainty > 0.0) d[py::str(e.name + "_u_gain")] = e.gain_uncertainty;
           }
           if (io.modulus) d["soil_scale"] = soil_scale;
           d["tau"] = p.valid ? id.time_shift : NAN;
@@ -246,7 +248,7 @@ void bind_identify(py::module_& m) {
       py::arg("fit_mu") = false, py::arg("fit_MMd") = false, py::arg("compare") = 4,
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
       py::arg("shooting") = true, py::arg("soil_scale") = "formulas", py::arg("z_open") = false,
-      py::arg("units_open") = false,
+      py::arg("units_open") = false, py::arg("gain_uncertainty") = 0.0,
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "

@@ -32,6 +32,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::string num(double v) { return detail::shortest(v); }
 
 void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
+  if (!(o.gain_uncertainty >= 0.0 && o.gain_uncertainty <= 0.5))
+    throw Error("identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
+                "standard uncertainty of each channel's gain); got " +
+                num(o.gain_uncertainty));
   if (!(std::isfinite(data.f) && data.f > 0))
     throw Error("identify: f must be > 0 [Hz]; got " + num(data.f));
   if (o.harmonics < 1 || static_cast<int>(data.ddx.size()) < o.harmonics ||
@@ -547,6 +551,48 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
   for (std::size_t j = 0; j < q; ++j)
     id.estimates.push_back(
         estimate_of(pr, fit, j, se[static_cast<Eigen::Index>(j)], c, s2, o.profile, id.warnings));
+  // The channels' gain uncertainty (a sensor's calibration): each channel's gain one standard
+  // uncertainty off, refitted from the estimate; the changes, in quadrature over the two
+  // independent channels, widen the standard uncertainty and the interval in quadrature.
+  int gain_simulations = 0;
+  if (o.gain_uncertainty > 0.0) {
+    const double g = 1.0 + o.gain_uncertainty;
+    std::vector<double> shift2(q, 0.0);
+    bool ok = true;
+    for (const bool x : {true, false}) {
+      Problem off(base, detail::scaled_channels(data, x ? g : 1.0, x ? 1.0 : g), o,
+                  sampled ? detail::Comparison::sampled : detail::Comparison::harmonics);
+      off.count_steps_in(plain.steps_counter());
+      const detail::Fit refit = detail::levenberg_marquardt(off, fit.p, all, o.max_iterations);
+      gain_simulations += off.simulations();
+      if (!std::isfinite(refit.S)) {
+        ok = false;
+        break;
+      }
+      for (std::size_t j = 0; j < q; ++j) {
+        const Unknown kind = pr.unknowns()[j];
+        const auto jj = static_cast<Eigen::Index>(j);
+        const double d = detail::to_physical(kind, refit.p[jj], pr.M0()) -
+                         detail::to_physical(kind, fit.p[jj], pr.M0());
+        shift2[j] += d * d;
+      }
+    }
+    if (!ok) {
+      id.warnings.push_back(
+          "the model fails with a channel's gain " + num(o.gain_uncertainty) +
+          " off: the gain uncertainty is not counted in the uncertainties");
+    } else {
+      for (std::size_t j = 0; j < q; ++j) {
+        Estimate& e = id.estimates[j];
+        const double ug = std::sqrt(shift2[j]);
+        e.gain_uncertainty = ug;
+        e.standard_uncertainty = std::hypot(e.standard_uncertainty, ug);
+        const double wide = c * ug;  // the gains' part of a 95 % interval
+        if (std::isfinite(e.lower)) e.lower = e.value - std::hypot(e.value - e.lower, wide);
+        if (std::isfinite(e.upper)) e.upper = e.value + std::hypot(e.upper - e.value, wide);
+      }
+    }
+  }
   // mu of a drum that does not slip: every mu above the friction the steady state needs gives
   // the same response, whatever the Jacobian or the profile (within the budget) saw.
   const detail::Simulated& at_estimate = pr.simulate_at(fit.p);
@@ -560,7 +606,8 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
         num(std::round(at_estimate.friction_ratio * 1000) / 1000) +
         "; every larger mu gives the same response");
   }
-  id.simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations);
+  id.simulations = plain.simulations() + (sampled ? sampled->simulations() : other_simulations) +
+                   gain_simulations;
   // The window's estimator (a few hundred kB) is not kept with each window of a pass.
   id.measured.alias_t.clear();
   id.measured.alias_t.shrink_to_fit();

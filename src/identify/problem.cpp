@@ -536,22 +536,24 @@ MeasuredResponse swapped(MeasuredResponse d) {
   return d;
 }
 
-MeasuredResponse scaled(MeasuredResponse d, double s) {
-  for (auto& c : d.ddx) c *= s;
-  for (auto& c : d.ddz) c *= s;
-  for (double& c : d.cov_x) c *= s * s;
-  for (double& c : d.cov_z) c *= s * s;
-  for (double& c : d.trend_x) c *= s;
-  for (double& c : d.trend_z) c *= s;
-  d.sigma_x *= s;
-  d.sigma_z *= s;
-  d.noise_x *= s;
-  d.noise_z *= s;
-  d.ddx_max *= s;
-  d.ddx_min *= s;
-  d.ddz_max *= s;
-  d.ddz_min *= s;
-  d.area *= s * s;
+MeasuredResponse scaled(MeasuredResponse d, double s) { return scaled_channels(std::move(d), s, s); }
+
+MeasuredResponse scaled_channels(MeasuredResponse d, double sx, double sz) {
+  for (auto& c : d.ddx) c *= sx;
+  for (auto& c : d.ddz) c *= sz;
+  for (double& c : d.cov_x) c *= sx * sx;
+  for (double& c : d.cov_z) c *= sz * sz;
+  for (double& c : d.trend_x) c *= sx;
+  for (double& c : d.trend_z) c *= sz;
+  d.sigma_x *= sx;
+  d.sigma_z *= sz;
+  d.noise_x *= sx;
+  d.noise_z *= sz;
+  d.ddx_max *= sx;
+  d.ddx_min *= sx;
+  d.ddz_max *= sz;
+  d.ddz_min *= sz;
+  d.area *= sx * sz;
   return d;
 }
 

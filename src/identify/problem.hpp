@@ -192,6 +192,8 @@ MeasuredResponse swapped(MeasuredResponse d);
 /// The record with its accelerations s times as large: read in another unit (s = g: a record in
 /// g read as m/s^2; s = 1/g the other way round).
 MeasuredResponse scaled(MeasuredResponse d, double s);
+/// The record's x_M'' times sx and z_M'' times sz (a gain of each channel's sensor).
+MeasuredResponse scaled_channels(MeasuredResponse d, double sx, double sz);
 
 /// What a fit in a reading the record left open says (IdentifyOptions::z_open, units_open;
 /// Reference::z_open, units_open): z_M'' negated, the accelerations in g, or both, `where` (a

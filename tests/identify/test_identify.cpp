@@ -230,6 +230,43 @@ TEST(Identify, StickSlipG81WithoutDrivingTorque) {
   EXPECT_NEAR(id.f / kF, 1.0, 1e-4);
 }
 
+// A z channel whose gain is 2 % high (a sensor's calibration): the fit cannot tell it from the
+// soil (reduced chi^2 near 1) and G is biased by several of its uncertainties. With the gains'
+// uncertainty counted (0.02), the estimate's gain part is the change of G when each channel's gain
+// is that far off, in quadrature (checked by identifying the records so scaled), and the widened
+// interval holds the truth.
+TEST(Identify, TheChannelsGainUncertaintyWidensTheEstimate) {
+  const double G = 17.3e6, gain = 0.02;
+  RecordSamples r = noisy_record(truth(G, false, 0.0), 1.0, 1000, 11);
+  for (double& z : r.ddz_M) z *= 1.0 + gain;
+  const Identification plain = identify_whole(base(false, 0.0), r, {});
+  ASSERT_EQ(plain.estimates.size(), 1u);
+  const Estimate& p = plain.estimates[0];
+  EXPECT_GT(std::abs(p.value - G), 3.0 * p.standard_uncertainty) << p.value;  // the bias
+  EXPECT_LT(p.upper, G);  // the interval misses the truth (a z gain too high lowers G)
+  EXPECT_EQ(p.gain_uncertainty, 0.0);
+  IdentifyOptions o;
+  o.gain_uncertainty = gain;
+  const Identification counted = identify_whole(base(false, 0.0), r, o);
+  const Estimate& e = counted.estimates[0];
+  EXPECT_EQ(e.value, p.value);
+  EXPECT_NEAR(e.standard_uncertainty, std::hypot(p.standard_uncertainty, e.gain_uncertainty),
+              1e-9 * e.standard_uncertainty);
+  EXPECT_LE(e.lower, G);
+  EXPECT_GE(e.upper, G);
+  // The gain part, by identifying the record with each channel's gain off.
+  double shift2 = 0.0;
+  for (const bool x : {true, false}) {
+    RecordSamples off = r;
+    for (double& v : x ? off.ddx_M : off.ddz_M) v *= 1.0 + gain;
+    const double d = identify_whole(base(false, 0.0), off, {}).estimates[0].value - p.value;
+    shift2 += d * d;
+  }
+  EXPECT_NEAR(e.gain_uncertainty, std::sqrt(shift2), 0.02 * std::sqrt(shift2));
+  o.gain_uncertainty = 0.7;
+  EXPECT_THROW((void)identify_pass(base(false, 0.0), r.t, r.ddx_M, r.ddz_M, {}, {}, o), Error);
+}
+
 // A soft soil below the start scan's grid and a stiff one near its upper end (G = 4, 8, ..., 128
 // MN/m^2, walked downhill from 16 and 32 MN/m^2), each identified from a cold start.
 TEST(Identify, SoftAndStiffSoilsFromAColdStart) {

@@ -31,6 +31,12 @@ def test_identify_recovers_G_with_an_interval_that_covers_it():
     assert row["G_lo"] <= 17.3e6 <= row["G_hi"]
     assert abs(row["f"] / F - 1) < 1e-4
     assert row["fitted"].get("soil.G") == pytest.approx(row["G"])
+    # The sensors' gain uncertainty, counted: the same G, a wider uncertainty with its gain part.
+    wide = oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window=0,
+                                      gain_uncertainty=0.02)[0]
+    assert wide["G"] == row["G"] and wide["G_u_gain"] > 0
+    assert wide["G_u"] == pytest.approx(math.hypot(row["G_u"], wide["G_u_gain"]), rel=1e-9)
+    assert wide["G_lo"] < row["G_lo"] and wide["G_hi"] > row["G_hi"]
 
 
 def test_a_record_shorter_than_the_default_window_is_identified_whole():
