@@ -128,12 +128,12 @@ struct IdentifyOptions {
   /// the Table 2 soil; (42) as printed does not reproduce Table 2's stiffness columns, so the
   /// same record gives different G on the two scales, docs/identify.md).
   SoilScale soil_scale = SoilScale::formulas;
-  bool fit_mu = false;            ///< estimate contact.mu too
-  bool fit_MMd = false;           ///< estimate the driving torque MMd too
-  int harmonics = 4;              ///< compare C_n for n = 1 ... harmonics [-]
-  bool use_peaks = false;         ///< also compare the four peaks of x_M'' and z_M''
-  bool use_area = false;          ///< also compare the area of the z_M''(x_M'') figure
-  bool profile = true;            ///< 95 % intervals from the profile of the objective
+  bool fit_mu = false;     ///< estimate contact.mu too
+  bool fit_MMd = false;    ///< estimate the driving torque MMd too
+  int harmonics = 4;       ///< compare C_n for n = 1 ... harmonics [-]
+  bool use_peaks = false;  ///< also compare the four peaks of x_M'' and z_M''
+  bool use_area = false;   ///< also compare the area of the z_M''(x_M'') figure
+  bool profile = true;     ///< 95 % intervals from the profile of the objective
   /// Relative standard uncertainty of each accelerometer channel's gain (its calibration), the
   /// channels independent [-]; 0: not counted. The harmonics alone cannot tell a gain error from
   /// the soil (z_M'' 2 % high moves G by about -1.7 % at a reduced chi^2 near 1): its effect on
@@ -178,12 +178,12 @@ struct Estimate {
   double value = 0.0;
   /// From the Jacobian and the residual noise, and the gains' (gain_uncertainty) [unit]
   double standard_uncertainty = 0.0;
-  double lower = 0.0, upper = 0.0;    ///< 95 % interval from the profile [unit] (NaN: none)
+  double lower = 0.0, upper = 0.0;  ///< 95 % interval from the profile [unit] (NaN: none)
   /// The part of the standard uncertainty that the channels' gain uncertainty makes
   /// (IdentifyOptions::gain_uncertainty; 0 when not counted) [unit]
   double gain_uncertainty = 0.0;
-  bool lower_open = false;            ///< the profile stayed flat down to the parameter's bound
-  bool upper_open = false;            ///< ... up to its bound
+  bool lower_open = false;  ///< the profile stayed flat down to the parameter's bound
+  bool upper_open = false;  ///< ... up to its bound
 };
 
 /// The result of one identification.

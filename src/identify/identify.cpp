@@ -33,9 +33,10 @@ std::string num(double v) { return detail::shortest(v); }
 
 void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
   if (!(o.gain_uncertainty >= 0.0 && o.gain_uncertainty <= 0.5))
-    throw Error("identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
-                "standard uncertainty of each channel's gain); got " +
-                num(o.gain_uncertainty));
+    throw Error(
+        "identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
+        "standard uncertainty of each channel's gain); got " +
+        num(o.gain_uncertainty));
   if (!(std::isfinite(data.f) && data.f > 0))
     throw Error("identify: f must be > 0 [Hz]; got " + num(data.f));
   if (o.harmonics < 1 || static_cast<int>(data.ddx.size()) < o.harmonics ||
@@ -578,9 +579,8 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
       }
     }
     if (!ok) {
-      id.warnings.push_back(
-          "the model fails with a channel's gain " + num(o.gain_uncertainty) +
-          " off: the gain uncertainty is not counted in the uncertainties");
+      id.warnings.push_back("the model fails with a channel's gain " + num(o.gain_uncertainty) +
+                            " off: the gain uncertainty is not counted in the uncertainties");
     } else {
       for (std::size_t j = 0; j < q; ++j) {
         Estimate& e = id.estimates[j];

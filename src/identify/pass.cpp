@@ -25,9 +25,10 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
                 std::to_string(kMaxComparedHarmonics) + "] harmonics; got " +
                 std::to_string(o.harmonics));
   if (!(o.gain_uncertainty >= 0.0 && o.gain_uncertainty <= 0.5))
-    throw Error("identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
-                "standard uncertainty of each channel's gain); got " +
-                detail::shortest(o.gain_uncertainty));
+    throw Error(
+        "identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
+        "standard uncertainty of each channel's gain); got " +
+        detail::shortest(o.gain_uncertainty));
   if (windows.n_max > 0 && o.harmonics > windows.n_max)
     throw Error(
         "identify: compare (--compare) must be <= the harmonics fitted (n_max, "

@@ -536,7 +536,9 @@ MeasuredResponse swapped(MeasuredResponse d) {
   return d;
 }
 
-MeasuredResponse scaled(MeasuredResponse d, double s) { return scaled_channels(std::move(d), s, s); }
+MeasuredResponse scaled(MeasuredResponse d, double s) {
+  return scaled_channels(std::move(d), s, s);
+}
 
 MeasuredResponse scaled_channels(MeasuredResponse d, double sx, double sz) {
   for (auto& c : d.ddx) c *= sx;

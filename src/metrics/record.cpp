@@ -981,8 +981,7 @@ std::vector<double> drift_noise(std::span<const double> t, std::span<const doubl
   const double nu = 2.0 * std::numbers::pi * f;
   std::vector<double> sd;  // of each part's f / f
   for (std::size_t part = 0; part < parts; ++part) {
-    const std::size_t from = t.size() * part / parts,
-                      count = t.size() * (part + 1) / parts - from;
+    const std::size_t from = t.size() * part / parts, count = t.size() * (part + 1) / parts - from;
     const std::span<const double> th = t.subspan(from, count);
     const double mid = 0.5 * (th.front() + th.back());
     const auto n = static_cast<Eigen::Index>(count);
@@ -1457,7 +1456,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // halves, as before.
       const auto min_samples = static_cast<std::size_t>(2 * (2 * n_max + 1));
       std::size_t parts = 4;
-      while (parts > 2 && (aw.count / parts < min_samples || periods < static_cast<double>(parts))) --parts;
+      while (parts > 2 && (aw.count / parts < min_samples || periods < static_cast<double>(parts)))
+        --parts;
       if (aw.count / parts < min_samples) parts = 0;
       std::vector<double> part_f;
       if (parts >= 2) {
