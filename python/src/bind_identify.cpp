@@ -81,6 +81,8 @@ RecordWindow window_of(py::handle item, std::size_t i, std::span<const double> t
                 ": t_start, samples, f, valid or metrics is not of the type "
                 "analyze_windows gives (float, int, float, bool, RecordMetrics)");
   }
+  // A window within a pause of the record: no samples (its t_start no sample's), never valid.
+  if (w.count == 0 && !w.valid) return w;
   const auto first = std::lower_bound(t.begin(), t.end(), w.t_start);
   if (first == t.end() || *first != w.t_start)
     throw Error(where + ": its t_start = " + std::to_string(w.t_start) +

@@ -216,6 +216,25 @@ def test_record_kb_reads_each_windows_own_angles():
     assert kb[1] == pytest.approx(sim.kb, rel=1e-6) and kb[2] == pytest.approx(sim.kb, rel=1e-6)
 
 
+def test_record_kb_takes_the_windows_of_a_record_with_a_pause():
+    """A logger paused for 20 periods: the windows inside the pause have no samples (their t_start
+    no sample's); record_kb passes over them as over any invalid window (it refused them as
+    windows 'not of this t') and gives the others their kb."""
+    case = vibratory(12e6)
+    sim = oscidrum.compute_metrics(oscidrum.simulate(case), case=case)
+    r = oscidrum.synthetic_record([case], duration=6.0 / F_VIB, sample_rate=2000.0 * F_VIB)
+    t = np.where(r["t"] < 3.0 / F_VIB, r["t"], r["t"] + 20.0 / F_VIB)
+    alpha = 2.0 * math.pi * F_VIB * t
+    windows = oscidrum.analyze_windows(t, r["ddx_M"], r["ddz_M"], f=F_VIB, window=3)
+    empty = [w for w in windows if w["samples"] == 0]
+    assert empty and all(not w["valid"] and "no samples" in w["reason"] for w in empty)
+    assert oscidrum.record_kb(windows, t, alpha, case) == ""
+    valid = [w for w in windows if w["valid"]]
+    assert len(valid) >= 2  # one on either side of the pause (and the record's end window)
+    for w in valid:
+        assert w["metrics"].kb == pytest.approx(sim.kb, rel=1e-6)
+
+
 def two_period_record():
     """A synthetic record of two periods of the vibratory drum at G = 12 MN/m^2: the case, t, the
     unbalance angle nu t and its analyze_windows."""
