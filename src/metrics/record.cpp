@@ -263,7 +263,7 @@ double relative_rms(std::span<const double> t, std::span<const double> y, const 
 // then not resolved).
 detail::HalfHarmonics half_harmonics(std::span<const double> t, std::span<const double> y, double f,
                                      int n_max, double cycles) {
-  if (cycles < 2.0) {
+  if (cycles < 2.0 - 1e-9) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {nan, nan, nan};
   }
@@ -391,8 +391,13 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
     // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
     double overtones = 0.0;
     for (int n = 2; n <= n_max; ++n) overtones += std::pow(rf.hx[n].amplitude, 2);
+    // The periods the samples cover, their last interval included (as for the one-period check
+    // above): two periods of samples, as `run --csv` writes them, span 1.999 between the first
+    // and the last, and f/2 was taken as unresolved (rmv and ccv NaN for run's own CSV).
+    const double covered =
+        m.cycles * static_cast<double>(t.size()) / static_cast<double>(t.size() - 1);
     detail::set_spectral_metrics(m, std::move(rf.hx), std::move(rf.hz), overtones, n_max,
-                                 half_harmonics(t, ddz, f, n_max, m.cycles));
+                                 half_harmonics(t, ddz, f, n_max, covered));
   }
 
   // The fitted periodic signals over one period, for the extremes and the area, without their
@@ -1316,10 +1321,19 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       first = 0;
     }
     while (first < t.size() && t[first] < ts - slack) ++first;
-    // A window with no sample at all lies within a gap of the record (a logger paused between
-    // two passes): it keeps its place in time, with the gap as its reason (its one "sample" was
-    // the first after the gap, outside it: t_start = t_end there and a reason of a dead channel).
-    if (windowed && (first >= t.size() || t[first] > ts + W + slack)) {
+    // A window with no sample, or one, lies within a gap of the record (a logger paused between
+    // two passes): it keeps its place in time, with the gap as its reason (its one "sample", the
+    // first after the gap, gave t_start = t_end there, "-nan" samples per period and the reason of
+    // a dead channel). One sample counts so only where a step beside it is a gap.
+    const bool none = first >= t.size() || t[first] > ts + W + slack;
+    const bool one = !none && (first + 1 >= t.size() || t[first + 1] > ts + W + slack);
+    double before = first > 0 ? t[first - 1] : ts, after = first < t.size() ? t[first] : ts + W;
+    if (one) {  // the longer step beside the one sample
+      const double left = first > 0 ? t[first] - t[first - 1] : 0.0,
+                   right = first + 1 < t.size() ? t[first + 1] - t[first] : 0.0;
+      if (right > left) before = t[first], after = t[first + 1];
+    }
+    if (windowed && (none || (one && after - before > o.gates.max_gap / f_track))) {
       RecordWindow w;
       w.index = k;
       w.first = std::min(first, t.size() - 1);
@@ -1333,10 +1347,9 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         const double u = (w.t_mid - t[first - 1]) / (t[first] - t[first - 1]);
         w.position = position[first - 1] + u * (position[first] - position[first - 1]);
       }
-      const double before = first > 0 ? t[first - 1] : ts,
-                   after = first < t.size() ? t[first] : ts + W;
-      w.reason = "no samples: the window lies within a gap of " + sig4(after - before) +
-                 " s at t = " + num(before + o.time_origin) + " s (" +
+      w.reason = std::string(none ? "no samples" : "one sample at its edge, not analysed") +
+                 ": the window lies within a gap of " + sig4(after - before) + " s at t = " +
+                 num(before + o.time_origin) + " s (" +
                  num(std::round((after - before) * f_track * 100) / 100) +
                  " excitation periods without a sample)";
       RecordMetrics nan = detail::all_unavailable<RecordMetrics>(record_outputs());

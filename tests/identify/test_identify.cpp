@@ -927,6 +927,26 @@ TEST(Gates, WindowsWithinAPauseKeepTheirPlaceAndNameTheGap) {
   EXPECT_GE(inside, 4);  // 3 s of 0.51 s windows
   EXPECT_TRUE(ws.front().valid) << ws.front().reason;
   EXPECT_TRUE(ws.back().valid) << ws.back().reason;
+  // Windows of one period over a pause of 3 s after 2 s at 1 kHz: the window whose end reaches
+  // the first sample after the pause holds that one sample; it lies within the gap too.
+  RecordSamples s;
+  for (int i = 0; i < 4000; ++i) {
+    const double u = i * 1e-3;
+    s.t.push_back(u + (i >= 2000 ? 3.0 : 0.0));
+    s.ddx_M.push_back(10 * std::sin(2 * M_PI * 39.0 * u) + 0.1 * std::sin(0.37 * i));
+    s.ddz_M.push_back(2 * std::sin(4 * M_PI * 39.0 * u + 0.3) + 0.05 * std::cos(0.53 * i));
+  }
+  WindowOptions one;
+  one.f = 39.0;
+  one.window_periods = 1.0;
+  int edge = 0;
+  for (const RecordWindow& w : analyze_windows(s.t, s.ddx_M, s.ddz_M, {}, one)) {
+    EXPECT_EQ(w.reason.find("nan"), std::string::npos) << w.index << ": " << w.reason;
+    EXPECT_EQ(w.reason.find("no oscillation"), std::string::npos) << w.index << ": " << w.reason;
+    EXPECT_TRUE(w.count == 0 || w.t_end > w.t_start) << w.index;
+    edge += w.reason.starts_with("one sample at its edge") ? 1 : 0;
+  }
+  EXPECT_GE(edge, 1);
 }
 
 // A dead channel (one value in every sample: 1 g of a vertical sensor that reads nothing else,

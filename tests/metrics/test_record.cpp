@@ -780,6 +780,18 @@ TEST(Record, SubharmonicIndicatorsOfARecord) {
   const RecordMetrics m = analyze_record(t, x, z, 30.0, 4);
   EXPECT_TRUE(std::isnan(m.rmv));
   EXPECT_TRUE(std::isnan(m.ccv));
+  // Two periods of samples, as `run --csv` writes them (the last interval not spanned: 1.999
+  // periods between the first and the last sample): f/2 is resolved (rmv and ccv were NaN).
+  t.clear(), x.clear(), z.clear();
+  for (int i = 0; i < 2048; ++i) {
+    t.push_back(i / (1024.0 * 30.0));
+    const double p = 2.0 * M_PI * 30.0 * t.back();
+    x.push_back(std::sin(p));
+    z.push_back(std::sin(p) + 0.5 * std::sin(2.0 * p) + 0.25 * std::sin(0.5 * p));
+  }
+  const RecordMetrics two = analyze_record(t, x, z, 30.0, 10);
+  EXPECT_NEAR(two.rmv, 0.25, 1e-9);
+  EXPECT_NEAR(two.ccv, 100.0 * (0.25 + 0.5) / (0.25 + 1.0), 1e-7);
 }
 
 TEST(Record, NormalEquationsFitEqualsTheQrOfTheBasis) {
