@@ -588,8 +588,11 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
         e.gain_uncertainty = ug;
         e.standard_uncertainty = std::hypot(e.standard_uncertainty, ug);
         const double wide = c * ug;  // the gains' part of a 95 % interval
-        if (std::isfinite(e.lower)) e.lower = e.value - std::hypot(e.value - e.lower, wide);
-        if (std::isfinite(e.upper)) e.upper = e.value + std::hypot(e.upper - e.value, wide);
+        // An open end (the profile flat to the parameter's bound) stays the bound.
+        if (std::isfinite(e.lower) && !e.lower_open)
+          e.lower = e.value - std::hypot(e.value - e.lower, wide);
+        if (std::isfinite(e.upper) && !e.upper_open)
+          e.upper = e.value + std::hypot(e.upper - e.value, wide);
       }
     }
   }
