@@ -282,7 +282,7 @@ class Metrics:
     ddx_phase: numpy.ndarray
     """theta_n of x_M'' [rad]"""
     ddx_thd: float
-    """total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 [-]"""
+    """total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 (a steady state of period p > 1: its subharmonics k f / p count too) [-]"""
     ddz_A2_A1: float
     """harmonic ratio A_2/A_1 of z_M'' (paper Fig. 20) [-]"""
     ddz_A3_A1: float
@@ -483,7 +483,7 @@ class RecordMetrics:
     ddx_phase: numpy.ndarray
     """theta_n of x_M'' [rad]"""
     ddx_thd: float
-    """total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 [-]"""
+    """total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 (a steady state of period p > 1: its subharmonics k f / p count too) [-]"""
     ddz_A2_A1: float
     """harmonic ratio A_2/A_1 of z_M'' (paper Fig. 20) [-]"""
     ddz_A3_A1: float
