@@ -184,7 +184,7 @@
     "100 [A(f/2) + A(3f/2) + A(2f) + A(5f/2) + A(3f)] / [A(f/2) + A(f)] of z_M'': the compaction " \
     "control value's ratio")                                                                       \
   X(double, ddx_thd, "-", "x_M'' THD",                                                             \
-    "total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 (a steady state of "       \
+    "total harmonic distortion of x_M'': sqrt(sum_{k>=2} A_k^2) / A_1 (a steady state of "         \
     "period p > 1: its subharmonics k f / p count too)")
 
 // Metrics only a simulation has: the drum's rotation and the contact.

@@ -1348,8 +1348,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         w.position = position[first - 1] + u * (position[first] - position[first - 1]);
       }
       w.reason = std::string(none ? "no samples" : "one sample at its edge, not analysed") +
-                 ": the window lies within a gap of " + sig4(after - before) + " s at t = " +
-                 num(before + o.time_origin) + " s (" +
+                 ": the window lies within a gap of " + sig4(after - before) +
+                 " s at t = " + num(before + o.time_origin) + " s (" +
                  num(std::round((after - before) * f_track * 100) / 100) +
                  " excitation periods without a sample)";
       RecordMetrics nan = detail::all_unavailable<RecordMetrics>(record_outputs());
