@@ -248,6 +248,9 @@ int run(AnalyzeOptions o) {
     s.line("change of the response (parts)", fmt(w.change, 3) + " (relative RMS)");
     s.line("fit residual x_M'', z_M''",
            fmt(m.residual_x, 3) + ", " + fmt(m.residual_z, 3) + " (RMS relative to the signal)");
+    if (m.fitted_periods == 2.0)
+      s.line("period of the fitted signal",
+             "2 excitation periods (a period-2 response: the subharmonics f/2, 3f/2, ... fitted)");
     s.line("quality", w.valid ? "ok" : "FAILED: " + w.reason);
     s.section("Metrics of the fitted periodic signal");
     s.line("x_M'' max / min [m/s^2]", fmt(m.ddx_max, 5) + " / " + fmt(m.ddx_min, 5));

@@ -353,6 +353,42 @@ RecordFit fit_record(std::span<const double> t, std::span<const double> x,
   return r;
 }
 
+// A record's response repeats after two excitation periods (a period-2 motion: an oscillation
+// drum past a period doubling on stiff soil, a vibratory drum's "double jump") when the fit on
+// the harmonics of f/2 leaves at most kSubharmonicShare of the variance that the fit on those of
+// f leaves, and that is at least kSubharmonicLevel^2 of the signals' (the subharmonics are a
+// percent of the response, not noise: white noise's share explained by the 2 n_max added
+// coefficients is about 2 n_max / n). Asked only of a record covering kSubharmonicPeriods
+// periods: over two, a response whose amplitude changes (a change of soil in a short window)
+// has its sidebands at f +- f/2 and would be taken for one. `run --csv` writes a period-2 state
+// as 4 periods (numerics.output_periods = 2 of the motion's period). On success `rf` holds the
+// fit on the harmonics of f/2 (2 n_max of them).
+constexpr double kSubharmonicPeriods = 4.0;
+constexpr double kSubharmonicLevel = 1e-2;
+constexpr double kSubharmonicShare = 0.25;
+constexpr double kExcitedShare = 0.1;
+
+bool subharmonics_significant(std::span<const double> t, std::span<const double> x,
+                              std::span<const double> z, double f, int n_max, double covered,
+                              RecordFit& rf) {
+  if (covered < kSubharmonicPeriods - 1e-9) return false;
+  const auto variance = [](const RecordFit& r) {
+    return r.residual_x * r.residual_x + r.residual_z * r.residual_z;
+  };
+  const double left = variance(rf);
+  if (!(left > kSubharmonicLevel * kSubharmonicLevel)) return false;
+  // Each channel a response to the excitation: its harmonics of f carry at least
+  // kExcitedShare of its variance (a channel with none, a lateral axis read as z_M'', had a
+  // sine near 3f/2 taken for a subharmonic).
+  if (!(rf.residual_x * rf.residual_x <= 1.0 - kExcitedShare &&
+        rf.residual_z * rf.residual_z <= 1.0 - kExcitedShare))
+    return false;
+  RecordFit half = fit_record(t, x, z, 0.5 * f, 2 * n_max);
+  if (!(variance(half) <= kSubharmonicShare * left)) return false;
+  rf = std::move(half);
+  return true;
+}
+
 }  // namespace
 
 RecordMetrics analyze_record(std::span<const double> t, std::span<const double> ddx,
@@ -383,50 +419,73 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
 
   // Harmonics with absolute-time phases (t_ref = 0).
   RecordFit rf = fit_record(t, ddx, ddz, f, n_max);
+  // The periods the samples cover, their last interval included (as for the one-period check
+  // above): two periods of samples, as `run --csv` writes them, span 1.999 between the first
+  // and the last, and f/2 was taken as unresolved (rmv and ccv NaN for run's own CSV).
+  const double covered =
+      m.cycles * static_cast<double>(t.size()) / static_cast<double>(t.size() - 1);
+  // A period-2 response (subharmonics_significant): the fit on the harmonics of f/2, which holds
+  // those of f (its even ones) and the subharmonics together. Without it such a record failed the
+  // residual gate (0.77 for z_M'' of a doubling drum) and gave no metric at all.
+  const int p = subharmonics_significant(t, ddx, ddz, f, n_max, covered, rf) ? 2 : 1;
+  m.fitted_periods = p;
+  const double f_fit = f / p;   // the fitted signal's fundamental [Hz]
+  const int n_fit = p * n_max;  // its harmonics
   const Eigen::VectorXd& cx = rf.fit.cx;
   const Eigen::VectorXd& cz = rf.fit.cz;
   m.residual_x = rf.residual_x;
   m.residual_z = rf.residual_z;
   {
-    // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max.
+    detail::HalfHarmonics half;
+    Spectrum hx, hz;
+    if (p == 1) {
+      hx = std::move(rf.hx);
+      hz = std::move(rf.hz);
+      half = half_harmonics(t, ddz, f, n_max, covered);
+    } else {
+      // The harmonics n f are the fit's even ones; the subharmonics (2 j + 1) f / 2 its odd ones.
+      for (int n = 0; n <= n_max; ++n) {
+        hx.push_back(rf.hx[static_cast<std::size_t>(2 * n)]);
+        hz.push_back(rf.hz[static_cast<std::size_t>(2 * n)]);
+      }
+      half.a05 = rf.hz[1].amplitude;
+      half.a15 = rf.hz[3].amplitude;
+      half.a25 = rf.hz[5].amplitude;
+    }
+    // THD of the fitted signal: its overtones are the fitted harmonics 2 ... n_max of f.
     double overtones = 0.0;
-    for (int n = 2; n <= n_max; ++n) overtones += std::pow(rf.hx[n].amplitude, 2);
-    // The periods the samples cover, their last interval included (as for the one-period check
-    // above): two periods of samples, as `run --csv` writes them, span 1.999 between the first
-    // and the last, and f/2 was taken as unresolved (rmv and ccv NaN for run's own CSV).
-    const double covered =
-        m.cycles * static_cast<double>(t.size()) / static_cast<double>(t.size() - 1);
-    detail::set_spectral_metrics(m, std::move(rf.hx), std::move(rf.hz), overtones, n_max,
-                                 half_harmonics(t, ddz, f, n_max, covered));
+    for (int n = 2; n <= n_max; ++n) overtones += std::pow(hx[n].amplitude, 2);
+    detail::set_spectral_metrics(m, std::move(hx), std::move(hz), overtones, n_max, half);
   }
 
-  // The fitted periodic signals over one period, for the extremes and the area, without their
-  // means (A0): a steady motion's accelerations average zero, so a record's mean is the sensor's
-  // (gravity in an accelerometer's reading, an offset) and would shift the peaks away from the
-  // model's.
-  constexpr int kSamples = 1024;
-  const double nu = 2.0 * M_PI * f;
-  std::vector<double> x(kSamples), z(kSamples), cj(n_max + 1), sj(n_max + 1);
+  // The fitted periodic signals over one period of the fit (two excitation periods for a
+  // period-2 fit), for the extremes and the area, without their means (A0): a steady motion's
+  // accelerations average zero, so a record's mean is the sensor's (gravity in an
+  // accelerometer's reading, an offset) and would shift the peaks away from the model's.
+  const int kSamples = 1024 * p;
+  const double nu = 2.0 * M_PI * f_fit;
+  std::vector<double> x(static_cast<std::size_t>(kSamples)), z(static_cast<std::size_t>(kSamples)),
+      cj(n_fit + 1), sj(n_fit + 1);
   for (int j = 0; j < kSamples; ++j) {
-    harmonics_at(static_cast<double>(j) / kSamples, n_max, cj, sj);  // n nu t_j = 2 pi n j / 1024
+    harmonics_at(static_cast<double>(j) / kSamples, n_fit, cj, sj);  // n nu t_j = 2 pi n j / K
     double sx = 0.0, sz = 0.0;
-    for (int n = 1; n <= n_max; ++n) {
+    for (int n = 1; n <= n_fit; ++n) {
       sx += cx[2 * n - 1] * cj[n] + cx[2 * n] * sj[n];
       sz += cz[2 * n - 1] * cj[n] + cz[2 * n] * sj[n];
     }
-    x[j] = sx;
-    z[j] = sz;
+    x[static_cast<std::size_t>(j)] = sx;
+    z[static_cast<std::size_t>(j)] = sz;
   }
   // The extremes: the grid's best point refined by Newton's method on the fitted series, so that
   // they do not depend on where the grid falls on the waveform (on the record's clock): the grid
   // alone is off by up to about (pi / 1024)^2 / 2 of the curvature, ~1e-5 relative.
   const auto extreme = [&](const Eigen::VectorXd& c, int j) {
-    const double t_grid = static_cast<double>(j) / (kSamples * f);
+    const double t_grid = static_cast<double>(j) / (kSamples * f_fit);
     double tj = t_grid;
     double value = 0.0;
     for (int iteration = 0; iteration < 8; ++iteration) {
       double s0 = 0.0, s1 = 0.0, s2 = 0.0;  // without the mean c[0], as the grid
-      for (int n = 1; n <= n_max; ++n) {
+      for (int n = 1; n <= n_fit; ++n) {
         const double w = n * nu, cs = std::cos(w * tj), sn = std::sin(w * tj);
         const double a = c[2 * n - 1], b = c[2 * n];
         s0 += a * cs + b * sn;
@@ -439,14 +498,14 @@ RecordMetrics analyze_record(std::span<const double> t, std::span<const double> 
       // may lie anywhere there, also about half a cell away.
       if (!(s2 != 0.0)) break;
       const double step = -s1 / s2;
-      if (!(std::abs(tj + step - t_grid) <= 1.0 / (kSamples * f))) break;
+      if (!(std::abs(tj + step - t_grid) <= 1.0 / (kSamples * f_fit))) break;
       tj += step;
-      if (std::abs(step) < 1e-15 / f) break;
+      if (std::abs(step) < 1e-15 / f_fit) break;
     }
     return value;
   };
-  // Every local extremum of the grid is refined (a trigonometric polynomial of degree n_max has
-  // at most 2 n_max of them): two nearly equal peaks may swap places once refined.
+  // Every local extremum of the grid is refined (a trigonometric polynomial of degree n_fit has
+  // at most 2 n_fit of them): two nearly equal peaks may swap places once refined.
   const auto pick = [&](const Eigen::VectorXd& c, const std::vector<double>& v, bool largest) {
     const auto better = [largest](double a, double b) { return largest ? a > b : a < b; };
     double best =
@@ -722,13 +781,19 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   // P(f) from the transforms X(n f), Z(n f), n = 1, 2, 3. The excitation frequency carries the
   // drum's largest acceleration (x_M'' at f). A frequency whose own term is a small part of the
   // sum is a subharmonic that collects the harmonics of the true f, e.g. f/2 when a change of
-  // the soil along a pass shifts the phase abruptly and splits the peak at f in two.
+  // the soil along a pass shifts the phase abruptly and splits the peak at f in two. So is one
+  // where x_M'' at 2 f carries most of the sum and more than x_M'' at f: the f/2 of a period-2
+  // response, whose subharmonics f/2 and 3f/2 and harmonics f and 2f sum to more than the
+  // harmonics of f alone (a doubling drum's record was read at f/2, its CMV 1235 for 766;
+  // x_M'' of a period-1 response is largest at f, the excitation's, also where z_M'' is larger
+  // at 2f, a CMV above 300).
   const auto consider = [&](double f, const std::complex<double>(&X)[3],
                             const std::complex<double>(&Z)[3]) {
     const int resolved = 3.0 * f <= 0.5 * fs ? 3 : 2;  // n f below Nyquist
     double p = 0;
     for (int n = 0; n < resolved; ++n) p += std::norm(X[n]) + std::norm(Z[n]);
     if (std::norm(X[0]) + std::norm(Z[0]) < 0.1 * p) return;
+    if (std::norm(X[1]) > 0.5 * p && std::norm(X[0]) < std::norm(X[1])) return;
     if (p > best_p) {
       best_p = p;
       best_f = f;
@@ -1023,7 +1088,8 @@ std::vector<double> drift_noise(std::span<const double> t, std::span<const doubl
 }
 
 // Does the response change within the window? The window is cut into K equal parts (4, or 3 or 2
-// where shorter parts would not hold a period and their samples), each fitted at the window's f;
+// where shorter parts would not hold a period and their samples), each fitted at the window's f
+// (f/2 with 2 n_max harmonics for a period-2 fit, so that each part holds two periods);
 // the RMS of the fitted periodic signal of each channel is compared between every two parts,
 // relative to the window's. Halves alone missed a change inside the window that returns before
 // its end (a stiff spot in its middle half: equal halves, a confident G that belongs to neither
@@ -1075,10 +1141,15 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
   std::size_t from = 0, to = 1;
   bool significant = false;
   const char* channel = "x_M''";
+  // The fit of the whole window: its harmonics, or for a period-2 fit (f, n_max here those of
+  // f/2) the fit on the harmonics of f/2, subharmonics included, as each part's.
+  std::optional<RecordFit> two_periods;
+  if (w.metrics.fitted_periods == 2.0) two_periods = fit_record(t, x, z, f, n_max);
   for (int c = 0; c < 2; ++c) {
     const std::span<const double> y = c == 0 ? x : z;
-    const RecordMetrics& m = w.metrics;  // the fit of the whole window
-    const double whole = periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
+    const RecordMetrics& m = w.metrics;
+    const double whole = two_periods ? periodic_rms(c == 0 ? two_periods->hx : two_periods->hz)
+                                     : periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
     if (!(whole > 0.0)) continue;
     // One value throughout (a dead channel): its fitted "RMS" is the round-off of a constant.
     if (detail::one_value(y)) continue;
@@ -1432,7 +1503,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
              : o.one_reference ? std::string("): cut the record at it, a reference per stretch")
                                : std::string("): windows (--window 40) fit the stretches "
                                              "on either side of it")));
-      aw.samples_per_period = static_cast<double>(aw.count - 1) / ((aw.t_end - aw.t_start) * f0);
+      // The density where the window has samples: a gap's step (which the gap gate judges)
+      // counts as one sampling step. A window with a 0.2 s gap at a steady 1 kHz also read "too
+      // few samples per period (20.49 < 21)", as if the logger were too slow.
+      double sampled_span = aw.t_end - aw.t_start;
+      for (std::size_t i = first; i < last; ++i)
+        if (dt[i] > max_gap) sampled_span -= dt[i] - sample_step;
+      aw.samples_per_period = static_cast<double>(aw.count - 1) / (sampled_span * f0);
       // Its samples cover their last interval too (n samples at the step dt cover n dt, as for
       // the record above): a window of one period at 1 kHz, 26 samples spanning 0.975 periods
       // between the first and the last, was refused as shorter than a period.
@@ -1453,7 +1530,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (!(dense && long_enough && gap <= max_gap) || flat) return a;
       const double periods = (aw.t_end - aw.t_start) * f0;  // between the first and last samples
       const int nf = n_max;  // all of them: unfitted harmonics would bias f
-      const double fw =
+      double fw =
           o.f > 0 ? o.f : refine_frequency(tw, xw, zw, f0, std::min(0.05, 0.5 / periods), nf);
       aw.f = fw;
       const double hw = std::min(0.05, 1.0 / periods);
@@ -1467,26 +1544,40 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // More than two parts only where each spans a period (a quarter of a 1.5-period window
       // says little of f: such parts' f scattered by 0.013 for a constant frequency); two, the
       // halves, as before.
-      const auto min_samples = static_cast<std::size_t>(2 * (2 * n_max + 1));
+      try {
+        aw.metrics = analyze_record(tw, xw, zw, fw, n_max);
+        a.fitted = true;
+        // A period-2 response (analyze_record's fitted_periods): f refined again on the harmonics
+        // of f/2, which the refinement on those of f took for noise, and the window fitted there.
+        if (aw.metrics.fitted_periods == 2 && o.f == 0.0) {
+          const double f2 =
+              2.0 * refine_frequency(tw, xw, zw, 0.5 * fw, std::min(0.05, 0.5 / periods), 2 * nf);
+          RecordMetrics again = analyze_record(tw, xw, zw, f2, n_max);
+          if (again.fitted_periods == 2) {
+            fw = aw.f = f2;
+            aw.metrics = std::move(again);
+          }
+        }
+      } catch (const Error& e) {
+        reasons.push_back(e.what());
+      }
+      if (!a.fitted) return a;
+      // The fitted signal's period in excitation periods: parts of a period-2 fit each hold two.
+      const int fp = aw.metrics.fitted_periods == 2.0 ? 2 : 1;
+      const auto min_samples = static_cast<std::size_t>(2 * (2 * fp * n_max + 1));
       std::size_t parts = 4;
-      while (parts > 2 && (aw.count / parts < min_samples || periods < static_cast<double>(parts)))
+      while (parts > 2 &&
+             (aw.count / parts < min_samples || periods < static_cast<double>(fp * parts)))
         --parts;
       if (aw.count / parts < min_samples) parts = 0;
       std::vector<double> part_f;
       if (parts >= 2) {
         for (std::size_t part = 0; part < parts; ++part) {
           const std::size_t b = aw.count * part / parts, n = aw.count * (part + 1) / parts - b;
-          part_f.push_back(
-              refine_frequency(tw.subspan(b, n), xw.subspan(b, n), zw.subspan(b, n), fw, hw, nf));
+          part_f.push_back(fp * refine_frequency(tw.subspan(b, n), xw.subspan(b, n),
+                                                 zw.subspan(b, n), fw / fp, hw, fp * nf));
         }
       }
-      try {
-        aw.metrics = analyze_record(tw, xw, zw, fw, n_max);
-        a.fitted = true;
-      } catch (const Error& e) {
-        reasons.push_back(e.what());
-      }
-      if (!a.fitted) return a;
       if (o.f > 0.0) {
         // A given f that is not the excitation's: at half of it (a subharmonic) the harmonics
         // 2, 4, 6 hold the whole signal and the fit's residual stays small, so the residual gate
@@ -1516,7 +1607,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                             " %: f may be a subharmonic, or the record of another frequency); "
                             "leave --f out to estimate the frequency");
       }
-      change_within(tw, xw, zw, fw, n_max, aw, reasons, o);
+      change_within(tw, xw, zw, fw / fp, fp * n_max, aw, reasons, o);
       const double res = std::max(aw.metrics.residual_x, aw.metrics.residual_z);
       if (!(res <= o.gates.max_residual)) {
         a.poor_fit = true;
@@ -1540,7 +1631,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // The drift: the two parts whose f differ most, beyond 5 times what the noise makes of
       // their difference where any pair is (else the largest difference, reported and passed).
       if (!part_f.empty()) {
-        const std::vector<double> sd = drift_noise(tw, xw, zw, aw.metrics, fw, nf, part_f.size());
+        const std::vector<double> sd =
+            drift_noise(tw, xw, zw, aw.metrics, fw / fp, fp * nf, part_f.size());
         double worst = 0.0, worst_significant = 0.0;
         bool significant = false;
         for (std::size_t i = 0; i < part_f.size(); ++i)
