@@ -881,6 +881,10 @@ TEST(Gates, GapsAreFlaggedOnlyWhereTheyAre) {
     EXPECT_FALSE(ws[k].valid);
     EXPECT_NE(ws[k].reason.find("gap"), std::string::npos) << ws[k].reason;
     EXPECT_EQ(ws[k].reason.find("--window"), std::string::npos) << ws[k].reason;
+    // The density where the window has samples, the logger's 1 kHz: the gap's 30 ms counted as
+    // samples missing made it 3 % lower (with 0.2 s a false "too few samples per period").
+    EXPECT_NEAR(ws[k].samples_per_period / (1000.0 / kF), 1.0, 5e-3);
+    EXPECT_EQ(ws[k].reason.find("too few samples"), std::string::npos) << ws[k].reason;
   }
   // The whole record as one window: the gap fails it, and windows are the way round it.
   WindowOptions whole;
