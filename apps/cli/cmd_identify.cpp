@@ -434,6 +434,21 @@ int run(const IdentifyCliOptions& o) {
       if (!sampled_window) sampled_window = &p.window;
     }
   }
+  // Poor fits of a record whose time stamps were coarser than its sampling: the clock is their
+  // likely cause, which the diagnosis of each window cannot see (it named the roller: a 2 kHz
+  // record stamped to the millisecond gave G 1 % high, its intervals missing the truth).
+  if (rec.coarse_clock && !o.quiet) {
+    std::size_t poor = 0;
+    for (const PassEstimate& p : pass)
+      poor += p.valid && p.identification.reduced_chi2 > io.max_reduced_chi2 ? 1 : 0;
+    if (poor > 0)
+      std::cerr << "oscidrum: identify: " << poor << " of " << valid
+                << " windows fit poorly (reduced chi^2 above " << fmt(io.max_reduced_chi2, 3)
+                << "), and the record's time stamps are coarser than its sampling (rows "
+                   "repeating a time were averaged, each a sample at the wrong time): the likely "
+                   "cause; if the rows are equally spaced, give --rate HZ (the logger's sampling "
+                   "rate) so that each row has its own time\n";
+  }
   // Said once for a pass (a single window's summary says it too): windows whose samples alias.
   if (sampled_window && pass.size() > 1 && !o.quiet)
     std::cerr << "oscidrum: identify: " << model_sampled << " of " << valid
@@ -680,8 +695,10 @@ void add_identify_command(CLI::App& app, Action& action) {
       ->group(out);
   sub->add_option("--geojson", o->geojson,
                   "write the pass as a map to FILE (GeoJSON): one feature per window, a point at "
-                  "its centre from --lat-col/--lon-col (no geometry without them), with the "
-                  "estimates, their 95 % intervals, valid and the warnings")
+                  "its centre from the latitude and longitude (--lat-col/--lon-col, or the "
+                  "header's lat/lon columns found by name; no geometry without them), with the "
+                  "estimates, their 95 % intervals, valid and the warnings, and the window's "
+                  "easting and northing where --east-col/--north-col (or the header's) give them")
       ->type_name("FILE")
       ->group(out);
   sub->add_option("--format", o->format, "stdout: table, csv or json")

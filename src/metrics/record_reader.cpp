@@ -1259,14 +1259,30 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     const Heading& h = headings[static_cast<std::size_t>(c)];
     if (time && o.t_units != "auto")
       return o.t_units == "ms" ? 1e-3 : o.t_units == "us" ? 1e-6 : o.t_units == "ns" ? 1e-9 : 1.0;
-    if (!time && o.units != "auto") return o.units == "g" ? kStandardGravity : 1.0;
+    // A velocity or a displacement is no acceleration whatever --units says: the advice to give
+    // --units read a velocity channel [mm/s] as g (exit 0, a note of the factor only).
+    if (!time && !h.unit.empty() &&
+        (!std::isnan(speed_scale(h.unit)) || !std::isnan(length_scale(h.unit))))
+      throw Error(name + ": column '" + header[static_cast<std::size_t>(c)] + "': unit '" + h.unit +
+                  "' is a " + (std::isnan(speed_scale(h.unit)) ? "displacement" : "velocity") +
+                  ", not an acceleration: the drum-centre accelerations x_M'', z_M'' are read "
+                  "(an accelerometer's channels; choose them with --x-col / --z-col)");
+    if (!time && o.units != "auto") {
+      const double k = o.units == "g" ? kStandardGravity : 1.0;
+      const double stated = h.unit.empty() ? k : acceleration_scale(h.unit);
+      if (!std::isnan(stated) && stated != k)
+        out.notes.push_back("column '" + header[static_cast<std::size_t>(c)] + "': --units " +
+                            o.units + " overrides its header's unit " + h.unit);
+      return k;
+    }
     if (h.unit.empty()) return 1.0;
     const double k = time ? time_scale(h.unit) : acceleration_scale(h.unit);
     if (std::isnan(k))
       throw Error(name + ": column '" + header[static_cast<std::size_t>(c)] + "': unit '" + h.unit +
                   "' is not " +
                   (time ? "a time unit (s, ms, us, ns); give --t-units"
-                        : "an acceleration unit (m/s^2, mm/s^2, g); give --units"));
+                        : "an acceleration unit (m/s^2, mm/s^2, cm/s^2, ft/s^2, g, mg); give "
+                          "--units for the one it is"));
     return k;
   };
   // A speed's, a position's or a coordinate's unit from its header ("Speed [km/h]",
@@ -1446,9 +1462,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     // A time that goes back is said here, at its line (the analysis would name only the sample).
     if (!out.t.empty() && t < out.t.back())
       throw Error(name + ":" + std::to_string(line_no) + ": the time goes back: " +
-                  format_factor(t) + " after " + format_factor(out.t.back()) +
-                  " (in the time column's unit; rows out of order, a logger that restarted its "
-                  "clock, or files joined: give each part on its own)");
+                  format_factor(t) + " s after " + format_factor(out.t.back()) +
+                  " s (the time column read in seconds; rows out of order, a logger that "
+                  "restarted its clock, or files joined: give each part on its own)");
     out.t.push_back(t);
     out.ddx_M.push_back(x);
     out.ddz_M.push_back(z);
@@ -1818,6 +1834,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       // Many (a tenth of the samples or more): a clock coarser than the sampling (a logger's
       // time stamps rounded to the millisecond at 2 kHz), not an integrator's switches.
       const bool coarse_clock = 10 * repeated >= kept;
+      out.coarse_clock = coarse_clock;
       out.notes.push_back(
           std::to_string(repeated) + " row" + (repeated > 1 ? "s repeat" : " repeats") +
           " the time of the row before (the first at t = " + format_factor(first_repeated) +

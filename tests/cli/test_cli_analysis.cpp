@@ -356,7 +356,9 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     std::ofstream(dir / "cols.csv") << "punkt,kanal1,kanal2\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "two_x.csv") << "t,ax,acc_x,az\n0,1,1,2\n0.1,1,1,2\n";
     std::ofstream(dir / "unit.csv") << "t [h],ax,az\n0,1,2\n0.1,1,2\n";
-    std::ofstream(dir / "aunit.csv") << "t,ax [km],az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "aunit.csv") << "t,ax [counts],az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "vunit.csv") << "t,Vib X [mm/s],az\n0,1,2\n0.1,1,2\n";
+    std::ofstream(dir / "dunit.csv") << "t,ax [km],az\n0,1,2\n0.1,1,2\n";
     std::ofstream(dir / "text.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.1,x,2\n";
     std::ofstream(dir / "short.csv") << "t,ddx_M,ddz_M\n0,1,2\n0.001,2,1\n";
     std::ofstream(dir / "ragged.csv") << "t,ddx_M,ddz_M\n0,1\n";
@@ -369,7 +371,13 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
         Case{"two_x.csv",
              "several columns look like the horizontal acceleration x_M'' (ax, acc_x)"},
         Case{"unit.csv", "unit 'h' is not a time unit (s, ms, us, ns); give --t-units"},
-        Case{"aunit.csv", "unit 'km' is not an acceleration unit (m/s^2, mm/s^2, g); give --units"},
+        Case{"aunit.csv",
+             "unit 'counts' is not an acceleration unit (m/s^2, mm/s^2, cm/s^2, ft/s^2, g, mg); "
+             "give --units for the one it is"},
+        // A velocity or a displacement is refused as such, not with the advice to give --units
+        // (which read a velocity channel as g).
+        Case{"vunit.csv", "column 'Vib X [mm/s]': unit 'mm/s' is a velocity, not an acceleration"},
+        Case{"dunit.csv", "unit 'km' is a displacement, not an acceleration"},
         Case{"text.csv", "must be a number"}, Case{"short.csv", "at least 8 samples"},
         Case{"ragged.csv", "2 cells, but the header has 3"},
         Case{"missing.csv", "cannot open the file (no such file)"},
@@ -381,6 +389,10 @@ TEST(CliAnalyze, BadRecordsGiveOneLineAndExitTwo) {
     EXPECT_EQ(o.err.rfind("oscidrum: error: ", 0), 0u) << o.err;
     EXPECT_NE(o.err.find(c.message), std::string::npos) << o.err;
   }
+  // --units does not make a velocity an acceleration (it read [mm/s] as g, exit 0).
+  const Outcome as_g = run({"analyze", dir / "vunit.csv", "--units", "g"});
+  EXPECT_EQ(as_g.code, 2) << as_g.err;
+  EXPECT_NE(as_g.err.find("is a velocity, not an acceleration"), std::string::npos) << as_g.err;
   // Columns chosen by flag.
   const Outcome o = run({"analyze", dir / "cols.csv", "--f", "39", "--t-col", "punkt", "--x-col",
                          "kanal1", "--z-col", "3"});

@@ -311,6 +311,36 @@ std::string format_row(double t, std::initializer_list<double> values) {
   return out + "\n";
 }
 
+// A 2 kHz record whose time stamps were rounded to the millisecond (pairs of rows share a
+// time, and are averaged into one sample at the wrong time): its windows fit poorly, and the
+// clock is named as the likely cause with --rate (each window's diagnosis named the roller).
+TEST(CliIdentify, PoorFitsOfACoarseClockNameTheClock) {
+  TempDir dir;
+  // 1 % noise: the clock's error, not the noise, decides the fit.
+  SyntheticRecord sr;
+  sr.duration = 0.6;
+  sr.sample_rate = 2000;
+  sr.noise = 0.01;
+  sr.seed = 4;
+  const RecordSamples r = synthetic_record({truth(17.3e6)}, sr);
+  {
+    std::ofstream out(dir / "ms.csv");
+    out << "t,ddx_M,ddz_M\n";
+    for (std::size_t i = 0; i < r.t.size(); ++i)
+      out << format_row(std::floor(r.t[i] * 1e3 + 1e-6) / 1e3, {r.ddx_M[i], r.ddz_M[i]});
+  }
+  const Outcome o = run({"identify", dir / "ms.csv", "--no-profile", "--format", "json"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("the record's time stamps are coarser than its sampling"), std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("give --rate HZ"), std::string::npos) << o.err;
+  // Read at its rate, the record fits, and nothing is said of the clock.
+  const Outcome rated = run({"identify", dir / "ms.csv", "--no-profile", "--format", "json",
+                             "--rate", "2000", "--x-col", "2", "--z-col", "3"});
+  EXPECT_EQ(rated.code, 0) << rated.err;
+  EXPECT_EQ(rated.err.find("coarser than its sampling"), std::string::npos) << rated.err;
+}
+
 // A three-axis logger mounted with y vertical (up, gravity kept) and z along the drum's axle (a
 // small lateral signal, no gravity), in g: the reader takes y as the vertical and says so, and
 // identify gives the model's own record's G.

@@ -1269,7 +1269,14 @@ namespace {
 // with the file's name; the analysis named only the sample, without the file.
 TEST(RecordReader, ATimeThatGoesBackIsNamedAtItsLine) {
   const std::string m = message_of("t,ddx_M,ddz_M\n0,1,2\n0.001,1,2\n0.002,1,2\n0,1,2\n");
-  EXPECT_NE(m.find("record.csv:5: the time goes back: 0 after 0.002"), std::string::npos) << m;
+  EXPECT_NE(m.find("record.csv:5: the time goes back: 0 s after 0.002 s"), std::string::npos) << m;
+  // In seconds, from a column in ms (the message said "1.499 (in the time column's unit)" of a
+  // column holding 1499).
+  const std::string ms = message_of("Time [ms],ddx_M,ddz_M\n0,1,2\n1,1,2\n1499,1,2\n0,1,2\n");
+  EXPECT_NE(ms.find("record.csv:5: the time goes back: 0 s after 1.499 s (the time column read in "
+                    "seconds"),
+            std::string::npos)
+      << ms;
 }
 
 }  // namespace
