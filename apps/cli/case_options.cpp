@@ -57,8 +57,10 @@ void add_roller_flags(CLI::App& app, CaseOptions& o, const std::vector<std::stri
 double soil_G_flag(double value) {
   const Field& G = *find_field("soil.G");
   const std::string unit = display_unit(G);
+  const std::string range = "[" + fmt(G.min / G.display_scale, 10) + ", " +
+                            fmt(G.max / G.display_scale, 10) + "] [" + unit + "]";
   if (!std::isfinite(value) || value <= 0)
-    throw Error("--G must be > 0 [" + unit + "]; got " + fmt(value, 10), "soil.G", value);
+    throw Error("--G must be in " + range + "; got " + fmt(value, 10), "soil.G", value);
   const double pa = value * G.display_scale;
   if (check_field(G, pa).empty()) return pa;
   // 30000000 is 30 MN/m^2 written in Pa.
@@ -67,9 +69,8 @@ double soil_G_flag(double value) {
                     G.unit + "; got " + fmt(value, 10) + " " + unit + " = " + fmt(pa, 10) + " " +
                     G.unit + ": did you mean --G " + fmt(value / G.display_scale, 10) + "?",
                 "soil.G", value);
-  throw Error("--G must be in [" + fmt(G.min / G.display_scale, 10) + ", " +
-                  fmt(G.max / G.display_scale, 10) + "] [" + unit + "] (soil.G in " + G.unit +
-                  " / " + fmt(G.display_scale, 10) + "); got " + fmt(value, 10),
+  throw Error("--G must be in " + range + " (soil.G in " + G.unit + " / " +
+                  fmt(G.display_scale, 10) + "); got " + fmt(value, 10),
               "soil.G", value);
 }
 

@@ -62,7 +62,7 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, b
   if (name == "psi_xz" && std::isnan(m.psi_xz))
     return std::string("n/a (A(f) of x_M'' or A(2f) of z_M''") + kAbsentBoth;
   if (name == "phi_lag" && std::isnan(m.phi_lag))
-    return std::string("n/a (no oscillating torque: the vibratory drum)");
+    return std::string("n/a (no oscillating torque: M0 = 0, or the vibratory drum)");
   if (name == "mu_required" && std::isnan(m.mu_required))
     return std::string("n/a (the drum lifts off: N reaches 0, where |T|/N has no bound)");
   // The Kb-type stiffness: a ratio to the fundamental of z_M, where a vertical force excites the

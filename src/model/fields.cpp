@@ -391,8 +391,8 @@ double parse_field_text(const Field& f, std::string_view text) {
       bool digits = i < s.size() && s.size() <= 19;
       for (; digits && i < s.size(); ++i) digits = std::isdigit(static_cast<unsigned char>(s[i]));
       if (!digits)
-        throw Error(std::string(f.key) + " must be an integer" + unit + " (digits only); got '" +
-                        shown + "'",
+        throw Error(std::string(f.key) + " must be " + field_rule(f) + unit +
+                        " (digits only); got '" + shown + "'",
                     f.key);
       return static_cast<double>(std::strtoll(s.c_str(), nullptr, 10));
     }
@@ -400,8 +400,12 @@ double parse_field_text(const Field& f, std::string_view text) {
       break;
   }
   const std::optional<double> v = parse_number(s);
+  // With the rule (a range): the same value in TOML said it, `--set KEY=nan` did not.
+  const std::string rule = field_rule(f);
   if (!v)
-    throw Error(std::string(f.key) + " must be " + number_rule() + unit + "; got '" + shown + "'",
+    throw Error(std::string(f.key) + " must be " + number_rule() +
+                    (rule == "finite" ? std::string() : " " + rule) + unit + "; got '" + shown +
+                    "'",
                 f.key);
   return *v;
 }

@@ -104,7 +104,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       {{"run", "--bogus"}, "--bogus"},
       {{"run", "--G"}, "--G"},
       {{"run", "--G", "abc"}, "abc"},
-      {{"run", "--G", "0"}, "--G must be > 0 [MN/m^2]; got 0"},
+      {{"run", "--G", "0"}, "--G must be in [0.01, 100000] [MN/m^2]; got 0"},
       {{"run", "--G", "nan"}, "--G: must be a decimal number; got 'nan'"},
       {{"run", "--G", "25", "--nu", "0.35"}, "add --soil-formula"},
       {{"run", "--G", "25", "--ksh", "1e7"}, "give the soil either by --G or by --ksh"},
@@ -148,7 +148,7 @@ TEST(CliErrors, BadFlagsAndValues) {
       // A value for a swept key would be replaced in every case (it was, without a word).
       {{"sweep", kSource + "/examples/table2_sweep.toml", "--set", "soil.table2_G=5e6"},
        "--set soil.table2_G=5e6: soil.table2_G is swept by the study"},
-      {{"soil", "--G", "-5"}, "--G must be > 0"},
+      {{"soil", "--G", "-5"}, "--G must be in [0.01, 100000] [MN/m^2]; got -5"},
       {{"soil", "--nu", "0.7"}, "soil.nu must be in [0, 0.5); got 0.7"},
       {{"soil", "--table2", "--G", "30"}, "--G excludes --table2"},
       {{"soil", "--b", "1e300"}, "ksh (Appendix B) is not a finite number"},
@@ -361,7 +361,8 @@ TEST(CliRun, AVerticalExcitersMetricsOfRoundOffSayWhy) {
     EXPECT_NE(line.find("is absent: below 1e-6 of the largest component"), std::string::npos)
         << line;
   }
-  EXPECT_NE(o.out.find("n/a (no oscillating torque: the vibratory drum)"), std::string::npos);
+  EXPECT_NE(o.out.find("n/a (no oscillating torque: M0 = 0, or the vibratory drum)"),
+            std::string::npos);
   // The numbers of round-off (1e-22 m/s^2) are printed, and said to be round-off; z_M'' is not.
   const auto line_of = [&](const std::string& label) {
     const std::size_t at = o.out.find("\n  " + label + " ");

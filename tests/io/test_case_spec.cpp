@@ -39,6 +39,20 @@ TEST(CaseFile, CrossFieldRulesNameTheOrigin) {
             std::string::npos);
   EXPECT_NE(case_error("MMd = 1\nMMd_fraction = 0.05\n").find("MMd cannot be given together"),
             std::string::npos);
+  // Finite inputs whose product is not: the key written is named, at its line (the message named
+  // MMd, or the run ended non_finite with M0 = inf).
+  EXPECT_EQ(case_error("MMd_fraction = 1e308\n")
+                .rfind("case.toml:1:1: MMd_fraction = 1e+308 gives MMd = MMd_fraction * M0 beyond "
+                       "double precision",
+                       0),
+            0u)
+      << case_error("MMd_fraction = 1e308\n");
+  EXPECT_EQ(case_error("[roller]\nunbalance = 1e308\n")
+                .rfind("case.toml:2:1: roller.unbalance = 1e+308 kg m^2 at roller.f = 39 Hz gives "
+                       "M0",
+                       0),
+            0u)
+      << case_error("[roller]\nunbalance = 1e308\n");
 }
 
 TEST(CaseFile, Table2ShorthandTakesTheTableRow) {
@@ -150,9 +164,9 @@ TEST(CaseSpec, AssignTextParsesEachType) {
   EXPECT_EQ(spec.values.numerics.max_periods, 300);
   EXPECT_EQ(spec.values.roller.f, 35.0);
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "abc", "--set"); }),
-            "roller.f must be a decimal number [Hz]; got 'abc'");
+            "roller.f must be a decimal number in [0.1, 1000] [Hz]; got 'abc'");
   EXPECT_EQ(error_of([&] { assign_text(spec, "roller.f", "nan", "--set"); }),
-            "roller.f must be a decimal number [Hz]; got 'nan'");
+            "roller.f must be a decimal number in [0.1, 1000] [Hz]; got 'nan'");
   EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", "maybe", "--set"); }),
             "contact.pure_rolling must be true or false; got 'maybe'");
   // Issue 14 (4): the field table's rules, as in a config file: no yes/1 booleans, no 5.0 or
@@ -161,9 +175,10 @@ TEST(CaseSpec, AssignTextParsesEachType) {
     EXPECT_EQ(error_of([&] { assign_text(spec, "contact.pure_rolling", text, "--set"); }),
               std::string("contact.pure_rolling must be true or false; got '") + text + "'");
   for (const char* text : {"5.0", "1e3", "0x10", " 5", ""})
-    EXPECT_EQ(
-        error_of([&] { assign_text(spec, "numerics.max_periods", text, "--set"); }),
-        std::string("numerics.max_periods must be an integer (digits only); got '") + text + "'");
+    EXPECT_EQ(error_of([&] { assign_text(spec, "numerics.max_periods", text, "--set"); }),
+              std::string(
+                  "numerics.max_periods must be an integer in [1, 10000000] (digits only); got '") +
+                  text + "'");
   EXPECT_EQ(case_error("[numerics]\nmax_periods = 1e3\n"),
             "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 1000.0 "
             "(write an integer without a decimal point or exponent)");
