@@ -150,6 +150,24 @@ void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study,
        "the moment is meant");
 }
 
+// A friction key swept where the drum rolls without a friction limit in every case
+// (contact.pure_rolling = true; a warning in a case file, so that pure_rolling itself can be
+// swept over a base with mu): said once (a study of mu under pure rolling ran with exit 0 and no
+// word, every row the same motion).
+void warn_swept_without_effect(const io::Study& study) {
+  for (const std::string& key : study.keys) {
+    if (key != "contact.mu" && key != "contact.mu_static" && key != "contact.law") continue;
+    std::size_t rolling = 0;
+    for (std::size_t n = 0; n < study.cases.size(); ++n)
+      rolling += study.cases[n].contact.pure_rolling ? 1 : 0;
+    // A study that sweeps pure_rolling too compares rolling with friction: meant.
+    if (rolling < study.cases.size()) continue;
+    warn(key + " is swept, but has no effect in any of the " + std::to_string(rolling) +
+         " cases: contact.pure_rolling = true (rolling without a friction limit), and the rows "
+         "are the same motion for every value");
+  }
+}
+
 // Every option that can be checked without running a case: a sweep must not fail at its end,
 // after every case ran.
 void check_options(const SweepOptions& o) {
@@ -231,6 +249,7 @@ SweepPlan plan_sweep(const SweepOptions& o) {
   if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
   p.total = p.study.cases.size();
   warn_fixed_moment(p.spec, p.study, progress("checking each case's M0 against its f"));
+  warn_swept_without_effect(p.study);
   p.columns = io::StudyColumns{p.study.keys, o.harmonics};
   p.header = io::study_csv_header(p.columns);
   p.fingerprint = io::fingerprint(p.study, p.header, progress("fingerprinting the study"));

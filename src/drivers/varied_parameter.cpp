@@ -20,6 +20,17 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
     throw Error(who + ": " + key + " is a numerical setting, not a parameter of the model");
   if (!key_in_effect(c, key))
     throw Error(who + ": " + key + " has no effect in this case: " + key_not_in_effect(c, key));
+  // Keys a case file may hold without effect (a warning there, so that a study can sweep
+  // contact.pure_rolling over a base case with mu), but that a branch or a diagram cannot vary:
+  // every orbit would be the same one (a branch of 23 equal orbits, exit 0).
+  if (c.contact.pure_rolling && (key == "contact.mu" || key == "contact.mu_static"))
+    throw Error(who + ": " + key +
+                " has no effect in this case: contact.pure_rolling = true (rolling without a "
+                "friction limit); vary it with contact.pure_rolling = false");
+  if (key == "roller.m_f")
+    throw Error(who + ": " + key +
+                " has no effect on the drum's motion: it enters the Appendix A transmissibility "
+                "only (oscidrum transmissibility)");
   for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
     const std::string why = check_field(*field, value);
     if (!why.empty()) throw Error(who + ": " + name + ": " + why, key, value);

@@ -501,5 +501,24 @@ TEST(CliSweep, QuietKeepsTheWarningOfAReplacedBaseValue) {
       << o.err;
 }
 
+// A friction coefficient swept where every case rolls without a friction limit is said (every
+// row the same motion, exit 0 and no word); swept together with pure_rolling it is meant.
+TEST(CliSweep, AFrictionKeySweptUnderPureRollingIsSaid) {
+  TempDir dir;
+  std::ofstream(dir / "rolling.toml")
+      << "[contact]\npure_rolling = true\n[sweep]\n\"contact.mu\" = [0.3, 0.4]\n";
+  const Outcome o = run({"sweep", dir / "rolling.toml", "-q"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("contact.mu is swept, but has no effect in any of the 2 cases: "
+                       "contact.pure_rolling = true"),
+            std::string::npos)
+      << o.err;
+  std::ofstream(dir / "both.toml")
+      << "[sweep]\n\"contact.mu\" = [0.3, 0.4]\n\"contact.pure_rolling\" = [true, false]\n";
+  const Outcome both = run({"sweep", dir / "both.toml", "-q"});
+  EXPECT_EQ(both.code, 0) << both.err;
+  EXPECT_EQ(both.err.find("has no effect"), std::string::npos) << both.err;
+}
+
 }  // namespace
 }  // namespace oscidrum::test

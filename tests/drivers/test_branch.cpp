@@ -336,6 +336,35 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
   o.from = 0.2;
   o.to = 0.3;
   EXPECT_THROW(continue_branch(c, o), Error);  // no effect under soil.input = table2
+  // Keys a case file keeps without effect (a warning there) are not varied: the branch was 23
+  // equal orbits, exit 0.
+  {
+    Case rolling;
+    rolling.contact.pure_rolling = true;
+    BranchOptions mu = o;
+    mu.key = "contact.mu";
+    mu.from = 0.3;
+    mu.to = 0.4;
+    const auto message = [](const Case& k, const BranchOptions& b) {
+      try {
+        (void)continue_branch(k, b);
+      } catch (const Error& e) {
+        return std::string(e.what());
+      }
+      return std::string("no error");
+    };
+    EXPECT_NE(message(rolling, mu)
+                  .find("contact.mu has no effect in this case: "
+                        "contact.pure_rolling = true"),
+              std::string::npos)
+        << message(rolling, mu);
+    BranchOptions frame = mu;
+    frame.key = "roller.m_f";
+    frame.from = 2000;
+    frame.to = 3000;
+    EXPECT_NE(message(c, frame).find("Appendix A transmissibility only"), std::string::npos)
+        << message(c, frame);
+  }
   o.key = "contact.mu";
   o.from = 0.5;
   o.to = 0.5;
