@@ -412,6 +412,14 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
       throw Error(spec.where("MMd") + "MMd cannot be given together with MMd_fraction (" +
                   spec.origin.at("MMd_fraction") + "); remove one of them");
     c.MMd = *spec.MMd_fraction * oscillation_moment(c.roller);
+    // Finite each, their product not (MMd_fraction = 1e308 was refused as "MMd must be finite",
+    // a key the file does not hold).
+    if (!std::isfinite(c.MMd))
+      throw Error(spec.where("MMd_fraction") + "MMd_fraction = " + num(*spec.MMd_fraction) +
+                      " gives MMd = MMd_fraction * M0 beyond double precision (M0 = " +
+                      num(oscillation_moment(c.roller)) +
+                      " N m); the driving torque is a fraction of M0, about -0.2 to 0.2",
+                  "MMd_fraction", *spec.MMd_fraction);
   }
   return c;
 }

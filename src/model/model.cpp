@@ -88,7 +88,7 @@ void check_time_scales(const Case& c, const SoilCoefficients& s) {
   const bool soil_given = c.soil.input == SoilInput::coefficients;
   const auto dominant = [&](double roller_part, const char* roller_key, double soil_part,
                             const char* soil_key) {
-    return roller_part >= soil_part || !soil_given ? roller_key : soil_key;
+    return roller_part >= soil_part ? roller_key : soil_key;
   };
   const Rate rates[] = {
       {(R.cd + s.csh) / R.m, "(roller.cd + csh) / roller.m",
@@ -104,15 +104,38 @@ void check_time_scales(const Case& c, const SoilCoefficients& s) {
     if (!(r.value * T > kMaxRatePerPeriod)) continue;
     // A tiny drum mass makes every rate fast: then the mass is the field to name.
     const bool mass = R.m < 1.0;
+    const std::string head = std::string("the case is too stiff to integrate: ") + r.what +
+                             detail::format(
+                                 " = %.3g 1/s is %.3g times roller.f, which must be at most "
+                                 "%.3g (the paper's roller: 3.7; an explicit integrator needs "
+                                 "about %.3g steps per period); ",
+                                 r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3);
+    // A soil coefficient that Table 2 or Appendix B gives dominates: the soil's inputs make it
+    // so, not the roller's key beside it (the paper's roller.cd = 3000 was named for soil.nu =
+    // 0.49999999999).
+    if (!mass && std::string_view(r.key).starts_with("soil.") && !soil_given) {
+      const std::string coefficient(std::string_view(r.key).substr(5));
+      const std::string from = c.soil.input == SoilInput::table2
+                                   ? "paper Table 2 at soil.G = " + num(c.soil.G) + " Pa"
+                                   : "Appendix B (42)-(45) at soil.G = " + num(c.soil.G) +
+                                         " Pa, soil.nu = " + num(c.soil.nu) +
+                                         ", soil.rho = " + num(c.soil.rho) + " kg/m^3";
+      // Appendix B's dashpots grow without bound as nu approaches 1/2 (incompressible soil).
+      const bool nu_near_half = c.soil.input == SoilInput::modulus && c.soil.nu > 0.49;
+      throw Error(head + "the soil's " + coefficient + " = " +
+                      detail::format("%.4g", coefficient == "csh"   ? s.csh
+                                             : coefficient == "csv" ? s.csv
+                                             : coefficient == "ksh" ? s.ksh
+                                                                    : s.ksv) +
+                      " from " + from + " makes it so, at roller.f = " + num(R.f) +
+                      " Hz: give a plausible soil" +
+                      (nu_near_half ? " (soil.nu near 1/2: soils have about 0.2-0.45)" : ""),
+                  nu_near_half ? "soil.nu" : "soil.G", nu_near_half ? c.soil.nu : c.soil.G);
+    }
     const std::string key = mass ? "roller.m" : r.key;
     const double value = find_field(key)->get(c);
-    throw Error(std::string("the case is too stiff to integrate: ") + r.what +
-                    detail::format(" = %.3g 1/s is %.3g times roller.f, which must be at most "
-                                   "%.3g (the paper's roller: 3.7; an explicit integrator needs "
-                                   "about %.3g steps per period); ",
-                                   r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3) +
-                    key + " = " + num(value) + " makes it so: give a plausible value",
-                key, value);
+    throw Error(head + key + " = " + num(value) + " makes it so: give a plausible value", key,
+                value);
   }
 }
 
@@ -154,6 +177,17 @@ Model::Model(const Case& c) : case_(c) {
   const bool vibratory = R.type == RollerType::vibratory;
   M0_ = vibratory ? 0.0 : oscillation_moment(R);
   F0_ = vibratory ? R.static_moment * nu_ * nu_ : 0.0;
+  // Each input finite, their product not (roller.unbalance = 1e308 gave M0 = inf and a run that
+  // ended non_finite, exit 1).
+  if (!std::isfinite(M0_))
+    throw Error("roller.unbalance = " + num(R.unbalance) + " kg m^2 at roller.f = " + num(R.f) +
+                    " Hz gives M0 = 4 m_u e_u e_w nu^2 (5) beyond double precision; real "
+                    "oscillation rollers have about 0.1-0.5 kg m^2 (the paper's 0.22877)",
+                "roller.unbalance", R.unbalance);
+  if (!std::isfinite(F0_))
+    throw Error("roller.static_moment = " + num(R.static_moment) + " kg m at roller.f = " +
+                    num(R.f) + " Hz gives the force F0 = m_u e_u nu^2 beyond double precision",
+                "roller.static_moment", R.static_moment);
   // Default (the paper): kd acts on z_M measured from t = 0, so at rest the suspension carries
   // part of the load. Variant: measure it from the static equilibrium s_A = W / ksv.
   z_ref_ = c.numerics.suspension_from_static ? W_ / ksv_ : 0.0;

@@ -609,6 +609,17 @@ TEST(ModelValidation, RejectsACaseTooStiffToIntegrate) {
   c.soil.input = SoilInput::modulus;
   c.soil.G = 1e11;
   EXPECT_NO_THROW(Model{c});
+  // ... at 39 Hz; at 0.1 Hz it is not, and the soil is named, not the paper's roller.kd beside
+  // it (the message said "roller.kd = 4e+06 makes it so").
+  c.roller.f = 0.1;
+  expect_model_rejects(c, {"the soil's ksh", "from Appendix B (42)-(45) at soil.G = 1e+11 Pa",
+                           "at roller.f = 0.1 Hz"});
+  // An incompressible soil: Appendix B's dashpot csv, from soil.nu (not roller.cd = 3000).
+  c = Case{};
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 27e6;
+  c.soil.nu = 0.49999999999;
+  expect_model_rejects(c, {"the soil's csv", "soil.nu near 1/2"});
 }
 
 TEST(ModelValidation, RejectsNaNInEveryRealField) {
