@@ -42,6 +42,14 @@ constexpr double kZeroScatter = 0.01;
 // Stroboscopic points that agree to this fraction of the components' ranges recur.
 constexpr double kRecurrence = 1e-6;
 constexpr int kMaxRecurrence = 64;
+// The points of an orbit of period p > 1 are p distinct points: their spread (RMS distance from
+// their centre, scaled) is at least this. Points that all lie closer together are one point
+// approached slowly: a spiral into a period-1 orbit (a complex pair of modulus 0.99775 turning
+// once in 37 periods) recurred to kRecurrence every 37 periods at an amplitude of about 1e-5, and
+// was called periodic with period 37, where the transient reaches the period-1 orbit after 7188
+// periods. (An orbit of period 2 just past its doubling has its points about 1e-4 apart when the
+// parameter is 1e-8 of itself past the bifurcation.)
+constexpr double kDistinctPoints = 1e2 * kRecurrence;
 // Samples per period of the periods sampled for the scales when the result says none.
 constexpr int kScaleSamples = 64;
 
@@ -133,11 +141,28 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     return d;
   };
   const std::size_t n = out.section.size();
+  // The points' spread: the RMS distance from their centre, in scaled components.
+  const auto spread_of = [&](std::size_t from, std::size_t to) {
+    Eigen::VectorXd centre = Eigen::VectorXd::Zero(P);
+    for (std::size_t k = from; k < to; ++k)
+      for (int i = 0; i < P; ++i)
+        centre[i] += out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i];
+    centre /= static_cast<double>(to - from);
+    double squares = 0.0;
+    for (std::size_t k = from; k < to; ++k)
+      for (int i = 0; i < P; ++i) {
+        const double d =
+            out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i] - centre[i];
+        squares += d * d;
+      }
+    return std::sqrt(squares / static_cast<double>(to - from));
+  };
   for (int p = 1; p <= std::min(kMaxRecurrence, periods / 4) && out.recurrence == 0; ++p) {
     bool recurs = true;
     for (std::size_t k = n / 2; k < n && recurs; ++k) recurs = distance(k, k - p) < kRecurrence;
     if (recurs) out.recurrence = p;
   }
+  if (out.recurrence > 1 && spread_of(n / 2, n) < kDistinctPoints) out.recurrence = 0;
   // Benettin's estimate, in scaled components. The first tenth of the window only aligns v with
   // the most expanding direction (its start, any vector, would otherwise bias the mean by
   // ln(its projection) / K); the exponent is the mean growth over the rest, and over its halves.
@@ -207,21 +232,6 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   // torus, with status aperiodic, where the transient reaches the periodic orbit after 11 000
   // periods. A spread that shrinks from quarter to quarter, by more than a tenth from the first
   // half to the second, is that approach.
-  const auto spread_of = [&](std::size_t from, std::size_t to) {
-    Eigen::VectorXd centre = Eigen::VectorXd::Zero(P);
-    for (std::size_t k = from; k < to; ++k)
-      for (int i = 0; i < P; ++i)
-        centre[i] += out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i];
-    centre /= static_cast<double>(to - from);
-    double squares = 0.0;
-    for (std::size_t k = from; k < to; ++k)
-      for (int i = 0; i < P; ++i) {
-        const double d =
-            out.section[k][static_cast<std::size_t>(Dyn::kPeriodic[i])] / scale[i] - centre[i];
-        squares += d * d;
-      }
-    return std::sqrt(squares / static_cast<double>(to - from));
-  };
   const std::array<double, 4> quarter = {spread_of(0, n / 4), spread_of(n / 4, n / 2),
                                          spread_of(n / 2, 3 * n / 4), spread_of(3 * n / 4, n)};
   const double spread_ratio = spread_of(n / 2, n) / spread_of(0, n / 2);

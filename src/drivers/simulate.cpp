@@ -522,6 +522,36 @@ constexpr int kMotionPeriods = 400;
 // the same start (a period-2 orbit approached over about a thousand periods decides there).
 constexpr int kLongerMotion = 4;
 
+constexpr int kShootingCheckPeriods = 200;
+
+// Whether shooting from the last sampled state of `result` converges to a stable periodic orbit
+// (warm-started from that state, not from rest): its description, or nothing.
+std::optional<std::string> stable_orbit_nearby(const Model& model, const Result& result,
+                                               const std::function<bool()>& cancelled) {
+  if (result.samples.size() == 0) return {};
+  const std::optional<detail::WarmStart> start = detail::with_roller(model, [&]<class R>() {
+    const auto x = detail::Dynamics<R>::sampled_state(result.samples, 0);
+    for (double v : x)
+      if (!std::isfinite(v)) return std::optional<detail::WarmStart>{};
+    return std::optional<detail::WarmStart>{
+        detail::WarmStart{std::vector<double>(x.begin(), x.end()), result.samples.phase[0], {}}};
+  });
+  if (!start) return {};
+  Case c = model.parameters();
+  c.numerics.method = SteadyMethod::shooting;
+  c.numerics.max_periods = kShootingCheckPeriods;
+  const Model shooting(c);
+  const Result orbit = detail::simulate_from(shooting, {}, cancelled, &*start, false);
+  if (orbit.status != Status::steady_state || orbit.diagnostics.warm_start != 1 ||
+      orbit.floquet.stability != Stability::stable)
+    return {};
+  return detail::format(
+      "shooting from the last state finds a stable periodic orbit (period %.0f, largest Floquet "
+      "multiplier modulus %.7g), which the motion approaches too slowly for "
+      "numerics.max_periods (by |mu| per period); numerics.method = shooting gives it",
+      orbit.diagnostics.multiplicity, orbit.floquet.max_modulus);
+}
+
 void examine_motion(const Model& model, Result& result, const std::function<bool()>& cancelled) {
   MotionAnalysis a = analyze_motion(model, result, kMotionPeriods, cancelled);
   if (cancelled && cancelled()) return;  // the run's status stands; it was stopped
@@ -532,6 +562,21 @@ void examine_motion(const Model& model, Result& result, const std::function<bool
   }
   result.diagnostics.motion = a.kind;
   result.diagnostics.lyapunov_exponent = a.lyapunov;
+  // A "zero" exponent over the window is also an approach to a periodic orbit whose multiplier
+  // lies within about 1e-4 of the unit circle (0.9999852: the transient settled after 954 972
+  // periods, and the status said aperiodic, a torus). Shooting from the last state (at most
+  // kShootingCheckPeriods, below kMotionPeriods: no examination of its own) tells them apart: a
+  // stable orbit it reaches from there is not a torus.
+  if (a.kind == "quasi_periodic" && !(cancelled && cancelled())) {
+    if (const std::optional<std::string> orbit = stable_orbit_nearby(model, result, cancelled)) {
+      result.diagnostics.motion = "converging";
+      result.message += "; examined over " + std::to_string(a.periods) +
+                        " further periods: converging (the largest Lyapunov exponent reads zero, " +
+                        detail::format("%.4g", a.lyapunov / model.parameters().roller.f) +
+                        " per period, as on a torus, but " + *orbit + ")";
+      return;
+    }
+  }
   if (a.kind == "quasi_periodic" || a.kind == "chaotic") {
     result.status = Status::aperiodic;
     result.message = "no periodic steady state within numerics.max_periods; the motion is " +

@@ -132,6 +132,66 @@ TEST(Motion, AnOrbitLongerThanTheLongestSearchedIsNamedPeriodic) {
   EXPECT_EQ(found.diagnostics.multiplicity, 11) << found.message;
 }
 
+// A spiral into a period-1 orbit (a complex pair of modulus 0.99775 turning about once in 37
+// periods; mu = 1, no buffer damping, the transient settles after 7188 periods): its points, all
+// within about 1e-5 of one another, recurred every 37 periods to 1e-6, and the run was "periodic
+// every 37 periods ... set numerics.max_multiplicity to 37", which found nothing. Points that do
+// not spread are one point approached slowly: converging.
+TEST(Motion, ASlowSpiralIsNotALongPeriod) {
+  Case c;
+  c.roller.f = 18.15301466418838;
+  c.roller.unbalance = 0.24992059556020982;
+  c.roller.m = 1923.7781485626917;
+  c.roller.I = 446.7286637471754;
+  c.roller.kd = 12e6;
+  c.roller.cd = 0.0;
+  c.roller.P0 = 40599.21587114353;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 57662240.21282199;
+  c.soil.rho = 2278.7753343957474;
+  c.contact.mu = 1.0;
+  c.trough.shape = LogSpiralTrough{0.0002052855322215848, 0.6257724215094307};
+  c.MMd = 0.19299897582806852 * oscillation_moment(c.roller);
+  c.numerics.method = SteadyMethod::transient;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_EQ(r.diagnostics.motion, "converging") << r.message;
+  EXPECT_EQ(r.message.find("repeat every"), std::string::npos) << r.message;
+  // Shooting finds the stable period-1 orbit it approaches.
+  c.numerics.method = SteadyMethod::shooting;
+  const Result orbit = simulate(c);
+  ASSERT_EQ(orbit.status, Status::steady_state) << orbit.message;
+  EXPECT_EQ(orbit.diagnostics.multiplicity, 1);
+  EXPECT_NEAR(orbit.floquet.max_modulus, 0.99775, 1e-4);
+}
+
+// An approach to a periodic orbit whose multiplier is 1 - 1.5e-5 reads as a zero exponent over
+// any window the examination takes (a torus: status aperiodic), although the transient settles
+// after 954 972 periods. Shooting from the last state reaches the stable orbit: converging, the
+// status max_periods_reached, and the message names the orbit and the method that gives it.
+TEST(Motion, AnApproachTooSlowToSeeIsCheckedByShooting) {
+  Case c;
+  c.roller.f = 18.0;
+  c.roller.unbalance = 0.22387516451101772;
+  c.roller.kd = 567925.6173881155;
+  c.roller.cd = 0.0;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 14163497.95542615;
+  c.soil.nu = 0.29590777283907266;
+  c.contact.mu = 0.3794860557217925;
+  c.trough.shape = LogSpiralTrough{0.002, 0.7531547932331921};
+  c.numerics.method = SteadyMethod::transient;
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::max_periods_reached) << r.message;
+  EXPECT_EQ(r.diagnostics.motion, "converging") << r.message;
+  EXPECT_NE(r.message.find("shooting from the last state finds a stable periodic orbit (period 1, "
+                           "largest Floquet multiplier modulus 0.99998"),
+            std::string::npos)
+      << r.message;
+  // The tori of the 58 Hz study stay tori (ASpiralApproachIsNotATorus): shooting from their
+  // last state finds no stable orbit.
+}
+
 TEST(Motion, ChaoticExponentIsTheGrowthOfNearbyTrajectories) {
   const Model model(torus_case(50e6));
   const Result r = simulate(model);
