@@ -366,6 +366,43 @@ TEST(Shooting, AgreesWithTheTransientMethod) {
   }
 }
 
+// Two stable orbits coexist where the static friction exceeds the kinetic (docs/periodic.md,
+// "Coexisting orbits"): from rest the drum reaches one with negative slip (the transient method),
+// while shooting, from the state after its short transient, converges to one without; the
+// transient method ramped in over 20 periods reaches shooting's. Both are steady states: the
+// docs quote these numbers (friction work 6.10 and 4.32 J, 13 % of the period in negative slip).
+TEST(Shooting, CoexistingOrbitsWithStaticFriction) {
+  Case c;
+  c.roller.f = 40.80431609817593;
+  c.roller.unbalance = 0.15771132842355304;
+  c.roller.kd = 0.0;
+  c.roller.cd = 7592.111929906456;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 2792058.755433623;
+  c.contact.mu = 0.5834594457402195;
+  c.contact.mu_static = 0.6994425486404838;
+  c.trough.shape = LogSpiralTrough{0.004, 0.601};
+  const Model shooting(c);
+  const Result shot = simulate(shooting);
+  c.numerics.method = SteadyMethod::transient;
+  const Model transient(c);
+  const Result from_rest = simulate(transient);
+  c.numerics.start_ramp_periods = 20;
+  const Model ramping(c);
+  const Result ramped = simulate(ramping);
+  for (const Result* r : {&shot, &from_rest, &ramped})
+    ASSERT_EQ(r->status, Status::steady_state) << r->message;
+  EXPECT_EQ(shot.floquet.stability, Stability::stable);
+  // The metrics of the dense trajectory, as `oscidrum run` reports them.
+  const Metrics a = compute_metrics(shooting, shot), b = compute_metrics(transient, from_rest),
+                ramp = compute_metrics(ramping, ramped);
+  EXPECT_NEAR(a.friction_work, 4.32, 0.005);
+  EXPECT_NEAR(b.friction_work, 6.10, 0.005);
+  EXPECT_EQ(a.slip_negative_fraction, 0.0);
+  EXPECT_NEAR(b.slip_negative_fraction, 0.13, 0.005);
+  EXPECT_NEAR(ramp.friction_work, a.friction_work, 1e-6 * a.friction_work);
+}
+
 // The same case by the transient method (`trans`, which must reach a steady state) and the
 // metrics of both; the peaks and the area of `shot` agree with it to kMethodTolerance.
 constexpr double kMethodTolerance = 2e-7;  // as in AgreesWithTheTransientMethod
