@@ -365,6 +365,9 @@ async function main() {
       // a field of the table without its own input ('more parameters')
       ['x:roller.r', '-1', /roller\.r must be > 0/],
       ['x:numerics.samples_per_period', '8', /numerics\.samples_per_period must be/],
+      // an integer key takes digits only, as in a case file and --set
+      ['x:numerics.max_periods', '1e3', /not an integer \(digits only\): '1e3'; numerics\.max_periods/],
+      ['x:numerics.max_periods', '5.0', /not an integer \(digits only\)/],
     ]) {
       if (name.startsWith('x:')) await page.click('summary');
       const good = await page.inputValue(`[id="in-${name}"]`);

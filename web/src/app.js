@@ -336,7 +336,9 @@ function readInputs() {
       continue;
     }
     const v = decimalNumber(text);
-    if (Number.isNaN(v)) errors[name] = `not a number: '${text}'; ${about}`;
+    // An integer key takes digits only, as in a case file and --set (5.0 and 1e3 are refused).
+    if (field && field.type === 'integer' && !/^[+-]?\d+$/.test(text)) errors[name] = `not an integer (digits only): '${text}'; ${about}`;
+    else if (Number.isNaN(v)) errors[name] = `not a number: '${text}'; ${about}`;
     else if (!Number.isFinite(v)) errors[name] = `must be finite; ${about}`;
     else values[name] = v;
   }
