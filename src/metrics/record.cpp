@@ -1186,7 +1186,8 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                                                std::to_string(parts) + " equal parts";
     reasons.push_back(
         "the response changes within the window: the RMS of " + std::string(channel) + " by " +
-        (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % " + where + " (> " +
+        (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % of the window's " +
+        where + " (> " +
         num(max_change * 100) + (o.one_reference ? " %): " : " %; --max-change): ") +
         (o.one_reference ? "a reference must be of one soil and one setting: cut the record "
                            "where it changes"
