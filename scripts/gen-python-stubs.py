@@ -101,7 +101,9 @@ def emit_class(lines, cls):
             if type(attr).__name__ == "pybind11_static_property" or True:
                 body.append(f"    {name}: Any")
     if cls is _core.Case:
-        kw = ", ".join(f"{a}: Any = ..." for a in sorted(_core.Case.aliases()))
+        # The keyword of each key (its alias) and of each group (a dict or the group's object).
+        groups = ("contact", "numerics", "roller", "soil", "trough")
+        kw = ", ".join(f"{a}: Any = ..." for a in sorted(set(_core.Case.aliases()) | set(groups)))
         body.insert(0, f"    def __init__(self, *, R: float = ..., {kw}, **dotted: Any) -> None: ...")
         body = [b for b in body if not b.startswith("    def __init__(*args")]
     elif field_props(cls):

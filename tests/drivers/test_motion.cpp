@@ -179,7 +179,7 @@ TEST(Motion, AnApproachTooSlowToSeeIsCheckedByShooting) {
   c.soil.G = 14163497.95542615;
   c.soil.nu = 0.29590777283907266;
   c.contact.mu = 0.3794860557217925;
-  c.trough.shape = LogSpiralTrough{0.002, 0.7531547932331921};
+  c.trough.shape = LogSpiralTrough{0.0, 0.7531547932331921};
   c.numerics.method = SteadyMethod::transient;
   const Result r = simulate(c);
   EXPECT_EQ(r.status, Status::max_periods_reached) << r.message;
