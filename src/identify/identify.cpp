@@ -32,11 +32,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::string num(double v) { return detail::shortest(v); }
 
 void check_input(const MeasuredResponse& data, const IdentifyOptions& o) {
-  if (!(o.gain_uncertainty >= 0.0 && o.gain_uncertainty <= 0.5))
-    throw Error(
-        "identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
-        "standard uncertainty of each channel's gain); got " +
-        num(o.gain_uncertainty));
+  detail::check_gain_uncertainty(o.gain_uncertainty);
   if (!(std::isfinite(data.f) && data.f > 0))
     throw Error("identify: f must be > 0 [Hz]; got " + num(data.f));
   if (o.harmonics < 1 || static_cast<int>(data.ddx.size()) < o.harmonics ||

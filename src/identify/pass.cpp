@@ -24,11 +24,7 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
     throw Error("identify: compare (--compare) must be in [1, " +
                 std::to_string(kMaxComparedHarmonics) + "] harmonics; got " +
                 std::to_string(o.harmonics));
-  if (!(o.gain_uncertainty >= 0.0 && o.gain_uncertainty <= 0.5))
-    throw Error(
-        "identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
-        "standard uncertainty of each channel's gain); got " +
-        detail::shortest(o.gain_uncertainty));
+  detail::check_gain_uncertainty(o.gain_uncertainty);
   if (windows.n_max > 0 && o.harmonics > windows.n_max)
     throw Error(
         "identify: compare (--compare) must be <= the harmonics fitted (n_max, "
@@ -94,10 +90,9 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
     if (out.back().valid) previous = out.size() - 1;
     if (progress && !progress(k, ws.size())) break;
   }
-  // Every window failed for the harmonics asked alone: the request, not the record, is wrong
-  // (a bad input, said once, rather than a failure repeated for each window).
-  if (measured > 0 && too_few == measured &&
-      std::none_of(out.begin(), out.end(), [](const PassEstimate& p) { return p.valid; }))
+  // Every window failed for the harmonics asked alone (so none is valid): the request, not the
+  // record, is wrong (a bad input, said once, rather than a failure repeated for each window).
+  if (measured > 0 && too_few == measured)
     throw Error(
         "identify: compare (--compare) = " + std::to_string(o.harmonics) +
         " is more harmonics than the record's windows measure: " + std::to_string(most_resolved) +

@@ -559,6 +559,14 @@ MeasuredResponse scaled_channels(MeasuredResponse d, double sx, double sz) {
   return d;
 }
 
+void check_gain_uncertainty(double gain_uncertainty) {
+  if (!(gain_uncertainty >= 0.0 && gain_uncertainty <= 0.5))
+    throw Error(
+        "identify: gain_uncertainty (--gain-uncertainty) must be in [0, 0.5] (a relative "
+        "standard uncertainty of each channel's gain); got " +
+        shortest(gain_uncertainty));
+}
+
 std::string open_reading_warning(bool z_negated, bool in_g, double chi2, double s2,
                                  const std::string& where) {
   const bool both = z_negated && in_g;

@@ -194,6 +194,9 @@ MeasuredResponse swapped(MeasuredResponse d);
 MeasuredResponse scaled(MeasuredResponse d, double s);
 /// The record's x_M'' times sx and z_M'' times sz (a gain of each channel's sensor).
 MeasuredResponse scaled_channels(MeasuredResponse d, double sx, double sz);
+/// Throws oscidrum::Error unless IdentifyOptions::gain_uncertainty is in [0, 0.5] (identify's
+/// check, and identify_pass's before any window, so that a pass refuses it once).
+void check_gain_uncertainty(double gain_uncertainty);
 
 /// What a fit in a reading the record left open says (IdentifyOptions::z_open, units_open;
 /// Reference::z_open, units_open): z_M'' negated, the accelerations in g, or both, `where` (a

@@ -1184,15 +1184,15 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                                          : "from part " + std::to_string(from + 1) + " to part " +
                                                std::to_string(to + 1) + " of " +
                                                std::to_string(parts) + " equal parts";
-    reasons.push_back(
-        "the response changes within the window: the RMS of " + std::string(channel) + " by " +
-        (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % of the window's " +
-        where + " (> " +
-        num(max_change * 100) + (o.one_reference ? " %): " : " %; --max-change): ") +
-        (o.one_reference ? "a reference must be of one soil and one setting: cut the record "
-                           "where it changes"
-                         : "a change of soil or of the roller's settings within it; a shorter "
-                           "--window resolves it"));
+    reasons.push_back("the response changes within the window: the RMS of " + std::string(channel) +
+                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) +
+                      " % of the window's " + where + " (> " + num(max_change * 100) +
+                      (o.one_reference ? " %): " : " %; --max-change): ") +
+                      (o.one_reference
+                           ? "a reference must be of one soil and one setting: cut the record "
+                             "where it changes"
+                           : "a change of soil or of the roller's settings within it; a shorter "
+                             "--window resolves it"));
   }
 }
 
