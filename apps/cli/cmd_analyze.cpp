@@ -131,6 +131,24 @@ int run(AnalyzeOptions o) {
   }
   std::size_t valid = 0;
   for (const RecordWindow& w : ws) valid += w.valid ? 1 : 0;
+  // An estimated f at which x_M'' is larger at 2f than half its component at f: an oscillation or
+  // vibratory drum's x_M'' is largest at the excitation's frequency, so f may be half of it (a
+  // period-2 response whose subharmonic outweighs its response at f, read as period 1 at f/2:
+  // valid, its CMV-type value and rmv those of another frequency). Said once, from the first
+  // valid window.
+  if (o.windows.f == 0.0)
+    for (const RecordWindow& w : ws) {
+      if (!w.valid) continue;
+      if (w.metrics.ddx_A2_A1 > 0.5)
+        std::cerr << "oscidrum: analyze: x_M'' at 2f is " << fmt(w.metrics.ddx_A2_A1, 3)
+                  << " of its component at the estimated f = " << fmt(w.f, 6)
+                  << " Hz (a drum's x_M'' is largest at the excitation's frequency): if the "
+                     "roller runs at "
+                  << fmt(2.0 * w.f, 6)
+                  << " Hz, this is a period-2 response read at half its frequency; give --f "
+                  << fmt(2.0 * w.f, 6) << "\n";
+      break;
+    }
   // A record sampled in step with the excitation: what it reports of the harmonics above those it
   // resolves is aliased (said once, from the first valid window).
   for (const RecordWindow& w : ws) {

@@ -120,8 +120,10 @@ void check_time_scales(const Case& c, const SoilCoefficients& s) {
                                    : "Appendix B (42)-(45) at soil.G = " + num(c.soil.G) +
                                          " Pa, soil.nu = " + num(c.soil.nu) +
                                          ", soil.rho = " + num(c.soil.rho) + " kg/m^3";
-      // Appendix B's dashpots grow without bound as nu approaches 1/2 (incompressible soil).
-      const bool nu_near_half = c.soil.input == SoilInput::modulus && c.soil.nu > 0.49;
+      // Appendix B's vertical dashpot grows without bound as nu approaches 1/2 (incompressible
+      // soil: sqrt(2 (1 - nu) / (1 - 2 nu))); the springs and csh do not.
+      const bool nu_near_half =
+          c.soil.input == SoilInput::modulus && c.soil.nu > 0.49 && coefficient == "csv";
       throw Error(head + "the soil's " + coefficient + " = " +
                       detail::format("%.4g", coefficient == "csh"   ? s.csh
                                              : coefficient == "csv" ? s.csv

@@ -115,6 +115,38 @@ TEST(CliAnalyze, RecordOfASimulationGivesItsHarmonics) {
 // per period (1.3e-4 seen; docs/outputs.md: of order 1/1024): 1e-3. The column is checked
 // against its definition first: 2 pi f t wrapped to [0, 2 pi). Without --case, kb is null and
 // kb_note says why.
+// A period-2 record whose subharmonic outweighs its response at the excitation's f = 25 Hz is
+// read as period 1 at 12.5 Hz (valid, its CMV-type value that of another frequency): x_M'' at 2f
+// above half its component at f, which a drum's x_M'' never is at the excitation's frequency, is
+// said, with the --f to give. The default case's record, estimated at its own f, says nothing of
+// it, nor does the record with --f given.
+TEST(CliAnalyze, AnEstimateAtHalfTheExcitationIsSaid) {
+  TempDir dir;
+  {
+    std::ofstream out(dir / "sub.csv");
+    out << "t,ddx_M,ddz_M\n";
+    for (int k = 0; k < 2000; ++k) {
+      const double t = 1e-3 * k, w = 2.0 * M_PI * 25.0 * t;
+      out << t << "," << 10.0 * std::cos(0.5 * w) + 6.0 * std::cos(w + 0.3) << ","
+          << 2.0 * std::cos(0.5 * w + 1.0) + 3.0 * std::cos(w) + 1.0 * std::cos(2.0 * w) << "\n";
+    }
+  }
+  const Outcome o = run({"analyze", dir / "sub.csv"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("x_M'' at 2f is 0.6 of its component at the estimated f = 12.5 Hz"),
+            std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find("give --f 25"), std::string::npos) << o.err;
+  const Outcome given = run({"analyze", dir / "sub.csv", "--f", "25"});
+  EXPECT_EQ(given.err.find("x_M'' at 2f"), std::string::npos) << given.err;
+  ASSERT_EQ(
+      run({"run", "--quiet", "--csv", dir / "s.csv", "--set", "numerics.output_periods=8"}).code,
+      0);
+  const Outcome own = run({"analyze", dir / "s.csv"});
+  EXPECT_EQ(own.code, 0) << own.err;
+  EXPECT_EQ(own.err.find("x_M'' at 2f"), std::string::npos) << own.err;
+}
+
 TEST(CliAnalyze, KbOfAVibratoryRecordWithItsUnbalanceAngle) {
   TempDir dir;
   const std::string example = kSource + "/examples/vibratory.toml";

@@ -614,6 +614,14 @@ TEST(ModelValidation, RejectsACaseTooStiffToIntegrate) {
   c.roller.f = 0.1;
   expect_model_rejects(c, {"the soil's ksh", "from Appendix B (42)-(45) at soil.G = 1e+11 Pa",
                            "at roller.f = 0.1 Hz"});
+  // ... where soil.nu near 1/2 is not the cause (a spring, not the vertical dashpot): not named.
+  c.soil.nu = 0.495;
+  try {
+    const Model m(c);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("soil.nu near 1/2"), std::string::npos) << e.what();
+  }
   // An incompressible soil: Appendix B's dashpot csv, from soil.nu (not roller.cd = 3000).
   c = Case{};
   c.soil.input = SoilInput::modulus;
