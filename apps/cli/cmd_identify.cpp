@@ -434,21 +434,6 @@ int run(const IdentifyCliOptions& o) {
       if (!sampled_window) sampled_window = &p.window;
     }
   }
-  // Poor fits of a record whose time stamps were coarser than its sampling: the clock is their
-  // likely cause, which the diagnosis of each window cannot see (it named the roller: a 2 kHz
-  // record stamped to the millisecond gave G 1 % high, its intervals missing the truth).
-  if (rec.coarse_clock && !o.quiet) {
-    std::size_t poor = 0;
-    for (const PassEstimate& p : pass)
-      poor += p.valid && p.identification.reduced_chi2 > io.max_reduced_chi2 ? 1 : 0;
-    if (poor > 0)
-      std::cerr << "oscidrum: identify: " << poor << " of " << valid
-                << " windows fit poorly (reduced chi^2 above " << fmt(io.max_reduced_chi2, 3)
-                << "), and the record's time stamps are coarser than its sampling (rows "
-                   "repeating a time were averaged, each a sample at the wrong time): the likely "
-                   "cause; if the rows are equally spaced, give --rate HZ (the logger's sampling "
-                   "rate) so that each row has its own time\n";
-  }
   // Said once for a pass (a single window's summary says it too): windows whose samples alias.
   if (sampled_window && pass.size() > 1 && !o.quiet)
     std::cerr << "oscidrum: identify: " << model_sampled << " of " << valid

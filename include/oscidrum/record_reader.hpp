@@ -54,9 +54,6 @@ struct RecordColumns {
   std::string t_column, x_column, z_column;
   double t_factor = 1.0, x_factor = 1.0, z_factor = 1.0;
   std::string z_positive = "down";  ///< which way the z column was read to point: down or up
-  /// A tenth of the rows or more repeated the time of the row before and were averaged: time
-  /// stamps coarser than the sampling (a clock rounded to the millisecond at 2 kHz).
-  bool coarse_clock = false;
   /// z_positive "auto" found no gravity in the column: its direction is auto's first guess
   /// (down; a two-dimensional record's y: up), which identify may turn when the fit says so
   /// (IdentifyOptions::z_open). False when the direction was given or gravity decided it.

@@ -1804,46 +1804,86 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // switch (where the accelerations jump) at the switch's time. Each run of them is one sample,
   // its accelerations averaged (the middle of the jump, where a harmonic series converges); the
   // other columns keep the run's first row.
+  // A clock coarser than the sampling (a 2 kHz logger stamping to the millisecond) repeats
+  // nearly every time stamp instead: there the rows of each stamp are spread evenly to the next
+  // stamp, each its own time. Averaged, each pair was one sample at the wrong time (a low-pass
+  // and a delay of a quarter of a millisecond): G came out 1 % high, its intervals missing the
+  // truth.
   {
-    std::size_t kept = 0, repeated = 0;
-    double first_repeated = 0.0;
-    std::vector<double>* const others[] = {
-        &out.position, &out.lat, &out.lon, &out.east, &out.north, &out.unbalance_angle, &speed};
+    // The runs of equal times: their first row and length.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
     for (std::size_t i = 0; i < out.t.size();) {
       std::size_t j = i + 1;
-      double sx = out.ddx_M[i], sz = out.ddz_M[i];
-      for (; j < out.t.size() && out.t[j] == out.t[i]; ++j) {
-        sx += out.ddx_M[j];
-        sz += out.ddz_M[j];
-      }
-      if (j - i > 1 && repeated == 0) first_repeated = out.t[i];
-      repeated += j - i - 1;
-      const double m = static_cast<double>(j - i);
-      out.t[kept] = out.t[i];
-      out.ddx_M[kept] = sx / m;
-      out.ddz_M[kept] = sz / m;
-      for (std::vector<double>* v : others)
-        if (!v->empty()) (*v)[kept] = (*v)[i];
-      ++kept;
+      while (j < out.t.size() && out.t[j] == out.t[i]) ++j;
+      runs.emplace_back(i, j - i);
       i = j;
     }
-    if (repeated > 0) {
+    const std::size_t repeated = out.t.size() - runs.size();
+    std::size_t multi = 0;
+    for (const auto& run : runs) multi += run.second > 1 ? 1 : 0;
+    // Every stamp but a few (9 in 10) holds 2 rows or more: the clock. Fewer: switches (or a
+    // clock too irregular to spread; averaged, with the note below).
+    const bool spread = runs.size() >= 3 && 10 * multi >= 9 * runs.size();
+    const double first_repeated = [&] {
+      for (const auto& run : runs)
+        if (run.second > 1) return out.t[run.first];
+      return 0.0;
+    }();
+    if (spread) {
+      // The step between stamps, for the last one and for one before a gap (a paused logger):
+      // the median step between consecutive stamps.
+      std::vector<double> steps;
+      for (std::size_t r = 1; r < runs.size(); ++r)
+        steps.push_back(out.t[runs[r].first] - out.t[runs[r - 1].first]);
+      std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
+                       steps.end());
+      const double typical = steps[steps.size() / 2];
+      for (std::size_t r = 0; r < runs.size(); ++r) {
+        const auto [begin, length] = runs[r];
+        const double t0 = out.t[begin];
+        const double next = r + 1 < runs.size() ? out.t[runs[r + 1].first] : t0 + typical;
+        const double step = std::min(next - t0, typical) / static_cast<double>(length);
+        for (std::size_t k = 1; k < length; ++k)
+          out.t[begin + k] = t0 + static_cast<double>(k) * step;
+      }
+      out.notes.push_back(
+          std::to_string(repeated) + " rows repeat the time of the row before (the first at t = " +
+          format_factor(first_repeated) + " s): nearly every time stamp holds " +
+          "several rows, a clock coarser than the sampling (rounded), so the rows of each stamp " +
+          "are spread evenly to the next stamp, each its own time; if the rows are equally " +
+          "spaced, --rate HZ gives them the logger's own times");
+    } else if (repeated > 0) {
+      std::size_t kept = 0;
+      std::vector<double>* const others[] = {
+          &out.position, &out.lat, &out.lon, &out.east, &out.north, &out.unbalance_angle, &speed};
+      for (const auto& [begin, length] : runs) {
+        double sx = 0.0, sz = 0.0;
+        for (std::size_t k = begin; k < begin + length; ++k) {
+          sx += out.ddx_M[k];
+          sz += out.ddz_M[k];
+        }
+        const double m = static_cast<double>(length);
+        out.t[kept] = out.t[begin];
+        out.ddx_M[kept] = sx / m;
+        out.ddz_M[kept] = sz / m;
+        for (std::vector<double>* v : others)
+          if (!v->empty()) (*v)[kept] = (*v)[begin];
+        ++kept;
+      }
       for (std::vector<double>* v : {&out.t, &out.ddx_M, &out.ddz_M}) v->resize(kept);
       for (std::vector<double>* v : others)
         if (!v->empty()) v->resize(kept);
-      // Many (a tenth of the samples or more): a clock coarser than the sampling (a logger's
-      // time stamps rounded to the millisecond at 2 kHz), not an integrator's switches.
-      const bool coarse_clock = 10 * repeated >= kept;
-      out.coarse_clock = coarse_clock;
+      // Many (a tenth of the samples or more), but not nearly every stamp: perhaps a clock
+      // coarser than the sampling, too irregular to spread.
+      const bool many = 10 * repeated >= kept;
       out.notes.push_back(
           std::to_string(repeated) + " row" + (repeated > 1 ? "s repeat" : " repeats") +
           " the time of the row before (the first at t = " + format_factor(first_repeated) +
-          (coarse_clock
-               ? " s; so many that the time stamps are likely coarser than the sampling, a "
-                 "clock rounded): each such run is one sample, its accelerations averaged; if "
-                 "the rows are equally spaced, --rate HZ gives each row its own time"
-               : " s; an event-driven integrator writes both sides of a switch so): each such "
-                 "run is one sample, its accelerations averaged (the middle of the jump)"));
+          (many ? " s; so many that the time stamps may be coarser than the sampling, a "
+                  "clock rounded): each such run is one sample, its accelerations averaged; if "
+                  "the rows are equally spaced, --rate HZ gives each row its own time"
+                : " s; an event-driven integrator writes both sides of a switch so): each such "
+                  "run is one sample, its accelerations averaged (the middle of the jump)"));
     }
   }
   if (skipped > 0)

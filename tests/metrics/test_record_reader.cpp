@@ -1103,6 +1103,18 @@ TEST(RecordReader, RowsAtTheTimeOfTheRowBeforeAreOneSample) {
   EXPECT_EQ(note_of(one).find("--rate"), std::string::npos);
   EXPECT_NE(note_of(pairs).find("coarser than the sampling"), std::string::npos);
   EXPECT_NE(note_of(pairs).find("--rate HZ"), std::string::npos);
+  // Every stamp holding two rows: the clock, its rows spread to the next stamp (averaged, each
+  // pair was one sample a quarter of a millisecond late), the last by the median step.
+  const RecordColumns spread = read_text(pairs);
+  ASSERT_EQ(spread.t.size(), 100u);
+  for (std::size_t i = 0; i < 100; ++i)
+    EXPECT_NEAR(spread.t[i], 0.5e-3 * static_cast<double>(i), 1e-15) << i;
+  // Stamps with irregular repeats (a third of them): averaged, as switches are.
+  std::string some = "t,ax,az\n";
+  for (int i = 0; i < 99; ++i)
+    some += std::to_string(i) + "e-3,1,2\n" + (i % 3 == 0 ? std::to_string(i) + "e-3,1,2\n" : "");
+  EXPECT_EQ(read_text(some).t.size(), 99u);
+  EXPECT_NE(note_of(some).find("may be coarser than the sampling"), std::string::npos);
   RecordReading o;
   o.pos_col = "x";
   EXPECT_EQ(read_text("t,ax,az,x\n0,1,2,5\n0.001,1,2,6\n0.001,3,-2,7\n", o).position,
