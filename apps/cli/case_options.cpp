@@ -167,8 +167,18 @@ namespace {
 void apply_flags(const CaseOptions& o, io::CaseSpec& spec);
 }  // namespace
 
-Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec) {
+Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec,
+                  std::optional<SoilInput> soil_input) {
   if (!config.empty()) io::read_case_file(config, spec);
+  if (soil_input) {
+    // Only where nothing names the soil's input: not the file, and not a flag (applied next,
+    // before finalize; a flag that gives the soil sets it itself).
+    bool named = false;
+    for (const char* key :
+         {"soil.input", "soil.table2_G", "soil.ksh", "soil.ksv", "soil.csh", "soil.csv"})
+      named = named || spec.given(key);
+    if (!named) spec.values.soil.input = *soil_input;
+  }
   apply(o, spec);
   std::vector<std::string> warnings;
   const Case c = io::finalize(spec, &warnings);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,10 @@ double key_flag_value(const Field& f, const std::string& flag, const std::string
 
 /// The case a command runs: the case file `config` (if any), then the flags and --set of `o`,
 /// finalised with its warnings on stderr and validated. `spec` keeps where each key was set.
-Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec);
+/// `soil_input`: the soil input of a case whose file and flags name no soil input (soil.input,
+/// soil.table2_G or a coefficient): identify's and calibrate's G on the formulas scale go
+/// through Appendix B, where soil.nu, soil.rho and roller.b take effect.
+Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec,
+                  std::optional<SoilInput> soil_input = std::nullopt);
 
 }  // namespace oscidrum::cli

@@ -142,7 +142,11 @@ std::string case_file(const Calibration& cal, const std::vector<std::string>& ar
 
 int run(const CalibrateCliOptions& o) {
   io::CaseSpec spec;
-  const Case base = resolve_case(o.config, o.c, spec);
+  // The references' G on the formulas scale go through Appendix B: nu, rho and the drum width b
+  // take effect (--b 1.5 was refused as having no effect under the default Table 2 soil).
+  const Case base = resolve_case(
+      o.config, o.c, spec,
+      o.soil_scale == "formulas" ? std::optional<SoilInput>(SoilInput::modulus) : std::nullopt);
   const SoilScale scale = soil_scale_from(o.soil_scale, "--soil-scale");
   install_interrupt_handlers();
   std::vector<Reference> refs;

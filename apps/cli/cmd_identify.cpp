@@ -93,7 +93,12 @@ std::string windows_text(const std::vector<int>& windows) {
 // The case the record is compared with: the case file, the flags, --set.
 Case base_case(const IdentifyCliOptions& o) {
   io::CaseSpec spec;
-  return resolve_case(o.config, o.c, spec);
+  // G on the formulas scale goes through Appendix B: the case's nu, rho and drum width b take
+  // effect (--nu 0.35 was refused as having no effect under the default Table 2 soil).
+  return resolve_case(o.config, o.c, spec,
+                      o.estimate == "G" && o.soil_scale == "formulas"
+                          ? std::optional<SoilInput>(SoilInput::modulus)
+                          : std::nullopt);
 }
 
 // The measured response from `analyze --format json` (schema oscidrum-record/1), and the

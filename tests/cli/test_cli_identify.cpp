@@ -346,6 +346,36 @@ TEST(CliIdentify, ACoarseClockIsSpreadBetweenItsStamps) {
   EXPECT_NEAR(G(b) / G(a), 1.0, 1e-6);
 }
 
+// G on the formulas scale (the default) goes through Appendix B, where the soil's nu and rho and
+// the drum width b take effect: --nu was refused as having "no effect while soil.input =
+// table2" (the default case's input), and calibrate's --b alike. On the table2 scale it has none.
+TEST(CliIdentify, TheFormulasScaleTakesNuRhoAndTheDrumWidth) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  const auto G = [](const Outcome& o) {
+    return nlohmann::json::parse(o.out)["windows"][0]["estimates"][0]["value"].get<double>();
+  };
+  const Outcome plain = run({"identify", dir / "r.csv", "--no-profile", "--format", "json"});
+  const Outcome same =
+      run({"identify", dir / "r.csv", "--no-profile", "--format", "json", "--nu", "0.3"});
+  const Outcome other =
+      run({"identify", dir / "r.csv", "--no-profile", "--format", "json", "--nu", "0.35"});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  ASSERT_EQ(same.code, 0) << same.err;
+  ASSERT_EQ(other.code, 0) << other.err;
+  EXPECT_EQ(G(same), G(plain));  // the default nu
+  EXPECT_GT(std::abs(G(other) / G(plain) - 1.0), 1e-3);
+  const Outcome table2 =
+      run({"identify", dir / "r.csv", "--no-profile", "--soil-scale", "table2", "--nu", "0.35"});
+  EXPECT_EQ(table2.code, 2) << table2.err;
+  EXPECT_NE(table2.err.find("soil.nu has no effect"), std::string::npos) << table2.err;
+  const Outcome calibrate =
+      run({"calibrate", std::string(dir / "r.csv") + "@17.3", "--fit", "roller.M0", "--b", "2.1",
+           "--no-profile", "--out", dir / "cal.toml"});
+  EXPECT_EQ(calibrate.code, 0) << calibrate.err;
+  EXPECT_NE(slurp(dir / "cal.toml").find("input = \"modulus\""), std::string::npos);
+}
+
 // A three-axis logger mounted with y vertical (up, gravity kept) and z along the drum's axle (a
 // small lateral signal, no gravity), in g: the reader takes y as the vertical and says so, and
 // identify gives the model's own record's G.
