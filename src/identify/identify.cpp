@@ -235,7 +235,7 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
     return std::string(buf);
   };
   double best = std::max(o.max_reduced_chi2, s2 / 10.0);
-  std::string found;
+  std::string found, found_change, found_advice;
   std::vector<std::pair<double, std::string>> checked;  // reduced chi^2, what was changed
   for (const Alternative& a : alternatives) {
     if (a.other_scale && !o.modulus) continue;
@@ -276,8 +276,10 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
       // MMd come last: an unknown more always fits a little better.
       if (std::isfinite(chi2) && chi2 < (found.empty() ? best : 0.5 * best)) {
         best = chi2;
-        found = "the fit is far better with " + what + " (reduced chi^2 " + sig3(chi2) +
-                " against " + sig3(s2) + "): " + advice;
+        found_change = "the fit is far better with " + what + " (reduced chi^2 " + sig3(chi2) +
+                       " against " + sig3(s2) + ")";
+        found_advice = advice;
+        found = found_change + ": " + advice;
       }
     } catch (const Error&) {
       // an alternative the model cannot fit says nothing
@@ -308,9 +310,13 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
                      : " (small: the window's signal is periodic at f and well resolved)");
   }
   if (!found.empty() && best <= o.max_reduced_chi2) return {found};
+  // Still poor with the change: it need not be the cause (a roller that differs from the case
+  // fits better with mu fitted too, and the advice said the case's mu was wrong, where it was
+  // the truth).
   if (!found.empty())
-    return {found + ", but it still fits poorly (reduced chi^2 " + sig3(best) + " > " +
-            num(o.max_reduced_chi2) + "): checked, best first: " + list +
+    return {found_change + ", but it still fits poorly (reduced chi^2 " + sig3(best) + " > " +
+            num(o.max_reduced_chi2) + "), so that alone does not explain the record (were it " +
+            "the cause: " + found_advice + "): checked, best first: " + list +
             ". Other causes: " + remaining};
   if (checked.empty())  // every refit failed: the window's budget spent, or no model fits
     return {"no cause of the poor fit could be checked: the model failed on every refit (" +

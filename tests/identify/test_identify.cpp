@@ -522,6 +522,13 @@ TEST(Identify, APoorFitNamesTheCauseItChecked) {
   heavy.roller.M0 *= 0.85;
   const std::string roller = warnings_of(heavy, base(false, 0.0));
   EXPECT_NE(roller.find("oscidrum calibrate"), std::string::npos) << roller;
+  // A change that fits far better but still poorly is not stated as the cause (the case's mu,
+  // the truth here, was called wrong).
+  EXPECT_NE(roller.find("still fits poorly"), std::string::npos) << roller;
+  EXPECT_NE(roller.find("so that alone does not explain the record (were it the cause: "),
+            std::string::npos)
+      << roller;
+  EXPECT_EQ(roller.find("): the friction coefficient is not"), std::string::npos) << roller;
   // Every single change checked is listed with its chi^2, best first.
   for (const char* what : {"z_M'' negated: ", "x_M'' and z_M'' negated: ",
                            "G on the other soil scale: ", "MMd fitted too: "})
