@@ -25,4 +25,25 @@ inline Case log_spiral_case() {
   return c;
 }
 
+/// The log-spiral study's case on stiff soil (G = 150 MN/m^2), past its period doubling: the
+/// period-1 orbit has a multiplier -1.006 and the drum, sticking throughout, settles on a stable
+/// period-2 orbit.
+inline Case period_two_case() {
+  Case c = log_spiral_case();
+  set_field(c, "soil.G", 150e6);
+  return c;
+}
+
+/// Pure rolling on contact that can open (docs/lift-off.md): the paper's roller with its unbalance
+/// at f [Hz] on soil by Appendix B; at 58 Hz the study of docs/bifurcations.md with two
+/// Neimark-Sacker points in G.
+inline Case rolling_unilateral_case(double f = 58.0) {
+  Case c = modulus_case();
+  set_field_text(c, "contact.pure_rolling", "true");
+  set_field_text(c, "contact.unilateral", "true");
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "roller.f", f);
+  return c;
+}
+
 }  // namespace oscidrum::test

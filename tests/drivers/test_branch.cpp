@@ -20,6 +20,7 @@ namespace {
 
 using test::log_spiral_case;
 using test::modulus_case;
+using test::rolling_unilateral_case;
 
 Result run_at(Case c, const std::string& key, double q) {
   set_field(c, key, q);
@@ -128,11 +129,8 @@ TEST(Branch, GrazingAndGrossSlipInTheDrivingTorque) {
 // two Neimark-Sacker points the transient method, which knows nothing of the continuation,
 // finds no steady state, and outside them it does.
 TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
-  Case c = modulus_case();
-  set_field_text(c, "contact.pure_rolling", "true");
-  set_field(c, "roller.unbalance", 0.22877);
-  set_field(c, "roller.f", 58.0);
-  set_field_text(c, "contact.unilateral", "true");  // beyond the points the motion grows: N -> 0
+  // Contact that can open: beyond the points the motion grows (N -> 0).
+  Case c = rolling_unilateral_case(58.0);
   BranchOptions o;
   o.key = "soil.G";
   o.from = 30e6;
@@ -171,10 +169,7 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
 // reached across lift-off (the map beside the orbit had a flight phase), and a fold was reported
 // with the critical multiplier 0.72 + 0.75i, nowhere near +1.
 TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
-  Case c = modulus_case();
-  set_field_text(c, "contact.pure_rolling", "true");
-  set_field_text(c, "contact.unilateral", "true");
-  set_field(c, "roller.unbalance", 0.22877);
+  Case c = rolling_unilateral_case();
   set_field(c, "soil.G", 100e6);
   BranchOptions o;
   o.key = "roller.f";

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "bifurcation_cases.hpp"
 #include "drivers/continuation.hpp"
 #include "drivers/period_recording.hpp"
 #include "oscidrum/oscidrum.hpp"
@@ -406,13 +407,8 @@ TEST(Continuation, NearTheUnitCircleTheMultipliersAreTakenAtTheOrbit) {
   // quasi-periodic). Within kMultiplierDrift times that residual of 1 the monodromy is taken
   // again at the orbit.
   const auto case_at = [](double G) {
-    Case c;
-    c.soil.input = SoilInput::modulus;
+    Case c = test::rolling_unilateral_case(58.0);
     c.soil.G = G;
-    c.roller.f = 58.0;
-    set_field(c, "roller.unbalance", 0.22877);
-    c.contact.pure_rolling = true;
-    c.contact.unilateral = true;
     return c;
   };
   const Model model(case_at(40e6)), neighbour(case_at(35e6));

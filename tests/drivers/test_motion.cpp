@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bifurcation_cases.hpp"
 #include "oscidrum/oscidrum.hpp"
 #include "roller/unilateral_drum.hpp"
 
@@ -54,13 +55,7 @@ TEST(Motion, ASlowTransientIsConverging) {
 // exponent is then near zero as on a torus, but the points close in on the orbit: converging,
 // not quasi-periodic, and the status stays max_periods_reached.
 TEST(Motion, ASlowApproachBesideABifurcationIsNotATorus) {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  set_field(c, "trough.k", 0.002);
-  set_field(c, "trough.a", 0.601);
-  set_field(c, "contact.mu", 0.7);
-  set_field(c, "roller.f", 25.0);
-  set_field(c, "roller.unbalance", 0.22877);
+  Case c = test::log_spiral_case();
   set_field(c, "soil.G", 125.63e6);
   const Result r = simulate(c);
   ASSERT_EQ(r.status, Status::max_periods_reached) << r.message;
@@ -69,12 +64,7 @@ TEST(Motion, ASlowApproachBesideABifurcationIsNotATorus) {
 }
 
 Case torus_case(double G) {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  set_field_text(c, "contact.pure_rolling", "true");
-  set_field_text(c, "contact.unilateral", "true");
-  set_field(c, "roller.unbalance", 0.22877);
-  set_field(c, "roller.f", 58.0);
+  Case c = test::rolling_unilateral_case(58.0);
   set_field(c, "soil.G", G);
   c.numerics.method = SteadyMethod::transient;
   c.numerics.max_periods = 3000;
@@ -245,11 +235,7 @@ TEST(Motion, ChaoticExponentIsTheGrowthOfNearbyTrajectories) {
 // random scan (scripts/aperiodic_scan.py), periodic with period 10 when run alone, was called
 // converging in the study.
 TEST(Motion, AResultWithOnlyItsSectionStateGetsTheSameVerdict) {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  set_field_text(c, "contact.pure_rolling", "true");
-  set_field_text(c, "contact.unilateral", "true");
-  set_field(c, "roller.unbalance", 0.22877);
+  Case c = test::rolling_unilateral_case();
   set_field(c, "soil.G", 78893111.40134941);
   set_field(c, "roller.f", 55.65340426355091);
   set_field(c, "MMd", 6360.4858189871675);
@@ -312,11 +298,7 @@ TEST(Motion, AStudysVerdictDoesNotDependOnKeepingSamples) {
 // long, which decides: this case of the random scan (scripts/aperiodic_scan.py) approaches a
 // period-2 orbit over about a thousand periods.
 TEST(Motion, AnUndecidedWindowIsFollowedByALongerOne) {
-  Case c;
-  set_field_text(c, "soil.input", "modulus");
-  set_field_text(c, "contact.pure_rolling", "true");
-  set_field_text(c, "contact.unilateral", "true");
-  set_field(c, "roller.unbalance", 0.22877);
+  Case c = test::rolling_unilateral_case();
   set_field(c, "soil.G", 48394967.37278324);
   set_field(c, "roller.f", 62.85552485248849);
   set_field(c, "MMd", 1157.5428498360343);

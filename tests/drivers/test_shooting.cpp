@@ -11,6 +11,7 @@
 #include <complex>
 #include <vector>
 
+#include "bifurcation_cases.hpp"
 #include "drivers/sampling.hpp"
 #include "drivers/shooting.hpp"
 #include "flow/monodromy.hpp"
@@ -499,17 +500,7 @@ TEST(Shooting, TheSampledPeriodIsThePeriodMapAtTheOrbit) {
 // the paper's unbalance, no driving torque. The drum sticks throughout; the period-1 orbit has a
 // multiplier -1.006. Shooting finds the stable period-2 orbit on P^2 and agrees with the
 // transient method, which needs 340+ periods to settle on it.
-Case period_doubling_case() {
-  Case c;
-  c.soil.input = SoilInput::modulus;
-  c.soil.G = 150e6;
-  c.roller.unbalance = 0.22877;
-  c.roller.f = 25.0;
-  c.trough.shape = trough_shape(0.002, 0.601);
-  c.contact.mu = 0.7;
-  c.numerics.method = SteadyMethod::shooting;
-  return c;
-}
+Case period_doubling_case() { return test::period_two_case(); }
 
 TEST(Shooting, PeriodDoublingGivesTheStablePeriodTwoOrbit) {
   Case c = period_doubling_case();

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "drivers/bifurcation_cases.hpp"
 #include "metrics/frequency_step.hpp"
 #include "metrics/spectral_peak.hpp"
 #include "oscidrum/oscidrum.hpp"
@@ -800,13 +801,7 @@ TEST(Record, SubharmonicIndicatorsOfARecord) {
 // estimated as the excitation's, not f/2. Before, the fit on the harmonics of f left a residual of
 // 0.77 (every metric NaN), and the estimate was f/2 (the CMV-type value 1235 for 766).
 TEST(Record, APeriodTwoResponseIsFittedOverTwoPeriods) {
-  Case c;
-  c.soil.input = SoilInput::modulus;
-  c.soil.G = 150e6;
-  c.roller.unbalance = 0.22877;
-  c.roller.f = 25.0;
-  c.trough.shape = LogSpiralTrough{0.002, 0.601};
-  c.contact.mu = 0.7;
+  Case c = test::period_two_case();
   c.numerics.output_periods = 10;  // 20 excitation periods
   c.numerics.samples_per_period = 64;
   const Result r = simulate(c);
