@@ -524,18 +524,24 @@ constexpr int kLongerMotion = 4;
 
 constexpr int kShootingCheckPeriods = 200;
 
-// Whether shooting from the last sampled state of `result` converges to a stable periodic orbit
-// (warm-started from that state, not from rest): its description, or nothing.
+// A warm start from the first sample (the state at the start of the sampled window, where the
+// samples of a steady state start on its section), when there is one and it is finite.
+template <class R>
+std::optional<detail::WarmStart> first_sample_start(const Samples& s) {
+  if (s.size() == 0) return {};
+  const auto x = detail::Dynamics<R>::sampled_state(s, 0);
+  for (double v : x)
+    if (!std::isfinite(v)) return {};
+  return detail::WarmStart{std::vector<double>(x.begin(), x.end()), s.phase[0], {}};
+}
+
+// Whether shooting from the state where the search ended (the first sample of `result`) converges
+// to a stable periodic orbit (warm-started from that state, not from rest): its description, or
+// nothing.
 std::optional<std::string> stable_orbit_nearby(const Model& model, const Result& result,
                                                const std::function<bool()>& cancelled) {
-  if (result.samples.size() == 0) return {};
-  const std::optional<detail::WarmStart> start = detail::with_roller(model, [&]<class R>() {
-    const auto x = detail::Dynamics<R>::sampled_state(result.samples, 0);
-    for (double v : x)
-      if (!std::isfinite(v)) return std::optional<detail::WarmStart>{};
-    return std::optional<detail::WarmStart>{
-        detail::WarmStart{std::vector<double>(x.begin(), x.end()), result.samples.phase[0], {}}};
-  });
+  const std::optional<detail::WarmStart> start =
+      detail::with_roller(model, [&]<class R>() { return first_sample_start<R>(result.samples); });
   if (!start) return {};
   Case c = model.parameters();
   c.numerics.method = SteadyMethod::shooting;
@@ -625,12 +631,8 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
 
 template <class R>
 std::optional<detail::WarmStart> orbit_start_of(const Result& result) {
-  const Samples& s = result.samples;
-  if (!ok(result.status) || result.diagnostics.multiplicity != 1 || s.size() == 0) return {};
-  const auto x = detail::Dynamics<R>::sampled_state(s, 0);
-  for (double v : x)
-    if (!std::isfinite(v)) return {};
-  return detail::WarmStart{std::vector<double>(x.begin(), x.end()), s.phase[0], {}};
+  if (!ok(result.status) || result.diagnostics.multiplicity != 1) return {};
+  return first_sample_start<R>(result.samples);
 }
 
 }  // namespace
