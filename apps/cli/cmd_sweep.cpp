@@ -127,45 +127,45 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
   return t.text();
 }
 
-// A frequency study with M0 fixed is rarely what is meant (M0 = 4 m_u e_u e_w nu^2 (5)): say so
-// once, as io::finalize does for one case.
-void warn_fixed_moment(const io::StudySpec& spec, const io::Study& study,
-                       const io::StudyProgress& progress) {
+// What the study's cases say that no single key does, said once and found in one walk over the
+// cases (each is made from the study's table as it is read):
+// - a frequency study with M0 fixed is rarely what is meant (M0 = 4 m_u e_u e_w nu^2 (5)), as
+//   io::finalize says for one case;
+// - a friction key swept where the drum rolls without a friction limit in every case
+//   (contact.pure_rolling = true; a warning in a case file, so that pure_rolling itself can be
+//   swept over a base with mu): a study of mu under pure rolling ran with exit 0 and no word,
+//   every row the same motion.
+void warn_about_cases(const io::StudySpec& spec, const io::Study& study,
+                      const io::StudyProgress& progress) {
   bool M0_given = spec.base.given("roller.M0");
-  for (const std::string& k : study.keys) M0_given = M0_given || k == "roller.M0";
-  if (M0_given) return;
-  std::size_t fixed = 0;
+  std::vector<std::string> friction_keys;
+  for (const std::string& k : study.keys) {
+    M0_given = M0_given || k == "roller.M0";
+    if (k == "contact.mu" || k == "contact.mu_static" || k == "contact.law")
+      friction_keys.push_back(k);
+  }
+  if (M0_given && friction_keys.empty()) return;
+  std::size_t fixed = 0, rolling = 0;
   const std::size_t total = study.cases.size();
   for (std::size_t n = 0; n < total; ++n) {
     if (n % io::kStudyProgressCases == 0 && n > 0) progress(n, total);
     const Case c = study.cases[n];  // the vibratory drum has no M0 (docs/model.md section 14)
     fixed += c.roller.type == RollerType::oscillation && c.roller.unbalance == 0.0 &&
              c.roller.f != Roller{}.f;
+    rolling += c.contact.pure_rolling ? 1 : 0;
   }
-  if (fixed == 0) return;
-  warn(std::to_string(fixed) + " of the " + std::to_string(study.cases.size()) +
-       " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +
-       " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w nu^2 (5) grows "
-       "with f^2: give roller.unbalance (the paper's: 0.22877 kg m^2), or set roller.M0 to say "
-       "the moment is meant");
-}
-
-// A friction key swept where the drum rolls without a friction limit in every case
-// (contact.pure_rolling = true; a warning in a case file, so that pure_rolling itself can be
-// swept over a base with mu): said once (a study of mu under pure rolling ran with exit 0 and no
-// word, every row the same motion).
-void warn_swept_without_effect(const io::Study& study) {
-  for (const std::string& key : study.keys) {
-    if (key != "contact.mu" && key != "contact.mu_static" && key != "contact.law") continue;
-    std::size_t rolling = 0;
-    for (std::size_t n = 0; n < study.cases.size(); ++n)
-      rolling += study.cases[n].contact.pure_rolling ? 1 : 0;
-    // A study that sweeps pure_rolling too compares rolling with friction: meant.
-    if (rolling < study.cases.size()) continue;
-    warn(key + " is swept, but has no effect in any of the " + std::to_string(rolling) +
-         " cases: contact.pure_rolling = true (rolling without a friction limit), and the rows "
-         "are the same motion for every value");
-  }
+  if (!M0_given && fixed > 0)
+    warn(std::to_string(fixed) + " of the " + std::to_string(total) +
+         " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +
+         " N m (the paper's roller at 39 Hz); a real roller's M0 = 4 m_u e_u e_w nu^2 (5) grows "
+         "with f^2: give roller.unbalance (the paper's: 0.22877 kg m^2), or set roller.M0 to say "
+         "the moment is meant");
+  // A study that sweeps pure_rolling too compares rolling with friction: meant.
+  if (rolling == total)
+    for (const std::string& key : friction_keys)
+      warn(key + " is swept, but has no effect in any of the " + std::to_string(rolling) +
+           " cases: contact.pure_rolling = true (rolling without a friction limit), and the rows "
+           "are the same motion for every value");
 }
 
 // Every option that can be checked without running a case: a sweep must not fail at its end,
@@ -248,8 +248,7 @@ SweepPlan plan_sweep(const SweepOptions& o) {
   p.study = io::expand(p.spec, progress("checking the study's cases"));
   if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
   p.total = p.study.cases.size();
-  warn_fixed_moment(p.spec, p.study, progress("checking each case's M0 against its f"));
-  warn_swept_without_effect(p.study);
+  warn_about_cases(p.spec, p.study, progress("checking each case's M0, f and contact"));
   p.columns = io::StudyColumns{p.study.keys, o.harmonics};
   p.header = io::study_csv_header(p.columns);
   p.fingerprint = io::fingerprint(p.study, p.header, progress("fingerprinting the study"));
