@@ -13,6 +13,7 @@
 #include <string>
 
 #include "bifurcation_cases.hpp"
+#include "drivers/branch_continuation.hpp"
 #include "oscidrum/oscidrum.hpp"
 
 namespace oscidrum {
@@ -220,6 +221,79 @@ TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
   const auto [stop_above, N_above] = smallest_N(lift.parameter + df);
   EXPECT_TRUE(stop_above == FlowStop::contact_lost || N_above < 0.0)
       << to_string(stop_above) << ", min N " << N_above;
+}
+
+// A crossing of the unit circle changes the number of multipliers outside it; a complex pair
+// outside it that meets the real axis and parts into two reals there (or two reals that join)
+// changes only the counts by kind, and is no bifurcation.
+TEST(Branch, OnlyAChangeOfTheNumberOutsideTheUnitCircleIsACrossing) {
+  using detail::branching::crossings;
+  using detail::branching::MultiplierCounts;
+  const auto counts = [](int plus, int minus, int pairs) {
+    MultiplierCounts c;
+    c.beyond_plus_one = plus, c.beyond_minus_one = minus, c.complex_outside = pairs;
+    return c;
+  };
+  const auto none = [](const detail::branching::Crossings& c) {
+    return !c.plus_one && !c.minus_one && !c.complex_pair;
+  };
+  // Collisions outside the circle, either way, beside +1 and beside -1.
+  EXPECT_TRUE(none(crossings(counts(0, 0, 1), counts(2, 0, 0))));
+  EXPECT_TRUE(none(crossings(counts(2, 0, 0), counts(0, 0, 1))));
+  EXPECT_TRUE(none(crossings(counts(1, 0, 1), counts(1, 2, 0))));
+  EXPECT_TRUE(none(crossings(counts(0, 0, 0), counts(0, 0, 0))));
+  // Crossings: a real one at +1, at -1, a pair; both ways.
+  for (const bool out : {true, false}) {
+    const auto c = [&](MultiplierCounts a, MultiplierCounts b) {
+      return out ? crossings(a, b) : crossings(b, a);
+    };
+    const auto plus = c(counts(0, 0, 1), counts(1, 0, 1));
+    EXPECT_TRUE(plus.plus_one && !plus.minus_one && !plus.complex_pair);
+    const auto minus = c(counts(1, 0, 0), counts(1, 1, 0));
+    EXPECT_TRUE(!minus.plus_one && minus.minus_one && !minus.complex_pair);
+    const auto pair = c(counts(1, 1, 0), counts(1, 1, 1));
+    EXPECT_TRUE(!pair.plus_one && !pair.minus_one && pair.complex_pair);
+  }
+}
+
+// The same on a branch: in pure rolling with lift-off near 68.44 Hz (G = 100 MN/m^2) the
+// unstable orbit's complex pair outside the circle (2.03 +- 1.23i) parts into two reals (3.82,
+// 2.24) between two points. It was reported as a branch point and a Neimark-Sacker point at
+// once, with "critical" multipliers of modulus 0.02. The one crossing in the range, the pair
+// leaving the circle at 68.4724 Hz, is reported, with its multiplier on the circle.
+TEST(Branch, APairThatPartsOutsideTheUnitCircleIsNoBifurcation) {
+  Case c = rolling_unilateral_case(68.6);
+  set_field(c, "soil.G", 100e6);
+  BranchOptions o;
+  o.key = "roller.f";
+  o.from = 68.6;
+  o.to = 68.2;
+  o.metrics = false;
+  const Branch b = continue_branch(c, o);
+  // The collision happens between two points of the branch (else this tests nothing).
+  const auto outside = [](const BranchPoint& p, bool complex) {
+    int n = 0;
+    for (const std::complex<double> m : p.floquet.multipliers)
+      n += std::abs(m) > 1.5 && (std::abs(m.imag()) > 1e-6) == complex;
+    return n;
+  };
+  bool collision = false;
+  for (std::size_t i = 1; i < b.points.size(); ++i)
+    collision =
+        collision || (outside(b.points[i - 1], true) == 2 && outside(b.points[i - 1], false) == 0 &&
+                      outside(b.points[i], true) == 0 && outside(b.points[i], false) == 2);
+  ASSERT_TRUE(collision);
+  int crossings = 0;
+  for (const Bifurcation& x : b.bifurcations) {
+    if (x.kind != BifurcationKind::branch_point && x.kind != BifurcationKind::period_doubling &&
+        x.kind != BifurcationKind::neimark_sacker)
+      continue;
+    ++crossings;
+    EXPECT_EQ(x.kind, BifurcationKind::neimark_sacker) << x.description;
+    EXPECT_NEAR(x.parameter, 68.4724, 1e-3);
+    EXPECT_NEAR(std::abs(x.multiplier), 1.0, 1e-3) << "at f = " << x.parameter;
+  }
+  EXPECT_EQ(crossings, 1);
 }
 
 // On the paper's log-spiral trough (k = 0.002, a = 0.601 m) at 25 Hz with mu = 0.7 a real
