@@ -15,6 +15,8 @@
 #include <deque>
 #include <map>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -173,6 +175,11 @@ class Builder {
     assign(key, key, value);
   }
 
+  // A key whose value came with a group object (Case(roller=Roller(...))): given, for the rules.
+  void given_as(const std::string& key, const char* group) {
+    spec_.origin[key] = std::string("argument ") + group;
+  }
+
   Case finish() const {
     if (radius_ && (spec_.given("trough.k") || spec_.given("trough.a")))
       throw Error(
@@ -216,10 +223,40 @@ struct GroupAccess {
   Group Case::*member;
   const char* group;
 
+  // A group of its own (Roller(...), a copy) in a case of defaults; a roller's width counts
+  // there (roller.b enters Appendix B under soil.input = "modulus": the soil is not known to a
+  // roller of its own, and Roller(b=1.0) was refused for a soil it does not have).
   Case wrap(const Group& g) const {
     Case c;
     c.*member = g;
+    if constexpr (std::is_same_v<Group, Roller>) c.soil.input = SoilInput::modulus;
     return c;
+  }
+
+  // The case a group object is a view of (Case.roller returns one with reference_internal: the
+  // view keeps its case alive, and pybind11 records the case as the view's patient), or nullptr
+  // for a group of its own.
+  const Case* owner(py::handle self) const {
+    const auto& patients = py::detail::get_internals().patients;
+    const auto it = patients.find(self.ptr());
+    if (it == patients.end()) return nullptr;
+    const Group* g = &self.cast<const Group&>();
+    for (PyObject* p : it->second) {
+      const py::handle h(p);
+      if (!py::isinstance<Case>(h)) continue;
+      const Case& c = h.cast<const Case&>();
+      if (&(c.*member) == g) return &c;
+    }
+    return nullptr;
+  }
+
+  // What a group's keys are judged in (which take effect, the rules that tie keys together): its
+  // case for a view (case.roller.b = 1.0 was refused on a case with soil.input = "modulus",
+  // judged in a case of defaults, and its repr, str, to_dict, == and pickle left b out), else
+  // wrap().
+  Case context(py::handle self) const {
+    if (const Case* c = owner(self)) return *c;
+    return wrap(self.cast<const Group&>());
   }
 };
 
@@ -232,7 +269,17 @@ const GroupAccess<Numerics> kNumerics{&Case::numerics, "numerics"};
 template <class Group>
 bool assign_group(Builder& b, Case& values, GroupAccess<Group> access, py::handle value) {
   if (py::isinstance<Group>(value)) {
-    values.*(access.member) = value.cast<Group>();
+    const Group& g = value.cast<const Group&>();
+    values.*(access.member) = g;
+    // Its values that differ from the defaults count as given, so that the case's rules judge
+    // them: Case(roller=Roller(b=1.0)) on Table 2's soil, where the width has no effect.
+    const Case own = access.wrap(g), defaults = access.wrap(Group{});
+    for (const Field& f : fields()) {
+      if (!in_group(f.key, access.group) || !key_in_effect(own, f.key)) continue;
+      const double v = f.get(own), d = f.get(defaults);
+      if (v == d || (std::isnan(v) && std::isnan(d))) continue;
+      b.given_as(f.key, access.group);
+    }
     return true;
   }
   if (py::isinstance<py::dict>(value)) {
@@ -331,19 +378,17 @@ std::string join(const std::vector<std::string>& parts) {
   return out;
 }
 
-template <class Group>
-std::string group_repr(const GroupAccess<Group>& access, const Group& g, const char* cls) {
-  return std::string(cls) + "(" + join(differing(access.wrap(g), access.group, false)) + ")";
+// `c`: the group's context (GroupAccess::context).
+std::string group_repr(const Case& c, const char* group, const char* cls) {
+  return std::string(cls) + "(" + join(differing(c, group, false)) + ")";
 }
 
-// A readable listing with units (str()).
-template <class Group>
-std::string group_str(const GroupAccess<Group>& access, const Group& g, const char* cls) {
-  const Case c = access.wrap(g);
+// A readable listing with units (str()); `c`: the group's context.
+std::string group_str(const Case& c, const char* group, const char* cls) {
   std::string out = std::string(cls) + "(";
   bool first = true;
   for (const Field& f : fields()) {
-    if (!in_group(f.key, access.group) || !in_effect(c, f.key)) continue;
+    if (!in_group(f.key, group) || !in_effect(c, f.key)) continue;
     if (!first) out += ", ";
     first = false;
     out += std::string(last_part(f.key)) + "=" + with_unit(f, format_field(c, f));
@@ -364,11 +409,13 @@ py::dict values_dict(const Case& c, const char* group, bool all) {
   return d;
 }
 
+// `group`: of that group only (a and b its contexts, which may differ outside it), or nullptr.
 bool equal_in_effect(const Case& a, const Case& b, const char* group) {
-  if (a.soil.input != b.soil.input) return false;
+  if ((group == nullptr || std::string_view(group) == "soil") && a.soil.input != b.soil.input)
+    return false;
   for (const Field& f : fields()) {
     if (group != nullptr && !in_group(f.key, group)) continue;
-    if (in_effect(a, f.key) && f.get(a) != f.get(b)) return false;
+    if ((in_effect(a, f.key) || in_effect(b, f.key)) && f.get(a) != f.get(b)) return false;
   }
   return true;
 }
@@ -414,33 +461,40 @@ py::class_<Group> bind_group(py::module_& m, const char* cls, const char* doc,
     const Field* field = &f;
     c.def_property(
         std::string(last_part(f.key)).c_str(),
-        [access, field](const Group& g) { return field_value(access.wrap(g), *field); },
-        [access, field](Group& g, py::handle value) {
-          g = set_one(access.wrap(g), field->key, value).*(access.member);
+        [access, field](py::handle self) { return field_value(access.context(self), *field); },
+        [access, field](py::handle self, py::handle value) {
+          self.cast<Group&>() = set_one(access.context(self), field->key, value).*(access.member);
         },
         keep(field_doc(f)));
   }
-  c.def("__repr__", [access, cls](const Group& g) { return group_repr(access, g, cls); });
-  c.def("__str__", [access, cls](const Group& g) { return group_str(access, g, cls); });
+  c.def("__repr__", [access, cls](py::handle self) {
+    return group_repr(access.context(self), access.group, cls);
+  });
+  c.def("__str__", [access, cls](py::handle self) {
+    return group_str(access.context(self), access.group, cls);
+  });
   c.def(
       "to_dict",
-      [access](const Group& g, bool all) { return values_dict(access.wrap(g), access.group, all); },
+      [access](py::handle self, bool all) {
+        return values_dict(access.context(self), access.group, all);
+      },
       py::arg("all") = false,
       "The values as {name: value} (SI units); soil values without effect under soil.input only "
       "with all=True.");
   c.def(
       "__eq__",
-      [access](const Group& a, py::handle other) {
+      [access](py::handle self, py::handle other) {
         if (!py::isinstance<Group>(other)) return false;
-        return equal_in_effect(access.wrap(a), access.wrap(other.cast<Group>()), access.group);
+        return equal_in_effect(access.context(self), access.context(other), access.group);
       },
       py::is_operator());
   c.attr("__hash__") = py::none();
   c.def("__copy__", [](const Group& g) { return g; });
   c.def(
       "__deepcopy__", [](const Group& g, const py::dict&) { return g; }, py::arg("memo"));
-  c.def("__getstate__",
-        [access](const Group& g) { return values_dict(access.wrap(g), access.group, false); });
+  c.def("__getstate__", [access](py::handle self) {
+    return values_dict(access.context(self), access.group, false);
+  });
   def_assigning(c, "__setstate__", [access, cls](Group& self, py::handle state) {
     self = group_from(access, state_dict(state, cls));
   });
@@ -469,12 +523,12 @@ std::string case_repr(const Case& c) { return "Case(" + join(differing(c, nullpt
 
 std::string case_str(const Case& c) {
   std::string out = "Case(\n";
-  out += "  roller=" + group_str(kRoller, c.roller, "Roller") + ",\n";
-  out += "  soil=" + group_str(kSoil, c.soil, "Soil") + ",\n";
-  out += "  trough=" + group_str(kTrough, c.trough, "Trough") + ",\n";
-  out += "  contact=" + group_str(kContact, c.contact, "Contact") + ",\n";
+  out += "  roller=" + group_str(c, kRoller.group, "Roller") + ",\n";
+  out += "  soil=" + group_str(c, kSoil.group, "Soil") + ",\n";
+  out += "  trough=" + group_str(c, kTrough.group, "Trough") + ",\n";
+  out += "  contact=" + group_str(c, kContact.group, "Contact") + ",\n";
   out += "  MMd=" + with_unit(*find_field("MMd"), format_field(c, *find_field("MMd"))) + ",\n";
-  out += "  numerics=" + group_str(kNumerics, c.numerics, "Numerics") + ")";
+  out += "  numerics=" + group_str(c, kNumerics.group, "Numerics") + ")";
   return out;
 }
 

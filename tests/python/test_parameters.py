@@ -147,6 +147,30 @@ def test_errors_carry_the_librarys_message():
     assert c.soil.G == 25e6  # unchanged by the failed assignments
 
 
+def test_a_group_view_is_judged_in_its_case():
+    # roller.b (the drum width) takes effect through Appendix B under soil.input = "modulus":
+    # case.roller was judged in a case of defaults (Table 2's soil), so the width was refused on a
+    # modulus case and left out of the view's repr, str, to_dict, == and pickle.
+    c = oscidrum.Case(input="modulus", G=40e6)
+    c.roller.b = 1.0
+    assert c.roller.b == 1.0 and c.get("roller.b") == 1.0
+    assert repr(c.roller) == "Roller(b=1.0)" and c.roller.to_dict()["b"] == 1.0
+    assert "b=1 m" in str(c.roller) and "b=1 m" in str(c)
+    assert c.roller != oscidrum.Roller()
+    assert pickle.loads(pickle.dumps(c.roller)).b == 1.0
+    assert oscidrum.Model(c).ksh != oscidrum.Model(c.replace(b=1.68)).ksh  # the width counts
+    # On Table 2's soil it has no effect, said by the view and by a roller given to the case.
+    t = oscidrum.Case()
+    with pytest.raises(oscidrum.Error, match='roller.b has no effect while soil.input = "table2"'):
+        t.roller.b = 1.0
+    assert t.roller == oscidrum.Roller() and "b=" not in str(t.roller)
+    own = oscidrum.Roller(b=1.0)  # a roller of its own: its width counts
+    assert repr(own) == "Roller(b=1.0)" and copy.copy(own).b == 1.0
+    with pytest.raises(oscidrum.Error, match="roller.b has no effect"):
+        oscidrum.Case(roller=own)
+    assert oscidrum.Case(roller=own, input="modulus", G=40e6) == c
+
+
 def test_validate_checks_rules_between_fields():
     c = oscidrum.Case()
     c.trough.a = 0.59
