@@ -71,10 +71,11 @@ void validate(const Case& c) {
 // (cd + csh) / m, (cd + csv) / m and the circular frequencies sqrt((kd + ksh) / m),
 // sqrt((kd + ksv) / m) [1/s], each times the period T. An explicit integrator (Dormand-Prince)
 // needs about that many steps per period over its stability bound of about 3.3, so a case far
-// beyond any roller (the paper's on G = 25 MN/m^2: 3.7; the stiffest soil the fields admit,
-// G = 1e11 Pa through Appendix B, a few hundred) takes minutes or fails: it is refused, naming
-// the field that makes it so stiff. roller.cd = 1e9 N s/m (330 000 times the paper's buffers,
-// 1.4e4) still runs in about a second; 2e9 (2.8e4) ran 44 s into numerics.max_periods.
+// beyond any roller (the paper's on G = 25 MN/m^2: 5.0, sqrt((kd + ksv) / m); the stiffest soil the
+// fields admit, G = 1e11 Pa through Appendix B, a few hundred) takes minutes or fails: it is
+// refused, naming the field that makes it so stiff. roller.cd = 1e9 N s/m (330 000 times the
+// paper's buffers, 1.4e4) still runs in about a second; 2e9 (2.8e4) ran 44 s into
+// numerics.max_periods.
 constexpr double kMaxRatePerPeriod = 2e4;
 
 void check_time_scales(const Case& c, const SoilCoefficients& s) {
@@ -104,12 +105,13 @@ void check_time_scales(const Case& c, const SoilCoefficients& s) {
     if (!(r.value * T > kMaxRatePerPeriod)) continue;
     // A tiny drum mass makes every rate fast: then the mass is the field to name.
     const bool mass = R.m < 1.0;
-    const std::string head = std::string("the case is too stiff to integrate: ") + r.what +
-                             detail::format(
-                                 " = %.3g 1/s is %.3g times roller.f, which must be at most "
-                                 "%.3g (the paper's roller: 3.7; an explicit integrator needs "
-                                 "about %.3g steps per period); ",
-                                 r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3);
+    const std::string head =
+        std::string("the case is too stiff to integrate: ") + r.what +
+        detail::format(
+            " = %.3g 1/s is %.3g times roller.f, which must be at most "
+            "%.3g (the paper's roller on G = 25 MN/m^2: 5.0; an explicit integrator needs "
+            "about %.3g steps per period); ",
+            r.value, r.value * T, kMaxRatePerPeriod, r.value * T / 3.3);
     // A soil coefficient that Table 2 or Appendix B gives dominates: the soil's inputs make it
     // so, not the roller's key beside it (the paper's roller.cd = 3000 was named for soil.nu =
     // 0.49999999999).

@@ -649,7 +649,8 @@ TEST(CliIdentify, TheFitPlotsModelLiesOnTheSamples) {
 
 // The soil under a vibratory drum (docs/model.md section 14) from its record: 60 steady periods
 // of examples/vibratory.toml on the Table 2 soil of G = 40 MN/m^2 (partial uplift), identified
-// with the same roller on the Table 2 scale: G comes back (seen: 40.001 +- 0.002 MN/m^2).
+// with the same roller on the Table 2 scale: G comes back (seen: 40.00008 MN/m^2, standard
+// uncertainty 0.00002 MN/m^2).
 TEST(CliIdentify, TheSoilUnderAVibratoryDrum) {
   TempDir dir;
   const std::string vibratory = std::string(OSCIDRUM_SOURCE_DIR) + "/examples/vibratory.toml";

@@ -4,8 +4,10 @@
 // rejected with a message naming the key, the rule and the value.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -587,6 +589,17 @@ TEST(ModelValidation, RejectsAxleLoadBelowDrumWeight) {
 // would take minutes or fail (roller.cd = 2e9 N s/m ran 44 s into max_periods_reached): refused,
 // naming the field that makes it stiff; just below the bound it is accepted (and runs).
 TEST(ModelValidation, RejectsACaseTooStiffToIntegrate) {
+  {
+    // The paper's roller on G = 25 MN/m^2, which the message and docs/config.md quote: its
+    // fastest rate is sqrt((kd + ksv) / m) = 5.0 f.
+    const Case paper;
+    const Model m(paper);
+    const Roller& R = paper.roller;
+    const double rates[] = {(R.cd + m.csh()) / R.m, (R.cd + m.csv()) / R.m,
+                            std::sqrt((R.kd + m.ksh()) / R.m), std::sqrt((R.kd + m.ksv()) / R.m)};
+    EXPECT_NEAR(*std::max_element(std::begin(rates), std::end(rates)) / R.f, 5.0, 0.05);
+    EXPECT_EQ(std::max_element(std::begin(rates), std::end(rates)), std::end(rates) - 1);
+  }
   Case c;
   c.roller.cd = 2e9;  // (cd + csh) / m = 1.08e6 1/s = 2.8e4 f
   expect_model_rejects(c, {"roller.cd", "too stiff", "2e+09", "(roller.cd + csh) / roller.m"});
