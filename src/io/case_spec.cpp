@@ -235,11 +235,11 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
       const auto* i = std::get_if<std::int64_t>(&value);
       if (const auto* d = std::get_if<double>(&value)) {
         const bool whole = std::isfinite(*d) && *d == std::floor(*d) && std::abs(*d) < 1e15;
-        throw Error(
-            std::string(f->key) + " must be " + field_rule(*f) + "; got " +
-                (whole ? num(*d) + ".0 (write an integer without a decimal point or exponent)"
-                       : num(*d)),
-            f->key, *d);
+        throw Error(std::string(f->key) + " must be " + field_rule(*f) + "; got " +
+                        (whole ? num(*d) + " written as a float (5.0, 1e3 are floats): write " +
+                                     num(*d) + ", without a decimal point or exponent"
+                               : num(*d)),
+                    f->key, *d);
       }
       if (!i) type_error(*f, "an integer", value);
       v = static_cast<double>(*i);

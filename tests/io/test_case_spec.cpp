@@ -180,8 +180,9 @@ TEST(CaseSpec, AssignTextParsesEachType) {
                   "numerics.max_periods must be an integer in [1, 10000000] (digits only); got '") +
                   text + "'");
   EXPECT_EQ(case_error("[numerics]\nmax_periods = 1e3\n"),
-            "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 1000.0 "
-            "(write an integer without a decimal point or exponent)");
+            "case.toml:2:1: numerics.max_periods must be an integer in [1, 10000000]; got 1000 "
+            "written as a float (5.0, 1e3 are floats): write 1000, without a decimal point or "
+            "exponent");
   // A range over an integer key still gives integers.
   const StudySpec st = read_study_text(
       "[sweep]\n\"numerics.max_periods\" = { start = 1000, stop = 3000, num = 3 }\n", "s", "");
