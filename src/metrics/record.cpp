@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "indicators.hpp"
+#include "metrics/clipping.hpp"
 #include "metrics/frequency_step.hpp"
 #include "metrics/median_step.hpp"
 #include "metrics/spectral_peak.hpp"
@@ -1368,10 +1369,10 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       for (std::size_t i = 0; i < y.size(); ++i)
         if (std::abs(y[i]) >= o.gates.clip_level) clipped[i] = 1;
   // The samples of [first, last] on a plateau: runs of at least clip_run equal samples (to 1e-9
-  // of the window's range) in the outer quarter of the window's range of a channel. Per window,
-  // not at the record's extremes: a record clipped only in part of it, or with one sample beyond
-  // the clip level (a spike), has its plateaus below the record's extremes; a smooth signal
-  // sampled for a harmonic fit repeats no value three times running.
+  // of the window's range) in the outer quarter of the window's range of a channel, where the
+  // signal around the run would pass its level (clipped_run). Per window, not at the record's
+  // extremes: a record clipped only in part of it, or with one sample beyond the clip level (a
+  // spike), has its plateaus below the record's extremes.
   const auto plateau_samples = [&](std::size_t first, std::size_t last) {
     std::size_t n = 0;
     std::vector<char> on(last - first + 1, 0);
@@ -1382,13 +1383,20 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (lo == hi) continue;  // constant: no extreme to stick to
       const double range = hi - lo, tol = 1e-9 * range;
       const auto outer = [&](double v) { return v >= hi - 0.25 * range || v <= lo + 0.25 * range; };
+      // The channel's resolution in the window: its smallest step between samples.
+      double quantum = std::numeric_limits<double>::infinity();
+      for (std::size_t i = first + 1; i <= last; ++i)
+        if (const double step = std::abs(y[i] - y[i - 1]); step > tol)
+          quantum = std::min(quantum, step);
       std::size_t run = 1;
       for (std::size_t i = first + 1; i <= last + 1; ++i) {
         if (i <= last && std::abs(y[i] - y[i - 1]) <= tol && outer(y[i])) {
           ++run;
           continue;
         }
-        if (run >= static_cast<std::size_t>(std::max(2, o.gates.clip_run)))
+        if (run >= static_cast<std::size_t>(std::max(2, o.gates.clip_run)) &&
+            detail::clipped_run(t, y, i - run, i - 1, y[i - 1] >= hi - 0.25 * range,
+                                std::isfinite(quantum) ? quantum : 0.0))
           for (std::size_t j = i - run; j < i; ++j) on[j - first] = 1;
         run = 1;
       }

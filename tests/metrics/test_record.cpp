@@ -1173,6 +1173,56 @@ TEST(Record, PlateausAreClippingInEveryWindow) {
   }
 }
 
+// A logger's finite resolution is no clipping: a smooth peak holds its top code for a few
+// samples, and noise makes chance runs of equal codes near the extremes. A coarse code (0.1
+// m/s^2) without noise at 2 kHz, and a 16-bit logger's code over +-16 g (0.48 mg) with noise of a
+// code at 20 kHz: every window passes the clipping gate, though the records have runs of three
+// equal codes in the outer quarter of their range, which before counted as clipping (a logger's
+// record failed the gate in half its windows). The same records clipped at 0.8 of the x_M'' peak
+// fail in every window.
+TEST(Record, AFiniteResolutionIsNoClipping) {
+  const double f = 39.0;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  // Samples in runs of three or more equal values in the outer quarter of the range.
+  const auto runs_of_three = [](const std::vector<double>& y) {
+    const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+    const double quarter = 0.25 * (*hi - *lo);
+    int n = 0;
+    for (std::size_t i = 2; i < y.size(); ++i)
+      n += y[i] == y[i - 1] && y[i] == y[i - 2] && (y[i] >= *hi - quarter || y[i] <= *lo + quarter);
+    return n;
+  };
+  const double lsb16 = 16.0 / 32768.0 * 9.80665;
+  for (const auto& [code, sigma, rate] :
+       {std::tuple{0.1, 0.0, 2000.0}, std::tuple{lsb16, lsb16, 20000.0}}) {
+    SCOPED_TRACE("code " + std::to_string(code) + " m/s^2, noise " + std::to_string(sigma));
+    const TwoChannels r = two_channel_record(static_cast<int>(8 * rate / f), 1.0 / rate);
+    const auto quantise = [&](double v) { return code * std::round(v / code); };
+    const double rail = quantise(0.8 * 13.0);
+    std::vector<double> x = r.x, z = r.z, clipped = r.x;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = quantise(r.x[i] + sigma * noise(rng));
+      z[i] = quantise(r.z[i] + sigma * noise(rng));
+      // The sensor saturates: its reading of the noisy signal stops at the rail.
+      clipped[i] = std::clamp(quantise(r.x[i] + sigma * noise(rng)), -rail, rail);
+    }
+    ASSERT_GT(runs_of_three(x) + runs_of_three(z), 0);  // else this tests nothing
+    WindowOptions o;
+    o.f = f;
+    o.n_max = 4;
+    o.window_periods = 2.0;
+    const std::vector<RecordWindow> ws = analyze_windows(r.t, x, z, {}, o);
+    ASSERT_EQ(ws.size(), 4u);
+    for (const RecordWindow& w : ws)  // (the coarse code makes the frequency drift in some)
+      EXPECT_EQ(w.reason.find("clipped"), std::string::npos) << w.reason;
+    for (const RecordWindow& w : analyze_windows(r.t, clipped, z, {}, o)) {
+      EXPECT_FALSE(w.valid) << w.index;
+      EXPECT_NE(w.reason.find("clipped"), std::string::npos) << w.reason;
+    }
+  }
+}
+
 // Sizes and gates are finite numbers in their ranges, and the windows' count is bounded by the
 // record's samples: a NaN no longer switches a gate off, and a window or hop of a tiny part of a
 // period (which once asked for billions of windows and gigabytes) is refused (issue 24).
