@@ -80,14 +80,17 @@ inline MultiplierCounts count_multipliers(const Floquet& f, double neutral = kNe
 }
 
 /// Which multipliers crossed the unit circle between two solutions of counts a and b: real ones
-/// at +1, at -1, a complex pair. Only a change of the number outside the circle is a crossing.
-/// A complex pair outside it that meets the real axis and parts into two reals there (or two
-/// reals that join into a pair) moves two multipliers between the counts and none across the
-/// circle: counted by kind, it was reported as a branch point and a Neimark-Sacker point at once,
-/// with "critical" multipliers of modulus 0.02, where every multiplier stayed outside (pure
-/// rolling with lift-off near 68.44 Hz, the pair 2.03 +- 1.23i parting into 3.82 and 2.24).
-/// A single real multiplier crossing changes the parity of its side's count (a collision changes
-/// it by two); what is left of the change is a pair's, when a pair's count changed the same way.
+/// at +1, at -1, a complex pair. A complex pair outside the circle that meets the real axis and
+/// parts into two reals there (or two reals beyond +1 or -1 that join into a pair: a collision)
+/// moves two multipliers between the counts and none across the circle: counted by kind, it was
+/// reported as a branch point and a Neimark-Sacker point at once, with "critical" multipliers of
+/// modulus 0.02, where every multiplier stayed outside (pure rolling with lift-off near 68.44 Hz,
+/// the pair 2.03 +- 1.23i parting into 3.82 and 2.24). The changes of the counts are explained
+/// by crossings and collisions, dp = c+ + 2 k+, dm = c- + 2 k-, dc = c_pair - k+ - k- (k: pairs
+/// parted into reals beyond +1 or -1, negative where reals joined), with the fewest crossings
+/// (then the fewest collisions): a crossing is a bifurcation, a collision is not, and between two
+/// points of a branch one crossing is what happens generically. A single real crossing changes its
+/// side's count by one, so an odd change is always a crossing there.
 struct Crossings {
   bool plus_one = false, minus_one = false, complex_pair = false;
 };
@@ -95,22 +98,22 @@ inline Crossings crossings(const MultiplierCounts& a, const MultiplierCounts& b)
   const int dp = b.beyond_plus_one - a.beyond_plus_one;
   const int dm = b.beyond_minus_one - a.beyond_minus_one;
   const int dc = b.complex_outside - a.complex_outside;
-  const int total = dp + dm + 2 * dc;  // the change of the number outside the circle
-  Crossings c;
-  if (total == 0) return c;  // collisions outside the circle, or nothing
-  const auto sign = [](int v) { return (v > 0) - (v < 0); };
-  c.plus_one = dp % 2 != 0;
-  c.minus_one = dm % 2 != 0;
-  const int rest = total - (c.plus_one ? sign(dp) : 0) - (c.minus_one ? sign(dm) : 0);
-  if (rest != 0) {
-    if (sign(dc) == sign(rest))
-      c.complex_pair = true;
-    else if (sign(dp) == sign(rest))
-      c.plus_one = true;  // two reals crossing at +1 (dp even)
-    else if (sign(dm) == sign(rest))
-      c.minus_one = true;
+  Crossings best;
+  int fewest = std::numeric_limits<int>::max(), fewest_collisions = 0;
+  // A collision moves a pair for two reals: never more collisions than multipliers (P <= 16).
+  constexpr int kMost = 8;
+  for (int kp = -kMost; kp <= kMost; ++kp) {
+    for (int km = -kMost; km <= kMost; ++km) {
+      const int cp = dp - 2 * kp, cm = dm - 2 * km, cc = dc + kp + km;
+      const int crossed = std::abs(cp) + std::abs(cm) + std::abs(cc);
+      const int collisions = std::abs(kp) + std::abs(km);
+      if (crossed < fewest || (crossed == fewest && collisions < fewest_collisions)) {
+        fewest = crossed, fewest_collisions = collisions;
+        best = Crossings{cp != 0, cm != 0, cc != 0};
+      }
+    }
   }
-  return c;
+  return best;
 }
 
 inline std::complex<double> nearest(const Floquet& f, std::complex<double> target,

@@ -16,19 +16,19 @@ inline constexpr std::size_t kClipNeighbours = 3;
 /// Whether the run y[a..b] of equal samples (of a window of the record t, y: at the top of the
 /// window's range of the channel when `upper`, else at its bottom) is clipping: the signal
 /// around it would pass its level. The run is taken as far as it goes in the record, and its
-/// neighbours from the record (a run at a window's edge has them outside the window). A quadratic in t through kClipNeighbours samples on each side of the run (least
-/// squares) is evaluated at the run's middle; the run is clipping where that lies beyond the
-/// run's level by more than the channel's resolution `quantum` plus three standard errors of the
-/// value there (each sample's error: the code's rounding, q / sqrt(12), and the noise, the
-/// residual of a straight line through each side's samples). A clipped signal meets its rail
-/// rising and leaves it falling: the quadratic runs far beyond the rail. A smooth peak recorded
-/// with a finite resolution (a 16-bit logger) holds its top code for a few samples and its
-/// neighbours lie within a code or two of it; noise makes chance runs of equal codes on the way,
-/// which the quadratic follows. Before, every run of three equal samples in the outer quarter
-/// of the range counted, and a logger's record of a peak of 1.47 g with codes of 0.5 mg failed
-/// the gate in half its windows. A run with fewer than kClipNeighbours samples on a side (at the
-/// record's ends) is not judged (not counted): a clipped channel is clipped at every extreme of
-/// a window, at least one per period, and the others say so.
+/// neighbours from the record (a run at a window's edge has them outside the window). A quadratic
+/// in t through kClipNeighbours samples on each side of the run (least squares) is evaluated at the
+/// run's middle; the run is clipping where that lies beyond the run's level by more than the
+/// channel's resolution `quantum` plus three standard errors of the value there (each sample's
+/// error: the code's rounding, q / sqrt(12), and the noise, the residual of a straight line through
+/// each side's samples). A clipped signal meets its rail rising and leaves it falling: the
+/// quadratic runs far beyond the rail. A smooth peak recorded with a finite resolution (a 16-bit
+/// logger) holds its top code for a few samples and its neighbours lie within a code or two of it;
+/// noise makes chance runs of equal codes on the way, which the quadratic follows. Before, every
+/// run of three equal samples in the outer quarter of the range counted, and a logger's record of a
+/// peak of 1.47 g with codes of 0.5 mg failed the gate in half its windows. A run with fewer than
+/// kClipNeighbours samples on a side (at the record's ends) is not judged (not counted): a clipped
+/// channel is clipped at every extreme of a window, at least one per period, and the others say so.
 inline bool clipped_run(std::span<const double> t, std::span<const double> y, std::size_t a,
                         std::size_t b, bool upper, double quantum) {
   constexpr std::size_t m = kClipNeighbours;

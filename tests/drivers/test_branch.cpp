@@ -242,6 +242,20 @@ TEST(Branch, OnlyAChangeOfTheNumberOutsideTheUnitCircleIsACrossing) {
   EXPECT_TRUE(none(crossings(counts(2, 0, 0), counts(0, 0, 1))));
   EXPECT_TRUE(none(crossings(counts(1, 0, 1), counts(1, 2, 0))));
   EXPECT_TRUE(none(crossings(counts(0, 0, 0), counts(0, 0, 0))));
+  // One real crossing at +1 and one at -1: the number outside unchanged, each side's parity not.
+  const auto both = crossings(counts(0, 1, 0), counts(1, 0, 0));
+  EXPECT_TRUE(both.plus_one && both.minus_one && !both.complex_pair);
+  const auto both_and_collision = crossings(counts(0, 0, 1), counts(1, 1, 0));
+  EXPECT_TRUE(both_and_collision.plus_one && both_and_collision.minus_one &&
+              !both_and_collision.complex_pair);
+  // A collision beside +1 with one real crossing inwards there: one bifurcation, no pair's.
+  for (const auto& [from, to] :
+       {std::pair{counts(1, 0, 1), counts(2, 0, 0)}, std::pair{counts(2, 0, 0), counts(1, 0, 1)}}) {
+    const auto c = crossings(from, to);
+    EXPECT_TRUE(c.plus_one && !c.minus_one && !c.complex_pair);
+  }
+  const auto flip = crossings(counts(0, 1, 1), counts(0, 2, 0));
+  EXPECT_TRUE(!flip.plus_one && flip.minus_one && !flip.complex_pair);
   // Crossings: a real one at +1, at -1, a pair; both ways.
   for (const bool out : {true, false}) {
     const auto c = [&](MultiplierCounts a, MultiplierCounts b) {
