@@ -271,9 +271,10 @@ bool assign_group(Builder& b, Case& values, GroupAccess<Group> access, py::handl
   if (py::isinstance<Group>(value)) {
     const Group& g = value.cast<const Group&>();
     values.*(access.member) = g;
-    // Its values that differ from the defaults count as given, so that the case's rules judge
-    // them: Case(roller=Roller(b=1.0)) on Table 2's soil, where the width has no effect.
-    const Case own = access.wrap(g), defaults = access.wrap(Group{});
+    // Its values in effect (in its own case, for a view) that differ from the defaults count as
+    // given, so that the new case's rules judge them: Case(roller=Roller(b=1.0)) on Table 2's
+    // soil, where the width has no effect; a width without effect in the view's case is not.
+    const Case own = access.context(value), defaults = access.wrap(Group{});
     for (const Field& f : fields()) {
       if (!in_group(f.key, access.group) || !key_in_effect(own, f.key)) continue;
       const double v = f.get(own), d = f.get(defaults);
@@ -410,12 +411,14 @@ py::dict values_dict(const Case& c, const char* group, bool all) {
 }
 
 // `group`: of that group only (a and b its contexts, which may differ outside it), or nullptr.
+// A key counts where it is in effect in both (a view's width on Table 2's soil, which its repr
+// leaves out, equals a roller of its own with another width).
 bool equal_in_effect(const Case& a, const Case& b, const char* group) {
   if ((group == nullptr || std::string_view(group) == "soil") && a.soil.input != b.soil.input)
     return false;
   for (const Field& f : fields()) {
     if (group != nullptr && !in_group(f.key, group)) continue;
-    if ((in_effect(a, f.key) || in_effect(b, f.key)) && f.get(a) != f.get(b)) return false;
+    if (in_effect(a, f.key) && in_effect(b, f.key) && f.get(a) != f.get(b)) return false;
   }
   return true;
 }

@@ -169,6 +169,12 @@ def test_a_group_view_is_judged_in_its_case():
     with pytest.raises(oscidrum.Error, match="roller.b has no effect"):
         oscidrum.Case(roller=own)
     assert oscidrum.Case(roller=own, input="modulus", G=40e6) == c
+    # A width set on a modulus case, then without effect (Table 2's soil): the view shows none,
+    # equals a roller of its own, pickles to one, and gives no width to another case.
+    d = oscidrum.Case(input="modulus", G=40e6, b=1.0).replace(input="table2")
+    assert repr(d.roller) == "Roller()" and d.roller == oscidrum.Roller()
+    assert pickle.loads(pickle.dumps(d.roller)) == d.roller
+    assert oscidrum.Case(roller=d.roller) == oscidrum.Case()
 
 
 def test_validate_checks_rules_between_fields():
