@@ -232,6 +232,12 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
       value = "never (no steady state)";
     if (std::string_view(out.name) == "multiplicity" && result.diagnostics.multiplicity <= 0)
       value = "none (no steady state)";
+    // A diagnostic that does not apply to this run (NaN; empty in CSV, null in JSON): in words,
+    // not "nan" (a run that ended in gross slip printed "switches per period nan").
+    if (!is_text(out) && !is_integer(out) && std::isnan(scalar_value(result.diagnostics, out)))
+      value = std::string_view(out.name) == "switches_per_period" ? "n/a (no sampled window)"
+              : std::string_view(out.name) == "phi_drift"         ? "n/a (no steady state)"
+                                                                  : "n/a";
     // The examination of a motion without a steady state: its exponent only when it ran.
     if (std::string_view(out.name) == "lyapunov_exponent" && result.diagnostics.motion.empty())
       value.clear();

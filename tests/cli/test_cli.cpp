@@ -253,6 +253,12 @@ TEST(CliRun, ARunWithoutSamplesHasNoPhaseTimes) {
   const nlohmann::json j = nlohmann::json::parse(o.out);
   EXPECT_EQ(j["status"], "gross_slip");
   EXPECT_TRUE(j["phase_times"].is_null()) << j["phase_times"];
+  // The summary's diagnostics that do not apply say so in words (they printed "nan").
+  const Outcome text = run({"run", "--MMd", "20000"});
+  ASSERT_EQ(text.code, 1) << text.err;
+  EXPECT_NE(text.out.find("switches per period"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("n/a (no sampled window)"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
 }
 
 TEST(CliRun, FilesFollowTheContracts) {
