@@ -132,8 +132,16 @@ int run(const RunOptions& o) {
   if (!ok(result.status) && !o.quiet)
     std::cerr << "oscidrum: case ended with status " << to_string(result.status) << ": "
               << result.message << "\n";
-  if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir))
+  // A run that ended before its sampling (gross slip, contact lost) has nothing to draw: said so,
+  // with the files that were written (the plotting module failed on the empty CSV, and the
+  // message asked whether the Python package was installed).
+  if (!o.plot_dir.empty() && result.samples.size() == 0) {
+    std::cerr << "oscidrum: no plots: the run ended (" << to_string(result.status)
+              << ") before any sampled period; " << csv_path << " and " << json_path
+              << " are written\n";
+  } else if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir)) {
     return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
+  }
   if (interrupted()) return interrupted_exit_code();  // during the writing: the files are whole
   return ok(result.status) ? kExitOk : kExitCaseFailed;
 }

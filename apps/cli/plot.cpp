@@ -118,8 +118,12 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   set_child_process(0);
   if (interrupted()) return -1;  // the caller reports the interruption
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
-  if (WIFEXITED(status) && std::find(quiet_status.begin(), quiet_status.end(),
-                                     WEXITSTATUS(status)) != quiet_status.end())
+  // The module said why (oscidrum._interrupt.EXIT_EXPLAINED: no data to plot, a bad file): not
+  // a missing package, which the message below suggests.
+  constexpr int kModuleExplained = 3;
+  if (WIFEXITED(status) && (WEXITSTATUS(status) == kModuleExplained ||
+                            std::find(quiet_status.begin(), quiet_status.end(),
+                                      WEXITSTATUS(status)) != quiet_status.end()))
     return WEXITSTATUS(status);
   std::cerr
       << "oscidrum: error: " << what << " "

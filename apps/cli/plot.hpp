@@ -20,8 +20,9 @@ std::string python_interpreter();
 /// Run `python_interpreter() -m <module_args...>` with the package found first in the build tree,
 /// its output on our stdout. Returns its exit status, or -1 if it could not start or was killed
 /// (then one error line ending with `data_note` is printed; for other non-zero statuses too unless
-/// `quiet_status` lists them). SIGINT or SIGTERM is passed on to the module; it returns -1 then,
-/// without a message (the caller sees interrupted()).
+/// `quiet_status` lists them or it is 3, a module's error it explained itself). SIGINT or SIGTERM
+/// is passed on to the module; it returns -1 then, without a message (the caller sees
+/// interrupted()).
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
                const std::vector<int>& quiet_status = {});
 

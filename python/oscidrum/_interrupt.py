@@ -13,6 +13,10 @@ from typing import Callable, Iterator, Optional, Sequence
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
+#: The exit status of a module that printed why it failed (no data to plot, a bad file): the
+#: oscidrum tool passes it on without suggesting that the package or matplotlib is missing.
+EXIT_EXPLAINED = 3
+
 
 class Interrupted(KeyboardInterrupt):
     """Raised by the first SIGINT or SIGTERM; `signum` says which."""

@@ -421,7 +421,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     written = plot_directory(args.dir, args.format)
     if not written:
         print(f"oscidrum.identify: nothing to plot in {args.dir}", file=sys.stderr)
-        return 1
+        from ._interrupt import EXIT_EXPLAINED
+        return EXIT_EXPLAINED
     for path in written:
         print(f"wrote {path}")
     return 0

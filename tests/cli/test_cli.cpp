@@ -259,6 +259,16 @@ TEST(CliRun, ARunWithoutSamplesHasNoPhaseTimes) {
   EXPECT_NE(text.out.find("switches per period"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("n/a (no sampled window)"), std::string::npos) << text.out;
   EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
+  // --plot has nothing to draw, and says so (the plotting module failed on the empty CSV and the
+  // message asked whether the Python package was installed).
+  TempDir dir;
+  const Outcome plot = run({"run", "--MMd", "20000", "--plot", dir / "p", "-q"});
+  EXPECT_EQ(plot.code, 1) << plot.err;
+  EXPECT_NE(plot.err.find("no plots: the run ended (gross_slip) before any sampled period"),
+            std::string::npos)
+      << plot.err;
+  EXPECT_EQ(plot.err.find("installed"), std::string::npos) << plot.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "p/summary.json"));
 }
 
 TEST(CliRun, FilesFollowTheContracts) {
