@@ -217,13 +217,18 @@ class Continuation {
     return x;
   }
   double parameter(const VectorXd& v) const { return v[P] * sq_; }
-  // "key = value unit" for the messages (SI: the unit of the field table).
+  // "key = value unit" for the messages (SI: the unit of the field table), with the value in the
+  // unit people read it in where that is another ("soil.G = 1.4e+08 Pa (140 MN/m^2)": the CLI's
+  // table and bifurcations say MN/m^2, and the end of the branch said Pa alone).
   std::string at_value(double q, const char* format = nullptr) const {
     return std::string(field_.key) + " = " +
            (format ? detail::format(format, q) : detail::shortest(q)) +
            (field_.unit[0] != '\0' && std::string_view(field_.unit) != "-"
                 ? " " + std::string(field_.unit)
-                : std::string());
+                : std::string()) +
+           (field_.display_unit ? " (" + detail::shortest(q / field_.display_scale) + " " +
+                                      field_.display_unit + ")"
+                                : std::string());
   }
   Map map(const VectorXd& v, bool sensitivities);
   std::optional<VectorXd> dF_dq(const VectorXd& v, const Map& at);

@@ -139,6 +139,8 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
   o.metrics = false;
   const Branch b = continue_branch(c, o);
   ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
+  // In SI and in the unit G is read in, as the CLI's table and bifurcation lines give it.
+  EXPECT_NE(b.message.find("soil.G = 1e+08 Pa (100 MN/m^2)"), std::string::npos) << b.message;
   ASSERT_EQ(b.bifurcations.size(), 2u);
   for (const Bifurcation& x : b.bifurcations) {
     EXPECT_EQ(x.kind, BifurcationKind::neimark_sacker);
