@@ -61,6 +61,7 @@ class SteadyState:
     status: str = "steady_state"
     metrics: Optional[Dict[str, Any]] = None  #: scalar metrics and harmonic arrays, if known
     parameters: Dict[str, Any] = field(default_factory=dict)  #: {dotted key: value}, if known
+    multiplicity: int = 1  #: excitation periods after which the steady state repeats [-]
 
     @property
     def period(self) -> float:
@@ -71,6 +72,12 @@ class SteadyState:
     def samples_per_period(self) -> int:
         """Samples per excitation period [-]."""
         return len(self.samples.t) // max(self.sample_periods, 1)
+
+    @property
+    def samples_per_orbit(self) -> int:
+        """Samples of one steady period, multiplicity excitation periods (of all samples at
+        most) [-]."""
+        return min(len(self.samples.t), self.samples_per_period * max(self.multiplicity, 1))
 
     def tau(self) -> np.ndarray:
         """Time since the first sample in excitation periods, (t - t0) f [-]."""
@@ -112,7 +119,8 @@ def from_result(result: Any, label: str = "", metrics: Any = None,
                        sample_periods=result.sample_periods, label=label,
                        status=result.status.name,
                        metrics=_metrics_dict(metrics) if metrics is not None else None,
-                       parameters=dict(parameters or {}))
+                       parameters=dict(parameters or {}),
+                       multiplicity=max(int(result.diagnostics.multiplicity), 1))
 
 
 def as_steady_state(obj: Any, label: str = "") -> SteadyState:
@@ -211,9 +219,11 @@ def read_case(csv_path: str | os.PathLike, json_path: str | os.PathLike | None =
     if "alpha" not in columns:  # a file of an oscidrum before the column: nu t, as run writes it
         ns.alpha = np.mod(2.0 * np.pi * float(frequency) * ns.t, 2.0 * np.pi)
     status = summary.get("status", "steady_state") if summary else "steady_state"
+    multiplicity = _find(summary, "diagnostics", "multiplicity")
     return SteadyState(samples=ns, frequency=float(frequency), sample_periods=int(periods),
                        label=label, status=str(status), metrics=_summary_metrics(summary),
-                       parameters=dict(summary.get("parameters") or {}))
+                       parameters=dict(summary.get("parameters") or {}),
+                       multiplicity=max(int(multiplicity or 1), 1))
 
 
 def format_double(value: float) -> str:

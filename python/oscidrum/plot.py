@@ -297,7 +297,7 @@ def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
             M0 = 4.0 * unbalance * (2.0 * np.pi * f) ** 2
         if mmd == 0:
             parts["torque"] = "$M_{Md}$ = 0"
-        elif M0:
+        elif M0 and get("roller.type") != "vibratory":  # (the vibratory drum has no M0)
             parts["torque"] = f"$M_{{Md}}$ = {_number(mmd / float(M0))} $M_0$"
         else:
             parts["torque"] = f"$M_{{Md}}$ = {_number(mmd * 1e-3)} kN m"
@@ -305,6 +305,11 @@ def case_parts(params: Mapping[str, Any], frequency: Optional[float] = None
     if trough:
         parts["trough"] = trough
     f = get("roller.f") or frequency
+    if get("roller.type") == "vibratory":  # its excitation is a force, not M0 (and no M_Md / M0)
+        parts["roller"] = "vibratory drum"
+        if get("roller.static_moment") is not None:
+            parts["static moment"] = (f"$m_u e_u$ = {_number(float(get('roller.static_moment')))}"
+                                      " kg m")
     if f:
         parts["excitation"] = f"f = {_number(f)} Hz"
     return parts
@@ -335,6 +340,15 @@ def _labels_and_title(states: List[SteadyState], title: Optional[str]
         extra = [part for part in shared if _plain(part) not in said]
         if extra and len(states) > 0:
             title = f"{title}\n{', '.join(extra)}"
+    # A run that is not a steady state (max_periods_reached, aperiodic, ...) is marked on every
+    # figure, not only the figure eight: its traces and spectra look like a steady state's.
+    unsteady = [s.status for s in states if s.status != "steady_state"]
+    if unsteady and len(set(unsteady)) == 1 and len(unsteady) == len(states):
+        note = f"{unsteady[0]}: not a steady state (the last periods, for inspection)"
+        title = f"{title}\n{note}" if title else note
+    elif unsteady:
+        labels = [f"{label} ({s.status}: not a steady state)" if s.status != "steady_state"
+                  else label for label, s in zip(labels, states)]
     return labels, title
 
 
@@ -724,7 +738,9 @@ def plot_figure_eight(cases: Any, labels: Optional[Sequence[str]] = None,
     names, title = _labels_and_title(states, title)
     slip_seen: Dict[int, bool] = {}
     for i, state in enumerate(states):
-        n = state.samples_per_period
+        # One steady period: multiplicity excitation periods (a period-2 orbit's figure was drawn
+        # over its first period only, closed by a line that is not on it).
+        n = state.samples_per_orbit
         x = np.asarray(state.samples.ddx_M, dtype=float)[:n]
         z = np.asarray(state.samples.ddz_M, dtype=float)[:n]
         phase = np.asarray(state.samples.phase).astype(int)[:n]
@@ -1073,9 +1089,34 @@ def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
                     color_unit=units.get(ccols[0], "") if many else "",
                     legend=legend if p == len(pvalues) - 1 else None, yscale=yscale,
                     styles=styles, ylabel=p == 0)
+        _note_missing(axis, xs[rows], ys[rows], xcol, ycol, units)
         if pcol is not None:
             axis.set_title(value_label(pcol, value, units.get(pcol, "")), fontsize="medium")
     return _finish(fig, axes, made, title)
+
+
+def _note_missing(axis: Any, xs: np.ndarray, ys: np.ndarray, xcol: str, ycol: str,
+                  units: Mapping[str, str]) -> None:
+    """Cases of a panel without a value of the metric (failed, not a steady state) leave gaps:
+    the x axis still spans every swept value (a failed case at the end of the range was outside
+    it), and a note says how many there are."""
+    finite_x = np.isfinite(xs)
+    missing = int(np.sum(finite_x & ~np.isfinite(ys)))
+    if not missing:
+        return
+    _, xf = axis_label(xcol, units.get(xcol, ""))
+    lo, hi = float(np.min(xs[finite_x])) * xf, float(np.max(xs[finite_x])) * xf
+    if hi > lo:
+        left, right = axis.get_xlim()
+        if axis.get_xscale() == "log":
+            axis.set_xlim(min(left, lo / 1.1), max(right, hi * 1.1))
+        else:
+            pad = 0.05 * (hi - lo)
+            axis.set_xlim(min(left, lo - pad), max(right, hi + pad))
+    name = ycol.split("[")[0]
+    axis.text(0.01, 0.99, f"{missing} of {int(np.sum(finite_x))} cases without {name} "
+              "(not a steady state): gaps", transform=axis.transAxes, ha="left", va="top",
+              fontsize="x-small", color="0.3")
 
 
 def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
@@ -1099,6 +1140,9 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
     for xv, yv, zv in zip(xs, ys, zs):
         if np.isfinite(xv) and np.isfinite(yv):
             grid[np.searchsorted(yu, yv), np.searchsorted(xu, xv)] = zv
+    if not np.isfinite(grid).any():
+        raise ValueError(f"plot_map: no case has a value of {zcol} (none is a steady state): "
+                         "nothing to plot")
     xlabel, xf = axis_label(xcol, units.get(xcol, ""))
     ylabel, yf = axis_label(ycol, units.get(ycol, ""))
     zlabel, zf = axis_label(zcol, units.get(zcol, ""))
@@ -1121,6 +1165,11 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
                               fontsize="x-small", color="white" if light else "black")
     axis.set_xlabel(xlabel)
     axis.set_ylabel(ylabel)
+    blank = int(np.sum(~np.isfinite(grid)))
+    if blank:
+        name = zcol.split("[")[0]
+        axis.set_title(f"blank: {blank} of {grid.size} cells without {name} (not a steady state)",
+                       fontsize="x-small", color="0.3")
     if len(xu) <= 16:
         axis.set_xticks(xu * xf)
     if len(yu) <= 16:
@@ -1150,6 +1199,12 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
     if not keys:
         raise ValueError("no swept numeric column between 'case' and 'status' "
                          "(a results CSV of oscidrum sweep --out)")
+    column = resolve_column(table, metric)
+    if not np.isfinite(np.asarray(table[column], dtype=float)).any():
+        statuses = sorted(set(str(v) for v in table.get("status", [])) - {"nan"})
+        raise ValueError(f"no case of the study has a value of {column}"
+                         + (f" (statuses: {', '.join(statuses)})" if statuses else "")
+                         + ": nothing to plot")
     varying = [k for k in keys if len(np.unique(np.asarray(table[k], dtype=float))) > 1]
     keys = varying or keys
     numeric = [k for k in keys if not _is_regime(k)]
@@ -1198,13 +1253,34 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
         q, y, stable = q_all[rows], y_all[rows], stable_all[rows]
         p = int(period_all[rows][0]) if rows.any() else 1
         color = COLORS[int(index) % len(COLORS)]
-        # Runs of equal stability, each drawn to the next point so that the curve is unbroken.
-        start = 0
+        # Runs of equal stability, unbroken: between the last point of one and the first of the
+        # next the stability changes at a bifurcation of this branch there (or, where none is
+        # given, half way), where the one style ends and the other begins (the stable line ran on
+        # to the first unstable point, past the Neimark-Sacker point marked on it).
+        crossings = [float(item[1]) for item in bifurcations or []
+                     if (int(item[2]) if len(item) > 2 else 0) == int(index)
+                     and item[0] in ("fold", "branch_point", "period_doubling", "neimark_sacker")]
+
+        def change_between(i: int) -> Tuple[float, float]:
+            lo, hi = q[i - 1], q[i]
+            at = next((c for c in crossings if min(lo, hi) <= c <= max(lo, hi) and hi != lo),
+                      0.5 * (lo + hi))
+            w = (at - lo) / (hi - lo) if hi != lo else 0.5
+            return at, y[i - 1] + w * (y[i] - y[i - 1])
+
+        start, head = 0, None  # head: where this run begins, between points (None: at its first)
         for k in range(1, len(q) + 1):
             if k == len(q) or stable[k] != stable[start]:
-                end = min(k + 1, len(q))
+                qs, ys = list(q[start:k]), list(y[start:k])
+                if head is not None:
+                    qs.insert(0, head[0])
+                    ys.insert(0, head[1])
+                head = change_between(k) if k < len(q) else None
+                if head is not None:
+                    qs.append(head[0])
+                    ys.append(head[1])
                 kind = f"period {p} T, {'stable' if stable[start] else 'unstable'}"
-                ax.plot(q[start:end] * xf, y[start:end] * yf, color=color,
+                ax.plot(np.asarray(qs) * xf, np.asarray(ys) * yf, color=color,
                         linestyle="-" if stable[start] else "--",
                         label=None if kind in labelled else kind)
                 labelled.add(kind)
@@ -1416,7 +1492,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             paths = [save(fig, args.out)]
     except (OSError, ValueError, KeyError) as exc:
         print(f"oscidrum.plot: error: {exc}", file=sys.stderr)
-        return 1
+        from ._interrupt import EXIT_EXPLAINED
+        return EXIT_EXPLAINED
     for path in paths:
         print(path)
     return 0

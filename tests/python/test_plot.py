@@ -112,7 +112,7 @@ def test_module_entry_case(slip_result, tmp_path):
     assert all((out / f).read_bytes().startswith(PNG) for f in files)
     p = run_module("oscidrum.plot", "case", "--csv", str(tmp_path / "nope.csv"), "--out",
                    str(out))
-    assert p.returncode == 1 and "error" in p.stderr
+    assert p.returncode == 3 and "error" in p.stderr  # EXIT_EXPLAINED
     # --periods must be a positive number of periods (0 drew empty time plots).
     for bad in ("0", "-1", "nan", "inf", "two"):
         p = run_module("oscidrum.plot", "case", "--csv", str(csv), "--out", str(out), "--periods",
@@ -305,9 +305,25 @@ def test_plot_map_heat_map_of_any_metric():
     assert "MN/m$^2$" in ax.get_xlabel() and "Hz" in ax.get_ylabel()
     assert "peak" in bar.get_ylabel()
     assert sorted(t.get_text() for t in ax.texts) == ["1", "2", "3", "5", "6"]
+    assert ax.get_title() == "blank: 1 of 6 cells without ddx_max (not a steady state)"
     # A study with two swept keys: plot_study draws the map.
     fig = plot.plot_study(table, "ddx_max")
     assert len(fig.axes[0].collections) == 1
+    # No case with a value: an empty map with a colour bar of -0.1 ... 0.1 was drawn.
+    failed = dict(table, ddx_max=np.full(6, np.nan))
+    with pytest.raises(ValueError, match="no case of the study has a value of ddx_max"):
+        plot.plot_study(failed, "ddx_max")
+
+
+def test_failed_cases_of_a_sweep_leave_noted_gaps_inside_the_axis():
+    # The failed case at the end of the range was outside the x axis and not said.
+    table = {"case": np.arange(3.0), "MMd_fraction": np.array([0.0, 0.1, 0.3]),
+             "status": np.full(3, np.nan), "area": np.array([22.8, 21.0, np.nan])}
+    fig = plot.plot_study(table, "area")
+    ax = fig.axes[0]
+    assert ax.get_xlim()[1] > 0.3
+    assert [t.get_text() for t in ax.texts] == [
+        "1 of 3 cases without area (not a steady state): gaps"]
 
 
 def test_every_plot_function_accepts_ax(slip_result):
@@ -669,6 +685,35 @@ def test_figure_eight_of_a_run_without_steady_state_shows_no_area():
     assert not any("area" in t for t in texts), texts
 
 
+def test_every_figure_of_a_run_without_steady_state_says_so():
+    # Only the figure eight said it: the time traces, spectra and forces of a transient's last
+    # periods looked like a steady state's.
+    bad = oscidrum.simulate(oscidrum.Case(max_periods=3))
+    for draw in (plot.plot_accelerations, plot.plot_spectra, plot.plot_delta_phi,
+                 plot.plot_forces, plot.plot_figure_eight):
+        fig = draw(bad)
+        title = fig._suptitle.get_text() if fig._suptitle else fig.axes[0].get_title()
+        assert "max_periods_reached: not a steady state" in title, (draw.__name__, title)
+
+
+def test_figure_eight_of_a_period_two_orbit_is_drawn_over_both_periods():
+    # The log-spiral trough at 25 Hz on stiff soil: a period-2 steady state. Its figure was drawn
+    # over the first excitation period, closed by a line that is not on the orbit, beside the
+    # legend's area of the two-period figure.
+    c = oscidrum.Case(input="modulus", G=150e6, k=0.002, a=0.601, mu=0.7, f=25.0,
+                      unbalance=0.22877)
+    r = oscidrum.simulate(c)
+    assert r.status.name == "steady_state" and r.diagnostics.multiplicity == 2
+    state = data.from_result(r)
+    assert state.multiplicity == 2 and state.samples_per_orbit == 2 * state.samples_per_period
+    fig = plot.plot_figure_eight(r)
+    curve = [line for line in fig.axes[0].lines if line.get_zorder() == 2][0]
+    assert len(curve.get_xdata()) == state.samples_per_orbit + 1  # closed
+    x = np.asarray(r.samples.ddx_M)
+    assert curve.get_xdata().min() == x[: state.samples_per_orbit].min() < x[
+        : state.samples_per_period].min()
+
+
 def test_a_plot_of_something_else_names_what_it_takes():
     # An AttributeError from inside the package ("'int' object has no attribute 'samples'").
     with pytest.raises(oscidrum.Error, match="takes a Result, a CaseOutcome"):
@@ -681,3 +726,19 @@ def test_a_window_of_no_periods_is_refused(slip_result):
         for periods in (0, -1, float("nan")):
             with pytest.raises(ValueError, match="periods must be > 0"):
                 draw(slip_result, periods=periods)
+
+
+def test_a_branch_changes_style_at_its_bifurcation():
+    # The stable line ran on to the first unstable point, past the Neimark-Sacker point on it.
+    table = {"branch": np.zeros(4), "point": np.arange(4.0), "roller.f": np.array([50, 51, 52, 53.0]),
+             "arclength": np.arange(4.0), "multiplicity": np.ones(4),
+             "stable": np.array([1, 1, 0, 0.0]), "area": np.array([1.0, 2.0, 3.0, 4.0])}
+    fig = plot.plot_branch(table, "area", bifurcations=[("neimark_sacker", 51.25, 0)])
+    solid = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "-"]
+    dashed = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "--"]
+    assert solid[0].get_xdata()[-1] == 51.25 and dashed[0].get_xdata()[0] == 51.25
+    assert solid[0].get_ydata()[-1] == pytest.approx(2.25)
+    # Without the bifurcations: half way.
+    fig = plot.plot_branch(table, "area")
+    solid = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "-"]
+    assert solid[0].get_xdata()[-1] == 51.5
