@@ -1754,12 +1754,21 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       // nothing of 10 Hz or more, which needs 5 samples per period) and a logger's rate in ms,
       // us or ns (a ROS message's stamp, `rostopic echo -p`'s %time): then it is read in that
       // unit, said with the flag that reads it in s.
-      double step = 0.0;
+      // The step between distinct times: a clock coarser than the sampling repeats its stamps
+      // (a 2 kHz logger stamping in whole ms: 0, 0, 1, 1, ...), and the median of all steps was
+      // 0, the column read in s (2 samples/s over 1000 s); its stamps' step says its unit.
+      double step = 0.0, rows_per_time = 0.0;
       const bool unitless = o.t_units == "auto" && cns < 0 &&
                             headings[static_cast<std::size_t>(ct)].unit.empty() && out.t.size() > 2;
       if (unitless) {
         const std::size_t n = std::min<std::size_t>(out.t.size(), 10000);
-        step = detail::median_step(std::span<const double>(out.t).first(n));
+        std::vector<double> distinct;
+        for (std::size_t i = 0; i < n; ++i)
+          if (distinct.empty() || out.t[i] != distinct.back()) distinct.push_back(out.t[i]);
+        step = distinct.size() > 1 ? detail::median_step(distinct) : 0.0;
+        // Rows per unit of the column's time: the rows per stamp over the stamps' step.
+        if (step > 0.0)
+          rows_per_time = static_cast<double>(n) / (static_cast<double>(distinct.size()) * step);
       }
       const double factor = !(step > 0.02) ? 1.0
                             : step <= 10.0 ? 1e-3
@@ -1786,9 +1795,9 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         out.t_factor = factor;
         const char* unit = factor == 1e-3 ? "ms" : factor == 1e-6 ? "us" : "ns";
         out.notes.push_back("t: column '" + out.t_column + "' has no unit and is read in " + unit +
-                            " (" + format_factor(1.0 / (step * factor)) +
+                            " (" + format_factor(rows_per_time / factor) +
                             " samples/s): in s its samples would be " + format_factor(step) +
-                            " s apart (" + format_factor(1.0 / step) +
+                            " s apart (" + format_factor(rows_per_time) +
                             " samples/s, too few for an excitation of 10 Hz or more); give "
                             "--t-units s to read it in s");
       } else {

@@ -1109,6 +1109,17 @@ TEST(RecordReader, RowsAtTheTimeOfTheRowBeforeAreOneSample) {
   ASSERT_EQ(spread.t.size(), 100u);
   for (std::size_t i = 0; i < 100; ++i)
     EXPECT_NEAR(spread.t[i], 0.5e-3 * static_cast<double>(i), 1e-15) << i;
+  // The same in whole milliseconds without a unit (a logger's epoch ms): read in ms, as a clock
+  // without repeats is (the median step of all rows was 0, and the column was read in s: 2
+  // samples/s).
+  std::string epoch_ms = "timestamp,ax,az\n";
+  for (int i = 0; i < 100; ++i) epoch_ms += std::to_string(1700000000123LL + i / 2) + ",1,2\n";
+  const RecordColumns ms = read_text(epoch_ms);
+  ASSERT_EQ(ms.t.size(), 100u);
+  EXPECT_EQ(ms.t_factor, 1e-3);
+  EXPECT_NEAR(ms.t[99] - ms.t[0], 99 * 0.5e-3, 4e-7);  // a double's step at 1.7e9 s: 2.4e-7
+  EXPECT_NE(note_of(epoch_ms).find("read in ms (2000 samples/s)"), std::string::npos)
+      << note_of(epoch_ms);
   // Stamps with irregular repeats (a third of them): averaged, as switches are.
   std::string some = "t,ax,az\n";
   for (int i = 0; i < 99; ++i)
