@@ -1166,6 +1166,17 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     if (axis == 'y') y_like.push_back(column);
     if (axis == 'z' || k == "z" || headings[c].name == "ddz_M") z_like.push_back(column);
   }
+  // A three-axis logger's bare X, Y, Z (Time,X,Y,Z): Y is its y channel, so that the mounting
+  // rules below see it (a y vertical, an x vertical); it was left out, and z, lateral, was read
+  // as the vertical without a word. (A bare y beside named accelerations may be a position.)
+  const auto bare = [&](const char* letter) {
+    return std::any_of(headings.begin(), headings.end(),
+                       [&](const Heading& h) { return h.key == letter; });
+  };
+  if (y_like.empty() && bare("x") && bare("y") && bare("z") && x_like.size() == 1 &&
+      z_like.size() == 1)
+    for (std::size_t c = 0; c < headings.size(); ++c)
+      if (headings[c].key == "y") y_like.push_back(static_cast<int>(c));
   // A record with y and z accelerations and no x (a two-axis sensor whose channels are y and z,
   // or a logger whose travel axis is y): its one y is the horizontal, with a note (under the
   // flags' conventions for x: forward unless --x-positive backward).

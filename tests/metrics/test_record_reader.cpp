@@ -88,8 +88,10 @@ TEST(RecordReader, BareAxisNamesWhereNothingElseMatches) {
     const bool four = header.find('Y') != std::string::npos;
     std::string row0 =
         std::string("0") + d + "0.5" + d + (four ? std::string("7") + d : "") + "-0.25";
+    // (x's mean not 1 g: a logger mounted with x vertical reads gravity there, and its Y, a
+    // channel now, would make x the vertical.)
     std::string row1 =
-        std::string("0.001") + d + "1.5" + d + (four ? std::string("7") + d : "") + "0.75";
+        std::string("0.001") + d + "2.5" + d + (four ? std::string("7") + d : "") + "0.75";
     if (header.find("temp") != std::string::npos) {
       row0 += ",21";
       row1 += ",21";
@@ -1028,6 +1030,12 @@ TEST(RecordReader, AThreeAxisLoggersYWithGravityIsTheVertical) {
   EXPECT_EQ(model.z_positive, "up");
   EXPECT_DOUBLE_EQ(model.ddz_M[1], -0.75);
   EXPECT_TRUE(model.z_open);  // no gravity: identify may still fit it negated
+  // A logger's bare X, Y, Z (Time,X,Y,Z) follow the same rules: Y with gravity is the vertical
+  // (Z, lateral, was read as the vertical without a word).
+  const RecordColumns bare = read_text("Time,X,Y,Z\n0,0.5,9.3,0.02\n0.001,1.5,10.3,-0.01\n");
+  EXPECT_EQ(bare.z_column, "Y");
+  EXPECT_EQ(bare.z_positive, "up");
+  EXPECT_TRUE(has(bare, "the y column 'Y' is read as the vertical"));
   EXPECT_TRUE(has(model, "'az' has the same value in every row"));
   EXPECT_FALSE(has(model, "the same value (0 m/s^2) in every row"));  // not a dead vertical
   RecordReading as_down;
