@@ -987,6 +987,24 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     }
     for (std::size_t c = 0; c < header.size(); ++c)
       if (!value(header[c]) && number_below[c]) has_header = true;
+    // Quoted numbers with a decimal comma in a comma-separated file ("0,5","1,25": a spreadsheet
+    // in a German locale): no cell below reads as a number, and the message said the record had
+    // no header line. A decimal comma needs another separator between the cells.
+    if (!has_header && delim == ',' && data_at < lead.size()) {
+      const std::vector<std::string> below = split(lead[data_at].first, delim);
+      std::size_t commas = 0, numbers = 0;
+      for (const std::string& cell : below) {
+        double v = 0;
+        const bool comma = cell.find(',') != std::string::npos;
+        commas += comma ? 1 : 0;
+        numbers += comma && parse_number(cell, true, v) ? 1 : 0;
+      }
+      if (numbers > 0 && numbers == commas && 2 * numbers >= below.size())
+        throw Error(name + ": line " + std::to_string(lead[data_at].second) +
+                    " holds quoted numbers with a decimal comma (" + trim(below.front()) +
+                    ") in a comma-separated file: a decimal comma needs ';', a tab or '|' between "
+                    "the cells (save the file with ';' as the separator, or with decimal points)");
+    }
   }
   // No header, but a comment just before the data that names as many columns, none a number:
   // those are the names (the data start at the first line, as without a header).

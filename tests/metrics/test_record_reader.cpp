@@ -75,6 +75,12 @@ TEST(RecordReader, GermanChannelNames) {
     EXPECT_DOUBLE_EQ(r.ddx_M[0], 0.5 * 9.80665);
     EXPECT_DOUBLE_EQ(r.ddz_M[0], -0.25 * 9.80665);
   }
+  // Quoted decimal commas between commas (a spreadsheet in a German locale saved as CSV): said
+  // so (the message was that the record had no header line); the same with ';' is read.
+  EXPECT_NE(message_of("\"t\",\"ax\",\"az\"\n\"0,000\",\"-13,9\",\"0,6\"\n")
+                .find("quoted numbers with a decimal comma (0,000) in a comma-separated file"),
+            std::string::npos);
+  EXPECT_DOUBLE_EQ(read_text("\"t\";\"ax\";\"az\"\n\"0,000\";\"-13,9\";\"0,6\"\n").ddx_M[0], -13.9);
 }
 
 // A three-axis logger's bare channel names X, Y, Z: x and z are the accelerations where no other
