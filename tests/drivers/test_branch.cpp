@@ -171,15 +171,26 @@ TEST(Branch, NeimarkSackerPointsBoundWhereNoSteadyStateIsFound) {
 // fold there: the tangent's dq/ds did turn negative when dF/dq was a forward difference that
 // reached across lift-off (the map beside the orbit had a flight phase), and a fold was reported
 // with the critical multiplier 0.72 + 0.75i, nowhere near +1.
-TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
-  Case c = rolling_unilateral_case();
+// Pure rolling on contact that can open at G = 100 MN/m^2, continued in roller.f [Hz] (no
+// metrics): the branch, its options and its case.
+struct FrequencyBranch {
+  Branch b;
+  BranchOptions o;
+  Case c;
+};
+FrequencyBranch frequency_branch(double from, double to) {
+  Case c = rolling_unilateral_case(from);
   set_field(c, "soil.G", 100e6);
   BranchOptions o;
   o.key = "roller.f";
-  o.from = 58.0;
-  o.to = 70.0;
+  o.from = from;
+  o.to = to;
   o.metrics = false;
-  const Branch b = continue_branch(c, o);
+  return {continue_branch(c, o), o, c};
+}
+
+TEST(Branch, TheBranchEndsWhereTheDrumLiftsOff) {
+  const auto [b, o, c] = frequency_branch(58.0, 70.0);
   ASSERT_EQ(b.end, BranchEnd::lift_off) << b.message;
   const BranchPoint& last = b.points.back();
   EXPECT_NEAR(last.parameter, 65.7266, 1e-3);
@@ -278,14 +289,7 @@ TEST(Branch, OnlyAChangeOfTheNumberOutsideTheUnitCircleIsACrossing) {
 // once, with "critical" multipliers of modulus 0.02. The one crossing in the range, the pair
 // leaving the circle at 68.4724 Hz, is reported, with its multiplier on the circle.
 TEST(Branch, APairThatPartsOutsideTheUnitCircleIsNoBifurcation) {
-  Case c = rolling_unilateral_case(68.6);
-  set_field(c, "soil.G", 100e6);
-  BranchOptions o;
-  o.key = "roller.f";
-  o.from = 68.6;
-  o.to = 68.2;
-  o.metrics = false;
-  const Branch b = continue_branch(c, o);
+  const Branch b = frequency_branch(68.6, 68.2).b;
   // The collision happens between two points of the branch (else this tests nothing).
   const auto outside = [](const BranchPoint& p, bool complex) {
     int n = 0;
