@@ -71,8 +71,8 @@ struct RecordGates {
   double max_drift = 0.002;   ///< largest |f(later part) - f(earlier part)| / f in a window [-]
   double clip_level = 0.0;    ///< |a| >= this counts as clipped [m/s^2]; 0: detect plateaus
   int clip_run = 3;  ///< this many equal samples running in the outer quarter of a channel's range
-                     ///< in the window, where the signal around them would pass their level (not
-                     ///< a finite resolution's plateau at a smooth peak): clipped [-]
+                     ///< in the window (in a record in codes: not a finite resolution's plateau
+                     ///< at a smooth peak, docs/identify.md): clipped [-]
   double max_gap = 0.5;  ///< a time step longer than this part of an excitation period: gap [-]
   /// Largest change of the response within a window: |RMS(later part) - RMS(earlier part)| /
   /// RMS(window) of the fitted periodic x_M'' or z_M'', over the window's 4 (3, 2) equal parts

@@ -220,10 +220,32 @@ def read_case(csv_path: str | os.PathLike, json_path: str | os.PathLike | None =
         ns.alpha = np.mod(2.0 * np.pi * float(frequency) * ns.t, 2.0 * np.pi)
     status = summary.get("status", "steady_state") if summary else "steady_state"
     multiplicity = _find(summary, "diagnostics", "multiplicity")
+    if not multiplicity:  # no summary: the samples say after how many periods they repeat
+        multiplicity = _repeats_after(ns.ddx_M, ns.ddz_M, int(periods))
     return SteadyState(samples=ns, frequency=float(frequency), sample_periods=int(periods),
                        label=label, status=str(status), metrics=_summary_metrics(summary),
                        parameters=dict(summary.get("parameters") or {}),
                        multiplicity=max(int(multiplicity or 1), 1))
+
+
+def _repeats_after(x: np.ndarray, z: np.ndarray, periods: int) -> int:
+    """The fewest excitation periods after which sampled accelerations repeat (to 1e-6 of their
+    largest magnitude; a whole number of periods sampled), 1 when they never do within half the
+    window: a steady state's multiplicity, for a CSV read without its summary (a period-2 orbit's
+    figure eight was drawn over one period)."""
+    n = len(x)
+    if periods < 2 or n % periods:
+        return 1
+    per = n // periods
+    for p in range(1, periods // 2 + 1):
+        if periods % p:
+            continue
+        shift = p * per
+        close = all(np.max(np.abs(a[shift:] - a[:-shift])) <= 1e-6 * max(np.max(np.abs(a)), 1e-300)
+                    for a in (np.asarray(x, dtype=float), np.asarray(z, dtype=float)))
+        if close:
+            return p
+    return 1
 
 
 def format_double(value: float) -> str:

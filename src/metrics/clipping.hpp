@@ -2,70 +2,61 @@
 // plateau gate), internal; exposed for its tests.
 #pragma once
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <span>
+#include <vector>
 
 namespace oscidrum::detail {
 
-/// Samples on each side of a run that judge it (clipped_run).
-inline constexpr std::size_t kClipNeighbours = 3;
+/// Samples of a window allowed beyond a run's level for the run to count as at the channel's
+/// extreme there: a spike or two past the rail (a record with one sample beyond the clip level),
+/// not noise peaks.
+inline constexpr std::size_t kSpikesAllowed = 2;
 
-/// Whether the run y[a..b] of equal samples (of a window of the record t, y: at the top of the
-/// window's range of the channel when `upper`, else at its bottom) is clipping: the signal
-/// around it would pass its level. The run is taken as far as it goes in the record, and its
-/// neighbours from the record (a run at a window's edge has them outside the window). A quadratic
-/// in t through kClipNeighbours samples on each side of the run (least squares) is evaluated at the
-/// run's middle; the run is clipping where that lies beyond the run's level by more than the
-/// channel's resolution `quantum` plus three standard errors of the value there (each sample's
-/// error: the code's rounding, q / sqrt(12), and the noise, the residual of a straight line through
-/// each side's samples). A clipped signal meets its rail rising and leaves it falling: the
-/// quadratic runs far beyond the rail. A smooth peak recorded with a finite resolution (a 16-bit
-/// logger) holds its top code for a few samples and its neighbours lie within a code or two of it;
-/// noise makes chance runs of equal codes on the way, which the quadratic follows. Before, every
-/// run of three equal samples in the outer quarter of the range counted, and a logger's record of a
-/// peak of 1.47 g with codes of 0.5 mg failed the gate in half its windows. A run with fewer than
-/// kClipNeighbours samples on a side (at the record's ends) is not judged (not counted): a clipped
-/// channel is clipped at every extreme of a window, at least one per period, and the others say so.
-inline bool clipped_run(std::span<const double> t, std::span<const double> y, std::size_t a,
-                        std::size_t b, bool upper, double quantum) {
-  constexpr std::size_t m = kClipNeighbours;
-  while (a > 0 && y[a - 1] == y[a]) --a;
-  while (b + 1 < y.size() && y[b + 1] == y[b]) ++b;
-  if (a < m || y.size() - 1 - b < m) return false;
-  const double t_mid = 0.5 * (t[a] + t[b]);
-  // The time unit: the sampling step around the run (the normal equations stay well scaled).
-  const double unit = (t[b + m] - t[a - m]) / static_cast<double>(b - a + 2 * m);
-  if (!(unit > 0.0)) return true;
-  Eigen::Matrix<double, 2 * m, 3> A;
-  Eigen::Matrix<double, 2 * m, 1> v;
-  for (std::size_t k = 0; k < 2 * m; ++k) {
-    const std::size_t i = k < m ? a - m + k : b + 1 + (k - m);
-    const double tau = (t[i] - t_mid) / unit;
-    const auto row = static_cast<Eigen::Index>(k);
-    A(row, 0) = 1.0, A(row, 1) = tau, A(row, 2) = tau * tau;
-    v[row] = y[i] - y[a];  // relative to the run's level
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 2 * m, 3>> qr(A);
-  if (qr.rank() < 3) return true;
-  const double middle = (qr.solve(v))[0];  // the quadratic at the run's middle
-  // The noise: each side's samples about their straight line (m - 2 degrees of freedom each).
-  double squares = 0.0;
-  for (std::size_t side = 0; side < 2; ++side) {
-    const auto lines = A.template block<m, 2>(static_cast<Eigen::Index>(side * m), 0);
-    const auto values = v.template segment<m>(static_cast<Eigen::Index>(side * m));
-    const Eigen::Vector2d c = lines.colPivHouseholderQr().solve(values);
-    squares += (lines * c - values).squaredNorm();
-  }
-  const double noise = std::sqrt(squares / static_cast<double>(2 * (m - 2)));
-  const double error = std::sqrt(quantum * quantum / 12.0 + noise * noise);  // of one sample
-  // The standard error of the quadratic's value at the middle: (A^T A)^-1's first entry.
-  const Eigen::Matrix3d normal = A.transpose() * A;
-  const double spread = std::sqrt(std::max(0.0, normal.inverse()(0, 0)));
-  const double beyond = upper ? middle : -middle;
-  return beyond > quantum + 3.0 * error * spread;
+/// Whether a run of `length` equal samples y[a..b] of a window is clipping (a rail), where its
+/// channel is recorded in codes of `quantum` (0: not in codes, a value of any precision).
+/// `beyond`: the window's samples past the run's level, `per_period`:
+/// samples per excitation period, `amplitude`: half the channel's range in the window.
+///
+/// Values of any precision never repeat on a smooth signal: a run is a rail (as before). In
+/// codes, a smooth peak holds its top code for a few samples, and noise makes chance runs of
+/// equal codes on the way up and down; a logger's record (a 16-bit logger's codes of 0.5 mg, a
+/// peak of 1.47 g) failed the gate in half its windows. A run in codes is a rail where it is
+/// longer than a peak holds a code (over the fraction sqrt(2 q / A) / pi of a period of a
+/// sinusoid of amplitude A, three times that for the flatter peaks of a response with
+/// overtones), or where it is at the window's extreme (at most kSpikesAllowed samples beyond:
+/// a chance run lies below the noise peaks) and the signal meets or leaves it at its own slope,
+/// by more than three codes between samples (over a run of L codes of a smooth peak the
+/// curvature is at most 8 q / L^2, so the next sample differs by under 3 q) and three times what
+/// the noise makes of a step (`noise`: the deviation of one sample's noise).
+inline bool clipped_run(std::span<const double> y, std::size_t a, std::size_t b, std::size_t beyond,
+                        double per_period, double amplitude, double quantum, double noise) {
+  if (!(quantum > 0.0)) return true;
+  const double peak_holds =
+      3.0 * per_period * std::sqrt(2.0 * quantum / amplitude) / std::numbers::pi + 2.0;
+  if (static_cast<double>(b - a + 1) > peak_holds) return true;
+  if (beyond > kSpikesAllowed) return false;  // below the extreme: noise, not a rail
+  double step = 0.0;                          // into or out of the run, the larger
+  if (a > 0) step = std::max(step, std::abs(y[a - 1] - y[a]));
+  if (b + 1 < y.size()) step = std::max(step, std::abs(y[b + 1] - y[b]));
+  return step > 3.0 * (quantum + std::sqrt(2.0) * noise);
+}
+
+/// The deviation of the noise of samples y[first..last]: the median absolute second difference
+/// (robust to the steps at a rail) over its value for white noise, 0.6745 sqrt(6). A smooth
+/// signal's own second differences count too, more the fewer samples a period has.
+inline double second_difference_noise(std::span<const double> y, std::size_t first,
+                                      std::size_t last) {
+  if (last < first + 2) return 0.0;
+  std::vector<double> d;
+  for (std::size_t i = first + 1; i < last; ++i)
+    d.push_back(std::abs(y[i + 1] - 2 * y[i] + y[i - 1]));
+  const auto mid = d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2);
+  std::nth_element(d.begin(), mid, d.end());
+  return *mid / (0.6745 * std::sqrt(6.0));
 }
 
 }  // namespace oscidrum::detail

@@ -1369,12 +1369,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       for (std::size_t i = 0; i < y.size(); ++i)
         if (std::abs(y[i]) >= o.gates.clip_level) clipped[i] = 1;
   // The samples of [first, last] on a plateau: runs of at least clip_run equal samples (to 1e-9
-  // of the window's range) in the outer quarter of the window's range of a channel, where the
-  // signal around the run would pass its level (clipped_run). Per window, not at the record's
-  // extremes: a record clipped only in part of it, or with one sample beyond the clip level (a
-  // spike), has its plateaus below the record's extremes.
+  // of the window's range) in the outer quarter of the window's range of a channel, at its
+  // extreme and met and left at the signal's slope, not in code-sized steps (clipped_run). Per
+  // window, not at the record's extremes: a record clipped only in part of it, or with one sample
+  // beyond the clip level (a spike), has its plateaus below the record's extremes.
   const auto plateau_samples = [&](std::size_t first, std::size_t last) {
     std::size_t n = 0;
+    const double per_period = static_cast<double>(t.size() - 1) / ((t.back() - t.front()) * f_rec);
     std::vector<char> on(last - first + 1, 0);
     for (const std::span<const double> y : {ddx, ddz}) {
       const auto extremes = std::minmax_element(y.begin() + static_cast<std::ptrdiff_t>(first),
@@ -1383,21 +1384,49 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (lo == hi) continue;  // constant: no extreme to stick to
       const double range = hi - lo, tol = 1e-9 * range;
       const auto outer = [&](double v) { return v >= hi - 0.25 * range || v <= lo + 0.25 * range; };
-      // The channel's resolution in the window: its smallest step between samples.
-      double quantum = std::numeric_limits<double>::infinity();
+      // The channel's resolution in the window (a logger's code): the step of which every step
+      // between samples is a whole number (to 0.05 of it, after the code is fitted to them all:
+      // a file's decimals round the codes), tried as the smallest step over 1 ... 16 (a steep
+      // channel may never step by one code); 0 where none is (the samples are not in codes: the
+      // smallest step of a smooth signal is no resolution).
+      std::vector<double> steps;
       for (std::size_t i = first + 1; i <= last; ++i)
-        if (const double step = std::abs(y[i] - y[i - 1]); step > tol)
-          quantum = std::min(quantum, step);
+        if (const double step = std::abs(y[i] - y[i - 1]); step > tol) steps.push_back(step);
+      const double smallest = steps.empty() ? 0.0 : *std::min_element(steps.begin(), steps.end());
+      double quantum = 0.0;
+      for (int k = 1; k <= 16 && quantum == 0.0 && smallest > 0.0; ++k) {
+        double sum = 0.0, codes = 0.0;
+        for (const double step : steps) {
+          sum += step;
+          codes += std::round(step / (smallest / k));
+        }
+        const double code = sum / codes;
+        const bool whole = std::all_of(steps.begin(), steps.end(), [&](double step) {
+          return std::abs(step / code - std::round(step / code)) <= 0.05;
+        });
+        if (whole) quantum = code;
+      }
+      const double noise = quantum > 0.0 ? detail::second_difference_noise(y, first, last) : 0.0;
       std::size_t run = 1;
       for (std::size_t i = first + 1; i <= last + 1; ++i) {
         if (i <= last && std::abs(y[i] - y[i - 1]) <= tol && outer(y[i])) {
           ++run;
           continue;
         }
-        if (run >= static_cast<std::size_t>(std::max(2, o.gates.clip_run)) &&
-            detail::clipped_run(t, y, i - run, i - 1, y[i - 1] >= hi - 0.25 * range,
-                                std::isfinite(quantum) ? quantum : 0.0))
-          for (std::size_t j = i - run; j < i; ++j) on[j - first] = 1;
+        if (run >= static_cast<std::size_t>(std::max(2, o.gates.clip_run))) {
+          // The window's samples past the run's level (above a top run, below a bottom one).
+          const double level = y[i - 1];
+          const bool upper = level >= hi - 0.25 * range;
+          std::size_t beyond = 0;
+          for (std::size_t j = first; j <= last; ++j)
+            beyond += upper ? y[j] > level + tol : y[j] < level - tol;
+          // The run as far as it goes in the record (a run at a window's edge).
+          std::size_t a = i - run, b = i - 1;
+          while (a > 0 && y[a - 1] == y[a]) --a;
+          while (b + 1 < y.size() && y[b + 1] == y[b]) ++b;
+          if (detail::clipped_run(y, a, b, beyond, per_period, 0.5 * range, quantum, noise))
+            for (std::size_t j = i - run; j < i; ++j) on[j - first] = 1;
+        }
         run = 1;
       }
     }

@@ -1799,11 +1799,14 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         if (step > 0.0)
           rows_per_time = static_cast<double>(n) / (static_cast<double>(distinct.size()) * step);
       }
-      const double factor = !(step > 0.02) ? 1.0
-                            : step <= 10.0 ? 1e-3
-                            : step <= 1e4  ? 1e-6
-                            : step <= 1e7  ? 1e-9
-                                           : 1.0;
+      double factor = !(step > 0.02) ? 1.0
+                      : step <= 10.0 ? 1e-3
+                      : step <= 1e4  ? 1e-6
+                      : step <= 1e7  ? 1e-9
+                                     : 1.0;
+      // Unless the rows would then come faster than any logger samples (1 MHz): seconds rounded
+      // to 0.1 s, thousands of rows a stamp, were read in ms (4e7 samples/s).
+      if (factor != 1.0 && rows_per_time / factor > 1e6) factor = 1.0;
       // A spreadsheet's serial date (days since 1899-12-30; MATLAB's datenum counts from year 0):
       // values of at least a day whose steps would be under a microsecond in s (no accelerometer
       // logger samples so fast) but between 1 Hz and 10 MHz in days. In s from the first row's,

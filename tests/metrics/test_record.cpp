@@ -1223,6 +1223,44 @@ TEST(Record, AFiniteResolutionIsNoClipping) {
   }
 }
 
+// Clipping is found at any sampling rate, in codes or not: x_M'' clipped at half its peak (both
+// signs) at 1 kHz and 500 Hz, on one side at 500 Hz, and at 0.8 of it at 20 kHz in codes
+// of 10 mg. A first version of the resolution's exemption (a quadratic through the neighbours)
+// passed the 1 kHz record, and identify read G 18.5 for 30 MN/m^2.
+TEST(Record, ClippingIsFoundAtAnySamplingRate) {
+  const double f = 39.0;
+  struct Setting {
+    double rate, clip;
+    bool both;
+    double code;
+  };
+  for (const Setting& s :
+       {Setting{1000, 0.5, true, 0.0}, Setting{500, 0.5, true, 0.0}, Setting{500, 0.5, false, 0.0},
+        Setting{1000, 0.5, true, 9.80665e-3}, Setting{500, 0.5, false, 9.80665e-3},
+        Setting{20000, 0.8, true, 9.80665e-2}}) {
+    SCOPED_TRACE(std::to_string(s.rate) + " Hz, clipped at " + std::to_string(s.clip) + ", code " +
+                 std::to_string(s.code));
+    const TwoChannels r = two_channel_record(static_cast<int>(8 * s.rate / f), 1.0 / s.rate);
+    const double peak = *std::max_element(r.x.begin(), r.x.end());
+    const auto quantise = [&](double v) {
+      return s.code > 0 ? s.code * std::round(v / s.code) : v;
+    };
+    std::vector<double> x = r.x, z = r.z;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = quantise(std::clamp(r.x[i], s.both ? -s.clip * peak : -1e9, s.clip * peak));
+      z[i] = quantise(r.z[i]);
+    }
+    WindowOptions o;
+    o.f = f;
+    o.n_max = 4;
+    o.window_periods = 2.0;
+    for (const RecordWindow& w : analyze_windows(r.t, x, z, {}, o)) {
+      EXPECT_FALSE(w.valid) << w.index;
+      EXPECT_NE(w.reason.find("clipped"), std::string::npos) << w.reason;
+    }
+  }
+}
+
 // Sizes and gates are finite numbers in their ranges, and the windows' count is bounded by the
 // record's samples: a NaN no longer switches a gate off, and a window or hop of a tiny part of a
 // period (which once asked for billions of windows and gigabytes) is refused (issue 24).

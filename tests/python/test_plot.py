@@ -696,7 +696,7 @@ def test_every_figure_of_a_run_without_steady_state_says_so():
         assert "max_periods_reached: not a steady state" in title, (draw.__name__, title)
 
 
-def test_figure_eight_of_a_period_two_orbit_is_drawn_over_both_periods():
+def test_figure_eight_of_a_period_two_orbit_is_drawn_over_both_periods(tmp_path):
     # The log-spiral trough at 25 Hz on stiff soil: a period-2 steady state. Its figure was drawn
     # over the first excitation period, closed by a line that is not on the orbit, beside the
     # legend's area of the two-period figure.
@@ -712,6 +712,10 @@ def test_figure_eight_of_a_period_two_orbit_is_drawn_over_both_periods():
     x = np.asarray(r.samples.ddx_M)
     assert curve.get_xdata().min() == x[: state.samples_per_orbit].min() < x[
         : state.samples_per_period].min()
+    # A CSV read without its summary: the samples say they repeat after 2 periods.
+    data.write_case_csv(r, tmp_path / "p2.csv")
+    assert data.read_case(tmp_path / "p2.csv").multiplicity == 2
+    assert data.read_case(tmp_path / "p2.csv").samples_per_orbit == state.samples_per_orbit
 
 
 def test_a_plot_of_something_else_names_what_it_takes():
