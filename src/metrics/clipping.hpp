@@ -16,10 +16,37 @@ namespace oscidrum::detail {
 /// not noise peaks.
 inline constexpr std::size_t kSpikesAllowed = 2;
 
-/// Whether a run of `length` equal samples y[a..b] of a window is clipping (a rail), where its
-/// channel is recorded in codes of `quantum` (0: not in codes, a value of any precision).
-/// `beyond`: the window's samples past the run's level, `per_period`:
-/// samples per excitation period, `amplitude`: half the channel's range in the window.
+/// The channel's resolution in the window y[first..last] (a logger's code): the step of which
+/// every step between samples (larger than `tol`) is a whole number (to 0.05 of it, after the
+/// code is fitted to them all: a file's decimals round the codes), tried as the smallest step
+/// over 1 ... 16 (a steep channel may never step by one code); 0 where none is (the samples are
+/// not in codes: the smallest step of a smooth signal is no resolution).
+inline double record_code(std::span<const double> y, std::size_t first, std::size_t last,
+                          double tol) {
+  std::vector<double> steps;
+  for (std::size_t i = first + 1; i <= last; ++i)
+    if (const double step = std::abs(y[i] - y[i - 1]); step > tol) steps.push_back(step);
+  if (steps.empty()) return 0.0;
+  const double smallest = *std::min_element(steps.begin(), steps.end());
+  for (int k = 1; k <= 16; ++k) {
+    double sum = 0.0, codes = 0.0;
+    for (const double step : steps) {
+      sum += step;
+      codes += std::round(step / (smallest / k));
+    }
+    const double code = sum / codes;
+    if (std::all_of(steps.begin(), steps.end(), [&](double step) {
+          return std::abs(step / code - std::round(step / code)) <= 0.05;
+        }))
+      return code;
+  }
+  return 0.0;
+}
+
+/// Whether the run of equal samples y[a..b] of a window is clipping (a rail), where its
+/// channel is recorded in codes of `quantum` (record_code; 0: not in codes, a value of any
+/// precision). `beyond()`: the window's samples past the run's level, `per_period`: samples per
+/// excitation period, `amplitude`: half the channel's range in the window.
 ///
 /// Values of any precision never repeat on a smooth signal: a run is a rail (as before). In
 /// codes, a smooth peak holds its top code for a few samples, and noise makes chance runs of
@@ -32,14 +59,15 @@ inline constexpr std::size_t kSpikesAllowed = 2;
 /// by more than three codes between samples (over a run of L codes of a smooth peak the
 /// curvature is at most 8 q / L^2, so the next sample differs by under 3 q) and three times what
 /// the noise makes of a step (`noise`: the deviation of one sample's noise).
-inline bool clipped_run(std::span<const double> y, std::size_t a, std::size_t b, std::size_t beyond,
-                        double per_period, double amplitude, double quantum, double noise) {
+template <class Beyond>
+bool clipped_run(std::span<const double> y, std::size_t a, std::size_t b, const Beyond& beyond,
+                 double per_period, double amplitude, double quantum, double noise) {
   if (!(quantum > 0.0)) return true;
   const double peak_holds =
       3.0 * per_period * std::sqrt(2.0 * quantum / amplitude) / std::numbers::pi + 2.0;
   if (static_cast<double>(b - a + 1) > peak_holds) return true;
-  if (beyond > kSpikesAllowed) return false;  // below the extreme: noise, not a rail
-  double step = 0.0;                          // into or out of the run, the larger
+  if (beyond() > kSpikesAllowed) return false;  // below the extreme: noise, not a rail
+  double step = 0.0;                            // into or out of the run, the larger
   if (a > 0) step = std::max(step, std::abs(y[a - 1] - y[a]));
   if (b + 1 < y.size()) step = std::max(step, std::abs(y[b + 1] - y[b]));
   return step > 3.0 * (quantum + std::sqrt(2.0) * noise);

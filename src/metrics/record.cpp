@@ -1384,28 +1384,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       if (lo == hi) continue;  // constant: no extreme to stick to
       const double range = hi - lo, tol = 1e-9 * range;
       const auto outer = [&](double v) { return v >= hi - 0.25 * range || v <= lo + 0.25 * range; };
-      // The channel's resolution in the window (a logger's code): the step of which every step
-      // between samples is a whole number (to 0.05 of it, after the code is fitted to them all:
-      // a file's decimals round the codes), tried as the smallest step over 1 ... 16 (a steep
-      // channel may never step by one code); 0 where none is (the samples are not in codes: the
-      // smallest step of a smooth signal is no resolution).
-      std::vector<double> steps;
-      for (std::size_t i = first + 1; i <= last; ++i)
-        if (const double step = std::abs(y[i] - y[i - 1]); step > tol) steps.push_back(step);
-      const double smallest = steps.empty() ? 0.0 : *std::min_element(steps.begin(), steps.end());
-      double quantum = 0.0;
-      for (int k = 1; k <= 16 && quantum == 0.0 && smallest > 0.0; ++k) {
-        double sum = 0.0, codes = 0.0;
-        for (const double step : steps) {
-          sum += step;
-          codes += std::round(step / (smallest / k));
-        }
-        const double code = sum / codes;
-        const bool whole = std::all_of(steps.begin(), steps.end(), [&](double step) {
-          return std::abs(step / code - std::round(step / code)) <= 0.05;
-        });
-        if (whole) quantum = code;
-      }
+      const double quantum = detail::record_code(y, first, last, tol);
       const double noise = quantum > 0.0 ? detail::second_difference_noise(y, first, last) : 0.0;
       std::size_t run = 1;
       for (std::size_t i = first + 1; i <= last + 1; ++i) {
@@ -1414,12 +1393,16 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           continue;
         }
         if (run >= static_cast<std::size_t>(std::max(2, o.gates.clip_run))) {
-          // The window's samples past the run's level (above a top run, below a bottom one).
+          // The window's samples past the run's level (above a top run, below a bottom one),
+          // counted where clipped_run asks (a record in codes).
           const double level = y[i - 1];
           const bool upper = level >= hi - 0.25 * range;
-          std::size_t beyond = 0;
-          for (std::size_t j = first; j <= last; ++j)
-            beyond += upper ? y[j] > level + tol : y[j] < level - tol;
+          const auto beyond = [&] {
+            std::size_t n_beyond = 0;
+            for (std::size_t j = first; j <= last; ++j)
+              n_beyond += upper ? y[j] > level + tol : y[j] < level - tol;
+            return n_beyond;
+          };
           // The run as far as it goes in the record (a run at a window's edge).
           std::size_t a = i - run, b = i - 1;
           while (a > 0 && y[a - 1] == y[a]) --a;
