@@ -17,6 +17,7 @@
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
 #include "oscidrum/output_table.hpp"
+#include "pickling.hpp"
 
 namespace oscidrum::python {
 namespace {
@@ -60,7 +61,9 @@ void bind_metrics(py::module_& m) {
   py::class_<Metrics> cls(m, "Metrics",
                           "Metrics of a simulated steady state (docs/outputs.md). Harmonic n "
                           "of x_M'' is ddx_amplitude[n] [m/s^2], ddx_phase[n] [rad], n = 0 ... "
-                          "n_max (n = 0: the mean).");
+                          "n_max (n = 0: the mean). Picklable, between processes of the same "
+                          "oscidrum build.");
+  pickling::def_pickle(cls, "Metrics");
   for (const MetricOutput& o : metric_outputs())
     std::visit([&](auto member) { cls.def_readonly(o.name, member, doc(o)); }, o.member);
   cls.def_property_readonly(

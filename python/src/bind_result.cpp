@@ -17,6 +17,7 @@
 #include "bindings.hpp"
 #include "oscidrum/output_table.hpp"
 #include "oscidrum/result.hpp"
+#include "pickling.hpp"
 
 namespace oscidrum::python {
 namespace {
@@ -77,7 +78,10 @@ void bind_result(py::module_& m) {
         return std::string(buf);
       });
 
-  py::class_<Diagnostics> diag(m, "Diagnostics", "Counters of a run (docs/outputs.md).");
+  py::class_<Diagnostics> diag(m, "Diagnostics",
+                               "Counters of a run (docs/outputs.md). Picklable, between processes "
+                               "of the same oscidrum build.");
+  pickling::def_pickle(diag, "Diagnostics");
   for (const DiagnosticOutput& d : diagnostic_outputs())
     std::visit(
         [&](auto member) {
@@ -141,7 +145,9 @@ void bind_result(py::module_& m) {
                               "The sampled steady state (uniform samples over "
                               "Result.sample_periods excitation periods). Every column of "
                               "docs/csv-columns.md is a read-only float64 NumPy view; `phase` is "
-                              "an int8 array (0 stick, 1 slip+, -1 slip-).");
+                              "an int8 array (0 stick, 1 slip+, -1 slip-). Picklable (a copy), "
+                              "between processes of the same oscidrum build.");
+  pickling::def_pickle(samples, "Samples");
   for (const SampleOutput& col : sample_outputs()) {
     std::visit(
         [&](auto member) {
@@ -190,8 +196,11 @@ void bind_result(py::module_& m) {
   samples.def("__repr__",
               [](const Samples& s) { return "Samples(" + std::to_string(s.size()) + " samples)"; });
 
-  py::class_<Result>(m, "Result", "What a simulation returns.")
-      .def_readonly("status", &Result::status, "Status (status.name is the text)")
+  py::class_<Result> result(m, "Result",
+                            "What a simulation returns. Picklable, between processes of the same "
+                            "oscidrum build.");
+  pickling::def_pickle(result, "Result");
+  result.def_readonly("status", &Result::status, "Status (status.name is the text)")
       .def_property_readonly(
           "ok", [](const Result& r) { return ok(r.status); }, "True only for a steady state")
       .def_readonly("message", &Result::message, "human-readable explanation of the status")

@@ -16,132 +16,10 @@
 #include "bindings.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/study.hpp"
+#include "pickling.hpp"
 
 namespace oscidrum::python {
 namespace {
-
-// ---- pickling of CaseOutcome (for studies on executors: outcomes travel between processes) ----
-// A flat little-endian byte string of this build's structs, headed by a format tag and the sizes
-// of the fixed-size parts; only the same oscidrum build reads it back. The members of
-// Diagnostics, Samples and Metrics come from the output tables (oscidrum/outputs.hpp), so a new
-// output travels without a change here.
-
-constexpr std::uint32_t kOutcomeFormat = 0x4f534333;  // "OSC3"
-
-class Writer {
- public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const char*>(&v);
-    bytes_.append(p, sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    put<std::uint64_t>(v.size());
-    if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  void put(const std::string& s) {
-    put<std::uint64_t>(s.size());
-    bytes_ += s;
-  }
-  const std::string& bytes() const { return bytes_; }
-
- private:
-  std::string bytes_;
-};
-
-class Reader {
- public:
-  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
-  template <class T>
-  void get(T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    take(&v, sizeof(T));
-  }
-  template <class T>
-  void get(std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::uint64_t n = 0;
-    get(n);
-    if (n > (bytes_.size() - pos_) / sizeof(T)) fail();
-    v.resize(n);
-    if (n > 0) take(v.data(), n * sizeof(T));
-  }
-  void get(std::string& s) {
-    std::uint64_t n = 0;
-    get(n);
-    if (n > bytes_.size() - pos_) fail();
-    s.assign(bytes_.substr(pos_, n));
-    pos_ += n;
-  }
-  template <class T>
-  T get() {
-    T v{};
-    get(v);
-    return v;
-  }
-  bool at_end() const { return pos_ == bytes_.size(); }
-  [[noreturn]] static void fail() {
-    throw Error(
-        "cannot restore a CaseOutcome: the state is not one written by this build of oscidrum");
-  }
-
- private:
-  void take(void* out, std::size_t n) {
-    if (n > bytes_.size() - pos_) fail();
-    std::memcpy(out, bytes_.data() + pos_, n);
-    pos_ += n;
-  }
-  std::string_view bytes_;
-  std::size_t pos_ = 0;
-};
-
-// Every member of a CaseOutcome, in one order for writing (Writer) and reading (Reader).
-template <class IO, class O>
-void each_member(IO&& io, O& o) {
-  auto& r = o.result;
-  auto& d = r.diagnostics;
-  io(o.valid), io(o.error), io(r.status), io(r.message);
-#define OSCIDRUM_MEMBER(type, name, initial, unit, label, description) io(d.name);
-  OSCIDRUM_DIAGNOSTICS(OSCIDRUM_MEMBER)
-#undef OSCIDRUM_MEMBER
-  io(r.frequency), io(r.sample_periods), io(r.samples_per_period);
-#define OSCIDRUM_MEMBER(type, name, unit, label, description) io(r.samples.name);
-  OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_MEMBER)
-#undef OSCIDRUM_MEMBER
-  io(r.events), io(r.stick_time), io(r.slip_positive_time), io(r.slip_negative_time),
-      io(r.flight_time);
-  io(r.floquet.multipliers), io(r.floquet.max_modulus), io(r.floquet.stability);
-  io(r.period1_floquet.multipliers), io(r.period1_floquet.max_modulus),
-      io(r.period1_floquet.stability);
-#define OSCIDRUM_MEMBER(type, name, unit, label, description) io(o.metrics.name);
-  OSCIDRUM_METRICS(OSCIDRUM_MEMBER)
-#undef OSCIDRUM_MEMBER
-}
-
-py::bytes outcome_state(const CaseOutcome& o) {
-  Writer w;
-  w.put(kOutcomeFormat);
-  w.put<std::uint32_t>(sizeof(Event));
-  w.put<std::uint32_t>(sizeof(Harmonic));
-  each_member([&](const auto& v) { w.put(v); }, o);
-  return py::bytes(w.bytes());
-}
-
-CaseOutcome outcome_from_state(py::handle state) {
-  if (!py::isinstance<py::bytes>(state)) Reader::fail();
-  const std::string bytes = state.cast<std::string>();
-  Reader rd(bytes);
-  if (rd.get<std::uint32_t>() != kOutcomeFormat || rd.get<std::uint32_t>() != sizeof(Event) ||
-      rd.get<std::uint32_t>() != sizeof(Harmonic))
-    Reader::fail();
-  CaseOutcome o;
-  each_member([&](auto& v) { rd.get(v); }, o);
-  if (!rd.at_end()) Reader::fail();
-  return o;
-}
 
 std::vector<Case> to_cases(const py::handle& items) {
   if (!py::isinstance<py::iterable>(items) || py::isinstance<py::str>(items) ||
@@ -203,7 +81,6 @@ void bind_study(py::module_& m) {
                                   "What one case of a study produced. Picklable (for studies on "
                                   "executors), between processes of the same oscidrum build.");
   construct_on_new(outcome);
-  outcome.def("__getstate__", &outcome_state);
   outcome.def_static(
       "not_run",
       [] {
@@ -213,8 +90,7 @@ void bind_study(py::module_& m) {
         return o;
       },
       "The outcome of a case a study did not run (valid=False, error='cancelled').");
-  def_assigning(outcome, "__setstate__",
-                [](CaseOutcome& self, py::handle state) { self = outcome_from_state(state); });
+  pickling::def_pickle(outcome, "CaseOutcome");
   outcome
       .def_readonly("valid", &CaseOutcome::valid,
                     "False: the case was rejected (invalid parameters); see `error`")

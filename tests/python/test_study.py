@@ -298,6 +298,56 @@ def test_outcome_pickles_every_member():
         o.__setstate__(o.__getstate__()[:-3])
 
 
+def test_result_metrics_diagnostics_samples_pickle_on_their_own(tmp_path):
+    """What oscidrum.simulate and compute_metrics return crosses processes too (Dask,
+    multiprocessing, a pickle cache): equal member by member in another interpreter; a state of
+    another type or a cut one is refused by name."""
+    import pickle
+    import subprocess
+    import sys
+    case = oscidrum.Case(table2_G=25e6, mu=0.5, MMd_fraction=0.05)
+    r = oscidrum.simulate(case)
+    m = oscidrum.compute_metrics(r)
+    assert r.ok and len(r.samples) > 0 and len(r.events) > 0 and len(r.floquet_multipliers) > 0
+    path = tmp_path / "outputs.pickle"
+    path.write_bytes(pickle.dumps((r, m, r.diagnostics, r.samples)))
+    script = (
+        "import pickle, sys\n"
+        "import numpy as np\n"
+        "import oscidrum\n"
+        "r, m, d, s = pickle.loads(open(sys.argv[1], 'rb').read())\n"
+        "case = oscidrum.Case(table2_G=25e6, mu=0.5, MMd_fraction=0.05)\n"
+        "r0 = oscidrum.simulate(case)\n"
+        "m0 = oscidrum.compute_metrics(r0)\n"
+        "assert r.status == r0.status and r.message == r0.message\n"
+        "assert r.frequency == r0.frequency and r.sample_periods == r0.sample_periods\n"
+        "assert r.floquet_multipliers == r0.floquet_multipliers and r.stability == r0.stability\n"
+        "assert [(e.t, e.kind) for e in r.events] == [(e.t, e.kind) for e in r0.events]\n"
+        "assert r.stick_time == r0.stick_time and r.slip_positive_time == r0.slip_positive_time\n"
+        "for c in oscidrum.Samples.columns:\n"
+        "    np.testing.assert_array_equal(getattr(s, c), getattr(r0.samples, c))\n"
+        "    np.testing.assert_array_equal(getattr(r.samples, c), getattr(r0.samples, c))\n"
+        "a, b = m.to_dict(), m0.to_dict()\n"
+        "assert a.keys() == b.keys()\n"
+        "for k in a:\n"
+        "    np.testing.assert_array_equal(a[k], b[k], err_msg=k)\n"
+        "np.testing.assert_array_equal(m.ddx_amplitude, m0.ddx_amplitude)\n"
+        "np.testing.assert_array_equal(m.ddz_phase, m0.ddz_phase)\n"
+        "x, y = d.to_dict(), r0.diagnostics.to_dict()\n"
+        "for k in x:\n"
+        "    assert x[k] == y[k] or (x[k] != x[k] and y[k] != y[k]), k\n"
+        "print('same')\n")
+    p = subprocess.run([sys.executable, "-c", script, str(path)], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 0 and p.stdout.strip() == "same", p.stdout + p.stderr
+    with pytest.raises(oscidrum.Error, match="cannot restore a Result: the state is not one"):
+        r.__setstate__(m.__getstate__())
+    with pytest.raises(oscidrum.Error, match="cannot restore a Samples: the state is not one"):
+        r.samples.__setstate__(r.samples.__getstate__()[:-1])
+    with pytest.raises(oscidrum.Error, match="cannot restore a Metrics from"):
+        pickle.loads(pickle.dumps(m)).__setstate__("garbage")
+
+
 def test_period_doubling_keeps_the_period_one_multipliers():
     """A steady state repeating every 2 periods (a period doubling, docs/periodic.md): the
     multipliers of the stable period-2 orbit, and those of the unstable period-1 orbit it
