@@ -591,7 +591,7 @@ int run(const IdentifyCliOptions& o) {
     if (o.metrics_file.empty()) write_fit_files(o.plot_dir, rec, *chosen, 10);
     if (run_python({"oscidrum.identify", "plot", "--dir", o.plot_dir},
                    "the data are in " + o.plot_dir) != 0)
-      return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
+      return interrupted() ? plot_interrupted("the data are in " + o.plot_dir) : kExitCaseFailed;
   }
   if (valid == 0) {
     std::string reasons;

@@ -140,7 +140,8 @@ int run(const RunOptions& o) {
               << ") before any sampled period; " << csv_path << " and " << json_path
               << " are written\n";
   } else if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir)) {
-    return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
+    return interrupted() ? plot_interrupted("the data are in " + csv_path + " and " + json_path)
+                         : kExitCaseFailed;
   }
   if (interrupted()) return interrupted_exit_code();  // during the writing: the files are whole
   return ok(result.status) ? kExitOk : kExitCaseFailed;

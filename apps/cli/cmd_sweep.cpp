@@ -620,7 +620,7 @@ int run(const SweepOptions& o) {
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},
                                     "the results are in " + o.out) != 0)
-    return interrupted() ? interrupted_exit_code() : kExitCaseFailed;
+    return interrupted() ? plot_interrupted("the results are in " + o.out) : kExitCaseFailed;
   return all_ok ? kExitOk : kExitCaseFailed;
 }
 

@@ -21,6 +21,11 @@ extern char** environ;
 
 namespace oscidrum::cli {
 
+int plot_interrupted(const std::string& data_note) {
+  std::cerr << "oscidrum: interrupted while plotting; " << data_note << "\n";
+  return interrupted_exit_code();
+}
+
 bool run_plot(const std::string& csv, const std::string& json, const std::string& dir) {
   return run_python({"oscidrum.plot", "case", "--csv", csv, "--json", json, "--out", dir},
                     "the data are in " + csv + " and " + json) == 0;
@@ -39,10 +44,29 @@ std::string python_interpreter() {
   return "/usr/bin/python3";
 }
 
+namespace {
+
+// `python -m MODULE ARGS` with SIGINT and SIGTERM answered from the first line: the child starts
+// with them blocked (below), and until the module installs its own handlers
+// (oscidrum._interrupt.run_main) one of them ends it at once with 128 + its number, no output.
+// Python's default handler raised KeyboardInterrupt in the middle of importing numpy or
+// matplotlib and printed its traceback (exit 1) under the tool's "interrupted".
+constexpr const char* kBootstrap =
+    "import os, runpy, signal, sys\n"
+    "def _stop(signum, frame):\n"
+    "    os._exit(128 + signum)\n"
+    "for _s in (signal.SIGINT, signal.SIGTERM):\n"
+    "    signal.signal(_s, _stop)\n"
+    "signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})\n"
+    "del sys.argv[0]\n"
+    "runpy.run_module(sys.argv[0], run_name='__main__', alter_sys=True)\n";
+
+}  // namespace
+
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
                const std::vector<int>& quiet_status) {
   const std::string python = python_interpreter();
-  std::vector<std::string> args = {python, "-m"};
+  std::vector<std::string> args = {python, "-c", kBootstrap};
   args.insert(args.end(), module_args.begin(), module_args.end());
   const std::string what = "'" + python + " -m " + module_args.front() + "'";
   std::vector<char*> argv;
@@ -73,15 +97,18 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
-  // The child gets the signals back (they are blocked in this process: terminal.hpp).
+  // The child gets the signals' default actions but keeps them blocked (as they are in this
+  // process: terminal.hpp) until kBootstrap's handlers are in place.
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
-  sigset_t none, defaults;
-  sigemptyset(&none);
+  sigset_t held, defaults;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
   sigemptyset(&defaults);
   sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigmask(&attr, &held);
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;

@@ -26,4 +26,8 @@ std::string python_interpreter();
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
                const std::vector<int>& quiet_status = {});
 
+/// After a --plot's run_python was interrupted: "oscidrum: interrupted while plotting; " and
+/// `data_note` on stderr; returns the signal's exit code (130 or 143).
+int plot_interrupted(const std::string& data_note);
+
 }  // namespace oscidrum::cli

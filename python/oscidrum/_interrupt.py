@@ -34,10 +34,14 @@ def _on_signal(signum: int, frame: object) -> None:
 
 def run_main(main: Callable[[Optional[Sequence[str]]], int], prog: str,
              argv: Optional[Sequence[str]] = None) -> int:
-    """main(argv)'s exit status; 128 + the signal's number when SIGINT or SIGTERM stopped it."""
+    """main(argv)'s exit status; 128 + the signal's number when SIGINT or SIGTERM stopped it.
+
+    The oscidrum tool starts the modules with SIGINT and SIGTERM blocked, so that a signal it
+    passes on while the module is still importing waits for the handlers installed here."""
     for s in _SIGNALS:
         signal.signal(s, _on_signal)
     try:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, set(_SIGNALS))
         return main(argv)
     except KeyboardInterrupt as exc:
         signum = getattr(exc, "signum", signal.SIGINT)

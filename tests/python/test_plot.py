@@ -2,8 +2,11 @@
 
 import os
 import re
+import signal
 import subprocess
 import sys
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -746,3 +749,73 @@ def test_a_branch_changes_style_at_its_bifurcation():
     fig = plot.plot_branch(table, "area")
     solid = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "-"]
     assert solid[0].get_xdata()[-1] == 51.5
+
+
+# ---- Ctrl-C while a module is still importing (the tool starts it with the signals held) ------
+
+def _children(pid):
+    try:
+        return [int(c) for c in Path(f"/proc/{pid}/task/{pid}/children").read_text().split()]
+    except OSError:
+        return []
+
+
+def test_module_interrupted_while_importing_ends_without_a_traceback(slip_result, tmp_path):
+    """SIGINT held back from the start (as the oscidrum tool starts the modules) and sent at
+    once, while Python still imports numpy and matplotlib: it waits for run_main's handlers,
+    and the module ends with 130 and one line, not a KeyboardInterrupt traceback."""
+    csv = tmp_path / "case.csv"
+    data.write_case_csv(slip_result, csv)
+    p = subprocess.Popen(
+        [sys.executable, "-m", "oscidrum.plot", "case", "--csv", str(csv), "--out",
+         str(tmp_path / "plots")],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT}))
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == 130, out + err
+    assert "oscidrum.plot: interrupted" in err and "Traceback" not in err, err
+
+
+@pytest.mark.parametrize("delay", [0.0, 0.05, 0.15, 0.4])
+def test_cli_plot_interrupted_while_the_module_starts(cli, tmp_path, delay):
+    """Ctrl-C while `run --plot`'s Python is starting or importing: exit 130 and one line that
+    says where the data are, no KeyboardInterrupt traceback (a signal during the imports printed
+    one, exit 1; continue and diagram exited 1, run, sweep and identify said nothing)."""
+    p = subprocess.Popen([cli, "run", "--quiet", "--plot", str(tmp_path / "plots")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=_cli_env())
+    deadline = time.monotonic() + 60
+    while not _children(p.pid) and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.0005)
+    time.sleep(delay)
+    if p.poll() is not None:
+        pytest.skip("run --plot ended before its Python module could be interrupted")
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    if p.returncode == 0:
+        pytest.skip("the plots were done before the signal")
+    assert p.returncode == 130, out + err
+    assert "Traceback" not in out + err and "KeyboardInterrupt" not in out + err, err
+    assert "oscidrum: interrupted while plotting; the data are in" in err, err
+
+
+def test_cli_continue_plot_interrupted_exits_130(cli, tmp_path):
+    p = subprocess.Popen([cli, "continue", "--set", "soil.input=modulus", "--param", "soil.G",
+                          "--from", "20", "--to", "21",
+                          "--csv", str(tmp_path / "b.csv"), "--plot", str(tmp_path / "b.png")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=_cli_env())
+    deadline = time.monotonic() + 120
+    while not _children(p.pid) and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.0005)
+    time.sleep(0.1)
+    if p.poll() is not None:
+        pytest.skip("continue --plot ended before its Python module could be interrupted")
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    if p.returncode == 0:
+        pytest.skip("the plot was done before the signal")
+    assert p.returncode == 130, out + err
+    assert "Traceback" not in out + err, err
+    assert "oscidrum: interrupted while plotting; the branch is in" in err, err
