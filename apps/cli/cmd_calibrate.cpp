@@ -141,6 +141,11 @@ std::string case_file(const Calibration& cal, const std::vector<std::string>& ar
 }
 
 int run(const CalibrateCliOptions& o) {
+  std::vector<NamedFile> files = {
+      {"the case file", o.config, true}, {"--out", o.out}, {"--json", o.json}};
+  for (const std::string& r : o.references)
+    files.push_back({"the reference record", r.substr(0, r.rfind('@')), true});
+  check_distinct_files(files);
   io::CaseSpec spec;
   // The references' G on the formulas scale go through Appendix B: nu, rho and the drum width b
   // take effect (--b 1.5 was refused as having no effect under the default Table 2 soil).

@@ -271,6 +271,12 @@ int run(ContinueOptions o) {
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
   if (!o.hdf5.empty()) check_output_file("--hdf5", o.hdf5, false, true);
+  check_distinct_files({{"the case file", o.config, true},
+                        {"--csv", o.csv},
+                        {"--json", o.json},
+                        {"--bifurcations", o.bifurcations},
+                        {"--hdf5", o.hdf5},
+                        {"--plot", o.plot}});
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")

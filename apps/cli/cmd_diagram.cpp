@@ -192,6 +192,10 @@ int run(DiagramCommandOptions o) {
   }
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
+  check_distinct_files({{"the case file", o.config, true},
+                        {"--csv", o.csv},
+                        {"--json", o.json},
+                        {"--plot", o.plot}});
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")

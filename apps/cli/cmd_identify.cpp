@@ -356,6 +356,12 @@ int run(const IdentifyCliOptions& o) {
   double window_periods = o.windows.window_periods;  // the window in effect (0: the record)
   if (o.input.file.empty() == o.metrics_file.empty())
     throw Error("identify: give either a record or --metrics FILE (the JSON of analyze)");
+  check_distinct_files({{"the record", o.input.file, true},
+                        {"--metrics", o.metrics_file, true},
+                        {"the case file", o.config, true},
+                        {"--csv", o.csv},
+                        {"--json", o.json},
+                        {"--geojson", o.geojson}});
   const Case base = base_case(o);
   IdentifyOptions io;
   io.modulus = o.estimate == "G";

@@ -51,6 +51,10 @@ int run(const RunOptions& o) {
   if (given(o.csv_flag)) check_output_file("--csv", o.csv);
   if (given(o.json_flag)) check_output_file("--json", o.json);
   if (given(o.events_flag)) check_output_file("--events", o.events);
+  check_distinct_files({{"the case file", o.config, true},
+                        {"--csv", o.csv},
+                        {"--json", o.json},
+                        {"--events", o.events}});
   if (given(o.plot_flag) && o.plot_dir.empty())
     throw Error("--plot needs a directory name; got an empty one");
   // Standard output carries one thing: a file named - replaces the --format output; two of them

@@ -175,7 +175,10 @@ void check_options(const SweepOptions& o) {
     check_output_file("--out", o.out, false);
   if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
   if (o.plot_flag && o.plot_flag->count() > 0) check_plot_file("--plot", o.plot);
-  if (!o.hdf5.empty() && o.hdf5 == o.out) throw Error("--hdf5 and --out must name two files");
+  check_distinct_files({{"the study file", o.study, true},
+                        {"--out", o.out_is_stdout ? std::string() : o.out},
+                        {"--hdf5", o.hdf5},
+                        {"--plot", o.plot}});
   // The sweep's own files beside --out (its journal, removed at the end) and beside --hdf5 (the
   // file being written, renamed at the end): an output named as one of them was deleted or
   // overwritten without a word (--hdf5 r.csv.journal, exit 0, no HDF5 file).

@@ -56,6 +56,7 @@ int run(const ValidateOptions& o) {
     check_output_file("--markdown", o.markdown, false);
   if (!o.csv.empty() || (o.csv_flag && o.csv_flag->count() > 0))
     check_output_file("--csv", o.csv, false);
+  check_distinct_files({{"--markdown", o.markdown}, {"--csv", o.csv}});
   install_interrupt_handlers();
   ProgressLine progress(!o.quiet && stderr_is_terminal());
   PaperRunOptions po;

@@ -192,6 +192,42 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
   }
 }
 
+namespace {
+
+// The same file: one inode where both exist, else the same path once ".", ".." and the symbolic
+// links of its existing part are resolved.
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    const bool same = fs::equivalent(a, b, ec);
+    return !ec && same;
+  }
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  if (ec) return false;
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return !ec && ca == cb;
+}
+
+}  // namespace
+
+void check_distinct_files(const std::vector<NamedFile>& files) {
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = i + 1; j < files.size(); ++j) {
+      const NamedFile &a = files[i], &b = files[j];
+      if (a.path.empty() || b.path.empty() || a.path == "-" || b.path == "-") continue;
+      if (a.input && b.input) continue;
+      if (!same_file(a.path, b.path)) continue;
+      if (a.input || b.input) {
+        const NamedFile &in = a.input ? a : b, &out = a.input ? b : a;
+        throw Error(out.flag + " " + out.path + " names the input, " + in.flag + " " + in.path +
+                    ", which writing it would overwrite; name the output otherwise");
+      }
+      throw Error(a.flag + " " + a.path + " and " + b.flag + " " + b.path +
+                  " name the same file: one output would replace the other; name them otherwise");
+    }
+}
+
 void check_harmonics(int harmonics, int samples_per_period, const std::string& which) {
   if (harmonics < samples_per_period / 2) return;
   throw Error("--harmonics (default 10) must be below numerics.samples_per_period / 2 = " +

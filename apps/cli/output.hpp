@@ -76,6 +76,18 @@ void write_output(const std::string& path, const std::string& text);
 void check_output_file(const std::string& flag, const std::string& path, bool allow_stdout = true,
                        bool regular_only = false);
 
+/// A file a command reads or writes, named by `flag` on its command line.
+struct NamedFile {
+  std::string flag;  ///< "--csv", or what names an input ("the case file")
+  std::string path;  ///< as given; "" (not given) and "-" (stdout, stdin) are passed over
+  bool input = false;
+};
+
+/// Throws oscidrum::Error when two of `files` name the same file, however spelt ("./r.csv" and
+/// "r.csv", through "..", symbolic or hard links): one output would silently replace another, or
+/// overwrite an input (a study file or a logger's record). Call before any work is done.
+void check_distinct_files(const std::vector<NamedFile>& files);
+
 /// check_output_file for a figure: also its format, from the extension (.png or .svg, as the
 /// plotting module writes; any case). Throws oscidrum::Error naming the flag.
 void check_plot_file(const std::string& flag, const std::string& path);

@@ -894,4 +894,59 @@ TEST(CliSummary, ResultFirstAndNoUnexplainedNaN) {
       << o.out;
 }
 
+// One output named twice, or an output naming an input, however spelt: one file silently replaced
+// another (run --csv a.csv --json a.csv kept only the JSON, exit 0; sweep -o ./r.out --hdf5 r.out
+// lost the HDF5 file; sweep s.toml -o s.toml overwrote the study; identify rec.csv --csv rec.csv
+// would overwrite the logger's record). Refused before any work, exit 2, the inputs untouched.
+TEST(CliFiles, AnOutputNamingAnotherOutputOrAnInputIsRefused) {
+  TempDir dir;
+  const std::string study = dir / "s.toml", case_file = dir / "case.toml", rec = dir / "rec.csv";
+  const std::string study_text = "[sweep]\n\"contact.mu\" = [0.3, 0.5]\n";
+  const std::string case_text = "[roller]\nf = 39\n", rec_text = "t,ddx_M,ddz_M\n0,0,0\n";
+  std::ofstream(study) << study_text;
+  std::ofstream(case_file) << case_text;
+  std::ofstream(rec) << rec_text;
+  std::filesystem::create_directory(dir / "sub");
+  const std::string dot = dir.path() + "/sub/../";
+  struct Refusal {
+    std::vector<std::string> args;
+    std::string said;
+  };
+  const std::vector<Refusal> refusals = {
+      {{"run", "-q", "--csv", dir / "a.csv", "--json", dot + "a.csv"}, "name the same file"},
+      {{"run", "-q", "--csv", dir / "b.csv", "--events", dir / "b.csv"}, "name the same file"},
+      {{"run", case_file, "-q", "--json", case_file}, "names the input, the case file"},
+      {{"sweep", study, "-q", "-o", dir / "r.out", "--hdf5", dot + "r.out"}, "name the same file"},
+      {{"sweep", study, "-q", "-o", dot + "s.toml"}, "names the input, the study file"},
+      {{"sweep", study, "-q", "-o", dir / "x.csv", "--hdf5", study}, "names the input"},
+      {{"identify", rec, "--csv", dot + "rec.csv"}, "names the input, the record"},
+      {{"calibrate", rec + "@30", "--json", rec}, "names the input, the reference record"},
+      {{"continue", case_file, "--param", "soil.G", "--from", "20", "--to", "21", "--csv",
+        case_file},
+       "names the input, the case file"},
+  };
+  for (const Refusal& r : refusals) {
+    const Outcome o = run(r.args);
+    std::string cmd;
+    for (const std::string& a : r.args) cmd += a + " ";
+    EXPECT_EQ(o.code, 2) << cmd << o.err;
+    EXPECT_NE(o.err.find(r.said), std::string::npos) << cmd << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << cmd << o.err;
+  }
+  EXPECT_EQ(slurp(study), study_text);
+  EXPECT_EQ(slurp(case_file), case_text);
+  EXPECT_EQ(slurp(rec), rec_text);
+  for (const char* name : {"a.csv", "b.csv", "r.out", "x.csv"})
+    EXPECT_FALSE(std::filesystem::exists(dir / name)) << name;
+  // A hard link is the same file too.
+  std::filesystem::create_hard_link(case_file, dir / "link.toml");
+  const Outcome linked = run({"run", case_file, "-q", "--csv", dir / "link.toml"});
+  EXPECT_EQ(linked.code, 2) << linked.err;
+  EXPECT_EQ(slurp(case_file), case_text);
+  // Distinct files still pass.
+  const Outcome fine =
+      run({"run", case_file, "-q", "--csv", dir / "c.csv", "--json", dir / "c.json"});
+  EXPECT_EQ(fine.code, 0) << fine.err;
+}
+
 }  // namespace oscidrum::test
