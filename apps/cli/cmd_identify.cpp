@@ -102,8 +102,9 @@ Case base_case(const IdentifyCliOptions& o) {
 }
 
 // The measured response from `analyze --format json` (schema oscidrum-record/1), and the
-// window's times, position and samples into `window` (NaN where the JSON has none).
-MeasuredResponse read_metrics(const std::string& path, RecordWindow& window) {
+// window's times, position and samples into `window` (NaN where the JSON has none), and how
+// analyze read the record's axes into `io` (its "reading", where the JSON has it).
+MeasuredResponse read_metrics(const std::string& path, RecordWindow& window, IdentifyOptions& io) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the file");
   nlohmann::json j;
@@ -121,6 +122,11 @@ MeasuredResponse read_metrics(const std::string& path, RecordWindow& window) {
       throw Error(path + ": '" + std::string(key) + "' must be a number (is the fit valid?)");
     return j[key].get<double>();
   };
+  if (j.contains("reading") && j["reading"].is_object()) {
+    const nlohmann::json& r = j["reading"];
+    io.x_read_backward = r.contains("x_positive") && r["x_positive"] == "backward";
+    io.z_read_up = r.contains("z_positive") && r["z_positive"] == "up";
+  }
   RecordMetrics m;
   for (const char* key : {"ddx_harmonics", "ddz_harmonics"}) {
     std::vector<Harmonic>& h = key[2] == 'x' ? m.ddx_harmonics : m.ddz_harmonics;
@@ -385,7 +391,7 @@ int run(const IdentifyCliOptions& o) {
   install_interrupt_handlers();
   if (!o.metrics_file.empty()) {
     PassEstimate p;
-    const MeasuredResponse d = read_metrics(o.metrics_file, p.window);  // and its times
+    const MeasuredResponse d = read_metrics(o.metrics_file, p.window, io);  // and its times
     p.window.f = d.f;
     p.window.change = NAN;  // measured by analyze (its JSON), not here
     p.identification = identify(base, d, io);
@@ -402,6 +408,8 @@ int run(const IdentifyCliOptions& o) {
     rec = read_record(o.input);
     io.z_open = rec.z_open;
     io.units_open = rec.units_open;
+    io.x_read_backward = o.input.x_positive == "backward";
+    io.z_read_up = rec.z_positive == "up";
     ProgressLine line(stderr_is_terminal() && !o.quiet);
     pass = identify_pass(base, rec.t, rec.ddx_M, rec.ddz_M, rec.position, o.windows, io,
                          [&](std::size_t k, std::size_t n) {

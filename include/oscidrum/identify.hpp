@@ -162,6 +162,12 @@ struct IdentifyOptions {
   /// a fit that is poor so but good with them read in g (x 9.80665; with z_M'' negated too when
   /// z_open) is taken so, with a warning (Identification::read_in_g).
   bool units_open = false;
+  /// How the record's axes were read (the CLI's --x-positive backward and --z-positive up, Python's
+  /// x_positive and z_positive, z_positive "auto" included): a poor fit's diagnosis that finds an
+  /// axis the other way names the reading to change from these (it told a record read with
+  /// --z-positive up to be read with --z-positive up).
+  bool x_read_backward = false;
+  bool z_read_up = false;
   /// How each window's harmonics are measured (identify_pass); measure.covariance is raised to
   /// `harmonics`.
   MeasureOptions measure;

@@ -31,8 +31,9 @@ _DISPLAY = {"G": (r"$G$", r"MN/m$^2$", 1e-6), "ksh": (r"$k_{sh}$", "MN/m", 1e-6)
             "MMd": (r"$M_{Md}$", "kN m", 1e-3)}
 
 
-def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, bool]:
-    """ddz_M positive down, and whether its direction is open: negated for 'up'; for 'auto' (the
+def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, bool, bool]:
+    """ddz_M positive down, whether its direction is open, and whether it was negated (read as
+    pointing up): negated for 'up'; for 'auto' (the
     default), negated when its mean is about +1 g (within 0.15 g), which an accelerometer at rest
     reads along an axis pointing up, with a warning, as ``oscidrum identify --z-positive auto``
     reads a file; open when 'auto' finds no gravity either way (identify then fits ddz_M negated
@@ -41,18 +42,18 @@ def _z_down(z: np.ndarray, z_positive: str, where: str) -> Tuple[np.ndarray, boo
     if z_positive not in ("auto", "down", "up"):
         raise Error(f"z_positive must be 'auto', 'down' or 'up'; got {z_positive!r}")
     if z_positive == "up":
-        return -z, False
+        return -z, False, True
     if z_positive != "auto":
-        return z, False
+        return z, False, False
     up, mean = gravity_points_up(z)
     if up:
         import warnings
         warnings.warn(f"{where}: ddz_M's mean is {mean:.6g} m/s^2, about +1 g, which an "
                       "accelerometer at rest reads along an axis pointing up: read as pointing up "
                       "(negated); give z_positive='down' to read it as it is", stacklevel=3)
-        return -z, False
+        return -z, False, True
     down, _ = gravity_points_up(-z)
-    return z, not down
+    return z, not down, False
 
 
 # The options identify passes on to identify_record (its keyword arguments but the arrays, the
@@ -100,10 +101,11 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]
     if x_positive == "backward":
         arrays[1] = -arrays[1]
-    arrays[2], z_open = _z_down(arrays[2], z_positive, "identify")
+    arrays[2], z_open, z_up = _z_down(arrays[2], z_positive, "identify")
     pos = None if position is None else np.asarray(position, dtype=float)
     return identify_record(case if case is not None else Case(), *arrays, position=pos,
-                           z_open=z_open, **options)
+                           z_open=z_open, x_read_backward=x_positive == "backward",
+                           z_read_up=z_up, **options)
 
 
 def identify_frame(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
@@ -157,7 +159,7 @@ def calibrate(references: Sequence[Dict[str, Any]], case=None,
             soil = ref.get("soil", base.soil)
         x = np.asarray(ref["ddx_M"], dtype=float)
         z = np.asarray(ref["ddz_M"], dtype=float)
-        z_down, z_open = _z_down(z, z_positive, f"calibrate: reference {k}")
+        z_down, z_open, _ = _z_down(z, z_positive, f"calibrate: reference {k}")
         entry = {"name": str(ref.get("name", f"reference {k}")), "soil": soil,
                  "t": np.asarray(ref["t"], dtype=float),
                  "ddx_M": -x if x_positive == "backward" else x,

@@ -179,7 +179,8 @@ void bind_identify(py::module_& m) {
          const std::optional<Array>& position, double f, std::optional<double> window, double hop,
          int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, int compare,
          bool use_peaks, bool use_area, bool profile, bool shooting, const std::string& soil_scale,
-         bool z_open, bool units_open, double gain_uncertainty) {
+         bool z_open, bool units_open, double gain_uncertainty, bool x_read_backward,
+         bool z_read_up) {
         if (estimate != "G" && estimate != "ks")
           throw Error("estimate must be 'G' or 'ks'; got '" + estimate + "'");
         // window=None: 40 periods, or the whole record when it is shorter.
@@ -198,6 +199,8 @@ void bind_identify(py::module_& m) {
         io.shooting = shooting;
         io.z_open = z_open;
         io.units_open = units_open;
+        io.x_read_backward = x_read_backward;
+        io.z_read_up = z_read_up;
         io.gain_uncertainty = gain_uncertainty;
         io.measure.harmonics = n_max;
         // Ctrl-C between windows (a pass of a long record takes minutes; it could not be
@@ -251,6 +254,7 @@ void bind_identify(py::module_& m) {
       py::arg("use_peaks") = false, py::arg("use_area") = false, py::arg("profile") = true,
       py::arg("shooting") = true, py::arg("soil_scale") = "formulas", py::arg("z_open") = false,
       py::arg("units_open") = false, py::arg("gain_uncertainty") = 0.0,
+      py::arg("x_read_backward") = false, py::arg("z_read_up") = false,
       "Identify the soil in each window of a record, as `oscidrum identify`: a list of dicts "
       "with the keys of its CSV columns (G, G_u, G_lo, G_hi [Pa], ..., tau, relative_residual, "
       "warnings) and 'fitted', the Case at the estimate. `case` gives the roller and everything "
@@ -260,7 +264,10 @@ void bind_identify(py::module_& m) {
       "way ddz_M's axis points (read_record's z_open): a window that fits poorly as given but "
       "well with ddz_M negated is fitted so (its key z_negated true, with a warning); "
       "`units_open`: the accelerations had no unit (read_record's units_open), and a window that "
-      "fits well only with them in g is fitted so (read_in_g true, with a warning).");
+      "fits well only with them in g is fitted so (read_in_g true, with a warning); "
+      "`x_read_backward`, `z_read_up`: ddx_M and ddz_M were negated to read them (an x axis "
+      "pointing backward, a z axis up), so that a poor fit's diagnosis names the reading to "
+      "change.");
   m.def(
       "soil_on_scale",
       [](double G, const std::string& scale, const Soil& base) {

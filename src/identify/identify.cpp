@@ -173,21 +173,26 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
   if (!o.fit_MMd) alternatives.push_back({false, false, false, false, true});
   auto describe = [&](const Alternative& a) {
     std::string what, advice;
+    // Each axis the other way from how it was read.
+    const std::string x_to = o.x_read_backward ? "forward" : "backward",
+                      x_was = o.x_read_backward ? "backward" : "forward",
+                      z_to = o.z_read_up ? "down" : "up", z_was = o.z_read_up ? "up" : "down";
     if (a.x && a.z) {
       what = "x_M'' and z_M'' negated";
-      advice =
-          "both axes of the record point the other way: read it with --x-positive backward "
-          "--z-positive up (Python: x_positive='backward', z_positive='up')";
+      advice = "both axes of the record point the other way (x " + x_to + ", z " + z_to + ", not " +
+               x_was + " and " + z_was + " as read): read it with --x-positive " + x_to +
+               " --z-positive " + z_to + " (Python: x_positive='" + x_to + "', z_positive='" +
+               z_to + "')";
     } else if (a.z) {
       what = "z_M'' negated";
-      advice =
-          "the record's z axis points up: read it with --z-positive up (Python: "
-          "z_positive='up')";
+      advice = "the record's z axis points " + z_to + ", not " + z_was +
+               " as read: read it with --z-positive " + z_to + " (Python: z_positive='" + z_to +
+               "')";
     } else if (a.x) {
       what = "x_M'' negated";
-      advice =
-          "the record's x axis points backward: read it with --x-positive backward (Python: "
-          "x_positive='backward')";
+      advice = "the record's x axis points " + x_to + ", not " + x_was +
+               " as read: read it with --x-positive " + x_to + " (Python: x_positive='" + x_to +
+               "')";
     }
     if (a.swap) {
       what = "x_M'' and z_M'' exchanged" + (what.empty() ? "" : " and " + what);

@@ -51,9 +51,12 @@ void expect_recovered(const Estimate& e, double value, double tolerance) {
 
 // The warnings of a record identified as a whole against `b` (no profile), one per line, after
 // checking that the fit is poor.
-std::string poor_fit_warnings(const Case& b, const RecordSamples& r) {
+std::string poor_fit_warnings(const Case& b, const RecordSamples& r, bool x_read_backward = false,
+                              bool z_read_up = false) {
   IdentifyOptions o;
   o.profile = false;
+  o.x_read_backward = x_read_backward;
+  o.z_read_up = z_read_up;
   const Identification id = identify_whole(b, r, o);
   EXPECT_GT(id.reduced_chi2, o.max_reduced_chi2);
   std::string all;
@@ -218,6 +221,33 @@ TEST(Identify, APoorFitOfARecordSampledInStepIsDiagnosedAsItWasFitted) {
   EXPECT_NE(all.find("the fit is far better with z_M'' negated"), std::string::npos);
   EXPECT_NE(all.find("--z-positive up"), std::string::npos);
   EXPECT_EQ(all.find("still fits poorly"), std::string::npos);
+}
+
+// The advice names the reading to change from the one used: a record read with --z-positive up
+// whose z axis in fact points down was told "read it with --z-positive up" (its own flag); the
+// same for x and for both axes.
+TEST(Identify, TheAxisAdviceNamesTheReadingToChangeTo) {
+  const Case c = truth(40e6, false, 0.05);
+  SyntheticRecord so;
+  so.duration = 1.0;
+  so.sample_rate = 64 * kF;
+  const RecordSamples r = synthetic_record({c}, so);
+  RecordSamples flipped = r;
+  for (double& v : flipped.ddz_M) v = -v;  // what a reading with --z-positive up makes of it
+  const std::string z = poor_fit_warnings(base(false, 0.05), flipped, false, true);
+  EXPECT_NE(z.find("z axis points down, not up as read: read it with --z-positive down "
+                   "(Python: z_positive='down')"),
+            std::string::npos)
+      << z;
+  EXPECT_EQ(z.find("--z-positive up"), std::string::npos) << z;
+  for (double& v : flipped.ddx_M) v = -v;
+  const std::string both = poor_fit_warnings(base(false, 0.05), flipped, true, true);
+  EXPECT_NE(both.find("read it with --x-positive forward --z-positive down"), std::string::npos)
+      << both;
+  // Read with the defaults, the advice is the other reading, as before.
+  const std::string plain = poor_fit_warnings(base(false, 0.05), flipped);
+  EXPECT_NE(plain.find("read it with --x-positive backward --z-positive up"), std::string::npos)
+      << plain;
 }
 
 TEST(Identify, StickSlipG81WithoutDrivingTorque) {
