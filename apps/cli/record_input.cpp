@@ -63,9 +63,9 @@ void add_record_options(CLI::App& app, RecordInput& o, bool required, bool file_
          "--units", o.units,
          "units of the accelerations: auto (default: each column's unit from its header, "
          "[m/s^2], [g], (mm/s2), az_g, ...; without one m/s^2, or g when the vertical's mean is "
-         "about +-1, gravity in g; identify fits g where only that fits), m/s2 or g "
-         "(9.80665 m/s^2)")
-      ->check(CLI::IsMember({"auto", "m/s2", "g"}));
+         "about +-1, gravity in g; identify fits g where only that fits), m/s2, g "
+         "(9.80665 m/s^2) or mg (a thousandth of g)")
+      ->check(CLI::IsMember({"auto", "m/s2", "g", "mg"}));
   app.add_option("--t-units", o.t_units,
                  "unit of the time column: auto (default: from its header, [s], [ms], time_ms, "
                  "...; s without one), s, ms, us or ns")

@@ -26,7 +26,7 @@ struct RecordReading {
   /// downward component F0 sin(alpha) (z down), so alpha = nu t for oscidrum's own exciters
   /// (docs/model.md section 14); kb of a record needs it (docs/outputs.md).
   std::string unbalance_col;
-  std::string units = "auto";    ///< the accelerations: auto (the header's), m/s2 or g
+  std::string units = "auto";    ///< the accelerations: auto (the header's), m/s2, g or mg
   std::string t_units = "auto";  ///< the time column: auto (the header's, else s), s, ms, us, ns
   /// Sampling rate [Hz] of a record without a time column, 1 ... 1e7: > 0 gives t = (data row - 1)
   /// / rate and no time column is read (0: the time column). Rows skipped for missing values keep

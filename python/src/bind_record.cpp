@@ -122,7 +122,7 @@ void bind_record(py::module_& m) {
           }
           throw Error("read_record: " + name + " must be one of " + list + "; got '" + v + "'");
         };
-        choice("units", units, {"auto", "m/s2", "g"});
+        choice("units", units, {"auto", "m/s2", "g", "mg"});
         choice("t_units", t_units, {"auto", "s", "ms", "us", "ns"});
         choice("x_positive", x_positive, {"forward", "backward"});
         choice("z_positive", z_positive, {"auto", "down", "up"});
@@ -164,7 +164,8 @@ void bind_record(py::module_& m) {
       "A measured record's file read as `oscidrum analyze` and `identify` read it (docs/cli.md): "
       "columns recognised from the header (or given by name or 1-based index: t_col, x_col, "
       "z_col, pos_col, speed_col, lat_col, lon_col, east_col, north_col, unbalance_col), units "
-      "from it (units: 'auto', 'm/s2' or 'g'; t_units: 'auto', 's', 'ms' or 'us'), rate [Hz] for "
+      "from it (units: 'auto', 'm/s2', 'g' or 'mg'; t_units: 'auto', 's', 'ms', 'us' or 'ns'), "
+      "rate [Hz] for "
       "a record without a time column, and the axes' directions (x_positive: 'forward' or "
       "'backward'; z_positive: 'auto' (down unless the column's mean is about +1 g: up), 'down' or "
       "'up'). Returns a dict: t [s], ddx_M, ddz_M [m/s^2] in "

@@ -400,6 +400,12 @@ double acceleration_scale(const std::string& unit) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// The factor of a --units choice to m/s^2: g, mg (a logger whose unit is stated nowhere in the
+// file, only in its manual) or m/s2.
+double units_factor(const std::string& units) {
+  return units == "g" ? kStandardGravity : units == "mg" ? 1e-3 * kStandardGravity : 1.0;
+}
+
 // The factor from a speed's unit to m/s, and from a length's to m; NaN for another unit.
 double speed_scale(const std::string& unit) {
   std::string u = lower(unit);
@@ -1297,7 +1303,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                   ", not an acceleration: the drum-centre accelerations x_M'', z_M'' are read "
                   "(an accelerometer's channels; choose them with --x-col / --z-col)");
     if (!time && o.units != "auto") {
-      const double k = o.units == "g" ? kStandardGravity : 1.0;
+      const double k = units_factor(o.units);
       const double stated = h.unit.empty() ? k : acceleration_scale(h.unit);
       if (!std::isnan(stated) && stated != k)
         out.notes.push_back("column '" + header[static_cast<std::size_t>(c)] + "': --units " +
@@ -1663,7 +1669,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     };
     const Heading& hy = headings[static_cast<std::size_t>(cy)];
     const Heading& hz = headings[static_cast<std::size_t>(cz)];
-    const double ky = o.units != "auto" ? (o.units == "g" ? kStandardGravity : 1.0)
+    const double ky = o.units != "auto" ? (units_factor(o.units))
                       : hy.unit.empty() ? 1.0
                                         : acceleration_scale(hy.unit);
     const double mean_y = mean_of(y_raw, ky), mean_z = mean_of(out.ddz_M, 1.0);

@@ -56,6 +56,13 @@ TEST(RecordReader, ByteOrderMarkUnitsAndAxisConventions) {
   const RecordColumns b = read_text(text, o);
   EXPECT_DOUBLE_EQ(b.ddx_M[0], -1.0);
   EXPECT_DOUBLE_EQ(b.ddz_M[0], -0.5);
+  // A logger in milli-g whose unit its header does not say (only its manual or a metadata line):
+  // --units mg (there was no way to declare it).
+  o.x_positive = "forward";
+  o.units = "mg";
+  const RecordColumns m = read_text("t,ax,az\n0,1000,500\n0.001,-1000,250\n", o);
+  EXPECT_DOUBLE_EQ(m.ddx_M[0], kStandardGravity);
+  EXPECT_DOUBLE_EQ(m.ddz_M[1], -0.25 * kStandardGravity);
 }
 
 // A European spreadsheet: semicolons and decimal commas; the model's own names (run --csv).
