@@ -208,8 +208,8 @@ if _core is not None:
 
 
 def __getattr__(name):
-    # Only reached without a compiled core: oscidrum.data and oscidrum.plot still work on CSV
-    # files, everything else explains what is missing.
+    # Only reached without a compiled core: every compiled name explains what is missing (as
+    # importing oscidrum.data or oscidrum.plot does).
     if name in _CORE_NAMES or name in ("run_study", "StudyResult", "Interrupted"):
         raise ImportError(f"oscidrum.{name} needs the compiled module oscidrum._core, which "
                           f"could not be imported ({_core_error}); build it (cmake "

@@ -3,7 +3,8 @@
 The plots take a :class:`SteadyState`: built from a :class:`oscidrum.Result` (or a study's
 ``CaseOutcome``) with :func:`from_result`, or read from the CLI's output with :func:`read_case`
 (the steady-state CSV of ``docs/csv-columns.md`` plus, optionally, the ``oscidrum-case/1`` JSON
-summary). This module needs only NumPy, so CSV files can be plotted without the compiled core.
+summary). The columns come from the compiled core's output table (the one description of every
+output), so this module, and the plots, need it as the rest of the package does.
 
 Also here: the CSV writer of the same contract (``%.17g``, round-trip exact) and a reader for
 any ``name[unit]`` table such as the CLI's sweep results.
@@ -22,8 +23,15 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._files import write_file
-from . import _core
+from . import _core, _core_error
+
+if _core is None:
+    raise ImportError("oscidrum.data and oscidrum.plot need the compiled module oscidrum._core "
+                      "(its output table names the columns), which could not be imported "
+                      f"({_core_error}); build it (cmake -DOSCIDRUM_BUILD_PYTHON=ON) or install "
+                      "the package (pip install --no-build-isolation .), see docs/python.md")
+
+from ._files import write_file  # noqa: E402
 
 #: Columns of docs/csv-columns.md: (attribute, unit), in file order, from the library's output
 #: table (the one description of every output).
@@ -111,7 +119,13 @@ def from_result(result: Any, label: str = "", metrics: Any = None,
                     "steady-state CSV's path or a (result, case) pair; got "
                     f"{type(result).__name__}")
     if len(result.samples) == 0:
-        raise ValueError("the result holds no samples (run the study with keep_samples=True)")
+        if result.status.name == "steady_state":  # a study's case without keep_samples
+            raise ValueError("the result holds no samples (run the study with keep_samples=True)")
+        # A run that ended before anything was sampled (contact lost, gross slip, cancelled):
+        # keep_samples would not help.
+        raise ValueError(f"the result holds no samples: status {result.status.name} "
+                         f"({result.message}); the run ended before a steady state or its last "
+                         "periods were sampled, so there is nothing to plot")
     s = result.samples
     names = [name for name, _ in COLUMNS]
     ns = SimpleNamespace(**{name: getattr(s, name) for name in names})

@@ -262,7 +262,7 @@ def _trough_text(params: Mapping[str, Any]) -> Optional[str]:
     if a is None:
         return None
     try:
-        from . import _core  # the compiled module; the pure-Python package works without it
+        from . import _core  # the compiled module
         return _core.make_trough_geometry(float(params.get("roller.r") or 0.6), float(k or 0.0),
                                           float(a)).summary
     except Exception:  # noqa: BLE001 - no compiled module or an invalid trough: the keys
@@ -1357,8 +1357,12 @@ def plot_case(data: Any, out_dir: str | os.PathLike, fmt: str = "png", label: st
     """Every single-case figure of a steady state into out_dir: accelerations, figure_eight,
     spectra, delta_phi, forces (.png or .svg), titled with the case's key parameters. The
     spectra in `spectra_units` (plot_spectra's units; "both": A_n in m/s^2 with A_n / max A_n
-    on the right axis). Returns the paths written."""
-    state = as_steady_state(data, label=label)
+    on the right axis). Returns the paths written. `data` as for the other plots, a (result,
+    case) pair included."""
+    if _is_pair(data):
+        state = from_result(data[0], label=label, parameters=_flat_parameters(data[1]))
+    else:
+        state = as_steady_state(data, label=label)
     out = Path(out_dir)
     title = state.label or None
     figures = {

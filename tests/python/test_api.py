@@ -312,3 +312,39 @@ def test_analyze_motion_of_a_periodic_orbit():
     # convergence over 200 periods, docs/bifurcations.md).
     expected = np.log(max(abs(m) for m in result.floquet_multipliers)) * case.roller.f
     assert abs(motion.lyapunov - expected) < 0.05 * abs(expected)
+
+
+def test_without_the_compiled_core_the_plots_say_how_to_build_it(tmp_path):
+    """The package's Python files alone (imported from a source tree, no build): the compiled
+    names, oscidrum.data and oscidrum.plot raise ImportError saying how to build the core (data
+    failed with AttributeError: 'NoneType' object has no attribute 'sample_columns')."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+    src = Path(oscidrum.__file__).resolve().parent
+    pkg = tmp_path / "src" / "oscidrum"
+    pkg.mkdir(parents=True)
+    for f in src.glob("*.py"):
+        shutil.copy(f, pkg / f.name)
+    script = (
+        "import sys\n"
+        f"sys.path = [{str(tmp_path / 'src')!r}] + [p for p in sys.path if p.startswith('/usr/lib')]\n"
+        "import oscidrum\n"
+        "assert oscidrum._core is None, oscidrum._core\n"
+        "for what in ('oscidrum.data', 'oscidrum.plot'):\n"
+        "    try:\n"
+        "        __import__(what)\n"
+        "    except ImportError as e:\n"
+        "        assert 'need the compiled module oscidrum._core' in str(e), e\n"
+        "        assert 'cmake -DOSCIDRUM_BUILD_PYTHON=ON' in str(e), e\n"
+        "    else:\n"
+        "        raise AssertionError(what + ' imported without the core')\n"
+        "try:\n"
+        "    oscidrum.simulate\n"
+        "except ImportError as e:\n"
+        "    assert 'needs the compiled module' in str(e), e\n"
+        "print('explained')\n")
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                       timeout=60, cwd=tmp_path)
+    assert p.returncode == 0 and p.stdout.strip() == "explained", p.stdout + p.stderr

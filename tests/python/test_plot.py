@@ -819,3 +819,28 @@ def test_cli_continue_plot_interrupted_exits_130(cli, tmp_path):
     assert p.returncode == 130, out + err
     assert "Traceback" not in out + err, err
     assert "oscidrum: interrupted while plotting; the branch is in" in err, err
+
+
+def test_plot_case_takes_a_result_case_pair(slip_case, slip_result, tmp_path):
+    """plot_case refused the (result, case) pair its error message listed as accepted; with the
+    pair its figures carry the case's parameters, as the single plots do."""
+    paths = plot.plot_case((slip_result, slip_case), tmp_path / "pair")
+    assert sorted(p.name for p in paths) == sorted(
+        f"{n}.png" for n in ("accelerations", "figure_eight", "spectra", "delta_phi", "forces"))
+    assert all(p.read_bytes().startswith(PNG) for p in paths)
+
+
+def test_a_run_without_samples_says_why_not_keep_samples(tmp_path):
+    """A run that lost contact has no samples: the refusal names its status, not a keep_samples
+    advice that would not help (it was given for simulate()'s result too)."""
+    case = oscidrum.Case(table2_G=5e6, pure_rolling=True)
+    case.roller.M0 = 20 * case.roller.M0
+    r = oscidrum.simulate(case)
+    assert r.status.name == "contact_lost" and len(r.samples) == 0
+    for obj in (r, oscidrum.run_study([case], threads=1, keep_samples=True)[0]):
+        with pytest.raises(ValueError, match="status contact_lost") as e:
+            plot.plot_accelerations(obj)
+        assert "keep_samples" not in str(e.value)
+    steady = oscidrum.run_study([oscidrum.Case()], threads=1)[0]
+    with pytest.raises(ValueError, match="keep_samples=True"):
+        plot.plot_accelerations(steady)
