@@ -64,8 +64,9 @@ int run(const PaperOptions& o) {
   const std::vector<ValidationRow> rows = validate(results);
   io::write_file_atomic(o.out + "/validation.md",
                         "# Validation against the paper\n\n" + validation_markdown(rows));
-  std::cerr << "oscidrum paper: wrote " << o.out
-            << "/validation.md only (the figures need the Python package)\n";
+  io::write_file_atomic(o.out + "/validation.csv", validation_csv(rows));
+  std::cerr << "oscidrum paper: wrote " << o.out << "/validation.md and " << o.out
+            << "/validation.csv only (the figures need the Python package)\n";
   return kExitCaseFailed;
 }
 

@@ -41,15 +41,6 @@ std::string markdown_document(const std::vector<ValidationRow>& rows) {
          validation_markdown(rows);
 }
 
-std::string csv_document(const std::vector<ValidationRow>& rows) {
-  TextTable t;
-  t.header = {"id", "figure", "claim", "paper", "oscidrum", "rule", "agrees", "checkable", "note"};
-  for (const ValidationRow& r : rows)
-    t.rows.push_back({r.id, r.figure, r.claim, r.paper, r.oscidrum, r.rule,
-                      r.agrees ? "true" : "false", r.checkable ? "true" : "false", r.note});
-  return t.csv();
-}
-
 int run(const ValidateOptions& o) {
   // Output names first: the studies take seconds.
   if (!o.markdown.empty() || (o.markdown_flag && o.markdown_flag->count() > 0))
@@ -79,7 +70,7 @@ int run(const ValidateOptions& o) {
   progress.clear();
 
   if (!o.markdown.empty()) io::write_file_atomic(o.markdown, markdown_document(rows));
-  if (!o.csv.empty()) io::write_file_atomic(o.csv, csv_document(rows));
+  if (!o.csv.empty()) io::write_file_atomic(o.csv, validation_csv(rows));
   int disagree = 0;
   for (const ValidationRow& r : rows) disagree += r.checkable && !r.agrees;
 
@@ -99,7 +90,7 @@ int run(const ValidateOptions& o) {
     j["disagreements"] = disagree;
     std::cout << j.dump(2) << "\n";
   } else if (o.format == "csv") {
-    std::cout << csv_document(rows);
+    std::cout << validation_csv(rows);
   } else if (o.format == "markdown") {
     std::cout << markdown_document(rows);
   } else {
@@ -126,6 +117,15 @@ int run(const ValidateOptions& o) {
 }
 
 }  // namespace
+
+std::string validation_csv(const std::vector<ValidationRow>& rows) {
+  TextTable t;
+  t.header = {"id", "figure", "claim", "paper", "oscidrum", "rule", "agrees", "checkable", "note"};
+  for (const ValidationRow& r : rows)
+    t.rows.push_back({r.id, r.figure, r.claim, r.paper, r.oscidrum, r.rule,
+                      r.agrees ? "true" : "false", r.checkable ? "true" : "false", r.note});
+  return t.csv();
+}
 
 void add_validate_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ValidateOptions>();

@@ -6,9 +6,15 @@
 #pragma once
 
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace CLI {
 class App;
+}
+
+namespace oscidrum {
+struct ValidationRow;
 }
 
 namespace oscidrum::cli {
@@ -40,5 +46,9 @@ void add_identify_command(CLI::App& app, Action& action);
 void add_continue_command(CLI::App& app, Action& action);
 void add_diagram_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action);
+
+/// The validation table as CSV (one row per claim): `validate --csv`, and `paper` without its
+/// Python package.
+std::string validation_csv(const std::vector<ValidationRow>& rows);
 
 }  // namespace oscidrum::cli

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -465,8 +466,26 @@ TEST(CliPaper, WritesTheReproductionOrTheValidationAlone) {
   } else {
     EXPECT_EQ(o.code, 1);
     EXPECT_TRUE(std::filesystem::exists(dir / "validation.md"));
-    EXPECT_NE(o.err.find("validation.md only"), std::string::npos) << o.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "validation.csv"));
+    EXPECT_NE(o.err.find("/validation.csv only"), std::string::npos) << o.err;
   }
+}
+
+// Without a Python that can run the package, the validation table is written as the docs say:
+// validation.md and validation.csv (only the Markdown was), the CSV that of `validate --csv`.
+TEST(CliPaper, WithoutPythonTheValidationTableIsWrittenInBothForms) {
+  TempDir dir;
+  ::setenv("OSCIDRUM_PYTHON", (dir / "no-python").c_str(), 1);
+  const Outcome o = run({"paper", "--quiet", "--out", dir / "paper", "--threads", "1"});
+  ::unsetenv("OSCIDRUM_PYTHON");
+  EXPECT_EQ(o.code, 1) << o.err;
+  EXPECT_NE(o.err.find("validation.md and " + (dir / "paper") + "/validation.csv only"),
+            std::string::npos)
+      << o.err;
+  const Outcome v = run({"validate", "--quiet", "--csv", dir / "v.csv", "--threads", "1"});
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_EQ(slurp(dir / "paper/validation.csv"), slurp(dir / "v.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "paper/validation.md"));
 }
 
 }  // namespace
