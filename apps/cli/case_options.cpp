@@ -158,7 +158,9 @@ void add_set_flag(CLI::App& app, CaseOptions& o, const std::vector<std::string>&
               return "--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + io::clip(s) + "'";
             return std::string();
           },
-          "KEY=VALUE", "KEY=VALUE"))
+          // No description: CLI11 appends it to the type name ("KEY=VALUE:KEY=VALUE ..."),
+          // which read as a syntax that is refused.
+          "", "KEY=VALUE"))
       ->type_name("KEY=VALUE")
       ->group("Any parameter");
 }
@@ -194,7 +196,13 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
     const std::size_t eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
       throw Error("--set expects KEY=VALUE (e.g. --set soil.G=25e6); got '" + io::clip(s) + "'");
-    const std::string key = s.substr(0, eq);
+    // Blanks around the key and the value (--set 'roller.f = 40', as a TOML file writes it) are
+    // not part of them: the key was unknown as 'roller.f '.
+    const auto trimmed = [](const std::string& t) {
+      const std::size_t b = t.find_first_not_of(" \t"), e = t.find_last_not_of(" \t");
+      return b == std::string::npos ? std::string() : t.substr(b, e - b + 1);
+    };
+    const std::string key = trimmed(s.substr(0, eq));
     if (!o.set_keys.empty() &&
         std::find(o.set_keys.begin(), o.set_keys.end(), key) == o.set_keys.end()) {
       std::string uses;
@@ -210,7 +218,7 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
     if (key == "MMd_fraction") forget(spec, "MMd");
     if (key == "soil.table2_G") io::clear_soil(spec);
     try {
-      io::assign_text(spec, key, s.substr(eq + 1), "--set " + io::clip(s));
+      io::assign_text(spec, key, trimmed(s.substr(eq + 1)), "--set " + io::clip(s));
     } catch (const Error& e) {
       throw Error("--set " + io::clip(s) + ": " + e.what());
     }

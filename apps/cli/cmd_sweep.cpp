@@ -141,8 +141,7 @@ void warn_about_cases(const io::StudySpec& spec, const io::Study& study,
   std::vector<std::string> friction_keys;
   for (const std::string& k : study.keys) {
     M0_given = M0_given || k == "roller.M0";
-    if (k == "contact.mu" || k == "contact.mu_static" || k == "contact.law")
-      friction_keys.push_back(k);
+    if (friction_key(k)) friction_keys.push_back(k);
   }
   if (M0_given && friction_keys.empty()) return;
   std::size_t fixed = 0, rolling = 0;

@@ -82,6 +82,11 @@ const char* display_unit(const Field& field);
 /// Python reprs and dicts and the web page's exports leave such keys out.
 bool key_in_effect(const Case& c, std::string_view key);
 
+/// The friction keys contact.mu, contact.mu_static and contact.law: in effect (key_in_effect)
+/// under contact.pure_rolling = true too, so that a case file or a study may switch pure rolling
+/// on over a case with friction, though they change nothing there (a warning, not an error).
+bool friction_key(std::string_view key);
+
 /// Why a key has no effect in `c`, naming what to change (e.g. "soil.nu has no effect while
 /// soil.input = \"table2\" (...); set soil.input = \"modulus\" ..."), or "" if it takes effect.
 std::string key_not_in_effect(const Case& c, std::string_view key);

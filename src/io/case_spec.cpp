@@ -396,8 +396,8 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
   // Pure rolling has no friction limit: a friction coefficient given with it changes nothing (a
   // warning, not an error: a study may sweep contact.pure_rolling over a base case with mu).
   if (warnings && c.contact.pure_rolling)
-    for (const char* key : {"contact.mu", "contact.mu_static", "contact.law"})
-      if (spec.given(key))
+    for (const Field& f : fields())
+      if (const std::string key = f.key; friction_key(key) && spec.given(key))
         warnings->push_back(spec.where(key) + key +
                             " has no effect while contact.pure_rolling = "
                             "true (rolling without a friction limit); it applies with "

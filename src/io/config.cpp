@@ -588,6 +588,12 @@ std::string case_to_toml(const Case& c) {
       return "replaced by unbalance";
     if (key == "roller.unbalance" && c.roller.unbalance == 0.0) return "unused: M0 is given";
     if (key.starts_with("soil.") && !key_in_effect(c, key)) return "unused with input = " + input;
+    // In effect (a file may give them with pure rolling, with a warning), but at their defaults
+    // they were not given: as comments, so that the printed case read back does not warn of
+    // keys nobody set.
+    if (c.contact.pure_rolling && friction_key(key) &&
+        find_field(key)->get(c) == find_field(key)->get(Case{}))
+      return "unused while pure_rolling = true";
     if (!key_in_effect(c, key)) return "unused";
     return "";
   };

@@ -516,6 +516,10 @@ std::string key_not_in_effect(const Case& c, std::string_view key) {
   return "";
 }
 
+bool friction_key(std::string_view key) {
+  return key == "contact.mu" || key == "contact.mu_static" || key == "contact.law";
+}
+
 bool key_in_effect(const Case& c, std::string_view key) {
   return key_not_in_effect(c, key).empty();
 }

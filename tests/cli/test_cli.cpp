@@ -719,7 +719,8 @@ TEST(CliIssue14, StrictValuesAndEmptyPaths) {
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"run", "--set", "numerics.max_periods=5.0"}, "numerics.max_periods must be an integer"},
       {{"run", "--set", "numerics.max_periods=1e3"}, "numerics.max_periods must be an integer"},
-      {{"run", "--set", "numerics.output_periods= 2"}, "must be an integer"},
+      // (Blanks around a value are not part of it, as in a TOML line: "= 2" is 2.)
+      {{"run", "--set", "numerics.output_periods=2 periods"}, "must be an integer"},
       {{"run", "--set", "contact.pure_rolling=yes"}, "contact.pure_rolling must be true or false"},
       {{"run", "--set", "contact.pure_rolling=1"}, "contact.pure_rolling must be true or false"},
       {{"run", "--set", "contact.pure_rolling=TRUE"}, "must be true or false"},
@@ -743,6 +744,22 @@ TEST(CliIssue14, StrictValuesAndEmptyPaths) {
     expect_usage_error(run(args), message);
   }
   EXPECT_EQ(run({"run", "--set", "contact.pure_rolling=true", "--print-config"}).code, 0);
+  {
+    // The printed case of pure rolling read back does not warn of the friction keys nobody gave
+    // (mu, mu_static and law were printed as keys, and reading the file warned of each).
+    TempDir dir;
+    const Outcome printed = run({"run", "--pure-rolling", "--print-config"});
+    ASSERT_EQ(printed.code, 0) << printed.err;
+    EXPECT_NE(printed.out.find("# mu = 0.5"), std::string::npos) << printed.out;
+    std::ofstream(dir / "pr.toml") << printed.out;
+    const Outcome back = run({"run", dir / "pr.toml", "-q"});
+    EXPECT_EQ(back.code, 0) << back.err;
+    EXPECT_EQ(back.err.find("warning"), std::string::npos) << back.err;
+    // A mu given with pure rolling is the user's: printed as a key (its warning is theirs).
+    const Outcome given = run(
+        {"run", "--set", "contact.pure_rolling=true", "--set", "contact.mu=0.3", "--print-config"});
+    EXPECT_NE(given.out.find("\nmu = 0.3"), std::string::npos) << given.out;
+  }
   EXPECT_EQ(run({"run", "--set", "numerics.max_periods=+300", "--print-config"}).code, 0);
 }
 
@@ -947,6 +964,20 @@ TEST(CliFiles, AnOutputNamingAnotherOutputOrAnInputIsRefused) {
   const Outcome fine =
       run({"run", case_file, "-q", "--csv", dir / "c.csv", "--json", dir / "c.json"});
   EXPECT_EQ(fine.code, 0) << fine.err;
+}
+
+// --set as a TOML line writes it ('roller.f = 40') sets the key (it was "unknown parameter
+// 'roller.f '"), and --help shows the syntax that is accepted (it showed KEY=VALUE:KEY=VALUE,
+// which is refused).
+TEST(CliRun, SetTakesBlanksAroundKeyAndValue) {
+  const Outcome o = run({"run", "--set", "roller.f = 40", "--set", " contact.mu =0.3 ", "--set",
+                         "roller.M0=54947", "--print-config"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("\nf = 40.0"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("\nmu = 0.3"), std::string::npos) << o.out;
+  const Outcome help = run({"run", "--help"});
+  EXPECT_NE(help.out.find("--set KEY=VALUE ..."), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("KEY=VALUE:KEY=VALUE"), std::string::npos) << help.out;
 }
 
 }  // namespace oscidrum::test
