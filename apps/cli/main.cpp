@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "flags.hpp"
@@ -61,6 +62,40 @@ int error(const std::string& message, int code) {
   return code;
 }
 
+// CLI11's parse errors in words that say what to do: a flag given twice ("At Most 1 required but
+// received 2"), and a near miss of a flag or command named ("--Mu", "sweeep").
+std::string explain_parse_error(const CLI::ParseError& e, const CLI::App& app,
+                                const CLI::App& active) {
+  const std::string message = e.what();
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) &&
+      message.find("At Most 1 required but received") != std::string::npos) {
+    const std::string name = message.substr(0, message.find(':'));
+    return name + " is given more than once (or with its short form too); give it once";
+  }
+  if (!dynamic_cast<const CLI::ExtrasError*>(&e)) return message;
+  const std::size_t colon = message.find(": ");
+  if (colon == std::string::npos) return message;
+  std::vector<std::string> flags, commands;
+  for (const CLI::Option* opt : active.get_options()) {
+    for (const std::string& l : opt->get_lnames()) flags.push_back("--" + l);
+    for (const std::string& s : opt->get_snames()) flags.push_back("-" + s);
+  }
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    commands.push_back(sub->get_name());
+  std::string hints;
+  std::istringstream words(message.substr(colon + 2));
+  for (std::string word; words >> word;) {
+    std::string near;
+    if (word.rfind("-", 0) == 0) {
+      near = oscidrum::nearest(word.substr(0, word.find('=')), flags);
+    } else if (&active == &app) {
+      near = oscidrum::nearest(word, commands);
+    }
+    if (!near.empty() && near != word) hints += (hints.empty() ? "" : "; ") + word + ": " + near;
+  }
+  return hints.empty() ? message : message + " (did you mean " + hints + "?)";
+}
+
 int run(int argc, char** argv) {
   CLI::App app(
       "oscidrum simulates an oscillation roller drum on soil: the stick-slip model of Paulmichl, "
@@ -100,8 +135,13 @@ int run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::string where = "oscidrum";
-    for (const CLI::App* sub : app.get_subcommands()) where += " " + sub->get_name();
-    return error(std::string(e.what()) + " (see '" + where + " --help')", kExitUsage);
+    const CLI::App* active = &app;
+    for (const CLI::App* sub : app.get_subcommands()) {
+      where += " " + sub->get_name();
+      active = sub;
+    }
+    return error(explain_parse_error(e, app, *active) + " (see '" + where + " --help')",
+                 kExitUsage);
   }
   if (!action)
     return error("a command is required: " + names + " (see 'oscidrum --help')", kExitUsage);

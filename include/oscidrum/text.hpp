@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace oscidrum {
 
@@ -21,5 +22,10 @@ const char* number_rule();
 /// `text` as it can go into a one-line message: bytes that are not part of valid UTF-8 and control
 /// characters (line breaks included) are written as \xNN; everything else is kept.
 std::string printable(std::string_view text);
+
+/// The candidate nearest to `word` (edit distance, ASCII case ignored) if it is within
+/// `max_distance` edits, else "": for "did you mean ...?" in messages.
+std::string nearest(std::string_view word, const std::vector<std::string>& candidates,
+                    std::size_t max_distance = 2);
 
 }  // namespace oscidrum

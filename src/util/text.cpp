@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "util/text.hpp"
+
 namespace oscidrum {
 namespace {
 
@@ -87,6 +89,17 @@ std::string printable(std::string_view text) {
     text.remove_prefix(n);
   }
   return out;
+}
+
+std::string nearest(std::string_view word, const std::vector<std::string>& candidates,
+                    std::size_t max_distance) {
+  std::string best;
+  std::size_t best_distance = max_distance + 1;
+  for (const std::string& c : candidates) {
+    const std::size_t d = detail::edit_distance(word, c);
+    if (d < best_distance) best = c, best_distance = d;
+  }
+  return best;
 }
 
 }  // namespace oscidrum

@@ -980,4 +980,23 @@ TEST(CliRun, SetTakesBlanksAroundKeyAndValue) {
   EXPECT_EQ(help.out.find("KEY=VALUE:KEY=VALUE"), std::string::npos) << help.out;
 }
 
+// A flag given twice, a misspelled flag or command: CLI11's words ("At Most 1 required but
+// received 2", "The following argument was not expected: --Mu") with what to do.
+TEST(CliRun, ParseErrorsSayWhatToDo) {
+  const Outcome twice = run({"run", "--mu", "0.3", "--mu", "0.4"});
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_NE(twice.err.find("--mu is given more than once"), std::string::npos) << twice.err;
+  const Outcome flag = run({"run", "--Mu", "0.3"});
+  EXPECT_EQ(flag.code, 2);
+  EXPECT_NE(flag.err.find("did you mean --Mu: --mu?"), std::string::npos) << flag.err;
+  const Outcome command = run({"sweeep", "study.toml"});
+  EXPECT_EQ(command.code, 2);
+  EXPECT_NE(command.err.find("sweeep: sweep"), std::string::npos) << command.err;
+  for (const Outcome* o : {&twice, &flag, &command})
+    EXPECT_EQ(std::count(o->err.begin(), o->err.end(), '\n'), 1) << o->err;
+  // Far from every name: no guess.
+  const Outcome far = run({"run", "--zzzzzzzz"});
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+}
+
 }  // namespace oscidrum::test
