@@ -183,7 +183,7 @@ void check_options(const SweepOptions& o) {
   // overwritten without a word (--hdf5 r.csv.journal, exit 0, no HDF5 file).
   if (!o.hdf5.empty() && !o.out.empty() && !o.out_is_stdout) {
     const std::string journal = o.out + ".journal";
-    if (o.hdf5 == journal || o.out == o.hdf5 + ".partial")
+    if (same_file(o.hdf5, journal) || same_file(o.out, o.hdf5 + ".partial"))
       throw Error("--hdf5 " + o.hdf5 + " and --out " + o.out + ": the sweep keeps its journal in " +
                   journal + " and writes the HDF5 file as " + o.hdf5 +
                   ".partial until it is done; name the outputs otherwise");

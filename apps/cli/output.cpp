@@ -192,10 +192,6 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
   }
 }
 
-namespace {
-
-// The same file: one inode where both exist, else the same path once ".", ".." and the symbolic
-// links of its existing part are resolved.
 bool same_file(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -208,8 +204,6 @@ bool same_file(const std::string& a, const std::string& b) {
   const fs::path cb = fs::weakly_canonical(fs::absolute(b, ec), ec);
   return !ec && ca == cb;
 }
-
-}  // namespace
 
 void check_distinct_files(const std::vector<NamedFile>& files) {
   for (std::size_t i = 0; i < files.size(); ++i)

@@ -83,6 +83,10 @@ struct NamedFile {
   bool input = false;
 };
 
+/// Whether two paths name one file: one inode where both exist, else the same path once ".",
+/// ".." and the symbolic links of its existing part are resolved.
+bool same_file(const std::string& a, const std::string& b);
+
 /// Throws oscidrum::Error when two of `files` name the same file, however spelt ("./r.csv" and
 /// "r.csv", through "..", symbolic or hard links): one output would silently replace another, or
 /// overwrite an input (a study file or a logger's record). Call before any work is done.

@@ -36,8 +36,10 @@ def run_main(main: Callable[[Optional[Sequence[str]]], int], prog: str,
              argv: Optional[Sequence[str]] = None) -> int:
     """main(argv)'s exit status; 128 + the signal's number when SIGINT or SIGTERM stopped it.
 
-    The oscidrum tool starts the modules with SIGINT and SIGTERM blocked, so that a signal it
-    passes on while the module is still importing waits for the handlers installed here."""
+    The oscidrum tool starts the modules through a bootstrap that ends them at once on a signal
+    until they get here (and with the signals blocked until it runs); a module started so, or
+    with the signals blocked otherwise, has them unblocked here, once the handlers are in
+    place."""
     for s in _SIGNALS:
         signal.signal(s, _on_signal)
     try:

@@ -119,7 +119,8 @@ def from_result(result: Any, label: str = "", metrics: Any = None,
                     "steady-state CSV's path or a (result, case) pair; got "
                     f"{type(result).__name__}")
     if len(result.samples) == 0:
-        if result.status.name == "steady_state":  # a study's case without keep_samples
+        # A study's case without keep_samples (these statuses sample their periods).
+        if result.status.name in ("steady_state", "max_periods_reached", "aperiodic"):
             raise ValueError("the result holds no samples (run the study with keep_samples=True)")
         # A run that ended before anything was sampled (contact lost, gross slip, cancelled):
         # keep_samples would not help.

@@ -844,3 +844,12 @@ def test_a_run_without_samples_says_why_not_keep_samples(tmp_path):
     steady = oscidrum.run_study([oscidrum.Case()], threads=1)[0]
     with pytest.raises(ValueError, match="keep_samples=True"):
         plot.plot_accelerations(steady)
+    # A run stopped by its budget samples its last periods: a study dropped them, keep_samples
+    # keeps them.
+    short = oscidrum.Case(method="transient", max_periods=5)
+    (unfinished,) = oscidrum.run_study([short], threads=1)
+    assert unfinished.result.status.name == "max_periods_reached"
+    with pytest.raises(ValueError, match="keep_samples=True"):
+        plot.plot_accelerations(unfinished)
+    (kept,) = oscidrum.run_study([short], threads=1, keep_samples=True)
+    plot.plot_accelerations(kept)

@@ -255,7 +255,7 @@ async function main() {
     const down = engine.analyzeRecord(csv, 'record.csv', { z_positive: 'down' });
     assert.equal(down.reading.z_factor, 9.80665);
     // Bad options and bad text: messages naming the option or the line, never an abort.
-    assert.match(engine.analyzeRecord(csv, 'record.csv', { units: 'furlongs' }).error, /record option units must be one of auto, m\/s2, g; got 'furlongs'/);
+    assert.match(engine.analyzeRecord(csv, 'record.csv', { units: 'furlongs' }).error, /record option units must be one of auto, m\/s2, g, mg; got 'furlongs'/);
     assert.match(engine.analyzeRecord('Time [s],acc_x [g],acc_z [g]\n0,1,x\n', 'bad.csv', {}).error, /bad\.csv:2: column 'acc_z \[g\]' must be a number; got 'x'/);
     assert.match(engine.analyzeRecord('a,b,c\n0,1,2\n', 'bad.csv', {}).error, /no column looks like the time/);
     console.log(`ok   record: f ${a.f} Hz, area ${a.metrics.area}, G ${G.value} [${G.lower}, ${G.upper}] (native ${nG.value}); bad records and options`);

@@ -415,11 +415,12 @@ std::string text_option(const val& options, const char* key, const std::string& 
 }
 
 // How the record's text is read (oscidrum::RecordReading, the options of `oscidrum analyze`):
-// {units: "auto"|"m/s2"|"g", t_units: "auto"|"s"|"ms"|"us"|"ns", x_positive: "forward"|"backward",
-// z_positive: "auto"|"down"|"up", t_col, x_col, z_col: a name or 1-based index, empty: recognised}.
+// {units: "auto"|"m/s2"|"g"|"mg", t_units: "auto"|"s"|"ms"|"us"|"ns", x_positive:
+// "forward"|"backward", z_positive: "auto"|"down"|"up", t_col, x_col, z_col: a name or 1-based
+// index, empty: recognised}.
 oscidrum::RecordReading reading_from(const val& options) {
   oscidrum::RecordReading o;
-  o.units = text_option(options, "units", "auto", "auto|m/s2|g");
+  o.units = text_option(options, "units", "auto", "auto|m/s2|g|mg");
   o.t_units = text_option(options, "t_units", "auto", "auto|s|ms|us|ns");
   o.x_positive = text_option(options, "x_positive", "forward", "forward|backward");
   o.z_positive = text_option(options, "z_positive", "auto", "auto|down|up");
