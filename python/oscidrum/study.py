@@ -30,13 +30,58 @@ _UNITS = {"periods_to_steady": "-", "multiplicity": "-"}
 
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C stopped a study. ``.result`` holds what was done: a :class:`StudyResult` whose
-    cases not finished have ``valid=False`` and ``error='cancelled'``."""
+    cases not finished have ``valid=False`` and ``error='cancelled'``. Left uncaught, it ends a
+    script as an uncaught KeyboardInterrupt does: killed by SIGINT (exit status 130 in a shell,
+    which stops a shell loop over scripts), not with status 1."""
 
     def __init__(self, result: "StudyResult"):
         done = sum(1 for o in result if o.valid)
         super().__init__(f"study interrupted: {done} of {len(result)} cases done "
                          "(the exception's .result holds them)")
         self.result = result
+        _end_by_sigint_if_uncaught()
+
+
+# CPython ends an interpreter whose uncaught exception is KeyboardInterrupt by killing itself with
+# SIGINT once it has finished (so that a shell sees the signal), but only for KeyboardInterrupt
+# itself: a subclass such as Interrupted left status 1. Its first raise puts a hook in front of
+# sys.excepthook (the hook that prints an uncaught exception's traceback in a script; Jupyter
+# does not call it) that marks an uncaught Interrupted; the atexit handler registered when this
+# module was imported, so after the handlers registered later, then ends the process by SIGINT.
+_uncaught_interrupt = False
+
+
+def _end_by_sigint_if_uncaught() -> None:
+    hook = sys.excepthook
+    if getattr(hook, "_oscidrum_interrupted", False):
+        return
+
+    def excepthook(kind, value, tb):
+        global _uncaught_interrupt
+        if isinstance(value, Interrupted):
+            _uncaught_interrupt = True
+        hook(kind, value, tb)
+
+    excepthook._oscidrum_interrupted = True
+    sys.excepthook = excepthook
+
+
+def _exit_by_sigint() -> None:
+    if not _uncaught_interrupt:
+        return
+    import signal
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except Exception:
+            pass
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+import atexit  # noqa: E402
+
+atexit.register(_exit_by_sigint)
 
 
 def _metric_units():

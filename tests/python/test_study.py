@@ -392,3 +392,38 @@ def test_an_invalid_case_has_no_steady_state_and_no_metrics():
     assert list(df["status"]) == ["invalid", "steady_state"]
     assert df["error"][1] == "" and "trough.a must be > roller.r" in df["error"][0]
     assert df["message"][1].startswith("periodic orbit")
+
+
+def test_an_uncaught_interrupt_ends_a_script_by_sigint(tmp_path):
+    """Ctrl-C during run_study in a script: the script dies by SIGINT as with a plain
+    KeyboardInterrupt (exit status 130 in a shell), not with status 1 (a shell loop over study
+    scripts went on after Ctrl-C); caught, it is an ordinary exception."""
+    import signal
+    import subprocess
+    import sys
+    import time
+    script = tmp_path / "study.py"
+    script.write_text("import sys\nimport oscidrum\n"
+                      "cases = [oscidrum.Case(table2_G=25e6, mu=0.3 + 0.0001 * k) "
+                      "for k in range(20000)]\n"
+                      "print('started', flush=True)\n"
+                      "oscidrum.run_study(cases, threads=1)\n")
+    p = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(0.5)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    assert p.returncode == -signal.SIGINT, (p.returncode, err)
+    assert "Interrupted: study interrupted" in err, err
+    caught = tmp_path / "caught.py"
+    caught.write_text("import os, signal, threading\nimport oscidrum\n"
+                      "cases = [oscidrum.Case(table2_G=25e6, mu=0.3 + 0.0001 * k) "
+                      "for k in range(20000)]\n"
+                      "threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT)).start()\n"
+                      "try:\n"
+                      "    oscidrum.run_study(cases, threads=1)\n"
+                      "except oscidrum.Interrupted as e:\n"
+                      "    print('kept', sum(o.valid for o in e.result))\n")
+    q = subprocess.run([sys.executable, str(caught)], capture_output=True, text=True, timeout=120)
+    assert q.returncode == 0 and q.stdout.startswith("kept "), (q.returncode, q.stderr)
