@@ -777,47 +777,42 @@ def test_module_interrupted_while_importing_ends_without_a_traceback(slip_result
     assert "oscidrum.plot: interrupted" in err and "Traceback" not in err, err
 
 
+def _interrupt_its_plot(args, delay):
+    """Run the CLI with args, send SIGINT `delay` s after its Python module started; the
+    (returncode, stdout + stderr, stderr), or a skip when it ended on its own first."""
+    p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=_cli_env())
+    deadline = time.monotonic() + 120
+    while not _children(p.pid) and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.0005)
+    time.sleep(delay)
+    if p.poll() is not None:
+        pytest.skip("the command ended before its Python module could be interrupted")
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=120)
+    if p.returncode == 0:
+        pytest.skip("the plots were done before the signal")
+    return p.returncode, out + err, err
+
+
 @pytest.mark.parametrize("delay", [0.0, 0.05, 0.15, 0.4])
 def test_cli_plot_interrupted_while_the_module_starts(cli, tmp_path, delay):
     """Ctrl-C while `run --plot`'s Python is starting or importing: exit 130 and one line that
     says where the data are, no KeyboardInterrupt traceback (a signal during the imports printed
     one, exit 1; continue and diagram exited 1, run, sweep and identify said nothing)."""
-    p = subprocess.Popen([cli, "run", "--quiet", "--plot", str(tmp_path / "plots")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=_cli_env())
-    deadline = time.monotonic() + 60
-    while not _children(p.pid) and p.poll() is None and time.monotonic() < deadline:
-        time.sleep(0.0005)
-    time.sleep(delay)
-    if p.poll() is not None:
-        pytest.skip("run --plot ended before its Python module could be interrupted")
-    p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=120)
-    if p.returncode == 0:
-        pytest.skip("the plots were done before the signal")
-    assert p.returncode == 130, out + err
-    assert "Traceback" not in out + err and "KeyboardInterrupt" not in out + err, err
+    code, both, err = _interrupt_its_plot(
+        [cli, "run", "--quiet", "--plot", str(tmp_path / "plots")], delay)
+    assert code == 130, both
+    assert "Traceback" not in both and "KeyboardInterrupt" not in both, err
     assert "oscidrum: interrupted while plotting; the data are in" in err, err
 
 
 def test_cli_continue_plot_interrupted_exits_130(cli, tmp_path):
-    p = subprocess.Popen([cli, "continue", "--set", "soil.input=modulus", "--param", "soil.G",
-                          "--from", "20", "--to", "21",
-                          "--csv", str(tmp_path / "b.csv"), "--plot", str(tmp_path / "b.png")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         env=_cli_env())
-    deadline = time.monotonic() + 120
-    while not _children(p.pid) and p.poll() is None and time.monotonic() < deadline:
-        time.sleep(0.0005)
-    time.sleep(0.1)
-    if p.poll() is not None:
-        pytest.skip("continue --plot ended before its Python module could be interrupted")
-    p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=120)
-    if p.returncode == 0:
-        pytest.skip("the plot was done before the signal")
-    assert p.returncode == 130, out + err
-    assert "Traceback" not in out + err, err
+    code, both, err = _interrupt_its_plot(
+        [cli, "continue", "--set", "soil.input=modulus", "--param", "soil.G", "--from", "20",
+         "--to", "21", "--csv", str(tmp_path / "b.csv"), "--plot", str(tmp_path / "b.png")], 0.1)
+    assert code == 130, both
+    assert "Traceback" not in both, err
     assert "oscidrum: interrupted while plotting; the branch is in" in err, err
 
 
