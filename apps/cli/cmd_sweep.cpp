@@ -134,17 +134,26 @@ std::string rows_table(const std::string& header, const std::vector<std::string>
 // - a friction key swept where the drum rolls without a friction limit in every case
 //   (contact.pure_rolling = true; a warning in a case file, so that pure_rolling itself can be
 //   swept over a base with mu): a study of mu under pure rolling ran with exit 0 and no word,
-//   every row the same motion.
+//   every row the same motion;
+// - roller.m_f swept: the frame's mass enters the Appendix A transmissibility only, which no
+//   sweep output holds (continue and diagram refuse it); numerics.continuation swept where every
+//   case integrates from rest by the transient method. Both ran with exit 0 and no word.
 void warn_about_cases(const io::StudySpec& spec, const io::Study& study,
                       const io::StudyProgress& progress) {
-  bool M0_given = spec.base.given("roller.M0");
+  bool M0_given = spec.base.given("roller.M0"), continuation = false;
   std::vector<std::string> friction_keys;
   for (const std::string& k : study.keys) {
     M0_given = M0_given || k == "roller.M0";
     if (friction_key(k)) friction_keys.push_back(k);
+    if (k == "roller.m_f")
+      warn(
+          "roller.m_f is swept, but nothing a sweep computes depends on it: the frame's mass "
+          "enters only the Appendix A transmissibility (oscidrum transmissibility), and the "
+          "rows are the same motion for every value");
+    continuation = continuation || k == "numerics.continuation";
   }
-  if (M0_given && friction_keys.empty()) return;
-  std::size_t fixed = 0, rolling = 0;
+  if (M0_given && friction_keys.empty() && !continuation) return;
+  std::size_t fixed = 0, rolling = 0, transient = 0;
   const std::size_t total = study.cases.size();
   for (std::size_t n = 0; n < total; ++n) {
     if (n % io::kStudyProgressCases == 0 && n > 0) progress(n, total);
@@ -152,7 +161,13 @@ void warn_about_cases(const io::StudySpec& spec, const io::Study& study,
     fixed += c.roller.type == RollerType::oscillation && c.roller.unbalance == 0.0 &&
              c.roller.f != Roller{}.f;
     rolling += c.contact.pure_rolling ? 1 : 0;
+    transient += c.numerics.method == SteadyMethod::transient ? 1 : 0;
   }
+  if (continuation && transient == total)
+    warn("numerics.continuation is swept, but has no effect in any of the " +
+         std::to_string(total) +
+         " cases: numerics.method = \"transient\" starts every case from rest, and the rows "
+         "are the same for every value");
   if (!M0_given && fixed > 0)
     warn(std::to_string(fixed) + " of the " + std::to_string(total) +
          " cases change roller.f with M0 fixed at " + fmt(study.cases.front().roller.M0) +

@@ -520,5 +520,28 @@ TEST(CliSweep, AFrictionKeySweptUnderPureRollingIsSaid) {
   EXPECT_EQ(both.err.find("has no effect"), std::string::npos) << both.err;
 }
 
+// Keys that change no output of a sweep are said too: the frame's mass (Appendix A only), and
+// continuation where every case runs the transient method from rest.
+TEST(CliSweep, KeysThatChangeNoOutputAreSaid) {
+  TempDir dir;
+  std::ofstream(dir / "mf.toml") << "[sweep]\n\"roller.m_f\" = [2000.0, 3000.0]\n";
+  const Outcome mf = run({"sweep", dir / "mf.toml", "-q"});
+  EXPECT_EQ(mf.code, 0) << mf.err;
+  EXPECT_NE(mf.err.find("roller.m_f is swept, but nothing a sweep computes depends on it"),
+            std::string::npos)
+      << mf.err;
+  std::ofstream(dir / "nc.toml") << "[numerics]\nmethod = \"transient\"\n[sweep]\n"
+                                    "\"numerics.continuation\" = [true, false]\n";
+  const Outcome nc = run({"sweep", dir / "nc.toml", "-q"});
+  EXPECT_EQ(nc.code, 0) << nc.err;
+  EXPECT_NE(nc.err.find("numerics.continuation is swept, but has no effect in any of the 2 cases"),
+            std::string::npos)
+      << nc.err;
+  // With shooting, continuation is what such a study compares: meant.
+  std::ofstream(dir / "shoot.toml") << "[sweep]\n\"numerics.continuation\" = [true, false]\n";
+  const Outcome shoot = run({"sweep", dir / "shoot.toml", "-q"});
+  EXPECT_EQ(shoot.err.find("has no effect"), std::string::npos) << shoot.err;
+}
+
 }  // namespace
 }  // namespace oscidrum::test
