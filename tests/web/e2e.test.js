@@ -225,6 +225,21 @@ async function main() {
       assert.equal(busy.metrics, true);
       await ready();
       assert.equal(await page5.getAttribute('#status', 'class'), 'ok');
+      // An invalid input leaves the earlier case's results faded, its samples not exported (its
+      // table read 'steady_state' at full strength and its CSV was exported); a record read
+      // then does not turn the status green nor the case file on again (it exported the last
+      // valid case beside an invalid form).
+      await page5.fill('#in-mu', '-1');
+      await page5.waitForFunction(() => /invalid input/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
+      assert.equal(await page5.evaluate(() => document.getElementById('metrics').classList.contains('stale')), true);
+      assert.equal(await page5.isDisabled('#export-csv'), true);
+      assert.equal(await page5.isDisabled('#export-toml'), true);
+      await page5.setInputFiles('#record-file', { name: 'broken.csv', mimeType: 'text/csv', buffer: Buffer.from('t,ax,az\n0,1,2\n0.001,1,oops\n') });
+      await page5.waitForFunction(() => /cannot read/.test(document.getElementById('record-status').textContent), null, { timeout: 30000 });
+      assert.match(await page5.textContent('#status'), /invalid input/);
+      assert.equal(await page5.getAttribute('#status', 'class'), 'bad');
+      assert.equal(await page5.isDisabled('#export-toml'), true);
+      assert.equal(await page5.isDisabled('#export-csv'), true);
       await page5.close();
       console.log('ok   the unbalance\'s M0 for MMd (area as native), a period-2 plot of 4 periods, 0x28 refused beside R < r (both flagged), a misspelled choice in the link said, "computing" while a case runs');
     }

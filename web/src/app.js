@@ -542,9 +542,7 @@ function onMessage(msg) {
       const name = inputForKey(key);
       if (name && !inputErrors[name]) setError(name, message);
     }
-    const count = document.querySelectorAll('.field.invalid').length;
-    showStatus(`invalid input (${count} ${count === 1 ? 'field' : 'fields'}): see the messages next to the inputs`, false);
-    setExports(false, false);
+    showInvalid(invalidText());
     markReady();
     return;
   }
@@ -553,8 +551,7 @@ function onMessage(msg) {
     // the input of the parameter the error is about (the engine's error carries its key)
     const name = r.key ? inputForKey(r.key) : null;
     if (name && visibleInputs().includes(name)) setError(name, r.error);
-    showStatus(`invalid input: ${r.error}`, false);
-    setExports(false, false);
+    showInvalid(`invalid input: ${r.error}`);
     markReady();
     return;
   }
@@ -576,10 +573,28 @@ function markReady() {
 function setExports(caseOk, steadyOk) {
   $('export-toml').disabled = !caseOk;
   $('export-toml').title = caseOk ? 'a case file for oscidrum run' : 'the inputs are not valid: no case to export';
+  // The samples on screen are an earlier case's while the inputs are invalid.
+  $('export-csv').disabled = !caseOk;
+  $('export-csv').title = caseOk ? 'the sampled steady state' : 'the inputs are not valid: the samples shown are an earlier case\'s';
   for (const id of ['export-png', 'export-svg']) {
     $(id).disabled = !steadyOk;
     $(id).title = steadyOk ? '' : 'no steady state: no plots to export';
   }
+}
+
+// While an input is invalid, what is on screen is an earlier case's: faded, nothing to export,
+// and the status says so. (The previous case's table read 'steady_state' at full strength beside
+// an invalid form, its CSV still exported; a record's redraw turned the status green and the case
+// file on again, exporting the last valid case.)
+function showInvalid(text) {
+  showStatus(text, false);
+  setExports(false, false);
+  for (const id of STALE_WHILE_BUSY) $(id).classList.add('stale');
+}
+
+function invalidText() {
+  const count = document.querySelectorAll('.field.invalid').length;
+  return `invalid input (${count} ${count === 1 ? 'field' : 'fields'}): see the messages next to the inputs`;
 }
 
 function showStatus(text, ok, value = '') {
@@ -595,8 +610,7 @@ function onChange() {
   inputErrors = errors;
   for (const name of [...Object.keys(INPUTS), ...extras.map((f) => extraName(f.key))]) setError(name, errors[name] || '');
   if (Object.keys(errors).length) {
-    showStatus('invalid input: see the messages next to the inputs', false);
-    setExports(false, false);
+    showInvalid('invalid input: see the messages next to the inputs');
     // The other inputs are checked against their rules all the same (nothing is computed), so
     // that every invalid input is flagged at once, not only the first.
     const parsed = Object.fromEntries(Object.entries(caseValues(values)).filter(([, v]) => Number.isFinite(v)));
@@ -613,8 +627,12 @@ function render() {
   const { result: r, ms } = last;
   const ok = r.status === 'steady_state';
   const m = r.metrics;
-  showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
-  setExports(true, !!m);
+  if (document.querySelectorAll('.field.invalid').length) {
+    showInvalid(invalidText());  // redrawn for a record: still the earlier case's
+  } else {
+    showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
+    setExports(true, !!m);
+  }
   $('timing').textContent = `computed in ${ms.toFixed(0)} ms: ${r.diagnostics.periods_simulated} periods, ` +
     `${r.diagnostics.steps} steps, ${r.diagnostics.switches} stick/slip switches`;
   if (!m) {
