@@ -269,6 +269,12 @@ int run(AnalyzeOptions o) {
     if (m.fitted_periods == 2.0)
       s.line("period of the fitted signal",
              "2 excitation periods (a period-2 response: the subharmonics f/2, 3f/2, ... fitted)");
+    else if (m.fitted_periods > 2.0) {
+      const std::string p = fmt(m.fitted_periods, 1);
+      s.line("period of the fitted signal", p + " excitation periods (a period-" + p +
+                                                " response: the subharmonics f/" + p + ", 2f/" + p +
+                                                ", ... fitted)");
+    }
     s.line("quality", w.valid ? "ok" : "FAILED: " + w.reason);
     s.section("Metrics of the fitted periodic signal");
     s.line("x_M'' max / min [m/s^2]", fmt(m.ddx_max, 5) + " / " + fmt(m.ddx_min, 5));

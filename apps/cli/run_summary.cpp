@@ -37,7 +37,8 @@ std::string harmonics_text(const std::vector<Harmonic>& h, std::size_t n_max, bo
 // would mislead: "n/a" with the reason when the fundamental is absent (the ratio is NaN), "0" when
 // the numerator is below the threshold at which the harmonics line prints 0 (e.g. A(2f) of x_M''
 // without a driving torque: zero by symmetry, 1e-10 of rounding).
-std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, bool vibratory) {
+std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, bool vibratory,
+                                      int multiplicity) {
   struct Ratio {
     std::string_view name;
     double Metrics::*value;
@@ -80,8 +81,12 @@ std::optional<std::string> ratio_note(const Metrics& m, std::string_view name, b
   if (name == "rmv" || name == "ccv") {
     const double v = name == "rmv" ? m.rmv : m.ccv;
     if (std::isnan(v)) return std::string("n/a (A(f) of z_M'' is 0, e.g. by symmetry without MMd)");
+    // A state of period p has the frequencies k f / p: f/2 only where p is even.
     if (name == "rmv" && v == 0.0)
-      return std::string("0 (no f/2 component: the steady state repeats every period)");
+      return multiplicity > 1
+                 ? "0 (no f/2 component: the steady state repeats every " +
+                       std::to_string(multiplicity) + " periods, an odd number)"
+                 : std::string("0 (no f/2 component: the steady state repeats every period)");
     return std::nullopt;
   }
   for (const Ratio& r : kRatios) {
@@ -194,7 +199,7 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
     for (std::size_t i = 0; i < outputs.size(); ++i) {
       const MetricOutput& out = outputs[i];
       if (is_scalar(out)) {
-        const auto note = ratio_note(m, out.name, vibratory);
+        const auto note = ratio_note(m, out.name, vibratory, result.diagnostics.multiplicity);
         s.line(out.label, note ? *note : output_text(m, out) + round_off(out.name));
         continue;
       }

@@ -231,17 +231,18 @@
     "docs/outputs.md)")
 
 // Quantities of the least-squares fit of a measured record.
-#define OSCIDRUM_RECORD_FIT(X)                                                               \
-  X(double, cycles, "-", "periods spanned", "excitation periods the record spans")           \
-  X(double, residual_x, "-", "fit residual x_M''",                                           \
-    "RMS of record minus fit, relative to the RMS of x_M'' about its mean")                  \
-  X(double, residual_z, "-", "fit residual z_M''", "the same for z_M''")                     \
-  X(double, fitted_periods, "-", "periods of the fitted signal",                             \
-    "excitation periods after which the fitted signal repeats: 1, or 2 where the record's "  \
-    "subharmonics f/2, 3f/2, ... explain most of what the harmonics of f leave (a period-2 " \
-    "response, the 'double jump' RMV marks): the fit then holds every harmonic of f/2, the " \
-    "residuals are its, and the peaks and the area are of the two-period figure, as `run` "  \
-    "gives them for a period-2 state")
+#define OSCIDRUM_RECORD_FIT(X)                                                                \
+  X(double, cycles, "-", "periods spanned", "excitation periods the record spans")            \
+  X(double, residual_x, "-", "fit residual x_M''",                                            \
+    "RMS of record minus fit, relative to the RMS of x_M'' about its mean")                   \
+  X(double, residual_z, "-", "fit residual z_M''", "the same for z_M''")                      \
+  X(double, fitted_periods, "-", "periods of the fitted signal",                              \
+    "excitation periods p after which the fitted signal repeats: 1, or 2, 3 or 4 where the "  \
+    "record's subharmonics f/p, 2f/p, ... explain most of what the harmonics of f leave (a "  \
+    "period-2 response, the 'double jump' RMV marks; period 3 or 4 in the windows of "        \
+    "periodic motion beyond a drum's lift-off): the fit then holds every harmonic of f/p, "   \
+    "the residuals are its, and the peaks and the area are of the p-period figure, as `run` " \
+    "gives them for a period-p state (docs/cli.md, \"Period-2 and longer records\")")
 
 // What a record gives with the roller's case and its unbalance angle (`analyze --case
 // --unbalance-col`): the drum's vertical balance (20) in place of the contact force.

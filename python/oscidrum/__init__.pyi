@@ -507,7 +507,7 @@ class RecordMetrics:
     ddz_phase: numpy.ndarray
     """theta_n of z_M'' [rad]"""
     fitted_periods: float
-    """excitation periods after which the fitted signal repeats: 1, or 2 where the record's subharmonics f/2, 3f/2, ... explain most of what the harmonics of f leave (a period-2 response, the 'double jump' RMV marks): the fit then holds every harmonic of f/2, the residuals are its, and the peaks and the area are of the two-period figure, as `run` gives them for a period-2 state [-]"""
+    """excitation periods p after which the fitted signal repeats: 1, or 2, 3 or 4 where the record's subharmonics f/p, 2f/p, ... explain most of what the harmonics of f leave (a period-2 response, the 'double jump' RMV marks; period 3 or 4 in the windows of periodic motion beyond a drum's lift-off): the fit then holds every harmonic of f/p, the residuals are its, and the peaks and the area are of the p-period figure, as `run` gives them for a period-p state (docs/cli.md, "Period-2 and longer records") [-]"""
     kb: float
     """Re(F_v(f) / z_M(f)) as for a simulated state, with F_v(f) = F0 e^{i phi_u} + (m nu^2 - kd - i nu cd) z_M(f) from the drum's vertical balance (20), z_M(f) = -z_M''(f) / nu^2: kb = m nu^2 - kd - F0 nu^2 cos(phi_u - theta_1) / A_1 with A_1, theta_1 of z_M'' and phi_u the unbalance's phase (vibratory drum: m, kd, F0 = m_u e_u nu^2 from the case; NaN without the case or the unbalance angle; docs/outputs.md) [N/m]"""
     psi_xz: float

@@ -425,6 +425,11 @@ TEST(CliRun, ASteadyStateBeyondMaxMultiplicityNamesTheSetting) {
   o = run(set);
   EXPECT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("repeating every 11 excitation periods"), std::string::npos) << o.out;
+  // Its frequencies are k f / 11: no f/2, for that reason, not because it repeats every period.
+  EXPECT_NE(o.out.find("0 (no f/2 component: the steady state repeats every 11 periods, an odd "
+                       "number)"),
+            std::string::npos)
+      << o.out;
 }
 
 TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
