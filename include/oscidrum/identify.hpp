@@ -96,6 +96,10 @@ struct MeasureOptions {
   /// would otherwise leak into the harmonics.
   int trend_degree = 3;
   int covariance = 4;  ///< harmonics whose covariance is kept (K above) [-]
+  /// Excitation periods after which the window's response repeats (analyze_record's
+  /// fitted_periods: 1 ... 4) [-]: for p > 1 its subharmonics k f / p (k not a multiple of p,
+  /// up to p N) are fitted to what the harmonics leave and are not counted as noise.
+  int period = 1;
 };
 
 /// The measured response of one window (t [s] strictly increasing, any spacing; x_M'', z_M''

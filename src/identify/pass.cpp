@@ -64,8 +64,11 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
         } catch (const Error& e) {
           throw Error(std::string("identify: ") + e.what());
         }
+        // A period-p window (analyze's fitted_periods): its subharmonics are fitted, not noise.
+        MeasureOptions mw = mo;
+        mw.period = std::clamp(static_cast<int>(w.metrics.fitted_periods), 1, 4);
         MeasuredResponse d = measure_window(tw, ddx.subspan(w.first, w.count),
-                                            ddz.subspan(w.first, w.count), w.f, mo);
+                                            ddz.subspan(w.first, w.count), w.f, mw);
         ++measured;
         const std::size_t resolved = std::min(d.ddx.size(), d.ddz.size());
         if (static_cast<int>(resolved) < o.harmonics) {
@@ -78,6 +81,18 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
         pe.identification =
             identify(base, d, o, previous ? &out[*previous].identification : nullptr);
         pe.valid = true;
+        if (mw.period > 1) {
+          // What the model is compared on: the harmonics of f alone.
+          const std::string p = std::to_string(mw.period);
+          pe.identification.warnings.push_back(
+              "the record repeats every " + p + " excitation periods (a period-" + p +
+              " response: its subharmonics f/" + p + ", ... fitted as signal, rmv " +
+              detail::format("%.3g", w.metrics.rmv) +
+              "): the model is compared on the harmonics of f alone, which a period-1 steady "
+              "state near the estimate may match as well; check the estimate with `oscidrum run` "
+              "(its multiplicity should be " +
+              p + ")");
+        }
       } catch (const Error& e) {
         pe.reason = e.what();
       }

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "drivers/bifurcation_cases.hpp"
 #include "identify/synthetic_records.hpp"
 #include "oscidrum/oscidrum.hpp"
 
@@ -531,6 +532,34 @@ TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
   }
   EXPECT_GE(failed_between, 2);
   EXPECT_GE(after, 3);
+}
+
+// A period-2 record (the log-spiral drum past its period doubling, G = 150 MN/m^2): identify
+// compares the harmonics of f alone, and says so; the subharmonics are not the window's noise.
+// Before, they were (the noise 12 times the record's on a drum lifting off every second period),
+// and a G off by several of its intervals came with no warning.
+TEST(Identify, APeriodTwoRecordIsSaidAndItsSubharmonicsAreNotNoise) {
+  Case c = test::period_two_case();
+  c.numerics.output_periods = 10;  // 20 excitation periods
+  c.numerics.samples_per_period = 64;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  ASSERT_EQ(r.diagnostics.multiplicity, 2);
+  std::vector<double> x = r.samples.ddx_M, z = r.samples.ddz_M;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (double& v : x) v += 0.05 * g(rng);
+  for (double& v : z) v += 0.05 * g(rng);
+  IdentifyOptions o;
+  o.profile = false;
+  const std::vector<PassEstimate> pass = identify_pass(c, r.samples.t, x, z, {}, {}, o);
+  ASSERT_EQ(pass.size(), 1u);
+  ASSERT_TRUE(pass[0].valid) << pass[0].reason;
+  EXPECT_EQ(pass[0].window.metrics.fitted_periods, 2.0);
+  const std::vector<std::string>& w = pass[0].identification.warnings;
+  EXPECT_TRUE(std::any_of(w.begin(), w.end(), [](const std::string& s) {
+    return s.find("the record repeats every 2 excitation periods") != std::string::npos;
+  }));
 }
 
 // The diagnosis of a poor fit names the cause it checked, with the flag that fixes it: mu or MMd
