@@ -1467,6 +1467,22 @@ TEST(Record, AResidualOfFoldedOvertonesSaysSo) {
                               "300 samples/s and fold between the fitted ones"),
             std::string::npos)
       << ws[0].reason;
+  // At 500 samples/s (12.8 samples per period: 5 harmonics) on stiff soil 6f lies below half the
+  // rate unfitted and 7f folds to 227 Hz: the same cause, said so, not the frequency search held
+  // below 100 Hz (the record has the 5 f samples/s that hint asked for).
+  c.soil.G = 60e6;
+  options.sample_rate = 500;
+  options.noise = 0.0;
+  const RecordSamples r500 = synthetic_record({c}, options);
+  const std::vector<RecordWindow> w500 =
+      analyze_windows(r500.t, r500.ddx_M, r500.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(w500.size(), 1u);
+  EXPECT_FALSE(w500[0].valid);
+  EXPECT_NE(w500[0].reason.find("the harmonics above the 5 fitted, from 234 Hz, are not fitted, "
+                                "12.82 samples per period holding 5"),
+            std::string::npos)
+      << w500[0].reason;
+  EXPECT_EQ(w500[0].reason.find("f was searched"), std::string::npos) << w500[0].reason;
 }
 
 TEST(Record, RejectsBadRecords) {
