@@ -14,6 +14,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <unsupported/Eigen/FFT>
 #include <vector>
 
@@ -383,53 +384,68 @@ constexpr double kFoldedOrder = 128.0;
 
 double rms_about_mean(std::span<const double> y);
 
-// Of what the fit `rf` on the harmonics of f (n_max of them) leaves of x and z, the share that
-// the low subharmonics k f / p (k < 3 p, not a multiple of p) explain, each channel weighted as
-// fitted_period weighs it (by its variance): a cheap screen for a period-p response that an f
-// refined on the harmonics of f hides. Over a short window that f is pulled by the subharmonics
-// (58.023 Hz for 58 over 12 periods of a period-3 drum), and the fit on the harmonics of f/p at
-// it misses the high ones; the low subharmonics, whose phase such an error hardly moves, still
-// carry most of what the harmonics of f leave. White noise gives about 4 p / n, harmonics beyond
-// n_max (a stick-slip response's) almost nothing.
-double low_subharmonic_share(std::span<const double> t, std::span<const double> x,
-                             std::span<const double> z, double f, int n_max, int p,
-                             const RecordFit& rf) {
-  std::vector<int> orders;
-  for (int k = 1; k < 3 * p; ++k)
-    if (k % p != 0) orders.push_back(k);
-  const auto cols = static_cast<Eigen::Index>(2 * orders.size());
-  double left = 0.0, explained = 0.0;
-  for (int c = 0; c < 2; ++c) {
-    const std::span<const double> y = c == 0 ? x : z;
-    const Eigen::VectorXd& coef = c == 0 ? rf.fit.cx : rf.fit.cz;
-    const double scale = rms_about_mean(y);
-    if (!(scale > 0.0)) continue;
-    detail::HarmonicsInOrder h(t, 0.0, f, n_max);
-    std::vector<double> cs(3 * p), sn(3 * p);
-    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(cols, cols);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(cols);
-    Eigen::VectorXd row(cols);
-    double sse = 0.0;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      h.at(i);
-      double fitted = coef[0];
-      for (int n = 1; n <= n_max; ++n)
-        fitted += coef[2 * n - 1] * h.cos(n) + coef[2 * n] * h.sin(n);
-      const double e = y[i] - fitted;
-      sse += e * e;
-      harmonics_at(f / p * (t[i] - t.front()), 3 * p - 1, cs, sn);
-      for (std::size_t j = 0; j < orders.size(); ++j) {
-        row[static_cast<Eigen::Index>(2 * j)] = cs[static_cast<std::size_t>(orders[j])];
-        row[static_cast<Eigen::Index>(2 * j + 1)] = sn[static_cast<std::size_t>(orders[j])];
-      }
-      G.selfadjointView<Eigen::Lower>().rankUpdate(row);
-      b += e * row;
+// What the fit `rf` on the harmonics of f (n_max of them) leaves of x and z, each over its
+// variance about the mean (as fitted_period weighs the channels): low_subharmonic_shares' input.
+struct Leftover {
+  std::vector<double> x, z;
+  double scale_x = 0.0, scale_z = 0.0;  // n var
+};
+
+Leftover leftover_of(std::span<const double> t, std::span<const double> x,
+                     std::span<const double> z, double f, int n_max, const RecordFit& rf) {
+  Leftover l;
+  l.x.resize(t.size());
+  l.z.resize(t.size());
+  detail::HarmonicsInOrder h(t, 0.0, f, n_max);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    h.at(i);
+    double fx = rf.fit.cx[0], fz = rf.fit.cz[0];
+    for (int n = 1; n <= n_max; ++n) {
+      fx += rf.fit.cx[2 * n - 1] * h.cos(n) + rf.fit.cx[2 * n] * h.sin(n);
+      fz += rf.fit.cz[2 * n - 1] * h.cos(n) + rf.fit.cz[2 * n] * h.sin(n);
     }
-    const double var = scale * scale * static_cast<double>(y.size());
-    G.triangularView<Eigen::StrictlyUpper>() = G.transpose();
-    const Eigen::VectorXd sol = G.ldlt().solve(b);
-    left += sse / var;
-    explained += std::max(0.0, b.dot(sol)) / var;
+    l.x[i] = x[i] - fx;
+    l.z[i] = z[i] - fz;
+  }
+  const double n = static_cast<double>(t.size());
+  l.scale_x = std::pow(rms_about_mean(x), 2) * n;
+  l.scale_z = std::pow(rms_about_mean(z), 2) * n;
+  return l;
+}
+
+// Of what the fit on the harmonics of f leaves (`l`), the share that the low subharmonics k f / p
+// (k < 3 p, not a multiple of p) explain: a cheap screen for a period-p response that an f
+// refined on the harmonics of f hides. Over a short window that f is pulled by the subharmonics
+// (58.023 Hz for 58 over 12 periods of a period-3 drum), and the fit on the harmonics of f/p at it
+// misses the high ones; the low subharmonics, whose phase such an error hardly moves, still carry
+// most of what the harmonics of f leave. By projection (the window spans at least 2 p periods, so
+// that these frequencies are nearly orthogonal to each other and to the harmonics of f): white
+// noise gives about 4 p / n, harmonics beyond n_max (a stick-slip response's) almost nothing.
+double low_subharmonic_share(std::span<const double> t, const Leftover& l, double f, int p) {
+  const std::size_t top = static_cast<std::size_t>(3 * p - 1);
+  std::vector<double> cs(top + 1), sn(top + 1);
+  std::vector<double> px(2 * (top + 1), 0.0), pz(px.size(), 0.0);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    harmonics_at(f / p * (t[i] - t.front()), static_cast<int>(top), cs, sn);
+    for (std::size_t k = 1; k <= top; ++k) {
+      if (k % static_cast<std::size_t>(p) == 0) continue;
+      px[2 * k] += l.x[i] * cs[k];
+      px[2 * k + 1] += l.x[i] * sn[k];
+      pz[2 * k] += l.z[i] * cs[k];
+      pz[2 * k + 1] += l.z[i] * sn[k];
+    }
+  }
+  const double n = static_cast<double>(t.size());
+  double explained = 0.0, left = 0.0;
+  for (const auto& [e, scale, proj] :
+       {std::tuple{&l.x, l.scale_x, &px}, std::tuple{&l.z, l.scale_z, &pz}}) {
+    if (!(scale > 0.0)) continue;
+    double sse = 0.0;
+    for (const double v : *e) sse += v * v;
+    double ex = 0.0;
+    for (const double c : *proj) ex += c * c;
+    left += sse / scale;
+    explained += std::min(sse, 2.0 * ex / n) / scale;
   }
   return left > 0.0 ? explained / left : 0.0;
 }
@@ -1724,9 +1740,10 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
           // subharmonics explain a good part of what that fit leaves, f is refined on the
           // harmonics of f/p too, and the window taken there where it fits better.
           const RecordFit rf = fit_record(tw, xw, zw, fw, n_max);
+          const Leftover left = leftover_of(tw, xw, zw, fw, n_max, rf);
           const double window_periods = (aw.t_end - aw.t_start + sample_step) * fw;
           for (int p = 2; p <= kMaxFittedPeriods && window_periods >= 2.0 * p - 1e-2; ++p) {
-            if (low_subharmonic_share(tw, xw, zw, fw, n_max, p, rf) < kSubharmonicScreen) continue;
+            if (low_subharmonic_share(tw, left, fw, p) < kSubharmonicScreen) continue;
             const double fp =
                 refine_periodic(tw, xw, zw, f0, std::min(0.05, 0.5 / periods), p * nf, p);
             RecordMetrics m = analyze_record(tw, xw, zw, fp, n_max);

@@ -232,6 +232,8 @@ async function main() {
       await page5.fill('#in-mu', '-1');
       await page5.waitForFunction(() => /invalid input/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
       assert.equal(await page5.evaluate(() => document.getElementById('metrics').classList.contains('stale')), true);
+      // The timing line beside the status is the earlier case's too.
+      assert.equal(await page5.evaluate(() => document.getElementById('timing').classList.contains('stale')), true);
       assert.equal(await page5.isDisabled('#export-csv'), true);
       assert.equal(await page5.isDisabled('#export-toml'), true);
       await page5.setInputFiles('#record-file', { name: 'broken.csv', mimeType: 'text/csv', buffer: Buffer.from('t,ax,az\n0,1,2\n0.001,1,oops\n') });

@@ -512,7 +512,7 @@ function send(msg) {
 }
 
 // What is faded while a case computes.
-const STALE_WHILE_BUSY = ['plot-time', 'plot-figure', 'drum', 'metrics', 'plot-spec-x', 'plot-spec-z', 'area-caption'];
+const STALE_WHILE_BUSY = ['plot-time', 'plot-figure', 'drum', 'metrics', 'plot-spec-x', 'plot-spec-z', 'area-caption', 'timing'];
 
 function onMessage(msg) {
   if (msg.type === 'ready') {
