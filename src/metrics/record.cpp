@@ -1815,8 +1815,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         // frequency that was found right.
         // So do the harmonics just above the N fitted where the sampling could not fit one more
         // (2 N + 3 samples per period): at 500 samples/s and 39 Hz (12.8 samples per period, 5
-        // harmonics) 6f lies below half the rate unfitted and 7f folds to 227 Hz, and the hint of
-        // a search held below --f-max asked for 5 f samples/s, which the record had.
+        // harmonics) 6f lies below half the rate unfitted and 7f folds to 227 Hz, and only the
+        // hint of a search held below --f-max was given (it follows, as f may be wrong).
         const double nyquist = 0.5 / sample_step;
         const double rate = 1.0 / sample_step;
         const bool beyond = (n_max + 1) * fw > nyquist;
@@ -1832,8 +1832,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                  ", and those beyond half the " + sig4(rate) + " samples/s fold") +
                       " between the fitted ones: a response with overtones needs more samples "
                       "per period; record at " +
-                      sig4(21.0 * fw) + " samples/s (21 f, 10 harmonics) or more)" +
-                      (rate >= 5.0 * fw ? std::string() : slow_logger)
+                      sig4(21.0 * fw) + " samples/s (21 f, 10 harmonics) or more)" + slow_logger
                 : slow_logger;
         reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
                           num(o.gates.max_residual) + folded);

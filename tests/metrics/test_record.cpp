@@ -1468,8 +1468,8 @@ TEST(Record, AResidualOfFoldedOvertonesSaysSo) {
             std::string::npos)
       << ws[0].reason;
   // At 500 samples/s (12.8 samples per period: 5 harmonics) on stiff soil 6f lies below half the
-  // rate unfitted and 7f folds to 227 Hz: the same cause, said so, not the frequency search held
-  // below 100 Hz (the record has the 5 f samples/s that hint asked for).
+  // rate unfitted and 7f folds to 227 Hz: the same cause, said first (only the frequency search
+  // held below 100 Hz was named).
   c.soil.G = 60e6;
   options.sample_rate = 500;
   options.noise = 0.0;
@@ -1482,7 +1482,6 @@ TEST(Record, AResidualOfFoldedOvertonesSaysSo) {
                                 "12.82 samples per period holding 5"),
             std::string::npos)
       << w500[0].reason;
-  EXPECT_EQ(w500[0].reason.find("f was searched"), std::string::npos) << w500[0].reason;
 }
 
 TEST(Record, RejectsBadRecords) {
