@@ -450,6 +450,8 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
   if (out.journal) {
     // Streamed from the journal into the row store: a resumed million-case sweep holds no rows.
     const std::vector<std::string> header = io::csv_split(p.header);
+    // The journal's cases whose steady state the partial HDF5 file lacks (said below).
+    std::vector<bool> lost(out.hdf5 ? p.total : 0);
     out.journal->for_each_done([&](std::size_t index, const std::string& row) {
       // A row the sweep did not write as it reads (edited, damaged) is refused, never copied
       // into the results: its cells, status and numbers, and its swept values, the case's.
@@ -470,9 +472,26 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
       if (!o.cases_dir.empty() &&
           !std::filesystem::exists(o.cases_dir + "/" + case_file_name(index, p.total)))
         return;
-      if (out.hdf5 && !out.hdf5->has_case(index)) return;  // run again for its steady state
+      if (out.hdf5 && !out.hdf5->has_case(index)) {  // run again for its steady state
+        lost[index] = true;
+        return;
+      }
       out.add(index, row, p.study.keys.size());
     });
+    // A kill -9 keeps the journal's rows, but the HDF5 file only as it was at its last flush (at
+    // most a second before), or damaged (its later writes half done): the cases it lost run again.
+    if (const auto n = std::count(lost.begin(), lost.end(), true); n > 0) {
+      const std::string cases = std::to_string(n) + " finished case" + (n == 1 ? "" : "s");
+      if (out.hdf5->partial_was_damaged())
+        warn("the partial HDF5 file " + o.hdf5 + ".partial was damaged (the sweep was killed " +
+             "before it was written out): " + cases + (n == 1 ? " is" : " are") +
+             " run again for " + (n == 1 ? "its steady state" : "their steady states"));
+      else
+        warn("the partial HDF5 file " + o.hdf5 + ".partial lacks the steady state" +
+             (n == 1 ? "" : "s") + " of " + cases + " (the sweep was killed before " +
+             (n == 1 ? "it was" : "they were") +
+             " written out): " + (n == 1 ? "it is" : "they are") + " run again");
+    }
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -300,6 +301,102 @@ bool signature(const std::string& path) {
   return in.gcount() == 8 && std::memcmp(head, "\x89HDF\r\n\x1a\n", 8) == 0;
 }
 
+// A new study file at `path` (named `file` in messages): the root's attributes and the empty
+// group /steady_state, flushed.
+Id create_study_file(const std::string& path, const Hdf5StudyInfo& info, const std::string& file) {
+  Id f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!f.ok()) throw Error("cannot write " + file);
+  write_root_attributes(f, info, file);
+  const Id g = checked(H5Gcreate2(f, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                       H5Gclose, "cannot write " + file);
+  std::vector<std::string> order;  // the column order of docs/csv-columns.md
+  for (const SampleColumn& c : sample_columns()) order.emplace_back(c.name);
+  order.emplace_back("phase");
+  attr_strings(g, "columns", order, file);
+  check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot write " + file);
+  return f;
+}
+
+// The names of the links in `group` as far as they can be listed: false if the listing stopped
+// short (a damaged group), with the names found before.
+herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* names) {
+  static_cast<std::vector<std::string>*>(names)->emplace_back(name);
+  return 0;
+}
+bool list_names(hid_t group, std::vector<std::string>& names) {
+  hsize_t at = 0;
+  return H5Literate(group, H5_INDEX_NAME, H5_ITER_NATIVE, &at, collect_name, &names) >= 0;
+}
+
+// True if the group `name` of `steady` (/steady_state of an interrupted sweep's partial file) is
+// case `index`'s and reads back whole: its attributes, and every steady-state column read to its
+// end (each chunk inflated: a chunk torn or never written fails zlib's check), all of one length.
+bool case_reads_back(hid_t steady, const std::string& name, std::size_t index) {
+  const Id g(H5Gopen2(steady, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.ok()) return false;
+  try {
+    if (read_attr_int(g, "case", name) != static_cast<std::int64_t>(index)) return false;
+    (void)read_attr_string(g, "status", name);
+    (void)read_attr_int(g, "sample_periods", name);
+    (void)read_attr_int(g, "samples_per_period", name);
+    (void)read_attr_double(g, "frequency", name);
+  } catch (const Error&) {
+    return false;
+  }
+  std::vector<std::string> columns;
+  for (const SampleColumn& c : sample_columns()) columns.emplace_back(c.name);
+  columns.emplace_back("phase");
+  hssize_t n = -1;
+  std::vector<double> values;
+  for (const std::string& column : columns) {
+    const Id d(H5Dopen2(g, column.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!d.ok()) return false;
+    const Id space(H5Dget_space(d), H5Sclose);
+    const hssize_t m = space.ok() ? H5Sget_simple_extent_npoints(space) : -1;
+    if (m < 0 || (n >= 0 && m != n)) return false;
+    n = m;
+    values.resize(static_cast<std::size_t>(m));
+    if (m > 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+      return false;
+  }
+  return true;
+}
+
+// Copy into the new study file `dst` (named `file` in messages) every case group of `src`, an
+// interrupted sweep's partial file, that reads back whole (case_reads_back); its time scale is
+// attached anew, as in a merge. False if any group was left out or the list of groups could not
+// be read to its end.
+bool copy_whole_cases(hid_t src, hid_t dst, std::size_t n_cases, const std::string& file) {
+  const Id from(H5Gopen2(src, "steady_state", H5P_DEFAULT), H5Gclose);
+  if (!from.ok()) return false;
+  std::vector<std::string> names;
+  bool whole = list_names(from, names);
+  for (const std::string& name : names) {
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), index);
+    if (ec != std::errc() || end != name.data() + name.size() || index >= n_cases ||
+        name != case_group(index) || !case_reads_back(from, name, index)) {
+      whole = false;
+      continue;
+    }
+    const std::string full = "steady_state/" + name;
+    bool copied = H5Ocopy(from, name.c_str(), dst, full.c_str(), H5P_DEFAULT, H5P_DEFAULT) >= 0;
+    try {
+      if (copied) {
+        const Id g = checked(H5Gopen2(dst, full.c_str(), H5P_DEFAULT), H5Gclose, "");
+        attach_time_scale(g, file, true);
+      }
+    } catch (const Error&) {
+      copied = false;
+    }
+    if (!copied) {
+      whole = false;
+      if (H5Lexists(dst, full.c_str(), H5P_DEFAULT) > 0) H5Ldelete(dst, full.c_str(), H5P_DEFAULT);
+    }
+  }
+  return whole;
+}
+
 }  // namespace
 
 bool is_hdf5_file(const std::string& path) { return signature(path); }
@@ -308,10 +405,49 @@ struct StudyHdf5Writer::Impl {
   std::string path, partial;
   Id file;
   std::chrono::steady_clock::time_point flushed = std::chrono::steady_clock::now();
+  bool damaged = false;  // the partial file resumed was (cases left out)
+
+  void resume(const Hdf5StudyInfo& info);
 };
+
+// --resume: a kill between two flushes leaves a partial file whose last metadata (the B-tree of
+// /steady_state, object headers) never reached the disk, while its root attributes still read:
+// appending to it aborted inside libhdf5 (H5Gcreate2), or failed with HDF5's internals on stderr.
+// So nothing is appended to it: a fresh partial file gets every case group of the old one that
+// reads back whole (the journal's other cases run again, their groups missing), and replaces it
+// (renamed over it, so that a kill meanwhile leaves the old one). A file that does not open, or
+// whose attributes do not read, keeps no case; one of another study is refused.
+void StudyHdf5Writer::Impl::resume(const Hdf5StudyInfo& info) {
+  Id old(H5Fopen(partial.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (old.ok()) {
+    std::string fingerprint, shard;
+    try {
+      fingerprint = read_attr_string(old, "study_fingerprint", partial);
+      shard = read_attr_string(old, "shard", partial);
+    } catch (const Error&) {
+      old.reset();
+    }
+    if (old.ok() && (fingerprint != hex(info.fingerprint) ||
+                     shard != (info.sharded ? info.shard.text() : std::string())))
+      throw Error("the HDF5 file " + partial +
+                  " belongs to a different study; run with --restart to discard it");
+  }
+  damaged = !old.ok();
+  OutputFile fresh(partial, true);
+  {
+    const Id f = create_study_file(fresh.write_path(), info, partial);
+    if (old.ok()) damaged = !copy_whole_cases(old, f, info.n_cases, partial);
+    check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot write " + partial);
+  }
+  old.reset();
+  fresh.commit();
+  file = Id(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+  if (!file.ok()) throw Error("cannot write " + partial);
+}
 
 StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bool resume)
     : impl_(std::make_unique<Impl>()) {
+  // Also while a damaged partial file is read: its errors are dealt with, never printed.
   const QuietErrors quiet;
   impl_->path = std::move(path);
   // Beside the file the name leads to (through symbolic links); a FIFO or device is refused: an
@@ -321,35 +457,15 @@ StudyHdf5Writer::StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bo
   (void)output_target(partial, true);
   std::error_code ec;
   if (resume && std::filesystem::exists(partial, ec)) {
-    impl_->file = Id(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
-    bool same = impl_->file.ok();
-    try {
-      same = same &&
-             read_attr_string(impl_->file, "study_fingerprint", partial) == hex(info.fingerprint) &&
-             read_attr_string(impl_->file, "shard", partial) ==
-                 (info.sharded ? info.shard.text() : std::string());
-    } catch (const Error&) {
-      same = false;
-    }
-    if (!same)
-      throw Error("the HDF5 file " + partial +
-                  " is damaged or belongs to a different study; run with --restart to discard it");
+    impl_->resume(info);
     return;
   }
-  impl_->file = Id(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (!impl_->file.ok()) throw Error("cannot write " + partial);
-  write_root_attributes(impl_->file, info, partial);
-  const Id g =
-      checked(H5Gcreate2(impl_->file, "steady_state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-              H5Gclose, "cannot write " + partial);
-  std::vector<std::string> order;  // the column order of docs/csv-columns.md
-  for (const SampleColumn& c : sample_columns()) order.emplace_back(c.name);
-  order.emplace_back("phase");
-  attr_strings(g, "columns", order, partial);
-  H5Fflush(impl_->file, H5F_SCOPE_GLOBAL);
+  impl_->file = create_study_file(partial, info, partial);
 }
 
 StudyHdf5Writer::~StudyHdf5Writer() = default;
+
+bool StudyHdf5Writer::partial_was_damaged() const { return impl_->damaged; }
 
 bool StudyHdf5Writer::has_case(std::size_t index) const {
   const QuietErrors quiet;

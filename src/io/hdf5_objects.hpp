@@ -140,6 +140,14 @@ inline std::int64_t read_attr_int(hid_t obj, const char* name, const std::string
   return v;
 }
 
+inline double read_attr_double(hid_t obj, const char* name, const std::string& file) {
+  if (H5Aexists(obj, name) <= 0) throw Error(file + ": attribute " + name + " missing");
+  const Id a = checked(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, file + ": attribute " + name);
+  double v = 0;
+  check(H5Aread(a, H5T_NATIVE_DOUBLE, &v), file + ": attribute " + name + " is not a number");
+  return v;
+}
+
 // Elements per chunk of a compressed dataset (the steady states' columns).
 inline constexpr std::size_t kChunk = 16384;
 // The deflate level of the steady states. Level 1: the same size as level 4 on steady states

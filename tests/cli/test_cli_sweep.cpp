@@ -1,10 +1,14 @@
 // End-to-end tests of `oscidrum sweep`: the examples run, parallel output equals serial output,
 // each case's steady state, and kill-and-resume losing nothing.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <signal.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -108,12 +112,13 @@ TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
 // stopped in the middle.
 // The transient method: independent cases (no continuation), so that resuming gives the same
 // bytes.
-std::string write_slow_study(const TempDir& dir) {
+std::string write_slow_study(const TempDir& dir, int cases = 60) {
   std::ofstream(dir / "slow.toml")
       << "[soil]\ninput = \"modulus\"\n[contact]\npure_rolling = true\n"
          // slow: the transient method takes 300-1600 periods per pure-rolling case
          "[numerics]\nmethod = \"transient\"\n"
-         "[sweep]\n\"soil.G\" = { start = 5e6, stop = 70e6, num = 60 }\n";
+         "[sweep]\n\"soil.G\" = { start = 5e6, stop = 70e6, num = "
+      << cases << " }\n";
   return dir / "slow.toml";
 }
 
@@ -254,6 +259,152 @@ TEST(CliSweep, ResumeNeedsTheHdf5FileTheSweepWasWriting) {
   EXPECT_EQ(with.code, 0) << with.err;
   EXPECT_TRUE(std::filesystem::exists(h5));
   EXPECT_FALSE(std::filesystem::exists(h5 + ".partial"));
+}
+
+// The datasets of an HDF5 file that a --resume test compares with an uninterrupted run's.
+class Hdf5File {
+ public:
+  explicit Hdf5File(const std::string& path)
+      : id_(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
+  ~Hdf5File() {
+    if (id_ >= 0) H5Fclose(id_);
+  }
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+  bool ok() const { return id_ >= 0; }
+  // The names in a group (empty if it is missing).
+  std::vector<std::string> names(const std::string& group) const {
+    std::vector<std::string> out;
+    hsize_t at = 0;
+    H5Literate_by_name(
+        id_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, &at,
+        [](hid_t, const char* name, const H5L_info_t*, void* v) {
+          static_cast<std::vector<std::string>*>(v)->emplace_back(name);
+          return herr_t{0};
+        },
+        &out, H5P_DEFAULT);
+    return out;
+  }
+  // A numeric 1-D dataset as doubles ({NaN} if it does not read).
+  std::vector<double> doubles(const std::string& name) const {
+    const hid_t d = H5Dopen2(id_, name.c_str(), H5P_DEFAULT);
+    if (d < 0) return {std::nan("")};
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    if (!v.empty() && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+      v = {std::nan("")};
+    H5Sclose(space);
+    H5Dclose(d);
+    return v;
+  }
+
+ private:
+  hid_t id_;
+};
+
+// The same values bit for bit (NaN too).
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// The end of an HDF5 file as its superblock records it (version 0, HDF5 1.10's default): where the
+// file ended at its last flush. `end` given: recorded instead.
+std::uint64_t recorded_end(const std::string& path, std::uint64_t end = 0) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  unsigned char head[48] = {};
+  f.read(reinterpret_cast<char*>(head), sizeof head);
+  if (!f || head[8] != 0 || head[13] != 8) return 0;  // superblock version, size of offsets
+  if (end > 0) {
+    f.seekp(40);
+    f.write(reinterpret_cast<const char*>(&end), sizeof end);
+    return end;
+  }
+  std::memcpy(&end, head + 40, sizeof end);
+  return end;
+}
+
+// Two ways a kill leaves the partial HDF5 file damaged.
+// The writes since the last flush half done: the superblock records the end of the file as it
+// was at an earlier flush, and what lies past it is lost (the tester's file: the B-tree of
+// /steady_state past it, the root attributes still read).
+void cut_recorded_end(const std::string& path) {
+  const std::uint64_t end = recorded_end(path);
+  ASSERT_GT(end, 65536u);
+  recorded_end(path, end / 2);
+}
+// The file cut short (short of the end it records): it does not open.
+void cut_file(const std::string& path) {
+  const std::uint64_t end = recorded_end(path);
+  ASSERT_GT(end, 65536u);
+  std::filesystem::resize_file(path, end / 2);
+}
+
+// A sweep killed (kill -9) while writing --hdf5 left its partial file damaged: --resume appended
+// to it and aborted inside libhdf5 (exit 134), or stopped with exit 2 and HDF5's internals on
+// stderr. The resumed sweep keeps the cases that read back, runs the others again, says so, and
+// ends with both files as an uninterrupted run writes them.
+TEST(CliSweep, ResumeAfterAKillRecoversADamagedPartialHdf5File) {
+  TempDir dir;
+  // Longer than the second between two flushes of the HDF5 file.
+  const std::string study = write_slow_study(dir, 120);
+  const std::string out = dir / "r.csv", journal = out + ".journal", h5 = dir / "r.h5";
+  const Outcome reference =
+      run({"sweep", study, "--out", dir / "ref.csv", "--hdf5", dir / "ref.h5", "-q"});
+  ASSERT_EQ(reference.code, 0) << reference.err;
+  const Hdf5File ref(dir / "ref.h5");
+  ASSERT_TRUE(ref.ok());
+  const std::vector<std::string> cases = ref.names("steady_state");
+  ASSERT_EQ(cases.size(), 120u);
+  const std::vector<std::string> columns = ref.names("steady_state/" + cases.front());
+  ASSERT_GE(columns.size(), 20u);
+
+  for (const auto& [how, damage] :
+       {std::pair<std::string, void (*)(const std::string&)>{"end cut", cut_recorded_end},
+        {"file cut", cut_file}}) {
+    SCOPED_TRACE(how);
+    std::filesystem::remove(out);
+    std::filesystem::remove(h5);
+    // Killed after a flush of the partial file (a second into the sweep: its recorded end grows
+    // past the 7 kB of a new file) and two more cases.
+    const pid_t pid = start({"sweep", study, "--out", out, "--hdf5", h5, "--threads", "1"},
+                            dir / "out", dir / "err");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (recorded_end(h5 + ".partial") <= 65536 && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    const std::size_t rows = count_lines(slurp(journal));
+    while (count_lines(slurp(journal)) < rows + 2 && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    ::kill(pid, SIGKILL);
+    Outcome o = finish(pid, dir / "out", dir / "err");
+    ASSERT_EQ(o.signal, SIGKILL) << "the sweep ended before it could be killed: " << o.err;
+    damage(h5 + ".partial");
+
+    o = run({"sweep", study, "--out", out, "--hdf5", h5, "--resume", "-q"});
+    ASSERT_EQ(o.code, 0) << o.err;
+    EXPECT_NE(o.err.find("oscidrum: warning: the partial HDF5 file " + h5 +
+                         ".partial was damaged (the sweep was killed before it was written out): "),
+              std::string::npos)
+        << o.err;
+    EXPECT_NE(o.err.find(" finished cases are run again for their steady states\n"),
+              std::string::npos)
+        << o.err;
+    EXPECT_EQ(count_lines(o.err), 1u) << o.err;  // nothing of HDF5's own
+    EXPECT_EQ(slurp(out), slurp(dir / "ref.csv"));
+    EXPECT_FALSE(std::filesystem::exists(journal));
+    EXPECT_FALSE(std::filesystem::exists(h5 + ".partial"));
+    const Hdf5File f(h5);
+    ASSERT_TRUE(f.ok());
+    EXPECT_TRUE(same_bits(f.doubles("case"), ref.doubles("case")));
+    EXPECT_TRUE(same_bits(f.doubles("results/area"), ref.doubles("results/area")));
+    ASSERT_EQ(f.names("steady_state"), cases);
+    for (const std::string& c : cases)
+      for (const std::string& column : columns) {
+        const std::string name = "steady_state/" + c + "/" + column;
+        ASSERT_TRUE(same_bits(f.doubles(name), ref.doubles(name))) << name;
+      }
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+      EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+  }
 }
 
 // Issue 11 (2): a study split into 4 shards that run as separate processes (at the same time),

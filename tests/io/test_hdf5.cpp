@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/io_test_util.hpp"
@@ -177,6 +179,117 @@ TEST(Hdf5, PartialFileResumesItsOwnStudyOnly) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("other.h5.partial")));
   StudyHdf5Writer::discard_partial(dir.file("other.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir.file("other.h5.partial")));
+}
+
+// Where the first piece of raw data of dataset `name` lies in the file: the offset and size of
+// its first chunk (a deflated column), or of its contiguous storage; {0, 0} if not found.
+std::pair<haddr_t, hsize_t> raw_data_of(const std::string& path, const std::string& name) {
+  std::pair<haddr_t, hsize_t> at{0, 0};
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = f >= 0 ? H5Dopen2(f, name.c_str(), H5P_DEFAULT) : -1;
+  if (d >= 0) {
+    const hid_t space = H5Dget_space(d);
+    hsize_t n = 0;
+    if (H5Dget_num_chunks(d, space, &n) >= 0 && n > 0) {
+      hsize_t offset[1] = {0};
+      unsigned mask = 0;
+      H5Dget_chunk_info(d, space, 0, offset, &mask, &at.first, &at.second);
+    } else if (H5Dget_offset(d) != HADDR_UNDEF) {
+      at = {H5Dget_offset(d), H5Dget_storage_size(d)};
+    }
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  if (f >= 0) H5Fclose(f);
+  return at;
+}
+
+// A sweep killed between two of the partial file's flushes leaves it damaged (writes that never
+// reached the disk): --resume appended to it, and libhdf5 aborted or failed. Now a fresh file keeps
+// the cases that read back whole and the others are run again. A column of case 1 with a torn chunk
+// (its bytes overwritten in the middle): cases 0 and 2 are kept, case 1 is missing.
+TEST(Hdf5, ResumingADamagedPartialFileKeepsTheCasesThatReadBack) {
+  TempDir dir;
+  const StudyRun r = run_study_of("[sweep]\n\"contact.mu\" = [0.3, 0.4, 0.5]\n");
+  ASSERT_EQ(r.outcomes.size(), 3u);
+  const std::string path = dir.file("study.h5"), partial = path + ".partial";
+  const Hdf5StudyInfo info{42, 3, false, {}};
+  {
+    StudyHdf5Writer w(path, info, false);
+    for (std::size_t i = 0; i < 3; ++i) w.add_case(i, r.outcomes[i]);
+  }  // killed: no finish()
+  const auto [offset, size] = raw_data_of(partial, "steady_state/000001/ddz_M");
+  if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
+    GTEST_SKIP() << "no deflate filter: the columns are stored without a checksum";
+  ASSERT_GT(size, 64u);
+  {
+    std::fstream f(partial, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(offset + size / 2));
+    const std::string garbage(32, '\x5a');
+    f.write(garbage.data(), static_cast<std::streamsize>(garbage.size()));
+  }
+  {
+    StudyHdf5Writer w(path, info, true);
+    EXPECT_TRUE(w.partial_was_damaged());
+    EXPECT_TRUE(w.has_case(0));
+    EXPECT_FALSE(w.has_case(1));
+    EXPECT_TRUE(w.has_case(2));
+    w.add_case(1, r.outcomes[1]);
+    w.finish(r.study, {0, 1, 2}, r.header, r.rows);
+  }
+  EXPECT_FALSE(std::filesystem::exists(partial));
+  const File f(path);
+  ASSERT_GE(f.id(), 0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string g = "steady_state/00000" + std::to_string(i) + "/";
+    const Samples& s = r.outcomes[i].result.samples;
+    EXPECT_EQ(f.doubles(g + "t"), s.t) << i;
+    EXPECT_EQ(f.doubles(g + "ddz_M"), s.ddz_M) << i;
+    EXPECT_EQ(f.doubles(g + "N"), s.N) << i;
+    EXPECT_EQ(f.read<std::int8_t>(g + "phase", H5T_NATIVE_INT8).size(), s.size()) << i;
+    // The copied cases' time scale points into this file (attached anew).
+    const hid_t d = H5Dopen2(f.id(), (g + "ddz_M").c_str(), H5P_DEFAULT);
+    EXPECT_GT(H5Aexists(d, "DIMENSION_LIST"), 0) << i;
+    H5Dclose(d);
+  }
+  EXPECT_EQ(f.read<std::int64_t>("case", H5T_NATIVE_INT64), (std::vector<std::int64_t>{0, 1, 2}));
+}
+
+// A partial file cut short (a kill while the file grew, a full disk) does not open: resuming
+// keeps none of its cases, runs them again, and finishes the file. A partial file whole is kept
+// whole, not said to be damaged.
+TEST(Hdf5, ResumingAPartialFileThatDoesNotOpenStartsItAfresh) {
+  TempDir dir;
+  const StudyRun r = run_study_of(kStudy);
+  const std::string path = dir.file("study.h5"), partial = path + ".partial";
+  const Hdf5StudyInfo info{42, 2, false, {}};
+  {
+    StudyHdf5Writer w(path, info, false);
+    w.add_case(0, r.outcomes[0]);
+  }  // killed: no finish()
+  {
+    StudyHdf5Writer w(path, info, true);
+    EXPECT_FALSE(w.partial_was_damaged());
+    EXPECT_TRUE(w.has_case(0));
+    w.add_case(1, r.outcomes[1]);
+  }  // killed again
+  std::filesystem::resize_file(partial, std::filesystem::file_size(partial) / 2);
+  {
+    StudyHdf5Writer w(path, info, true);
+    EXPECT_TRUE(w.partial_was_damaged());
+    EXPECT_FALSE(w.has_case(0));
+    EXPECT_FALSE(w.has_case(1));
+    for (std::size_t i = 0; i < 2; ++i) w.add_case(i, r.outcomes[i]);
+    w.finish(r.study, {0, 1}, r.header, r.rows);
+  }
+  const File f(path);
+  ASSERT_GE(f.id(), 0);
+  for (std::size_t i = 0; i < 2; ++i)
+    EXPECT_EQ(f.doubles("steady_state/00000" + std::to_string(i) + "/ddx_M"),
+              r.outcomes[i].result.samples.ddx_M)
+        << i;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file("")))
+    EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
 }
 
 // The shards' files merge into the file of the whole study (rows in case order); a set with a

@@ -30,8 +30,10 @@ struct Hdf5StudyInfo {
 /// parameters and results at the end, and finish() renames PATH.partial to PATH.
 class StudyHdf5Writer {
  public:
-  /// Create PATH.partial, or with `resume` reopen the one an interrupted sweep left (if any).
-  /// Throws oscidrum::Error "cannot write PATH: ..." (or "... is damaged; run with --restart").
+  /// Create PATH.partial; with `resume`, if an interrupted sweep left one, replace it by a fresh
+  /// file holding every case of it that reads back whole (a kill between two flushes leaves a
+  /// file that libhdf5 cannot append to). Throws oscidrum::Error "cannot write PATH: ..." (or
+  /// "... belongs to a different study; run with --restart").
   StudyHdf5Writer(std::string path, const Hdf5StudyInfo& info, bool resume);
   ~StudyHdf5Writer();
   StudyHdf5Writer(const StudyHdf5Writer&) = delete;
@@ -39,6 +41,10 @@ class StudyHdf5Writer {
 
   /// True if the partial file already holds case `index` (from an earlier, interrupted run).
   bool has_case(std::size_t index) const;
+
+  /// After `resume`: true if the partial file left was damaged (it did not open, or some of its
+  /// cases did not read back whole): the cases lost are not in the file (has_case is false).
+  bool partial_was_damaged() const;
 
   /// A case's steady state made ready for the file without touching it: every sample column
   /// shuffled and deflated into its chunks (the work of HDF5's shuffle and deflate filters).
