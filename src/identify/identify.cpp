@@ -164,6 +164,9 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
   for (const double u : {kStandardGravity, 1.0 / kStandardGravity})
     for (const auto& [x, z] : {std::pair{false, false}, {false, true}, {true, true}})
       alternatives.push_back({x, z, false, false, false, u});
+  // A logger's milli-g read as m/s^2 (`--units mg` reads it; without a unit in its header the
+  // record read 102 times too large and the diagnosis named no cause).
+  alternatives.push_back({false, false, false, false, false, 1e-3 * kStandardGravity});
   // The two axes exchanged (a logger turned by 90 degrees about the axle, or its columns named
   // the other way round: the record's x_M'' then holds the even harmonics of z_M''), with each
   // sign the turn may leave.
@@ -204,14 +207,18 @@ std::vector<std::string> diagnosis(const Case& base, const MeasuredResponse& dat
           (advice.empty() ? "" : "; then " + advice);
     }
     if (a.units != 1.0) {
-      const bool in_g = a.units > 1.0;
-      what = std::string(in_g ? "the accelerations read as g (x 9.80665)"
-                              : "the accelerations read as m/s^2 (/ 9.80665)") +
+      const bool in_g = a.units > 1.0, in_mg = a.units < 0.05;
+      what = std::string(in_mg  ? "the accelerations read as mg (x 0.00980665)"
+                         : in_g ? "the accelerations read as g (x 9.80665)"
+                                : "the accelerations read as m/s^2 (/ 9.80665)") +
              (what.empty() ? "" : " and " + what);
-      advice = std::string(in_g ? "the record's accelerations are in g, not m/s^2: read it with "
-                                  "--units g (Python: multiply them by 9.80665)"
-                                : "the record's accelerations are in m/s^2, not g: read it with "
-                                  "--units m/s2 (Python: divide them by 9.80665)") +
+      advice = std::string(in_mg  ? "the record's accelerations are in mg (thousandths of g), not "
+                                    "m/s^2: read it with --units mg (Python: multiply them by "
+                                    "0.00980665)"
+                           : in_g ? "the record's accelerations are in g, not m/s^2: read it with "
+                                    "--units g (Python: multiply them by 9.80665)"
+                                  : "the record's accelerations are in m/s^2, not g: read it "
+                                    "with --units m/s2 (Python: divide them by 9.80665)") +
                (advice.empty() ? "" : "; " + advice);
     }
     if (a.other_scale) {

@@ -619,7 +619,7 @@ TEST(Identify, StiffSoilsBeyondTheStartsGrid) {
 
 // A logger's record in g read as m/s^2 (a header without units): the fit is poor by a factor of
 // 1e7 and the diagnosis names the unit, alone and where the logger's z axis points up too; the
-// opposite (m/s^2 read as g) names --units m/s2.
+// opposite (m/s^2 read as g) names --units m/s2, and a milli-g record read as m/s^2 --units mg.
 TEST(Identify, APoorFitNamesTheUnitOfTheAccelerations) {
   const RecordSamples truth_record = noisy_record(truth(17.3e6, false, 0.0), 0.6, 1000, 11);
   struct Case_ {
@@ -630,14 +630,17 @@ TEST(Identify, APoorFitNamesTheUnitOfTheAccelerations) {
   };
   for (const Case_ k : {Case_{1.0 / kStandardGravity, false, "--units g", "read as g (x 9.80665)"},
                         Case_{1.0 / kStandardGravity, true, "--units g", "z_M'' negated"},
-                        Case_{kStandardGravity, false, "--units m/s2", "read as m/s^2"}}) {
+                        Case_{kStandardGravity, false, "--units m/s2", "read as m/s^2"},
+                        Case_{1e3 / kStandardGravity, false, "--units mg", "read as mg"}}) {
     RecordSamples r = truth_record;
     for (double& v : r.ddx_M) v *= k.factor;
     for (double& v : r.ddz_M) v *= (k.z_up ? -1.0 : 1.0) * k.factor;
     const std::string all = poor_fit_warnings(base(false, 0.0), r);
     SCOPED_TRACE(all);
     EXPECT_NE(all.find("the fit is far better with the accelerations " +
-                       std::string(k.factor < 1.0 ? "read as g" : "read as m/s^2")),
+                       std::string(k.factor > 100.0 ? "read as mg"
+                                   : k.factor < 1.0 ? "read as g"
+                                                    : "read as m/s^2")),
               std::string::npos);
     EXPECT_NE(all.find(k.what), std::string::npos);
     EXPECT_NE(all.find(k.flag), std::string::npos);
