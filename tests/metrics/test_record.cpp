@@ -1484,6 +1484,30 @@ TEST(Record, AResidualOfFoldedOvertonesSaysSo) {
       << w500[0].reason;
 }
 
+// A slow drift of a channel's offset (a sensor's, here 0.3 m/s^2 over 4 s on the small z_M'' of
+// stiff soil) fails the residual gate, whose fit has a mean but no trend; identify's fit takes it
+// with a cubic. The reason says so, with the residual without it (it said nothing of why).
+TEST(Record, AResidualOfASlowDriftSaysSo) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 60e6;
+  SyntheticRecord options;
+  options.duration = 1.0;
+  options.sample_rate = 2000;
+  options.noise = 0.01;
+  options.seed = 5;
+  RecordSamples r = synthetic_record({c}, options);
+  for (std::size_t i = 0; i < r.t.size(); ++i)
+    r.ddz_M[i] += 0.3 * std::sin(2.0 * M_PI * r.t[i] / 4.0);
+  const std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(ws.size(), 1u);
+  EXPECT_FALSE(ws[0].valid);
+  EXPECT_NE(ws[0].reason.find("(a slow drift of the offset of z_M'' explains"), std::string::npos)
+      << ws[0].reason;
+  EXPECT_NE(ws[0].reason.find("identify's fit takes it with a cubic trend"), std::string::npos)
+      << ws[0].reason;
+}
+
 TEST(Record, RejectsBadRecords) {
   const std::vector<double> t = {0.0, 0.01, 0.02}, y = {0, 1, 2};
   auto message = [](auto fn) {
