@@ -260,7 +260,8 @@ void add_diagram_command(CLI::App& app, Action& action) {
       "discarded and the stroboscopic points (every output column once per excitation period) "
       "are kept with the motion's verdict (periodic with its period, converging, "
       "quasi_periodic, chaotic, undecided) and its largest Lyapunov exponent. "
-      "docs/bifurcations.md.");
+      "numerics.start_ramp_periods applies to a start from rest (the first value) only; a value "
+      "continued from the previous state runs without the ramp. docs/bifurcations.md.");
   sub->footer(
       "Examples:\n"
       "  oscidrum diagram --param soil.G --from 110 --to 140 --steps 30 --set soil.input=modulus "

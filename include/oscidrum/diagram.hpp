@@ -31,8 +31,9 @@ struct DiagramOptions {
   double to = 0.0;    ///< the largest value (> from) [key's SI unit]
   int steps = 50;     ///< intervals between from and to: steps + 1 values per sweep [-]
   DiagramSweep sweep = DiagramSweep::up;
-  /// Excitation periods of transient dropped at a value without a stable periodic orbit (>= 0);
-  /// also the budget of the search for one (numerics.max_periods, kept within [100, 399]) [-]
+  /// Excitation periods of transient dropped at a value without a stable periodic orbit (>= 0;
+  /// from rest after the start ramp, numerics.start_ramp_periods); also the budget of the
+  /// search for one (numerics.max_periods, kept within [100, 399]) [-]
   int discard = 200;
   /// Stroboscopic points kept at each value, and the periods the verdict examines (>= 20) [-]
   int periods = 400;
@@ -47,7 +48,8 @@ struct DiagramValue {
   double parameter = 0.0;  ///< q [key's SI unit]
   int direction = 1;       ///< +1: visited on the way up, -1: on the way down
   /// True if the motion started from rest (the first value's transient, shooting's fallback,
-  /// or the previous value's flow stopped), false if from the previous value's last state.
+  /// or the previous value's flow stopped; under numerics.start_ramp_periods), false if from
+  /// the previous value's last state (without the start ramp).
   bool from_rest = false;
   /// True if shooting found a stable periodic orbit here (the stroboscopic points are then on
   /// it from the first), false if the points follow `discard` periods of transient.

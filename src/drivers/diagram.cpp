@@ -5,12 +5,15 @@
 // thousands of periods); without one, the transient from that state is integrated over `discard`
 // periods and one period sampled (the components' ranges, which scale the verdict's distances).
 // Either way analyze_motion examines `periods` further periods; its stroboscopic points become
-// every output column by the roller's sampling.
+// every output column by the roller's sampling. A start from rest (the first value, shooting's
+// fallback, after a flow that stopped) runs under the case's start ramp; a value continued from
+// the previous state runs without it.
 #include "oscidrum/diagram.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +48,30 @@ struct Start {
   Phase phase = Phase::stick;
 };
 
+// A transient integrated at a value without a stable periodic orbit: how it ended.
+struct Transient {
+  FlowStop stop = FlowStop::reached;
+  double periods = 0.0;  // excitation periods integrated [-]
+  std::string message;   // the flow's, when it stopped
+};
+
+// The transient under `model` from `x` in `phase` at t = 0: `skip` periods dropped, one sampled
+// into `sampled` (the components' ranges that scale the verdict).
+template <class R>
+Transient transient(const Model& model, const typename detail::Dynamics<R>::Vector& x, Phase phase,
+                    int skip, const std::function<bool()>& cancelled, Result& sampled) {
+  FlowOptions fo = FlowOptions::from(model);
+  fo.cancelled = cancelled;
+  BasicFlow<R> flow(model, fo);
+  flow.reset(0.0, R::State::from_array(x), phase);
+  const double T = model.period();
+  sampled = Result{};
+  sampled.frequency = model.parameters().roller.f;
+  FlowStop stop = flow.advance(skip * T);
+  if (stop == FlowStop::reached) stop = detail::sample_periods(flow, 1, kScaleSamples, sampled);
+  return {stop, flow.t() / T, stop == FlowStop::reached ? std::string() : flow.message()};
+}
+
 template <class R>
 DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
                       const DiagramOptions& o, long& periods_integrated) {
@@ -59,46 +86,61 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
   // examines a motion itself (the transient below does that here).
   ck.numerics.method = SteadyMethod::shooting;
   ck.numerics.max_periods = std::clamp(o.discard, kMinShootingPeriods, kMaxShootingPeriods);
-  const Model model(ck);
+  // The start ramp (numerics.start_ramp_periods) brings the excitation in from rest: `rest`
+  // starts from rest with it. A value started from the previous value's state runs on the full
+  // excitation from t = 0 (`model`, no ramp): under the ramp its excitation climbed from zero
+  // again, and its points with it. The examination runs under `model` too: it starts past any
+  // ramp, where the two agree.
+  Case steady = ck;
+  steady.numerics.start_ramp_periods = 0;
+  const Model rest(ck), model(steady);
+  const int ramp = ck.numerics.start_ramp_periods;
   const double T = model.period();
   v.excitation_period = T;
   const bool first = start.state.empty();
-  const detail::WarmStart warm{start.state, start.phase, {}};
-  Result sampled = detail::simulate_from(model, {}, o.cancelled, first ? nullptr : &warm);
-  periods_integrated += sampled.diagnostics.periods_simulated;
+  Result sampled;
+  if (first) {
+    sampled = detail::simulate_from(rest, {}, o.cancelled, nullptr);
+    periods_integrated += sampled.diagnostics.periods_simulated;
+  } else {
+    const detail::WarmStart warm{start.state, start.phase, {}};
+    sampled = detail::simulate_from(model, {}, o.cancelled, &warm);
+    periods_integrated += sampled.diagnostics.periods_simulated;
+    // Newton from that state failed and simulate fell back on a start from rest: that start
+    // under the case's ramp.
+    if (sampled.diagnostics.warm_start != 1 && ramp > 0 && sampled.status != Status::cancelled) {
+      sampled = detail::simulate_from(rest, {}, o.cancelled, nullptr);
+      periods_integrated += sampled.diagnostics.periods_simulated;
+    }
+  }
   const Dyn dyn(model, FlowOptions::from(model).baumgarte);
   if (sampled.status == Status::steady_state) {
     v.shooting = true;
-    v.from_rest = first || sampled.diagnostics.warm_start < 0;
+    v.from_rest = first || sampled.diagnostics.warm_start != 1;
   } else {
     if (sampled.status == Status::cancelled) return v;
     // No stable periodic orbit found: the transient from the previous value's last state (or
     // from rest), `discard` periods dropped, one sampled (the ranges that scale the verdict).
     v.from_rest = first;
-    FlowOptions fo = FlowOptions::from(model);
-    fo.cancelled = o.cancelled;
-    BasicFlow<R> flow(model, fo);
+    Transient tr;
     if (first) {
-      flow.reset(0.0, R::State::from_array(dyn.initial_state()), dyn.initial_phase());
+      // From rest under the case's ramp, run through before `discard` periods are dropped.
+      tr = transient<R>(rest, dyn.initial_state(), dyn.initial_phase(), ramp + o.discard,
+                        o.cancelled, sampled);
     } else {
       // A phase the new value cannot be in (as a study's warm start maps it), and the state
       // made consistent with it (the constraints of stick depend on the parameters).
       const Phase phase = dyn.flow_phase(start.phase);
       Vector x{};
       std::copy(start.state.begin(), start.state.end(), x.begin());
-      flow.reset(0.0, R::State::from_array(dyn.consistent(x, phase)), phase);
+      tr = transient<R>(model, dyn.consistent(x, phase), phase, o.discard, o.cancelled, sampled);
     }
-    sampled = Result{};
-    sampled.frequency = ck.roller.f;
-    FlowStop stop = flow.advance(o.discard * T);
-    if (stop == FlowStop::reached) stop = detail::sample_periods(flow, 1, kScaleSamples, sampled);
-    periods_integrated += static_cast<long>(std::ceil(flow.t() / T - 1e-9));
-    if (stop != FlowStop::reached) {
+    periods_integrated += static_cast<long>(std::ceil(tr.periods - 1e-9));
+    if (tr.stop != FlowStop::reached) {
       start = {};  // the next value from rest
       v.motion.kind = "undecided";
-      v.motion.evidence = std::string("the flow stopped (") + to_string(stop) + ") after " +
-                          std::to_string(static_cast<int>(flow.t() / T)) +
-                          " periods: " + flow.message();
+      v.motion.evidence = std::string("the flow stopped (") + to_string(tr.stop) + ") after " +
+                          std::to_string(static_cast<int>(tr.periods)) + " periods: " + tr.message;
       return v;
     }
   }

@@ -27,6 +27,13 @@ std::vector<double> distinct(std::vector<double> v, double tol) {
   return out;
 }
 
+// The largest |x - want| over a column.
+double largest_deviation(const std::vector<double>& x, double want) {
+  double d = 0.0;
+  for (const double v : x) d = std::max(d, std::abs(v - want));
+  return d;
+}
+
 // Below the doubling the motion is the period-1 orbit: one stroboscopic point per value (every
 // point the same); above it the period-2 orbit: two points, alternating, each repeating every
 // two periods. The horizontal acceleration, the trough's displacements and delta all show it.
@@ -134,6 +141,74 @@ TEST(Diagram, SweepsVisitTheValuesInOrder) {
   ASSERT_EQ(down.values.size(), 3u);
   EXPECT_EQ(down.values[0].parameter, 2000.0);
   EXPECT_EQ(down.values[2].parameter, 0.0);
+}
+
+// numerics.start_ramp_periods ramps the excitation in from rest: the first value starts under it
+// (its points past the ramp), the next continues from its state on the full excitation, and
+// ends on the orbit a diagram without the ramp finds there. At each point the excitation is
+// MMd (sin(nu t) = 0 at the section t = k T): under the ramp it is MMd times the ramp. (With the
+// ramp at every value the excitation climbed from zero again at each, and the value after the
+// first fell back to a start from rest.)
+TEST(Diagram, TheStartRampAppliesToTheStartFromRestOnly) {
+  Case c;
+  c.numerics.start_ramp_periods = 20;
+  DiagramOptions o;
+  o.key = "MMd";
+  o.from = 500.0;
+  o.to = 1000.0;
+  o.steps = 1;
+  o.discard = 20;
+  o.periods = 20;
+  const Diagram d = bifurcation_diagram(c, o);
+  c.numerics.start_ramp_periods = 0;
+  const Diagram plain = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 2u);
+  ASSERT_EQ(plain.values.size(), 2u);
+  EXPECT_TRUE(d.values[0].from_rest);
+  EXPECT_FALSE(d.values[1].from_rest);  // from the state at 500 N m, as without the ramp
+  EXPECT_FALSE(plain.values[1].from_rest);
+  for (const DiagramValue& v : d.values) {
+    EXPECT_TRUE(v.shooting);
+    ASSERT_EQ(v.section.size(), 20u);
+    EXPECT_EQ(v.period, 1) << v.motion.kind << ": " << v.motion.evidence;
+    EXPECT_LT(largest_deviation(v.section.torque, v.parameter), 1e-6 * v.parameter)
+        << "MMd " << v.parameter;
+  }
+  EXPECT_GE(d.values[0].section.t.front(), 20 * d.values[0].excitation_period);
+  const DiagramValue &ramped = d.values[1], &unramped = plain.values[1];
+  for (const auto column : {&Samples::ddx_M, &Samples::ddz_M, &Samples::delta, &Samples::x_A}) {
+    const std::vector<double>&x = ramped.section.*column, &want = unramped.section.*column;
+    double size = 0.0;
+    for (const double w : want) size = std::max(size, std::abs(w));
+    for (std::size_t k = 0; k < want.size(); ++k) EXPECT_NEAR(x[k], want[k], 1e-6 * size) << k;
+  }
+}
+
+// Where shooting finds no stable orbit the transient decides, under the same rule: from rest
+// (130 MN/m^2 on the log-spiral trough, with a driving torque) through the ramp, then `discard`
+// periods; from the previous value's state (135 MN/m^2) on the full excitation from its first
+// period (its transient started at t = 0 under the ramp: the excitation climbed from zero).
+TEST(Diagram, ATransientFromThePreviousStateRunsWithoutTheStartRamp) {
+  Case c = log_spiral_case();
+  set_field(c, "MMd", 100.0);
+  c.numerics.start_ramp_periods = 20;
+  DiagramOptions o;
+  o.key = "soil.G";
+  o.from = 130e6;
+  o.to = 135e6;
+  o.steps = 1;
+  o.discard = 0;
+  o.periods = 20;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 2u);
+  EXPECT_TRUE(d.values[0].from_rest);
+  EXPECT_FALSE(d.values[1].from_rest);
+  EXPECT_FALSE(d.values[1].shooting);  // the transient from the state at 130 MN/m^2
+  for (const DiagramValue& v : d.values) {
+    ASSERT_EQ(v.section.size(), 20u) << v.motion.evidence;
+    EXPECT_LT(largest_deviation(v.section.torque, 100.0), 1e-6 * 100.0) << "G " << v.parameter;
+  }
+  EXPECT_GE(d.values[0].section.t.front(), 20 * d.values[0].excitation_period);
 }
 
 TEST(Diagram, RefusesBadOptions) {
