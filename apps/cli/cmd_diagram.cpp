@@ -165,7 +165,9 @@ std::string table(const Diagram& d, const Field& f, const SampleOutput& quantity
     }
     t.rows.push_back({direction(v), fmt(v.parameter / scale, 6), v.motion.kind,
                       v.period > 0 ? std::to_string(v.period) : "-",
-                      v.section.size() > 0 ? fmt(v.motion.lyapunov * v.excitation_period, 3) : "-",
+                      std::isfinite(v.motion.lyapunov) && v.section.size() > 0
+                          ? fmt(v.motion.lyapunov * v.excitation_period, 3)
+                          : "-",
                       std::to_string(distinct(v.section, quantity, range)),
                       v.section.size() > 0 ? fmt(vlo, 6) : "-",
                       v.section.size() > 0 ? fmt(vhi, 6) : "-"});
@@ -259,9 +261,10 @@ void add_diagram_command(CLI::App& app, Action& action) {
       "both, so that coexisting motions and hysteresis show); at each value the transient is "
       "discarded and the stroboscopic points (every output column once per excitation period) "
       "are kept with the motion's verdict (periodic with its period, converging, "
-      "quasi_periodic, chaotic, undecided) and its largest Lyapunov exponent. "
-      "numerics.start_ramp_periods applies to a start from rest (the first value) only; a value "
-      "continued from the previous state runs without the ramp. docs/bifurcations.md.");
+      "quasi_periodic, chaotic, undecided) and its largest Lyapunov exponent. A start from "
+      "rest (the first value) is run's: under numerics.start_ramp_periods, or retried with a "
+      "20-period ramp when it loses contact; a value continued from the previous state runs "
+      "without the ramp. docs/bifurcations.md.");
   sub->footer(
       "Examples:\n"
       "  oscidrum diagram --param soil.G --from 110 --to 140 --steps 30 --set soil.input=modulus "

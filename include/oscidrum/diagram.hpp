@@ -48,15 +48,18 @@ struct DiagramValue {
   double parameter = 0.0;  ///< q [key's SI unit]
   int direction = 1;       ///< +1: visited on the way up, -1: on the way down
   /// True if the motion started from rest (the first value's transient, shooting's fallback,
-  /// or the previous value's flow stopped; under numerics.start_ramp_periods), false if from
-  /// the previous value's last state (without the start ramp).
+  /// or the previous value's flow stopped), as simulate starts (numerics.start_ramp_periods, or
+  /// a retry with a ramp when the start loses contact), false if from the previous value's last
+  /// state (without the start ramp).
   bool from_rest = false;
   /// True if shooting found a stable periodic orbit here (the stroboscopic points are then on
   /// it from the first), false if the points follow `discard` periods of transient.
   bool shooting = false;
   double excitation_period = 0.0;  ///< T = 1 / f at this value [s]
   /// The verdict (MotionAnalysis::kind: periodic, converging, quasi_periodic, chaotic,
-  /// undecided) with its numbers; its section is moved into `section` below.
+  /// undecided) with its numbers; its section is moved into `section` below. Where the flow
+  /// stopped before the exponent was computed (undecided, the evidence says why) lyapunov and
+  /// its halves are NaN.
   MotionAnalysis motion;
   /// The period of the verdict: the recurrence p of a periodic motion, the p a converging motion
   /// approaches (0 if unknown), 0 otherwise [-].

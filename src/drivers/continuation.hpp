@@ -52,6 +52,11 @@ std::optional<WarmStart> secant_start(const WarmStart& w2, const WarmStart& w1, 
                                       const Case& c1, const Case& c0, const WarmStart* w3 = nullptr,
                                       const Case* c3 = nullptr);
 
+/// A start from rest that loses contact before a steady state is found is run again with the
+/// excitation ramped in over this many periods (numerics.start_ramp_periods), unless it had a
+/// ramp already (simulate; the brute-force diagram's transient from rest likewise).
+inline constexpr int kContactRetryRampPeriods = 20;
+
 /// simulate(), but with numerics.method = shooting and `warm` given, Newton starts from `warm`
 /// first; when that fails (Newton, the orbit's confirmation, or the flow from it), the case runs
 /// exactly as simulate() runs it. Diagnostics::warm_start says which happened. The transient

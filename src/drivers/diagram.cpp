@@ -6,14 +6,15 @@
 // periods and one period sampled (the components' ranges, which scale the verdict's distances).
 // Either way analyze_motion examines `periods` further periods; its stroboscopic points become
 // every output column by the roller's sampling. A start from rest (the first value, shooting's
-// fallback, after a flow that stopped) runs under the case's start ramp; a value continued from
-// the previous state runs without it.
+// fallback, after a flow that stopped) is run's: under the case's start ramp, or retried with one
+// when it loses contact; a value continued from the previous state runs without the ramp.
 #include "oscidrum/diagram.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,11 +73,20 @@ Transient transient(const Model& model, const typename detail::Dynamics<R>::Vect
   return {stop, flow.t() / T, stop == FlowStop::reached ? std::string() : flow.message()};
 }
 
+// What a start from rest that lost contact without a ramp says of its retry (as run's message).
+std::string ramp_retry_note(const std::string& lost) {
+  return "; started from rest with the excitation ramped in over " +
+         std::to_string(detail::kContactRetryRampPeriods) +
+         " periods, as run does: without a ramp the start lost contact" +
+         (lost.empty() ? std::string() : " (" + lost + ")");
+}
+
 template <class R>
 DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
                       const DiagramOptions& o, long& periods_integrated) {
   using Dyn = detail::Dynamics<R>;
   using Vector = typename Dyn::Vector;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   DiagramValue v;
   v.parameter = q;
   Case ck = c;
@@ -114,9 +124,13 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
     }
   }
   const Dyn dyn(model, FlowOptions::from(model).baumgarte);
+  std::string note;  // a start from rest ramped in after it lost contact
   if (sampled.status == Status::steady_state) {
     v.shooting = true;
     v.from_rest = first || sampled.diagnostics.warm_start != 1;
+    // simulate's retry of a start from rest that lost contact (its ramp is in the diagnostics).
+    if (v.from_rest && ramp == 0 && sampled.diagnostics.start_ramp_periods > 0)
+      note = ramp_retry_note("");
   } else {
     if (sampled.status == Status::cancelled) return v;
     // No stable periodic orbit found: the transient from the previous value's last state (or
@@ -124,9 +138,25 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
     v.from_rest = first;
     Transient tr;
     if (first) {
-      // From rest under the case's ramp, run through before `discard` periods are dropped.
-      tr = transient<R>(rest, dyn.initial_state(), dyn.initial_phase(), ramp + o.discard,
-                        o.cancelled, sampled);
+      // From rest as run starts: under the case's ramp, run through before `discard` periods
+      // are dropped; without one, again with the excitation ramped in when the start loses
+      // contact (at once when shooting's start from rest did: simulate's retry).
+      const auto from_rest = [&](int periods) {
+        Case ramped = ck;
+        ramped.numerics.start_ramp_periods = periods;
+        const Model m(ramped);
+        return transient<R>(m, dyn.initial_state(), dyn.initial_phase(), periods + o.discard,
+                            o.cancelled, sampled);
+      };
+      const bool retried = ramp == 0 && sampled.diagnostics.start_ramp_periods > 0;
+      tr = from_rest(retried ? detail::kContactRetryRampPeriods : ramp);
+      if (retried) note = ramp_retry_note("");
+      if (ramp == 0 && !retried && tr.stop == FlowStop::contact_lost) {
+        periods_integrated += static_cast<long>(std::ceil(tr.periods - 1e-9));
+        note = ramp_retry_note("after " + std::to_string(static_cast<int>(tr.periods)) +
+                               " periods: " + tr.message);
+        tr = from_rest(detail::kContactRetryRampPeriods);
+      }
     } else {
       // A phase the new value cannot be in (as a study's warm start maps it), and the state
       // made consistent with it (the constraints of stick depend on the parameters).
@@ -139,13 +169,20 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
     if (tr.stop != FlowStop::reached) {
       start = {};  // the next value from rest
       v.motion.kind = "undecided";
+      // No exponent was computed (0 would read as a torus's).
+      v.motion.lyapunov = v.motion.lyapunov_first = v.motion.lyapunov_second = kNaN;
       v.motion.evidence = std::string("the flow stopped (") + to_string(tr.stop) + ") after " +
-                          std::to_string(static_cast<int>(tr.periods)) + " periods: " + tr.message;
+                          std::to_string(static_cast<int>(tr.periods)) + " periods: " + tr.message +
+                          note;
       return v;
     }
   }
   v.motion = analyze_motion(model, sampled, o.periods, o.cancelled);
   periods_integrated += v.motion.periods;
+  // The flow stopped within the examination: its exponent was not computed.
+  if (v.motion.periods < o.periods)
+    v.motion.lyapunov = v.motion.lyapunov_first = v.motion.lyapunov_second = kNaN;
+  v.motion.evidence += note;
   if (v.motion.kind == "periodic") v.period = v.motion.recurrence;
   if (v.motion.kind == "converging") v.period = v.motion.converging_period;
   const double t0 = sampled.samples.t.front();

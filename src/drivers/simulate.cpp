@@ -439,7 +439,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
 // a steady state is found is run again with the excitation ramped in over kRampPeriods periods
 // (numerics.start_ramp_periods); contact_lost stands only when that run loses contact too, or
 // when the steady orbit itself does (its sampling loses contact: no retry).
-constexpr int kRampPeriods = 20;
+constexpr int kRampPeriods = detail::kContactRetryRampPeriods;
 
 // Diagnostics::contact_mode from the sampled window's lift-offs (docs/model.md section 13).
 std::string contact_mode(const Result& r) {

@@ -89,6 +89,59 @@ TEST(CliDiagram, APeriodicOrbitShowsOneDistinctPointWhateverTheOtherValues) {
   EXPECT_EQ(rows, 2) << o.out;
 }
 
+// A value whose flow stopped (pure rolling without a contact that can open loses contact at
+// 66 Hz, with the ramp too) has no exponent: null in the JSON and '-' in the table, not the 0.0
+// that reads as the signature of a torus.
+TEST(CliDiagram, AValueWhoseFlowStoppedHasANullExponent) {
+  TempDir dir;
+  const Outcome o = run({"diagram",
+                         "--param",
+                         "roller.f",
+                         "--from",
+                         "66",
+                         "--to",
+                         "67",
+                         "--steps",
+                         "1",
+                         "--set",
+                         "soil.input=modulus",
+                         "--set",
+                         "soil.G=100e6",
+                         "--pure-rolling",
+                         "--set",
+                         "roller.unbalance=0.22877",
+                         "--discard",
+                         "20",
+                         "--periods",
+                         "20",
+                         "--json",
+                         dir / "d.json",
+                         "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "d.json"));
+  ASSERT_EQ(j["values"].size(), 2u);
+  for (const nlohmann::json& v : j["values"]) {
+    EXPECT_EQ(v["verdict"], "undecided");
+    EXPECT_TRUE(v["lyapunov"].is_null()) << v["lyapunov"];
+    EXPECT_TRUE(v["lyapunov_halves"][0].is_null() && v["lyapunov_halves"][1].is_null())
+        << v["lyapunov_halves"];
+    EXPECT_EQ(v["evidence"].get<std::string>().rfind("the flow stopped (contact_lost)", 0), 0u)
+        << v["evidence"];
+  }
+  std::istringstream lines(o.out);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("up ", 0) != 0) continue;
+    std::istringstream cells(line);
+    std::string sweep, value, verdict, period, lambda;
+    cells >> sweep >> value >> verdict >> period >> lambda;
+    EXPECT_EQ(lambda, "-") << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2) << o.out;
+}
+
 // --from/--to are typed in the unit of the key's case flag: MN/m^2 for soil.G (as --G), SI for
 // the soil's coefficients (as --ksh), although the table shows ksh in MN/m.
 TEST(CliDiagram, TheRangeIsInTheUnitOfTheKeysFlag) {

@@ -211,6 +211,57 @@ TEST(Diagram, ATransientFromThePreviousStateRunsWithoutTheStartRamp) {
   EXPECT_GE(d.values[0].section.t.front(), 20 * d.values[0].excitation_period);
 }
 
+// Pure rolling on contact that can open at 65 Hz (G = 100 MN/m^2): the start from rest lifts the
+// drum out of its trough, and run starts again with the excitation ramped in over 20 periods;
+// the diagram's first value does the same, and finds the motion run finds (period 3), where it
+// said undecided with no points.
+TEST(Diagram, AFirstValueThatLosesContactFromRestIsRetriedWithARampAsRunDoes) {
+  Case c = test::rolling_unilateral_case(65.0);
+  set_field(c, "soil.G", 100e6);
+  DiagramOptions o;
+  o.key = "roller.f";
+  o.from = 65.0;
+  o.to = 66.0;
+  o.steps = 1;
+  o.periods = 60;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_FALSE(d.values.empty());
+  const DiagramValue& v = d.values[0];
+  EXPECT_TRUE(v.from_rest);
+  ASSERT_EQ(v.section.size(), 60u) << v.motion.kind << ": " << v.motion.evidence;
+  EXPECT_EQ(v.period, 3) << v.motion.kind << ": " << v.motion.evidence;
+  EXPECT_TRUE(std::isfinite(v.motion.lyapunov));
+  EXPECT_NE(v.motion.evidence.find("ramped in over 20 periods"), std::string::npos)
+      << v.motion.evidence;
+}
+
+// In pure rolling without a contact that can open, the drum loses contact at 66 Hz even with the
+// ramp: no points, no exponent (NaN, not the 0 that reads as a torus), and the evidence says the
+// flow stopped.
+TEST(Diagram, AValueWhoseFlowStoppedHasNoExponent) {
+  Case c = test::rolling_unilateral_case(66.0);
+  set_field_text(c, "contact.unilateral", "false");
+  set_field(c, "soil.G", 100e6);
+  DiagramOptions o;
+  o.key = "roller.f";
+  o.from = 66.0;
+  o.to = 67.0;
+  o.steps = 1;
+  o.discard = 20;
+  o.periods = 20;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 2u);
+  for (const DiagramValue& v : d.values) {
+    EXPECT_EQ(v.motion.kind, "undecided");
+    EXPECT_TRUE(v.section.size() == 0);
+    EXPECT_TRUE(std::isnan(v.motion.lyapunov)) << v.motion.lyapunov;
+    EXPECT_TRUE(std::isnan(v.motion.lyapunov_first));
+    EXPECT_TRUE(std::isnan(v.motion.lyapunov_second));
+    EXPECT_EQ(v.motion.evidence.rfind("the flow stopped (contact_lost)", 0), 0u)
+        << v.motion.evidence;
+  }
+}
+
 TEST(Diagram, RefusesBadOptions) {
   const Case c;
   const auto refused = [&](DiagramOptions o, const std::string& says) {
