@@ -107,8 +107,12 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   Diagnostics& d = result.diagnostics;
   if (d.periods_simulated >= num.max_periods) return false;  // the fallback reports it
   const detail::Dynamics<R> dynamics(model, flow.options().baumgarte);
+  // A warm start begins on the orbit's section after the start ramp (numerics.start_ramp_periods;
+  // the excitation is T-periodic from there): under the ramp the neighbour's orbit is no orbit,
+  // and every warm start of a study with a ramp failed and ran from rest.
   if (warm.from_state)
-    flow.reset(0.0, warm.state, warm.phase);
+    flow.reset(num.start_ramp_periods * model.period(), warm.state, warm.phase);
+
   else
     flow.reset(0.0, R::State::from_array(dynamics.initial_state()), dynamics.initial_phase());
   flow.reset_extremes();
@@ -133,6 +137,10 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     d.min_N = flow.counters().min_N;
     return true;
   }
+  // A warm start that spent the budget without a steady state says nothing about the cold start,
+  // which gets a budget of its own (simulate_once): a failed warm start must not turn a case the
+  // cold start solves into max_periods_reached.
+  if (!shot.converged && shot.budget_exhausted && warm.from_state) return false;
   if (!shot.converged && shot.budget_exhausted) {
     // No periods are left for a fallback: the run ends as the transient method ends when it
     // reaches numerics.max_periods, with the periods that follow sampled for inspection.
@@ -187,8 +195,14 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
     return change < detail::shooting::kNewtonTol * num.steady_tol ||
            (change < num.steady_tol && change > 0.5 * previous);
   };
+  // The state after the sampling's first p periods, the period map P^p at the orbit (the same
+  // integration with or without the further samples): phi's drift per period is taken there.
+  typename detail::Dynamics<R>::Vector mapped{};
+  bool have_mapped = false;
   const auto confirm = [&] {
     change = detail::scaled_change<R>(flow.state(), orbit, shot.scale);
+    mapped = flow.state().to_array();
+    have_mapped = true;
     return accepted();
   };
   const auto discard_samples = [&] {
@@ -345,10 +359,16 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   d.periods_to_steady =
       settled ? static_cast<int>(std::lround(section / model.period())) : shot.transient_periods;
   d.multiplicity = p;
+  // The drift of phi over the orbit's own period map (the sampling's first p periods from the
+  // orbit). Newton's last map started from the iterate before the last step (shot.phi_drift): a
+  // warm start's chord steps from the neighbour's orbit moved phi by up to 1e-5 rad, and a
+  // pure-rolling orbit without driving torque, which closes in phi, read a net slip.
   d.phi_drift =
       settled && result.samples.size() > 0
           ? detail::Dynamics<R>::cyclic_drift(flow.state().to_array(), settled_section) / periods
-          : shot.phi_drift;
+      : have_mapped ? detail::Dynamics<R>::cyclic_drift(mapped, orbit.to_array()) / p
+                    : shot.phi_drift;
+
   d.periods_simulated += periods;
   d.max_slip_residual = std::max(flow.counters().max_slip_residual,
                                  warm.from_state ? 0.0 : shot.transient_max_slip_residual);
@@ -375,6 +395,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
   long sample_rhs = 0;  // right-hand-side evaluations of one sampled period
   const long rhs_start = flow.counters().rhs_evaluations;
   bool done = false;
+  int warm_periods = 0;  // of a failed warm start
   if (num.method == SteadyMethod::shooting && warm &&
       warm->state.size() == static_cast<std::size_t>(R::kStates)) {
     // Continuation (docs/periodic.md): Newton from the neighbour's orbit (or from the state
@@ -397,6 +418,11 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
     if (!done) {
       result.floquet = Floquet{};
       result.events.clear();
+      // The cold start runs "exactly as it runs alone": with all of numerics.max_periods. The
+      // failed attempt's periods are counted as work below (Diagnostics::periods_simulated), not
+      // against the budget.
+      warm_periods = result.diagnostics.periods_simulated;
+      result.diagnostics.periods_simulated = 0;
     }
   }
   if (!done && num.method == SteadyMethod::shooting)
@@ -407,8 +433,10 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
     transient(model, flow, progress, result, &sample_rhs, all_samples);
   }
   Diagnostics& d = result.diagnostics;
+  d.periods_simulated += warm_periods;
 
   const FlowCounters& c = flow.counters();
+
   d.steps = c.steps;
   d.rhs_evaluations = c.rhs_evaluations - rhs_start;
   d.events = c.events;

@@ -93,6 +93,85 @@ TEST(Continuation, Table2SweepEqualsColdStartToTheSteadyTolerance) {
   EXPECT_LT(warm_rhs, cold_rhs);
 }
 
+// A start ramp (numerics.start_ramp_periods) belongs to the start from rest. Warm starts began at
+// t = 0, under the ramp, where the neighbour's orbit is no orbit: every one failed and its case
+// ran from rest (the same numbers, without the speed-up and without a word).
+TEST(Continuation, AStartRampDoesNotStopTheWarmStarts) {
+  std::vector<Case> warm_cases = table2_sweep(true), cold_cases = table2_sweep(false);
+  for (std::vector<Case>* cases : {&warm_cases, &cold_cases})
+    for (Case& c : *cases) c.numerics.start_ramp_periods = 20;
+  StudyOptions options;
+  options.threads = 2;
+  options.keep_samples = true;
+  const std::vector<CaseOutcome> warm = run_study(warm_cases, options);
+  const std::vector<CaseOutcome> cold = run_study(cold_cases, options);
+  int warm_started = 0;
+  for (std::size_t i = 0; i < warm.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    ASSERT_EQ(warm[i].result.status, Status::steady_state) << warm[i].result.message;
+    ASSERT_EQ(cold[i].result.status, Status::steady_state) << cold[i].result.message;
+    warm_started += warm[i].result.diagnostics.warm_start == 1;
+    EXPECT_LE(scaled_difference(warm[i].result.samples, cold[i].result.samples),
+              2.0 * warm_cases[i].numerics.steady_tol);
+    EXPECT_NEAR(warm[i].metrics.area, cold[i].metrics.area, 1e-7 * cold[i].metrics.area);
+  }
+  EXPECT_EQ(warm_started, 26);
+}
+
+// phi's drift per period is measured on the sampled periods of the orbit. It was taken from
+// Newton's last map, which starts at the iterate before the last step: after a warm start's chord
+// steps a pure-rolling orbit without driving torque, which closes in phi, read a drift of up to
+// 1e-5 rad per period (a net slip), warm-started only.
+TEST(Continuation, APureRollingOrbitWithoutDrivingTorqueDoesNotDrift) {
+  const std::vector<Case> warm_cases = table2_sweep(true), cold_cases = table2_sweep(false);
+  StudyOptions options;
+  options.threads = 2;
+  const std::vector<CaseOutcome> warm = run_study(warm_cases, options);
+  const std::vector<CaseOutcome> cold = run_study(cold_cases, options);
+  for (std::size_t i = 0; i < warm.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    ASSERT_EQ(warm[i].result.status, Status::steady_state);
+    ASSERT_DOUBLE_EQ(warm_cases[i].MMd, 0.0);
+    const double dw = warm[i].result.diagnostics.phi_drift;
+    const double dc = cold[i].result.diagnostics.phi_drift;
+    if (warm_cases[i].contact.pure_rolling) {
+      EXPECT_LT(std::abs(dw), 1e-12);
+      EXPECT_LT(std::abs(dc), 1e-12);
+    }
+    // Stick-slip without driving torque: no net slip either, to the orbit's accuracy.
+    EXPECT_NEAR(dw, dc, 1e-9);
+  }
+}
+
+// A warm start that spends numerics.max_periods without a steady state (past the period doubling
+// of the log-spiral study, Newton from the period-1 neighbour needs many periods) left nothing for
+// the cold start, and the case read max_periods_reached where the cold start finds the period-2
+// orbit in 79 periods.
+TEST(Continuation, AWarmStartThatSpendsTheBudgetLeavesTheColdStartItsOwn) {
+  std::vector<Case> warm_cases, cold_cases;
+  for (const double G : {124e6, 126e6}) {
+    Case c = test::log_spiral_case();
+    set_field(c, "soil.G", G);
+    c.numerics.max_periods = 100;
+    warm_cases.push_back(c);
+    c.numerics.continuation = false;
+    cold_cases.push_back(c);
+  }
+  StudyOptions options;
+  options.threads = 1;
+  const std::vector<CaseOutcome> warm = run_study(warm_cases, options);
+  const std::vector<CaseOutcome> cold = run_study(cold_cases, options);
+  for (std::size_t i = 0; i < warm.size(); ++i) {
+    SCOPED_TRACE("case " + std::to_string(i));
+    ASSERT_EQ(cold[i].result.status, Status::steady_state) << cold[i].result.message;
+    EXPECT_EQ(warm[i].result.status, Status::steady_state) << warm[i].result.message;
+    EXPECT_EQ(warm[i].result.diagnostics.multiplicity, cold[i].result.diagnostics.multiplicity);
+    EXPECT_NEAR(warm[i].metrics.area, cold[i].metrics.area, 1e-7 * cold[i].metrics.area);
+  }
+  EXPECT_EQ(cold[1].result.diagnostics.multiplicity, 2);
+  EXPECT_EQ(warm[1].result.diagnostics.warm_start, -1);
+}
+
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
