@@ -438,9 +438,11 @@ int run(const IdentifyCliOptions& o) {
       window_periods = 0.0;
       if (!o.quiet)
         std::cerr << "oscidrum: identify: the record spans "
-                  << (std::isfinite(periods) ? "about " + fmt(periods, 3) + " periods"
-                                             : std::string("less"))
-                  << ", fewer than the default window of " << fmt(o.windows.window_periods, 3)
+                  << (std::isfinite(periods)
+                          ? "about " + fmt(periods, 3) + " periods, fewer than"
+                          : fmt(w.t_end - w.t_start, 3) + " s (its frequency unknown), less than")
+                  << " the default window of " << fmt(o.windows.window_periods, 3)
+
                   << ": identified whole, as one window (as --window 0)\n";
     }
   }

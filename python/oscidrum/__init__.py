@@ -130,12 +130,22 @@ _CORE_NAMES = (
 def _explain(exc):
     """pybind11's "f(): incompatible function arguments. The following argument types are
     supported: 1. (x: float) -> ... Invoked with: 'a'" as one line naming the rule."""
+    import re
+
     text = str(exc)
     head = text.split(":", 1)[0]
-    sigs = [line.strip() for line in text.splitlines() if line.strip()[:2].rstrip(".").isdigit()]
-    sigs = [s.split(".", 1)[1].strip().replace("oscidrum._core.", "") for s in sigs]
+    # The numbered signatures lie between "supported:" and "Invoked with:" (the arguments'
+    # printout after it may hold lines of numbers: a numpy array's).
+    body = text.split("Invoked with:", 1)[0].split("supported:", 1)[-1]
+    sigs = [s.strip().replace("oscidrum._core.", "")
+            for s in re.findall(r"^\s*\d+\.\s+(.*)$", body, flags=re.M)]
     got = text.rsplit("Invoked with:", 1)[-1].strip() if "Invoked with:" in text else "?"
+    got = re.sub(r"array\(\[.*?\]\)", "array(...)", got, flags=re.S)
+    got = " ".join(got.split())
+    if len(got) > 300:
+        got = got[:300] + " ..."
     return f"{head}: arguments must be {' or '.join(sigs) or 'of other types'}; got {got}"
+
 
 
 def _friendly(func):

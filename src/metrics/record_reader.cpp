@@ -1057,9 +1057,19 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
     return all;
   };
   // A column given by its name (exactly, or without its unit) or by 1-based index.
+  // Columns that bear one name (two ddx_M, a logger's copy of a channel): a name cannot choose.
+  auto twice = [&](const std::vector<int>& same, const std::string& col, const char* flag) {
+    std::string at;
+    for (int c : same) at += (at.empty() ? "" : ", ") + std::to_string(c + 1);
+    throw Error(name + ": the header names several columns '" + col + "' (columns " + at +
+                "); choose one with " + flag + " and its 1-based index");
+  };
   auto find = [&](const std::string& col, const char* flag) -> int {
+    std::vector<int> same;
     for (std::size_t c = 0; c < header.size(); ++c)
-      if (header[c] == col || headings[c].name == col) return static_cast<int>(c);
+      if (header[c] == col || headings[c].name == col) same.push_back(static_cast<int>(c));
+    if (same.size() > 1) twice(same, col, flag);
+    if (same.size() == 1) return same.front();
     for (std::size_t c = 0; c < header.size(); ++c)
       if (lower(headings[c].name) == lower(col)) return static_cast<int>(c);
     int index = 0;
@@ -1079,8 +1089,11 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                        const char* bare = nullptr,
                        int (*rank)(const std::string&) = nullptr) -> int {
     // The model's own name (as `run --csv` writes it) first, exactly: t[s] beside T[N].
+    std::vector<int> own;
     for (std::size_t c = 0; c < headings.size(); ++c)
-      if (headings[c].name == model_name) return static_cast<int>(c);
+      if (headings[c].name == model_name) own.push_back(static_cast<int>(c));
+    if (own.size() > 1) twice(own, model_name, flag);
+    if (own.size() == 1) return own.front();
     std::vector<int> hits;
     for (std::size_t c = 0; c < headings.size(); ++c)
       if (matches(headings[c].key)) hits.push_back(static_cast<int>(c));
@@ -1240,7 +1253,17 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   } else {
     cz = find(o.z_col, "--z-col");
   }
+  // One column read as two quantities (--x-col and --z-col alike, or the time as x): the
+  // figure of a signal against itself has no area, and its numbers would mean nothing.
+  for (const auto& [a, fa, b, fb] :
+       {std::tuple{ct, "--t-col", cx, "--x-col"}, std::tuple{ct, "--t-col", cz, "--z-col"},
+        std::tuple{cx, "--x-col", cz, "--z-col"}})
+    if (a >= 0 && a == b)
+      throw Error(name + ": " + fa + " and " + fb + " are the same column '" +
+                  header[static_cast<std::size_t>(a)] + "' (column " + std::to_string(a + 1) +
+                  "); give each its own column");
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
+
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
   const int cu = o.unbalance_col.empty() ? -1 : find(o.unbalance_col, "--unbalance-col");
   if (o.lat_col.empty() != o.lon_col.empty())
@@ -1900,7 +1923,15 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
       i = j;
     }
     const std::size_t repeated = out.t.size() - runs.size();
+    // Not a record at one instant: the column read as the time does not advance (a constant, a
+    // date column, a time of day in a unit the reader does not know).
+    if (runs.size() == 1 && out.t.size() > 1)
+      throw Error(name + ": the time column holds one time for all " +
+                  std::to_string(out.t.size()) + " rows (t = " + format_factor(out.t.front()) +
+                  " s); choose the time column with --t-col, or give the sampling rate with "
+                  "--rate HZ");
     std::size_t multi = 0;
+
     for (const auto& run : runs) multi += run.second > 1 ? 1 : 0;
     // Every stamp but a few (9 in 10) holds 2 rows or more: the clock. Fewer: switches (or a
     // clock too irregular to spread; averaged, with the note below).

@@ -1209,7 +1209,37 @@ TEST(RecordReader, MessagesNameTheLineColumnOrOption) {
             std::string::npos);
 }
 
+// One column read as two quantities, two columns of one name, a time that never advances: each
+// was read without a word (the same column as x and z gave area 0 and "quality ok").
+TEST(RecordReader, AColumnReadTwiceOrNamedTwiceIsRefused) {
+  const std::string rows = "t,ddx_M,ddz_M\n0,1,2\n0.001,3,4\n0.002,5,6\n";
+  RecordReading o;
+  o.x_col = "3";
+  o.z_col = "ddz_M";
+  EXPECT_NE(message_of(rows, o).find("--x-col and --z-col are the same column 'ddz_M' (column 3)"),
+            std::string::npos)
+      << message_of(rows, o);
+  o = {};
+  o.x_col = "t";
+  EXPECT_NE(message_of(rows, o).find("--t-col and --x-col are the same column 't'"),
+            std::string::npos);
+  const std::string twice = "t,ddx_M,ddz_M,ddx_M\n0,1,2,10\n0.001,3,4,30\n";
+  EXPECT_NE(message_of(twice).find("the header names several columns 'ddx_M' (columns 2, 4)"),
+            std::string::npos)
+      << message_of(twice);
+  o = {};
+  o.x_col = "ddx_M";
+  EXPECT_NE(message_of(twice, o).find("several columns 'ddx_M'"), std::string::npos);
+  o.x_col = "4";
+  EXPECT_DOUBLE_EQ(read_text(twice, o).ddx_M[1], 30.0);
+  EXPECT_NE(message_of("t,ax,az\n0,1,2\n0,3,4\n0,5,6\n")
+                .find("the time column holds one time for all 3 rows (t = 0 s)"),
+            std::string::npos)
+      << message_of("t,ax,az\n0,1,2\n0,3,4\n0,5,6\n");
+}
+
 // A record with y and z accelerations and no x (a two-axis sensor's y and z channels, y along the
+
 // direction of travel): y is the horizontal, with a note; beside an x column it is not.
 TEST(RecordReader, YBesideZWithoutXIsTheHorizontal) {
   const std::string yz = "time,ay,az\n0,0.5,-0.2\n0.001,1.5,0.3\n";

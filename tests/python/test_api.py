@@ -181,7 +181,20 @@ def test_bad_calls_raise_oscidrum_error(call, message):
     assert isinstance(info.value, ValueError)
 
 
+def test_a_bad_argument_beside_arrays_reads_as_one_signature():
+    # A numpy array's printout in "Invoked with:" has lines that start with digits; they were
+    # taken for numbered signatures ("... or 98999500e-01, 9.99499750e-01, ...").
+    t = np.linspace(0.0, 1.0, 2000)
+    x = np.sin(2 * np.pi * 39 * t)
+    with pytest.raises(oscidrum.Error) as info:
+        oscidrum.analyze_record(t, x, x, 39.0, n_max=2.5)
+    text = str(info.value)
+    assert "n_max: int" in text and " or " not in text.split("; got")[0]
+    assert "e-01," not in text and "array(...)" in text and len(text) < 1000
+
+
 def test_enums_accept_members_and_names():
+
     assert Status(3) == Status.chattering and Status("chattering") == Status.chattering
 
 
