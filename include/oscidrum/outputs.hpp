@@ -99,7 +99,8 @@
     "largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = "  \
     "P0 (a force ratio), over the result's trajectory: the run from rest and the sampled "        \
     "periods (shooting: its short transient from rest and the sampled periods of the orbit, "     \
-    "not Newton's iterates)")                                                                     \
+    "not Newton's iterates; a study's warm-started case, warm_start 1, has no run from rest: "    \
+    "its sampled periods only, so its value can differ from the same case run alone)")            \
   X(double, min_N, 0.0, "N", "min N",                                                             \
     "smallest normal force (26) at the step ends of the same trajectory; 0 where N reached 0 "    \
     "(contact lost, or a lift-off)")                                                              \
