@@ -30,6 +30,12 @@ struct WarmStart {
   /// (negative: unknown). Predicts this case's: when that predicts convergence, the step is
   /// confirmed on the recorded period directly, without a plain period map first.
   double contraction = -1.0;
+  /// A study's case: a warm start that fails (also one that spends numerics.max_periods) leaves
+  /// the cold start all of numerics.max_periods, so that the case's status does not depend on
+  /// continuation. False (the diagram, which follows the attractor from the previous value's
+  /// state with a transient of its own; the check of a motion by shooting): the cold start gets
+  /// what the warm start left, and a warm start that spends the budget ends the run.
+  bool cold_start_budget = false;
 };
 
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a

@@ -103,6 +103,9 @@ struct BasicShootingStart {
   /// The contraction of the residual by the first chord step of the neighbour this start comes
   /// from (WarmStart::contraction; negative: unknown).
   double contraction = -1.0;
+  /// A supplied state that spends the budget without a steady state ends the attempt, not the
+  /// run (WarmStart::cold_start_budget): the caller's cold start follows.
+  bool yields_budget = false;
 };
 
 using ShootingOutcome = BasicShootingOutcome<OscillationDrum>;

@@ -140,7 +140,8 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // A warm start that spent the budget without a steady state says nothing about the cold start,
   // which gets a budget of its own (simulate_once): a failed warm start must not turn a case the
   // cold start solves into max_periods_reached.
-  if (!shot.converged && shot.budget_exhausted && warm.from_state) return false;
+  if (!shot.converged && shot.budget_exhausted && warm.from_state && warm.yields_budget)
+    return false;
   if (!shot.converged && shot.budget_exhausted) {
     // No periods are left for a fallback: the run ends as the transient method ends when it
     // reaches numerics.max_periods, with the periods that follow sampled for inspection.
@@ -412,6 +413,7 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
       // stick or slip under a smooth law): its start phase instead.
       start.phase = dynamics.flow_phase(warm->phase);
       start.contraction = warm->contraction;
+      start.yields_budget = warm->cold_start_budget;
       done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record, start);
     }
     result.diagnostics.warm_start = done ? 1 : -1;
@@ -421,8 +423,10 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
       // The cold start runs "exactly as it runs alone": with all of numerics.max_periods. The
       // failed attempt's periods are counted as work below (Diagnostics::periods_simulated), not
       // against the budget.
-      warm_periods = result.diagnostics.periods_simulated;
-      result.diagnostics.periods_simulated = 0;
+      if (warm->cold_start_budget) {
+        warm_periods = result.diagnostics.periods_simulated;
+        result.diagnostics.periods_simulated = 0;
+      }
     }
   }
   if (!done && num.method == SteadyMethod::shooting)

@@ -72,7 +72,16 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     // (`reused`: a thread's recording, whose storage the cases share).
     detail::recording::Recording own;
     detail::recording::Recording& period = reused != nullptr ? *reused : own;
-    out.result = detail::simulate_from(model, progress, stop_now, warm, keep_samples, &period);
+    // A failed warm start leaves the cold start the whole budget: the case's status must not
+    // depend on continuation.
+    std::optional<detail::WarmStart> start;
+    if (warm != nullptr) {
+      start = *warm;
+      start->cold_start_budget = true;
+    }
+    out.result = detail::simulate_from(model, progress, stop_now, start ? &*start : nullptr,
+                                       keep_samples, &period);
+
     if (orbit) *orbit = detail::orbit_start(model, out.result, period);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;
