@@ -75,6 +75,10 @@ struct MeasuredResponse {
   /// an anti-aliasing filter records them, and the model sampled at the record's times, as raw
   /// samples do) and keeps the better fit; Identification::measured does not keep these.
   std::vector<double> alias_t, alias_w;
+  /// The period p whose subharmonics f/p, 2f/p, ... the fit took as signal (MeasureOptions::period;
+  /// 1 where it was 1, or where the window's samples leave too few degrees of freedom for them:
+  /// they then count as noise).
+  int subharmonics_of = 1;
 };
 
 /// The measured response of a fitted record (or window) of `samples` samples at f [Hz] from

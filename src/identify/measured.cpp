@@ -306,6 +306,9 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   const Eigen::VectorXd& cx = fit.cx;
   const Eigen::VectorXd& cz = fit.cz;
   double dof = static_cast<double>(M) - p;
+  // The residual the noise is taken from: the harmonics' fit's, or the joint fit's with the
+  // subharmonics of a period-p window.
+  double rss_x = fit.rss_x, rss_z = fit.rss_z;
   if (o.period > 1) {
     // A period-p response: its subharmonics are the motion's, not noise. Counted as noise (a
     // drum lifting off every second period: 17 m/s^2 for the 1.4 m/s^2 of the record's noise),
@@ -322,16 +325,17 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
       std::vector<double> sx(M), sz(M);
       const HarmonicFit s = fit_harmonics(t, yx, yz, f / o.period, out.t_ref, d, all, &sx, &sz);
       if (s.ok) {
-        fit.rss_x = s.rss_x;
-        fit.rss_z = s.rss_z;
+        rss_x = s.rss_x;
+        rss_z = s.rss_z;
         rx = std::move(sx);
         rz = std::move(sz);
         dof = dof_sub;
+        out.subharmonics_of = o.period;
       }
     }
   }
-  out.noise_x = std::sqrt(fit.rss_x / dof);
-  out.noise_z = std::sqrt(fit.rss_z / dof);
+  out.noise_x = std::sqrt(rss_x / dof);
+  out.noise_z = std::sqrt(rss_z / dof);
   // The noise that weighs the compared harmonics: the residual less what the separable
   // harmonics beyond N explain of it (where the samples leave the degrees of freedom for them).
   double noise2_x = out.noise_x * out.noise_x, noise2_z = out.noise_z * out.noise_z;
@@ -346,8 +350,8 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
       const HarmonicFit more =
           fit_harmonics(t, rx, rz, f, out.t_ref, -1, extra, nullptr, nullptr, false);
       if (more.ok) {
-        noise2_x = std::min(noise2_x, std::max(0.0, fit.rss_x - more.explained_x) / dof_more);
-        noise2_z = std::min(noise2_z, std::max(0.0, fit.rss_z - more.explained_z) / dof_more);
+        noise2_x = std::min(noise2_x, std::max(0.0, rss_x - more.explained_x) / dof_more);
+        noise2_z = std::min(noise2_z, std::max(0.0, rss_z - more.explained_z) / dof_more);
       }
     }
   }

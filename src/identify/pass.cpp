@@ -92,6 +92,12 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
               "state near the estimate may match as well; check the estimate with `oscidrum run` "
               "(its multiplicity should be " +
               p + ")");
+          if (d.subharmonics_of != mw.period)
+            pe.identification.warnings.push_back(
+                "the window's samples are too few to fit the subharmonics beside its " +
+                std::to_string(d.ddx.size()) +
+                " harmonics: they count as noise, which makes the fit look better and the "
+                "interval wider than they are; a longer window (--window) fits them");
         }
       } catch (const Error& e) {
         pe.reason = e.what();

@@ -450,6 +450,49 @@ double low_subharmonic_share(std::span<const double> t, const Leftover& l, doubl
   return left > 0.0 ? explained / left : 0.0;
 }
 
+// The words for a residual gate: a slow drift of a channel's offset (a sensor's, 0.01 g over
+// seconds) stays in the residual of the harmonic fit (on the harmonics of f, n_max of them), which
+// has a mean but no trend; identify's fit takes it with a cubic (docs/identify.md), and a window
+// that identify fits well failed the gate without a word of why. Empty unless a cubic explains at
+// least a quarter of what the worse channel's fit leaves; `res` is the window's residual,
+// `max_residual` the gate's.
+std::string offset_drift_hint(std::span<const double> t, std::span<const double> x,
+                              std::span<const double> z, double f, int n_max,
+                              const RecordMetrics& m, double res, double max_residual) {
+  const RecordFit rf = fit_record(t, x, z, f, n_max);
+  const Leftover l = leftover_of(t, x, z, f, n_max, rf);
+  double without[2] = {m.residual_x, m.residual_z};
+  double share[2] = {0.0, 0.0};
+  const double mid = 0.5 * (t.front() + t.back()), half = 0.5 * (t.back() - t.front());
+  for (int c = 0; c < 2; ++c) {
+    const std::vector<double>& e = c == 0 ? l.x : l.z;
+    Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d b = Eigen::Vector4d::Zero();
+    double sse = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double u = half > 0.0 ? (t[i] - mid) / half : 0.0;
+      const Eigen::Vector4d row(1.0, u, 0.5 * (3 * u * u - 1), 0.5 * u * (5 * u * u - 3));
+      G += row * row.transpose();
+      b += e[i] * row;
+      sse += e[i] * e[i];
+    }
+    const double explained = std::max(0.0, b.dot(G.ldlt().solve(b)));
+    share[c] = sse > 0.0 ? std::min(1.0, explained / sse) : 0.0;
+    without[c] *= std::sqrt(1.0 - share[c]);
+  }
+  const int worse = m.residual_z > m.residual_x ? 1 : 0;
+  if (share[worse] < 0.25) return "";
+  const double clean = std::max(without[0], without[1]);
+  return std::string(" (a slow drift of the offset of ") + (worse == 0 ? "x_M''" : "z_M''") +
+         " explains " + num(std::round(share[worse] * 1000) / 10) +
+         " % of what the fit leaves: identify's fit takes it with a cubic trend, this gate's does "
+         "not; without it the residual is " +
+         num(std::round(clean * 1000) / 1000) +
+         (clean <= max_residual
+              ? ", and --max-residual " + num(std::ceil(res * 100) / 100) + " passes the window)"
+              : ")");
+}
+
 int fitted_period(std::span<const double> t, std::span<const double> x, std::span<const double> z,
                   double f, int n_max, double covered, RecordFit& rf) {
   const auto variance = [](const RecordFit& r) {
@@ -1287,15 +1330,15 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
   std::size_t from = 0, to = 1;
   bool significant = false;
   const char* channel = "x_M''";
-  // The fit of the whole window: its harmonics, or for a period-2 fit (f, n_max here those of
-  // f/2) the fit on the harmonics of f/2, subharmonics included, as each part's.
-  std::optional<RecordFit> two_periods;
-  if (w.metrics.fitted_periods > 1.0) two_periods = fit_record(t, x, z, f, n_max);
+  // The fit of the whole window: its harmonics, or for a period-p fit (f, n_max here those of
+  // f/p) the fit on the harmonics of f/p, subharmonics included, as each part's.
+  std::optional<RecordFit> period_p;
+  if (w.metrics.fitted_periods > 1.0) period_p = fit_record(t, x, z, f, n_max);
   for (int c = 0; c < 2; ++c) {
     const std::span<const double> y = c == 0 ? x : z;
     const RecordMetrics& m = w.metrics;
-    const double whole = two_periods ? periodic_rms(c == 0 ? two_periods->hx : two_periods->hz)
-                                     : periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
+    const double whole = period_p ? periodic_rms(c == 0 ? period_p->hx : period_p->hz)
+                                  : periodic_rms(c == 0 ? m.ddx_harmonics : m.ddz_harmonics);
     if (!(whole > 0.0)) continue;
     // One value throughout (a dead channel): its fitted "RMS" is the round-off of a constant.
     if (detail::one_value(y)) continue;
@@ -1834,48 +1877,8 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                       "per period; record at " +
                       sig4(21.0 * fw) + " samples/s (21 f, 10 harmonics) or more)" + slow_logger
                 : slow_logger;
-        // A slow drift of a channel's offset (a sensor's, 0.01 g over seconds) stays in the
-        // residual of the harmonic fit, which has a mean but no trend; identify's fit takes it
-        // with a cubic (docs/identify.md), and a window that identify fits well failed here
-        // without a word of why.
-        std::string drift;
-        {
-          const RecordFit rf = fit_record(tw, xw, zw, fw / fp, fp * n_max);
-          const Leftover l = leftover_of(tw, xw, zw, fw / fp, fp * n_max, rf);
-          double without[2] = {aw.metrics.residual_x, aw.metrics.residual_z};
-          double share[2] = {0.0, 0.0};
-          const double mid = 0.5 * (tw.front() + tw.back()), half = 0.5 * (tw.back() - tw.front());
-          for (int c = 0; c < 2; ++c) {
-            const std::vector<double>& e = c == 0 ? l.x : l.z;
-            Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
-            Eigen::Vector4d b = Eigen::Vector4d::Zero();
-            double sse = 0.0;
-            for (std::size_t i = 0; i < tw.size(); ++i) {
-              const double u = half > 0.0 ? (tw[i] - mid) / half : 0.0;
-              const Eigen::Vector4d row(1.0, u, 0.5 * (3 * u * u - 1), 0.5 * u * (5 * u * u - 3));
-              G += row * row.transpose();
-              b += e[i] * row;
-              sse += e[i] * e[i];
-            }
-            const double explained = std::max(0.0, b.dot(G.ldlt().solve(b)));
-            share[c] = sse > 0.0 ? std::min(1.0, explained / sse) : 0.0;
-            without[c] *= std::sqrt(1.0 - share[c]);
-          }
-          const int worse = aw.metrics.residual_z > aw.metrics.residual_x ? 1 : 0;
-          if (share[worse] >= 0.25) {
-            const double clean = std::max(without[0], without[1]);
-            drift = std::string(" (a slow drift of the offset of ") +
-                    (worse == 0 ? "x_M''" : "z_M''") + " explains " +
-                    num(std::round(share[worse] * 1000) / 10) +
-                    " % of what the fit leaves: identify's fit takes it with a cubic trend, this "
-                    "gate's does not; without it the residual is " +
-                    num(std::round(clean * 1000) / 1000) +
-                    (clean <= o.gates.max_residual
-                         ? ", and --max-residual " + num(std::ceil(res * 100) / 100) +
-                               " passes the window)"
-                         : ")");
-          }
-        }
+        const std::string drift = offset_drift_hint(tw, xw, zw, fw / fp, fp * n_max, aw.metrics,
+                                                    res, o.gates.max_residual);
         reasons.push_back("fit residual " + num(std::round(res * 1000) / 1000) + " > " +
                           num(o.gates.max_residual) + drift + folded);
       }

@@ -207,6 +207,15 @@ TEST(MeasureWindow, APeriodTwoWindowsSubharmonicsAreNotNoise) {
     EXPECT_NEAR(std::abs(two.ddx[n] - one.ddx[n]), 0.0, 1e-9);
     EXPECT_NEAR(std::abs(two.ddz[n] - one.ddz[n]), 0.0, 1e-9);
   }
+  EXPECT_EQ(one.subharmonics_of, 1);
+  EXPECT_EQ(two.subharmonics_of, 2);
+  // A window too short for the subharmonics beside its harmonics (dof below half the samples):
+  // they count as noise, and the window says so (identify_pass warns).
+  const std::span<const double> t4(s.t.data(), 120), x4(s.x.data(), 120), z4(s.z.data(), 120);
+  o.harmonics = 18;
+  EXPECT_EQ(measure_window(t4, x4, z4, kF, o).subharmonics_of, 1);
+  o.harmonics = 8;
+  EXPECT_EQ(measure_window(t4, x4, z4, kF, o).subharmonics_of, 2);
   o.period = 5;
   EXPECT_THROW(measure_window(s.t, s.x, s.z, kF, o), Error);
 }
