@@ -973,7 +973,26 @@ bool Shooter<R>::stable_orbit(ShootingOutcome& out, State& z, Phase phase, Perio
   const State orbit = z;
   if (subharmonic(orbit, phase, M, z, cur, out)) {
     out.floquet = multipliers_of(cur.M);
+    // Newton on P^p starts from a kicked period-1 orbit, and its last fresh monodromy was taken
+    // far from the orbit: a period-2 orbit of the log-spiral study read 0.987198 where the
+    // orbit's monodromy (and the Lyapunov exponent over 3000 periods) give 0.988320. A
+    // subharmonic is rare, so its monodromy is always taken again at the orbit (p periods).
+    PeriodMap fresh = period_map(z, phase, true);
+    if (fresh.stop == FlowStop::reached && fresh.phase == phase && !fresh.grazing) {
+      cur = std::move(fresh);
+      out.M = cur.M;
+      out.floquet = multipliers_of(cur.M);
+    }
+    if (out.floquet.stability != Stability::stable) {
+      out.message = why + fmt(", and the orbit of P^%.0f Newton found is unstable by its "
+                              "monodromy at the orbit (largest modulus %.6g): the transient is "
+                              "followed instead",
+                              p_, out.floquet.max_modulus);
+      out.floquet = Floquet{};
+      return false;
+    }
     out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
+
                             "shooting on P^%.0f",
                             p_, p_);
     return true;
