@@ -261,7 +261,9 @@ void add_diagram_command(CLI::App& app, Action& action) {
       "both, so that coexisting motions and hysteresis show); at each value the transient is "
       "discarded and the stroboscopic points (every output column once per excitation period) "
       "are kept with the motion's verdict (periodic with its period, converging, "
-      "quasi_periodic, chaotic, undecided) and its largest Lyapunov exponent. A start from "
+      "quasi_periodic, chaotic, undecided, gross_slip) and its largest Lyapunov exponent. Where "
+      "shooting from the previous state finds no stable orbit, the transient from that state "
+      "decides (never a start from rest, which could jump to another attractor). A start from "
       "rest (the first value) is run's: under numerics.start_ramp_periods, or retried with a "
       "20-period ramp when it loses contact; a value continued from the previous state runs "
       "without the ramp. docs/bifurcations.md.");

@@ -57,9 +57,9 @@ struct DiagramValue {
   bool shooting = false;
   double excitation_period = 0.0;  ///< T = 1 / f at this value [s]
   /// The verdict (MotionAnalysis::kind: periodic, converging, quasi_periodic, chaotic,
-  /// undecided) with its numbers; its section is moved into `section` below. Where the flow
-  /// stopped before the exponent was computed (undecided, the evidence says why) lyapunov and
-  /// its halves are NaN.
+  /// undecided; and gross_slip: the drum spins up, docs/bifurcations.md) with its numbers; its
+  /// section is moved into `section` below. Where the flow stopped before the exponent was computed
+  /// (undecided, the evidence says why) lyapunov and its halves are NaN.
   MotionAnalysis motion;
   /// The period of the verdict: the recurrence p of a periodic motion, the p a converging motion
   /// approaches (0 if unknown), 0 otherwise [-].

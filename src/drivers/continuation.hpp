@@ -36,6 +36,10 @@ struct WarmStart {
   /// state with a transient of its own; the check of a motion by shooting): the cold start gets
   /// what the warm start left, and a warm start that spends the budget ends the run.
   bool cold_start_budget = false;
+  /// False: a warm start that fails ends the run (status max_periods_reached, no samples)
+  /// instead of the cold start from rest (the diagram follows the previous value's attractor
+  /// with a transient of its own: a start from rest jumped to another attractor).
+  bool cold_start = true;
 };
 
 /// The state of a steady state at its section (the first sample, t0 a period boundary) as a

@@ -21,6 +21,7 @@
 
 #include "drivers/continuation.hpp"
 #include "drivers/sampling.hpp"
+#include "drivers/steady_state.hpp"
 #include "drivers/varied_parameter.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -81,8 +82,44 @@ std::string ramp_retry_note(const std::string& lost) {
          (lost.empty() ? std::string() : " (" + lost + ")");
 }
 
+// Gross slip, as run's search calls it (the transient method's gross-slip test): the drum slips
+// the way its driving torque pushes at every stroboscopic point of the window, and phi' grows in
+// every period, by no less at the end than at the start (kUnfadingGrowth). Its points neither
+// recur nor converge, and the window read a torus ("quasi_periodic") or undecided where `run`
+// says gross_slip.
+template <class R>
+void gross_slip_verdict(const detail::Dynamics<R>& dyn, MotionAnalysis& m) {
+  using Dyn = detail::Dynamics<R>;
+  using Vector = typename Dyn::Vector;
+  if (m.kind == "periodic" || m.kind == "converging" || m.section.size() < 3) return;
+  const std::size_t n = m.section.size();
+  const auto at = [&](std::size_t k) {
+    Vector x{};
+    std::copy(m.section[k].begin(), m.section[k].end(), x.begin());
+    return x;
+  };
+  double hold = 0.0;
+  const int s = dyn.pushed_slip(m.section_phase.back(), at(n - 1), &hold);
+  if (s == 0) return;
+  for (std::size_t k = 1; k < n; ++k)
+    if (m.section_phase[k] != m.section_phase.back() ||
+        !(Dyn::spin_up(at(k), at(k - 1), s, 1) > 0.0))
+      return;
+  const double first = Dyn::spin_up(at(1), at(0), s, 1);
+  const double last = Dyn::spin_up(at(n - 1), at(n - 2), s, 1);
+  if (!(last >= detail::steady::kUnfadingGrowth * first)) return;
+  m.kind = "gross_slip";
+  m.evidence = detail::format(
+      "gross slip: the drum spins (slipping the way the driving torque pushes at each of the %.0f "
+      "stroboscopic points, phi' grows in every period, by %.3g rad/s in the last): friction holds "
+      "less than the driving torque on this motion (mu W r = %.6g N m); `run` stops such a case "
+      "as gross_slip",
+      static_cast<double>(n), last, hold);
+}
+
 template <class R>
 DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
+
                       const DiagramOptions& o, long& periods_integrated) {
   using Dyn = detail::Dynamics<R>;
   using Vector = typename Dyn::Vector;
@@ -113,15 +150,13 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
     sampled = detail::simulate_from(rest, {}, o.cancelled, nullptr);
     periods_integrated += sampled.diagnostics.periods_simulated;
   } else {
-    const detail::WarmStart warm{start.state, start.phase, {}};
+    // Where Newton from that state fails, the transient from it follows below, not a start from
+    // rest: the sweep follows its attractor (a start from rest jumped to another one, and a finer
+    // step gave another picture).
+    detail::WarmStart warm{start.state, start.phase, {}};
+    warm.cold_start = false;
     sampled = detail::simulate_from(model, {}, o.cancelled, &warm);
     periods_integrated += sampled.diagnostics.periods_simulated;
-    // Newton from that state failed and simulate fell back on a start from rest: that start
-    // under the case's ramp.
-    if (sampled.diagnostics.warm_start != 1 && ramp > 0 && sampled.status != Status::cancelled) {
-      sampled = detail::simulate_from(rest, {}, o.cancelled, nullptr);
-      periods_integrated += sampled.diagnostics.periods_simulated;
-    }
   }
   const Dyn dyn(model, FlowOptions::from(model).baumgarte);
   std::string note;  // a start from rest ramped in after it lost contact
@@ -183,6 +218,7 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
   if (v.motion.periods < o.periods)
     v.motion.lyapunov = v.motion.lyapunov_first = v.motion.lyapunov_second = kNaN;
   v.motion.evidence += note;
+  gross_slip_verdict<R>(dyn, v.motion);
   if (v.motion.kind == "periodic") v.period = v.motion.recurrence;
   if (v.motion.kind == "converging") v.period = v.motion.converging_period;
   const double t0 = sampled.samples.t.front();

@@ -429,9 +429,15 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
       }
     }
   }
-  if (!done && num.method == SteadyMethod::shooting)
+  // A warm start whose caller wants no start from rest after it (WarmStart::cold_start).
+  const bool no_cold = warm != nullptr && !warm->cold_start && result.diagnostics.warm_start == -1;
+  if (no_cold) {
+    result.status = Status::max_periods_reached;
+    result.message = "no stable periodic orbit by shooting from the given state";
+  }
+  if (!done && !no_cold && num.method == SteadyMethod::shooting)
     done = shooting(model, flow, progress, result, &sample_rhs, all_samples, record);
-  if (!done) {
+  if (!done && !no_cold) {
     // The transient method's sampling continues its search: no restart, no recording.
     if (record != nullptr) detail::recording::clear(*record);
     transient(model, flow, progress, result, &sample_rhs, all_samples);

@@ -262,6 +262,51 @@ TEST(Diagram, AValueWhoseFlowStoppedHasNoExponent) {
   }
 }
 
+// Where shooting from the previous value's state finds no stable orbit, the transient from that
+// state decides, not a start from rest: at 74 Hz a start from rest (simulate's fallback, taken
+// before) jumped to another period-2 orbit (x_M'' -150.2 / -1.1 for the followed one's -170.5 /
+// -139.1), so that steps of 1 and 2 Hz drew different pictures of one branch.
+TEST(Diagram, AValueFollowsThePreviousValuesAttractorNotAStartFromRest) {
+  Case c = test::rolling_unilateral_case(73.0);
+  set_field(c, "soil.G", 100e6);
+  DiagramOptions o;
+  o.key = "roller.f";
+  o.from = 73.0;
+  o.to = 75.0;
+  o.steps = 2;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 3u);
+  for (std::size_t k = 1; k < 3; ++k) {
+    const DiagramValue& v = d.values[k];
+    SCOPED_TRACE("f = " + std::to_string(v.parameter));
+    EXPECT_FALSE(v.from_rest);
+    EXPECT_EQ(v.period, 2) << v.motion.evidence;
+    const std::vector<double> x = distinct(v.section.ddx_M, 1e-6);
+    ASSERT_EQ(x.size(), 2u);
+    EXPECT_LT(x[1], -100.0);  // both points of the followed orbit are deep; the other's -1.1
+  }
+}
+
+// A driving torque beyond what friction holds: the drum spins up, its stroboscopic points neither
+// recur nor converge, and the window read a torus ("quasi_periodic") where run says gross_slip.
+TEST(Diagram, ASpinningDrumIsGrossSlipNotATorus) {
+  Case c;
+  c.numerics.method = SteadyMethod::shooting;
+  DiagramOptions o;
+  o.key = "MMd";
+  o.from = 12000.0;
+  o.to = 13000.0;
+  o.steps = 1;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 2u);
+  for (const DiagramValue& v : d.values) {
+    EXPECT_EQ(v.motion.kind, "gross_slip") << v.motion.evidence;
+    EXPECT_EQ(v.period, 0);
+  }
+  set_field(c, "MMd", 12000.0);
+  EXPECT_EQ(simulate(c).status, Status::gross_slip);
+}
+
 TEST(Diagram, RefusesBadOptions) {
   const Case c;
   const auto refused = [&](DiagramOptions o, const std::string& says) {
