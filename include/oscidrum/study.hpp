@@ -21,6 +21,10 @@ struct CaseOutcome {
   Metrics metrics;    ///< computed whenever the result has samples
 };
 
+/// The outcome of a case a study did not run (cancelled before it): valid false, error
+/// "cancelled", status cancelled, metrics and diagnostic values NaN.
+CaseOutcome not_run_outcome();
+
 struct StudyOptions {
   int threads = 0;            ///< worker threads; 0: std::thread::hardware_concurrency()
   bool keep_samples = false;  ///< keep each case's steady-state samples in the outcome

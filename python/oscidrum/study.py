@@ -136,7 +136,7 @@ class StudyResult(list):
             row = {k: p[k] for k in keys}
             row["valid"] = o.valid
             row["ok"] = o.ok
-            row["status"] = o.result.status.name if o.valid else "invalid"
+            row["status"] = o.result.status.name  # invalid, or cancelled for a case never run
             # error: why a case was refused ('' for a case that ran, as CaseOutcome.error; it held
             # the result's message, so that every row had an "error"); message: the result's.
             row["error"] = o.error

@@ -82,14 +82,9 @@ void bind_study(py::module_& m) {
                                   "executors), between processes of the same oscidrum build.");
   construct_on_new(outcome);
   outcome.def_static(
-      "not_run",
-      [] {
-        CaseOutcome o;
-        o.valid = false;
-        o.error = "cancelled";
-        return o;
-      },
-      "The outcome of a case a study did not run (valid=False, error='cancelled').");
+      "not_run", [] { return not_run_outcome(); },
+      "The outcome of a case a study did not run (valid=False, error='cancelled', status "
+      "cancelled, metrics and diagnostic values NaN).");
   pickling::def_pickle(outcome, "CaseOutcome");
   outcome
       .def_readonly("valid", &CaseOutcome::valid,

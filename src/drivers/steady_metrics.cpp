@@ -40,6 +40,7 @@
 #include "oscidrum/kinematics.hpp"
 #include "oscidrum/metrics.hpp"
 #include "roller/rollers.hpp"
+#include "util/format.hpp"
 #include "util/small_angle.hpp"
 
 namespace oscidrum {
@@ -299,6 +300,33 @@ Recording detail::steady_period(const Model& model, const Result& result,
 }
 
 Metrics compute_metrics(const Model& model, const Result& result, int n_max) {
+  // The model must be the one the result was simulated with: the metrics integrate its period
+  // again from the first sample, and another case's (a notebook's loop variable re-bound) gave
+  // another area without a word (43.78 for 22.78 at 30 Hz instead of 39 Hz).
+  const Samples& s = result.samples;
+  if (s.size() > 0 && ok(result.status)) {
+    const double f = model.parameters().roller.f;
+    if (!(std::abs(result.frequency - f) <= 1e-12 * f))
+      throw Error(detail::format(
+          "compute_metrics: the result was simulated at f = %.10g Hz, the case has roller.f = "
+          "%.10g Hz: give the Case the result was simulated with",
+          result.frequency, f));
+    // Its accelerations at the first sample, from the sampled state.
+    detail::with_roller(model, [&]<class R>() {
+      const detail::Dynamics<R> dyn(model, FlowOptions::from(model).baumgarte);
+      Samples again;
+      dyn.sample(s.t[0], detail::Dynamics<R>::sampled_state(s, 0), s.phase[0], again);
+      const double scale = std::max({1.0, std::abs(s.ddx_M[0]), std::abs(s.ddz_M[0])});
+      const double off =
+          std::max(std::abs(again.ddx_M[0] - s.ddx_M[0]), std::abs(again.ddz_M[0] - s.ddz_M[0]));
+      if (!(off <= 1e-9 * scale))
+        throw Error(detail::format(
+            "compute_metrics: the case does not give the result's accelerations at its first "
+            "sample (x_M'' %.6g m/s^2 there, %.6g from the case): give the Case the result was "
+            "simulated with",
+            s.ddx_M[0], again.ddx_M[0]));
+    });
+  }
   return detail::compute_metrics(model, result, n_max, nullptr);
 }
 

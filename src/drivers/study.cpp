@@ -12,19 +12,24 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
 
 #include "drivers/continuation.hpp"
 #include "drivers/period_recording.hpp"
+#include "metrics/indicators.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/model.hpp"
+#include "oscidrum/output_table.hpp"
 #include "oscidrum/simulate.hpp"
 
 namespace oscidrum {
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Shared by the workers of one run_study call.
 struct Pool {
@@ -51,6 +56,21 @@ struct Pool {
     return stop.load();
   }
 };
+
+// The outcome of a case that did not run: `status` (invalid, cancelled), no metrics, and no
+// diagnostic values (NaN: a final_change of 0 read as converged, a min_N of 0 as contact lost).
+CaseOutcome never_run(Status status, const std::string& error, const std::string& message) {
+  CaseOutcome o;
+  o.valid = false;
+  o.error = error;
+  o.result.status = status;
+  o.result.message = message;
+  o.result.diagnostics = detail::all_unavailable<Diagnostics>(diagnostic_outputs());
+  o.result.stick_time = o.result.slip_positive_time = o.result.slip_negative_time = kNaN;
+  o.result.flight_time = kNaN;
+  o.metrics = Metrics::unavailable();
+  return o;
+}
 
 // One case; `interrupted` is set if the cancellation callback stopped it midway.
 // `cancelled` (the caller's callback, serialised) is polled once per period, `stop_now` (cheap)
@@ -100,10 +120,7 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
   if (!out.valid) {
     // Never run: its result said steady_state and its metrics were 0 (a default Result and
     // Metrics), which a list of o.metrics.area took for numbers.
-    out.result = Result{};
-    out.result.status = Status::invalid;
-    out.result.message = out.error;
-    out.metrics = Metrics::unavailable();
+    out = never_run(Status::invalid, out.error, out.error);
   }
   if (!keep_samples) out.result.samples = Samples{};
   return out;
@@ -177,6 +194,14 @@ void work(Pool& pool) {
     }
   }
 }
+
+}  // namespace
+
+CaseOutcome not_run_outcome() {
+  return never_run(Status::cancelled, "cancelled", "cancelled before the case ran");
+}
+
+namespace {
 
 bool continues(const Case& c) {
   return c.numerics.method == SteadyMethod::shooting && c.numerics.continuation;
@@ -335,13 +360,7 @@ std::vector<CaseOutcome> run_study(std::size_t count, const CaseSource& case_at,
   std::vector<CaseOutcome> outcomes(options.keep_outcomes ? count : 0);
   // A case never run (the study cancelled before it) is no steady state: status cancelled, no
   // metrics (a default Result said steady_state, and the metrics were 0).
-  for (CaseOutcome& o : outcomes) {
-    o.valid = false;
-    o.error = "cancelled";
-    o.result.status = Status::cancelled;
-    o.result.message = "cancelled before the case ran";
-    o.metrics = Metrics::unavailable();
-  }
+  for (CaseOutcome& o : outcomes) o = not_run_outcome();
   // Checked before the first case (compute_metrics would refuse each case alike).
   for (std::size_t i = 0; i < count; ++i) {
     if (planning_cancelled(i, options.cancelled)) return outcomes;

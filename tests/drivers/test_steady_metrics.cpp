@@ -73,7 +73,32 @@ TEST(SteadyMetrics, IndependentOfTheOutputSampling) {
   }
 }
 
+// The metrics integrate the period again from the first sample with the model given: another
+// case's model (a notebook's loop variable re-bound) gave another area without a word (43.78 for
+// 22.78 with f = 30 Hz for a result at 39 Hz; 370 with G = 70 MN/m^2). Both are refused.
+TEST(SteadyMetrics, AModelTheResultWasNotSimulatedWithIsRefused) {
+  const Case c;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state);
+  EXPECT_NO_THROW(compute_metrics(Model(c), r));
+  Case other_f = c;
+  other_f.roller.f = 30.0;
+  Case other_G = c;
+  other_G.soil = table2_soil(70e6);
+  for (const Case& other : {other_f, other_G}) {
+    try {
+      compute_metrics(Model(other), r);
+      ADD_FAILURE() << "another case's model accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("give the Case the result was simulated with"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // The RMV- and CCV-type values read z_M'''s subharmonics A(f/2), A(3f/2), A(5f/2): none in a
+
 // period-1 state (RMV exactly 0, CCV from A_1, A_2, A_3 alone); in the stable period-2 orbit
 // after a period doubling the dense-output integrals and a DFT of fine samples agree.
 TEST(SteadyMetrics, SubharmonicIndicatorsOfAPeriodTwoOrbit) {

@@ -200,7 +200,21 @@ TEST(Study, AnInvalidCaseHasNoSteadyStateAndNoMetrics) {
   EXPECT_EQ(out[0].result.message, out[0].error);
   EXPECT_TRUE(std::isnan(out[0].metrics.area));
   EXPECT_TRUE(std::isnan(out[0].metrics.ddx_max));
+  // No diagnostic values either: a final_change of 0 read as converged, a min_N of 0 as contact
+  // lost (the results CSV leaves these cells empty).
+  EXPECT_TRUE(std::isnan(out[0].result.diagnostics.final_change));
+  EXPECT_TRUE(std::isnan(out[0].result.diagnostics.min_N));
+  EXPECT_TRUE(std::isnan(out[0].result.diagnostics.phi_drift));
+  EXPECT_TRUE(std::isnan(out[0].result.stick_time));
+  // A case a study did not run: cancelled, the same way (Python's Interrupted.result).
+  const CaseOutcome never = not_run_outcome();
+  EXPECT_FALSE(never.valid);
+  EXPECT_EQ(never.error, "cancelled");
+  EXPECT_EQ(never.result.status, Status::cancelled);
+  EXPECT_TRUE(std::isnan(never.result.diagnostics.final_change));
+  EXPECT_TRUE(std::isnan(never.metrics.area));
   EXPECT_TRUE(out[1].valid);
+
   EXPECT_EQ(out[1].result.status, Status::steady_state);
 }
 

@@ -1,6 +1,7 @@
 """Studies from Python: DataFrames, xarray/netCDF, progress, Ctrl-C, and executors (a local
 pool, Dask distributed, mpi4py.futures) giving results identical to a local run, in order."""
 
+import math
 import os
 import pathlib
 import shutil
@@ -131,6 +132,10 @@ def test_ctrl_c_keeps_what_is_done(threads):
     assert isinstance(info.value, KeyboardInterrupt) and len(res) == 404
     assert all(o.ok for o in res[:4])  # done before Ctrl-C, kept
     assert res[-1].valid is False and res[-1].error == "cancelled"
+    # Never run: no steady state (its result said steady_state with ok True before).
+    assert res[-1].result.status == oscidrum.Status.cancelled and not res[-1].result.ok
+    assert math.isnan(res[-1].result.diagnostics.final_change)
+
 
 
 def test_thread_pool_executor_equals_local(local):
