@@ -209,7 +209,7 @@ int run(AnalyzeOptions o) {
       j.update(window_json(ws.front()));
       j.erase("window");
       j["reading"] = reading_json(o.input, rec);
-      if (const std::string why = kb_reason(ws.front(), kb_note); !why.empty()) j["kb_note"] = why;
+      j["kb_note"] = kb_reason(ws.front(), kb_note);  // empty where kb was computed
     } else {
       nlohmann::ordered_json rows = nlohmann::json::array();
       for (const RecordWindow& w : ws) rows.push_back(window_json(w));
@@ -222,7 +222,7 @@ int run(AnalyzeOptions o) {
            {"reading", reading_json(o.input, rec)},
            {"valid_windows", valid},
            {"windows", rows}};
-      if (!kb_note.empty()) j["kb_note"] = kb_note;
+      j["kb_note"] = kb_note;
     }
     std::cout << j.dump(2) << "\n";
   } else if (!single || o.format == "csv") {

@@ -38,6 +38,15 @@ std::string trim(const std::string& s) {
 
 bool is_comment(const std::string& line) {
   const std::string s = trim(line);
+  if (!s.empty() && s[0] == '#') {
+    // A spreadsheet's error value in the first cell (#N/A, #DIV/0!, ...) is a row with a missing
+    // value, not a comment: dropped as one, it lost its place in time under --rate and moved
+    // every later sample a step earlier (a record failed with "frequency drift").
+    std::string first = s.substr(0, s.find_first_of(",;\t| "));
+    for (char& ch : first) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (const char* error : {"#n/a", "#div/0!", "#value!", "#num!", "#ref!", "#name?", "#null!"})
+      if (first == error) return false;
+  }
   return s.empty() || s[0] == '#' || s[0] == '%' || s.rfind("//", 0) == 0;
 }
 

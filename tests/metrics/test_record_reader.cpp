@@ -209,7 +209,16 @@ TEST(RecordReader, LoneCarriageReturnsAndSpreadsheetErrors) {
   EXPECT_TRUE(std::any_of(errors.notes.begin(), errors.notes.end(), [](const std::string& n) {
     return n.find("skipped 2 rows with a missing") != std::string::npos;
   }));
+  // In the first cell: a row with a missing value, not a comment line. Dropped as a comment, it
+  // lost its place in time under --rate: every later sample moved a step earlier.
+  RecordReading by_rate;
+  by_rate.rate = 1000.0;
+  const RecordColumns first = read_text("ax,az\n1,2\n#N/A,4\n#DIV/0!,5\n7,8\n", by_rate);
+  ASSERT_EQ(first.t.size(), 2u);
+  EXPECT_DOUBLE_EQ(first.t[1], 0.003);
+  EXPECT_DOUBLE_EQ(first.ddx_M[1], 7.0);
 }
+
 
 // A robot's inertial unit as ROS writes it. ROS 1's `rostopic echo -p`: the header a comment
 // (%time), a text column in every row (frame_id: the first data row is no header for it), the
