@@ -138,8 +138,18 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
   s.line("soil", soil_summary(c.soil));
   s.line("ksh, ksv", pair_text("soil.ksh", k.ksh, "soil.ksv", k.ksv));
   s.line("csh, csv", pair_text("soil.csh", k.csh, "soil.csv", k.csv));
-  s.line("contact", c.contact.pure_rolling ? "pure rolling (no friction limit)"
-                                           : "Coulomb friction, mu = " + fmt(c.contact.mu));
+  // The law the numbers below come from (a regularised law read "Coulomb friction"; the static
+  // coefficient and a contact that can open were not said).
+  std::string contact =
+      c.contact.pure_rolling ? std::string("pure rolling (no friction limit)")
+      : c.contact.law == FrictionChoice::regularised
+          ? "regularised friction, mu tanh(v_rel / v_eps), mu = " + fmt(c.contact.mu) +
+                ", v_eps = " + fmt(c.contact.v_eps) + " m/s"
+          : "Coulomb friction, mu = " + fmt(c.contact.mu) +
+                (c.contact.mu_static >= 0.0 ? ", static mu_static = " + fmt(c.contact.mu_static)
+                                            : std::string());
+  if (c.contact.unilateral) contact += "; unilateral (the drum may lift off)";
+  s.line("contact", contact);
   s.line("trough", summary(c.trough.shape));
   const double M0 = vibratory ? 0.0 : oscillation_moment(c.roller);
   const double nu = 2.0 * M_PI * c.roller.f;
@@ -209,8 +219,11 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
         continue;
       }
       const std::size_t shown = std::min<std::size_t>(6, h.size());
-      s.line(std::string(out.label) + " A(f) ... A(" + std::to_string(shown ? shown - 1 : 0) + "f)",
-             harmonics_text(h, shown - 1, zeroed) + round_off(out.name));
+      s.line(
+          std::string(out.label) + (shown == 2 ? std::string(" A(f)")
+                                               : " A(f) ... A(" + std::to_string(shown - 1) + "f)"),
+
+          harmonics_text(h, shown - 1, zeroed) + round_off(out.name));
       // After the last of consecutive spectra: what a printed 0 means.
       if (zeroed && (i + 1 == outputs.size() || is_scalar(outputs[i + 1]))) {
         s.line("",

@@ -202,7 +202,27 @@ TEST(CliRun, DefaultCaseReachesSteadyState) {
 
 // f changed with M0 fixed is rarely meant (M0 = 4 m_u e_u e_w nu^2 (5)): a warning on stderr. The
 // roller given by its unbalance (or M0 given explicitly) says what is meant: no warning.
+// The summary's contact line names the law the numbers come from: a regularised law, a static
+// coefficient and a contact that can open all read "Coulomb friction, mu = 0.5".
+TEST(CliRun, TheSummaryNamesTheContactLaw) {
+  Outcome o = run({"run", "-q", "--set", "contact.law=regularised", "--set",
+                   "contact.v_eps=0.05"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("regularised friction, mu tanh(v_rel / v_eps), mu = 0.5, v_eps = 0.05"),
+            std::string::npos)
+      << o.out;
+  o = run({"run", "-q", "--set", "contact.mu_static=0.8", "--set", "contact.unilateral=true"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("Coulomb friction, mu = 0.5, static mu_static = 0.8; unilateral"),
+            std::string::npos)
+      << o.out;
+  o = run({"run", "-q", "--MMd-fraction", "0.05", "--harmonics", "1"});
+  EXPECT_NE(o.out.find("harmonics A(f) "), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("A(1f)"), std::string::npos) << o.out;
+}
+
 TEST(CliRun, FrequencyWithFixedM0Warns) {
+
   Outcome o = run({"run", "--f", "30", "--format", "json"});
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.err.find("warning: "), std::string::npos) << o.err;
