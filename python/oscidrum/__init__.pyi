@@ -117,7 +117,7 @@ class Diagnostics:
     lyapunov_exponent: float
     """of the motion examined for `motion` (Benettin's estimate from the variational equations; 0 when not examined) [1/s]"""
     max_slip_residual: float
-    """largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = P0 (a force ratio), over the result's trajectory: the run from rest and the sampled periods (shooting: its short transient from rest and the sampled periods of the orbit, not Newton's iterates) [-]"""
+    """largest |residual of the slip coupling (39)| / W at the step ends in slip, W = m g + Fz = P0 (a force ratio), over the result's trajectory: the run from rest and the sampled periods (shooting: its short transient from rest and the sampled periods of the orbit, not Newton's iterates; a study's warm-started case, warm_start 1, has no run from rest: its sampled periods only, so its value can differ from the same case run alone) [-]"""
     method: str
     """what produced the steady state: transient (integrated from rest until it repeats) or shooting (solved for by Newton's method on the period map, docs/periodic.md) [-]"""
     min_N: float
