@@ -534,7 +534,54 @@ TEST(IdentifyPass, WindowsAfterFailedOnesStartFromTheLastValidEstimate) {
   EXPECT_GE(after, 3);
 }
 
+// A record of G = 30 then 17.3 MN/m^2 (examples/change_gate_straddle.py): the second window holds
+// 1 of its 40 periods on the stiffer soil, passes the change gate (5 % of the RMS) and is fitted
+// well, with an interval that excludes both soils. The end window shares most of its samples and
+// gives a disjoint interval: both say so. Windows on one soil that overlap do not.
+TEST(IdentifyPass, OverlappingWindowsWithDisjointIntervalsSaySo) {
+  const double tc = 41.0 / 39.0, seg = tc / 8;
+  const int after = static_cast<int>(std::lround((2.2 - tc) / seg));
+  std::vector<Case> segments;
+  for (int k = 0; k < 8 + after; ++k) {
+    Case c;
+    c.soil.input = SoilInput::modulus;
+    c.soil.G = k < 8 ? 30e6 : 17.3e6;
+    segments.push_back(c);
+  }
+  SyntheticRecord so;
+  so.duration = seg * static_cast<double>(segments.size());
+  so.sample_rate = 2000;
+  so.noise = 0.02;
+  so.drift = 0.05;
+  so.jitter = 0.1;
+  so.seed = 3;
+  const RecordSamples r = synthetic_record(segments, so);
+  WindowOptions forty;  // identify's default window
+  forty.window_periods = 40;
+  const std::vector<PassEstimate> pass = identify_pass(Case{}, r.t, r.ddx_M, r.ddz_M, {}, forty);
+  ASSERT_EQ(pass.size(), 3u);
+  const auto said = [](const PassEstimate& p) {
+    for (const std::string& w : p.identification.warnings)
+      if (w.find("does not meet this one's") != std::string::npos) return true;
+    return false;
+  };
+  for (const PassEstimate& p : pass) ASSERT_TRUE(p.valid) << p.reason;
+  const Estimate& straddling = pass[1].identification.estimates.at(0);
+  EXPECT_GT(straddling.lower, 17.3e6);  // the blind spot itself (docs/identify.md)
+  EXPECT_FALSE(said(pass[0]));
+  EXPECT_TRUE(said(pass[1]));
+  EXPECT_TRUE(said(pass[2]));
+  // One soil throughout, windows overlapping by half: no such warning.
+  const RecordSamples one = synthetic_record({segments.back()}, so);
+  WindowOptions half;
+  half.window_periods = 40;
+  half.hop_periods = 20;
+  for (const PassEstimate& p : identify_pass(Case{}, one.t, one.ddx_M, one.ddz_M, {}, half))
+    EXPECT_FALSE(said(p)) << p.window.index;
+}
+
 // A period-2 record (the log-spiral drum past its period doubling, G = 150 MN/m^2): identify
+
 // compares the harmonics of f alone, and says so; the subharmonics are not the window's noise.
 // Before, they were (the noise 12 times the record's on a drum lifting off every second period),
 // and a G off by several of its intervals came with no warning.
