@@ -205,8 +205,7 @@ TEST(CliRun, DefaultCaseReachesSteadyState) {
 // The summary's contact line names the law the numbers come from: a regularised law, a static
 // coefficient and a contact that can open all read "Coulomb friction, mu = 0.5".
 TEST(CliRun, TheSummaryNamesTheContactLaw) {
-  Outcome o = run({"run", "-q", "--set", "contact.law=regularised", "--set",
-                   "contact.v_eps=0.05"});
+  Outcome o = run({"run", "-q", "--set", "contact.law=regularised", "--set", "contact.v_eps=0.05"});
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("regularised friction, mu tanh(v_rel / v_eps), mu = 0.5, v_eps = 0.05"),
             std::string::npos)
@@ -222,7 +221,6 @@ TEST(CliRun, TheSummaryNamesTheContactLaw) {
 }
 
 TEST(CliRun, FrequencyWithFixedM0Warns) {
-
   Outcome o = run({"run", "--f", "30", "--format", "json"});
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.err.find("warning: "), std::string::npos) << o.err;

@@ -219,7 +219,6 @@ TEST(RecordReader, LoneCarriageReturnsAndSpreadsheetErrors) {
   EXPECT_DOUBLE_EQ(first.ddx_M[1], 7.0);
 }
 
-
 // A robot's inertial unit as ROS writes it. ROS 1's `rostopic echo -p`: the header a comment
 // (%time), a text column in every row (frame_id: the first data row is no header for it), the
 // stamps in ns since 1970, the channels fields of the message (field.linear_acceleration.x;
