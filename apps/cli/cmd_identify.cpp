@@ -442,7 +442,6 @@ int run(const IdentifyCliOptions& o) {
                           ? "about " + fmt(periods, 3) + " periods, fewer than"
                           : fmt(w.t_end - w.t_start, 3) + " s (its frequency unknown), less than")
                   << " the default window of " << fmt(o.windows.window_periods, 3)
-
                   << ": identified whole, as one window (as --window 0)\n";
     }
   }

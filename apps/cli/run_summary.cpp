@@ -222,7 +222,6 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
       s.line(
           std::string(out.label) + (shown == 2 ? std::string(" A(f)")
                                                : " A(f) ... A(" + std::to_string(shown - 1) + "f)"),
-
           harmonics_text(h, shown - 1, zeroed) + round_off(out.name));
       // After the last of consecutive spectra: what a printed 0 means.
       if (zeroed && (i + 1 == outputs.size() || is_scalar(outputs[i + 1]))) {

@@ -147,7 +147,6 @@ def _explain(exc):
     return f"{head}: arguments must be {' or '.join(sigs) or 'of other types'}; got {got}"
 
 
-
 def _friendly(func):
     """Turn pybind11's TypeError for arguments of the wrong type into oscidrum.Error (only when
     raised by the compiled function itself, not by a Python callback it called)."""

@@ -119,7 +119,6 @@ void gross_slip_verdict(const detail::Dynamics<R>& dyn, MotionAnalysis& m) {
 
 template <class R>
 DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
-
                       const DiagramOptions& o, long& periods_integrated) {
   using Dyn = detail::Dynamics<R>;
   using Vector = typename Dyn::Vector;

@@ -992,7 +992,6 @@ bool Shooter<R>::stable_orbit(ShootingOutcome& out, State& z, Phase phase, Perio
       return false;
     }
     out.message = why + fmt(": a stable orbit repeating every %.0f excitation periods by "
-
                             "shooting on P^%.0f",
                             p_, p_);
     return true;

@@ -112,7 +112,6 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
   // and every warm start of a study with a ramp failed and ran from rest.
   if (warm.from_state)
     flow.reset(num.start_ramp_periods * model.period(), warm.state, warm.phase);
-
   else
     flow.reset(0.0, R::State::from_array(dynamics.initial_state()), dynamics.initial_phase());
   flow.reset_extremes();
@@ -369,7 +368,6 @@ bool shooting(const Model& model, BasicFlow<R>& flow, const ProgressCallback& pr
           ? detail::Dynamics<R>::cyclic_drift(flow.state().to_array(), settled_section) / periods
       : have_mapped ? detail::Dynamics<R>::cyclic_drift(mapped, orbit.to_array()) / p
                     : shot.phi_drift;
-
   d.periods_simulated += periods;
   d.max_slip_residual = std::max(flow.counters().max_slip_residual,
                                  warm.from_state ? 0.0 : shot.transient_max_slip_residual);
@@ -446,7 +444,6 @@ Result simulate_once(const Model& model, const ProgressCallback& progress,
   d.periods_simulated += warm_periods;
 
   const FlowCounters& c = flow.counters();
-
   d.steps = c.steps;
   d.rhs_evaluations = c.rhs_evaluations - rhs_start;
   d.events = c.events;

@@ -101,7 +101,6 @@ CaseOutcome run_one(const Case& c, bool keep_samples, int n_harmonics,
     }
     out.result = detail::simulate_from(model, progress, stop_now, start ? &*start : nullptr,
                                        keep_samples, &period);
-
     if (orbit) *orbit = detail::orbit_start(model, out.result, period);
     if (out.result.status == Status::cancelled) {
       *interrupted = true;

@@ -151,7 +151,6 @@ std::vector<PassEstimate> identify_pass(const Case& base, std::span<const double
   }
   warn_disjoint_overlaps(out);
   // Every window failed for the harmonics asked alone (so none is valid): the request, not the
-
   // record, is wrong (a bad input, said once, rather than a failure repeated for each window).
   if (measured > 0 && too_few == measured)
     throw Error(

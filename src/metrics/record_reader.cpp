@@ -1272,7 +1272,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                   header[static_cast<std::size_t>(a)] + "' (column " + std::to_string(a + 1) +
                   "); give each its own column");
   const int cp = o.pos_col.empty() ? -1 : find(o.pos_col, "--pos-col");
-
   const int cs = o.speed_col.empty() ? -1 : find(o.speed_col, "--speed-col");
   const int cu = o.unbalance_col.empty() ? -1 : find(o.unbalance_col, "--unbalance-col");
   if (o.lat_col.empty() != o.lon_col.empty())
@@ -1940,7 +1939,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
                   " s); choose the time column with --t-col, or give the sampling rate with "
                   "--rate HZ");
     std::size_t multi = 0;
-
     for (const auto& run : runs) multi += run.second > 1 ? 1 : 0;
     // Every stamp but a few (9 in 10) holds 2 rows or more: the clock. Fewer: switches (or a
     // clock too irregular to spread; averaged, with the note below).

@@ -98,7 +98,6 @@ TEST(SteadyMetrics, AModelTheResultWasNotSimulatedWithIsRefused) {
 }
 
 // The RMV- and CCV-type values read z_M'''s subharmonics A(f/2), A(3f/2), A(5f/2): none in a
-
 // period-1 state (RMV exactly 0, CCV from A_1, A_2, A_3 alone); in the stable period-2 orbit
 // after a period doubling the dense-output integrals and a DFT of fine samples agree.
 TEST(SteadyMetrics, SubharmonicIndicatorsOfAPeriodTwoOrbit) {

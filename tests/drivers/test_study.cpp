@@ -214,7 +214,6 @@ TEST(Study, AnInvalidCaseHasNoSteadyStateAndNoMetrics) {
   EXPECT_TRUE(std::isnan(never.result.diagnostics.final_change));
   EXPECT_TRUE(std::isnan(never.metrics.area));
   EXPECT_TRUE(out[1].valid);
-
   EXPECT_EQ(out[1].result.status, Status::steady_state);
 }
 

@@ -581,7 +581,6 @@ TEST(IdentifyPass, OverlappingWindowsWithDisjointIntervalsSaySo) {
 }
 
 // A period-2 record (the log-spiral drum past its period doubling, G = 150 MN/m^2): identify
-
 // compares the harmonics of f alone, and says so; the subharmonics are not the window's noise.
 // Before, they were (the noise 12 times the record's on a drum lifting off every second period),
 // and a G off by several of its intervals came with no warning.

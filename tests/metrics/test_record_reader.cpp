@@ -1247,7 +1247,6 @@ TEST(RecordReader, AColumnReadTwiceOrNamedTwiceIsRefused) {
 }
 
 // A record with y and z accelerations and no x (a two-axis sensor's y and z channels, y along the
-
 // direction of travel): y is the horizontal, with a note; beside an x column it is not.
 TEST(RecordReader, YBesideZWithoutXIsTheHorizontal) {
   const std::string yz = "time,ay,az\n0,0.5,-0.2\n0.001,1.5,0.3\n";

@@ -194,7 +194,6 @@ def test_a_bad_argument_beside_arrays_reads_as_one_signature():
 
 
 def test_enums_accept_members_and_names():
-
     assert Status(3) == Status.chattering and Status("chattering") == Status.chattering
 
 
