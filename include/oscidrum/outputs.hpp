@@ -77,7 +77,8 @@
 #define OSCIDRUM_DIAGNOSTICS(X)                                                                   \
   X(int, periods_simulated, 0, "-", "periods simulated",                                          \
     "excitation periods integrated, the sampled ones included (shooting: every period map, P^p "  \
-    "counting p); all but the sampled ones count against numerics.max_periods")                   \
+    "counting p, and of the sampled periods the orbit's p, which the others repeat); all but "    \
+    "the sampled ones count against numerics.max_periods")                                        \
   X(int, periods_to_steady, -1, "-", "steady after (periods)",                                    \
     "period index at which the steady state was found (-1: never)")                               \
   X(int, multiplicity, 0, "-", "multiplicity",                                                    \

@@ -134,7 +134,7 @@ class Diagnostics:
     period_equivalents: float
     """cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations weighted by their cost) / the right-hand-side evaluations of one sampled period [-]"""
     periods_simulated: int
-    """excitation periods integrated, the sampled ones included (shooting: every period map, P^p counting p); all but the sampled ones count against numerics.max_periods [-]"""
+    """excitation periods integrated, the sampled ones included (shooting: every period map, P^p counting p, and of the sampled periods the orbit's p, which the others repeat); all but the sampled ones count against numerics.max_periods [-]"""
     periods_to_steady: int
     """period index at which the steady state was found (-1: never) [-]"""
     phi_drift: float

@@ -113,6 +113,58 @@ class Sampler : public BasicFlowObserver<R> {
   Result& result_;
 };
 
+/// The samples, events and phase times after the first `integrated` of `periods` periods from
+/// t0, repeated: the steady state was confirmed periodic over them (its period map's residual
+/// below numerics.steady_tol), so each later period is the first ones again, with t and the
+/// cyclic phi moved on by `drift` [rad] per `integrated` periods. False: `cancelled` said stop
+/// (polled once per repeat; a million samples of a long window take a while).
+template <class R>
+bool repeat_periods(Result& result, double t0, double period, int integrated, int periods,
+                    int per_period, bool all_samples, double drift,
+                    const std::function<bool()>& cancelled) {
+  const double t_repeat = t0 + integrated * period;
+  std::vector<Event> events;
+  for (const Event& e : result.events)
+    if (e.t < t_repeat) events.push_back(e);
+  const std::size_t n_events = events.size();
+  Samples& s = result.samples;
+  // Integration may have stopped just past the repeat's first sample: the repeat starts there.
+  const std::size_t n = all_samples ? static_cast<std::size_t>(integrated) * per_period : 1;
+  if (s.size() > n) {
+#define OSCIDRUM_TRIM(type, name, unit, label, description) s.name.resize(n);
+    OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_TRIM)
+#undef OSCIDRUM_TRIM
+  }
+  const int copies = periods / integrated;
+  if (copies <= 1) return true;
+  for (int k = 1; k < copies; ++k) {
+    if (cancelled && cancelled()) return false;
+    for (std::size_t i = 0; i < n_events; ++i) {
+      Event e = events[i];
+      e.t += k * integrated * period;
+      events.push_back(e);
+    }
+    if (!all_samples || s.size() < n) continue;
+#define OSCIDRUM_REPEAT(type, name, unit, label, description) \
+  for (std::size_t j = 0; j < n; ++j) s.name.push_back(s.name[j]);
+    OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_REPEAT)
+#undef OSCIDRUM_REPEAT
+    const std::size_t first = static_cast<std::size_t>(k) * n;
+    for (std::size_t j = 0; j < n; ++j) {
+      // The sampler's own expression for the sample times (sampling::Sampler::on_step).
+      s.t[first + j] = t0 + static_cast<double>(first + j) * period / per_period;
+      s.phi[first + j] += k * drift;
+    }
+  }
+  result.events = std::move(events);
+  const double scale = static_cast<double>(copies);
+  result.stick_time *= scale;
+  result.slip_positive_time *= scale;
+  result.slip_negative_time *= scale;
+  result.flight_time *= scale;
+  return true;
+}
+
 }  // namespace sampling
 
 /// Integrate `flow` from its current time t0 (a period boundary) over `periods` excitation
@@ -129,11 +181,14 @@ class Sampler : public BasicFlowObserver<R> {
 /// `confirm` (may be empty): called when the flow has integrated the first `record_periods`
 /// periods (the flow stands there); when it returns false the sampling stops there and returns
 /// FlowStop::observer (what was sampled so far is left in `result`, the recording cleared).
+/// When it returns true the steady state is periodic over those periods: the later periods are
+/// not integrated but repeat them (sampling::repeat_periods), and the flow stays at their end.
 template <class R>
 FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period, Result& result,
                         bool all_samples = true, recording::Recording* record = nullptr,
                         int record_periods = 1, const std::function<bool()>& confirm = {}) {
   const double t0 = flow.t();
+  const auto start = flow.state().to_array();
   result.sample_periods = periods;
   result.samples_per_period = samples_per_period;
   sampling::Sampler<R> sampler(flow, t0, periods, samples_per_period, all_samples, result);
@@ -151,15 +206,24 @@ FlowStop sample_periods(BasicFlow<R>& flow, int periods, int samples_per_period,
     // Ending an advance inside a step leaves the step pending (the integration goes on with the
     // same steps): stopping at the recording's end changes nothing that follows.
     stop = flow.advance(confirm ? t0 + record_periods / result.frequency : t_end, &both);
-    if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;
-    if (stop == FlowStop::reached) stop = flow.advance(t_end, &sampler);
     *record = std::move(recorder.out);
-    if (stop != FlowStop::reached) recording::clear(*record);
   } else {
     stop = flow.advance(confirm ? t0 + record_periods * flow.model().period() : t_end, &sampler);
-    if (stop == FlowStop::reached && confirm && !confirm()) stop = FlowStop::observer;
-    if (stop == FlowStop::reached) stop = flow.advance(t_end, &sampler);
   }
+  if (stop == FlowStop::reached && confirm) {
+    if (!confirm()) {
+      stop = FlowStop::observer;
+    } else if (periods % record_periods == 0) {
+      if (!sampling::repeat_periods<R>(result, t0, flow.model().period(), record_periods, periods,
+                                       samples_per_period, all_samples,
+                                       Dynamics<R>::cyclic_drift(flow.state().to_array(), start),
+                                       flow.options().cancelled))
+        stop = FlowStop::cancelled;
+    } else {
+      stop = flow.advance(t_end, &sampler);
+    }
+  }
+  if (record != nullptr && stop != FlowStop::reached) recording::clear(*record);
   long switches = 0;
   for (const Event& e : result.events)
     if (e.kind != EventKind::contact_lost) ++switches;
