@@ -275,6 +275,14 @@ TEST(Shooting, MaxPeriodsBoundsAShootingRun) {
             hard.numerics.max_periods);
 }
 
+// The flow restarted at a result's first sample (a period boundary on the orbit).
+void restart_at_first_sample(Flow& flow, const Samples& q) {
+  flow.reset(
+      q.t[0],
+      State{q.delta[0], q.x_A[0], q.s_A[0], q.phi[0], q.ddelta[0], q.dx_A[0], q.ds_A[0], q.dphi[0]},
+      q.phase[0]);
+}
+
 // Diagnostics::max_slip_residual of a shooting run is that of its trajectory, the short transient
 // from rest and the sampled orbit: not above the transient method's (whose run from rest contains
 // the same first periods and ends on the same orbit), and at least what the sampled periods show
@@ -291,10 +299,7 @@ TEST(Shooting, SlipResidualIsThatOfTheTrajectory) {
   const Model model(c);
   Flow flow(model);
   const Samples& q = shot.samples;
-  flow.reset(
-      q.t[0],
-      State{q.delta[0], q.x_A[0], q.s_A[0], q.phi[0], q.ddelta[0], q.dx_A[0], q.ds_A[0], q.dphi[0]},
-      q.phase[0]);
+  restart_at_first_sample(flow, q);
   ASSERT_EQ(flow.advance(q.t[0] + shot.sample_periods * model.period()), FlowStop::reached);
   EXPECT_GE(s, flow.counters().max_slip_residual * (1.0 - 1e-3));
   EXPECT_LE(shot.diagnostics.min_N, flow.counters().min_N * (1.0 + 1e-6));
@@ -316,10 +321,7 @@ TEST(Shooting, TheLaterSampledPeriodsRepeatTheConfirmedOne) {
   const Model model(c);
   Flow flow(model);
   const Samples& q = shot.samples;
-  flow.reset(
-      q.t[0],
-      State{q.delta[0], q.x_A[0], q.s_A[0], q.phi[0], q.ddelta[0], q.dx_A[0], q.ds_A[0], q.dphi[0]},
-      q.phase[0]);
+  restart_at_first_sample(flow, q);
   Result again;
   again.frequency = c.roller.f;
   ASSERT_EQ(detail::sample_periods(flow, 3, c.numerics.samples_per_period, again),
