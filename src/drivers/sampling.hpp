@@ -34,6 +34,12 @@ class ObserverPair : public BasicFlowObserver<R> {
 
 namespace sampling {
 
+/// The time of sample j of a sampling that starts at t0 [s] (one expression for the integrated
+/// samples and their repeats, so that both give the same bits).
+inline double sample_time(double t0, long j, double period, int per_period) {
+  return t0 + static_cast<double>(j) * period / per_period;
+}
+
 template <class R>
 class Sampler : public BasicFlowObserver<R> {
  public:
@@ -58,7 +64,7 @@ class Sampler : public BasicFlowObserver<R> {
   bool on_step(const BasicStepView<R>& step) override {
     // Samples in [t0, t1] not yet taken (a sample on a piece boundary belongs to the first).
     while (next_ < total_) {
-      const double ts = t_start_ + static_cast<double>(next_) * period_ / per_period_;
+      const double ts = sample_time(t_start_, next_, period_, per_period_);
       if (ts > step.t1()) break;
       dynamics_.sample(ts, step.state(ts).to_array(), step.phase(), result_.samples);
       ++next_;
@@ -151,8 +157,7 @@ bool repeat_periods(Result& result, double t0, double period, int integrated, in
 #undef OSCIDRUM_REPEAT
     const std::size_t first = static_cast<std::size_t>(k) * n;
     for (std::size_t j = 0; j < n; ++j) {
-      // The sampler's own expression for the sample times (sampling::Sampler::on_step).
-      s.t[first + j] = t0 + static_cast<double>(first + j) * period / per_period;
+      s.t[first + j] = sample_time(t0, static_cast<long>(first + j), period, per_period);
       s.phi[first + j] += k * drift;
     }
   }

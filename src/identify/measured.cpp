@@ -273,7 +273,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
                 " fitted parameters");
   // The columns of harmonic n of f: of order n in the fit on the harmonics of f, of order
   // stride n in the joint fit on the harmonics of f / stride (a period-p window, below).
-  int stride = 1, cols = p;
+  int stride = 1;
   auto col_cos = [&](int n) { return np + 2 * (stride * n - 1); };
   auto col_sin = [&](int n) { return np + 2 * (stride * n - 1) + 1; };
 
@@ -340,7 +340,6 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
         out.subharmonics_of = o.period;
         fit = std::move(s);
         stride = o.period;
-        cols = np + 2 * static_cast<int>(all.size());
       }
     }
   }
@@ -377,6 +376,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
 
   // Covariance of (Re C_n, Im C_n) = (b_n, a_n), n <= K: s^2 [G^-1] on those rows and columns.
   const int K = std::clamp(o.covariance, 1, N);
+  const int cols = static_cast<int>(ldlt.rows());  // the fit's: trend and (sub)harmonics
   Eigen::MatrixXd E = Eigen::MatrixXd::Zero(cols, 2 * K);
   std::vector<int> idx;
   for (int n = 1; n <= K; ++n) {
