@@ -597,6 +597,48 @@ TEST(Shooting, APeriodTwoOrbitsMultipliersAreItsOwnMonodromys) {
   }
 }
 
+// The multiplicity reported is the orbit's least period: its samples do not repeat over a divisor
+// of it. This vibratory drum with lift-off has a stable period-2 orbit along which the drum's
+// rotation rate hardly changes (a range of 1.7e-7 rad/s about 0.09 rad/s); its change over two
+// periods, 1.8e-11 rad/s (far below what the integration resolves), was 1.07e-4 of that range,
+// above the gap, and the orbit was accepted as one of P^4 (multiplicity 4, the multipliers of
+// P^4) while its samples repeated every two periods to 3e-9.
+TEST(Shooting, AnOrbitIsReportedAtItsLeastPeriod) {
+  Case c;
+  set_field_text(c, "roller.type", "vibratory");
+  set_field_text(c, "roller.exciter", "circular");
+  set_field(c, "roller.f", 68.37);
+  set_field(c, "roller.static_moment", 0.568);
+  set_field(c, "roller.m", 1749.5);
+  set_field(c, "roller.I", 431.07);
+  set_field_text(c, "soil.input", "coefficients");
+  set_field(c, "soil.ksh", 13695721.0);
+  set_field(c, "soil.ksv", 278998830.0);
+  set_field(c, "soil.csh", 451087.0);
+  set_field(c, "soil.csv", 272206.0);
+  set_field(c, "trough.a", 0.6963);
+  set_field(c, "contact.mu", 0.329);
+  set_field_text(c, "contact.unilateral", "true");
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const int p = r.diagnostics.multiplicity;
+  EXPECT_EQ(p, 2) << r.message;
+  const Samples& q = r.samples;
+  const std::size_t spp = static_cast<std::size_t>(r.samples_per_period);
+  ASSERT_EQ(q.size(), static_cast<std::size_t>(r.sample_periods) * spp);
+  for (int d = 1; d < p; ++d) {
+    if (p % d != 0) continue;
+    // Over d periods some column changes by a good part of its range.
+    double change = 0.0;
+    for (const SampleValues* col : {&q.delta, &q.s_A, &q.z_M, &q.ddx_M, &q.ddz_M}) {
+      const auto [lo, hi] = std::minmax_element(col->begin(), col->end());
+      for (std::size_t k = 0; k + d * spp < col->size(); ++k)
+        change = std::max(change, std::abs((*col)[k + d * spp] - (*col)[k]) / (*hi - *lo));
+    }
+    EXPECT_GT(change, 1e-2) << "the samples repeat over " << d << " of the " << p << " periods";
+  }
+}
+
 TEST(Shooting, PeriodDoublingGivesTheStablePeriodTwoOrbit) {
   Case c = period_doubling_case();
   const Result shot = simulate(c);
