@@ -1729,6 +1729,35 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
         reasons.push_back("too few samples per period (" + sig4(aw.samples_per_period) + " < " +
                           std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
                           " harmonics)");
+      // Dense enough everywhere, not only on average: a record whose time stamps turn coarser
+      // part way (a clock written with 6 significant digits past t = 1000 s: 10 ms stamps, the
+      // rows of each averaged into one sample) held 2.6 samples per period there and 25 before,
+      // 14 on average, and its fit read "ok" with the area 14 % low. Steps of less than half
+      // the density the harmonics need, short of a gap (which the gap gate judges), over more
+      // than a tenth of the window's span fail the gate too, where they follow one another for a
+      // period or more (samples lost at random leave single long steps among short ones, which
+      // the fit takes where they are).
+      const double coarse_step = 2.0 / ((2.0 * n_max + 1.0) * f0);
+      double coarse_span = 0.0, coarsest = 0.0, run = 0.0, run_max = 0.0;
+      for (std::size_t i = first; i <= last; ++i) {
+        if (i < last && dt[i] > coarse_step && dt[i] <= max_gap) {
+          run += dt[i];
+          run_max = std::max(run_max, dt[i]);
+          continue;
+        }
+        if (run * f0 >= 1.0) {
+          coarse_span += run;
+          coarsest = std::max(coarsest, run_max);
+        }
+        run = run_max = 0.0;
+      }
+      if (dense && coarse_span > 0.1 * sampled_span)
+        reasons.push_back("too few samples per period in part of the window (" +
+                          num(std::round(100.0 * coarse_span / sampled_span)) +
+                          " % of its span between samples " + "up to " + sig4(coarsest) +
+                          " s apart, " + sig4(1.0 / (coarsest * f0)) + " per period < " +
+                          std::to_string(2 * n_max + 1) + " for " + std::to_string(n_max) +
+                          " harmonics; time stamps coarser there, their rows averaged?)");
       if (!long_enough)
         reasons.push_back("its samples cover " + num(std::round(spanned * 1000) / 1000) +
                           " excitation periods (< 1)");

@@ -348,6 +348,52 @@ TEST(Record, RandomlyLostSamplesLowerTheHarmonicsNotTheWindows) {
   }
 }
 
+// A logger's time stamps that turn coarser part way (a clock written with 6 significant digits
+// past t = 1000 s: 10 ms stamps), the rows of each stamp averaged into one sample as the reader
+// does: 2.6 samples per period in the second half, 25 in the first, 14 on average. The whole
+// record's fit read "ok" with the area 14 % low; it fails the density gate, naming the part.
+// Samples lost at random (single long steps among short ones) do not.
+TEST(Record, AStretchSampledTooCoarselyFailsTheDensityGate) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 17.3e6;
+  SyntheticRecord options;
+  options.duration = 2.0;
+  options.sample_rate = 2000;
+  options.noise = 0.02;
+  options.seed = 11;
+  const RecordSamples r = synthetic_record({c}, options);
+  std::vector<double> t, x, z;
+  for (std::size_t i = 0; i < r.t.size();) {
+    if (r.t[i] < 1.0) {
+      t.push_back(r.t[i]), x.push_back(r.ddx_M[i]), z.push_back(r.ddz_M[i]);
+      ++i;
+      continue;
+    }
+    // Rounded to the nearest stamp, as printf's %g does.
+    const double tick = std::round(r.t[i] / 0.01);
+    double sx = 0.0, sz = 0.0, n = 0.0;
+    for (; i < r.t.size() && std::round(r.t[i] / 0.01) == tick; ++i, n += 1.0)
+      sx += r.ddx_M[i], sz += r.ddz_M[i];
+    t.push_back(0.01 * tick), x.push_back(sx / n), z.push_back(sz / n);
+  }
+  const std::vector<RecordWindow> whole = analyze_windows(t, x, z, {}, WindowOptions{});
+  ASSERT_EQ(whole.size(), 1u);
+  EXPECT_GE(whole[0].samples_per_period, 13.0);  // dense enough on average
+  EXPECT_FALSE(whole[0].valid);
+  EXPECT_EQ(whole[0].reason.find("poor fit"), std::string::npos) << whole[0].reason;
+  EXPECT_NE(whole[0].reason.find("too few samples per period in part of the window (50 %"),
+            std::string::npos)
+      << whole[0].reason;
+  // The same record with a fifth of its samples lost at random is valid.
+  options.dropped = 0.2;
+  const RecordSamples lost = synthetic_record({c}, options);
+  const std::vector<RecordWindow> thinned =
+      analyze_windows(lost.t, lost.ddx_M, lost.ddz_M, {}, WindowOptions{});
+  ASSERT_EQ(thinned.size(), 1u);
+  EXPECT_TRUE(thinned[0].valid) << thinned[0].reason;
+}
+
 // The operator switches the excitation from 39 to 30 Hz and back (a roller's two settings): the
 // windows at 30 Hz are found there (their own spectral peak, searched when the tracked frequency
 // explains little), not failed as a poor fit at 39 Hz; those across a switch are not valid.
