@@ -421,8 +421,11 @@ int run(const IdentifyCliOptions& o) {
     // How the record was read, once the pass has run: a refusal (exit code 2) is one line.
     report_reading(rec);
     {
+      // The windows identify reports as valid: one the record's gates passed but too short for
+      // the identification's fit (a sliver after a pause) is not counted among them.
       std::vector<const RecordWindow*> all;
-      for (const PassEstimate& p : pass) all.push_back(&p.window);
+      for (const PassEstimate& p : pass)
+        if (p.valid) all.push_back(&p.window);
       warn_unchecked_change(all, "identify");
     }
     if (interrupted()) {

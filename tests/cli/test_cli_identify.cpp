@@ -346,6 +346,55 @@ TEST(CliIdentify, ACoarseClockIsSpreadBetweenItsStamps) {
   EXPECT_NEAR(G(b) / G(a), 1.0, 1e-6);
 }
 
+// The warning about windows too short to check for a change within them counts the windows
+// identify reports as valid: a sliver of 30 samples after a logger's pause passed the record's
+// gates (unchecked) but was too short for the identification's fit, and the warning said "1 of
+// N valid windows" of a pass whose N - 1 valid windows were all checked.
+TEST(CliIdentify, TheUncheckedWindowsWarningCountsTheValidEstimates) {
+  TempDir dir;
+  SyntheticRecord sr;
+  sr.sample_rate = 1000;
+  sr.noise = 0.02;
+  sr.seed = 6;
+  sr.duration = 2.5;
+  const RecordSamples a = synthetic_record({truth(17.3e6)}, sr);
+  // The logger resumes 30 ms before the end of the sixth window (40 periods each).
+  const double W = 40.0 / kF;
+  sr.start = 6.0 * W - 0.030;
+  sr.duration = 3.0;
+  sr.seed = 7;
+  const RecordSamples b = synthetic_record({truth(17.3e6)}, sr);
+  {
+    std::ofstream out(dir / "pause.csv");
+    out << "t,ddx_M,ddz_M\n";
+    for (const RecordSamples* r : {&a, &b})
+      for (std::size_t i = 0; i < r->t.size(); ++i)
+        out << format_row(r->t[i], {r->ddx_M[i], r->ddz_M[i]});
+  }
+  const Outcome o = run({"identify", dir / "pause.csv", "--no-profile", "--format", "csv"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<double> t_start = column(o.out, "t_start");
+  const std::vector<double> valid = column(o.out, "valid");
+  const std::vector<double> change = column(o.out, "change");
+  ASSERT_EQ(valid.size(), change.size());
+  std::size_t n_valid = 0, unchecked = 0;
+  for (std::size_t i = 0; i < valid.size(); ++i) {
+    n_valid += valid[i] == 1.0 ? 1 : 0;
+    unchecked += valid[i] == 1.0 && std::isnan(change[i]) ? 1 : 0;
+  }
+  ASSERT_GE(n_valid, 3u) << o.out;
+  const std::string warning = "valid windows are too short to check";
+  if (unchecked == 0)
+    EXPECT_EQ(o.err.find(warning), std::string::npos) << o.err;
+  else
+    EXPECT_NE(
+        o.err.find(std::to_string(unchecked) + " of " + std::to_string(n_valid) + " " + warning),
+        std::string::npos)
+        << o.err;
+  // The sliver is there, and not valid.
+  EXPECT_NE(o.out.find("samples are too few for"), std::string::npos) << o.out;
+}
+
 // G on the formulas scale (the default) goes through Appendix B, where the soil's nu and rho and
 // the drum width b take effect: --nu was refused as having "no effect while soil.input =
 // table2" (the default case's input), and calibrate's --b alike. On the table2 scale it has none.
