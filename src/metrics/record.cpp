@@ -1577,8 +1577,14 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   };
 
   std::vector<RecordWindow> out;
-  const double W = windowed ? o.window_periods / f_rec : span;
-  const double H = windowed ? (o.hop_periods > 0 ? o.hop_periods : o.window_periods) / f_rec : span;
+  // The windows are cut at --window periods of f_cut: the record's opening frequency, and where
+  // the tracked frequency moves more than 1 % from it (an exciter spinning up, the operator's
+  // other setting), the tracked one from there on (cut at the opening frequency throughout, a
+  // record that went on at 39 Hz after opening at 30 Hz had windows of 52 periods, reported as
+  // 40).
+  double f_cut = f_rec;
+  double W = windowed ? o.window_periods / f_cut : span;
+  double H = windowed ? (o.hop_periods > 0 ? o.hop_periods : o.window_periods) / f_cut : span;
   double f_track = f_rec;
   std::size_t first = 0;
   // Window ends are compared with the sample times up to their rounding: a small fraction of the
@@ -1587,13 +1593,23 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   // slack must not depend on the sign of t: a bound scaled by t.back() itself fell below t.back()
   // for a record ending before t = -1 s, no window fitted, and analyze read the empty list.
   const double t_scale = std::max(std::abs(t.front()), std::abs(t.back()));
-  const double slack = 1e-12 * W + 16.0 * std::numeric_limits<double>::epsilon() * t_scale;
+  double slack = 1e-12 * W + 16.0 * std::numeric_limits<double>::epsilon() * t_scale;
   // The windows start every H from the first sample; the end of the record, where it is left over
   // (a full period or more after the last window), gets a last window that ends with the record
   // (overlapping the one before): the end of a record is never dropped silently.
   bool end_window = false;
+  double t_cut = t.front();  // the start of the first window cut at f_cut
+  int k_cut = 0;             // its index
   for (int k = 0;; ++k) {
-    double ts = t.front() + k * H;
+    double ts = t_cut + (k - k_cut) * H;
+    if (windowed && !end_window && std::abs(f_track / f_cut - 1.0) > 0.01) {
+      f_cut = f_track;
+      t_cut = ts;
+      k_cut = k;
+      W = o.window_periods / f_cut;
+      H = (o.hop_periods > 0 ? o.hop_periods : o.window_periods) / f_cut;
+      slack = 1e-12 * W + 16.0 * std::numeric_limits<double>::epsilon() * t_scale;
+    }
     if (k > 0 && ts + W > t.back() + slack) {
       if (!windowed || end_window || t.back() - out.back().t_end < 1.0 / f_track) break;
       end_window = true;

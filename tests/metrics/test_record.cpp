@@ -429,6 +429,18 @@ TEST(Record, AChangeOfTheExcitationFrequencyIsFollowed) {
     EXPECT_NEAR(win.metrics.ddz_harmonics[2].amplitude, 0.5, 1e-6);
   }
   EXPECT_GE(at_30, 2);
+  // The windows are cut at 10 periods of the frequency tracked: 0.256 s at 39 Hz, 1/3 s at 30 Hz
+  // (cut at the opening 39 Hz throughout, those at 30 Hz spanned 7.7 periods, reported as 10),
+  // the one where the change is first seen excepted.
+  int cut_at_30 = 0;
+  for (std::size_t k = 1; k < ws.size(); ++k) {
+    const RecordWindow& win = ws[k];
+    if (!win.valid || !ws[k - 1].valid || std::abs(ws[k - 1].f / win.f - 1.0) > 0.01) continue;
+    const double periods = (win.t_end - win.t_start + 1.0 / rate) * win.f;
+    EXPECT_NEAR(periods, 10.0, 0.05) << win.t_start;
+    cut_at_30 += win.f < 35.0;
+  }
+  EXPECT_GE(cut_at_30, 1);
   // With f given (--f 39), the windows at 30 Hz fail as before: nothing is searched.
   w.f = 39.0;
   for (const RecordWindow& win : analyze_windows(t, x, z, {}, w))
