@@ -1600,6 +1600,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
   bool end_window = false;
   double t_cut = t.front();  // the start of the first window cut at f_cut
   int k_cut = 0;             // its index
+  int recut = -1;            // the window cut again at its own frequency
   for (int k = 0;; ++k) {
     double ts = t_cut + (k - k_cut) * H;
     if (windowed && !end_window && std::abs(f_track / f_cut - 1.0) > 0.01) {
@@ -1753,10 +1754,12 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       // than a tenth of the window's span fail the gate too, where they follow one another for a
       // period or more (samples lost at random leave single long steps among short ones, which
       // the fit takes where they are).
+      // Steps of half a period or more are gaps, whatever --max-gap allows.
       const double coarse_step = 2.0 / ((2.0 * n_max + 1.0) * f0);
+      const double coarse_max = std::min(max_gap, 0.5 / f0);
       double coarse_span = 0.0, coarsest = 0.0, run = 0.0, run_max = 0.0;
       for (std::size_t i = first; i <= last; ++i) {
-        if (i < last && dt[i] > coarse_step && dt[i] <= max_gap) {
+        if (i < last && dt[i] > coarse_step && dt[i] <= coarse_max) {
           run += dt[i];
           run_max = std::max(run_max, dt[i]);
           continue;
@@ -1988,6 +1991,13 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
       nan.ddx_harmonics.assign(static_cast<std::size_t>(n_max) + 1, Harmonic{kNaN, kNaN});
       nan.ddz_harmonics = nan.ddx_harmonics;
       w.metrics = nan;
+    }
+    // A window valid at a frequency more than 1 % from the one it was cut at (the first valid
+    // one after a change of the excitation's frequency, which the window across the change
+    // fails) is cut again, once, at its own (f_track).
+    if (windowed && w.valid && !end_window && k != recut && std::abs(w.f / f_cut - 1.0) > 0.01) {
+      recut = k--;
+      continue;
     }
     out.push_back(std::move(w));
     if (!windowed || end_window) break;

@@ -802,84 +802,74 @@ std::size_t fill_between_fixes(const std::vector<double>& t,
 }
 
 // The track advances only where it moves more than this many times the fixes' scatter from
-// where it last advanced (two fixes of one place lie farther apart than 5 sigma with a chance of
-// exp(-6.25), 0.2 %).
-constexpr double kTrackDeadband = 5.0;
+// where it last advanced (two fixes of one place lie farther apart than 5 sqrt(2) sigma with a
+// chance of exp(-12.5)).
+constexpr double kTrackDeadband = 5.0 * 1.4142135623730951;
+// The scatter is measured over lags of rows up to this time [s] (beyond the interval between a
+// receiver's fixes, within which a logger's rows may be filled or interpolated; short enough that
+// a roller's speed changes little over it).
+constexpr double kScatterLag = 0.5;
 
-// The path length [m] along a track of projected coordinates at each row: `east` and `north`
-// filled between the fixes, `fix` marking the rows that held one. A fix's own scatter is no
-// travel: summed fix to fix, a roller standing still with 2 cm of RTK noise at 10 fixes per
-// second went 3.3 m in 10 s. The scatter sigma is the median distance of a fix from the line
-// through its two neighbours (divided by what white noise makes of it), per axis, over the
-// fixes off that line (a logger that writes its own interpolated track between the receiver's
-// updates leaves the rows between them on it). The track advances where it has moved more than
-// kTrackDeadband sigma from the last point it advanced at, by that distance; a fix between two
-// such points by how far along their chord it has come, the rows between fixes interpolated in
-// time. Fewer than 5 fixes: every fix counts.
+// The path length [m] along a track of projected coordinates at each row (`east` and `north`
+// filled between fixes, as the reader fills them, or as a logger wrote them). A fix's own
+// scatter is no travel: summed row to row, the scatter of a roller standing still adds up to
+// metres within a minute. The scatter sigma: for lags of 1, 2, 4, ... rows up to kScatterLag,
+// the median distance of a row from the line through the rows a lag before and after it (divided
+// by what white noise makes of it), per axis; the largest over the lags (rows between a
+// receiver's fixes, filled or interpolated by a logger, lie on lines between them: only lags as
+// long as the fixes' interval see their scatter). The track advances where it has moved more than
+// kTrackDeadband sigma from the row it last advanced at, by that distance; a row between two such
+// rows by how far along their chord it has come (its projection, within the chord, never back).
 std::vector<double> track_length(const std::vector<double>& t, const std::vector<double>& east,
-                                 const std::vector<double>& north, const std::vector<char>& fix) {
-  std::vector<std::size_t> at;  // the rows of the fixes, a fix repeated on later rows once
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (fix[i] && (at.empty() || east[i] != east[at.back()] || north[i] != north[at.back()]))
-      at.push_back(i);
-  std::vector<double> path(t.size(), 0.0);
-  if (at.size() < 2) return path;
-  double deadband = 0.0;
-  if (at.size() >= 5) {
-    std::vector<double> off;  // |fix - its neighbours' line| / its standard deviation per sigma
-    for (std::size_t j = 1; j + 1 < at.size(); ++j) {
-      const std::size_t a = at[j - 1], b = at[j], c = at[j + 1];
-      if (!(t[b] > t[a] && t[c] > t[b])) continue;
-      const double r = (t[c] - t[b]) / (t[b] - t[a]);
+                                 const std::vector<double>& north) {
+  const std::size_t n = t.size();
+  std::vector<double> path(n, 0.0);
+  if (n < 2) return path;
+  double sigma = 0.0;
+  std::vector<double> off;
+  for (std::size_t lag = 1; 2 * lag < n; lag *= 2) {
+    const std::size_t stride = std::max<std::size_t>(1, (n - 2 * lag) / 2048);
+    off.clear();
+    for (std::size_t i = lag; i + lag < n; i += stride) {
+      const std::size_t a = i - lag, c = i + lag;
+      if (!(t[i] > t[a] && t[c] > t[i])) continue;
+      const double r = (t[c] - t[i]) / (t[i] - t[a]);
       const double per_sigma = std::sqrt(1.0 + (1.0 + r) * (1.0 + r) + r * r);
-      for (const std::vector<double>* v : {&east, &north}) {
-        const double d = (*v)[c] - (*v)[b] - r * ((*v)[b] - (*v)[a]);
-        const double scale = std::abs((*v)[b]) + std::abs((*v)[c]);
-        if (std::abs(d) > 1e-12 * scale) off.push_back(std::abs(d) / per_sigma);
-      }
+      for (const std::vector<double>* v : {&east, &north})
+        off.push_back(std::abs((*v)[c] - (*v)[i] - r * ((*v)[i] - (*v)[a])) / per_sigma);
     }
-    if (off.size() >= 4) {
+    if (off.size() >= 8) {
       std::nth_element(off.begin(), off.begin() + static_cast<std::ptrdiff_t>(off.size() / 2),
                        off.end());
-      // The median of |N(0, sigma^2)| is 0.6745 sigma; two axes: sqrt(2) sigma per point pair.
-      deadband = kTrackDeadband * std::sqrt(2.0) * off[off.size() / 2] / 0.6745;
+      sigma = std::max(sigma, off[off.size() / 2] / 0.6745);  // the median of |N(0, 1)|
     }
+    if (t[std::min(n - 1, 2 * lag)] - t[0] > 2.0 * kScatterLag) break;
   }
-  // The points where the track advanced: indices into `at` and the path there.
-  std::vector<std::pair<std::size_t, double>> advanced{{0, 0.0}};
-  for (std::size_t j = 1; j < at.size(); ++j) {
-    const std::size_t a = at[advanced.back().first], i = at[j];
+  const double deadband = kTrackDeadband * sigma;
+  std::size_t a = 0;     // the row the track last advanced at
+  double p0 = 0.0;       // the path there
+  std::size_t from = 0;  // the rows after `a` not yet given their path
+  for (std::size_t i = 1; i < n; ++i) {
     const double d = std::hypot(east[i] - east[a], north[i] - north[a]);
-    if (d > deadband) advanced.emplace_back(j, advanced.back().second + d);
-  }
-  // Each fix between two such points: how far along their chord it has come (its projection,
-  // within the chord's length, never back), so that a roller that starts after standing still
-  // moves from where it stood, and one that moves less than the deadband per fix moves smoothly.
-  std::vector<double> at_path(at.size(), advanced.back().second);
-  for (std::size_t k = 0; k + 1 < advanced.size(); ++k) {
-    const auto [j0, p0] = advanced[k];
-    const auto [j1, p1] = advanced[k + 1];
-    const std::size_t a = at[j0], b = at[j1];
-    const double ux = (east[b] - east[a]) / (p1 - p0), uy = (north[b] - north[a]) / (p1 - p0);
+    if (!(d > deadband) && i + 1 < n) continue;
+    const bool advanced = d > deadband;
+    // The rows since `a`: along the chord to i (or, at the end without advancing, held).
     double along = 0.0;
-    for (std::size_t j = j0; j < j1; ++j) {
-      const double proj = (east[at[j]] - east[a]) * ux + (north[at[j]] - north[a]) * uy;
-      along = std::max(along, std::clamp(proj, 0.0, p1 - p0));
-      at_path[j] = p0 + along;
+    for (std::size_t j = from + 1; j <= i; ++j) {
+      if (advanced) {
+        const double proj = ((east[j] - east[a]) * (east[i] - east[a]) +
+                             (north[j] - north[a]) * (north[i] - north[a])) /
+                            d;
+        along = std::max(along, std::clamp(proj, 0.0, d));
+      }
+      path[j] = p0 + along;
     }
-  }
-  // The rows: between fixes in time, held after the last (before the first: 0).
-  std::size_t j = 0;
-  for (std::size_t i = at.front(); i < t.size(); ++i) {
-    while (j + 1 < at.size() && at[j + 1] <= i) ++j;
-    if (j + 1 == at.size()) {
-      path[i] = at_path[j];
-      continue;
+    from = i;
+    if (advanced) {
+      a = i;
+      p0 += d;
+      path[i] = p0;
     }
-    const std::size_t i0 = at[j], i1 = at[j + 1];
-    const double span = t[i1] - t[i0];
-    path[i] =
-        at_path[j] + (span > 0.0 ? (t[i] - t[i0]) / span : 0.0) * (at_path[j + 1] - at_path[j]);
   }
   return path;
 }
@@ -1696,11 +1686,6 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   // The GNSS columns: recognised ones with a cell that is no number are dropped; NaN between
   // fixes filled linearly in time from the fixes around it (held before the first fix and after
   // the last); without any fix, none.
-  // The rows that hold a fix of the projected coordinates (the path length counts their scatter
-  // apart from travel: track_length).
-  std::vector<char> east_fix(out.east.size());
-  for (std::size_t i = 0; i < out.east.size(); ++i)
-    east_fix[i] = std::isfinite(out.east[i]) && std::isfinite(out.north[i]);
   {
     const bool latlon = clat >= 0;
     std::vector<double>& a = latlon ? out.lat : out.east;
@@ -2076,13 +2061,11 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
         out.ddz_M[kept] = sz / m;
         for (std::vector<double>* v : others)
           if (!v->empty()) (*v)[kept] = (*v)[begin];
-        if (!east_fix.empty()) east_fix[kept] = east_fix[begin];
         ++kept;
       }
       for (std::vector<double>* v : {&out.t, &out.ddx_M, &out.ddz_M}) v->resize(kept);
       for (std::vector<double>* v : others)
         if (!v->empty()) v->resize(kept);
-      if (!east_fix.empty()) east_fix.resize(kept);
       // Many (a tenth of the samples or more), but not nearly every stamp: perhaps a clock
       // coarser than the sampling, too irregular to spread.
       const bool many = 10 * repeated >= kept;
@@ -2221,7 +2204,7 @@ RecordColumns read_record(std::istream& in, const std::string& name, const Recor
   if (ceast >= 0 && cp < 0 && cs < 0) {
     // The path length along the track [m] (a GNSS fix repeated between updates adds nothing,
     // nor does the fixes' scatter).
-    out.position = track_length(out.t, out.east, out.north, east_fix);
+    out.position = track_length(out.t, out.east, out.north);
   }
   return out;
 }

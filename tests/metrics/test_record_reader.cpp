@@ -403,6 +403,18 @@ TEST(RecordReader, TheFixesScatterIsNoTravel) {
   EXPECT_LT(r.position[790], 0.1);                              // standing: at most a few cm
   EXPECT_NEAR(r.position[1399] - r.position[900], 4.99, 0.15);  // 5 m of the 10
   EXPECT_NEAR(r.position.back(), 10.0, 0.15);
+  // The same track as a logger writes it with its own interpolation between the fixes on every
+  // row, to the mm (every row a new value: summed row to row, it read metres while standing).
+  std::string filled = "t,ax,az,Easting,Northing\n";
+  for (std::size_t i = 0; i < 2000; ++i) {
+    std::snprintf(row, sizeof row, "%.2f,1,2,%.3f,%.3f\n", r.t[i], r.east[i], r.north[i]);
+    filled += row;
+  }
+  const RecordColumns f = read_text(filled);
+  ASSERT_EQ(f.position.size(), 2000u);
+  EXPECT_LT(f.position[790], 0.1);
+  EXPECT_NEAR(f.position[1399] - f.position[900], 4.99, 0.15);
+  EXPECT_NEAR(f.position.back(), 10.0, 0.15);
 }
 
 // A logger's GNSS columns are recognised without flags (Latitude/Longitude, else Easting/
