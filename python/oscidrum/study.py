@@ -10,7 +10,9 @@ distributed, mpi4py.futures, a process pool), with results as pandas and xarray 
 from __future__ import annotations
 
 import concurrent.futures as _cf
+import copy
 import math
+import numbers
 import os
 import sys
 from typing import Any, Callable, Iterable, List, Optional, Sequence, Union
@@ -239,12 +241,17 @@ def _as_cases(cases: Any) -> List[Any]:
     out = []
     for i, c in enumerate(cases):
         if isinstance(c, _core.Case):
-            out.append(c)
+            # A copy: the study runs, and its result's table describes, the case as it was given
+            # (a caller who changed its Case objects for the next study had the first study's
+            # table show the new parameters beside the old results).
+            out.append(copy.copy(c))
         elif isinstance(c, dict):
             try:
                 out.append(_core.Case.from_dict(c))
             except _core.Error as exc:
-                raise _core.Error(f"cases[{i}]: {exc}") from None
+                error = _core.Error(f"cases[{i}]: {exc}")
+                error.key, error.value = getattr(exc, "key", None), getattr(exc, "value", None)
+                raise error from None
         else:
             text = repr(c)
             text = text if len(text) <= 60 else text[:60] + "..."
@@ -253,12 +260,17 @@ def _as_cases(cases: Any) -> List[Any]:
     return out
 
 
+def _integer(x) -> bool:
+    """An integer, Python's or NumPy's (np.int64 from np.arange or a size), but not a bool."""
+    return isinstance(x, numbers.Integral) and not isinstance(x, bool)
+
+
 def _check_options(threads, keep_samples, n_harmonics):
-    if isinstance(threads, bool) or not isinstance(threads, int) or threads < 0:
+    if not _integer(threads) or threads < 0:
         raise _core.Error(f"threads must be an integer >= 0 (0: all cores); got {threads!r}")
     if not isinstance(keep_samples, bool):
         raise _core.Error(f"keep_samples must be True or False; got {keep_samples!r}")
-    if isinstance(n_harmonics, bool) or not isinstance(n_harmonics, int) or n_harmonics < 2:
+    if not _integer(n_harmonics) or n_harmonics < 2:
         raise _core.Error(f"n_harmonics must be an integer >= 2; got {n_harmonics!r}")
 
 
@@ -414,7 +426,7 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, sample, n_
     if chunk_size is None:
         workers = _executor_workers(executor)
         chunk_size = max(1, min(DEFAULT_CHUNK_SIZE, math.ceil(n / workers))) if n else 1
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
+    if not _integer(chunk_size) or chunk_size < 1:
         raise _core.Error(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
     starts = list(range(0, n, chunk_size))
     futures = {}

@@ -162,6 +162,31 @@ def test_study_options_and_invalid_cases():
     np.testing.assert_equal(single.metrics.to_dict(), out[0].metrics.to_dict())
 
 
+def test_a_studys_table_describes_the_cases_as_they_ran():
+    # The caller changes its Case objects for the next study: the first study's table keeps the
+    # parameters its cases ran with (it showed the new G beside the old areas).
+    cases = [oscidrum.Case(mu=m) for m in (0.3, 0.5)]
+    res = oscidrum.run_study(cases, threads=1, progress=False)
+    for c in cases:
+        c.set("soil.G", 50e6)
+    table = res.to_dataframe("all")
+    assert list(table["soil.G"]) == [25e6, 25e6]
+    assert [c.get("soil.G") for c in res.cases] == [25e6, 25e6]
+
+
+def test_study_options_take_numpy_integers_and_errors_keep_their_key():
+    out = oscidrum.run_study([oscidrum.Case()], threads=np.int64(1), n_harmonics=np.int64(10),
+                             progress=False)
+    assert out[0].ok
+    with pytest.raises(oscidrum.Error, match="threads must be an integer"):
+        oscidrum.run_study([oscidrum.Case()], threads=True, progress=False)
+    # A dict case's error names its parameter, as Case's own does (docs/python.md, "Errors").
+    with pytest.raises(oscidrum.Error) as e:
+        oscidrum.run_study([{"soil.G": -5e6}], threads=1, progress=False)
+    assert str(e.value).startswith("cases[0]: soil.G must be in")
+    assert e.value.key == "soil.G" and e.value.value == -5e6
+
+
 def test_exception_in_study_callback_propagates():
     def boom(done, total):
         raise KeyError("from the callback")
