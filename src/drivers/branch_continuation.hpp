@@ -63,6 +63,12 @@ inline bool is_complex(std::complex<double> m) { return std::abs(m.imag()) > 1e-
 // has it: the integration's tolerances leave ~1e-8 on a multiplier that is 1 by the physics.
 inline constexpr double kNeutral = 1e-6;
 
+// A point of a period-p branch (p even) whose P^(p/2) residual, in the corrector's scaled units, is
+// below this is an orbit of half its period: the genuine period-p orbits near their period
+// doubling differ from their P^(p/2) image by about the square root of the parameter's distance
+// from it, far above this; the orbits of half the period repeat to the corrector's tolerance.
+inline constexpr double kHalfOrbit = 1e-6;
+
 // `neutral`: the band around the unit circle that counts as on it (kNeutral for the detection;
 // 0 where a change already detected is located: the band's edge is not the crossing).
 inline MultiplierCounts count_multipliers(const Floquet& f, double neutral = kNeutral) {
@@ -244,6 +250,8 @@ class Continuation {
   // Is the orbit of `s` (on a period-p branch, p even) the period-p/2 orbit, which the branch
   // through `before` has shrunk onto? Its P^(p/2) residual is small, and small against before's.
   bool collapses(const Solution& s, const Solution& before);
+  // The scaled residual of P^(p/2) at s (infinity where the map fails).
+  double half_residual(const Solution& s);
   static bool has_flight(const std::string& sequence) {
     return sequence.find(to_string(Phase::flight)) != std::string::npos;
   }
@@ -973,6 +981,15 @@ bool Continuation<R>::collapses(const Solution& s, const Solution& before) {
 }
 
 template <class R>
+double Continuation<R>::half_residual(const Solution& s) {
+  const int p = p_;
+  p_ = p / 2;
+  const Map at = map(s.v, false);
+  p_ = p;
+  return at.ok ? at.F.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+}
+
+template <class R>
 Branch Continuation<R>::halve_at(const Halving& h, const std::array<double, P>& scale) {
   Start start;
   start.section = h.section;
@@ -1050,6 +1067,25 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
           q = parameter(next->v);
         }
       }
+    }
+    // An even-period branch whose next point is an orbit of half its period: at the period
+    // doubling, where its own orbits turn back onto those of P^(p/2), the step landed on the
+    // period-p/2 orbits that pass through the point (a vibratory drum's period-2 branch went on
+    // as the flip-unstable period-1 orbits, labelled period 2 with the squares of their
+    // multipliers, the crossing read as a grazing). The branch ends there.
+    if (p_ % 2 == 0 && !halving_) {
+      const double half = half_residual(*next);
+      if (half < kHalfOrbit)
+        return finish(
+            branch, BranchEnd::period_halved,
+            "at " + at_value(q) + " the next point is an orbit of period " +
+                std::to_string(p_ / 2) + " (it repeats after " + std::to_string(p_ / 2) +
+                (p_ / 2 == 1 ? " period" : " periods") + " to " + detail::format("%.2g", half) +
+                "): the continuation crossed from the period-" + std::to_string(p_) +
+                " orbits onto those at their period doubling; the branch ends at its "
+                "last period-" +
+                std::to_string(p_) + " point, " + at_value(branch.points.back().parameter),
+            start_time);
     }
     s += ds;
     BranchPoint pt = point(*next, s, iterations);

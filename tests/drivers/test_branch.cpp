@@ -412,6 +412,40 @@ TEST(Branch, APeriodTwoBranchEndsWhereItShrinksOntoThePeriodOneOrbit) {
   EXPECT_NEAR(last.floquet.max_modulus, r.floquet.max_modulus, 1e-3);
 }
 
+// A period-2 branch that meets the period-1 orbits at their period doubling without turning
+// back there (the step lands on the period-1 orbits, which pass through the point): the
+// vibratory drum on G = 20 MN/m^2 from its stable period-2 orbit at 20 Hz up over a fold at
+// 21.98 Hz and down again went on from 21.45 Hz to 20 Hz as the flip-unstable period-1 orbits,
+// labelled period 2 with the squares of their multipliers, the crossing read as a grazing. The
+// branch ends at its last period-2 point.
+TEST(Branch, APeriodTwoBranchDoesNotGoOnAsThePeriodOneOrbits) {
+  Case c;
+  set_field_text(c, "roller.type", "vibratory");
+  set_field(c, "roller.static_moment", 1.5);
+  set_field(c, "contact.mu", 0.5);
+  set_field_text(c, "contact.unilateral", "true");
+  set_field_text(c, "soil.input", "modulus");
+  set_field(c, "soil.G", 20e6);
+  BranchOptions o;
+  o.key = "roller.f";
+  o.from = 20.0;
+  o.to = 22.0;
+  o.switch_depth = 0;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.multiplicity, 2);
+  EXPECT_EQ(b.end, BranchEnd::period_halved) << b.message;
+  // Below 21.45 Hz the points are the stable period-2 orbits the branch started on, not the
+  // flip-unstable period-1 orbits, whose squared multipliers are above 1 there (1.0175 at
+  // 21.45 Hz to 1.405 at 20 Hz).
+  ASSERT_GT(b.points.size(), 10u);
+  for (const BranchPoint& pt : b.points) {
+    if (pt.parameter < 21.45) {
+      EXPECT_LT(pt.floquet.max_modulus, 1.0) << pt.parameter;
+    }
+  }
+  EXPECT_GT(b.points.back().parameter, 21.45);
+}
+
 TEST(Branch, RefusesWhatCannotBeContinued) {
   const Case c;
   BranchOptions o;
