@@ -277,6 +277,8 @@ class Continuation {
   std::string last_failure_;
   std::vector<Doubling> doublings_;
   std::optional<Halving> halving_;
+  // What o_.from is where it is not the user's start (a child branch's): for the messages.
+  std::string from_what_;
   // The continuation from an accepted first solution to the end of the range.
   Branch follow(Branch branch, Solution cur, int iterations,
                 std::chrono::steady_clock::time_point start_time);
@@ -903,6 +905,7 @@ Branch Continuation<R>::switch_at(const Doubling& d, const std::array<double, P>
       // Follow it to the end of the range on its side.
       o_.from = d.q;
       o_.to = side > 0 ? hi_q : lo_q;
+      from_what_ = "the period doubling it was switched on at";
       return follow(std::move(branch), std::move(*first), iterations, start_time);
     }
   }
@@ -998,6 +1001,7 @@ Branch Continuation<R>::halve_at(const Halving& h, const std::array<double, P>& 
   start.multiplicity = p_ / 2;
   start.scale = scale;
   o_.from = h.q;
+  from_what_ = "the period doubling it started at";
   const auto start_time = std::chrono::steady_clock::now();
   Branch branch;
   branch.key = field_.key;
@@ -1122,7 +1126,12 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
       const bool at_end = past_end;
       return finish(branch, at_end ? BranchEnd::reached_end : BranchEnd::left_range,
                     at_end ? "reached " + at_value(o_.to)
-                           : "the branch turned back and left the range at " + at_value(o_.from),
+                    : from_what_.empty()
+                        ? "the branch turned back and left the range at " + at_value(o_.from)
+                        : "the branch turned back to " + from_what_ + ", " + at_value(o_.from) +
+                              ", where its range begins (its orbits beyond the turn are not "
+                              "followed; a continuation started at a value among them follows "
+                              "them)",
                     start_time);
     }
     if (iterations <= 3) ds = std::min(ds * 1.5, o_.max_step);

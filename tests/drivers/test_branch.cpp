@@ -444,6 +444,19 @@ TEST(Branch, APeriodTwoBranchDoesNotGoOnAsThePeriodOneOrbits) {
     }
   }
   EXPECT_GT(b.points.back().parameter, 21.45);
+  // From 17 Hz the period-1 branch switches onto the period-2 branches at both doublings; each
+  // folds (subcritical) and returns to the doubling it started at, which it says (it said it
+  // "left the range at roller.f = 17.2219 Hz", inside the range of 17 to 22 Hz).
+  o.from = 17.0;
+  o.switch_depth = 1;
+  const Branch p1 = continue_branch(c, o);
+  ASSERT_EQ(p1.children.size(), 2u);
+  for (const Branch& child : p1.children) {
+    EXPECT_EQ(child.end, BranchEnd::left_range);
+    EXPECT_NE(child.message.find("turned back to the period doubling it was switched on at"),
+              std::string::npos)
+        << child.message;
+  }
 }
 
 TEST(Branch, RefusesWhatCannotBeContinued) {
