@@ -46,4 +46,17 @@ inline Case rolling_unilateral_case(double f = 58.0) {
   return c;
 }
 
+/// The vibratory drum (circular exciter, static moment [kg m]) with contact that can open, mu =
+/// 0.5, on soil by Appendix B at G [Pa]: the double jump and the subcritical period doublings of
+/// docs/bifurcations.md's probes.
+inline Case vibratory_lift_off_case(double static_moment, double G) {
+  Case c = modulus_case();
+  set_field_text(c, "roller.type", "vibratory");
+  set_field(c, "roller.static_moment", static_moment);
+  set_field(c, "contact.mu", 0.5);
+  set_field_text(c, "contact.unilateral", "true");
+  set_field(c, "soil.G", G);
+  return c;
+}
+
 }  // namespace oscidrum::test

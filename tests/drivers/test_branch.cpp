@@ -419,13 +419,7 @@ TEST(Branch, APeriodTwoBranchEndsWhereItShrinksOntoThePeriodOneOrbit) {
 // labelled period 2 with the squares of their multipliers, the crossing read as a grazing. The
 // branch ends at its last period-2 point.
 TEST(Branch, APeriodTwoBranchDoesNotGoOnAsThePeriodOneOrbits) {
-  Case c;
-  set_field_text(c, "roller.type", "vibratory");
-  set_field(c, "roller.static_moment", 1.5);
-  set_field(c, "contact.mu", 0.5);
-  set_field_text(c, "contact.unilateral", "true");
-  set_field_text(c, "soil.input", "modulus");
-  set_field(c, "soil.G", 20e6);
+  Case c = test::vibratory_lift_off_case(1.5, 20e6);
   BranchOptions o;
   o.key = "roller.f";
   o.from = 20.0;

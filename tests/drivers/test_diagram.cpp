@@ -311,13 +311,8 @@ TEST(Diagram, ASpinningDrumIsGrossSlipNotATorus) {
 // the halves 0.1245 and 0.03622 per period (the vibratory drum in flight at G = 80 MN/m^2 after
 // the values below it; a chaotic motion, whose verdict on another build may come out otherwise).
 TEST(Diagram, AnUndecidedVerdictSaysWhyInItsOwnNumbers) {
-  Case c;
-  set_field_text(c, "roller.type", "vibratory");
-  set_field(c, "roller.static_moment", 1.5);
+  Case c = test::vibratory_lift_off_case(1.5, 60e6);
   set_field(c, "roller.f", 30.0);
-  set_field(c, "contact.mu", 0.5);
-  set_field_text(c, "contact.unilateral", "true");
-  set_field_text(c, "soil.input", "modulus");
   DiagramOptions o;
   o.key = "soil.G";
   o.from = 60e6;
