@@ -972,14 +972,7 @@ std::optional<Branch> Continuation<R>::end_at_lift_off(
 
 template <class R>
 bool Continuation<R>::collapses(const Solution& s, const Solution& before) {
-  const int p = p_;
-  p_ = p / 2;
-  const Map at = map(s.v, false), away = map(before.v, false);
-  p_ = p;
-  if (!at.ok) return false;
-  const double r_at = at.F.cwiseAbs().maxCoeff();
-  const double r_away =
-      away.ok ? away.F.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  const double r_at = half_residual(s), r_away = half_residual(before);
   return r_at < 1e-2 && r_at < 0.1 * r_away;
 }
 
