@@ -1,6 +1,7 @@
 // oscidrum: the command-line tool. Parses the command line with CLI11, runs the selected
 // command, and turns every error into a one-line message and an exit code (commands.hpp).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -82,18 +83,35 @@ std::string explain_parse_error(const CLI::ParseError& e, const CLI::App& app,
   }
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
     commands.push_back(sub->get_name());
-  std::string hints;
+  const auto has = [&](const std::string& flag) {
+    return std::find(flags.begin(), flags.end(), flag) != flags.end();
+  };
+  // "did you mean --mu?" for one near miss; "--mu for --Mu, --nu for --Nu" for several.
+  std::vector<std::pair<std::string, std::string>> near_misses;  // (word, guess)
+  std::string output_hint;
   std::istringstream words(message.substr(colon + 2));
   for (std::string word; words >> word;) {
     std::string near;
     if (word.rfind("-", 0) == 0) {
-      near = oscidrum::nearest(word.substr(0, word.find('=')), flags);
+      const std::string flag = word.substr(0, word.find('='));
+      near = oscidrum::nearest(flag, flags);
+      // An output file asked for as sweep's --out (or -o): name the command's own outputs.
+      if (near.empty() && (flag == "--out" || flag == "--output" || flag == "-o") && has("--csv") &&
+          has("--json"))
+        output_hint = "this command writes its outputs with --csv FILE and --json FILE";
     } else if (&active == &app) {
       near = oscidrum::nearest(word, commands);
     }
-    if (!near.empty() && near != word) hints += (hints.empty() ? "" : "; ") + word + ": " + near;
+    if (!near.empty() && near != word) near_misses.emplace_back(word, near);
   }
-  return hints.empty() ? message : message + " (did you mean " + hints + "?)";
+  std::string hints;
+  if (near_misses.size() == 1) hints = near_misses[0].second;
+  for (std::size_t i = 0; near_misses.size() > 1 && i < near_misses.size(); ++i)
+    hints += (i == 0 ? "" : ", ") + near_misses[i].second + " for " + near_misses[i].first;
+  std::string explained = message;
+  if (!hints.empty()) explained += " (did you mean " + hints + "?)";
+  if (!output_hint.empty()) explained += " (" + output_hint + ")";
+  return explained;
 }
 
 int run(int argc, char** argv) {

@@ -24,7 +24,8 @@ const char* number_rule();
 std::string printable(std::string_view text);
 
 /// The candidate nearest to `word` (edit distance, ASCII case ignored) if it is within
-/// `max_distance` edits, else "": for "did you mean ...?" in messages.
+/// `max_distance` edits and within a third of the word's length (a flag's without its dashes; at
+/// least one edit), else "": for "did you mean ...?" in messages.
 std::string nearest(std::string_view word, const std::vector<std::string>& candidates,
                     std::size_t max_distance = 2);
 

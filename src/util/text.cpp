@@ -1,6 +1,7 @@
 // Numbers from text and printable messages (oscidrum/text.hpp).
 #include "oscidrum/text.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -93,6 +94,10 @@ std::string printable(std::string_view text) {
 
 std::string nearest(std::string_view word, const std::vector<std::string>& candidates,
                     std::size_t max_distance) {
+  // A short word allows fewer edits: two edits turn "--out" into "--nu", "ab" into anything of
+  // two letters. The name is counted without the dashes of a flag.
+  const std::size_t name = word.size() - std::min(word.find_first_not_of('-'), word.size());
+  max_distance = std::min(max_distance, std::max<std::size_t>(1, name / 3));
   std::string best;
   std::size_t best_distance = max_distance + 1;
   for (const std::string& c : candidates) {

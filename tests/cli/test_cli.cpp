@@ -521,6 +521,8 @@ TEST(CliRun, PlotFailsCleanly) {
   if (o.code != 0) {  // no Python package or no matplotlib here: a message and exit code 1
     EXPECT_EQ(o.code, 1) << o.err;
     EXPECT_NE(o.err.find("plot"), std::string::npos);
+  } else {
+    EXPECT_EQ(o.err, "");  // -q: not the names of the figures
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "plots/steady_state.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "plots/summary.json"));
@@ -1011,11 +1013,22 @@ TEST(CliRun, ParseErrorsSayWhatToDo) {
   EXPECT_NE(twice.err.find("--mu is given more than once"), std::string::npos) << twice.err;
   const Outcome flag = run({"run", "--Mu", "0.3"});
   EXPECT_EQ(flag.code, 2);
-  EXPECT_NE(flag.err.find("did you mean --Mu: --mu?"), std::string::npos) << flag.err;
+  EXPECT_NE(flag.err.find("(did you mean --mu?)"), std::string::npos) << flag.err;
   const Outcome command = run({"sweeep", "study.toml"});
   EXPECT_EQ(command.code, 2);
-  EXPECT_NE(command.err.find("sweeep: sweep"), std::string::npos) << command.err;
-  for (const Outcome* o : {&twice, &flag, &command})
+  EXPECT_NE(command.err.find("(did you mean sweep?)"), std::string::npos) << command.err;
+  const Outcome two = run({"run", "--Mu", "0.3", "--Nu", "2"});
+  // (CLI11 lists the unexpected words in an order of its own.)
+  EXPECT_NE(two.err.find("did you mean --"), std::string::npos) << two.err;
+  EXPECT_NE(two.err.find("--mu for --Mu"), std::string::npos) << two.err;
+  EXPECT_NE(two.err.find("--nu for --Nu"), std::string::npos) << two.err;
+  // sweep's --out given to run: no guess two edits away ("--nu"), run's own output flags.
+  const Outcome out = run({"run", "--out", "r.csv"});
+  EXPECT_EQ(out.code, 2);
+  EXPECT_EQ(out.err.find("did you mean"), std::string::npos) << out.err;
+  EXPECT_NE(out.err.find("writes its outputs with --csv FILE and --json FILE"), std::string::npos)
+      << out.err;
+  for (const Outcome* o : {&twice, &flag, &command, &two, &out})
     EXPECT_EQ(std::count(o->err.begin(), o->err.end(), '\n'), 1) << o->err;
   // Far from every name: no guess.
   const Outcome far = run({"run", "--zzzzzzzz"});
