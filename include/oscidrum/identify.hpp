@@ -146,7 +146,8 @@ struct IdentifyOptions {
   /// channels independent [-]; 0: not counted. The harmonics alone cannot tell a gain error from
   /// the soil (z_M'' 2 % high moves G by about -1.7 % at a reduced chi^2 near 1): its effect on
   /// each estimate (Estimate::gain_uncertainty, from refits with each channel's gain one standard
-  /// uncertainty off) is added to the standard uncertainty and to the 95 % interval in quadrature.
+  /// uncertainty off) is added to the standard uncertainty and to the 95 % interval in quadrature
+  /// (the interval in the fit's coordinates: ln G, ln mu, MMd / M0).
   double gain_uncertainty = 0.0;
   int max_iterations = 40;        ///< Levenberg-Marquardt iterations [-]
   double max_condition = 1e6;     ///< a larger condition number of the scaled Jacobian: warn [-]
@@ -196,7 +197,9 @@ struct Estimate {
   /// The part of the standard uncertainty that the channels' gain uncertainty makes
   /// (IdentifyOptions::gain_uncertainty; 0 when not counted) [unit]
   double gain_uncertainty = 0.0;
-  bool lower_open = false;  ///< the profile stayed flat down to the parameter's bound
+  /// The profile stayed flat down to the parameter's bound, or the gains' part of the interval
+  /// (gain_uncertainty) widened it beyond the bound: `lower` is the bound.
+  bool lower_open = false;
   bool upper_open = false;  ///< ... up to its bound
 };
 

@@ -568,11 +568,14 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
         estimate_of(pr, fit, j, se[static_cast<Eigen::Index>(j)], c, s2, o.profile, id.warnings));
   // The channels' gain uncertainty (a sensor's calibration): each channel's gain one standard
   // uncertainty off, refitted from the estimate; the changes, in quadrature over the two
-  // independent channels, widen the standard uncertainty and the interval in quadrature.
+  // independent channels, widen the standard uncertainty and the interval in quadrature. The
+  // interval is widened in the fit's coordinates (ln G, ln mu, MMd / M0), where the profile
+  // limits are found too, and ends at the unknown's bound: in G itself, 5 % of gain on a short
+  // window (G shifted by 65 %) put the lower end at -9.8 MN/m^2.
   int gain_simulations = 0;
   if (o.gain_uncertainty > 0.0) {
     const double g = 1.0 + o.gain_uncertainty;
-    std::vector<double> shift2(q, 0.0);
+    std::vector<double> shift2(q, 0.0), shift2_internal(q, 0.0);
     bool ok = true;
     for (const bool x : {true, false}) {
       Problem off(base, detail::scaled_channels(data, x ? g : 1.0, x ? 1.0 : g), o,
@@ -590,6 +593,8 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
         const double d = detail::to_physical(kind, refit.p[jj], pr.M0()) -
                          detail::to_physical(kind, fit.p[jj], pr.M0());
         shift2[j] += d * d;
+        const double di = refit.p[jj] - fit.p[jj];
+        shift2_internal[j] += di * di;
       }
     }
     if (!ok) {
@@ -601,12 +606,25 @@ Identification identify_in(const Case& base, const MeasuredResponse& data, const
         const double ug = std::sqrt(shift2[j]);
         e.gain_uncertainty = ug;
         e.standard_uncertainty = std::hypot(e.standard_uncertainty, ug);
-        const double wide = c * ug;  // the gains' part of a 95 % interval
-        // An open end (the profile flat to the parameter's bound) stays the bound.
-        if (std::isfinite(e.lower) && !e.lower_open)
-          e.lower = e.value - std::hypot(e.value - e.lower, wide);
-        if (std::isfinite(e.upper) && !e.upper_open)
-          e.upper = e.value + std::hypot(e.upper - e.value, wide);
+        // The gains' part of a 95 % interval, in the fit's coordinates.
+        const Unknown kind = pr.unknowns()[j];
+        const detail::Bounds& range = pr.bounds()[j];
+        const double wide = c * std::sqrt(shift2_internal[j]);
+        const double v = fit.p[static_cast<Eigen::Index>(j)];
+        const auto internal = [&](double x) { return detail::to_internal(kind, x, pr.M0()); };
+        const auto physical = [&](double p) { return detail::to_physical(kind, p, pr.M0()); };
+        // An open end (the profile flat to the parameter's bound) stays the bound; an end the
+        // gains widen beyond the bound becomes an open end at the bound.
+        if (std::isfinite(e.lower) && !e.lower_open) {
+          const double lo = v - std::hypot(v - internal(e.lower), wide);
+          e.lower_open = lo <= range.lo;
+          e.lower = physical(std::max(lo, range.lo));
+        }
+        if (std::isfinite(e.upper) && !e.upper_open) {
+          const double hi = v + std::hypot(internal(e.upper) - v, wide);
+          e.upper_open = hi >= range.hi;
+          e.upper = physical(std::min(hi, range.hi));
+        }
       }
     }
   }

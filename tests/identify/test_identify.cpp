@@ -298,6 +298,38 @@ TEST(Identify, TheChannelsGainUncertaintyWidensTheEstimate) {
   EXPECT_THROW((void)identify_pass(base(false, 0.0), r.t, r.ddx_M, r.ddz_M, {}, {}, o), Error);
 }
 
+// A gain uncertainty whose refits move G by more than half its value (a short window of the
+// default case, whose G follows the gain of x_M'' steeply: 5 % of gain moves it by 65 %): the
+// interval is widened in ln G, where the fit and its profile live, and stays above 0 (in G itself
+// its lower end was -9.8 MN/m^2 at G = 25 MN/m^2).
+TEST(Identify, TheGainsWidenTheIntervalWithinTheUnknownsRange) {
+  // The paper's default case (Table 2 soil at G = 25 MN/m^2), 4 periods sampled in step with the
+  // excitation (128 samples per period: the model is compared sampled at the record's times), no
+  // noise.
+  SyntheticRecord so;
+  so.duration = 4.0 / 39.0;
+  so.sample_rate = 128.0 * 39.0;
+  so.noise = so.drift = 0.0;
+  const RecordSamples r = synthetic_record({Case{}}, so);
+  IdentifyOptions o;
+  o.soil_scale = SoilScale::table2;
+  const Identification plain = identify_whole(Case{}, r, o);
+  o.gain_uncertainty = 0.05;
+  const Identification id = identify_whole(Case{}, r, o);
+  ASSERT_EQ(id.estimates.size(), 1u);
+  const Estimate &p = plain.estimates[0], &e = id.estimates[0];
+  EXPECT_GT(2.0 * e.gain_uncertainty, e.value);  // a symmetric interval in G would pass 0
+  EXPECT_GT(e.lower, 0.0);
+  EXPECT_LT(e.lower, p.lower);
+  EXPECT_GT(e.upper, p.upper);
+  // The same gain part added in quadrature to each side, in ln G.
+  const auto sq = [](double x) { return x * x; };
+  const double widened_lower = sq(std::log(e.value / e.lower)) - sq(std::log(p.value / p.lower));
+  const double widened_upper = sq(std::log(e.upper / e.value)) - sq(std::log(p.upper / p.value));
+  EXPECT_GT(widened_lower, 0.0);
+  EXPECT_NEAR(widened_upper / widened_lower, 1.0, 1e-9);
+}
+
 // A soft soil below the start scan's grid and a stiff one near its upper end (G = 4, 8, ..., 128
 // MN/m^2, walked downhill from 16 and 32 MN/m^2), each identified from a cold start.
 TEST(Identify, SoftAndStiffSoilsFromAColdStart) {
