@@ -117,6 +117,14 @@ MeasuredResponse read_metrics(const std::string& path, RecordWindow& window, Ide
     throw Error(path +
                 ": expected the JSON of `oscidrum analyze --format json` (schema "
                 "oscidrum-record/1)");
+  // An analysis that failed (a gap, clipping, a poor fit) has no metrics: its reason, not that
+  // of a number missing from the file.
+  if (j.contains("valid") && j["valid"].is_boolean() && !j["valid"].get<bool>())
+    throw Error(path + ": the analysis in it is not valid (" +
+                (j.contains("reason") && j["reason"].is_string() ? j["reason"].get<std::string>()
+                                                                 : std::string("no reason given")) +
+                "): it has no metrics to identify from; `oscidrum identify RECORD` identifies "
+                "the record window by window");
   auto number = [&](const char* key) {
     if (!j.contains(key) || !j[key].is_number())
       throw Error(path + ": '" + std::string(key) + "' must be a number (is the fit valid?)");

@@ -841,6 +841,14 @@ TEST(CliAnalyze, DefectiveRecordsGiveTheirFlagAndExitOne) {
     const nlohmann::json j = nlohmann::json::parse(o.out);
     EXPECT_FALSE(j["valid"].get<bool>());
     EXPECT_TRUE(j["ddx_max"].is_null()) << "a failed fit is not reported as a number";
+    // identify --metrics on it: the analysis's reason (it said "ddx_harmonics holds a value that
+    // is not a number").
+    std::ofstream(dir / "failed.json") << o.out;
+    const Outcome id = run({"identify", "--metrics", dir / "failed.json"});
+    EXPECT_EQ(id.code, 2) << id.err;
+    EXPECT_NE(id.err.find("the analysis in it is not valid (" + j["reason"].get<std::string>()),
+              std::string::npos)
+        << id.err;
   }
   // The other frequency, estimated: found and valid.
   const Outcome o = run({"analyze", dir / "scaled_time.csv", "--format", "json"});
