@@ -16,9 +16,11 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <utility>
+#include <variant>
 
 #include "case_options.hpp"
 #include "commands.hpp"
@@ -263,7 +265,15 @@ SweepPlan plan_sweep(const SweepOptions& o) {
     warn(origin + ": " + key + " is swept by the study: this value is replaced in every case");
   }
   p.study = io::expand(p.spec, progress("checking the study's cases"));
-  if (o.no_continuation) p.study.adjust([](Case& c) { c.numerics.continuation = false; });
+  // --no-continuation is a flag: a --set of numerics.continuation after it holds (flags, then
+  // each --set, docs/config.md), said as a --set over a case flag is.
+  if (o.no_continuation) {
+    const auto set = p.spec.base.origin.find("numerics.continuation");
+    if (set != p.spec.base.origin.end() && set->second.rfind("--set ", 0) == 0)
+      warn(set->second + " overrides --no-continuation");
+    else
+      p.study.adjust([](Case& c) { c.numerics.continuation = false; });
+  }
   p.total = p.study.cases.size();
   warn_about_cases(p.spec, p.study, progress("checking each case's M0, f and contact"));
   p.columns = io::StudyColumns{p.study.keys, o.harmonics};
@@ -279,13 +289,41 @@ SweepPlan plan_sweep(const SweepOptions& o) {
 }
 
 // --list: the expanded cases, nothing run.
-int list_cases(const SweepPlan& p) {
+int list_cases(const SweepPlan& p, const std::string& format) {
   // Streamed: a million-case study is listed without holding its table.
   std::vector<std::string> header = {"case"};
   for (const std::string& k : p.study.keys) header.push_back(k);
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < p.total; ++i)
     if (p.mine[i]) mine.push_back(i);
+  // --format as for the results (it was ignored): csv and json rows, or nothing.
+  if (format == "none") return kExitOk;
+  if (format == "csv") {
+    for (std::size_t k = 0; k < header.size(); ++k)
+      std::cout << (k ? "," : "") << io::csv_quote(header[k]);
+    std::cout << "\n";
+    for (const std::size_t i : mine) {
+      std::cout << i;
+      for (const io::Value& v : p.study.varied[i])
+        std::cout << "," << io::csv_quote(io::format_value(v));
+      std::cout << "\n";
+    }
+    return kExitOk;
+  }
+  if (format == "json") {
+    // {"cases": [{"case": 0, KEY: VALUE, ...}, ...], "count": N}, one case per line.
+    std::cout << "{\"cases\": [";
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      nlohmann::ordered_json row;
+      row["case"] = mine[k];
+      const std::vector<io::Value>& values = p.study.varied[mine[k]];
+      for (std::size_t j = 0; j < values.size(); ++j)
+        std::visit([&](const auto& v) { row[p.study.keys[j]] = v; }, values[j]);
+      std::cout << (k ? ",\n  " : "\n  ") << row.dump();
+    }
+    std::cout << "\n], \"count\": " << p.n_mine << "}\n";
+    return kExitOk;
+  }
   write_text_table(std::cout, header, std::vector<bool>(header.size(), true), mine.size(),
                    [&](std::size_t k) {
                      std::vector<std::string> row = {std::to_string(mine[k])};
@@ -452,6 +490,9 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
     const std::vector<std::string> header = io::csv_split(p.header);
     // The journal's cases whose steady state the partial HDF5 file lacks (said below).
     std::vector<bool> lost(out.hdf5 ? p.total : 0);
+    // ... and those whose case file --cases-dir lacks (another directory than the interrupted
+    // run's, or files deleted): run again, said (they were run again without a word).
+    std::size_t missing_files = 0;
     out.journal->for_each_done([&](std::size_t index, const std::string& row) {
       // A row the sweep did not write as it reads (edited, damaged) is refused, never copied
       // into the results: its cells, status and numbers, and its swept values, the case's.
@@ -470,14 +511,21 @@ SweepOutputs open_outputs(const SweepOptions& o, const SweepPlan& p) {
                     " cannot be this sweep's (" + defect + "); run with --restart to discard it");
       if (!p.mine[index] || out.rows->has(index)) return;
       if (!o.cases_dir.empty() &&
-          !std::filesystem::exists(o.cases_dir + "/" + case_file_name(index, p.total)))
+          !std::filesystem::exists(o.cases_dir + "/" + case_file_name(index, p.total))) {
+        ++missing_files;
         return;
+      }
       if (out.hdf5 && !out.hdf5->has_case(index)) {  // run again for its steady state
         lost[index] = true;
         return;
       }
       out.add(index, row, p.study.keys.size());
     });
+    if (missing_files > 0)
+      warn("--cases-dir " + o.cases_dir + " lacks the case files of " +
+           std::to_string(missing_files) + " finished case" + (missing_files == 1 ? "" : "s") +
+           " of the journal (another directory than the interrupted run's, or files removed): " +
+           (missing_files == 1 ? "it is" : "they are") + " run again");
     // A kill -9 keeps the journal's rows, but the HDF5 file only as it was at its last flush (at
     // most a second before), or damaged (its later writes half done): the cases it lost run again.
     if (const auto n = std::count(lost.begin(), lost.end(), true); n > 0) {
@@ -635,7 +683,7 @@ bool report_statuses(const SweepOptions& o, const SweepPlan& p, const SweepOutpu
 int run(const SweepOptions& o) {
   check_options(o);
   const SweepPlan p = plan_sweep(o);
-  if (o.list) return list_cases(p);
+  if (o.list) return list_cases(p, o.format);
   check_run_options(o, p);
   SweepOutputs out = open_outputs(o, p);
   const double elapsed = run_cases(o, p, out);
@@ -655,7 +703,7 @@ int run(const SweepOptions& o) {
   // numeric keys (oscidrum.plot.plot_study).
   if (!o.plot.empty() && run_python({"oscidrum.plot", "study", "--csv", o.out, "--metric",
                                      o.plot_metric, "--out", o.plot},
-                                    "the results are in " + o.out) != 0)
+                                    "the results are in " + o.out, {}, o.quiet) != 0)
     return interrupted() ? plot_interrupted("the results are in " + o.out) : kExitCaseFailed;
   return all_ok ? kExitOk : kExitCaseFailed;
 }

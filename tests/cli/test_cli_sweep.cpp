@@ -95,6 +95,26 @@ TEST(CliSweep, CasesDirHoldsEachSteadyState) {
   const Outcome list = run({"sweep", kSource + "/examples/radius_sweep.toml", "--list"});
   EXPECT_EQ(list.code, 0);
   EXPECT_NE(list.out.find("56 cases"), std::string::npos);
+  // --format csv and json (ignored before: the table), none.
+  const Outcome csv =
+      run({"sweep", kSource + "/examples/radius_sweep.toml", "--list", "--format", "csv"});
+  EXPECT_EQ(csv.code, 0) << csv.err;
+  EXPECT_EQ(count_lines(csv.out), 57u);
+  EXPECT_EQ(csv.out.rfind("case,", 0), 0u) << csv.out.substr(0, 200);
+  const Outcome json =
+      run({"sweep", kSource + "/examples/radius_sweep.toml", "--list", "--format", "json"});
+  EXPECT_EQ(json.code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["count"], 56);
+  ASSERT_EQ(j["cases"].size(), 56u);
+  EXPECT_EQ(j["cases"][55]["case"], 55);
+  EXPECT_EQ(j["cases"][0].size(), 3u);  // case, trough.a, soil.table2_G
+  EXPECT_EQ(j["cases"][0]["trough.a"], 0.603);
+  EXPECT_EQ(j["cases"][1]["soil.table2_G"], 10e6);
+  const Outcome none =
+      run({"sweep", kSource + "/examples/radius_sweep.toml", "--list", "--format", "none"});
+  EXPECT_EQ(none.code, 0) << none.err;
+  EXPECT_TRUE(none.out.empty()) << none.out;
 }
 
 TEST(CliSweep, FailedCaseGivesExitCodeOneWithItsStatus) {
@@ -171,6 +191,30 @@ TEST(CliSweep, KillAndResumeLosesNothing) {
   EXPECT_FALSE(std::filesystem::exists(journal));
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
+}
+
+// A resume whose --cases-dir lacks the case files of finished cases (another directory than the
+// interrupted run's) runs them again for their files: said (it ran them again without a word).
+TEST(CliSweep, AResumeSaysWhichFinishedCasesItRunsAgainForTheirCaseFiles) {
+  TempDir dir;
+  const std::string study = write_slow_study(dir);
+  const std::string out = dir / "r.csv", journal = out + ".journal";
+  const Outcome reference = run({"sweep", study, "-q"});
+  ASSERT_EQ(reference.code, 0) << reference.err;
+  Outcome o = interrupt_after(
+      {"sweep", study, "--out", out, "--threads", "1", "--cases-dir", dir / "first"}, dir, journal,
+      3, SIGKILL);
+  ASSERT_EQ(o.signal, SIGKILL) << "the sweep ended before it could be killed: " << o.err;
+  const std::size_t kept = count_lines(slurp(journal)) - 1;
+  o = run({"sweep", study, "--out", out, "--resume", "--cases-dir", dir / "second"});
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("--cases-dir " + (dir / "second") + " lacks the case files of " +
+                       std::to_string(kept) + " finished cases of the journal"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(o.err.find("resuming:"), std::string::npos) << o.err;
+  EXPECT_EQ(slurp(out), reference.out);
+  EXPECT_TRUE(std::filesystem::exists(dir / "second/case_0000.csv"));
 }
 
 // Without --out a sweep keeps no journal and cannot be resumed: an interrupt left FILE.h5.partial
@@ -534,6 +578,14 @@ TEST(CliSweep, ShootingContinuesAlongTheLongestFactor) {
   const std::vector<std::string> not_started = column(cold.out, "warm_start[-]");
   EXPECT_EQ(std::count(not_started.begin(), not_started.end(), "0"), 56);
   EXPECT_EQ(column(warm.out, "status[-]"), column(cold.out, "status[-]"));
+  // A --set of numerics.continuation holds over the flag, said (the flag won without a word).
+  const Outcome set = run({"sweep", study, "--set", shooting, "-q", "--threads", "2",
+                           "--no-continuation", "--set", "numerics.continuation=true"});
+  ASSERT_EQ(set.code, 0) << set.err;
+  EXPECT_EQ(column(set.out, "warm_start[-]"), started);
+  EXPECT_NE(set.err.find("--set numerics.continuation=true overrides --no-continuation"),
+            std::string::npos)
+      << set.err;
   // Shard 2/4 holds cases 1, 5, ..., 53: one contact and torque, all 14 G values, one chain.
   const Outcome shard = run({"sweep", study, "--set", shooting, "-q", "--shard", "2/4"});
   ASSERT_EQ(shard.code, 0) << shard.err;
