@@ -39,8 +39,12 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
              ? " (a --step above --max-step needs a --max-step at least as large)"
              : ""));
   if (!(o.tolerance > 0 && o.tolerance < 1))
-    throw Error("continue: tolerance must be in (0, 1); got " + detail::shortest(o.tolerance));
-  if (o.max_points < 2) throw Error("continue: max_points must be >= 2", "max_points");
+    throw Error("continue: tolerance (--tolerance) must be in (0, 1); got " +
+                detail::shortest(o.tolerance));
+  if (o.max_points < 2)
+    throw Error(
+        "continue: max_points (--max-points) must be >= 2; got " + std::to_string(o.max_points),
+        "max_points");
   // As the CLI's --switch-depth: a cascade of period doublings followed to period 2^5 at most
   // (each level a branch of its own; an unbounded depth could follow it to period 2^99).
   if (o.switch_depth < 0 || o.switch_depth > 5)
@@ -54,6 +58,7 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
                     "), the samples' Nyquist limit; got " + std::to_string(o.harmonics),
                 "harmonics", o.harmonics);
   const Model model(c);  // validates the case
+  detail::check_range_interior(c, *field, o.from, o.to, "continue");
   return detail::with_roller(model, [&]<class R>() {
     detail::branching::Continuation<R> primary(c, o, *field);
     Branch branch = primary.run();

@@ -1,8 +1,10 @@
 // The checks of a varied parameter (drivers/varied_parameter.hpp).
 #include "drivers/varied_parameter.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "oscidrum/error.hpp"
 #include "oscidrum/model.hpp"
@@ -31,7 +33,8 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
     throw Error(who + ": " + key +
                 " has no effect on the drum's motion: it enters the Appendix A transmissibility "
                 "only (oscidrum transmissibility)");
-  for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
+  // The ends as Python's arguments and the CLI's flags name them.
+  for (const auto& [name, value] : {std::pair{"from (--from)", from}, std::pair{"to (--to)", to}}) {
     const std::string why = check_field(*field, value);
     if (!why.empty()) throw Error(who + ": " + name + ": " + why, key, value);
   }
@@ -46,7 +49,7 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
                 key, 0.0);
   // The rules between fields too (a drum radius beyond the trough's, ...): a range whose end no
   // case can have is said now, not after a branch crawled towards it and failed there.
-  for (const auto& [name, value] : {std::pair{"--from", from}, std::pair{"--to", to}}) {
+  for (const auto& [name, value] : {std::pair{"from (--from)", from}, std::pair{"to (--to)", to}}) {
     Case at = c;
     field->set(at, value);
     try {
@@ -58,6 +61,35 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
     }
   }
   return *field;
+}
+
+void check_range_interior(const Case& c, const Field& field, double from, double to,
+                          const std::string& who) {
+  std::vector<double> values = {from + 1e-6 * (to - from), to - 1e-6 * (to - from)};
+  for (int k = 1; k < kRangeChecks; ++k) values.push_back(from + (to - from) * k / kRangeChecks);
+  std::sort(values.begin(), values.end(), [&](double a, double b) {
+    return (a - from) * (to - from) < (b - from) * (to - from);  // from --from towards --to
+  });
+  for (const double value : values) {
+    Case at = c;
+    field.set(at, value);
+    std::string why = check_field(field, value);
+    if (why.empty()) {
+      try {
+        const Model model(at);
+      } catch (const Error& e) {
+        why = e.what();
+      }
+    }
+    if (!why.empty())
+      throw Error(who + ": " + field.key + " = " + shortest(value) +
+                      (std::string(field.unit) == "-" ? "" : " " + std::string(field.unit)) +
+                      ", between from = " + shortest(from) + " and to = " + shortest(to) +
+                      " (--from, --to): the case is not valid there (" + why +
+                      "); a branch varies the parameter continuously from one to the other: "
+                      "choose a range whose every value is valid",
+                  field.key, value);
+  }
 }
 
 }  // namespace oscidrum::detail

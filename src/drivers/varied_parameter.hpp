@@ -16,4 +16,12 @@ namespace oscidrum::detail {
 const Field& varied_field(const Case& c, const std::string& key, double from, double to,
                           const std::string& who);
 
+/// For a parameter varied continuously from `from` to `to` (a branch): throws oscidrum::Error
+/// "WHO: ..." when the case is not valid at a value between them (values just inside each end and
+/// on a grid of kRangeChecks intervals): contact.mu_static from -1 ("equal to mu") to 0.6 passes
+/// values below mu, which no case can have.
+inline constexpr int kRangeChecks = 64;
+void check_range_interior(const Case& c, const Field& field, double from, double to,
+                          const std::string& who);
+
 }  // namespace oscidrum::detail

@@ -494,6 +494,21 @@ TEST(Branch, RefusesWhatCannotBeContinued) {
     frame.to = 3000;
     EXPECT_NE(message(c, frame).find("Appendix A transmissibility only"), std::string::npos)
         << message(c, frame);
+    // Both ends valid, the values between not: mu_static -1 ("equal to mu") to 0.6 passes values
+    // below mu = 0.5 (the branch failed at its start, "no tangent at the start", exit 1).
+    BranchOptions friction = o;
+    friction.key = "contact.mu_static";
+    friction.from = -1.0;
+    friction.to = 0.6;
+    const std::string why = message(c, friction);
+    EXPECT_NE(why.find("continue: contact.mu_static = -0.9999984, between from = -1 and to = "
+                       "0.6 (--from, --to): the case is not valid there ("),
+              std::string::npos)
+        << why;
+    EXPECT_NE(why.find("choose a range whose every value is valid"), std::string::npos) << why;
+    friction.from = 0.5;  // mu_static from mu up: valid throughout
+    friction.max_points = 2;
+    EXPECT_EQ(message(c, friction), "no error");
   }
   o.key = "contact.mu";
   o.from = 0.5;
