@@ -326,7 +326,7 @@ int run(ContinueOptions o) {
     std::vector<std::string> args = {"oscidrum.plot", "branch",      "--csv", o.csv,
                                      "--metric",      o.plot_metric, "--out", o.plot};
     if (!o.bifurcations.empty()) args.insert(args.end(), {"--bifurcations", o.bifurcations});
-    if (run_python(args, "the branch is in " + o.csv) != 0)
+    if (run_python(args, "the branch is in " + o.csv, {}, o.quiet) != 0)
       return interrupted() ? plot_interrupted("the branch is in " + o.csv) : kExitCaseFailed;
   }
   const bool ok = b.end == BranchEnd::reached_end || b.end == BranchEnd::left_range ||

@@ -244,7 +244,7 @@ int run(DiagramCommandOptions o) {
   if (!o.plot.empty()) {
     const std::vector<std::string> args = {"oscidrum.plot", "diagram",       "--csv", o.csv,
                                            "--quantity",    o.plot_quantity, "--out", o.plot};
-    if (run_python(args, "the diagram is in " + o.csv) != 0)
+    if (run_python(args, "the diagram is in " + o.csv, {}, o.quiet) != 0)
       return interrupted() ? plot_interrupted("the diagram is in " + o.csv) : kExitCaseFailed;
   }
   return kExitOk;

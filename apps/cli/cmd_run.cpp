@@ -143,7 +143,7 @@ int run(const RunOptions& o) {
     std::cerr << "oscidrum: no plots: the run ended (" << to_string(result.status)
               << ") before any sampled period; " << csv_path << " and " << json_path
               << " are written\n";
-  } else if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir)) {
+  } else if (!o.plot_dir.empty() && !run_plot(csv_path, json_path, o.plot_dir, o.quiet)) {
     return interrupted() ? plot_interrupted("the data are in " + csv_path + " and " + json_path)
                          : kExitCaseFailed;
   }

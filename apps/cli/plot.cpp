@@ -1,6 +1,7 @@
 // --plot and `oscidrum paper`: spawn a module of the Python package (posix_spawn, no shell).
 #include "plot.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -26,9 +27,9 @@ int plot_interrupted(const std::string& data_note) {
   return interrupted_exit_code();
 }
 
-bool run_plot(const std::string& csv, const std::string& json, const std::string& dir) {
+bool run_plot(const std::string& csv, const std::string& json, const std::string& dir, bool quiet) {
   return run_python({"oscidrum.plot", "case", "--csv", csv, "--json", json, "--out", dir},
-                    "the data are in " + csv + " and " + json) == 0;
+                    "the data are in " + csv + " and " + json, {}, quiet) == 0;
 }
 
 std::string python_interpreter() {
@@ -64,7 +65,7 @@ constexpr const char* kBootstrap =
 }  // namespace
 
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
-               const std::vector<int>& quiet_status) {
+               const std::vector<int>& quiet_status, bool quiet) {
   const std::string python = python_interpreter();
   std::vector<std::string> args = {python, "-c", kBootstrap};
   args.insert(args.end(), module_args.begin(), module_args.end());
@@ -96,7 +97,12 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+  // The module's stdout (the files it wrote) on our stderr, or nowhere with --quiet (-q printed
+  // the figure's name alone); its errors go to stderr either way.
+  if (quiet)
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  else
+    posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
   // The child gets the signals' default actions but keeps them blocked (as they are in this
   // process: terminal.hpp) until kBootstrap's handlers are in place.
   posix_spawnattr_t attr;
