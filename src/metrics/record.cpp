@@ -312,8 +312,10 @@ std::vector<Harmonic> to_harmonics(const Eigen::VectorXd& c, int n_max) {
   return h;
 }
 
+// `origin`: added to the times quoted (a record given from its first sample, e.g. identify_pass's,
+// is quoted in its own times).
 void check_record(std::span<const double> t, std::span<const double> ddx,
-                  std::span<const double> ddz) {
+                  std::span<const double> ddz, double origin = 0.0) {
   if (t.size() != ddx.size() || t.size() != ddz.size())
     throw Error("record: t, ddx_M and ddz_M must have the same length; got " +
                 std::to_string(t.size()) + ", " + std::to_string(ddx.size()) + ", " +
@@ -323,7 +325,7 @@ void check_record(std::span<const double> t, std::span<const double> ddx,
       throw Error("record: non-finite value in row " + std::to_string(i + 1));
     if (i > 0 && !(t[i] > t[i - 1]))
       throw Error("record: t must increase strictly; row " + std::to_string(i + 1) +
-                  " has t = " + num(t[i]) + " after " + num(t[i - 1]) +
+                  " has t = " + num(t[i] + origin) + " after " + num(t[i - 1] + origin) +
                   (t[i] == t[i - 1]
                        ? " (a repeated time, as an event-driven integrator writes both sides of "
                          "a switch: make each run of them one sample, its accelerations "
@@ -1391,7 +1393,7 @@ std::vector<RecordWindow> analyze_windows(std::span<const double> t, std::span<c
                                           std::span<const double> ddz,
                                           std::span<const double> position,
                                           const WindowOptions& o) {
-  check_record(t, ddx, ddz);
+  check_record(t, ddx, ddz, o.time_origin);
   if (!position.empty() && position.size() != t.size())
     throw Error("record: the position column must have one value per sample; got " +
                 std::to_string(position.size()) + " for " + std::to_string(t.size()));

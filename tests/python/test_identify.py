@@ -440,3 +440,26 @@ def test_identify_names_a_misspelled_option():
         oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], windw=20)
     with pytest.raises(oscidrum.Error, match="case must be an oscidrum.Case; got int"):
         oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], case=5)
+
+
+def test_times_out_of_order_are_quoted_in_the_records_own_times():
+    # The pass takes the record from its first sample; the message quoted those times (t = 0.5
+    # after 0.5009999999999764 for a record from t = 1000 s).
+    t = 1000.0 + np.arange(1000) / 1000.0
+    i = np.arange(len(t))
+    i[500], i[501] = 501, 500
+    x = np.sin(2 * np.pi * 39 * t)
+    with pytest.raises(oscidrum.Error, match=r"row 502 has t = 1000\.5 after 1000\.501 "):
+        oscidrum.identify.identify(t[i], x, x)
+
+
+def test_a_wrongly_typed_option_is_named_in_one_line():
+    # pybind11's refusal was 783 characters: the binding's signature, the value at its end.
+    r = oscidrum.synthetic_record([truth(25e6)], duration=0.3, seed=1)
+    with pytest.raises(oscidrum.Error) as e:
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], window="20")
+    assert str(e.value) == "identify: window must be a number or None; got str ('20')"
+    with pytest.raises(oscidrum.Error, match=r"^identify: fit_mu must be True or False; got int"):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], fit_mu=1)
+    with pytest.raises(oscidrum.Error, match=r"^identify: compare must be an integer; got float"):
+        oscidrum.identify.identify(r["t"], r["ddx_M"], r["ddz_M"], compare=4.0)
