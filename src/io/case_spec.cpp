@@ -16,6 +16,7 @@
 #include "oscidrum/soil.hpp"
 #include "oscidrum/text.hpp"
 #include "oscidrum_io/csv.hpp"
+#include "util/format.hpp"
 #include "util/text.hpp"
 
 namespace oscidrum::io {
@@ -258,7 +259,13 @@ void assign(CaseSpec& spec, std::string_view key, const Value& value, const std:
       break;
     }
   }
-  const std::string problem = check_field(*f, v);
+  std::string problem = check_field(*f, v);
+  // An integer as written: 9223372036854775807 was quoted as the double it rounds to (...808).
+  if (const auto* i = std::get_if<std::int64_t>(&value); i && !problem.empty()) {
+    const std::string as_double = "; got " + detail::shortest(v);
+    if (const std::size_t at = problem.find(as_double); at != std::string::npos)
+      problem.replace(at, as_double.size(), "; got " + std::to_string(*i));
+  }
   if (!problem.empty()) throw Error(problem, f->key, v);
   f->set(spec.values, v);
   spec.origin[std::string(key)] = origin;
@@ -424,12 +431,41 @@ Case finalize(const CaseSpec& spec, std::vector<std::string>* warnings) {
   return c;
 }
 
+namespace {
+
+// Where the first key that `message` names and the spec has an origin for was given: a rule
+// between keys names the one it checks (roller.P0 >= roller.m * roller.g) and may have been broken
+// by another (roller.m = 1e308 in the file, P0 left at its default). Empty: none.
+std::string where_mentioned(const CaseSpec& spec, std::string_view message) {
+  std::size_t first = std::string_view::npos;
+  std::string at;
+  for (const auto& [key, origin] : spec.origin) {
+    for (std::size_t pos = message.find(key); pos != std::string_view::npos;
+         pos = message.find(key, pos + 1)) {
+      const std::size_t end = pos + key.size();
+      const auto part_of_name = [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.';
+      };
+      if ((end < message.size() && part_of_name(message[end])) ||
+          (pos > 0 && part_of_name(message[pos - 1])))
+        continue;
+      if (pos < first) first = pos, at = origin + ": ";
+      break;
+    }
+  }
+  return at;
+}
+
+}  // namespace
+
 void validate(const Case& c, const CaseSpec& spec) {
   try {
     const Model model(c);
     (void)model;
   } catch (const Error& e) {
-    throw e.prefixed(spec.where(e.key()));
+    std::string at = spec.where(e.key());
+    if (at.empty()) at = where_mentioned(spec, e.what());
+    throw e.prefixed(at);
   }
 }
 

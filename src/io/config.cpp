@@ -298,6 +298,19 @@ std::vector<Value> range_values(const toml::table& t, const std::string& key,
     throw Error(where + ": " + key + " range must be {start, stop, step} or {start, stop, num}");
   if (!std::isfinite(*start) || !std::isfinite(*stop))
     throw Error(where + ": " + key + " range: start and stop must be finite");
+  // -1e308 ... 1e308: each end finite, their span not (the values came out NaN, blamed on the key).
+  if (!std::isfinite(*stop - *start))
+    throw Error(where + ": " + key + " range: stop - start overflows (start " +
+                format_value(*start) + ", stop " + format_value(*stop) +
+                "): give a range whose span is a finite number");
+  // num counts values: an integer as TOML writes one (3.0 is a float, as for an integer key).
+  if (const toml::node* n = t.get("num"); n && n->value_exact<double>())
+    throw Error(where + ": " + key + " range: num must be an integer; got " + format_value(*num) +
+                " written as a float (3.0 and 1e3 are floats): write " +
+                (*num == std::floor(*num) && std::abs(*num) < 1e15
+                     ? format_value(static_cast<double>(static_cast<std::int64_t>(*num))) + ","
+                     : std::string("a whole number")) +
+                " without a decimal point or exponent");
   // A range of one value sweeps nothing (docs/config.md: a fixed value belongs in the base case).
   if (*start == *stop)
     throw Error(where + ": " + key + " range: start and stop are both " + format_value(*start) +
@@ -385,6 +398,15 @@ void collect_axes(const toml::node& node, const std::string& key, const toml::so
     throw Error(where + ": unknown parameter '" + clip(key) + "'" + suggest_key(key));
   SweepAxis axis{key, {}, where};
   if (const toml::table* t = node.as_table()) {
+    // An integer key's range of floats ({start = 64.0, ...}) is refused as its list of floats is.
+    if (const Field* f = find_field(key); f && f->type == FieldType::integer)
+      for (const char* part : {"start", "stop", "step"})
+        if (const toml::node* n = t->get(part); n && n->value_exact<double>())
+          throw Error(loc(name, n->source()) + ": " + key + " range: " + part +
+                      " must be an integer (" + key + " is an integer key); got " +
+                      format_value(*n->value_exact<double>()) +
+                      " written as a float (5.0, 1e3 are floats): write it without a decimal "
+                      "point or exponent");
     axis.values = range_values(*t, key, where);
     // A range over an integer key gives integers when its values are whole (num = ... makes
     // numbers): {start = 1000, stop = 5000, num = 3} is 1000, 3000, 5000.
