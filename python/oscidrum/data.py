@@ -33,6 +33,10 @@ if _core is None:
 
 from ._files import write_file  # noqa: E402
 
+#: Every refusal of these modules is the library's oscidrum.Error (a ValueError), which
+#: `except oscidrum.Error` catches (a plain ValueError escaped it).
+Error = _core.Error
+
 #: Columns of docs/csv-columns.md: (attribute, unit), in file order, from the library's output
 #: table (the one description of every output).
 COLUMNS: Tuple[Tuple[str, str], ...] = tuple(
@@ -114,19 +118,18 @@ def from_result(result: Any, label: str = "", metrics: Any = None,
         result = result.result
     if not (hasattr(result, "samples") and hasattr(result, "status")):
         # An AttributeError from inside the package ("'int' object has no attribute 'samples'").
-        from . import Error
         raise Error("a plot or a steady state takes a Result, a CaseOutcome, a SteadyState, a "
                     "steady-state CSV's path or a (result, case) pair; got "
                     f"{type(result).__name__}")
     if len(result.samples) == 0:
         # A study's case without keep_samples (these statuses sample their periods).
         if result.status.name in ("steady_state", "max_periods_reached", "aperiodic"):
-            raise ValueError("the result holds no samples (run the study with keep_samples=True)")
+            raise Error("the result holds no samples (run the study with keep_samples=True)")
         # A run that ended before anything was sampled (contact lost, gross slip, cancelled):
         # keep_samples would not help.
-        raise ValueError(f"the result holds no samples: status {result.status.name} "
-                         f"({result.message}); the run ended before a steady state or its last "
-                         "periods were sampled, so there is nothing to plot")
+        raise Error(f"the result holds no samples: status {result.status.name} "
+                    f"({result.message}); the run ended before a steady state or its last "
+                    "periods were sampled, so there is nothing to plot")
     s = result.samples
     names = [name for name, _ in COLUMNS]
     ns = SimpleNamespace(**{name: getattr(s, name) for name in names})
@@ -158,7 +161,7 @@ def _infer_window(t: np.ndarray, torque: np.ndarray, signals: Sequence[np.ndarra
     """
     n = len(t)
     if n < 4:
-        raise ValueError("too few samples to infer the excitation frequency")
+        raise Error("too few samples to infer the excitation frequency")
     dt = (t[-1] - t[0]) / (n - 1)
     for y in (torque, *signals):
         y = np.asarray(y, dtype=float) - np.mean(y)
@@ -169,7 +172,7 @@ def _infer_window(t: np.ndarray, torque: np.ndarray, signals: Sequence[np.ndarra
         periods = int(np.argmax(spectrum))
         if periods > 0:
             return periods / (n * dt), periods
-    raise ValueError("cannot infer the excitation frequency: the torque column is constant")
+    raise Error("cannot infer the excitation frequency: the torque column is constant")
 
 
 def _find(summary: Mapping[str, Any], *path: str) -> Any:
@@ -219,8 +222,8 @@ def read_case(csv_path: str | os.PathLike, json_path: str | os.PathLike | None =
     columns, _ = read_csv_columns(csv_path)
     missing = [name for name, _ in COLUMNS if name not in columns and name not in _LATER_COLUMNS]
     if missing:
-        raise ValueError(f"{csv_path}: missing steady-state columns {missing} "
-                         "(see docs/csv-columns.md)")
+        raise Error(f"{csv_path}: missing steady-state columns {missing} "
+                    "(see docs/csv-columns.md)")
     ns = SimpleNamespace(**{name: columns[name] for name, _ in COLUMNS if name in columns})
     ns.phase = np.rint(columns["phase"]).astype(np.int8)
     summary: Dict[str, Any] = {}
@@ -315,7 +318,7 @@ def read_table(path: str | os.PathLike) -> Tuple[Dict[str, List[str]], Dict[str,
     with open(path, encoding="utf-8", newline="") as fh:
         rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
     if not rows:
-        raise ValueError(f"{path}: empty CSV")
+        raise Error(f"{path}: empty CSV")
     header = [split_header(c) for c in rows[0]]
     table: Dict[str, List[str]] = {name: [] for name, _ in header}
     for row in rows[1:]:

@@ -62,6 +62,31 @@ _IDENTIFY_OPTIONS = ("f", "window", "hop", "n_max", "estimate", "fit_mu", "fit_M
                      "use_peaks", "use_area", "profile", "shooting", "soil_scale", "units_open",
                      "gain_uncertainty")
 
+# What each option takes: "number" (window also None), "integer", "text" or "boolean".
+_OPTION_KINDS = {"f": "number", "window": "number", "hop": "number", "gain_uncertainty": "number",
+                 "n_max": "integer", "compare": "integer", "estimate": "text",
+                 "soil_scale": "text", "fit_mu": "boolean", "fit_MMd": "boolean",
+                 "use_peaks": "boolean", "use_area": "boolean", "profile": "boolean",
+                 "shooting": "boolean", "units_open": "boolean"}
+
+
+def _check_option_types(who: str, options: Dict[str, Any]) -> None:
+    """One line naming the option and what it takes (pybind11's refusal dumped the binding's
+    signature, with arguments identify does not have, and the value at its very end)."""
+    from . import Error
+    for name, value in options.items():
+        kind = _OPTION_KINDS.get(name)
+        is_bool = isinstance(value, (bool, np.bool_))
+        ok = {"number": (value is None and name == "window") or
+              (isinstance(value, (int, float, np.integer, np.floating)) and not is_bool),
+              "integer": isinstance(value, (int, np.integer)) and not is_bool,
+              "text": isinstance(value, str),
+              "boolean": is_bool}.get(kind, True)
+        if not ok:
+            what = {"number": "a number" + (" or None" if name == "window" else ""),
+                    "integer": "an integer", "text": "a string", "boolean": "True or False"}[kind]
+            raise Error(f"{who}: {name} must be {what}; got {type(value).__name__} ({value!r})")
+
 
 def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float], case=None,
              position: Optional[Sequence[float]] = None, x_positive: str = "forward",
@@ -96,6 +121,7 @@ def identify(t: Sequence[float], ddx_M: Sequence[float], ddz_M: Sequence[float],
             raise Error(f"identify: unknown option {name!r}" +
                         (f" (did you mean {near[0]!r}?)" if near else "") +
                         "; the options: " + ", ".join(_IDENTIFY_OPTIONS))
+    _check_option_types("identify", options)
     if case is not None and not isinstance(case, Case):
         raise Error(f"identify: case must be an oscidrum.Case; got {type(case).__name__}")
     arrays = [np.asarray(a, dtype=float) for a in (t, ddx_M, ddz_M)]

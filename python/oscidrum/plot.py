@@ -43,8 +43,8 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from ._files import output_path
-from .data import (SteadyState, as_steady_state, from_result, harmonic_amplitudes, read_case,
-                   read_csv_columns, resolve_column, split_header)
+from .data import (Error, SteadyState, as_steady_state, from_result, harmonic_amplitudes,
+                   read_case, read_csv_columns, resolve_column, split_header)
 
 # Axis labels with units (mathtext).
 TAU_LABEL = r"$t\,/\,T_{exc}$ [-]  ($T_{exc} = 1/f$)"
@@ -209,7 +209,7 @@ def save(fig: Figure, path: str | os.PathLike, fmt: Optional[str] = None) -> Pat
     path = Path(path)
     fmt = (fmt or path.suffix.lstrip(".") or "png").lower()
     if fmt not in ("png", "svg"):
-        raise ValueError(f"format must be png or svg; got '{fmt}'")
+        raise Error(f"format must be png or svg; got '{fmt}'")
     if path.suffix.lower() != "." + fmt:
         path = path.with_suffix("." + fmt)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -232,6 +232,11 @@ def _cases(cases: Any, labels: Optional[Sequence[str]]) -> List[SteadyState]:
     pair, which gives the plot its parameters (for the title and legend)."""
     if not isinstance(cases, list) and not (isinstance(cases, tuple) and not _is_pair(cases)):
         cases = [cases]
+    # One label per case: a list one short labelled the last curve "case N", one long dropped its
+    # last label, without a word.
+    if labels is not None and len(labels) != len(cases):
+        raise Error(f"labels: give one per case; got {len(labels)} for {len(cases)} case"
+                    + ("" if len(cases) == 1 else "s"))
     out = []
     for i, case in enumerate(cases):
         label = labels[i] if labels is not None and i < len(labels) else ""
@@ -365,8 +370,8 @@ def _window(state: SteadyState, periods: Optional[float]) -> np.ndarray:
         return np.arange(len(tau))
     if not (isinstance(periods, (int, float, np.integer, np.floating)) and periods > 0):
         # 0 drew empty axes without a word
-        raise ValueError(f"periods must be > 0 (excitation periods to show) or None (all); "
-                         f"got {periods!r}")
+        raise Error(f"periods must be > 0 (excitation periods to show) or None (all); "
+                    f"got {periods!r}")
     return np.nonzero(tau < periods - 1e-9)[0]
 
 
@@ -414,8 +419,8 @@ def _legend_place(legend: Any) -> Optional[str]:
             return "best"
         if legend in LEGEND_PLACES or legend in Legend.codes:
             return legend
-    raise ValueError(f"legend must be one of {', '.join(LEGEND_PLACES)}, a matplotlib location "
-                     f"such as 'upper left', or None/False (no legend); got {legend!r}")
+    raise Error(f"legend must be one of {', '.join(LEGEND_PLACES)}, a matplotlib location "
+                f"such as 'upper left', or None/False (no legend); got {legend!r}")
 
 
 def _legend(ax: Any, extra: Sequence[Any] = (), legend: Any = "auto", beside: str = "outside",
@@ -543,7 +548,7 @@ def _axes(ax: Any, n: int, **figure_kwargs: Any) -> Tuple[Figure, List[Any], boo
         return fig, list(np.atleast_1d(axes)), True
     axes = list(np.atleast_1d(np.asarray(ax, dtype=object))) if not hasattr(ax, "plot") else [ax]
     if len(axes) != n:
-        raise ValueError(f"ax: this plot draws {n} panel(s); pass {n} Axes (got {len(axes)})")
+        raise Error(f"ax: this plot draws {n} panel(s); pass {n} Axes (got {len(axes)})")
     return axes[0].figure, axes, False
 
 
@@ -865,11 +870,11 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
     if units in ("m/s2", "m s^-2"):
         units = "m/s^2"
     if units not in SPECTRUM_UNITS:
-        raise ValueError(f"units must be one of {', '.join(SPECTRUM_UNITS)}; got {units!r}")
+        raise Error(f"units must be one of {', '.join(SPECTRUM_UNITS)}; got {units!r}")
     states = _cases(cases, labels)
     if units == "both" and len(states) != 1:
-        raise ValueError("units='both' shows one case (its own normalisation on the right "
-                         f"axis); got {len(states)} cases: use 'normalised' or 'm/s^2'")
+        raise Error("units='both' shows one case (its own normalisation on the right "
+                    f"axis); got {len(states)} cases: use 'normalised' or 'm/s^2'")
     fig, axes, made = _axes(ax, 2, sharex=True)
     names, title = _labels_and_title(states, title)
     width = 0.8 / max(len(states), 1)
@@ -959,7 +964,7 @@ def _draw_sweep(axis: Any, x: Optional[Sequence[float]], curves: Mapping[str, An
     """The curves of plot_sweep into `axis` (styles: the index of each curve's colour and
     marker, so that panels of one study draw a curve alike)."""
     if yscale not in ("auto", "linear", "log"):
-        raise ValueError(f"yscale must be auto, linear or log; got {yscale!r}")
+        raise Error(f"yscale must be auto, linear or log; got {yscale!r}")
     xlabel, xf = axis_label(xkey, xunit)
     ytext, yf = axis_label(ykey, yunit)
     fig = axis.figure
@@ -1054,7 +1059,7 @@ def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
     elif panels is not None:
         pcol = resolve_column(table, panels)
         if pcol not in gcols:
-            raise ValueError(f"panels: {panels} is not a group column ({', '.join(gcols)})")
+            raise Error(f"panels: {panels} is not a group column ({', '.join(gcols)})")
     pvalues: List[Optional[float]] = [None]
     if pcol is not None:
         pv = np.asarray(table[pcol], dtype=float)
@@ -1135,14 +1140,14 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
     zs = np.asarray(table[zcol], dtype=float)[keep]
     xu, yu = np.unique(xs[np.isfinite(xs)]), np.unique(ys[np.isfinite(ys)])
     if len(xu) == 0 or len(yu) == 0:
-        raise ValueError(f"plot_map: no rows with values of {xcol} and {ycol}")
+        raise Error(f"plot_map: no rows with values of {xcol} and {ycol}")
     grid = np.full((len(yu), len(xu)), np.nan)
     for xv, yv, zv in zip(xs, ys, zs):
         if np.isfinite(xv) and np.isfinite(yv):
             grid[np.searchsorted(yu, yv), np.searchsorted(xu, xv)] = zv
     if not np.isfinite(grid).any():
-        raise ValueError(f"plot_map: no case has a value of {zcol} (none is a steady state): "
-                         "nothing to plot")
+        raise Error(f"plot_map: no case has a value of {zcol} (none is a steady state): "
+                    "nothing to plot")
     xlabel, xf = axis_label(xcol, units.get(xcol, ""))
     ylabel, yf = axis_label(ycol, units.get(ycol, ""))
     zlabel, zf = axis_label(zcol, units.get(zcol, ""))
@@ -1197,14 +1202,14 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
     keys = [k for k in swept_columns(table)
             if np.isfinite(np.asarray(table[k], dtype=float)).any()]
     if not keys:
-        raise ValueError("no swept numeric column between 'case' and 'status' "
-                         "(a results CSV of oscidrum sweep --out)")
+        raise Error("no swept numeric column between 'case' and 'status' "
+                    "(a results CSV of oscidrum sweep --out)")
     column = resolve_column(table, metric)
     if not np.isfinite(np.asarray(table[column], dtype=float)).any():
         statuses = sorted(set(str(v) for v in table.get("status", [])) - {"nan"})
-        raise ValueError(f"no case of the study has a value of {column}"
-                         + (f" (statuses: {', '.join(statuses)})" if statuses else "")
-                         + ": nothing to plot")
+        raise Error(f"no case of the study has a value of {column}"
+                    + (f" (statuses: {', '.join(statuses)})" if statuses else "")
+                    + ": nothing to plot")
     varying = [k for k in keys if len(np.unique(np.asarray(table[k], dtype=float))) > 1]
     keys = varying or keys
     numeric = [k for k in keys if not _is_regime(k)]
@@ -1232,8 +1237,8 @@ def plot_branch(table: Mapping[str, np.ndarray], metric: str = "area",
     units = dict(units or {})
     names = list(table)
     if "arclength" not in names or names.index("arclength") < 1:
-        raise ValueError("not a branch CSV (oscidrum continue --csv): no parameter column before "
-                         "'arclength'")
+        raise Error("not a branch CSV (oscidrum continue --csv): no parameter column before "
+                    "'arclength'")
     key = names[names.index("arclength") - 1]
     metric = resolve_column(table, metric)
     q_all = np.asarray(table[key], dtype=float)
@@ -1310,7 +1315,7 @@ def read_bifurcations(path: str | os.PathLike) -> List[Tuple[str, float, int]]:
     table, _ = read_table(path)
     names = list(table)
     if "kind" not in names or names.index("kind") + 1 >= len(names):
-        raise ValueError(f"{path}: not a bifurcations CSV (oscidrum continue --bifurcations)")
+        raise Error(f"{path}: not a bifurcations CSV (oscidrum continue --bifurcations)")
     parameter = names[names.index("kind") + 1]
     branch = table.get("branch", ["0"] * len(table["kind"]))
     return [(kind, float(value), int(float(b)))
@@ -1328,11 +1333,11 @@ def plot_diagram(table: Mapping[str, Sequence[str]], quantity: str = "ddx_M",
     units = dict(units or {})
     names = list(table)
     if "value" not in names or "point" not in names or names.index("point") < 2:
-        raise ValueError("not a diagram CSV (oscidrum diagram --csv): no parameter column between "
-                         "'value' and 'point'")
+        raise Error("not a diagram CSV (oscidrum diagram --csv): no parameter column between "
+                    "'value' and 'point'")
     key = names[names.index("point") - 1]
     if quantity not in table:
-        raise ValueError(f"no column '{quantity}' in the diagram CSV")
+        raise Error(f"no column '{quantity}' in the diagram CSV")
     q_all = np.asarray([float(c) for c in table[key]])
     y_all = np.asarray([float(c) if c else np.nan for c in table[quantity]])
     sweep = np.asarray(table["sweep"]) if "sweep" in table else np.full(len(q_all), "up")
@@ -1450,7 +1455,7 @@ def _where(items: Sequence[str]) -> Dict[str, float]:
     for item in items:
         key, sep, value = item.partition("=")
         if not sep:
-            raise ValueError(f"--where expects KEY=VALUE; got '{item}'")
+            raise Error(f"--where expects KEY=VALUE; got '{item}'")
         flag = {"true": 1.0, "false": 0.0}.get(value)
         where[key] = flag if flag is not None else float(value)
     return where

@@ -848,3 +848,22 @@ def test_a_run_without_samples_says_why_not_keep_samples(tmp_path):
         plot.plot_accelerations(unfinished)
     (kept,) = oscidrum.run_study([short], threads=1, keep_samples=True)
     plot.plot_accelerations(kept)
+
+
+def test_refusals_are_oscidrum_errors_and_labels_are_one_per_case():
+    """The plots refused with a plain ValueError, which `except oscidrum.Error` missed; a labels
+    list one short or one long was taken without a word."""
+    steady = oscidrum.run_study([oscidrum.Case()], threads=1)[0]
+    with pytest.raises(oscidrum.Error, match="keep_samples=True"):
+        plot.plot_accelerations(steady)
+    r = oscidrum.simulate(oscidrum.Case())
+    with pytest.raises(oscidrum.Error, match="legend must be one of"):
+        plot.plot_accelerations(r, legend="nowhere")
+    with pytest.raises(oscidrum.Error, match=r"^labels: give one per case; got 1 for 2 cases$"):
+        plot.plot_accelerations([r, r], labels=["a"])
+    with pytest.raises(oscidrum.Error, match=r"^labels: give one per case; got 3 for 2 cases$"):
+        plot.plot_accelerations([r, r], labels=["a", "b", "c"])
+    fig = plot.plot_accelerations([r, r], labels=["a", "b"])
+    legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
+    texts = [t.get_text() for legend in legends for t in legend.get_texts()]
+    assert "a" in texts and "b" in texts, texts
