@@ -116,8 +116,9 @@
     "cost in plain excitation periods: (right-hand-side evaluations + the Jacobian evaluations "  \
     "weighted by their cost) / the right-hand-side evaluations of one sampled period")            \
   X(double, phi_drift, 0.0, "rad", "phi drift per period",                                        \
-    "phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r (gross_slip: "     \
-    "over the last period integrated; empty for any other status)")                               \
+    "(phi(t0 + p T) - phi(t0)) / p on a steady state repeating every p periods (phi(t0 + T) - "   \
+    "phi(t0) for p = 1): the net slip per excitation period over r (gross_slip: over the last "   \
+    "period integrated; empty for any other status)")                                             \
   X(std::string, fallback, "", "-", "shooting fell back",                                         \
     "why shooting fell back to the transient method (empty if it did not)")                       \
   X(std::string, contact_mode, "", "-", "contact mode",                                           \

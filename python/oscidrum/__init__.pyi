@@ -138,7 +138,7 @@ class Diagnostics:
     periods_to_steady: int
     """period index at which the steady state was found (-1: never) [-]"""
     phi_drift: float
-    """phi(t0 + T) - phi(t0) on the steady state: the net slip per period over r (gross_slip: over the last period integrated; empty for any other status) [rad]"""
+    """(phi(t0 + p T) - phi(t0)) / p on a steady state repeating every p periods (phi(t0 + T) - phi(t0) for p = 1): the net slip per excitation period over r (gross_slip: over the last period integrated; empty for any other status) [rad]"""
     rejected_steps: int
     """rejected trial steps [-]"""
     reversals: int
@@ -418,7 +418,7 @@ class Numerics:
     rtol: float
     """relative tolerance of the Dormand-Prince steps [-]; in (0, 0.01]; default 1e-08."""
     samples_per_period: int
-    """uniform samples per excitation period in the output [-]; an integer in [16, 1000000]; default 1024."""
+    """uniform samples per excitation period in the output (times numerics.output_periods and numerics.max_multiplicity at most 1e7: the samples a run may keep) [-]; an integer in [16, 1000000]; default 1024."""
     slip_constraint_rate: float
     """Baumgarte rate that pulls the slip coupling (39) back to zero; 0 means 2 nu [1/s]; >= 0; default 0."""
     start_ramp_periods: int

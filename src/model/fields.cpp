@@ -193,8 +193,9 @@ const std::array kFields = {
           "steady periods sampled (times the multiplicity)", 1, 1000, false, false, nullptr,
           OSCIDRUM_INT(numerics.output_periods)},
     Field{"numerics.samples_per_period", FieldType::integer, "-",
-          "uniform samples per excitation period in the output", 16, 1e6, false, false, nullptr,
-          OSCIDRUM_INT(numerics.samples_per_period)},
+          "uniform samples per excitation period in the output (times numerics.output_periods "
+          "and numerics.max_multiplicity at most 1e7: the samples a run may keep)",
+          16, 1e6, false, false, nullptr, OSCIDRUM_INT(numerics.samples_per_period)},
     Field{"numerics.max_switches_per_period", FieldType::integer, "-",
           "more stick/slip switches than this in one period stop the run as chattering", 2, 1e7,
           false, false, nullptr, OSCIDRUM_INT(numerics.max_switches_per_period)},
