@@ -237,6 +237,23 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   const double spread_ratio = spread_of(n / 2, n) / spread_of(0, n / 2);
   const bool shrinking = spread_ratio < 0.9 && quarter[1] < quarter[0] && quarter[2] < quarter[1] &&
                          quarter[3] < quarter[2];
+  // The other way: points on p branches, each moving only a little from one visit to the next
+  // (their distance p periods apart, over the second half, below kDriftStep of the spread),
+  // whose spread grows from quarter to quarter, by more than a tenth, are leaving an unstable
+  // orbit of period p: the vibratory drum with lift-off at 21.5 Hz, just below a flip of its
+  // period-1 orbit, drifting over 400 periods towards the stable period-2 orbit (two points
+  // drifting apart, exponent 1e-4 per period), was called a torus. A torus's points, which also
+  // spread out while a transient spirals onto it (past a Neimark-Sacker point), turn by its
+  // rotation angle each period: p periods apart they are far from each other.
+  constexpr double kDriftStep = 0.05;
+  const bool growing = spread_ratio > 1.0 / 0.9 && quarter[1] > quarter[0] &&
+                       quarter[2] > quarter[1] && quarter[3] > quarter[2];
+  int drifting = 0;  // p of the branches (0: none)
+  for (int p = 1; growing && drifting == 0 && p <= std::min(16, periods / 4); ++p) {
+    double sum_d = 0.0;
+    for (std::size_t k = n / 2; k < n; ++k) sum_d += distance(k, k - static_cast<std::size_t>(p));
+    if (sum_d / static_cast<double>(n - n / 2) < kDriftStep * spread_of(n / 2, n)) drifting = p;
+  }
   if (out.recurrence > 0) {
     out.kind = "periodic";
     out.evidence = "the stroboscopic points repeat every " + std::to_string(out.recurrence) +
@@ -268,6 +285,17 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
                    detail::format("%.3g", spread_ratio) +
                    " from its first half to its second): the motion still approaches an "
                    "attractor (a multiplier near the unit circle), not a torus; " +
+                   numbers;
+  } else if (drifting > 0 && std::abs(per_period) <= kZeroPerPeriod) {
+    out.kind = "undecided";
+    out.evidence = "the stroboscopic points lie on " + std::to_string(drifting) + " branch" +
+                   (drifting == 1 ? "" : "es") +
+                   " that drift apart: their spread grows in every quarter of the window (by " +
+                   detail::format("%.3g", spread_ratio) +
+                   " from its first half to its second), each point close to the one " +
+                   std::to_string(drifting) + " period" + (drifting == 1 ? "" : "s") +
+                   " before: the motion is still leaving an unstable orbit, not on a torus; a "
+                   "longer transient decides; " +
                    numbers;
   } else if (std::abs(per_period) <= kZeroPerPeriod) {
     out.kind = "quasi_periodic";
