@@ -1375,15 +1375,56 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                                          : "from part " + std::to_string(from + 1) + " to part " +
                                                std::to_string(to + 1) + " of " +
                                                std::to_string(parts) + " equal parts";
-    reasons.push_back("the response changes within the window: the RMS of " + std::string(channel) +
-                      " by " + (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) +
-                      " % of the window's " + where + " (> " + num(max_change * 100) +
-                      (o.one_reference ? " %): " : " %; --max-change): ") +
-                      (o.one_reference
-                           ? "a reference must be of one soil and one setting: cut the record "
+    // A glitch (one sample far off, an electrical spike of the logger) changes a part's fitted
+    // RMS as a change of soil does: a window of constant soil with one spike of 5 m/s^2 in z was
+    // said to change by 10 % ("a shorter --window resolves it", which it does not). The two parts
+    // compared are searched for one: a sample whose residual from its part's fit exceeds
+    // kGlitch robust sigmas (1.4826 times the median |residual|) with every other sample of the
+    // part within half of it.
+    std::string glitch;
+    const std::span<const double> y = std::string(channel) == "x_M''" ? x : z;
+    for (const std::size_t part : {from, to}) {
+      constexpr double kGlitch = 10.0;
+      const std::size_t b = part_begin(part, parts), m = part_begin(part + 1, parts) - b;
+      const Eigen::VectorXd& c =
+          std::string(channel) == "x_M''" ? fits[part].fit.cx : fits[part].fit.cz;
+      detail::HarmonicsInOrder h(t.subspan(b, m), 0.0, f, n_max);
+      std::vector<double> r(m);
+      for (std::size_t i = 0; i < m; ++i) {
+        h.at(i);
+        double fitted = c[0];
+        for (int k = 1; k <= n_max; ++k) fitted += c[2 * k - 1] * h.cos(k) + c[2 * k] * h.sin(k);
+        r[i] = std::abs(y[b + i] - fitted);
+      }
+      const auto largest = std::max_element(r.begin(), r.end());
+      const double peak = *largest;
+      const std::size_t at = static_cast<std::size_t>(largest - r.begin());
+      double second = 0.0;
+      for (std::size_t i = 0; i < m; ++i)
+        if (i != at) second = std::max(second, r[i]);
+      std::vector<double> sorted = r;
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(m / 2),
+                       sorted.end());
+      const double sigma = 1.4826 * sorted[m / 2];
+      if (sigma > 0.0 && peak > kGlitch * sigma && second < 0.5 * peak) {
+        glitch = "part " + std::to_string(part + 1) + " holds one sample far off its fit (" +
+                 std::string(channel) + " at t = " + num(t[b + at] + o.time_origin) + " s, " +
+                 num(std::round(peak / sigma)) +
+                 " robust sigmas off, every other sample within half of that): a glitch of the "
+                 "logger rather than a change; remove it, or --max-change lets the window pass";
+        break;
+      }
+    }
+    reasons.push_back(
+        "the response changes within the window: the RMS of " + std::string(channel) + " by " +
+        (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % of the window's " +
+        where + " (> " + num(max_change * 100) +
+        (o.one_reference ? " %): " : " %; --max-change): ") +
+        (o.one_reference   ? "a reference must be of one soil and one setting: cut the record "
                              "where it changes"
-                           : "a change of soil or of the roller's settings within it; a shorter "
-                             "--window resolves it"));
+         : !glitch.empty() ? glitch
+                           : "a change of soil or of the roller's settings within it; "
+                             "a shorter --window resolves it"));
   }
 }
 

@@ -212,6 +212,8 @@ TEST(Record, AWindowAcrossAChangeOfSoilIsNotValid) {
       EXPECT_FALSE(win.valid) << win.t_start;
       EXPECT_NE(win.reason.find("the response changes within the window"), std::string::npos)
           << win.reason;
+      EXPECT_NE(win.reason.find("a change of soil"), std::string::npos) << win.reason;
+      EXPECT_EQ(win.reason.find("glitch"), std::string::npos) << win.reason;
       EXPECT_GT(std::abs(win.change), w.gates.max_change);
     }
     if (clear) {
@@ -236,6 +238,36 @@ TEST(Record, AWindowAcrossAChangeOfSoilIsNotValid) {
       EXPECT_EQ(win.reason.find("changes within"), std::string::npos) << seed << ": " << win.reason;
     }
   }
+}
+
+// One soil and one spike of 5 m/s^2 in z (an electrical glitch of a logger) in a window: the
+// change gate trips (the spike's part fits a larger RMS), and its reason said "a change of soil
+// ...; a shorter --window resolves it". It names the glitch, its time and size instead.
+TEST(Record, AGlitchIsNotCalledAChangeOfSoil) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 25e6;
+  SyntheticRecord options;
+  options.duration = 1.0;
+  options.sample_rate = 1000;
+  options.noise = 0.02;
+  options.seed = 5;
+  RecordSamples r = synthetic_record({c}, options);
+  r.ddz_M[700] += 5.0;
+  WindowOptions w;
+  w.window_periods = 30;
+  const std::vector<RecordWindow> ws = analyze_windows(r.t, r.ddx_M, r.ddz_M, {}, w);
+  ASSERT_FALSE(ws.empty());
+  const RecordWindow& win = ws.front();
+  ASSERT_FALSE(win.valid);
+  EXPECT_NE(win.reason.find("the response changes within the window"), std::string::npos)
+      << win.reason;
+  ASSERT_EQ(r.t[700], 0.7);
+  EXPECT_NE(win.reason.find("holds one sample far off its fit (z_M'' at t = 0.7 s"),
+            std::string::npos)
+      << win.reason;
+  EXPECT_NE(win.reason.find("a glitch of the logger rather than a change"), std::string::npos);
+  EXPECT_EQ(win.reason.find("a change of soil"), std::string::npos) << win.reason;
 }
 
 // A stiff spot in the middle half of a window (soft, stiff, stiff, soft, 10 periods each): its
