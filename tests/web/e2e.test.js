@@ -198,6 +198,26 @@ async function main() {
       await page5.goto(url + '?roller.type=vibratory&roller.exciter=circulr');
       await ready();
       assert.match(await page5.textContent('#url-note'), /roller\.exciter = 'circulr' is not one of circular/);
+      // A link's parameter the case does not read is said (it was dropped without a word); the
+      // drum width b, which Appendix B reads, is the oscillation drum's too on a modulus soil (it
+      // was taken for the vibratory drum's only, hidden, and the page computed b = 1.68 m).
+      await page5.goto(url + '?roller.type=vibratory&M0=1000');
+      await ready();
+      assert.match(await page5.textContent('#url-note'), /M0 = '1000' has no effect with this roller, soil and trough: ignored/);
+      await page5.goto(url + '?soil=modulus&G=33&roller.b=2.5');
+      await ready();
+      assert.equal(await page5.textContent('#url-note'), '');
+      assert.equal(await page5.evaluate(() => window.explorer.last().result.case['roller.b']), 2.5);
+      // A field away from its default that the case does not read (v_eps under Coulomb's law).
+      await page5.goto(url + '?contact.v_eps=5');
+      await ready();
+      assert.match(await page5.textContent('#effect-note'), /No effect in this case .*contact\.v_eps = 5/);
+      // G's rule in the box's unit (the engine's message spoke of Pa beside an MN/m² box).
+      await page5.goto(url + '?soil=modulus&G=0.001');
+      await page5.waitForFunction(() => /invalid input/.test(document.getElementById('status').textContent), null, { timeout: 30000 });
+      const gError = await page5.textContent('#err-G');
+      assert.match(gError, /soil\.G must be in \[0\.01, 100000\] MN\/m.*; got 0\.001 MN\/m/);
+      assert.doesNotMatch(gError, /values are in Pa/);
       await page5.goto(url + '?trough=spiral&k=0.002&a=0.601&f=25&roller.unbalance=0.22877&mu=0.7&soil=modulus&G=140');
       await ready();
       const sc = await page5.evaluate(() => window.explorer.timeScales());

@@ -111,7 +111,7 @@ function buildInputs() {
     const spec = INPUTS[name];
     const field = spec.key ? fieldByKey[spec.key] : null;
     const desc = spec.hint || (field ? field.description : '');
-    const rule = field ? `rule: ${ruleText(field)}` : 'any finite number';
+    const rule = field ? `rule: ${ruleIn(field, spec)}` : 'any finite number';
     const control = field && field.type === 'choice'
       ? `<select id="in-${name}" name="${name}">${field.choices.map((c, i) => `<option value="${i}">${c}</option>`).join('')}</select>`
       : `<input type="text" inputmode="decimal" id="in-${name}" name="${name}" aria-describedby="err-${name}">`;
@@ -142,6 +142,26 @@ function buildInputs() {
 
 // A field's rule with its unit, e.g. '>= 0 kg m'.
 const ruleText = (field) => `${field.rule}${field.unit !== '-' ? ' ' + field.unit : ''}`;
+
+// The rule in the unit an input reads its value in (MN/m^2 for soil.G: the engine's rule is in
+// Pa, which the box labelled MN/m² showed beside it).
+function ruleIn(field, spec) {
+  if (!spec || !spec.scale || spec.scale === 1 || !Number.isFinite(field.min) || !Number.isFinite(field.max))
+    return ruleText(field);
+  const lo = field.min_open ? '(' : '[', hi = field.max_open ? ')' : ']';
+  return `in ${lo}${fmt(field.min / spec.scale)}, ${fmt(field.max / spec.scale)}${hi} ${spec.unit}`;
+}
+
+// The engine's message about an input's field, in the input's unit: "soil.G must be in [10000,
+// 1e+11] [Pa]; got 1000 (values are in Pa: did you mean ...)" stood beside a box where 0.001
+// MN/m² had been typed.
+function inputMessage(name, message) {
+  const spec = INPUTS[name];
+  const field = spec && spec.key ? fieldByKey[spec.key] : null;
+  // (only the field's own rule: "soil.G must be a G of paper Table 2" stays as it is)
+  if (!field || !spec.scale || spec.scale === 1 || !message.startsWith(`${field.key} must be ${field.rule}`)) return message;
+  return `${field.key} must be ${ruleIn(field, spec)}; got ${inputText(name)} ${spec.unit}`;
+}
 
 // The index of a choice given by its name or its index ('vibratory' or '1'), or -1.
 function choiceIndex(field, text) {
@@ -330,7 +350,7 @@ function readInputs() {
     const field = f || (INPUTS[name] && INPUTS[name].key ? fieldByKey[INPUTS[name].key] : null);
     const spec = INPUTS[name];
     const shownIn = spec && spec.unit && field && prettyUnit(field.unit) !== spec.unit && spec.unit !== '-' ? `, entered in ${spec.unit}` : '';
-    const about = field ? `${field.key} (rule: ${ruleText(field)}${shownIn})` : `${spec.label} (any finite number${spec.unit ? ', ' + spec.unit : ''})`;
+    const about = field ? `${field.key} (rule: ${ruleIn(field, spec)}${shownIn})` : `${spec.label} (any finite number${spec.unit ? ', ' + spec.unit : ''})`;
     if (text === '') {
       errors[name] = `enter a value: ${about}`;
       continue;
@@ -456,8 +476,6 @@ function loadUrl() {
   }
   const known = new Set(['roller.type', 'soil', 'trough', 'rolling', 'M0f2', ...Object.keys(INPUTS).map(urlName), ...extras.map((f) => f.key)]);
   for (const key of p.keys()) if (!known.has(key)) problems.push(`'${key}' is not a parameter of this page: ignored`);
-  $('url-note').textContent = problems.length ? `The link: ${problems.join('; ')}.` : '';
-  $('url-note').hidden = problems.length === 0;
   // The roller first (by its name, or its index as older links wrote it), with its defaults; the
   // URL's inputs then override them.
   const rollerField = fieldByKey['roller.type'];
@@ -470,6 +488,16 @@ function loadUrl() {
   $('M0_scale').checked = ['1', 'true'].includes(p.get('M0f2'));
   for (const name of Object.keys(INPUTS)) if (p.has(urlName(name))) setInputText(name, p.get(urlName(name)));
   for (const f of extras) if (p.has(f.key)) setExtra(f, p.get(f.key));
+  // A parameter the chosen roller, soil or trough does not read (M0 for the vibratory drum, nu of
+  // a Table 2 soil): said, as the command line refuses it, not dropped without a word.
+  updateVisibility();
+  const shown = new Set(visibleInputs());
+  for (const name of Object.keys(INPUTS))
+    if (p.has(urlName(name)) && !shown.has(name)) problems.push(`${urlName(name)} = '${p.get(urlName(name))}' has no effect with this roller, soil and trough: ignored`);
+  for (const f of extras)
+    if (p.has(f.key) && !shown.has(extraName(f.key))) problems.push(`${f.key} = '${p.get(f.key)}' has no effect with this roller: ignored`);
+  $('url-note').textContent = problems.length ? `The link: ${problems.join('; ')}.` : '';
+  $('url-note').hidden = problems.length === 0;
 }
 
 // ---------------------------------------------------------------- the worker
@@ -540,7 +568,7 @@ function onMessage(msg) {
   if (Object.keys(msg.errors).length || !msg.result) {
     for (const [key, message] of Object.entries(msg.errors)) {
       const name = inputForKey(key);
-      if (name && !inputErrors[name]) setError(name, message);
+      if (name && !inputErrors[name]) setError(name, inputMessage(name, message));
     }
     showInvalid(invalidText());
     markReady();
@@ -550,7 +578,7 @@ function onMessage(msg) {
   if (!r.ok) {
     // the input of the parameter the error is about (the engine's error carries its key)
     const name = r.key ? inputForKey(r.key) : null;
-    if (name && visibleInputs().includes(name)) setError(name, r.error);
+    if (name && visibleInputs().includes(name)) setError(name, inputMessage(name, r.error));
     showInvalid(`invalid input: ${r.error}`);
     markReady();
     return;
@@ -633,6 +661,14 @@ function render() {
     showStatus(ok ? `steady state (${r.message})` : `${r.status}: ${r.message}`, ok, r.status);
     setExports(true, !!m);
   }
+  // A field set away from its default that this case does not read (contact.v_eps under
+  // Coulomb's law): said, as the command line refuses it (the page computed the default case
+  // without a word).
+  const idle = rollerExtras().filter((f) => r.in_effect && r.in_effect[f.key] === false && extraText(f) !== extraDefaultText(f));
+  $('effect-note').textContent = idle.length
+    ? `No effect in this case (the engine does not read ${idle.length === 1 ? 'it' : 'them'}): ${idle.map((f) => `${f.key} = ${extraText(f)}`).join(', ')}.`
+    : '';
+  $('effect-note').hidden = idle.length === 0;
   $('timing').textContent = `computed in ${ms.toFixed(0)} ms: ${r.diagnostics.periods_simulated} periods, ` +
     `${r.diagnostics.steps} steps, ${r.diagnostics.switches} stick/slip switches`;
   if (!m) {
@@ -1066,7 +1102,7 @@ function fillMetrics(r, m) {
   } else {
     rows.push(
       ['CMV-type, x THD', [m.cmv, m.ddx_thd].map((v) => num(v)).join(', '), '300 A2/A1 of z_M\'\' (n/a: its A1 is 0); overtones of x_M\'\''],
-      ['lag of φ behind the torque', fmt(m.phi_lag, 5), 'π rad (Fig. 10)'],
+      ['lag of φ behind the torque', num(m.phi_lag, 5), 'π rad (Fig. 10; n/a: no oscillating torque, M0 = 0)'],
       ["lag x_M''→z_M'' ψ", num(m.psi_xz, 5), 'rad (θ2(z) − 2 θ1(x); n/a: x_M\'\' has no fundamental or z_M\'\' no 2f)'],
       ['area', areaText, 'm²/s⁴ (Figs. 16, 22)'],
     );

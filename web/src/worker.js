@@ -25,10 +25,14 @@ const ready = createOscidrum().then((m) => {
     soilKeys[choice] = fields.filter((f) => f.key.startsWith('soil.') && f.key !== 'soil.input' &&
                                             m.keyInEffect({ 'soil.input': choice }, f.key)).map((f) => f.key);
   }
-  // The keys of one roller only: in effect with some roller.type and not with another.
+  // The keys of one roller only: in effect with some roller.type (under some soil input) and not
+  // with another. (Under the default Table 2 soil alone, roller.b, which Appendix B reads, was
+  // taken for the vibratory drum's only and hidden for the oscillation drum on a modulus soil.)
   const rollers = fields.find((f) => f.key === 'roller.type').choices;
+  const soils = fields.find((f) => f.key === 'soil.input').choices;
   const inEffect = Object.fromEntries(rollers.map((choice) => [choice,
-    new Set(fields.filter((f) => m.keyInEffect({ 'roller.type': choice }, f.key)).map((f) => f.key))]));
+    new Set(fields.filter((f) => soils.some((soil) => m.keyInEffect({ 'roller.type': choice, 'soil.input': soil }, f.key)))
+      .map((f) => f.key))]));
   const rollerKeys = {};
   for (const choice of rollers) {
     rollerKeys[choice] = [...inEffect[choice]].filter((key) => rollers.some((other) => !inEffect[other].has(key)));
