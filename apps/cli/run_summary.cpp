@@ -194,7 +194,7 @@ std::string run_summary(const io::CaseSpec& /*spec*/, const Case& c, const Resul
     bool zeroed = false;
     // A signal of round-off as a whole (the vertical exciter's x_M'', both signals of a drum
     // without friction): its peaks, harmonics and the area are printed as computed, said so.
-    const AbsentSignals absent = absent_signals(m.ddx_harmonics, m.ddz_harmonics);
+    const AbsentSignals absent = absent_signals(m);
     const auto round_off = [&](std::string_view name) -> std::string {
       const bool x = absent.ddx && (name.starts_with("ddx_") || name == "area");
       const bool z = absent.ddz && (name.starts_with("ddz_") || name == "area");

@@ -71,6 +71,10 @@ struct AbsentSignals {
   bool ddz = false;  ///< z_M'' absent
 };
 AbsentSignals absent_signals(const Spectrum& ddx_harmonics, const Spectrum& ddz_harmonics);
+/// The same from a steady state's metrics, their peaks counted with the harmonics: a signal whose
+/// peak is above the level is there however few harmonics were computed (with n_max = 1, z_M''
+/// of a drum without driving torque, which has even harmonics only, read as absent).
+AbsentSignals absent_signals(const Metrics& m);
 
 /// Compute the metrics from a Result's samples (harmonics up to n_max). Throws oscidrum::Error if
 /// the result holds no samples or its status is not Status::steady_state.

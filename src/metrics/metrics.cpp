@@ -43,6 +43,22 @@ AbsentSignals absent_signals(const Spectrum& ddx_harmonics, const Spectrum& ddz_
   return {all_below(ddx_harmonics), all_below(ddz_harmonics)};
 }
 
+AbsentSignals absent_signals(const Metrics& m) {
+  double largest = std::max(
+      {std::abs(m.ddx_max), std::abs(m.ddx_min), std::abs(m.ddz_max), std::abs(m.ddz_min)});
+  for (const Spectrum* h : {&m.ddx_harmonics, &m.ddz_harmonics})
+    for (const Harmonic& c : *h) largest = std::max(largest, c.amplitude);
+  const double level =
+      std::max(detail::kAbsentFundamental * largest, detail::kRoundOffAcceleration);
+  const auto below = [level](const Spectrum& h, double hi, double lo) {
+    return std::abs(hi) <= level && std::abs(lo) <= level &&
+           std::all_of(h.begin(), h.end(),
+                       [level](const Harmonic& c) { return c.amplitude <= level; });
+  };
+  return {below(m.ddx_harmonics, m.ddx_max, m.ddx_min),
+          below(m.ddz_harmonics, m.ddz_max, m.ddz_min)};
+}
+
 Metrics Metrics::unavailable() { return detail::all_unavailable<Metrics>(metric_outputs()); }
 
 Metrics compute_metrics(const Result& result, int n_max) {

@@ -653,6 +653,12 @@ def test_an_absent_signal_is_drawn_flat_with_a_note():
         assert bars and max(bars) == 0.0 and len(notes(fig.axes[0])) == 1, units
         assert max(p.get_height() for p in fig.axes[1].patches) > 0 and not notes(fig.axes[1])
 
+    # Metrics of two harmonics (--harmonics 1): z_M'' of the default case (even harmonics only)
+    # has none of them, but its peaks say it is there (it was drawn flat as absent).
+    default = oscidrum.simulate(oscidrum.Case())
+    few = data.from_result(default, metrics=oscidrum.compute_metrics(default, n_max=1))
+    assert plot.absent_signals(few) == {"ddx_M": False, "ddz_M": False}
+
     # A case with both signals: no note anywhere, the rule agrees with the core's.
     m = oscidrum.compute_metrics(slip_case_result := oscidrum.simulate(oscidrum.Case()))
     assert oscidrum.absent_signals(m.ddx_amplitude, m.ddz_amplitude) == (False, False)
