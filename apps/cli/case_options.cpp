@@ -210,10 +210,20 @@ void apply(const CaseOptions& o, io::CaseSpec& spec) {
       throw Error("--set " + s + ": 'oscidrum " + o.command + "' does not use " + key +
                   " (it would have no effect); it uses " + uses);
     }
-    // The same key from a flag (or an earlier --set): the later one holds, said.
+    // The same key from a flag (or an earlier --set): the later one holds, said; unless it gives
+    // the same value ('--G 80 --set soil.input=modulus': --G 80 implies the modulus input, and
+    // "overrides --G 80" read as if G had been dropped).
     if (const auto it = spec.origin.find(key);
-        it != spec.origin.end() && it->second.rfind("--", 0) == 0)
-      warn("--set " + io::clip(s) + " overrides " + it->second);
+        it != spec.origin.end() && it->second.rfind("--", 0) == 0) {
+      bool same = false;
+      if (const Field* f = find_field(key)) {
+        try {
+          same = parse_field_text(*f, trimmed(s.substr(eq + 1))) == f->get(spec.values);
+        } catch (const Error&) {  // refused below, with the key's message
+        }
+      }
+      if (!same) warn("--set " + io::clip(s) + " overrides " + it->second);
+    }
     if (key == "MMd") forget(spec, "MMd_fraction");
     if (key == "MMd_fraction") forget(spec, "MMd");
     if (key == "soil.table2_G") io::clear_soil(spec);

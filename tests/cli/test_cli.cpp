@@ -381,6 +381,17 @@ TEST(CliRun, ChoiceFlagsTakeTheChoicesNames) {
 
 // The example's vibratory drum with a directed vertical exciter: a steady state (it ended as
 // max_periods_reached, a drum slipping on with N < 0 after a symmetric lift-off), whose x_M'' is
+// --harmonics 0 or 1: z_M'' of the default case (MMd = 0: even harmonics only, 0.97 m/s^2) was
+// said to be round-off ("z_M'' is absent"), its area too, from the harmonics computed alone.
+TEST(CliRun, FewHarmonicsDoNotMakeASignalAbsent) {
+  for (const char* n : {"0", "1"}) {
+    const Outcome o = run({"run", "--harmonics", n, "-q"});
+    ASSERT_EQ(o.code, 0) << o.err;
+    EXPECT_NE(o.out.find("z_M'' max"), std::string::npos) << o.out;
+    EXPECT_EQ(o.out.find("is absent)"), std::string::npos) << n << "\n" << o.out;
+  }
+}
+
 // round-off: the metrics that would be ratios or phases of round-off say so in words, not as
 // numbers (the summary printed A2/A1 0.23, THD 2.6e5, a lag of -1.96 pi), and JSON has null.
 TEST(CliRun, AVerticalExcitersMetricsOfRoundOffSayWhy) {
@@ -484,6 +495,12 @@ TEST(CliRun, FlagsOverrideTheFileAndPrintConfigRoundTrips) {
       << o.err;
   o = run({"run", kSource + "/examples/case.toml", "--mu", "0.3", "--print-config"});
   EXPECT_EQ(o.err.find("overrides"), std::string::npos) << o.err;
+  // A --set of the value a flag implied overrides nothing (--G 80, not a G of Table 2, is the
+  // modulus input: "--set soil.input=modulus overrides --G 80" read as if G were dropped).
+  o = run({"run", "--G", "80", "--set", "soil.input=modulus", "--print-config"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.err.find("overrides"), std::string::npos) << o.err;
+  EXPECT_NE(o.out.find("G = 80000000.0"), std::string::npos) << o.out;
 }
 
 TEST(CliRun, ExitCodeOneWhenNotSteady) {
