@@ -23,6 +23,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ._checks import is_integer, is_number
 from ._files import output_path
 
 #: The unknowns, their display unit and factor from SI.
@@ -76,12 +77,10 @@ def _check_option_types(who: str, options: Dict[str, Any]) -> None:
     from . import Error
     for name, value in options.items():
         kind = _OPTION_KINDS.get(name)
-        is_bool = isinstance(value, (bool, np.bool_))
-        ok = {"number": (value is None and name == "window") or
-              (isinstance(value, (int, float, np.integer, np.floating)) and not is_bool),
-              "integer": isinstance(value, (int, np.integer)) and not is_bool,
+        ok = {"number": (value is None and name == "window") or is_number(value),
+              "integer": is_integer(value),
               "text": isinstance(value, str),
-              "boolean": is_bool}.get(kind, True)
+              "boolean": isinstance(value, (bool, np.bool_))}.get(kind, True)
         if not ok:
             what = {"number": "a number" + (" or None" if name == "window" else ""),
                     "integer": "an integer", "text": "a string", "boolean": "True or False"}[kind]

@@ -34,6 +34,7 @@ import math
 import os
 import re
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
@@ -42,6 +43,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
+from ._checks import is_number
 from ._files import output_path
 from .data import (Error, SteadyState, as_steady_state, from_result, harmonic_amplitudes,
                    read_case, read_csv_columns, resolve_column, split_header)
@@ -368,10 +370,17 @@ def _window(state: SteadyState, periods: Optional[float]) -> np.ndarray:
     tau = state.tau()
     if periods is None:
         return np.arange(len(tau))
-    if not (isinstance(periods, (int, float, np.integer, np.floating)) and periods > 0):
-        # 0 drew empty axes without a word
+    if not (is_number(periods) and periods > 0):
+        # 0 drew empty axes without a word; True drew one period
         raise Error(f"periods must be > 0 (excitation periods to show) or None (all); "
                     f"got {periods!r}")
+    held = state.sample_periods
+    if periods > max(held, 2) + 1e-9:
+        # periods=10 of a result of 2 sampled periods drew 2 without a word (the default, 2,
+        # shows what there is of a result of 1)
+        warnings.warn(f"periods={periods:g}: {state.label or 'the result'} holds {held} sampled "
+                      f"excitation period{'s' if held != 1 else ''}; all {held} drawn (sample "
+                      "more with numerics.output_periods)", stacklevel=4)
     return np.nonzero(tau < periods - 1e-9)[0]
 
 
@@ -1020,6 +1029,41 @@ def _select(table: Mapping[str, np.ndarray], where: Optional[Mapping[str, float]
     return keep
 
 
+def _check_one_case_per_point(table: Mapping[str, np.ndarray], rows: np.ndarray,
+                               point: Sequence[str], what: str, plotted: str) -> None:
+    """Raise when rows that would be drawn as one point (the same values of the `point` columns)
+    are cases that differ in a swept column of the study (a parameter column, or a column
+    between 'case' and 'status') that is neither grouped by nor selected: their values were
+    joined into one zigzag curve, or all but the last cell of a map dropped, without a word."""
+    if not rows.any():
+        return
+    keys = np.column_stack([np.asarray(table[c], dtype=float)[rows] for c in point])
+    keys = np.where(np.isfinite(keys), keys, np.inf)
+    _, index, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    index = np.asarray(index).reshape(-1)
+    shared = counts[index] > 1
+    if not shared.any():
+        return
+    swept = swept_columns(table)
+    candidates = [c for c in table if c not in point and c != plotted and (
+        c in swept or _field(split_header(c)[0]) is not None)]
+    for column in candidates:
+        values = np.asarray(table[column], dtype=float)[rows]
+        if not np.isfinite(values).any():
+            continue
+        values = np.where(np.isfinite(values), values, np.inf)
+        pairs = np.unique(np.column_stack([index[shared], values[shared]]), axis=0)
+        if len(pairs) == len(np.unique(index[shared])):
+            continue  # one value of the column at each point
+        present = np.unique(values[shared])
+        shown = ", ".join(_value_text(v) for v in present[:6]) + (", ..." if len(present) > 6
+                                                                    else "")
+        raise Error(f"{what}: rows with the same {' and '.join(point)} differ in {column} "
+                    f"({shown}), which is neither a group column nor selected by where=: "
+                    f"their cases would be drawn as one; add '{column}' to group= or give "
+                    f"where={{'{column}': {_value_text(present[0])}}}")
+
+
 def _is_regime(column: str) -> bool:
     """Whether a column is a boolean parameter (contact.pure_rolling: a regime of its own)."""
     field = _field(split_header(column)[0])
@@ -1069,6 +1113,7 @@ def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
         pv = np.asarray(table[pcol], dtype=float)
         pvalues = list(dict.fromkeys(float(v) for v, ok in zip(pv, keep) if ok))
     ccols = [c for c in gcols if c != pcol]
+    _check_one_case_per_point(table, keep, [xcol] + gcols, "plot_table", ycol)
     keys = [tuple(float(table[c][i]) for c in ccols) for i in range(len(xs))]
     combos = list(dict.fromkeys(k for k, ok in zip(keys, keep) if ok))
     many = len(ccols) == 1 and len(combos) > COLORMAP_FROM
@@ -1139,6 +1184,7 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
     units = units or {}
     xcol, ycol, zcol = (resolve_column(table, c) for c in (x, y, z))
     keep = _select(table, where)
+    _check_one_case_per_point(table, keep, [xcol, ycol], "plot_map", zcol)
     xs = np.asarray(table[xcol], dtype=float)[keep]
     ys = np.asarray(table[ycol], dtype=float)[keep]
     zs = np.asarray(table[zcol], dtype=float)[keep]

@@ -12,12 +12,12 @@ from __future__ import annotations
 import concurrent.futures as _cf
 import copy
 import math
-import numbers
 import os
 import sys
 from typing import Any, Callable, Iterable, List, Optional, Sequence, Union
 
 from . import _core
+from ._checks import is_integer
 from ._files import output_path
 
 __all__ = ["run_study", "StudyResult", "Interrupted", "run_chunk"]
@@ -260,17 +260,12 @@ def _as_cases(cases: Any) -> List[Any]:
     return out
 
 
-def _integer(x) -> bool:
-    """An integer, Python's or NumPy's (np.int64 from np.arange or a size), but not a bool."""
-    return isinstance(x, numbers.Integral) and not isinstance(x, bool)
-
-
 def _check_options(threads, keep_samples, n_harmonics):
-    if not _integer(threads) or threads < 0:
+    if not is_integer(threads) or threads < 0:
         raise _core.Error(f"threads must be an integer >= 0 (0: all cores); got {threads!r}")
     if not isinstance(keep_samples, bool):
         raise _core.Error(f"keep_samples must be True or False; got {keep_samples!r}")
-    if not _integer(n_harmonics) or n_harmonics < 2:
+    if not is_integer(n_harmonics) or n_harmonics < 2:
         raise _core.Error(f"n_harmonics must be an integer >= 2; got {n_harmonics!r}")
 
 
@@ -426,7 +421,7 @@ def _run_executor(cases, executor, chunk_size, threads, keep_samples, sample, n_
     if chunk_size is None:
         workers = _executor_workers(executor)
         chunk_size = max(1, min(DEFAULT_CHUNK_SIZE, math.ceil(n / workers))) if n else 1
-    if not _integer(chunk_size) or chunk_size < 1:
+    if not is_integer(chunk_size) or chunk_size < 1:
         raise _core.Error(f"chunk_size must be an integer >= 1; got {chunk_size!r}")
     starts = list(range(0, n, chunk_size))
     futures = {}

@@ -6,6 +6,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -341,7 +342,7 @@ def test_every_plot_function_accepts_ax(slip_result):
     assert plot.plot_sweep([1.0, 2.0], {"a": [1.0, 2.0]}, ax=one) is one
     table = {"soil.G": np.array([5e6, 5e6, 25e6, 25e6]), "contact.mu": np.array([0.3, 0.5] * 2),
              "area": np.arange(4.0)}
-    assert plot.plot_table(table, "soil.G", "area", ax=one) is one
+    assert plot.plot_table(table, "soil.G", "area", group="contact.mu", ax=one) is one
     assert isinstance(plot.plot_map(table, "soil.G", "contact.mu", "area", ax=one), Axes)
     with pytest.raises(ValueError, match="2 Axes"):
         plot.plot_accelerations(slip_result, ax=one)
@@ -739,6 +740,22 @@ def test_a_window_of_no_periods_is_refused(slip_result):
         for periods in (0, -1, float("nan")):
             with pytest.raises(ValueError, match="periods must be > 0"):
                 draw(slip_result, periods=periods)
+        with pytest.raises(ValueError, match="periods must be > 0"):
+            draw(slip_result, periods=True)  # drew one period
+
+
+def test_more_periods_than_sampled_are_said(slip_result):
+    # periods=10 of a result of 2 sampled periods drew 2 without a word.
+    assert slip_result.sample_periods == 2
+    with pytest.warns(UserWarning, match=r"periods=10: the result holds 2 sampled excitation "
+                      r"periods; all 2 drawn \(sample more with numerics.output_periods\)"):
+        fig = plot.plot_accelerations(slip_result, periods=10)
+    tau = fig.axes[0].lines[0].get_xdata()
+    assert 1.99 < tau.max() < 2.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for periods in (2, 1.5, None):
+            plot.plot_accelerations(slip_result, periods=periods)
 
 
 def test_a_branch_changes_style_at_its_bifurcation():
@@ -873,3 +890,28 @@ def test_refusals_are_oscidrum_errors_and_labels_are_one_per_case():
     legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
     texts = [t.get_text() for legend in legends for t in legend.get_texts()]
     assert "a" in texts and "b" in texts, texts
+
+
+def test_cases_differing_in_a_column_not_grouped_are_not_joined_into_one_curve():
+    # A product sweep G x mu plotted against G grouped by nothing: the three mu's cases at each
+    # G were joined into one zigzag curve (and a map's cell kept the last) without a word.
+    G = np.array([5e6, 25e6, 50e6])
+    table = {"case": np.arange(9.0), "soil.table2_G": np.repeat(G, 3),
+             "contact.mu": np.tile([0.4, 0.5, 0.6], 3), "status": np.full(9, np.nan),
+             "area": np.arange(9.0), "ddx_max": np.arange(9.0)}
+    with pytest.raises(oscidrum.Error, match=r"differ in contact\.mu \(0\.4, 0\.5, 0\.6\).*"
+                       r"add 'contact\.mu' to group= or give where=\{'contact\.mu': 0\.4\}"):
+        plot.plot_table(table, "soil.G", "area")
+    assert len(plot.plot_table(table, "soil.G", "area", group="contact.mu").axes[0].lines) == 3
+    assert len(plot.plot_table(table, "soil.G", "area",
+                               where={"contact.mu": 0.5}).axes[0].lines) == 1
+    # The plotted metric and columns that are one value per point do not count.
+    table["MMd_fraction"] = np.repeat([0.0, 0.05, 0.1], 3)  # follows G (a zip sweep)
+    plot.plot_table(table, "soil.G", "area", group="contact.mu")
+    # A third key under a map of two: its cells would hold one case of several.
+    table = {k: np.concatenate([v, v]) for k, v in table.items()}
+    table["contact.pure_rolling"] = np.repeat([0.0, 1.0], 9)
+    with pytest.raises(oscidrum.Error, match=r"plot_map: rows with the same soil.table2_G and "
+                       r"contact.mu differ in contact.pure_rolling"):
+        plot.plot_map(table, "soil.G", "contact.mu", "area")
+    plot.plot_map(table, "soil.G", "contact.mu", "area", where={"contact.pure_rolling": 1})
