@@ -44,12 +44,12 @@ AbsentSignals absent_signals(const Spectrum& ddx_harmonics, const Spectrum& ddz_
 }
 
 AbsentSignals absent_signals(const Metrics& m) {
-  double largest = std::max(
+  // The peaks count beside the harmonics computed (with --harmonics 0 or 1 the spectra alone
+  // would call a signal of even harmonics round-off).
+  const double peaks = std::max(
       {std::abs(m.ddx_max), std::abs(m.ddx_min), std::abs(m.ddz_max), std::abs(m.ddz_min)});
-  for (const Spectrum* h : {&m.ddx_harmonics, &m.ddz_harmonics})
-    for (const Harmonic& c : *h) largest = std::max(largest, c.amplitude);
-  const double level =
-      std::max(detail::kAbsentFundamental * largest, detail::kRoundOffAcceleration);
+  const double level = std::max(detail::absent_level(m.ddx_harmonics, m.ddz_harmonics),
+                                detail::kAbsentFundamental * peaks);
   const auto below = [level](const Spectrum& h, double hi, double lo) {
     return std::abs(hi) <= level && std::abs(lo) <= level &&
            std::all_of(h.begin(), h.end(),
