@@ -1348,7 +1348,7 @@ function tomlNumber(field, v) {
   return /[.eEn]/.test(text) ? text : `${text}.0`;
 }
 
-// The case as a TOML file for `oscidrum run` (every key of the field table).
+// The case as a TOML file for `oscidrum run` (the keys of the field table in effect).
 function caseToml() {
   if (!last) return '';
   const c = last.result.case;
