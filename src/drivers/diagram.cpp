@@ -253,9 +253,15 @@ const char* to_string(DiagramSweep sweep) {
 Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
   const Field& field = detail::varied_field(c, o.key, o.from, o.to, "diagram");
   if (!(o.from < o.to))
-    throw Error("diagram: the range's end (to, --to) must be > its start (from, --from); got " +
-                    detail::shortest(o.from) + " and " + detail::shortest(o.to),
-                o.key, o.to);
+    // The values named as the rule names them ("got 5000 and 1000" read as end 5000, start
+    // 1000), in the unit they are typed in (soil.G in MN/m^2, not 1e+08 without a unit).
+    throw Error(
+        "diagram: the range's end (to, --to) must be > its start (from, --from); got "
+        "from = " +
+            detail::quoted_value(field, o.from) + " and to = " + detail::quoted_value(field, o.to) +
+            " (a diagram visits its range upwards; sweep \"down\" (--sweep down) visits it "
+            "downwards)",
+        o.key, o.to);
   if (o.steps < 1 || o.steps > 100000)
     throw Error("diagram: steps (--steps) must be in [1, 100000]; got " + std::to_string(o.steps),
                 "steps", o.steps);

@@ -63,6 +63,11 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
   return *field;
 }
 
+std::string quoted_value(const Field& field, double value) {
+  const std::string unit = display_unit(field);
+  return shortest(value / field.display_scale) + (unit == "-" ? "" : " " + unit);
+}
+
 void check_range_interior(const Case& c, const Field& field, double from, double to,
                           const std::string& who) {
   std::vector<double> values = {from + 1e-6 * (to - from), to - 1e-6 * (to - from)};

@@ -16,6 +16,10 @@ namespace oscidrum::detail {
 const Field& varied_field(const Case& c, const std::string& key, double from, double to,
                           const std::string& who);
 
+/// A value of the field as people read it: in its display unit, with the unit ("100 MN/m^2" for
+/// soil.G = 1e8 Pa, "0.5" for a dimensionless one).
+std::string quoted_value(const Field& field, double value);
+
 /// For a parameter varied continuously from `from` to `to` (a branch): throws oscidrum::Error
 /// "WHO: ..." when the case is not valid at a value between them (values just inside each end and
 /// on a grid of kRangeChecks intervals): contact.mu_static from -1 ("equal to mu") to 0.6 passes

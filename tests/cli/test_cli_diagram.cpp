@@ -196,6 +196,14 @@ TEST(CliDiagram, BadInputIsRefusedWithOneLineNamingTheFlag) {
   }
   const Outcome range = run({"diagram", "--param", "contact.mu", "--from", "0.5", "--to", "0.3"});
   EXPECT_NE(range.err.find("must be > its start (from, --from)"), std::string::npos) << range.err;
+  // The values named, in the unit typed ("got 1e+08 and 3e+07" read as end 1e8, start 3e7).
+  const Outcome g = run({"diagram", "--param", "soil.G", "--from", "100", "--to", "30", "--set",
+                         "soil.input=modulus"});
+  EXPECT_EQ(g.code, 2) << g.err;
+  EXPECT_NE(g.err.find("got from = 100 MN/m^2 and to = 30 MN/m^2 (a diagram visits its range "
+                       "upwards; sweep \"down\" (--sweep down) visits it downwards)"),
+            std::string::npos)
+      << g.err;
 }
 
 TEST(CliDiagram, InterruptExits130WithoutWritingFiles) {
