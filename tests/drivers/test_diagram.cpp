@@ -305,6 +305,16 @@ TEST(Diagram, ASpinningDrumIsGrossSlipNotATorus) {
   }
   set_field(c, "MMd", 12000.0);
   EXPECT_EQ(simulate(c).status, Status::gross_slip);
+  // After a longer discard the other coordinates have settled and a short window read the
+  // spinning drum "converging" with period 1 or 2 (phi' growing by 0.07 rad/s every period).
+  o.discard = 200;
+  o.periods = 50;
+  const Diagram late = bifurcation_diagram(c, o);
+  ASSERT_EQ(late.values.size(), 2u);
+  for (const DiagramValue& v : late.values) {
+    EXPECT_EQ(v.motion.kind, "gross_slip") << v.motion.evidence;
+    EXPECT_EQ(v.period, 0);
+  }
 }
 
 // The vibratory drum with lift-off at 21.5 Hz, reached from 22 Hz: just below the flip of the
