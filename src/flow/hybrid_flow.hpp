@@ -33,6 +33,29 @@ namespace detail {
 // a function dipping below zero and back within one step is not missed.
 inline constexpr int kEventSubsamples = 2;
 
+// A function positive at every sample of a step can still dip through zero and back between
+// them: near a grazing, the slip+ phase of the paper's roller at MMd = 6885 N m lasts 0.4 % of
+// the period, inside a step of about 1 %, and the stick phase carried |T| > mu N through it
+// (mu_required 0.50013). Where the parabola through the samples has its minimum between them
+// and below kDipFraction times the lowest sample, the function is evaluated there, and at the
+// minimum of the parabola through the lowest value and its neighbours up to kDipEvaluations
+// times in all; a value at or below zero brackets the event's root with the sample before it.
+inline constexpr double kDipFraction = 0.5;
+inline constexpr int kDipEvaluations = 4;
+
+// The minimum of the parabola through (t[0], f[0]), (t[1], f[1]), (t[2], f[2]) (t increasing):
+// false when the parabola is not convex or its minimum is not strictly between t[0] and t[2].
+inline bool parabola_minimum(const double* t, const double* f, double& t_min, double& f_min) {
+  const double d1 = (f[1] - f[0]) / (t[1] - t[0]);
+  const double d2 = (f[2] - f[1]) / (t[2] - t[1]);
+  const double a = (d2 - d1) / (t[2] - t[0]);
+  if (!(a > 0.0)) return false;
+  t_min = 0.5 * (t[0] + t[1]) - d1 / (2.0 * a);
+  if (!(t_min > t[0] && t_min < t[2])) return false;
+  f_min = f[0] + d1 * (t_min - t[0]) + a * (t_min - t[0]) * (t_min - t[1]);
+  return true;
+}
+
 // Chattering in a vanishing time: this many switches within kChatterWindow excitation periods.
 inline constexpr std::size_t kChatterSwitches = 20;
 inline constexpr double kChatterWindow = 1e-6;
@@ -94,6 +117,9 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
     return dynamics.events(phase_, x, N);
   }
   Crossing find_event(double ta, double tb);
+  void find_dip(int i, double ta, double tm, double tb, const std::array<double, 3>& f,
+                Crossing& best);
+  double root(int i, double a, double fa, double b, double fb);
   void restart(double t, const Vec& x);
   FlowStop apply_event(const Crossing& c, Observer* observer);
   bool report(double a, double b, bool ends, Observer* observer);
@@ -125,6 +151,11 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
   // find_event evaluated them (the start of the next step when no event cuts it).
   EventValues e_end{};
   double N_end = 0.0;
+  // The normal force at the start of the current step and at its middle sample [N]: with N_end,
+  // the parabola whose minimum inside the step counts in min_N (a smooth N(t) falls about
+  // A (pi / steps per period)^2 / 2 lower between two step ends than at them: 2 N short of its
+  // zero where the paper's roller lifts off at 65.7 Hz).
+  double N_start = 0.0, N_middle = 0.0;
 
   // The step taken but not yet wholly consumed.
   bool have_step = false;
@@ -146,9 +177,11 @@ template <class R>
 typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, double tb) {
   Crossing best;
   EventValues prev = e_prev;
+  EventValues middle{};
   double tp = ta;
   Vec x;
   constexpr int kSub = detail::kEventSubsamples;
+  static_assert(kSub == 2, "find_dip takes the step's start, middle and end");
   for (int k = 1; k <= kSub && !best.found; ++k) {
     const double tk = (k == kSub) ? tb : ta + (tb - ta) * k / kSub;
     if (k == kSub) {
@@ -156,7 +189,7 @@ typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, 
     } else {
       stepper.calc_state(tk, x);
     }
-    const EventValues e = k == kSub ? values(x, &N_end) : values(x);
+    const EventValues e = k == kSub ? values(x, &N_end) : values(x, &N_middle);
     if (k == kSub) e_end = e;
     for (int i = 0; i < Dyn::kEvents; ++i) {
       // A fresh function is zero at ta by construction and counts as positive there.
@@ -175,25 +208,71 @@ typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, 
           continue;
         }
       }
-      auto f = [&](double t) {
-        Vec xt;
-        stepper.calc_state(t, xt);
-        return values(xt)[i];
-      };
-      const double t_tol =
-          std::max(1e-13 * period, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(tk));
-      auto tol = [t_tol](double lo, double hi) { return std::abs(hi - lo) <= t_tol; };
-      std::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(f, a, tk, fa, e[i], tol, iterations);
-      // Take the end where the event has happened (function <= 0), so that the new phase starts
-      // consistently.
-      const double te = bracket.second;
+      const double te = root(i, a, fa, tk, e[i]);
       if (!best.found || te < best.t) best = {true, te, i};
     }
+    if (k < kSub) middle = e;
     prev = e;
     tp = tk;
   }
+  if (best.found) return best;
+  // No function fell through zero at a sample: one may have dipped through it between them.
+  const double tm = ta + (tb - ta) / kSub;
+  for (int i = 0; i < Dyn::kEvents; ++i) {
+    if (e_fresh[i] || !(e_prev[i] > 0.0 && middle[i] > 0.0 && e_end[i] > 0.0)) continue;
+    find_dip(i, ta, tm, tb, {e_prev[i], middle[i], e_end[i]}, best);
+  }
   return best;
+}
+
+template <class R>
+double BasicFlow<R>::Impl::root(int i, double a, double fa, double b, double fb) {
+  // TOMS 748 on the dense output, in (a, b] where f(a) > 0 >= f(b).
+  auto f = [&](double t) {
+    Vec xt;
+    stepper.calc_state(t, xt);
+    return values(xt)[i];
+  };
+  const double t_tol =
+      std::max(1e-13 * period, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(b));
+  auto tol = [t_tol](double lo, double hi) { return std::abs(hi - lo) <= t_tol; };
+  std::uintmax_t iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
+  // Take the end where the event has happened (function <= 0), so that the new phase starts
+  // consistently.
+  return bracket.second;
+}
+
+template <class R>
+void BasicFlow<R>::Impl::find_dip(int i, double ta, double tm, double tb,
+                                  const std::array<double, 3>& f, Crossing& best) {
+  // The samples in time order (kDipFraction, kDipEvaluations).
+  std::array<double, 3 + detail::kDipEvaluations> ts{ta, tm, tb}, fs{f[0], f[1], f[2]};
+  std::size_t n = 3;
+  for (int evaluation = 0; evaluation < detail::kDipEvaluations; ++evaluation) {
+    const std::size_t low =
+        static_cast<std::size_t>(std::min_element(fs.begin(), fs.begin() + n) - fs.begin());
+    const std::size_t first = std::clamp<std::size_t>(low, 1, n - 2) - 1;
+    double t_min = 0.0, f_min = 0.0;
+    if (!detail::parabola_minimum(&ts[first], &fs[first], t_min, f_min)) return;
+    if (!(f_min < detail::kDipFraction * fs[low])) return;
+    const std::size_t at =
+        static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.begin() + n, t_min) - ts.begin());
+    if (at == 0 || at == n || t_min <= ts[at - 1]) return;  // no time between the samples left
+    Vec x;
+    stepper.calc_state(t_min, x);
+    const double value = values(x)[i];
+    if (!(value > 0.0)) {
+      const double te = root(i, ts[at - 1], fs[at - 1], t_min, value);
+      if (!best.found || te < best.t) best = {true, te, static_cast<int>(i)};
+      return;
+    }
+    std::copy_backward(ts.begin() + at, ts.begin() + n, ts.begin() + n + 1);
+    std::copy_backward(fs.begin() + at, fs.begin() + n, fs.begin() + n + 1);
+    ts[at] = t_min;
+    fs[at] = value;
+    ++n;
+  }
 }
 
 template <class R>
@@ -201,7 +280,7 @@ void BasicFlow<R>::Impl::restart(double t, const Vec& x) {
   const double dt = stepper.current_time_step();
   stepper.initialize(x, t, std::min(dt > 0 ? dt : period / 100.0, options.max_step));
   ++counters.restarts;
-  e_prev = values(x);
+  e_prev = values(x, &N_start);
   // A function of the new phase that is already at or below zero after the switch (not one the
   // switch marked fresh) would never fire: it fires only when it falls through zero from above.
   // It counts as fresh, so that find_event takes the switch it makes at once. This happens where
@@ -345,6 +424,14 @@ FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
       // find_event evaluated the event functions at the step's end (x1) last.
       const Vec x1 = stepper.current_state();
       dynamics.track(phase_, x1, N_end, counters);
+      // N's minimum inside the step, from the parabola through its three samples (no lower than
+      // 0: where N fell through 0 between them, find_event took the event).
+      const double ts[3] = {step_t0, 0.5 * (step_t0 + step_t1), step_t1};
+      const double Ns[3] = {N_start, N_middle, N_end};
+      double t_min = 0.0, N_min = 0.0;
+      if (detail::parabola_minimum(ts, Ns, t_min, N_min))
+        counters.min_N = std::min(counters.min_N, std::max(N_min, 0.0));
+      N_start = N_end;
       e_prev = e_end;
       e_fresh = {};
       have_step = false;

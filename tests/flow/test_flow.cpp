@@ -103,6 +103,31 @@ TEST(Flow, AtAStickToSlipSwitchTheFrictionLimitIsReached) {
   EXPECT_GT(checked, 0);
 }
 
+// Near the grazing of the slip+ phase (MMd = 6885 N m on the paper's roller) the slip+ phase lasts
+// 0.4 % of the period, inside one step of about 1 %: the cone function was positive at the
+// step's start, middle and end, the dip between them was missed, and the stick phase carried
+// |T| > mu N through it (mu_required 0.50013, 2 switches a period instead of 4, the slip+
+// fraction 0). The parabola through the samples finds it (kDipFraction): the default tolerances
+// now give what rtol = 1e-10 gives.
+TEST(Flow, ASlipPhaseShorterThanAStepIsNotMissed) {
+  Case c;
+  c.MMd = 6885.0;
+  c.numerics.method = SteadyMethod::shooting;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  const Metrics m = compute_metrics(Model(c), r);
+  Case fine = c;
+  fine.numerics.rtol = 1e-10;
+  const Result rf = simulate(fine);
+  ASSERT_EQ(rf.status, Status::steady_state) << rf.message;
+  const Metrics mf = compute_metrics(Model(fine), rf);
+  EXPECT_LE(m.mu_required, c.contact.mu * (1.0 + 1e-8));
+  EXPECT_DOUBLE_EQ(r.diagnostics.switches_per_period, 4.0);
+  EXPECT_GT(mf.slip_positive_fraction, 3e-3);
+  EXPECT_NEAR(m.slip_positive_fraction, mf.slip_positive_fraction,
+              1e-3 * mf.slip_positive_fraction);
+}
+
 // A state on the wrong side of a switching surface of its phase is refused at once
 // (FlowStop::inconsistent_state): an event fires only when its function falls through zero, so
 // from such a state the flow would follow equations that do not hold without ever switching
