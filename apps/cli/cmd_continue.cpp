@@ -36,7 +36,7 @@ struct ContinueOptions {
   std::string config;
   CaseOptions c;
   std::string key, csv, json, hdf5, bifurcations, plot, plot_metric = "area", format = "table";
-  CLI::Option* plot_metric_flag = nullptr;
+  CLI::Option *plot_metric_flag = nullptr, *format_flag = nullptr;
   std::string from_text, to_text;
   BranchOptions branch;
   bool quiet = false;
@@ -277,6 +277,10 @@ int run(ContinueOptions o) {
                         {"--bifurcations", o.bifurcations},
                         {"--hdf5", o.hdf5},
                         {"--plot", o.plot}});
+  // Standard output carries one thing (the table printed after a --csv - made it unreadable).
+  const bool stdout_taken =
+      file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}, {"--bifurcations", o.bifurcations}},
+                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
@@ -309,9 +313,14 @@ int run(ContinueOptions o) {
   if (!o.json.empty()) write_output(o.json, branch_json(b).dump(2) + "\n");
   if (!o.bifurcations.empty()) write_output(o.bifurcations, bifurcations_csv(b));
   if (!o.hdf5.empty()) io::write_branch_hdf5(o.hdf5, b);
-  if (o.format == "table") std::cout << table(b, *field);
-  if (o.format == "csv") std::cout << points_csv(b);
-  if (o.format == "json") std::cout << branch_json(b).dump(2) << "\n";
+  if (stdout_taken)
+    ;  // the file named - was written there
+  else if (o.format == "table")
+    std::cout << table(b, *field);
+  else if (o.format == "csv")
+    std::cout << points_csv(b);
+  else if (o.format == "json")
+    std::cout << branch_json(b).dump(2) << "\n";
   std::cout.flush();
   if (!o.quiet)
     std::cerr << "oscidrum: " << b.points.size() << " points, " << b.bifurcations.size()
@@ -401,8 +410,11 @@ void add_continue_command(CLI::App& app, Action& action) {
                       "the column --plot shows (default area; a metric such as ddx_max or "
                       "psi_xz, or max_modulus, min_N)")
           ->type_name("COLUMN");
-  sub->add_option("--format", o->format, "stdout: table (default), csv, json or none")
-      ->check(CLI::IsMember({"table", "csv", "json", "none"}));
+  o->format_flag = sub->add_option("--format", o->format,
+                                   "stdout: table (default), csv, json or none; not with a file "
+                                   "named - (stdout carries one "
+                                   "output)")
+                       ->check(CLI::IsMember({"table", "csv", "json", "none"}));
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });
 }

@@ -33,6 +33,7 @@ struct DiagramCommandOptions {
   CaseOptions c;
   std::string key, from_text, to_text, sweep = "up", csv, json, plot, plot_quantity = "ddx_M";
   std::string format = "table";
+  CLI::Option* format_flag = nullptr;
   DiagramOptions diagram;
   bool quiet = false;
 };
@@ -194,6 +195,10 @@ int run(DiagramCommandOptions o) {
   }
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
+  // Standard output carries one thing (the table printed after a --csv - made it unreadable).
+  const bool stdout_taken =
+      file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}},
+                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
   check_distinct_files({{"the case file", o.config, true},
                         {"--csv", o.csv},
                         {"--json", o.json},
@@ -228,9 +233,14 @@ int run(DiagramCommandOptions o) {
   }
   if (!o.csv.empty()) write_output(o.csv, points_csv(d));
   if (!o.json.empty()) write_output(o.json, diagram_json(d, o).dump(2) + "\n");
-  if (o.format == "table") std::cout << table(d, *field, *quantity);
-  if (o.format == "csv") std::cout << points_csv(d);
-  if (o.format == "json") std::cout << diagram_json(d, o).dump(2) << "\n";
+  if (stdout_taken)
+    ;  // the file named - was written there
+  else if (o.format == "table")
+    std::cout << table(d, *field, *quantity);
+  else if (o.format == "csv")
+    std::cout << points_csv(d);
+  else if (o.format == "json")
+    std::cout << diagram_json(d, o).dump(2) << "\n";
   std::cout.flush();
   if (!o.quiet) {
     std::map<std::string, int> verdicts;
@@ -313,8 +323,11 @@ void add_diagram_command(CLI::App& app, Action& action) {
                   "the numeric output column --plot shows and the table summarises (default "
                   "ddx_M; oscidrum outputs lists them; not phase, which is a category)")
       ->type_name("COLUMN");
-  sub->add_option("--format", o->format, "stdout: table (default), csv, json or none")
-      ->check(CLI::IsMember({"table", "csv", "json", "none"}));
+  o->format_flag = sub->add_option("--format", o->format,
+                                   "stdout: table (default), csv, json or none; not with a file "
+                                   "named - (stdout carries one "
+                                   "output)")
+                       ->check(CLI::IsMember({"table", "csv", "json", "none"}));
   sub->add_flag("--quiet,-q", o->quiet, "no progress line and no summary on stderr");
   sub->callback([o, &action] { action = [o] { return run(*o); }; });
 }

@@ -45,6 +45,7 @@ struct IdentifyCliOptions {
   int compare = 4;
   double gain_uncertainty = 0.0;
   std::string csv, json, geojson, plot_dir, format = "table";
+  CLI::Option* format_flag = nullptr;
   int plot_window = -1;
   bool quiet = false;
 };
@@ -376,6 +377,10 @@ int run(const IdentifyCliOptions& o) {
                         {"--csv", o.csv},
                         {"--json", o.json},
                         {"--geojson", o.geojson}});
+  // Standard output carries one thing: the table after a --csv - made the CSV unreadable.
+  const bool stdout_taken =
+      file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}, {"--geojson", o.geojson}},
+                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
   const Case base = base_case(o);
   IdentifyOptions io;
   io.modulus = o.estimate == "G";
@@ -513,7 +518,9 @@ int run(const IdentifyCliOptions& o) {
   if (!o.json.empty()) write_output(o.json, j.dump(2) + "\n");
   if (!o.geojson.empty()) write_output(o.geojson, pass_geojson(pass, rec, name).dump(2) + "\n");
 
-  if (o.format == "csv") {
+  if (stdout_taken) {
+    // the file named - was written there
+  } else if (o.format == "csv") {
     std::cout << csv_text;
   } else if (o.format == "json") {
     std::cout << j.dump(2) << "\n";
@@ -717,9 +724,12 @@ void add_identify_command(CLI::App& app, Action& action) {
                   "easting and northing where --east-col/--north-col (or the header's) give them")
       ->type_name("FILE")
       ->group(out);
-  sub->add_option("--format", o->format, "stdout: table, csv or json")
-      ->check(CLI::IsMember({"table", "csv", "json"}))
-      ->group(out);
+  o->format_flag =
+      sub->add_option(
+             "--format", o->format,
+             "stdout: table, csv or json; not with a file named - (stdout carries one output)")
+          ->check(CLI::IsMember({"table", "csv", "json"}))
+          ->group(out);
   sub->add_option("--plot", o->plot_dir,
                   "plot into DIR: G with its band against time or position, and measured against "
                   "simulated accelerations, spectra and z_M''(x_M'') of one window")

@@ -59,15 +59,11 @@ int run(const RunOptions& o) {
     throw Error("--plot needs a directory name; got an empty one");
   // Standard output carries one thing: a file named - replaces the --format output; two of them
   // (or one and an explicit --format) would interleave into something no reader can parse.
-  std::vector<std::string> to_stdout;
-  for (const auto& [flag, path] :
-       {std::pair{"--csv", &o.csv}, std::pair{"--json", &o.json}, std::pair{"--events", &o.events}})
-    if (*path == "-" && o.plot_dir.empty()) to_stdout.emplace_back(std::string(flag) + " -");
-  if (given(o.format_flag) && !to_stdout.empty()) to_stdout.push_back("--format " + o.format);
-  if (to_stdout.size() > 1)
-    throw Error(to_stdout[0] + " and " + to_stdout[1] +
-                " would both write to standard output; send one of them to a file");
-  const bool stdout_taken = !to_stdout.empty();
+  // (With --plot, --csv - names no file: see below.)
+  const bool stdout_taken = file_takes_stdout({{"--csv", o.plot_dir.empty() ? o.csv : ""},
+                                               {"--json", o.plot_dir.empty() ? o.json : ""},
+                                               {"--events", o.plot_dir.empty() ? o.events : ""}},
+                                              given(o.format_flag) ? o.format : "");
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
   if (o.print_config) {

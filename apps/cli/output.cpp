@@ -222,6 +222,17 @@ void check_distinct_files(const std::vector<NamedFile>& files) {
     }
 }
 
+bool file_takes_stdout(const std::vector<NamedFile>& files, const std::string& format_given) {
+  std::vector<std::string> to_stdout;
+  for (const NamedFile& f : files)
+    if (!f.input && f.path == "-") to_stdout.push_back(f.flag + " -");
+  if (!format_given.empty() && !to_stdout.empty()) to_stdout.push_back("--format " + format_given);
+  if (to_stdout.size() > 1)
+    throw Error(to_stdout[0] + " and " + to_stdout[1] +
+                " would both write to standard output; send one of them to a file");
+  return !to_stdout.empty();
+}
+
 void check_harmonics(int harmonics, int samples_per_period, const std::string& which) {
   if (harmonics < samples_per_period / 2) return;
   throw Error("--harmonics (default 10) must be below numerics.samples_per_period / 2 = " +

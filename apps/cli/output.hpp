@@ -92,6 +92,12 @@ bool same_file(const std::string& a, const std::string& b);
 /// overwrite an input (a study file or a logger's record). Call before any work is done.
 void check_distinct_files(const std::vector<NamedFile>& files);
 
+/// Standard output carries one thing: whether one of `files` is "-" (it takes standard output,
+/// and the command prints nothing else there). Throws oscidrum::Error when two of them are, or
+/// one is and `format_given` names the --format the user gave (empty when not given): the two
+/// would interleave into something no reader can parse.
+bool file_takes_stdout(const std::vector<NamedFile>& files, const std::string& format_given);
+
 /// check_output_file for a figure: also its format, from the extension (.png or .svg, as the
 /// plotting module writes; any case). Throws oscidrum::Error naming the flag.
 void check_plot_file(const std::string& flag, const std::string& path);

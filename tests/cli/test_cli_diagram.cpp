@@ -196,6 +196,32 @@ TEST(CliDiagram, BadInputIsRefusedWithOneLineNamingTheFlag) {
   }
   const Outcome range = run({"diagram", "--param", "contact.mu", "--from", "0.5", "--to", "0.3"});
   EXPECT_NE(range.err.find("must be > its start (from, --from)"), std::string::npos) << range.err;
+  // Standard output carries one thing (the table followed a --csv -), for diagram and continue.
+  for (const std::string command : {"diagram", "continue"}) {
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"--json", "-"}, {"--format", "json"}}) {
+      std::vector<std::string> args = {command, "--param", "MMd",   "--from", "0",
+                                       "--to",  "100",     "--csv", "-"};
+      args.insert(args.end(), extra.begin(), extra.end());
+      const Outcome twice = run(args);
+      EXPECT_EQ(twice.code, 2) << command << " " << extra[0] << ": " << twice.err;
+      EXPECT_NE(twice.err.find("would both write to standard output"), std::string::npos)
+          << twice.err;
+    }
+    std::vector<std::string> args = {command, "--param", "MMd",   "--from", "0",
+                                     "--to",  "100",     "--csv", "-",      "-q"};
+    if (command == "diagram") args.insert(args.end(), {"--steps", "1"});
+    const Outcome csv = run(args);
+    ASSERT_EQ(csv.code, 0) << command << ": " << csv.err;
+    std::istringstream rows(csv.out);
+    std::string header;
+    std::getline(rows, header);
+    for (std::string line; std::getline(rows, line);) {
+      EXPECT_EQ(std::count(line.begin(), line.end(), ','),
+                std::count(header.begin(), header.end(), ','))
+          << command << ": " << line;
+    }
+  }
   // The values named, in the unit typed ("got 1e+08 and 3e+07" read as end 1e8, start 3e7).
   const Outcome g = run({"diagram", "--param", "soil.G", "--from", "100", "--to", "30", "--set",
                          "soil.input=modulus"});

@@ -143,6 +143,38 @@ TEST(CliIdentify, TheTablesWarningsAreNotesBelowIt) {
   EXPECT_NE(notes.front().find("--soil-scale table2"), std::string::npos) << notes.front();
 }
 
+// Standard output carries one thing, as run's: --csv - printed the CSV and then the table after
+// it (a file no CSV reader parses), --csv - --geojson - both and the table.
+TEST(CliIdentify, StandardOutputCarriesOneThing) {
+  TempDir dir;
+  write_record(dir / "r.csv", {truth(17.3e6)}, 0.6);
+  Outcome o =
+      run({"identify", dir / "r.csv", "--window", "10", "--no-profile", "-q", "--csv", "-"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::istringstream rows(o.out);
+  std::string header;
+  std::getline(rows, header);
+  EXPECT_EQ(header.rfind("window[-],", 0), 0u) << header;
+  std::size_t n = 0;
+  for (std::string line; std::getline(rows, line); ++n) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','),
+              std::count(header.begin(), header.end(), ','))
+        << line;
+  }
+  EXPECT_GE(n, 2u);
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--geojson", "-"}, {"--json", "-"}, {"--format", "table"}}) {
+    std::vector<std::string> args = {"identify", dir / "r.csv", "--csv", "-"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    o = run(args);
+    EXPECT_EQ(o.code, 2) << extra[0] << ": " << o.err;
+    EXPECT_NE(o.err.find("--csv - and " + extra[0] + " " + extra[1] +
+                         " would both write to standard output"),
+              std::string::npos)
+        << o.err;
+  }
+}
+
 // A record shorter than the default window (the two periods the paper evaluates, as another
 // implementation writes them): identified whole, as one window, with a note; the same record
 // with that window given explicitly is refused, as is any record shorter than its --window.
