@@ -404,6 +404,21 @@ TEST(Diagram, RefusesBadOptions) {
   bad = o;
   bad.from = -1;
   refused(bad, "--from");
+  // soil.G on Table 2 soil (the default) from 5 to 70 MN/m^2 in 3 steps: 26.7 MN/m^2 is no row of
+  // the table. The diagram stopped there with the field's message alone; it is refused before any
+  // work, naming the step; in 13 steps every value is a row, and the diagram runs.
+  bad = o;
+  bad.key = "soil.G";
+  bad.from = 5e6;
+  bad.to = 70e6;
+  bad.steps = 3;
+  refused(bad,
+          "diagram: soil.G = 26.666666666666668 MN/m^2, value 1 of --steps 3 from 5 MN/m^2 to "
+          "70 MN/m^2: the case is not valid there (soil.G must be a G of paper Table 2");
+  bad.steps = 13;
+  bad.discard = 10;
+  bad.periods = 20;
+  EXPECT_EQ(bifurcation_diagram(c, bad).values.size(), 14u);
 }
 
 TEST(Diagram, CancelledStopsPromptly) {
