@@ -100,8 +100,8 @@ struct FlowCounters {
   long inconsistent_slip_ends = 0;  ///< slip ends where neither stick nor a reversal is
                                     ///< consistent (docs/model.md); stick is taken
   long restarts = 0;                ///< integrator (re)starts: reset() and one per event
-  double min_N = 0.0;               ///< smallest normal force, step ends and the parabola
-                                    ///< through each step's samples [N]
+  double min_N = 0.0;               ///< smallest normal force: step ends, events and the
+                                    ///< parabola through each step's samples [N]
   double max_slip_residual = 0.0;   ///< max |(39)| / W at step ends in slip [-]
 };
 

@@ -103,9 +103,10 @@
     "not Newton's iterates; a study's warm-started case, warm_start 1, has no run from rest: "    \
     "its sampled periods only, so its value can differ from the same case run alone)")            \
   X(double, min_N, 0.0, "N", "min N",                                                             \
-    "smallest normal force (26) of the same trajectory: at the step ends and, where N has its "   \
-    "minimum inside a step, the minimum of the parabola through the step's start, middle and "    \
-    "end (docs/model.md section 9); 0 where N reached 0 (contact lost, or a lift-off)")           \
+    "smallest normal force (26) of the same trajectory: at the step ends and the events and, "    \
+    "where N has its minimum inside a step, the minimum of the parabola through the step's "      \
+    "start, middle and end (docs/model.md section 9); 0 where N reached 0 (contact lost, or a "   \
+    "lift-off)")                                                                                  \
   X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
     "what produced the steady state: transient (integrated from rest until it repeats) or "       \
     "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \

@@ -937,11 +937,17 @@ std::optional<bool> Shooter<R>::retry_after_a_longer_transient(
     double t_start, State& z, Phase& phase, PeriodMap& cur) {
   PlainObserver range;
   flow_.reset(t_start, z_start, phase_start);
+  // The longer transient continues the run's trajectory from where Newton started; Newton's
+  // iterates, integrated since, are off it (their slip residual of 1e-3 was reported as the run's).
+  flow_.reset_extremes();
   FlowStop stop = flow_.advance(t_start + (kRetryTransient - 1) * period_);
   if (stop == FlowStop::reached) {
     range.start(flow_.state().to_array());
     stop = flow_.advance(t_start + kRetryTransient * period_, &range);
   }
+  out.transient_max_slip_residual =
+      std::max(out.transient_max_slip_residual, flow_.counters().max_slip_residual);
+  out.transient_min_N = std::min(out.transient_min_N, flow_.counters().min_N);
   if (stop != FlowStop::reached) return false;
   set_scales(range);
   out.transient_periods += kRetryTransient;

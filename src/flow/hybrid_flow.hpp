@@ -298,6 +298,12 @@ template <class R>
 FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) {
   Vec x;
   stepper.calc_state(c.t, x);
+  // The state at the event is one of the trajectory: N there counts in min_N (N has a corner
+  // minimum at a stick-to-slip switch, 83 N below every step end of a case of mu 1.27).
+  // (No lower than 0: a landing whose contact pulls at once lifts off, or loses contact, there.)
+  double N_event = 0.0;
+  values(x, &N_event);
+  dynamics.track(phase_, x, std::max(N_event, 0.0), counters);
   ++counters.events;
   Event ev;
   ev.t = c.t;

@@ -128,6 +128,36 @@ TEST(Flow, ASlipPhaseShorterThanAStepIsNotMissed) {
               1e-3 * mf.slip_positive_fraction);
 }
 
+// min_N counts N at the events: its corner minimum at a stick-to-slip switch lay 83 N below every
+// step end (mu 1.27, MMd -0.15 M0, 53 Hz), and min_N was above the sampled periods' own minimum.
+// And Newton's iterates, integrated before the longer transient a failed Newton retries after,
+// are off the run's trajectory: their slip residual (1e-3) was reported as max_slip_residual.
+TEST(Flow, TheExtremesAreTheTrajectorysOwn) {
+  Case c;
+  c.soil = table2_soil(40e6);
+  set_field(c, "contact.mu", 1.27);
+  set_field(c, "roller.unbalance", 0.22877);
+  set_field(c, "roller.f", 53.0);
+  c.MMd = -15221.652339200951;  // -0.15 of M0 by the unbalance at 53 Hz
+  c.numerics.method = SteadyMethod::shooting;
+  const Result r = simulate(c);
+  ASSERT_EQ(r.status, Status::steady_state) << r.message;
+  double lowest = r.samples.N.front();
+  for (const double N : r.samples.N) lowest = std::min(lowest, N);
+  EXPECT_LE(r.diagnostics.min_N, lowest + 1e-9 * Model(c).W());
+  Case d;
+  d.soil = table2_soil(45e6);
+  set_field(d, "contact.mu", 0.76);
+  set_field(d, "roller.unbalance", 0.22877);
+  set_field(d, "roller.f", 44.7);
+  set_field(d, "trough.a", 0.629);
+  d.MMd = 18045.705068490588;  // 0.25 of M0 by the unbalance at 44.7 Hz
+  d.numerics.method = SteadyMethod::shooting;
+  const Result s = simulate(d);
+  ASSERT_EQ(s.status, Status::steady_state) << s.message;
+  EXPECT_LT(s.diagnostics.max_slip_residual, 1e-8) << s.message;
+}
+
 // A state on the wrong side of a switching surface of its phase is refused at once
 // (FlowStop::inconsistent_state): an event fires only when its function falls through zero, so
 // from such a state the flow would follow equations that do not hold without ever switching
