@@ -466,7 +466,7 @@ void BasicFlow<R>::reset(double t, const State& q, Phase phase) {
   s.switch_period = s.step_period = -1;
   s.stepper.initialize(x, t, std::min(s.period / 100.0, s.options.max_step));
   ++s.counters.restarts;
-  s.e_prev = s.values(x);
+  s.e_prev = s.values(x, &s.N_start);  // the first step's parabola of min_N starts here
   // An event fires when its function falls through zero from above: a function that starts below
   // zero never fires, and the flow would follow the phase's equations where they do not hold
   // (a shooting iterate in flight with the drum inside the trough closed into a spurious orbit

@@ -158,6 +158,38 @@ TEST(Flow, TheExtremesAreTheTrajectorysOwn) {
   EXPECT_LT(s.diagnostics.max_slip_residual, 1e-8) << s.message;
 }
 
+// The extremes of a trajectory do not depend on what the flow integrated before its reset: the
+// first step's parabola through N (min_N) started from the last step of the trajectory before.
+TEST(Flow, TheExtremesDoNotDependOnTheFlowsHistory) {
+  const Model model(stick_slip(25, 0.05));
+  const double T = model.period();
+  // N over the third period: its largest (where the flow used before stops) and its smallest
+  // (where both flows start: a step from there has N rising, no minimum inside).
+  Flow probe(model);
+  probe.reset(0.0, model.initial_state(), initial_phase(model));
+  double t_hi = 0.0, t_lo = 0.0, N_hi = -1e300, N_lo = 1e300;
+  for (int k = 0; k < 400; ++k) {
+    const double t = (2.0 + k / 400.0) * T;
+    ASSERT_EQ(probe.advance(t), FlowStop::reached);
+    const double N = contact_forces(model, probe.state()).N;
+    if (N > N_hi) N_hi = N, t_hi = t;
+    if (N < N_lo) N_lo = N, t_lo = t;
+  }
+  Flow at_lo(model);
+  at_lo.reset(0.0, model.initial_state(), initial_phase(model));
+  ASSERT_EQ(at_lo.advance(t_lo), FlowStop::reached);
+  Flow used(model);
+  used.reset(0.0, model.initial_state(), initial_phase(model));
+  ASSERT_EQ(used.advance(t_hi), FlowStop::reached);
+  used.reset(t_lo, at_lo.state(), at_lo.phase());
+  used.reset_extremes();
+  Flow fresh(model);
+  fresh.reset(t_lo, at_lo.state(), at_lo.phase());
+  ASSERT_EQ(used.advance(t_lo + 0.3 * T), FlowStop::reached);
+  ASSERT_EQ(fresh.advance(t_lo + 0.3 * T), FlowStop::reached);
+  EXPECT_EQ(used.counters().min_N, fresh.counters().min_N) << N_lo << " " << N_hi;
+}
+
 // A state on the wrong side of a switching surface of its phase is refused at once
 // (FlowStop::inconsistent_state): an event fires only when its function falls through zero, so
 // from such a state the flow would follow equations that do not hold without ever switching
