@@ -8,7 +8,9 @@
 // the engine for it (src/roller/engine.cpp).
 //
 //   constants   kStates (the state's size), kEvents (event functions), kPeriodic (the components
-//               that repeat on a periodic orbit: all but the cyclic ones, e.g. the drum angle)
+//               that repeat on a periodic orbit: all but the cyclic ones, e.g. the drum angle),
+//               kContactEvent (the event function of contact, N over a force scale, in every phase
+//               with contact; -1 for none)
 //   types       Vector = std::array<double, kStates>, Matrix (kStates x kStates, Eigen),
 //               EventValues = std::array<double, kEvents>, Switch (below)
 //   flow        rhs(phase, t, x, dxdt); events(phase, x, &N) (scaled to O(1), an event when one

@@ -23,6 +23,8 @@ class Dynamics<OscillationDrum> {
  public:
   static constexpr int kStates = OscillationDrum::kStates;
   static constexpr int kEvents = kEventCount;
+  /// The event function N / W: below zero the soil pulls the drum.
+  static constexpr int kContactEvent = kEventContact;
   /// The components that repeat on a periodic orbit: all but phi (index 3), which is cyclic (no
   /// right-hand side depends on it; it may drift by the net slip per period).
   static constexpr std::array<int, 7> kPeriodic = {0, 1, 2, 4, 5, 6, 7};

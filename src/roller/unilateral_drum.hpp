@@ -21,6 +21,8 @@ class Dynamics<UnilateralDrum> {
   using Drum = Dynamics<OscillationDrum>;
   static constexpr int kStates = UnilateralDrum::kStates;
   static constexpr int kEvents = Drum::kEvents;
+  static constexpr int kContactEvent =
+      Drum::kContactEvent;  ///< in contact phases (flight: a constant 1)
   /// All but phi (index 3), which is cyclic.
   static constexpr std::array<int, 9> kPeriodic = {0, 1, 2, 4, 5, 6, 7, 8, 9};
   static constexpr int kSpin = flight_index::kDPhi;

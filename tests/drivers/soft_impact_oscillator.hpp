@@ -87,6 +87,8 @@ class Dynamics<SoftImpactOscillator> {
  public:
   static constexpr int kStates = 2;
   static constexpr int kEvents = 1;
+  /// No event function of a contact force (contact ends where the penetration does).
+  static constexpr int kContactEvent = -1;
   static constexpr std::array<int, 2> kPeriodic = {0, 1};
   using Vector = std::array<double, 2>;
   using Matrix = Eigen::Matrix2d;
