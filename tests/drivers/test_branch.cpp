@@ -417,6 +417,43 @@ TEST(Branch, APeriodTwoBranchEndsWhereItShrinksOntoThePeriodOneOrbit) {
   EXPECT_NEAR(last.floquet.max_modulus, r.floquet.max_modulus, 1e-3);
 }
 
+// The same turn where the bisection closes its bracket in the parameter before the orbit is close
+// to the collapse (the parameter is quadratic in the arclength at the turn, the P residual
+// linear): the vibratory drum on Table 2 soil of G = 20 MN/m^2 from 18 Hz up (`oscidrum continue
+// examples/vibratory.toml --param roller.f --from 18 --to 26 --G 20 --static_moment 1.5`) turned
+// at 25.736014 Hz with a P residual of 0.0063 against 0.041 at the last point, and was reported as
+// a fold ("a stable and an unstable orbit meet"; stable on both sides) and retraced to 18 Hz.
+// Now: the doubling where the period-1 branch meets it from above, and the period-1 orbit on.
+TEST(Branch, APeriodTwoBranchTurningAtItsDoublingIsNoSaddleNode) {
+  Case c = test::vibratory_lift_off_case(1.5, 20e6);
+  set_field_text(c, "soil.input", "table2");
+  BranchOptions o;
+  o.key = "roller.f";
+  o.from = 18.0;
+  o.to = 26.0;
+  const Branch up = continue_branch(c, o);
+  ASSERT_EQ(up.multiplicity, 2);
+  EXPECT_EQ(up.end, BranchEnd::period_halved) << up.message;
+  ASSERT_FALSE(up.bifurcations.empty());
+  for (const Bifurcation& b : up.bifurcations)
+    EXPECT_NE(b.kind, BifurcationKind::fold) << b.parameter << ": " << b.description;
+  const Bifurcation& at = up.bifurcations.back();
+  ASSERT_EQ(at.kind, BifurcationKind::period_doubling) << at.description;
+  ASSERT_EQ(up.children.size(), 1u);
+  EXPECT_EQ(up.children[0].multiplicity, 1);
+  EXPECT_EQ(up.children[0].end, BranchEnd::reached_end) << up.children[0].message;
+  // The period-1 branch followed down from 27 Hz flips there.
+  o.from = 27.0;
+  o.to = 25.5;
+  o.switch_depth = 0;
+  const Branch down = continue_branch(c, o);
+  ASSERT_EQ(down.multiplicity, 1);
+  ASSERT_EQ(down.bifurcations.size(), 1u);
+  const Bifurcation& pd = down.bifurcations[0];
+  ASSERT_EQ(pd.kind, BifurcationKind::period_doubling);
+  EXPECT_NEAR(at.parameter, pd.parameter, at.tolerance + pd.tolerance);
+}
+
 // A period-2 branch that meets the period-1 orbits at their period doubling without turning
 // back there (the step lands on the period-1 orbits, which pass through the point): the
 // vibratory drum on G = 20 MN/m^2 from its stable period-2 orbit at 20 Hz up over a fold at
