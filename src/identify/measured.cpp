@@ -195,6 +195,52 @@ std::vector<int> separable_orders(double f, double step, double span, int N) {
   return orders;
 }
 
+// The lowest order beyond N whose frequency folds to within one bin of half the sampling rate
+// (0: none up to separable_orders' top). separable_orders leaves such orders out, as their cosine
+// and sine cannot be told apart there; but a record sampled in step with an even number of
+// samples per period folds orders M/2, 3M/2, ... exactly onto half the rate, and what they leave
+// in the residual (+a, -a, ... the same every period) is not noise.
+int nyquist_order(double f, double step, double span, int N) {
+  if (!(step > 0.0 && span > 0.0)) return 0;
+  const double rate = 1.0 / step, bin = 1.0 / span;
+  const int top = std::min(4 * (N + 1), 100);
+  for (int n = N + 1; n <= top; ++n) {
+    const double a = std::fmod(n * f, rate);
+    if (std::abs(std::min(a, rate - a) - 0.5 * rate) < bin) return n;
+  }
+  return 0;
+}
+
+// What the cosine and sine of frequency nu at the samples' times explain of the residuals (their
+// projection), and how many independent columns they are: one where nu folds onto half the
+// sampling rate exactly (the sine vanishes at every sample), two where it beats against it.
+struct Projection {
+  double explained_x = 0.0, explained_z = 0.0;
+  int rank = 0;
+};
+Projection project_frequency(std::span<const double> t, double t_ref, double nu,
+                             const std::vector<double>& rx, const std::vector<double>& rz) {
+  const auto M = static_cast<Eigen::Index>(t.size());
+  Eigen::MatrixXd A(M, 2);
+  for (Eigen::Index i = 0; i < M; ++i) {
+    const double w = 2.0 * M_PI * nu * (t[static_cast<std::size_t>(i)] - t_ref);
+    A(i, 0) = std::cos(w);
+    A(i, 1) = std::sin(w);
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU);
+  const Eigen::VectorXd& s = svd.singularValues();
+  Projection out;
+  const Eigen::Map<const Eigen::VectorXd> x(rx.data(), M), z(rz.data(), M);
+  for (Eigen::Index k = 0; k < 2; ++k) {
+    if (!(s[k] > 1e-8 * s[0])) continue;
+    const double px = svd.matrixU().col(k).dot(x), pz = svd.matrixU().col(k).dot(z);
+    out.explained_x += px * px;
+    out.explained_z += pz * pz;
+    ++out.rank;
+  }
+  return out;
+}
+
 }  // namespace
 
 MeasuredResponse measured_response(const RecordMetrics& m, double f, std::size_t samples) {
@@ -346,12 +392,19 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   out.noise_x = std::sqrt(rss_x / dof);
   out.noise_z = std::sqrt(rss_z / dof);
   // The noise that weighs the compared harmonics: the residual less what the separable
-  // harmonics beyond N explain of it (where the samples leave the degrees of freedom for them).
+  // harmonics beyond N, and the harmonic on half the sampling rate, explain of it (where the
+  // samples leave the degrees of freedom for them). Without the latter, a record sampled in step
+  // at 12, 14 or 16 samples per period had one channel's noise 5 to 30 times too large: that
+  // channel hardly counted, the reduced chi^2 fell to 0.45, and the 95 % intervals covered the
+  // truth in 81-87 % of windows (`MeasureWindow.TheHarmonicOnHalfTheSamplingRateIsNotNoise`).
   double noise2_x = out.noise_x * out.noise_x, noise2_z = out.noise_z * out.noise_z;
   {
-    const std::vector<int> extra = separable_orders(f, detail::median_step(t), span, N);
-    const double dof_more = dof - 2.0 * static_cast<double>(extra.size());
-    if (!extra.empty() && dof_more >= 0.5 * static_cast<double>(M)) {
+    const double step = detail::median_step(t);
+    const std::vector<int> extra = separable_orders(f, step, span, N);
+    const int nyquist = nyquist_order(f, step, span, N);
+    double explained_x = 0.0, explained_z = 0.0, dof_more = dof;
+    if (!extra.empty() &&
+        dof - 2.0 * static_cast<double>(extra.size()) >= 0.5 * static_cast<double>(M)) {
       // The residual fitted on the separable harmonics alone (no trend): it is orthogonal to
       // the first fit's columns, and theirs nearly so to these, so that this explains what the
       // joint fit would to second order in their small correlations, without their products
@@ -359,9 +412,22 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
       const HarmonicFit more =
           fit_harmonics(t, rx, rz, f, out.t_ref, -1, extra, nullptr, nullptr, false);
       if (more.ok) {
-        noise2_x = std::min(noise2_x, std::max(0.0, rss_x - more.explained_x) / dof_more);
-        noise2_z = std::min(noise2_z, std::max(0.0, rss_z - more.explained_z) / dof_more);
+        explained_x += more.explained_x;
+        explained_z += more.explained_z;
+        dof_more -= 2.0 * static_cast<double>(extra.size());
       }
+    }
+    if (nyquist > 0) {
+      const Projection half = project_frequency(t, out.t_ref, nyquist * f, rx, rz);
+      if (dof_more - half.rank >= 0.5 * static_cast<double>(M)) {
+        explained_x += half.explained_x;
+        explained_z += half.explained_z;
+        dof_more -= half.rank;
+      }
+    }
+    if (dof_more < dof) {
+      noise2_x = std::min(noise2_x, std::max(0.0, rss_x - explained_x) / dof_more);
+      noise2_z = std::min(noise2_z, std::max(0.0, rss_z - explained_z) / dof_more);
     }
   }
   for (int n = 1; n <= N; ++n) {
