@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
@@ -15,8 +16,6 @@
 
 namespace oscidrum::cli {
 namespace {
-
-bool given(const CLI::Option* o) { return o && o->count() > 0; }
 
 std::string origin(const std::string& flag, double v) { return flag + " " + fmt(v, 10); }
 

@@ -16,6 +16,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/branch.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -280,13 +281,13 @@ int run(ContinueOptions o) {
   // Standard output carries one thing (the table printed after a --csv - made it unreadable).
   const bool stdout_taken =
       file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}, {"--bifurcations", o.bifurcations}},
-                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
+                        given(o.format_flag) ? o.format : "");
   if (!o.plot.empty()) {
     check_plot_file("--plot", o.plot);
     if (o.csv.empty() || o.csv == "-")
       throw Error("--plot " + o.plot + " needs --csv FILE (the plot is drawn from it)");
     check_plot_metric(o.plot_metric, o.branch.harmonics);
-  } else if (o.plot_metric_flag && o.plot_metric_flag->count() > 0) {
+  } else if (given(o.plot_metric_flag)) {
     throw Error("--plot-metric " + o.plot_metric +
                 " needs --plot FILE (the figure it is drawn in)");
   }

@@ -16,6 +16,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/diagram.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
@@ -196,9 +197,8 @@ int run(DiagramCommandOptions o) {
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   // Standard output carries one thing (the table printed after a --csv - made it unreadable).
-  const bool stdout_taken =
-      file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}},
-                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
+  const bool stdout_taken = file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}},
+                                              given(o.format_flag) ? o.format : "");
   check_distinct_files({{"the case file", o.config, true},
                         {"--csv", o.csv},
                         {"--json", o.json},

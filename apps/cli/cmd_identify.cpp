@@ -19,6 +19,7 @@
 #include "case_options.hpp"
 #include "commands.hpp"
 #include "estimate_json.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/fields.hpp"
 #include "oscidrum/identify.hpp"
@@ -380,7 +381,7 @@ int run(const IdentifyCliOptions& o) {
   // Standard output carries one thing: the table after a --csv - made the CSV unreadable.
   const bool stdout_taken =
       file_takes_stdout({{"--csv", o.csv}, {"--json", o.json}, {"--geojson", o.geojson}},
-                        o.format_flag && o.format_flag->count() > 0 ? o.format : "");
+                        given(o.format_flag) ? o.format : "");
   const Case base = base_case(o);
   IdentifyOptions io;
   io.modulus = o.estimate == "G";

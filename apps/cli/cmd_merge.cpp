@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum_io/config.hpp"
 #include "oscidrum_io/hdf5.hpp"
@@ -25,7 +26,7 @@ struct MergeOptions {
 };
 
 int run(const MergeOptions& o) {
-  if (o.out_flag && o.out_flag->count() > 0) check_output_file("--out", o.out);
+  if (given(o.out_flag)) check_output_file("--out", o.out);
   std::size_t n_hdf5 = 0;
   for (const std::string& path : o.shards) {
     if (path.empty()) throw Error("merge: a shard file name is empty");

@@ -7,6 +7,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/metrics.hpp"
 #include "oscidrum/model.hpp"
@@ -45,7 +46,6 @@ void write_steady_csv(const std::string& path, const Result& r) {
 }
 
 int run(const RunOptions& o) {
-  auto given = [](const CLI::Option* flag) { return flag && flag->count() > 0; };
   if (given(o.config_flag) && o.config.empty())
     throw Error("the case file name is empty; give a file, or none for the paper's defaults");
   if (given(o.csv_flag)) check_output_file("--csv", o.csv);

@@ -24,6 +24,7 @@
 
 #include "case_options.hpp"
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum/study.hpp"
 #include "oscidrum_io/config.hpp"
@@ -187,10 +188,9 @@ void warn_about_cases(const io::StudySpec& spec, const io::Study& study,
 // Every option that can be checked without running a case: a sweep must not fail at its end,
 // after every case ran.
 void check_options(const SweepOptions& o) {
-  if (o.out_flag && o.out_flag->count() > 0 && !o.out_is_stdout)
-    check_output_file("--out", o.out, false);
-  if (o.hdf5_flag && o.hdf5_flag->count() > 0) check_output_file("--hdf5", o.hdf5, false);
-  if (o.plot_flag && o.plot_flag->count() > 0) check_plot_file("--plot", o.plot);
+  if (given(o.out_flag) && !o.out_is_stdout) check_output_file("--out", o.out, false);
+  if (given(o.hdf5_flag)) check_output_file("--hdf5", o.hdf5, false);
+  if (given(o.plot_flag)) check_plot_file("--plot", o.plot);
   check_distinct_files({{"the study file", o.study, true},
                         {"--out", o.out_is_stdout ? std::string() : o.out},
                         {"--hdf5", o.hdf5},
@@ -205,7 +205,7 @@ void check_options(const SweepOptions& o) {
                   journal + " and writes the HDF5 file as " + o.hdf5 +
                   ".partial until it is done; name the outputs otherwise");
   }
-  if (o.cases_dir_flag && o.cases_dir_flag->count() > 0 && o.cases_dir.empty())
+  if (given(o.cases_dir_flag) && o.cases_dir.empty())
     throw Error("--cases-dir needs a directory name; got an empty one");
   // The directory is made before the cases run: named as an output file, it was made first and
   // the file refused after ("it is a directory"), an empty directory left behind.
@@ -236,7 +236,7 @@ struct SweepPlan {
 
 SweepPlan plan_sweep(const SweepOptions& o) {
   SweepPlan p;
-  p.sharded = o.shard_flag && o.shard_flag->count() > 0;
+  p.sharded = given(o.shard_flag);
   p.shard = p.sharded ? io::parse_shard(o.shard) : io::Shard{};
   p.spec = io::read_study_file(o.study);
   apply(o.c, p.spec.base);

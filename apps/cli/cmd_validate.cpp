@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "flags.hpp"
 #include "oscidrum/error.hpp"
 #include "oscidrum_io/files.hpp"
 #include "oscidrum_paper/validation.hpp"
@@ -43,10 +44,9 @@ std::string markdown_document(const std::vector<ValidationRow>& rows) {
 
 int run(const ValidateOptions& o) {
   // Output names first: the studies take seconds.
-  if (!o.markdown.empty() || (o.markdown_flag && o.markdown_flag->count() > 0))
+  if (!o.markdown.empty() || given(o.markdown_flag))
     check_output_file("--markdown", o.markdown, false);
-  if (!o.csv.empty() || (o.csv_flag && o.csv_flag->count() > 0))
-    check_output_file("--csv", o.csv, false);
+  if (!o.csv.empty() || given(o.csv_flag)) check_output_file("--csv", o.csv, false);
   check_distinct_files({{"--markdown", o.markdown}, {"--csv", o.csv}});
   install_interrupt_handlers();
   ProgressLine progress(!o.quiet && stderr_is_terminal());

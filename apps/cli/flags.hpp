@@ -13,6 +13,9 @@ class App;
 
 namespace oscidrum::cli {
 
+/// Whether the user gave the flag (an option that exists and was parsed at least once).
+inline bool given(const CLI::Option* flag) { return flag && flag->count() > 0; }
+
 /// Put the strict number check first on every numeric option (CLI11 type FLOAT, INT or UINT) of
 /// `app` and of its subcommands: "--G: must be a decimal number; got '0x10'", "--harmonics:
 /// must be an integer (digits only); got '1e3'". Call after every command was added.

@@ -294,15 +294,7 @@ Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
   // soil from 5 to 70 MN/m^2 in 3 steps stopped at 26.7 MN/m^2 with the field's message alone,
   // not saying that the diagram's steps put it there (continue checks its whole range alike).
   for (int i = 0; i <= o.steps; ++i) {
-    Case at = c;
-    std::string why;
-    try {
-      field.set(at, value(i));
-      why = check_field(field, value(i));
-      if (why.empty()) (void)Model(at);
-    } catch (const Error& e) {
-      why = e.what();
-    }
+    const std::string why = detail::invalid_at(c, field, value(i));
     if (!why.empty())
       throw Error("diagram: " + o.key + " = " + detail::quoted_value(field, value(i)) + ", value " +
                       std::to_string(i) + " of --steps " + std::to_string(o.steps) + " from " +

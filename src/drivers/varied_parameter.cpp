@@ -68,6 +68,18 @@ std::string quoted_value(const Field& field, double value) {
   return shortest(value / field.display_scale) + (unit == "-" ? "" : " " + unit);
 }
 
+std::string invalid_at(const Case& c, const Field& field, double value) {
+  Case at = c;
+  try {
+    field.set(at, value);
+    std::string why = check_field(field, value);
+    if (why.empty()) (void)Model(at);
+    return why;
+  } catch (const Error& e) {
+    return e.what();
+  }
+}
+
 void check_range_interior(const Case& c, const Field& field, double from, double to,
                           const std::string& who) {
   std::vector<double> values = {from + 1e-6 * (to - from), to - 1e-6 * (to - from)};
@@ -76,16 +88,7 @@ void check_range_interior(const Case& c, const Field& field, double from, double
     return (a - from) * (to - from) < (b - from) * (to - from);  // from --from towards --to
   });
   for (const double value : values) {
-    Case at = c;
-    field.set(at, value);
-    std::string why = check_field(field, value);
-    if (why.empty()) {
-      try {
-        const Model model(at);
-      } catch (const Error& e) {
-        why = e.what();
-      }
-    }
+    const std::string why = invalid_at(c, field, value);
     if (!why.empty())
       throw Error(who + ": " + field.key + " = " + shortest(value) +
                       (std::string(field.unit) == "-" ? "" : " " + std::string(field.unit)) +

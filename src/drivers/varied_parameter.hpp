@@ -20,6 +20,10 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
 /// soil.G = 1e8 Pa, "0.5" for a dimensionless one).
 std::string quoted_value(const Field& field, double value);
 
+/// Why the case `c` with the field set to `value` is not valid (the field's rule, then the
+/// model's checks of the whole case), or "" where it is.
+std::string invalid_at(const Case& c, const Field& field, double value);
+
 /// For a parameter varied continuously from `from` to `to` (a branch): throws oscidrum::Error
 /// "WHO: ..." when the case is not valid at a value between them (values just inside each end and
 /// on a grid of kRangeChecks intervals): contact.mu_static from -1 ("equal to mu") to 0.6 passes
