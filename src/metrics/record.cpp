@@ -1278,6 +1278,31 @@ std::vector<double> drift_noise(std::span<const double> t, std::span<const doubl
   return sd;
 }
 
+// A harmonic beyond the n_max fitted whose frequency, folded about the sampling rate, lies within
+// `resolution` of a fitted one's but not on it: the two beat across the window, and each part's
+// fit takes the folded one in with a phase that turns from part to part. A record sampled near
+// but not in step with the excitation does this: 625 samples/s at 39 Hz folds 14 f (546 Hz) to
+// 79 Hz, 1 Hz from 2 f, and z_M'''s fitted RMS moved by 5 % between a window's quarters on a
+// steady record (every window failed the change gate as "a change of soil").
+struct Beat {
+  int order = 0;        ///< the harmonic beyond n_max (0: none)
+  int with = 0;         ///< the fitted one it beats with
+  double folded = 0.0;  ///< where it folds to [Hz]
+};
+Beat beating_harmonic(double f, double rate, int n_max, double resolution) {
+  const int top = std::min(4 * (n_max + 1), 100);
+  for (int n = n_max + 1; n <= top; ++n) {
+    const double a = std::fmod(n * f, rate), folded = std::min(a, rate - a);
+    const int with = static_cast<int>(std::lround(folded / f));
+    if (with < 1 || with > n_max) continue;
+    const double apart = std::abs(folded - with * f);
+    // On it (within 1e-6 of the resolution): in step, the same in every part. The lowest order
+    // (the largest, as harmonics decay) is named.
+    if (apart < resolution && apart > 1e-6 * resolution) return {n, with, folded};
+  }
+  return {};
+}
+
 // Does the response change within the window? The window is cut into K equal parts (4, or 3 or 2
 // where shorter parts would not hold a period and their samples), each fitted at the window's f
 // (f/2 with 2 n_max harmonics for a period-2 fit, so that each part holds two periods);
@@ -1415,6 +1440,23 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
         break;
       }
     }
+    // No glitch: a fold of the sampling that beats with a fitted harmonic over the parts (whose
+    // frequency resolution is parts / span) moves their fits as a change would.
+    std::string beat;
+    if (glitch.empty()) {
+      const double rate = 1.0 / dt, span = t.back() - t.front() + dt;
+      const Beat b = beating_harmonic(f, rate, n_max, static_cast<double>(parts) / span);
+      if (b.order > 0)
+        beat = "or the sampling's: at " + num(std::round(rate * 10) / 10) + " samples/s (" +
+               num(std::round(rate / f * 100) / 100) + " per period) harmonics beyond the " +
+               std::to_string(n_max) + " fitted fold to within " +
+               num(std::round(std::abs(b.folded - b.with * f) * 100) / 100) +
+               " Hz of fitted ones (" + std::to_string(b.order) + " f to " +
+               num(std::round(b.folded * 10) / 10) + " Hz, beside " + std::to_string(b.with) +
+               " f) and beat with them across the window, which moves the fitted harmonics of a "
+               "steady response (a rate in step with f, or further from one, holds them apart; "
+               "--max-change lets such windows pass, their harmonics biased by the folds)";
+    }
     reasons.push_back(
         "the response changes within the window: the RMS of " + std::string(channel) + " by " +
         (worst > 0 ? "+" : "") + num(std::round(worst * 1000) / 10) + " % of the window's " +
@@ -1424,7 +1466,8 @@ void change_within(std::span<const double> t, std::span<const double> x, std::sp
                              "where it changes"
          : !glitch.empty() ? glitch
                            : "a change of soil or of the roller's settings within it; "
-                             "a shorter --window resolves it"));
+                             "a shorter --window resolves it" +
+                                 (beat.empty() ? std::string() : "; " + beat)));
   }
 }
 
