@@ -106,7 +106,8 @@
     "smallest normal force (26) of the same trajectory: at the step ends and the events and, "    \
     "where N has its minimum inside a step, the minimum of the parabola through the step's "      \
     "start, middle and end (docs/model.md section 9); 0 where N reached 0 (contact lost, or a "   \
-    "lift-off)")                                                                                  \
+    "lift-off); N's value where a landing's contact pulled and the drum lifted off again at "     \
+    "once (section 13)")                                                                          \
   X(SteadyMethod, method, SteadyMethod::transient, "-", "method",                                 \
     "what produced the steady state: transient (integrated from rest until it repeats) or "       \
     "shooting (solved for by Newton's method on the period map, docs/periodic.md)")               \

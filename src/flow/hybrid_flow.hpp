@@ -333,9 +333,15 @@ FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) 
   ev.speed = sw.speed;
   // N reached 0 here (a lift-off, or the contact lost): the smallest normal force of the
   // trajectory is 0, not the smallest at the step ends before it (which read as a margin of
-  // hundreds of newtons on a run that lost contact).
-  if (sw.kind == EventKind::contact_lost || sw.kind == EventKind::lift_off)
-    counters.min_N = std::min(counters.min_N, 0.0);
+  // hundreds of newtons on a run that lost contact). Where the contact pulled from the start of
+  // its phase (a landing with N < 0, switched at once), N there is the smallest; a root's
+  // round-off (below 1e-6 of the weight) is 0.
+  if (sw.kind == EventKind::contact_lost || sw.kind == EventKind::lift_off) {
+    double N_here = 0.0;
+    values(x, &N_here);
+    counters.min_N =
+        std::min(counters.min_N, N_here < -detail::kWrongSide * model.W() ? N_here : 0.0);
+  }
   const StateT before = StateT::from_array(x);
   if (sw.terminal) {
     if (observer) observer->on_event(ev, before, before);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "equations/equations.hpp"
 #include "equations/jacobian.hpp"
@@ -134,17 +135,27 @@ U::Switch Dynamics<UnilateralDrum>::apply(Phase phase, int which, double t, cons
       const double dgap = out.after[kDGap];
       const double scale = m.r() * m.nu() * gap_scale_;  // a gap of the static deflection at nu
       if (phase == Phase::stick && dgap < -1e-9 * scale) {
+        // Where the contact pulled from the start of stick (a landing with N < 0, switched at
+        // once), N did not reach 0 but started below it: say so, with its value.
+        const ContactForces f = contact_forces(m, UnilateralState::from_array(x).contact());
+        const std::string where =
+            f.N < -1e-6 * m.W() ? detail::format(
+                                      "at t = %.9g s the contact pulled where stick began after a "
+                                      "landing (N = %.4g N)",
+                                      t, f.N)
+                                : detail::format("at t = %.9g s N reached 0 in stick", t);
         out.terminal = true;
         out.kind = EventKind::contact_lost;
         out.to = phase;
         out.after = x;
         out.stop = FlowStop::contact_lost;
-        out.message = detail::format(
-            "at t = %.9g s N reached 0 in stick while the contact still carried T = %.6g N: "
-            "without a friction limit (contact.pure_rolling) the soil's release moves the trough "
-            "into the drum (g' = %.3g m/s), so the drum can neither lift off nor stay in contact "
-            "(docs/model.md section 13); give a friction coefficient instead",
-            t, contact_forces(m, UnilateralState::from_array(x).contact()).T, dgap);
+        out.message =
+            where + detail::format(
+                        " while the contact still carried T = %.6g N: without a friction limit "
+                        "(contact.pure_rolling) the soil's release moves the trough into the drum "
+                        "(g' = %.3g m/s), so the drum can neither lift off nor stay in contact "
+                        "(docs/model.md section 13); give a friction coefficient instead",
+                        f.T, dgap);
       }
       return out;
     }

@@ -555,6 +555,12 @@ TEST(UnilateralDrum, ALandingWhoseContactPullsLiftsOffAtOnce) {
   ASSERT_EQ(rolling.status, Status::contact_lost) << rolling.message;
   EXPECT_NE(rolling.message.find("give a friction coefficient instead"), std::string::npos)
       << rolling.message;
+  // The contact pulled where stick began: the message says so with N's value there, and the
+  // smallest normal force is that value (the message said "N reached 0" and min N was 0).
+  EXPECT_NE(rolling.message.find("the contact pulled where stick began after a landing (N = -"),
+            std::string::npos)
+      << rolling.message;
+  EXPECT_LT(rolling.diagnostics.min_N, -1.0);
 }
 
 }  // namespace
