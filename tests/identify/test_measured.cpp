@@ -47,6 +47,24 @@ Signal make(double rate, double t_start, unsigned seed, int n_max = 15) {
   return s;
 }
 
+// The squared Mahalanobis distance of the first four harmonics of x_M'' (x) or z_M'' (!x) in m
+// from those of the noise-free window `clean`, in m's covariance (measure_window's covariance 4):
+// chi^2 with 8 degrees of freedom where that covariance is what the noise does.
+double chi2_of_first_four(const MeasuredResponse& m, const MeasuredResponse& clean, bool x) {
+  Eigen::MatrixXd C(8, 8);
+  Eigen::VectorXd e(8);
+  for (int a = 0; a < 8; ++a)
+    for (int b = 0; b < 8; ++b)
+      C(a, b) = (x ? m.cov_x : m.cov_z)[static_cast<std::size_t>(a * 8 + b)];
+  for (int n = 0; n < 4; ++n) {
+    const auto i = static_cast<std::size_t>(n);
+    const std::complex<double> d = x ? m.ddx[i] - clean.ddx[i] : m.ddz[i] - clean.ddz[i];
+    e[2 * n] = d.real();
+    e[2 * n + 1] = d.imag();
+  }
+  return e.dot(C.ldlt().solve(e));
+}
+
 TEST(MeasureWindow, RecoversTheHarmonicsOfAnIrregularRecordExactly) {
   const Signal s = make(2000, 3.0, 1);
   MeasureOptions o;
@@ -99,16 +117,7 @@ TEST(MeasureWindow, TheCovarianceIsCalibrated) {
     for (double& x : noisy.x) x += 0.3 * g(rng);
     for (double& z : noisy.z) z += 0.1 * g(rng);
     const MeasuredResponse m = measure_window(noisy.t, noisy.x, noisy.z, kF, o);
-    Eigen::MatrixXd C(8, 8);
-    Eigen::VectorXd e(8);
-    for (int a = 0; a < 8; ++a)
-      for (int b = 0; b < 8; ++b) C(a, b) = m.cov_x[static_cast<std::size_t>(a * 8 + b)];
-    for (int n = 0; n < 4; ++n) {
-      const std::complex<double> d = m.ddx[static_cast<std::size_t>(n)] - clean.ddx[n];
-      e[2 * n] = d.real();
-      e[2 * n + 1] = d.imag();
-    }
-    const double d2 = e.dot(C.ldlt().solve(e));
+    const double d2 = chi2_of_first_four(m, clean, true);
     sum += d2;
     sum2 += d2 * d2;
   }
@@ -155,21 +164,8 @@ TEST(MeasureWindow, TheNoiseIsNotTheHarmonicsBeyondThoseCompared) {
     for (double& z : noisy.z) z += 0.1 * g(rng);
     const MeasuredResponse m = measure_window(noisy.t, noisy.x, noisy.z, kF, o);
     noise_x += m.noise_x / trials;
-    for (const bool x : {true, false}) {
-      Eigen::MatrixXd C(8, 8);
-      Eigen::VectorXd e(8);
-      for (int a = 0; a < 8; ++a)
-        for (int b = 0; b < 8; ++b)
-          C(a, b) = (x ? m.cov_x : m.cov_z)[static_cast<std::size_t>(a * 8 + b)];
-      for (int n = 0; n < 4; ++n) {
-        const std::complex<double> d =
-            x ? m.ddx[static_cast<std::size_t>(n)] - clean.ddx[static_cast<std::size_t>(n)]
-              : m.ddz[static_cast<std::size_t>(n)] - clean.ddz[static_cast<std::size_t>(n)];
-        e[2 * n] = d.real();
-        e[2 * n + 1] = d.imag();
-      }
-      (x ? sum_x : sum_z) += e.dot(C.ldlt().solve(e)) / trials;
-    }
+    sum_x += chi2_of_first_four(m, clean, true) / trials;
+    sum_z += chi2_of_first_four(m, clean, false) / trials;
   }
   EXPECT_GT(noise_x, 1.8 * 0.3);  // the fit's residual holds the harmonics beyond 11
   // The mean of 200 draws of chi^2_8 has a standard deviation of 4 / sqrt(200) = 0.28.
@@ -214,21 +210,8 @@ TEST(MeasureWindow, TheHarmonicOnHalfTheSamplingRateIsNotNoise) {
       for (double& x : noisy.x) x += 0.02 * g(rng);
       for (double& z : noisy.z) z += 0.01 * g(rng);
       const MeasuredResponse m = measure_window(noisy.t, noisy.x, noisy.z, kF, o);
-      for (const bool x : {true, false}) {
-        Eigen::MatrixXd C(8, 8);
-        Eigen::VectorXd e(8);
-        for (int a = 0; a < 8; ++a)
-          for (int b = 0; b < 8; ++b)
-            C(a, b) = (x ? m.cov_x : m.cov_z)[static_cast<std::size_t>(a * 8 + b)];
-        for (int n = 0; n < 4; ++n) {
-          const std::complex<double> d =
-              x ? m.ddx[static_cast<std::size_t>(n)] - clean.ddx[static_cast<std::size_t>(n)]
-                : m.ddz[static_cast<std::size_t>(n)] - clean.ddz[static_cast<std::size_t>(n)];
-          e[2 * n] = d.real();
-          e[2 * n + 1] = d.imag();
-        }
-        (x ? sum_x : sum_z) += e.dot(C.ldlt().solve(e)) / trials;
-      }
+      sum_x += chi2_of_first_four(m, clean, true) / trials;
+      sum_z += chi2_of_first_four(m, clean, false) / trials;
     }
     // The mean of 200 draws of chi^2_8 has a standard deviation of 4 / sqrt(200) = 0.28.
     EXPECT_NEAR(sum_x, 8.0, 1.0) << per_period << " samples per period";
