@@ -397,11 +397,16 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
   // at 12, 14 or 16 samples per period had one channel's noise 5 to 30 times too large: that
   // channel hardly counted, the reduced chi^2 fell to 0.45, and the 95 % intervals covered the
   // truth in 81-87 % of windows (`MeasureWindow.TheHarmonicOnHalfTheSamplingRateIsNotNoise`).
+  // In a period-p window's joint fit the orders are those of f / p up to p N: beyond them the
+  // subharmonics' orders are the motion's as much as the harmonics' (a period-2 window at 15
+  // samples per period folds order 7.5 exactly onto half the sampling rate).
   double noise2_x = out.noise_x * out.noise_x, noise2_z = out.noise_z * out.noise_z;
   {
     const double step = detail::median_step(t);
-    const std::vector<int> extra = separable_orders(f, step, span, N);
-    const int nyquist = nyquist_order(f, step, span, N);
+    const double f_base = f / stride;
+    const int N_base = stride * N;
+    const std::vector<int> extra = separable_orders(f_base, step, span, N_base);
+    const int nyquist = nyquist_order(f_base, step, span, N_base);
     double explained_x = 0.0, explained_z = 0.0, dof_more = dof;
     if (!extra.empty() &&
         dof - 2.0 * static_cast<double>(extra.size()) >= 0.5 * static_cast<double>(M)) {
@@ -410,7 +415,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
       // joint fit would to second order in their small correlations, without their products
       // with the trend and the first fit's harmonics.
       const HarmonicFit more =
-          fit_harmonics(t, rx, rz, f, out.t_ref, -1, extra, nullptr, nullptr, false);
+          fit_harmonics(t, rx, rz, f_base, out.t_ref, -1, extra, nullptr, nullptr, false);
       if (more.ok) {
         explained_x += more.explained_x;
         explained_z += more.explained_z;
@@ -418,7 +423,7 @@ MeasuredResponse measure_window(std::span<const double> t, std::span<const doubl
       }
     }
     if (nyquist > 0) {
-      const Projection half = project_frequency(t, out.t_ref, nyquist * f, rx, rz);
+      const Projection half = project_frequency(t, out.t_ref, nyquist * f_base, rx, rz);
       if (dof_more - half.rank >= 0.5 * static_cast<double>(M)) {
         explained_x += half.explained_x;
         explained_z += half.explained_z;

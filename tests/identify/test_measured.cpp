@@ -267,6 +267,42 @@ TEST(MeasureWindow, APeriodTwoWindowsSubharmonicsAreNotNoise) {
   EXPECT_THROW(measure_window(s.t, s.x, s.z, kF, o), Error);
 }
 
+// The same for a period-2 window's orders beyond those fitted: the subharmonics beyond its 2 N
+// orders of f / 2 are the motion's too. Separable ones (order 6.5 at 15 samples per period, 6
+// harmonics fitted) and the one on half the sampling rate (order 7.5, exactly in step) were left
+// in the noise, which they made 5 to 8 times too large (the compared harmonics' covariance with
+// it); now the noise is the record's, as without them.
+TEST(MeasureWindow, APeriodTwoWindowsSubharmonicsBeyondThoseFittedAreNotNoise) {
+  const double sigma = 0.05;
+  auto window = [&](bool beyond) {
+    std::mt19937 rng(23);
+    std::normal_distribution<double> g(0.0, 1.0);
+    Signal s;
+    for (int i = 0; i < 40 * 15; ++i) {  // 40 periods at 15 samples per period
+      const double t = i / (15.0 * kF);
+      const double w = 2 * M_PI * kF * t;
+      double x = 3.0 * std::sin(w) + 0.8 * std::sin(0.5 * w + 0.2) + sigma * g(rng);
+      double z = 0.5 * std::sin(2 * w) + 0.4 * std::sin(1.5 * w + 1.0) + sigma * g(rng);
+      if (beyond) {
+        x += 0.4 * std::sin(6.5 * w + 0.5) + 0.3 * std::cos(7.5 * w + 0.1);
+        z += 0.3 * std::sin(6.5 * w + 1.5) + 0.2 * std::cos(7.5 * w + 0.7);
+      }
+      s.t.push_back(t);
+      s.x.push_back(x);
+      s.z.push_back(z);
+    }
+    MeasureOptions o;
+    o.period = 2;
+    return measure_window(s.t, s.x, s.z, kF, o);
+  };
+  const MeasuredResponse with = window(true), without = window(false);
+  ASSERT_EQ(with.ddx.size(), 6u);
+  ASSERT_EQ(with.subharmonics_of, 2);
+  EXPECT_NEAR(without.sigma_x / (sigma * std::sqrt(2.0 / 600.0)), 1.0, 0.15);
+  EXPECT_NEAR(with.sigma_x / without.sigma_x, 1.0, 0.1);
+  EXPECT_NEAR(with.sigma_z / without.sigma_z, 1.0, 0.1);
+}
+
 TEST(MeasureWindow, HarmonicsFromTheSampling) {
   const Signal s = make(1000, 0.0, 5);  // 25.4 samples per period: 11 harmonics
   EXPECT_EQ(measure_window(s.t, s.x, s.z, kF).ddx.size(), 11u);
