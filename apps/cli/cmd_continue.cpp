@@ -38,6 +38,7 @@ struct ContinueOptions {
   CaseOptions c;
   std::string key, csv, json, hdf5, bifurcations, plot, plot_metric = "area", format = "table";
   CLI::Option *plot_metric_flag = nullptr, *format_flag = nullptr;
+  std::vector<CLI::Option*> output_flags;  // --csv, --bifurcations, --json, --hdf5, --plot
   std::string from_text, to_text;
   BranchOptions branch;
   bool quiet = false;
@@ -268,6 +269,9 @@ int run(ContinueOptions o) {
   o.branch.key = o.key;
   o.branch.from = key_flag_value(*field, "--from", o.from_text);
   o.branch.to = key_flag_value(*field, "--to", o.to_text);
+  // A file name given empty (--csv "") is refused, as run and sweep refuse it: it wrote nothing.
+  for (const CLI::Option* flag : o.output_flags)
+    if (given(flag) && flag->as<std::string>().empty()) check_output_file(flag->get_name(), "");
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   if (!o.bifurcations.empty()) check_output_file("--bifurcations", o.bifurcations);
@@ -293,6 +297,9 @@ int run(ContinueOptions o) {
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
+  // A case file's MMd_fraction (or --MMd-fraction) holds at every value, as in a study: MMd
+  // follows the M0 in effect there (roller.M0, or roller.f with roller.unbalance).
+  if (spec.MMd_fraction) o.branch.MMd_fraction = *spec.MMd_fraction;
   check_harmonics(o.branch.harmonics, c.numerics.samples_per_period);
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
@@ -392,20 +399,25 @@ void add_continue_command(CLI::App& app, Action& action) {
                   "harmonics in the metrics, and the columns ddx_A1 ... ddx_AN, ddz_A1 ... ddz_AN "
                   "of --csv (default 10)")
       ->check(CLI::Range(2, 1000));
-  sub->add_option("--csv", o->csv, "write the points to FILE (one row per orbit)")
-      ->type_name("FILE");
-  sub->add_option("--bifurcations", o->bifurcations, "write the bifurcations to FILE (CSV)")
-      ->type_name("FILE");
-  sub->add_option("--json", o->json, "write the branch to FILE (schema oscidrum-branch/1)")
-      ->type_name("FILE");
-  sub->add_option("--hdf5", o->hdf5,
-                  "write the branches and their bifurcations to FILE (HDF5, layout in "
-                  "docs/bifurcations.md)")
-      ->type_name("FILE");
-  sub->add_option("--plot", o->plot,
-                  "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "
-                  "stable solid, unstable dashed, bifurcations marked")
-      ->type_name("FILE");
+  o->output_flags.push_back(
+      sub->add_option("--csv", o->csv, "write the points to FILE (one row per orbit)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--bifurcations", o->bifurcations, "write the bifurcations to FILE (CSV)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--json", o->json, "write the branch to FILE (schema oscidrum-branch/1)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--hdf5", o->hdf5,
+                      "write the branches and their bifurcations to FILE (HDF5, layout in "
+                      "docs/bifurcations.md)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--plot", o->plot,
+                      "draw a metric against the parameter into FILE (.png or .svg; needs --csv): "
+                      "stable solid, unstable dashed, bifurcations marked")
+          ->type_name("FILE"));
   o->plot_metric_flag =
       sub->add_option("--plot-metric", o->plot_metric,
                       "the column --plot shows (default area; a metric such as ddx_max or "

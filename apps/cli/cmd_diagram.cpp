@@ -35,6 +35,7 @@ struct DiagramCommandOptions {
   std::string key, from_text, to_text, sweep = "up", csv, json, plot, plot_quantity = "ddx_M";
   std::string format = "table";
   CLI::Option* format_flag = nullptr;
+  std::vector<CLI::Option*> output_flags;  // --csv, --json, --plot
   DiagramOptions diagram;
   bool quiet = false;
 };
@@ -194,6 +195,9 @@ int run(DiagramCommandOptions o) {
         names += (names.empty() ? "" : ", ") + std::string(c.name);
     throw Error("--plot-quantity: must be one of " + names + "; got '" + o.plot_quantity + "'");
   }
+  // A file name given empty (--csv "") is refused, as run and sweep refuse it: it wrote nothing.
+  for (const CLI::Option* flag : o.output_flags)
+    if (given(flag) && flag->as<std::string>().empty()) check_output_file(flag->get_name(), "");
   if (!o.csv.empty()) check_output_file("--csv", o.csv);
   if (!o.json.empty()) check_output_file("--json", o.json);
   // Standard output carries one thing (the table printed after a --csv - made it unreadable).
@@ -210,6 +214,8 @@ int run(DiagramCommandOptions o) {
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
+  // A case file's MMd_fraction (or --MMd-fraction) holds at every value, as in a study.
+  if (spec.MMd_fraction) o.diagram.MMd_fraction = *spec.MMd_fraction;
   install_interrupt_handlers();
   ProgressLine line(stderr_is_terminal() && !o.quiet);
   o.diagram.cancelled = [] { return interrupted(); };
@@ -311,14 +317,17 @@ void add_diagram_command(CLI::App& app, Action& action) {
                   "stroboscopic points kept at each value, and the periods its verdict examines "
                   "(default 400, the window simulate examines)")
       ->check(CLI::Range(20, 100000));
-  sub->add_option("--csv", o->csv, "write the stroboscopic points to FILE (one row per point)")
-      ->type_name("FILE");
-  sub->add_option("--json", o->json, "write the diagram to FILE (schema oscidrum-diagram/1)")
-      ->type_name("FILE");
-  sub->add_option("--plot", o->plot,
-                  "draw the stroboscopic points of --plot-quantity against the parameter into "
-                  "FILE (.png or .svg; needs --csv)")
-      ->type_name("FILE");
+  o->output_flags.push_back(
+      sub->add_option("--csv", o->csv, "write the stroboscopic points to FILE (one row per point)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--json", o->json, "write the diagram to FILE (schema oscidrum-diagram/1)")
+          ->type_name("FILE"));
+  o->output_flags.push_back(
+      sub->add_option("--plot", o->plot,
+                      "draw the stroboscopic points of --plot-quantity against the parameter into "
+                      "FILE (.png or .svg; needs --csv)")
+          ->type_name("FILE"));
   sub->add_option("--plot-quantity", o->plot_quantity,
                   "the numeric output column --plot shows and the table summarises (default "
                   "ddx_M; oscidrum outputs lists them; not phase, which is a category)")

@@ -7,6 +7,7 @@
 
 #include <complex>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct BranchOptions {
   /// Branch switching at period doublings: 0 none, 1 onto the period-2p branch, 2 also from
   /// it onto 4p, ... (at most 5)
   int switch_depth = 1;
+  /// MMd = MMd_fraction * M0 at every value of the parameter, with the M0 in effect there (it
+  /// follows roller.M0, or roller.f with roller.unbalance), as a study takes a case file's
+  /// MMd_fraction; NaN (the default): the case's MMd throughout [-]
+  double MMd_fraction = std::numeric_limits<double>::quiet_NaN();
   /// Polled during every period map; true stops the continuation (BranchEnd::cancelled).
   std::function<bool()> cancelled;
   /// Called after every accepted point (points so far, its parameter); for progress lines.

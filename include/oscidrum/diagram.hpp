@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct DiagramOptions {
   int discard = 200;
   /// Stroboscopic points kept at each value, and the periods the verdict examines (>= 20) [-]
   int periods = 400;
+  /// MMd = MMd_fraction * M0 at every value of the parameter, with the M0 in effect there (it
+  /// follows roller.M0, or roller.f with roller.unbalance), as a study takes a case file's
+  /// MMd_fraction; NaN (the default): the case's MMd throughout [-]
+  double MMd_fraction = std::numeric_limits<double>::quiet_NaN();
   /// Polled at every integration step: true stops the diagram (Diagram::cancelled).
   std::function<bool()> cancelled;
   /// Called after every value (values done, values in all, its parameter); for progress lines.

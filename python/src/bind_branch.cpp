@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <complex>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -89,8 +90,10 @@ py::dict branch_dict(const Branch& b) {
 
 py::dict continue_branch_py(const Case& c, const std::string& key, double from, double to,
                             double initial_step, double max_step, double tolerance, int max_points,
-                            bool metrics, int harmonics, int switch_depth) {
+                            bool metrics, int harmonics, int switch_depth,
+                            std::optional<double> MMd_fraction) {
   BranchOptions o;
+  if (MMd_fraction) o.MMd_fraction = *MMd_fraction;
   o.key = dotted_field_key(key);  // Python's flat names too ("mu": "unknown key 'mu'" before)
   o.from = from;
   o.to = to;
@@ -170,10 +173,13 @@ void bind_branch(py::module_& m) {
       "continue_branch", &continue_branch_py, py::arg("case"), py::arg("key"), py::arg("from_"),
       py::arg("to"), py::arg("initial_step") = 0.02, py::arg("max_step") = 0.05,
       py::arg("tolerance") = 1e-6, py::arg("max_points") = 2000, py::arg("metrics") = true,
-      py::arg("harmonics") = 10, py::arg("switch_depth") = 1,
+      py::arg("harmonics") = 10, py::arg("switch_depth") = 1, py::arg("MMd_fraction") = py::none(),
       "Follow the periodic orbits of `case` through the parameter `key` from `from_` to `to` "
       "(SI units) by pseudo-arclength continuation, stable and unstable alike, and locate the "
-      "bifurcations on the branch (docs/bifurcations.md).\n\n"
+      "bifurcations on the branch (docs/bifurcations.md). `MMd_fraction`: MMd = MMd_fraction * "
+      "M0 at every value, with the M0 in effect there (it follows roller.M0, or roller.f with "
+      "roller.unbalance; a Case keeps only the MMd its MMd_fraction gave); None: the case's MMd "
+      "throughout.\n\n"
       "Returns\n-------\ndict\n    key, unit, multiplicity, end ('reached_end', 'left_range', "
       "'gross_slip', 'lift_off', 'period_halved', 'step_too_small', 'max_points', 'start_failed'), "
       "message, "

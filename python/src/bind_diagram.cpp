@@ -75,8 +75,10 @@ py::dict diagram_dict(const Diagram& d) {
 }
 
 py::dict bifurcation_diagram_py(const Case& c, const std::string& key, double from, double to,
-                                int steps, const std::string& sweep, int discard, int periods) {
+                                int steps, const std::string& sweep, int discard, int periods,
+                                std::optional<double> MMd_fraction) {
   DiagramOptions o;
+  if (MMd_fraction) o.MMd_fraction = *MMd_fraction;
   o.key = dotted_field_key(key);  // Python's flat names too ("mu" -> "contact.mu")
   o.from = from;
   o.to = to;
@@ -107,11 +109,13 @@ py::dict bifurcation_diagram_py(const Case& c, const std::string& key, double fr
 void bind_diagram(py::module_& m) {
   m.def("bifurcation_diagram", &bifurcation_diagram_py, py::arg("case"), py::arg("key"),
         py::arg("from_"), py::arg("to"), py::arg("steps") = 50, py::arg("sweep") = "up",
-        py::arg("discard") = 200, py::arg("periods") = 400,
+        py::arg("discard") = 200, py::arg("periods") = 400, py::arg("MMd_fraction") = py::none(),
         "The brute-force bifurcation diagram of `case` in the parameter `key` (SI units, from_ < "
         "to): the motion at steps + 1 values, each started from the state the previous value "
         "ended in (sweep 'up', 'down' or 'both'), `discard` periods dropped, then `periods` "
-        "stroboscopic points kept and the motion examined (docs/bifurcations.md).\n\n"
+        "stroboscopic points kept and the motion examined (docs/bifurcations.md). `MMd_fraction`: "
+        "MMd = MMd_fraction * M0 at every value, with the M0 in effect there (None: the case's "
+        "MMd throughout).\n\n"
         "Returns\n-------\ndict\n    key, unit, periods_integrated, seconds; values: columns "
         "(NumPy arrays) parameter, direction (+1 up, -1 down), from_rest, shooting, period, "
         "lyapunov "

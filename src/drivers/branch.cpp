@@ -17,7 +17,7 @@
 namespace oscidrum {
 
 Branch continue_branch(const Case& c, const BranchOptions& o) {
-  const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue");
+  const Field* field = &detail::varied_field(c, o.key, o.from, o.to, "continue", o.MMd_fraction);
   if (!(o.from != o.to))
     throw Error("continue: the range's start and end (from and to, --from and --to) must differ",
                 o.key, o.to);
@@ -58,7 +58,7 @@ Branch continue_branch(const Case& c, const BranchOptions& o) {
                     "), the samples' Nyquist limit; got " + std::to_string(o.harmonics),
                 "harmonics", o.harmonics);
   const Model model(c);  // validates the case
-  detail::check_range_interior(c, *field, o.from, o.to, "continue");
+  detail::check_range_interior(c, *field, o.from, o.to, "continue", o.MMd_fraction);
   return detail::with_roller(model, [&]<class R>() {
     detail::branching::Continuation<R> primary(c, o, *field);
     Branch branch = primary.run();

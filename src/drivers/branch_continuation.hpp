@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "drivers/sampling.hpp"
+#include "drivers/varied_parameter.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/branch.hpp"
 #include "oscidrum/error.hpp"
@@ -214,7 +215,7 @@ class Continuation {
 
   Case case_at(double q) const {
     Case c = base_;
-    set_field(c, field_.key, q);
+    set_varied(c, field_, q, o_.MMd_fraction);
     return c;
   }
   Vector full_state(const VectorXd& v) const {

@@ -129,7 +129,7 @@ DiagramValue value_at(const Case& c, const Field& field, double q, Start& start,
   DiagramValue v;
   v.parameter = q;
   Case ck = c;
-  set_field(ck, field.key, q);
+  detail::set_varied(ck, field, q, o.MMd_fraction);
   // The attractor as a periodic orbit first: shooting from the previous value's last state (the
   // first value: simulate's start), with a budget of periods below the one at which simulate
   // examines a motion itself (the transient below does that here).
@@ -254,7 +254,7 @@ const char* to_string(DiagramSweep sweep) {
 }
 
 Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
-  const Field& field = detail::varied_field(c, o.key, o.from, o.to, "diagram");
+  const Field& field = detail::varied_field(c, o.key, o.from, o.to, "diagram", o.MMd_fraction);
   if (!(o.from < o.to))
     // The values named as the rule names them ("got 5000 and 1000" read as end 5000, start
     // 1000), in the unit they are typed in (soil.G in MN/m^2, not 1e+08 without a unit).
@@ -294,7 +294,7 @@ Diagram bifurcation_diagram(const Case& c, const DiagramOptions& o) {
   // soil from 5 to 70 MN/m^2 in 3 steps stopped at 26.7 MN/m^2 with the field's message alone,
   // not saying that the diagram's steps put it there (continue checks its whole range alike).
   for (int i = 0; i <= o.steps; ++i) {
-    const std::string why = detail::invalid_at(c, field, value(i));
+    const std::string why = detail::invalid_at(c, field, value(i), o.MMd_fraction);
     if (!why.empty())
       throw Error("diagram: " + o.key + " = " + detail::quoted_value(field, value(i)) + ", value " +
                       std::to_string(i) + " of --steps " + std::to_string(o.steps) + " from " +

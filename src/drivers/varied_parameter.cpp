@@ -2,6 +2,7 @@
 #include "drivers/varied_parameter.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,10 +13,30 @@
 
 namespace oscidrum::detail {
 
+void set_varied(Case& c, const Field& field, double value, double MMd_fraction) {
+  field.set(c, value);
+  if (std::isfinite(MMd_fraction)) c.MMd = MMd_fraction * oscillation_moment(c.roller);
+}
+
 const Field& varied_field(const Case& c, const std::string& key, double from, double to,
-                          const std::string& who) {
+                          const std::string& who, double MMd_fraction) {
   const Field* field = find_field(key);
   if (!field) throw Error(who + ": unknown key '" + key + "' (oscidrum fields lists them)");
+  if (!std::isnan(MMd_fraction)) {
+    if (!std::isfinite(MMd_fraction))
+      throw Error(who + ": MMd_fraction must be finite; got " + shortest(MMd_fraction),
+                  "MMd_fraction", MMd_fraction);
+    if (key == "MMd")
+      throw Error(who +
+                      ": MMd is the varied parameter, and MMd_fraction (--MMd-fraction) would "
+                      "set it at every value: give one of them",
+                  "MMd_fraction", MMd_fraction);
+    if (c.roller.type == RollerType::vibratory)
+      throw Error(who +
+                      ": MMd_fraction has no effect while roller.type = \"vibratory\" (it "
+                      "has no oscillation moment M0); give MMd in N m",
+                  "MMd_fraction", MMd_fraction);
+  }
   if (field->type != FieldType::real)
     throw Error(who + ": " + key + " is not a real-valued parameter");
   if (key.rfind("numerics.", 0) == 0)
@@ -51,7 +72,7 @@ const Field& varied_field(const Case& c, const std::string& key, double from, do
   // case can have is said now, not after a branch crawled towards it and failed there.
   for (const auto& [name, value] : {std::pair{"from (--from)", from}, std::pair{"to (--to)", to}}) {
     Case at = c;
-    field->set(at, value);
+    set_varied(at, *field, value, MMd_fraction);
     try {
       const Model model(at);
     } catch (const Error& e) {
@@ -68,10 +89,10 @@ std::string quoted_value(const Field& field, double value) {
   return shortest(value / field.display_scale) + (unit == "-" ? "" : " " + unit);
 }
 
-std::string invalid_at(const Case& c, const Field& field, double value) {
+std::string invalid_at(const Case& c, const Field& field, double value, double MMd_fraction) {
   Case at = c;
   try {
-    field.set(at, value);
+    set_varied(at, field, value, MMd_fraction);
     std::string why = check_field(field, value);
     if (why.empty()) (void)Model(at);
     return why;
@@ -81,14 +102,14 @@ std::string invalid_at(const Case& c, const Field& field, double value) {
 }
 
 void check_range_interior(const Case& c, const Field& field, double from, double to,
-                          const std::string& who) {
+                          const std::string& who, double MMd_fraction) {
   std::vector<double> values = {from + 1e-6 * (to - from), to - 1e-6 * (to - from)};
   for (int k = 1; k < kRangeChecks; ++k) values.push_back(from + (to - from) * k / kRangeChecks);
   std::sort(values.begin(), values.end(), [&](double a, double b) {
     return (a - from) * (to - from) < (b - from) * (to - from);  // from --from towards --to
   });
   for (const double value : values) {
-    const std::string why = invalid_at(c, field, value);
+    const std::string why = invalid_at(c, field, value, MMd_fraction);
     if (!why.empty())
       throw Error(who + ": " + field.key + " = " + shortest(value) +
                       (std::string(field.unit) == "-" ? "" : " " + std::string(field.unit)) +

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <string>
 
 #include "bifurcation_cases.hpp"
@@ -78,6 +79,52 @@ TEST(Branch, OrbitsAreTheSteadyStatesOfSimulate) {
     EXPECT_GT(secant, lo - 0.05 * std::abs(hi)) << k;
     EXPECT_LT(secant, hi + 0.05 * std::abs(hi)) << k;
   }
+}
+
+// MMd_fraction holds at every point, as in a study: MMd = 0.05 M0 with the M0 of the point. (The
+// CLI's continue kept the MMd of --from's M0, 2747 N m, along a branch in roller.M0: area 39.65
+// at M0 = 40000 N m, where run gives 30.40.) Without it the case's MMd holds throughout.
+TEST(Branch, MMdFractionFollowsTheM0OfEachPoint) {
+  Case c;
+  BranchOptions o;
+  o.key = "roller.M0";
+  o.from = 40000.0;
+  o.to = 60000.0;
+  o.MMd_fraction = 0.05;
+  o.metrics = true;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::reached_end) << b.message;
+  for (const BranchPoint* p : {&b.points.front(), &b.points.back()}) {
+    Case ck = c;
+    ck.roller.M0 = p->parameter;
+    ck.MMd = 0.05 * p->parameter;
+    const Model model(ck);
+    const Result r = simulate(model);
+    ASSERT_EQ(r.status, Status::steady_state);
+    EXPECT_NEAR(p->metrics.area, compute_metrics(model, r).area, 1e-6 * p->metrics.area)
+        << p->parameter;
+  }
+  // Without: the case's MMd (0 here) at every point.
+  o.MMd_fraction = std::numeric_limits<double>::quiet_NaN();
+  c.MMd = 1000.0;
+  const Branch fixed = continue_branch(c, o);
+  ASSERT_EQ(fixed.end, BranchEnd::reached_end) << fixed.message;
+  Case ck = c;
+  ck.roller.M0 = 60000.0;
+  const Model model(ck);
+  EXPECT_NEAR(fixed.points.back().metrics.area, compute_metrics(model, simulate(model)).area,
+              1e-6 * fixed.points.back().metrics.area);
+  // It cannot hold with MMd varied, nor for a drum without an oscillation moment.
+  o.key = "MMd";
+  o.from = 0.0;
+  o.to = 1000.0;
+  o.MMd_fraction = 0.05;
+  EXPECT_THROW(continue_branch(c, o), Error);
+  o.MMd_fraction = std::numeric_limits<double>::infinity();
+  o.key = "roller.M0";
+  o.from = 40000.0;
+  o.to = 60000.0;
+  EXPECT_THROW(continue_branch(c, o), Error);
 }
 
 // The driving torque makes the drum slip further each period: the slip+ phase vanishes (a

@@ -143,6 +143,35 @@ TEST(Diagram, SweepsVisitTheValuesInOrder) {
   EXPECT_EQ(down.values[2].parameter, 0.0);
 }
 
+// MMd_fraction holds at every value: MMd = 0.05 M0 with the value's M0. The stroboscopic points
+// at t = k T (sin(nu t) = 0 there) are on the period-1 orbit simulate() finds with that MMd.
+TEST(Diagram, MMdFractionFollowsTheM0OfEachValue) {
+  DiagramOptions o;
+  o.key = "roller.M0";
+  o.from = 40000.0;
+  o.to = 60000.0;
+  o.steps = 1;
+  o.discard = 100;
+  o.periods = 20;
+  o.MMd_fraction = 0.05;
+  const Diagram d = bifurcation_diagram(Case(), o);
+  ASSERT_EQ(d.values.size(), 2u);
+  for (const DiagramValue& v : d.values) {
+    Case c;
+    c.roller.M0 = v.parameter;
+    c.MMd = 0.05 * v.parameter;
+    const Result r = simulate(c);
+    ASSERT_EQ(r.status, Status::steady_state);
+    ASSERT_FALSE(v.section.delta.empty());
+    // The section's delta against the steady samples' delta at the same phase (t = k T).
+    EXPECT_NEAR(v.section.delta.back(), r.samples.delta.front(), 1e-6) << v.parameter;
+  }
+  o.key = "MMd";
+  o.from = 0.0;
+  o.to = 1000.0;
+  EXPECT_THROW(bifurcation_diagram(Case(), o), Error);
+}
+
 // numerics.start_ramp_periods ramps the excitation in from rest: the first value starts under it
 // (its points past the ramp), the next continues from its state on the full excitation, and
 // ends on the orbit a diagram without the ramp finds there. At each point the excitation is
