@@ -162,7 +162,12 @@ void check_output_file(const std::string& flag, const std::string& path, bool al
   if (path.empty())
     throw Error(flag + " needs a file name; got an empty one" +
                 (allow_stdout ? std::string(" ('-' is stdout)") : std::string()));
-  if (path == "-" && allow_stdout) return;
+  if (path == "-") {
+    if (allow_stdout) return;
+    // Elsewhere '-' is standard output: a file of that name in the working directory is not what
+    // was meant (--hdf5 - wrote one, exit 0).
+    throw Error(flag + " writes a file, not standard output: give a file name; got '-'");
+  }
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw Error(flag + " " + path + " is a directory; give a file name (e.g. " +

@@ -49,6 +49,24 @@ TEST(CliContinue, BranchToTheGrossSlipLimitWritesItsFiles) {
             static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n') - 1));
 }
 
+// --MMd-fraction (or a case file's MMd_fraction) holds at every point, as in a sweep: along
+// roller.M0 the first point's area is run's at --from with the same flag (39.65 m^2/s^4 before,
+// the MMd of the default M0 kept, against run's 30.40).
+TEST(CliContinue, MMdFractionFollowsTheVariedM0) {
+  TempDir dir;
+  const Outcome o =
+      run({"continue", "--param", "roller.M0", "--from", "40000", "--to", "60000", "--MMd-fraction",
+           "0.05", "--json", dir / "b.json", "--format", "none", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(read(dir / "b.json"));
+  const Outcome single =
+      run({"run", "--M0", "40000", "--MMd-fraction", "0.05", "--format", "json"});
+  ASSERT_EQ(single.code, 0) << single.err;
+  const double area = nlohmann::json::parse(single.out)["metrics"]["area"].get<double>();
+  const double first = j["points"][0]["metrics"]["area"].get<double>();
+  EXPECT_NEAR(first, area, 1e-6 * area);
+}
+
 // --harmonics had no effect: the branch's files held the scalar metrics only. Each point now has
 // the amplitudes A_1 ... A_H of x_M'' and z_M'' (H = --harmonics), as a sweep's rows do: the
 // first point, at --from, the same as `run` gives there.
@@ -100,6 +118,26 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
   const Outcome table2 = run({"continue", "--param", "soil.G", "--from", "20", "--to", "30"});
   EXPECT_EQ(table2.code, 2) << table2.err;
   EXPECT_NE(table2.err.find("set soil.input = \"modulus\""), std::string::npos) << table2.err;
+  // Output names given empty (exit 0, nothing written, before) and an HDF5 file named '-'.
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"continue", "--param", "MMd", "--from", "0", "--to", "100", "--csv", ""},
+           {"continue", "--param", "MMd", "--from", "0", "--to", "100", "--json", ""},
+           {"continue", "--param", "MMd", "--from", "0", "--to", "100", "--bifurcations", ""},
+           {"continue", "--param", "MMd", "--from", "0", "--to", "100", "--hdf5", ""},
+           {"continue", "--param", "MMd", "--from", "0", "--to", "100", "--hdf5", "-"},
+           {"diagram", "--param", "MMd", "--from", "0", "--to", "100", "--csv", ""},
+           {"diagram", "--param", "MMd", "--from", "0", "--to", "100", "--plot", ""}}) {
+    const Outcome o = run(args);
+    EXPECT_EQ(o.code, 2) << args[0] << " " << args[7] << ": " << o.err;
+    EXPECT_TRUE(o.err.find("needs a file name") != std::string::npos ||
+                o.err.find("writes a file, not standard output") != std::string::npos)
+        << o.err;
+  }
+  // MMd_fraction with MMd varied: one of them.
+  const Outcome both =
+      run({"continue", "--param", "MMd", "--from", "0", "--to", "100", "--MMd-fraction", "0.05"});
+  EXPECT_EQ(both.code, 2) << both.err;
+  EXPECT_NE(both.err.find("MMd is the varied parameter"), std::string::npos) << both.err;
   // G typed in Pa where the flag takes MN/m^2: said with what was meant.
   const Outcome pa = run({"continue", "--param", "soil.G", "--from", "20e6", "--to", "30", "--set",
                           "soil.input=modulus"});
