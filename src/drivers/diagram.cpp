@@ -102,10 +102,24 @@ void gross_slip_verdict(const detail::Dynamics<R>& dyn, MotionAnalysis& m) {
     return x;
   };
   double hold = 0.0;
-  const int s = dyn.pushed_slip(m.section_phase.back(), at(n - 1), &hold);
+  // Points in flight say nothing of the slip: the contact phase is the last point's in contact,
+  // or where every point is in flight (a drum spinning through its flights: "a torus" before),
+  // the slip the driving torque pushes.
+  Phase contact = Phase::flight;
+  for (std::size_t k = n; k-- > 0;)
+    if (m.section_phase[k] != Phase::flight) {
+      contact = m.section_phase[k];
+      break;
+    }
+  if (contact == Phase::flight) {
+    const double MMd = dyn.model().parameters().MMd;
+    if (MMd == 0.0) return;
+    contact = MMd > 0.0 ? Phase::slip_negative : Phase::slip_positive;
+  }
+  const int s = dyn.pushed_slip(contact, at(n - 1), &hold);
   if (s == 0) return;
   for (std::size_t k = 1; k < n; ++k)
-    if (m.section_phase[k] != m.section_phase.back() ||
+    if ((m.section_phase[k] != contact && m.section_phase[k] != Phase::flight) ||
         !(Dyn::spin_up(at(k), at(k - 1), s, 1) > 0.0))
       return;
   const double first = Dyn::spin_up(at(1), at(0), s, 1);

@@ -96,11 +96,29 @@ class Search : public BasicFlowObserver<R> {
   bool on_event(const Event& event, const State&, const State&) override {
     recent_.push_back(event);
     if (recent_.size() > kRecentEvents) recent_.pop_front();
-    if (event.kind != EventKind::contact_lost) ++switches_this_period_;
+    // A flight interrupts no slip: the contact phases on either side of it count instead (a drum
+    // that spins through its flights, slip- -> flight -> slip- every period, ran 5000 periods to
+    // "quasi-periodic: a torus", its phi' growing by 0.25 rad/s a period).
+    if (event.kind == EventKind::lift_off)
+      touch(event.from);
+    else if (event.kind == EventKind::landing)
+      touch(event.to);
+    else if (event.kind != EventKind::contact_lost)
+      ++switches_this_period_;
     return true;
   }
 
  private:
+  void touch(Phase contact) {
+    contact_phases_ |= 1 << (static_cast<int>(contact) + 1);
+    last_contact_ = contact;
+  }
+  // A new period: no switch yet, and the contact phase it starts in (if in contact).
+  void new_period() {
+    switches_this_period_ = 0;
+    contact_phases_ = 0;
+    if (flow_.phase() != Phase::flight) touch(flow_.phase());
+  }
   // Returns true when the search ends at boundary n.
   bool on_boundary(int n, const Vec& x);
   bool gross_slip(int n, const Vec& x);
@@ -124,7 +142,9 @@ class Search : public BasicFlowObserver<R> {
   std::deque<std::pair<Vec, Vec>> period_extremes_;
   std::array<int, 65> below_{};  // consecutive boundaries with change_p < steady_tol, per p
   std::deque<Event> recent_;
-  long switches_this_period_ = 0;
+  long switches_this_period_ = 0;  // switches in contact (lift-offs and landings not)
+  int contact_phases_ = 0;         // bit phase + 1: the contact phases of this period
+  Phase last_contact_ = Phase::stick;
   int slipping_periods_ = 0;
   std::deque<double> changes_;  // the last 2 kStagnationPeriods period-to-period changes
 };
@@ -152,8 +172,11 @@ bool Search<R>::gross_slip(int n, const Vec& x) {
   // The roller says which slip that is (Dynamics<R>::pushed_slip) and how fast phi' grows
   // (spin_up, its component kSpin).
   double hold = 0.0;
-  const int s = dynamics_.pushed_slip(flow_.phase(), x, &hold);
-  if (s != 0 && switches_this_period_ == 0)
+  // In flight at the boundary: the slip it lifted off from (or landed in) is the period's.
+  const Phase contact = flow_.phase() == Phase::flight ? last_contact_ : flow_.phase();
+  const int s = dynamics_.pushed_slip(contact, x, &hold);
+  const bool one_phase = (contact_phases_ & ~(1 << (static_cast<int>(contact) + 1))) == 0;
+  if (s != 0 && switches_this_period_ == 0 && one_phase)
     ++slipping_periods_;
   else
     slipping_periods_ = 0;
@@ -214,7 +237,7 @@ bool Search<R>::on_boundary(int n, const Vec& x) {
   // During a start ramp (numerics.start_ramp_periods) the excitation is not yet periodic: no
   // verdict on steadiness or gross slip, only the progress and the budget.
   if (flow_.t() < num_.start_ramp_periods * period_ - 0.5 * period_) {
-    switches_this_period_ = 0;
+    new_period();
     if (progress_ && !progress_(n, std::numeric_limits<double>::infinity())) {
       out_.status = Status::cancelled;
       out_.message = detail::format("cancelled after %.0f periods", n);
@@ -261,7 +284,7 @@ bool Search<R>::on_boundary(int n, const Vec& x) {
   }
   out_.final_change = change1;
   const bool spinning = gross_slip(n, x);
-  switches_this_period_ = 0;
+  new_period();
   if (spinning) return true;
   if (progress_ && !progress_(n, change1)) {
     out_.status = Status::cancelled;

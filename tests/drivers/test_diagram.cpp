@@ -344,6 +344,36 @@ TEST(Diagram, ASpinningDrumIsGrossSlipNotATorus) {
   EXPECT_EQ(simulate(c).status, Status::gross_slip);
 }
 
+// A vibratory drum that lifts off every period and spins: slip- -> flight -> slip-, never stick,
+// phi' growing by 0.25 rad/s a period. A flight interrupts no slip: run says gross_slip within
+// some 40 periods, the diagram too (run integrated 5000 periods and said "aperiodic: a torus",
+// the diagram "quasi_periodic"; every stroboscopic point is in flight).
+TEST(Diagram, ASpinningDrumThatLiftsOffIsGrossSlip) {
+  Case c;
+  c.roller.type = RollerType::vibratory;
+  c.roller.static_moment = 0.9;
+  c.roller.f = 30.0;
+  c.contact.unilateral = true;
+  c.MMd = 15000.0;
+  const Result r = simulate(c);
+  EXPECT_EQ(r.status, Status::gross_slip) << r.message;
+  EXPECT_LT(r.diagnostics.periods_simulated, 100) << r.message;
+  DiagramOptions o;
+  o.key = "MMd";
+  o.from = 15000.0;
+  o.to = 15100.0;
+  o.steps = 1;
+  o.discard = 100;
+  o.periods = 100;
+  const Diagram d = bifurcation_diagram(c, o);
+  ASSERT_EQ(d.values.size(), 2u);
+  for (const DiagramValue& v : d.values) {
+    EXPECT_EQ(v.motion.kind, "gross_slip") << v.motion.evidence;
+    ASSERT_FALSE(v.section.phase.empty());
+    EXPECT_EQ(v.section.phase.back(), Phase::flight);
+  }
+}
+
 // The vibratory drum with lift-off at 21.5 Hz, reached from 22 Hz: just below the flip of the
 // period-1 orbit (21.509 Hz), its two stroboscopic points drift apart over the 400 periods
 // (exponent 1e-4 per period) towards the stable period-2 orbit that simulate finds; they were
