@@ -348,6 +348,13 @@ double key_flag_value(const Field& f, const std::string& flag, const std::string
                     ", outside its range: did you mean " + flag + " " +
                     fmt(*shown / f.display_scale, 10) + "?",
                 f.key, value);
+  // Out of range as typed: said in the unit it was typed in (the check in Pa said "got 5000
+  // (values are in Pa: did you mean 5e+09, i.e. 5000 MN/m^2?)" of --to 0.005).
+  if (!check_field(f, value).empty())
+    throw Error(flag + ": " + f.key + " must be in [" + fmt(f.min / f.display_scale, 10) + ", " +
+                    fmt(f.max / f.display_scale, 10) + "] [" + f.display_unit + "] here; got " +
+                    text,
+                f.key, value);
   return value;
 }
 

@@ -133,6 +133,14 @@ TEST(CliContinue, BadInputIsRefusedWithExitCode2) {
                 o.err.find("writes a file, not standard output") != std::string::npos)
         << o.err;
   }
+  // G typed in MN/m^2 below its range: said in MN/m^2 (it was said in Pa, with a hint to type
+  // 5000 MN/m^2).
+  const Outcome low = run({"continue", "--param", "soil.G", "--from", "30", "--to", "0.005",
+                           "--set", "soil.input=modulus"});
+  EXPECT_EQ(low.code, 2) << low.err;
+  EXPECT_NE(low.err.find("--to: soil.G must be in [0.01, 100000] [MN/m^2] here; got 0.005"),
+            std::string::npos)
+      << low.err;
   // MMd_fraction with MMd varied: one of them.
   const Outcome both =
       run({"continue", "--param", "MMd", "--from", "0", "--to", "100", "--MMd-fraction", "0.05"});
