@@ -598,12 +598,20 @@ std::optional<std::string> stable_orbit_nearby(const Model& model, const Result&
       orbit.diagnostics.multiplicity, orbit.floquet.max_modulus);
 }
 
+// A run stopped while its motion was to be examined, or during it, has no verdict: it is
+// cancelled, not max_periods_reached (a sweep interrupted there kept such a case as finished,
+// status max_periods_reached for an aperiodic one, and --resume kept it).
+void cancel_examination(Result& result) {
+  result.status = Status::cancelled;
+  result.message += "; cancelled before the motion was examined";
+}
+
 void examine_motion(const Model& model, Result& result, const std::function<bool()>& cancelled) {
   MotionAnalysis a = analyze_motion(model, result, kMotionPeriods, cancelled);
-  if (cancelled && cancelled()) return;  // the run's status stands; it was stopped
+  if (cancelled && cancelled()) return cancel_examination(result);
   if (a.kind == "undecided" && a.periods == kMotionPeriods) {
     a = analyze_motion(model, result, kLongerMotion * kMotionPeriods, cancelled);
-    if (cancelled && cancelled()) return;
+    if (cancelled && cancelled()) return cancel_examination(result);
     a.evidence += " (" + std::to_string(kMotionPeriods) + " periods did not decide)";
   }
   result.diagnostics.motion = a.kind;
@@ -614,7 +622,9 @@ void examine_motion(const Model& model, Result& result, const std::function<bool
   // kShootingCheckPeriods, below kMotionPeriods: no examination of its own) tells them apart: a
   // stable orbit it reaches from there is not a torus.
   if (a.kind == "quasi_periodic" && !(cancelled && cancelled())) {
-    if (const std::optional<std::string> orbit = stable_orbit_nearby(model, result, cancelled)) {
+    const std::optional<std::string> orbit = stable_orbit_nearby(model, result, cancelled);
+    if (cancelled && cancelled()) return cancel_examination(result);
+    if (orbit) {
       result.diagnostics.motion = "converging";
       result.message += "; examined over " + std::to_string(a.periods) +
                         " further periods: converging (the largest Lyapunov exponent reads zero, " +
@@ -649,8 +659,12 @@ Result simulate_roller(const Model& model, const ProgressCallback& progress,
   // Examined when the search had at least as many periods as the examination takes (a run cut
   // short on purpose, numerics.max_periods = 3, is a transient, not a motion to judge).
   if (result.status == Status::max_periods_reached && result.samples.size() > 0 &&
-      model.parameters().numerics.max_periods >= kMotionPeriods && !(cancelled && cancelled()))
-    examine_motion(model, result, cancelled);
+      model.parameters().numerics.max_periods >= kMotionPeriods) {
+    if (cancelled && cancelled())
+      cancel_examination(result);
+    else
+      examine_motion(model, result, cancelled);
+  }
   result.diagnostics.contact_mode = contact_mode(result);
   result.diagnostics.operating_mode =
       detail::operating_mode(model.parameters().roller.type, result.diagnostics);

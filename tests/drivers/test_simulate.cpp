@@ -709,6 +709,35 @@ TEST(Simulate, CancellationStopsWithinAStep) {
   EXPECT_LE(r.diagnostics.steps, 51);
 }
 
+// Cancelled once the search has used its periods, before or while the motion is examined: the
+// run is cancelled, not max_periods_reached without a verdict (an interrupted sweep kept such a
+// case as finished, and --resume kept the wrong row: the same case is aperiodic, a torus).
+TEST(Simulate, CancellationDuringTheMotionsExaminationIsCancelled) {
+  Case c;
+  c.roller.f = 58.0;
+  c.roller.unbalance = 0.22877;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 46.9e6;
+  c.contact.pure_rolling = true;
+  c.contact.unilateral = true;
+  c.numerics.method = SteadyMethod::transient;
+  c.numerics.max_periods = 400;
+  const Model model(c);
+  ASSERT_EQ(simulate(model).status, Status::aperiodic);
+  for (const long after : {0L, 2000L}) {
+    bool searched = false;
+    long polls = 0;
+    const Result r = simulate(
+        model,
+        [&](int n, double) {
+          searched = searched || n >= 400;
+          return true;
+        },
+        [&] { return searched && ++polls > after; });
+    EXPECT_EQ(r.status, Status::cancelled) << after << ": " << r.message;
+  }
+}
+
 TEST(Simulate, TooManySamplesAreRefusedBeforeIntegrating) {
   Case c;
   c.numerics.samples_per_period = 1000000;
