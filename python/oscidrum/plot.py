@@ -43,7 +43,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from ._checks import is_number
+from ._checks import is_integer, is_number
 from ._files import output_path
 from .data import (Error, SteadyState, as_steady_state, from_result, harmonic_amplitudes,
                    read_case, read_csv_columns, resolve_column, split_header)
@@ -880,6 +880,8 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
     ddx_amplitude, ddz_amplitude) or "both" (one case: A_n [m/s^2] on the left axis, A_n /
     max A_n on the right). ax: two Axes to draw into. legend: as for plot_accelerations (one
     legend, on (a))."""
+    if not is_integer(n_max) or n_max < 1:  # -1 raised IndexError, 2.0 TypeError
+        raise Error(f"n_max must be an integer >= 1 (the highest harmonic shown); got {n_max!r}")
     if units in ("m/s2", "m s^-2"):
         units = "m/s^2"
     if units not in SPECTRUM_UNITS:

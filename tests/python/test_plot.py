@@ -63,6 +63,10 @@ def test_spectra_normalised(rolling_result):
     fig = plot.plot_spectra([rolling_result, rolling_result], labels=["a", "b"])
     assert len(fig.axes) == 2 and len(fig.axes[0].patches) == 20  # 10 harmonics x 2 cases
     assert "f_{exc}" in fig.axes[1].get_xlabel()
+    # A bad n_max is a bad call: -1 raised IndexError, 2.5 TypeError.
+    for bad in (-1, 0, 2.5, True, "3"):
+        with pytest.raises(oscidrum.Error, match=r"n_max must be an integer >= 1"):
+            plot.plot_spectra(rolling_result, n_max=bad)
 
 
 def test_sweep_labels_and_scaling():
