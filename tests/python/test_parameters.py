@@ -210,6 +210,18 @@ def test_soil_table2_and_transmissibility():
     assert k.csh == pytest.approx(141e3, rel=0.01) and 0.09 < k.a0 < 0.1
     k2 = oscidrum.soil_coefficients(oscidrum.Soil(input="modulus", G=25e6))
     assert k2.ksh == k.ksh
+    assert oscidrum.soil_coefficients(G=25e6, nu=0.3, rho=1900).ksh == k.ksh
+    # G, nu and rho by the rules of their fields, as a Case takes them: G in MN/m^2 gave a0 = 96 m,
+    # True stood for 1 Pa.
+    with pytest.raises(oscidrum.Error, match=r"^soil\.G must be in \[10000, 1e\+11\] \[Pa\]; got 25 "
+                       r"\(values are in Pa: did you mean 2\.5e\+07, i\.e\. 25 MN/m\^2\?\)$"):
+        oscidrum.soil_coefficients(25.0)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.G must be a number \[Pa\]; got a boolean"):
+        oscidrum.soil_coefficients(True)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.nu must be"):
+        oscidrum.soil_coefficients(25e6, nu=0.5)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.rho must be a number"):
+        oscidrum.soil_coefficients(25e6, rho="1900")
     t = oscidrum.transmissibility()
     assert t.Tp == pytest.approx(0.025, abs=5e-4) and t.ratio == pytest.approx(6.4, abs=0.05)
     with pytest.raises(oscidrum.Error):
