@@ -60,8 +60,8 @@ std::vector<SeriesResult> for_validation(const py::iterable& items) {
   std::vector<SeriesResult> out;
   for (py::handle item : items) {
     if (!py::isinstance<SeriesResult>(item))
-      throw py::type_error("validate: expected SeriesResult items (from run_paper_studies); got " +
-                           py::str(py::type::of(item)).cast<std::string>());
+      throw Error("validate: results must be the SeriesResults of run_paper_studies(); results[" +
+                  std::to_string(out.size()) + "] is " + python_description(item));
     const SeriesResult& s = item.cast<const SeriesResult&>();
     for (const Metrics& m : s.metrics)
       if (m.ddx_harmonics.size() < 3 || m.ddz_harmonics.size() < 3)

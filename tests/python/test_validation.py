@@ -140,8 +140,9 @@ def test_validate_errors(paper_studies):
     results = paper_studies[0]
     with pytest.raises(oscidrum.Error, match="free_drum"):
         oscidrum.validate(results[:-1])
-    with pytest.raises(TypeError):
-        oscidrum.validate([1, 2])
+    with pytest.raises(oscidrum.Error, match=r"^validate: results must be the SeriesResults of "
+                       r"run_paper_studies\(\); results\[1\] is int \(5\)$"):
+        oscidrum.validate([results[0], 5])  # a raw TypeError
     few = oscidrum.run_paper_studies(n_harmonics=1)
     with pytest.raises(oscidrum.Error, match="n_harmonics >= 2"):
         oscidrum.validate(few)
