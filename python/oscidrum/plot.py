@@ -43,7 +43,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from ._checks import is_number
+from ._checks import is_integer, is_number
 from ._files import output_path
 from .data import (Error, SteadyState, as_steady_state, from_result, harmonic_amplitudes,
                    read_case, read_csv_columns, resolve_column, split_header)
@@ -880,6 +880,8 @@ def plot_spectra(cases: Any, labels: Optional[Sequence[str]] = None, n_max: int 
     ddx_amplitude, ddz_amplitude) or "both" (one case: A_n [m/s^2] on the left axis, A_n /
     max A_n on the right). ax: two Axes to draw into. legend: as for plot_accelerations (one
     legend, on (a))."""
+    if not is_integer(n_max) or n_max < 1:  # -1 raised IndexError, 2.0 TypeError
+        raise Error(f"n_max must be an integer >= 1 (the highest harmonic shown); got {n_max!r}")
     if units in ("m/s2", "m s^-2"):
         units = "m/s^2"
     if units not in SPECTRUM_UNITS:
@@ -1021,11 +1023,43 @@ def _value_text(v: float) -> str:
     return f"{v:g}"
 
 
+def _as_table(table: Any, what: str) -> Mapping[str, Any]:
+    """A study table as {column: values}: a mapping (read_csv_columns) as it is, a pandas
+    DataFrame (StudyResult.to_dataframe) by its columns, choices (soil.input) as their indices
+    as in the CLI's CSV. A DataFrame raised pandas' 'truth value ... is ambiguous'."""
+    if isinstance(table, Mapping):
+        return table
+    if hasattr(table, "columns") and hasattr(table, "to_numpy"):
+        out: Dict[str, Any] = {}
+        for column in table.columns:
+            values = np.asarray(table[column].to_numpy())
+            field = _field(split_header(str(column))[0])
+            if field is not None and field.type == "choice" and values.dtype == object:
+                values = np.array([field.choices.index(v) if v in field.choices else np.nan
+                                   for v in values], dtype=float)
+            out[str(column)] = values
+        return out
+    raise Error(f"{what}: the table must be a {{column: values}} mapping (read_csv_columns of a "
+                "study's results CSV) or a pandas DataFrame (StudyResult.to_dataframe()); got "
+                f"{type(table).__name__}")
+
+
 def _select(table: Mapping[str, np.ndarray], where: Optional[Mapping[str, float]]) -> np.ndarray:
+    """The rows whose `where` columns hold the given values; an Error naming the column and the
+    values it holds when none does (an empty plot was drawn without a word)."""
     n = len(next(iter(table.values()))) if table else 0
     keep = np.ones(n, dtype=bool)
     for key, value in (where or {}).items():
-        keep &= np.asarray(table[resolve_column(table, key)], dtype=float) == float(value)
+        column = resolve_column(table, key)
+        values = np.asarray(table[column], dtype=float)
+        if keep.any() and not (keep & (values == float(value))).any():
+            held = np.unique(values[keep & np.isfinite(values)])
+            shown = ", ".join(_value_text(v) for v in held[:12]) + (", ..." if len(held) > 12
+                                                                     else "")
+            raise Error(f"where: no row has {column} = {_value_text(float(value))}"
+                        + (" among the rows kept so far" if not keep.all() else "")
+                        + f"; {column} holds {shown or 'no values'}")
+        keep &= values == float(value)
     return keep
 
 
@@ -1077,8 +1111,9 @@ def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
                panels: Optional[str] = "auto", legend: Any = "auto",
                yscale: str = "auto") -> Any:
     """plot_sweep from a study table ({column: numeric values}, e.g. read_csv_columns of the
-    CLI's sweep results): y against x, one curve per combination of the `group` columns, only
-    rows whose `where` columns equal the given values (booleans as 1/0). Rows whose metric is
+    CLI's sweep results, or a pandas DataFrame of StudyResult.to_dataframe()): y against x, one
+    curve per combination of the `group` columns, only rows whose `where` columns equal the
+    given values (booleans as 1/0; oscidrum.Error when no row does). Rows whose metric is
     missing (invalid or failed cases) leave gaps. Curves are labelled as people read the values
     (value_label: '$M_{Md}/M_0$ = 0.05', 'pure rolling'). More than COLORMAP_FROM curves of one
     group column are coloured by a colour map with a colour bar.
@@ -1089,6 +1124,7 @@ def plot_table(table: Mapping[str, np.ndarray], x: str, y: str,
     in most metrics, when it takes both values; None: one panel. yscale: as for plot_sweep, per
     panel. legend: as for plot_accelerations (one legend, on the last panel). ax: the Axes to
     draw into (one per panel)."""
+    table = _as_table(table, "plot_table")
     units = units or {}
     groups = [group] if isinstance(group, str) else list(group or [])
     xcol, ycol = resolve_column(table, x), resolve_column(table, y)
@@ -1181,6 +1217,7 @@ def plot_map(table: Mapping[str, np.ndarray], x: str, y: str, z: str = "area",
     plot_table): one cell per (x, y) pair of the rows kept by `where`, coloured by z with a
     colour bar; missing cases (failed, invalid) stay blank. Cells are labelled with their values
     when there are at most 150 (annotate=True/False forces it). ax: the Axes to draw into."""
+    table = _as_table(table, "plot_map")
     units = units or {}
     xcol, ycol, zcol = (resolve_column(table, c) for c in (x, y, z))
     keep = _select(table, where)
@@ -1249,6 +1286,7 @@ def plot_study(table: Mapping[str, np.ndarray], metric: str = "area",
     over them; otherwise the metric against the first numeric key, one curve per combination
     of the others, and a panel per regime when a boolean key (contact.pure_rolling) is swept
     (plot_table). legend: as for plot_accelerations."""
+    table = _as_table(table, "plot_study")
     keys = [k for k in swept_columns(table)
             if np.isfinite(np.asarray(table[k], dtype=float)).any()]
     if not keys:

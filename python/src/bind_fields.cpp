@@ -128,12 +128,20 @@ void bind_fields(py::module_& m) {
           "the default value (the paper's roller, Table 2 soil at G = 25 MN/m^2)")
       .def(
           "check",
-          [](const Field& f, double value) {
-            std::string problem = check_field(f, value);
-            return problem.empty() ? py::object(py::none()) : py::object(py::str(problem));
+          [](const Field& f, py::handle value) {
+            // As assigning it to a Case judges it: check(True) on roller.m and check(2.0) on an
+            // integer field said None (a double argument took both), and the Case refused them.
+            try {
+              field_argument(f.key, value);
+            } catch (const Error& e) {
+              return py::object(py::str(e.what()));
+            }
+            return py::object(py::none());
           },
           py::arg("value"),
-          "None if `value` satisfies the rule, else the error message the library would raise.")
+          "None if `value` may be assigned to this field of a Case (its type: a number, an "
+          "integer, True/False or a choice's name; its rule), else the error message the "
+          "assignment raises.")
       .def("__repr__", [](const Field& f) {
         std::string unit = f.unit;
         return std::string("Field('") + f.key + "', " + type_name(f.type) +

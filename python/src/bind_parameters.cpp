@@ -549,6 +549,15 @@ std::string dotted_field_key(std::string_view name) {
   return std::string(name);
 }
 
+double field_argument(std::string_view key, py::handle value) {
+  const std::string k(key);
+  const Field* f = find_field(k);
+  if (f == nullptr) throw Error("unknown parameter '" + k + "'" + io::suggest_key(k));
+  io::CaseSpec spec;
+  io::assign(spec, k, to_value(k, value), "argument " + k);
+  return f->get(spec.values);
+}
+
 std::string python_type_name(py::handle value) {
   return py::str(py::type::of(value).attr("__name__")).cast<std::string>();
 }

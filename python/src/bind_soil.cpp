@@ -25,20 +25,27 @@ void bind_soil(py::module_& m) {
                       s.a0, s.ksh, s.ksv, s.csh, s.csv);
         return std::string(buf);
       });
-  m.def(
-      "soil_coefficients",
-      [](double G, double nu, double rho, const Roller& roller) {
-        return soil_coefficients(G, nu, rho, roller);
-      },
-      py::arg("G"), py::arg("nu") = 0.3, py::arg("rho") = 1900.0, py::arg("roller") = Roller{},
-      "Appendix B: a0 (43) [m], ksh, ksv (42) [N/m], csh, csv (44)-(45) [N s/m] from G [Pa], nu "
-      "[-], rho [kg/m^3] and the roller's r, b, P0. Note: (42) does not reproduce Table 2's "
-      "springs (docs/model.md section 1.3); use table2_soil() for the paper's figures.");
+  // The Soil overload first: the other takes any Python object as G (judged as the field).
   m.def(
       "soil_coefficients",
       [](const Soil& soil, const Roller& roller) { return soil_coefficients(soil, roller); },
       py::arg("soil"), py::arg("roller") = Roller{},
       "The coefficients a Soil describes (through Appendix B when soil.input == 'modulus').");
+  m.def(
+      "soil_coefficients",
+      [](py::handle G, py::handle nu, py::handle rho, const Roller& roller) {
+        // G, nu and rho by the rules of soil.G, soil.nu and soil.rho, as Case takes them:
+        // soil_coefficients(25.0) took 25 Pa (a0 = 96 m) without the "did you mean ... MN/m^2"
+        // hint, and True for 1 Pa.
+        return soil_coefficients(field_argument("soil.G", G), field_argument("soil.nu", nu),
+                                 field_argument("soil.rho", rho), roller);
+      },
+      py::arg("G"), py::arg("nu") = 0.3, py::arg("rho") = 1900.0, py::arg("roller") = Roller{},
+      "Appendix B: a0 (43) [m], ksh, ksv (42) [N/m], csh, csv (44)-(45) [N s/m] from G [Pa], nu "
+      "[-], rho [kg/m^3] and the roller's r, b, P0. G, nu and rho follow the rules of soil.G, "
+      "soil.nu and soil.rho (oscidrum.Error otherwise, as for a Case). Note: (42) does not "
+      "reproduce Table 2's springs (docs/model.md section 1.3); use table2_soil() for the "
+      "paper's figures.");
 
   py::class_<Table2Row>(m, "Table2Row", "One row of the paper's Table 2 (SI units).")
       .def_readonly("G", &Table2Row::G, "shear modulus [Pa]")

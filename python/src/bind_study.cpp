@@ -130,12 +130,20 @@ void bind_study(py::module_& m) {
   m.def(
       "run_case",
       [](const Case& c, bool keep_samples, int n_harmonics) {
+        // The argument, not the case: it made an invalid outcome ("compute_metrics: n_max must
+        // be < ..."); refused like run_study's.
+        const int nyquist = c.numerics.samples_per_period / 2;
+        if (n_harmonics < 0 || n_harmonics >= nyquist)
+          throw Error("n_harmonics must be in [0, " + std::to_string(nyquist) +
+                      ") (numerics.samples_per_period / 2, the samples' Nyquist limit); got " +
+                      std::to_string(n_harmonics));
         py::gil_scoped_release release;
         return run_case(c, keep_samples, n_harmonics);
       },
       py::arg("case"), py::arg("keep_samples") = true, py::arg("n_harmonics") = 10,
       "One case as run_study runs it: never raises for invalid parameters (see "
-      "CaseOutcome.valid).");
+      "CaseOutcome.valid). Raises oscidrum.Error for an n_harmonics outside [0, "
+      "numerics.samples_per_period / 2).");
 }
 
 }  // namespace oscidrum::python

@@ -60,8 +60,8 @@ std::vector<SeriesResult> for_validation(const py::iterable& items) {
   std::vector<SeriesResult> out;
   for (py::handle item : items) {
     if (!py::isinstance<SeriesResult>(item))
-      throw py::type_error("validate: expected SeriesResult items (from run_paper_studies); got " +
-                           py::str(py::type::of(item)).cast<std::string>());
+      throw Error("validate: results must be the SeriesResults of run_paper_studies(); results[" +
+                  std::to_string(out.size()) + "] is " + python_description(item));
     const SeriesResult& s = item.cast<const SeriesResult&>();
     for (const Metrics& m : s.metrics)
       if (m.ddx_harmonics.size() < 3 || m.ddz_harmonics.size() < 3)
@@ -113,10 +113,17 @@ void bind_validation(py::module_& m) {
         "the trough-shape pair at G = 5 MN/m^2 (circle R = 0.603 m, spiral k = 0.002, "
         "a = 0.601 m); the soft-soil series towards G -> 0 (Appendix B, Fig. 10) and the freely "
         "turning drum (mu = 0).");
-  m.def("paper_case", &paper_case, py::arg("series"), py::arg("G"),
-        "The Case the paper simulates for `series` (a PaperSeries) at shear modulus G [Pa]: "
-        "Table 1 roller, Table 2 soil when G is a Table 2 value (Appendix B otherwise), the "
-        "series' contact model, MMd = MMd_fraction * M0 [N m] and trough (k [-], a [m]).");
+  m.def(
+      "paper_case",
+      [](const PaperSeries& series, py::handle G) {
+        // G by the rule of soil.G, as Case takes it: NaN, -5e6 or True made a Case holding it.
+        return paper_case(series, field_argument("soil.G", G));
+      },
+      py::arg("series"), py::arg("G"),
+      "The Case the paper simulates for `series` (a PaperSeries) at shear modulus G [Pa]: "
+      "Table 1 roller, Table 2 soil when G is a Table 2 value (Appendix B otherwise), the "
+      "series' contact model, MMd = MMd_fraction * M0 [N m] and trough (k [-], a [m]). "
+      "Raises oscidrum.Error for a G outside soil.G's rule.");
 
   py::class_<SeriesResult>(m, "SeriesResult",
                            "The outcome of one PaperSeries (read-only): per G of series.G, in "

@@ -156,6 +156,11 @@ py::object field_value(const Case& c, const Field& field);
 /// oscidrum::Error with the library's message when the value breaks the field's rule.
 void set_field_value(Case& c, std::string_view key, py::handle value);
 
+/// A Python value for the field `key` judged as assigning it to a Case judges it (its type: no
+/// True for a number, no 2.0 for an integer; its rule, with the library's message and hints):
+/// the value, or oscidrum::Error. For arguments that stand for a field (soil_coefficients' G).
+double field_argument(std::string_view key, py::handle value);
+
 /// Make `T.__new__(T)` (without __init__) give a default-constructed T instead of uninitialised
 /// memory: the type's tp_new constructs the value and its holder. The class must then define
 /// __init__ (and __setstate__) as ordinary methods that assign to the already-built value, since

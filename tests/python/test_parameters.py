@@ -194,6 +194,22 @@ def test_fields_table():
     assert g.unit == "Pa" and g.rule == "in [10000, 1e+11]" and g.type == "real"
     assert g.display_unit == "MN/m^2" and g.display_scale == 1e6
     assert g.check(1e6) is None and "did you mean 1e+06" in g.check(1.0)
+    # check() judges a value as assigning it does: check(True) on a number and check(2.0) on an
+    # integer said None, and the Case refused them.
+    import numpy as np
+    assert g.check(np.float64(25e6)) is None and g.check(25_000_000) is None
+    m = oscidrum.find_field("roller.m")
+    assert m.check(True) == "roller.m must be a number [kg]; got a boolean (true)"
+    with pytest.raises(oscidrum.Error) as info:
+        oscidrum.Case().roller.m = True
+    assert str(info.value) == m.check(True)
+    periods = oscidrum.find_field("numerics.max_periods")
+    assert periods.check(2) is None and "written as a float" in periods.check(2.0)
+    assert "must be" in periods.check(True)
+    assert oscidrum.find_field("contact.pure_rolling").check(True) is None
+    assert "must be" in oscidrum.find_field("contact.pure_rolling").check(1)
+    assert oscidrum.find_field("soil.input").check("modulus") is None
+    assert "must be" in oscidrum.find_field("soil.input").check("clay")
     assert oscidrum.find_field("soil.input").choices == ["coefficients", "modulus", "table2"]
     with pytest.raises(oscidrum.Error, match="did you mean"):
         oscidrum.find_field("soil.GG")
@@ -210,6 +226,18 @@ def test_soil_table2_and_transmissibility():
     assert k.csh == pytest.approx(141e3, rel=0.01) and 0.09 < k.a0 < 0.1
     k2 = oscidrum.soil_coefficients(oscidrum.Soil(input="modulus", G=25e6))
     assert k2.ksh == k.ksh
+    assert oscidrum.soil_coefficients(G=25e6, nu=0.3, rho=1900).ksh == k.ksh
+    # G, nu and rho by the rules of their fields, as a Case takes them: G in MN/m^2 gave a0 = 96 m,
+    # True stood for 1 Pa.
+    with pytest.raises(oscidrum.Error, match=r"^soil\.G must be in \[10000, 1e\+11\] \[Pa\]; got 25 "
+                       r"\(values are in Pa: did you mean 2\.5e\+07, i\.e\. 25 MN/m\^2\?\)$"):
+        oscidrum.soil_coefficients(25.0)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.G must be a number \[Pa\]; got a boolean"):
+        oscidrum.soil_coefficients(True)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.nu must be"):
+        oscidrum.soil_coefficients(25e6, nu=0.5)
+    with pytest.raises(oscidrum.Error, match=r"^soil\.rho must be a number"):
+        oscidrum.soil_coefficients(25e6, rho="1900")
     t = oscidrum.transmissibility()
     assert t.Tp == pytest.approx(0.025, abs=5e-4) and t.ratio == pytest.approx(6.4, abs=0.05)
     with pytest.raises(oscidrum.Error):

@@ -63,6 +63,10 @@ def test_spectra_normalised(rolling_result):
     fig = plot.plot_spectra([rolling_result, rolling_result], labels=["a", "b"])
     assert len(fig.axes) == 2 and len(fig.axes[0].patches) == 20  # 10 harmonics x 2 cases
     assert "f_{exc}" in fig.axes[1].get_xlabel()
+    # A bad n_max is a bad call: -1 raised IndexError, 2.5 TypeError.
+    for bad in (-1, 0, 2.5, True, "3"):
+        with pytest.raises(oscidrum.Error, match=r"n_max must be an integer >= 1"):
+            plot.plot_spectra(rolling_result, n_max=bad)
 
 
 def test_sweep_labels_and_scaling():
@@ -139,6 +143,47 @@ def test_module_entry_sweep(tmp_path):
     table, units = data.read_csv_columns(csv)
     fig = plot.plot_table(table, "soil.G", "area", group="MMd_fraction", units=units)
     assert len(fig.axes[0].lines) == 2
+
+
+def test_a_where_that_keeps_no_row_is_refused(tmp_path):
+    # --where MMd_fraction=0.9 on a study of 0 and 0.05 drew an empty plot and exited 0.
+    csv = tmp_path / "results.csv"
+    csv.write_text("case[-],soil.table2_G[Pa],MMd_fraction[-],status[-],area[m^2/s^4]\n"
+                   "0,5000000,0,steady_state,300\n1,10000000,0,steady_state,400\n"
+                   "2,5000000,0.05,steady_state,310\n3,10000000,0.05,steady_state,420\n")
+    out = tmp_path / "sweep"
+    p = run_module("oscidrum.plot", "sweep", "--csv", str(csv), "--x", "soil.G", "--y", "area",
+                   "--group", "MMd_fraction", "--where", "MMd_fraction=0.9", "--out", str(out))
+    assert p.returncode == 3 and p.stdout == "", p  # EXIT_EXPLAINED, as its other errors
+    assert p.stderr == ("oscidrum.plot: error: where: no row has MMd_fraction = 0.9; "
+                        "MMd_fraction holds 0, 0.05\n")
+    assert not out.exists()
+    table, units = data.read_csv_columns(csv)
+    with pytest.raises(oscidrum.Error, match=r"no row has MMd_fraction = 0\.9; MMd_fraction "
+                       r"holds 0, 0\.05$"):
+        plot.plot_table(table, "soil.G", "area", group="MMd_fraction", where={"MMd_fraction": 0.9})
+    with pytest.raises(oscidrum.Error, match=r"no row has soil.table2_G = 7e\+06 among the rows "
+                       r"kept so far; soil.table2_G holds 5e\+06, 1e\+07$"):
+        plot.plot_map(table, "soil.G", "MMd_fraction", where={"MMd_fraction": 0.05, "G": 7e6})
+    fig = plot.plot_table(table, "soil.G", "area", where={"MMd_fraction": 0.05})
+    assert len(fig.axes[0].lines) == 1
+
+
+def test_plot_table_takes_a_dataframe():
+    # A StudyResult.to_dataframe() raised pandas' "truth value of a DataFrame is ambiguous".
+    pd = pytest.importorskip("pandas")
+    df = pd.DataFrame({"soil.input": ["modulus"] * 4, "soil.G": [5e6, 10e6, 5e6, 10e6],
+                       "contact.mu": [0.4, 0.4, 0.5, 0.5], "status": ["steady_state"] * 4,
+                       "area": [300.0, 400.0, 310.0, 420.0]})
+    assert len(plot.plot_table(df, "soil.G", "area", group="contact.mu").axes[0].lines) == 2
+    assert len(plot.plot_table(df, "soil.G", "area",
+                               where={"contact.mu": 0.4}).axes[0].lines) == 1
+    with pytest.raises(oscidrum.Error, match="differ in contact.mu"):
+        plot.plot_table(df, "soil.G", "area")  # the text column soil.input is read as choices
+    assert len(plot.plot_map(df, "soil.G", "contact.mu").axes[0].collections) == 1
+    with pytest.raises(oscidrum.Error, match=r"^plot_table: the table must be a \{column: "
+                       r"values\} mapping .* or a pandas DataFrame .*; got list$"):
+        plot.plot_table([1, 2], "soil.G", "area")
 
 
 # ---- plots that explain themselves -----------------------------------------------------------

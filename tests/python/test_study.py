@@ -380,8 +380,14 @@ def test_harmonics_bounded_by_the_samples_nyquist_limit():
     # 10**7 harmonics once ran for minutes per case; the bound follows from the sampling.
     with pytest.raises(oscidrum.Error, match=r"n_harmonics must be < numerics.samples_per_period / 2 = 512"):
         oscidrum.run_study([oscidrum.Case()], n_harmonics=10**7)
-    outcome = oscidrum.run_case(oscidrum.Case(), n_harmonics=10**7)
-    assert not outcome.valid and "n_max must be <" in outcome.error
+    # run_case's argument, not its case, is wrong: an invalid outcome said "compute_metrics:
+    # n_max must be < ...".
+    for n in (10**7, 600, 512, -3):
+        with pytest.raises(oscidrum.Error, match=r"^n_harmonics must be in \[0, 512\) "
+                           r"\(numerics\.samples_per_period / 2, the samples' Nyquist limit\); "
+                           rf"got {n}$"):
+            oscidrum.run_case(oscidrum.Case(), n_harmonics=n)
+    assert oscidrum.run_case(oscidrum.Case(), keep_samples=False, n_harmonics=511).ok
 
 
 def test_an_invalid_case_has_no_steady_state_and_no_metrics():

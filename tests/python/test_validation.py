@@ -49,6 +49,13 @@ def test_paper_case():
             c.validate()
     with pytest.raises(oscidrum.Error, match="arguments must be"):
         oscidrum.paper_case("rolling_MMd0_R0.606", 5e6)
+    # G by the rule of soil.G, as Case takes it: these made a Case holding an invalid G.
+    s = oscidrum.paper_series()[1]
+    for G, message in [(float("nan"), r"finite and in \[10000, 1e\+11\] \[Pa\]; got nan"),
+                       (-5e6, r"in \[10000, 1e\+11\] \[Pa\]; got -5e\+06"),
+                       (True, r"a number \[Pa\]; got a boolean")]:
+        with pytest.raises(oscidrum.Error, match=r"^soil\.G must be " + message):
+            oscidrum.paper_case(s, G)
 
 
 def test_run_paper_studies(paper_studies):
@@ -133,8 +140,9 @@ def test_validate_errors(paper_studies):
     results = paper_studies[0]
     with pytest.raises(oscidrum.Error, match="free_drum"):
         oscidrum.validate(results[:-1])
-    with pytest.raises(TypeError):
-        oscidrum.validate([1, 2])
+    with pytest.raises(oscidrum.Error, match=r"^validate: results must be the SeriesResults of "
+                       r"run_paper_studies\(\); results\[1\] is int \(5\)$"):
+        oscidrum.validate([results[0], 5])  # a raw TypeError
     few = oscidrum.run_paper_studies(n_harmonics=1)
     with pytest.raises(oscidrum.Error, match="n_harmonics >= 2"):
         oscidrum.validate(few)
