@@ -264,6 +264,7 @@ class Continuation {
   std::optional<Branch> end_at_lift_off(Branch& branch, const Solution& cur, double q_fail,
                                         std::chrono::steady_clock::time_point start_time);
   bool cancelled() const { return o_.cancelled && o_.cancelled(); }
+  std::string contact_ends(const Branch& branch, double q_fail) const;
 
   Case base_;
   BranchOptions o_;
@@ -975,6 +976,27 @@ std::optional<Branch> Continuation<R>::end_at_lift_off(
                 start_time);
 }
 
+// Where the orbits' smallest normal force falls to zero at the failed step (extrapolated from the
+// last two points, as end_at_lift_off does) in permanent contact: the reason the branch ends (it
+// said "no tangent at the new point" at the lift-off frequency, 65.726 Hz, without a word of
+// contact).
+template <class R>
+std::string Continuation<R>::contact_ends(const Branch& branch, double q_fail) const {
+  if (base_.contact.unilateral || branch.points.size() < 2) return "";
+  const BranchPoint& last = branch.points.back();
+  const BranchPoint& before = branch.points[branch.points.size() - 2];
+  const double dN = before.min_N - last.min_N;
+  if (!(last.min_N >= 0.0) || !(dN > 0.0)) return "";
+  const double q_star = last.parameter + last.min_N * (last.parameter - before.parameter) / dN;
+  const double reach = std::abs(q_star - last.parameter);
+  if (!(reach <= std::max(o_.tolerance * sq_, 10.0 * std::abs(q_fail - last.parameter)))) return "";
+  return detail::format("; the orbits' smallest normal force falls to zero there (%.3g N at ",
+                        last.min_N) +
+         at_value(last.parameter, "%.9g") +
+         "): the drum loses contact, which the model in permanent contact does not follow "
+         "(contact.unilateral = true follows it into flight)";
+}
+
 template <class R>
 bool Continuation<R>::collapses(const Solution& s, const Solution& before, bool symmetric) {
   const double r_at = half_residual(s), r_away = half_residual(before);
@@ -1045,7 +1067,8 @@ Branch Continuation<R>::follow(Branch branch, Solution cur, int iterations,
           return *lifted;
         return finish(branch, BranchEnd::step_too_small,
                       "the corrector failed down to the smallest step at " +
-                          at_value(branch.points.back().parameter) + ": " + last_failure_,
+                          at_value(branch.points.back().parameter) + ": " + last_failure_ +
+                          contact_ends(branch, parameter(cur.v + 2.0 * ds * cur.tangent)),
                       start_time);
       }
       continue;

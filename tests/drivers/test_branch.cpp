@@ -81,6 +81,27 @@ TEST(Branch, OrbitsAreTheSteadyStatesOfSimulate) {
   }
 }
 
+// In permanent contact the branch cannot go past where the drum would lift off: it ends there
+// (step_too_small), and the message says why (it said "no tangent at the new point" only).
+TEST(Branch, ABranchInPermanentContactSaysWhereTheDrumWouldLiftOff) {
+  Case c;
+  c.soil.input = SoilInput::modulus;
+  c.soil.G = 100e6;
+  c.contact.pure_rolling = true;
+  c.roller.unbalance = 0.22877;
+  BranchOptions o;
+  o.key = "roller.f";
+  o.from = 55.0;
+  o.to = 75.0;
+  o.metrics = false;
+  const Branch b = continue_branch(c, o);
+  ASSERT_EQ(b.end, BranchEnd::step_too_small) << b.message;
+  EXPECT_NE(b.message.find("the orbits' smallest normal force falls to zero there"),
+            std::string::npos)
+      << b.message;
+  EXPECT_NEAR(b.points.back().parameter, 65.7263, 1e-3);
+}
+
 // MMd_fraction holds at every point, as in a study: MMd = 0.05 M0 with the M0 of the point. (The
 // CLI's continue kept the MMd of --from's M0, 2747 N m, along a branch in roller.M0: area 39.65
 // at M0 = 40000 N m, where run gives 30.40.) Without it the case's MMd holds throughout.
