@@ -129,8 +129,9 @@
     "period), lift-off every period, repeating every p periods (a subharmonic with one lift-off " \
     "in each of its periods), lift-off every p periods, or n lift-offs every p periods (any "     \
     "other count: a subharmonic with periods of permanent contact, or with two lift-offs in "     \
-    "some period); aperiodic for a run with lift-offs that reaches no steady state; empty "       \
-    "otherwise")                                                                                  \
+    "some period); aperiodic for a run with lift-offs that reaches no steady state "              \
+    "(max_periods_reached, aperiodic); empty otherwise (a run that ends contact_lost, "           \
+    "gross_slip, ... whatever its lift-offs before)")                                             \
   X(std::string, operating_mode, "", "-", "operating mode",                                       \
     "the vibratory drum's contact mode by the literature's names (docs/model.md section 14): "    \
     "continuous contact, partial uplift (lift-off, period 1), double jump (lift-off, period 2), " \

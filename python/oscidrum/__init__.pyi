@@ -103,7 +103,7 @@ class Diagnostics:
     def __init__(*args: Any, **kwargs: Any) -> Any: ...
     def __setstate__(self, state: Any) -> None: ...
     contact_mode: str
-    """how the steady state uses its contact: permanent contact, periodic lift-off (every period), lift-off every period, repeating every p periods (a subharmonic with one lift-off in each of its periods), lift-off every p periods, or n lift-offs every p periods (any other count: a subharmonic with periods of permanent contact, or with two lift-offs in some period); aperiodic for a run with lift-offs that reaches no steady state; empty otherwise [-]"""
+    """how the steady state uses its contact: permanent contact, periodic lift-off (every period), lift-off every period, repeating every p periods (a subharmonic with one lift-off in each of its periods), lift-off every p periods, or n lift-offs every p periods (any other count: a subharmonic with periods of permanent contact, or with two lift-offs in some period); aperiodic for a run with lift-offs that reaches no steady state (max_periods_reached, aperiodic); empty otherwise (a run that ends contact_lost, gross_slip, ... whatever its lift-offs before) [-]"""
     events: int
     """located events [-]"""
     fallback: str
