@@ -15,9 +15,11 @@
 // Step control (Hairer, Norsett & Wanner, II.4 and II.10): the error of a step is the largest
 // over the components of |h| |err5|^2 / sqrt(err5^2 + 0.01 err3^2) / sc with the scale
 // sc = atol + rtol max(|y0|, |y1|); a step is accepted when it is at most 1. The next step is
-// h 0.9 err^(-1/8), between h/5 and 10 h, never above max_step. A step whose error is not a
-// number is accepted (the caller tests the state for finiteness); one that has to shrink below
-// the round-off of t fails (failed()), so no loop of rejections can hang.
+// h 0.9 err^(-1/8), between h/5 and 10 h, never above max_step. A step whose error is not finite
+// (a stage overflowed: the step is far too long for a stiff phase) is rejected and a fifth as
+// long tried; where the right-hand side at the step's start is not finite, the step is taken as
+// it is (the caller tests the state for finiteness). A step that has to shrink below the
+// round-off of t fails (failed()), so no loop of rejections can hang.
 #pragma once
 
 #include <algorithm>
@@ -65,25 +67,41 @@ class Dop853 {
       have_f_ = true;
     }
     double h = std::min(dt_, max_step_);
+    const bool finite_start =
+        std::all_of(K_[0].begin(), K_[0].end(), [](double v) { return std::isfinite(v); });
     Vec xn{};
     while (true) {
       for (int s = 1; s < kStages; ++s) sys(stage_point(s, h), K_[s], t_ + c::kC[s] * h);
       xn = stage_point(kStages, h);
       sys(xn, K_[kStages], t_ + h);
-      const double err = error(h, xn);
-      if (!(err > 1.0)) {
+      const double err = finite_start ? error(h, xn) : 0.0;
+      if (err <= 1.0) {
         const double grow = err > 0.0 ? 0.9 * std::pow(err, -1.0 / 8.0) : 10.0;
         finish(h, xn, sys);
         dt_ = std::min(h * std::min(10.0, grow), max_step_);
         return {t_old_, t_};
       }
-      h *= std::max(0.2, 0.9 * std::pow(err, -1.0 / 8.0));
+      h *= std::isfinite(err) ? std::max(0.2, 0.9 * std::pow(err, -1.0 / 8.0)) : 0.2;
       if (!(std::abs(h) > 8.0 * std::numeric_limits<double>::epsilon() * std::abs(t_))) {
         failed_ = true;
         dt_ = h;
         return {t_, t_};
       }
     }
+  }
+
+  // The state at t inside the last accepted step by the method's own step from the step's start
+  // to t (order 8, 11 evaluations of sys): where one state matters more than the cost (the end of
+  // an interval whose states are compared period to period), the continuous extension's error,
+  // an order higher in the step, would be noise.
+  template <class Sys>
+  Vec step_to(double t, Sys sys) const {
+    const double h = t - t_old_;
+    std::array<Vec, kStages> k{};
+    k[0] = f_old_;
+    for (int s = 1; s < kStages; ++s)
+      sys(combine(x_old_, k, s, h), k[s], t_old_ + dop853::kC[s] * h);
+    return combine(x_old_, k, kStages, h);
   }
 
   // The continuous extension of the last accepted step at t in [t - h, t] (order 7).
@@ -104,17 +122,19 @@ class Dop853 {
   }
 
  private:
-  // x + h sum_j a_sj K_j over the stages before s (row s of the tableau).
-  Vec stage_point(int s, double h) const {
-    Vec y = x_;
+  // x + h sum_j a_sj k_j over the stages before s (row s of the tableau).
+  template <std::size_t N>
+  static Vec combine(const Vec& x, const std::array<Vec, N>& k, int s, double h) {
+    Vec y = x;
     for (int j = 0; j < s; ++j) {
       const double a = dop853::kA[s][j];
       if (a == 0.0) continue;
       const double ha = h * a;
-      for (std::size_t i = 0; i < n; ++i) y[i] += ha * K_[j][i];
+      for (std::size_t i = 0; i < n; ++i) y[i] += ha * k[j][i];
     }
     return y;
   }
+  Vec stage_point(int s, double h) const { return combine(x_, K_, s, h); }
 
   double error(double h, const Vec& xn) const {
     double err = 0.0;
@@ -126,8 +146,9 @@ class Dop853 {
       }
       const double sc = atol_ + rtol_ * std::max(std::abs(x_[i]), std::abs(xn[i]));
       const double den = std::sqrt(e5 * e5 + 0.01 * e3 * e3);
-      const double ei = den > 0.0 ? std::abs(h) * e5 * e5 / den / sc : 0.0;
-      if (!(ei <= err)) err = ei;  // a NaN stays NaN: the step is accepted, the state tested
+      const double ei = den == 0.0 ? 0.0 : std::abs(h) * e5 * e5 / den / sc;
+      if (std::isnan(ei)) return ei;  // a stage overflowed: the step is rejected
+      err = std::max(err, ei);
     }
     return err;
   }
@@ -150,6 +171,7 @@ class Dop853 {
       }
     }
     x_old_ = x_;
+    f_old_ = K_[0];
     t_old_ = t_;
     h_ = h;
     x_ = xn;
@@ -158,7 +180,7 @@ class Dop853 {
   }
 
   double atol_, rtol_, max_step_;
-  Vec x_{}, x_old_{};
+  Vec x_{}, x_old_{}, f_old_{};
   double t_ = 0.0, t_old_ = 0.0, h_ = 1.0, dt_ = 0.0;
   bool have_f_ = false, failed_ = false;
   std::array<Vec, kDenseStages> K_{};

@@ -107,6 +107,29 @@ TEST(Dop853, TheContinuousExtensionHasOrderSevenAndMeetsTheStepsEnds) {
   EXPECT_LT(ends2, 1e-15);
 }
 
+TEST(Dop853, AStepToATimeInsideTheLastStepIsTheMethodsOwnStep) {
+  // step_to(t) is the method's step from the last step's start to t: at the step's end the step
+  // itself, bit for bit; inside it an 8th-order step, more accurate than the continuous extension
+  // (order 7), with 11 evaluations.
+  long calls = 0;
+  const double h = 0.8;
+  Dop853<Vec> st(kAcceptAll, kAcceptAll, h);
+  st.initialize({1.0, 0.0}, 0.0, h);
+  st.do_step(Oscillator{&calls});
+  const long before = calls;
+  const Vec end = st.step_to(h, Oscillator{&calls});
+  EXPECT_EQ(calls - before, 11);
+  EXPECT_EQ(end, st.current_state());
+  for (double s : {0.3, 0.5, 0.7}) {
+    const Vec own = st.step_to(s * h, Oscillator{&calls});
+    Vec extension;
+    st.calc_state(s * h, extension);
+    const double e_own = std::hypot(own[0] - std::cos(s * h), own[1] + std::sin(s * h));
+    const double e_ext = std::hypot(extension[0] - std::cos(s * h), extension[1] + std::sin(s * h));
+    EXPECT_LT(e_own, 0.1 * e_ext) << "s = " << s;
+  }
+}
+
 TEST(Dop853, TheGlobalErrorFollowsTheTolerance) {
   // Ten periods of the oscillator: the error stays within a small multiple of the tolerance and
   // falls with it; an accepted step costs 15 evaluations, a rejected one 12, a start one (FSAL).
@@ -152,13 +175,27 @@ TEST(Dop853, AStepThatCannotBeMadeFailsInsteadOfHanging) {
   EXPECT_LT(steps, 100000);
   EXPECT_LT(st.current_time(), 1.0);
   EXPECT_GT(st.current_time(), 1.0 - 1e-12);
-  // A right-hand side that is not a number gives an accepted step with a state that is not a
-  // number (the flow stops there as non_finite), not an endless loop of rejections.
+  // A right-hand side that is not a number at the start gives an accepted step with a state that
+  // is not a number (the flow stops there as non_finite), not an endless loop of rejections.
   Dop853<Vec> nan(1e-8, 1e-8, 0.5);
   nan.initialize({0.0, 0.0}, 0.0, 0.1);
   nan.do_step([](const Vec&, Vec& dxdt, double) { dxdt = {std::nan(""), 0.0}; });
   EXPECT_FALSE(nan.failed());
   EXPECT_TRUE(std::isnan(nan.current_state()[0]));
+  // One that overflows only away from the start (a stiff phase whose stages blow up on too long
+  // a step) has its step shortened until the stages stay finite.
+  long overflow_calls = 0;
+  auto stiff = [&overflow_calls](const Vec& x, Vec& dxdt, double) {
+    ++overflow_calls;
+    dxdt = {std::abs(x[0]) > 1e-3 ? std::nan("") : 1.0, 0.0};
+  };
+  Dop853<Vec> shrinking(1e-8, 1e-8, 0.5);
+  shrinking.initialize({0.0, 0.0}, 0.0, 0.1);
+  shrinking.do_step(stiff);
+  EXPECT_FALSE(shrinking.failed());
+  EXPECT_TRUE(std::isfinite(shrinking.current_state()[0]));
+  EXPECT_LE(shrinking.current_time(), 1e-3);
+  EXPECT_NEAR(shrinking.current_state()[0], shrinking.current_time(), 1e-15);
 }
 
 }  // namespace
