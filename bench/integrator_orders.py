@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Steps and right-hand sides per period of a steady orbit: Dormand-Prince 5(4) against 8(5,3).
 
+The measurement that made oscidrum change from 5(4) (the paper's ode45) to 8(5,3).
+
 The performance issue's cases from rest and warm cases are bounded by the number of integration
 steps per excitation period (about 100 Dormand-Prince 5(4) steps at numerics.rtol = 1e-8). This
 script measures what an integrator of higher order would save on the model's own equations: it
 takes the steady orbit oscidrum computes, and integrates each phase of one period (stick, slip-,
 stick, slip+; from switch to switch, as the flow restarts at each switch) with SciPy's RK45
-(Dormand-Prince 5(4), oscidrum's method) and DOP853 (Dormand-Prince 8(5,3)) at oscidrum's rtol
+(Dormand-Prince 5(4)) and DOP853 (Dormand-Prince 8(5,3), oscidrum's method now) at oscidrum's rtol
 and atol, the right-hand side being oscidrum.accelerations. Each phase's start state is the
 orbit's state at its switch (integrated back from the nearest sample at rtol 1e-13), and each
 method's error is its end state's against an integration at rtol 1e-13 (largest component error

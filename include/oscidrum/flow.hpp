@@ -59,8 +59,8 @@ const char* to_string(FlowStop stop);
 Status status_of(FlowStop stop);
 
 /// The part of an accepted integration step that lies in one phase and one advance() interval:
-/// the dense output (Dormand-Prince's continuous extension, 4th order) between t0() and t1().
-/// Valid only inside the observer call that receives it.
+/// the dense output (Dormand-Prince 8(5,3)'s continuous extension, 7th order) between t0() and
+/// t1(). Valid only inside the observer call that receives it.
 template <class Roller>
 class BasicStepView {
  public:
@@ -100,6 +100,9 @@ struct FlowCounters {
   long inconsistent_slip_ends = 0;  ///< slip ends where neither stick nor a reversal is
                                     ///< consistent (docs/model.md); stick is taken
   long restarts = 0;                ///< integrator (re)starts: reset() and one per event
+  long partial_steps = 0;           ///< integrator steps from a step's start to a time inside
+                                    ///< it: an event, the end of an advance() interval (11
+                                    ///< evaluations each)
   double min_N = 0.0;               ///< smallest normal force: step ends, events and the
                                     ///< parabola through each step's samples [N]
   double max_slip_residual = 0.0;   ///< max |(39)| / W at step ends in slip [-]

@@ -124,7 +124,7 @@ struct Numerics {
   int output_periods = 2;               ///< steady periods sampled (times the multiplicity) [-]
   int samples_per_period = 1024;        ///< uniform samples per excitation period [-]
   int max_switches_per_period = 200;    ///< more stick/slip switches in one period: chattering
-  int max_steps_per_period = 20000;     ///< more steps in one period: budget_exceeded [-]
+  int max_steps_per_period = 8000;      ///< more steps in one period: budget_exceeded [-]
   double slip_constraint_rate = 0.0;    ///< Baumgarte rate on (39) during slip [1/s]; 0: 2 nu
   bool suspension_from_static = false;  ///< measure kd from static equilibrium (not the paper)
   /// In a study (sweep, run_study) with method shooting: start from the steady state of the

@@ -408,7 +408,7 @@ class Numerics:
     max_periods: int
     """give up the steady-state search after this many excitation periods (with shooting: its short transient and period maps, P^p counting p, and the fallback's periods share them) [-]; an integer in [1, 10000000]; default 5000."""
     max_steps_per_period: int
-    """more integration steps than this in one period stop the run (status budget_exceeded): a bound on the work of every run [-]; an integer in [100, 1000000000]; default 20000."""
+    """more integration steps than this in one period stop the run (status budget_exceeded): a bound on the work of every run [-]; an integer in [100, 1000000000]; default 8000."""
     max_switches_per_period: int
     """more stick/slip switches than this in one period stop the run as chattering [-]; an integer in [2, 10000000]; default 200."""
     method: str

@@ -57,7 +57,7 @@ Result simulate_model(const Model& model, const py::object& progress) {
 void bind_simulate(py::module_& m) {
   const char* doc =
       "Integrate from rest at the bottom of the trough to the steady state and sample it "
-      "(Dormand-Prince 5(4), events located on the dense output).\n\n"
+      "(Dormand-Prince 8(5,3), events located on the dense output).\n\n"
       "Parameters\n----------\ncase : Case (or model : Model)\n    The parameters (SI units).\n"
       "progress : callable, optional\n    progress(period: int, change: float) once per "
       "integrated excitation period with the period-to-period change [-]; return False to "

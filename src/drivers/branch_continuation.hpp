@@ -313,7 +313,8 @@ typename Continuation<R>::Map Continuation<R>::map(const VectorXd& v, bool sensi
   ++maps_;
   FlowStop stop;
   std::vector<Event> switches;
-  detail::MonodromyObserver<R> mono(*model, fo.baumgarte, model->period() / 64.0);
+  detail::MonodromyObserver<R> mono(*model, fo.baumgarte,
+                                    model->period() / detail::kMonodromySubstepsPerPeriod);
   if (sensitivities) {
     mono.reset();
     stop = flow.advance(t_end, &mono);

@@ -61,7 +61,7 @@ using recording::kDegree;
 using recording::Piece;
 using enum recording::Quantity;
 
-constexpr int kAreaPoints = 4;  // polygon points per piece for the area (the arcs are exact)
+constexpr int kAreaPoints = 8;  // polygon points per piece for the area (the arcs are exact)
 
 // The fallback: polygons through n points per piece of the interpolants, n doubled and
 // Richardson-extrapolated (error ~ n^-2) until two estimates agree to `tolerance` relative (1e-11

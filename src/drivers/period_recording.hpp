@@ -23,7 +23,7 @@ namespace oscidrum::detail::recording {
 // Chebyshev interpolant per piece: kDegree + 1 RHS evaluations. 8: within 1e-12 of the direct
 // evaluation (test_steady_metrics); 6 is not, on pure rolling; 10 (used before) cost a tenth
 // more of a study's case for nothing the metrics show (1e-10 of psi_xz on the product sweep).
-inline constexpr int kDegree = 8;
+inline constexpr int kDegree = 12;
 
 using Interpolant = ChebyshevInterpolant<kDegree>;
 

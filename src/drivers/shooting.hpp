@@ -194,7 +194,7 @@ inline constexpr double kMultiplierDrift = 2.0;
 inline constexpr double kMultiplierMargin = 0.05;
 
 // Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
-inline constexpr double kSubstepsPerPeriod = 64.0;
+inline constexpr double kSubstepsPerPeriod = kMonodromySubstepsPerPeriod;
 
 inline std::string fmt(const char* format, double a = 0.0, double b = 0.0, double c = 0.0) {
   char buf[512];

@@ -1,7 +1,8 @@
 // Internal: the hybrid flow of any roller type R (oscidrum/flow.hpp's BasicFlow<R>), Dormand-
-// Prince 5(4) with its dense output (Boost.Odeint), the scheme of MATLAB's ode45 that the paper
-// used, through the roller's events. Included by the one file that instantiates the engine for
-// each roller (src/roller/engine.cpp).
+// Prince 8(5,3) with its continuous extension of order 7 (flow/dop853.hpp), through the roller's
+// events (the paper used MATLAB's ode45, Dormand-Prince 5(4): at the same tolerances the 8th-order
+// pair takes steps about four times as long). Included by the one file that instantiates the engine
+// for each roller (src/roller/engine.cpp).
 //
 // The state is the roller's vector (Dynamics<R>::Vector) in every phase; the right-hand side,
 // the event functions and what an event does are the roller's (src/roller/dynamics.hpp). Events
@@ -14,7 +15,6 @@
 #include <algorithm>
 #include <array>
 #include <boost/math/tools/toms748_solve.hpp>
-#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -22,6 +22,7 @@
 #include <memory>
 #include <string>
 
+#include "flow/dop853.hpp"
 #include "oscidrum/flow.hpp"
 #include "roller/dynamics.hpp"
 #include "util/format.hpp"
@@ -29,19 +30,32 @@
 namespace oscidrum {
 namespace detail {
 
-// Event functions are sampled at this many points inside each step before root finding, so that
-// a function dipping below zero and back within one step is not missed.
-inline constexpr int kEventSubsamples = 2;
+// Event functions are sampled at this many points inside each step (evenly, the last at the
+// step's end) before root finding, so that a function dipping below zero and back within one
+// step is not missed. 8: the density of two samples per step of Dormand-Prince 5(4) (about four
+// times shorter steps); with two samples per step of 8(5,3), short slip phases were missed often
+// enough that orbits of long period never settled.
+inline constexpr int kEventSubsamples = 8;
 
 // A function positive at every sample of a step can still dip through zero and back between
 // them: near a grazing, the slip+ phase of the paper's roller at MMd = 6885 N m lasts 0.4 % of
-// the period, inside a step of about 1 %, and the stick phase carried |T| > mu N through it
-// (mu_required 0.50013). Where the parabola through the samples has its minimum between them
+// the period, and the stick phase carried |T| > mu N through it (mu_required 0.50013) when it
+// fell inside a step of Dormand-Prince 5(4) sampled twice. Where the parabola through the lowest
+// sample and its neighbours has its minimum between them
 // and below kDipFraction times the lowest sample, the function is evaluated there, and at the
 // minimum of the parabola through the lowest value and its neighbours up to kDipEvaluations
 // times in all; a value at or below zero brackets the event's root with the sample before it.
 inline constexpr double kDipFraction = 0.5;
 inline constexpr int kDipEvaluations = 4;
+
+// The normal force's minimum inside a step, for min_N: where the parabola through N at its lowest
+// sample and that sample's neighbours has its minimum between them, N is evaluated there on the
+// dense output, and at the minimum of the parabola through the lowest value and its neighbours,
+// up to this many times in all (successive parabolic interpolation). The parabola alone misses
+// N's minimum by an error that grows with the fourth power of the sample spacing: with three
+// samples per step of Dormand-Prince 8(5,3) it kept a continuation from locating where the
+// paper's roller lifts off at 65.7 Hz.
+inline constexpr int kMinNEvaluations = 3;
 
 // The minimum of the parabola through (t[0], f[0]), (t[1], f[1]), (t[2], f[2]) (t increasing):
 // false when the parabola is not convex or its minimum is not strictly between t[0] and t[2].
@@ -71,13 +85,11 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
   using Dyn = detail::Dynamics<R>;
   using Vec = typename Dyn::Vector;
   using EventValues = typename Dyn::EventValues;
-  using Dopri5 = boost::numeric::odeint::runge_kutta_dopri5<Vec>;
-  using DenseStepper = boost::numeric::odeint::dense_output_runge_kutta<
-      boost::numeric::odeint::controlled_runge_kutta<Dopri5>>;
+  using DenseStepper = detail::Dop853<Vec>;
   using Observer = BasicFlowObserver<R>;
   using StateT = typename R::State;
 
-  // The right-hand side of the current phase as a first-order system, for Odeint.
+  // The right-hand side of the current phase as a first-order system, for the stepper.
   struct Rhs {
     const Dyn* dynamics;
     Phase phase;
@@ -93,7 +105,7 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
         options(o),
         period(m.period()),
         dynamics(m, o.baumgarte),
-        stepper(boost::numeric::odeint::make_dense_output(o.atol, o.rtol, o.max_step, Dopri5())) {
+        stepper(o.atol, o.rtol, o.max_step) {
     counters.min_N = std::numeric_limits<double>::infinity();
   }
 
@@ -125,6 +137,7 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
                 Crossing& best);
   double root(int i, double a, double fa, double b, double fb);
   void restart(double t, const Vec& x);
+  void track_min_N();
   FlowStop apply_event(const Crossing& c, Observer* observer);
   bool report(double a, double b, bool ends, Observer* observer);
   FlowStop stop(FlowStop s, double t, const Vec& x, std::string why) {
@@ -155,11 +168,10 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
   // find_event evaluated them (the start of the next step when no event cuts it).
   EventValues e_end{};
   double N_end = 0.0;
-  // The normal force at the start of the current step and at its middle sample [N]: with N_end,
-  // the parabola whose minimum inside the step counts in min_N (a smooth N(t) falls about
-  // A (pi / steps per period)^2 / 2 lower between two step ends than at them: 2 N short of its
-  // zero where the paper's roller lifts off at 65.7 Hz).
-  double N_start = 0.0, N_middle = 0.0;
+  // The normal force at the start of the current step [N] and at its samples (the last is
+  // N_end): where N's minimum inside the step is sought (track_min_N).
+  double N_start = 0.0;
+  std::array<double, detail::kEventSubsamples> N_samples{};
 
   // The step taken but not yet wholly consumed.
   bool have_step = false;
@@ -180,12 +192,13 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
 template <class R>
 typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, double tb) {
   Crossing best;
-  EventValues prev = e_prev;
-  EventValues middle{};
-  double tp = ta;
-  Vec x;
   constexpr int kSub = detail::kEventSubsamples;
-  static_assert(kSub == 2, "find_dip takes the step's start, middle and end");
+  // The samples: ts[0] = ta with e_prev, ts[kSub] = tb.
+  std::array<double, kSub + 1> ts{};
+  std::array<EventValues, kSub + 1> es{};
+  ts[0] = ta;
+  es[0] = e_prev;
+  Vec x;
   // A contact that pulls where its phase starts (N well below zero after a landing, which then
   // "lifts off again at once"): the switch is taken at once. Left to the samples it was missed
   // where N rose through zero before the step's middle (a landing of a unilateral pure-rolling
@@ -207,8 +220,11 @@ typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, 
     } else {
       stepper.calc_state(tk, x);
     }
-    const EventValues e = k == kSub ? values(x, &N_end) : values(x, &N_middle);
-    if (k == kSub) e_end = e;
+    const EventValues e = values(x, &N_samples[k - 1]);
+    ts[k] = tk;
+    es[k] = e;
+    const EventValues& prev = es[k - 1];
+    const double tp = ts[k - 1];
     for (int i = 0; i < Dyn::kEvents; ++i) {
       // A fresh function is zero at ta by construction and counts as positive there.
       const bool was_positive = prev[i] > 0.0 || e_fresh[i];
@@ -229,16 +245,23 @@ typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, 
       const double te = root(i, a, fa, tk, e[i]);
       if (!best.found || te < best.t) best = {true, te, i};
     }
-    if (k < kSub) middle = e;
-    prev = e;
-    tp = tk;
   }
   if (best.found) return best;
-  // No function fell through zero at a sample: one may have dipped through it between them.
-  const double tm = ta + (tb - ta) / kSub;
+  e_end = es[kSub];
+  N_end = N_samples[kSub - 1];
+  // No function fell through zero at a sample: one may have dipped through it between them,
+  // near its lowest sample (between that sample's neighbours).
   for (int i = 0; i < Dyn::kEvents; ++i) {
-    if (e_fresh[i] || !(e_prev[i] > 0.0 && middle[i] > 0.0 && e_end[i] > 0.0)) continue;
-    find_dip(i, ta, tm, tb, {e_prev[i], middle[i], e_end[i]}, best);
+    if (e_fresh[i]) continue;
+    int low = 0;
+    for (int k = 0; k <= kSub; ++k) {
+      if (!(es[k][i] > 0.0)) low = -1;
+      if (low < 0) break;
+      if (es[k][i] < es[low][i]) low = k;
+    }
+    if (low < 0) continue;
+    const int m = std::clamp(low, 1, kSub - 1);
+    find_dip(i, ts[m - 1], ts[m], ts[m + 1], {es[m - 1][i], es[m][i], es[m + 1][i]}, best);
   }
   return best;
 }
@@ -294,6 +317,46 @@ void BasicFlow<R>::Impl::find_dip(int i, double ta, double tm, double tb,
 }
 
 template <class R>
+void BasicFlow<R>::Impl::track_min_N() {
+  // N at three times of the step in increasing order: the lowest sample and its neighbours, then
+  // the lowest value with its neighbours once evaluations are in (kMinNEvaluations). No lower
+  // than 0: where N fell through 0 inside the step, find_event took the event.
+  constexpr int kSub = detail::kEventSubsamples;
+  auto sample_t = [&](int k) {
+    return k == kSub ? step_t1 : step_t0 + (step_t1 - step_t0) * k / kSub;
+  };
+  auto sample_N = [&](int k) { return k == 0 ? N_start : N_samples[k - 1]; };
+  int low = 0;
+  for (int k = 1; k <= kSub; ++k)
+    if (sample_N(k) < sample_N(low)) low = k;
+  const int m = std::clamp(low, 1, kSub - 1);
+  std::array<double, 3> ts{sample_t(m - 1), sample_t(m), sample_t(m + 1)};
+  std::array<double, 3> Ns{sample_N(m - 1), sample_N(m), sample_N(m + 1)};
+  for (int k = 0; k < detail::kMinNEvaluations; ++k) {
+    double t_min = 0.0, N_parabola = 0.0;
+    if (!detail::parabola_minimum(ts.data(), Ns.data(), t_min, N_parabola)) return;
+    if (t_min == ts[1]) return;  // converged to the resolution of t
+    Vec x;
+    stepper.calc_state(t_min, x);
+    double N = 0.0;
+    values(x, &N);
+    counters.min_N = std::min(counters.min_N, std::max(N, 0.0));
+    // Keep the lowest value with its neighbours on either side.
+    if (t_min < ts[1]) {
+      if (N <= Ns[1])
+        ts = {ts[0], t_min, ts[1]}, Ns = {Ns[0], N, Ns[1]};
+      else
+        ts[0] = t_min, Ns[0] = N;
+    } else {
+      if (N <= Ns[1])
+        ts = {ts[1], t_min, ts[2]}, Ns = {Ns[1], N, Ns[2]};
+      else
+        ts[2] = t_min, Ns[2] = N;
+    }
+  }
+}
+
+template <class R>
 void BasicFlow<R>::Impl::restart(double t, const Vec& x) {
   const double dt = stepper.current_time_step();
   stepper.initialize(x, t, std::min(dt > 0 ? dt : period / 100.0, options.max_step));
@@ -314,8 +377,12 @@ void BasicFlow<R>::Impl::restart(double t, const Vec& x) {
 
 template <class R>
 FlowStop BasicFlow<R>::Impl::apply_event(const Crossing& c, Observer* observer) {
-  Vec x;
-  stepper.calc_state(c.t, x);
+  // The state at the event by the integrator's own step to it (step_to): the next phase starts
+  // from it, and the continuous extension's error (an order higher in the step) would enter the
+  // trajectory at every switch (the slip coupling (39) held ten times worse, stroboscopic
+  // points of a period-11 lift-off orbit repeated to 4e-6 instead of 1e-8).
+  Vec x = stepper.step_to(c.t, Rhs{&dynamics, phase_, &counters.rhs_evaluations});
+  ++counters.partial_steps;
   // The state at the event is one of the trajectory: N there counts in min_N (N has a corner
   // minimum at a stick-to-slip switch, 83 N below every step end of a case of mu 1.27).
   // (No lower than 0: a landing whose contact pulls at once lifts off, or loses contact, there.)
@@ -404,6 +471,12 @@ FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
                     detail::format("cancelled at t = %.9g s", t_now));
       Rhs rhs{&dynamics, phase_, &counters.rhs_evaluations};
       const auto [a, b] = stepper.do_step(rhs);
+      if (stepper.failed())
+        return stop(FlowStop::budget_exceeded, t_now, x_now,
+                    detail::format("the integration step fell below the round-off of t = %.9g s: "
+                                   "the problem is too stiff for the explicit Dormand-Prince "
+                                   "method at these parameters",
+                                   t_now));
       ++counters.steps;
       const Vec& x1 = stepper.current_state();
       if (!std::all_of(x1.begin(), x1.end(), [](double v) { return std::isfinite(v); }))
@@ -442,7 +515,12 @@ FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
       }
       cursor = t_end;
       t_now = t_end;
-      stepper.calc_state(t_end, x_now);
+      // The state at the interval's end by the integrator's own step to it (step_to), not the
+      // continuous extension: drivers compare these states period to period (the steady-state
+      // search, the shooting residual), and the extension's error, an order higher, varies with
+      // where the steps fall in each period (a noise floor above 1e-9 of the ranges).
+      x_now = stepper.step_to(t_end, Rhs{&dynamics, phase_, &counters.rhs_evaluations});
+      ++counters.partial_steps;
       return FlowStop::reached;
     }
     const bool go_on = report(cursor, seg_end, !crossing.found, observer);
@@ -454,13 +532,7 @@ FlowStop BasicFlow<R>::Impl::advance(double t_end, Observer* observer) {
       // find_event evaluated the event functions at the step's end (x1) last.
       const Vec x1 = stepper.current_state();
       dynamics.track(phase_, x1, N_end, counters);
-      // N's minimum inside the step, from the parabola through its three samples (no lower than
-      // 0: where N fell through 0 between them, find_event took the event).
-      const double ts[3] = {step_t0, 0.5 * (step_t0 + step_t1), step_t1};
-      const double Ns[3] = {N_start, N_middle, N_end};
-      double t_min = 0.0, N_min = 0.0;
-      if (detail::parabola_minimum(ts, Ns, t_min, N_min))
-        counters.min_N = std::min(counters.min_N, std::max(N_min, 0.0));
+      track_min_N();
       N_start = N_end;
       e_prev = e_end;
       e_fresh = {};

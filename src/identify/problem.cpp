@@ -123,13 +123,12 @@ Problem::Problem(const Case& base, const MeasuredResponse& data, const IdentifyO
   case_.numerics.samples_per_period = std::max(64, 4 * n_sim_ + 8);
   case_.numerics.output_periods = 1;
   // Every model run is bounded, so that no trial the optimiser visits can take long: one that
-  // has not settled in 1500 periods, needs more than 2000 steps in one period (a diverging slip
+  // has not settled in 1500 periods, needs more than 800 steps in one period (a diverging slip
   // phase, a stiff corner of the parameter space) or more than kMaxStepsPerRun steps in all is
   // a failed trial (Simulated::ok false, with the run's message), not waited for. The paper's
-  // cases need 40-130 steps per period at rtol 1e-6 and at most ~140 000 in all (G = 2e9 Pa,
-  // pure rolling, about 1100 periods).
+  // roller needs 20-150 steps per period at rtol 1e-6 (G = 5 to 2000 MN/m^2).
   case_.numerics.max_periods = std::min(base.numerics.max_periods, 1500);
-  case_.numerics.max_steps_per_period = std::min(base.numerics.max_steps_per_period, 2000);
+  case_.numerics.max_steps_per_period = std::min(base.numerics.max_steps_per_period, 800);
   if (o.shooting) case_.numerics.method = SteadyMethod::shooting;
   // The model to 1e-6 (its harmonics change by about that much; the measured ones are known to
   // about 1e-3), three times faster than the default 1e-8.

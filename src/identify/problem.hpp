@@ -67,12 +67,12 @@ struct Simulated {
 
 /// Every model run of an identification is bounded: at most this many integration steps in all
 /// (about half a second).
-inline constexpr long kMaxStepsPerRun = 400000;
+inline constexpr long kMaxStepsPerRun = 160000;
 /// ... and the runs of one identification (one window, with the refits of its diagnosis) at most
 /// this many in all (about 7 s): a window of the paper's roller takes tens of milliseconds, but a
 /// roller whose model hardly settles (a suspension of 1e9 N/m: every trial runs into its 1500
 /// periods) took minutes of such trials, the diagnosis's refits multiplying them.
-inline constexpr long kMaxStepsPerWindow = 8000000;
+inline constexpr long kMaxStepsPerWindow = 3200000;
 
 /// The misfit of the harmonics n = 1 ... harmonics of the model (`x`, `z`: as Problem::compared
 /// gives them) against the measured ones: the RMS of C_n(measured) - C_n(model) over n and both

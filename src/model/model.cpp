@@ -69,13 +69,13 @@ void validate(const Case& c) {
 
 // The drum's fastest linear rate on its supports, against the excitation: the damping rates
 // (cd + csh) / m, (cd + csv) / m and the circular frequencies sqrt((kd + ksh) / m),
-// sqrt((kd + ksv) / m) [1/s], each times the period T. An explicit integrator (Dormand-Prince)
-// needs about that many steps per period over its stability bound of about 3.3, so a case far
-// beyond any roller (the paper's on G = 25 MN/m^2: 5.0, sqrt((kd + ksv) / m); the stiffest soil the
-// fields admit, G = 1e11 Pa through Appendix B, a few hundred) takes minutes or fails: it is
+// sqrt((kd + ksv) / m) [1/s], each times the period T. An explicit integrator (Dormand-Prince
+// 8(5,3)) needs about that many steps per period over its stability bound of about 6.4, so a case
+// far beyond any roller (the paper's on G = 25 MN/m^2: 5.0, sqrt((kd + ksv) / m); the stiffest soil
+// the fields admit, G = 1e11 Pa through Appendix B, a few hundred) takes minutes or fails: it is
 // refused, naming the field that makes it so stiff. roller.cd = 1e9 N s/m (330 000 times the
-// paper's buffers, 1.4e4) still runs in about a second; 2e9 (2.8e4) ran 44 s into
-// numerics.max_periods.
+// paper's buffers, 1.4e4) still ran in about a second with Dormand-Prince 5(4); 2e9 (2.8e4) ran
+// 44 s into numerics.max_periods.
 constexpr double kMaxRatePerPeriod = 2e4;
 
 void check_time_scales(const Case& c, const SoilCoefficients& s) {

@@ -60,8 +60,8 @@ void check_monodromy(Case c, bool expect_switches, int p = 1) {
   ASSERT_EQ(shot.multiplicity, p);
   const double T = p * model.period();  // the map is P^p
 
-  detail::MonodromyObserver<OscillationDrum> mono(model, flow.options().baumgarte,
-                                                  model.period() / 64.0);
+  detail::MonodromyObserver<OscillationDrum> mono(
+      model, flow.options().baumgarte, model.period() / detail::kMonodromySubstepsPerPeriod);
   flow.reset(shot.t0, shot.orbit, shot.phase);
   ASSERT_EQ(flow.advance(shot.t0 + T, &mono), FlowStop::reached);
   if (expect_switches) {
@@ -409,6 +409,11 @@ TEST(Shooting, TransientDecaysLikeTheLargestMultiplierInPureRolling) {
 TEST(Shooting, AgreesWithTheTransientMethod) {
   for (const Case& c0 : {stick_slip_case(), pure_rolling_case(), regularised_case()}) {
     Case c = c0;
+    // The regularised law's steep slope near v_rel = 0 is stiff: there the steps are bounded by
+    // stability, and the continuous extension between step ends, from which the samples come,
+    // is accurate to about 1e-6 of the accelerations at rtol 1e-8 (7e-7 of ddz_max measured),
+    // the step ends to 1e-8. At rtol 1e-10 the samples meet the comparison below.
+    if (c.contact.law == FrictionChoice::regularised) c.numerics.rtol = 1e-10;
     const Result shot = simulate(c);
     c.numerics.method = SteadyMethod::transient;
     const Result trans = simulate(c);

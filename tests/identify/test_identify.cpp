@@ -418,10 +418,11 @@ TEST(SimulateMetrics, RollingSteadyStateIsTheResponseAboveTheFrictionItNeeds) {
   ASSERT_EQ(below.status, Status::steady_state) << below.message;
   EXPECT_GT(below.switches_per_period, 0.0);
 
-  // A budget below what any steady state takes (one period alone takes ~100 steps).
-  const ModelResponse bounded = simulate_metrics(truth(42.7e6, true, 0.03), 4, 200);
+  // A budget below what any steady state takes (one period alone takes ~25 steps, the shooting
+  // and sampling several periods).
+  const ModelResponse bounded = simulate_metrics(truth(42.7e6, true, 0.03), 4, 50);
   EXPECT_EQ(bounded.status, Status::budget_exceeded);
-  EXPECT_NE(bounded.message.find("200 integration steps"), std::string::npos) << bounded.message;
+  EXPECT_NE(bounded.message.find("50 integration steps"), std::string::npos) << bounded.message;
 }
 
 // The model's steady states found by shooting (the default) or by the transient from rest give
