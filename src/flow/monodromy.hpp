@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "oscidrum/flow.hpp"
@@ -23,17 +24,34 @@
 namespace oscidrum::detail {
 
 // Runge-Kutta substeps of the variational equations: at most T / kMonodromySubstepsPerPeriod of
-// the excitation period T (fewer where the flow's steps or phases are shorter). The classical
-// scheme's error falls with the 4th power of the substep: at T/128 the monodromy agrees with one
-// on T/4096 substeps to about 1e-6 of its largest entry (test_shooting). Every driver that
-// integrates a monodromy (shooting, continuation, the motion's Lyapunov exponent) uses it.
-inline constexpr double kMonodromySubstepsPerPeriod = 128.0;
+// the excitation period T (fewer where the flow's steps or phases are shorter). Butcher's
+// seven-stage scheme of order 6: its error falls with the 6th power of the substep. Every driver
+// that integrates a monodromy (shooting, continuation, the motion's Lyapunov exponent) uses it.
+inline constexpr double kMonodromySubstepsPerPeriod = 20.0;
 
-// And at least this many per step of the flow: where the flow's steps are bounded by stability (a
-// stiff phase, such as the regularised friction law's steep slope near v_rel = 0), Dormand-Prince
-// 8(5,3) takes steps up to |h lambda| = 6.39 on the negative real axis, and the classical
-// Runge-Kutta scheme is stable only to 2.79: three substeps keep it inside.
-inline constexpr int kMonodromyMinSubsteps = 3;
+// ... and enough substeps that h rho(J) stays below this (the scheme is stable to 2.86 on the
+// negative real axis), rho(J) bounded by a norm of J (monodromy_rate): where a stiff phase (the
+// regularised friction law's steep slope near v_rel = 0) bounds the flow's steps, Dormand-Prince
+// 8(5,3) takes them up to |h lambda| = 6.39.
+inline constexpr double kMonodromyStability = 1.0;
+
+// An upper bound of the spectral radius of J [1/s] (any induced norm bounds it): the infinity
+// norm of D^-1 J D after three sweeps of Osborne's balancing choose the diagonal D (the state's
+// components have different units, so J's plain norm is no bound worth having).
+template <class Matrix>
+double monodromy_rate(const Matrix& J) {
+  constexpr int n = static_cast<int>(Matrix::RowsAtCompileTime);
+  Matrix B = J.cwiseAbs();
+  for (int sweep = 0; sweep < 3; ++sweep)
+    for (int i = 0; i < n; ++i) {
+      const double c = B.col(i).sum() - B(i, i), r = B.row(i).sum() - B(i, i);
+      if (!(c > 0.0) || !(r > 0.0)) continue;
+      const double f = std::sqrt(r / c);
+      B.row(i) /= f;
+      B.col(i) *= f;
+    }
+  return B.rowwise().sum().maxCoeff();
+}
 
 template <class R>
 class MonodromyObserver : public BasicFlowObserver<R> {
@@ -58,24 +76,36 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   bool on_step(const BasicStepView<R>& step) override {
     const double a = step.t0(), b = step.t1();
     if (!(b > a)) return true;
-    const int n =
-        std::max(kMonodromyMinSubsteps, static_cast<int>(std::ceil((b - a) / max_substep_)));
-    const double h = (b - a) / n;
     const Phase phase = step.phase();
-    // Classical Runge-Kutta for the linear equation Phi' = J(t) Phi, J on the dense output.
     Matrix J0 = (have_last_ && last_t_ == a && last_phase_ == phase)
                     ? last_J_
                     : jacobian(a, step.state(a), phase);
+    const double stable = kMonodromyStability / std::max(monodromy_rate(J0), 1e-300);
+    const int n =
+        std::max(1, static_cast<int>(std::ceil((b - a) / std::min(max_substep_, stable))));
+    const double h = (b - a) / n;
+    // A seven-stage Runge-Kutta method of order 6 of Butcher's ("On Runge-Kutta processes of high
+    // order", J. Austral. Math. Soc. 4, 1964) for the linear equation Phi' = J(t) Phi, J on the
+    // dense output at the nodes 0, 1/3, 2/3, 1/2, 1 of each substep.
     for (int i = 0; i < n; ++i) {
-      const double t = a + i * h, tm = t + 0.5 * h, t1 = (i + 1 == n) ? b : t + h;
-      const Matrix Jm = jacobian(tm, step.state(tm), phase);
+      const double t = a + i * h, t1 = (i + 1 == n) ? b : t + h;
+      const Matrix J13 = jacobian(t + h / 3.0, step.state(t + h / 3.0), phase);
+      const Matrix J23 = jacobian(t + 2.0 * h / 3.0, step.state(t + 2.0 * h / 3.0), phase);
+      const Matrix J12 = jacobian(t + 0.5 * h, step.state(t + 0.5 * h), phase);
       const Matrix J1 = jacobian(t1, step.state(t1), phase);
       // jacobian_times: the roller's structure of J (unit rows) saves work in the products.
       const Matrix k1 = Dyn::jacobian_times(J0, phi_);
-      const Matrix k2 = Dyn::jacobian_times(Jm, phi_ + 0.5 * h * k1);
-      const Matrix k3 = Dyn::jacobian_times(Jm, phi_ + 0.5 * h * k2);
-      const Matrix k4 = Dyn::jacobian_times(J1, phi_ + h * k3);
-      phi_ += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      const Matrix k2 = Dyn::jacobian_times(J13, phi_ + (h / 3.0) * k1);
+      const Matrix k3 = Dyn::jacobian_times(J23, phi_ + (2.0 * h / 3.0) * k2);
+      const Matrix k4 = Dyn::jacobian_times(J13, phi_ + h * (k1 / 12.0 + k2 / 3.0 - k3 / 12.0));
+      const Matrix k5 = Dyn::jacobian_times(
+          J12, phi_ + h * (-k1 / 16.0 + 9.0 / 8.0 * k2 - 3.0 / 16.0 * k3 - 3.0 / 8.0 * k4));
+      const Matrix k6 = Dyn::jacobian_times(
+          J12, phi_ + h * (9.0 / 8.0 * k2 - 3.0 / 8.0 * k3 - 3.0 / 4.0 * k4 + 0.5 * k5));
+      const Matrix k7 =
+          Dyn::jacobian_times(J1, phi_ + h * (9.0 / 44.0 * k1 - 9.0 / 11.0 * k2 + 63.0 / 44.0 * k3 +
+                                              18.0 / 11.0 * k4 - 16.0 / 11.0 * k6));
+      phi_ += h * (11.0 / 120.0 * (k1 + k7) + 27.0 / 40.0 * (k3 + k4) - 4.0 / 15.0 * (k5 + k6));
       J0 = J1;
     }
     have_last_ = true;
