@@ -35,20 +35,29 @@ inline constexpr double kMonodromySubstepsPerPeriod = 20.0;
 // 8(5,3) takes them up to |h lambda| = 6.39.
 inline constexpr double kMonodromyStability = 1.0;
 
-// An upper bound of the spectral radius of J [1/s] (any induced norm bounds it): the infinity
-// norm of D^-1 J D after three sweeps of Osborne's balancing choose the diagonal D (the state's
-// components have different units, so J's plain norm is no bound worth having).
+// An upper bound of the spectral radius of J [1/s]: the infinity norm of D^-1 |J| D with D =
+// diag(d), an induced norm of a matrix similar to |J|, which bounds rho(|J|) >= rho(J) for any
+// positive d. The state's components have different units, so J's plain norm is no bound worth
+// having: `sweeps` sweeps of Osborne's balancing first bring D^-1 |J| D closer to rows and
+// columns of equal sums off the diagonal, updating d (a d balanced on a nearby J needs one sweep
+// where one from d = 1 needs three).
 template <class Matrix>
-double monodromy_rate(const Matrix& J) {
+double monodromy_rate(const Matrix& J, Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1>& d,
+                      int sweeps) {
   constexpr int n = static_cast<int>(Matrix::RowsAtCompileTime);
   Matrix B = J.cwiseAbs();
-  for (int sweep = 0; sweep < 3; ++sweep)
+  for (int i = 0; i < n; ++i) {
+    const double inv = 1.0 / d[i];
+    for (int j = 0; j < n; ++j) B(i, j) *= d[j] * inv;
+  }
+  for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int i = 0; i < n; ++i) {
       const double c = B.col(i).sum() - B(i, i), r = B.row(i).sum() - B(i, i);
       if (!(c > 0.0) || !(r > 0.0)) continue;
       const double f = std::sqrt(r / c);
       B.row(i) /= f;
       B.col(i) *= f;
+      d[i] *= f;
     }
   return B.rowwise().sum().maxCoeff();
 }
@@ -69,6 +78,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   void reset() {
     phi_.setIdentity();
     have_last_ = false;
+    balanced_ = false;
     grazing_ = false;
     switches_.clear();
   }
@@ -80,7 +90,10 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     Matrix J0 = (have_last_ && last_t_ == a && last_phase_ == phase)
                     ? last_J_
                     : jacobian(a, step.state(a), phase);
-    const double stable = kMonodromyStability / std::max(monodromy_rate(J0), 1e-300);
+    if (!balanced_) balance_.setOnes();
+    const double rate = monodromy_rate(J0, balance_, balanced_ ? 1 : 3);
+    balanced_ = true;
+    const double stable = kMonodromyStability / std::max(rate, 1e-300);
     const int n =
         std::max(1, static_cast<int>(std::ceil((b - a) / std::min(max_substep_, stable))));
     const double h = (b - a) / n;
@@ -120,6 +133,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     const auto s = dynamics_.saltation(event, before.to_array(), after.to_array());
     if (s.grazing) grazing_ = true;
     have_last_ = false;
+    balanced_ = false;
     phi_ = s.S.lazyProduct(phi_).eval();
     switches_.push_back(event);
     return true;
@@ -148,6 +162,11 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   Phase last_phase_ = Phase::stick;
   Matrix last_J_ = Matrix::Zero();
   bool grazing_ = false;
+  // d of monodromy_rate, balanced from 1 at the first Jacobian since reset() or the last switch
+  // and carried on (one sweep per step) while the phase lasts: a third of the sweeps for the same
+  // bound.
+  bool balanced_ = false;
+  Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1> balance_;
   std::vector<Event> switches_;
   long jacobian_evaluations_ = 0;
 };
