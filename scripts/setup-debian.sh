@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git
-  libboost-dev                  # Boost.Odeint (integration) and Boost.Math (TOMS 748 roots)
+  libboost-dev                  # Boost.Math (TOMS 748 roots)
   libtomlplusplus-dev           # config files
   nlohmann-json3-dev            # JSON output
   libhdf5-dev                   # sweep --hdf5 (HDF5 C library)

@@ -5,15 +5,14 @@
 // that of the dense-output stepper the hybrid flow (hybrid_flow.hpp) uses to locate its events
 // on the continuous extension of each step.
 //
-// Not yet the flow's integrator: the flow integrates with Dormand-Prince 5(4) (MATLAB's ode45,
-// which the paper used). At the tolerances the metrics need (rtol 1e-8) an 8th-order step is
-// about four times as long as a 5th-order one; with its 12 stages (the 13th is the next step's
-// first, FSAL) and 3 more for the continuous extension of an accepted step, it evaluates the
-// right-hand side a quarter to a half less often, but wired into the flow the variational
-// equations' substeps take much of that (bench/README.md, "Issue 26: Dormand-Prince 8(5,3) wired
-// into the flow"). No packaged library offers this pair with its continuous extension for a
-// fixed-size state (Boost.Odeint's 8th-order pair, Fehlberg 7(8), has no continuous extension of
-// its own).
+// The flow's integrator, in place of Dormand-Prince 5(4) (MATLAB's ode45, which the paper used):
+// at the tolerances the metrics need (rtol 1e-8) an 8th-order step is about four times as long
+// as a 5th-order one; with its 12 stages (the 13th is the next step's first, FSAL) and 3 more for
+// the continuous extension of an accepted step, it evaluates the right-hand side a quarter to a
+// half less often, and the longer steps need fewer variational substeps, recorded pieces and
+// event tests (bench/README.md, "Issue 26: Dormand-Prince 8(5,3) in the flow"). No packaged
+// library offers this pair with its continuous extension for a fixed-size state (Boost.Odeint's
+// 8th-order pair, Fehlberg 7(8), has no continuous extension of its own).
 //
 // Step control (Hairer, Norsett & Wanner, II.4 and II.10): the error of a step is the largest
 // over the components of |h| |err5|^2 / sqrt(err5^2 + 0.01 err3^2) / sc with the scale
