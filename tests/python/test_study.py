@@ -149,14 +149,26 @@ def test_thread_pool_executor_equals_local(local):
 def test_an_exception_of_the_callback_cancels_the_chunks_not_started():
     """An exception in on_case_done stops a local study; on an executor the chunks submitted ran
     on to the end (a Dask or MPI study kept the cluster busy for its whole length). They are
-    cancelled, as on Ctrl-C."""
+    cancelled, as on Ctrl-C. Every chunk after the first waits until the study has raised (else
+    the one worker could run several chunks while the first case's callback is reported, however
+    fast the cases are): the first ran, the second at most started, the other 18 are cancelled."""
+    import threading
     from concurrent.futures import ThreadPoolExecutor
+
+    raised = threading.Event()
 
     class Recording(ThreadPoolExecutor):
         futures = []
 
-        def submit(self, *args, **kwargs):
-            f = super().submit(*args, **kwargs)
+        def submit(self, fn, *args, **kwargs):
+            first = not self.futures
+
+            def gated(*a, **k):
+                if not first:
+                    raised.wait(30.0)  # a bound, so that a regression fails instead of hanging
+                return fn(*a, **k)
+
+            f = super().submit(gated, *args, **kwargs)
             self.futures.append(f)
             return f
 
@@ -167,8 +179,10 @@ def test_an_exception_of_the_callback_cancels_the_chunks_not_started():
     with Recording(1) as pool:
         with pytest.raises(RuntimeError, match="stop here"):
             oscidrum.run_study(cases, executor=pool, chunk_size=1, threads=1, on_case_done=fail)
+        raised.set()
     assert len(pool.futures) == 20
-    assert sum(f.cancelled() for f in pool.futures) >= 15
+    assert not pool.futures[0].cancelled()
+    assert sum(f.cancelled() for f in pool.futures[2:]) == 18
 
 
 def test_default_chunks_follow_the_executors_workers():
