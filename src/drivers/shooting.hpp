@@ -159,7 +159,7 @@ inline constexpr double kFreshMonodromy = 1e-3;
 // at the better iterate, and Newton goes on as from a cold start. The warm case integrates the
 // variational equations once, and its Floquet multipliers come from that monodromy, as a cold
 // start's come from its last fresh one (at an iterate whose residual was above kFreshMonodromy).
-// A map with the variational equations costs about two plain ones in CPU time: with 0.1 instead,
+// A map with the variational equations costs two to 2.5 plain ones in CPU time: with 0.1 instead,
 // the Table 2 sweep's large steps in G took up to 7 slow chord steps and ran about 15 % slower
 // than with fresh monodromies (bench/README.md).
 inline constexpr double kChordContraction = 1e-2;
