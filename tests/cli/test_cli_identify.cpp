@@ -730,7 +730,7 @@ TEST(CliIdentify, TheFitPlotsModelLiesOnTheSamples) {
 
 // The soil under a vibratory drum (docs/model.md section 14) from its record: 60 steady periods
 // of examples/vibratory.toml on the Table 2 soil of G = 40 MN/m^2 (partial uplift), identified
-// with the same roller on the Table 2 scale: G comes back (seen: 40.00008 MN/m^2, standard
+// with the same roller on the Table 2 scale: G comes back (seen: 40.00009 MN/m^2, standard
 // uncertainty 0.00002 MN/m^2).
 TEST(CliIdentify, TheSoilUnderAVibratoryDrum) {
   TempDir dir;
