@@ -226,8 +226,9 @@ TEST(Motion, ChaoticExponentIsTheGrowthOfNearbyTrajectories) {
   }
   const double slope = (n * sky - sk * sy) / (n * skk - sk * sk);  // per period
   const MotionAnalysis m = analyze_motion(model, r, 400);
-  // A chaotic growth rate fluctuates along the attractor; here they agree to 8 % (0.0556 and
-  // 0.0514 per period), and within a factor 1.5 is the test.
+  // A chaotic growth rate fluctuates along the attractor; here they agree to 20 % (0.0598 and
+  // 0.0499 per period; 0.0556 and 0.0514 with Dormand-Prince 5(4)), and within a factor 1.5 is
+  // the test.
   RecordProperty("slope", std::to_string(slope));
   RecordProperty("lyapunov_per_period", std::to_string(m.lyapunov * T));
   EXPECT_GT(slope, m.lyapunov * T / 1.5);
