@@ -50,11 +50,6 @@ std::vector<std::string_view> all_keys() {
   return keys;
 }
 
-std::string_view last_part(std::string_view key) {
-  const std::size_t dot = key.rfind('.');
-  return dot == std::string_view::npos ? key : key.substr(dot + 1);
-}
-
 [[noreturn]] void type_error(const Field& f, const char* expected, const Value& v) {
   const std::string unit = std::string(f.unit) == "-" ? "" : std::string(" [") + f.unit + "]";
   std::string msg =
@@ -120,22 +115,9 @@ std::string suggest_key(std::string_view key) {
   if (key == "R" || lower(key) == "trough.r" || lower(key) == "trough.radius")
     return "; did you mean 'trough.a' (the radius R of a circular trough, with trough.k = 0, as "
            "the CLI's --R sets it)?";
-  // 1. The same name in another (or no) section, any case: "G" -> "soil.G", "soil.g" -> "soil.G".
-  for (std::string_view k : keys)
-    if (lower(k) == lower(key)) return "; did you mean '" + std::string(k) + "'?";
-  for (std::string_view k : keys)
-    if (last_part(k) == last_part(key)) return "; did you mean '" + std::string(k) + "'?";
-  for (std::string_view k : keys)
-    if (lower(last_part(k)) == lower(last_part(key)))
-      return "; did you mean '" + std::string(k) + "'?";
-  // 2. A near miss (a typo): at most one edit per four characters, at most three.
-  std::string_view best;
-  std::size_t best_d = std::clamp<std::size_t>(key.size() / 4, 1, 3) + 1;
-  for (std::string_view k : keys) {
-    const std::size_t d = detail::edit_distance(key, k);
-    if (d < best_d) best_d = d, best = k;
-  }
-  if (!best.empty()) return "; did you mean '" + std::string(best) + "'?";
+  // 1.-2. The same name in another section, or a near miss (util/text.hpp).
+  if (const std::string_view best = detail::closest_key(key, keys); !best.empty())
+    return "; did you mean '" + std::string(best) + "'?";
   // 3. A known section: list its keys.
   const std::size_t dot = key.find('.');
   if (dot != std::string_view::npos) {
@@ -143,7 +125,7 @@ std::string suggest_key(std::string_view key) {
     std::string list;
     for (std::string_view k : keys)
       if (k.starts_with(section) && k.size() > section.size() && k[section.size()] == '.')
-        list += (list.empty() ? "" : ", ") + std::string(last_part(k));
+        list += (list.empty() ? "" : ", ") + std::string(detail::key_last_part(k));
     if (!list.empty()) return "; [" + std::string(section) + "] has " + list;
   }
   return "; see 'oscidrum fields' for every key";

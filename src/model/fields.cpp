@@ -251,24 +251,13 @@ std::string choice_name_of(const char* choices, int index) {
                                      : std::string(key)) +
                     "'";
   if (key.size() > 80) throw Error(msg);
-  // The same name in its section first ("M0" -> "roller.M0", "mu" -> "contact.mu"): by edit
-  // distance alone "M0" and "mu" suggested "MMd".
-  const auto last_part = [](std::string_view k) {
-    const std::size_t dot = k.rfind('.');
-    return dot == std::string_view::npos ? k : k.substr(dot + 1);
-  };
-  for (const Field& f : kFields)
-    if (last_part(f.key) == key) throw Error(msg + "; did you mean '" + f.key + "'?");
-  const Field* best = nullptr;
-  std::size_t best_d = 4;
-  for (const Field& f : kFields) {
-    std::size_t d = detail::edit_distance(key, f.key);
-    if (d < best_d) {
-      best_d = d;
-      best = &f;
-    }
-  }
-  if (best) msg += std::string("; did you mean '") + best->key + "'?";
+  // The same name in its section first ("M0" -> "roller.M0", "mu" -> "contact.mu"), then a near
+  // miss (util/text.hpp): by edit distance to the whole keys alone "M0", "mu" and "muu"
+  // suggested "MMd".
+  std::vector<std::string_view> keys;
+  for (const Field& f : kFields) keys.emplace_back(f.key);
+  if (const std::string_view best = detail::closest_key(key, keys); !best.empty())
+    msg += "; did you mean '" + std::string(best) + "'?";
   throw Error(msg);
 }
 

@@ -69,6 +69,9 @@ TEST(CaseFile, UnknownKeysAreErrorsWithSuggestions) {
   EXPECT_EQ(case_error("[soil]\ng = 5\n"),
             "case.toml:2:1: unknown parameter 'soil.g'; did you mean 'soil.G'?");
   EXPECT_EQ(case_error("G = 5\n"), "case.toml:1:1: unknown parameter 'G'; did you mean 'soil.G'?");
+  // A typo of a name without its section (no suggestion before: 'MMd' was the nearest whole key).
+  EXPECT_EQ(case_error("muu = 0.4\n"),
+            "case.toml:1:1: unknown parameter 'muu'; did you mean 'contact.mu'?");
   EXPECT_EQ(case_error("[numerics]\nmax_period = 5\n"),
             "case.toml:2:1: unknown parameter 'numerics.max_period'; did you mean "
             "'numerics.max_periods'?");

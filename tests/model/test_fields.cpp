@@ -437,6 +437,12 @@ TEST(Fields, UnknownKeySuggestsTheNearestKey) {
             "unknown parameter 'M0'; did you mean 'roller.M0'?");
   EXPECT_EQ(error_of([&] { set_field(c, "mu", 1.0); }),
             "unknown parameter 'mu'; did you mean 'contact.mu'?");
+  // A typo of such a name: the name in its section is nearer than any whole key ('muu' was 3
+  // edits from 'MMd' and got that).
+  EXPECT_EQ(error_of([&] { set_field(c, "muu", 1.0); }),
+            "unknown parameter 'muu'; did you mean 'contact.mu'?");
+  EXPECT_EQ(error_of([&] { set_field(c, "rtoll", 1.0); }),
+            "unknown parameter 'rtoll'; did you mean 'numerics.rtol'?");
   // Nothing close: no suggestion.
   EXPECT_EQ(error_of([&] { set_field(c, "completely.unrelated", 1.0); }),
             "unknown parameter 'completely.unrelated'");
