@@ -330,6 +330,12 @@ void apply_flags(const CaseOptions& o, io::CaseSpec& spec) {
 
 namespace oscidrum::cli {
 
+void warn_if_replaced_by_param(const io::CaseSpec& spec, const std::string& key) {
+  const auto it = spec.origin.find(key);
+  if (it == spec.origin.end() || !it->second.starts_with("--")) return;
+  warn(it->second + " has no effect: --param " + key + " takes its values from --from to --to");
+}
+
 double key_flag_value(const Field& f, const std::string& flag, const std::string& text) {
   const std::optional<double> shown = parse_number(text);
   if (!shown)

@@ -85,4 +85,9 @@ double key_flag_value(const Field& f, const std::string& flag, const std::string
 Case resolve_case(const std::string& config, const CaseOptions& o, io::CaseSpec& spec,
                   std::optional<SoilInput> soil_input = std::nullopt);
 
+/// continue and diagram: a flag or --set that set `key`, which --param varies, has no effect
+/// (the values come from --from and --to): a warning on stderr naming it. A case file's value is
+/// the base case's, replaced as the file's other values are by flags: no warning.
+void warn_if_replaced_by_param(const io::CaseSpec& spec, const std::string& key);
+
 }  // namespace oscidrum::cli

@@ -297,6 +297,7 @@ int run(ContinueOptions o) {
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
+  warn_if_replaced_by_param(spec, o.key);
   // A case file's MMd_fraction (or --MMd-fraction) holds at every value, as in a study: MMd
   // follows the M0 in effect there (roller.M0, or roller.f with roller.unbalance).
   if (spec.MMd_fraction) o.branch.MMd_fraction = *spec.MMd_fraction;

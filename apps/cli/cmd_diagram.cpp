@@ -214,6 +214,7 @@ int run(DiagramCommandOptions o) {
   }
   io::CaseSpec spec;
   const Case c = resolve_case(o.config, o.c, spec);
+  warn_if_replaced_by_param(spec, o.key);
   // A case file's MMd_fraction (or --MMd-fraction) holds at every value, as in a study.
   if (spec.MMd_fraction) o.diagram.MMd_fraction = *spec.MMd_fraction;
   install_interrupt_handlers();

@@ -67,6 +67,34 @@ TEST(CliContinue, MMdFractionFollowsTheVariedM0) {
   EXPECT_NEAR(first, area, 1e-6 * area);
 }
 
+// A value of the varied key given on the command line was replaced by the branch's without a
+// word; now it is named in a warning (continue and diagram), and the run goes on.
+TEST(CliContinue, AFlagOfTheVariedKeyIsNamedAsWithoutEffect) {
+  const Outcome o =
+      run({"continue", "--set", "soil.input=modulus", "--set", "soil.G=30e6", "--param", "soil.G",
+           "--from", "20", "--to", "21", "--format", "none", "--quiet"});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("oscidrum: warning: --set soil.G=30e6 has no effect: --param soil.G "
+                       "takes its values from --from to --to"),
+            std::string::npos)
+      << o.err;
+  const Outcome d = run({"diagram",    "--set",     "soil.input=modulus",
+                         "--mu",       "0.4",       "--param",
+                         "contact.mu", "--from",    "0.4",
+                         "--to",       "0.5",       "--steps",
+                         "1",          "--discard", "20",
+                         "--periods",  "20",        "--format",
+                         "none",       "--quiet"});
+  ASSERT_EQ(d.code, 0) << d.err;
+  EXPECT_NE(d.err.find("warning: --mu 0.4 has no effect: --param contact.mu"), std::string::npos)
+      << d.err;
+  // Without it, no warning.
+  const Outcome quiet = run({"continue", "--set", "soil.input=modulus", "--param", "soil.G",
+                             "--from", "20", "--to", "21", "--format", "none", "--quiet"});
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("warning"), std::string::npos) << quiet.err;
+}
+
 // --harmonics had no effect: the branch's files held the scalar metrics only. Each point now has
 // the amplitudes A_1 ... A_H of x_M'' and z_M'' (H = --harmonics), as a sweep's rows do: the
 // first point, at --from, the same as `run` gives there.
