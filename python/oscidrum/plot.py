@@ -643,6 +643,10 @@ def plot_forces(cases: Any, labels: Optional[Sequence[str]] = None, periods: flo
     """Normal force N (a) and tangential force T (b) [kN] against t/T, with +-mu N on (b)
     when mu is known (argument or the case's contact.mu). ax: two Axes to draw into. legend:
     as for plot_accelerations (the cases' legend on (a), +-mu N on (b))."""
+    if mu is not None and not (is_number(mu) and np.isfinite(mu) and mu >= 0):
+        # mu=-1 drew the limits upside down, True drew them at 1 N, without a word
+        raise Error(f"mu must be a friction coefficient >= 0 or None (the case's contact.mu); "
+                    f"got {mu!r}")
     states = _cases(cases, labels)
     result = _time_panels(states, [("N", "normal force $N$ [kN]", 1e-3),
                                    ("T", "tangential force $T$ [kN]", 1e-3)], periods, shade,

@@ -639,6 +639,12 @@ def test_paper_fig7_title_names_G_once(tmp_path, monkeypatch):
         assert drawn[name]._suptitle.get_text().count("G = 5") == 1
 
 
+@pytest.mark.parametrize("mu", [-1.0, float("nan"), float("inf"), True, "0.5"])
+def test_forces_refuse_a_friction_coefficient_that_is_none(slip_result, mu):
+    with pytest.raises(oscidrum.Error, match="mu must be a friction coefficient >= 0"):
+        plot.plot_forces(slip_result, mu=mu)
+
+
 def test_forces_panel_b_legend_names_only_the_friction_limit(slip_result, slip_case):
     pair = (slip_result, slip_case)
     fig = plot.plot_forces([pair, pair], labels=["a", "b"])
