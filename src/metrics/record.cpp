@@ -927,6 +927,13 @@ SpectralPeak spectral_peak(std::span<const double> t, std::span<const double> dd
   if (t.size() < 8)
     throw Error("record: needs at least 8 samples to estimate f (or give f); got " +
                 std::to_string(t.size()));
+  // f_min = -1 searched from the lowest positive grid frequency without a word.
+  if (!(search.f_min > 0.0) || !std::isfinite(search.f_min))
+    throw Error(
+        "record: the frequency search's lower limit f_min (--f-min) must be a finite "
+        "frequency > 0 [Hz]; got " +
+            num(search.f_min),
+        "f_min", search.f_min);
   if (!(search.f_min < search.f_max))
     throw Error(
         "record: the frequency search's lower limit f_min (--f-min) must be below its "

@@ -1687,6 +1687,16 @@ TEST(Record, RejectsBadRecords) {
                 estimate_frequency(coarse_t, coarse_y, coarse_y, swapped);
               }).find("lower limit f_min (--f-min) must be below its upper limit"),
               std::string::npos);
+    // A lower limit of no frequency was searched from the grid's lowest positive one.
+    for (const double f_min : {-1.0, 0.0, std::nan("")}) {
+      FrequencySearch negative;
+      negative.f_min = f_min;
+      EXPECT_NE(message([&] {
+                  estimate_frequency(coarse_t, coarse_y, coarse_y, negative);
+                }).find("f_min (--f-min) must be a finite frequency > 0 [Hz]"),
+                std::string::npos)
+          << f_min;
+    }
   }
   EXPECT_NE(message([&] { analyze_record(t, y, y, -1.0); }).find("f must be > 0"),
             std::string::npos);
