@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstdio>
 #include <deque>
 #include <optional>
@@ -123,7 +124,13 @@ void bind_metrics(py::module_& m) {
   m.def(
       "harmonics",
       [](const Array& y, int cycles, double f, double t0, int n_max) {
-        auto h = harmonics(span_of(y, "y"), cycles, f, t0, n_max);
+        // A NaN sample made every amplitude NaN without a word on where it was.
+        const auto ys = span_of(y, "y");
+        for (std::size_t i = 0; i < ys.size(); ++i)
+          if (!std::isfinite(ys[i]))
+            throw Error("harmonics: y[" + std::to_string(i) + "] = " + std::to_string(ys[i]) +
+                        ": every sample must be finite (drop or fill the gap first)");
+        auto h = harmonics(ys, cycles, f, t0, n_max);
         return std::make_pair(amplitudes(h), phases(h));
       },
       py::arg("y"), py::arg("cycles"), py::arg("f"), py::arg("t0") = 0.0, py::arg("n_max") = 10,

@@ -69,6 +69,11 @@ def test_metrics(slip_result, rolling_result):
     amp, phase = oscidrum.harmonics(s.ddx_M, rolling_result.sample_periods,
                                     rolling_result.frequency, s.t[0], 10)
     assert np.allclose(amp, mr.ddx_amplitude) and np.allclose(phase, mr.ddx_phase)
+    # a gap in the signal is named, not spread over every amplitude as NaN
+    gap = np.array(s.ddx_M, dtype=float)
+    gap[7] = np.nan
+    with pytest.raises(oscidrum.Error, match=r"y\[7\] = nan: every sample must be finite"):
+        oscidrum.harmonics(gap, rolling_result.sample_periods, rolling_result.frequency, s.t[0])
     n = rolling_result.samples_per_period  # the area of one steady period
     assert oscidrum.enclosed_area(s.ddx_M[:n], s.ddz_M[:n]) == pytest.approx(mr.area, rel=1e-6)
 
