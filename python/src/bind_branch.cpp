@@ -89,8 +89,8 @@ py::dict branch_dict(const Branch& b) {
 }
 
 py::dict continue_branch_py(const Case& c, const std::string& key, double from, double to,
-                            double initial_step, double max_step, double tolerance, int max_points,
-                            bool metrics, int harmonics, int switch_depth,
+                            double initial_step, double max_step, double tolerance, Int max_points,
+                            bool metrics, Int harmonics, Int switch_depth,
                             std::optional<double> MMd_fraction) {
   BranchOptions o;
   if (MMd_fraction) o.MMd_fraction = *MMd_fraction;
@@ -159,7 +159,7 @@ void bind_branch(py::module_& m) {
       });
   m.def(
       "analyze_motion",
-      [](const Case& c, const Result& result, int periods) {
+      [](const Case& c, const Result& result, Int periods) {
         const Model model(c);
         py::gil_scoped_release release;
         return analyze_motion(model, result, periods);

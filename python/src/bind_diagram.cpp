@@ -75,7 +75,7 @@ py::dict diagram_dict(const Diagram& d) {
 }
 
 py::dict bifurcation_diagram_py(const Case& c, const std::string& key, double from, double to,
-                                int steps, const std::string& sweep, int discard, int periods,
+                                Int steps, const std::string& sweep, Int discard, Int periods,
                                 std::optional<double> MMd_fraction) {
   DiagramOptions o;
   if (MMd_fraction) o.MMd_fraction = *MMd_fraction;

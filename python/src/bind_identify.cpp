@@ -113,7 +113,7 @@ void bind_identify(py::module_& m) {
   m.def(
       "analyze_windows",
       [](const Array& t, const Array& ddx, const Array& ddz, const std::optional<Array>& position,
-         double f, double window, double hop, int n_max, double max_residual, double max_drift,
+         double f, double window, double hop, Int n_max, double max_residual, double max_drift,
          double clip_level, double max_gap, double max_change) {
         const WindowOptions o = window_options(f, window, hop, n_max, max_residual, max_drift,
                                                clip_level, max_gap, max_change);
@@ -177,7 +177,7 @@ void bind_identify(py::module_& m) {
       "identify_record",
       [](const Case& c, const Array& t, const Array& ddx, const Array& ddz,
          const std::optional<Array>& position, double f, std::optional<double> window, double hop,
-         int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, int compare,
+         Int n_max, const std::string& estimate, bool fit_mu, bool fit_MMd, Int compare,
          bool use_peaks, bool use_area, bool profile, bool shooting, const std::string& soil_scale,
          bool z_open, bool units_open, double gain_uncertainty, bool x_read_backward,
          bool z_read_up) {
@@ -279,7 +279,7 @@ void bind_identify(py::module_& m) {
   m.def(
       "calibrate_records",
       [](const Case& c, const py::list& references, const std::vector<std::string>& parameters,
-         double f, int n_max, int compare, double range, bool profile, bool shooting) {
+         double f, Int n_max, Int compare, double range, bool profile, bool shooting) {
         WindowOptions wo;
         wo.f = f;
         wo.n_max = n_max;
@@ -368,7 +368,7 @@ void bind_identify(py::module_& m) {
   m.def(
       "synthetic_record",
       [](const std::vector<Case>& cases, double duration, double sample_rate, double noise,
-         double drift, double jitter, unsigned seed, double speed) {
+         double drift, double jitter, UInt seed, double speed) {
         SyntheticRecord o;
         o.duration = duration;
         o.sample_rate = sample_rate;

@@ -123,7 +123,7 @@ void bind_metrics(py::module_& m) {
 
   m.def(
       "harmonics",
-      [](const Array& y, int cycles, double f, double t0, int n_max) {
+      [](const Array& y, Int cycles, double f, double t0, Int n_max) {
         // A NaN sample made every amplitude NaN without a word on where it was.
         const auto ys = span_of(y, "y");
         for (std::size_t i = 0; i < ys.size(); ++i)
@@ -188,7 +188,7 @@ void bind_metrics(py::module_& m) {
       "L, nu are out of range (the message names the argument).");
   m.def(
       "compute_metrics",
-      [](const Result& result, int n_max, const std::optional<Case>& c) {
+      [](const Result& result, Int n_max, const std::optional<Case>& c) {
         if (!c) return compute_metrics(result, n_max);
         const Model model(*c);
         return compute_metrics(model, result, n_max);

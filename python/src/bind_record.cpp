@@ -84,7 +84,7 @@ void bind_record(py::module_& m) {
       });
   m.def(
       "analyze_record",
-      [](const Array& t, const Array& ddx, const Array& ddz, double f, int n_max) {
+      [](const Array& t, const Array& ddx, const Array& ddz, double f, Int n_max) {
         return analyze_record(span_of(t, "t"), span_of(ddx, "ddx_M"), span_of(ddz, "ddz_M"), f,
                               n_max);
       },

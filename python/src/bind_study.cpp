@@ -48,8 +48,8 @@ std::vector<Case> to_cases(const py::handle& items) {
   return cases;
 }
 
-std::vector<CaseOutcome> run_study_py(const py::object& items, int threads, bool keep_samples,
-                                      int n_harmonics, const py::object& progress,
+std::vector<CaseOutcome> run_study_py(const py::object& items, Int threads, bool keep_samples,
+                                      Int n_harmonics, const py::object& progress,
                                       const py::object& on_case_done, bool samples_in_callback) {
   const std::vector<Case> cases = to_cases(items);
   GuardedCalls calls;
@@ -129,7 +129,7 @@ void bind_study(py::module_& m) {
       py::arg("outcome"), "A copy of the outcome without its samples (internal).");
   m.def(
       "run_case",
-      [](const Case& c, bool keep_samples, int n_harmonics) {
+      [](const Case& c, bool keep_samples, Int n_harmonics) {
         // The argument, not the case: it made an invalid outcome ("compute_metrics: n_max must
         // be < ..."); refused like run_study's.
         const int nyquist = c.numerics.samples_per_period / 2;

@@ -30,7 +30,7 @@ std::string join_G(const std::vector<double>& G) {
   return out;
 }
 
-std::vector<SeriesResult> run_paper_studies_py(int threads, bool keep_samples, int n_harmonics,
+std::vector<SeriesResult> run_paper_studies_py(Int threads, bool keep_samples, Int n_harmonics,
                                                const py::object& progress) {
   GuardedCalls calls;
   PaperRunOptions options;

@@ -26,6 +26,38 @@ namespace oscidrum::python {
 
 namespace py = pybind11;
 
+/// An integer argument that refuses True and False: pybind11 takes a bool for an int (Python's
+/// bool is an int), so harmonics(y, True, f) ran over one cycle and synthetic_record(seed=True)
+/// used seed 1 without a word. Converts to T where the function uses it.
+template <class T>
+struct Strict {
+  T value{};
+  operator T() const { return value; }  // NOLINT(google-explicit-constructor): used as a T
+};
+using Int = Strict<int>;
+using UInt = Strict<unsigned>;
+
+}  // namespace oscidrum::python
+
+namespace pybind11::detail {
+template <class T>
+struct type_caster<oscidrum::python::Strict<T>> {
+  PYBIND11_TYPE_CASTER(oscidrum::python::Strict<T>, make_caster<T>::name);
+  bool load(handle src, bool convert) {
+    if (PyBool_Check(src.ptr())) return false;
+    make_caster<T> inner;
+    if (!inner.load(src, convert)) return false;
+    value.value = cast_op<T>(inner);
+    return true;
+  }
+  static handle cast(const oscidrum::python::Strict<T>& v, return_value_policy p, handle parent) {
+    return make_caster<T>::cast(v.value, p, parent);
+  }
+};
+}  // namespace pybind11::detail
+
+namespace oscidrum::python {
+
 void bind_error(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_parameters(py::module_& m);

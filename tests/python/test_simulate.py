@@ -308,3 +308,24 @@ def test_a_run_without_a_sampled_window_has_no_phase_times():
     assert len(r.samples.t) == 0
     for value in (r.stick_time, r.slip_positive_time, r.slip_negative_time, r.flight_time):
         assert math.isnan(value)
+
+
+def test_integer_arguments_refuse_a_bool(rolling_result):
+    """pybind11 took True for an int: harmonics(y, True, f) ran over one cycle, a seed of True was
+    seed 1, without a word. Every integer argument of the bindings now refuses a bool (NumPy's
+    integers still pass)."""
+    s = rolling_result.samples
+    periods, f = rolling_result.sample_periods, rolling_result.frequency
+    calls = [
+        lambda b: oscidrum.harmonics(s.ddx_M, b, f),
+        lambda b: oscidrum.harmonics(s.ddx_M, periods, f, 0.0, b),
+        lambda b: oscidrum.compute_metrics(rolling_result, b),
+        lambda b: oscidrum.synthetic_record([oscidrum.Case()], duration=0.1, seed=b),
+        lambda b: oscidrum.analyze_record(s.t, s.ddx_M, s.ddz_M, f, b),
+    ]
+    for call in calls:
+        for b in (True, False):
+            with pytest.raises(oscidrum.Error, match="arguments must be"):
+                call(b)
+    amp, _ = oscidrum.harmonics(s.ddx_M, np.int64(periods), f, s.t[0], np.int32(3))
+    assert len(amp) == 4
