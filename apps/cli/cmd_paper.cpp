@@ -38,7 +38,8 @@ int run(const PaperOptions& o) {
       std::to_string(o.threads)};
   if (o.quiet) args.emplace_back("--quiet");
   // paper.py exits 0 when every claim agrees and 1 (with the report written) when one does not.
-  const int status = run_python(args, "writing the validation table alone", {1});
+  const int status =
+      run_python(args, "writing the validation table alone", {1}, false, /*plotting=*/false);
   if (interrupted()) {  // paper.py removed what it had started: nothing partial is left
     // Nor the folder, when this run made it and it stayed empty.
     if (!existed && std::filesystem::is_empty(o.out, ec)) std::filesystem::remove(o.out, ec);

@@ -65,7 +65,7 @@ constexpr const char* kBootstrap =
 }  // namespace
 
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
-               const std::vector<int>& quiet_status, bool quiet) {
+               const std::vector<int>& quiet_status, bool quiet, bool plotting) {
   const std::string python = python_interpreter();
   std::vector<std::string> args = {python, "-c", kBootstrap};
   args.insert(args.end(), module_args.begin(), module_args.end());
@@ -130,7 +130,7 @@ int run_python(const std::vector<std::string>& module_args, const std::string& d
   }
   // Wait, passing SIGINT or SIGTERM on to the child (it cleans up and exits; the modules exit
   // 130 or 143 without a traceback).
-  set_child_process(pid);
+  set_child_process(pid, plotting ? "while plotting; " + data_note : std::string());
   int status = 0;
   bool passed_on = false;
   while (true) {

@@ -24,9 +24,11 @@ std::string python_interpreter();
 /// `quiet_status` lists them or it is 3, a module's error it explained itself). SIGINT or SIGTERM
 /// is passed on to the module; it returns -1 then, without a message (the caller sees
 /// interrupted()). `quiet` (the command's --quiet): the module's own lines (the files it wrote)
-/// are not shown; its errors are.
+/// are not shown; its errors are. `plotting`: a --plot's module, so that the watcher, should it
+/// have to end a module slow to stop, says "interrupted while plotting; " and `data_note` as
+/// plot_interrupted does.
 int run_python(const std::vector<std::string>& module_args, const std::string& data_note,
-               const std::vector<int>& quiet_status = {}, bool quiet = false);
+               const std::vector<int>& quiet_status = {}, bool quiet = false, bool plotting = true);
 
 /// After a --plot's run_python was interrupted: "oscidrum: interrupted while plotting; " and
 /// `data_note` on stderr; returns the signal's exit code (130 or 143).

@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <ctime>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include "oscidrum_io/files.hpp"
@@ -18,6 +20,9 @@ namespace {
 // The signal that arrived (0: none yet), and the child to kill when the watcher ends the run.
 std::atomic<int> g_signal{0};
 std::atomic<pid_t> g_child{0};
+// What the watcher's message adds while that child runs (set_child_process).
+std::mutex g_note_mutex;
+std::string g_note;
 
 // How long a command has after the signal to stop by itself.
 constexpr long kGraceNanoseconds = 800'000'000;
@@ -51,8 +56,13 @@ void watch(sigset_t set) {
   if (const pid_t child = g_child.load(); child > 0) ::kill(child, SIGKILL);
   // The command did not stop in time: no temporary output file of it may stay behind.
   io::remove_pending_outputs();
-  static const char message[] = "\noscidrum: interrupted\n";
-  (void)!::write(STDERR_FILENO, message, sizeof message - 1);
+  std::string message = "\noscidrum: interrupted";
+  {
+    const std::lock_guard<std::mutex> lock(g_note_mutex);
+    if (g_child.load() > 0 && !g_note.empty()) message += " " + g_note;
+  }
+  message += "\n";
+  (void)!::write(STDERR_FILENO, message.data(), message.size());
   ::_exit(128 + sig);
 }
 
@@ -77,7 +87,13 @@ int interrupted_exit_code() { return g_signal.load() == SIGTERM ? 128 + SIGTERM 
 
 const char* interrupt_name() { return g_signal.load() == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
-void set_child_process(pid_t pid) { g_child.store(pid); }
+void set_child_process(pid_t pid, const std::string& note) {
+  {
+    const std::lock_guard<std::mutex> lock(g_note_mutex);
+    g_note = pid > 0 ? note : std::string();
+  }
+  g_child.store(pid);
+}
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
 

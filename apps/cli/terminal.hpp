@@ -28,8 +28,10 @@ int interrupted_exit_code();
 const char* interrupt_name();
 
 /// The child process the CLI waits for (a Python module), or 0: the watcher kills it when it ends
-/// the process.
-void set_child_process(pid_t pid);
+/// the process. `note` completes the watcher's "oscidrum: interrupted" then ("while plotting;
+/// the data are in ..."), so that a child slow to stop (a figure being drawn on a loaded machine)
+/// does not lose the line that says where the data are.
+void set_child_process(pid_t pid, const std::string& note = {});
 
 /// True if stderr is a terminal (progress lines are shown only then).
 bool stderr_is_terminal();

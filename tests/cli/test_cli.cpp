@@ -545,6 +545,35 @@ TEST(CliRun, PlotFailsCleanly) {
   EXPECT_TRUE(std::filesystem::exists(dir / "plots/summary.json"));
 }
 
+// A plotting module that does not stop within the grace period after Ctrl-C (a figure being drawn
+// on a loaded machine) is killed by the watcher, whose "oscidrum: interrupted" lost the line that
+// says where the data are; it keeps it now. The module here ignores SIGINT and sleeps.
+TEST(CliRun, APlotSlowToStopStillSaysWhereTheDataAre) {
+  TempDir dir;
+  const std::string python = dir / "slow-python";
+  {
+    std::ofstream script(python);
+    script << "#!/bin/sh\ntrap '' INT TERM\n: > \"$(dirname \"$0\")/started\"\nsleep 20\n";
+  }
+  ::chmod(python.c_str(), 0755);
+  ::setenv("OSCIDRUM_PYTHON", python.c_str(), 1);
+  const pid_t pid = start({"run", "-q", "--plot", dir / "plots"}, dir / "out", dir / "err");
+  ::unsetenv("OSCIDRUM_PYTHON");
+  for (int i = 0; i < 2000 && !std::filesystem::exists(dir / "started"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(std::filesystem::exists(dir / "started"));
+  ::kill(pid, SIGINT);
+  const auto begin = std::chrono::steady_clock::now();
+  const Outcome o = finish(pid, dir / "out", dir / "err");
+  EXPECT_LT(std::chrono::steady_clock::now() - begin, std::chrono::seconds(5));
+  EXPECT_EQ(o.code, 130) << o.err;
+  EXPECT_NE(o.err.find("oscidrum: interrupted while plotting; the data are in " + (dir / "plots") +
+                       "/steady_state.csv"),
+            std::string::npos)
+      << o.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "plots/steady_state.csv"));
+}
+
 // Results written to a standard output that cannot take them are lost: exit code 2, not 0.
 TEST(CliRun, AStandardOutputThatCannotBeWrittenIsAnError) {
   TempDir dir;
