@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
+#include <random>
 #include <vector>
 
 #include "bifurcation_cases.hpp"
@@ -155,6 +157,45 @@ Case regularised_case() {
   c.contact.law = FrictionChoice::regularised;
   c.contact.v_eps = 1e-3;
   return c;
+}
+
+// monodromy_rate bounds the spectral radius of J whatever d and the number of sweeps (it sets the
+// variational substeps against the order-6 scheme's stability limit: a rate below rho(J) would
+// let a stiff phase blow the monodromy up). Random 8 x 8 matrices with entries spread over twelve
+// decades, as the state's units spread J's, and the phase Jacobians of the paper's case.
+TEST(Shooting, TheMonodromyRateBoundsTheSpectralRadius) {
+  std::mt19937 rng(20261207);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0), decade(-6.0, 6.0);
+  const auto rho = [](const detail::Mat8& J) {
+    const Eigen::EigenSolver<detail::Mat8> eig(J, false);
+    return eig.eigenvalues().cwiseAbs().maxCoeff();
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    detail::Mat8 J;
+    for (int i = 0; i < 8; ++i)
+      for (int j = 0; j < 8; ++j)
+        J(i, j) = (trial % 3 == 0 && (i + j) % 3 == 0)
+                      ? 0.0
+                      : mantissa(rng) * std::pow(10.0, decade(rng));
+    Eigen::Matrix<double, 8, 1> d = Eigen::Matrix<double, 8, 1>::Ones();
+    for (int sweeps : {0, 1, 3, 1, 1}) {
+      const double rate = detail::monodromy_rate(J, d, sweeps);
+      EXPECT_GE(rate, rho(J) * (1.0 - 1e-12)) << "trial " << trial << ", sweeps " << sweeps;
+      EXPECT_TRUE(std::isfinite(rate) && (d.array() > 0.0).all()) << trial;
+    }
+  }
+  // The paper's stick and slip phases: the bound is within a few times rho(J) (a loose bound
+  // costs substeps, not accuracy).
+  const Model model(stick_slip_case());
+  const detail::Dynamics<OscillationDrum> dyn(model, 0.0);
+  const std::array<double, 8> y = model.initial_state().to_array();
+  for (const Phase phase : {Phase::stick, Phase::slip_positive}) {
+    const detail::Mat8 J = dyn.jacobian(phase, 0.003, y);
+    Eigen::Matrix<double, 8, 1> d = Eigen::Matrix<double, 8, 1>::Ones();
+    const double rate = detail::monodromy_rate(J, d, 3);
+    EXPECT_GE(rate, rho(J));
+    EXPECT_LT(rate, 10.0 * rho(J));
+  }
 }
 
 TEST(Shooting, MonodromyIsTheJacobianOfThePeriodMapWithTheRegularisedLaw) {
