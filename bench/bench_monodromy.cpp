@@ -43,7 +43,7 @@ void maps(benchmark::State& state, oscidrum::Case c) {
   const oscidrum::FlowOptions options = oscidrum::FlowOptions::from(model);
   oscidrum::BasicFlow<R> flow(model, options);
   oscidrum::detail::MonodromyObserver<R> mono(
-      model, options.baumgarte, model.period() / oscidrum::detail::shooting::kSubstepsPerPeriod);
+      model, options.baumgarte, model.period() / oscidrum::detail::kMonodromySubstepsPerPeriod);
   const double T = model.period();
   double t_plain = 0.0, t_var = 0.0;
   long rhs_plain = 0, rhs_var = 0, jacobians = 0;

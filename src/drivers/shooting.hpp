@@ -193,9 +193,6 @@ inline constexpr std::array<double, 6> kFlipKicks = {0.03, -0.03, 0.1, -0.1, 0.3
 inline constexpr double kMultiplierDrift = 2.0;
 inline constexpr double kMultiplierMargin = 0.05;
 
-// Runge-Kutta substeps of the variational equations: at most T / kSubstepsPerPeriod.
-inline constexpr double kSubstepsPerPeriod = kMonodromySubstepsPerPeriod;
-
 inline std::string fmt(const char* format, double a = 0.0, double b = 0.0, double c = 0.0) {
   char buf[512];
   std::snprintf(buf, sizeof buf, format, a, b, c);
@@ -335,7 +332,8 @@ class Shooter {
         period_(flow.model().period()),
         progress_(progress),
         dynamics_(flow.model(), flow.options().baumgarte),
-        mono_(flow.model(), flow.options().baumgarte, flow.model().period() / kSubstepsPerPeriod) {}
+        mono_(flow.model(), flow.options().baumgarte,
+              flow.model().period() / kMonodromySubstepsPerPeriod) {}
 
   ShootingOutcome run(const ShootingStart& start);
 

@@ -125,7 +125,7 @@ void check_monodromy_substeps(const Case& c) {
   ASSERT_TRUE(shot.converged) << shot.message;
   const double T = model.period();
   detail::MonodromyObserver<OscillationDrum> coarse(model, flow.options().baumgarte,
-                                                    T / detail::shooting::kSubstepsPerPeriod);
+                                                    T / detail::kMonodromySubstepsPerPeriod);
   detail::MonodromyObserver<OscillationDrum> fine(model, flow.options().baumgarte, T / 4096.0);
   detail::ObserverPair<OscillationDrum> both(coarse, fine);
   flow.reset(shot.t0, shot.orbit, shot.phase);
