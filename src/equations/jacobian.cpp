@@ -211,35 +211,6 @@ Mat8 general_slip_jacobian(const Model& model, double t, const State& q, int s, 
 
 }  // namespace
 
-Mat8 jacobian_times(const Mat8& J, const Mat8& X) {
-  Mat8 Y;
-  Y.topRows<3>() = X.middleRows<3>(DD);  // delta'' ... = rows DD, DXA, DSA: J(D, DD) = 1, ...
-  // Nothing depends on phi (the drum's angle is cyclic): J's column PHI is zero and is skipped.
-  // A column of X that is the unit vector of phi (as Phi's own column PHI stays under the
-  // variational equations: d y / d phi(t0) = e_PHI) therefore gives the zero column. The row of
-  // phi is sparse: phi' = f5 delta' in stick (entries at D and DD), phi' = phi' in slip (DPHI).
-  // The four acceleration rows, column by column, as sums of J's columns (their four lower
-  // entries) weighted by X's entries. Every skip drops only exact zeros.
-  for (int c = 0; c < 8; ++c) {
-    const auto x = X.col(c);
-    if (x[PHI] == 1.0 && x[D] == 0.0 && x[XA] == 0.0 && x[SA] == 0.0 && x[DD] == 0.0 &&
-        x[DXA] == 0.0 && x[DSA] == 0.0 && x[DPHI] == 0.0) {
-      Y.col(c).tail<5>().setZero();
-      continue;
-    }
-    Y(PHI, c) = J(PHI, D) * x[D] + J(PHI, DD) * x[DD] + J(PHI, DPHI) * x[DPHI];
-    Eigen::Vector4d a = J.col(D).tail<4>() * x[D];
-    a += J.col(XA).tail<4>() * x[XA];
-    a += J.col(SA).tail<4>() * x[SA];
-    a += J.col(DD).tail<4>() * x[DD];
-    a += J.col(DXA).tail<4>() * x[DXA];
-    a += J.col(DSA).tail<4>() * x[DSA];
-    a += J.col(DPHI).tail<4>() * x[DPHI];
-    Y.col(c).tail<4>() = a;
-  }
-  return Y;
-}
-
 Mat8 phase_jacobian(const Model& model, double t, const State& q, Phase phase, double baumgarte) {
   if (phase == Phase::stick) return stick_jacobian(model, t, q);
   const int s = slip_sign(phase);

@@ -28,13 +28,6 @@ Vec8 phase_rhs(const Model& model, double t, const State& q, Phase phase, double
 /// (30)-(32) or (34), (38), (53) (with its Baumgarte term), (36) are coded term by term.
 Mat8 phase_jacobian(const Model& model, double t, const State& q, Phase phase, double baumgarte);
 
-/// J X for a phase Jacobian J. The rows of delta, x_A and s_A of every phase Jacobian are the
-/// unit rows of their velocities (delta' is a state component, ...), so those rows of J X are the
-/// rows of delta', x_A' and s_A' of X, copied; the other five (phi', whose row differs between
-/// stick and slip, and the four accelerations) are dot products: about half the work of a full
-/// 8 x 8 product, the same numbers up to round-off.
-Mat8 jacobian_times(const Mat8& J, const Mat8& X);
-
 /// The event functions of the hybrid flow (all depend on the state only, d h / d t = 0).
 enum class EventFunction {
   stick_limit_negative,  ///< mu_static N - T: zero when stick ends into slip- (T > 0)

@@ -8,13 +8,14 @@
 // (docs/periodic.md).
 //
 // The state is integrated once, by the flow; this observer only integrates the linear equation
-// for Phi along it (classical Runge-Kutta on the flow's steps, subdivided to at most
+// for Phi along it (a Magnus integrator of order 6 on the flow's steps, subdivided to at most
 // max_substep), so there is one flow and its events, chattering guard and budgets apply
 // unchanged.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "oscidrum/flow.hpp"
@@ -22,27 +23,20 @@
 
 namespace oscidrum::detail {
 
-// Runge-Kutta substeps of the variational equations: at most T / kMonodromySubstepsPerPeriod of
-// the excitation period T (fewer where the flow's steps or phases are shorter). Butcher's
-// seven-stage scheme of order 6: its error falls with the 6th power of the substep. Every driver
-// that integrates a monodromy (shooting, continuation, the motion's Lyapunov exponent) uses it.
-inline constexpr double kMonodromySubstepsPerPeriod = 20.0;
+// Steps of the variational equations: at most T / kMonodromySubstepsPerPeriod of the excitation
+// period T (fewer where the flow's steps or phases are shorter). Every driver that integrates a
+// monodromy (shooting, continuation, the motion's Lyapunov exponent) uses it.
+inline constexpr double kMonodromySubstepsPerPeriod = 10.0;
 
-// ... and enough substeps that h rho(J) stays below this (the scheme is stable to 2.86 on the
-// negative real axis), rho(J) bounded by a norm of J (monodromy_rate): where a stiff phase (the
-// regularised friction law's steep slope near v_rel = 0) bounds the flow's steps, Dormand-Prince
-// 8(5,3) takes them up to |h lambda| = 6.39.
-inline constexpr double kMonodromyStability = 1.0;
-
-// An upper bound of the spectral radius of J [1/s]: the infinity norm of D^-1 |J| D with D =
-// diag(d), an induced norm of a matrix similar to |J|, which bounds rho(|J|) >= rho(J) for any
-// positive d. The state's components have different units, so J's plain norm is no bound worth
-// having: `sweeps` sweeps of Osborne's balancing first bring D^-1 |J| D closer to rows and
-// columns of equal sums off the diagonal, updating d (a d balanced on a nearby J needs one sweep
-// where one from d = 1 needs three).
+// The infinity norm of D^-1 |J| D with D = diag(d), an induced norm of a matrix similar to |J|
+// (an upper bound of the spectral radius rho(|J|) >= rho(J) for any positive d). The state's
+// components have different units, so J's plain norm is no bound worth having: `sweeps` sweeps of
+// Osborne's balancing first bring D^-1 |J| D closer to rows and columns of equal sums off the
+// diagonal, updating d (a d balanced on a nearby J needs one sweep where one from d = 1 needs
+// three).
 template <class Matrix>
-double monodromy_rate(const Matrix& J, Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1>& d,
-                      int sweeps) {
+double balanced_norm(const Matrix& J, Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1>& d,
+                     int sweeps) {
   constexpr int n = static_cast<int>(Matrix::RowsAtCompileTime);
   Matrix B = J.cwiseAbs();
   for (int i = 0; i < n; ++i) {
@@ -61,6 +55,64 @@ double monodromy_rate(const Matrix& J, Eigen::Matrix<double, Matrix::RowsAtCompi
   return B.rowwise().sum().maxCoeff();
 }
 
+// exp(Omega) by scaling and squaring (Moler & Van Loan, "Nineteen dubious ways to compute the
+// exponential of a matrix, twenty-five years later", SIAM Review 45, 2003, method 3) of the
+// balanced B = D^-1 Omega D, D = diag(d) (balanced_norm, `sweeps` sweeps from the given d, which
+// it updates): B / 2^s with s the first that brings its infinity norm below 1/2, the Taylor
+// polynomial of degree 10 of that (evaluated as Paterson and Stockmeyer's nested products in
+// B^3: 5 matrix products; the series' remainder is below 1.3e-11), squared s times, and
+// exp(Omega) = D exp(B) D^-1. Without the balancing, the mixed units of the state would make
+// Omega's norm, and with it s, many orders too large. A non-finite Omega gives NaN.
+template <class Matrix>
+Matrix balanced_exponential(const Matrix& omega,
+                            Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1>& d, int sweeps) {
+  constexpr int n = static_cast<int>(Matrix::RowsAtCompileTime);
+  const double norm = balanced_norm(omega, d, sweeps);
+  if (!std::isfinite(norm)) return Matrix::Constant(std::numeric_limits<double>::quiet_NaN());
+  const int s = norm > 0.5 ? std::max(0, std::ilogb(norm / 0.5) + 1) : 0;
+  Matrix B;
+  const double scale = std::ldexp(1.0, -s);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) B(i, j) = omega(i, j) * (scale * d[j] / d[i]);
+  constexpr double c2 = 1.0 / 2.0, c3 = c2 / 3.0, c4 = c3 / 4.0, c5 = c4 / 5.0, c6 = c5 / 6.0,
+                   c7 = c6 / 7.0, c8 = c7 / 8.0, c9 = c8 / 9.0, c10 = c9 / 10.0;
+  const Matrix B2 = B.lazyProduct(B), B3 = B2.lazyProduct(B);
+  // sum c_k B^k = ((c10 B + c9) B^3 + c8 B^2 + c7 B + c6) B^6 ... nested in B^3
+  Matrix P = c10 * B;
+  P.diagonal().array() += c9;
+  P = (P.lazyProduct(B3) + c8 * B2 + c7 * B).eval();
+  P.diagonal().array() += c6;
+  P = (P.lazyProduct(B3) + c5 * B2 + c4 * B).eval();
+  P.diagonal().array() += c3;
+  P = (P.lazyProduct(B3) + c2 * B2 + B).eval();
+  P.diagonal().array() += 1.0;
+  for (int k = 0; k < s; ++k) P = P.lazyProduct(P).eval();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) P(i, j) *= d[i] / d[j];
+  return P;
+}
+
+// The exponent of one step of Magnus's expansion of order 6 for Phi' = J(t) Phi over [t, t + h],
+// from J at the three Gauss-Legendre nodes t + (1/2 - sqrt(15)/10, 1/2, 1/2 + sqrt(15)/10) h
+// (Blanes, Casas, Oteo & Ros, "The Magnus expansion and some of its applications", Physics
+// Reports 470, 2009, section 5: the sixth-order method with three commutators): Phi(t + h) =
+// exp(Omega) Phi(t) up to O(h^7). Exact for a constant J, whatever h |lambda|: its error comes
+// from J's change over the step, not from the stiffness of J, unlike an explicit Runge-Kutta
+// method's.
+inline constexpr double kMagnusNode = 0.3872983346207416885;  // sqrt(15) / 10
+template <class Matrix>
+Matrix magnus6_exponent(double h, const Matrix& J1, const Matrix& J2, const Matrix& J3) {
+  const Matrix a1 = h * J2;
+  const Matrix a2 = (h * 1.2909944487358056284) * (J3 - J1);  // sqrt(15) / 3
+  const Matrix a3 = (h * 10.0 / 3.0) * (J3 - 2.0 * J2 + J1);
+  const auto commutator = [](const Matrix& X, const Matrix& Y) -> Matrix {
+    return X.lazyProduct(Y) - Y.lazyProduct(X);
+  };
+  const Matrix C1 = commutator(a1, a2);
+  const Matrix C2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + C1);
+  return a1 + a3 / 12.0 + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + C1, a2 + C2);
+}
+
 template <class R>
 class MonodromyObserver : public BasicFlowObserver<R> {
  public:
@@ -69,14 +121,13 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   using StateT = typename R::State;
 
   /// `baumgarte` must be the flow's rate (FlowOptions::baumgarte); `max_substep` [s] bounds the
-  /// Runge-Kutta substeps of Phi.
+  /// Magnus steps of Phi.
   MonodromyObserver(const Model& model, double baumgarte, double max_substep)
       : dynamics_(model, baumgarte), max_substep_(max_substep) {}
 
   /// Phi = I, no switches seen.
   void reset() {
     phi_.setIdentity();
-    have_last_ = false;
     balanced_ = false;
     grazing_ = false;
     switches_.clear();
@@ -86,44 +137,18 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     const double a = step.t0(), b = step.t1();
     if (!(b > a)) return true;
     const Phase phase = step.phase();
-    Matrix J0 = (have_last_ && last_t_ == a && last_phase_ == phase)
-                    ? last_J_
-                    : jacobian(a, step.state(a), phase);
-    if (!balanced_) balance_.setOnes();
-    const double rate = monodromy_rate(J0, balance_, balanced_ ? 1 : 3);
-    balanced_ = true;
-    const double stable = kMonodromyStability / std::max(rate, 1e-300);
-    const int n =
-        std::max(1, static_cast<int>(std::ceil((b - a) / std::min(max_substep_, stable))));
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a) / max_substep_)));
     const double h = (b - a) / n;
-    // A seven-stage Runge-Kutta method of order 6 of Butcher's ("On Runge-Kutta processes of high
-    // order", J. Austral. Math. Soc. 4, 1964) for the linear equation Phi' = J(t) Phi, J on the
-    // dense output at the nodes 0, 1/3, 2/3, 1/2, 1 of each substep.
     for (int i = 0; i < n; ++i) {
-      const double t = a + i * h, t1 = (i + 1 == n) ? b : t + h;
-      const Matrix J13 = jacobian(t + h / 3.0, step.state(t + h / 3.0), phase);
-      const Matrix J23 = jacobian(t + 2.0 * h / 3.0, step.state(t + 2.0 * h / 3.0), phase);
-      const Matrix J12 = jacobian(t + 0.5 * h, step.state(t + 0.5 * h), phase);
-      const Matrix J1 = jacobian(t1, step.state(t1), phase);
-      // jacobian_times: the roller's structure of J (unit rows) saves work in the products.
-      const Matrix k1 = Dyn::jacobian_times(J0, phi_);
-      const Matrix k2 = Dyn::jacobian_times(J13, phi_ + (h / 3.0) * k1);
-      const Matrix k3 = Dyn::jacobian_times(J23, phi_ + (2.0 * h / 3.0) * k2);
-      const Matrix k4 = Dyn::jacobian_times(J13, phi_ + h * (k1 / 12.0 + k2 / 3.0 - k3 / 12.0));
-      const Matrix k5 = Dyn::jacobian_times(
-          J12, phi_ + h * (-k1 / 16.0 + 9.0 / 8.0 * k2 - 3.0 / 16.0 * k3 - 3.0 / 8.0 * k4));
-      const Matrix k6 = Dyn::jacobian_times(
-          J12, phi_ + h * (9.0 / 8.0 * k2 - 3.0 / 8.0 * k3 - 3.0 / 4.0 * k4 + 0.5 * k5));
-      const Matrix k7 =
-          Dyn::jacobian_times(J1, phi_ + h * (9.0 / 44.0 * k1 - 9.0 / 11.0 * k2 + 63.0 / 44.0 * k3 +
-                                              18.0 / 11.0 * k4 - 16.0 / 11.0 * k6));
-      phi_ += h * (11.0 / 120.0 * (k1 + k7) + 27.0 / 40.0 * (k3 + k4) - 4.0 / 15.0 * (k5 + k6));
-      J0 = J1;
+      const double t = a + i * h, lo = t + (0.5 - kMagnusNode) * h, mid = t + 0.5 * h,
+                   hi = t + (0.5 + kMagnusNode) * h;
+      const Matrix omega = magnus6_exponent(h, jacobian(lo, step.state(lo), phase),
+                                            jacobian(mid, step.state(mid), phase),
+                                            jacobian(hi, step.state(hi), phase));
+      if (!balanced_) balance_.setOnes();
+      phi_ = balanced_exponential(omega, balance_, balanced_ ? 1 : 3).lazyProduct(phi_).eval();
+      balanced_ = true;
     }
-    have_last_ = true;
-    last_t_ = b;
-    last_phase_ = phase;
-    last_J_ = J0;
     return true;
   }
 
@@ -131,7 +156,6 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     if (event.kind == EventKind::contact_lost) return true;  // terminal: the flow stops
     const auto s = dynamics_.saltation(event, before.to_array(), after.to_array());
     if (s.grazing) grazing_ = true;
-    have_last_ = false;
     balanced_ = false;
     phi_ = s.S.lazyProduct(phi_).eval();
     switches_.push_back(event);
@@ -154,16 +178,10 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   const Dyn dynamics_;
   double max_substep_;
   Matrix phi_ = Matrix::Identity();
-  // J at the end of the last piece, reused when the next piece continues it (same time, same
-  // phase, no event between).
-  bool have_last_ = false;
-  double last_t_ = 0.0;
-  Phase last_phase_ = Phase::stick;
-  Matrix last_J_ = Matrix::Zero();
   bool grazing_ = false;
-  // d of monodromy_rate, balanced from 1 at the first Jacobian since reset() or the last switch
+  // d of balanced_exponential, balanced from 1 at the first step since reset() or the last switch
   // and carried on (one sweep per step) while the phase lasts: a third of the sweeps for the same
-  // bound.
+  // balance.
   bool balanced_ = false;
   Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1> balance_;
   std::vector<Event> switches_;

@@ -20,8 +20,7 @@
 //               state the equations are undefined at, and the stop it ends the run in);
 //               track(phase, x, N, counters) (extremes at step ends);
 //               initial_state(), initial_phase()
-//   variational jacobian(phase, t, x); jacobian_times(J, X) (J X, exploiting J's structure);
-//               saltation(event, before, after)
+//   variational jacobian(phase, t, x); saltation(event, before, after)
 //   shooting    consistent(z, phase) (the section state Newton sees: a projection onto the
 //               phase's constraints) and section_jacobian(z, phase) (its Jacobian)
 //   sampling    sample(t, x, phase, samples) (one row of the output columns); sampled_state(

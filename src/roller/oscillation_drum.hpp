@@ -82,9 +82,6 @@ class Dynamics<OscillationDrum> {
   Matrix jacobian(Phase phase, double t, const Vector& x) const {
     return phase_jacobian(model_, t, State::from_array(x), phase, baumgarte_);
   }
-  static Matrix jacobian_times(const Matrix& J, const Matrix& X) {
-    return detail::jacobian_times(J, X);
-  }
   SaltationMatrix<kStates> saltation(const Event& event, const Vector& before,
                                      const Vector& after) const;
 

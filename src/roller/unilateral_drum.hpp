@@ -68,19 +68,6 @@ class Dynamics<UnilateralDrum> {
 
   // ---- variational equations ------------------------------------------------------------------
   Matrix jacobian(Phase phase, double t, const Vector& x) const;
-  /// J X: the rows of delta, x_A and s_A of every phase's J are the unit rows of their rates
-  /// (columns 5, 6, 7), so those rows of J X are copies of X's; the other seven are products.
-  static Matrix jacobian_times(const Matrix& J, const Matrix& X) {
-    Matrix Y;
-    Y.topRows<3>() = X.middleRows<3>(5);
-    // The other rows as dot products of J's rows (stored as columns, contiguous) with X's
-    // columns: Eigen's general matrix-matrix kernel, which it picks for J.bottomRows<7>() * X,
-    // packs and blocks the operands and took a fifth of a vibratory case.
-    const Eigen::Matrix<double, kStates, 7> rows = J.bottomRows<7>().transpose();
-    for (int c = 0; c < kStates; ++c)
-      for (int r = 0; r < 7; ++r) Y(3 + r, c) = rows.col(r).dot(X.col(c));
-    return Y;
-  }
   SaltationMatrix<kStates> saltation(const Event& event, const Vector& before,
                                      const Vector& after) const;
 

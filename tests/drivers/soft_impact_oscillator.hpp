@@ -148,7 +148,6 @@ class Dynamics<SoftImpactOscillator> {
     J << 0.0, 1.0, -k / p_.m, -c / p_.m;
     return J;
   }
-  static Matrix jacobian_times(const Matrix& J, const Matrix& X) { return J * X; }
   /// The jump map is the identity (G = I); dh = (-1, 0) free, (1, 0) in contact.
   SaltationMatrix<2> saltation(const Event& event, const Vector& before,
                                const Vector& after) const {

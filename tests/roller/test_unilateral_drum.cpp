@@ -479,9 +479,8 @@ TEST(UnilateralDrum, MetricsAcrossTheBoundaryOfLiftOff) {
 namespace oscidrum::detail {
 namespace {
 
-// jacobian_times copies the unit rows of delta, x_A, s_A (in contact and in flight alike) and is
-// the full product.
-TEST(UnilateralDrum, StructuredProductIsTheFullOne) {
+// The rows of delta, x_A, s_A are the unit rows of their rates, in contact and in flight alike.
+TEST(UnilateralDrum, KinematicRowsAreUnitRows) {
   const Model model(flying_case());
   const U u(model, 2.0 * model.nu());
   std::mt19937 rng(9);
@@ -491,10 +490,6 @@ TEST(UnilateralDrum, StructuredProductIsTheFullOne) {
     const U::Matrix J = u.jacobian(phase, 0.003, y);
     for (int row = 0; row < 3; ++row)
       for (int col = 0; col < 10; ++col) EXPECT_EQ(J(row, col), col == row + 5 ? 1.0 : 0.0);
-    const U::Matrix X = U::Matrix::Random();
-    EXPECT_LE((U::jacobian_times(J, X) - J * X).cwiseAbs().maxCoeff(),
-              1e-14 * (J.cwiseAbs() * X.cwiseAbs()).maxCoeff())
-        << to_string(phase);
   }
 }
 
