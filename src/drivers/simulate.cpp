@@ -30,12 +30,13 @@ constexpr int kSettlePeriods = 32;
 constexpr int kWarmChordSteps = 4;
 
 // Cost of one evaluation of a phase Jacobian (src/equations/jacobian.cpp) together with its share
-// of the Runge-Kutta update of Phi, in right-hand-side evaluations, for
-// Diagnostics::period_equivalents: measured by bench/bench_monodromy.cpp (one period at a steady
-// orbit, plainly and with the variational equations, CPU time): 3.6 (stick-slip) to 3.8 (pure
-// rolling) on the paper's roller and the performance issue's sweep with the order-6 substeps and
-// their balancing (bench/README.md, "Issue 26: Dormand-Prince 8(5,3) in the flow").
-constexpr double kJacobianCost = 3.7;
+// of the Magnus step of Phi (a third of its exponent's commutators and of its exponential), in
+// right-hand-side evaluations, for Diagnostics::period_equivalents: measured by
+// bench/bench_monodromy.cpp (one period at a steady orbit, plainly and with the variational
+// equations, CPU time): 6.4 (pure rolling) to 6.8 (the paper's stick-slip case) on the paper's
+// roller and the performance issue's sweep (bench/README.md, "Issue 26: a Magnus integrator for
+// the variational equations").
+constexpr double kJacobianCost = 6.6;
 
 // The transient search from rest and the sampling of what it found. It may integrate what is left
 // of numerics.max_periods after the periods shooting spent before falling back.
