@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/motion_verdict.hpp"
 #include "drivers/sampling.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/error.hpp"
@@ -306,15 +307,7 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
     out.evidence = "a negative " + numbers + ": the motion still approaches an attractor";
   } else {
     out.kind = "undecided";
-    // Halves of one sign whose difference exceeds the whole window's exponent: the estimate has a
-    // sign but not a settled one (read as "no sign" beside two positive halves, the words
-    // contradicted the numbers).
-    if ((a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0))
-      out.evidence = "the " + numbers + ": both halves " + (a > 0.0 ? "positive" : "negative") +
-                     ", but they differ by " + detail::format("%.4g", spread) +
-                     " per period, more than the window's exponent: not settled over this window";
-    else
-      out.evidence = "the " + numbers + " do not settle on a sign";
+    out.evidence = detail::unsettled_evidence(numbers, a, b);
   }
   return out;
 }
