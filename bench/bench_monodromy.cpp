@@ -1,5 +1,5 @@
 // What a Jacobian costs: the weight Diagnostics::period_equivalents gives one evaluation of a
-// phase Jacobian (with its share of the Runge-Kutta update of the sensitivity matrix), measured.
+// phase Jacobian (with its share of the Magnus step of the sensitivity matrix), measured.
 // At a steady orbit found by shooting, one excitation period is integrated alternately plainly
 // and with the variational equations (the monodromy observer shooting uses), each timed by the
 // thread's CPU clock. Counters: the CPU time of each map, the right-hand sides and Jacobians
@@ -43,7 +43,7 @@ void maps(benchmark::State& state, oscidrum::Case c) {
   const oscidrum::FlowOptions options = oscidrum::FlowOptions::from(model);
   oscidrum::BasicFlow<R> flow(model, options);
   oscidrum::detail::MonodromyObserver<R> mono(
-      model, options.baumgarte, model.period() / oscidrum::detail::kMonodromySubstepsPerPeriod);
+      model, options.baumgarte, model.period() / oscidrum::detail::kMonodromyStepsPerPeriod);
   const double T = model.period();
   double t_plain = 0.0, t_var = 0.0;
   long rhs_plain = 0, rhs_var = 0, jacobians = 0;

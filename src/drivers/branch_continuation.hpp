@@ -314,7 +314,7 @@ typename Continuation<R>::Map Continuation<R>::map(const VectorXd& v, bool sensi
   FlowStop stop;
   std::vector<Event> switches;
   detail::MonodromyObserver<R> mono(*model, fo.baumgarte,
-                                    model->period() / detail::kMonodromySubstepsPerPeriod);
+                                    model->period() / detail::kMonodromyStepsPerPeriod);
   if (sensitivities) {
     mono.reset();
     stop = flow.advance(t_end, &mono);

@@ -70,7 +70,7 @@ MotionAnalysis analyze(const Model& model, const Result& result, int periods,
   Phase phase = dyn.flow_phase(result.samples.phase.front());
   Vector x = dyn.consistent(Dyn::sampled_state(result.samples, 0), phase);
   flow.reset(t0, R::State::from_array(x), phase);
-  detail::MonodromyObserver<R> mono(model, fo.baumgarte, T / detail::kMonodromySubstepsPerPeriod);
+  detail::MonodromyObserver<R> mono(model, fo.baumgarte, T / detail::kMonodromyStepsPerPeriod);
   out.section.push_back(std::vector<double>(x.begin(), x.end()));
   out.section_phase.push_back(phase);
   std::vector<Eigen::MatrixXd> maps;  // Phi of each period on the periodic components

@@ -333,7 +333,7 @@ class Shooter {
         progress_(progress),
         dynamics_(flow.model(), flow.options().baumgarte),
         mono_(flow.model(), flow.options().baumgarte,
-              flow.model().period() / kMonodromySubstepsPerPeriod) {}
+              flow.model().period() / kMonodromyStepsPerPeriod) {}
 
   ShootingOutcome run(const ShootingStart& start);
 

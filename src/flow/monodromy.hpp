@@ -9,7 +9,7 @@
 //
 // The state is integrated once, by the flow; this observer only integrates the linear equation
 // for Phi along it (a Magnus integrator of order 6 on the flow's steps, subdivided to at most
-// max_substep), so there is one flow and its events, chattering guard and budgets apply
+// max_step), so there is one flow and its events, chattering guard and budgets apply
 // unchanged.
 #pragma once
 
@@ -23,10 +23,10 @@
 
 namespace oscidrum::detail {
 
-// Steps of the variational equations: at most T / kMonodromySubstepsPerPeriod of the excitation
+// Steps of the variational equations: at most T / kMonodromyStepsPerPeriod of the excitation
 // period T (fewer where the flow's steps or phases are shorter). Every driver that integrates a
 // monodromy (shooting, continuation, the motion's Lyapunov exponent) uses it.
-inline constexpr double kMonodromySubstepsPerPeriod = 10.0;
+inline constexpr double kMonodromyStepsPerPeriod = 10.0;
 
 // The infinity norm of D^-1 |J| D with D = diag(d), an induced norm of a matrix similar to |J|
 // (an upper bound of the spectral radius rho(|J|) >= rho(J) for any positive d). The state's
@@ -130,10 +130,10 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   using Matrix = typename Dyn::Matrix;
   using StateT = typename R::State;
 
-  /// `baumgarte` must be the flow's rate (FlowOptions::baumgarte); `max_substep` [s] bounds the
+  /// `baumgarte` must be the flow's rate (FlowOptions::baumgarte); `max_step` [s] bounds the
   /// Magnus steps of Phi.
-  MonodromyObserver(const Model& model, double baumgarte, double max_substep)
-      : dynamics_(model, baumgarte), max_substep_(max_substep) {}
+  MonodromyObserver(const Model& model, double baumgarte, double max_step)
+      : dynamics_(model, baumgarte), max_step_(max_step) {}
 
   /// Phi = I, no switches seen.
   void reset() {
@@ -147,7 +147,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     const double a = step.t0(), b = step.t1();
     if (!(b > a)) return true;
     const Phase phase = step.phase();
-    const int n = std::max(1, static_cast<int>(std::ceil((b - a) / max_substep_)));
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a) / max_step_)));
     const double h = (b - a) / n;
     for (int i = 0; i < n; ++i) {
       const double t = a + i * h, lo = t + (0.5 - kMagnusNode) * h, mid = t + 0.5 * h,
@@ -186,7 +186,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
   }
 
   const Dyn dynamics_;
-  double max_substep_;
+  double max_step_;
   Matrix phi_ = Matrix::Identity();
   bool grazing_ = false;
   // d of balanced_exponential: three sweeps from 1 at the first step since reset() or the last

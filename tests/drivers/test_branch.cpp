@@ -63,9 +63,9 @@ TEST(Branch, OrbitsAreTheSteadyStatesOfSimulate) {
     EXPECT_NEAR(p.metrics.ddx_max, m.ddx_max, 1e-6 * std::abs(m.ddx_max));
     EXPECT_NEAR(p.metrics.psi_xz, m.psi_xz, 1e-6);
     // The multipliers do not depend on the section, but their computation does: the variational
-    // equations run by classical Runge-Kutta on substeps of at most T/64 along the flow's steps
-    // (src/flow/monodromy.hpp), from another section (the branch moves it away from switches)
-    // than simulate's; the two agree to ~2e-5 (measured: 1.8e-5 at most over this branch).
+    // equations run along the flow's steps (src/flow/monodromy.hpp) from another section (the
+    // branch moves it away from switches) than simulate's; the two agree to ~2e-5 (measured:
+    // 1.8e-5 at most over this branch, with an earlier Runge-Kutta scheme for them).
     EXPECT_NEAR(p.floquet.max_modulus, r.floquet.max_modulus, 1e-4);
     EXPECT_TRUE(p.stable());
   }

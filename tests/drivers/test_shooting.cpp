@@ -63,7 +63,7 @@ void check_monodromy(Case c, bool expect_switches, int p = 1) {
   const double T = p * model.period();  // the map is P^p
 
   detail::MonodromyObserver<OscillationDrum> mono(
-      model, flow.options().baumgarte, model.period() / detail::kMonodromySubstepsPerPeriod);
+      model, flow.options().baumgarte, model.period() / detail::kMonodromyStepsPerPeriod);
   flow.reset(shot.t0, shot.orbit, shot.phase);
   ASSERT_EQ(flow.advance(shot.t0 + T, &mono), FlowStop::reached);
   if (expect_switches) {
@@ -126,7 +126,7 @@ void check_monodromy_substeps(const Case& c) {
   ASSERT_TRUE(shot.converged) << shot.message;
   const double T = model.period();
   detail::MonodromyObserver<OscillationDrum> coarse(model, flow.options().baumgarte,
-                                                    T / detail::kMonodromySubstepsPerPeriod);
+                                                    T / detail::kMonodromyStepsPerPeriod);
   detail::MonodromyObserver<OscillationDrum> fine(model, flow.options().baumgarte, T / 4096.0);
   detail::ObserverPair<OscillationDrum> both(coarse, fine);
   flow.reset(shot.t0, shot.orbit, shot.phase);
