@@ -18,6 +18,7 @@
 #include <limits>
 #include <vector>
 
+#include "flow/matrix_product.hpp"
 #include "oscidrum/flow.hpp"
 #include "roller/dynamics.hpp"
 
@@ -68,32 +69,29 @@ Matrix balanced_exponential(const Matrix& omega,
   constexpr int n = static_cast<int>(Matrix::RowsAtCompileTime);
   if (sweeps > 0) balanced_norm(omega, d, sweeps);
   const Eigen::Matrix<double, n, 1> inv = d.cwiseInverse();
-  Matrix B;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) B(i, j) = omega(i, j) * (d[j] * inv[i]);
+  // B(i, j) = Omega(i, j) (d_j / d_i), by whole columns.
+  Matrix B = omega.cwiseProduct(inv * d.transpose());
   const double norm = B.cwiseAbs().rowwise().sum().maxCoeff();
   if (!std::isfinite(norm)) return Matrix::Constant(std::numeric_limits<double>::quiet_NaN());
   const int s = norm > 0.5 ? std::max(0, std::ilogb(norm / 0.5) + 1) : 0;
   if (s > 0) B *= std::ldexp(1.0, -s);
   constexpr double c2 = 1.0 / 2.0, c3 = c2 / 3.0, c4 = c3 / 4.0, c5 = c4 / 5.0, c6 = c5 / 6.0,
                    c7 = c6 / 7.0, c8 = c7 / 8.0, c9 = c8 / 9.0, c10 = c9 / 10.0;
-  const Matrix B2 = B.lazyProduct(B), B3 = B2.lazyProduct(B);
+  const Matrix B2 = product(B, B), B3 = product(B2, B);
   // sum c_k B^k = ((c10 B + c9) B^3 + c8 B^2 + c7 B + c6) B^6 ... nested in B^3
   Matrix P = c10 * B;
   P.diagonal().array() += c9;
-  Matrix PB3 = P.lazyProduct(B3);
+  Matrix PB3 = product(P, B3);
   P = PB3 + c8 * B2 + c7 * B;
   P.diagonal().array() += c6;
-  PB3 = P.lazyProduct(B3);
+  PB3 = product(P, B3);
   P = PB3 + c5 * B2 + c4 * B;
   P.diagonal().array() += c3;
-  PB3 = P.lazyProduct(B3);
+  PB3 = product(P, B3);
   P = PB3 + c2 * B2 + B;
   P.diagonal().array() += 1.0;
-  for (int k = 0; k < s; ++k) P = P.lazyProduct(P).eval();
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) P(i, j) *= d[i] * inv[j];
-  return P;
+  for (int k = 0; k < s; ++k) P = product(P, P);
+  return P.cwiseProduct(d * inv.transpose());
 }
 
 // The exponent of one step of Magnus's expansion of order 6 for Phi' = J(t) Phi over [t, t + h],
@@ -112,14 +110,14 @@ Matrix magnus6_exponent(double h, const Matrix& J1, const Matrix& J2, const Matr
   // C1 = [a1, a2], C2 = -[a1, 2 a3 + C1] / 60, Omega = a1 + a3 / 12 + [-20 a1 - a3 + C1, a2 + C2]
   // / 240. Each product into its own matrix (a coefficient-based product inside a larger
   // expression is evaluated a third slower), the sums around them in as few passes as they allow.
-  Matrix P = a1.lazyProduct(a2), Q = a2.lazyProduct(a1);
+  Matrix P = product(a1, a2), Q = product(a2, a1);
   const Matrix W = 2.0 * a3 + P - Q;         // 2 a3 + C1
   const Matrix X = -20.0 * a1 - a3 + P - Q;  // -20 a1 - a3 + C1
-  P = a1.lazyProduct(W);
-  Q = W.lazyProduct(a1);
+  P = product(a1, W);
+  Q = product(W, a1);
   const Matrix Y = a2 - (P - Q) / 60.0;  // a2 + C2
-  P = X.lazyProduct(Y);
-  Q = Y.lazyProduct(X);
+  P = product(X, Y);
+  Q = product(Y, X);
   return a1 + a3 / 12.0 + (P - Q) / 240.0;
 }
 
@@ -156,7 +154,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
                                             jacobian(mid, step.state(mid), phase),
                                             jacobian(hi, step.state(hi), phase));
       if (!balanced_) balance_.setOnes();
-      phi_ = balanced_exponential(omega, balance_, balanced_ ? 0 : 3).lazyProduct(phi_).eval();
+      phi_ = product(balanced_exponential(omega, balance_, balanced_ ? 0 : 3), phi_);
       balanced_ = true;
     }
     return true;
@@ -167,7 +165,7 @@ class MonodromyObserver : public BasicFlowObserver<R> {
     const auto s = dynamics_.saltation(event, before.to_array(), after.to_array());
     if (s.grazing) grazing_ = true;
     balanced_ = false;
-    phi_ = s.S.lazyProduct(phi_).eval();
+    phi_ = product(s.S, phi_);
     switches_.push_back(event);
     return true;
   }

@@ -1,0 +1,86 @@
+// The kernels of src/flow/matrix_product.hpp. This file is compiled without floating-point
+// contraction (src/CMakeLists.txt): a multiply and an add must stay two roundings, as in the
+// baseline build, or the wider kernels would give other results than Eigen's.
+#include "flow/matrix_product.hpp"
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define OSCIDRUM_X86_KERNELS 1
+#endif
+
+namespace oscidrum::detail {
+namespace {
+
+using Matrix8 = Eigen::Matrix<double, 8, 8>;
+
+void baseline(const double* A, const double* B, double* C) noexcept {
+  Eigen::Map<Matrix8> result(C);
+  result = Eigen::Map<const Matrix8>(A).lazyProduct(Eigen::Map<const Matrix8>(B));
+}
+
+#ifdef OSCIDRUM_X86_KERNELS
+// Column j of C: sum over k of column k of A times B(k, j), k in order.
+__attribute__((target("avx2"))) void avx2(const double* A, const double* B, double* C) noexcept {
+  __m256d lo[8], hi[8];
+  for (int k = 0; k < 8; ++k) {
+    lo[k] = _mm256_loadu_pd(A + 8 * k);
+    hi[k] = _mm256_loadu_pd(A + 8 * k + 4);
+  }
+  for (int j = 0; j < 8; ++j) {
+    const double* b = B + 8 * j;
+    __m256d s = _mm256_broadcast_sd(b);
+    __m256d c0 = _mm256_mul_pd(lo[0], s), c1 = _mm256_mul_pd(hi[0], s);
+    for (int k = 1; k < 8; ++k) {
+      s = _mm256_broadcast_sd(b + k);
+      c0 = _mm256_add_pd(c0, _mm256_mul_pd(lo[k], s));
+      c1 = _mm256_add_pd(c1, _mm256_mul_pd(hi[k], s));
+    }
+    _mm256_storeu_pd(C + 8 * j, c0);
+    _mm256_storeu_pd(C + 8 * j + 4, c1);
+  }
+}
+
+__attribute__((target("avx512f"))) void avx512(const double* A, const double* B,
+                                               double* C) noexcept {
+  __m512d a[8];
+  for (int k = 0; k < 8; ++k) a[k] = _mm512_loadu_pd(A + 8 * k);
+  for (int j = 0; j < 8; ++j) {
+    const double* b = B + 8 * j;
+    __m512d c = _mm512_mul_pd(a[0], _mm512_set1_pd(b[0]));
+    for (int k = 1; k < 8; ++k) c = _mm512_add_pd(c, _mm512_mul_pd(a[k], _mm512_set1_pd(b[k])));
+    _mm512_storeu_pd(C + 8 * j, c);
+  }
+}
+#endif
+
+using Kernel = void (*)(const double*, const double*, double*) noexcept;
+
+Kernel fastest() {
+#ifdef OSCIDRUM_X86_KERNELS
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) return avx512;
+  if (__builtin_cpu_supports("avx2")) return avx2;
+#endif
+  return baseline;
+}
+
+}  // namespace
+
+void product8(const double* A, const double* B, double* C) noexcept {
+  // Chosen once (thread-safe initialisation of a constant; the processor does not change).
+  static const Kernel kernel = fastest();
+  kernel(A, B, C);
+}
+
+std::vector<ProductKernel> product8_kernels() {
+  std::vector<ProductKernel> kernels;
+#ifdef OSCIDRUM_X86_KERNELS
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512", avx512});
+  if (__builtin_cpu_supports("avx2")) kernels.push_back({"avx2", avx2});
+#endif
+  kernels.push_back({"baseline", baseline});
+  return kernels;
+}
+
+}  // namespace oscidrum::detail
