@@ -2,6 +2,7 @@
 #include "oscidrum_io/files.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -113,6 +114,38 @@ void track_pending(const std::string& path, bool pending) {
 
 }  // namespace
 
+int remove_stale_temporaries(const std::string& target) noexcept {
+  namespace fs = std::filesystem;
+  int removed = 0;
+  try {
+    const fs::path t(target);
+    const fs::path dir = t.has_parent_path() ? t.parent_path() : fs::path(".");
+    const std::string prefix = t.filename().string() + ".tmp.";
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+      // PID.N, both decimal.
+      const std::string rest = name.substr(prefix.size());
+      const std::size_t dot = rest.find('.');
+      const auto digits = [](const std::string& s) {
+        return !s.empty() && s.size() <= 18 &&
+               std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+      };
+      if (dot == std::string::npos || !digits(rest.substr(0, dot)) || !digits(rest.substr(dot + 1)))
+        continue;
+      const long long pid = std::stoll(rest.substr(0, dot));
+      if (pid <= 0 || pid > std::numeric_limits<pid_t>::max() || pid == ::getpid()) continue;
+      // Running (or another user's: EPERM): not stale.
+      if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+      if (!fs::is_regular_file(it->symlink_status(ec)) || ec) continue;
+      if (::unlink(it->path().c_str()) == 0) ++removed;
+    }
+  } catch (...) {  // a name that cannot be converted, an allocation: leave the files
+  }
+  return removed;
+}
+
 void remove_pending_outputs() noexcept {
   const std::lock_guard<std::mutex> lock(pending_mutex());
   for (const std::string& path : pending_paths()) ::unlink(path.c_str());
@@ -125,6 +158,7 @@ OutputFile::OutputFile(std::string path, bool regular_only)
     write_path_ = target_.path;
     return;
   }
+  remove_stale_temporaries(target_.path);
   // Reserve a fresh temporary name beside the target (O_EXCL: never through a planted link).
   static std::atomic<unsigned> counter{0};
   for (int attempt = 0;; ++attempt) {

@@ -1,10 +1,13 @@
 // Tests of src/io/files.cpp: atomic writes and the sweep journal (resume, torn lines, the lock).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "io/io_test_util.hpp"
 #include "oscidrum_io/config.hpp"
@@ -74,6 +77,34 @@ TEST(Files, PendingOutputsAreRemovedOnRequest) {
   c.commit();
   remove_pending_outputs();
   EXPECT_EQ(read_file(dir.file("c.csv")), "c\n");
+}
+
+// A writer killed while its temporary file existed (kill -9 during a sweep's final write) left
+// TARGET.tmp.PID.N behind: the next OutputFile of that target deletes it, and nothing else (the
+// files of running processes, other targets' and other names).
+TEST(Files, TemporariesOfKilledWritersAreRemovedByTheNextWrite) {
+  TempDir dir;
+  // A PID that no longer runs: a child that has exited and been reaped.
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  const std::string dead = std::to_string(child), alive = std::to_string(::getppid());
+  const std::vector<std::string> stale = {"out.csv.tmp." + dead + ".0",
+                                          "out.csv.tmp." + dead + ".17"};
+  const std::vector<std::string> kept = {"out.csv.tmp." + alive + ".0",   // a running process
+                                         "other.csv.tmp." + dead + ".0",  // another target
+                                         "out.csv.tmp." + dead,           // not TARGET.tmp.PID.N
+                                         "out.csv.tmp.x" + dead + ".0", "out.csv.journal"};
+  for (const auto& name : stale) std::ofstream(dir.file(name)) << "half\n";
+  for (const auto& name : kept) std::ofstream(dir.file(name)) << "keep\n";
+  write_file_atomic(dir.file("out.csv"), "new\n");
+  EXPECT_EQ(read_file(dir.file("out.csv")), "new\n");
+  for (const auto& name : stale) EXPECT_FALSE(std::filesystem::exists(dir.file(name))) << name;
+  for (const auto& name : kept) EXPECT_TRUE(std::filesystem::exists(dir.file(name))) << name;
+  // Nothing left to remove.
+  EXPECT_EQ(remove_stale_temporaries(dir.file("out.csv")), 0);
 }
 
 TEST(Files, JournalResumesAndDropsATornLine) {

@@ -33,7 +33,10 @@ OutputTarget output_target(const std::string& path, bool regular_only = false);
 /// it (TARGET.tmp.PID.N, created empty). The writer writes to write_path() (by name: HDF5 or
 /// matplotlib; or through write_file_atomic), then commit() flushes it to disk and renames it over
 /// the target, keeping the mode of the file it replaces. Destroyed uncommitted, the temporary file
-/// is deleted: an interrupted or failed write leaves the old file as it was.
+/// is deleted: an interrupted or failed write leaves the old file as it was. A process killed
+/// before it could delete its temporary file (SIGKILL, a power cut) leaves it behind; the next
+/// OutputFile of the same target deletes such files of processes that no longer run
+/// (remove_stale_temporaries).
 class OutputFile {
  public:
   explicit OutputFile(std::string path, bool regular_only = false);
@@ -62,6 +65,14 @@ class OutputFile {
 /// interrupt's grace period), which would otherwise leave TARGET.tmp.PID.N files beside the
 /// targets. Safe from any thread; never throws.
 void remove_pending_outputs() noexcept;
+
+/// Delete TARGET.tmp.PID.N files beside `target` (the path an OutputFile writes through, after
+/// output_target) whose process PID no longer runs: what a killed writer of the same target left.
+/// Files of running processes (this one included, or another process that reused the PID) and
+/// every other name are left alone. The PID is this machine's: on a directory shared between
+/// machines, a writer of the same target on another machine is not seen (two writers of one target
+/// are a conflict anyway). Returns how many it deleted; never throws.
+int remove_stale_temporaries(const std::string& target) noexcept;
 
 /// Write `text` to `path` through an OutputFile: readers of a regular file see the old file or
 /// the new one, never a part. Throws oscidrum::Error "cannot write PATH: reason".
