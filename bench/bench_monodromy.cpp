@@ -10,9 +10,11 @@
 #include <time.h>
 
 #include <algorithm>
+#include <string>
 
 #include "drivers/continuation.hpp"
 #include "drivers/shooting.hpp"
+#include "flow/matrix_product.hpp"
 #include "flow/monodromy.hpp"
 #include "oscidrum/oscidrum.hpp"
 #include "roller/oscillation_drum.hpp"
@@ -96,6 +98,40 @@ void BM_Maps_Product_G50_PureRolling(benchmark::State& s) {
 BENCHMARK(BM_Maps_PaperDefaults)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Maps_Product_G50_StickSlip)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Maps_Product_G50_PureRolling)->Unit(benchmark::kMicrosecond);
+
+// One 8 x 8 product by each wide kernel this processor can run (src/flow/matrix_product.hpp),
+// called through its pointer, and by Eigen's lazyProduct inlined (where there is none): what a
+// Magnus step's 12-15 products cost (the inputs are read anew at every iteration: DoNotOptimize
+// clobbers memory).
+void product_kernel(benchmark::State& state,
+                    void (*multiply)(const double*, const double*, double*) noexcept) {
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
+  const Mat8 A = Mat8::Random(), B = Mat8::Random();
+  Mat8 C;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(A.data());
+    multiply(A.data(), B.data(), C.data());
+    benchmark::DoNotOptimize(C.data());
+  }
+}
+void BM_Product8_EigenInline(benchmark::State& state) {
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
+  const Mat8 A = Mat8::Random(), B = Mat8::Random();
+  Mat8 C;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(A.data());
+    C = A.lazyProduct(B);
+    benchmark::DoNotOptimize(C.data());
+  }
+}
+BENCHMARK(BM_Product8_EigenInline)->Unit(benchmark::kNanosecond);
+const int registered = [] {
+  for (const auto& kernel : oscidrum::detail::wide_product8_kernels())
+    benchmark::RegisterBenchmark((std::string("BM_Product8_") + kernel.name).c_str(),
+                                 product_kernel, kernel.multiply)
+        ->Unit(benchmark::kNanosecond);
+  return 0;
+}();
 
 }  // namespace
 

@@ -1,6 +1,6 @@
 // The kernels of src/flow/matrix_product.hpp. This file is compiled without floating-point
 // contraction (src/CMakeLists.txt): a multiply and an add must stay two roundings, as in the
-// baseline build, or the wider kernels would give other results than Eigen's.
+// baseline build, or the wide kernels would give other results than Eigen's.
 #include "flow/matrix_product.hpp"
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -10,13 +10,6 @@
 
 namespace oscidrum::detail {
 namespace {
-
-using Matrix8 = Eigen::Matrix<double, 8, 8>;
-
-void baseline(const double* A, const double* B, double* C) noexcept {
-  Eigen::Map<Matrix8> result(C);
-  result = Eigen::Map<const Matrix8>(A).lazyProduct(Eigen::Map<const Matrix8>(B));
-}
 
 #ifdef OSCIDRUM_X86_KERNELS
 // Column j of C: sum over k of column k of A times B(k, j), k in order.
@@ -55,32 +48,35 @@ __attribute__((target("avx512f"))) void avx512(const double* A, const double* B,
 
 using Kernel = void (*)(const double*, const double*, double*) noexcept;
 
-Kernel fastest() {
+// The widest kernel this processor (and its operating system: the libgcc check includes the
+// saved vector state) runs, or nullptr.
+Kernel widest() noexcept {
 #ifdef OSCIDRUM_X86_KERNELS
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f")) return avx512;
   if (__builtin_cpu_supports("avx2")) return avx2;
 #endif
-  return baseline;
+  return nullptr;
 }
 
 }  // namespace
 
-void product8(const double* A, const double* B, double* C) noexcept {
-  // Chosen once (thread-safe initialisation of a constant; the processor does not change).
-  static const Kernel kernel = fastest();
-  kernel(A, B, C);
-}
-
-std::vector<ProductKernel> product8_kernels() {
+std::vector<ProductKernel> wide_product8_kernels() {
   std::vector<ProductKernel> kernels;
 #ifdef OSCIDRUM_X86_KERNELS
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512", avx512});
   if (__builtin_cpu_supports("avx2")) kernels.push_back({"avx2", avx2});
 #endif
-  kernels.push_back({"baseline", baseline});
   return kernels;
+}
+
+bool wide_product8(const double* A, const double* B, double* C) noexcept {
+  // Chosen once (thread-safe initialisation of a constant; the processor does not change).
+  static const Kernel kernel = widest();
+  if (kernel == nullptr) return false;
+  kernel(A, B, C);
+  return true;
 }
 
 }  // namespace oscidrum::detail

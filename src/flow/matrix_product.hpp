@@ -1,10 +1,11 @@
 // Internal: the 8x8 matrix product of the variational equations (src/flow/monodromy.hpp), where a
 // Magnus step spends most of its time. Debian builds for the x86-64 baseline (SSE2), on which
 // Eigen multiplies two 8x8 matrices with 2-wide vectors; this file runs the same product with
-// 4-wide (AVX2) or 8-wide (AVX-512) vectors where the processor has them, chosen once at run time.
-// Every kernel computes each element as Eigen's lazyProduct does (the k = 0 product, then the
-// k = 1, ..., 7 products added in order, each rounded: no fused multiply-add), so the results are
-// the same to the bit on every machine (tests/flow/test_matrix_product.cpp).
+// 4-wide (AVX2) or 8-wide (AVX-512) vectors where the processor has them, chosen once at run time,
+// and leaves it to Eigen's inlined product elsewhere. Every kernel computes each element as
+// Eigen's lazyProduct does (the k = 0 product, then the k = 1, ..., 7 products added in order,
+// each rounded: no fused multiply-add), so the results are the same to the bit on every machine
+// (tests/flow/test_matrix_product.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -12,27 +13,29 @@
 
 namespace oscidrum::detail {
 
-/// C = A B for column-major 8x8 matrices (C must not alias A or B).
-void product8(const double* A, const double* B, double* C) noexcept;
+/// C = A B for column-major 8x8 matrices by the widest kernel this processor has (C must not alias
+/// A or B). False, with C untouched, where it has none (then Eigen's inlined product is the
+/// fastest).
+bool wide_product8(const double* A, const double* B, double* C) noexcept;
 
-/// The kernels this processor can run, the one product8 uses first: for tests and benchmarks.
+/// The wide kernels this processor can run, the widest first (none on a processor without AVX2):
+/// for tests and benchmarks.
 struct ProductKernel {
-  const char* name;  ///< "avx512", "avx2" or "baseline"
+  const char* name;  ///< "avx512" or "avx2"
   void (*multiply)(const double* A, const double* B, double* C) noexcept;
 };
-std::vector<ProductKernel> product8_kernels();
+std::vector<ProductKernel> wide_product8_kernels();
 
-/// A B: product8 for 8x8 matrices, Eigen's lazyProduct for any other size.
+/// A B: wide_product8 for 8x8 matrices where the processor has a wide kernel, Eigen's lazyProduct
+/// otherwise and for any other size.
 template <class Matrix>
 Matrix product(const Matrix& A, const Matrix& B) {
   if constexpr (Matrix::RowsAtCompileTime == 8 && Matrix::ColsAtCompileTime == 8 &&
                 !Matrix::IsRowMajor) {
     Matrix C;
-    product8(A.data(), B.data(), C.data());
-    return C;
-  } else {
-    return A.lazyProduct(B);
+    if (wide_product8(A.data(), B.data(), C.data())) return C;
   }
+  return A.lazyProduct(B);
 }
 
 }  // namespace oscidrum::detail

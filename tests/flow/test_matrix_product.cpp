@@ -14,7 +14,7 @@
 namespace {
 
 using Mat8 = Eigen::Matrix<double, 8, 8>;
-using oscidrum::detail::product8_kernels;
+using oscidrum::detail::wide_product8_kernels;
 
 // The same bits, or NaN in both (a NaN's payload is not a result).
 bool same(double a, double b) {
@@ -35,9 +35,8 @@ Mat8 random_matrix(std::mt19937_64& rng, bool zeros) {
 }
 
 TEST(MatrixProduct, EveryKernelGivesEigensProductToTheBit) {
-  const auto kernels = product8_kernels();
-  ASSERT_FALSE(kernels.empty());
-  EXPECT_STREQ(kernels.back().name, "baseline");
+  const auto kernels = wide_product8_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no AVX2: the products are Eigen's own";
   std::mt19937_64 rng(20261207);
   for (const auto& kernel : kernels) {
     long differing = 0;
@@ -66,7 +65,7 @@ TEST(MatrixProduct, SpecialValuesPropagateAsInEigensProduct) {
   B(2, 6) = 0.0;
   B(0, 7) = -1.0;
   const Mat8 expected = A.lazyProduct(B);
-  for (const auto& kernel : product8_kernels()) {
+  for (const auto& kernel : wide_product8_kernels()) {
     Mat8 C;
     kernel.multiply(A.data(), B.data(), C.data());
     for (int i = 0; i < 64; ++i)
@@ -76,8 +75,8 @@ TEST(MatrixProduct, SpecialValuesPropagateAsInEigensProduct) {
   }
 }
 
-// product() takes the kernel for 8x8 and Eigen's product for any other size (the unilateral
-// drum's 10 states).
+// product() takes the widest kernel for 8x8 (Eigen's product without one) and Eigen's product for
+// any other size (the unilateral drum's 10 states).
 TEST(MatrixProduct, OtherSizesUseEigensProduct) {
   std::mt19937_64 rng(7);
   const Mat8 A = random_matrix(rng, false), B = random_matrix(rng, true);
