@@ -33,12 +33,12 @@ constexpr int kWarmChordSteps = 4;
 // of the Magnus step of Phi (a third of its exponent's commutators and of its exponential), in
 // right-hand-side evaluations, for Diagnostics::period_equivalents: measured by
 // bench/bench_monodromy.cpp (one period at a steady orbit, plainly and with the variational
-// equations, CPU time): 5.0 (pure rolling) to 5.3 (the paper's stick-slip case) on the paper's
-// roller and the performance issue's sweep with the AVX-512 product kernel
-// (src/flow/matrix_product.hpp; 5.3-5.7 before the balancing's scaling by whole columns, 6.2-6.6
-// with Eigen's baseline products: bench/README.md, "Issue 26: the Magnus step's products in wide
-// vectors"). A processor without AVX-512 spends more on the products than this weight says.
-constexpr double kJacobianCost = 5.2;
+// equations, CPU time): 4.8 (pure rolling) to 5.2 (the paper's stick-slip case) on the paper's
+// roller and the performance issue's sweep with the AVX-512 kernels of the Magnus step
+// (src/flow/wide_kernels.cpp; 6.1-6.6 with the baseline build's Eigen code: bench/README.md,
+// "Issue 26: the Magnus step in wide vectors"). A processor without AVX-512 spends more on a
+// Magnus step than this weight says.
+constexpr double kJacobianCost = 5.0;
 
 // The transient search from rest and the sampling of what it found. It may integrate what is left
 // of numerics.max_periods after the periods shooting spent before falling back.

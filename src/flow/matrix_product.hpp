@@ -1,11 +1,11 @@
 // Internal: the 8x8 matrix product of the variational equations (src/flow/monodromy.hpp), where a
 // Magnus step spends most of its time. Debian builds for the x86-64 baseline (SSE2), on which
-// Eigen multiplies two 8x8 matrices with 2-wide vectors; this file runs the same product with
-// 4-wide (AVX2) or 8-wide (AVX-512) vectors where the processor has them, chosen once at run time,
-// and leaves it to Eigen's inlined product elsewhere. Every kernel computes each element as
-// Eigen's lazyProduct does (the k = 0 product, then the k = 1, ..., 7 products added in order,
-// each rounded: no fused multiply-add), so the results are the same to the bit on every machine
-// (tests/flow/test_matrix_product.cpp).
+// Eigen multiplies two 8x8 matrices with 2-wide vectors; the kernels (src/flow/wide_kernels.cpp)
+// run the same product with 4-wide (AVX2) or 8-wide (AVX-512) vectors where the processor has
+// them, chosen once at run time, and leave it to Eigen's inlined product elsewhere. Every kernel
+// computes each element as Eigen's lazyProduct does (the k = 0 product, then the k = 1, ..., 7
+// products added in order, each rounded: no fused multiply-add), so the results are the same to the
+// bit on every machine (tests/flow/test_matrix_product.cpp).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,9 @@
-// The kernels of src/flow/matrix_product.hpp. This file is compiled without floating-point
-// contraction (src/CMakeLists.txt): a multiply and an add must stay two roundings, as in the
-// baseline build, or the wide kernels would give other results than Eigen's.
+// The wide kernels of the variational equations: the 8 x 8 product (src/flow/matrix_product.hpp)
+// and one Magnus step's exponential (src/flow/magnus.hpp), for AVX2 and AVX-512. This file is
+// compiled without floating-point contraction (src/CMakeLists.txt): a multiply and an add must
+// stay two roundings, as in the baseline build, or the wide kernels would give other results than
+// Eigen's and magnus.hpp's.
+#include "flow/magnus.hpp"
 #include "flow/matrix_product.hpp"
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -59,7 +62,54 @@ Kernel widest() noexcept {
   return nullptr;
 }
 
+using Matrix8 = Eigen::Matrix<double, 8, 8>;
+using Vector8 = Eigen::Matrix<double, 8, 1>;
+
+#ifdef OSCIDRUM_X86_KERNELS
+// magnus.hpp's always-inlined code compiled for the wider vectors (its products call
+// wide_product8, which takes the widest kernel).
+__attribute__((target("avx2"))) Matrix8 magnus_avx2(double h, const Matrix8& J1, const Matrix8& J2,
+                                                    const Matrix8& J3, Vector8& d, int sweeps) {
+  return balanced_exponential(magnus6_exponent(h, J1, J2, J3), d, sweeps);
+}
+__attribute__((target("avx512f"))) Matrix8 magnus_avx512(double h, const Matrix8& J1,
+                                                         const Matrix8& J2, const Matrix8& J3,
+                                                         Vector8& d, int sweeps) {
+  return balanced_exponential(magnus6_exponent(h, J1, J2, J3), d, sweeps);
+}
+#endif
+
+using MagnusFunction = Matrix8 (*)(double, const Matrix8&, const Matrix8&, const Matrix8&, Vector8&,
+                                   int);
+
+MagnusFunction widest_magnus() noexcept {
+#ifdef OSCIDRUM_X86_KERNELS
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) return magnus_avx512;
+  if (__builtin_cpu_supports("avx2")) return magnus_avx2;
+#endif
+  return nullptr;
+}
+
 }  // namespace
+
+std::vector<MagnusKernel> wide_magnus_kernels() {
+  std::vector<MagnusKernel> kernels;
+#ifdef OSCIDRUM_X86_KERNELS
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512", magnus_avx512});
+  if (__builtin_cpu_supports("avx2")) kernels.push_back({"avx2", magnus_avx2});
+#endif
+  return kernels;
+}
+
+bool wide_magnus_exponential8(double h, const Matrix8& J1, const Matrix8& J2, const Matrix8& J3,
+                              Vector8& d, int sweeps, Matrix8& E) noexcept {
+  static const MagnusFunction kernel = widest_magnus();
+  if (kernel == nullptr) return false;
+  E = kernel(h, J1, J2, J3, d, sweeps);
+  return true;
+}
 
 std::vector<ProductKernel> wide_product8_kernels() {
   std::vector<ProductKernel> kernels;
