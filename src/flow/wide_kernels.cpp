@@ -49,19 +49,6 @@ __attribute__((target("avx512f"))) void avx512(const double* A, const double* B,
 }
 #endif
 
-using Kernel = void (*)(const double*, const double*, double*) noexcept;
-
-// The widest kernel this processor (and its operating system: the libgcc check includes the
-// saved vector state) runs, or nullptr.
-Kernel widest() noexcept {
-#ifdef OSCIDRUM_X86_KERNELS
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) return avx512;
-  if (__builtin_cpu_supports("avx2")) return avx2;
-#endif
-  return nullptr;
-}
-
 using Matrix8 = Eigen::Matrix<double, 8, 8>;
 using Vector8 = Eigen::Matrix<double, 8, 1>;
 
@@ -79,54 +66,90 @@ __attribute__((target("avx512f"))) Matrix8 magnus_avx512(double h, const Matrix8
 }
 #endif
 
-using MagnusFunction = Matrix8 (*)(double, const Matrix8&, const Matrix8&, const Matrix8&, Vector8&,
-                                   int);
-
-MagnusFunction widest_magnus() noexcept {
+// The widest instruction set this processor and its operating system run (libgcc's check
+// includes the saved vector state).
+enum class VectorSet { none, avx2, avx512 };
+[[maybe_unused]] VectorSet widest_set() noexcept {
 #ifdef OSCIDRUM_X86_KERNELS
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) return magnus_avx512;
-  if (__builtin_cpu_supports("avx2")) return magnus_avx2;
+  if (__builtin_cpu_supports("avx512f")) return VectorSet::avx512;
+  if (__builtin_cpu_supports("avx2")) return VectorSet::avx2;
 #endif
+  return VectorSet::none;
+}
+
+// Of a kernel's AVX-512 and AVX2 versions, those this processor runs, the widest first.
+template <class Kernel>
+std::vector<Kernel> runnable([[maybe_unused]] Kernel avx512_version,
+                             [[maybe_unused]] Kernel avx2_version) {
+  std::vector<Kernel> kernels;
+  const VectorSet set = widest_set();
+  if (set == VectorSet::avx512) kernels.push_back(avx512_version);
+  if (set != VectorSet::none) kernels.push_back(avx2_version);
+  return kernels;
+}
+
+// The one to run (chosen once by the callers: thread-safe initialisation of a constant; the
+// processor does not change), or nullptr.
+template <class F>
+F widest(F avx512_version, F avx2_version) noexcept {
+  switch (widest_set()) {
+    case VectorSet::avx512:
+      return avx512_version;
+    case VectorSet::avx2:
+      return avx2_version;
+    case VectorSet::none:
+      break;
+  }
   return nullptr;
 }
 
+using ProductFunction = void (*)(const double*, const double*, double*) noexcept;
+using MagnusFunction = Matrix8 (*)(double, const Matrix8&, const Matrix8&, const Matrix8&, Vector8&,
+                                   int);
+
 }  // namespace
 
-std::vector<MagnusKernel> wide_magnus_kernels() {
-  std::vector<MagnusKernel> kernels;
-#ifdef OSCIDRUM_X86_KERNELS
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512", magnus_avx512});
-  if (__builtin_cpu_supports("avx2")) kernels.push_back({"avx2", magnus_avx2});
-#endif
-  return kernels;
-}
-
-bool wide_magnus_exponential8(double h, const Matrix8& J1, const Matrix8& J2, const Matrix8& J3,
-                              Vector8& d, int sweeps, Matrix8& E) noexcept {
-  static const MagnusFunction kernel = widest_magnus();
-  if (kernel == nullptr) return false;
-  E = kernel(h, J1, J2, J3, d, sweeps);
-  return true;
-}
-
 std::vector<ProductKernel> wide_product8_kernels() {
-  std::vector<ProductKernel> kernels;
 #ifdef OSCIDRUM_X86_KERNELS
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) kernels.push_back({"avx512", avx512});
-  if (__builtin_cpu_supports("avx2")) kernels.push_back({"avx2", avx2});
+  return runnable<ProductKernel>({"avx512", avx512}, {"avx2", avx2});
+#else
+  return {};
 #endif
-  return kernels;
 }
 
-bool wide_product8(const double* A, const double* B, double* C) noexcept {
-  // Chosen once (thread-safe initialisation of a constant; the processor does not change).
-  static const Kernel kernel = widest();
-  if (kernel == nullptr) return false;
-  kernel(A, B, C);
-  return true;
+bool wide_product8([[maybe_unused]] const double* A, [[maybe_unused]] const double* B,
+                   [[maybe_unused]] double* C) noexcept {
+#ifdef OSCIDRUM_X86_KERNELS
+  static const ProductFunction kernel = widest<ProductFunction>(avx512, avx2);
+  if (kernel != nullptr) {
+    kernel(A, B, C);
+    return true;
+  }
+#endif
+  return false;
+}
+
+std::vector<MagnusKernel> wide_magnus_kernels() {
+#ifdef OSCIDRUM_X86_KERNELS
+  return runnable<MagnusKernel>({"avx512", magnus_avx512}, {"avx2", magnus_avx2});
+#else
+  return {};
+#endif
+}
+
+bool wide_magnus_exponential8([[maybe_unused]] double h, [[maybe_unused]] const Matrix8& J1,
+                              [[maybe_unused]] const Matrix8& J2,
+                              [[maybe_unused]] const Matrix8& J3, [[maybe_unused]] Vector8& d,
+                              [[maybe_unused]] int sweeps, [[maybe_unused]] Matrix8& E) noexcept {
+#ifdef OSCIDRUM_X86_KERNELS
+  static const MagnusFunction kernel = widest<MagnusFunction>(magnus_avx512, magnus_avx2);
+  if (kernel != nullptr) {
+    E = kernel(h, J1, J2, J3, d, sweeps);
+    return true;
+  }
+#endif
+  return false;
 }
 
 }  // namespace oscidrum::detail
