@@ -1,4 +1,4 @@
-// The variational equations' integrator on its own (src/flow/monodromy.hpp): the balanced matrix
+// The variational equations' integrator on its own (src/flow/magnus.hpp): the balanced matrix
 // exponential against exponentials known in closed form, on matrices whose entries spread over
 // many decades as the state's units spread the Jacobians', and the Magnus step of order 6: exact
 // for a constant J, of order 6 for a J that changes (its error falls 64-fold when the step halves).
