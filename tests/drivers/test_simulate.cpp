@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -365,20 +366,31 @@ TEST(Simulate, StiffSoilTendsToRollingDiscInFixedTrack) {
 }
 
 // Convergence in tolerance: the metrics change less and less as rtol tightens, and at the
-// default rtol they are within 1e-6 of a run 100x tighter.
+// default rtol they are within 1e-6 of a run 100x tighter. The error of a run is the largest
+// relative deviation of the four extremes of x_M'' and z_M'' from those of the tightest run: a
+// single extreme at rtol 1e-6 can land within 2e-10 of the reference by chance (the peak of z_M''
+// did when the first step after a switch was shortened; its trough was 2.4e-9 off).
 TEST(Simulate, ConvergesAsToleranceTightens) {
   Case c = stick_slip_case(25, 0.05);
-  std::vector<double> peaks;
+  std::vector<std::array<double, 4>> extremes;
   for (double rtol : {1e-6, 1e-8, 1e-10}) {
     c.numerics.rtol = rtol;
     c.numerics.atol = rtol * 1e-3;
     const Result r = simulate(c);
     ASSERT_EQ(r.status, Status::steady_state);
-    peaks.push_back(*std::max_element(r.samples.ddz_M.begin(), r.samples.ddz_M.end()));
+    const auto [x_lo, x_hi] = std::minmax_element(r.samples.ddx_M.begin(), r.samples.ddx_M.end());
+    const auto [z_lo, z_hi] = std::minmax_element(r.samples.ddz_M.begin(), r.samples.ddz_M.end());
+    extremes.push_back({*x_lo, *x_hi, *z_lo, *z_hi});
   }
-  const double e1 = std::abs(peaks[0] - peaks[2]), e2 = std::abs(peaks[1] - peaks[2]);
+  const auto error = [&](int run) {
+    double e = 0.0;
+    for (int i = 0; i < 4; ++i)
+      e = std::max(e, std::abs(extremes[run][i] - extremes[2][i]) / std::abs(extremes[2][i]));
+    return e;
+  };
+  const double e1 = error(0), e2 = error(1);
   EXPECT_LT(e2, e1);
-  EXPECT_LT(e2 / std::abs(peaks[2]), 1e-6);
+  EXPECT_LT(e2, 1e-6);
 }
 
 // Regression: the lightly damped pendulum mode of the drum in its trough aliases to almost whole
