@@ -52,9 +52,9 @@ DrumMotion drum_motion(const Model& model, const State& q, const Accelerations& 
 }
 
 Accelerations detail::accelerations(const Model& model, double t, const State& q, Phase phase,
-                                    double baumgarte, const Kinematics& k) {
-  if (phase == Phase::stick) return stick_accelerations(model, t, q, k);
-  return slip_accelerations(model, t, q, slip_sign(phase), baumgarte, k);
+                                    double baumgarte, const Kinematics& k, double MM) {
+  if (phase == Phase::stick) return stick_accelerations(model, t, q, k, MM);
+  return slip_accelerations(model, t, q, slip_sign(phase), baumgarte, k, MM);
 }
 
 Accelerations accelerations(const Model& model, double t, const State& q, Phase phase,

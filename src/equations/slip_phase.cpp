@@ -31,7 +31,7 @@ Accelerations slip_accelerations(const Model& model, double t, const State& q, i
 }
 
 Accelerations detail::slip_accelerations(const Model& model, double t, const State& q, int s,
-                                         double baumgarte, const Kinematics& k) {
+                                         double baumgarte, const Kinematics& k, double MM) {
   const double m = model.m(), I = model.I(), r = model.r();
   const double kd = model.kd(), cd = model.cd();
   // The load on M: W + F_z(t) in place of W, and F_x(t) with kd x_M (docs/model.md section 14).
@@ -87,9 +87,7 @@ Accelerations detail::slip_accelerations(const Model& model, double t, const Sta
       -smu * (W * cs - m * k.f4_tilde * dd2 - k.f3_tilde * cd * dd -
               cd * (sn * q.dx_A + cs * q.ds_A) - kd * (xs * sn + zs * cs) + L.x * sn);
   // phi'' = (MM - r h2s - r s mu m (...)) / I: (36) times r/I, with one division.
-  a.phi =
-      (model.torque(t) - r * (h2s + smu * m * (k.f3_tilde * a.delta + sn * a.x_A + cs * a.s_A))) /
-      I;
+  a.phi = (MM - r * (h2s + smu * m * (k.f3_tilde * a.delta + sn * a.x_A + cs * a.s_A))) / I;
   return a;
 }
 

@@ -11,7 +11,7 @@ Accelerations stick_accelerations(const Model& model, double t, const State& q) 
 }
 
 Accelerations detail::stick_accelerations(const Model& model, double t, const State& q,
-                                          const Kinematics& k) {
+                                          const Kinematics& k, double MM) {
   const double m = model.m(), I = model.I(), r = model.r();
   const double kd = model.kd(), cd = model.cd();
   // The load on M: W + F_z(t) in place of W, and F_x(t) with kd x_M (docs/model.md section 14).
@@ -31,7 +31,7 @@ Accelerations detail::stick_accelerations(const Model& model, double t, const St
   const double h3 = (k.f6 * I / (m * r) + k.f2_bar) * m * dd2 +
                     cd * (k.f1_bar * q.ddelta + q.dx_A * c - q.ds_A * s) +
                     kd * ((k.x_roll + q.x_A) * c - (z_susp + q.s_A) * s) - L.x * c;
-  const double rhs3 = model.torque(t) / r - W * s - h3;
+  const double rhs3 = MM / r - W * s - h3;
 
   // Solve (52) by elimination: (30) and (31) give x_A'' and s_A'' in terms of delta''; put into
   // (32). The delta'' coefficient becomes m (f5 I/(m r) + f1_bar - f1 cos + f3 sin) = f5 I / r

@@ -168,7 +168,8 @@ std::optional<Dynamics<OscillationDrum>::Matrix> Dynamics<OscillationDrum>::sect
 void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
   const State q = State::from_array(x);
   const Kinematics k = kinematics(model_.geometry(), q.delta);  // once for all columns
-  const Accelerations a = accelerations(model_, t, q, phase, baumgarte_, k);
+  const double MM = model_.torque(t);  // (5), (6): the accelerations' and the torque column's
+  const Accelerations a = accelerations(model_, t, q, phase, baumgarte_, k, MM);
   const DrumMotion d = drum_motion(q, a, k);
   const ContactForces f = contact_forces(model_, q, k);
   // In stick phi' is fixed by the rolling condition (12), phi' = f5 delta', and the drum does not
@@ -195,7 +196,7 @@ void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, S
   s.v_rel.push_back(v_rel);
   s.gap.push_back(0.0);  // permanent contact
   s.dgap.push_back(0.0);
-  s.torque.push_back(model_.torque(t));
+  s.torque.push_back(MM);
   s.alpha.push_back(model_.excitation_angle(t));
   // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
   s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
