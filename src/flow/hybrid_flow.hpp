@@ -82,9 +82,10 @@ inline constexpr double kChatterWindow = 1e-6;
 // before it. The proposal comes from the old phase: the first step of the new one failed its
 // error test at almost every switch of the paper's stick-slip case (errors 5 to 20 times the
 // tolerance, 39 rejected steps of 209, each 12 wasted evaluations of the right-hand side). With
-// 0.7 the case from rest evaluates the right-hand side 11 % less often; over the 56 cases of
-// examples/table2_sweep.toml the work (evaluations plus Jacobians) is 0.7 % less, against 0.5 % at
-// 0.6 and 1 % more at 0.5 (bench/README.md, "Issue 26: the first step after a switch").
+// 0.7 that case from rest (MMd = 0.05 M0) evaluates the right-hand side 11 % less often (0.8: 2 %,
+// 0.6: 11 %); over the 56 cases of examples/table2_sweep.toml the work (evaluations plus five
+// per Jacobian) is 0.7 % less (0.8: 0.8 %, 0.6: 0.5 %; 0.5: 1 % more). bench/README.md, "Issue
+// 26: the first step after a switch".
 inline constexpr double kRestartStep = 0.7;
 
 }  // namespace detail
