@@ -71,6 +71,10 @@ class BasicStepView {
   virtual Phase phase() const = 0;
   /// The state at t in [t0(), t1()].
   virtual State state(double t) const = 0;
+  /// state(t[i]) for i = 0 ... n-1 into out[i] (the flow evaluates many at once).
+  virtual void states(const double* t, int n, State* out) const {
+    for (int i = 0; i < n; ++i) out[i] = state(t[i]);
+  }
   /// True when t1() is the end of the integrator's step (not an event or the end of an interval).
   virtual bool ends_step() const = 0;
 };

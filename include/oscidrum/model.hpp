@@ -61,6 +61,9 @@ class Model {
   /// drum W + F_z(t) and F_x(t), F = m_u e_u nu^2 times the exciter's direction (Exciter), ramped
   /// in as the torque is.
   CentreLoad centre_load(double t) const;
+  /// torque(t), excitation_angle(t) and centre_load(t) at the n times t[0 ... n-1] into MM, angle
+  /// and load (the same values; the output's samples ask for all three at many times).
+  void excitation(const double* t, int n, double* MM, double* angle, CentreLoad* load) const;
   /// The vibratory drum's unbalance force amplitude F0 = m_u e_u nu^2 [N] (0 for the oscillation
   /// drum).
   double F0() const { return F0_; }
@@ -79,6 +82,9 @@ class Model {
   double ramp_end_;  ///< the end of the start ramp, numerics.start_ramp_periods T (0: none) [s]
   double M0_;        ///< oscillation_moment(roller) (5); 0 for the vibratory drum [N m]
   double F0_;        ///< m_u e_u nu^2 for the vibratory drum, else 0 [N]
+
+  double torque_at(double t) const;
+  double excitation_angle_at(double t) const;
 };
 
 /// Normal and tangential contact forces at C. The soil is massless, so both are functions of

@@ -63,13 +63,34 @@ class Sampler : public BasicFlowObserver<R> {
   }
 
   bool on_step(const BasicStepView<R>& step) override {
-    // Samples in [t0, t1] not yet taken (a sample on a piece boundary belongs to the first).
+    // Samples in [t0, t1] not yet taken (a sample on a piece boundary belongs to the first),
+    // kBlock at a time where the roller evaluates several at once (sample_many).
+    constexpr int kBlock = 16;
+    std::array<double, kBlock> ts;
+    std::array<State, kBlock> qs;
+    std::array<typename Dynamics<R>::Vector, kBlock> xs;
+    int n = 0;
+    auto flush = [&] {
+      step.states(ts.data(), n, qs.data());
+      for (int i = 0; i < n; ++i) xs[i] = qs[i].to_array();
+      if constexpr (requires {
+                      dynamics_.sample_many(ts.data(), xs.data(), n, step.phase(), result_.samples);
+                    }) {
+        dynamics_.sample_many(ts.data(), xs.data(), n, step.phase(), result_.samples);
+      } else {
+        for (int i = 0; i < n; ++i) dynamics_.sample(ts[i], xs[i], step.phase(), result_.samples);
+      }
+      n = 0;
+    };
     while (next_ < total_) {
-      const double ts = sample_time(t_start_, next_, period_, per_period_);
-      if (ts > step.t1()) break;
-      dynamics_.sample(ts, step.state(ts).to_array(), step.phase(), result_.samples);
+      const double t = sample_time(t_start_, next_, period_, per_period_);
+      if (t > step.t1()) break;
+      ts[n] = t;
+      ++n;
       ++next_;
+      if (n == kBlock) flush();
     }
+    if (n > 0) flush();
     const double lo = std::max(step.t0(), t_start_), hi = std::min(step.t1(), t_end_);
     if (hi > lo) {
       if (!dynamics_.apparent_varies(step.phase())) {

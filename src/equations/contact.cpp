@@ -4,32 +4,32 @@
 #include <cmath>
 
 #include "equations/equations.hpp"
+#include "equations/phase_equations.hpp"
 #include "oscidrum/model.hpp"
 #include "util/small_angle.hpp"
 
 namespace oscidrum {
 
 namespace {
-// Soil subsystem (24), (25), solved for N (26) and T. The soil is massless, so these hold in
-// every phase and equal (21), (22). s, c: sin and cos of delta.
-ContactForces soil_contact_forces(const Model& model, const State& q, double s, double c) {
-  const double Fh = model.ksh() * q.x_A + model.csh() * q.dx_A;
-  const double Fv = model.ksv() * q.s_A + model.csv() * q.ds_A;
-  return {Fh * s + Fv * c, Fv * s - Fh * c};
+// Soil subsystem (24), (25), solved for N (26) and T (equations/phase_equations.hpp).
+ContactForces contact_forces_at(const Model& model, const State& q, double s, double c) {
+  ContactForces f;
+  detail::soil_contact_forces(model, q, s, c, f.N, f.T);
+  return f;
 }
 }  // namespace
 
 ContactForces detail::contact_forces(const Model& model, const State& q, const Kinematics& k) {
-  return soil_contact_forces(model, q, k.sin_delta, k.cos_delta);
+  return contact_forces_at(model, q, k.sin_delta, k.cos_delta);
 }
 
 ContactForces contact_forces(const Model& model, const State& q) {
   const auto [s, c] = detail::sincos_small(q.delta);
-  return soil_contact_forces(model, q, s, c);
+  return contact_forces_at(model, q, s, c);
 }
 
 double detail::slip_velocity(const Model& model, const State& q, const Kinematics& k) {
-  return model.r() * k.f5 * q.ddelta - model.r() * q.dphi;  // (13)
+  return slip_velocity_of<double>(model, q, k);  // (13)
 }
 
 double slip_velocity(const Model& model, const State& q) {
@@ -38,12 +38,7 @@ double slip_velocity(const Model& model, const State& q) {
 
 DrumMotion detail::drum_motion(const State& q, const Accelerations& a, const Kinematics& k) {
   DrumMotion d;
-  d.x_M = k.x_roll + q.x_A;  // (14)
-  d.z_M = k.z_roll + q.s_A;
-  d.dx_M = k.f1 * q.ddelta + q.dx_A;  // (17)
-  d.dz_M = k.f3 * q.ddelta + q.ds_A;
-  d.ddx_M = k.f1 * a.delta + k.f2 * q.ddelta * q.ddelta + a.x_A;  // (18)
-  d.ddz_M = k.f3 * a.delta + k.f4 * q.ddelta * q.ddelta + a.s_A;
+  drum_motion_of(q, a, k, d);  // (14), (17), (18)
   return d;
 }
 

@@ -32,6 +32,7 @@
 #include <utility>
 
 #include "flow/dop853_tableau.hpp"
+#include "util/lanes.hpp"
 
 namespace oscidrum::detail {
 
@@ -104,6 +105,28 @@ class Dop853 {
     for (int s = 1; s < kStages; ++s)
       sys(combine(x_old_, k, s, h), k[s], t_old_ + dop853::kC[s] * h);
     return combine(x_old_, k, kStages, h);
+  }
+
+  // calc_state at the n times t[0 ... n-1] (the output's samples), in lanes of kLanes times
+  // (util/lanes.hpp): the same operations in each lane, so the same bits.
+  void calc_states(const double* t, int count, Vec* out) const {
+    constexpr int kLanes = 8;
+    for (int i0 = 0; i0 < count; i0 += kLanes) {
+      const int m = std::min(kLanes, count - i0);
+      Lanes<kLanes> s;
+      for (int j = 0; j < kLanes; ++j) s[j] = (t[i0 + std::min(j, m - 1)] - t_old_) / h_;
+      const Lanes<kLanes> s1 = 1.0 - s;
+      for (std::size_t i = 0; i < n; ++i) {
+        Lanes<kLanes> y = R_[6][i] * s;
+        y = (R_[5][i] + y) * s1;
+        y = (R_[4][i] + y) * s;
+        y = (R_[3][i] + y) * s1;
+        y = (R_[2][i] + y) * s;
+        y = (R_[1][i] + y) * s1;
+        y = (R_[0][i] + y) * s;
+        for (int j = 0; j < m; ++j) out[i0 + j][i] = x_old_[i] + y[j];
+      }
+    }
   }
 
   // The continuous extension of the last accepted step at t in [t - h, t] (order 7).

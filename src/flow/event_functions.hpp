@@ -22,4 +22,9 @@ using EventValues = std::array<double, kEventCount>;
 /// they were computed from [N].
 EventValues event_values(const Model& model, Phase phase, const State& q, double* N = nullptr);
 
+/// event_values at the n states x[i] (the state vector (54)) into e[i] and N[i]: the same values,
+/// evaluated in lanes (the samples of a step before its events are sought).
+void event_values(const Model& model, Phase phase, const std::array<double, 8>* x, int n,
+                  EventValues* e, double* N);
+
 }  // namespace oscidrum

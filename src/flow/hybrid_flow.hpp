@@ -125,6 +125,16 @@ struct BasicFlow<R>::Impl : BasicStepView<R> {
   Phase phase() const override { return phase_; }
   bool ends_step() const override { return piece_ends_step; }
   StateT state(double t) const override { return StateT::from_array(vector_at(t)); }
+  void states(const double* t, int n, StateT* out) const override {
+    constexpr int kBlock = 16;
+    std::array<Vec, kBlock> x;
+    for (int i0 = 0; i0 < n; i0 += kBlock) {
+      const int m = std::min(kBlock, n - i0);
+      stepper.calc_states(t + i0, m, x.data());
+      for (int j = 0; j < m; ++j)  // as vector_at: the integrator's own state at the step's end
+        out[i0 + j] = StateT::from_array(t[i0 + j] == step_t1 ? stepper.current_state() : x[j]);
+    }
+  }
   Vec vector_at(double t) const {
     // At the step's end the integrator's own state, elsewhere the continuous extension.
     if (t == step_t1) return stepper.current_state();
@@ -223,16 +233,30 @@ typename BasicFlow<R>::Impl::Crossing BasicFlow<R>::Impl::find_event(double ta, 
       if (values(xa)[kContact] <= 0.0) return {true, a, kContact};
     }
   }
+  // The samples' states and event functions, all at once where the roller evaluates them in
+  // lanes (events_many: their chains of operations overlap), else one by one up to the first
+  // sample past an event.
+  constexpr bool kMany = requires(const Vec* xs, EventValues* e, double* N) {
+    dynamics.events_many(phase_, xs, kSub, e, N);
+  };
+  for (int k = 1; k <= kSub; ++k) ts[k] = (k == kSub) ? tb : ta + (tb - ta) * k / kSub;
+  if constexpr (kMany) {
+    std::array<Vec, kSub> xs;
+    stepper.calc_states(&ts[1], kSub - 1, xs.data());
+    xs[kSub - 1] = stepper.current_state();
+    dynamics.events_many(phase_, xs.data(), kSub, &es[1], N_samples.data());
+  }
   for (int k = 1; k <= kSub && !best.found; ++k) {
-    const double tk = (k == kSub) ? tb : ta + (tb - ta) * k / kSub;
-    if (k == kSub) {
-      x = stepper.current_state();
-    } else {
-      stepper.calc_state(tk, x);
+    const double tk = ts[k];
+    if constexpr (!kMany) {
+      if (k == kSub) {
+        x = stepper.current_state();
+      } else {
+        stepper.calc_state(tk, x);
+      }
+      es[k] = values(x, &N_samples[k - 1]);
     }
-    const EventValues e = values(x, &N_samples[k - 1]);
-    ts[k] = tk;
-    es[k] = e;
+    const EventValues& e = es[k];
     const EventValues& prev = es[k - 1];
     const double tp = ts[k - 1];
     for (int i = 0; i < Dyn::kEvents; ++i) {

@@ -1,6 +1,7 @@
 // Model: validation of a Case and its derived constants.
 #include "oscidrum/model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -9,6 +10,7 @@
 #include "oscidrum/fields.hpp"
 #include "oscidrum/soil.hpp"
 #include "util/format.hpp"
+#include "util/lanes.hpp"
 #include "util/small_angle.hpp"
 
 namespace oscidrum {
@@ -198,7 +200,8 @@ Model::Model(const Case& c) : case_(c) {
   ramp_end_ = c.numerics.start_ramp_periods / R.f;
 }
 
-double Model::torque(double t) const {
+// The bodies of torque() and excitation_angle(), inlined into excitation()'s loop as well.
+inline double Model::torque_at(double t) const {
   // (5), (6); without an oscillating torque (the vibratory drum: M0 = 0) no sine to evaluate.
   // sin(nu t) with the phase in turns, f t (util/small_angle.hpp).
   const double MM = (M0_ == 0.0 ? 0.0 : M0_ * detail::sin_turns(case_.roller.f * t)) + case_.MMd;
@@ -207,13 +210,66 @@ double Model::torque(double t) const {
   return MM * 0.5 * (1.0 - std::cos(M_PI * t / ramp_end_));
 }
 
-double Model::excitation_angle(double t) const {
+inline double Model::excitation_angle_at(double t) const {
   // In turns, as the excitation itself (torque): f t - floor(f t) is exact, so only f t and the
   // final product are rounded (about 1e-13 rad after a thousand periods, as fmod(nu t, 2 pi)
   // gives, at a fifth of fmod's cost in every output row).
   const double turns = case_.roller.f * t;
   const double angle = (turns - std::floor(turns)) * (2.0 * M_PI);
   return angle < 2.0 * M_PI ? angle : 0.0;  // a fraction just below 1 may round up to 2 pi
+}
+
+double Model::torque(double t) const { return torque_at(t); }
+
+double Model::excitation_angle(double t) const { return excitation_angle_at(t); }
+
+void Model::excitation(const double* t, int n, double* MM, double* angle, CentreLoad* load) const {
+  // Lanes of kLanes times (util/lanes.hpp): the reductions of torque_at's and
+  // excitation_angle_at's turns and both series in every lane, the quarter's choice per lane;
+  // the same operations as theirs, so the same bits. Times at or before 0, in the start ramp, of
+  // more than 2^51 turns, or of an exciter's load take the scalar functions.
+  constexpr int kLanes = 8;
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: round_to_integer's
+  constexpr double kHalfPi = 0.5 * 3.14159265358979323846;
+  using L = detail::Lanes<kLanes>;
+  const double f = case_.roller.f;
+  for (int i0 = 0; i0 < n; i0 += kLanes) {
+    const int m = std::min(kLanes, n - i0);
+    L turns;
+    bool lanes = M0_ != 0.0 && F0_ == 0.0;
+    for (int j = 0; j < kLanes; ++j) {
+      const double tj = t[i0 + std::min(j, m - 1)];
+      turns[j] = f * tj;
+      lanes = lanes && tj > 0.0 && !(tj < ramp_end_) && turns[j] < 2251799813685248.0;
+    }
+    if (!lanes) {
+      for (int i = i0; i < i0 + m; ++i) {
+        MM[i] = torque_at(t[i]);
+        angle[i] = excitation_angle_at(t[i]);
+        load[i] = F0_ == 0.0 ? CentreLoad{0.0, W_} : centre_load(t[i]);
+      }
+      continue;
+    }
+    const L nearest = (turns + kShift) - kShift;  // round_to_integer
+    const L quarters = 4.0 * (turns - nearest);   // turns_series::reduce
+    const L q = (quarters + kShift) - kShift;
+    const L x = (quarters - q) * kHalfPi;
+    const L sine = detail::turns_series::sin_series(x),
+            cosine = detail::turns_series::cos_series(x);
+    for (int j = 0; j < m; ++j) {
+      const int quarter = static_cast<int>(q[j]);  // sin_turns' choice
+      const double sin_nu_t = quarter == 0    ? sine[j]
+                              : quarter == 1  ? cosine[j]
+                              : quarter == -1 ? -cosine[j]
+                                              : -sine[j];
+      MM[i0 + j] = M0_ * sin_nu_t + case_.MMd;
+      // floor(turns) from the nearest integer: exact below 2^51 turns (turns > 0 here).
+      const double below = nearest[j] > turns[j] ? nearest[j] - 1.0 : nearest[j];
+      const double a = (turns[j] - below) * (2.0 * M_PI);
+      angle[i0 + j] = a < 2.0 * M_PI ? a : 0.0;
+      load[i0 + j] = CentreLoad{0.0, W_};
+    }
+  }
 }
 
 CentreLoad Model::centre_load(double t) const {

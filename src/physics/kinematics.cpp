@@ -5,6 +5,8 @@
 
 #include <variant>
 
+#include "physics/trough_shapes.hpp"
+
 namespace oscidrum {
 
 TroughGeometry make_trough_geometry(double r, double k, double a) {
@@ -13,6 +15,21 @@ TroughGeometry make_trough_geometry(double r, double k, double a) {
 
 Kinematics kinematics(const TroughGeometry& g, double delta) {
   return std::visit([&](const auto& s) { return kinematics(s, g.r, delta); }, g.shape);
+}
+
+void detail::kinematics(const TroughGeometry& g, const KinematicsLanes& delta,
+                        KinematicsOf<KinematicsLanes>& k) {
+  std::visit(
+      [&](const auto& s) {
+        if constexpr (requires { detail::kinematics(s, g.r, delta, k); }) {
+          detail::kinematics(s, g.r, delta, k);
+        } else {
+          for (int j = 0; j < kKinematicsLanes; ++j) {
+            set_lane(k, j, oscidrum::kinematics(s, g.r, delta[j]));
+          }
+        }
+      },
+      g.shape);
 }
 
 KinematicsRates kinematics_rates(const TroughGeometry& g, double delta) {

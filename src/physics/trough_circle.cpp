@@ -38,10 +38,10 @@ FitProblem fit_problem(const CircleTrough& s, double r) {
       "trough.a"};
 }
 
-Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
-  Kinematics q;
-  const double R = trough.R;
-  const auto [s, c] = detail::sincos_small(delta);
+namespace {
+// (15), (16), (46)-(50), (33), (37) from s = sin delta and c = cos delta, for T double or lanes.
+template <class T, class K>
+void circle_kinematics(double R, double r, const T& s, const T& c, K& q) {
   q.sin_delta = s;
   q.cos_delta = c;
   q.x_roll = R * s - r * s;            // (15): (R - r) sin delta
@@ -50,10 +50,24 @@ Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
   q.f2 = -R * s + r * s;               // (47)
   q.f3 = -R * s + r * s;               // (48)
   q.f4 = -R * c + r * c;               // (49)
-  q.f5 = R / r - 1.0;                  // (50): phi' = (R - r) / r delta' in stick
-  q.f6 = 0.0;                          // (50)
+  q.f5 = T(R / r - 1.0);               // (50): phi' = (R - r) / r delta' in stick
+  q.f6 = T(0.0);                       // (50)
   detail::set_bar_tilde(q);
+}
+}  // namespace
+
+Kinematics kinematics(const CircleTrough& trough, double r, double delta) {
+  Kinematics q;
+  const auto [s, c] = detail::sincos_small(delta);
+  circle_kinematics(trough.R, r, s, c, q);
   return q;
+}
+
+void detail::kinematics(const CircleTrough& trough, double r, const KinematicsLanes& delta,
+                        KinematicsOf<KinematicsLanes>& k) {
+  KinematicsLanes s, c;
+  sincos_small(delta, s, c);
+  circle_kinematics(trough.R, r, s, c, k);
 }
 
 KinematicsRates kinematics_rates(const CircleTrough& trough, double r, double delta) {

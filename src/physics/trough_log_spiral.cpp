@@ -52,15 +52,17 @@ FitProblem fit_problem(const LogSpiralTrough& s, double r) {
       "trough.a"};
 }
 
-Kinematics kinematics(const LogSpiralTrough& g, double r, double delta) {
-  Kinematics q;
+namespace {
+// (15), (16), (46)-(50), (33), (37) from E = exp(-k delta), s = sin delta and c = cos delta, for T
+// double or lanes (physics/kinematics_lanes.hpp).
+template <class T, class K>
+void spiral_kinematics(const LogSpiralTrough& g, double r, const T& E, const T& s, const T& c,
+                       K& q) {
   const double k = g.k();
-  const double E = std::exp(-k * delta);
-  const auto [s, c] = detail::sincos_small(delta);
   // sin and cos of (alpha + delta) from the addition theorems (alpha is constant).
   const double sa = g.sin_alpha(), ca = g.cos_alpha();
-  const double sad = sa * c + ca * s, cad = ca * c - sa * s;
-  const double RE = g.R0() * E;
+  const T sad = sa * c + ca * s, cad = ca * c - sa * s;
+  const T RE = g.R0() * E;
 
   q.sin_delta = s;
   q.cos_delta = c;
@@ -73,7 +75,22 @@ Kinematics kinematics(const LogSpiralTrough& g, double r, double delta) {
   q.f5 = g.root() * E * g.R0() / r - 1.0;                      // (50)
   q.f6 = -k * g.root() * E * g.R0() / r;                       // (50)
   detail::set_bar_tilde(q);
+}
+}  // namespace
+
+Kinematics kinematics(const LogSpiralTrough& g, double r, double delta) {
+  Kinematics q;
+  const auto [s, c] = detail::sincos_small(delta);
+  spiral_kinematics(g, r, std::exp(-g.k() * delta), s, c, q);
   return q;
+}
+
+void detail::kinematics(const LogSpiralTrough& g, double r, const KinematicsLanes& delta,
+                        KinematicsOf<KinematicsLanes>& k) {
+  KinematicsLanes E, s, c;
+  for (int j = 0; j < kKinematicsLanes; ++j) E[j] = std::exp(-g.k() * delta[j]);
+  sincos_small(delta, s, c);
+  spiral_kinematics(g, r, E, s, c, k);
 }
 
 KinematicsRates kinematics_rates(const LogSpiralTrough& g, double r, double delta) {

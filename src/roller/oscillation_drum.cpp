@@ -3,13 +3,16 @@
 // section projection and the samples, on the equations of src/equations/.
 #include "roller/oscillation_drum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "equations/equations.hpp"
 #include "equations/event_logic.hpp"
+#include "equations/phase_equations.hpp"
 #include "util/format.hpp"
+#include "util/lanes.hpp"
 
 namespace oscidrum::detail {
 
@@ -165,41 +168,130 @@ std::optional<Dynamics<OscillationDrum>::Matrix> Dynamics<OscillationDrum>::sect
   return jump_jacobian(model_, State::from_array(z), true, 0);
 }
 
-void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
-  const State q = State::from_array(x);
-  const Kinematics k = kinematics(model_.geometry(), q.delta);  // once for all columns
-  const double MM = model_.torque(t);  // (5), (6): the accelerations' and the torque column's
-  const Accelerations a = accelerations(model_, t, q, phase, baumgarte_, k, MM);
-  const DrumMotion d = drum_motion(q, a, k);
-  const ContactForces f = contact_forces(model_, q, k);
+namespace {
+
+template <class T>
+void append(std::vector<T>& column, const T* values, int count) {
+  column.insert(column.end(), values, values + count);
+}
+
+// The samples at t[0 ... count-1] (count <= N) of states x in `phase`, in lanes of N
+// (util/lanes.hpp): the kinematics, the moment and the load per point, the equations of
+// equations/phase_equations.hpp for all points at once, the same bits as one point at a time.
+template <int N>
+void sample_lanes(const Model& model, double baumgarte, const double* t,
+                  const Dynamics<OscillationDrum>::Vector* x, int count, Phase phase, Samples& s) {
+  using L = Lanes<N>;
+  StateOf<L> q;
+  KinematicsOf<L> k;
+  L MM, Lx, W, alpha;
+  std::array<CentreLoad, N> load;
+  model.excitation(t, count, MM.v.data(), alpha.v.data(), load.data());
+  for (int j = 0; j < N; ++j) {
+    const int i = std::min(j, count - 1);  // unused lanes repeat the last point
+    const auto& xi = x[i];
+    q.delta[j] = xi[0];
+    q.x_A[j] = xi[1];
+    q.s_A[j] = xi[2];
+    q.phi[j] = xi[3];
+    q.ddelta[j] = xi[4];
+    q.dx_A[j] = xi[5];
+    q.ds_A[j] = xi[6];
+    q.dphi[j] = xi[7];
+    // The moment (5), (6) (the accelerations' and the torque column's) and the load on M.
+    if (j >= count) MM[j] = MM[count - 1];
+    Lx[j] = load[static_cast<std::size_t>(i)].x;
+    W[j] = load[static_cast<std::size_t>(i)].z;
+  }
+  // The kinematics (15)-(16), (46)-(50), (33), (37) of every point, in lanes where the shape has
+  // them (physics/kinematics_lanes.hpp).
+  if constexpr (N == kKinematicsLanes) {
+    kinematics(model.geometry(), q.delta, k);
+  } else {
+    for (int j = 0; j < N; ++j) {
+      set_lane(k, j, kinematics(model.geometry(), q.delta[j]));
+    }
+  }
   // In stick phi' is fixed by the rolling condition (12), phi' = f5 delta', and the drum does not
   // slide (v_rel = 0, (13)). The flow integrates phi' there without reading it, so the state's
   // own phi' carries the integration's round-off drift (up to ~1e-9 rad/s after a long transient
   // from rest): the columns report the constrained values instead.
   const bool stick = phase == Phase::stick;
-  const double v_rel = stick ? 0.0 : slip_velocity(model_, q, k);
-  s.t.push_back(t);
-  s.delta.push_back(q.delta);
-  s.phi.push_back(q.phi);
-  s.x_A.push_back(q.x_A);
-  s.s_A.push_back(q.s_A);
-  s.ddelta.push_back(q.ddelta);
-  s.dphi.push_back(stick ? k.f5 * q.ddelta : q.dphi);
-  s.dx_A.push_back(q.dx_A);
-  s.ds_A.push_back(q.ds_A);
-  s.x_M.push_back(d.x_M);
-  s.z_M.push_back(d.z_M);
-  s.ddx_M.push_back(d.ddx_M);
-  s.ddz_M.push_back(d.ddz_M);
-  s.N.push_back(f.N);
-  s.T.push_back(f.T);
-  s.v_rel.push_back(v_rel);
-  s.gap.push_back(0.0);  // permanent contact
-  s.dgap.push_back(0.0);
-  s.torque.push_back(MM);
-  s.alpha.push_back(model_.excitation_angle(t));
+  const L v_rel = stick ? L(0.0) : slip_velocity_of<L>(model, q, k);
+  AccelerationsOf<L> a;
+  if (stick) {
+    stick_accelerations_of<L>(model, q, k, MM, Lx, W, a);
+  } else {
+    // Coulomb's law: one slip coefficient s mu for all points; a coefficient that depends on
+    // v_rel (or differs between points) takes the scalar equations point by point.
+    const SlipCoefficient mu = slip_coefficient(model.friction(), slip_sign(phase), v_rel[0]);
+    bool constant = mu.dm_dv == 0.0;
+    for (int j = 1; j < N && constant; ++j) {
+      const SlipCoefficient mj = slip_coefficient(model.friction(), slip_sign(phase), v_rel[j]);
+      constant = mj.dm_dv == 0.0 && mj.m == mu.m;
+    }
+    if (constant) {
+      slip_accelerations_of<L>(model, q, k, mu.m, baumgarte, MM, Lx, W, a);
+    } else {
+      for (int j = 0; j < N; ++j) {
+        const int i = std::min(j, count - 1);
+        const Accelerations aj =
+            detail::accelerations(model, t[i], State::from_array(x[i]), phase, baumgarte,
+                                  kinematics(model.geometry(), x[i][0]), MM[j]);
+        a.delta[j] = aj.delta;
+        a.x_A[j] = aj.x_A;
+        a.s_A[j] = aj.s_A;
+        a.phi[j] = aj.phi;
+      }
+    }
+  }
+  DrumMotionOf<L> d;
+  drum_motion_of(q, a, k, d);
+  L N_force, T_force;
+  soil_contact_forces(model, q, k.sin_delta, k.cos_delta, N_force, T_force);
+  const L dphi = stick ? k.f5 * q.ddelta : q.dphi;
+  std::array<Phase, N> shown;
   // A smooth law's samples show the apparent phase (stick while creeping, oscidrum/friction.hpp).
-  s.phase.push_back(apparent_phase(model_.friction(), phase, v_rel));
+  const bool varies = apparent_varies(model.friction(), phase);
+  for (int j = 0; j < N; ++j) {
+    shown[static_cast<std::size_t>(j)] =
+        varies ? apparent_phase(model.friction(), phase, v_rel[j]) : phase;
+  }
+  const L zero(0.0);
+  append(s.t, t, count);
+  append(s.delta, q.delta.v.data(), count);
+  append(s.phi, q.phi.v.data(), count);
+  append(s.x_A, q.x_A.v.data(), count);
+  append(s.s_A, q.s_A.v.data(), count);
+  append(s.ddelta, q.ddelta.v.data(), count);
+  append(s.dphi, dphi.v.data(), count);
+  append(s.dx_A, q.dx_A.v.data(), count);
+  append(s.ds_A, q.ds_A.v.data(), count);
+  append(s.x_M, d.x_M.v.data(), count);
+  append(s.z_M, d.z_M.v.data(), count);
+  append(s.ddx_M, d.ddx_M.v.data(), count);
+  append(s.ddz_M, d.ddz_M.v.data(), count);
+  append(s.N, N_force.v.data(), count);
+  append(s.T, T_force.v.data(), count);
+  append(s.v_rel, v_rel.v.data(), count);
+  append(s.gap, zero.v.data(), count);  // permanent contact
+  append(s.dgap, zero.v.data(), count);
+  append(s.torque, MM.v.data(), count);
+  append(s.alpha, alpha.v.data(), count);
+  append(s.phase, shown.data(), count);
+}
+
+}  // namespace
+
+void Dynamics<OscillationDrum>::sample(double t, const Vector& x, Phase phase, Samples& s) const {
+  sample_lanes<1>(model_, baumgarte_, &t, &x, 1, phase, s);
+}
+
+void Dynamics<OscillationDrum>::sample_many(const double* t, const Vector* x, int count,
+                                            Phase phase, Samples& s) const {
+  for (int i = 0; i < count; i += kSampleLanes)
+    sample_lanes<kSampleLanes>(model_, baumgarte_, t + i, x + i, std::min(kSampleLanes, count - i),
+                               phase, s);
 }
 
 std::array<double, 9> Dynamics<OscillationDrum>::quantities(double t, const Vector& x,

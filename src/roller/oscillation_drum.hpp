@@ -64,6 +64,10 @@ class Dynamics<OscillationDrum> {
   EventValues events(Phase phase, const Vector& x, double* N = nullptr) const {
     return event_values(model_, phase, State::from_array(x), N);
   }
+  /// events() at the n states x[i] into e[i] and N[i], evaluated in lanes.
+  void events_many(Phase phase, const Vector* x, int n, EventValues* e, double* N) const {
+    event_values(model_, phase, x, n, e, N);
+  }
   /// Event `which` of `phase` at time t, x the state just before it.
   Switch apply(Phase phase, int which, double t, const Vector& x) const;
   /// A state the equations are undefined at, with the stop it ends the run in: the trough's
@@ -95,6 +99,11 @@ class Dynamics<OscillationDrum> {
 
   // ---- sampling -------------------------------------------------------------------------------
   void sample(double t, const Vector& x, Phase phase, Samples& samples) const;
+  /// The samples at t[0 ... count-1] of the states x, all in `phase`: the same values as sample()
+  /// at each, evaluated kSampleLanes at a time (util/lanes.hpp).
+  void sample_many(const double* t, const Vector* x, int count, Phase phase,
+                   Samples& samples) const;
+  static constexpr int kSampleLanes = 8;
   /// The phase a state is shown in (the smooth phase of a regularised law and slip without
   /// friction show their apparent phase, oscidrum/friction.hpp; every other phase itself).
   Phase apparent(Phase phase, const Vector& x) const {

@@ -12,15 +12,18 @@
 #include <span>
 #include <vector>
 
+#include "util/lanes.hpp"
+
 namespace oscidrum::detail {
 
 struct SinCos {
   double sin, cos;
 };
 
-inline SinCos sincos_small(double x) {
-  if (!(std::abs(x) <= 0.5)) return {std::sin(x), std::cos(x)};
-  const double x2 = x * x;
+/// The series of sincos_small for |x| <= 0.5, for T double or lanes of doubles (util/lanes.hpp).
+template <class T>
+inline void sincos_small_series(const T& x, T& sin_x, T& cos_x) {
+  const T x2 = x * x;
   // sin x = x (1 - x^2/3! + x^4/5! - ... - x^12/13!), cos x = 1 - x^2/2! + ... + x^14/14!.
   constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0, s7 = -1.0 / 5040.0, s9 = 1.0 / 362880.0,
                    s11 = -1.0 / 39916800.0, s13 = 1.0 / 6227020800.0;
@@ -28,10 +31,31 @@ inline SinCos sincos_small(double x) {
                    c10 = -1.0 / 3628800.0, c12 = 1.0 / 479001600.0, c14 = -1.0 / 87178291200.0;
   // Estrin's scheme (pairs of terms in x^2, then in x^4): a shorter chain of dependent
   // operations than Horner's, on a machine without fused multiply-adds.
-  const double x4 = x2 * x2;
-  const double ps = (s3 + x2 * s5) + x4 * ((s7 + x2 * s9) + x4 * (s11 + x2 * s13));
-  const double pc = (c2 + x2 * c4) + x4 * ((c6 + x2 * c8) + x4 * ((c10 + x2 * c12) + x4 * c14));
-  return {x + x * x2 * ps, 1.0 + x2 * pc};
+  const T x4 = x2 * x2;
+  const T ps = (s3 + x2 * s5) + x4 * ((s7 + x2 * s9) + x4 * (s11 + x2 * s13));
+  const T pc = (c2 + x2 * c4) + x4 * ((c6 + x2 * c8) + x4 * ((c10 + x2 * c12) + x4 * c14));
+  sin_x = x + x * x2 * ps;
+  cos_x = 1.0 + x2 * pc;
+}
+
+inline SinCos sincos_small(double x) {
+  if (!(std::abs(x) <= 0.5)) return {std::sin(x), std::cos(x)};
+  SinCos r;
+  sincos_small_series(x, r.sin, r.cos);
+  return r;
+}
+
+/// sincos_small in every lane: the series in all lanes at once where every |x| <= 0.5.
+template <int N>
+inline void sincos_small(const Lanes<N>& x, Lanes<N>& sin_x, Lanes<N>& cos_x) {
+  bool small = true;
+  for (int j = 0; j < N; ++j) small = small && std::abs(x[j]) <= 0.5;
+  if (small) return sincos_small_series(x, sin_x, cos_x);
+  for (int j = 0; j < N; ++j) {
+    const SinCos r = sincos_small(x[j]);
+    sin_x[j] = r.sin;
+    cos_x[j] = r.cos;
+  }
 }
 
 /// std::nearbyint(x) in the default rounding mode (to nearest, ties to even), without libm's call
@@ -59,22 +83,25 @@ inline Reduced reduce(double turns) {
   const double x = (quarters - q) * (0.5 * 3.14159265358979323846);  // |x| <= pi/4
   return {x, q};
 }
-/// sin x and cos x on |x| <= pi/4 by the series through x^17 and x^16 (Estrin's scheme).
-inline double sin_series(double x) {
-  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+/// sin x and cos x on |x| <= pi/4 by the series through x^17 and x^16 (Estrin's scheme); T is
+/// double or lanes of doubles (util/lanes.hpp), the same operations in each lane.
+template <class T>
+inline T sin_series(const T& x) {
+  const T x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
   constexpr double s3 = -1.0 / 6.0, s5 = 1.0 / 120.0, s7 = -1.0 / 5040.0, s9 = 1.0 / 362880.0,
                    s11 = -1.0 / 39916800.0, s13 = 1.0 / 6227020800.0, s15 = -1.0 / 1307674368000.0,
                    s17 = 1.0 / 355687428096000.0;
-  const double ps =
+  const T ps =
       (s3 + x2 * s5) + x4 * (s7 + x2 * s9) + x8 * ((s11 + x2 * s13) + x4 * (s15 + x2 * s17));
   return x + x * x2 * ps;
 }
-inline double cos_series(double x) {
-  const double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+template <class T>
+inline T cos_series(const T& x) {
+  const T x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
   constexpr double c2 = -0.5, c4 = 1.0 / 24.0, c6 = -1.0 / 720.0, c8 = 1.0 / 40320.0,
                    c10 = -1.0 / 3628800.0, c12 = 1.0 / 479001600.0, c14 = -1.0 / 87178291200.0,
                    c16 = 1.0 / 20922789888000.0;
-  const double pc =
+  const T pc =
       (c2 + x2 * c4) + x4 * (c6 + x2 * c8) + x8 * ((c10 + x2 * c12) + x4 * (c14 + x2 * c16));
   return 1.0 + x2 * pc;
 }

@@ -107,6 +107,29 @@ TEST(Dop853, TheContinuousExtensionHasOrderSevenAndMeetsTheStepsEnds) {
   EXPECT_LT(ends2, 1e-15);
 }
 
+TEST(Dop853, TheContinuousExtensionAtManyTimesIsItsValueAtEach) {
+  // calc_states evaluates the extension in lanes of times: the same bits as calc_state at each,
+  // for counts that fill the lanes, leave some unused, and span two blocks.
+  long calls = 0;
+  const double h = 0.3;
+  Dop853<Vec> st(1e-10, 1e-10, h);
+  st.initialize({1.0, 0.0}, 0.2, h);
+  st.do_step(Oscillator{&calls});
+  st.do_step(Oscillator{&calls});
+  const double t0 = st.current_time() - h;
+  std::array<double, 19> t{};
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = t0 + h * static_cast<double>(i) / 18.0;
+  for (const int n : {19, 8, 5, 1}) {
+    std::array<Vec, 19> many{};
+    st.calc_states(t.data(), n, many.data());
+    for (int i = 0; i < n; ++i) {
+      Vec one{};
+      st.calc_state(t[static_cast<std::size_t>(i)], one);
+      EXPECT_EQ(one, many[static_cast<std::size_t>(i)]) << n << " times, time " << i;
+    }
+  }
+}
+
 TEST(Dop853, AStepToATimeInsideTheLastStepIsTheMethodsOwnStep) {
   // step_to(t) is the method's step from the last step's start to t: at the step's end the step
   // itself, bit for bit; inside it an 8th-order step, more accurate than the continuous extension

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "equations/event_logic.hpp"
 #include "equations/jacobian.hpp"
@@ -220,6 +222,102 @@ TEST(OscillationDrum, PushedSlipIsTheSlipTheDrivingTorquePushes) {
   later[Dyn::kSpin] += 3.0;  // phi' grew by 3 rad/s over 3 periods while slipping with s = -1
   EXPECT_EQ(Dyn::spin_up(later, x, -1, 3), 1.0);
   EXPECT_EQ(Dyn::spin_up(later, x, 1, 3), -1.0);
+}
+
+// The samples, the event functions and the excitation evaluated in lanes (util/lanes.hpp) equal
+// those of one point at a time to the bit: stick, both slips, the smooth phase of a regularised
+// law (its coefficient depends on v_rel: the slip equations go point by point), the spiral and
+// the circle, angles inside and outside the small-angle series (|delta| > 0.5 in one lane), and
+// counts that leave lanes unused.
+std::vector<Case> lane_cases() {
+  std::vector<Case> cases(5, driven_case());
+  cases[1].trough.shape = LogSpiralTrough{0.05, 0.62};
+  cases[2].contact.law = FrictionChoice::regularised;
+  cases[3].numerics.start_ramp_periods = 2;      // the excitation ramped in: scalar torque
+  cases[4].roller.type = RollerType::vibratory;  // a centre load, no oscillating moment
+  cases[4].roller.static_moment = 2.0;
+  return cases;
+}
+
+std::vector<Dyn::Vector> lane_states(const Model& model, int n) {
+  std::mt19937 rng(20261207);
+  std::vector<Dyn::Vector> x;
+  for (int i = 0; i < n; ++i) {
+    State q = random_state(rng, model);
+    if (i == 5) q.delta = 0.7;  // outside the series of sincos_small
+    x.push_back(q.to_array());
+  }
+  return x;
+}
+
+TEST(OscillationDrum, SamplesInLanesEqualOneByOne) {
+  for (const Case& c : lane_cases()) {
+    const Model model(c);
+    const Dyn dyn(model, 30.0);
+    const auto x = lane_states(model, 19);
+    std::vector<double> t;
+    for (int i = 0; i < 19; ++i) t.push_back(1e-3 * i + (i == 3 ? 0.0 : 0.01));
+    for (Phase phase : {Phase::stick, Phase::slip_positive, Phase::slip_negative, Phase::smooth}) {
+      if (!has_phase(model.friction(), phase)) continue;
+      for (int count : {19, 8, 3, 1}) {
+        Samples one, many;
+        for (int i = 0; i < count; ++i) dyn.sample(t[i], x[i], phase, one);
+        dyn.sample_many(t.data(), x.data(), count, phase, many);
+        ASSERT_EQ(many.size(), static_cast<std::size_t>(count));
+#define OSCIDRUM_SAME(type, name, unit, label, description)                     \
+  for (int i = 0; i < count; ++i)                                               \
+    EXPECT_EQ(std::memcmp(&one.name[i], &many.name[i], sizeof(one.name[i])), 0) \
+        << #name << " sample " << i << " of " << count << " in phase " << static_cast<int>(phase);
+        OSCIDRUM_SAMPLE_COLUMNS(OSCIDRUM_SAME)
+#undef OSCIDRUM_SAME
+      }
+    }
+  }
+}
+
+TEST(OscillationDrum, EventFunctionsInLanesEqualOneByOne) {
+  for (const Case& c : lane_cases()) {
+    const Model model(c);
+    const Dyn dyn(model, 30.0);
+    const auto x = lane_states(model, 11);
+    for (Phase phase : {Phase::stick, Phase::slip_positive, Phase::slip_negative, Phase::smooth}) {
+      if (!has_phase(model.friction(), phase)) continue;
+      std::vector<EventValues> e(11);
+      std::vector<double> N(11);
+      dyn.events_many(phase, x.data(), 11, e.data(), N.data());
+      for (int i = 0; i < 11; ++i) {
+        double N_one = 0.0;
+        const EventValues one = dyn.events(phase, x[i], &N_one);
+        EXPECT_EQ(std::memcmp(&N_one, &N[i], sizeof(double)), 0) << i;
+        for (int k = 0; k < kEventCount; ++k)
+          EXPECT_EQ(std::memcmp(&one[k], &e[i][k], sizeof(double)), 0)
+              << "function " << k << " at state " << i << " in phase " << static_cast<int>(phase);
+      }
+    }
+  }
+}
+
+TEST(OscillationDrum, ExcitationInLanesEqualsOneByOne) {
+  for (const Case& c : lane_cases()) {
+    const Model model(c);
+    // t = 0, times inside a start ramp (case 3), late times (2^20 periods on), uneven spacing.
+    std::vector<double> t;
+    for (int i = 0; i < 21; ++i) t.push_back(i * 0.0123 * model.period());
+    t.push_back(0.0);
+    for (int i = 0; i < 9; ++i) t.push_back((1048576.0 + 0.37 * i) * model.period());
+    const int n = static_cast<int>(t.size());
+    std::vector<double> MM(t.size()), angle(t.size());
+    std::vector<CentreLoad> load(t.size());
+    model.excitation(t.data(), n, MM.data(), angle.data(), load.data());
+    for (int i = 0; i < n; ++i) {
+      const double MM_one = model.torque(t[i]), angle_one = model.excitation_angle(t[i]);
+      const CentreLoad load_one = model.centre_load(t[i]);
+      EXPECT_EQ(std::memcmp(&MM_one, &MM[i], sizeof(double)), 0) << i << ": " << MM_one;
+      EXPECT_EQ(std::memcmp(&angle_one, &angle[i], sizeof(double)), 0) << i << ": " << angle_one;
+      EXPECT_EQ(std::memcmp(&load_one.x, &load[i].x, sizeof(double)), 0) << i;
+      EXPECT_EQ(std::memcmp(&load_one.z, &load[i].z, sizeof(double)), 0) << i;
+    }
+  }
 }
 
 }  // namespace

@@ -76,6 +76,21 @@ TEST(SmallAngle, TurnsAgreeWithLibmAndArePeriodic) {
     }
 }
 
+TEST(SmallAngle, LanesGiveTheSameBitsAsOneAngle) {
+  // sincos_small in lanes: the series in every lane where all angles are in its range, libm in
+  // each lane where one is not (0.7 below), the same bits as one angle at a time.
+  for (const double spread : {0.45, 0.7}) {
+    detail::Lanes<8> x, s, c;
+    for (int j = 0; j < 8; ++j) x[j] = spread * (j - 3.5) / 3.5 + 1e-3 * j;
+    detail::sincos_small(x, s, c);
+    for (int j = 0; j < 8; ++j) {
+      const detail::SinCos one = detail::sincos_small(x[j]);
+      EXPECT_TRUE(one.sin == s[j] && std::signbit(one.sin) == std::signbit(s[j])) << x[j];
+      EXPECT_TRUE(one.cos == c[j] && std::signbit(one.cos) == std::signbit(c[j])) << x[j];
+    }
+  }
+}
+
 TEST(SmallAngle, SineInTurnsAloneIsSincosTurnsSine) {
   // The excitation's moment takes sin_turns: the same bits as sincos_turns' sine in every
   // quarter (each quarter picks the sine or the cosine series), at the quarter points and for
