@@ -8,6 +8,8 @@
 // passed in memory, cost the slip phase's right-hand side 6 %).
 #pragma once
 
+#include <array>
+
 #include "oscidrum/model.hpp"
 #include "physics/kinematics_lanes.hpp"
 
@@ -19,6 +21,18 @@ template <class T>
 struct StateOf {
   T delta, x_A, s_A, phi, ddelta, dx_A, ds_A, dphi;
 };
+/// Lane j of q from the state vector x = (delta, x_A, s_A, phi, delta', x_A', s_A', phi').
+template <class L>
+inline void set_lane(StateOf<L>& q, int j, const std::array<double, 8>& x) {
+  q.delta[j] = x[0];
+  q.x_A[j] = x[1];
+  q.s_A[j] = x[2];
+  q.phi[j] = x[3];
+  q.ddelta[j] = x[4];
+  q.dx_A[j] = x[5];
+  q.ds_A[j] = x[6];
+  q.dphi[j] = x[7];
+}
 template <class T>
 struct AccelerationsOf {
   T delta, x_A, s_A, phi;

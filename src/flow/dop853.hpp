@@ -117,13 +117,7 @@ class Dop853 {
       for (int j = 0; j < kLanes; ++j) s[j] = (t[i0 + std::min(j, m - 1)] - t_old_) / h_;
       const Lanes<kLanes> s1 = 1.0 - s;
       for (std::size_t i = 0; i < n; ++i) {
-        Lanes<kLanes> y = R_[6][i] * s;
-        y = (R_[5][i] + y) * s1;
-        y = (R_[4][i] + y) * s;
-        y = (R_[3][i] + y) * s1;
-        y = (R_[2][i] + y) * s;
-        y = (R_[1][i] + y) * s1;
-        y = (R_[0][i] + y) * s;
+        const Lanes<kLanes> y = extension(i, s, s1);
         for (int j = 0; j < m; ++j) out[i0 + j][i] = x_old_[i] + y[j];
       }
     }
@@ -133,20 +127,23 @@ class Dop853 {
   void calc_state(double t, Vec& out) const {
     const double s = (t - t_old_) / h_;
     const double s1 = 1.0 - s;
-    for (std::size_t i = 0; i < n; ++i) {
-      // s (R0 + s1 (R1 + s (R2 + s1 (R3 + s (R4 + s1 (R5 + s R6)))))), s1 = 1 - s
-      double y = R_[6][i] * s;
-      y = (R_[5][i] + y) * s1;
-      y = (R_[4][i] + y) * s;
-      y = (R_[3][i] + y) * s1;
-      y = (R_[2][i] + y) * s;
-      y = (R_[1][i] + y) * s1;
-      y = (R_[0][i] + y) * s;
-      out[i] = x_old_[i] + y;
-    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = x_old_[i] + extension(i, s, s1);
   }
 
  private:
+  // The extension's increment of component i at s (double, or lanes of times):
+  // s (R0 + s1 (R1 + s (R2 + s1 (R3 + s (R4 + s1 (R5 + s R6)))))), s1 = 1 - s.
+  template <class T>
+  T extension(std::size_t i, const T& s, const T& s1) const {
+    T y = R_[6][i] * s;
+    y = (R_[5][i] + y) * s1;
+    y = (R_[4][i] + y) * s;
+    y = (R_[3][i] + y) * s1;
+    y = (R_[2][i] + y) * s;
+    y = (R_[1][i] + y) * s1;
+    return (R_[0][i] + y) * s;
+  }
+
   // x + h sum_j a_sj k_j over the stages before s (row s of the tableau).
   template <std::size_t N>
   static Vec combine(const Vec& x, const std::array<Vec, N>& k, int s, double h) {

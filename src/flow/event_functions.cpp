@@ -54,17 +54,8 @@ void event_values(const Model& model, Phase phase, const std::array<double, 8>* 
   for (int i0 = 0; i0 < n; i0 += kLanes) {
     const int m = std::min(kLanes, n - i0);
     detail::StateOf<L> q;
-    for (int j = 0; j < kLanes; ++j) {
-      const auto& xj = x[i0 + std::min(j, m - 1)];  // unused lanes repeat the last state
-      q.delta[j] = xj[0];
-      q.x_A[j] = xj[1];
-      q.s_A[j] = xj[2];
-      q.phi[j] = xj[3];
-      q.ddelta[j] = xj[4];
-      q.dx_A[j] = xj[5];
-      q.ds_A[j] = xj[6];
-      q.dphi[j] = xj[7];
-    }
+    for (int j = 0; j < kLanes; ++j)  // unused lanes repeat the last state
+      detail::set_lane(q, j, x[i0 + std::min(j, m - 1)]);
     L s, c, normal;
     detail::sincos_small(q.delta, s, c);
     const auto slip_velocity = [&] {

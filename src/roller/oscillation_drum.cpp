@@ -189,15 +189,7 @@ void sample_lanes(const Model& model, double baumgarte, const double* t,
   model.excitation(t, count, MM.v.data(), alpha.v.data(), load.data());
   for (int j = 0; j < N; ++j) {
     const int i = std::min(j, count - 1);  // unused lanes repeat the last point
-    const auto& xi = x[i];
-    q.delta[j] = xi[0];
-    q.x_A[j] = xi[1];
-    q.s_A[j] = xi[2];
-    q.phi[j] = xi[3];
-    q.ddelta[j] = xi[4];
-    q.dx_A[j] = xi[5];
-    q.ds_A[j] = xi[6];
-    q.dphi[j] = xi[7];
+    set_lane(q, j, x[i]);
     // The moment (5), (6) (the accelerations' and the torque column's) and the load on M.
     if (j >= count) MM[j] = MM[count - 1];
     Lx[j] = load[static_cast<std::size_t>(i)].x;
