@@ -226,8 +226,8 @@ double Model::excitation_angle(double t) const { return excitation_angle_at(t); 
 void Model::excitation(const double* t, int n, double* MM, double* angle, CentreLoad* load) const {
   // Lanes of kLanes times (util/lanes.hpp): the reductions of torque_at's and
   // excitation_angle_at's turns and both series in every lane, the quarter's choice per lane;
-  // the same operations as theirs, so the same bits. Times at or before 0, in the start ramp, of
-  // more than 2^51 turns, or of an exciter's load take the scalar functions.
+  // the same operations as theirs, so the same bits. A single time, times at or before 0, in the
+  // start ramp, of more than 2^51 turns, or of an exciter's load take the scalar functions.
   constexpr int kLanes = 8;
   constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: round_to_integer's
   constexpr double kHalfPi = 0.5 * 3.14159265358979323846;
@@ -236,7 +236,7 @@ void Model::excitation(const double* t, int n, double* MM, double* angle, Centre
   for (int i0 = 0; i0 < n; i0 += kLanes) {
     const int m = std::min(kLanes, n - i0);
     L turns;
-    bool lanes = M0_ != 0.0 && F0_ == 0.0;
+    bool lanes = m > 1 && M0_ != 0.0 && F0_ == 0.0;  // one time (a single sample): scalar
     for (int j = 0; j < kLanes; ++j) {
       const double tj = t[i0 + std::min(j, m - 1)];
       turns[j] = f * tj;
